@@ -1,0 +1,11 @@
+/* smolbridge.h — umbrella header: includes every public module header. */
+#ifndef SMOLBRIDGE_H
+#define SMOLBRIDGE_H
+
+#include <smolbridge/common.h>
+#include <smolbridge/stats.h>
+#include <smolbridge/passage.h>
+#include <smolbridge/bridge.h>
+#include <smolbridge/langevin.h>
+
+#endif /* SMOLBRIDGE_H */

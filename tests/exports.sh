@@ -1,0 +1,22 @@
+#!/bin/sh
+# The installed shared library must export only sb_* symbols (libtool
+# -export-symbols-regex), and must export the public API.
+set -u
+lib="${top_builddir:-.}/.libs/libsmolbridge.so"
+[ -f "$lib" ] || { echo "no $lib (static-only build?)"; exit 77; }
+command -v nm >/dev/null 2>&1 || { echo "nm not found"; exit 77; }
+syms=$(nm -D --defined-only "$lib" | awk '$2 ~ /^[TDRBVW]$/ {print $3}')
+bad=$(printf '%s\n' "$syms" | grep -v '^sb_' | grep -v '^_' || true)
+if [ -n "$bad" ]; then
+  echo "symbols exported without the sb_ prefix:"; printf '%s\n' "$bad"
+  exit 1
+fi
+for s in sb_strerror sb_last_error sb_version sb_bb_cross_prob \
+         sb_bes3b_hit_quantile sb_bm_fpt_cdf sb_ks_test; do
+  printf '%s\n' "$syms" | grep -qx "$s" || { echo "missing export: $s"; exit 1; }
+done
+if printf '%s\n' "$syms" | grep -q '^sbi_'; then
+  echo "internal sbi_ symbols leaked"; exit 1
+fi
+n=$(printf '%s\n' "$syms" | grep -c '^sb_')
+echo "exports: $n sb_ symbols, no others"

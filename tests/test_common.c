@@ -1,0 +1,110 @@
+/* test_common.c — status strings, the per-thread error record, version. */
+#include <pthread.h>
+#include <string.h>
+
+#include "internal.h"
+#include "testutil.h"
+
+START_TEST(test_strerror_all_codes)
+{
+  /* Every status has its own non-empty text; out-of-range codes are named. */
+  for (int s = 0; s < SB_ENSTATUS; s++) {
+    const char *t = sb_strerror(s);
+    ck_assert_ptr_nonnull(t);
+    ck_assert_msg(strlen(t) > 0, "empty text for status %d", s);
+    ck_assert_str_ne(t, "unknown status code");
+    for (int q = 0; q < s; q++)
+      ck_assert_str_ne(t, sb_strerror(q));
+  }
+  ck_assert_str_eq(sb_strerror(-1), "unknown status code");
+  ck_assert_str_eq(sb_strerror(SB_ENSTATUS), "unknown status code");
+}
+END_TEST
+
+START_TEST(test_error_record)
+{
+  sb_clear_error();
+  ck_assert_int_eq(sb_last_status(), SB_SUCCESS);
+  ck_assert_str_eq(sb_last_error(), "");
+  int s = sbi_error(SB_EDOM, "sb_demo", "v = %g must be positive", -1.0);
+  ck_assert_int_eq(s, SB_EDOM);
+  ck_assert_int_eq(sb_last_status(), SB_EDOM);
+  ck_assert_str_eq(sb_last_error(), "sb_demo: v = -1 must be positive");
+  sb_clear_error();
+  ck_assert_str_eq(sb_last_error(), "");
+}
+END_TEST
+
+START_TEST(test_error_record_truncates)
+{
+  char big[2000];
+  memset(big, 'x', sizeof big - 1);
+  big[sizeof big - 1] = '\0';
+  sbi_error(SB_EINVAL, "sb_demo", "%s", big);
+  ck_assert_uint_lt(strlen(sb_last_error()), 512);
+  ck_assert_int_eq(strncmp(sb_last_error(), "sb_demo: xxx", 12), 0);
+}
+END_TEST
+
+START_TEST(test_fail_res_macro)
+{
+  sb_result r = {1.0, 0.0};
+  int s = SBI_FAIL_RES(&r, SB_EINVAL, "bad %s", "thing");
+  ck_assert_int_eq(s, SB_EINVAL);
+  ck_assert(isnan(r.val) && isnan(r.err));
+  ck_assert_int_eq(SBI_FAIL_RES((sb_result *)NULL, SB_EDOM, "x"), SB_EDOM);
+}
+END_TEST
+
+/* Each thread sees only its own error record. */
+static void *thread_sets_error(void *arg)
+{
+  int status = *(int *)arg;
+  for (int i = 0; i < 1000; i++) {
+    sbi_error(status, "sb_thread", "status %d", status);
+    if (sb_last_status() != status)
+      return (void *)1;
+  }
+  return NULL;
+}
+
+START_TEST(test_error_record_is_per_thread)
+{
+  pthread_t th[2];
+  int st[2] = {SB_EDOM, SB_ERANGE};
+  sb_clear_error();
+  for (int i = 0; i < 2; i++)
+    pthread_create(&th[i], NULL, thread_sets_error, &st[i]);
+  for (int i = 0; i < 2; i++) {
+    void *ret;
+    pthread_join(th[i], &ret);
+    ck_assert_ptr_null(ret);
+  }
+  ck_assert_int_eq(sb_last_status(), SB_SUCCESS); /* main thread untouched */
+}
+END_TEST
+
+START_TEST(test_version)
+{
+  char buf[64];
+  snprintf(buf, sizeof buf, "%d.%d.%d", sb_version_major(),
+           sb_version_minor(), sb_version_patch());
+  ck_assert_str_eq(buf, sb_version());
+  ck_assert_str_eq(sb_version(), SB_VERSION_STRING);
+  ck_assert_int_eq(sb_version_major(), SB_VERSION_MAJOR);
+}
+END_TEST
+
+int main(void)
+{
+  Suite *s = suite_create("common");
+  TCase *tc = tcase_create("core");
+  tcase_add_test(tc, test_strerror_all_codes);
+  tcase_add_test(tc, test_error_record);
+  tcase_add_test(tc, test_error_record_truncates);
+  tcase_add_test(tc, test_fail_res_macro);
+  tcase_add_test(tc, test_error_record_is_per_thread);
+  tcase_add_test(tc, test_version);
+  suite_add_tcase(s, tc);
+  return sbt_run_suite(s);
+}

@@ -1,0 +1,74 @@
+/* testutil.h — assertions shared by the Check suites.
+ *
+ * Check's ck_assert_double_eq_tol is absolute-only.  Reference values span
+ * hundreds of decades, so the suites compare with a relative tolerance given
+ * as a named multiple of DBL_EPSILON (or an explicit bound from the issue).
+ */
+#ifndef SB_TESTUTIL_H
+#define SB_TESTUTIL_H
+
+#include <check.h>
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+/* Named tolerances.  TOL_REF is the accuracy promised against the
+ * arbitrary-precision reference vectors (issue 2, part 7). */
+#define TOL_ULPS(n) ((n) * DBL_EPSILON)
+#define TOL_TIGHT TOL_ULPS(16)  /* ~3.6e-15: simple closed forms */
+#define TOL_REF 1e-12           /* promised accuracy of reference functions */
+#define TOL_QUAD 1e-9           /* closed form vs adaptive quadrature */
+
+/* Relative difference |a-b| / max(|b|, tiny); exact match (including both
+ * infinite with the same sign, or both NaN) gives 0. */
+static inline double sbt_reldiff(double a, double b)
+{
+  if (a == b || (isnan(a) && isnan(b)))
+    return 0.0;
+  if (isnan(a) || isnan(b) || isinf(a) || isinf(b))
+    return INFINITY;
+  double d = fabs(b);
+  return fabs(a - b) / (d > DBL_MIN ? d : DBL_MIN);
+}
+
+/* Assert |got - want| <= tol * |want|, printing both values on failure. */
+#define ck_assert_rel(got, want, tol)                                       \
+  do {                                                                      \
+    double sbt_g_ = (got), sbt_w_ = (want), sbt_t_ = (tol);                 \
+    double sbt_r_ = sbt_reldiff(sbt_g_, sbt_w_);                            \
+    ck_assert_msg(sbt_r_ <= sbt_t_,                                         \
+                  "%s = %.17g, want %.17g: relative error %.3g > %.3g",     \
+                  #got, sbt_g_, sbt_w_, sbt_r_, sbt_t_);                    \
+  } while (0)
+
+/* Assert |got - want| <= tol. */
+#define ck_assert_abs(got, want, tol)                                       \
+  do {                                                                      \
+    double sbt_g_ = (got), sbt_w_ = (want), sbt_t_ = (tol);                 \
+    ck_assert_msg(fabs(sbt_g_ - sbt_w_) <= sbt_t_,                          \
+                  "%s = %.17g, want %.17g: |diff| %.3g > %.3g", #got,       \
+                  sbt_g_, sbt_w_, fabs(sbt_g_ - sbt_w_), sbt_t_);           \
+  } while (0)
+
+/* Path of a file under tests/data, valid in-tree and in VPATH builds
+ * (srcdir is passed by the test harness, see tests/Makefile.am). */
+static inline const char *sbt_data_path(const char *name, char *buf,
+                                        size_t len)
+{
+  const char *dir = getenv("srcdir");
+  snprintf(buf, len, "%s/data/%s", dir ? dir : ".", name);
+  return buf;
+}
+
+/* Run a suite with CK_ENV-controlled forking; returns main()'s status. */
+static inline int sbt_run_suite(Suite *s)
+{
+  SRunner *sr = srunner_create(s);
+  srunner_run_all(sr, CK_NORMAL);
+  int failed = srunner_ntests_failed(sr);
+  srunner_free(sr);
+  return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
+
+#endif /* SB_TESTUTIL_H */
