@@ -215,19 +215,23 @@ static inline void sbb_table_header(FILE *f)
 }
 
 /* One row; goal_ns NaN means "for scale" (no verdict).  Returns 1 if the
- * goal is missed, 0 otherwise (so callers can count misses). */
+ * goal is missed, 0 otherwise (so callers can count misses).  A row whose
+ * slowest batch took more than 1.5 times its fastest is marked "noisy":
+ * another process probably took the core; rerun on a quiet machine (or
+ * read the min column). */
 static inline int sbb_table_row(FILE *f, const char *name,
                                 const sbb_timing *t, double goal_ns)
 {
   char mm[64];
   snprintf(mm, sizeof mm, "(%.1f .. %.1f)", t->min, t->max);
   int miss = !isnan(goal_ns) && !(t->median <= goal_ns);
+  const char *noisy = t->max > 1.5 * t->min ? " noisy" : "";
   if (isnan(goal_ns))
-    fprintf(f, "%-40s %10.1f %21s %9s %s\n", name, t->median, mm, "-",
-            "(scale)");
+    fprintf(f, "%-40s %10.1f %21s %9s %s%s\n", name, t->median, mm, "-",
+            "(scale)", noisy);
   else
-    fprintf(f, "%-40s %10.1f %21s %9.0f %s\n", name, t->median, mm, goal_ns,
-            miss ? "MISS" : "PASS");
+    fprintf(f, "%-40s %10.1f %21s %9.0f %s%s\n", name, t->median, mm,
+            goal_ns, miss ? "MISS" : "PASS", noisy);
   return miss;
 }
 

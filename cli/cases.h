@@ -68,5 +68,9 @@ extern const sbv_case sbv_cases_bridge[];   /* cli/cases_bridge.c */
 extern const size_t sbv_ncases_bridge;
 extern const sbv_case sbv_cases_langevin[]; /* cli/cases_langevin.c */
 extern const size_t sbv_ncases_langevin;
+extern const sbv_case sbv_cases_pbe[];      /* cli/cases_pbe.c */
+extern const size_t sbv_ncases_pbe;
+extern const sbv_case sbv_cases_engine[];   /* cli/cases_engine.c */
+extern const size_t sbv_ncases_engine;
 
 #endif /* SB_CLI_CASES_H */

@@ -8,6 +8,8 @@
 /* ------------------------------------------------------------ subcommands */
 int sbc_eval_main(int argc, char **argv);
 int sbc_validate_main(int argc, char **argv);
+int sbc_pbe_main(int argc, char **argv);       /* cli/pbe.c */
+int sbc_collide_main(int argc, char **argv);   /* cli/collide.c */
 
 /* ------------------------------------------------------------ eval table
  * `smolbridge eval NAME key=value ...` calls a public function through an
@@ -36,6 +38,7 @@ typedef struct {
 /* Per-module tables (cli/eval_MODULE.c). */
 extern const sbe_table sbe_table_bridge;   /* bridge and passage */
 extern const sbe_table sbe_table_langevin; /* langevin */
+extern const sbe_table sbe_table_kernel;   /* kernel, pbe analytic solutions */
 
 /* Wrapper generators for plain `double sb_NAME(double, ...)` functions. */
 #define SBE_WRAP1(f) static int sbe_w_##f(const double *i, double *o) \

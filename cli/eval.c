@@ -10,7 +10,7 @@
 #include "cli.h"
 
 static const sbe_table *const tables[] = {&sbe_table_bridge,
-                                          &sbe_table_langevin};
+                                          &sbe_table_langevin, &sbe_table_kernel};
 
 static void usage(FILE *out)
 {

@@ -18,6 +18,8 @@ static void usage(FILE *out)
 "Commands:\n"
 "  eval FUNCTION key=value ...   evaluate a reference function (17 digits)\n"
 "  eval --list                   list the functions and their arguments\n"
+"  pbe --kernel NAME ...         solve the Smoluchowski population balance\n"
+"  collide CONFIG.ini            run the collision engine\n"
 "  validate [--quick|--full]     run the validation cases, write a report\n"
 "\n"
 "  smolbridge COMMAND --help     help on one command\n"
@@ -47,6 +49,10 @@ int main(int argc, char **argv)
   }
   if (!strcmp(cmd, "eval"))
     return sbc_eval_main(argc - 1, argv + 1);
+  if (!strcmp(cmd, "pbe"))
+    return sbc_pbe_main(argc - 1, argv + 1);
+  if (!strcmp(cmd, "collide"))
+    return sbc_collide_main(argc - 1, argv + 1);
   if (!strcmp(cmd, "validate"))
     return sbc_validate_main(argc - 1, argv + 1);
   fprintf(stderr, "smolbridge: unknown command '%s'\n\n", cmd);

@@ -73,7 +73,7 @@ int sbv_plot(const sbv_ctx *ctx, sbv_report *rep, const char *name,
   fprintf(f, "# gnuplot script written by smolbridge validate; run it in "
              "this directory.\n");
   fprintf(f, "set terminal pngcairo size 960,640 noenhanced\n");
-  fprintf(f, "set output '%s'\nset title '%s'\nset key best\nset grid\n", png,
+  fprintf(f, "set output '%s'\nset title '%s'\nset grid\n", png,
           title);
   put_body(f, gnuplot_body, datfile);
   if (fclose(f) != 0)

@@ -21,6 +21,8 @@ static const struct {
 } tables[] = {
     {sbv_cases_bridge, &sbv_ncases_bridge},
     {sbv_cases_langevin, &sbv_ncases_langevin},
+    {sbv_cases_pbe, &sbv_ncases_pbe},
+    {sbv_cases_engine, &sbv_ncases_engine},
 };
 
 gsl_rng *sbv_rng_alloc(const sbv_ctx *ctx, unsigned long stream)

@@ -7,5 +7,8 @@
 #include <smolbridge/passage.h>
 #include <smolbridge/bridge.h>
 #include <smolbridge/langevin.h>
+#include <smolbridge/kernel.h>
+#include <smolbridge/pbe.h>
+#include <smolbridge/engine.h>
 
 #endif /* SMOLBRIDGE_H */

@@ -57,7 +57,7 @@ static inline const char *sbt_data_path(const char *name, char *buf,
                                         size_t len)
 {
   const char *dir = getenv("srcdir");
-  snprintf(buf, len, "%s/data/%s", dir ? dir : ".", name);
+  snprintf(buf, len, "%s/tests/data/%s", dir ? dir : ".", name);
   return buf;
 }
 

@@ -1,0 +1,758 @@
+/* collide.c — `smolbridge collide CONFIG.ini`: run the collision engine
+ * from an INI file (libinih), print progress on stderr, write the time
+ * series (CSV), snapshots (CSV) and a run summary (JSON) to an output
+ * directory.  Every key, unit and default: docs/engine.md; examples:
+ * the .ini files in examples/. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+
+#include <ini.h>
+
+#include <smolbridge/engine.h>
+#include <smolbridge/langevin.h>
+
+#include "cli.h"
+
+#define MAXSPEC 16
+#define MAXPART 64
+
+typedef struct {
+  char name[64];
+  double radius, density, mass, tau, mu, B, T, phi, cc;
+  long count;
+  int family;
+  int has_region;
+  double region[6];
+  double drift[3];
+  int npart;                /* explicit particles (key `particle`) */
+  double part[MAXPART][6];  /* x y z ux uy uz (2-D: x y ux uy) */
+} spec_cfg;
+
+typedef struct {
+  /* [run] */
+  unsigned long seed;
+  int dim;
+  double L[3];
+  double dt, t_end, warmup, thermalize;
+  long steps;
+  char neigh[32], detect[32], outcome[32];
+  double eta;
+  long sample_every, snapshot_every, sort_every;
+  char rng[32];
+  char output[512], checkpoint[512], restart[512];
+  /* [fluid] */
+  char fluid[32];
+  int fluid_set;
+  double U[3], G;
+  /* species */
+  spec_cfg sp[MAXSPEC];
+  int nsp;
+  /* parse errors */
+  char err[512];
+  int nerr;
+} config;
+
+static void cfg_default(config *c)
+{
+  memset(c, 0, sizeof *c);
+  c->seed = 1;
+  c->dim = 3;
+  c->L[0] = c->L[1] = c->L[2] = NAN;
+  c->dt = NAN;
+  c->t_end = NAN;
+  c->steps = -1;
+  strcpy(c->neigh, "cells");
+  strcpy(c->detect, "ballistic");
+  strcpy(c->outcome, "elastic");
+  c->eta = 1.0;
+  c->sample_every = -1;
+  strcpy(c->output, "collide-out");
+  strcpy(c->fluid, "rest");
+  strcpy(c->rng, "mt19937");
+}
+
+static int fail(config *c, const char *fmt, ...)
+{
+  if (c->nerr++ == 0) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(c->err, sizeof c->err, fmt, ap);
+    va_end(ap);
+  }
+  return 0;  /* inih: error on this line */
+}
+
+/* Parse a double ("inf" accepted where allowed). */
+static int num(config *c, const char *sec, const char *key, const char *v,
+               double *out, double lo, double hi, int allow_inf)
+{
+  char *end;
+  errno = 0;
+  double x = strtod(v, &end);
+  while (*end == ' ' || *end == '\t')
+    end++;
+  if (end == v || *end || errno == ERANGE || isnan(x) ||
+      (isinf(x) && !allow_inf))
+    return fail(c, "[%s] %s = '%s': not a number", sec, key, v);
+  if (!(x >= lo && x <= hi))
+    return fail(c, "[%s] %s = %g: out of range [%g, %g]", sec, key, x, lo,
+                hi);
+  *out = x;
+  return 1;
+}
+
+static int vec(config *c, const char *sec, const char *key, const char *v,
+               double *out, int nmin, int nmax)
+{
+  int k = 0;
+  const char *p = v;
+  char *end;
+  while (*p) {
+    while (*p == ' ' || *p == '\t' || *p == ',')
+      p++;
+    if (!*p)
+      break;
+    if (k >= nmax)
+      return fail(c, "[%s] %s: more than %d numbers", sec, key, nmax);
+    errno = 0;
+    double x = strtod(p, &end);
+    if (end == p || !isfinite(x) || errno == ERANGE)
+      return fail(c, "[%s] %s = '%s': not a list of numbers", sec, key, v);
+    out[k++] = x;
+    p = end;
+  }
+  if (k < nmin)
+    return fail(c, "[%s] %s: needs %d to %d numbers", sec, key, nmin, nmax);
+  return k;
+}
+
+static int str(config *c, const char *sec, const char *key, const char *v,
+               char *out, size_t len)
+{
+  if (strlen(v) >= len)
+    return fail(c, "[%s] %s: value too long", sec, key);
+  strcpy(out, v);
+  return 1;
+}
+
+static int integer(config *c, const char *sec, const char *key,
+                   const char *v, long *out, long lo, long hi)
+{
+  double x;
+  if (!num(c, sec, key, v, &x, (double)lo, (double)hi, 0))
+    return 0;
+  if (x != floor(x))
+    return fail(c, "[%s] %s = %g: must be an integer", sec, key, x);
+  *out = (long)x;
+  return 1;
+}
+
+static int handler(void *user, const char *sec, const char *key,
+                   const char *v)
+{
+  config *c = user;
+  if (!strcmp(sec, "run")) {
+    long l;
+    if (!strcmp(key, "seed")) {
+      if (!integer(c, sec, key, v, &l, 0, 4294967295L))
+        return 0;
+      c->seed = (unsigned long)l;
+      return 1;
+    }
+    if (!strcmp(key, "dim")) {
+      if (!integer(c, sec, key, v, &l, 2, 3))
+        return 0;
+      c->dim = (int)l;
+      return 1;
+    }
+    if (!strcmp(key, "L")) {
+      double x;
+      if (!num(c, sec, key, v, &x, 1e-300, 1e300, 0))
+        return 0;
+      c->L[0] = c->L[1] = c->L[2] = x;
+      return 1;
+    }
+    if (!strcmp(key, "Lx"))
+      return num(c, sec, key, v, &c->L[0], 1e-300, 1e300, 0);
+    if (!strcmp(key, "Ly"))
+      return num(c, sec, key, v, &c->L[1], 1e-300, 1e300, 0);
+    if (!strcmp(key, "Lz"))
+      return num(c, sec, key, v, &c->L[2], 1e-300, 1e300, 0);
+    if (!strcmp(key, "dt"))
+      return num(c, sec, key, v, &c->dt, 1e-300, 1e300, 0);
+    if (!strcmp(key, "t_end"))
+      return num(c, sec, key, v, &c->t_end, 0, 1e300, 0);
+    if (!strcmp(key, "steps"))
+      return integer(c, sec, key, v, &c->steps, 0, 2000000000L);
+    if (!strcmp(key, "warmup"))
+      return num(c, sec, key, v, &c->warmup, 0, 1e300, 0);
+    if (!strcmp(key, "thermalize"))
+      return num(c, sec, key, v, &c->thermalize, 0, 1e300, 0);
+    if (!strcmp(key, "neigh"))
+      return str(c, sec, key, v, c->neigh, sizeof c->neigh);
+    if (!strcmp(key, "detect"))
+      return str(c, sec, key, v, c->detect, sizeof c->detect);
+    if (!strcmp(key, "outcome"))
+      return str(c, sec, key, v, c->outcome, sizeof c->outcome);
+    if (!strcmp(key, "eta"))
+      return num(c, sec, key, v, &c->eta, 0, 1, 0);
+    if (!strcmp(key, "sample_every"))
+      return integer(c, sec, key, v, &c->sample_every, 0, 2000000000L);
+    if (!strcmp(key, "sort_every"))
+      return integer(c, sec, key, v, &c->sort_every, 0, 2000000000L);
+    if (!strcmp(key, "rng")) {
+      if (strcmp(v, "mt19937") && strcmp(v, "taus2"))
+        return fail(c, "[run] rng = '%s': must be mt19937 or taus2", v);
+      return str(c, sec, key, v, c->rng, sizeof c->rng);
+    }
+    if (!strcmp(key, "snapshot_every"))
+      return integer(c, sec, key, v, &c->snapshot_every, 0, 2000000000L);
+    if (!strcmp(key, "output"))
+      return str(c, sec, key, v, c->output, sizeof c->output);
+    if (!strcmp(key, "checkpoint"))
+      return str(c, sec, key, v, c->checkpoint, sizeof c->checkpoint);
+    if (!strcmp(key, "restart"))
+      return str(c, sec, key, v, c->restart, sizeof c->restart);
+    return fail(c, "[run]: unknown key '%s'", key);
+  }
+  if (!strcmp(sec, "fluid")) {
+    c->fluid_set = 1;
+    if (!strcmp(key, "type"))
+      return str(c, sec, key, v, c->fluid, sizeof c->fluid);
+    if (!strcmp(key, "U"))
+      return vec(c, sec, key, v, c->U, 2, 3) > 0;
+    if (!strcmp(key, "G"))
+      return num(c, sec, key, v, &c->G, -1e300, 1e300, 0);
+    return fail(c, "[fluid]: unknown key '%s'", key);
+  }
+  if (!strncmp(sec, "species", 7) && (sec[7] == ' ' || sec[7] == '.' ||
+                                      sec[7] == ':' || !sec[7])) {
+    spec_cfg *s = NULL;
+    for (int k = 0; k < c->nsp; k++)
+      if (!strcmp(c->sp[k].name, sec))
+        s = &c->sp[k];
+    if (!s) {
+      if (c->nsp == MAXSPEC)
+        return fail(c, "[%s]: more than %d species", sec, MAXSPEC);
+      s = &c->sp[c->nsp++];
+      memset(s, 0, sizeof *s);
+      snprintf(s->name, sizeof s->name, "%s", sec);
+      s->radius = s->density = s->mass = s->tau = s->mu = s->B = NAN;
+      s->T = NAN;
+      s->phi = NAN;
+      s->cc = 1.0;
+      s->count = -1;
+    }
+    if (!strcmp(key, "radius"))
+      return num(c, sec, key, v, &s->radius, 1e-300, 1e300, 0);
+    if (!strcmp(key, "diameter")) {
+      double d;
+      if (!num(c, sec, key, v, &d, 1e-300, 1e300, 0))
+        return 0;
+      s->radius = 0.5 * d;
+      return 1;
+    }
+    if (!strcmp(key, "density"))
+      return num(c, sec, key, v, &s->density, 1e-300, 1e300, 0);
+    if (!strcmp(key, "mass"))
+      return num(c, sec, key, v, &s->mass, 1e-300, 1e300, 0);
+    if (!strcmp(key, "tau"))
+      return num(c, sec, key, v, &s->tau, 1e-300, INFINITY, 1);
+    if (!strcmp(key, "mu"))
+      return num(c, sec, key, v, &s->mu, 1e-300, 1e300, 0);
+    if (!strcmp(key, "cunningham"))
+      return num(c, sec, key, v, &s->cc, 1.0, 1e300, 0);
+    if (!strcmp(key, "B"))
+      return num(c, sec, key, v, &s->B, 0, 1e300, 0);
+    if (!strcmp(key, "T"))
+      return num(c, sec, key, v, &s->T, 0, 1e300, 0);
+    if (!strcmp(key, "count")) {
+      long l;
+      if (!integer(c, sec, key, v, &l, 0, 1000000000L))
+        return 0;
+      s->count = l;
+      return 1;
+    }
+    if (!strcmp(key, "phi"))
+      return num(c, sec, key, v, &s->phi, 0, 0.5, 0);
+    if (!strcmp(key, "family")) {
+      long l;
+      if (!integer(c, sec, key, v, &l, 0, SB_ENGINE_MAXFAM - 1))
+        return 0;
+      s->family = (int)l;
+      return 1;
+    }
+    if (!strcmp(key, "region")) {
+      int k = vec(c, sec, key, v, s->region, 4, 6);
+      if (k <= 0)
+        return 0;
+      if (k == 5)
+        return fail(c, "[%s] region: needs 4 (2-D) or 6 (3-D) numbers",
+                    sec);
+      s->has_region = k;
+      return 1;
+    }
+    if (!strcmp(key, "drift"))
+      return vec(c, sec, key, v, s->drift, 2, 3) > 0;
+    if (!strcmp(key, "particle")) {
+      double q[6] = {0, 0, 0, 0, 0, 0};
+      if (s->npart == MAXPART)
+        return fail(c, "[%s] particle: more than %d", sec, MAXPART);
+      int k = vec(c, sec, key, v, q, 4, 6);
+      if (k <= 0)
+        return 0;
+      if (k == 5)
+        return fail(c, "[%s] particle: needs 4 (2-D: x y ux uy) or 6 "
+                    "(3-D) numbers", sec);
+      double *o = s->part[s->npart++];
+      if (k == 4) {
+        o[0] = q[0], o[1] = q[1], o[2] = 0, o[3] = q[2], o[4] = q[3];
+        o[5] = 0;
+      } else
+        memcpy(o, q, sizeof q);
+      return 1;
+    }
+    return fail(c, "[%s]: unknown key '%s'", sec, key);
+  }
+  return fail(c, "unknown section [%s]", sec);
+}
+
+/* ------------------------------------------------------------ build */
+
+static int mkdir_p(const char *path)
+{
+  char buf[1024];
+  snprintf(buf, sizeof buf, "%s", path);
+  for (char *p = buf + 1; *p; p++)
+    if (*p == '/') {
+      *p = 0;
+      if (mkdir(buf, 0777) && errno != EEXIST)
+        return -1;
+      *p = '/';
+    }
+  if (mkdir(buf, 0777) && errno != EEXIST)
+    return -1;
+  return 0;
+}
+
+#define PI 3.14159265358979323846
+
+/* Complete a species from the alternative keys; message on error. */
+static int species_build(const spec_cfg *s,
+                         sb_engine_species *o, char *msg, size_t len)
+{
+  if (!(s->radius > 0)) {
+    snprintf(msg, len, "[%s]: radius (or diameter) is required", s->name);
+    return -1;
+  }
+  double d = 2 * s->radius, m = s->mass;
+  if (isnan(m)) {
+    if (!(s->density > 0)) {
+      snprintf(msg, len, "[%s]: mass or density is required", s->name);
+      return -1;
+    }
+    m = sb_sphere_mass(s->density, d);  /* spheres, also in 2-D */
+  }
+  double tau = s->tau;
+  if (isnan(tau)) {
+    if (!(s->mu > 0) || !(s->density > 0)) {
+      snprintf(msg, len, "[%s]: tau, or mu and density (Stokes tau), is "
+               "required", s->name);
+      return -1;
+    }
+    tau = sb_stokes_tau(s->density, d, s->mu, s->cc);
+  }
+  double T = isnan(s->T) ? 0.0 : s->T, B = s->B;
+  if (isnan(B)) {
+    if (isinf(tau))
+      B = 0.0;
+    else if (T > 0)
+      B = sb_brownian_B(T, m, tau);
+    else {
+      snprintf(msg, len, "[%s]: B or T is required", s->name);
+      return -1;
+    }
+  }
+  if (isinf(tau) && !(T > 0)) {
+    snprintf(msg, len, "[%s]: free flight (tau = inf) needs T > 0",
+             s->name);
+    return -1;
+  }
+  *o = (sb_engine_species){s->radius, m, tau, B, T};
+  return 0;
+}
+
+static long species_count(const config *c, const spec_cfg *s, double vol)
+{
+  if (s->count >= 0)
+    return s->count + s->npart;
+  if (!isnan(s->phi)) {
+    double r = s->radius;
+    double v1 = c->dim == 3 ? 4.0 / 3.0 * PI * r * r * r : PI * r * r;
+    return lround(s->phi * vol / v1) + s->npart;
+  }
+  return s->npart > 0 ? s->npart : -1;
+}
+
+/* ------------------------------------------------------------ output */
+
+static void write_json(FILE *f, const config *c, const sb_engine *e,
+                       double secs)
+{
+  const sb_engine_params *p = sb_engine_get_params(e);
+  sb_engine_stats st;
+  sb_engine_get_stats(e, &st);
+  double K = NAN, lo = NAN, hi = NAN;
+  sb_engine_kernel(e, 0.95, &K, &lo, &hi);
+  fprintf(f, "{\n  \"program\": \"smolbridge collide\",\n");
+  fprintf(f, "  \"version\": \"%s\",\n", sb_version());
+  fprintf(f, "  \"seed\": %lu,\n", c->seed);
+  fprintf(f, "  \"dim\": %d,\n  \"L\": [%.17g, %.17g, %.17g],\n", p->dim,
+          p->L[0], p->L[1], p->dim == 3 ? p->L[2] : 0.0);
+  fprintf(f, "  \"dt\": %.17g,\n  \"neigh\": \"%s\",\n  \"detect\": "
+          "\"%s\",\n  \"outcome\": \"%s\",\n  \"eta\": %.17g,\n",
+          p->dt, c->neigh, c->detect, c->outcome, p->eta);
+  fprintf(f, "  \"fluid\": \"%s\",\n", c->fluid);
+  fprintf(f, "  \"rng\": \"%s\",\n",
+          p->rng_type ? p->rng_type->name : gsl_rng_mt19937->name);
+  fprintf(f, "  \"species\": [\n");
+  const sb_engine_species *s;
+  for (size_t k = 0; (s = sb_engine_get_species(e, k)); k++) {
+    char tau[40];
+    if (isinf(s->tau))
+      snprintf(tau, sizeof tau, "\"inf\"");
+    else
+      snprintf(tau, sizeof tau, "%.17g", s->tau);
+    fprintf(f, "    {\"radius\": %.17g, \"mass\": %.17g, \"tau\": %s, "
+            "\"B\": %.17g, \"T\": %.17g}%s\n",
+            s->radius, s->mass, tau, s->B, s->T,
+            sb_engine_get_species(e, k + 1) ? "," : "");
+  }
+  fprintf(f, "  ],\n  \"particles\": %zu,\n", sb_engine_count(e));
+  fprintf(f, "  \"time\": %.17g,\n  \"steps\": %llu,\n", st.t,
+          (unsigned long long)st.steps);
+  fprintf(f, "  \"t_measure_start\": %.17g,\n", st.t_reset);
+  fprintf(f, "  \"collisions\": %llu,\n  \"candidates\": %llu,\n  "
+          "\"dropped\": %llu,\n",
+          (unsigned long long)st.ncoll, (unsigned long long)st.ncand,
+          (unsigned long long)st.dropped);
+  fprintf(f, "  \"kernel\": {\"K\": %.17g, \"ci95\": [%.17g, %.17g]},\n",
+          isnan(K) ? 0.0 : K, isnan(lo) ? 0.0 : lo, isnan(hi) ? 0.0 : hi);
+  fprintf(f, "  \"family_collisions\": [");
+  int first = 1;
+  for (int a = 0; a < SB_ENGINE_MAXFAM; a++)
+    for (int b = a; b < SB_ENGINE_MAXFAM; b++)
+      if (st.fam[a][b]) {
+        fprintf(f, "%s{\"a\": %d, \"b\": %d, \"n\": %llu}", first ? "" : ", ",
+                a, b, (unsigned long long)st.fam[a][b]);
+        first = 0;
+      }
+  fprintf(f, "],\n  \"wall_seconds\": %.3f\n}\n", secs);
+}
+
+static int write_series(const char *path, const sb_engine *e)
+{
+  FILE *f = fopen(path, "w");
+  if (!f)
+    return -1;
+  size_t n;
+  const sb_engine_sample *s = sb_engine_series(e, &n);
+  fprintf(f, "t,ncoll,K,K_lo,K_hi,ekin,px,py,pz\n");
+  for (size_t k = 0; k < n; k++)
+    fprintf(f, "%.17g,%llu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+            s[k].t, (unsigned long long)s[k].ncoll, s[k].K, s[k].K_lo,
+            s[k].K_hi, s[k].ekin, s[k].p[0], s[k].p[1], s[k].p[2]);
+  return fclose(f) ? -1 : 0;
+}
+
+static void usage(FILE *f)
+{
+  fprintf(f,
+"Usage: smolbridge collide CONFIG.ini\n"
+"\n"
+"Run the Lagrangian collision engine described by CONFIG.ini:\n"
+"  [run]          seed, dim, L | Lx Ly Lz (m), dt (s), t_end (s) | steps,\n"
+"                 warmup (s), thermalize (K), neigh, detect, outcome, eta,\n"
+"                 sample_every, snapshot_every, sort_every, rng, output,\n"
+"                 checkpoint, restart\n"
+"  [fluid]        type = rest | uniform | shear, U (m/s), G (1/s)\n"
+"  [species NAME] radius | diameter (m), mass (kg) | density (kg/m^3),\n"
+"                 tau (s, inf) | mu (Pa s) [cunningham], B | T (K),\n"
+"                 count | phi | particle, family, region (m), drift (m/s)\n"
+"Writes OUTPUT/series.csv, OUTPUT/summary.json, OUTPUT/snap_*.csv.\n"
+"Progress goes to stderr.  Every key with its unit and default:\n"
+"docs/engine.md; examples: examples/*.ini.\n");
+}
+
+static int progress_step(sb_engine *e, double t_stop, double t0, FILE *err)
+{
+  double last = -1;
+  while (sb_engine_time(e) < t_stop - 0.5 * sb_engine_get_params(e)->dt) {
+    int st = sb_engine_step(e);
+    if (st)
+      return st;
+    double frac = (sb_engine_time(e) - t0) / (t_stop - t0);
+    if (frac - last >= 0.1 || frac >= 1.0 - 1e-12) {
+      sb_engine_stats s;
+      sb_engine_get_stats(e, &s);
+      fprintf(err, "collide: t = %.4g s (%3.0f%%), %llu collisions\n",
+              sb_engine_time(e), 100 * frac, (unsigned long long)s.ncoll);
+      last = frac;
+    }
+  }
+  return SB_SUCCESS;
+}
+
+int sbc_collide_main(int argc, char **argv)
+{
+  if (argc < 2 || !strcmp(argv[1], "-h") || !strcmp(argv[1], "--help")) {
+    usage(argc < 2 ? stderr : stdout);
+    return argc < 2 ? 2 : 0;
+  }
+  if (argc > 2) {
+    fprintf(stderr, "collide: one CONFIG.ini expected\n");
+    return 2;
+  }
+  static config c;
+  cfg_default(&c);
+  int line = ini_parse(argv[1], handler, &c);
+  if (line < 0) {
+    fprintf(stderr, "collide: cannot read '%s'\n", argv[1]);
+    return 1;
+  }
+  if (line > 0 || c.nerr) {
+    fprintf(stderr, "collide: %s:%d: %s\n", argv[1], line,
+            c.nerr ? c.err : "syntax error");
+    return 1;
+  }
+  sb_engine *e = NULL;
+  char msg[512];
+  sb_engine_neigh nm;
+  sb_engine_detect dm;
+  sb_engine_outcome om;
+  if (sb_engine_neigh_from_name(c.neigh, &nm) ||
+      sb_engine_detect_from_name(c.detect, &dm) ||
+      sb_engine_outcome_from_name(c.outcome, &om)) {
+    fprintf(stderr, "collide: [run] neigh/detect/outcome: %s\n",
+            sb_last_error());
+    return 1;
+  }
+  if (c.restart[0]) {
+    int st;
+    e = sb_engine_checkpoint_load(c.restart, &st);
+    if (!e) {
+      fprintf(stderr, "collide: restart: %s\n", sb_last_error());
+      return 1;
+    }
+  } else {
+    sb_engine_params p;
+    sb_engine_params_default(&p);
+    p.dim = c.dim;
+    for (int k = 0; k < c.dim; k++) {
+      if (isnan(c.L[k])) {
+        fprintf(stderr, "collide: [run] L (or L%c) is required\n", 'x' + k);
+        return 1;
+      }
+      p.L[k] = c.L[k];
+    }
+    if (isnan(c.dt)) {
+      fprintf(stderr, "collide: [run] dt is required\n");
+      return 1;
+    }
+    p.dt = c.dt;
+    p.seed = c.seed;
+    p.neigh = nm;
+    p.detect = dm;
+    p.outcome = om;
+    p.eta = c.eta;
+    p.sort_every = (size_t)c.sort_every;
+    p.rng_type = strcmp(c.rng, "taus2") ? gsl_rng_mt19937 : gsl_rng_taus2;
+    if (c.nsp == 0) {
+      fprintf(stderr, "collide: no [species NAME] section\n");
+      return 1;
+    }
+    double vol = p.L[0] * p.L[1] * (c.dim == 3 ? p.L[2] : 1.0);
+    long total = 0;
+    for (int k = 0; k < c.nsp; k++) {
+      long n = species_count(&c, &c.sp[k], vol);
+      if (n < 0) {
+        fprintf(stderr, "collide: [%s]: count, phi or particle is "
+                "required\n",
+                c.sp[k].name);
+        return 1;
+      }
+      total += n;
+    }
+    p.capacity = total > 0 ? (size_t)total : 1;
+    e = sb_engine_alloc(&p);
+    if (!e) {
+      fprintf(stderr, "collide: %s\n", sb_last_error());
+      return 1;
+    }
+    for (int k = 0; k < c.nsp; k++) {
+      sb_engine_species s;
+      size_t idx;
+      if (species_build(&c.sp[k], &s, msg, sizeof msg)) {
+        fprintf(stderr, "collide: %s\n", msg);
+        sb_engine_free(e);
+        return 1;
+      }
+      if (sb_engine_add_species(e, &s, &idx)) {
+        fprintf(stderr, "collide: [%s]: %s\n", c.sp[k].name,
+                sb_last_error());
+        sb_engine_free(e);
+        return 1;
+      }
+    }
+  }
+  /* fluid (on restart the saved field is kept unless [fluid] is given) */
+  if (!c.restart[0] || c.fluid_set) {
+    double q[3] = {0, 0, 0};
+    sb_engine_fluid f;
+    if (!strcmp(c.fluid, "rest"))
+      f = SB_FLUID_REST;
+    else if (!strcmp(c.fluid, "uniform")) {
+      f = SB_FLUID_UNIFORM;
+      memcpy(q, c.U, sizeof q);
+    } else if (!strcmp(c.fluid, "shear")) {
+      f = SB_FLUID_SHEAR;
+      q[0] = c.G;
+    } else {
+      fprintf(stderr, "collide: [fluid] type = '%s': must be rest, uniform "
+              "or shear\n", c.fluid);
+      sb_engine_free(e);
+      return 1;
+    }
+    sb_engine_set_fluid(e, f, q);
+  }
+  if (!c.restart[0]) {
+    const sb_engine_params *p = sb_engine_get_params(e);
+    double vol = p->L[0] * p->L[1] * (c.dim == 3 ? p->L[2] : 1.0);
+    for (int k = 0; k < c.nsp; k++) {
+      const spec_cfg *s = &c.sp[k];
+      size_t n = (size_t)species_count(&c, s, vol);
+      double lo[3] = {0, 0, 0}, hi[3];
+      memcpy(hi, p->L, sizeof hi);
+      if (s->has_region) {
+        if ((s->has_region == 6) != (c.dim == 3)) {
+          fprintf(stderr, "collide: [%s] region: %d numbers for dim %d\n",
+                  s->name, s->has_region, c.dim);
+          sb_engine_free(e);
+          return 1;
+        }
+        for (int d = 0; d < c.dim; d++) {
+          lo[d] = s->region[2 * d];
+          hi[d] = s->region[2 * d + 1];
+        }
+      }
+      for (int q = 0; q < s->npart; q++)
+        if (sb_engine_add_particle(e, (size_t)k, s->family, s->part[q],
+                                   s->part[q] + 3)) {
+          fprintf(stderr, "collide: [%s] particle %d: %s\n", s->name, q + 1,
+                  sb_last_error());
+          sb_engine_free(e);
+          return 1;
+        }
+      n -= (size_t)s->npart;
+      if (n > 0 && sb_engine_fill_box(e, (size_t)k, s->family, n, lo, hi,
+                                      s->drift)) {
+        fprintf(stderr, "collide: [%s]: %s\n", s->name, sb_last_error());
+        sb_engine_free(e);
+        return 1;
+      }
+    }
+    if (c.thermalize > 0 && sb_engine_thermalize(e, c.thermalize)) {
+      fprintf(stderr, "collide: thermalize: %s\n", sb_last_error());
+      sb_engine_free(e);
+      return 1;
+    }
+  }
+  const double dt = sb_engine_get_params(e)->dt;
+  double t0 = sb_engine_time(e);
+  double t_end = !isnan(c.t_end) ? c.t_end
+                 : c.steps >= 0  ? t0 + (double)c.steps * dt
+                                 : NAN;
+  if (isnan(t_end)) {
+    fprintf(stderr, "collide: [run] t_end or steps is required\n");
+    sb_engine_free(e);
+    return 1;
+  }
+  if (mkdir_p(c.output)) {
+    fprintf(stderr, "collide: cannot create '%s': %s\n", c.output,
+            strerror(errno));
+    sb_engine_free(e);
+    return 1;
+  }
+  /* time series every sample_every steps (default: 200 samples) */
+  {
+    long nst = lround((t_end - t0) / dt);
+    sb_engine_set_sample_every(e, c.sample_every >= 0
+                                      ? (size_t)c.sample_every
+                                      : (size_t)(nst / 200 > 0 ? nst / 200
+                                                               : 1));
+  }
+  fprintf(stderr, "collide: %zu particles, dt = %g s, t = %g -> %g s, "
+          "seed %lu, output %s/\n", sb_engine_count(e), dt, t0, t_end,
+          c.seed, c.output);
+  double tw0 = (double)clock() / CLOCKS_PER_SEC;
+  int st = SB_SUCCESS;
+  if (c.warmup > 0 && !c.restart[0]) {
+    st = progress_step(e, t0 + c.warmup, t0, stderr);
+    sb_engine_reset_counters(e);
+  }
+  char path[1100];
+  long snap = 0;
+  while (!st && sb_engine_time(e) < t_end - 0.5 * dt) {
+    double t_next = t_end;
+    if (c.snapshot_every > 0) {
+      double ts = sb_engine_time(e) + (double)c.snapshot_every * dt;
+      if (ts < t_next)
+        t_next = ts;
+    }
+    st = progress_step(e, t_next, sb_engine_time(e), stderr);
+    if (!st && c.snapshot_every > 0) {
+      snprintf(path, sizeof path, "%s/snap_%06ld.csv", c.output, snap++);
+      st = sb_engine_snapshot_csv(e, path);
+    }
+  }
+  if (st) {
+    fprintf(stderr, "collide: step failed: %s\n", sb_last_error());
+    sb_engine_free(e);
+    return 1;
+  }
+  double secs = (double)clock() / CLOCKS_PER_SEC - tw0;
+  snprintf(path, sizeof path, "%s/series.csv", c.output);
+  if (write_series(path, e)) {
+    fprintf(stderr, "collide: cannot write %s\n", path);
+    sb_engine_free(e);
+    return 1;
+  }
+  snprintf(path, sizeof path, "%s/summary.json", c.output);
+  FILE *f = fopen(path, "w");
+  if (!f) {
+    fprintf(stderr, "collide: cannot write %s\n", path);
+    sb_engine_free(e);
+    return 1;
+  }
+  write_json(f, &c, e, secs);
+  fclose(f);
+  if (c.checkpoint[0] && sb_engine_checkpoint_save(e, c.checkpoint)) {
+    fprintf(stderr, "collide: checkpoint: %s\n", sb_last_error());
+    sb_engine_free(e);
+    return 1;
+  }
+  double K, lo, hi;
+  if (!sb_engine_kernel(e, 0.95, &K, &lo, &hi))
+    fprintf(stderr, "collide: done; K_e = %.6g [%.6g, %.6g] (95%%)\n", K, lo,
+            hi);
+  sb_engine_free(e);
+  return 0;
+}

@@ -1,0 +1,137 @@
+/* engine_internal.h — the engine object shared by lib/engine*.c.  Not
+ * installed; internal cross-file helpers use the sbi_ prefix. */
+#ifndef SB_ENGINE_INTERNAL_H
+#define SB_ENGINE_INTERNAL_H
+
+#include <stdint.h>
+#include <gsl/gsl_rng.h>
+#include <smolbridge/engine.h>
+#include <smolbridge/langevin.h>
+
+/* A detected collision waiting to be processed. */
+typedef struct {
+  double s;            /* contact fraction of the step */
+  sb_engine_pair p;
+} sbi_event;
+
+struct sb_engine {
+  sb_engine_params par;
+  size_t n;                  /* particles in use (<= par.capacity) */
+  uint64_t next_id;
+
+  /* particles, structure of arrays ("array of 3-vectors" for x, u so that
+   * the batched Langevin stepper works on them directly) */
+  double *x, *u;             /* 3 cap: position (m), velocity (m/s) */
+  double *x0, *u0;           /* 3 cap: state at the start of the step */
+  double *disp;              /* 3 cap: displacement over the step (m) */
+  double *us;                /* 3 cap: fluid velocity at x0 (m/s) */
+  double *radius, *mass;     /* cap */
+  size_t *species;           /* cap: index into spec[] */
+  int *family;               /* cap */
+  uint64_t *id;              /* cap */
+  unsigned char *hit;        /* cap: collided in this step */
+
+  /* species and their step coefficients */
+  size_t nspec, capspec;
+  sb_engine_species *spec;
+  sb_langevin_coef *coef;
+  double *vsd;               /* equilibrium velocity std per species */
+  double rmax;               /* largest species radius */
+
+  /* behaviour */
+  sb_engine_detect_fn detect_fn;
+  void *detect_ctx;
+  double detect_reach;
+  sb_engine_outcome_fn outcome_fn;
+  void *outcome_ctx;
+  sb_engine_fluid fluid;
+  double fluid_p[3];
+  sb_engine_fluid_fn fluid_fn;
+  void *fluid_ctx;
+
+  gsl_rng *rng;
+
+  /* time and observers */
+  uint64_t steps;
+  double t, t_reset;
+  uint64_t ncoll, ncand, dropped;
+  uint64_t fam[SB_ENGINE_MAXFAM][SB_ENGINE_MAXFAM];
+  sb_engine_sample *series;
+  size_t nseries, capseries;
+
+  /* scratch: candidate pairs, events, neighbour-search work arrays */
+  size_t *pairs;             /* 2 cappairs */
+  size_t npairs, cappairs;
+  sbi_event *ev;
+  size_t nev, capev;
+  size_t *cell_of, *cell_start, *cell_list;
+  size_t capcells;
+  double *dn;                /* cap: |disp_i| (cells, brute) */
+  double *xs;                /* 4 cap: cells: x0 and r + |disp| in cell
+                                order (contiguous inner loop) */
+  size_t *order;             /* sweep: particle order along x */
+  double *key;               /* sweep: sorted x */
+  size_t norder;             /* particles in order[] (0: rebuild) */
+};
+
+/* Box helpers. */
+static inline double sbi_minimg(double d, double L)
+{
+  if (d > 0.5 * L)
+    d -= L;
+  else if (d < -0.5 * L)
+    d += L;
+  return d;
+}
+
+static inline double sbi_wrap(double x, double L)
+{
+  if (x >= L || x < 0.0) {
+    x -= L * floor(x / L);
+    if (x >= L)  /* rounding of x slightly below 0 */
+      x = 0.0;
+  }
+  return x;
+}
+
+/* Append a candidate pair (grows the array). */
+int sbi_engine_push_pair(sb_engine *e, size_t i, size_t j);
+
+/* Neighbour search on start positions x0 and displacements disp (NULL =
+ * zero) with extra reach; fills e->pairs / e->npairs.  The three methods
+ * live in engine_neigh.c (cells, brute) and engine_sweep.c (sweep). */
+int sbi_engine_find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
+                          const double *disp, double reach);
+int sbi_engine_sweep(sb_engine *e, const double *x0, const double *disp,
+                     double reach);
+/* Largest |disp_i| (Euclidean, over the active dimensions). */
+double sbi_engine_max_disp(const sb_engine *e, const double *disp);
+
+/* Detection and processing of one step (engine_detect.c). */
+int sbi_engine_detect_and_process(sb_engine *e);
+/* Fill the pair record of (i, j) from x0 and disp. */
+void sbi_engine_make_pair(const sb_engine *e, size_t i, size_t j,
+                          sb_engine_pair *p);
+
+/* Outcomes bookkeeping (engine_outcome.c). */
+int sbi_engine_apply_outcome(sb_engine *e, const sb_engine_pair *p,
+                             double s);
+/* Random non-overlapping position for particle k (excluded from the
+ * check), uniform in the box; SB_EMAXITER after `tries` attempts. */
+int sbi_engine_random_free_position(sb_engine *e, size_t k, double x[3],
+                                    size_t tries);
+/* Equilibrium velocity for species sp at position x into u. */
+int sbi_engine_equilibrium_velocity(sb_engine *e, size_t sp,
+                                    const double x[3], double u[3]);
+/* Fluid velocity at n positions (built-in or callback). */
+int sbi_engine_fluid_eval(sb_engine *e, size_t n, const double *x,
+                          double *us);
+
+/* Observers (engine_observe.c). */
+void sbi_engine_count_collision(sb_engine *e, size_t i, size_t j);
+int sbi_engine_sample(sb_engine *e);
+
+/* Recompute per-species step coefficients after a dt change. */
+int sbi_engine_update_coef(sb_engine *e);
+
+#endif /* SB_ENGINE_INTERNAL_H */

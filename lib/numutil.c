@@ -1,0 +1,420 @@
+/* numutil.c — internal numerical helpers (see numutil.h). */
+#include <float.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+
+#include <gsl/gsl_cdf.h>
+#include <gsl/gsl_randist.h>
+
+#include <smolbridge/common.h>
+#include "numutil.h"
+
+#define RT2PI 2.5066282746310005024157652848110453 /* sqrt(2 pi) */
+#define EPS DBL_EPSILON
+
+int sbi_fail(sb_result *res, int status, const char *func, const char *fmt,
+             ...)
+{
+  char buf[400];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(buf, sizeof buf, fmt, ap);
+  va_end(ap);
+  if (res) {
+    res->val = NAN;
+    res->err = NAN;
+  }
+  return sbi_error(status, func, "%s", buf);
+}
+
+/* ----------------------------------------------------------- log1mexp */
+
+double sbi_log1mexp(double x)
+{
+  /* Maechler (2012), "Accurately computing log(1 - exp(-|a|))": expm1 below
+   * log 2, log1p above. */
+  return x <= 0.69314718055994530942 /* log 2 */ ? log(-expm1(-x)) : log1p(-exp(-x));
+}
+
+/* ----------------------------------------------------- Mills function */
+
+double sbi_mills(double z)
+{
+  if (z < 25.0) {
+    /* Q(z) is accurate to ~1 ulp (GSL, Cody's algorithm) until it
+     * underflows near z = 37.5; exp(z^2/2) is split so that the rounding of
+     * z*z does not enter: z^2 = h + l exactly. */
+    sbi_dd z2 = sbi_dd_prod(z, z);
+    return gsl_cdf_ugaussian_Q(z) * exp(0.5 * z2.hi) * (1.0 + 0.5 * z2.lo);
+  }
+  /* Asymptotic series M(z) = phi(0)/z sum_n (-1)^n (2n-1)!! z^-2n; for
+   * z >= 25 the terms fall by (2n-1)/625 each, so 13 terms reach 1e-19. */
+  double iz2 = 1.0 / (z * z), term = 1.0, sum = 1.0;
+  for (int n = 1; n < 14; n++) {
+    term *= -(2 * n - 1) * iz2;
+    sum += term;
+    if (fabs(term) < 1e-19)
+      break;
+  }
+  return sum / (z * RT2PI);
+}
+
+/* ------------------------------------------ difference of Mills values */
+
+#define JMAX 27 /* highest J_j used by the series (odd j up to JMAX) */
+
+double sbi_mills_diff(double z, double h, double lo, double *rel_err)
+{
+  if (h <= 0.0) {
+    if (rel_err)
+      *rel_err = 0.0;
+    return 0.0;
+  }
+  double mlo = sbi_mills(lo), mhi = sbi_mills(z + h);
+  if (mhi <= 0.8 * mlo) {
+    /* no serious cancellation: each M is within 4 ulp */
+    if (rel_err)
+      *rel_err = EPS * (1.0 + 4.0 * (mlo + mhi) / (mlo - mhi));
+    return mlo - mhi;
+  }
+  /* Series.  M(z -+ h) = (1/sqrt(2 pi)) int_0^inf exp(-w^2/2 - (z -+ h) w)dw,
+   * so M(z-h) - M(z+h) = (2/sqrt(2 pi)) sum_{j odd} J_j(z) h^j / j!, a sum of
+   * positive terms.  Only reached when h/max(z,1) < 0.2, where it converges
+   * in at most ~12 odd terms. */
+  double J[JMAX + 1];
+  double mz = sbi_mills(z);
+  J[0] = RT2PI * mz;
+  /* number of odd terms: they fall at least like (h/z)^2 for z > 3 */
+  int jn = JMAX;
+  if (z > 3.0) {
+    double n = 20.8 / log(z / h); /* (h/z)^(2n) < 1e-18 */
+    if (n > 0.0 && n < 12.0)
+      jn = 2 * (int)n + 3;
+  }
+  if (z <= 3.0) {
+    /* forward recurrence J_{k+1} = k J_{k-1} - z J_k (integration by parts);
+     * it loses accuracy as z grows (J_1 = 1 - z J_0 cancels), measured
+     * <= 9 ulp for D up to z = 3 (tests/data/mdiff.csv) */
+    J[1] = 1.0 - z * J[0];
+    for (int k = 1; k < JMAX; k++)
+      J[k + 1] = k * J[k - 1] - z * J[k];
+  } else {
+    /* backward (Miller) recurrence for the ratios R_k = J_k / J_{k-1} =
+     * k / (z + R_{k+1}), started at N where R_{N+1} solves
+     * R^2 + (z + dR) R = N + 1 with dR = 1/(z + 2R) ~ R_{k+1} - R_k; the
+     * depth N - jn >= (110 + 2 jn)/z + 7 was measured (against N = 5000)
+     * to give R_1..R_jn to 1 ulp with a margin of 4 or more levels. */
+    int N = jn + 7 + (int)((110.0 + 2.0 * jn) / z);
+    double k1 = N + 1.0;
+    double R = 0.5 * (sqrt(z * z + 4.0 * k1) - z);
+    double zd = z + 1.0 / (z + 2.0 * R);
+    R = 0.5 * (sqrt(zd * zd + 4.0 * k1) - zd);
+    double Rk[JMAX + 1];
+    for (int k = N; k >= 1; k--) {
+      R = k / (z + R);
+      if (k <= jn)
+        Rk[k] = R;
+    }
+    for (int k = 1; k <= jn; k++)
+      J[k] = J[k - 1] * Rk[k];
+  }
+  double term = J[1] * h, sum = term, h2 = h * h, pw = h;
+  int converged = 0;
+  for (int j = 3; j <= jn; j += 2) {
+    pw *= h2 / ((double)(j - 1) * j);
+    term = J[j] * pw;
+    sum += term;
+    if (term < 1e-18 * sum) {
+      converged = 1;
+      break;
+    }
+  }
+  double d = 2.0 * sum / RT2PI;
+  if (!converged) {
+    /* cannot happen for the documented domain; fall back to the direct
+     * difference with its honest (large) error */
+    if (rel_err)
+      *rel_err = EPS * (1.0 + 4.0 * (mlo + mhi) / (mlo - mhi));
+    return mlo - mhi;
+  }
+  if (rel_err)
+    *rel_err = 24.0 * EPS;
+  return d;
+}
+
+/* ------------------------------------------- inverse-Gaussian kernel */
+
+sbi_igpt sbi_igpt_make(sbi_dd num, sbi_dd den, double eps, double kap)
+{
+  sbi_igpt p;
+  p.eps = eps;
+  p.kap = kap;
+  double q = sqrt(den.hi);
+  p.c = (num.hi + num.lo) / q;
+  /* E = num^2 / (2 den) in double-double, exp(-E) to ~1 ulp */
+  sbi_dd n2 = sbi_dd_mul(num, num);
+  sbi_dd E = sbi_dd_div(n2, sbi_dd_mul_d(den, 2.0));
+  p.ex = (E.hi < 746.0) ? sbi_dd_expneg(E) : 0.0;
+  return p;
+}
+
+/* exp(-c^2/2) M(kap + eps) = exp(2 kap eps) Q(kap + eps) */
+static double second_term(const sbi_igpt *p)
+{
+  return p->ex > 0.0 ? p->ex * sbi_mills(p->kap + p->eps) : 0.0;
+}
+
+double sbi_ig_cdf(const sbi_igpt *p, double *rel)
+{
+  double c = p->c, t2 = second_term(p), f, r;
+  if (c >= -3.0) {
+    /* Phi(c) >= 0.0013: the rounding of c costs at most (1 + c^2) ulp */
+    double ph = gsl_cdf_ugaussian_P(c);
+    f = ph + t2;
+    r = (ph * (2.0 + (c < 0 ? 2.0 * c * c : 0.0)) + 6.0 * t2) * EPS;
+  } else {
+    /* Phi(c) = exp(-c^2/2) M(-c): insensitive to the rounding of c */
+    double t1 = p->ex > 0.0 ? p->ex * sbi_mills(-c) : 0.0;
+    f = t1 + t2;
+    r = 6.0 * f * EPS;
+  }
+  if (rel)
+    *rel = f > 0.0 ? r / f + EPS : 0.0;
+  return f;
+}
+
+double sbi_ig_sf(const sbi_igpt *p, double *rel)
+{
+  double c = p->c;
+  if (c < -2.0) {
+    /* Q(c) > 0.977 and the subtracted term is below 0.025 of it */
+    double t2 = second_term(p), q = gsl_cdf_ugaussian_Q(c);
+    double s = q - t2;
+    if (rel)
+      *rel = ((2.0 + 2.0 * c * c) * q + 6.0 * t2) * EPS / s + EPS;
+    return s;
+  }
+  if (p->ex == 0.0) {
+    if (rel)
+      *rel = 0.0;
+    return 0.0;
+  }
+  double rd;
+  double d = sbi_mills_diff(p->kap, p->eps, c, &rd);
+  if (rel)
+    *rel = rd + 3.0 * EPS;
+  return p->ex * d;
+}
+
+double sbi_ig_sbcdf(const sbi_igpt *p, double *rel)
+{
+  double c = p->c;
+  if (c > 2.0) {
+    double t2 = second_term(p), ph = gsl_cdf_ugaussian_P(c);
+    double s = ph - t2;
+    if (rel)
+      *rel = (2.0 * ph + 6.0 * t2) * EPS / s + EPS;
+    return s;
+  }
+  if (p->ex == 0.0) {
+    if (rel)
+      *rel = 0.0;
+    return 0.0;
+  }
+  double rd;
+  double d = sbi_mills_diff(p->eps, p->kap, -c, &rd);
+  if (rel)
+    *rel = rd + 3.0 * EPS;
+  return p->ex * d;
+}
+
+double sbi_ig_sbsf(const sbi_igpt *p, double *rel)
+{
+  double c = p->c, s, r;
+  if (c < -3.0) {
+    double q = gsl_cdf_ugaussian_Q(c), t2 = second_term(p);
+    s = q + t2;
+    r = (2.0 * q + 6.0 * t2) * EPS;
+  } else {
+    s = p->ex > 0.0 ? p->ex * (sbi_mills(c) + sbi_mills(p->kap + p->eps))
+                    : 0.0;
+    r = 7.0 * s * EPS;
+  }
+  if (rel)
+    *rel = s > 0.0 ? r / s + EPS : 0.0;
+  return s;
+}
+
+double sbi_ig_mix(const sbi_igpt *p, double wl, double wa, int upper,
+                  double *rel)
+{
+  double c = p->c;
+  if (p->ex == 0.0 || c < -3.0 || c > 2.0) {
+    /* far tails: the separate routines (no shared work to speak of) */
+    double r1, r2, f, g;
+    f = upper ? sbi_ig_sf(p, &r1) : sbi_ig_cdf(p, &r1);
+    g = upper ? sbi_ig_sbsf(p, &r2) : sbi_ig_sbcdf(p, &r2);
+    double v = wl * f + wa * g;
+    if (rel)
+      *rel = v > 0.0 ? (wl * f * r1 + wa * g * r2) / v + EPS : 0.0;
+    return v;
+  }
+  /* -3 <= c <= 2: with Mb = M(kap + eps),
+   *   F = ex (M(-c) + Mb), SBF = ex (M(-c) - Mb),
+   *   SF = ex (M(c) - Mb), SBSF = ex (M(c) + Mb),
+   * the differences by sbi_mills_diff when they cancel. */
+  double b = p->kap + p->eps, mb = sbi_mills(b);
+  double lo = upper ? c : -c, mlo = sbi_mills(lo);
+  double dif, rd;
+  if (mb <= 0.8 * mlo) {
+    dif = mlo - mb;
+    rd = EPS * (1.0 + 4.0 * (mlo + mb) / dif);
+  } else {
+    /* M(lo) - M(b) with midpoint z and half-width h */
+    double z = upper ? p->kap : p->eps, h = upper ? p->eps : p->kap;
+    dif = sbi_mills_diff(z, h, lo, &rd);
+  }
+  double sum = mlo + mb;
+  /* upper: wl (M(c) - Mb) + wa (M(c) + Mb); lower: wl sum + wa dif */
+  double v = upper ? wl * dif + wa * sum : wl * sum + wa * dif;
+  double e = upper ? wl * dif * rd + wa * sum * 5.0 * EPS
+                   : wl * sum * 5.0 * EPS + wa * dif * rd;
+  if (rel)
+    *rel = v > 0.0 ? e / v + 3.0 * EPS : 0.0;
+  return p->ex * v;
+}
+
+double sbi_ig_sample(const gsl_rng *r, double mean, double shape)
+{
+  /* GSL's ziggurat returns exactly 0 with probability 2^-24 (its atom for
+   * a sliver of width ~1e-7 around 0); shape/0 would be +inf although the
+   * passage happens a.s.  Redraw: the conditional law is the right one. */
+  double z;
+  do
+    z = gsl_ran_gaussian_ziggurat(r, 1.0);
+  while (z == 0.0);
+  if (isinf(mean))
+    return shape / (z * z); /* Levy */
+  /* Michael, Schucany & Haas (1976): the two roots of
+   * lambda (x - mean)^2 / (mean^2 x) = z^2 are x1 = mean / D and
+   * x2 = mean D with D = 1 + w + sqrt(w (w + 2)), w = mean z^2/(2 shape)
+   * (this form avoids the cancellation of the textbook expression); pick x1
+   * with probability mean / (mean + x1) = 1 / (1 + 1/D). */
+  double w = mean * z * z / (2.0 * shape);
+  double root = w > 1.0 ? w * sqrt(1.0 + 2.0 / w) : sqrt(w * (w + 2.0));
+  double D = 1.0 + w + root;
+  double u = gsl_rng_uniform(r);
+  return u * (1.0 + 1.0 / D) <= 1.0 ? mean / D : mean * D;
+}
+
+double sbi_ig_quantile_guess(double p, int upper, double phi)
+{
+  /* (a) First term only: Phi(c) = p (lower) or Q(c) = p (upper), with
+   *     c = sqrt(phi/s)(s - 1): sqrt(s) solves u^2 - k u - 1 = 0,
+   *     k = z / sqrt(phi).
+   * (b) Levy approximation (drift neglected): P(S <= s) = 2 Q(sqrt(phi/s)).
+   * The smaller of the two is within a small factor over the whole range
+   * of phi and p (checked in tests/test_passage.c by iteration counts). */
+  if (p <= 0.0)
+    return upper ? INFINITY : 0.0;
+  double z = upper ? gsl_cdf_ugaussian_Qinv(p) : gsl_cdf_ugaussian_Pinv(p);
+  double k = z / sqrt(phi), r = sqrt(k * k + 4.0);
+  double su = k >= 0.0 ? 0.5 * (k + r) : 2.0 / (r - k);
+  double sn = su * su;
+  double zl;
+  if (!upper)
+    zl = gsl_cdf_ugaussian_Qinv(0.5 * p);
+  else
+    zl = p < 1e-8 ? p * 1.2533141373155002512 /* sqrt(pi/2) */
+                  : gsl_cdf_ugaussian_Pinv(0.5 + 0.5 * p);
+  double sl = phi / (zl * zl);
+  return sn < sl ? sn : sl;
+}
+
+/* --------------------------------------------------- monotone solver */
+
+int sbi_solve_increasing(sbi_fdf g, void *ctx, double y0, double step,
+                         double tol, double *root, double *dy)
+{
+  const int maxit = 100;
+  const double gacc = 1e-10;
+  double lo = -INFINITY, hi = INFINITY;
+  double up = step, dn = step, cap = 4.0 * step;
+  double y = y0, d = 0.0, d2 = NAN;
+  double gy = g(y, ctx, &d, &d2);
+  double last = INFINITY, before = INFINITY;
+  double best = y, gbest = fabs(gy);
+
+  for (int it = 0; it < maxit; it++) {
+    if (gy == 0.0) {
+      *root = y;
+      if (dy)
+        *dy = 0.0;
+      return SB_SUCCESS;
+    }
+    if (fabs(gy) < gbest) {
+      gbest = fabs(gy);
+      best = y;
+    }
+    if (gy < 0.0)
+      lo = y;
+    else
+      hi = y;
+    int newton = isfinite(gy) && isfinite(d) && d > 0.0;
+    double yn = NAN;
+    if (newton) {
+      yn = y - gy / d;
+      if (isfinite(d2)) {
+        /* Halley: y - 2 g g' / (2 g'^2 - g g''), if the denominator is
+         * safely positive (else plain Newton) */
+        double den = 2.0 * d * d - gy * d2;
+        if (den > d * d)
+          yn = y - 2.0 * gy * d / den;
+      }
+    }
+    /* converged: the correction is below tol or g is small enough that
+     * the correction is final (checked before the bracket test: a sub-ulp
+     * correction may land on the bracket end) */
+    if (newton && (fabs(yn - y) <= tol || fabs(gy) <= gacc)) {
+      *root = yn;
+      if (dy)
+        *dy = fabs(yn - y);
+      return SB_SUCCESS;
+    }
+    int bracketed = isfinite(lo) && isfinite(hi);
+    if (!newton || !(yn > lo && yn < hi) ||
+        (bracketed && fabs(yn - y) > 0.5 * before)) {
+      /* unusable, out of the bracket, or not converging fast enough (step
+       * not halving every two iterations): bisect or expand */
+      if (bracketed)
+        yn = 0.5 * (lo + hi);
+      else if (gy < 0.0) {
+        yn = y + up;
+        up *= 2.0;
+      } else {
+        yn = y - dn;
+        dn *= 2.0;
+      }
+    } else if (!bracketed && fabs(yn - y) > cap) {
+      /* a long step from a flat region: go part of the way */
+      yn = yn > y ? y + cap : y - cap;
+      cap *= 2.0;
+    }
+    if (bracketed && hi - lo <= tol) {
+      *root = best;
+      if (dy)
+        *dy = hi - lo;
+      return SB_SUCCESS;
+    }
+    before = last;
+    last = fabs(yn - y);
+    y = yn;
+    d2 = NAN;
+    gy = g(y, ctx, &d, &d2);
+  }
+  *root = best;
+  if (dy)
+    *dy = last;
+  return SB_EMAXITER;
+}

@@ -1,0 +1,199 @@
+/* numutil.h — internal numerical helpers shared by passage.c, bridge.c and
+ * bridge_hit.c (prefix sbi_, not exported, not installed).
+ *
+ * Contents
+ *  - double-double ("dd") arithmetic, inline: error-free sums/products used
+ *    to form Gaussian exponents such as (nu t - d)^2 / (2 sigma2 t) to about
+ *    one ulp, so exp(-E) keeps full relative accuracy even when E ~ 700.
+ *  - log1mexp, the scaled normal tail M(z) = Q(z) exp(z^2/2) and the
+ *    cancellation-free difference M(z - h) - M(z + h).
+ *  - the inverse-Gaussian kernel in normalised variables (one evaluation
+ *    point = eps, kap, c = kap - eps, exp(-c^2/2)) giving the CDF, survival
+ *    function and their size-biased versions as sums of positive terms.
+ *  - a safeguarded Newton iteration for monotone equations (quantiles), and
+ *    the Michael–Schucany–Haas inverse-Gaussian sampler.
+ * See docs/passage.md for the derivations.
+ */
+#ifndef SB_NUMUTIL_H
+#define SB_NUMUTIL_H
+
+#include <math.h>
+#include <gsl/gsl_rng.h>
+#include <smolbridge/common.h>
+#include "internal.h"
+
+/* Record an error for the public function `func` (sbi_error), set *res (if
+ * not NULL) to {NaN, NaN} and return `status`. */
+int sbi_fail(sb_result *res, int status, const char *func, const char *fmt,
+             ...) SBI_PRINTF(4, 5);
+
+/* ------------------------------------------------- double-double kernels */
+
+/* A value hi + lo with |lo| <= ulp(hi)/2. */
+typedef struct {
+  double hi, lo;
+} sbi_dd;
+
+/* Knuth's TwoSum: a + b = s.hi + s.lo exactly. */
+static inline sbi_dd sbi_dd_sum(double a, double b)
+{
+  double s = a + b, bb = s - a;
+  sbi_dd r = {s, (a - (s - bb)) + (b - bb)};
+  return r;
+}
+
+/* a * b = p.hi + p.lo exactly: fma where the hardware has it, otherwise
+ * Dekker's product with Veltkamp splitting (a software fma costs ~9 ns on
+ * x86-64 without -mfma, this ~3 ns).  Exact unless |a| or |b| > 2^995. */
+static inline sbi_dd sbi_dd_prod(double a, double b)
+{
+  double p = a * b;
+#ifdef FP_FAST_FMA
+  sbi_dd r = {p, fma(a, b, -p)};
+#else
+  const double split = 134217729.0; /* 2^27 + 1 */
+  double ca = split * a, cb = split * b;
+  double ah = ca - (ca - a), al = a - ah;
+  double bh = cb - (cb - b), bl = b - bh;
+  sbi_dd r = {p, ((ah * bh - p) + ah * bl + al * bh) + al * bl};
+#endif
+  return r;
+}
+
+/* Renormalise hi + lo (requires |hi| >= |lo| or hi == 0). */
+static inline sbi_dd sbi_dd_fast(double hi, double lo)
+{
+  double s = hi + lo;
+  sbi_dd r = {s, lo - (s - hi)};
+  return r;
+}
+
+static inline sbi_dd sbi_dd_add(sbi_dd a, sbi_dd b)
+{
+  sbi_dd s = sbi_dd_sum(a.hi, b.hi);
+  return sbi_dd_fast(s.hi, s.lo + a.lo + b.lo);
+}
+
+static inline sbi_dd sbi_dd_neg(sbi_dd a)
+{
+  sbi_dd r = {-a.hi, -a.lo};
+  return r;
+}
+
+static inline sbi_dd sbi_dd_mul(sbi_dd a, sbi_dd b)
+{
+  sbi_dd p = sbi_dd_prod(a.hi, b.hi);
+  return sbi_dd_fast(p.hi, p.lo + (a.hi * b.lo + a.lo * b.hi));
+}
+
+static inline sbi_dd sbi_dd_mul_d(sbi_dd a, double b)
+{
+  sbi_dd p = sbi_dd_prod(a.hi, b);
+  return sbi_dd_fast(p.hi, p.lo + a.lo * b);
+}
+
+static inline sbi_dd sbi_dd_div(sbi_dd a, sbi_dd b)
+{
+  double q = a.hi / b.hi;
+  /* remainder a - q b (q b.hi exactly), to first order in the lo parts */
+  sbi_dd qb = sbi_dd_prod(q, b.hi);
+  double r = ((a.hi - qb.hi) - qb.lo) + a.lo - q * b.lo;
+  return sbi_dd_fast(q, r / b.hi);
+}
+
+/* exp(-(e.hi + e.lo)) for e >= 0 to about one ulp. */
+static inline double sbi_dd_expneg(sbi_dd e)
+{
+  return exp(-e.hi) * (1.0 - e.lo);
+}
+
+/* ------------------------------------------------ elementary functions */
+
+/* log(1 - exp(-x)) for x >= 0 (Maechler 2012): -inf at x = 0. */
+double sbi_log1mexp(double x);
+
+/* M(z) = Q(z) exp(z^2/2) = erfcx(z/sqrt 2)/2, the scaled upper normal tail
+ * (M(0) = 1/2, M(z) ~ 1/(z sqrt(2 pi)) for large z).  From GSL's
+ * gsl_cdf_ugaussian_Q with an exactly split exp(z^2/2) for z < 25, and the
+ * asymptotic series (at most 13 terms) beyond.  Relative error <= 4 ulp for
+ * z >= -37; overflows (+inf) below about -37.6. */
+double sbi_mills(double z);
+
+/* M(lo) - M(z + h) where lo = z - h is passed accurately by the caller;
+ * requires h >= 0, z >= 0, lo >= -2.  Direct difference when it does not
+ * cancel (ratio <= 0.8); otherwise the positive series
+ *   2 M(z) sum_{j odd} (J_j(z)/J_0(z)) h^j / j!,
+ *   J_j(z) = int_0^inf w^j exp(-z w - w^2/2) dw,
+ * with J_j/J_{j-1} from the forward recurrence (z <= 2) or the backward
+ * (Miller) recurrence J_j/J_{j-1} = j / (z + J_{j+1}/J_j) (z > 2).
+ * Relative error <= ~20 ulp in both branches.  *rel_err (if not NULL)
+ * receives a bound on the relative error. */
+double sbi_mills_diff(double z, double h, double lo, double *rel_err);
+
+/* --------------------------------------------- inverse-Gaussian kernel */
+
+/* One evaluation point of the law of S = first passage to 0 of
+ * d + nu s' + sqrt(sigma2) W_{s'} (nu >= 0, d > 0), at time s:
+ *   eps = d / sqrt(sigma2 s), kap = nu s / sqrt(sigma2 s) >= 0,
+ *   c = kap - eps (accurate), ex = exp(-c^2/2) (accurate).
+ * Then
+ *   F    = P(S <= s)      = Phi(c) + exp(2 kap eps) Q(kap + eps)
+ *   SF   = P(S > s)       = ex [M(c) - M(kap + eps)]
+ *   SBF  = size-biased CDF = Phi(c) - exp(2 kap eps) Q(kap + eps)
+ *        = int_0^s s' f(s') ds' / E[S]
+ *   SBSF = 1 - SBF        = ex [M(c) + M(kap + eps)]
+ *   pdf  = (eps / s) phi(c).
+ * All are evaluated as positive sums or through sbi_mills_diff; relative
+ * error bounds are returned through *rel (may be NULL). */
+typedef struct {
+  double eps, kap, c, ex;
+} sbi_igpt;
+
+/* Build a point from the exact numerator num = nu s - d (as dd), the
+ * variance den = sigma2 s (as dd), eps and kap. */
+sbi_igpt sbi_igpt_make(sbi_dd num, sbi_dd den, double eps, double kap);
+
+double sbi_ig_cdf(const sbi_igpt *p, double *rel);
+/* wl F + wa SBF (upper = 0) or wl SF + wa SBSF (upper = 1) for wl, wa >= 0,
+ * sharing the Mills evaluations (the integrand of the Bessel-3-bridge
+ * mixture); relative error bound in *rel. */
+double sbi_ig_mix(const sbi_igpt *p, double wl, double wa, int upper,
+                  double *rel);
+double sbi_ig_sf(const sbi_igpt *p, double *rel);
+double sbi_ig_sbcdf(const sbi_igpt *p, double *rel);
+double sbi_ig_sbsf(const sbi_igpt *p, double *rel);
+
+/* One exact draw from IG(mean, shape) (Michael, Schucany & Haas 1976):
+ * one gsl_ran_gaussian_ziggurat (redrawn if exactly 0, probability 2^-24)
+ * and one gsl_rng_uniform.  mean = +inf gives the Levy law shape / Z^2
+ * (no uniform). */
+double sbi_ig_sample(const gsl_rng *r, double mean, double shape);
+
+/* Rough quantile of IG(1, phi) (mean 1, shape phi; phi = +inf not allowed,
+ * phi = 0 not allowed) used as a Newton starting point; lower tail if
+ * upper == 0 (P(S <= s) = p), else upper tail (P(S > s) = p).  Within a
+ * factor of a few of the truth. */
+double sbi_ig_quantile_guess(double p, int upper, double phi);
+
+/* --------------------------------------------------- monotone solver */
+
+/* g(y), dg/dy and d2g/dy2 (set *d2g = NAN if not available) for an
+ * increasing function; g may return -inf / +inf where the underlying
+ * probability under/overflows (then the derivatives are ignored). */
+typedef double (*sbi_fdf)(double y, void *ctx, double *dg, double *d2g);
+
+/* Solve g(y) = 0 for an increasing g by Halley's method (Newton's when no
+ * second derivative is given), safeguarded with a bracket: bisection when
+ * the step leaves the bracket or stalls, capped steps while unbracketed,
+ * bracket found by stepping from y0 by `step`, doubling.  GSL's
+ * derivative-based solvers (gsl_root_fdfsolver_*) are unbracketed and its
+ * bracketed ones do not use the derivative; this keeps fast convergence
+ * with a guaranteed bracket.  Converged when the correction is below tol
+ * (absolute, in y) or |g| <= 1e-10 (the final correction is then applied:
+ * for the log-probabilities solved here g''/g'^2 = O(1), so the result is
+ * good to ~1e-20 in g).  Returns SB_SUCCESS or SB_EMAXITER; *root receives
+ * the result and *dy (may be NULL) the size of the last correction. */
+int sbi_solve_increasing(sbi_fdf g, void *ctx, double y0, double step,
+                         double tol, double *root, double *dy);
+
+#endif /* SB_NUMUTIL_H */

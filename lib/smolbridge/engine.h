@@ -1,0 +1,407 @@
+/* smolbridge/engine.h — Lagrangian collision engine (SI units).
+ *
+ * Particles in a periodic box (2-D or 3-D, cube or rectangle) are moved by
+ * the exact Langevin step of <smolbridge/langevin.h> (or by free flight,
+ * tau = +inf, for molecules), pairs that can collide during a step are
+ * found by an O(N) neighbour search (linked cells, or the sort-and-sweep of
+ * seed 000 §4.1 with the per-particle anisotropic reach of §5.1), a
+ * detector decides whether and when each candidate pair touches (overlap at
+ * step end, Sundaram & Collins 1996; or the exact contact time of the
+ * straight-line relative motion, seed 000 §4.2 / seed 003 App. F), the
+ * events are processed earliest-first, and an outcome is applied (elastic
+ * with energy-loss factor eta, seed 000 §4.3-4.4; or "reinsert", which
+ * removes one partner and puts it back at random to keep the concentration
+ * constant, seed 003 §5.3).  Observers count collisions and estimate the
+ * collision kernel with an exact Poisson interval.
+ *
+ * Theory, derivations, every parameter and its unit: docs/engine.md.
+ *
+ * One step of length dt (sb_engine_step):
+ *  1. x0 <- x, u0 <- u; the fluid velocity U_s is evaluated at x0 (callback);
+ *  2. transport: exact Langevin step per particle (sb_langevin_step3_coef,
+ *     one coefficient set per species); x is the unwrapped end position and
+ *     disp = x - x0 the displacement over the step (the "chord");
+ *  3. neighbour search on (x0, disp): a superset of the pairs whose
+ *     straight segments x0 + s disp (0 <= s <= 1) come within r_i + r_j
+ *     (+ the detector's extra reach);
+ *  4. the detector is called for every candidate pair and returns the
+ *     contact fraction s in [0, 1] of the step (or "no collision");
+ *  5. events are sorted by (s, i, j) and processed in that order; a
+ *     particle takes part in at most one collision per step (later events
+ *     involving it are dropped and counted in sb_engine_stats.dropped);
+ *  6. positions are wrapped into the box, time advances by dt.
+ * Given the seed and the same calls, a run is bit-identical (the engine
+ * owns its generator, MT19937 by default; a checkpoint stores its state).
+ *
+ * Thread safety: an engine object must not be used by two threads at once;
+ * distinct engines are independent (no global state).
+ * Errors: functions return SB_SUCCESS or a status code with a message in
+ * sb_last_error(); nothing is printed; on error the state is unchanged
+ * unless stated.
+ */
+#ifndef SMOLBRIDGE_ENGINE_H
+#define SMOLBRIDGE_ENGINE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <gsl/gsl_rng.h>
+#include <smolbridge/common.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Maximum number of family tags (0 .. SB_ENGINE_MAXFAM-1) for per-family
+ *  collision counts. */
+#define SB_ENGINE_MAXFAM 8
+
+/** Neighbour-search method (all return a superset of the pairs that can
+ *  collide during the step; docs/engine.md §neighbours). */
+typedef enum {
+  SB_NEIGH_CELLS = 0,  /**< linked cells, cell edge >= cut-off, O(N) */
+  SB_NEIGH_SWEEP = 1,  /**< sort along x and sweep, anisotropic reach */
+  SB_NEIGH_BRUTE = 2   /**< all N(N-1)/2 pairs (reference, O(N^2)) */
+} sb_engine_neigh;
+
+/** Built-in detectors. */
+typedef enum {
+  SB_DETECT_BALLISTIC = 0,  /**< exact contact time of the chords */
+  SB_DETECT_OVERLAP = 1,    /**< overlap at step end (contact time then
+                                 taken from the chords' entry root) */
+  SB_DETECT_CUSTOM = 2      /**< user callback, sb_engine_set_detector */
+} sb_engine_detect;
+
+/** Built-in outcomes. */
+typedef enum {
+  SB_OUTCOME_ELASTIC = 0,   /**< elastic with energy-loss factor eta */
+  SB_OUTCOME_REINSERT = 1,  /**< remove partner j, reinsert at random */
+  SB_OUTCOME_COUNT = 2,     /**< count only, particles pass through */
+  SB_OUTCOME_CUSTOM = 3     /**< user callback, sb_engine_set_outcome */
+} sb_engine_outcome;
+
+/** Built-in fluid velocity fields U_s (seen by the particles). */
+typedef enum {
+  SB_FLUID_REST = 0,      /**< U_s = 0 */
+  SB_FLUID_UNIFORM = 1,   /**< U_s = (p[0], p[1], p[2]) m/s */
+  SB_FLUID_SHEAR = 2,     /**< U_s,x = p[0] (y - L_y/2), p[0] in 1/s (no
+                               Lees-Edwards images: the box is periodic) */
+  SB_FLUID_CALLBACK = 3   /**< user callback */
+} sb_engine_fluid;
+
+/** Engine parameters (sb_engine_params_default fills the defaults). */
+typedef struct {
+  int dim;                   /**< 2 or 3 (default 3) */
+  double L[3];               /**< box edge lengths, m, > 0 (L[2] unused in
+                                  2-D); default 1e-4 */
+  double dt;                 /**< time step, s, > 0 (default 1e-6) */
+  unsigned long seed;        /**< generator seed (default 1) */
+  const gsl_rng_type *rng_type; /**< generator type; NULL (the default):
+                                  gsl_rng_mt19937.  gsl_rng_taus2 is ~30%
+                                  faster for Gaussian draws */
+  size_t capacity;           /**< maximum number of particles (default
+                                  1024) */
+  sb_engine_neigh neigh;     /**< default SB_NEIGH_CELLS */
+  sb_engine_detect detect;   /**< default SB_DETECT_BALLISTIC */
+  sb_engine_outcome outcome; /**< default SB_OUTCOME_ELASTIC */
+  double eta;                /**< energy-loss factor in [0, 1]: fraction of
+                                  the normal relative kinetic energy kept
+                                  (restitution e = sqrt(eta)); default 1 */
+  size_t sample_every;       /**< time-series sample every this many steps
+                                  (0: never); default 0 */
+  size_t sort_every;         /**< reorder the particles in memory by cell
+                                  every this many steps (0: never, the
+                                  default).  Speeds up large systems
+                                  (cache locality) but particle indices
+                                  change: follow particles by id. */
+} sb_engine_params;
+
+/** A species: shared physical properties of a class of particles. */
+typedef struct {
+  double radius;  /**< m, > 0 */
+  double mass;    /**< kg, > 0 */
+  double tau;     /**< relaxation time tau_p, s, > 0; +INFINITY = free
+                       flight (molecules: x += u dt, no noise) */
+  double B;       /**< velocity-diffusion coefficient, m s^-3/2, >= 0
+                       (ignored if tau = inf) */
+  double T;       /**< temperature, K, >= 0: equilibrium velocity variance
+                       k_B T / m per component for initial and reinserted
+                       velocities; T = 0 uses B^2 tau / 2 instead */
+} sb_engine_species;
+
+/** State of a candidate pair handed to a detector / outcome. */
+typedef struct {
+  size_t i, j;     /**< particle indices, i < j */
+  double dx0[3];   /**< x_i - x_j at step start (minimum image), m */
+  double dd[3];    /**< change of x_i - x_j over the step, m */
+  double sigma;    /**< contact distance r_i + r_j, m */
+  double dt;       /**< step, s */
+} sb_engine_pair;
+
+typedef struct sb_engine sb_engine;
+
+/** Detector callback: decide whether the pair collides during the step.
+ *  Return 1 and set *s (contact fraction of the step, in [0, 1]) for a
+ *  collision, 0 for none, or a negative value for an error (the step then
+ *  fails with SB_EINVAL).  r is the engine's generator (stochastic
+ *  detectors draw from it; candidates come in a deterministic order).
+ *  The detector may read the engine through the accessors below
+ *  (sb_engine_start_velocities, sb_engine_velocities, ...). */
+typedef int (*sb_engine_detect_fn)(const sb_engine *e,
+                                   const sb_engine_pair *p, const gsl_rng *r,
+                                   void *ctx, double *s);
+
+/** Outcome callback: apply the collision of pair p at fraction s.  It may
+ *  call sb_engine_outcome_elastic / sb_engine_outcome_reinsert.  Return a
+ *  status (non-zero aborts the step with that status). */
+typedef int (*sb_engine_outcome_fn)(sb_engine *e, const sb_engine_pair *p,
+                                    double s, void *ctx);
+
+/** Fluid callback: fill us[3i..3i+2] (m/s) for the n positions
+ *  x[3i..3i+2] (m, inside the box); return a status. */
+typedef int (*sb_engine_fluid_fn)(size_t n, const double *x, double *us,
+                                  void *ctx);
+
+/* ============================================================ life cycle */
+
+/** Fill *p with the defaults listed in sb_engine_params. */
+void sb_engine_params_default(sb_engine_params *p);
+
+/** New engine (no particle, no species; time 0).  NULL on a bad parameter
+ *  (SB_EINVAL) or allocation failure (SB_ENOMEM), see sb_last_error(). */
+sb_engine *sb_engine_alloc(const sb_engine_params *p);
+
+/** Free the engine (NULL is allowed). */
+void sb_engine_free(sb_engine *e);
+
+/** The parameters the engine runs with. */
+const sb_engine_params *sb_engine_get_params(const sb_engine *e);
+
+/** Add a species; *idx (may be NULL) receives its index.  SB_EINVAL on a
+ *  bad field.  Species are kept for the life of the engine. */
+int sb_engine_add_species(sb_engine *e, const sb_engine_species *s,
+                          size_t *idx);
+
+/** Add one particle of species `species` with family tag `family` (0 ..
+ *  SB_ENGINE_MAXFAM-1) at position x (m, wrapped into the box) with velocity
+ *  u (m/s); in 2-D x[2], u[2] are ignored (set to 0).  No overlap check
+ *  (see sb_engine_check_overlaps).  SB_EINVAL when the capacity is full or
+ *  an argument is bad. */
+int sb_engine_add_particle(sb_engine *e, size_t species, int family,
+                           const double x[3], const double u[3]);
+
+/** Add n particles of a species at uniformly random positions that do not
+ *  overlap any particle, with equilibrium (Maxwellian) velocities
+ *  U_s(x) + N(0, vvar) per component.  SB_EMAXITER if a position cannot be
+ *  found in 10000 tries (box too full). */
+int sb_engine_fill_random(sb_engine *e, size_t species, int family,
+                          size_t n);
+
+/** As sb_engine_fill_random, inside the region lo[k] <= x_k < hi[k] (m,
+ *  0 <= lo < hi <= L), with `drift` (m/s, may be NULL) added to the
+ *  equilibrium velocities (jets, beams). */
+int sb_engine_fill_box(sb_engine *e, size_t species, int family, size_t n,
+                       const double lo[3], const double hi[3],
+                       const double drift[3]);
+
+/** Remove the mean velocity (globally) and
+ *  rescale velocities so that the total kinetic energy in the
+ *  centre-of-mass frame equals dim (N - 1) k_B T / 2 for the given T [K]
+ *  (T <= 0: no rescaling).  For molecular-dynamics (free-flight) runs. */
+int sb_engine_thermalize(sb_engine *e, double T);
+
+/* ============================================================ settings */
+
+int sb_engine_set_neigh(sb_engine *e, sb_engine_neigh m);
+/** Built-in detector (not SB_DETECT_CUSTOM). */
+int sb_engine_set_detect(sb_engine *e, sb_engine_detect d);
+/** Custom detector; `reach` (m, >= 0) widens the neighbour search by this
+ *  much beyond the straight segments (a stochastic detector can detect
+ *  pairs whose chords stay apart). */
+int sb_engine_set_detector(sb_engine *e, sb_engine_detect_fn fn, void *ctx,
+                           double reach);
+/** Built-in outcome (not SB_OUTCOME_CUSTOM); eta in [0, 1]. */
+int sb_engine_set_outcome(sb_engine *e, sb_engine_outcome o, double eta);
+int sb_engine_set_outcome_fn(sb_engine *e, sb_engine_outcome_fn fn,
+                             void *ctx);
+/** Built-in fluid field with parameters p[3] (see sb_engine_fluid). */
+int sb_engine_set_fluid(sb_engine *e, sb_engine_fluid f, const double p[3]);
+int sb_engine_set_fluid_fn(sb_engine *e, sb_engine_fluid_fn fn, void *ctx);
+/** Time-series sampling period in steps (0: off). */
+int sb_engine_set_sample_every(sb_engine *e, size_t every);
+/** Change the time step (s, > 0). */
+int sb_engine_set_dt(sb_engine *e, double dt);
+
+/* ============================================================ run */
+
+/** One step (see the file comment).  Errors: SB_EINVAL if a particle's
+ *  reach (displacement + radii) is not below half the box (step too large),
+ *  a callback failed, or the detector returned an error; SB_ENOMEM;
+ *  SB_EMAXITER if a reinsertion found no free place.  After an error the
+ *  state is undefined (restore a checkpoint). */
+int sb_engine_step(sb_engine *e);
+
+/** Reorder the particles in memory along the cells of a grid (cell
+ *  edge ~ mean spacing), for cache locality; indices change, ids do not.
+ *  Called automatically every params.sort_every steps. */
+int sb_engine_sort(sb_engine *e);
+
+/** Step until the time reaches t_end (s): while t < t_end - dt/2. */
+int sb_engine_run_until(sb_engine *e, double t_end);
+
+/* ======================================================= outcomes (API) */
+
+/** Elastic collision of pair p at contact fraction s with the engine's
+ *  eta: along the contact normal n (from x_j to x_i at contact) the
+ *  relative chord velocity w_n = (w_i - w_j).n becomes -sqrt(eta) w_n,
+ *  momentum conserved (impulses m_i dw_i = -m_j dw_j); the same impulse is
+ *  applied to the particle velocities u; end positions re-advanced after
+ *  the contact: x += (1 - s) dt dw.  Pairs that separate (w_n >= 0) are
+ *  left unchanged. */
+int sb_engine_outcome_elastic(sb_engine *e, const sb_engine_pair *p,
+                              double s);
+
+/** Reinsert particle p->j at a uniformly random non-overlapping position
+ *  with an equilibrium velocity (the partner i is untouched). */
+int sb_engine_outcome_reinsert(sb_engine *e, const sb_engine_pair *p,
+                               double s);
+
+/* ======================================================= neighbours */
+
+/** Candidate pairs for the trial straight-line step x -> x + disp from
+ *  the current positions (disp: 3n values in m, NULL for zero), with
+ *  `reach` (m) of extra distance, by method m.  *pairs receives 2*npairs
+ *  indices (i < j for each pair; the array belongs to the engine and
+ *  stays valid until the next call or step).  Used by the tests and the
+ *  benchmarks; sb_engine_step calls the same code. */
+int sb_engine_neighbours(sb_engine *e, sb_engine_neigh m, const double *disp,
+                         double reach, size_t *npairs, const size_t **pairs);
+
+/** Exact test used by the tests: 1 if the segments x_i + s disp_i and
+ *  x_j + s disp_j (s in [0,1], minimum image at the start) come within
+ *  r_i + r_j + reach, else 0. */
+int sb_engine_pair_can_meet(const sb_engine *e, const double *disp,
+                            double reach, size_t i, size_t j);
+
+/* ======================================================= detectors (API) */
+
+/** Relative tolerance on sigma^2 below which a pair counts as touching
+ *  (not overlapping) at the start of a step. */
+#define SB_ENGINE_TOUCH 1e-9
+
+/** Ballistic detector: smallest root s in [0, 1] of |dx0 + s dd| = sigma
+ *  (approaching pairs only); a pair touching or overlapping at the start
+ *  and approaching collides at s = 0.  With the pass-through outcome
+ *  (SB_OUTCOME_COUNT) the engine skips pairs overlapping at the start
+ *  (|dx0|^2 < sigma^2 (1 - SB_ENGINE_TOUCH)) before calling a built-in
+ *  detector, so each contact is counted once.  Returns 1/0 as
+ *  sb_engine_detect_fn. */
+int sb_engine_detect_ballistic(const sb_engine_pair *p, double *s);
+
+/** Overlap detector: collision iff |dx0 + dd| < sigma; *s is then the
+ *  entry root of the chords (0 if they overlapped at the start). */
+int sb_engine_detect_overlap(const sb_engine_pair *p, double *s);
+
+/* ======================================================= observers */
+
+/** Counters since the start (or the last sb_engine_reset_counters). */
+typedef struct {
+  uint64_t steps;      /**< steps taken in total */
+  uint64_t ncoll;      /**< collisions since the counter reset */
+  uint64_t ncand;      /**< candidate pairs examined since the reset */
+  uint64_t dropped;    /**< events dropped (a partner had already
+                            collided in the same step) since the reset */
+  uint64_t fam[SB_ENGINE_MAXFAM][SB_ENGINE_MAXFAM]; /**< collisions by
+                            family pair (a <= b in fam[a][b]) */
+  double t;            /**< time, s (steps * dt, summed per dt change) */
+  double t_reset;      /**< time of the last counter reset, s */
+} sb_engine_stats;
+
+int sb_engine_get_stats(const sb_engine *e, sb_engine_stats *st);
+
+/** Zero the collision counters and start the kernel measurement now. */
+void sb_engine_reset_counters(sb_engine *e);
+
+/** Kernel estimate K_e = 2 N_c V / (n (n - 1) (t - t_reset)) (m^3/s in
+ *  3-D, m^2/s in 2-D; V the box volume/area, n particles, N_c collisions
+ *  since the reset) with the exact (Garwood) Poisson interval at `level`
+ *  (e.g. 0.95) of the same scale times N_c.  SB_EDOM if no time elapsed or
+ *  n < 2.  lo/hi may be NULL. */
+int sb_engine_kernel(const sb_engine *e, double level, double *K,
+                     double *lo, double *hi);
+
+/** One time-series sample (every params.sample_every steps). */
+typedef struct {
+  double t;        /**< s */
+  uint64_t ncoll;  /**< collisions since the reset */
+  double K;        /**< kernel estimate (NaN before the first collision
+                        time has elapsed), see sb_engine_kernel */
+  double K_lo, K_hi;  /**< its 95% interval */
+  double ekin;     /**< total kinetic energy sum m u^2/2, J */
+  double p[3];     /**< total momentum, kg m/s */
+} sb_engine_sample;
+
+/** The recorded time series (array owned by the engine). */
+const sb_engine_sample *sb_engine_series(const sb_engine *e, size_t *n);
+
+/** Total kinetic energy (J) and momentum (kg m/s, p may be NULL). */
+double sb_engine_kinetic_energy(const sb_engine *e, double p[3]);
+
+/** Number of pairs overlapping by more than rel_tol * (r_i + r_j) now
+ *  (brute force, O(N^2): a diagnostic for tests). */
+size_t sb_engine_check_overlaps(const sb_engine *e, double rel_tol);
+
+/** Write a snapshot CSV (header; one line per particle: id, species,
+ *  family, x, y, z [m], ux, uy, uz [m/s]).  SB_EIO on failure. */
+int sb_engine_snapshot_csv(const sb_engine *e, const char *path);
+
+/* ======================================================= accessors */
+
+size_t sb_engine_count(const sb_engine *e);
+double sb_engine_time(const sb_engine *e);
+/** Arrays of 3n values (x[3i+k]); positions in [0, L_k). */
+const double *sb_engine_positions(const sb_engine *e);
+const double *sb_engine_velocities(const sb_engine *e);
+/** Positions / velocities at the start of the current step (valid inside
+ *  detector and outcome callbacks). */
+const double *sb_engine_start_positions(const sb_engine *e);
+const double *sb_engine_start_velocities(const sb_engine *e);
+const double *sb_engine_radii(const sb_engine *e);
+const double *sb_engine_masses(const sb_engine *e);
+const size_t *sb_engine_species_of(const sb_engine *e);
+const int *sb_engine_families(const sb_engine *e);
+const uint64_t *sb_engine_ids(const sb_engine *e);
+const sb_engine_species *sb_engine_get_species(const sb_engine *e,
+                                               size_t idx);
+/** The engine's generator (for callbacks; do not free). */
+gsl_rng *sb_engine_rng(sb_engine *e);
+/** Set the state of particle i (m, m/s), e.g. in tests. */
+int sb_engine_set_particle(sb_engine *e, size_t i, const double x[3],
+                           const double u[3]);
+
+/* ======================================================= checkpoint */
+
+/** Write the whole state (parameters, species, particles, counters, time
+ *  series, built-in fluid field, generator state via gsl_rng_fwrite) to a
+ *  binary file.  Callbacks (custom detector/outcome/fluid) are not saved:
+ *  set them again after loading.  SB_EIO on failure. */
+int sb_engine_checkpoint_save(const sb_engine *e, const char *path);
+
+/** Load a checkpoint: a new engine that continues bit-identically.  NULL
+ *  and *status (may be NULL) = SB_EIO / SB_EFORMAT / SB_ENOMEM on
+ *  failure. */
+sb_engine *sb_engine_checkpoint_load(const char *path, int *status);
+
+/* ======================================================= names */
+
+/** Names used by the CLI ("cells", "sweep", "brute"; "ballistic",
+ *  "overlap"; "elastic", "reinsert", "count"); return SB_EINVAL for an
+ *  unknown name. */
+int sb_engine_neigh_from_name(const char *name, sb_engine_neigh *m);
+int sb_engine_detect_from_name(const char *name, sb_engine_detect *d);
+int sb_engine_outcome_from_name(const char *name, sb_engine_outcome *o);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SMOLBRIDGE_ENGINE_H */

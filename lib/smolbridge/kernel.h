@@ -1,0 +1,186 @@
+/* smolbridge/kernel.h — collision and agglomeration kernels (SI units).
+ *
+ * Convention: K(i, j) is the collision rate coefficient such that the
+ * number of i–j collisions per unit volume and time is K n_i n_j (m^3/s),
+ * and K n^2 / 2 for collisions within one species.  Every collision sticks
+ * (efficiency psi = 1); multiply by an efficiency yourself if needed.
+ *
+ * Physical kernels take radii r (m), temperature T (K), dynamic viscosity
+ * mu (Pa s), densities rho (kg/m^3), kinematic viscosity nu (m^2/s),
+ * dissipation rate eps (m^2/s^3), shear rate G (1/s).  They return NaN and
+ * record SB_EDOM (sb_last_error) when an argument is not finite and
+ * positive (rho_f, lambda may be 0).  Accuracy: closed forms, a few ulp.
+ * Boltzmann constant: k_B = 1.380649e-23 J/K (exact, SI 2019).
+ * Derivations and sources: docs/kernel.md.
+ */
+#ifndef SMOLBRIDGE_KERNEL_H
+#define SMOLBRIDGE_KERNEL_H
+
+#include <stddef.h>
+#include <smolbridge/common.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------ physical kernels */
+
+/** Brownian, continuum regime (Smoluchowski 1917; seed 003 eq 2.9):
+ *  K = 4 pi (D_i + D_j)(r_i + r_j), D = kT/(6 pi mu r)
+ *    = (2kT/3mu)(1/r_i + 1/r_j)(r_i + r_j).  Monodisperse: 8kT/(3mu).
+ *  Valid for Knudsen number lambda/r << 1. */
+double sb_kernel_brownian_co(double r_i, double r_j, double T, double mu);
+
+/** Brownian, free-molecular regime (kinetic theory of spheres; seed 003
+ *  eq 2.10): K = pi (r_i + r_j)^2 sqrt(8kT/(pi m_red)), m = rho_p 4/3 pi r^3,
+ *  m_red = m_i m_j/(m_i + m_j).  Monodisperse: 4 sqrt(6 kT d/rho_p).
+ *  Valid for lambda/r >> 1. */
+double sb_kernel_brownian_fm(double r_i, double r_j, double T, double rho_p);
+
+/** Brownian, transition regime, Dahneke (1983) flux-matching form:
+ *  K = K_co (1 + Kn_D)/(1 + 2 Kn_D + 2 Kn_D^2),  Kn_D = K_co/(2 K_fm)
+ *    = 2 (D_i + D_j)/(c_ij (r_i + r_j)),  c_ij = sqrt(c_i^2 + c_j^2),
+ *  c = sqrt(8kT/(pi m)).  Tends to K_co as Kn_D -> 0 and to K_fm as
+ *  Kn_D -> infinity.  (Seed 003 eq 2.13 omits the factor K_co's size
+ *  dependence and eq 2.14 writes r_i + r_j for d_i + d_j.)  D includes the
+ *  Cunningham slip correction C = 1 + (lambda/r)(1.257 + 0.4 exp(-1.1 r/
+ *  lambda)) (Davies 1945) when the gas mean free path lambda > 0; lambda = 0
+ *  gives Stokes–Einstein D. */
+double sb_kernel_brownian_tr(double r_i, double r_j, double T, double mu,
+                             double rho_p, double lambda);
+
+/** Kinetic theory of hard spheres (gas molecules), diameters d (m), masses
+ *  m (kg): K = pi ((d_i + d_j)/2)^2 sqrt(8kT/(pi m_red)).  Monodisperse:
+ *  pi d^2 sqrt(16 kT/(pi m)).  (Seed 003 eq 3.6 is garbled.) */
+double sb_kernel_kinetic(double d_i, double d_j, double m_i, double m_j,
+                         double T);
+
+/** Differential gravitational settling (seed 003 eq 2.3; Pearson et al.
+ *  1984): K = pi (r_i + r_j)^2 |U_i - U_j|, Stokes terminal velocity
+ *  U = 2 (rho_p - rho_f) g r^2/(9 mu).  No hydrodynamic interaction
+ *  (collision efficiency 1); valid for particle Reynolds number << 1. */
+double sb_kernel_gravity(double r_i, double r_j, double rho_p, double rho_f,
+                         double mu, double g);
+
+/** Laminar shear, velocity gradient G (Smoluchowski 1917; seed 003 eq
+ *  2.4): K = (4/3) G (r_i + r_j)^3. */
+double sb_kernel_shear(double r_i, double r_j, double G);
+
+/** Saffman & Turner (1956) turbulent kernel, inertialess particles much
+ *  smaller than the Kolmogorov scale (seed 003 eq 2.5):
+ *  K = sqrt(8 pi eps/(15 nu)) (r_i + r_j)^3. */
+double sb_kernel_saffman_turner(double r_i, double r_j, double eps,
+                                double nu);
+
+/** Abrahamson (1975) kernel for inertial particles (Stokes number >> 1)
+ *  whose velocities are independent isotropic Gaussians with per-component
+ *  variances u2_i, u2_j (m^2/s^2):
+ *  K = sqrt(8 pi) (r_i + r_j)^2 sqrt(u2_i + u2_j)
+ *    = sqrt(32 pi/3) (r_i + r_j)^2 sqrt((E_i + E_j)/2),  E = (3/2) u2
+ *  (the kinetic energy per unit mass).  Seed 003 eq 2.7 drops the square
+ *  root on (E_i + E_j)/2.  With u2 = kT/m it equals sb_kernel_kinetic. */
+double sb_kernel_abrahamson(double r_i, double r_j, double u2_i,
+                            double u2_j);
+
+/** Pure diffusion (seed 003 eqs 5.19, 6.18): each particle's position
+ *  diffuses with per-component variance rate b2 = B_pos^2 (m^2/s), the
+ *  relative position with B_ij^2 = b2_i + b2_j; K = 2 pi B_ij^2 (r_i + r_j)
+ *  = 4 pi D_ij (r_i + r_j), D_ij = B_ij^2/2.  Monodisperse: 4 pi B_pos^2 d. */
+double sb_kernel_diffusion(double r_i, double r_j, double b2_i, double b2_j);
+
+/** Per-particle Brownian position variance rate in the diffusive limit,
+ *  B_pos^2 = 2 kT tau_p/m_p = 2 D = kT/(3 pi mu r) (m^2/s) (seed 003 eq 6.22,
+ *  first term). */
+double sb_brownian_b2(double r, double T, double mu);
+
+/** Turbulent relative (pair) variance rate at centre separation r (seed 003
+ *  eqs 6.13–6.17; Brunk et al. 1998 with total strain tau_S Gamma_k =
+ *  sqrt(270/pi)): B_ij^2(r) = D_ij(r)/3 = sqrt(2/(15 pi)) sqrt(eps/nu) r^2.
+ *  With r = r_i + r_j, sb_kernel_diffusion-type 2 pi B_ij^2 r recovers
+ *  Saffman–Turner exactly (eqs 6.18–6.19). */
+double sb_turb_pair_b2(double r, double eps, double nu);
+
+/** Combined Brownian + turbulent pair diffusion (seed 003 eqs 6.20–6.23):
+ *  B_ij^2 = b2_Brown,i + b2_Brown,j + B_turb,ij^2(r_i + r_j) and
+ *  K = 2 pi B_ij^2 (r_i + r_j) = K_co + K_Saffman–Turner. */
+double sb_kernel_brownian_turb(double r_i, double r_j, double T, double mu,
+                               double eps, double nu);
+
+/* ------------------------------------------------------ test kernels */
+
+/** Constant kernel K (m^3/s). */
+double sb_kernel_constant(double v_i, double v_j, double K);
+/** Additive (Golovin) kernel K (v_i + v_j), K in 1/s. */
+double sb_kernel_additive(double v_i, double v_j, double K);
+/** Multiplicative kernel K v_i v_j, K in 1/(m^3 s). */
+double sb_kernel_multiplicative(double v_i, double v_j, double K);
+
+/* ------------------------------------------------------ callback form */
+
+/** A kernel as a function of the two particle volumes (m^3), used by the
+ *  population balance (<smolbridge/pbe.h>).  It must be symmetric,
+ *  non-negative and finite for positive volumes, and thread-safe. */
+typedef double (*sb_kernel_fn)(double v_i, double v_j, const void *params);
+
+/** Built-in kernels available through sb_kernel_spec_fn. */
+typedef enum {
+  SB_KERNEL_CONSTANT = 0,   /* K */
+  SB_KERNEL_ADDITIVE,       /* K (v_i + v_j) */
+  SB_KERNEL_MULTIPLICATIVE, /* K v_i v_j */
+  SB_KERNEL_BROWNIAN_CO,    /* T, mu */
+  SB_KERNEL_BROWNIAN_FM,    /* T, rho_p */
+  SB_KERNEL_BROWNIAN_TR,    /* T, mu, rho_p, lambda */
+  SB_KERNEL_GRAVITY,        /* rho_p, rho_f, mu, g */
+  SB_KERNEL_SHEAR,          /* G */
+  SB_KERNEL_SAFFMAN_TURNER, /* eps, nu */
+  SB_KERNEL_BROWNIAN_TURB,  /* T, mu, eps, nu */
+  SB_KERNEL_NTYPES
+} sb_kernel_type;
+
+/** Parameters of a built-in kernel (only those listed for its type are
+ *  used; radii are r = (3 v/(4 pi))^(1/3)). */
+typedef struct {
+  sb_kernel_type type;
+  double K;      /**< test kernels' coefficient */
+  double T;      /**< temperature, K */
+  double mu;     /**< dynamic viscosity, Pa s */
+  double rho_p;  /**< particle density, kg/m^3 */
+  double rho_f;  /**< fluid density, kg/m^3 */
+  double lambda; /**< gas mean free path, m (0: no slip correction) */
+  double g;      /**< gravitational acceleration, m/s^2 */
+  double G;      /**< laminar shear rate, 1/s */
+  double eps;    /**< turbulent dissipation rate, m^2/s^3 */
+  double nu;     /**< kinematic viscosity, m^2/s */
+} sb_kernel_spec;
+
+/** Fill *s with `type` and defaults: K = 1, water at 20 C (T = 293.15,
+ *  mu = 1.002e-3, rho_f = 998.2, nu = 1.004e-6), rho_p = 1000, lambda = 0,
+ *  g = 9.80665, G = 1, eps = 1e-4.  SB_EINVAL for an unknown type. */
+int sb_kernel_spec_init(sb_kernel_spec *s, sb_kernel_type type);
+
+/** Type from its name ("constant", "additive", "multiplicative",
+ *  "brownian-co", "brownian-fm", "brownian-tr", "gravity", "shear",
+ *  "saffman-turner", "brownian-turb"); returns SB_EINVAL if unknown. */
+int sb_kernel_type_from_name(const char *name, sb_kernel_type *type);
+/** Name of a type (NULL if out of range). */
+const char *sb_kernel_type_name(sb_kernel_type type);
+
+/** Set a parameter by its field name ("K", "T", "mu", "rho_p", "rho_f",
+ *  "lambda", "g", "G", "eps", "nu"); SB_EINVAL if unknown. */
+int sb_kernel_spec_set(sb_kernel_spec *s, const char *key, double value);
+
+/** Check that the parameters used by s->type are valid (SB_EDOM if not). */
+int sb_kernel_spec_check(const sb_kernel_spec *s);
+
+/** The built-in kernel as an sb_kernel_fn; `spec` is a const
+ *  sb_kernel_spec * (checked with sb_kernel_spec_check beforehand). */
+double sb_kernel_spec_fn(double v_i, double v_j, const void *spec);
+
+/** Radius of the sphere of volume v: (3 v/(4 pi))^(1/3). */
+double sb_radius_from_volume(double v);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SMOLBRIDGE_KERNEL_H */

@@ -1,0 +1,266 @@
+/* smolbridge/langevin.h — Langevin / Ornstein–Uhlenbeck references: exact
+ * moments, exact transition (scalar and batched 3-D), conditioned ("bridge")
+ * sampling, and SI helpers for Brownian particles.
+ *
+ * Model, per Cartesian component (seed 003 eq 1.15 with U_s held constant
+ * over the step):
+ *
+ *     dX = U dt,     dU = (us - U)/tau dt + B dW,
+ *
+ * tau > 0 the relaxation time, B >= 0 the velocity-diffusion coefficient,
+ * us the (constant) fluid velocity seen, W a standard Wiener process.
+ * The core routines are unit-free: use any consistent units (tau and t in
+ * the same time unit, B in velocity / sqrt(time)).  The SI helpers at the
+ * end take and return SI units.
+ *
+ * Notation used below: h = t/tau, e = exp(-h), a = 1 - e = -expm1(-h).
+ *
+ * Exact moments from (x0, u0) at time 0 (Ito isometry; see docs/langevin.md
+ * for the derivation; seed 003 App. D, eqs D.1–D.6, is the case us = 0):
+ *   mean_u = us + (u0 - us) e
+ *   mean_x = x0 + us t + (u0 - us) tau a
+ *   var_u  = B^2 tau/2 (1 - e^2)                   (-> B^2 tau/2, stationary)
+ *   cov_xu = B^2 tau^2 a^2 / 2
+ *   var_x  = B^2 tau^2 [t - 2 tau a + tau/2 (1 - e^2)]
+ *          = B^2 tau^3 [c(h) + a^3 / (2 (2 - a))]     (the stable form used)
+ *   var_x|u = var_x - cov_xu^2/var_u = B^2 tau^2 [t - 2 tau a/(1+e)]
+ *          = B^2 tau^3 c(h),    c(h) = h - 2 tanh(h/2)
+ * The textbook form of var_x loses all digits for t << tau (it is a
+ * difference of O(h) terms with an O(h^3) result); the forms above are sums
+ * of non-negative terms, and c(h) is evaluated for h <= 2 by the positive
+ * series 2 (y cosh y - sinh y)/cosh y = 2 sum_{n>=1} 2n y^{2n+1}/(2n+1)! /
+ * cosh y, y = h/2.  Accuracy: every moment here is within a few ulps
+ * (tested <= 1e-13 relative, against mpmath at 150 digits) for
+ * t/tau in [1e-10, 1e10]; below 1e-10 the results stay accurate until
+ * var_x underflows (t/tau ~ 1e-100 for tau = B = 1).
+ *
+ * Thread safety: no global state; generators are passed in by the caller.
+ * Randomness: Gaussian variates come from gsl_ran_gaussian_ziggurat, drawn
+ * in a documented order, so the same generator state gives bit-identical
+ * output.
+ */
+#ifndef SMOLBRIDGE_LANGEVIN_H
+#define SMOLBRIDGE_LANGEVIN_H
+
+#include <stddef.h>
+#include <gsl/gsl_rng.h>
+#include <smolbridge/common.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ============================================================ parameters */
+
+/** Parameters of one component of the Langevin model.
+ *  tau > 0 and finite; B >= 0 and finite; us finite. */
+typedef struct {
+  double tau;  /**< relaxation time */
+  double B;    /**< velocity-diffusion coefficient (dU noise amplitude) */
+  double us;   /**< fluid velocity seen, constant over the time considered */
+} sb_langevin;
+
+/** Mean and covariance of the state (X, U) at one time. */
+typedef struct {
+  double mean_x, mean_u;
+  double var_x, var_u, cov_xu;
+} sb_langevin_mom;
+
+/* ====================================================== exact moments */
+
+/** Exact moments of (X_t, U_t) given X_0 = x0, U_0 = u0 (formulas above).
+ *  Domain: valid *p, t >= 0 finite, x0 and u0 finite; else SB_EDOM (and
+ *  SB_EINVAL for NULL pointers), with *m set to NaN.  Accuracy: variances
+ *  and covariance to a few ulps; the means to a few ulps of the largest of
+ *  |x0|, |us t|, |(u0 - us) tau a|. */
+int sb_langevin_moments(const sb_langevin *p, double t, double x0, double u0,
+                        sb_langevin_mom *m);
+
+/* The next functions depend on (tau, B, t) only.  Domain: tau > 0, B >= 0,
+ * t >= 0, all finite (t may be negative for the autocorrelation).  The plain
+ * form returns NaN on a domain error; the _e form returns the status and an
+ * error estimate err (a bound, a few ulps of val). */
+
+/** Velocity variance B^2 tau/2 (1 - e^{-2t/tau}) = B^2 tau/2 a (2 - a). */
+double sb_langevin_var_u(double tau, double B, double t);
+int sb_langevin_var_u_e(double tau, double B, double t, sb_result *res);
+
+/** Position variance (formula above), stable for all t/tau. */
+double sb_langevin_var_x(double tau, double B, double t);
+int sb_langevin_var_x_e(double tau, double B, double t, sb_result *res);
+
+/** Position–velocity covariance B^2 tau^2 (1 - e^{-t/tau})^2 / 2. */
+double sb_langevin_cov_xu(double tau, double B, double t);
+int sb_langevin_cov_xu_e(double tau, double B, double t, sb_result *res);
+
+/** Variance of X_t given U_t (and the start state): B^2 tau^2
+ *  [t - 2 tau (1-e)/(1+e)] = B^2 tau^3 (h - 2 tanh(h/2)).  It is the
+ *  variance of the zeta_x term of seed 003 eq 1.16.  Small t: B^2 t^3/12. */
+double sb_langevin_var_x_cond(double tau, double B, double t);
+int sb_langevin_var_x_cond_e(double tau, double B, double t, sb_result *res);
+
+/** Stationary (equilibrium) velocity variance B^2 tau / 2 (= k_B T / m_p
+ *  for Brownian particles, seed 003 eq A.4). */
+double sb_langevin_var_stat(double tau, double B);
+
+/** Mean-square displacement <(X_t - X_0)^2> with a stationary (Maxwellian)
+ *  initial velocity U_0 ~ N(us, B^2 tau/2), measured in the frame moving
+ *  with us (Ornstein 1919; Uhlenbeck & Ornstein 1930):
+ *      MSD(t) = B^2 tau^2 [t - tau (1 - e^{-t/tau})]
+ *             = var_x(t) + B^2 tau^3 a^2/2      (no cancellation).
+ *  Limits: ballistic B^2 tau t^2/2 (t << tau), diffusive B^2 tau^2 t =
+ *  2 D t (t >> tau), see the two functions below. */
+double sb_langevin_msd(double tau, double B, double t);
+int sb_langevin_msd_e(double tau, double B, double t, sb_result *res);
+
+/** Ballistic limit of the MSD: (B^2 tau/2) t^2 = <U^2>_eq t^2. */
+double sb_langevin_msd_ballistic(double tau, double B, double t);
+
+/** Diffusive limit of the MSD: B^2 tau^2 t (= 2 D t, D = B^2 tau^2/2). */
+double sb_langevin_msd_diffusive(double tau, double B, double t);
+
+/** Stationary velocity autocorrelation <(U_0 - us)(U_t - us)> =
+ *  B^2 tau/2 exp(-|t|/tau); t may be any finite real. */
+double sb_langevin_vacf(double tau, double B, double t);
+
+/* ================================================== exact transition */
+
+/** Exact one-step transition (seed 003 eq 1.16, Peirano et al. 2006):
+ *  replaces (*x, *u) by a draw of (X_dt, U_dt) given (X_0, U_0) = (*x, *u),
+ *
+ *    U_dt = us + (u - us) e + s_u z1
+ *    X_dt = x + us dt + (u - us) tau a + s_xu z1 + s_xc z2
+ *
+ *  z1, z2 independent N(0,1) drawn in that order with
+ *  gsl_ran_gaussian_ziggurat; s_u^2 = var_u, s_xu = cov_xu / s_u,
+ *  s_xc^2 = var_x|u (a Cholesky factor of the exact covariance, written
+ *  without dividing by var_u so that dt -> 0 is not degenerate).
+ *  Domain: valid *p, dt >= 0 finite (dt = 0 leaves the state unchanged),
+ *  valid for dt/tau in [1e-10, 1e10] and beyond; *x, *u finite.
+ *  Errors: SB_EDOM / SB_EINVAL, state unchanged. */
+int sb_langevin_step(const sb_langevin *p, double dt, const gsl_rng *r,
+                     double *x, double *u);
+
+/** Precomputed coefficients of the exact step for one (tau, B, dt): the
+ *  batched stepper reuses them across steps and particles.
+ *  Fill with sb_langevin_coef_init(); the fields are read-only to callers. */
+typedef struct {
+  double dt;     /**< the step */
+  double decay;  /**< e = exp(-dt/tau) */
+  double gain;   /**< tau a = tau (1 - e): X gain per unit (u - us) */
+  double s_u;    /**< sqrt(var_u) */
+  double s_xu;   /**< cov_xu / sqrt(var_u): X noise correlated with U */
+  double s_xc;   /**< sqrt(var_x|u): X noise independent of U */
+} sb_langevin_coef;
+
+/** Coefficients of the exact step of length dt for (tau, B).
+ *  Domain: tau > 0, B >= 0, dt >= 0, all finite; else SB_EDOM, *c NaN. */
+int sb_langevin_coef_init(sb_langevin_coef *c, double tau, double B,
+                          double dt);
+
+/** Batched 3-D exact step, each particle with its own tau, B and fluid
+ *  velocity (the engine's interface).
+ *
+ *  Layout ("array of 3-vectors"): particle i has position
+ *  x[3i], x[3i+1], x[3i+2], velocity u[3i..3i+2] and fluid velocity
+ *  us[3i..3i+2]; tau[i], B[i].  us may be NULL (fluid at rest).
+ *  The three components are independent copies of the 1-D model.
+ *  Draw order: for i = 0..n-1, for k = 0..2: z1, z2 (as sb_langevin_step),
+ *  so a batch of n particles equals n*3 scalar steps in that order.
+ *  All tau[i], B[i] are validated before anything moves (SB_EDOM and no
+ *  change on a bad one).  Coefficients are computed per particle; use
+ *  sb_langevin_step3_coef to reuse precomputed ones. */
+int sb_langevin_step3(size_t n, double dt, const double *tau,
+                      const double *B, const double *us, double *x,
+                      double *u, const gsl_rng *r);
+
+/** Batched 3-D exact step with precomputed coefficients: particle i uses
+ *  coef[cidx[i]] (a table per particle class), or coef[i] if cidx is NULL.
+ *  Layout and draw order as sb_langevin_step3; us may be NULL.  The
+ *  coefficients are trusted (built by sb_langevin_coef_init); this is the
+ *  fast path (see bench/bench_langevin.c for its cost). */
+int sb_langevin_step3_coef(size_t n, const sb_langevin_coef *coef,
+                           const size_t *cidx, const double *us, double *x,
+                           double *u, const gsl_rng *r);
+
+/* ======================================= conditioned ("bridge") sampling */
+
+/** Law of (X_s, U_s) given (X_0, U_0) = (x0, u0) and (X_dt, U_dt) =
+ *  (x1, u1), 0 <= s <= dt: Gaussian, with mean and covariance returned in
+ *  *m.  Covariance in information form, P^{-1} with P = Sigma_s^{-1} +
+ *  Phi^T Sigma_r^{-1} Phi (r = dt - s, Phi the mean-transition matrix over
+ *  r); mean m_s + K (z1 - m_dt) with the gain K = Sigma_s Phi^T
+ *  Sigma_dt^{-1}; each Sigma^{-1} uses the analytic determinant
+ *  var_u * var_x|u.  Accuracy (against a 150-digit direct conditioning of
+ *  the joint law, dt/tau in [1e-8, 1e6], s/dt in [1e-3, 0.999]): variances
+ *  and covariance to a few ulps; means to 1e-11 conditional standard
+ *  deviations or one ulp of the value.
+ *  Diffusive limit (dt >> tau): X_s tends to the Brownian bridge with
+ *  B_pos = B tau (variance B^2 tau^2 s(dt-s)/dt, seed 003 eq J.5) between
+ *  x0 + tau u0 and x1 - tau u1 (Y = X + tau U is exactly a Brownian
+ *  motion).  Domain: valid *p with B > 0, dt > 0, s in [0, dt],
+ *  all finite, and s, dt - s each either 0 or >= 1e-60 tau (SB_EDOM
+ *  otherwise: the scaled precision would overflow).  s = 0 and s = dt
+ *  return the end states with zero variance. */
+int sb_langevin_bridge_moments(const sb_langevin *p, double dt, double s,
+                               double x0, double u0, double x1, double u1,
+                               sb_langevin_mom *m);
+
+/** One draw of (X_s, U_s) from the conditioned law above (exact):
+ *  X_s = mean_x + L11 z1, U_s = mean_u + L21 z1 + L22 z2 with L the
+ *  Cholesky factor of the conditional covariance; z1, z2 drawn in that
+ *  order with gsl_ran_gaussian_ziggurat.  Domain as above; on error
+ *  *xs, *us are set to NaN. */
+int sb_langevin_bridge_sample(const sb_langevin *p, double dt, double s,
+                              double x0, double u0, double x1, double u1,
+                              const gsl_rng *r, double *xs, double *us);
+
+/* ================================================= SI helpers (SI units) */
+
+/** Boltzmann constant, J/K (exact since the 2019 SI redefinition). */
+#define SB_BOLTZMANN 1.380649e-23
+
+/** Stokes relaxation time tau_p = rho_p d_p^2 Cc / (18 mu_f), s
+ *  (seed 003 eq 1.4 with mu_f = rho_f nu_f; Cc the Cunningham slip
+ *  correction, 1 for none).  rho_p [kg/m^3] > 0, d_p [m] > 0,
+ *  mu_f [Pa s] > 0, cc >= 1.  NaN and SB_EDOM otherwise. */
+double sb_stokes_tau(double rho_p, double d_p, double mu_f, double cc);
+
+/** Mass of a sphere rho_p pi d_p^3 / 6, kg. */
+double sb_sphere_mass(double rho_p, double d_p);
+
+/** Brownian velocity-diffusion coefficient B = sqrt(2 k_B T / (m_p tau_p)),
+ *  m/s^{3/2} (seed 003 eq 1.5 / A.5: it makes the stationary velocity
+ *  variance B^2 tau_p/2 equal k_B T/m_p).  T [K] > 0, m_p [kg] > 0,
+ *  tau_p [s] > 0. */
+double sb_brownian_B(double T, double m_p, double tau_p);
+
+/** Stokes–Einstein diffusion coefficient D = k_B T Cc / (3 pi mu_f d_p)
+ *  = k_B T Cc / (6 pi mu_f r_p), m^2/s.  It equals B^2 tau_p^2 / 2 with
+ *  tau_p and B from the two functions above (for the same Cc and
+ *  rho_p = m_p / (pi d_p^3/6)).  T > 0, mu_f > 0, d_p > 0, cc >= 1. */
+double sb_einstein_D(double T, double mu_f, double d_p, double cc);
+
+/** Knudsen number of a particle, Kn = 2 lambda / d_p (mean free path of
+ *  the gas over the particle radius: the convention of the Cunningham
+ *  fits below).  lambda [m] > 0, d_p [m] > 0. */
+double sb_knudsen(double lambda, double d_p);
+
+/** Cunningham slip correction with the classic coefficients of Davies
+ *  (1945), Proc. Phys. Soc. 57, 259:
+ *      Cc = 1 + Kn [1.257 + 0.400 exp(-1.10 / Kn)],  Kn = 2 lambda/d_p
+ *  (fitted for air with lambda = 0.066 um at NTP; use the mean free path
+ *  of the same convention).  Kn >= 0; Cc(0) = 1. */
+double sb_cunningham(double kn);
+
+/** Cunningham correction with user coefficients (another published fit of
+ *  the same form, with Kn = 2 lambda / d_p):
+ *  Cc = 1 + Kn [A1 + A2 exp(-A3 / Kn)].  Kn >= 0, A1, A2, A3 finite and
+ *  A3 >= 0. */
+double sb_cunningham_gen(double kn, double A1, double A2, double A3);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SMOLBRIDGE_LANGEVIN_H */

@@ -1,0 +1,54 @@
+#!/usr/bin/python3
+"""Reference values of the analytic Smoluchowski solutions (tests/test_pbe.c).
+
+Writes tests/data/pbe_analytic.csv: kind,k_or_x,tau,logn with logn =
+log(n/N0) computed with mpmath at 50 digits directly from the defining
+products (factorials as exact integers, Bessel I1 by mpmath), so large k
+that underflow in double precision are covered.  Kinds: const_mono,
+add_mono, mult_mono (k integer), const_exp, add_exp (x = v/v0).
+Run: /usr/bin/python3 tests/gen_pbe_ref.py > tests/data/pbe_analytic.csv
+"""
+from mpmath import mp, mpf, log, exp, factorial, besseli, sqrt, expm1
+
+mp.dps = 50
+
+
+def const_mono(k, tau):
+    t = mpf(tau) / 2
+    return log(t ** (k - 1) / (1 + t) ** (k + 1))
+
+
+def add_mono(k, tau):
+    phi = -expm1(-mpf(tau))
+    return log((1 - phi) * (k * phi) ** (k - 1) * exp(-k * phi) / factorial(k))
+
+
+def mult_mono(k, tau):
+    tau = mpf(tau)
+    return log(mpf(k) ** (k - 3) * tau ** (k - 1) * exp(-k * tau) / factorial(k - 1))
+
+
+def const_exp(x, tau):
+    s = 1 + mpf(tau) / 2
+    return log(exp(-mpf(x) / s) / s ** 2)
+
+
+def add_exp(x, tau):
+    x = mpf(x)
+    T = -expm1(-mpf(tau))
+    return log((1 - T) * exp(-(1 + T) * x) * besseli(1, 2 * x * sqrt(T)) / (x * sqrt(T)))
+
+
+print("kind,a,tau,logn")
+for k in [1, 2, 3, 7, 50, 400, 10000, 1000000]:
+    for tau in ["0.001", "0.1", "1", "10", "1000"]:
+        print("const_mono,%d,%s,%s" % (k, tau, mp.nstr(const_mono(k, mpf(tau)), 25)))
+    for tau in ["0.001", "0.1", "1", "10"]:
+        print("add_mono,%d,%s,%s" % (k, tau, mp.nstr(add_mono(k, mpf(tau)), 25)))
+    for tau in ["0.001", "0.1", "0.5", "0.9", "0.999"]:
+        print("mult_mono,%d,%s,%s" % (k, tau, mp.nstr(mult_mono(k, mpf(tau)), 25)))
+for x in ["1e-6", "0.01", "1", "10", "300", "1e5"]:
+    for tau in ["0", "0.1", "1", "10", "1000"]:
+        print("const_exp,%s,%s,%s" % (x, tau, mp.nstr(const_exp(mpf(x), mpf(tau)), 25)))
+    for tau in ["1e-12", "0.1", "1", "10"]:
+        print("add_exp,%s,%s,%s" % (x, tau, mp.nstr(add_exp(mpf(x), mpf(tau)), 25)))

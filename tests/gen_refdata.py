@@ -1,0 +1,398 @@
+#!/usr/bin/python3
+"""Reference vectors for the passage and bridge modules (smolbridge).
+
+Run with Debian's python3-mpmath:  /usr/bin/python3 tests/gen_refdata.py
+Writes tests/data/{mills,mdiff,passage_bm,passage_bes3,passage_quantile,
+bridge_cross,bridge_hit,bridge_quantile}.csv (see tests/data/README.md).
+
+Every value is computed in arbitrary precision (mp.dps = 60 unless said
+otherwise) from the closed forms written independently of the C code: the
+normal CDF/erfc forms as printed in the literature (no scaling tricks),
+evaluated with enough digits that their cancellations do not matter.  The
+closed forms themselves are checked against quadrature of the densities
+here (check_closed_forms, run first; it aborts on a mismatch) and again in
+the C tests with GSL QAGS.  Inputs are exact binary doubles: each input is
+written with repr() and read back as the same double, and mpmath sees the
+exact value of that double.
+"""
+import os
+import sys
+
+import mpmath as mp
+
+mp.mp.dps = 60
+HERE = os.path.dirname(os.path.abspath(__file__))
+DATA = os.path.join(HERE, "data")
+TINY = mp.mpf("1e-300")  # smallest reference value kept (normal doubles)
+
+
+def f17(x):
+    """Inputs (Python floats, exact doubles): repr(), which round-trips.
+    Reference values (mpf): 20 significant digits, more than a double."""
+    if isinstance(x, mp.mpf):
+        if mp.isinf(x):
+            return "inf" if x > 0 else "-inf"
+        return mp.nstr(x, 20, min_fixed=1, max_fixed=0) if x != 0 else "0"
+    return repr(float(x))
+
+
+def write(name, header, rows):
+    path = os.path.join(DATA, name)
+    with open(path, "w") as fh:
+        fh.write(",".join(header) + "\n")
+        for r in rows:
+            fh.write(",".join(f17(v) for v in r) + "\n")
+    print("wrote %s: %d rows, %d bytes" % (name, len(rows),
+                                           os.path.getsize(path)))
+
+
+def Phi(z):
+    return mp.ncdf(z)
+
+
+def Q(z):
+    return mp.ncdf(-z)
+
+
+def M(z):
+    """Q(z) exp(z^2/2); for z >= 50 by its asymptotic series (terms fall
+    by (2n-1)/z^2 <= 1/2500, summed to 1e-70 relative)."""
+    z = mp.mpf(z)
+    if z < 50:
+        return mp.erfc(z / mp.sqrt(2)) / 2 * mp.exp(z * z / 2)
+    term, tot, n = mp.mpf(1), mp.mpf(1), 1
+    while abs(term) > mp.mpf(10) ** -70:
+        term *= -(2 * n - 1) / (z * z)
+        tot += term
+        n += 1
+    return tot / (z * mp.sqrt(2 * mp.pi))
+
+
+# ------------------------------------------------------------- numutil
+
+def gen_mills():
+    zs = [-37, -20, -5, -2, -1.5, -1, -0.5, -1e-3, 0, 1e-10, 1e-3, 0.25,
+          0.5, 1, 1.5, 1.9999, 2, 2.0001, 3, 4, 5, 7.5, 10, 15, 20, 24.99,
+          25, 25.01, 30, 37.5, 40, 100, 1e3, 1e5, 1e8, 1e12, 1e100]
+    rows = [(z, M(mp.mpf(z))) for z in zs]
+    write("mills.csv", ["z", "M"], rows)
+    # D(z, h) = M(z - h) - M(z + h), z >= 0, z - h >= -2: both branches of
+    # sbi_mills_diff (direct difference, forward and backward series)
+    rows = []
+    for z in [0, 1e-3, 0.3, 1, 1.9, 2, 2.1, 2.5, 3, 3.5, 4, 5, 6, 7, 8, 10,
+              30, 100, 1e4, 1e8]:
+        for h in [1e-12, 1e-6, 1e-3, 0.05, 0.2, 0.5, 1, 1.99, 3]:
+            if z - h < -2:
+                continue
+            zz, hh = mp.mpf(z), mp.mpf(h)
+            d = M(zz - hh) - M(zz + hh)
+            lo = float(zz - hh)  # the C test passes lo = z - h rounded
+            rows.append((z, h, lo, d))
+    write("mdiff.csv", ["z", "h", "lo", "D"], rows)
+    with mp.workdps(400):
+        rows = [(x, mp.log(-mp.expm1(-mp.mpf(x))))
+                for x in (1e-300, 1e-20, 1e-8, 0.01, 0.5, 0.6931, 0.6932, 1, 5,
+                          30, 700)]
+    write("log1mexp.csv", ["x", "log1mexp"], rows)
+
+
+# ------------------------------------------------------------- passage
+
+def ig_parts(t, x, a, mu, s2):
+    """pdf, cdf, sf of the first passage of x + mu t + sqrt(s2) W to a."""
+    t, x, a, mu, s2 = map(mp.mpf, (t, x, a, mu, s2))
+    d = abs(x - a)
+    nu = mu if x < a else -mu
+    s = mp.sqrt(s2 * t)
+    pdf = d / mp.sqrt(2 * mp.pi * s2 * t ** 3) * mp.exp(-(d - nu * t) ** 2 /
+                                                        (2 * s2 * t))
+    c = (nu * t - d) / s
+    b = (nu * t + d) / s
+    cdf = Phi(c) + mp.exp(2 * nu * d / s2) * Phi(-b)
+    mass = 1 if nu >= 0 else mp.exp(-2 * d * abs(nu) / s2)
+    # the complement directly (no 1 - cdf): Q(c) - e^{2 nu d/s2} Q(b) is
+    # mass-independent algebra: 1 - cdf = Q(c) - exp(2 nu d/s2) Phi(-b)
+    sf = Q(c) - mp.exp(2 * nu * d / s2) * Phi(-b)
+    return pdf, cdf, sf, mass
+
+
+def gen_passage():
+    rows = []
+    # (x, a, mu, s2): level below/above, drift towards/away/zero, d small,
+    # scales from 1e-4 to 1e4
+    pars = [(1, 0, -1, 1), (0, 1, 1, 1), (1, 0, 0, 1), (1, 0, 1, 1),
+            (0, 1, -2.5, 1), (2.5, 1.5, -0.1, 0.3), (2.5, 1.5, -30, 0.3),
+            (1, 1 - 2 ** -30, -1, 1), (3, 1, -1e-6, 2), (3, 1, -1e3, 2),
+            (1e-4, 0, -1e-4, 1e-8), (1e4, 0, -1e2, 1e4),
+            (0.7, -0.3, -0.01, 1), (-1, 2, 0.4, 5), (2, 1, 3, 1e-3)]
+    for (x, a, mu, s2) in pars:
+        d = abs(x - a)
+        nu = mu if x < a else -mu
+        tl = d * d / s2  # diffusive time
+        ts = [tl * 10 ** k for k in (-8, -4, -2, -1, -0.5, 0, 0.5, 1, 2, 4,
+                                     8)]
+        if nu != 0:
+            tm = d / abs(nu)
+            ts += [tm * f for f in (1e-8, 1e-3, 0.1, 0.5, 0.9, 1, 1.1, 2, 5,
+                                    10, 100, 1e3, 1e5, 1e8)]
+        for t in ts:
+            t = float(t)
+            pdf, cdf, sf, mass = ig_parts(t, x, a, mu, s2)
+            vals = [pdf if pdf > TINY else -1, cdf if cdf > TINY else -1,
+                    sf if sf > TINY else -1]
+            rows.append((t, x, a, mu, s2, vals[0], vals[1], vals[2], mass))
+    write("passage_bm.csv",
+          ["t", "x", "a", "mu", "sigma2", "pdf", "cdf", "sf", "mass"], rows)
+
+    rows = []
+    for (x, a, s2) in [(2, 1, 1), (1, 1e-6, 1), (1, 1 - 2 ** -40, 1),
+                       (1e3, 1, 0.5), (3, 2.9, 1e-4), (5, 1, 1e3)]:
+        xx, aa, ss = map(mp.mpf, (x, a, s2))
+        d = xx - aa
+        tl = float(d * d / ss)
+        for k in (-8, -3, -2, -1, -0.3, 0, 0.3, 1, 2, 4, 8):
+            t = tl * 10 ** k
+            tt = mp.mpf(t)
+            z = d / mp.sqrt(2 * ss * tt)
+            pdf = aa / xx * d / mp.sqrt(2 * mp.pi * ss * tt ** 3) * \
+                mp.exp(-d * d / (2 * ss * tt))
+            cdf = aa / xx * mp.erfc(z)
+            sf = 1 - cdf
+            rows.append((t, x, a, s2, pdf if pdf > TINY else -1,
+                         cdf if cdf > TINY else -1, sf))
+    write("passage_bes3.csv", ["t", "x", "a", "sigma2", "pdf", "cdf", "sf"],
+          rows)
+
+
+def ig_quantile(p, x, a, mu, s2):
+    """Exact quantile by bisection-safeguarded root finding in log t."""
+    p = mp.mpf(p)
+
+    def F(lt):
+        return ig_parts(mp.exp(lt), x, a, mu, s2)[1] - p
+
+    def S(lt):  # for p > 1/2 use the complement for resolution
+        return (1 - p) - ig_parts(mp.exp(lt), x, a, mu, s2)[2]
+    g = F if p <= 0.5 else S
+    lo, hi = mp.mpf(-200), mp.mpf(200)
+    for _ in range(400):
+        mid = (lo + hi) / 2
+        if g(mid) < 0:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo < mp.mpf(10) ** -40:
+            break
+    return mp.exp((lo + hi) / 2)
+
+
+def gen_passage_quantile():
+    rows = []
+    pars = [(1, 0, -1, 1), (1, 0, 0, 1), (0, 1, -2.5, 0.5), (3, 1, -1e-3, 2),
+            (1, 0, -100, 1), (2.5, 1.5, -0.1, 0.3)]
+    ps = [1e-12, 1e-6, 0.01, 0.3, 0.5, 0.7, 0.99, 1 - 1e-6]
+    for (x, a, mu, s2) in pars:
+        _, _, _, mass = ig_parts(1, x, a, mu, s2)
+        for p in ps:
+            if p >= mass:
+                continue
+            rows.append((p, x, a, mu, s2, ig_quantile(p, x, a, mu, s2)))
+    write("passage_quantile.csv", ["p", "x", "a", "mu", "sigma2", "q"], rows)
+
+
+# -------------------------------------------------------------- bridge
+
+def cross_ref(kind, x, y, a, v):
+    """P(min <= a), log P, 1 - P at 200 digits from the textbook forms."""
+    with mp.workdps(200):
+        x, y, a, v = map(mp.mpf, (x, y, a, v))
+        if kind == 0:
+            p = mp.exp(-2 * (x - a) * (y - a) / v)
+        else:
+            p = mp.expm1(2 * a * (x + y - a) / v) / mp.expm1(2 * x * y / v)
+        return p, mp.log(p), 1 - p
+
+
+def gen_bridge_cross():
+    rows = []
+    base = []
+    for (x, y, a) in [(1.5, 1.3, 1.0), (2.0, 3.0, 1.0), (1.0, 1.0, 0.5),
+                      (1 + 1e-8, 1.7, 1.0), (1 + 2 ** -40, 1 + 2 ** -45, 1.0),
+                      (3.0, 2.0, 1e-10), (3.0, 2.0, 1e-100), (10.0, 0.5, 0.25),
+                      (1e4, 2e4, 5e3), (1e-4, 3e-4, 0.5e-4)]:
+        L = min(x - a, y - a)
+        for k in (-8, -4, -2, -1, 0, 1, 2, 4, 8):
+            base.append((x, y, a, float(L * L * 10 ** k)))
+        scale = max(x, y)
+        for k in (-8, -3, 0, 3, 8):
+            base.append((x, y, a, float(scale * scale * 10 ** k)))
+    # deep tails: log P from -1e3 to -1e300 (P itself underflows)
+    for v in (1e-3, 1e-10, 1e-100, 1e-300):
+        base.append((2.0, 3.0, 1.0, v))
+    for kind in (0, 1):
+        for (x, y, a, v) in base:
+            p, lp, nc = cross_ref(kind, x, y, a, v)
+            rows.append((kind, x, y, a, v, p if p > TINY else -1, lp,
+                         nc if nc > TINY else -1))
+    write("bridge_cross.csv",
+          ["kind", "x", "y", "a", "v", "p", "logp", "nocross"], rows)
+
+
+def g(v, z):
+    return mp.exp(-z * z / (2 * v)) / mp.sqrt(2 * mp.pi * v)
+
+
+def flevy(d, s2, t):
+    return d / mp.sqrt(2 * mp.pi * s2 * t ** 3) * mp.exp(-d * d / (2 * s2 * t))
+
+
+def bb_law(u, al, L, s2, t, w):
+    """cdf, sf of the BB hitting time (IG form), any precision."""
+    r = mp.sqrt(s2 * u * t * w)
+    c = (L * u - al * w) / r
+    b = (L * u + al * w) / r
+    k = mp.exp(2 * al * L / (s2 * t))
+    return Phi(c) + k * Phi(-b), Q(c) - k * Phi(-b)
+
+
+def hit_ref(kind, u, x, y, a, s2, t, w=None):
+    """pdf, cdf, sf of T_a | T_a <= t for BB (kind 0) or B3B (kind 1);
+    w = t - u may be given separately (quantile search near u = t)."""
+    if kind == 1 and y == 0:
+        # the B3B law is continuous in y: y = 0 is its limit, taken at
+        # y = 1e-45 with 120 more digits (error O(y))
+        with mp.workdps(mp.mp.dps + 120):
+            r = hit_ref(1, u, x, mp.mpf("1e-45"), a, s2, t, w)
+        return tuple(+v for v in r)
+    u, x, y, a, s2, t = map(mp.mpf, (u, x, y, a, s2, t))
+    w = t - u if w is None else mp.mpf(w)
+    al, L1, L2, v = x - a, abs(y - a), y + a, s2 * t
+    if kind == 0:
+        pdf = flevy(al, s2, u) * g(s2 * w, L1) / g(v, al + L1)
+        cdf, sf = bb_law(u, al, L1, s2, t, w)
+        return pdf, cdf, sf
+    # first-principles density: n_{x,a}(u) q_{t-u}(a, y) / P(hit, end y)
+    z = g(v, al + L1) - g(v, al + L2)
+    pdf = flevy(al, s2, u) * (g(s2 * w, L1) - g(s2 * w, L2)) / z
+    # signed mixture; extra digits cover its cancellation
+    extra = int(-mp.log10(-mp.expm1(-(L2 - L1) * (2 * al + L1 + L2) /
+                                      (2 * v)))) + 10
+    with mp.workdps(mp.mp.dps + max(extra, 0)):
+        rho = g(v, al + L2) / g(v, al + L1)
+        c1, s1 = bb_law(u, al, L1, s2, t, w)
+        c2, s2_ = bb_law(u, al, L2, s2, t, w)
+        cdf = (c1 - rho * c2) / (1 - rho)
+        sf = (s1 - rho * s2_) / (1 - rho)
+    return pdf, +cdf, +sf
+
+
+HIT_BB = [(1.5, 1.3, 1.0, 1.0, 1.0), (2.0, 3.0, 1.0, 0.5, 2.0),
+          (1.5, 0.4, 1.0, 0.7, 2.0), (1.5, 1.0, 1.0, 1.0, 1.0),
+          (1 + 1e-6, 1.5, 1.0, 1.0, 1.0), (1.5, 1.3, 1.0, 1e6, 1.0),
+          (1.5, 1.3, 1.0, 1e-3, 1.0), (1.5, 1.3, 1.0, 1.0, 1e-6),
+          (30.0, 20.0, 1.0, 1.0, 10.0), (1.2, 1.0 + 2 ** -30, 1.0, 0.3, 4.0)]
+HIT_B3 = [(1.5, 1.3, 1.0, 1.0, 1.0), (1.1, 1.05, 1.0, 5.0, 3.0),
+          (3.0, 2.0, 0.1, 1.3, 0.5), (1.5, 0.4, 1.0, 0.7, 2.0),
+          (1.5, 0.0, 1.0, 1.0, 1.0), (2.0, 3.0, 1e-6, 1.0, 1.0),
+          (1.5, 1.3, 1.0, 1e4, 1.0), (1.5, 1.3, 1.0, 1e-3, 1.0),
+          (1.5, 1e-9, 1.0, 1.0, 1.0), (1.5, 1.0 + 1e-9, 1.0, 1.0, 1.0),
+          (1.0 + 1e-7, 2.0, 1.0, 1.0, 1.0), (2.0, 2.5, 0.01, 100.0, 1.0),
+          (4.0, 3.0, 1.0, 2.0, 1.0)]
+UFRAC = [1e-8, 1e-4, 1e-2, 0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8,
+         0.9, 0.95, 0.99, 1 - 1e-4, 1 - 1e-8]
+
+
+def gen_bridge_hit():
+    rows = []
+    for kind, sets in ((0, HIT_BB), (1, HIT_B3)):
+        for (x, y, a, s2, t) in sets:
+            for f in UFRAC:
+                u = t * f
+                pdf, cdf, sf = hit_ref(kind, u, x, y, a, s2, t)
+                rows.append((kind, u, x, y, a, s2, t,
+                             pdf if pdf > TINY else -1,
+                             cdf if cdf > TINY else -1,
+                             sf if sf > TINY else -1))
+    write("bridge_hit.csv",
+          ["kind", "u", "x", "y", "a", "sigma2", "t", "pdf", "cdf", "sf"],
+          rows)
+
+
+def hit_quantile(kind, p, x, y, a, s2, t):
+    """Exact quantile: bisection in log s, s = u t/(t - u)."""
+    p = mp.mpf(p)
+    t_ = mp.mpf(t)
+    lo, hi = mp.mpf(-300), mp.mpf(300)
+    for _ in range(500):
+        mid = (lo + hi) / 2
+        s = mp.exp(mid)
+        u = t_ * s / (t_ + s)
+        _, cdf, sf = hit_ref(kind, u, x, y, a, s2, t, t_ * t_ / (t_ + s))
+        gv = cdf - p if p <= 0.5 else (1 - p) - sf
+        if gv < 0:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo < mp.mpf(10) ** -35:
+            break
+    s = mp.exp((lo + hi) / 2)
+    return t_ * s / (t_ + s)
+
+
+def gen_bridge_quantile():
+    rows = []
+    ps = [1e-12, 1e-6, 0.01, 0.3, 0.5, 0.7, 0.99, 1 - 1e-6]
+    sets = [(0, HIT_BB[0]), (0, HIT_BB[1]), (0, HIT_BB[2]), (0, HIT_BB[8]),
+            (1, HIT_B3[0]), (1, HIT_B3[3]), (1, HIT_B3[5]), (1, HIT_B3[6]),
+            (1, HIT_B3[12])]
+    with mp.workdps(40):
+        for kind, (x, y, a, s2, t) in sets:
+            for p in ps:
+                rows.append((kind, p, x, y, a, s2, t,
+                             hit_quantile(kind, p, x, y, a, s2, t)))
+    write("bridge_quantile.csv",
+          ["kind", "p", "x", "y", "a", "sigma2", "t", "q"], rows)
+
+
+def check_closed_forms():
+    """Closed forms vs mp.quad of the densities (aborts on mismatch)."""
+    mp.mp.dps = 30
+    for (t, x, a, mu, s2) in [(0.7, 1, 0, -1, 1), (3, 0, 1, -0.5, 2),
+                              (0.2, 2, 1.5, 0, 0.3)]:
+        pdf, cdf, sf, mass = ig_parts(t, x, a, mu, s2)
+        q = mp.quad(lambda s: ig_parts(s, x, a, mu, s2)[0], [0, t])
+        assert abs(q - cdf) < 1e-20, (q, cdf)
+        assert abs(sf - (1 - cdf)) < 1e-20
+    # hitting-time CDFs (IG form, signed mixture) vs quadrature of the
+    # first-principles densities
+    for kind, (x, y, a, s2, t) in [(0, HIT_BB[0]), (0, HIT_BB[2]),
+                                   (1, HIT_B3[0]), (1, HIT_B3[3]),
+                                   (1, HIT_B3[2])]:
+        for f in (0.2, 0.6):
+            u = t * f
+            q = mp.quad(lambda s: hit_ref(kind, s, x, y, a, s2, t)[0],
+                        [0, u / 2, u])
+            q2 = mp.quad(lambda s: hit_ref(kind, s, x, y, a, s2, t)[0],
+                         [0, t / 2, t])
+            _, cdf, sf = hit_ref(kind, u, x, y, a, s2, t)
+            assert abs(q - cdf) < 1e-18 and abs(q2 - 1) < 1e-18, (q, cdf)
+    mp.mp.dps = 60
+
+
+if __name__ == "__main__":
+    os.makedirs(DATA, exist_ok=True)
+    check_closed_forms()
+    which = sys.argv[1:] or ["mills", "passage", "passage_quantile",
+                             "bridge_cross", "bridge_hit", "bridge_quantile"]
+    if "mills" in which:
+        gen_mills()
+    if "passage" in which:
+        gen_passage()
+    if "passage_quantile" in which:
+        gen_passage_quantile()
+    if "bridge_cross" in which:
+        gen_bridge_cross()
+    if "bridge_hit" in which:
+        gen_bridge_hit()
+    if "bridge_quantile" in which:
+        gen_bridge_quantile()

@@ -1,0 +1,659 @@
+/* test_bridge.c — crossing probabilities (bridge.c) and conditioned hitting
+ * times (bridge_hit.c) of the Brownian and Bessel-3 bridges.
+ *
+ * Independent references:
+ *  - the CSV files in tests/data, from tests/gen_refdata.py (mpmath at 60-200
+ *    digits; densities from first principles, CDFs from the textbook forms
+ *    with enough digits to absorb their cancellations; checked there
+ *    against mp.quad);
+ *  - GSL quadrature of first-passage decompositions built from *other*
+ *    functions (the first-passage densities of passage.c and the transition
+ *    densities written out here): crossing probabilities and hitting-time
+ *    CDFs;
+ *  - the two printed versions of the seed's Bessel-3-bridge hitting-time CDF
+ *    (seed 003 eq 5.21-5.22 and App. I eq I.60-I.61), coded here as printed,
+ *    against the same quadrature: 5.21-5.22 is right, I.60-I.61 is not;
+ *  - Monte Carlo means of the samplers (fixed seeds, 5-sigma criteria; the
+ *    KS / chi-square checks of the samplers live in test_bridge_mc.c).
+ */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_rng.h>
+#include <gsl/gsl_sf_erf.h>
+
+#include <smolbridge/bridge.h>
+#include <smolbridge/passage.h>
+#include "refdata.h"
+#include "testutil.h"
+
+#define CHECK_REF(res, want, what)                                          \
+  do {                                                                      \
+    double g_ = (res).val, w_ = (want);                                     \
+    ck_assert_msg(sbt_reldiff(g_, w_) <= TOL_REF,                           \
+                  "%s: got %.17g want %.17g (rel %.3g)", what, g_, w_,      \
+                  sbt_reldiff(g_, w_));                                     \
+    ck_assert_msg(fabs(g_ - w_) <= (res).err,                               \
+                  "%s: err %.3g does not cover |%.17g - %.17g| = %.3g",     \
+                  what, (res).err, g_, w_, fabs(g_ - w_));                  \
+  } while (0)
+
+typedef int (*cross_e)(double, double, double, double, sb_result *);
+typedef int (*hit_e)(double, double, double, double, double, double,
+                     sb_result *);
+
+/* N(0, v) density */
+static double gv(double v, double z)
+{
+  return exp(-z * z / (2.0 * v)) / sqrt(2.0 * M_PI * v);
+}
+
+/* Bessel-3 transition density q_v(x, y) = (y/x)[g_v(y-x) - g_v(y+x)] */
+static double q3(double v, double x, double y)
+{
+  return y / x * (gv(v, y - x) - gv(v, y + x));
+}
+
+/* --------------------------------------------------- crossing: values */
+
+START_TEST(test_cross_reference)
+{
+  sbt_table t;
+  sbt_table_load("bridge_cross.csv", &t);
+  cross_e fn[2][3] = {
+      {sb_bb_cross_prob_e, sb_bb_cross_logprob_e, sb_bb_nocross_prob_e},
+      {sb_bes3b_cross_prob_e, sb_bes3b_cross_logprob_e,
+       sb_bes3b_nocross_prob_e}};
+  const char *nm[3] = {"p", "logp", "nocross"};
+  double worst[2][3] = {{0}};
+  for (int i = 0; i < t.nrow; i++) {
+    int k = (int)sbt_at(&t, i, 0);
+    double x = sbt_at(&t, i, 1), y = sbt_at(&t, i, 2), a = sbt_at(&t, i, 3),
+           v = sbt_at(&t, i, 4);
+    for (int j = 0; j < 3; j++) {
+      double want = sbt_at(&t, i, 5 + j);
+      if (j != 1 && want < 0) /* below 1e-300 */
+        continue;
+      sb_result r;
+      ck_assert_int_eq(fn[k][j](x, y, a, v, &r), SB_SUCCESS);
+      char what[120];
+      snprintf(what, sizeof what, "%s %s(x=%g, y=%g, a=%g, v=%g)",
+               k ? "bes3b" : "bb", nm[j], x, y, a, v);
+      CHECK_REF(r, want, what);
+      worst[k][j] = fmax(worst[k][j], sbt_reldiff(r.val, want));
+    }
+  }
+  printf("crossing vs mpmath (%d rows): bb p %.2g log %.2g no %.2g; "
+         "bes3b p %.2g log %.2g no %.2g\n", t.nrow, worst[0][0],
+         worst[0][1], worst[0][2], worst[1][0], worst[1][1], worst[1][2]);
+  sbt_table_free(&t);
+}
+END_TEST
+
+START_TEST(test_cross_special)
+{
+  /* overlap at an end point (seed 003 eq 5.15): certain crossing */
+  ck_assert(sb_bb_cross_prob(0.5, 2.0, 1.0, 1.0) == 1.0);
+  ck_assert(sb_bb_cross_prob(2.0, 1.0, 1.0, 1.0) == 1.0);
+  ck_assert(sb_bb_cross_logprob(2.0, -3.0, 1.0, 1.0) == 0.0);
+  ck_assert(sb_bb_nocross_prob(2.0, -3.0, 1.0, 1.0) == 0.0);
+  ck_assert(sb_bes3b_cross_prob(0.5, 2.0, 1.0, 1.0) == 1.0);
+  ck_assert(sb_bes3b_cross_logprob(2.0, 1.0, 1.0, 1.0) == 0.0);
+  ck_assert(sb_bes3b_nocross_prob(2.0, 0.3, 1.0, 1.0) == 0.0);
+  /* Bessel-3 level 0: never crosses */
+  ck_assert(sb_bes3b_cross_prob(2.0, 1.0, 0.0, 1.0) == 0.0);
+  ck_assert(isinf(sb_bes3b_cross_logprob(2.0, 1.0, 0.0, 1.0)));
+  ck_assert(sb_bes3b_nocross_prob(2.0, 1.0, 0.0, 1.0) == 1.0);
+  /* v = 0: the straight line, no crossing */
+  ck_assert(sb_bb_cross_prob(2.0, 1.5, 1.0, 0.0) == 0.0);
+  ck_assert(sb_bes3b_nocross_prob(2.0, 1.5, 1.0, 0.0) == 1.0);
+  /* p + nocross = 1; log p = log(p); bes3b <= bb: the Bessel-3 bridge is
+   * the BB conditioned on min > 0, so P3 = (p - q)/(1 - q) <= p with
+   * q = P_BB(min <= 0) (up to rounding when both are ~1);
+   * a -> 0 limit of bes3b: P ~ a (x + y)/(x y) for v >> xy (small-v
+   * exponentials expanded: expm1(A)/expm1(B) -> A/B) */
+  for (double v = 1e-3; v < 1e3; v *= 4.3) {
+    double pb = sb_bb_cross_prob(1.7, 1.2, 1.0, v);
+    double p3 = sb_bes3b_cross_prob(1.7, 1.2, 1.0, v);
+    ck_assert_abs(pb + sb_bb_nocross_prob(1.7, 1.2, 1.0, v), 1.0,
+                  TOL_ULPS(4));
+    ck_assert_abs(p3 + sb_bes3b_nocross_prob(1.7, 1.2, 1.0, v), 1.0,
+                  TOL_ULPS(4));
+    if (p3 > 1e-300)
+      ck_assert_rel(sb_bes3b_cross_logprob(1.7, 1.2, 1.0, v), log(p3),
+                    TOL_ULPS(8) + 1e-300);
+    ck_assert(p3 <= pb * (1.0 + TOL_ULPS(4)));
+  }
+  double a = 1e-9, x = 2.0, y = 3.0, v = 1e9;
+  ck_assert_rel(sb_bes3b_cross_prob(x, y, a, v), a * (x + y - a) / (x * y),
+                1e-8);
+}
+END_TEST
+
+/* ------------------------------------------- crossing vs quadrature */
+
+typedef struct {
+  double x, y, a, s2, t;
+  int bes3;
+} cross_q;
+
+/* first-passage decomposition: density of {T_a in ds, end at y}
+ * BB:  f_{x->a}(s) g_{t-s}(y - a)       (BM first passage, no drift)
+ * B3B: n_{x,a}(s) q_{t-s}(a, y)         (Bessel-3 first passage) */
+static double cross_integrand(double s, void *vp)
+{
+  const cross_q *c = vp;
+  if (s <= 0.0 || s >= c->t)
+    return 0.0;
+  double w = c->s2 * (c->t - s);
+  if (c->bes3)
+    return sb_bes3_fpt_pdf(s, c->x, c->a, c->s2) * q3(w, c->a, c->y);
+  return sb_bm_fpt_pdf(s, c->x, c->a, 0.0, c->s2) * gv(w, c->y - c->a);
+}
+
+START_TEST(test_cross_vs_quadrature)
+{
+  gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
+  const cross_q cases[] = {{1.5, 1.3, 1.0, 1.0, 1.0, 0},
+                           {2.0, 3.0, 1.0, 0.5, 2.0, 0},
+                           {1.1, 1.05, 1.0, 0.01, 1.0, 0},
+                           {1.5, 1.3, 1.0, 1.0, 1.0, 1},
+                           {2.0, 3.0, 0.5, 0.5, 2.0, 1},
+                           {1.1, 1.05, 1.0, 0.01, 1.0, 1},
+                           {3.0, 2.0, 0.1, 4.0, 1.5, 1}};
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+    cross_q c = cases[k];
+    gsl_function F = {cross_integrand, &c};
+    double res, err;
+    int st = gsl_integration_qags(&F, 0.0, c.t, 0.0, 1e-11, 1000, w, &res,
+                                  &err);
+    ck_assert_int_eq(st, GSL_SUCCESS);
+    double v = c.s2 * c.t, p, ref;
+    if (c.bes3) {
+      ref = res / q3(v, c.x, c.y);
+      p = sb_bes3b_cross_prob(c.x, c.y, c.a, v);
+    } else {
+      ref = res / gv(v, c.y - c.x);
+      p = sb_bb_cross_prob(c.x, c.y, c.a, v);
+    }
+    ck_assert_msg(fabs(p - ref) <= TOL_QUAD * ref,
+                  "case %zu: closed form %.17g, quadrature %.17g", k, p, ref);
+  }
+  gsl_integration_workspace_free(w);
+}
+END_TEST
+
+/* ------------------------------------------------ hitting times: values */
+
+START_TEST(test_hit_reference)
+{
+  sbt_table t;
+  sbt_table_load("bridge_hit.csv", &t);
+  hit_e fn[2][3] = {{sb_bb_hit_pdf_e, sb_bb_hit_cdf_e, sb_bb_hit_sf_e},
+                    {sb_bes3b_hit_pdf_e, sb_bes3b_hit_cdf_e,
+                     sb_bes3b_hit_sf_e}};
+  const char *nm[3] = {"pdf", "cdf", "sf"};
+  double worst[2][3] = {{0}};
+  int n = 0;
+  for (int i = 0; i < t.nrow; i++) {
+    int k = (int)sbt_at(&t, i, 0);
+    double u = sbt_at(&t, i, 1), x = sbt_at(&t, i, 2), y = sbt_at(&t, i, 3),
+           a = sbt_at(&t, i, 4), s2 = sbt_at(&t, i, 5), tt = sbt_at(&t, i, 6);
+    for (int j = 0; j < 3; j++) {
+      double want = sbt_at(&t, i, 7 + j);
+      if (want < 0)
+        continue;
+      sb_result r;
+      ck_assert_int_eq(fn[k][j](u, x, y, a, s2, tt, &r), SB_SUCCESS);
+      char what[160];
+      snprintf(what, sizeof what, "%s hit %s(u=%g; x=%g y=%g a=%g s2=%g "
+               "t=%g)", k ? "bes3b" : "bb", nm[j], u, x, y, a, s2, tt);
+      CHECK_REF(r, want, what);
+      worst[k][j] = fmax(worst[k][j], sbt_reldiff(r.val, want));
+      n++;
+    }
+  }
+  printf("hitting times vs mpmath (%d values): bb pdf %.2g cdf %.2g sf %.2g;"
+         " bes3b pdf %.2g cdf %.2g sf %.2g\n", n, worst[0][0], worst[0][1],
+         worst[0][2], worst[1][0], worst[1][1], worst[1][2]);
+  sbt_table_free(&t);
+}
+END_TEST
+
+/* The hitting density from independent pieces: the first-passage density
+ * (passage.c) times the transition density from the level to y, divided by
+ * P(cross) times the transition density from x to y (bridge.c's crossing
+ * probability). */
+typedef struct {
+  double x, y, a, s2, t;
+  int bes3;
+} hit_q;
+
+static double hit_density_indep(double s, void *vp)
+{
+  const hit_q *h = vp;
+  if (s <= 0.0 || s >= h->t)
+    return 0.0;
+  double w = h->s2 * (h->t - s), v = h->s2 * h->t;
+  if (h->bes3) {
+    /* y = 0 is the continuous limit; y = 1e-9 stands for it (error ~1e-7) */
+    double y = h->y > 0.0 ? h->y : 1e-9;
+    double num = sb_bes3_fpt_pdf(s, h->x, h->a, h->s2) * q3(w, h->a, y);
+    return num / (sb_bes3b_cross_prob(h->x, y, h->a, v) * q3(v, h->x, y));
+  }
+  double num = sb_bm_fpt_pdf(s, h->x, h->a, 0.0, h->s2) * gv(w, h->y - h->a);
+  return num / (sb_bb_cross_prob(h->x, h->y, h->a, v) * gv(v, h->y - h->x));
+}
+
+static const hit_q HITQ[] = {
+    {1.5, 1.3, 1.0, 1.0, 1.0, 0},   {2.0, 3.0, 1.0, 0.5, 2.0, 0},
+    {1.5, 0.4, 1.0, 0.7, 2.0, 0},   {1.5, 1.0, 1.0, 1.0, 1.0, 0},
+    {1.5, 1.3, 1.0, 1.0, 1.0, 1},   {1.5, 0.4, 1.0, 0.7, 2.0, 1},
+    {3.0, 2.0, 0.1, 1.3, 0.5, 1},   {1.1, 1.05, 1.0, 5.0, 3.0, 1},
+    {2.0, 2.5, 0.01, 100.0, 1.0, 1} /* 1 - rho ~ 1e-3: quadrature branch */};
+
+START_TEST(test_hit_vs_quadrature)
+{
+  /* pdf against the independent density; cdf and sf against QAGS of it */
+  gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
+  for (size_t k = 0; k < sizeof HITQ / sizeof HITQ[0]; k++) {
+    hit_q h = HITQ[k];
+    gsl_function F = {hit_density_indep, &h};
+    for (double f = 0.1; f < 0.95; f += 0.2) {
+      double u = f * h.t, res, err, res2, err2;
+      double pdf = h.bes3 ? sb_bes3b_hit_pdf(u, h.x, h.y, h.a, h.s2, h.t)
+                          : sb_bb_hit_pdf(u, h.x, h.y, h.a, h.s2, h.t);
+      ck_assert_msg(sbt_reldiff(pdf, hit_density_indep(u, &h)) < 1e-12,
+                    "case %zu u=%g: pdf %.17g independent %.17g", k, u, pdf,
+                    hit_density_indep(u, &h));
+      ck_assert_int_eq(gsl_integration_qags(&F, 0.0, u, 1e-300, 1e-11, 1000,
+                                            w, &res, &err), GSL_SUCCESS);
+      ck_assert_int_eq(gsl_integration_qags(&F, u, h.t, 1e-300, 1e-11, 1000,
+                                            w, &res2, &err2), GSL_SUCCESS);
+      double c = h.bes3 ? sb_bes3b_hit_cdf(u, h.x, h.y, h.a, h.s2, h.t)
+                        : sb_bb_hit_cdf(u, h.x, h.y, h.a, h.s2, h.t);
+      double s = h.bes3 ? sb_bes3b_hit_sf(u, h.x, h.y, h.a, h.s2, h.t)
+                        : sb_bb_hit_sf(u, h.x, h.y, h.a, h.s2, h.t);
+      ck_assert_msg(fabs(c - res) <= TOL_QUAD * res + 1e-300,
+                    "case %zu u=%g: cdf %.17g quadrature %.17g", k, u, c,
+                    res);
+      ck_assert_msg(fabs(s - res2) <= TOL_QUAD * res2 + 1e-300,
+                    "case %zu u=%g: sf %.17g quadrature %.17g", k, u, s,
+                    res2);
+    }
+  }
+  gsl_integration_workspace_free(w);
+}
+END_TEST
+
+/* ------------------------------------- the seed's two printed versions */
+
+/* Seed 003 eq 5.21-5.22 (= App. I eq I.62-I.63 with K = B), B_ij = B the
+ * per-component diffusion coefficient (sigma2 = B^2), Delta t = dt. */
+static double seed_522(double u, double x, double y, double a, double B,
+                       double dt)
+{
+  double k = sqrt(1.0 / u - 1.0 / dt), B2 = B * B;
+#define E(z) exp(-(z) * (z) / (2.0 * B2 * dt))
+  double c1 = (x - a) / (B * M_SQRT2) * k;
+  double i1 = E(x + y - 2 * a) *
+              gsl_sf_erf(c1 - (y - a) / (B * M_SQRT2 * dt * k));
+  double i2 = E(x - y) * gsl_sf_erfc(c1 + (y - a) / (B * M_SQRT2 * dt * k));
+  double i3 = E(x + y) * gsl_sf_erf(c1 - (y + a) / (B * M_SQRT2 * dt * k));
+  double i4 = E(x - y - 2 * a) *
+              gsl_sf_erfc(c1 + (y + a) / (B * M_SQRT2 * dt * k));
+  double den = E(x + y - 2 * a) - E(x + y);
+#undef E
+  return 0.5 * (1.0 - (i1 - i2 - i3 + i4) / den);
+}
+
+/* Seed 003 App. I eq I.60-I.61 as printed (standard Bessel-3, sigma2 = 1):
+ * I2 and I4 carry exp(-(x+y)^2/2t) and exp(-(x+y-2a)^2/2t) and the second
+ * erf argument has sqrt(2t) where 5.22 has sqrt(2) t. */
+static double seed_I61(double u, double x, double y, double a, double t)
+{
+  double k = sqrt(1.0 / u - 1.0 / t);
+#define E(z) exp(-(z) * (z) / (2.0 * t))
+  double c1 = (x - a) / M_SQRT2 * k;
+  double i1 = E(x + y - 2 * a) * gsl_sf_erf(c1 - (y - a) / (sqrt(2 * t) * k));
+  double i2 = E(x + y) * gsl_sf_erfc(c1 + (y - a) / (sqrt(2 * t) * k));
+  double i3 = E(x + y) * gsl_sf_erf(c1 - (y + a) / (sqrt(2 * t) * k));
+  double i4 = E(x + y - 2 * a) *
+              gsl_sf_erfc(c1 + (y + a) / (sqrt(2 * t) * k));
+  double den = E(x + y - 2 * a) - E(x + y);
+#undef E
+  return 0.5 * (1.0 - (i1 - i2 - i3 + i4) / den);
+}
+
+START_TEST(test_seed_versions)
+{
+  /* Quadrature of the density n_{x,a}(s) q_{t-s}(a, y) (independent
+   * pieces) decides: 5.21-5.22 agrees to 1e-9, I.60-I.61 is off by 1e-3 or
+   * more in every case (sigma2 = 1 so that I.61 applies; t = 1 and t != 1).
+   * The finding is recorded in docs/bridge.md. */
+  gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
+  const hit_q cases[] = {{1.5, 1.3, 1.0, 1.0, 2.0, 1},
+                         {2.0, 1.5, 1.0, 1.0, 0.5, 1},
+                         {1.2, 1.4, 1.0, 1.0, 1.0, 1},
+                         {3.0, 2.0, 0.5, 1.0, 3.0, 1}};
+  double worst522 = 0.0, best61 = INFINITY;
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+    hit_q h = cases[k];
+    gsl_function F = {hit_density_indep, &h};
+    for (double f = 0.15; f < 0.9; f += 0.25) {
+      double u = f * h.t, res, err;
+      ck_assert_int_eq(gsl_integration_qags(&F, 0.0, u, 1e-300, 1e-11, 1000,
+                                            w, &res, &err), GSL_SUCCESS);
+      double s522 = seed_522(u, h.x, h.y, h.a, sqrt(h.s2), h.t);
+      double s61 = seed_I61(u, h.x, h.y, h.a, h.t);
+      ck_assert_msg(fabs(s522 - res) <= TOL_QUAD * res,
+                    "eq 5.22, case %zu u=%g: %.17g vs quadrature %.17g", k, u,
+                    s522, res);
+      ck_assert_msg(fabs(s61 - res) > 1e-3 * res,
+                    "eq I.61 unexpectedly agrees: case %zu u=%g", k, u);
+      /* and the library agrees with 5.22 */
+      ck_assert_rel(sb_bes3b_hit_cdf(u, h.x, h.y, h.a, h.s2, h.t), s522,
+                    1e-12);
+      worst522 = fmax(worst522, fabs(s522 - res) / res);
+      best61 = fmin(best61, fabs(s61 - res) / res);
+    }
+  }
+  printf("seed eq 5.21-5.22 vs quadrature: max rel diff %.2g; eq I.60-I.61: "
+         "min rel diff %.2g (misprint)\n", worst522, best61);
+  gsl_integration_workspace_free(w);
+}
+END_TEST
+
+/* ----------------------------------------------------------- quantiles */
+
+START_TEST(test_quantile_reference)
+{
+  sbt_table t;
+  sbt_table_load("bridge_quantile.csv", &t);
+  double worst[2] = {0, 0};
+  for (int i = 0; i < t.nrow; i++) {
+    int k = (int)sbt_at(&t, i, 0);
+    double p = sbt_at(&t, i, 1), x = sbt_at(&t, i, 2), y = sbt_at(&t, i, 3),
+           a = sbt_at(&t, i, 4), s2 = sbt_at(&t, i, 5), tt = sbt_at(&t, i, 6),
+           q = sbt_at(&t, i, 7);
+    sb_result r;
+    int st = k ? sb_bes3b_hit_quantile_e(p, x, y, a, s2, tt, &r)
+               : sb_bb_hit_quantile_e(p, x, y, a, s2, tt, &r);
+    ck_assert_int_eq(st, SB_SUCCESS);
+    char what[160];
+    snprintf(what, sizeof what, "%s quantile(p=%g; x=%g y=%g a=%g s2=%g "
+             "t=%g)", k ? "bes3b" : "bb", p, x, y, a, s2, tt);
+    /* full double precision: a few ulp */
+    ck_assert_msg(sbt_reldiff(r.val, q) <= TOL_ULPS(32),
+                  "%s = %.17g want %.17g", what, r.val, q);
+    CHECK_REF(r, q, what);
+    worst[k] = fmax(worst[k], sbt_reldiff(r.val, q));
+  }
+  printf("hit quantiles vs mpmath: max rel error bb %.2g bes3b %.2g\n",
+         worst[0], worst[1]);
+  sbt_table_free(&t);
+}
+END_TEST
+
+START_TEST(test_quantile_roundtrip)
+{
+  /* |cdf(q) - p| <= 1e-13 for p in [1e-12, 1 - 1e-12], both bridges,
+   * several parameter sets (both branches of the Bessel-3 CDF) */
+  double grid[40];
+  int ng = 0;
+  for (int e = -12; e <= -1; e++)
+    grid[ng++] = pow(10.0, e);
+  for (double p = 0.2; p < 0.85; p += 0.1)
+    grid[ng++] = p;
+  for (int e = -1; e >= -12; e--)
+    grid[ng++] = 1.0 - pow(10.0, e);
+  const hit_q sets[] = {
+      {1.5, 1.3, 1.0, 1.0, 1.0, 0},  {2.0, 3.0, 1.0, 0.5, 2.0, 0},
+      {1.5, 0.4, 1.0, 0.7, 2.0, 0},  {30.0, 20.0, 1.0, 1.0, 10.0, 0},
+      {1.5, 1.3, 1.0, 1.0, 1.0, 1},  {1.5, 0.4, 1.0, 0.7, 2.0, 1},
+      {3.0, 2.0, 0.1, 1.3, 0.5, 1},  {2.0, 2.5, 0.01, 100.0, 1.0, 1},
+      {2.0, 3.0, 1e-6, 1.0, 1.0, 1}, {1.5, 0.0, 1.0, 1.0, 1.0, 1}};
+  double worst = 0.0;
+  for (size_t k = 0; k < sizeof sets / sizeof sets[0]; k++) {
+    hit_q h = sets[k];
+    for (int i = 0; i < ng; i++) {
+      double p = grid[i];
+      sb_result r;
+      int st = h.bes3
+                   ? sb_bes3b_hit_quantile_e(p, h.x, h.y, h.a, h.s2, h.t, &r)
+                   : sb_bb_hit_quantile_e(p, h.x, h.y, h.a, h.s2, h.t, &r);
+      ck_assert_int_eq(st, SB_SUCCESS);
+      double c;
+      if (p <= 0.5)
+        c = h.bes3 ? sb_bes3b_hit_cdf(r.val, h.x, h.y, h.a, h.s2, h.t)
+                   : sb_bb_hit_cdf(r.val, h.x, h.y, h.a, h.s2, h.t);
+      else
+        c = 1.0 - (h.bes3 ? sb_bes3b_hit_sf(r.val, h.x, h.y, h.a, h.s2, h.t)
+                          : sb_bb_hit_sf(r.val, h.x, h.y, h.a, h.s2, h.t));
+      ck_assert_msg(fabs(c - p) <= 1e-13,
+                    "set %zu p=%.17g: q=%.17g cdf(q)=%.17g", k, p, r.val, c);
+      ck_assert(r.val > 0.0 && r.val < h.t);
+      worst = fmax(worst, fabs(c - p));
+    }
+    ck_assert(sb_bb_hit_quantile(0.0, h.x, h.y, h.a, h.s2, h.t) == 0.0);
+    ck_assert(sb_bb_hit_quantile(1.0, h.x, h.y, h.a, h.s2, h.t) == h.t);
+  }
+  printf("hit quantile round trip: max |cdf(q) - p| = %.2g\n", worst);
+}
+END_TEST
+
+/* g(u) = cdf(u) - p (or its complement form) for the best-double check */
+static double hit_gap(int b3, double u, double p, const double *a6)
+{
+  double x = a6[0], y = a6[1], a = a6[2], s2 = a6[3], t = a6[4];
+  if (p <= 0.5)
+    return (b3 ? sb_bes3b_hit_cdf(u, x, y, a, s2, t)
+               : sb_bb_hit_cdf(u, x, y, a, s2, t)) - p;
+  return (1.0 - p) - (b3 ? sb_bes3b_hit_sf(u, x, y, a, s2, t)
+                         : sb_bb_hit_sf(u, x, y, a, s2, t));
+}
+
+START_TEST(test_quantile_best_double)
+{
+  /* Very concentrated laws (found by fuzzing): one ulp of u moves the CDF
+   * by 2e-12 .. 2e-8, so |cdf(q) - p| <= 1e-13 is not attainable; the
+   * quantile must then be the best double: no neighbour is closer. */
+  const double sets[][6] = {
+      /* p, x, y, a, sigma2, t */
+      {0.29334219312295318, 0.3648306275883072, 0.31773942453417769,
+       0.052752477402825793, 2.1009533479184924e-16, 809628.84517146694},
+      {0.031515424838289618, 0.13492042479768029, 0.00019172374409305142,
+       0.00019161056419294699, 3.4461372203630029e-12, 0.0018201388294060981},
+      {0.72675649751909077, 0.68114497898894211, 0.0028598758996340769,
+       0.0028598335345009023, 11248.090597362514, 0.0071488657442242559}};
+  for (int k = 0; k < 3; k++)
+    for (int b3 = 0; b3 < 2; b3++) {
+      double p = sets[k][0];
+      const double *a6 = sets[k] + 1;
+      double q = b3 ? sb_bes3b_hit_quantile(p, a6[0], a6[1], a6[2], a6[3],
+                                            a6[4])
+                    : sb_bb_hit_quantile(p, a6[0], a6[1], a6[2], a6[3],
+                                         a6[4]);
+      double g = fabs(hit_gap(b3, q, p, a6));
+      double gl = fabs(hit_gap(b3, nextafter(q, 0.0), p, a6));
+      double gh = fabs(hit_gap(b3, nextafter(q, INFINITY), p, a6));
+      ck_assert_msg(g <= gl && g <= gh,
+                    "set %d %s: |gap| %.3g at q, %.3g and %.3g at the "
+                    "neighbours", k, b3 ? "bes3b" : "bb", g, gl, gh);
+    }
+}
+END_TEST
+
+/* ----------------------------------------------------------- samplers */
+
+static double u_density(double s, void *vp)
+{
+  return s * hit_density_indep(s, vp);
+}
+
+START_TEST(test_samplers)
+{
+  /* Sample mean of T vs the mean by QAGS of u f(u); n = 100000 per set,
+   * seed 2024; pass if within 5 standard errors (sample sd).  Also the
+   * fraction below the median (quantile(0.5)) within 5 binomial sd.  Sets
+   * cover the BB (beta > 0, < 0, = 0) and the Bessel-3 sampler with
+   * 1 - rho ~ 1, ~ 1e-3 and 2e-6, y < a and y = 0. */
+  gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(r, 2024);
+  const hit_q sets[] = {
+      {1.5, 1.3, 1.0, 1.0, 1.0, 0},   {1.5, 0.4, 1.0, 0.7, 2.0, 0},
+      {1.5, 1.0, 1.0, 1.0, 1.0, 0},   {1.5, 1.3, 1.0, 1.0, 1.0, 1},
+      {1.5, 0.4, 1.0, 0.7, 2.0, 1},   {2.0, 2.5, 0.01, 100.0, 1.0, 1},
+      {2.0, 3.0, 1e-6, 1.0, 1.0, 1},  {1.5, 0.0, 1.0, 1.0, 1.0, 1},
+      {1.1, 1.05, 1.0, 5.0, 3.0, 1}};
+  const int n = 100000;
+  for (size_t k = 0; k < sizeof sets / sizeof sets[0]; k++) {
+    hit_q h = sets[k];
+    gsl_function F = {u_density, &h};
+    double mean, err;
+    ck_assert_int_eq(gsl_integration_qags(&F, 0.0, h.t, 1e-300, 1e-8, 1000,
+                                          w, &mean, &err), GSL_SUCCESS);
+    double med = h.bes3 ? sb_bes3b_hit_quantile(0.5, h.x, h.y, h.a, h.s2, h.t)
+                        : sb_bb_hit_quantile(0.5, h.x, h.y, h.a, h.s2, h.t);
+    double s = 0.0, s2 = 0.0;
+    int below = 0;
+    for (int i = 0; i < n; i++) {
+      double u = h.bes3 ? sb_bes3b_hit_sample(r, h.x, h.y, h.a, h.s2, h.t)
+                        : sb_bb_hit_sample(r, h.x, h.y, h.a, h.s2, h.t);
+      ck_assert(u >= 0.0 && u <= h.t);
+      s += u;
+      s2 += u * u;
+      below += u <= med;
+    }
+    double m = s / n, sd = sqrt((s2 / n - m * m) / n);
+    ck_assert_msg(fabs(m - mean) < 5.0 * sd,
+                  "set %zu: sample mean %.6g, exact %.6g (se %.3g)", k, m,
+                  mean, sd);
+    ck_assert_msg(fabs((double)below / n - 0.5) < 5.0 * sqrt(0.25 / n),
+                  "set %zu: P(T <= median) = %.4f", k, (double)below / n);
+  }
+  gsl_rng_free(r);
+  gsl_integration_workspace_free(w);
+}
+END_TEST
+
+/* ------------------------------------------------ special cases, errors */
+
+START_TEST(test_hit_special)
+{
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+  /* x <= a: T = 0 */
+  ck_assert(sb_bb_hit_cdf(0.0, 0.9, 2.0, 1.0, 1.0, 1.0) == 1.0);
+  ck_assert(sb_bb_hit_cdf(-0.1, 0.9, 2.0, 1.0, 1.0, 1.0) == 0.0);
+  ck_assert(sb_bes3b_hit_sf(0.5, 1.0, 2.0, 1.0, 1.0, 1.0) == 0.0);
+  ck_assert(sb_bes3b_hit_quantile(0.7, 0.5, 2.0, 1.0, 1.0, 1.0) == 0.0);
+  ck_assert(sb_bes3b_hit_sample(r, 0.5, 2.0, 1.0, 1.0, 1.0) == 0.0);
+  ck_assert(sb_bb_hit_sample(r, 0.5, 2.0, 1.0, 1.0, 1.0) == 0.0);
+  ck_assert(sb_bb_hit_pdf(0.5, 0.5, 2.0, 1.0, 1.0, 1.0) == 0.0);
+  /* u outside [0, t] */
+  ck_assert(sb_bb_hit_cdf(-1.0, 2.0, 2.0, 1.0, 1.0, 1.0) == 0.0);
+  ck_assert(sb_bb_hit_cdf(2.0, 2.0, 2.0, 1.0, 1.0, 1.0) == 1.0);
+  ck_assert(sb_bes3b_hit_sf(2.0, 2.0, 2.0, 1.0, 1.0, 1.0) == 0.0);
+  ck_assert(sb_bes3b_hit_pdf(-1.0, 2.0, 2.0, 1.0, 1.0, 1.0) == 0.0);
+  /* Bessel-3 level 0: only y = 0 makes sense (T = t) */
+  ck_assert(sb_bes3b_hit_cdf(0.5, 2.0, 0.0, 0.0, 1.0, 1.0) == 0.0);
+  ck_assert(sb_bes3b_hit_cdf(1.0, 2.0, 0.0, 0.0, 1.0, 1.0) == 1.0);
+  ck_assert(sb_bes3b_hit_sample(r, 2.0, 0.0, 0.0, 1.0, 1.0) == 1.0);
+  ck_assert(isnan(sb_bes3b_hit_cdf(0.5, 2.0, 1.0, 0.0, 1.0, 1.0)));
+  ck_assert_int_eq(sb_last_status(), SB_EDOM);
+  /* y = 0 is the continuous limit y -> 0 */
+  ck_assert_rel(sb_bes3b_hit_cdf(0.4, 1.5, 0.0, 1.0, 1.0, 1.0),
+                sb_bes3b_hit_cdf(0.4, 1.5, 1e-12, 1.0, 1.0, 1.0), 1e-10);
+  /* cdf + sf = 1 */
+  for (double u = 0.05; u < 1.0; u += 0.1) {
+    ck_assert_abs(sb_bes3b_hit_cdf(u, 1.5, 1.3, 1.0, 1.0, 1.0) +
+                      sb_bes3b_hit_sf(u, 1.5, 1.3, 1.0, 1.0, 1.0),
+                  1.0, TOL_ULPS(8));
+    ck_assert_abs(sb_bb_hit_cdf(u, 1.5, 1.3, 1.0, 1.0, 1.0) +
+                      sb_bb_hit_sf(u, 1.5, 1.3, 1.0, 1.0, 1.0),
+                  1.0, TOL_ULPS(8));
+  }
+  gsl_rng_free(r);
+}
+END_TEST
+
+START_TEST(test_bad_input)
+{
+  sb_result r;
+  gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
+  sb_clear_error();
+  /* crossing: NaN, negative or infinite v, Bessel a < 0, x < 0 */
+  ck_assert(isnan(sb_bb_cross_prob(NAN, 1, 0, 1)));
+  ck_assert_int_eq(sb_last_status(), SB_EDOM);
+  ck_assert(strstr(sb_last_error(), "sb_bb_cross_prob") != NULL);
+  ck_assert_int_eq(sb_bb_cross_prob_e(2, 2, 1, -1.0, &r), SB_EDOM);
+  ck_assert(isnan(r.val) && isnan(r.err));
+  ck_assert_int_eq(sb_bb_cross_logprob_e(2, 2, 1, INFINITY, &r), SB_EDOM);
+  ck_assert_int_eq(sb_bb_nocross_prob_e(2, 2, NAN, 1, &r), SB_EDOM);
+  ck_assert_int_eq(sb_bes3b_cross_prob_e(2, 2, -1.0, 1, &r), SB_EDOM);
+  ck_assert(strstr(sb_last_error(), "a = -1") != NULL);
+  ck_assert_int_eq(sb_bes3b_cross_logprob_e(-2, 2, 1.0, 1, &r), SB_EDOM);
+  ck_assert_int_eq(sb_bes3b_nocross_prob_e(2, 2, 1.0, NAN, &r), SB_EDOM);
+  /* hitting times */
+  hit_e fn[6] = {sb_bb_hit_pdf_e,    sb_bb_hit_cdf_e,
+                 sb_bb_hit_sf_e,     sb_bes3b_hit_pdf_e,
+                 sb_bes3b_hit_cdf_e, sb_bes3b_hit_sf_e};
+  for (int k = 0; k < 6; k++) {
+    ck_assert_int_eq(fn[k](NAN, 2, 2, 1, 1, 1, &r), SB_EDOM);
+    ck_assert_int_eq(fn[k](0.5, 2, 2, 1, -1.0, 1, &r), SB_EDOM);
+    ck_assert_int_eq(fn[k](0.5, 2, 2, 1, 0.0, 1, &r), SB_EDOM);
+    ck_assert_int_eq(fn[k](0.5, 2, 2, 1, 1, -1.0, &r), SB_EDOM);
+    ck_assert_int_eq(fn[k](0.5, 2, 2, 1, 1, 0.0, &r), SB_EDOM);
+    ck_assert_int_eq(fn[k](0.5, 2, INFINITY, 1, 1, 1, &r), SB_EDOM);
+    ck_assert(isnan(r.val));
+  }
+  ck_assert_int_eq(sb_bes3b_hit_cdf_e(0.5, 2, 2, -1, 1, 1, &r), SB_EDOM);
+  ck_assert_int_eq(sb_bes3b_hit_cdf_e(0.5, -2, 2, 1, 1, 1, &r), SB_EDOM);
+  ck_assert_int_eq(sb_bb_hit_quantile_e(-0.5, 2, 2, 1, 1, 1, &r), SB_EDOM);
+  ck_assert_int_eq(sb_bb_hit_quantile_e(1.5, 2, 2, 1, 1, 1, &r), SB_EDOM);
+  ck_assert_int_eq(sb_bes3b_hit_quantile_e(NAN, 2, 2, 1, 1, 1, &r), SB_EDOM);
+  ck_assert(isnan(sb_bes3b_hit_quantile(0.5, 2, 2, 1, 1, NAN)));
+  ck_assert(isnan(sb_bb_hit_sample(NULL, 2, 2, 1, 1, 1)));
+  ck_assert_int_eq(sb_last_status(), SB_EINVAL);
+  ck_assert(isnan(sb_bes3b_hit_sample(g, 2, 2, -1, 1, 1)));
+  ck_assert(isnan(sb_bb_hit_sample(g, 2, 2, 1, -1, 1)));
+  ck_assert_int_eq(sb_bb_hit_cdf_e(0.5, 2, 2, 1, 1, 1, NULL), SB_SUCCESS);
+  gsl_rng_free(g);
+}
+END_TEST
+
+static Suite *bridge_suite(void)
+{
+  Suite *s = suite_create("bridge");
+  TCase *tc = tcase_create("crossing");
+  tcase_add_test(tc, test_cross_reference);
+  tcase_add_test(tc, test_cross_special);
+  tcase_add_test(tc, test_cross_vs_quadrature);
+  suite_add_tcase(s, tc);
+  tc = tcase_create("hitting");
+  tcase_add_test(tc, test_hit_reference);
+  tcase_add_test(tc, test_hit_vs_quadrature);
+  tcase_add_test(tc, test_seed_versions);
+  tcase_add_test(tc, test_quantile_reference);
+  tcase_add_test(tc, test_quantile_roundtrip);
+  tcase_add_test(tc, test_quantile_best_double);
+  tcase_add_test(tc, test_hit_special);
+  tcase_add_test(tc, test_bad_input);
+  tcase_set_timeout(tc, 30);
+  suite_add_tcase(s, tc);
+  tc = tcase_create("samplers");
+  tcase_add_test(tc, test_samplers);
+  tcase_set_timeout(tc, 60);
+  suite_add_tcase(s, tc);
+  return s;
+}
+
+int main(void)
+{
+  gsl_set_error_handler_off(); /* the test's own QAGS calls report status */
+  return sbt_run_suite(bridge_suite());
+}

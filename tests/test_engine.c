@@ -1,0 +1,716 @@
+#define _POSIX_C_SOURCE 200809L
+/* test_engine.c — engine core: two spheres at 45° (seed 000 §7) against
+ * the analytic post-collision state, inelastic collisions against the
+ * restitution relations, conservation in a many-body run, determinism
+ * across neighbour-search methods, checkpoint round trip, transport in a
+ * fluid field, detectors against an independent root finder, and error
+ * handling. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <smolbridge/engine.h>
+#include <smolbridge/langevin.h>
+
+#include "testutil.h"
+
+/* Free-flight species of radius 1, mass m (unit-free numbers; the engine
+ * only needs consistent units). */
+static size_t add_free(sb_engine *e, double r, double m)
+{
+  sb_engine_species s = {r, m, INFINITY, 0.0, 300.0};
+  size_t k;
+  ck_assert_int_eq(sb_engine_add_species(e, &s, &k), SB_SUCCESS);
+  return k;
+}
+
+static sb_engine *box_engine(int dim, double L, double dt, size_t cap)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.dim = dim;
+  p.L[0] = p.L[1] = p.L[2] = L;
+  p.dt = dt;
+  p.capacity = cap;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  return e;
+}
+
+/* ------------------------------------------------ two spheres at 45° */
+
+/* Equal spheres (r = 1, m = 1); A moves at v along x, B at rest, placed so
+ * that at contact the line of centres makes 45° with x.  Analytic result
+ * (equal masses, elastic: the normal components are exchanged):
+ * A' = (v/2, v/2), B' = (v/2, -v/2); contact at half the step; end
+ * positions = contact + (dt/2) * new velocity. */
+static void run_45(int dim)
+{
+  const double v = 1.0, dt = 1.0, s2 = sqrt(2.0);
+  sb_engine *e = box_engine(dim, 100.0, dt, 4);
+  size_t sp = add_free(e, 1.0, 1.0);
+  double xa[3] = {50.0 - s2 - 0.5 * v * dt, 50.0, 50.0}, ua[3] = {v, 0, 0};
+  double xb[3] = {50.0, 50.0 - s2, 50.0}, ub[3] = {0, 0, 0};
+  ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, xa, ua), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_add_particle(e, sp, 1, xb, ub), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  const double *x = sb_engine_positions(e), *u = sb_engine_velocities(e);
+  const double tol = 1e-12;
+  ck_assert_abs(u[0], v / 2, tol);
+  ck_assert_abs(u[1], v / 2, tol);
+  ck_assert_abs(u[2], 0.0, tol);
+  ck_assert_abs(u[3], v / 2, tol);
+  ck_assert_abs(u[4], -v / 2, tol);
+  ck_assert_abs(u[5], 0.0, tol);
+  /* contact at A = (50 - sqrt2, 50), B = (50, 50 - sqrt2) */
+  ck_assert_abs(x[0], 50.0 - s2 + 0.5 * dt * v / 2, 50 * tol);
+  ck_assert_abs(x[1], 50.0 + 0.5 * dt * v / 2, 50 * tol);
+  ck_assert_abs(x[3], 50.0 + 0.5 * dt * v / 2, 50 * tol);
+  ck_assert_abs(x[4], 50.0 - s2 - 0.5 * dt * v / 2, 50 * tol);
+  sb_engine_stats st;
+  sb_engine_get_stats(e, &st);
+  ck_assert_uint_eq(st.ncoll, 1);
+  ck_assert_uint_eq(st.fam[0][1], 1);
+  sb_engine_free(e);
+}
+
+START_TEST(test_45deg_3d) { run_45(3); }
+END_TEST
+
+START_TEST(test_45deg_2d) { run_45(2); }
+END_TEST
+
+/* Same speed, opposite directions, 45° line of centres: in the centre of
+ * mass frame the normal components reverse, so A (v, 0) -> (0, v) and
+ * B (-v, 0) -> (0, -v) (a 90° deflection). */
+START_TEST(test_45deg_same_speed)
+{
+  const double v = 2.0, dt = 1.0, s2 = sqrt(2.0);
+  sb_engine *e = box_engine(3, 100.0, dt, 4);
+  size_t sp = add_free(e, 1.0, 1.0);
+  /* contact at s = 1/4: A at (50 - s2, 50), B at (50, 50 - s2) */
+  double xa[3] = {50.0 - s2 - 0.25 * v, 50.0, 10.0}, ua[3] = {v, 0, 0};
+  double xb[3] = {50.0 + 0.25 * v, 50.0 - s2, 10.0}, ub[3] = {-v, 0, 0};
+  sb_engine_add_particle(e, sp, 0, xa, ua);
+  sb_engine_add_particle(e, sp, 0, xb, ub);
+  ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  const double *x = sb_engine_positions(e), *u = sb_engine_velocities(e);
+  ck_assert_abs(u[0], 0.0, 1e-12);
+  ck_assert_abs(u[1], v, 1e-12);
+  ck_assert_abs(u[3], 0.0, 1e-12);
+  ck_assert_abs(u[4], -v, 1e-12);
+  ck_assert_abs(x[0], 50.0 - s2, 1e-12 * 50);
+  ck_assert_abs(x[1], 50.0 + 0.75 * v, 1e-12 * 50);
+  ck_assert_abs(x[3], 50.0, 1e-12 * 50);
+  ck_assert_abs(x[4], 50.0 - s2 - 0.75 * v, 1e-12 * 50);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* Unequal masses and eta < 1 in a general 3-D geometry: check relations
+ * that do not use the impulse formula: momentum conserved, tangential
+ * velocities unchanged, relative normal velocity multiplied by
+ * -sqrt(eta), kinetic energy lost = (1 - eta) mu w_n^2 / 2. */
+START_TEST(test_inelastic_unequal)
+{
+  const double eta = 0.64, dt = 1.0;
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 100.0;
+  p.dt = dt;
+  p.eta = eta;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  size_t s1 = add_free(e, 1.0, 1.0), s2 = add_free(e, 2.0, 3.0);
+  double xa[3] = {40.0, 50.3, 49.1}, ua[3] = {3.0, -0.2, 0.7};
+  double xb[3] = {45.0, 50.0, 50.0}, ub[3] = {-0.5, 0.1, -0.3};
+  sb_engine_add_particle(e, s1, 0, xa, ua);
+  sb_engine_add_particle(e, s2, 0, xb, ub);
+  double p0[3], e0 = sb_engine_kinetic_energy(e, p0);
+  ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  sb_engine_stats st;
+  sb_engine_get_stats(e, &st);
+  ck_assert_uint_eq(st.ncoll, 1);
+  double p1[3], e1 = sb_engine_kinetic_energy(e, p1);
+  for (int k = 0; k < 3; k++)
+    ck_assert_abs(p1[k], p0[k], 1e-12 * 10);
+  /* contact normal from the end positions: x_end = x_c + (1-s) dt u' */
+  const double *x = sb_engine_positions(e), *u = sb_engine_velocities(e);
+  /* independent contact time by bisection on |dx0 + s dd| = 3 */
+  double lo = 0, hi = 1;
+  for (int it = 0; it < 200; it++) {
+    double m = 0.5 * (lo + hi), d2 = 0;
+    for (int k = 0; k < 3; k++) {
+      double d = (xa[k] - xb[k]) + m * dt * (ua[k] - ub[k]);
+      d2 += d * d;
+    }
+    if (d2 > 9.0)
+      lo = m;
+    else
+      hi = m;
+  }
+  double s = 0.5 * (lo + hi), n[3], nn = 0;
+  for (int k = 0; k < 3; k++) {
+    n[k] = (xa[k] - xb[k]) + s * dt * (ua[k] - ub[k]);
+    nn += n[k] * n[k];
+  }
+  nn = sqrt(nn);
+  double wn0 = 0, wn1 = 0;
+  for (int k = 0; k < 3; k++) {
+    n[k] /= nn;
+    wn0 += (ua[k] - ub[k]) * n[k];
+    wn1 += (u[k] - u[3 + k]) * n[k];
+  }
+  ck_assert(wn0 < 0);
+  ck_assert_rel(wn1, -sqrt(eta) * wn0, 1e-9);
+  for (int pi = 0; pi < 2; pi++) {
+    const double *u0 = pi ? ub : ua, *u1 = &u[3 * pi];
+    double a0 = 0, a1 = 0;
+    for (int k = 0; k < 3; k++) {
+      a0 += u0[k] * n[k];
+      a1 += u1[k] * n[k];
+    }
+    for (int k = 0; k < 3; k++)
+      ck_assert_abs(u1[k] - a1 * n[k], u0[k] - a0 * n[k], 1e-9);
+    /* re-advanced from the contact point */
+    const double *xs = pi ? xb : xa;
+    for (int k = 0; k < 3; k++)
+      ck_assert_abs(x[3 * pi + k], xs[k] + s * dt * u0[k] + (1 - s) * dt *
+                    u1[k], 1e-9);
+  }
+  double mu = 1.0 * 3.0 / 4.0;
+  ck_assert_rel(e0 - e1, (1 - eta) * 0.5 * mu * wn0 * wn0, 1e-9);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* ------------------------------------------------ many-body conservation */
+
+/* 300 free-flight hard spheres, elastic: momentum and energy conserved
+ * to 1e-12 relative over 2000 steps with several hundred collisions. */
+START_TEST(test_conservation)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 40.0;
+  p.dt = 0.01;
+  p.capacity = 300;
+  p.seed = 7;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  sb_engine_species s1 = {1.0, 1.0, INFINITY, 0.0, 1.0 / SB_BOLTZMANN};
+  sb_engine_species s2 = {0.5, 0.3, INFINITY, 0.0, 1.0 / SB_BOLTZMANN};
+  sb_engine_add_species(e, &s1, NULL);
+  sb_engine_add_species(e, &s2, NULL);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 200), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, 1, 1, 100), SB_SUCCESS);
+  ck_assert_uint_eq(sb_engine_check_overlaps(e, 0.0), 0);
+  double p0[3], e0 = sb_engine_kinetic_energy(e, p0), pscale = 0;
+  const double *u = sb_engine_velocities(e), *m = sb_engine_masses(e);
+  for (size_t i = 0; i < 300; i++)
+    pscale += m[i] * sqrt(u[3 * i] * u[3 * i] + u[3 * i + 1] * u[3 * i + 1] +
+                          u[3 * i + 2] * u[3 * i + 2]);
+  ck_assert_int_eq(sb_engine_run_until(e, 20.0), SB_SUCCESS);
+  sb_engine_stats st;
+  sb_engine_get_stats(e, &st);
+  ck_assert_uint_eq(st.steps, 2000);
+  ck_assert_uint_gt(st.ncoll, 300);
+  double p1[3], e1 = sb_engine_kinetic_energy(e, p1);
+  ck_assert_rel(e1, e0, 1e-12);
+  for (int k = 0; k < 3; k++)
+    ck_assert_abs(p1[k], p0[k], 1e-12 * pscale);
+  /* earliest-first processing leaves (almost) no overlaps */
+  ck_assert_uint_le(sb_engine_check_overlaps(e, 1e-6), st.dropped);
+  uint64_t fsum = st.fam[0][0] + st.fam[0][1] + st.fam[1][1];
+  ck_assert_uint_eq(fsum, st.ncoll);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* --------------------------------- determinism and neighbour methods */
+
+static sb_engine *brownian_engine(sb_engine_neigh m, unsigned long seed,
+                                  sb_engine_outcome o)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = 30.0;
+  p.L[1] = 25.0;
+  p.L[2] = 20.0;
+  p.dt = 0.05;
+  p.capacity = 400;
+  p.seed = seed;
+  p.neigh = m;
+  p.outcome = o;
+  p.sample_every = 10;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  sb_engine_species s = {0.5, 1.0, 1.0, sqrt(2.0), 0.0};  /* vvar = 1 */
+  sb_engine_add_species(e, &s, NULL);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 400), SB_SUCCESS);
+  return e;
+}
+
+static void assert_same(const sb_engine *a, const sb_engine *b)
+{
+  size_t n = sb_engine_count(a);
+  ck_assert_uint_eq(n, sb_engine_count(b));
+  ck_assert(!memcmp(sb_engine_positions(a), sb_engine_positions(b),
+                    3 * n * sizeof(double)));
+  ck_assert(!memcmp(sb_engine_velocities(a), sb_engine_velocities(b),
+                    3 * n * sizeof(double)));
+  sb_engine_stats sa, sb;
+  sb_engine_get_stats(a, &sa);
+  sb_engine_get_stats(b, &sb);
+  ck_assert_uint_eq(sa.ncoll, sb.ncoll);
+  ck_assert_uint_eq(sa.steps, sb.steps);
+  ck_assert(sa.t == sb.t);
+  size_t na, nb;
+  const sb_engine_sample *ta = sb_engine_series(a, &na);
+  const sb_engine_sample *tb = sb_engine_series(b, &nb);
+  ck_assert_uint_eq(na, nb);
+  for (size_t k = 0; k < na; k++) {
+    ck_assert(ta[k].t == tb[k].t);
+    ck_assert_uint_eq(ta[k].ncoll, tb[k].ncoll);
+    ck_assert(ta[k].ekin == tb[k].ekin);
+  }
+}
+
+/* The three neighbour searches feed the same (deterministic) detector and
+ * the events are processed in (s, i, j) order, so whole runs agree bit
+ * for bit; the same seed reproduces a run. */
+START_TEST(test_methods_agree)
+{
+  for (int o = 0; o < 2; o++) {
+    sb_engine *a = brownian_engine(SB_NEIGH_CELLS, 3, (sb_engine_outcome)o);
+    sb_engine *b = brownian_engine(SB_NEIGH_SWEEP, 3, (sb_engine_outcome)o);
+    sb_engine *c = brownian_engine(SB_NEIGH_BRUTE, 3, (sb_engine_outcome)o);
+    sb_engine *d = brownian_engine(SB_NEIGH_CELLS, 3, (sb_engine_outcome)o);
+    for (int k = 0; k < 300; k++) {
+      ck_assert_int_eq(sb_engine_step(a), SB_SUCCESS);
+      ck_assert_int_eq(sb_engine_step(b), SB_SUCCESS);
+      ck_assert_int_eq(sb_engine_step(c), SB_SUCCESS);
+      ck_assert_int_eq(sb_engine_step(d), SB_SUCCESS);
+    }
+    sb_engine_stats st;
+    sb_engine_get_stats(a, &st);
+    ck_assert_uint_gt(st.ncoll, 20);
+    assert_same(a, b);
+    assert_same(a, c);
+    assert_same(a, d);
+    if (o == SB_OUTCOME_REINSERT)
+      ck_assert_uint_eq(sb_engine_check_overlaps(a, 1e-9), 0);
+    sb_engine_free(a);
+    sb_engine_free(b);
+    sb_engine_free(c);
+    sb_engine_free(d);
+  }
+}
+END_TEST
+
+/* ------------------------------------------------ checkpoint */
+
+START_TEST(test_checkpoint_roundtrip)
+{
+  char path[] = "/tmp/sb_engine_ckpt_XXXXXX";
+  int fd = mkstemp(path);
+  ck_assert_int_ge(fd, 0);
+  close(fd);
+  sb_engine *a = brownian_engine(SB_NEIGH_CELLS, 11, SB_OUTCOME_REINSERT);
+  double U[3] = {0.1, -0.2, 0.05};
+  sb_engine_set_fluid(a, SB_FLUID_UNIFORM, U);
+  for (int k = 0; k < 150; k++)
+    ck_assert_int_eq(sb_engine_step(a), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_checkpoint_save(a, path), SB_SUCCESS);
+  int st = -1;
+  sb_engine *b = sb_engine_checkpoint_load(path, &st);
+  ck_assert_int_eq(st, SB_SUCCESS);
+  ck_assert_ptr_nonnull(b);
+  assert_same(a, b);
+  for (int k = 0; k < 150; k++) {
+    ck_assert_int_eq(sb_engine_step(a), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_step(b), SB_SUCCESS);
+  }
+  assert_same(a, b);
+  const uint64_t *ia = sb_engine_ids(a), *ib = sb_engine_ids(b);
+  ck_assert(!memcmp(ia, ib, sb_engine_count(a) * sizeof *ia));
+  /* truncated file: clean SB_EFORMAT, no abort from GSL */
+  FILE *f = fopen(path, "r+b");
+  ck_assert_ptr_nonnull(f);
+  fseek(f, 0, SEEK_END);
+  long len = ftell(f);
+  fclose(f);
+  ck_assert_int_eq(truncate(path, len - 100), 0);
+  sb_engine *c = sb_engine_checkpoint_load(path, &st);
+  ck_assert_ptr_null(c);
+  ck_assert_int_eq(st, SB_EFORMAT);
+  remove(path);
+  c = sb_engine_checkpoint_load(path, &st);
+  ck_assert_ptr_null(c);
+  ck_assert_int_eq(st, SB_EIO);
+  sb_engine_free(a);
+  sb_engine_free(b);
+
+  /* another generator type and particle sorting survive the round trip */
+  strcpy(path, "/tmp/sb_engine_ckpt_XXXXXX");
+  fd = mkstemp(path);
+  ck_assert_int_ge(fd, 0);
+  close(fd);
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 20.0;
+  p.dt = 0.05;
+  p.capacity = 300;
+  p.rng_type = gsl_rng_taus2;
+  p.sort_every = 7;
+  p.outcome = SB_OUTCOME_REINSERT;
+  a = sb_engine_alloc(&p);
+  sb_engine_species s = {0.5, 1.0, 1.0, sqrt(2.0), 0.0};
+  sb_engine_add_species(a, &s, NULL);
+  ck_assert_int_eq(sb_engine_fill_random(a, 0, 0, 300), SB_SUCCESS);
+  for (int k = 0; k < 50; k++)
+    ck_assert_int_eq(sb_engine_step(a), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_checkpoint_save(a, path), SB_SUCCESS);
+  b = sb_engine_checkpoint_load(path, &st);
+  ck_assert_ptr_nonnull(b);
+  ck_assert_str_eq(gsl_rng_name(sb_engine_rng(b)), "taus2");
+  for (int k = 0; k < 50; k++) {
+    ck_assert_int_eq(sb_engine_step(a), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_step(b), SB_SUCCESS);
+  }
+  assert_same(a, b);
+  ck_assert(!memcmp(sb_engine_ids(a), sb_engine_ids(b),
+                    300 * sizeof(uint64_t)));
+  ck_assert_uint_eq(sb_engine_check_overlaps(a, 1e-9), 0);
+  remove(path);
+  sb_engine_free(a);
+  sb_engine_free(b);
+}
+END_TEST
+
+/* Sorting permutes the particles consistently: the multiset of (id,
+ * position, velocity) is unchanged. */
+START_TEST(test_sort_permutes)
+{
+  sb_engine *e = brownian_engine(SB_NEIGH_CELLS, 21, SB_OUTCOME_ELASTIC);
+  size_t n = sb_engine_count(e);
+  double *x = malloc(3 * n * sizeof *x), *u = malloc(3 * n * sizeof *u);
+  memcpy(x, sb_engine_positions(e), 3 * n * sizeof *x);
+  memcpy(u, sb_engine_velocities(e), 3 * n * sizeof *u);
+  ck_assert_int_eq(sb_engine_sort(e), SB_SUCCESS);
+  const uint64_t *id = sb_engine_ids(e);
+  const double *x2 = sb_engine_positions(e), *u2 = sb_engine_velocities(e);
+  int moved = 0;
+  for (size_t k = 0; k < n; k++) {
+    size_t i = (size_t)id[k];  /* ids were 0..n-1 in insertion order */
+    moved += i != k;
+    ck_assert(!memcmp(&x2[3 * k], &x[3 * i], 3 * sizeof(double)));
+    ck_assert(!memcmp(&u2[3 * k], &u[3 * i], 3 * sizeof(double)));
+  }
+  ck_assert_int_gt(moved, 0);
+  free(x);
+  free(u);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* ------------------------------------------------ fluid and transport */
+
+/* B = 0: the velocity relaxes deterministically towards U_s evaluated at
+ * the start position: u(dt) = U_s + (u0 - U_s) e^{-dt/tau}; the shear
+ * field U_x = G (y - L/2). */
+START_TEST(test_fluid_fields)
+{
+  sb_engine *e = box_engine(3, 10.0, 0.3, 4);
+  sb_engine_species s = {0.1, 1.0, 0.7, 0.0, 1.0};
+  sb_engine_add_species(e, &s, NULL);
+  double x[3] = {2.0, 8.0, 5.0}, u[3] = {1.0, 0.5, -0.25};
+  sb_engine_add_particle(e, 0, 0, x, u);
+  double G[3] = {0.4, 0, 0};
+  ck_assert_int_eq(sb_engine_set_fluid(e, SB_FLUID_SHEAR, G), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  const double *v = sb_engine_velocities(e), *y = sb_engine_positions(e);
+  double dec = exp(-0.3 / 0.7), Ux = 0.4 * (8.0 - 5.0);
+  ck_assert_rel(v[0], Ux + (1.0 - Ux) * dec, 1e-14);
+  ck_assert_rel(v[1], 0.5 * dec, 1e-14);
+  ck_assert_rel(v[2], -0.25 * dec, 1e-14);
+  /* position: x + U dt + (u0 - U) tau (1 - e) */
+  ck_assert_rel(y[0], 2.0 + Ux * 0.3 + (1.0 - Ux) * 0.7 * (1 - dec), 1e-14);
+  double Uu[3] = {1.0, 2.0, 3.0};
+  sb_engine_set_fluid(e, SB_FLUID_UNIFORM, Uu);
+  ck_assert_int_eq(sb_engine_run_until(e, 30.0), SB_SUCCESS);
+  for (int k = 0; k < 3; k++)
+    ck_assert_rel(v[k], Uu[k], 1e-12);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* A user fluid field: evaluated once per step at the start positions. */
+static int swirl(size_t n, const double *x, double *us, void *ctx)
+{
+  (*(int *)ctx)++;
+  for (size_t i = 0; i < n; i++) {
+    us[3 * i] = -(x[3 * i + 1] - 5.0);
+    us[3 * i + 1] = x[3 * i] - 5.0;
+    us[3 * i + 2] = 7.0;  /* must be ignored in 2-D */
+  }
+  return 0;
+}
+
+START_TEST(test_fluid_callback_2d)
+{
+  sb_engine *e = box_engine(2, 10.0, 0.1, 4);
+  sb_engine_species s = {0.1, 1.0, 0.5, 0.0, 1.0};
+  sb_engine_add_species(e, &s, NULL);
+  double x[3] = {7.0, 5.0, 0.0}, u[3] = {0, 0, 0};
+  sb_engine_add_particle(e, 0, 0, x, u);
+  int calls = 0;
+  ck_assert_int_eq(sb_engine_set_fluid_fn(e, swirl, &calls), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  ck_assert_int_eq(calls, 1);
+  const double *v = sb_engine_velocities(e), *y = sb_engine_positions(e);
+  double a = -expm1(-0.1 / 0.5);
+  ck_assert_abs(v[0], 0.0, 1e-15);
+  ck_assert_rel(v[1], 2.0 * a, 1e-14);
+  ck_assert(v[2] == 0.0 && y[2] == 0.0);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* ------------------------------------------------ detectors */
+
+/* The ballistic contact time against bisection on |dx0 + s dd| - sigma,
+ * on random approaching pairs; the overlap detector misses a pair that
+ * passes through within the step, the ballistic one does not. */
+START_TEST(test_detectors)
+{
+  unsigned seed = 12345;
+  int found = 0;
+  for (int t = 0; t < 2000; t++) {
+    sb_engine_pair p;
+    memset(&p, 0, sizeof p);
+    for (int k = 0; k < 3; k++) {
+      seed = seed * 1103515245u + 12345u;
+      p.dx0[k] = 4.0 * ((seed >> 8) / 16777216.0) - 2.0;
+      seed = seed * 1103515245u + 12345u;
+      p.dd[k] = 6.0 * ((seed >> 8) / 16777216.0) - 3.0;
+    }
+    p.sigma = 1.0;
+    p.dt = 1.0;
+    double s;
+    int hit = sb_engine_detect_ballistic(&p, &s);
+    /* reference: minimum distance and first crossing by bisection */
+    double a = 0, b = 0, c = -1;
+    for (int k = 0; k < 3; k++) {
+      a += p.dd[k] * p.dd[k];
+      b += p.dx0[k] * p.dd[k];
+      c += p.dx0[k] * p.dx0[k];
+    }
+    if (c <= 0)
+      continue;  /* overlapping at start: covered elsewhere */
+    double smin = b < 0 ? fmin(-b / a, 1.0) : 0.0;
+    double dmin2 = c + 2 * b * smin + a * smin * smin;
+    int want = dmin2 <= 0.0;
+    ck_assert_int_eq(hit, want);
+    if (!want)
+      continue;
+    found++;
+    double lo = 0, hi = smin;
+    for (int it = 0; it < 200; it++) {
+      double m = 0.5 * (lo + hi);
+      if (c + 2 * b * m + a * m * m > 0)
+        lo = m;
+      else
+        hi = m;
+    }
+    ck_assert_abs(s, 0.5 * (lo + hi), 1e-13);
+  }
+  ck_assert_int_gt(found, 150);
+  /* pass-through: head-on, relative displacement 10 >> sigma */
+  sb_engine_pair q = {0, 1, {-3, 0, 0}, {10, 0, 0}, 1.0, 1.0};
+  double s;
+  ck_assert_int_eq(sb_engine_detect_ballistic(&q, &s), 1);
+  ck_assert_abs(s, 0.2, 1e-15);
+  ck_assert_int_eq(sb_engine_detect_overlap(&q, &s), 0);
+  sb_engine_pair r = {0, 1, {-3, 0, 0}, {2.5, 0, 0}, 1.0, 1.0};
+  ck_assert_int_eq(sb_engine_detect_overlap(&r, &s), 1);
+  ck_assert_abs(s, 0.8, 1e-15);
+}
+END_TEST
+
+/* ------------------------------------------------ kernel observer */
+
+START_TEST(test_kernel_estimate)
+{
+  sb_engine *e = brownian_engine(SB_NEIGH_CELLS, 5, SB_OUTCOME_COUNT);
+  double K, lo, hi;
+  ck_assert_int_eq(sb_engine_kernel(e, 0.95, &K, &lo, &hi), SB_EDOM);
+  ck_assert(isnan(K));
+  for (int k = 0; k < 100; k++)
+    sb_engine_step(e);
+  sb_engine_stats st;
+  sb_engine_get_stats(e, &st);
+  ck_assert_int_eq(sb_engine_kernel(e, 0.95, &K, &lo, &hi), SB_SUCCESS);
+  double V = 30.0 * 25.0 * 20.0, n = 400;
+  ck_assert_rel(K, 2.0 * (double)st.ncoll * V / (n * (n - 1) * st.t), 1e-14);
+  ck_assert(lo < K && K < hi);
+  size_t ns;
+  const sb_engine_sample *ser = sb_engine_series(e, &ns);
+  ck_assert_uint_eq(ns, 10);
+  ck_assert(ser[9].t == st.t);
+  ck_assert_rel(ser[9].K, K, 1e-14);
+  sb_engine_reset_counters(e);
+  sb_engine_get_stats(e, &st);
+  ck_assert_uint_eq(st.ncoll, 0);
+  ck_assert_int_eq(sb_engine_kernel(e, 0.95, &K, NULL, NULL), SB_EDOM);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* ------------------------------------------------ errors */
+
+START_TEST(test_errors)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.dim = 4;
+  ck_assert_ptr_null(sb_engine_alloc(&p));
+  ck_assert_int_eq(sb_last_status(), SB_EINVAL);
+  ck_assert(strstr(sb_last_error(), "dim") != NULL);
+  sb_engine_params_default(&p);
+  p.L[1] = -1;
+  ck_assert_ptr_null(sb_engine_alloc(&p));
+  sb_engine_params_default(&p);
+  p.dt = NAN;
+  ck_assert_ptr_null(sb_engine_alloc(&p));
+  sb_engine_params_default(&p);
+  p.eta = 1.5;
+  ck_assert_ptr_null(sb_engine_alloc(&p));
+  ck_assert_ptr_null(sb_engine_alloc(NULL));
+
+  sb_engine *e = box_engine(3, 10.0, 1.0, 2);
+  sb_engine_species bad = {-1, 1, 1, 1, 0};
+  ck_assert_int_eq(sb_engine_add_species(e, &bad, NULL), SB_EINVAL);
+  sb_engine_species bad2 = {1, 1, INFINITY, 0, 0};  /* free flight, T = 0 */
+  ck_assert_int_eq(sb_engine_add_species(e, &bad2, NULL), SB_EINVAL);
+  sb_engine_species bad3 = {1, 1, 1, NAN, 0};
+  ck_assert_int_eq(sb_engine_add_species(e, &bad3, NULL), SB_EINVAL);
+  double x[3] = {1, 1, 1}, u[3] = {0, 0, 0};
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, x, u), SB_EINVAL);
+  size_t sp = add_free(e, 0.5, 1.0);
+  ck_assert_int_eq(sb_engine_add_particle(e, sp, SB_ENGINE_MAXFAM, x, u),
+                   SB_EINVAL);
+  double xn[3] = {NAN, 1, 1};
+  ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, xn, u), SB_EINVAL);
+  ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, x, u), SB_SUCCESS);
+  double u2[3] = {6.0, 0, 0}, x2[3] = {5, 5, 5};
+  ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, x2, u2), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, x2, u2), SB_EINVAL);
+  /* displacement 6 > L/2: refused, with the reason */
+  ck_assert_int_eq(sb_engine_step(e), SB_EINVAL);
+  ck_assert(strstr(sb_last_error(), "too large") != NULL);
+  ck_assert_int_eq(sb_engine_set_dt(e, -1.0), SB_EINVAL);
+  ck_assert_int_eq(sb_engine_set_outcome(e, SB_OUTCOME_ELASTIC, 2.0),
+                   SB_EINVAL);
+  ck_assert_int_eq(sb_engine_set_fluid(e, SB_FLUID_CALLBACK, NULL),
+                   SB_EINVAL);
+  ck_assert_int_eq(sb_engine_fill_random(e, sp, 0, 1), SB_EINVAL);
+  sb_engine_neigh m;
+  ck_assert_int_eq(sb_engine_neigh_from_name("grid", &m), SB_EINVAL);
+  ck_assert_int_eq(sb_engine_neigh_from_name("sweep", &m), SB_SUCCESS);
+  ck_assert_int_eq(m, SB_NEIGH_SWEEP);
+  sb_engine_free(e);
+  sb_engine_free(NULL);
+
+  /* a full box: fill_random gives up cleanly */
+  e = box_engine(2, 10.0, 1.0, 1000);
+  add_free(e, 1.0, 1.0);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 1000), SB_EMAXITER);
+  sb_engine_free(e);
+
+  /* not a checkpoint */
+  char path[] = "/tmp/sb_engine_bad_XXXXXX";
+  int fd = mkstemp(path);
+  ck_assert_int_ge(fd, 0);
+  ck_assert_int_eq(write(fd, "hello world, not a checkpoint", 29), 29);
+  close(fd);
+  int st;
+  ck_assert_ptr_null(sb_engine_checkpoint_load(path, &st));
+  ck_assert_int_eq(st, SB_EFORMAT);
+  remove(path);
+}
+END_TEST
+
+/* A custom detector plugs in (the interface issue 6 uses): here a
+ * detector that reports every candidate at s = 1/2 with an extra reach;
+ * and a custom outcome that counts calls. */
+static int det_all(const sb_engine *e, const sb_engine_pair *p,
+                   const gsl_rng *r, void *ctx, double *s)
+{
+  (void)e;
+  (void)r;
+  (void)p;
+  (*(int *)ctx)++;
+  *s = 0.5;
+  return 1;
+}
+
+static int out_count(sb_engine *e, const sb_engine_pair *p, double s,
+                     void *ctx)
+{
+  (void)e;
+  (void)p;
+  ck_assert(s == 0.5);
+  (*(int *)ctx)++;
+  return SB_SUCCESS;
+}
+
+START_TEST(test_custom_callbacks)
+{
+  sb_engine *e = box_engine(3, 20.0, 1.0, 4);
+  size_t sp = add_free(e, 0.5, 1.0);
+  double x1[3] = {5, 5, 5}, x2[3] = {8, 5, 5}, u[3] = {0, 0, 0};
+  sb_engine_add_particle(e, sp, 0, x1, u);
+  sb_engine_add_particle(e, sp, 0, x2, u);
+  int ndet = 0, nout = 0;
+  /* at rest, 3 apart, sigma 1: a candidate only with reach >= 2 */
+  ck_assert_int_eq(sb_engine_set_detector(e, det_all, &ndet, 1.0),
+                   SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_set_outcome_fn(e, out_count, &nout),
+                   SB_SUCCESS);
+  sb_engine_step(e);
+  ck_assert_int_eq(ndet, 0);
+  sb_engine_set_detector(e, det_all, &ndet, 2.5);
+  sb_engine_step(e);
+  ck_assert_int_eq(ndet, 1);
+  ck_assert_int_eq(nout, 1);
+  sb_engine_free(e);
+}
+END_TEST
+
+static Suite *suite(void)
+{
+  Suite *s = suite_create("engine");
+  TCase *tc = tcase_create("core");
+  tcase_set_timeout(tc, 30);
+  tcase_add_test(tc, test_45deg_3d);
+  tcase_add_test(tc, test_45deg_2d);
+  tcase_add_test(tc, test_45deg_same_speed);
+  tcase_add_test(tc, test_inelastic_unequal);
+  tcase_add_test(tc, test_conservation);
+  tcase_add_test(tc, test_methods_agree);
+  tcase_add_test(tc, test_checkpoint_roundtrip);
+  tcase_add_test(tc, test_sort_permutes);
+  tcase_add_test(tc, test_fluid_fields);
+  tcase_add_test(tc, test_fluid_callback_2d);
+  tcase_add_test(tc, test_detectors);
+  tcase_add_test(tc, test_kernel_estimate);
+  tcase_add_test(tc, test_errors);
+  tcase_add_test(tc, test_custom_callbacks);
+  suite_add_tcase(s, tc);
+  return s;
+}
+
+int main(void) { return sbt_run_suite(suite()); }

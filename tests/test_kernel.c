@@ -1,0 +1,272 @@
+/* test_kernel.c — collision kernels: monodisperse limits, symmetry, SI spot
+ * values (hand-computed with mpmath, 40 digits, constants in the comments),
+ * transition-regime limits, Saffman–Turner from the pair diffusivity, the
+ * Abrahamson flux against quadrature of the Maxwell speed density. */
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_math.h>
+#include <smolbridge/kernel.h>
+
+#include "testutil.h"
+
+static const double kB = 1.380649e-23;
+#define T20 293.15
+#define MUW 1.002e-3
+
+/* kernels with the signature (r_i, r_j) fixed, for symmetry checks */
+static double k_all(int which, double ri, double rj)
+{
+  switch (which) {
+  case 0: return sb_kernel_brownian_co(ri, rj, T20, MUW);
+  case 1: return sb_kernel_brownian_fm(ri, rj, T20, 2000.0);
+  case 2: return sb_kernel_brownian_tr(ri, rj, T20, 1.8e-5, 2000.0, 6.7e-8);
+  case 3: return sb_kernel_gravity(ri, rj, 2700.0, 998.2, MUW, 9.81);
+  case 4: return sb_kernel_shear(ri, rj, 10.0);
+  case 5: return sb_kernel_saffman_turner(ri, rj, 1e-4, 1e-6);
+  case 6: return sb_kernel_abrahamson(ri, rj, 0.01, 0.01);
+  case 7: return sb_kernel_diffusion(ri, rj, 1e-12, 1e-12);
+  case 8: return sb_kernel_brownian_turb(ri, rj, T20, MUW, 1e-4, 1e-6);
+  default: return sb_kernel_kinetic(2 * ri, 2 * rj, 1e-25, 2e-25, T20);
+  }
+}
+
+START_TEST(test_monodisperse_limits)
+{
+  /* 003 eq 2.11: 8kT/(3 mu); eq 2.12: 4 sqrt(6 kT d/rho_p) */
+  for (double r = 1e-9; r < 1e-4; r *= 7.3) {
+    ck_assert_rel(sb_kernel_brownian_co(r, r, T20, MUW),
+                  8 * kB * T20 / (3 * MUW), TOL_TIGHT);
+    ck_assert_rel(sb_kernel_brownian_fm(r, r, T20, 2000.0),
+                  4 * sqrt(6 * kB * T20 * 2 * r / 2000.0), TOL_TIGHT);
+    /* kinetic theory, monodisperse: pi d^2 sqrt(16 kT/(pi m)) */
+    ck_assert_rel(sb_kernel_kinetic(2 * r, 2 * r, 3e-26, 3e-26, T20),
+                  M_PI * 4 * r * r * sqrt(16 * kB * T20 / (M_PI * 3e-26)),
+                  TOL_TIGHT);
+    /* pure diffusion: 4 pi B_pos^2 d */
+    ck_assert_rel(sb_kernel_diffusion(r, r, 2e-12, 2e-12),
+                  4 * M_PI * 2e-12 * 2 * r, TOL_TIGHT);
+  }
+  /* equal radii: no differential settling */
+  ck_assert(sb_kernel_gravity(1e-6, 1e-6, 2700, 1000, MUW, 9.81) == 0.0);
+}
+END_TEST
+
+START_TEST(test_symmetry)
+{
+  for (int w = 0; w < 10; w++)
+    for (double ri = 3e-9; ri < 1e-4; ri *= 5.1)
+      for (double rj = 1e-9; rj < 1e-4; rj *= 3.7) {
+        double a = k_all(w, ri, rj), b = k_all(w, rj, ri);
+        ck_assert_msg(isfinite(a) && a >= 0, "kernel %d not finite", w);
+        ck_assert_rel(a, b, TOL_TIGHT);
+      }
+}
+END_TEST
+
+START_TEST(test_spot_values)
+{
+  /* Values from mpmath at 40 digits (k_B = 1.380649e-23 exact). */
+  ck_assert_rel(sb_kernel_brownian_co(1e-6, 1e-6, T20, MUW),
+                1.0771450548236859614e-17, TOL_TIGHT);
+  ck_assert_rel(sb_kernel_brownian_fm(5e-8, 5e-8, T20, 2000.0),
+                4.4076510988053489532e-15, TOL_TIGHT);
+  ck_assert_rel(sb_kernel_brownian_co(1e-6, 3e-6, T20, MUW),
+                1.4361934064315812819e-17, TOL_TIGHT);
+  ck_assert_rel(sb_kernel_saffman_turner(1e-6, 3e-6, 1e-4, 1e-6),
+                8.2842705602376501506e-16, TOL_TIGHT);
+  ck_assert_rel(sb_kernel_shear(1e-6, 3e-6, 10.0), 8.5333333333333333333e-16,
+                TOL_TIGHT);
+  ck_assert_rel(sb_kernel_gravity(1e-6, 3e-6, 2700.0, 998.2, MUW, 9.80665),
+                1.4883627834259495342e-15, TOL_TIGHT);
+  /* argon, d = 3.6e-10 m, m = 39.948 u (u = 1.66053906660e-27 kg) */
+  double m = 39.948 * 1.66053906660e-27;
+  ck_assert_rel(sb_kernel_kinetic(3.6e-10, 3.6e-10, m, m, T20),
+                2.2696267971782225506e-16, TOL_TIGHT);
+  ck_assert_rel(sb_kernel_abrahamson(1e-6, 3e-6, 0.01, 0.04),
+                1.7935971892473371838e-11, TOL_TIGHT);
+  /* test kernels */
+  ck_assert(sb_kernel_constant(2, 5, 3) == 3);
+  ck_assert(sb_kernel_additive(2, 5, 3) == 21);
+  ck_assert(sb_kernel_multiplicative(2, 5, 3) == 30);
+}
+END_TEST
+
+START_TEST(test_transition_limits)
+{
+  /* Air at 20 C: mu = 1.81e-5, lambda = 67.3 nm (003 §2.2.4). */
+  const double mu = 1.81e-5, rho = 1000.0, lam = 6.73e-8;
+  for (int slip = 0; slip < 2; slip++) {
+    double l = slip ? lam : 0.0;
+    /* small particles: free-molecular limit (Kn_D ~ r^-1/2 without slip,
+     * ~ r^-3/2 with it); relative deviation ~ 1/(2 Kn_D^2) */
+    double rs = slip ? 1e-11 : 1e-16;
+    ck_assert_rel(sb_kernel_brownian_tr(rs, 1.3 * rs, T20, mu, rho, l),
+                  sb_kernel_brownian_fm(rs, 1.3 * rs, T20, rho), 1e-3);
+    /* large particles: continuum limit */
+    double rl = 1e-2;
+    double kco = slip ? NAN : sb_kernel_brownian_co(rl, 2 * rl, T20, mu);
+    if (!slip)
+      ck_assert_rel(sb_kernel_brownian_tr(rl, 2 * rl, T20, mu, rho, l), kco,
+                    1e-3);
+    /* everywhere below both limits (harmonic-like interpolation) */
+    for (double r = 1e-10; r < 1e-4; r *= 1.9) {
+      double tr = sb_kernel_brownian_tr(r, 2 * r, T20, mu, rho, l);
+      ck_assert(tr <= sb_kernel_brownian_fm(r, 2 * r, T20, rho) * (1 + 1e-15));
+      if (!slip)
+        ck_assert(tr <= sb_kernel_brownian_co(r, 2 * r, T20, mu) * (1 + 1e-15));
+    }
+  }
+  /* With slip the continuum limit still holds for r >> lambda. */
+  ck_assert_rel(sb_kernel_brownian_tr(1e-3, 1e-3, T20, mu, rho, lam),
+                8 * kB * T20 / (3 * mu), 1e-3);
+  /* The deviation shrinks as the limits are approached (the test above
+   * must not pass by accident): at Kn_D ~ 1 it is large. */
+  double mid = sb_kernel_brownian_tr(5e-8, 5e-8, T20, mu, rho, 0.0);
+  ck_assert(fabs(mid / sb_kernel_brownian_fm(5e-8, 5e-8, T20, rho) - 1) > 0.05);
+}
+END_TEST
+
+START_TEST(test_pair_diffusivity)
+{
+  /* 003 eqs 6.17–6.19: K = 2 pi B_ij^2(r) r, r = r_i + r_j, is exactly
+   * Saffman–Turner; eq 6.16 total strain sqrt(270/pi) gives
+   * B^2 = (1/3)(tau_S Gamma) Gamma r^2/15. */
+  for (double ri = 1e-8; ri < 1e-4; ri *= 4.3) {
+    double rj = 0.37 * ri, r = ri + rj, eps = 1e-3, nu = 1e-6;
+    double b2 = sb_turb_pair_b2(r, eps, nu);
+    ck_assert_rel(b2, sqrt(270 / M_PI) * sqrt(eps / nu) * r * r / 45.0,
+                  TOL_TIGHT);
+    ck_assert_rel(2 * M_PI * b2 * r, sb_kernel_saffman_turner(ri, rj, eps, nu),
+                  TOL_TIGHT);
+    /* Brownian diffusion in the same form gives the continuum kernel */
+    double bi = sb_brownian_b2(ri, T20, MUW), bj = sb_brownian_b2(rj, T20, MUW);
+    ck_assert_rel(sb_kernel_diffusion(ri, rj, bi, bj),
+                  sb_kernel_brownian_co(ri, rj, T20, MUW), TOL_TIGHT);
+    /* combined = sum of kernels (003 §6.4) */
+    ck_assert_rel(sb_kernel_brownian_turb(ri, rj, T20, MUW, eps, nu),
+                  sb_kernel_brownian_co(ri, rj, T20, MUW) +
+                      sb_kernel_saffman_turner(ri, rj, eps, nu),
+                  TOL_TIGHT);
+  }
+  /* 003 eq 6.22: per-particle turbulent term sqrt(eps/(30 pi nu)) d^2 is
+   * half the pair value at r = d */
+  double d = 1e-6;
+  ck_assert_rel(0.5 * sb_turb_pair_b2(d, 1e-4, 1e-6),
+                sqrt(1e-4 / (30 * M_PI * 1e-6)) * d * d, TOL_TIGHT);
+}
+END_TEST
+
+/* Maxwell speed density with per-component variance s2, times w */
+static double w_maxwell(double w, void *p)
+{
+  double s2 = *(double *)p;
+  return w * 4 * M_PI * w * w * pow(2 * M_PI * s2, -1.5) *
+         exp(-w * w / (2 * s2));
+}
+
+START_TEST(test_abrahamson_flux)
+{
+  /* K = pi r^2 E|w| with E|w| from quadrature of the Maxwell density of the
+   * relative velocity (per-component variance u2_i + u2_j). */
+  double u2i = 0.013, u2j = 0.029, s2 = u2i + u2j, ri = 2e-6, rj = 5e-6;
+  gsl_integration_workspace *w = gsl_integration_workspace_alloc(200);
+  gsl_function f = {w_maxwell, &s2};
+  double mean, err;
+  gsl_integration_qagiu(&f, 0.0, 0.0, 1e-13, 200, w, &mean, &err);
+  gsl_integration_workspace_free(w);
+  double r = ri + rj;
+  ck_assert_rel(sb_kernel_abrahamson(ri, rj, u2i, u2j), M_PI * r * r * mean,
+                1e-12);
+  /* the seed's energy form with the square root restored */
+  double Ei = 1.5 * u2i, Ej = 1.5 * u2j;
+  ck_assert_rel(sb_kernel_abrahamson(ri, rj, u2i, u2j),
+                sqrt(32 * M_PI / 3) * sqrt((Ei + Ej) / 2) * r * r, TOL_TIGHT);
+  /* with u2 = kT/m it is the kinetic-theory kernel */
+  double mi = 3e-25, mj = 7e-25;
+  ck_assert_rel(sb_kernel_abrahamson(ri, rj, kB * T20 / mi, kB * T20 / mj),
+                sb_kernel_kinetic(2 * ri, 2 * rj, mi, mj, T20), TOL_TIGHT);
+}
+END_TEST
+
+START_TEST(test_domain_errors)
+{
+  sb_clear_error();
+  ck_assert(isnan(sb_kernel_brownian_co(-1e-6, 1e-6, T20, MUW)));
+  ck_assert_int_eq(sb_last_status(), SB_EDOM);
+  sb_clear_error();
+  ck_assert(isnan(sb_kernel_brownian_fm(1e-6, NAN, T20, 1000)));
+  ck_assert_int_eq(sb_last_status(), SB_EDOM);
+  ck_assert(isnan(sb_kernel_brownian_tr(1e-6, 1e-6, T20, MUW, 1e3, -1)));
+  ck_assert(isnan(sb_kernel_saffman_turner(1e-6, 1e-6, 1e-4, 0)));
+  ck_assert(isnan(sb_kernel_gravity(1e-6, 1e-6, 0, 1000, MUW, 9.81)));
+  ck_assert(isnan(sb_kernel_shear(1e-6, INFINITY, 1)));
+  ck_assert(isnan(sb_kernel_abrahamson(1e-6, 1e-6, -1, 1)));
+  ck_assert(isnan(sb_kernel_diffusion(1e-6, 1e-6, 1, NAN)));
+  ck_assert(isnan(sb_kernel_kinetic(1e-10, 1e-10, 0, 1e-26, T20)));
+  ck_assert(isnan(sb_turb_pair_b2(0, 1e-4, 1e-6)));
+  ck_assert(isnan(sb_brownian_b2(1e-6, -T20, MUW)));
+  ck_assert(isnan(sb_kernel_brownian_turb(1e-6, 1e-6, T20, MUW, -1, 1e-6)));
+  ck_assert(strlen(sb_last_error()) > 0);
+}
+END_TEST
+
+START_TEST(test_spec)
+{
+  sb_kernel_spec s;
+  sb_kernel_type t;
+  ck_assert_int_eq(sb_kernel_type_from_name("bogus", &t), SB_EINVAL);
+  ck_assert_int_eq(sb_kernel_spec_init(&s, SB_KERNEL_NTYPES), SB_EINVAL);
+  for (int k = 0; k < SB_KERNEL_NTYPES; k++) {
+    const char *name = sb_kernel_type_name((sb_kernel_type)k);
+    ck_assert_ptr_nonnull(name);
+    ck_assert_int_eq(sb_kernel_type_from_name(name, &t), SB_SUCCESS);
+    ck_assert_int_eq((int)t, k);
+    ck_assert_int_eq(sb_kernel_spec_init(&s, t), SB_SUCCESS);
+    ck_assert_int_eq(sb_kernel_spec_check(&s), SB_SUCCESS);
+  }
+  ck_assert_int_eq(sb_kernel_spec_set(&s, "nope", 1), SB_EINVAL);
+  ck_assert_int_eq(sb_kernel_spec_set(&s, "mu", -1), SB_SUCCESS);
+  sb_kernel_spec_init(&s, SB_KERNEL_BROWNIAN_CO);
+  sb_kernel_spec_set(&s, "mu", -1);
+  ck_assert_int_eq(sb_kernel_spec_check(&s), SB_EDOM);
+
+  /* the volume form matches the radius form */
+  double vi = 4.0 / 3.0 * M_PI * 1e-18, vj = 4.0 / 3.0 * M_PI * 27e-18;
+  ck_assert_rel(sb_radius_from_volume(vi), 1e-6, TOL_TIGHT);
+  sb_kernel_spec_init(&s, SB_KERNEL_SAFFMAN_TURNER);
+  sb_kernel_spec_set(&s, "eps", 1e-4);
+  sb_kernel_spec_set(&s, "nu", 1e-6);
+  ck_assert_rel(sb_kernel_spec_fn(vi, vj, &s),
+                8.2842705602376501506e-16, TOL_ULPS(32));
+  sb_kernel_spec_init(&s, SB_KERNEL_BROWNIAN_CO);
+  ck_assert_rel(sb_kernel_spec_fn(vi, vj, &s),
+                sb_kernel_brownian_co(1e-6, 3e-6, s.T, s.mu), TOL_ULPS(32));
+  sb_kernel_spec_init(&s, SB_KERNEL_ADDITIVE);
+  sb_kernel_spec_set(&s, "K", 2.5);
+  ck_assert(sb_kernel_spec_fn(3, 4, &s) == 17.5);
+  sb_kernel_spec_init(&s, SB_KERNEL_MULTIPLICATIVE);
+  ck_assert(sb_kernel_spec_fn(3, 4, &s) == 12);
+}
+END_TEST
+
+static Suite *kernel_suite(void)
+{
+  Suite *s = suite_create("kernel");
+  TCase *tc = tcase_create("core");
+  tcase_add_test(tc, test_monodisperse_limits);
+  tcase_add_test(tc, test_symmetry);
+  tcase_add_test(tc, test_spot_values);
+  tcase_add_test(tc, test_transition_limits);
+  tcase_add_test(tc, test_pair_diffusivity);
+  tcase_add_test(tc, test_abrahamson_flux);
+  tcase_add_test(tc, test_domain_errors);
+  tcase_add_test(tc, test_spec);
+  suite_add_tcase(s, tc);
+  return s;
+}
+
+int main(void)
+{
+  gsl_set_error_handler_off();
+  return sbt_run_suite(kernel_suite());
+}

@@ -1,0 +1,684 @@
+/* test_langevin.c — closed forms of the langevin module against independent
+ * computations: 150-digit mpmath vectors (tests/gen_langevin_ref.py ->
+ * tests/data/langevin_*.csv), series and asymptotic limits, adaptive
+ * quadrature of the Ito-isometry integrals, identities between the SI
+ * helpers, and argument checking.  Monte Carlo checks are in
+ * test_langevin_mc.c. */
+#include <float.h>
+#include <string.h>
+
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_rng.h>
+#include <smolbridge/langevin.h>
+
+#include "testutil.h"
+
+/* Accuracy promised for the moments (the issue asks for 1e-12 at
+ * dt/tau = 1e-8 ... 1e8; the implementation reaches a few ulps). */
+#define TOL_MOM 1e-13
+/* Conditioned moments (information form; a few bits lost in det P). */
+#define TOL_BRIDGE 1e-11
+
+/* ------------------------------------------------------------ CSV input */
+
+#define MAXCOL 16
+#define MAXROW 256
+typedef struct {
+  int ncol, nrow;
+  char name[MAXCOL][24];
+  double v[MAXROW][MAXCOL];
+} table;
+
+/* tests/data/NAME via sbt_data_path; falls back to SRCDIR/tests/data for
+ * the non-recursive build, where srcdir is the top source directory. */
+static FILE *open_data(const char *name)
+{
+  char buf[1024];
+  FILE *f = fopen(sbt_data_path(name, buf, sizeof buf), "r");
+  if (!f) {
+    const char *dir = getenv("srcdir");
+    snprintf(buf, sizeof buf, "%s/tests/data/%s", dir ? dir : ".", name);
+    f = fopen(buf, "r");
+  }
+  return f;
+}
+
+static void load(const char *name, table *t)
+{
+  FILE *f = open_data(name);
+  ck_assert_msg(f != NULL, "cannot open reference file %s", name);
+  char line[2048];
+  t->ncol = t->nrow = 0;
+  while (fgets(line, sizeof line, f)) {
+    if (line[0] == '#' || line[0] == '\n')
+      continue;
+    line[strcspn(line, "\r\n")] = 0;
+    if (t->ncol == 0) { /* header */
+      for (char *tok = strtok(line, ","); tok && t->ncol < MAXCOL;
+           tok = strtok(NULL, ","))
+        snprintf(t->name[t->ncol++], sizeof t->name[0], "%s", tok);
+      continue;
+    }
+    ck_assert_int_lt(t->nrow, MAXROW);
+    char *p = line;
+    for (int c = 0; c < t->ncol; c++) {
+      char *end;
+      t->v[t->nrow][c] = strtod(p, &end);
+      ck_assert_msg(end != p, "%s: bad number in row %d", name, t->nrow);
+      p = end + (*end == ',');
+    }
+    t->nrow++;
+  }
+  fclose(f);
+  ck_assert_int_gt(t->nrow, 0);
+}
+
+static int col(const table *t, const char *name)
+{
+  for (int c = 0; c < t->ncol; c++)
+    if (!strcmp(t->name[c], name))
+      return c;
+  ck_abort_msg("no column %s", name);
+  return -1;
+}
+
+/* |got - want| <= tol |want| and the _e error bound covers the difference */
+static void check_e(int (*fe)(double, double, double, sb_result *),
+                    const char *what, double tau, double B, double t,
+                    double want, double tol)
+{
+  sb_result r;
+  ck_assert_int_eq(fe(tau, B, t, &r), SB_SUCCESS);
+  ck_assert_msg(sbt_reldiff(r.val, want) <= tol,
+                "%s(tau=%g, B=%g, t=%g) = %.17g, want %.17g (rel %.3g)", what,
+                tau, B, t, r.val, want, sbt_reldiff(r.val, want));
+  ck_assert_msg(fabs(r.val - want) <= r.err,
+                "%s(tau=%g, B=%g, t=%g): err %.3g does not cover |diff| %.3g",
+                what, tau, B, t, r.err, fabs(r.val - want));
+}
+
+/* ------------------------------------------------------ mpmath vectors */
+
+START_TEST(test_var_vectors)
+{
+  static table t;
+  load("langevin_var.csv", &t);
+  int ct = col(&t, "tau"), cb = col(&t, "B"), cx = col(&t, "t");
+  for (int i = 0; i < t.nrow; i++) {
+    double tau = t.v[i][ct], B = t.v[i][cb], tt = t.v[i][cx];
+    double *v = t.v[i];
+    check_e(sb_langevin_var_x_e, "var_x", tau, B, tt, v[col(&t, "var_x")],
+            TOL_MOM);
+    check_e(sb_langevin_var_u_e, "var_u", tau, B, tt, v[col(&t, "var_u")],
+            TOL_MOM);
+    check_e(sb_langevin_cov_xu_e, "cov_xu", tau, B, tt, v[col(&t, "cov_xu")],
+            TOL_MOM);
+    check_e(sb_langevin_var_x_cond_e, "var_x_cond", tau, B, tt,
+            v[col(&t, "var_x_cond")], TOL_MOM);
+    check_e(sb_langevin_msd_e, "msd", tau, B, tt, v[col(&t, "msd")],
+            TOL_MOM);
+    /* plain forms agree with the _e forms */
+    ck_assert_rel(sb_langevin_var_x(tau, B, tt), v[col(&t, "var_x")],
+                  TOL_MOM);
+    ck_assert_rel(sb_langevin_msd(tau, B, tt), v[col(&t, "msd")], TOL_MOM);
+    /* exp(-t/tau) has condition number t/tau: the rounding of the inputs
+     * alone moves it by (t/tau) ulps */
+    double kappa = 1 + tt / tau;
+    ck_assert_rel(sb_langevin_vacf(tau, B, tt), v[col(&t, "vacf")],
+                  TOL_TIGHT * kappa);
+    ck_assert_rel(sb_langevin_vacf(tau, B, -tt), v[col(&t, "vacf")],
+                  TOL_TIGHT * kappa);
+  }
+}
+END_TEST
+
+/* The issue's points: dt/tau = 1e-8, 1e-4, 1, 1e4, 1e8 to relative 1e-12,
+ * for the moment functions AND for the coefficients the exact step uses
+ * (s_u^2 = var_u, s_u s_xu = cov, s_xu^2 + s_xc^2 = var_x). */
+START_TEST(test_var_issue_points)
+{
+  static table t;
+  load("langevin_var.csv", &t);
+  const double hs[] = {1e-8, 1e-4, 1.0, 1e4, 1e8};
+  int found = 0;
+  for (int i = 0; i < t.nrow; i++) {
+    double tau = t.v[i][col(&t, "tau")], B = t.v[i][col(&t, "B")];
+    double tt = t.v[i][col(&t, "t")];
+    int hit = 0;
+    for (size_t k = 0; k < sizeof hs / sizeof hs[0]; k++)
+      hit |= fabs(tt / tau / hs[k] - 1) < 1e-12;
+    if (!hit)
+      continue;
+    found++;
+    double vx = t.v[i][col(&t, "var_x")], vu = t.v[i][col(&t, "var_u")];
+    double cv = t.v[i][col(&t, "cov_xu")];
+    double vxc = t.v[i][col(&t, "var_x_cond")];
+    ck_assert_rel(sb_langevin_var_x(tau, B, tt), vx, 1e-12);
+    ck_assert_rel(sb_langevin_var_u(tau, B, tt), vu, 1e-12);
+    ck_assert_rel(sb_langevin_cov_xu(tau, B, tt), cv, 1e-12);
+    ck_assert_rel(sb_langevin_var_x_cond(tau, B, tt), vxc, 1e-12);
+    sb_langevin_coef c;
+    ck_assert_int_eq(sb_langevin_coef_init(&c, tau, B, tt), SB_SUCCESS);
+    ck_assert_rel(c.s_u * c.s_u, vu, 1e-12);
+    ck_assert_rel(c.s_u * c.s_xu, cv, 1e-12);
+    ck_assert_rel(c.s_xu * c.s_xu + c.s_xc * c.s_xc, vx, 1e-12);
+    ck_assert_rel(c.s_xc * c.s_xc, vxc, 1e-12);
+    ck_assert_rel(c.decay, exp(-tt / tau), TOL_TIGHT);
+    ck_assert_rel(c.gain, -tau * expm1(-tt / tau), TOL_TIGHT);
+  }
+  ck_assert_int_eq(found, 15); /* 5 points x 3 parameter sets */
+}
+END_TEST
+
+START_TEST(test_moments_vectors)
+{
+  static table t;
+  load("langevin_moments.csv", &t);
+  for (int i = 0; i < t.nrow; i++) {
+    double *v = t.v[i];
+    sb_langevin p = {v[col(&t, "tau")], v[col(&t, "B")], v[col(&t, "us")]};
+    double tt = v[col(&t, "t")], x0 = v[col(&t, "x0")], u0 = v[col(&t, "u0")];
+    sb_langevin_mom m;
+    ck_assert_int_eq(sb_langevin_moments(&p, tt, x0, u0, &m), SB_SUCCESS);
+    /* means: a few ulps of the largest term of the sum */
+    double a = -expm1(-tt / p.tau);
+    double scale_x =
+        fabs(x0) + fabs(p.us * tt) + fabs((u0 - p.us) * p.tau * a);
+    double scale_u = fabs(p.us) + fabs(u0 - p.us);
+    ck_assert_abs(m.mean_x, v[col(&t, "mean_x")], 8 * DBL_EPSILON * scale_x);
+    ck_assert_abs(m.mean_u, v[col(&t, "mean_u")], 8 * DBL_EPSILON * scale_u);
+    ck_assert_rel(m.var_x, v[col(&t, "var_x")], TOL_MOM);
+    ck_assert_rel(m.var_u, v[col(&t, "var_u")], TOL_MOM);
+    ck_assert_rel(m.cov_xu, v[col(&t, "cov_xu")], TOL_MOM);
+  }
+}
+END_TEST
+
+START_TEST(test_bridge_vectors)
+{
+  static table t;
+  load("langevin_bridge.csv", &t);
+  for (int i = 0; i < t.nrow; i++) {
+    double *v = t.v[i];
+    sb_langevin p = {v[col(&t, "tau")], v[col(&t, "B")], v[col(&t, "us")]};
+    double dt = v[col(&t, "dt")], s = v[col(&t, "s")];
+    double x0 = v[col(&t, "x0")], u0 = v[col(&t, "u0")];
+    double x1 = v[col(&t, "x1")], u1 = v[col(&t, "u1")];
+    sb_langevin_mom m;
+    ck_assert_int_eq(sb_langevin_bridge_moments(&p, dt, s, x0, u0, x1, u1,
+                                                &m), SB_SUCCESS);
+    double vx = v[col(&t, "var_x")], vu = v[col(&t, "var_u")];
+    double cv = v[col(&t, "cov_xu")];
+    ck_assert_msg(sbt_reldiff(m.var_x, vx) <= TOL_BRIDGE,
+                  "row %d: var_x %.17g want %.17g (rel %.3g)", i, m.var_x, vx,
+                  sbt_reldiff(m.var_x, vx));
+    ck_assert_msg(sbt_reldiff(m.var_u, vu) <= TOL_BRIDGE,
+                  "row %d: var_u %.17g want %.17g (rel %.3g)", i, m.var_u, vu,
+                  sbt_reldiff(m.var_u, vu));
+    /* the covariance can pass through 0: measure it on the scale
+     * sqrt(var_x var_u) (i.e. the correlation to TOL_BRIDGE) */
+    ck_assert_abs(m.cov_xu, cv, TOL_BRIDGE * sqrt(vx * vu));
+    /* means: to TOL_BRIDGE conditional standard deviations, plus the
+     * rounding of the inputs (x0, x1 are O(10) in some rows) */
+    ck_assert_abs(m.mean_x, v[col(&t, "mean_x")],
+                  TOL_BRIDGE * sqrt(vx) +
+                      8 * DBL_EPSILON * (fabs(x0) + fabs(x1)));
+    ck_assert_msg(fabs(m.mean_u - v[col(&t, "mean_u")]) <=
+                      TOL_BRIDGE * sqrt(vu) +
+                          8 * DBL_EPSILON * (fabs(u0) + fabs(u1) + fabs(p.us)),
+                  "row %d: mean_u %.17g want %.17g", i, m.mean_u,
+                  v[col(&t, "mean_u")]);
+  }
+}
+END_TEST
+
+/* ------------------------------------------------------ series, limits */
+
+START_TEST(test_small_time_series)
+{
+  /* h = t/tau -> 0, tau = 2, B = 0.7.  Series (docs/langevin.md):
+   * var_x/(B^2 tau^3) = h^3/3 - h^4/4 + 7 h^5/60 - h^6/24 + ...,
+   * var_x_cond/(B^2 tau^3) = h^3/12 - h^5/120 + ...,
+   * var_u/(B^2 tau) = h - h^2 + 2h^3/3 - ..., cov/(B^2 tau^2) = h^2/2 - h^3/2
+   * + 7h^4/24 - h^5/8.  Truncation <= 1e-14 relative at h = 1e-4 (and
+   * below). */
+  const double tau = 2.0, B = 0.7, B2 = B * B;
+  for (double h = 1e-4; h >= 1e-12; h *= 0.01) {
+    double t = h * tau, h2 = h * h, h3 = h2 * h;
+    ck_assert_rel(sb_langevin_var_x(tau, B, t),
+                  B2 * tau * tau * tau *
+                      (h3 / 3 - h2 * h2 / 4 + 7 * h3 * h2 / 60 -
+                       h3 * h3 / 24),
+                  1e-14);
+    ck_assert_rel(sb_langevin_var_x_cond(tau, B, t),
+                  B2 * tau * tau * tau * (h3 / 12 - h3 * h2 / 120), 1e-14);
+    ck_assert_rel(sb_langevin_var_u(tau, B, t),
+                  B2 * tau * (h - h2 + 2 * h3 / 3 - h2 * h2 / 3), 1e-14);
+    ck_assert_rel(sb_langevin_cov_xu(tau, B, t),
+                  B2 * tau * tau *
+                      (h2 / 2 - h3 / 2 + 7 * h2 * h2 / 24 - h3 * h2 / 8),
+                  1e-14);
+    /* MSD: (B^2 tau/2) t^2 (1 - h/3 + h^2/12 - h^3/60) */
+    ck_assert_rel(sb_langevin_msd(tau, B, t) /
+                      sb_langevin_msd_ballistic(tau, B, t),
+                  1 - h / 3 + h2 / 12 - h3 / 60, 1e-14);
+  }
+  /* t = 0 exactly: everything vanishes, nothing is NaN */
+  ck_assert(sb_langevin_var_x(tau, B, 0) == 0);
+  ck_assert(sb_langevin_var_u(tau, B, 0) == 0);
+  ck_assert(sb_langevin_msd(tau, B, 0) == 0);
+}
+END_TEST
+
+START_TEST(test_large_time_limits)
+{
+  /* h >> 1: var_x = B^2 tau^3 (h - 3/2 + 2e^{-h} - e^{-2h}/2) exactly, so
+   * for h >= 40 it is B^2 tau^3 (h - 1.5) to rounding; var_x_cond ->
+   * B^2 tau^3 (h - 2); var_u -> B^2 tau/2; cov -> B^2 tau^2/2;
+   * MSD -> B^2 tau^3 (h - 1) (diffusive limit 2 D t with offset). */
+  const double tau = 3e-6, B = 2.27, B2 = B * B, T3 = tau * tau * tau;
+  for (double h = 40; h <= 1e12; h *= 10) {
+    double t = h * tau;
+    ck_assert_rel(sb_langevin_var_x(tau, B, t), B2 * T3 * (h - 1.5),
+                  TOL_TIGHT);
+    ck_assert_rel(sb_langevin_var_x_cond(tau, B, t), B2 * T3 * (h - 2),
+                  TOL_TIGHT);
+    ck_assert_rel(sb_langevin_var_u(tau, B, t), sb_langevin_var_stat(tau, B),
+                  TOL_TIGHT);
+    ck_assert_rel(sb_langevin_cov_xu(tau, B, t), B2 * tau * tau / 2,
+                  TOL_TIGHT);
+    ck_assert_rel(sb_langevin_msd(tau, B, t), B2 * T3 * (h - 1), TOL_TIGHT);
+    ck_assert_rel(sb_langevin_msd(tau, B, t) /
+                      sb_langevin_msd_diffusive(tau, B, t),
+                  1 - 1 / h, TOL_TIGHT);
+  }
+}
+END_TEST
+
+/* ----------------------------------------------------------- quadrature */
+
+typedef struct {
+  double tau, B, t;
+  int which;
+} qpar;
+
+/* Ito isometry integrands over the lag r in [0, t]:
+ * 0: var_x = B^2 tau^2 int (1 - e^{-r/tau})^2 dr
+ * 1: var_u = B^2 int e^{-2r/tau} dr
+ * 2: cov   = B^2 tau int (1 - e^{-r/tau}) e^{-r/tau} dr
+ * 3: MSD   = 2 int (t - r) vacf(r) dr  (stationary velocity) */
+static double integrand(double r, void *vp)
+{
+  const qpar *q = vp;
+  double e = exp(-r / q->tau), B2 = q->B * q->B;
+  switch (q->which) {
+  case 0: return B2 * q->tau * q->tau * (1 - e) * (1 - e);
+  case 1: return B2 * e * e;
+  case 2: return B2 * q->tau * (1 - e) * e;
+  default: return 2 * (q->t - r) * 0.5 * B2 * q->tau * e;
+  }
+}
+
+START_TEST(test_quadrature)
+{
+  gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
+  double (*f[4])(double, double, double) = {
+      sb_langevin_var_x, sb_langevin_var_u, sb_langevin_cov_xu,
+      sb_langevin_msd};
+  const double hs[] = {0.01, 0.7, 1.0, 5.0, 30.0};
+  for (size_t k = 0; k < sizeof hs / sizeof hs[0]; k++)
+    for (int which = 0; which < 4; which++) {
+      qpar q = {1.3, 0.45, hs[k] * 1.3, which};
+      gsl_function F = {integrand, &q};
+      double val, err;
+      ck_assert_int_eq(gsl_integration_qag(&F, 0, q.t, 0, 1e-13, 1000,
+                                           GSL_INTEG_GAUSS61, w, &val, &err),
+                       0);
+      ck_assert_rel(f[which](q.tau, q.B, q.t), val, TOL_QUAD);
+    }
+  gsl_integration_workspace_free(w);
+}
+END_TEST
+
+/* ---------------------------------------------------- bridge: limits */
+
+START_TEST(test_bridge_limits)
+{
+  /* Diffusive limit (dt/tau = 1e6): X_s is a Brownian bridge with
+   * B_pos = B tau (seed 003 eq J.5): variance B^2 tau^2 s (dt - s)/dt.
+   * The mean: Y = X + tau U is exactly a Brownian motion with B_pos
+   * (integrate dU = -U/tau dt + B dW), started at x0 + tau u0.  The OU
+   * velocity is time-reversible with U -> -U, so seen from the end the
+   * same argument starts Y at x1 - tau u1.  Far from both ends (U_s mean
+   * ~0) X_s is the Brownian bridge between these two points.  Both up to
+   * relative corrections of order tau / min(s, dt - s). */
+  sb_langevin p = {1e-3, 2.0, 0.0};
+  double dt = 1e3, x0 = 0.1, x1 = 0.1 + 3 * p.B * p.tau * sqrt(dt);
+  for (double f = 0.1; f < 0.95; f += 0.2) {
+    double s = f * dt;
+    sb_langevin_mom m;
+    ck_assert_int_eq(sb_langevin_bridge_moments(&p, dt, s, x0, 0.3, x1, -0.2,
+                                                &m), SB_SUCCESS);
+    double vbb = p.B * p.B * p.tau * p.tau * s * (dt - s) / dt;
+    double corr = 3 * p.tau / fmin(s, dt - s);
+    ck_assert_rel(m.var_x, vbb, corr);
+    double y0 = x0 + p.tau * 0.3, y1 = x1 - p.tau * (-0.2);
+    ck_assert_abs(m.mean_x, y0 + (y1 - y0) * s / dt, corr * sqrt(vbb));
+    /* the velocity forgets both end velocities: stationary variance, and
+     * mean the bridge's drift (y1 - y0)/dt (same order of corrections) */
+    double vs = sb_langevin_var_stat(p.tau, p.B);
+    ck_assert_rel(m.var_u, vs, corr);
+    ck_assert_abs(m.mean_u, (y1 - y0) / dt, corr * sqrt(vs));
+  }
+  /* End points: zero variance and the given states, bit-exactly */
+  sb_langevin_mom m;
+  ck_assert_int_eq(sb_langevin_bridge_moments(&p, dt, 0.0, 1, 2, 3, 4, &m),
+                   SB_SUCCESS);
+  ck_assert(m.mean_x == 1 && m.mean_u == 2 && m.var_x == 0 && m.var_u == 0);
+  ck_assert_int_eq(sb_langevin_bridge_moments(&p, dt, dt, 1, 2, 3, 4, &m),
+                   SB_SUCCESS);
+  ck_assert(m.mean_x == 3 && m.mean_u == 4 && m.cov_xu == 0);
+  /* Near the ends the law collapses continuously onto the end state */
+  ck_assert_int_eq(sb_langevin_bridge_moments(&p, dt, dt * (1 - 1e-9), 1, 2,
+                                              3, 4, &m), SB_SUCCESS);
+  /* ... moving back from x1 = 3 with the end velocity u1 = 4 */
+  ck_assert_abs(m.mean_x, 3 - 4 * (dt * 1e-9), 1e-8); /* + drag O(r^2/tau) */
+  ck_assert_abs(m.mean_u, 4, 1e-2);
+  ck_assert(m.var_x >= 0 && m.var_x < 1e-9);
+  /* Sampler draws with one generator state reproduce bit-exactly */
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+  double xa, ua, xb, ub;
+  gsl_rng_set(r, 7);
+  sb_langevin_bridge_sample(&p, dt, 0.4 * dt, x0, 0.3, x1, -0.2, r, &xa, &ua);
+  gsl_rng_set(r, 7);
+  sb_langevin_bridge_sample(&p, dt, 0.4 * dt, x0, 0.3, x1, -0.2, r, &xb, &ub);
+  ck_assert(xa == xb && ua == ub);
+  gsl_rng_free(r);
+}
+END_TEST
+
+/* Law of total variance, a reference-free check of the bridge:
+ *   Var(Z_s | z0) = E[Var(Z_s | z0, Z_dt)] + Var(E[Z_s | z0, Z_dt]).
+ * The conditional covariance does not depend on Z_dt and the conditional
+ * mean is linear in Z_dt, so three end states give the gain, and the
+ * identity ties the bridge moments to the unconditioned ones.  Also: at the
+ * unconditioned end mean the conditioned mean is the unconditioned mean. */
+START_TEST(test_bridge_total_variance)
+{
+  const double hs[] = {1e-6, 0.1, 1.0, 10.0, 1e4};
+  for (size_t k = 0; k < sizeof hs / sizeof hs[0]; k++) {
+    sb_langevin p = {0.8, 1.3, 0.25};
+    double dt = hs[k] * p.tau, s = 0.37 * dt, x0 = 0.0, u0 = -1.0;
+    sb_langevin_mom prior_s, prior_t, c0, cx, cu;
+    sb_langevin_moments(&p, s, x0, u0, &prior_s);
+    sb_langevin_moments(&p, dt, x0, u0, &prior_t);
+    double sx = sqrt(prior_t.var_x), su = sqrt(prior_t.var_u);
+    double xm = prior_t.mean_x, um = prior_t.mean_u;
+    sb_langevin_bridge_moments(&p, dt, s, x0, u0, xm, um, &c0);
+    sb_langevin_bridge_moments(&p, dt, s, x0, u0, xm + sx, um, &cx);
+    sb_langevin_bridge_moments(&p, dt, s, x0, u0, xm, um + su, &cu);
+    /* mean at the unconditioned end mean = unconditioned mean at s */
+    ck_assert_abs(c0.mean_x, prior_s.mean_x, 1e-10 * sqrt(prior_s.var_x));
+    ck_assert_abs(c0.mean_u, prior_s.mean_u, 1e-10 * sqrt(prior_s.var_u));
+    /* gain K (per unit of the end-state standard deviations) */
+    double kxx = (cx.mean_x - c0.mean_x), kxu = (cu.mean_x - c0.mean_x);
+    double kux = (cx.mean_u - c0.mean_u), kuu = (cu.mean_u - c0.mean_u);
+    double rho = prior_t.cov_xu / (sx * su);
+    /* Var(K d), d ~ N(0, [[1, rho], [rho, 1]]) in standardised units */
+    double vmx = kxx * kxx + kxu * kxu + 2 * rho * kxx * kxu;
+    double vmu = kux * kux + kuu * kuu + 2 * rho * kux * kuu;
+    double cmxu = kxx * kux + kxu * kuu + rho * (kxx * kuu + kxu * kux);
+    ck_assert_rel(c0.var_x + vmx, prior_s.var_x, 1e-9);
+    ck_assert_rel(c0.var_u + vmu, prior_s.var_u, 1e-9);
+    ck_assert_abs(c0.cov_xu + cmxu, prior_s.cov_xu,
+                  1e-9 * sqrt(prior_s.var_x * prior_s.var_u));
+  }
+}
+END_TEST
+
+/* ------------------------------------------------------- SI helpers */
+
+START_TEST(test_si_helpers)
+{
+  /* seed 003 Table D.1: d_p = 1 um, rho_p/rho_f = 1000, tau_p = 3e-6 s
+   * corresponds to a gas with nu_f = rho_p d^2/(18 rho_f tau_p)
+   * = 1.85e-5 m^2/s; tau_p then comes back exactly. */
+  double rho_f = 1.2, rho_p = 1000 * rho_f, d = 1e-6;
+  double nu = 1000 * d * d / (18 * 3e-6);
+  ck_assert_rel(sb_stokes_tau(rho_p, d, rho_f * nu, 1.0), 3e-6, TOL_TIGHT);
+  /* Einstein: D = k T Cc/(3 pi mu d) equals B^2 tau^2/2 with
+   * B^2 = 2kT/(m tau), for any Cc (tau scales with Cc) */
+  double T = 293.15, mu = 1.81e-5, cc = sb_cunningham(sb_knudsen(66e-9, d));
+  double tau = sb_stokes_tau(rho_p, d, mu, cc);
+  double m = sb_sphere_mass(rho_p, d);
+  double B = sb_brownian_B(T, m, tau);
+  ck_assert_rel(sb_einstein_D(T, mu, d, cc), 0.5 * B * B * tau * tau,
+                TOL_TIGHT);
+  /* equipartition: stationary velocity variance = kT/m */
+  ck_assert_rel(sb_langevin_var_stat(tau, B), SB_BOLTZMANN * T / m,
+                TOL_TIGHT);
+  ck_assert_rel(m, rho_p * 4.0 / 3.0 * M_PI * 0.125 * d * d * d, TOL_TIGHT);
+  /* Knudsen number: mean free path over radius */
+  ck_assert_rel(sb_knudsen(66e-9, 1e-6), 0.132, TOL_TIGHT);
+  /* Cunningham (Davies 1945): continuum limit 1 with slope A1 + A2 e^{-A3/Kn}
+   * -> 1 + 1.257 Kn; free-molecular limit Kn (A1 + A2) = 1.657 Kn. */
+  ck_assert(sb_cunningham(0) == 1.0);
+  ck_assert_rel(sb_cunningham(1e-3), 1 + 1.257e-3, 1e-12);
+  ck_assert_rel(sb_cunningham(1e4) / 1e4, 1.657, 1e-4);
+  /* d = 0.1 um in air (lambda = 0.066 um): Kn = 1.32,
+   * Cc = 1 + 1.32 (1.257 + 0.4 exp(-1.1/1.32)) = 2.8887078540917... */
+  ck_assert_rel(sb_cunningham(1.32), 2.888707854091737, TOL_TIGHT);
+  ck_assert_rel(sb_cunningham_gen(1.32, 1.257, 0.4, 1.1),
+                sb_cunningham(1.32), TOL_TIGHT);
+  /* domain errors */
+  ck_assert(isnan(sb_stokes_tau(-1, d, mu, 1)));
+  ck_assert_int_eq(sb_last_status(), SB_EDOM);
+  ck_assert(isnan(sb_stokes_tau(rho_p, d, mu, 0.5)));
+  ck_assert(isnan(sb_brownian_B(0, m, tau)));
+  ck_assert(isnan(sb_einstein_D(T, mu, NAN, 1)));
+  ck_assert(isnan(sb_knudsen(66e-9, 0)));
+  ck_assert(isnan(sb_cunningham(-1)));
+  ck_assert(isnan(sb_cunningham_gen(1, 1, 1, -1)));
+  ck_assert(isnan(sb_sphere_mass(INFINITY, d)));
+}
+END_TEST
+
+/* ------------------------------------------------------- domain errors */
+
+START_TEST(test_domain)
+{
+  sb_result r;
+  sb_clear_error();
+  ck_assert(isnan(sb_langevin_var_x(0, 1, 1)));
+  ck_assert_int_eq(sb_last_status(), SB_EDOM);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "sb_langevin_var_x"));
+  ck_assert(isnan(sb_langevin_var_u(1, -1, 1)));
+  ck_assert(isnan(sb_langevin_cov_xu(1, 1, -1)));
+  ck_assert(isnan(sb_langevin_msd(1, 1, NAN)));
+  ck_assert(isnan(sb_langevin_var_x_cond(INFINITY, 1, 1)));
+  ck_assert(isnan(sb_langevin_vacf(1, 1, INFINITY)));
+  ck_assert(!isnan(sb_langevin_vacf(1, 1, -2)));
+  ck_assert_int_eq(sb_langevin_var_x_e(1, 1, -1, &r), SB_EDOM);
+  ck_assert(isnan(r.val) && isnan(r.err));
+  ck_assert_int_eq(sb_langevin_msd_e(1, 1, 1, NULL), SB_EINVAL);
+
+  sb_langevin p = {1, 1, 0}, bad = {-1, 1, 0};
+  sb_langevin_mom m;
+  ck_assert_int_eq(sb_langevin_moments(&bad, 1, 0, 0, &m), SB_EDOM);
+  ck_assert(isnan(m.var_x) && isnan(m.mean_x));
+  ck_assert_int_eq(sb_langevin_moments(&p, 1, NAN, 0, &m), SB_EDOM);
+  ck_assert_int_eq(sb_langevin_moments(NULL, 1, 0, 0, &m), SB_EINVAL);
+  ck_assert_int_eq(sb_langevin_moments(&p, 1, 0, 0, NULL), SB_EINVAL);
+
+  gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
+  double x = 1, u = 2;
+  ck_assert_int_eq(sb_langevin_step(&p, -1, g, &x, &u), SB_EDOM);
+  ck_assert_int_eq(sb_langevin_step(&bad, 1, g, &x, &u), SB_EDOM);
+  ck_assert_int_eq(sb_langevin_step(&p, 1, NULL, &x, &u), SB_EINVAL);
+  ck_assert(x == 1 && u == 2); /* unchanged on error */
+  ck_assert_int_eq(sb_langevin_step(&p, 0, g, &x, &u), SB_SUCCESS);
+  ck_assert(x == 1 && u == 2); /* dt = 0: identity */
+
+  double tau[2] = {1, -1}, B[2] = {1, 1}, xs[6] = {0}, us[6] = {0};
+  ck_assert_int_eq(sb_langevin_step3(2, 0.1, tau, B, NULL, xs, us, g),
+                   SB_EDOM);
+  for (int k = 0; k < 6; k++)
+    ck_assert(xs[k] == 0 && us[k] == 0); /* nothing moved */
+  ck_assert_int_eq(sb_langevin_step3(0, 0.1, NULL, NULL, NULL, NULL, NULL,
+                                     NULL), SB_SUCCESS);
+
+  sb_langevin_coef c;
+  ck_assert_int_eq(sb_langevin_coef_init(&c, 1, 1, -1), SB_EDOM);
+  ck_assert(isnan(c.s_u));
+  ck_assert_int_eq(sb_langevin_coef_init(NULL, 1, 1, 1), SB_EINVAL);
+
+  double a, b;
+  sb_langevin zeroB = {1, 0, 0};
+  ck_assert_int_eq(sb_langevin_bridge_sample(&zeroB, 1, 0.5, 0, 0, 0, 0, g,
+                                             &a, &b), SB_EDOM);
+  ck_assert(isnan(a) && isnan(b));
+  ck_assert_int_eq(sb_langevin_bridge_sample(&p, 1, 1.5, 0, 0, 0, 0, g, &a,
+                                             &b), SB_EDOM);
+  ck_assert_int_eq(sb_langevin_bridge_sample(&p, 1, 1e-70, 0, 0, 0, 0, g,
+                                             &a, &b), SB_EDOM);
+  ck_assert_int_eq(sb_langevin_bridge_sample(&p, 0, 0, 0, 0, 0, 0, g, &a,
+                                             &b), SB_EDOM);
+  ck_assert_int_eq(sb_langevin_bridge_sample(&p, 1, 0.5, 0, 0, 0, 0, NULL,
+                                             &a, &b), SB_EINVAL);
+  ck_assert_int_eq(sb_langevin_bridge_moments(&p, 1, 0.5, 0, INFINITY, 0, 0,
+                                              &m), SB_EDOM);
+  ck_assert(isnan(m.var_u));
+  gsl_rng_free(g);
+}
+END_TEST
+
+/* Extreme ratios: dt/tau from 1e-10 to 1e10 give finite, positive step
+ * coefficients and bridge variances (no NaN from 0/0 or negative sqrt). */
+START_TEST(test_extremes_finite)
+{
+  for (double h = 1e-10; h <= 1e10; h *= 10) {
+    sb_langevin_coef c;
+    ck_assert_int_eq(sb_langevin_coef_init(&c, 1.0, 1.0, h), SB_SUCCESS);
+    ck_assert(c.s_u > 0 && c.s_xu > 0 && c.s_xc > 0 && isfinite(c.s_xc));
+    sb_langevin p = {1.0, 1.0, 0.0};
+    sb_langevin_mom m;
+    for (double f = 1e-6; f < 1; f *= 100) {
+      ck_assert_int_eq(sb_langevin_bridge_moments(&p, h, f * h, 0, 0, 0, 0,
+                                                  &m), SB_SUCCESS);
+      ck_assert(m.var_x > 0 && m.var_u > 0 && isfinite(m.var_x));
+      ck_assert(m.cov_xu * m.cov_xu < m.var_x * m.var_u);
+    }
+  }
+}
+END_TEST
+
+/* The batched steppers reproduce the scalar step bit-exactly, in the
+ * documented draw order (particle, component, z1 then z2), and the
+ * coefficient-table form (with and without a class index) matches the
+ * per-particle form. */
+START_TEST(test_step3_order)
+{
+  enum { N = 5 };
+  const double tau[N] = {1e-3, 2.0, 0.5, 2.0, 1e-3};
+  const double B[N] = {3.0, 0.1, 1.0, 0.1, 3.0};
+  const size_t cls[N] = {0, 1, 2, 1, 0};
+  double us[3 * N], x0[3 * N], u0[3 * N];
+  for (int i = 0; i < 3 * N; i++) {
+    us[i] = 0.1 * i - 0.5;
+    x0[i] = 0.01 * i * i;
+    u0[i] = 1.0 - 0.2 * i;
+  }
+  const double dt = 0.02;
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+  /* reference: scalar steps in the documented order */
+  double xr[3 * N], ur[3 * N];
+  memcpy(xr, x0, sizeof xr);
+  memcpy(ur, u0, sizeof ur);
+  gsl_rng_set(r, 99);
+  for (int i = 0; i < N; i++)
+    for (int k = 0; k < 3; k++) {
+      sb_langevin p = {tau[i], B[i], us[3 * i + k]};
+      ck_assert_int_eq(sb_langevin_step(&p, dt, r, &xr[3 * i + k],
+                                        &ur[3 * i + k]), SB_SUCCESS);
+    }
+  /* per-particle arrays */
+  double x[3 * N], u[3 * N];
+  memcpy(x, x0, sizeof x);
+  memcpy(u, u0, sizeof u);
+  gsl_rng_set(r, 99);
+  ck_assert_int_eq(sb_langevin_step3(N, dt, tau, B, us, x, u, r), SB_SUCCESS);
+  for (int i = 0; i < 3 * N; i++)
+    ck_assert(x[i] == xr[i] && u[i] == ur[i]);
+  /* coefficient table, one entry per particle */
+  sb_langevin_coef c[N], ct[3];
+  for (int i = 0; i < N; i++)
+    ck_assert_int_eq(sb_langevin_coef_init(&c[i], tau[i], B[i], dt),
+                     SB_SUCCESS);
+  memcpy(x, x0, sizeof x);
+  memcpy(u, u0, sizeof u);
+  gsl_rng_set(r, 99);
+  ck_assert_int_eq(sb_langevin_step3_coef(N, c, NULL, us, x, u, r),
+                   SB_SUCCESS);
+  for (int i = 0; i < 3 * N; i++)
+    ck_assert(x[i] == xr[i] && u[i] == ur[i]);
+  /* class table indexed by cidx */
+  sb_langevin_coef_init(&ct[0], 1e-3, 3.0, dt);
+  sb_langevin_coef_init(&ct[1], 2.0, 0.1, dt);
+  sb_langevin_coef_init(&ct[2], 0.5, 1.0, dt);
+  memcpy(x, x0, sizeof x);
+  memcpy(u, u0, sizeof u);
+  gsl_rng_set(r, 99);
+  ck_assert_int_eq(sb_langevin_step3_coef(N, ct, cls, us, x, u, r),
+                   SB_SUCCESS);
+  for (int i = 0; i < 3 * N; i++)
+    ck_assert(x[i] == xr[i] && u[i] == ur[i]);
+  /* us = NULL means a fluid at rest */
+  double zero[3 * N] = {0};
+  memcpy(xr, x0, sizeof x);
+  memcpy(ur, u0, sizeof u);
+  gsl_rng_set(r, 5);
+  sb_langevin_step3(N, dt, tau, B, zero, xr, ur, r);
+  memcpy(x, x0, sizeof x);
+  memcpy(u, u0, sizeof u);
+  gsl_rng_set(r, 5);
+  sb_langevin_step3_coef(N, c, NULL, NULL, x, u, r);
+  for (int i = 0; i < 3 * N; i++)
+    ck_assert(x[i] == xr[i] && u[i] == ur[i]);
+  /* B = 0: the deterministic relaxation, exactly the mean */
+  sb_langevin p0 = {0.5, 0.0, 0.3};
+  double xx = 1.0, uu = -2.0;
+  sb_langevin_mom m;
+  sb_langevin_moments(&p0, 0.7, xx, uu, &m);
+  sb_langevin_step(&p0, 0.7, r, &xx, &uu);
+  ck_assert_rel(xx, m.mean_x, TOL_TIGHT);
+  ck_assert_rel(uu, m.mean_u, TOL_TIGHT);
+  gsl_rng_free(r);
+}
+END_TEST
+
+static Suite *langevin_suite(void)
+{
+  Suite *s = suite_create("langevin");
+  TCase *tc = tcase_create("reference");
+  tcase_add_test(tc, test_var_vectors);
+  tcase_add_test(tc, test_var_issue_points);
+  tcase_add_test(tc, test_moments_vectors);
+  tcase_add_test(tc, test_bridge_vectors);
+  suite_add_tcase(s, tc);
+  tc = tcase_create("limits");
+  tcase_add_test(tc, test_small_time_series);
+  tcase_add_test(tc, test_large_time_limits);
+  tcase_add_test(tc, test_quadrature);
+  tcase_add_test(tc, test_bridge_limits);
+  tcase_add_test(tc, test_bridge_total_variance);
+  suite_add_tcase(s, tc);
+  tc = tcase_create("api");
+  tcase_add_test(tc, test_si_helpers);
+  tcase_add_test(tc, test_domain);
+  tcase_add_test(tc, test_extremes_finite);
+  tcase_add_test(tc, test_step3_order);
+  suite_add_tcase(s, tc);
+  return s;
+}
+
+int main(void) { return sbt_run_suite(langevin_suite()); }
