@@ -72,5 +72,7 @@ extern const sbv_case sbv_cases_pbe[];      /* cli/cases_pbe.c */
 extern const size_t sbv_ncases_pbe;
 extern const sbv_case sbv_cases_engine[];   /* cli/cases_engine.c */
 extern const size_t sbv_ncases_engine;
+extern const sbv_case sbv_cases_engine2[];  /* cli/cases_engine2.c */
+extern const size_t sbv_ncases_engine2;
 
 #endif /* SB_CLI_CASES_H */

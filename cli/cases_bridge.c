@@ -20,9 +20,9 @@
  * interval shown is the 95% interval of the estimate (Clopper-Pearson for
  * frequencies, order statistics for medians, central chi-square interval
  * for chi-square statistics).  The simulation methods and why they are
- * exact are explained in tests/test_bridge_mc.c, which checks the same
- * things in `make check`; the path simulators are repeated here because
- * the CLI and the tests are separate programs.
+ * exact are explained in smolbridge/simulate.h and docs/simulate.md; the
+ * simulators are the library's reference module (sb_sim_*), shared with
+ * tests/test_bridge_mc.c, which checks the same things in `make check`.
  *
  * Sample sizes.  --full uses the seed's 100 000 draws per collision for
  * the hitting-time histograms and samplers (003 §5.4.1 and App. I.4:
@@ -37,12 +37,12 @@
 
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_math.h>
-#include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
 #include <gsl/gsl_roots.h>
 
 #include <smolbridge/bridge.h>
 #include <smolbridge/passage.h>
+#include <smolbridge/simulate.h>
 #include <smolbridge/stats.h>
 
 #include "cases.h"
@@ -50,77 +50,9 @@
 #define ALPHA 1e-3   /* verdict: p-value >= ALPHA */
 #define NGRID 100    /* sub-steps per simulated bridge */
 
-/* ============================================ path simulation (exact) */
-
-/* Crossing probability of a 1D Brownian bridge between grid points
- * x0, x1 > a, variance v over the sub-step (reflection principle). */
-static double step_bb(double x0, double x1, double a, double v)
-{
-  return exp(-2.0 * (x0 - a) * (x1 - a) / v);
-}
-
-/* The same for a Bessel-3 bridge, in a form with exponents <= 0. */
-static double step_bes3b(double r0, double r1, double a, double v)
-{
-  if (a <= 0.0)
-    return 0.0;
-  return exp(-2.0 * (r0 - a) * (r1 - a) / v) *
-         expm1(-2.0 * a * (r0 + r1 - a) / v) / expm1(-2.0 * r0 * r1 / v);
-}
-
 typedef struct {
   double x, y, a, s2, t;
 } bpar;
-
-/* 1D bridge x -> y on n sub-steps, exact sequential sampling; returns the
- * sub-step of the first crossing of a (Bernoulli within sub-steps), or -1. */
-static int sim_bb(const gsl_rng *r, const bpar *p, int n)
-{
-  const double dt = p->t / n;
-  double X = p->x;
-  for (int k = 0; k < n; k++) {
-    double Xn = p->y;
-    if (k < n - 1) {
-      double T = p->t - k * dt;
-      Xn = X + (p->y - X) * dt / T +
-           sqrt(p->s2 * dt * (T - dt) / T) * gsl_ran_gaussian_ziggurat(r, 1);
-    }
-    if (Xn <= p->a || gsl_rng_uniform(r) < step_bb(X, Xn, p->a, p->s2 * dt))
-      return k;
-    X = Xn;
-  }
-  return -1;
-}
-
-/* 3D BM from (x,0,0) conditioned on |B_t| = y: end point on the sphere of
- * radius y with the von Mises-Fisher law exp(kappa cos theta), kappa =
- * xy/(s2 t) (cos theta sampled by exact inversion), then a 3D Brownian
- * bridge; sub-step crossings drawn from the Bessel-3 bridge formula given
- * the norms (exact by the Markov property of the norm process). */
-static int sim_bes3b(const gsl_rng *r, const bpar *p, int n)
-{
-  const double dt = p->t / n, kappa = p->x * p->y / (p->s2 * p->t);
-  double U = gsl_rng_uniform(r);
-  double c = 1.0 + log1p((1.0 - U) * expm1(-2.0 * kappa)) / kappa;
-  c = c > 1.0 ? 1.0 : (c < -1.0 ? -1.0 : c);
-  double sn = sqrt(fmax(0.0, 1.0 - c * c)), ph = 2 * M_PI * gsl_rng_uniform(r);
-  const double Y[3] = {p->y * c, p->y * sn * cos(ph), p->y * sn * sin(ph)};
-  double X[3] = {p->x, 0.0, 0.0}, R = p->x;
-  for (int k = 0; k < n; k++) {
-    double Rn = p->y;
-    if (k < n - 1) {
-      double T = p->t - k * dt, sd = sqrt(p->s2 * dt * (T - dt) / T);
-      for (int j = 0; j < 3; j++)
-        X[j] += (Y[j] - X[j]) * dt / T + sd * gsl_ran_gaussian_ziggurat(r, 1);
-      Rn = sqrt(X[0] * X[0] + X[1] * X[1] + X[2] * X[2]);
-    }
-    if (Rn <= p->a ||
-        gsl_rng_uniform(r) < step_bes3b(R, Rn, p->a, p->s2 * dt))
-      return k;
-    R = Rn;
-  }
-  return -1;
-}
 
 /* ================================================== record helpers */
 
@@ -541,17 +473,12 @@ static int cross_case(const sbv_ctx *ctx, sbv_report *rep, int bessel,
     gsl_rng *r = sbv_rng_alloc(ctx, (bessel ? 20 : 10) + (unsigned long)i);
     if (!r)
       return SB_ENOMEM;
-    for (int k = 0; k < NGRID; k++)
-      hits[k] = 0;
     unsigned long nh = 0;
-    for (unsigned long j = 0; j < npaths; j++) {
-      int k = bessel ? sim_bes3b(r, p, NGRID) : sim_bb(r, p, NGRID);
-      if (k >= 0) {
-        hits[k]++;
-        nh++;
-      }
-    }
+    int sst = (bessel ? sb_sim_bes3b_hits : sb_sim_bb_hits)(
+        r, p->x, p->y, p->a, p->s2, p->t, NGRID, npaths, hits, &nh);
     gsl_rng_free(r);
+    if (sst != SB_SUCCESS)
+      return sst;
     double v = p->s2 * p->t;
     double P = bessel ? sb_bes3b_cross_prob(p->x, p->y, p->a, v)
                       : sb_bb_cross_prob(p->x, p->y, p->a, v);
@@ -603,27 +530,21 @@ static int case_bes3_fpt(const sbv_ctx *ctx, sbv_report *rep)
 {
   const double x = 1.5, a = 1.0, s2 = 1.0, t = 2.0;
   enum { NS = 200 };
-  const double dt = t / NS, sd = sqrt(s2 * dt);
+  const double dt = t / NS;
   unsigned long N = ctx->full ? 1000000UL : 50000UL, cnt[3] = {0, 0, 0};
+  unsigned long hits[NS], nh = 0;
   gsl_rng *r = sbv_rng_alloc(ctx, 30);
   if (!r)
     return SB_ENOMEM;
-  for (unsigned long i = 0; i < N; i++) {
-    double X[3] = {x, 0.0, 0.0}, R = x;
-    int k;
-    for (k = 0; k < NS; k++) {
-      for (int j = 0; j < 3; j++)
-        X[j] += sd * gsl_ran_gaussian_ziggurat(r, 1.0);
-      double Rn = sqrt(X[0] * X[0] + X[1] * X[1] + X[2] * X[2]);
-      if (Rn <= a || gsl_rng_uniform(r) < step_bes3b(R, Rn, a, s2 * dt))
-        break;
-      R = Rn;
-    }
-    cnt[0] += k < NS / 4;
-    cnt[1] += k < NS / 2;
-    cnt[2] += k < NS;
-  }
+  int sst = sb_sim_bes3_hits(r, x, a, s2, t, NS, N, hits, &nh);
   gsl_rng_free(r);
+  if (sst != SB_SUCCESS)
+    return sst;
+  for (int k = 0; k < NS; k++) {
+    cnt[0] += k < NS / 4 ? hits[k] : 0;
+    cnt[1] += k < NS / 2 ? hits[k] : 0;
+    cnt[2] += hits[k];
+  }
   sbv_note(rep, "%lu 3D Brownian motions from |B_0| = %g, sigma2 = %g, "
                 "%d steps of %g, sub-step crossings of a = %g drawn "
                 "exactly given the norms; total mass a/x = %g.  Pass iff "

@@ -42,6 +42,7 @@
 #include <gsl/gsl_rng.h>
 
 #include <smolbridge/langevin.h>
+#include <smolbridge/simulate.h>
 #include <smolbridge/stats.h>
 
 #include "cases.h"
@@ -164,6 +165,18 @@ enum {
   C_MX_LO, C_MX_HI, C_VX, C_VX_TH, NCOL
 };
 
+/* Plot columns of one variable: sample mean, theory, theory -+ 1.96 sd /
+ * sqrt(n), sample variance, theory (same order for U and X). */
+static void plot_cols(double *q, mv s, double mean, double var, size_t n)
+{
+  q[0] = s.mean;
+  q[1] = mean;
+  q[2] = mean - 1.96 * sqrt(var / (double)n);
+  q[3] = mean + 1.96 * sqrt(var / (double)n);
+  q[4] = s.var;
+  q[5] = var;
+}
+
 static int run_setup(const sbv_ctx *ctx, sbv_report *rep, const lsetup *S,
                      unsigned long stream)
 {
@@ -173,16 +186,13 @@ static int run_setup(const sbv_ctx *ctx, sbv_report *rep, const lsetup *S,
   const long nsteps = lround(S->tmax / S->dt);
   const long every = nsteps / NPLOT;
   double *x = calloc(n, sizeof *x), *u = calloc(n, sizeof *u);
-  size_t *cidx = calloc(np, sizeof *cidx);
   double *plot = malloc((NPLOT + 1) * NCOL * sizeof *plot);
   gsl_rng *r = sbv_rng_alloc(ctx, stream);
   int st = SB_SUCCESS;
-  if (!x || !u || !cidx || !plot || !r) {
+  if (!x || !u || !plot || !r) {
     st = SB_ENOMEM;
     goto done;
   }
-  sb_langevin_coef coef;
-  sb_langevin_coef_init(&coef, TAU_P, B, S->dt);
   sbv_note(rep, "%s (seed 003 %s): %zu particles x 3 components pooled "
                 "(%zu samples), tau_p = %g s, B = %.6g m/s^1.5, dt = %g s "
                 "(dt/tau_p = %.3g), %ld steps to t_max = %g s, X(0) = U(0) "
@@ -195,7 +205,7 @@ static int run_setup(const sbv_ctx *ctx, sbv_report *rep, const lsetup *S,
   size_t row = 0;
   for (long step = 0; step <= nsteps; step++) {
     if (step > 0)
-      sb_langevin_step3_coef(np, &coef, cidx, NULL, x, u, r);
+      sb_sim_langevin(&p, S->dt, 1, r, np, x, u);
     int is_plot = step % every == 0, is_check = -1;
     for (int k = 0; k < 4; k++)
       if (step == check_step[k])
@@ -209,18 +219,8 @@ static int run_setup(const sbv_ctx *ctx, sbv_report *rep, const lsetup *S,
     if (is_plot && row <= NPLOT) {
       double *q = plot + row++ * NCOL;
       q[C_T] = t;
-      q[C_MU] = su.mean;
-      q[C_MU_TH] = m.mean_u;
-      q[C_MU_LO] = m.mean_u - 1.96 * sqrt(m.var_u / (double)n);
-      q[C_MU_HI] = m.mean_u + 1.96 * sqrt(m.var_u / (double)n);
-      q[C_VU] = su.var;
-      q[C_VU_TH] = m.var_u;
-      q[C_MX] = sx.mean;
-      q[C_MX_TH] = m.mean_x;
-      q[C_MX_LO] = m.mean_x - 1.96 * sqrt(m.var_x / (double)n);
-      q[C_MX_HI] = m.mean_x + 1.96 * sqrt(m.var_x / (double)n);
-      q[C_VX] = sx.var;
-      q[C_VX_TH] = m.var_x;
+      plot_cols(q + C_MU, su, m.mean_u, m.var_u, n);
+      plot_cols(q + C_MX, sx, m.mean_x, m.var_x, n);
     }
     if (is_check >= 0) {
       char name[96];
@@ -279,7 +279,6 @@ done:
   gsl_rng_free(r);
   free(x);
   free(u);
-  free(cidx);
   free(plot);
   return st == SB_SUCCESS ? SB_SUCCESS : (st == SB_EIO ? SB_EIO : SB_ENOMEM);
 }
@@ -306,28 +305,24 @@ static int rms_errors(const sb_langevin *p, double t, int K, int R,
 {
   size_t np = (N + 2) / 3;
   double *x = malloc(3 * np * sizeof *x), *u = malloc(3 * np * sizeof *u);
-  size_t *cidx = calloc(np, sizeof *cidx);
-  if (!x || !u || !cidx) {
-    free(x); free(u); free(cidx);
+  if (!x || !u) {
+    free(x); free(u);
     return SB_ENOMEM;
   }
-  sb_langevin_coef c;
-  sb_langevin_coef_init(&c, p->tau, p->B, t / K);
   sb_langevin_mom m;
   sb_langevin_moments(p, t, 0.0, 0.0, &m);
   double sm = 0, sv = 0;
   for (int rep = 0; rep < R; rep++) {
     memset(x, 0, 3 * np * sizeof *x);
     memset(u, 0, 3 * np * sizeof *u);
-    for (int k = 0; k < K; k++)
-      sb_langevin_step3_coef(np, &c, cidx, NULL, x, u, r);
+    sb_sim_langevin(p, t / K, K, r, np, x, u);
     mv s = mean_var(u, N); /* the first N components */
     sm += (s.mean - m.mean_u) * (s.mean - m.mean_u);
     sv += (s.var - m.var_u) * (s.var - m.var_u);
   }
   *rms_m = sqrt(sm / R);
   *rms_v = sqrt(sv / R);
-  free(x); free(u); free(cidx);
+  free(x); free(u);
   return SB_SUCCESS;
 }
 

@@ -227,6 +227,90 @@ static int case_gelation(const sbv_ctx *ctx, sbv_report *rep)
   return 0;
 }
 
+/* Self-preserving distribution, Brownian continuum kernel in units of
+ * K0 = 2kT/(3 mu): grids 2^(1/4) and 2^(1/8) over 9 decades, to
+ * tau = K0 N0 t = 1e4; sigma_g extrapolated (h^2) vs the published 1.445
+ * (Vemury, Kusters & Pratsinis 1994; Friedlander & Wang 1966 ~1.44), and
+ * M0 tau vs 2/a, a = 2 + 2 exp(ln^2 1.445) (lognormal estimate). */
+static double k_brown_co(double v, double w, const void *par)
+{
+  (void)par;
+  return (1 / cbrt(v) + 1 / cbrt(w)) * (cbrt(v) + cbrt(w));
+}
+
+static int case_selfpres(const sbv_ctx *ctx, sbv_report *rep)
+{
+  double sg[2] = {0, 0}, m0t = 0, mr = 0, plot[400 * 2];
+  size_t np = 0;
+  for (int g = 0; g < 2; g++) {
+    sb_pbe_config c;
+    sb_pbe_config_init(&c);
+    c.method = SB_PBE_SECTIONAL;
+    c.ratio = pow(2.0, 1.0 / (g ? 8.0 : 4.0));
+    c.nsizes = (size_t)ceil(9 * log(10.0) / log(c.ratio)) + 1;
+    c.kernel = k_brown_co;
+    c.kparams = NULL;
+    sb_pbe *p = sb_pbe_alloc(&c);
+    if (!p)
+      return sb_last_status();
+    sb_pbe_init_mono(p, 1.0);
+    double t = 1e4;
+    int st = sb_pbe_solve(p, &t, 1, NULL, NULL, NULL);
+    if (st) {
+      sbv_note(rep, "- %s", sb_last_error());
+      sb_pbe_free(p);
+      return st;
+    }
+    const double *v = sb_pbe_volumes(p), *n = sb_pbe_state(p);
+    size_t nb = sb_pbe_nbins(p);
+    double m[3], s0 = 0, s1 = 0, s2 = 0;
+    sb_pbe_state_moments(p, m);
+    for (size_t i = 0; i < nb; i++)
+      if (n[i] > 0) {
+        double l = log(v[i]) / 3;
+        s0 += n[i];
+        s1 += n[i] * l;
+        s2 += n[i] * l * l;
+      }
+    sg[g] = exp(sqrt(s2 / s0 - (s1 / s0) * (s1 / s0)));
+    if (g) {
+      m0t = m[0] * t;
+      mr = m[0] * m[2] / (m[1] * m[1]);
+      /* similarity variables: eta = v M0/M1, psi = n(v) M1/M0^2 with the
+       * density n(v) = N_i/(x_i (r^1/2 - r^-1/2)) */
+      double w = sqrt(c.ratio) - 1 / sqrt(c.ratio);
+      for (size_t i = 0; i < nb && np < 400; i++) {
+        double eta = v[i] * m[0] / m[1];
+        double psi = n[i] / (v[i] * w) * m[1] / (m[0] * m[0]);
+        if (eta > 1e-3 && eta < 10 && psi > 1e-8) {
+          plot[2 * np] = eta;
+          plot[2 * np + 1] = psi;
+          np++;
+        }
+      }
+    }
+    sb_pbe_free(p);
+  }
+  double sgx = sg[1] + (sg[1] - sg[0]) / 3;
+  add_rel(rep, "V8/pbe-self-preserving/brownian-co/sigma_g", sgx, 1.445,
+          0.003);
+  double l = log(1.445), a = 2 + 2 * exp(l * l);
+  add_rel(rep, "V8/pbe-self-preserving/brownian-co/M0*tau", m0t, 2 / a,
+          0.005);
+  sbv_note(rep, "- sectional grids 2^(1/4), 2^(1/8) over 9 decades, "
+           "tau = K0 N0 t = 1e4: sigma_g %.5f, %.5f, extrapolated %.5f "
+           "(published 1.445); M0 K0 t = %.5f (lognormal estimate %.5f; "
+           "M0 ~ 1/t); M0 M2/M1^2 = %.5f", sg[0], sg[1], sgx, m0t, 2 / a,
+           mr);
+  sbv_plot(ctx, rep, "pbe_self_preserving",
+           "Self-preserving distribution, Brownian continuum kernel",
+           "eta psi", plot, np, 2,
+           "set logscale xy\nset xlabel 'eta = v M0/M1'\nset ylabel "
+           "'psi = n(v) M1/M0^2'\nplot $DATA u 1:2 w lp pt 6 t "
+           "'sectional 2^(1/8), tau = 1e4'");
+  return 0;
+}
+
 const sbv_case sbv_cases_pbe[] = {
     {"V8/pbe-discrete", "CVODE discrete Smoluchowski vs analytic n_k",
      case_discrete},
@@ -234,5 +318,8 @@ const sbv_case sbv_cases_pbe[] = {
      case_sectional},
     {"V8/pbe-gelation", "multiplicative kernel: M2 diverges at tau = 1",
      case_gelation},
+    {"V8/pbe-self-preserving",
+     "Brownian continuum kernel reaches the self-preserving form",
+     case_selfpres},
 };
 const size_t sbv_ncases_pbe = sizeof sbv_cases_pbe / sizeof sbv_cases_pbe[0];

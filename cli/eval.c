@@ -10,7 +10,8 @@
 #include "cli.h"
 
 static const sbe_table *const tables[] = {&sbe_table_bridge,
-                                          &sbe_table_langevin, &sbe_table_kernel};
+                                          &sbe_table_langevin, &sbe_table_kernel,
+                                          &sbe_table_dlvo};
 
 static void usage(FILE *out)
 {

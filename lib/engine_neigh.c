@@ -104,27 +104,40 @@ static int brute(sb_engine *e, const double *x0, double reach)
   return SB_SUCCESS;
 }
 
-/* Linked cells: counting sort of the particles by cell, then every
- * particle i is compared with the particles j > i of the (up to 27)
- * neighbouring cells.  Cell edge >= cut, and no more than ~2 cells per
- * particle (larger cells are still correct, only slower per cell). */
+/* Linked cells: counting sort of the particles by cell (positions and
+ * reach radii r + |disp| are scattered into e->xs in cell order, so the
+ * pair loop reads contiguous memory), then for every particle a:
+ *  - its own cell: the particles after it in cell order (plain
+ *    differences: two points of one cell are less than L/2 apart when the
+ *    direction has >= 2 cells);
+ *  - a neighbouring cell only when a lies within `cut` of the shared face
+ *    (edge, corner), i.e. rarely in dilute systems where the cells are much
+ *    larger than the cut-off; a pair in neighbouring cells is within the
+ *    cut-off of the face from both sides, so it is seen twice and reported
+ *    from its first member in cell order.
+ * Cell edge >= cut, about two particles per cell (larger cells are still
+ * correct, only slower per cell).  Directions with 1 or 2 cells use the
+ * minimum image. */
 static int cells(sb_engine *e, const double *x0, double cut, double reach)
 {
   const int dim = e->par.dim;
   const size_t n = e->n;
+  const double *L = e->par.L;
   double vol = 1.0;
   for (int k = 0; k < dim; k++)
-    vol *= e->par.L[k];
+    vol *= L[k];
   double cs = cut, csmin = pow(vol / (2.0 * (double)n + 8.0), 1.0 / dim);
   if (cs < csmin)
     cs = csmin;
   int nc[3] = {1, 1, 1};
-  double inv[3] = {0, 0, 0};
-  size_t ncell = 1;
+  double inv[3] = {0, 0, 0}, edge[3] = {1e300, 1e300, 1e300};
+  size_t ncell = 1, stride[3] = {1, 1, 1};
   for (int k = 0; k < dim; k++) {
-    double m = floor(e->par.L[k] / cs);
+    double m = floor(L[k] / cs);
     nc[k] = m < 1 ? 1 : (m > 1e6 ? 1000000 : (int)m);
-    inv[k] = nc[k] / e->par.L[k];
+    inv[k] = nc[k] / L[k];
+    edge[k] = L[k] / nc[k];
+    stride[k] = ncell;
     ncell *= (size_t)nc[k];
   }
   if (ncell + 1 > e->capcells) {
@@ -138,97 +151,115 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach)
   memset(start, 0, (ncell + 1) * sizeof *start);
   for (size_t i = 0; i < n; i++) {
     size_t c = 0;
-    for (int k = dim - 1; k >= 0; k--) {
+    for (int k = 0; k < dim; k++) {
       int ck = (int)(x0[3 * i + k] * inv[k]);
-      if (ck >= nc[k])
-        ck = nc[k] - 1;
-      if (ck < 0)
-        ck = 0;
-      c = c * (size_t)nc[k] + (size_t)ck;
+      ck = ck >= nc[k] ? nc[k] - 1 : (ck < 0 ? 0 : ck);
+      c += (size_t)ck * stride[k];
     }
     cof[i] = c;
     start[c + 1]++;
   }
   for (size_t c = 0; c < ncell; c++)
     start[c + 1] += start[c];
-  /* stable fill: particles in increasing index within a cell */
-  for (size_t i = 0; i < n; i++)
-    list[start[cof[i]]++] = i;
-  for (size_t c = ncell; c > 0; c--)
-    start[c] = start[c - 1];
-  start[0] = 0;
-
-  /* Copy positions and reach radii r + |disp| in cell order, so that the
-   * inner loop reads contiguous memory. */
+  /* stable scatter (increasing index within a cell); start[c] becomes the
+   * end of cell c, shifted back below */
   double *xs = e->xs;
-  for (size_t a = 0; a < n; a++) {
-    size_t i = list[a];
+  for (size_t i = 0; i < n; i++) {
+    size_t a = start[cof[i]]++;
+    list[a] = i;
     xs[4 * a] = x0[3 * i];
     xs[4 * a + 1] = x0[3 * i + 1];
     xs[4 * a + 2] = x0[3 * i + 2];
     xs[4 * a + 3] = e->radius[i] + e->dn[i];
   }
-  /* For each particle only the neighbouring cells within `cut` of it are
-   * visited (one to eight cells when cells are larger than the cut-off,
-   * as in dilute systems); with fewer than 3 cells along a direction all
-   * of them are visited once.  A pair within the cut-off is seen from
-   * both sides; it is reported once (j > i). */
-  const double *L = e->par.L;
-  for (size_t a = 0; a < n; a++) {
-    const size_t i = list[a];
-    const double *xa = &xs[4 * a];
-    int off[3][3], noff[3];
-    int ci[3] = {0, 0, 0};
-    for (int k = 0; k < 3; k++) {
-      noff[k] = 1;
-      off[k][0] = 0;
-      if (k >= dim)
-        continue;
-      double xk = xa[k];
-      int ck = (int)(xk * inv[k]);
-      ck = ck >= nc[k] ? nc[k] - 1 : (ck < 0 ? 0 : ck);
-      ci[k] = ck;
-      if (nc[k] <= 2) {
-        if (nc[k] == 2)
-          off[k][noff[k]++] = 1;
-        continue;
+  for (size_t c = ncell; c > 0; c--)
+    start[c] = start[c - 1];
+  start[0] = 0;
+
+  int own_wrap = 0;  /* a direction with a single cell: minimum image */
+  for (int k = 0; k < dim; k++)
+    own_wrap |= nc[k] == 1;
+  int ci[3] = {0, 0, 0};
+  for (size_t c = 0; c < ncell; c++) {
+    /* cell coordinates of c (cells are visited in storage order) */
+    if (c) {
+      for (int k = 0; k < 3; k++) {
+        if (++ci[k] < nc[k])
+          break;
+        ci[k] = 0;
       }
-      double lo = xk - ck * (L[k] / nc[k]), hi = L[k] / nc[k] - lo;
-      if (lo < cut)
-        off[k][noff[k]++] = -1;
-      if (hi < cut)
-        off[k][noff[k]++] = 1;
     }
-    const double ra = xa[3] + reach;
-    for (int q2 = 0; q2 < noff[2]; q2++)
-      for (int q1 = 0; q1 < noff[1]; q1++)
-        for (int q0 = 0; q0 < noff[0]; q0++) {
-          int q[3] = {ci[0] + off[0][q0], ci[1] + off[1][q1],
-                      ci[2] + off[2][q2]};
-          size_t c2 = 0;
-          for (int k = dim - 1; k >= 0; k--) {
-            int v = q[k] < 0 ? q[k] + nc[k]
-                             : (q[k] >= nc[k] ? q[k] - nc[k] : q[k]);
-            c2 = c2 * (size_t)nc[k] + (size_t)v;
-          }
-          for (size_t b = start[c2]; b < start[c2 + 1]; b++) {
-            const double *xb = &xs[4 * b];
-            double d2 = 0.0;
-            for (int k = 0; k < dim; k++) {
-              double d = sbi_minimg(xa[k] - xb[k], L[k]);
-              d2 += d * d;
-            }
-            double lim = ra + xb[3];
-            if (d2 > lim * lim)
-              continue;
-            size_t j = list[b];
-            if (j <= i)
-              continue;
-            int st = sbi_engine_push_pair(e, i, j);
-            if (st)
-              return st;
-          }
+    const size_t end = start[c + 1];
+    for (size_t a = start[c]; a < end; a++) {
+      const double *xa = &xs[4 * a];
+      const double ra = xa[3] + reach;
+      const size_t i = list[a];
+      for (size_t b = a + 1; b < end; b++) {
+        const double *xb = &xs[4 * b];
+        double d0 = xa[0] - xb[0], d1 = xa[1] - xb[1], d2 = xa[2] - xb[2];
+        if (own_wrap) {
+          d0 = sbi_minimg(d0, L[0]);
+          d1 = sbi_minimg(d1, L[1]);
+          d2 = dim == 3 ? sbi_minimg(d2, L[2]) : 0.0;
         }
+        double lim = ra + xb[3];
+        if (d0 * d0 + d1 * d1 + d2 * d2 <= lim * lim) {
+          int st = sbi_engine_push_pair(e, i, list[b]);
+          if (st)
+            return st;
+        }
+      }
+      /* neighbouring cells within the cut-off of a */
+      int off[3][3], noff[3], any = 0;
+      for (int k = 0; k < 3; k++) {
+        noff[k] = 1;
+        off[k][0] = 0;
+        if (k >= dim || nc[k] == 1)
+          continue;
+        if (nc[k] == 2) {  /* the other cell is adjacent on both sides */
+          off[k][noff[k]++] = 1;
+          any = 1;
+          continue;
+        }
+        double lo = xa[k] - ci[k] * edge[k];
+        if (lo < cut)
+          off[k][noff[k]++] = -1;
+        if (edge[k] - lo < cut)
+          off[k][noff[k]++] = 1;
+        any |= noff[k] > 1;
+      }
+      if (!any)
+        continue;
+      for (int q2 = 0; q2 < noff[2]; q2++)
+        for (int q1 = 0; q1 < noff[1]; q1++)
+          for (int q0 = 0; q0 < noff[0]; q0++) {
+            if (!q0 && !q1 && !q2)
+              continue;  /* own cell: done above */
+            const int q[3] = {off[0][q0], off[1][q1], off[2][q2]};
+            size_t c2 = 0;
+            for (int k = 0; k < dim; k++) {
+              int v = ci[k] + q[k];
+              v = v < 0 ? v + nc[k] : (v >= nc[k] ? v - nc[k] : v);
+              c2 += (size_t)v * stride[k];
+            }
+            for (size_t b = start[c2]; b < start[c2 + 1]; b++) {
+              if (b <= a)
+                continue;  /* reported from its first member */
+              const double *xb = &xs[4 * b];
+              double d2 = 0.0;
+              for (int k = 0; k < dim; k++) {
+                double d = sbi_minimg(xa[k] - xb[k], L[k]);
+                d2 += d * d;
+              }
+              double lim = ra + xb[3];
+              if (d2 <= lim * lim) {
+                int st = sbi_engine_push_pair(e, i, list[b]);
+                if (st)
+                  return st;
+              }
+            }
+          }
+    }
   }
   return SB_SUCCESS;
 }

@@ -1,10 +1,11 @@
 /* pbe.c — Smoluchowski population balance: solver object, discrete
  * right-hand side and analytic Jacobian, CVODE driver, moments.
  *
- * CVODE (SUNDIALS 6.x and 7.x): BDF with Newton iteration.  Linear solver:
- * dense LU with the analytic Jacobian up to 400 unknowns (robust for
- * kernels spanning many decades), Jacobian-free GMRES above (the O(N^3) LU
- * dominates there); docs/pbe.md has the measurements.  Both keep the linear invariant
+ * CVODE (SUNDIALS 6.x and 7.x): BDF with Newton iteration.  Linear solver
+ * (default): GMRES right-preconditioned by the diagonal of I - gamma J with
+ * an M1-conserving rank-one correction; dense LU with the analytic
+ * Jacobian and plain GMRES on request (docs/pbe.md has the measurements).
+ * All keep the linear invariant
  * M1 exactly: v^T f(y) = 0 for pure coagulation gives v^T J = 0, so the
  * Newton residual, every Krylov vector and the dense correction all have
  * zero M1 and the corrected iterate has the predictor's M1.  M1 drifts only
@@ -14,7 +15,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <stdlib.h>
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
@@ -30,8 +30,6 @@
 /* Kernel matrices above this many entries are not stored (the kernel is
  * then evaluated on the fly: slower, but K = 10^4 sizes fit in memory). */
 #define KMAT_MAX ((size_t)1 << 24)
-/* LS_AUTO: dense LU up to this many unknowns, GMRES above. */
-#define AUTO_DENSE_MAX 400
 
 static const sb_kernel_spec default_kernel = {SB_KERNEL_CONSTANT, 1.0,
                                               293.15, 1.002e-3, 1000.0,
@@ -75,6 +73,7 @@ void sb_pbe_free(sb_pbe *p)
   free(p->ktail);
   free(p->dktail);
   free(p->pdiag);
+  free(p->jtmp);
   free(p);
 }
 
@@ -160,12 +159,17 @@ sb_pbe *sb_pbe_alloc(const sb_pbe_config *cfg)
   p->dktail = calloc(n, sizeof *p->dktail);
   p->gbuf = calloc(2 * n, sizeof *p->gbuf);
   p->pdiag = calloc(p->ny, sizeof *p->pdiag);
-  if (!p->v || !p->y0 || !p->y || !p->work || !p->src || !p->ktail ||
+  p->jtmp = calloc(p->ny, sizeof *p->jtmp);
+  if (!p->jtmp || !p->v || !p->y0 || !p->y || !p->work || !p->src || !p->ktail ||
       !p->dktail || !p->gbuf || !p->pdiag)
     goto nomem;
   sbi_pbe_sep_detect(p);
+  /* AUTO: FFT only where measured harmless (constant kernel, GMRES): for
+   * the additive and multiplicative kernels its rounding noise costs
+   * GMRES 5-20x more steps at K >= 1000 (docs/pbe.md) */
   p->use_fft = p->sep && (cfg->gain == SB_PBE_GAIN_FFT ||
-                          (cfg->gain == SB_PBE_GAIN_AUTO && n >= 4096));
+                          (cfg->gain == SB_PBE_GAIN_AUTO && n >= 4096 &&
+                           p->sep - 1 == SB_PBE_CONSTANT));
   if (sbi_pbe_sep_setup(p))
     goto nomem;
   for (size_t i = 0; i < n; i++)
@@ -174,8 +178,7 @@ sb_pbe *sb_pbe_alloc(const sb_pbe_config *cfg)
                   : cfg->v1 * pow(cfg->ratio, (double)i);
   /* Tabulate and check the kernel (symmetric, finite, >= 0).  Separable
    * kernels need no table except for the dense Jacobian. */
-  int dense = cfg->linsol == SB_PBE_LS_DENSE ||
-              (cfg->linsol == SB_PBE_LS_AUTO && p->ny <= AUTO_DENSE_MAX);
+  int dense = cfg->linsol == SB_PBE_LS_DENSE;
   if (n * n <= KMAT_MAX && (!p->sep || dense)) {
     p->kmat = malloc(n * n * sizeof *p->kmat);
     if (!p->kmat)
@@ -420,18 +423,36 @@ static void tail_rhs(sb_pbe *p, double t, const double *y, const double *g,
   double nt = y[N], mt = y[N + 1];
   double vbar = tail_kernel(p, y, 0);
   double dn = 0.0, dm = 0.0;
-  for (size_t s = N - 1; s + 1 < 2 * N; s++) {
-    dn += g[s];
-    dm += g[s] * ((double)(s + 2) * p->cfg.v1);
+  if (p->sep) {
+    /* exact bilinear forms in (nt, mt), no clamped vbar: f stays a
+     * quadratic polynomial in y (used by the FFT path's jtimes) */
+    double K = p->sepK;
+    for (size_t a = 0; a < N; a++)
+      p->ktail[a] = p->sep - 1 == SB_PBE_CONSTANT   ? K * nt
+                    : p->sep - 1 == SB_PBE_ADDITIVE ? K * (p->v[a] * nt + mt)
+                                                    : K * p->v[a] * mt;
+    dn -= p->sep - 1 == SB_PBE_CONSTANT   ? 0.5 * K * nt * nt
+          : p->sep - 1 == SB_PBE_ADDITIVE ? K * nt * mt
+                                          : 0.5 * K * mt * mt;
+  }
+  if (p->use_fft) {
+    dn += p->of_dn;
+    dm += p->of_dm;
+  } else {
+    for (size_t s = N - 1; s + 1 < 2 * N; s++) {
+      dn += g[s];
+      dm += g[s] * ((double)(s + 2) * p->cfg.v1);
+    }
   }
   /* grid particles absorbed by the tail, and their loss */
   for (size_t a = 0; a < N; a++) {
-    double r = p->ktail[a] * y[a] * nt;
+    double r = p->ktail[a] * y[a] * (p->sep ? 1.0 : nt);
     dm += p->v[a] * r;
     ydot[a] -= r;
   }
   /* tail-tail collisions: one tail particle less, mass unchanged */
-  dn -= 0.5 * p->cfg.kernel(vbar, vbar, p->cfg.kparams) * nt * nt;
+  if (!p->sep)
+    dn -= 0.5 * p->cfg.kernel(vbar, vbar, p->cfg.kparams) * nt * nt;
   if (p->cfg.removal) {
     double rr = p->cfg.removal(t, vbar, p->cfg.rparams);
     dn -= rr * nt;
@@ -589,13 +610,46 @@ static int cv_jac(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix Jm,
   return 0;
 }
 
-/* Diagonal preconditioner P = diag(1 - gamma J_aa) for GMRES (left), with
- * a rank-one correction so that w^T P^-1 r = w^T r for the M1 weights w
- * (v_a on the grid, 1 on the tail mass): since w^T (I - gamma J) = w^T
- * for pure coagulation, every preconditioned Krylov vector then keeps
- * zero M1 and the correction conserves M1 exactly, as without
- * preconditioning.  J_aa = -L_a - n_a K_aa (+ the sectional gain's
- * diagonal, - removal); the stiff modes are the loss of the large
+/* Jacobian-vector product for the FFT gain path.  CVODE's one-sided
+ * difference quotient divides the FFT's absolute rounding noise by a tiny
+ * increment (measured: 20x more steps, additive kernel).  For the
+ * separable kernels the coagulation RHS is a quadratic polynomial in y
+ * (the tail in its bilinear form), so the central difference
+ * (f(y + s v) - f(y - s v))/(2 s) is exact for ANY s: take s = |y|/|v|,
+ * which keeps the noise at the level of f itself.  (Removal evaluated at
+ * the tail's mean volume is the only non-polynomial term; there this is
+ * a second-order difference.) */
+static int cv_jtimes(N_Vector v, N_Vector Jv, sunrealtype t, N_Vector y,
+                     N_Vector fy, void *data, N_Vector tmp)
+{
+  (void)fy;
+  sb_pbe *p = data;
+  double ny = sqrt(N_VDotProd(y, y)), nv = sqrt(N_VDotProd(v, v));
+  if (!(nv > 0.0)) {
+    N_VConst(0.0, Jv);
+    return 0;
+  }
+  double s = ny > 0.0 ? ny / nv : 1.0 / nv;
+  N_VLinearSum(1.0, y, s, v, tmp);
+  full_rhs(p, t, N_VGetArrayPointer(tmp), N_VGetArrayPointer(Jv));
+  N_VLinearSum(1.0, y, -s, v, tmp);
+  double *a = N_VGetArrayPointer(Jv);
+  /* second evaluation into p->jtmp, then the difference */
+  full_rhs(p, t, N_VGetArrayPointer(tmp), p->jtmp);
+  for (size_t i = 0; i < p->ny; i++)
+    a[i] = (a[i] - p->jtmp[i]) / (2.0 * s);
+  return 0;
+}
+
+/* Diagonal preconditioner P = diag(1 - gamma J_aa) for GMRES, applied on
+ * the right (so GMRES controls the true residual), with a rank-one
+ * correction making w^T P^-1 r = w^T r for the M1 weights w (v_a on the
+ * grid, 1 on the tail mass).  Since w^T (I - gamma J) = w^T for pure
+ * coagulation, every Krylov vector and the Newton correction then have
+ * zero M1, as without preconditioning (measured drift ~1e-15; a plain
+ * diagonal drifts by 1e-10..1e-6).  The defect is put back where the mass
+ * is (along D^-1 w|y|).  J_aa = -L_a - n_a K_aa (+ the sectional gain's
+ * diagonal, - removal): the stiff modes are the loss of the large
  * particles, which this captures.  Tail rows are left unscaled. */
 static int cv_psetup(sunrealtype t, N_Vector y, N_Vector fy,
                      sunbooleantype jok, sunbooleantype *jcur,
@@ -609,7 +663,7 @@ static int cv_psetup(sunrealtype t, N_Vector y, N_Vector fy,
   const double *n = N_VGetArrayPointer(y);
   double *d = p->pdiag;
   if (p->cfg.method == SB_PBE_DISCRETE && p->sep)
-    sbi_pbe_sep_gain_loss(p, n, p->gbuf); /* loss rates into p->work */
+    sbi_pbe_sep_gain_loss(p, n, NULL); /* loss rates into p->work */
   else
     loss_rates(p, n);
   for (size_t a = 0; a < N; a++)
@@ -630,16 +684,18 @@ static int cv_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector rv,
                      int lr, void *data)
 {
   (void)t;
-  (void)y;
   (void)fy;
   (void)delta;
   (void)lr;
   sb_pbe *p = data;
   size_t N = p->n, NY = p->ny;
   const double *r = N_VGetArrayPointer(rv), *d = p->pdiag;
+  const double *yc = N_VGetArrayPointer(y);
   double *z = N_VGetArrayPointer(zv);
   double wr = 0.0, wz = 0.0, wu = 0.0;
-  /* r and z may be the same vector: read r before writing z */
+  /* r and z may be the same vector: read r before writing z.  The mass
+   * defect is put back along u = D^-1 (w |y|), i.e. where the mass is
+   * (u = D^-1 w would move it to the empty largest sizes: unstable). */
   for (size_t a = 0; a < NY; a++) {
     double w = a < N ? p->v[a] : (a == N + 1 ? 1.0 : 0.0);
     double q = 1.0 - gamma * d[a]; /* >= 1: d <= 0 up to the gain term */
@@ -648,16 +704,15 @@ static int cv_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector rv,
     wr += w * r[a];
     z[a] = r[a] / q;
     wz += w * z[a];
-    wu += w * w / q;
+    wu += w * w * fabs(yc[a]) / q;
   }
-  if (getenv("NOCORR")) wu = 0;
-  if (wu > 0.0) { /* z += u (w^T r - w^T z)/(w^T u), u = D^-1 w */
+  if (wu > 0.0) { /* z += u (w^T r - w^T z)/(w^T u) */
     double c = (wr - wz) / wu;
     for (size_t a = 0; a < NY; a++) {
       double w = a < N ? p->v[a] : (a == N + 1 ? 1.0 : 0.0);
       if (w != 0.0) {
         double q = 1.0 - gamma * d[a];
-        z[a] += c * w / (q > 0.0 ? q : 1.0);
+        z[a] += c * w * fabs(yc[a]) / (q > 0.0 ? q : 1.0);
       }
     }
   }
@@ -773,14 +828,14 @@ int sb_pbe_solve(sb_pbe *p, const double *times, size_t ntimes,
   if (flag >= 0)
     flag = CVodeSetMaxNumSteps(mem, p->cfg.max_steps);
   if (flag >= 0) {
-    int dense = p->cfg.linsol == SB_PBE_LS_DENSE ||
-                (p->cfg.linsol == SB_PBE_LS_AUTO && NY <= AUTO_DENSE_MAX);
-    int prec = p->cfg.linsol == SB_PBE_LS_GMRES_DIAG;
+    int dense = p->cfg.linsol == SB_PBE_LS_DENSE;
+    int prec = p->cfg.linsol == SB_PBE_LS_GMRES_DIAG ||
+               p->cfg.linsol == SB_PBE_LS_AUTO;
     if (dense) {
       A = SUNDenseMatrix((sunindextype)NY, (sunindextype)NY, ctx);
       LS = A ? SUNLinSol_Dense(y, A, ctx) : NULL;
     } else {
-      LS = SUNLinSol_SPGMR(y, prec ? (getenv("PLEFT") ? SUN_PREC_LEFT : SUN_PREC_RIGHT) : SUN_PREC_NONE, 0, ctx);
+      LS = SUNLinSol_SPGMR(y, prec ? SUN_PREC_RIGHT : SUN_PREC_NONE, 0, ctx);
     }
     if (!LS) {
       status = sbi_error(SB_ENOMEM, __func__, "linear solver allocation "
@@ -792,6 +847,8 @@ int sb_pbe_solve(sb_pbe *p, const double *times, size_t ntimes,
       flag = CVodeSetJacFn(mem, cv_jac);
     if (flag >= 0 && prec)
       flag = CVodeSetPreconditioner(mem, cv_psetup, cv_psolve);
+    if (flag >= 0 && !A && p->use_fft)
+      flag = CVodeSetJacTimes(mem, NULL, cv_jtimes);
   }
   if (flag < 0) {
     status = sbi_error(SB_ESOLVER, __func__, "CVODE setup failed: %s",

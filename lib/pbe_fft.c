@@ -167,6 +167,33 @@ static void direct_add(size_t N, const double *restrict v,
   }
 }
 
+/* Overflow of a convolution gain c (a * b)_s beyond the grid, s >= N - 1
+ * (total size s + 2 > N): number c sum_i a_i B(N-1-i) and volume
+ * c v1 sum_i a_i [(i+1) B(N-1-i) + C(N-1-i)], with the suffix sums
+ * B(m) = sum_{j>=m} b_j and C(m) = sum_{j>=m} (j+1) b_j.  O(N), sums of
+ * non-negative terms: accurate even where the FFT values are noise (the
+ * FFT gain would give the tail an absolute error ~ N^2 eps max G). */
+/* FFT path only. */
+static void overflow(sb_pbe *p, const double *a, const double *b, double c)
+{
+  size_t N = p->n;
+  double *B = p->fa, *C = p->fb; /* scratch: the FFT buffers */
+  double sb = 0.0, sc = 0.0, dn = 0.0, dm = 0.0;
+  for (size_t m = N; m-- > 0;) {
+    sb += b[m];
+    sc += (double)(m + 1) * b[m];
+    B[m] = sb;
+    C[m] = sc;
+  }
+  for (size_t i = 0; i < N; i++) {
+    size_t m = N - 1 - i;
+    dn += a[i] * B[m];
+    dm += a[i] * ((double)(i + 1) * B[m] + C[m]);
+  }
+  p->of_dn = c * dn;
+  p->of_dm = c * p->cfg.v1 * dm;
+}
+
 void sbi_pbe_sep_gain_loss(sb_pbe *p, const double *n, double *g)
 {
   size_t N = p->n;
@@ -182,25 +209,34 @@ void sbi_pbe_sep_gain_loss(sb_pbe *p, const double *n, double *g)
   case SB_PBE_CONSTANT:
     for (size_t i = 0; i < N; i++)
       p->work[i] = K * m0;
-    if (p->use_fft)
+    if (!g)
+      break;
+    if (p->use_fft) {
       fft_conv(p, n, NULL, 0.5 * K, g);
-    else
+      overflow(p, n, n, 0.5 * K);
+    } else
       direct_self(N, n, 0.5 * K, g);
     break;
   case SB_PBE_ADDITIVE:
     for (size_t i = 0; i < N; i++)
       p->work[i] = K * (v[i] * m0 + m1);
-    if (p->use_fft)
+    if (!g)
+      break;
+    if (p->use_fft) {
       fft_conv(p, vn, n, K, g);
-    else
+      overflow(p, vn, n, K);
+    } else
       direct_add(N, v, n, K, g);
     break;
   default: /* multiplicative */
     for (size_t i = 0; i < N; i++)
       p->work[i] = K * v[i] * m1;
-    if (p->use_fft)
+    if (!g)
+      break;
+    if (p->use_fft) {
       fft_conv(p, vn, NULL, 0.5 * K, g);
-    else
+      overflow(p, vn, vn, 0.5 * K);
+    } else
       direct_self(N, vn, 0.5 * K, g);
     break;
   }

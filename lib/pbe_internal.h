@@ -34,6 +34,7 @@ struct sb_pbe {
   double *ktail;     /* n doubles: K(v_a, vbar) with the tail */
   double *dktail;    /* n doubles: dK(v_a, vbar)/dvbar */
   double *pdiag;     /* ny doubles: diagonal of J (preconditioner) */
+  double *jtmp;      /* ny doubles: jtimes scratch */
   /* separable built-in kernel (discrete method): 0 none, else
    * 1 + sb_pbe_kernel_kind, coefficient sepK */
   int sep;
@@ -42,6 +43,8 @@ struct sb_pbe {
   size_t nfft;       /* padded length (power of 2 >= 2n - 1) */
   double *fa, *fb;   /* nfft doubles each */
   void *fft;         /* GSL wavetables and workspace (pbe_fft.c) */
+  double of_dn, of_dm; /* FFT path: number and volume rates leaving the
+                          grid (g[s], s >= n - 1, is not used) */
   /* sectional */
   sbi_pbe_diag *diags;
   size_t ndiag;
@@ -67,7 +70,8 @@ void sbi_pbe_sep_detect(sb_pbe *p);
 int sbi_pbe_sep_setup(sb_pbe *p);
 void sbi_pbe_fft_free(sb_pbe *p);
 /* Gain by total index: g[s] = 1/2 sum_{i0+j0=s} K n_i0 n_j0, s = 0..2n-2,
- * and loss rates L_i = sum_j K_ij n_j (grid only) into p->work. */
+ * and loss rates L_i = sum_j K_ij n_j (grid only) into p->work (g NULL:
+ * the loss rates only). */
 void sbi_pbe_sep_gain_loss(sb_pbe *p, const double *n, double *g);
 
 #endif /* SB_PBE_INTERNAL_H */

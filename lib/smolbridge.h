@@ -7,8 +7,11 @@
 #include <smolbridge/passage.h>
 #include <smolbridge/bridge.h>
 #include <smolbridge/langevin.h>
+#include <smolbridge/simulate.h>
 #include <smolbridge/kernel.h>
+#include <smolbridge/dlvo.h>
 #include <smolbridge/pbe.h>
 #include <smolbridge/engine.h>
+#include <smolbridge/engine_bridge.h>
 
 #endif /* SMOLBRIDGE_H */

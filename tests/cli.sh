@@ -77,5 +77,41 @@ else
 fi
 rm -f "$out.txt"
 
+# --- pbe: constant kernel, monodisperse start: M0 = N0 / (1 + tau/2),
+# tau = K N0 t (analytic), file headers as documented
+expect_rc 0 "$sb" pbe --help
+expect_rc 2 "$sb" pbe --kernel no-such-kernel --n0 1 --init mono --method discrete --sizes 10 --times 1 --out "$out-p.csv"
+if "$sb" pbe --kernel constant --param K=2 --n0 3 --init mono --method discrete \
+     --sizes 30 --times 0.5,1 --out "$out-p.csv" 2>/dev/null; then
+  head -n 1 "$out-p.csv" | grep -qx 't,k,v,n' || fail "pbe csv header"
+  head -n 1 "$out-p-moments.csv" | grep -qx 't,M0,M1,M2' || fail "pbe moments header"
+  m0=$(awk -F, '$1 == 1 {print $2}' "$out-p-moments.csv")
+  want=$(awk 'BEGIN { tau = 2 * 3 * 1; printf "%.17g", 3 / (1 + tau / 2) }')
+  relclose "$m0" "$want" 1e-8 || fail "pbe M0(t=1) = $m0, want $want"
+else
+  fail "smolbridge pbe failed"
+fi
+rm -f "$out-p.csv" "$out-p-moments.csv"
+
+# --- collide: an example configuration runs and writes its outputs; an
+# unknown key is rejected with a message naming the file, line and key
+expect_rc 0 "$sb" collide --help
+ini="${srcdir:-.}/examples/v9_two_spheres_45.ini"
+mkdir -p "$out"
+sed "s|^output = .*|output = $out/collide|" "$ini" > "$out/two.ini"
+if "$sb" collide "$out/two.ini" 2>/dev/null; then
+  [ -s "$out/collide/summary.json" ] || fail "collide: no summary.json"
+  grep -q '"collisions": 1,' "$out/collide/summary.json" || fail "collide: expected 1 collision"
+  head -n 1 "$out/collide/series.csv" | grep -q '^t,' || fail "collide: series.csv header"
+else
+  fail "smolbridge collide $ini failed"
+fi
+printf '[run]\nL = 1e-4\nbogus = 3\n' > "$out/bad.ini"
+msg=$("$sb" collide "$out/bad.ini" 2>&1 >/dev/null)
+rc=$?
+[ $rc -eq 1 ] || fail "collide bad.ini exited $rc, want 1"
+case "$msg" in *bad.ini:3*bogus*) ;; *) fail "collide bad key message: $msg" ;; esac
+rm -rf "$out"
+
 [ "$fails" -eq 0 ] && echo "cli: all checks passed"
 exit $((fails > 0))

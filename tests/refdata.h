@@ -7,9 +7,10 @@
  *   for (int i = 0; i < tab.nrow; i++) use(sbt_at(&tab, i, ct));
  *   sbt_table_free(&tab);
  *
- * The file is looked up as $srcdir/tests/data/NAME (the non-recursive build
- * runs the tests from the top build directory with srcdir = top srcdir),
- * then $srcdir/data/NAME, then tests/data/NAME and data/NAME.
+ * The file is $srcdir/tests/data/NAME (sbt_data_path in testutil.h; the
+ * non-recursive build runs the tests with srcdir = top srcdir).  Comment
+ * lines (starting with '#') and blank lines are skipped, also before the
+ * header.
  */
 #ifndef SB_REFDATA_H
 #define SB_REFDATA_H
@@ -19,6 +20,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "testutil.h"
+
 #define SBT_MAXCOL 16
 
 typedef struct {
@@ -27,16 +30,13 @@ typedef struct {
   double *v; /* nrow * ncol values, row-major */
 } sbt_table;
 
-static inline FILE *sbt_open_data(const char *name, char *path, size_t len)
+/* Skip comment and blank lines: the next data (or header) line in buf,
+ * or NULL at the end of the file. */
+static inline char *sbt_next_line(char *buf, int len, FILE *f)
 {
-  const char *dir = getenv("srcdir");
-  const char *fmt[] = {"%s/tests/data/%s", "%s/data/%s"};
-  for (int k = 0; k < 2; k++) {
-    snprintf(path, len, fmt[k], dir ? dir : ".", name);
-    FILE *f = fopen(path, "r");
-    if (f)
-      return f;
-  }
+  while (fgets(buf, len, f))
+    if (buf[0] != '#' && buf[0] != '\n' && buf[0] != '\r')
+      return buf;
   return NULL;
 }
 
@@ -44,11 +44,11 @@ static inline FILE *sbt_open_data(const char *name, char *path, size_t len)
 static inline void sbt_table_load(const char *name, sbt_table *t)
 {
   char path[1024], line[4096];
-  FILE *f = sbt_open_data(name, path, sizeof path);
-  ck_assert_msg(f != NULL, "reference file %s not found (srcdir=%s)", name,
-                getenv("srcdir") ? getenv("srcdir") : "(unset)");
+  FILE *f = fopen(sbt_data_path(name, path, sizeof path), "r");
+  ck_assert_msg(f != NULL, "reference file %s not found", path);
   memset(t, 0, sizeof *t);
-  ck_assert_msg(fgets(line, sizeof line, f) != NULL, "%s: empty", path);
+  ck_assert_msg(sbt_next_line(line, sizeof line, f) != NULL, "%s: empty",
+                path);
   for (char *tok = strtok(line, ",\r\n"); tok; tok = strtok(NULL, ",\r\n")) {
     ck_assert_msg(t->ncol < SBT_MAXCOL, "%s: too many columns", path);
     snprintf(t->name[t->ncol++], sizeof t->name[0], "%s", tok);
@@ -56,9 +56,7 @@ static inline void sbt_table_load(const char *name, sbt_table *t)
   size_t cap = 256;
   t->v = malloc(cap * t->ncol * sizeof *t->v);
   ck_assert_msg(t->v != NULL, "out of memory");
-  while (fgets(line, sizeof line, f)) {
-    if (line[0] == '\n' || line[0] == '#')
-      continue;
+  while (sbt_next_line(line, sizeof line, f)) {
     if ((size_t)t->nrow == cap) {
       cap *= 2;
       double *nv = realloc(t->v, cap * t->ncol * sizeof *t->v);
@@ -94,6 +92,12 @@ static inline int sbt_col(const sbt_table *t, const char *name)
 static inline double sbt_at(const sbt_table *t, int row, int col)
 {
   return t->v[(size_t)row * t->ncol + col];
+}
+
+/* Value in row `row` of the column called `name` (test failure if none). */
+static inline double sbt_get(const sbt_table *t, int row, const char *name)
+{
+  return sbt_at(t, row, sbt_col(t, name));
 }
 
 static inline void sbt_table_free(sbt_table *t)

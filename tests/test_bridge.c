@@ -30,17 +30,6 @@
 #include "refdata.h"
 #include "testutil.h"
 
-#define CHECK_REF(res, want, what)                                          \
-  do {                                                                      \
-    double g_ = (res).val, w_ = (want);                                     \
-    ck_assert_msg(sbt_reldiff(g_, w_) <= TOL_REF,                           \
-                  "%s: got %.17g want %.17g (rel %.3g)", what, g_, w_,      \
-                  sbt_reldiff(g_, w_));                                     \
-    ck_assert_msg(fabs(g_ - w_) <= (res).err,                               \
-                  "%s: err %.3g does not cover |%.17g - %.17g| = %.3g",     \
-                  what, (res).err, g_, w_, fabs(g_ - w_));                  \
-  } while (0)
-
 typedef int (*cross_e)(double, double, double, double, sb_result *);
 typedef int (*hit_e)(double, double, double, double, double, double,
                      sb_result *);
@@ -82,7 +71,7 @@ START_TEST(test_cross_reference)
       char what[120];
       snprintf(what, sizeof what, "%s %s(x=%g, y=%g, a=%g, v=%g)",
                k ? "bes3b" : "bb", nm[j], x, y, a, v);
-      CHECK_REF(r, want, what);
+      ck_assert_result(r, want, TOL_REF, what);
       worst[k][j] = fmax(worst[k][j], sbt_reldiff(r.val, want));
     }
   }
@@ -135,17 +124,18 @@ END_TEST
 
 /* ------------------------------------------- crossing vs quadrature */
 
+/* One bridge: Brownian (bes3 = 0) or Bessel-3 (bes3 = 1). */
 typedef struct {
   double x, y, a, s2, t;
   int bes3;
-} cross_q;
+} hit_q;
 
 /* first-passage decomposition: density of {T_a in ds, end at y}
  * BB:  f_{x->a}(s) g_{t-s}(y - a)       (BM first passage, no drift)
  * B3B: n_{x,a}(s) q_{t-s}(a, y)         (Bessel-3 first passage) */
 static double cross_integrand(double s, void *vp)
 {
-  const cross_q *c = vp;
+  const hit_q *c = vp;
   if (s <= 0.0 || s >= c->t)
     return 0.0;
   double w = c->s2 * (c->t - s);
@@ -154,31 +144,39 @@ static double cross_integrand(double s, void *vp)
   return sb_bm_fpt_pdf(s, c->x, c->a, 0.0, c->s2) * gv(w, c->y - c->a);
 }
 
+/* Transition density from x to y over [0, t] (the bridge's normaliser). */
+static double end_density(const hit_q *c)
+{
+  double v = c->s2 * c->t;
+  return c->bes3 ? q3(v, c->x, c->y) : gv(v, c->y - c->x);
+}
+
+/* The closed-form crossing probability under test. */
+static double cross_prob(const hit_q *c)
+{
+  double v = c->s2 * c->t;
+  return c->bes3 ? sb_bes3b_cross_prob(c->x, c->y, c->a, v)
+                 : sb_bb_cross_prob(c->x, c->y, c->a, v);
+}
+
 START_TEST(test_cross_vs_quadrature)
 {
   gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
-  const cross_q cases[] = {{1.5, 1.3, 1.0, 1.0, 1.0, 0},
-                           {2.0, 3.0, 1.0, 0.5, 2.0, 0},
-                           {1.1, 1.05, 1.0, 0.01, 1.0, 0},
-                           {1.5, 1.3, 1.0, 1.0, 1.0, 1},
-                           {2.0, 3.0, 0.5, 0.5, 2.0, 1},
-                           {1.1, 1.05, 1.0, 0.01, 1.0, 1},
-                           {3.0, 2.0, 0.1, 4.0, 1.5, 1}};
+  const hit_q cases[] = {{1.5, 1.3, 1.0, 1.0, 1.0, 0},
+                         {2.0, 3.0, 1.0, 0.5, 2.0, 0},
+                         {1.1, 1.05, 1.0, 0.01, 1.0, 0},
+                         {1.5, 1.3, 1.0, 1.0, 1.0, 1},
+                         {2.0, 3.0, 0.5, 0.5, 2.0, 1},
+                         {1.1, 1.05, 1.0, 0.01, 1.0, 1},
+                         {3.0, 2.0, 0.1, 4.0, 1.5, 1}};
   for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
-    cross_q c = cases[k];
+    hit_q c = cases[k];
     gsl_function F = {cross_integrand, &c};
     double res, err;
     int st = gsl_integration_qags(&F, 0.0, c.t, 0.0, 1e-11, 1000, w, &res,
                                   &err);
     ck_assert_int_eq(st, GSL_SUCCESS);
-    double v = c.s2 * c.t, p, ref;
-    if (c.bes3) {
-      ref = res / q3(v, c.x, c.y);
-      p = sb_bes3b_cross_prob(c.x, c.y, c.a, v);
-    } else {
-      ref = res / gv(v, c.y - c.x);
-      p = sb_bb_cross_prob(c.x, c.y, c.a, v);
-    }
+    double ref = res / end_density(&c), p = cross_prob(&c);
     ck_assert_msg(fabs(p - ref) <= TOL_QUAD * ref,
                   "case %zu: closed form %.17g, quadrature %.17g", k, p, ref);
   }
@@ -211,7 +209,7 @@ START_TEST(test_hit_reference)
       char what[160];
       snprintf(what, sizeof what, "%s hit %s(u=%g; x=%g y=%g a=%g s2=%g "
                "t=%g)", k ? "bes3b" : "bb", nm[j], u, x, y, a, s2, tt);
-      CHECK_REF(r, want, what);
+      ck_assert_result(r, want, TOL_REF, what);
       worst[k][j] = fmax(worst[k][j], sbt_reldiff(r.val, want));
       n++;
     }
@@ -227,25 +225,37 @@ END_TEST
  * (passage.c) times the transition density from the level to y, divided by
  * P(cross) times the transition density from x to y (bridge.c's crossing
  * probability). */
-typedef struct {
-  double x, y, a, s2, t;
-  int bes3;
-} hit_q;
-
 static double hit_density_indep(double s, void *vp)
 {
-  const hit_q *h = vp;
-  if (s <= 0.0 || s >= h->t)
-    return 0.0;
-  double w = h->s2 * (h->t - s), v = h->s2 * h->t;
-  if (h->bes3) {
-    /* y = 0 is the continuous limit; y = 1e-9 stands for it (error ~1e-7) */
-    double y = h->y > 0.0 ? h->y : 1e-9;
-    double num = sb_bes3_fpt_pdf(s, h->x, h->a, h->s2) * q3(w, h->a, y);
-    return num / (sb_bes3b_cross_prob(h->x, y, h->a, v) * q3(v, h->x, y));
-  }
-  double num = sb_bm_fpt_pdf(s, h->x, h->a, 0.0, h->s2) * gv(w, h->y - h->a);
-  return num / (sb_bb_cross_prob(h->x, h->y, h->a, v) * gv(v, h->y - h->x));
+  hit_q h = *(const hit_q *)vp;
+  /* y = 0 is the continuous limit; y = 1e-9 stands for it (error ~1e-7) */
+  if (h.bes3 && !(h.y > 0.0))
+    h.y = 1e-9;
+  return cross_integrand(s, &h) / (cross_prob(&h) * end_density(&h));
+}
+
+/* The hitting-time functions under test, for either bridge. */
+typedef double (*hit_fn)(double, double, double, double, double, double);
+enum { H_PDF, H_CDF, H_SF, H_QUANTILE };
+
+static double hit_f(const hit_q *h, int which, double u)
+{
+  static const hit_fn fn[2][4] = {
+      {sb_bb_hit_pdf, sb_bb_hit_cdf, sb_bb_hit_sf, sb_bb_hit_quantile},
+      {sb_bes3b_hit_pdf, sb_bes3b_hit_cdf, sb_bes3b_hit_sf,
+       sb_bes3b_hit_quantile}};
+  return fn[h->bes3 != 0][which](u, h->x, h->y, h->a, h->s2, h->t);
+}
+static int hit_quantile_e(const hit_q *h, double p, sb_result *r)
+{
+  return h->bes3
+             ? sb_bes3b_hit_quantile_e(p, h->x, h->y, h->a, h->s2, h->t, r)
+             : sb_bb_hit_quantile_e(p, h->x, h->y, h->a, h->s2, h->t, r);
+}
+static double hit_sample(const hit_q *h, const gsl_rng *r)
+{
+  return h->bes3 ? sb_bes3b_hit_sample(r, h->x, h->y, h->a, h->s2, h->t)
+                 : sb_bb_hit_sample(r, h->x, h->y, h->a, h->s2, h->t);
 }
 
 static const hit_q HITQ[] = {
@@ -264,8 +274,7 @@ START_TEST(test_hit_vs_quadrature)
     gsl_function F = {hit_density_indep, &h};
     for (double f = 0.1; f < 0.95; f += 0.2) {
       double u = f * h.t, res, err, res2, err2;
-      double pdf = h.bes3 ? sb_bes3b_hit_pdf(u, h.x, h.y, h.a, h.s2, h.t)
-                          : sb_bb_hit_pdf(u, h.x, h.y, h.a, h.s2, h.t);
+      double pdf = hit_f(&h, H_PDF, u);
       ck_assert_msg(sbt_reldiff(pdf, hit_density_indep(u, &h)) < 1e-12,
                     "case %zu u=%g: pdf %.17g independent %.17g", k, u, pdf,
                     hit_density_indep(u, &h));
@@ -273,10 +282,8 @@ START_TEST(test_hit_vs_quadrature)
                                             w, &res, &err), GSL_SUCCESS);
       ck_assert_int_eq(gsl_integration_qags(&F, u, h.t, 1e-300, 1e-11, 1000,
                                             w, &res2, &err2), GSL_SUCCESS);
-      double c = h.bes3 ? sb_bes3b_hit_cdf(u, h.x, h.y, h.a, h.s2, h.t)
-                        : sb_bb_hit_cdf(u, h.x, h.y, h.a, h.s2, h.t);
-      double s = h.bes3 ? sb_bes3b_hit_sf(u, h.x, h.y, h.a, h.s2, h.t)
-                        : sb_bb_hit_sf(u, h.x, h.y, h.a, h.s2, h.t);
+      double c = hit_f(&h, H_CDF, u);
+      double s = hit_f(&h, H_SF, u);
       ck_assert_msg(fabs(c - res) <= TOL_QUAD * res + 1e-300,
                     "case %zu u=%g: cdf %.17g quadrature %.17g", k, u, c,
                     res);
@@ -389,7 +396,7 @@ START_TEST(test_quantile_reference)
     /* full double precision: a few ulp */
     ck_assert_msg(sbt_reldiff(r.val, q) <= TOL_ULPS(32),
                   "%s = %.17g want %.17g", what, r.val, q);
-    CHECK_REF(r, q, what);
+    ck_assert_result(r, q, TOL_REF, what);
     worst[k] = fmax(worst[k], sbt_reldiff(r.val, q));
   }
   printf("hit quantiles vs mpmath: max rel error bb %.2g bes3b %.2g\n",
@@ -422,17 +429,13 @@ START_TEST(test_quantile_roundtrip)
     for (int i = 0; i < ng; i++) {
       double p = grid[i];
       sb_result r;
-      int st = h.bes3
-                   ? sb_bes3b_hit_quantile_e(p, h.x, h.y, h.a, h.s2, h.t, &r)
-                   : sb_bb_hit_quantile_e(p, h.x, h.y, h.a, h.s2, h.t, &r);
+      int st = hit_quantile_e(&h, p, &r);
       ck_assert_int_eq(st, SB_SUCCESS);
       double c;
       if (p <= 0.5)
-        c = h.bes3 ? sb_bes3b_hit_cdf(r.val, h.x, h.y, h.a, h.s2, h.t)
-                   : sb_bb_hit_cdf(r.val, h.x, h.y, h.a, h.s2, h.t);
+        c = hit_f(&h, H_CDF, r.val);
       else
-        c = 1.0 - (h.bes3 ? sb_bes3b_hit_sf(r.val, h.x, h.y, h.a, h.s2, h.t)
-                          : sb_bb_hit_sf(r.val, h.x, h.y, h.a, h.s2, h.t));
+        c = 1.0 - hit_f(&h, H_SF, r.val);
       ck_assert_msg(fabs(c - p) <= 1e-13,
                     "set %zu p=%.17g: q=%.17g cdf(q)=%.17g", k, p, r.val, c);
       ck_assert(r.val > 0.0 && r.val < h.t);
@@ -517,13 +520,11 @@ START_TEST(test_samplers)
     double mean, err;
     ck_assert_int_eq(gsl_integration_qags(&F, 0.0, h.t, 1e-300, 1e-8, 1000,
                                           w, &mean, &err), GSL_SUCCESS);
-    double med = h.bes3 ? sb_bes3b_hit_quantile(0.5, h.x, h.y, h.a, h.s2, h.t)
-                        : sb_bb_hit_quantile(0.5, h.x, h.y, h.a, h.s2, h.t);
+    double med = hit_f(&h, H_QUANTILE, 0.5);
     double s = 0.0, s2 = 0.0;
     int below = 0;
     for (int i = 0; i < n; i++) {
-      double u = h.bes3 ? sb_bes3b_hit_sample(r, h.x, h.y, h.a, h.s2, h.t)
-                        : sb_bb_hit_sample(r, h.x, h.y, h.a, h.s2, h.t);
+      double u = hit_sample(&h, r);
       ck_assert(u >= 0.0 && u <= h.t);
       s += u;
       s2 += u * u;

