@@ -74,5 +74,7 @@ extern const sbv_case sbv_cases_engine[];   /* cli/cases_engine.c */
 extern const size_t sbv_ncases_engine;
 extern const sbv_case sbv_cases_engine2[];  /* cli/cases_engine2.c */
 extern const size_t sbv_ncases_engine2;
+extern const sbv_case sbv_cases_agglo[];   /* cli/cases_agglo.c */
+extern const size_t sbv_ncases_agglo;
 
 #endif /* SB_CLI_CASES_H */

@@ -85,7 +85,15 @@ static int fh_detect(const sb_engine *e, const sb_engine_pair *p,
 {
   firsthit *f = ctx;
   int h;
-  if (f->builtin == 1)
+  if (f->builtin == 3) {
+    /* MD-type (seed 003 §3.2, App. F): straight-line motion with the
+     * particle velocities at the step start, x + u dt */
+    const double *u0 = sb_engine_start_velocities(e);
+    sb_engine_pair q = *p;
+    for (int k = 0; k < 3; k++)
+      q.dd[k] = (u0[3 * p->i + k] - u0[3 * p->j + k]) * p->dt;
+    h = sb_engine_detect_ballistic(&q, s);
+  } else if (f->builtin == 1)
     h = sb_engine_detect_ballistic(p, s);
   else if (f->builtin == 2)
     h = sb_engine_detect_overlap(p, s);
@@ -133,7 +141,11 @@ static int run_firsthit(const sbv_ctx *ctx, unsigned long stream,
   p.L[0] = p.L[1] = p.L[2] = q->L;
   p.dt = q->dt;
   p.capacity = q->N;
-  p.seed = ctx->seed * 1000003UL + stream * 7919UL;
+  gsl_rng *sr = sbv_rng_alloc(ctx, stream);  /* independent stream */
+  if (!sr)
+    return SB_ENOMEM;
+  p.seed = gsl_rng_get(sr);
+  gsl_rng_free(sr);
   p.rng_type = gsl_rng_taus2;
   p.outcome = SB_OUTCOME_COUNT;
   sb_engine *e = sb_engine_alloc(&p);
@@ -165,8 +177,11 @@ static int run_firsthit(const sbv_ctx *ctx, unsigned long stream,
   if (!st)
     st = sb_engine_bridge_attach(e, f.b);
   if (!st) {
-    /* the built-in detectors need no reach; the bridge its tail reach */
-    double reach = q->builtin ? 0.0 : sb_engine_bridge_reach(e, f.b);
+    /* chords and overlap need no reach; the bridge its tail reach; the
+     * velocity chords 7 sd of the relative speed (|u_i - u_j| dt) */
+    double reach = q->builtin == 3
+                       ? 7.0 * sqrt(2.0 * q->b2 / (2.0 * q->tau)) * q->dt
+                       : (q->builtin ? 0.0 : sb_engine_bridge_reach(e, f.b));
     st = sb_engine_set_detector(e, fh_detect, &f, reach);
   }
   clock_t c0 = clock();
@@ -192,13 +207,14 @@ static int run_firsthit(const sbv_ctx *ctx, unsigned long stream,
 }
 
 /* Box edge for about `hits` first contacts of N particles within the
- * effective time Teff, and at least 20 relative displacement standard
- * deviations sqrt(2 b2 T) (no pair wraps around the box). */
+ * effective time Teff, and at least 10 relative displacement standard
+ * deviations sqrt(2 b2 T): a pair near contact would need a 5 sd
+ * excursion to meet another image (probability < 1e-6). */
 static double box_for(double K, size_t N, double Teff, double hits,
                       double b2T)
 {
   double L = cbrt(K * (double)N * (double)N * Teff / (2.0 * hits));
-  double Lmin = 20.0 * sqrt(2.0 * b2T);
+  double Lmin = 10.0 * sqrt(2.0 * b2T);
   return L > Lmin ? L : Lmin;
 }
 
@@ -230,8 +246,8 @@ static int case_v4(const sbv_ctx *ctx, sbv_report *rep)
 {
   const double dps[3] = {0.75e-6, 1e-6, 2e-6};
   const double ratios[3] = {10.0, 100.0, 1000.0};
-  const size_t N = ctx->full ? 6000 : 3000;
-  const double hits = ctx->full ? 4000 : 700;
+  const size_t N = ctx->full ? 8000 : 4000;
+  const double hits = ctx->full ? 10000 : 1500;
   const size_t nsteps = ctx->full ? 2000 : 300;
   const double Kth = 8.0 * SB_BOLTZMANN * TEMP / (3.0 * MU_AIR);
   sbv_note(rep, "First-hit counting (see the file comment), N = %zu, "
@@ -278,13 +294,13 @@ static int case_v5(const sbv_ctx *ctx, sbv_report *rep)
    * dt/tau = 1000 and B tau = B_pos.  sigma_X/d = 5 per step. */
   const double dref = 0.1e-6, Bref = 1e-3;
   const double mult[3] = {1.0, 2.0, 4.0};
-  const size_t N = ctx->full ? 8000 : 3000;
-  const double hits = ctx->full ? 4000 : 800;
+  const size_t N = ctx->full ? 8000 : 4000;
+  const double hits = ctx->full ? 10000 : 1500;
   const size_t nsteps = 20;
   double logK[2][3], logd[3];
   int st = SB_SUCCESS;
   sbv_note(rep, "First-hit counting, N = %zu, 20 steps with sigma_X/d = "
-           "B_pos sqrt(dt)/d = 5, box sized for ~%.0f first contacts; "
+           "B_pos sqrt(dt)/d = 5, dt/tau = 1e6, box sized for ~%.0f first contacts; "
            "K_th = 4 pi B_pos^2 d (sb_kernel_diffusion).", N, hits);
   for (int series = 0; series < 2 && !st; series++)
     for (int k = 0; k < 3 && !st; k++) {
@@ -294,7 +310,7 @@ static int case_v5(const sbv_ctx *ctx, sbv_report *rep)
       double B = series == 0 ? Bref : Bref * mult[k];
       q.b2 = q.b2brown = B * B;
       q.dt = 25.0 * q.d * q.d / q.b2;
-      q.tau = q.dt / 1000.0;
+      q.tau = q.dt * 1e-6;  /* tau |U| ~ 3.5e-3 d: X ~ Y */
       q.mass = sb_sphere_mass(RHO_P, q.d);
       q.N = N;
       q.T = (double)nsteps * q.dt;
@@ -397,23 +413,25 @@ static int case_v3(const sbv_ctx *ctx, sbv_report *rep)
   const size_t N = ctx->full ? 6000 : 3000;
   const double Kth = 8.0 * SB_BOLTZMANN * TEMP / (3.0 * MU_AIR);
   int st = SB_SUCCESS;
-  sbv_note(rep, "First-hit counting with the ballistic detectors on the "
-           "chords: 'contact time' (exact contact of straight segments) and "
-           "'overlap' (overlap at step end).  The record PASSES when the "
-           "bias is shown at 95%%: contact time above, overlap below K_th "
-           "(interval written [0, upper] or [lower, inf]).");
+  sbv_note(rep, "First-hit counting with the deterministic detectors: "
+           "'MD' (contact time of straight-line motion with the particle "
+           "velocities, x + u dt: seed 003 §3.2 / App. F), 'chord' (contact "
+           "time of the actual displacement chords) and 'overlap' (overlap "
+           "at step end).  A record PASSES when the bias is shown at 95%%, "
+           "i.e. 1 lies outside the interval of K_e/K_th (written [0, lower]"
+           " for an overestimate, [upper, inf] for an underestimate).");
   for (int a = 0; a < 2 && !st; a++)
     for (int k = 0; k < 3 && !st; k++)
-      for (int det = 1; det <= 2 && !st; det++) {
+      for (int det = 1; det <= 3 && !st; det++) {
         fh_run q;
         memset(&q, 0, sizeof q);
         q.d = dps[a];
         brownian(q.d, &q.tau, &q.mass, &q.b2);
         q.b2brown = q.b2;
         q.dt = ratios[k] * q.tau;
-        q.N = N;
+        q.N = det == 3 ? N / 4 : N;
         /* the bridge reference rate sets the duration (~400 contacts) */
-        q.T = 300.0 * q.dt;
+        q.T = (det == 3 ? 30.0 : 300.0) * q.dt;
         q.L = box_for(Kth, N, teff(&q), 400.0, q.b2 * q.T);
         q.builtin = det;
         fh_out o;
@@ -421,22 +439,20 @@ static int case_v3(const sbv_ctx *ctx, sbv_report *rep)
                           &q, &o);
         if (st)
           break;
+        static const char *dn[4] = {"", "chord", "overlap", "MD"};
         char name[96];
         sb_comparison c;
-        if (det == 1) {
-          snprintf(name, sizeof name, "V3/contact-time/d=%.2gum/dt=%gtau:"
-                   " 1 < K_e/K_th", q.d * 1e6, ratios[k]);
+        int over = o.K > Kth;
+        snprintf(name, sizeof name, "V3/%s/d=%.2gum/dt=%gtau: %s", dn[det],
+                 q.d * 1e6, ratios[k], over ? "1 < K_e/K_th" : "K_e/K_th < 1");
+        if (over)
           sb_compare_interval(&c, name, o.K / Kth, 1.0, 0.0, o.lo / Kth);
-        } else {
-          snprintf(name, sizeof name, "V3/overlap/d=%.2gum/dt=%gtau: "
-                   "K_e/K_th < 1", q.d * 1e6, ratios[k]);
+        else
           sb_compare_interval(&c, name, o.K / Kth, 1.0, o.hi / Kth,
                               INFINITY);
-        }
         st = sbv_add(rep, &c);
         sbv_note(rep, "%s, d = %.2g um, dt/tau = %g: %lu contacts, "
-                 "K_e/K_th = %.4f [%.4f, %.4f]",
-                 det == 1 ? "contact time" : "overlap", q.d * 1e6,
+                 "K_e/K_th = %.4f [%.4f, %.4f]", dn[det], q.d * 1e6,
                  ratios[k], o.hits, o.K / Kth, o.lo / Kth, o.hi / Kth);
       }
   return st;
@@ -455,7 +471,7 @@ static int case_v6(const sbv_ctx *ctx, sbv_report *rep)
   /* Table 5.3-5.4: d = 1 um, B_pos = 1e-2 m/s^1/2, L = 5e-3 m, phi = 1e-10
    * (24 particles), dt/tau_p = 0.1, 1, 5 with tau_p = 3.03 us of the
    * Table 5.1 sphere; pure diffusion of the positions (eq 5.6) with
-   * B tau = B_pos, tau_engine = dt/1000. */
+   * B tau = B_pos, tau_engine = 1e-6 dt. */
   const double d = 1e-6, Bp = 1e-2, L = 5e-3;
   const double ratios[3] = {0.1, 1.0, 5.0};
   const size_t N = 24;
@@ -476,12 +492,16 @@ static int case_v6(const sbv_ctx *ctx, sbv_report *rep)
     p.L[0] = p.L[1] = p.L[2] = L;
     p.dt = ratios[k] * taup;
     p.capacity = N;
-    p.seed = ctx->seed * 7919 + 500 + (unsigned long)k;
+    gsl_rng *sr = sbv_rng_alloc(ctx, 500 + (unsigned long)k);
+    if (!sr)
+      return SB_ENOMEM;
+    p.seed = gsl_rng_get(sr);
+    gsl_rng_free(sr);
     p.rng_type = gsl_rng_taus2;
     sb_engine *e = sb_engine_alloc(&p);
     if (!e)
       return SB_ENOMEM;
-    double tau = p.dt / 1000.0;
+    double tau = p.dt * 1e-6;  /* pure diffusion: tau |U| << d */
     sb_engine_species s = {0.5 * d, m, tau, Bp / tau, 0.0};
     sb_engine_bridge_params bp;
     sb_engine_bridge_params_default(&bp);

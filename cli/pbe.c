@@ -21,7 +21,7 @@ static void usage(FILE *out)
 "Usage: smolbridge pbe --kernel NAME [--param KEY=VALUE ...] [--v1 V1]\n"
 "         --n0 N0 --init mono|exp [--v0 V0] --method discrete|sectional\n"
 "         --sizes K --times T1,T2,... --out FILE.csv [--plot FILE.png]\n"
-"         [--ratio R] [--rtol TOL] [--atol TOL] [--linsol auto|dense|gmres]\n"
+"         [--ratio R] [--rtol TOL] [--atol TOL] [--linsol auto|dense|gmres|gmres-diag]\n"
 "\n"
 "Integrate the Smoluchowski coagulation equation with CVODE (BDF) from a\n"
 "monodisperse (all particles of volume V1) or exponential (mean volume V0)\n"
@@ -56,7 +56,7 @@ static void usage(FILE *out)
 "  --ratio R     sectional pivot ratio (default 10^(12/(K-1)): 12 decades)\n"
 "  --times LIST  comma-separated increasing output times (required)\n"
 "  --rtol, --atol  CVODE tolerances (default 1e-8, automatic)\n"
-"  --linsol      auto (dense up to 400 unknowns), dense or gmres\n"
+"  --linsol      auto (= gmres-diag), dense, gmres or gmres-diag\n"
 "  --plot FILE   PNG of n(v) at each output time (needs gnuplot)\n"
 "  -q, --quiet   no progress messages\n"
 "  -h, --help    this help\n"
@@ -162,7 +162,9 @@ int sbc_pbe_main(int argc, char **argv)
       if (!strcmp(optarg, "auto")) cfg.linsol = SB_PBE_LS_AUTO;
       else if (!strcmp(optarg, "dense")) cfg.linsol = SB_PBE_LS_DENSE;
       else if (!strcmp(optarg, "gmres")) cfg.linsol = SB_PBE_LS_GMRES;
-      else BAD("--linsol must be auto, dense or gmres, got '%s'", optarg);
+      else if (!strcmp(optarg, "gmres-diag")) cfg.linsol = SB_PBE_LS_GMRES_DIAG;
+      else BAD("--linsol must be auto, dense, gmres or gmres-diag, got '%s'",
+               optarg);
       break;
     case 's':
       if (parse_num(optarg, &x) || x < 2 || x > 1e6 || x != floor(x))

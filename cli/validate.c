@@ -24,6 +24,7 @@ static const struct {
     {sbv_cases_pbe, &sbv_ncases_pbe},
     {sbv_cases_engine, &sbv_ncases_engine},
     {sbv_cases_engine2, &sbv_ncases_engine2},
+    {sbv_cases_agglo, &sbv_ncases_agglo},
 };
 
 gsl_rng *sbv_rng_alloc(const sbv_ctx *ctx, unsigned long stream)

@@ -651,33 +651,61 @@ int sb_engine_set_dt(sb_engine *e, double dt)
 
 /* ============================================================ run */
 
-/* Transport: x0 <- x, u0 <- u, U_s at x0, exact step of every particle
- * (sb_langevin_step3_coef: one coefficient set per species; the draw order
- * is fixed, so runs are reproducible).  In 2-D the third component is
- * stepped too (keeping the draw order independent of dim) and reset. */
+/* Transport: x0 <- x, u0 <- u, U_s at x0, exact Langevin step of every
+ * particle with its species' coefficients (langevin_step.c, seed 003 eq
+ * 1.16):
+ *   x += w dt + (u - w) gain + s_xu z1 + s_xc z2,  u = w + (u - w) decay
+ *   + s_u z1,
+ * disp = x - x0.  The same update as sb_langevin_step3_coef, fused with
+ * the copies and the displacement so that the particle data are read and
+ * written once; the Gaussians are drawn first for a block of particles
+ * (GSL ziggurat, in the documented order: particle, component, z1 then z2,
+ * so a run does not depend on the block size) and the arithmetic loop
+ * then runs without calls.  In 2-D the third component is stepped too
+ * (keeping the draw order independent of dim) and reset. */
+#define SBI_TRANSPORT_BLOCK 256
 static int transport(sb_engine *e)
 {
-  const size_t n3 = 3 * e->n;
-  memcpy(e->x0, e->x, n3 * sizeof(double));
-  memcpy(e->u0, e->u, n3 * sizeof(double));
+  const size_t n = e->n;
   const double *us = NULL;
   if (e->fluid != SB_FLUID_REST) {
-    int st = sbi_engine_fluid_eval(e, e->n, e->x0, e->us);
+    /* x is the start position x0 here */
+    int st = sbi_engine_fluid_eval(e, n, e->x, e->us);
     if (st)
       return st;
     us = e->us;
   }
-  int st = sb_langevin_step3_coef(e->n, e->coef, e->species, us, e->x, e->u,
-                                  e->rng);
-  if (st)
-    return sbi_error(st, "sb_engine_step", "Langevin step failed: %s",
-                     sb_last_error());
-  for (size_t i = 0; i < n3; i++)
-    e->disp[i] = e->x[i] - e->x0[i];
-  if (e->par.dim == 2)
-    for (size_t i = 0; i < e->n; i++) {
-      e->x[3 * i + 2] = e->u[3 * i + 2] = e->disp[3 * i + 2] = 0.0;
+  double z[6 * SBI_TRANSPORT_BLOCK];
+  double *restrict x = e->x, *restrict u = e->u;
+  double *restrict x0 = e->x0, *restrict u0 = e->u0, *restrict dp = e->disp;
+  const sb_langevin_coef *coef = e->coef;
+  const size_t *sp = e->species;
+  for (size_t i0 = 0; i0 < n; i0 += SBI_TRANSPORT_BLOCK) {
+    const size_t m = n - i0 < SBI_TRANSPORT_BLOCK ? n - i0
+                                                   : SBI_TRANSPORT_BLOCK;
+    for (size_t q = 0; q < 6 * m; q++)
+      z[q] = gsl_ran_gaussian_ziggurat(e->rng, 1.0);
+    for (size_t a = 0; a < m; a++) {
+      const size_t i = i0 + a;
+      const sb_langevin_coef *c = &coef[sp[i]];
+      for (int k = 0; k < 3; k++) {
+        const size_t q = 3 * i + k;
+        const double w = us ? us[q] : 0.0, z1 = z[6 * a + 2 * k],
+                     z2 = z[6 * a + 2 * k + 1];
+        const double xo = x[q], uo = u[q], v = uo - w;
+        const double xn = xo + (w * c->dt + v * c->gain + c->s_xu * z1 +
+                                c->s_xc * z2);
+        x0[q] = xo;
+        u0[q] = uo;
+        x[q] = xn;
+        u[q] = w + v * c->decay + c->s_u * z1;
+        dp[q] = xn - xo;
+      }
     }
+  }
+  if (e->par.dim == 2)
+    for (size_t i = 0; i < n; i++)
+      x[3 * i + 2] = u[3 * i + 2] = dp[3 * i + 2] = 0.0;
   return SB_SUCCESS;
 }
 
@@ -698,6 +726,11 @@ int sb_engine_step(sb_engine *e)
   st = sbi_engine_detect_and_process(e);
   if (st)
     return st;
+  if (e->nremove) {  /* merged partners (engine_merge.c) */
+    st = sbi_engine_purge(e);
+    if (st)
+      return st;
+  }
   const int dim = e->par.dim;
   for (size_t i = 0; i < e->n; i++)
     for (int k = 0; k < dim; k++)
@@ -739,7 +772,9 @@ int sb_engine_sort(sb_engine *e)
   double vol = 1.0;
   for (int k = 0; k < dim; k++)
     vol *= e->par.L[k];
-  double cs = pow(vol / (double)n, 1.0 / dim);
+  /* the grid of the linked cells when the cut-off is below the mean
+   * spacing (dilute): their counting sort then scatters sequentially */
+  double cs = sbi_cell_edge_min(vol, n, dim);
   int nc[3] = {1, 1, 1};
   size_t ncell = 1;
   for (int k = 0; k < dim; k++) {

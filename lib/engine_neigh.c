@@ -115,8 +115,8 @@ static int brute(sb_engine *e, const double *x0, double reach)
  *    larger than the cut-off; a pair in neighbouring cells is within the
  *    cut-off of the face from both sides, so it is seen twice and reported
  *    from its first member in cell order.
- * Cell edge >= cut, about two particles per cell (larger cells are still
- * correct, only slower per cell).  Directions with 1 or 2 cells use the
+ * Cell edge >= cut, about SBI_CELL_PPC particles per cell (larger cells
+ * are still correct, only slower per cell).  Directions with 1 or 2 cells use the
  * minimum image. */
 static int cells(sb_engine *e, const double *x0, double cut, double reach)
 {
@@ -126,7 +126,7 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach)
   double vol = 1.0;
   for (int k = 0; k < dim; k++)
     vol *= L[k];
-  double cs = cut, csmin = pow(vol / (2.0 * (double)n + 8.0), 1.0 / dim);
+  double cs = cut, csmin = sbi_cell_edge_min(vol, n, dim);
   if (cs < csmin)
     cs = csmin;
   int nc[3] = {1, 1, 1};

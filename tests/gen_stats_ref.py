@@ -2,8 +2,9 @@
 """Reference vectors for tests/test_stats.c, computed with mpmath.
 
 Usage:  /usr/bin/python3 tests/gen_stats_ref.py [OUTDIR]   (default tests/data)
-Writes stats_*.csv (header line, 20 significant digits).  Takes ~20 minutes
-(mostly the Durbin matrices of the KS vectors).
+Writes stats_*.csv (header line, 20 significant digits).  Takes about 5 CPU
+minutes, mostly the Durbin matrices of the KS vectors.  Optional further
+arguments select parts: intervals ks ks2 misc.
 
 Every value is computed independently of the C code and of GSL:
   - Poisson / binomial tails: mpmath's regularized incomplete gamma, exact

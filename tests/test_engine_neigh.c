@@ -198,6 +198,46 @@ START_TEST(test_edges_small_reach)
 }
 END_TEST
 
+/* Very few particles: one cell per direction, so pairs across the
+ * periodic faces lie in the same cell and need the minimum image. */
+START_TEST(test_single_cell_periodic)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 10.0;
+  p.capacity = 8;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  sb_engine_species s = {0.5, 1.0, INFINITY, 0.0, 1.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+  /* three touching pairs across the x, y and z faces, two loners */
+  const double x[8][3] = {{0.1, 5, 5}, {9.5, 5, 5}, {3, 0.2, 3},
+                          {3, 9.3, 3}, {7, 7, 0.05}, {7, 7.2, 9.2},
+                          {5, 5, 5},   {2, 7, 8}};
+  const double u[3] = {0, 0, 0};
+  for (int i = 0; i < 8; i++)
+    ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, x[i], u), SB_SUCCESS);
+  size_t nb, nc;
+  const size_t *pb, *pc;
+  ck_assert_int_eq(sb_engine_neighbours(e, SB_NEIGH_BRUTE, NULL, 0.0, &nb,
+                                        &pb), SB_SUCCESS);
+  ck_assert_uint_eq(nb, 3);
+  size_t want[6];
+  memcpy(want, pb, sizeof want);
+  ck_assert_int_eq(sb_engine_neighbours(e, SB_NEIGH_CELLS, NULL, 0.0, &nc,
+                                        &pc), SB_SUCCESS);
+  ck_assert_uint_eq(nc, 3);
+  for (int q = 0; q < 3; q++) {
+    int found = 0;
+    for (size_t r = 0; r < nc; r++)
+      found |= pc[2 * r] == want[2 * q] && pc[2 * r + 1] == want[2 * q + 1];
+    ck_assert_msg(found, "cells miss pair (%zu, %zu)", want[2 * q],
+                  want[2 * q + 1]);
+  }
+  sb_engine_free(e);
+}
+END_TEST
+
 /* Displacements too large for the box are refused. */
 START_TEST(test_refuse_large)
 {
@@ -228,6 +268,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_crossing_jets);
   tcase_add_test(tc, test_edges_small_reach);
   tcase_add_test(tc, test_refuse_large);
+  tcase_add_test(tc, test_single_cell_periodic);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -400,6 +400,168 @@ int sb_engine_neigh_from_name(const char *name, sb_engine_neigh *m);
 int sb_engine_detect_from_name(const char *name, sb_engine_detect *d);
 int sb_engine_outcome_from_name(const char *name, sb_engine_outcome *o);
 
+
+/* ============================================================
+ * Agglomeration (issue 7): particle removal, merge and DLVO outcomes,
+ * cluster sizes and size-distribution observers.  lib/engine_merge.c,
+ * lib/engine_sizes.c; theory and validation: docs/agglomeration.md.
+ *
+ * A cluster of k primaries is a particle of the engine species registered
+ * for size k (one species per size, created on the first merge that makes
+ * that size), so that its radius, mass, tau_p and B follow from k through
+ * a growth law while the Langevin coefficients stay per species.  All
+ * primaries must belong to one species (monodisperse primaries).
+ * ============================================================ */
+
+/** Mark particle i for removal.  The removal is deferred: the particle
+ *  takes no further part in the current step (it counts as having
+ *  collided) and sb_engine_step removes all marked particles at the end
+ *  of the step.  Outside a step, call sb_engine_flush_removals.  The
+ *  survivors keep their relative order (indices shift down, ids do not
+ *  change). */
+int sb_engine_remove_particle(sb_engine *e, size_t i);
+/** Remove the marked particles now (done by sb_engine_step). */
+int sb_engine_flush_removals(sb_engine *e);
+/** Change the species of particle i; its radius and mass become the
+ *  species' (position and velocity unchanged; no overlap check). */
+int sb_engine_set_particle_species(sb_engine *e, size_t i, size_t species);
+
+/** How the species of a cluster of k primaries follows from the primary
+ *  species (radius r1, mass m1, tau1, B1, T1). */
+typedef enum {
+  /** radius r1, tau1, B1, T1 kept, mass k m1: every cluster has the
+   *  primaries' diffusivity and contact radius, so the kernel is
+   *  constant (V8).  The summed volume is tracked as k only. */
+  SB_AGGLO_CONSTANT = 0,
+  /** compact sphere in the Stokes (continuum) regime: r = r1 k^(1/3),
+   *  m = k m1, tau = tau1 k^(2/3) (tau = m/(6 pi mu r)), and B from the
+   *  fluctuation-dissipation relation B^2 tau/2 = k_B T/m, i.e.
+   *  B = B1 k^(-5/6); hence D = (B tau)^2/2 = D1 k^(-1/3) (Stokes-
+   *  Einstein).  Free-flight primaries (tau1 = inf) keep tau = inf. */
+  SB_AGGLO_STOKES = 1,
+  /** user callback (sb_agglo_params.species_fn) */
+  SB_AGGLO_CUSTOM = 2
+} sb_agglo_growth;
+
+/** Sticking rule. */
+typedef enum {
+  SB_AGGLO_MERGE = 0,  /**< every collision merges */
+  SB_AGGLO_DLVO = 1    /**< merge iff E_rel > W_max, else rebound */
+} sb_agglo_rule;
+
+/** Where E_rel comes from (rule SB_AGGLO_DLVO). */
+typedef enum {
+  /** relative chord velocity w = dd/dt at contact, E = mu |w|^2/2
+   *  (ballistic regime: free flight, or dt << tau_p); a rebound is the
+   *  engine's elastic outcome (sb_engine_outcome_elastic, its eta) */
+  SB_AGGLO_EREL_CONTACT = 0,
+  /** drawn from the stationary law of two independent equilibrium
+   *  velocities, Gamma(dim/2, theta), theta = mu (s_i^2 + s_j^2) with s^2
+   *  the species' equilibrium velocity variance (diffusive regime: with
+   *  dt >> tau_p the chord velocity is not a velocity); a rebound leaves
+   *  the pair as the step moved it */
+  SB_AGGLO_EREL_STATIONARY = 1
+} sb_agglo_erel;
+
+/** Growth-law callback: fill *out with the species of a cluster of k >= 2
+ *  primaries; return a status. */
+typedef int (*sb_agglo_species_fn)(size_t k,
+                                   const sb_engine_species *primary,
+                                   sb_engine_species *out, void *ctx);
+/** Size-dependent barrier callback: W_max (J, >= 0) for radii r_i, r_j
+ *  (e.g. from sb_dlvo_barrier); NaN aborts the step (SB_EDOM). */
+typedef double (*sb_agglo_wmax_fn)(double r_i, double r_j, void *ctx);
+
+/** Agglomeration parameters (sb_agglo_params_default fills them). */
+typedef struct {
+  size_t primary;             /**< species of the primaries (default 0) */
+  sb_agglo_growth growth;     /**< default SB_AGGLO_STOKES */
+  sb_agglo_species_fn species_fn; /**< SB_AGGLO_CUSTOM only */
+  void *species_ctx;
+  sb_agglo_rule rule;         /**< default SB_AGGLO_MERGE */
+  double wmax;                /**< barrier W_max, J, >= 0 (default 0) */
+  sb_agglo_wmax_fn wmax_fn;   /**< NULL (default): constant wmax */
+  void *wmax_ctx;
+  sb_agglo_erel erel;         /**< default SB_AGGLO_EREL_CONTACT */
+  int erel_normal;            /**< 0 (default): the full E_rel of seed 003
+                                   App. C; 1: its part along the line of
+                                   centres (what works against a central
+                                   force) */
+  size_t kmax;                /**< largest cluster size allowed (a merge
+                                   beyond it fails with SB_EINVAL);
+                                   default 2^20 */
+  size_t kobs;                /**< n_k columns kept by sb_agglo_sample,
+                                   k = 1..kobs (default 10) */
+} sb_agglo_params;
+
+/** Counters since sb_agglo_attach or sb_agglo_reset_stats. */
+typedef struct {
+  uint64_t nmerge;      /**< merges */
+  uint64_t nrebound;    /**< DLVO rebounds */
+  double erel_sum;      /**< sum of E_rel over DLVO decisions, J */
+} sb_agglo_stats;
+
+typedef struct sb_agglo sb_agglo;
+
+void sb_agglo_params_default(sb_agglo_params *p);
+/** New context (NULL and SB_EINVAL / SB_ENOMEM on failure). */
+sb_agglo *sb_agglo_alloc(const sb_agglo_params *p);
+void sb_agglo_free(sb_agglo *a);
+
+/** Register the primary species as size 1 and install the outcome
+ *  (sb_engine_outcome_agglo) in e.  Every particle present must be a
+ *  primary.  With a custom detector (e.g. sb_engine_bridge_attach), attach
+ *  the detector first: this call replaces the outcome.  The context must
+ *  outlive its use by the engine; it belongs to one engine. */
+int sb_agglo_attach(sb_engine *e, sb_agglo *a);
+
+/** The outcome (sb_engine_outcome_fn; ctx is the sb_agglo): the rule of
+ *  the context, then merge or rebound. */
+int sb_engine_outcome_agglo(sb_engine *e, const sb_engine_pair *p, double s,
+                            void *ctx);
+/** Merge pair p now (see the file comment of lib/engine_merge.c): slot
+ *  p->i receives the cluster of k_i + k_j primaries at the mass
+ *  barycentre with the total momentum; p->j is marked for removal. */
+int sb_agglo_merge(sb_engine *e, sb_agglo *a, const sb_engine_pair *p,
+                   double s);
+/** E_rel (J) the rule uses for pair p (CONTACT: from the chords;
+ *  STATIONARY: one draw from r). */
+double sb_agglo_erel_of(const sb_engine *e, const sb_agglo *a,
+                        const sb_engine_pair *p, const gsl_rng *r);
+
+/** Cluster size (number of primaries) of species sp; 0 if sp is not a
+ *  cluster species of the context. */
+size_t sb_agglo_size_of_species(const sb_agglo *a, size_t sp);
+/** Species of size k (created in e if needed); SB_EINVAL if k > kmax. */
+int sb_agglo_species_of_size(sb_agglo *a, sb_engine *e, size_t k,
+                             size_t *sp);
+int sb_agglo_get_stats(const sb_agglo *a, sb_agglo_stats *st);
+void sb_agglo_reset_stats(sb_agglo *a);
+
+/* ----------------------------------------------------- size observers */
+
+/** Cluster counts now: nk[k-1] = number of clusters of size k for
+ *  k = 1..kmax (nk may be NULL if kmax = 0), *tail (may be NULL) = number
+ *  of clusters larger than kmax.  Divide by the box volume for
+ *  concentrations.  SB_EINVAL if a particle is not a cluster species. */
+int sb_agglo_count_sizes(const sb_agglo *a, const sb_engine *e, size_t kmax,
+                         double *nk, double *tail);
+/** Moments now: m[j] = sum over clusters of k^j, j = 0, 1, 2 (M0 the
+ *  number of clusters, M1 the number of primaries, conserved by merges,
+ *  M2 in primaries^2); divide by the box volume for concentrations (and
+ *  multiply M_j by v1^j for volume moments). */
+int sb_agglo_moments(const sb_agglo *a, const sb_engine *e, double m[3]);
+/** Append one row (t, M0, M1, M2, n_1 .. n_kobs) to the context's time
+ *  series (counts, as above). */
+int sb_agglo_sample(sb_agglo *a, const sb_engine *e);
+/** The time series: *nrows rows of *ncols = 4 + kobs values, row-major
+ *  (array owned by the context). */
+const double *sb_agglo_series(const sb_agglo *a, size_t *nrows,
+                              size_t *ncols);
+/** Write the time series as CSV (header t,M0,M1,M2,n1,...).  SB_EIO on
+ *  failure. */
+int sb_agglo_series_csv(const sb_agglo *a, const char *path);
+
 #ifdef __cplusplus
 }
 #endif
