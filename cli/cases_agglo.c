@@ -462,7 +462,7 @@ static int case_dlvo(const sbv_ctx *ctx, sbv_report *rep)
   const double phi = 0.03;
   const double d = D_P, m = RHO_P * PI * d * d * d / 6.0;
   const double kT = SB_BOLTZMANN * TEMP, vth = sqrt(kT / m);
-  const double L = cbrt((double)N * PI / 6.0 / phi);
+  const double L = d * cbrt((double)N * PI / 6.0 / phi);
   const double Kkin = sb_kernel_kinetic(d, d, m, m, TEMP);
   const double g = (1.0 - 0.5 * phi) / pow(1.0 - phi, 3);
   /* about 5% of the particles collide: the free-flight gas keeps its

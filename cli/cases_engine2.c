@@ -434,6 +434,11 @@ static int case_v3(const sbv_ctx *ctx, sbv_report *rep)
         q.T = (det == 3 ? 30.0 : 300.0) * q.dt;
         q.L = box_for(Kth, N, teff(&q), 400.0, q.b2 * q.T);
         q.builtin = det;
+        if (det == 3) {  /* the velocity chords must fit in half the box */
+          double rv = 7.0 * sqrt(q.b2 / q.tau) * q.dt;
+          if (q.L < 3.0 * rv)
+            q.L = 3.0 * rv;
+        }
         fh_out o;
         st = run_firsthit(ctx, 400 + (unsigned long)(6 * a + 2 * k + det),
                           &q, &o);

@@ -201,21 +201,34 @@ static double mixture(const hit_par *h, const hit_time *T, int sf,
 typedef struct {
   double cdf, sf, ecdf, esf; /* values and their absolute error bounds */
   double dens; /* dG/dy, y = log s (the density of log S) */
-  double sfl;  /* d log(dens)/dy (for Halley's method) */
+  double sfl;  /* d log(dens)/dy (quantile iteration) */
+  double sfl2; /* d^2 log(dens)/dy^2 */
+  double rused; /* B3B: rho G2/G1 of the value returned by (1), else 0 */
 } hit_prob;
 
 /* the complement of a value with absolute error e: add the rounding of
  * 1 - x */
 static double comp_err(double e, double c) { return e + EPS * c; }
 
+/* d^2 log(dens)/dy^2 of the IG part: dens = eps phi(c) with
+ * d eps/dy = -eps/2, d kap/dy = kap/2, so dc/dy = b/2 and db/dy = c/2
+ * (b = kap + eps): d/dy (-1/2 - c b/2) = -(b^2 + c^2)/4 */
+static double ig_sfl2(const sbi_igpt *p)
+{
+  double b = p->kap + p->eps;
+  return -0.25 * (b * b + p->c * p->c);
+}
+
 /* BB: only the requested tail is evaluated (the other is 1 - it) */
 static hit_prob bb_prob(const hit_par *h, const hit_time *T, int want)
 {
   hit_prob r;
+  r.rused = 0.0;
   sbi_igpt p = point(h, T, h->L1);
   double rel;
   r.dens = p.eps * p.ex * INV_RT2PI;
   r.sfl = -0.5 - 0.5 * p.c * (p.kap + p.eps);
+  r.sfl2 = ig_sfl2(&p);
   if (want == W_CDF) {
     r.cdf = sbi_ig_cdf(&p, &rel);
     r.sf = 1.0 - r.cdf;
@@ -234,6 +247,7 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
 {
   hit_prob r;
   double rel1, rel2;
+  r.rused = 0.0;
   if (h->mn == 0.0) {
     /* y = 0: the mixture collapses to the single law P_a (L1 = L2 = a) */
     sbi_igpt p = point(h, T, h->L1);
@@ -241,6 +255,7 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
              ((h->al.hi + h->a) * T->w.hi);
     /* d log(1/w)/dy = u/t */
     r.sfl = -0.5 - 0.5 * p.c * (p.kap + p.eps) + T->u / h->t;
+    r.sfl2 = ig_sfl2(&p) + (T->u / h->t) * (T->w.hi / h->t);
     double al = h->al.hi, L = h->L1.hi, w = al + L;
     double f = sbi_ig_cdf(&p, &rel1), g = sbi_ig_sbcdf(&p, &rel2);
     r.cdf = (L * f + al * g) / w;
@@ -257,8 +272,11 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
   double kw = 2.0 * h->a * h->y / (h->sigma2 * T->w.hi);
   double hw = -expm1(-kw);
   r.dens = p1.eps * p1.ex * INV_RT2PI * (hw / h->omr);
-  r.sfl = -0.5 - 0.5 * p1.c * (p1.kap + p1.eps) +
-          (1.0 - hw) * kw * (T->u / h->t) / hw;
+  /* with ph = (1 - hw)/hw = 1/(e^{k/w} - 1) and z1 = d(k/w)/dy =
+   * (k/w)(u/t) = d^2(k/w)/dy^2: d^2 log hw/dy^2 = ph z1 (1 - z1/hw) */
+  double z1 = kw * (T->u / h->t), ph = (1.0 - hw) / hw;
+  r.sfl = -0.5 - 0.5 * p1.c * (p1.kap + p1.eps) + ph * z1;
+  r.sfl2 = ig_sfl2(&p1) + ph * z1 * (1.0 - z1 / hw);
   /* the requested tail first; if it is the larger one (> 1/2) the other is
    * computed directly and this one is its complement */
   for (int pass = 0; pass < 2; pass++) {
@@ -270,6 +288,7 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
     if (pass == 0 && num > 0.5 * h->omr)
       continue; /* the larger tail: compute the other one */
     double val, err;
+    r.rused = g1 > 0.0 ? g2 / g1 : 0.0;
     if (g2 <= h->rmax * g1) {
       val = num / h->omr;
       err = (g1 * rel1 + g2 * rel2 + 2.0 * EPS * (g1 + g2)) / h->omr +
@@ -395,7 +414,7 @@ HIT_PAIR(bes3b, 1, sf, W_SF)
 /* ---------------------------------------------------------- quantile */
 
 typedef struct {
-  const hit_par *h;
+  hit_par *h;    /* h->rmax is switched by the iteration */
   double sref;   /* s = sref exp(y), u = t s/(t + s), w = t^2/(t + s) */
   double logtg;  /* log p (lower) or log (1 - p) (upper) */
   int upper;
@@ -403,12 +422,19 @@ typedef struct {
 } hit_qctx;
 
 /* g(y) = log G - log p (lower) or log(1 - p) - log SF (upper), y =
- * log(s/sref); g' = D1 = dens / G (or / SF), g'' = D1 (sfl -+ D1). */
-static double hit_qfun(double y, void *vc, double *dg, double *d2g)
+ * log(s/sref); with D1 = dens / G (or / SF), sfl = d log(dens)/dy and
+ * sfl2 = d sfl/dy (closed forms in hit_prob), the upper sign for SF:
+ *   g' = D1,  g'' = D1 (sfl -+ D1),  g''' = g'' (sfl -+ 2 D1) + D1 sfl2.
+ * B3B: (1) is used while kprev (the solver's last dimensionless step) is
+ * large, even where it cancels moderately (rho G2/G1 <= 1 - 1e-6: relative
+ * noise <= ~1e-9, ample to steer); near the root the accurate form
+ * (quadrature where (1) cancels) gives the final value. */
+static double hit_qfun(double y, double kprev, void *vc, double d[4])
 {
   hit_qctx *c = vc;
-  const hit_par *h = c->h;
+  hit_par *h = c->h;
   double s = c->sref * exp(y), t = h->t;
+  d[3] = 1.0;
   /* g is increasing in both tails: -inf at u = 0, +inf at u = t */
   if (!(s > 0.0))
     return -INFINITY;
@@ -418,15 +444,24 @@ static double hit_qfun(double y, void *vc, double *dg, double *d2g)
   hit_time T = make_time(h, u, (sbi_dd){w, 0.0});
   if (!(T.den.hi > DBL_MIN) || !(u > 0.0) || !(w > 0.0))
     return u < 0.5 * t ? -INFINITY : INFINITY;
+  /* kprev < 0.05: the next error ~ kprev^4 is acceptable, so this value is
+   * likely the last one */
+  int cheap = kprev >= 0.05;
+  h->rmax = cheap ? 1.0 - 1e-6 : 0.95;
   hit_prob p = prob_at(h, &T, c->upper ? W_SF : W_CDF);
+  h->rmax = 0.95;
+  /* (1) was accurate anyway unless it entered the cancelling range */
+  if (cheap && p.rused > 0.95 && p.rused <= 1.0 - 1e-6)
+    d[3] = 0.0;
   double pr = c->upper ? p.sf : p.cdf;
   if (!(pr > 0.0)) {
-    *dg = 0.0;
+    d[0] = 0.0;
     return c->upper ? INFINITY : -INFINITY;
   }
-  double D1 = p.dens / pr;
-  *dg = D1;
-  *d2g = D1 * (p.sfl + (c->upper ? D1 : -D1));
+  double D1 = p.dens / pr, sg = c->upper ? 1.0 : -1.0;
+  d[0] = D1;
+  d[1] = D1 * (p.sfl + sg * D1);
+  d[2] = d[1] * (p.sfl + 2.0 * sg * D1) + D1 * p.sfl2;
   c->dlog = D1;
   c->err = (c->upper ? p.esf : p.ecdf) / pr;
   double lp = log(pr);
@@ -524,18 +559,8 @@ static int hit_quantile(const char *fn, int b3, double p, double x, double y,
   if (!(sref > 0.0) || isinf(sref))
     sref = t;
   hit_qctx c = {&h, sref, log(tg), upper, 0.0, 1.0};
-  double yy, dy, y0 = 0.0;
-  if (b3 && h.mn > 0.0) {
-    /* iterate first on (1) even where it cancels moderately (relative noise
-     * <= ~1e-9 for rho G2/G1 <= 1 - 1e-6, ample for the first steps), then
-     * finish with the accurate evaluation, which usually accepts at once */
-    h.rmax = 1.0 - 1e-6;
-    if (sbi_solve_increasing(hit_qfun, &c, 0.0, 1.0, 1e-8, &yy, &dy) ==
-        SB_SUCCESS)
-      y0 = yy;
-    h.rmax = 0.95;
-  }
-  st = sbi_solve_increasing(hit_qfun, &c, y0, 1.0, 1e-11, &yy, &dy);
+  double yy, dy;
+  st = sbi_solve_increasing4(hit_qfun, &c, 0.0, 1.0, &yy, &dy);
   double s = sref * exp(yy);
   double u = isinf(s) ? t : t * s / (t + s);
   double w = isinf(s) ? 0.0 : t * t / (t + s);

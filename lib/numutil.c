@@ -418,3 +418,98 @@ int sbi_solve_increasing(sbi_fdf g, void *ctx, double y0, double step,
     *dy = last;
   return SB_EMAXITER;
 }
+
+int sbi_solve_increasing4(sbi_fdf4 g, void *ctx, double y0, double step,
+                          double *root, double *dy)
+{
+  const int maxit = 100;
+  const double tol = 1e-14; /* bracket width at which bisection stops */
+  double lo = -INFINITY, hi = INFINITY;
+  double up = step, dn = step, cap = 4.0 * step;
+  double y = y0, d[4] = {NAN, NAN, NAN, 0.0};
+  double gy = g(y, INFINITY, ctx, d);
+  double last = INFINITY, before = INFINITY;
+  double best = y, gbest = INFINITY;
+
+  for (int it = 0; it < maxit; it++) {
+    int final = d[3] != 0.0;
+    if (gy == 0.0 && final) {
+      *root = y;
+      if (dy)
+        *dy = 0.0;
+      return SB_SUCCESS;
+    }
+    if (final && fabs(gy) < gbest) {
+      gbest = fabs(gy);
+      best = y;
+    }
+    if (gy < 0.0)
+      lo = y;
+    else if (gy > 0.0)
+      hi = y;
+    int newton = isfinite(gy) && isfinite(d[0]) && d[0] > 0.0;
+    double yn = NAN, k = INFINITY;
+    if (newton) {
+      double r = gy / d[0], a2 = d[1] / d[0], a3 = d[2] / d[0];
+      yn = y - r;
+      if (isfinite(a2)) {
+        double sc = fmax(1.0, fabs(a2)), c2 = 0.5 * a2 * r, c3 = NAN;
+        if (isfinite(a3)) {
+          sc = fmax(sc, sqrt(fabs(a3)));
+          c3 = (3.0 * a2 * a2 - a3) * r * r / 6.0;
+        }
+        k = fabs(r) * sc;
+        if (isfinite(c3) && fabs(c2) + fabs(c3) <= 0.25) {
+          yn = y - r * (1.0 + c2 + c3);
+          if (fabs(r) * k * k * k <= 1e-18) {
+            if (final) {
+              *root = yn;
+              if (dy)
+                *dy = 4.0 * fabs(r) * k * k * k;
+              return SB_SUCCESS;
+            }
+            /* close enough: one final-accuracy value at yn decides */
+            y = yn;
+            gy = g(y, 0.0, ctx, d);
+            continue;
+          }
+        } else if (2.0 - a2 * r > 1.0) {
+          yn = y - 2.0 * r / (2.0 - a2 * r); /* Halley */
+        }
+      }
+    }
+    int bracketed = isfinite(lo) && isfinite(hi);
+    if (!newton || !(yn > lo && yn < hi) ||
+        (bracketed && fabs(yn - y) > 0.5 * before)) {
+      /* unusable, out of the bracket, or not converging: bisect/expand */
+      if (bracketed)
+        yn = 0.5 * (lo + hi);
+      else if (gy < 0.0) {
+        yn = y + up;
+        up *= 2.0;
+      } else {
+        yn = y - dn;
+        dn *= 2.0;
+      }
+      k = INFINITY;
+    } else if (!bracketed && fabs(yn - y) > cap) {
+      yn = yn > y ? y + cap : y - cap;
+      cap *= 2.0;
+      k = INFINITY;
+    }
+    if (bracketed && hi - lo <= tol * fmax(1.0, fabs(y))) {
+      *root = isfinite(gbest) ? best : 0.5 * (lo + hi);
+      if (dy)
+        *dy = hi - lo;
+      return SB_SUCCESS;
+    }
+    before = last;
+    last = fabs(yn - y);
+    y = yn;
+    gy = g(y, k, ctx, d);
+  }
+  *root = best;
+  if (dy)
+    *dy = last;
+  return SB_EMAXITER;
+}

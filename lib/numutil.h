@@ -196,4 +196,25 @@ typedef double (*sbi_fdf)(double y, void *ctx, double *dg, double *d2g);
 int sbi_solve_increasing(sbi_fdf g, void *ctx, double y0, double step,
                          double tol, double *root, double *dy);
 
+/* Fourth-order variant for quantiles whose g has cheap closed-form
+ * derivatives.  The callback fills d[0] = g', d[1] = g'', d[2] = g''' (NAN
+ * if not available) and d[3] = 1 if the value is of final accuracy, 0 if
+ * it is only a cheaper approximation (good enough to steer the iteration).
+ * `kprev` is the solver's last dimensionless step k (below; +inf at the
+ * start, 0 when the solver requires a final-accuracy value): a callback
+ * may evaluate cheaply while kprev is large.
+ * Step: the inverse-function (Lagrange) series to third order,
+ *   dy = -r (1 + a2 r/2 + (3 a2^2 - a3) r^2/6),  r = g/g', a2 = g''/g',
+ *   a3 = g'''/g',
+ * whose truncation error is about |r| k^3 with k = |r| max(1, |a2|,
+ * sqrt|a3|) (quartic convergence); Halley's step when the series terms are
+ * not small, bisection under the same bracket safeguards as
+ * sbi_solve_increasing.  Accepted (with the final step applied) when
+ * |r| k^3 <= 1e-18 (about 1 % of an ulp in y) on a final-accuracy value; an
+ * acceptable cheap value triggers one final-accuracy evaluation at the
+ * corrected point.  *dy receives a bound on the remaining error in y. */
+typedef double (*sbi_fdf4)(double y, double kprev, void *ctx, double d[4]);
+int sbi_solve_increasing4(sbi_fdf4 g, void *ctx, double y0, double step,
+                          double *root, double *dy);
+
 #endif /* SB_NUMUTIL_H */
