@@ -468,13 +468,15 @@ static double hit_qfun(double y, double kprev, void *vc, double d[4])
   return c->upper ? c->logtg - lp : lp - c->logtg;
 }
 
-/* IG starting guess for S = s(T) with drift length L */
-static double s_guess(const hit_par *h, double L, double p, int upper)
+/* Starting guess for S = s(T): the law (1 - pi) IG + pi SB (size-biased)
+ * with drift length L (sbi_ig_quantile_start); Levy if L = 0 */
+static double s_guess(const hit_par *h, double L, double pi, double p,
+                      int upper)
 {
   double al = h->al.hi, shape = al * al / h->sigma2;
   if (L > 0.0) {
     double mean = al * h->t / L;
-    double g = mean * sbi_ig_quantile_guess(p, upper, shape / mean);
+    double g = mean * sbi_ig_quantile_start(p, upper, shape / mean, pi);
     if (g > 0.0 && isfinite(g))
       return g;
   }
@@ -548,14 +550,22 @@ static int hit_quantile(const char *fn, int b3, double p, double x, double y,
   }
   int upper = p > 0.5;
   double tg = upper ? 1.0 - p : p;
-  /* B3B: IG guess at the median of L = a + y - 2m (see the sampler) */
-  double Lg = h.L1.hi;
-  if (b3 && h.mn > 0.0) {
+  /* Start.  BB: the IG law of S.  B3B: for rho <= 1/2, (1) is dominated
+   * by its first term, the IG law with L1 (exact as rho -> 0); for rho
+   * near 1 the mixture (2) spans a short range of L, so its law is close to
+   * P_L at the median of L = a + y - 2m (see the sampler), the mixture of
+   * the IG and its size-biased version with weight alpha/(alpha + L) on
+   * the latter (y = 0: exactly P_a). */
+  double Lg = h.L1.hi, pi = 0.0;
+  if (b3 && h.mn == 0.0)
+    pi = h.al.hi / (h.al.hi + Lg);
+  else if (b3 && h.rho > 0.5) {
     double A = h.al.hi + Lg;
     double e = -2.0 * h.v * log1p(-0.5 * h.omr) / (A * A);
     Lg += A * e / (1.0 + sqrt(1.0 + e));
+    pi = h.al.hi / (h.al.hi + Lg);
   }
-  double sref = s_guess(&h, Lg, tg, upper);
+  double sref = s_guess(&h, Lg, pi, tg, upper);
   if (!(sref > 0.0) || isinf(sref))
     sref = t;
   hit_qctx c = {&h, sref, log(tg), upper, 0.0, 1.0};

@@ -332,6 +332,40 @@ double sbi_ig_quantile_guess(double p, int upper, double phi)
   return sn < sl ? sn : sl;
 }
 
+double sbi_ig_quantile_start(double p, int upper, double phi, double pi)
+{
+  if (p <= 0.0)
+    return upper ? INFINITY : 0.0;
+  /* P(S <= 1) = 1/2 + (1 - 2 pi) M(2 sqrt phi) (F_IG(1) = 1/2 + M, SBF(1)
+   * = 1/2 - M) decides the branch (S < 1: the root 1/D, else D) */
+  double f1 = 0.5 + (1.0 - 2.0 * pi) * sbi_mills(2.0 * sqrt(phi));
+  int low;
+  double P;
+  if (!upper) {
+    low = p <= f1;
+    P = low ? p : 1.0 - p;
+  } else {
+    low = p > 1.0 - f1;
+    P = low ? 1.0 - p : p;
+  }
+  /* branch weights: IG lower D/(1+D), upper 1/(1+D); size-biased swapped */
+  double W = 0.5, z = 0.0, D = 1.0;
+  for (int it = 0; it < 3; it++) {
+    double q = 0.5 * P / W;
+    z = q < 0.5 ? gsl_cdf_ugaussian_Qinv(q) : 0.0;
+    if (it == 2)
+      break;
+    /* mean excess of chi2(1) beyond z^2, fitted to 1e-2 */
+    double y = z * z + 2.0 - 1.0 / (1.0 + z * (0.8 + 0.6 * z));
+    double w = y / (2.0 * phi);
+    D = 1.0 + w + sqrt(w * (w + 2.0));
+    W = (low ? (1.0 - pi) * D + pi : (1.0 - pi) + pi * D) / (1.0 + D);
+  }
+  double w = z * z / (2.0 * phi);
+  D = 1.0 + w + (w > 1.0 ? w * sqrt(1.0 + 2.0 / w) : sqrt(w * (w + 2.0)));
+  return low ? 1.0 / D : D;
+}
+
 /* --------------------------------------------------- monotone solver */
 
 int sbi_solve_increasing(sbi_fdf g, void *ctx, double y0, double step,

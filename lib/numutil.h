@@ -175,6 +175,20 @@ double sbi_ig_sample(const gsl_rng *r, double mean, double shape);
  * factor of a few of the truth. */
 double sbi_ig_quantile_guess(double p, int upper, double phi);
 
+/* Starting point for the quantile (x = s/mean) of the mixture (1 - pi)
+ * IG(1, phi) + pi SB, SB its size-biased law (0 <= pi <= 1), sharper than
+ * sbi_ig_quantile_guess (used by the bridge quantiles).  From the
+ * Michael-Schucany-Haas representation: Y = phi (S - 1)^2 / S is
+ * chi-square(1), and S = 1/D or D with probabilities D/(1 + D), 1/(1 + D)
+ * (swapped for SB, whose density is s f(s)), D = 1 + w + sqrt(w (w + 2)),
+ * w = Y/(2 phi).  So P(S <= 1/D(y)) and P(S > D(y)) are integrals over
+ * (y, inf) of chi2(1) with slowly varying weights; each is approximated by
+ * its weight at the mean excess y + delta(y) of chi2(1) beyond y (delta
+ * from 1 at y = 0 to 2 as y -> inf) times 2 Q(sqrt y), and solved for y by
+ * two fixed-point passes (3 Qinv, 1 Mills call).  Tails as in
+ * sbi_ig_quantile_guess. */
+double sbi_ig_quantile_start(double p, int upper, double phi, double pi);
+
 /* --------------------------------------------------- monotone solver */
 
 /* g(y), dg/dy and d2g/dy2 (set *d2g = NAN if not available) for an
