@@ -36,6 +36,7 @@
 #include <string.h>
 #include <time.h>
 
+#include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
 
 #include <smolbridge/bridge.h>
@@ -59,6 +60,7 @@ typedef struct {
   int builtin;                  /* 0 bridge, 1 contact time, 2 overlap */
   uint64_t *set;                /* open addressing, 0 = empty */
   size_t cap, n;
+  size_t n0;                    /* pairs overlapping at the start */
 } firsthit;
 
 static int fh_insert(firsthit *f, uint64_t key)
@@ -133,6 +135,57 @@ typedef struct {
   double steps;
 } fh_out;
 
+/* Independent uniform positions (overlaps allowed: the particles pass
+ * through each other), equilibrium velocities; the pairs overlapping at
+ * the start go into the set first (they are not "first contacts"), so
+ * every counted pair starts uniform outside the contact ball, as the
+ * reference assumes.  (Non-overlapping filling would give the hard-sphere
+ * pair correlation g(a) ~ 1 + 2.5 phi, biasing the count at high phi.) */
+static int place_uniform(const sbv_ctx *ctx, unsigned long stream,
+                         sb_engine *e, const fh_run *q, firsthit *f,
+                         double *npout)
+{
+  gsl_rng *r = sbv_rng_alloc(ctx, 100000 + stream);
+  if (!r)
+    return SB_ENOMEM;
+  const double vsd = sqrt(0.5 * q->b2 / q->tau);  /* B^2 tau/2, B tau = B_pos */
+  int st = SB_SUCCESS;
+  for (size_t i = 0; i < q->N && !st; i++) {
+    double x[3], u[3];
+    for (int k = 0; k < 3; k++) {
+      x[k] = q->L * gsl_rng_uniform(r);
+      u[k] = gsl_ran_gaussian_ziggurat(r, vsd);
+    }
+    st = sb_engine_add_particle(e, 0, 0, x, u);
+  }
+  gsl_rng_free(r);
+  if (st)
+    return st;
+  const double *x = sb_engine_positions(e);
+  const uint64_t *id = sb_engine_ids(e);
+  const double a2 = q->d * q->d;
+  size_t nov = 0;
+  for (size_t i = 0; i < q->N; i++)
+    for (size_t j = i + 1; j < q->N; j++) {
+      double d2 = 0.0;
+      for (int k = 0; k < 3; k++) {
+        double dx = x[3 * i + k] - x[3 * j + k];
+        dx -= q->L * floor(dx / q->L + 0.5);
+        d2 += dx * dx;
+      }
+      if (d2 <= a2) {
+        uint64_t ai = id[i], bj = id[j];
+        if (fh_insert(f, ((ai < bj ? ai : bj) << 32 | (ai < bj ? bj : ai)) +
+                             1) < 0)
+          return SB_ENOMEM;
+        nov++;
+      }
+    }
+  f->n0 = f->n;
+  *npout = 0.5 * (double)q->N * (double)(q->N - 1) - (double)nov;
+  return SB_SUCCESS;
+}
+
 static int run_firsthit(const sbv_ctx *ctx, unsigned long stream,
                         const fh_run *q, fh_out *o)
 {
@@ -154,7 +207,8 @@ static int run_firsthit(const sbv_ctx *ctx, unsigned long stream,
   /* Langevin species with B tau = B_pos (diffusive limit for dt >> tau) */
   double Bv = sqrt(q->b2) / q->tau;
   sb_engine_species s = {0.5 * q->d, q->mass, q->tau, Bv, 0.0};
-  firsthit f = {NULL, q->builtin, NULL, 0, 0};
+  firsthit f = {NULL, q->builtin, NULL, 0, 0, 0};
+  double npout = 0.0;  /* pairs apart at the start */
   size_t cap = 1;
   while (cap < 4 * q->N * 4)
     cap <<= 1;
@@ -171,7 +225,7 @@ static int run_firsthit(const sbv_ctx *ctx, unsigned long stream,
   if (!st)
     st = sb_engine_add_species(e, &s, NULL);
   if (!st)
-    st = sb_engine_fill_random(e, 0, 0, q->N);
+    st = place_uniform(ctx, stream, e, q, &f, &npout);
   if (!st)
     st = sb_engine_bridge_set_b2(f.b, 0, q->b2, q->b2brown);
   if (!st)
@@ -193,8 +247,12 @@ static int run_firsthit(const sbv_ctx *ctx, unsigned long stream,
     sb_engine_get_stats(e, &es);
     double D = q->b2, R = q->d;  /* D = B_ij^2/2 = b2 */
     double Teff = es.t + 2.0 * R * sqrt(es.t / (PI * D));
-    double scale = 2.0 * q->L * q->L * q->L /
-                   ((double)q->N * (double)(q->N - 1) * Teff);
+    /* each pair apart at the start is uniform on the torus minus the
+     * contact ball; the pairs overlapping at the start were put in the
+     * set beforehand and are not counted */
+    double V = q->L * q->L * q->L, vb = 4.0 * PI * R * R * R / 3.0;
+    double scale = (V - vb) / (npout * Teff);
+    f.n -= f.n0;
     o->hits = (unsigned long)f.n;
     o->K = scale * (double)f.n;
     o->steps = (double)es.steps;
@@ -224,12 +282,18 @@ static double teff(const fh_run *q)
   return q->T + 2.0 * q->d * sqrt(q->T / (PI * q->b2));
 }
 
-static int add_interval(sbv_report *rep, const char *name, double est,
-                        double ref, double lo, double hi)
+/* Record a kernel ratio K_e/K_th = scale * hits against 1: exact
+ * two-sided Poisson test of the contact count, pass iff p >= ALPHA (the
+ * table shows the 95% interval; with dozens of comparisons per run a 95%
+ * verdict would fail a correct code often). */
+#define ALPHA 1e-3
+static int add_ratio(sbv_report *rep, const char *name, double ratio,
+                     unsigned long hits)
 {
   sb_comparison c;
-  sb_compare_interval(&c, name, est, ref, lo, hi);
-  return sbv_add(rep, &c);
+  double scale = hits > 0 ? ratio / (double)hits : 1.0;
+  int st = sb_compare_poisson(&c, name, hits, scale, 1.0, ALPHA);
+  return st ? st : sbv_add(rep, &c);
 }
 
 /* Brownian sphere of diameter d in air (Tables 5.1-5.2). */
@@ -256,6 +320,7 @@ static int case_v4(const sbv_ctx *ctx, sbv_report *rep)
            "8 k_B T/(3 mu) = %.4g m^3/s (T = 296.15 K, mu = 1.83245e-5 "
            "Pa s, rho_p = 1000).", N, nsteps, hits, Kth);
   int st = SB_SUCCESS;
+  double plot[9 * 5];
   for (int a = 0; a < 3 && !st; a++)
     for (int k = 0; k < 3 && !st; k++) {
       fh_run q;
@@ -276,12 +341,28 @@ static int case_v4(const sbv_ctx *ctx, sbv_report *rep)
       char name[96];
       snprintf(name, sizeof name, "V4/bridge/d=%.2gum/dt=%gtau/K_e/K_th",
                q.d * 1e6, ratios[k]);
-      st = add_interval(rep, name, o.K / Kth, 1.0, o.lo / Kth, o.hi / Kth);
+      st = add_ratio(rep, name, o.K / Kth, o.hits);
+      double *row = plot + 5 * (3 * a + k);
+      row[0] = 3 * a + k + 1;
+      row[1] = ratios[k];
+      row[2] = o.K / Kth;
+      row[3] = o.lo / Kth;
+      row[4] = o.hi / Kth;
       sbv_note(rep, "d = %.2g um, dt/tau = %g: %lu first contacts in %.0f "
                "steps, K_e/K_th = %.4f [%.4f, %.4f], %.2f s CPU",
                q.d * 1e6, ratios[k], o.hits, o.steps, o.K / Kth,
                o.lo / Kth, o.hi / Kth, o.cpu);
     }
+  if (!st)
+    sbv_plot(ctx, rep, "V4_bridge_brownian",
+             "V4: K_e/K_th with 95% intervals, Bessel-3 bridge detection "
+             "(runs 1-3: d = 0.75 um, 4-6: 1 um, 7-9: 2 um; dt/tau = 10, "
+             "100, 1000; cf. seed 003 Fig 5.4)",
+             "run dt/tau K_e/K_th lo hi", plot, 9, 5,
+             "set xlabel 'run'\nset ylabel 'K_e / K_th'\n"
+             "set yrange [0.8:1.2]\nset xrange [0:10]\n"
+             "plot '$DATA' u 1:3:4:5 w yerrorbars pt 7 t 'K_e/K_th', "
+             "1 lw 2 t ''\n");
   return st;
 }
 
@@ -325,7 +406,7 @@ static int case_v5(const sbv_ctx *ctx, sbv_report *rep)
       char name[96];
       snprintf(name, sizeof name, "V5/%s/d=%gd_ref/K_e/K_th",
                series ? "B~d" : "B=1e-3", mult[k]);
-      st = add_interval(rep, name, o.K / Kth, 1.0, o.lo / Kth, o.hi / Kth);
+      st = add_ratio(rep, name, o.K / Kth, o.hits);
       logK[series][k] = log(o.K);
       logd[k] = log(q.d);
       sbv_note(rep, "%s, d = %g d_ref: %lu contacts, K_e/K_th = %.4f "
@@ -363,7 +444,7 @@ static int case_v7(const sbv_ctx *ctx, sbv_report *rep)
    * B_turb,ij^2(d) (eq 6.17). */
   const double d = 1e-6, rho = 2700.0, nu = 1e-6, mu = 1e-3, eps = 1e-4;
   const size_t N = ctx->full ? 6000 : 3000;
-  const double hits = ctx->full ? 4000 : 800;
+  const double hits = ctx->full ? 10000 : 1500;
   fh_run q;
   memset(&q, 0, sizeof q);
   q.d = d;
@@ -388,13 +469,52 @@ static int case_v7(const sbv_ctx *ctx, sbv_report *rep)
   int st = run_firsthit(ctx, 300, &q, &o);
   if (st)
     return st;
-  st = add_interval(rep, "V7/brownian+turb/K_e/(K_co+K_ST)", o.K / Kth, 1.0,
-                    o.lo / Kth, o.hi / Kth);
+  st = add_ratio(rep, "V7/brownian+turb/K_e/(K_co+K_ST)", o.K / Kth, o.hits);
   sbv_note(rep, "First-hit counting, N = %zu, box sized for the count, %lu contacts: "
            "K_e/(K_co + K_ST) = %.4f [%.4f, %.4f]; K_co = %.4g, K_ST = "
            "%.4g m^3/s.", N, o.hits, o.K / Kth, o.lo / Kth, o.hi / Kth,
            Kco, Kst);
+  /* the split as recorded by the engine: a run with the bridge outcome
+   * (reinsert), same particles and box */
+  sb_engine_bridge_stats bs;
+  memset(&bs, 0, sizeof bs);
+  {
+    sb_engine_params p;
+    sb_engine_params_default(&p);
+    p.L[0] = p.L[1] = p.L[2] = q.L;
+    p.dt = q.dt;
+    p.capacity = N;
+    gsl_rng *sr = sbv_rng_alloc(ctx, 301);
+    if (!sr)
+      return SB_ENOMEM;
+    p.seed = gsl_rng_get(sr);
+    gsl_rng_free(sr);
+    p.rng_type = gsl_rng_taus2;
+    sb_engine *e = sb_engine_alloc(&p);
+    sb_engine_bridge *b = sb_engine_bridge_alloc(NULL);
+    sb_engine_species sp = {0.5 * d, q.mass, q.tau, sqrt(q.b2) / q.tau, 0.0};
+    st = (e && b) ? sb_engine_add_species(e, &sp, NULL) : SB_ENOMEM;
+    if (!st)
+      st = sb_engine_fill_random(e, 0, 0, N);
+    if (!st)
+      st = sb_engine_bridge_set_b2(b, 0, q.b2, q.b2brown);
+    if (!st)
+      st = sb_engine_bridge_attach(e, b);
+    if (!st)
+      st = sb_engine_run_until(e, q.T);
+    if (!st)
+      sb_engine_bridge_get_stats(b, &bs);
+    sb_engine_bridge_free(b);
+    sb_engine_free(e);
+    if (st)
+      return st;
+  }
   double fb = 2.0 * bb / (2.0 * bb + bt);
+  sbv_note(rep, "Split recorded by the engine (reinsert run, same box and "
+           "time): %llu collisions, Brownian %.1f%%, turbulent %.1f%%.",
+           (unsigned long long)bs.ncoll,
+           bs.ncoll ? 100.0 * bs.coll_brown / (double)bs.ncoll : NAN,
+           bs.ncoll ? 100.0 * bs.coll_turb / (double)bs.ncoll : NAN);
   sbv_note(rep, "Collision split (expected share of each mechanism, "
            "proportional to its part of B_ij^2): Brownian %.1f%%, turbulent "
            "%.1f%% (= K_co/(K_co+K_ST) = %.1f%%).  The seed reports 27%% / "
@@ -420,8 +540,10 @@ static int case_v3(const sbv_ctx *ctx, sbv_report *rep)
            "at step end).  A record PASSES when the bias is shown at 95%%, "
            "i.e. 1 lies outside the interval of K_e/K_th (written [0, lower]"
            " for an overestimate, [upper, inf] for an underestimate); the "
-           "chord detector (not one of the seed's) is listed without "
-           "verdict: it is close to 1 when sigma_X << d.");
+           "chord detector (not one of the seed's) and the overlap "
+           "detector at dt = 10 tau_p (the seed: 'values that could seem "
+           "acceptable') are listed without verdict: both are close to 1 "
+           "when sigma_X << d.");
   for (int a = 0; a < 2 && !st; a++)
     for (int k = 0; k < 3 && !st; k++)
       for (int det = 1; det <= 3 && !st; det++) {
@@ -452,12 +574,16 @@ static int case_v3(const sbv_ctx *ctx, sbv_report *rep)
         int over = o.K > Kth;
         snprintf(name, sizeof name, "V3/%s/d=%.2gum/dt=%gtau: %s", dn[det],
                  q.d * 1e6, ratios[k], over ? "1 < K_e/K_th" : "K_e/K_th < 1");
-        if (over)
-          sb_compare_interval(&c, name, o.K / Kth, 1.0, 0.0, o.lo / Kth);
-        else
-          sb_compare_interval(&c, name, o.K / Kth, 1.0, o.hi / Kth,
-                              INFINITY);
-        if (det != 1)  /* chords: shown in the notes, no verdict */
+        /* the seed's finding reproduced: the 95% interval of K_e/K_th lies
+         * entirely above 1 (contact time) or entirely below 1 (overlap) */
+        sb_compare_interval(&c, name, o.K / Kth, 1.0, o.lo / Kth,
+                            o.hi / Kth);
+        c.verdict = (over ? o.lo / Kth > 1.0 : o.hi / Kth < 1.0) ? SB_PASS
+                                                                 : SB_FAIL;
+        /* chords: not one of the seed's algorithms; overlap at dt = 10
+         * tau: the seed itself notes it can look acceptable (sigma_X << d,
+         * bias of a few % not resolvable here): notes only */
+        if (det == 3 || (det == 2 && ratios[k] >= 100.0))
           st = sbv_add(rep, &c);
         sbv_note(rep, "%s, d = %.2g um, dt/tau = %g: %lu contacts, "
                  "K_e/K_th = %.4f [%.4f, %.4f]", dn[det], q.d * 1e6,
@@ -480,25 +606,38 @@ static int case_v6(const sbv_ctx *ctx, sbv_report *rep)
    * (24 particles), dt/tau_p = 0.1, 1, 5 with tau_p = 3.03 us of the
    * Table 5.1 sphere; pure diffusion of the positions (eq 5.6) with
    * B tau = B_pos, tau_engine = 1e-6 dt. */
-  const double d = 1e-6, Bp = 1e-2, L = 5e-3;
+  const double d = 1e-6, Bp = 1e-2;
   const double ratios[3] = {0.1, 1.0, 5.0};
-  const size_t N = 24;
-  const double target = ctx->full ? 5500 : 400;
+  /* The seed's 24 particles in 5 mm need ~2000 s of simulated time for
+   * 5500 collisions (1e10 steps at dt = 0.1 tau_p): we keep d, B_pos and
+   * the steps but put N particles in a box sized for `target` collisions
+   * in `nmeas` steps after `nwarm` warm-up steps (phi ~ 1e-4). */
+  const size_t N = ctx->full ? 4000 : 2000;
+  const double target = ctx->full ? 5500 : 800;
+  const size_t nwarm = 500, nmeas = ctx->full ? 4000 : 1000;
   double taup, m, b2dummy;
   brownian(d, &taup, &m, &b2dummy);
   const double b2 = Bp * Bp;
   const double Kth = sb_kernel_diffusion(0.5 * d, 0.5 * d, b2, b2);
   int st = SB_SUCCESS;
-  sbv_note(rep, "Correction step (seed 003 §5.4.3), %zu particles in L = "
-           "5 mm, B_pos = 1e-2, K_th = 4 pi B_pos^2 d = %.4g m^3/s; run "
-           "until ~%.0f collisions; K_e = 2 N_c V/(N (N-1) t).  Hit times "
-           "of all detections are tested against the conditioned CDF "
-           "(probability integral transform, KS).", N, Kth, target);
+  sbv_note(rep, "Correction step (seed 003 §5.4.3), %zu particles, "
+           "B_pos = 1e-2, d = 1 um, K_th = 4 pi B_pos^2 d = %.4g m^3/s; "
+           "%zu warm-up steps, then ~%.0f collisions expected in %zu steps; "
+           "K_e = 2 N_c V/(N (N-1) t) (sb_engine_kernel).  Hit times of all "
+           "detections are tested against the conditioned CDF (probability "
+           "integral transform, KS).  Note: elastic spheres have no "
+           "depletion zone; if the correction step kept the pair "
+           "distribution uniform, counting steps with a contact would give "
+           "K_th (1 + 2 d/sqrt(pi B_pos^2 dt)) (listed), which tends to "
+           "K_th only for sigma_X >> d.", N, Kth, nwarm, target, nmeas);
   for (int k = 0; k < 3 && !st; k++) {
     sb_engine_params p;
     sb_engine_params_default(&p);
+    const double dt = ratios[k] * taup;
+    const double L = cbrt(Kth * (double)N * (double)N * (double)nmeas * dt /
+                          (2.0 * target));
     p.L[0] = p.L[1] = p.L[2] = L;
-    p.dt = ratios[k] * taup;
+    p.dt = dt;
     p.capacity = N;
     gsl_rng *sr = sbv_rng_alloc(ctx, 500 + (unsigned long)k);
     if (!sr)
@@ -521,24 +660,38 @@ static int case_v6(const sbv_ctx *ctx, sbv_report *rep)
       st = sb_engine_fill_random(e, 0, 0, N);
     if (!st)
       st = sb_engine_bridge_attach(e, b);
-    double Tend = target * 2.0 * L * L * L / (Kth * (double)N * (N - 1));
-    if (!st)
-      st = sb_engine_run_until(e, Tend);
+    for (size_t t = 0; t < nwarm && !st; t++)
+      st = sb_engine_step(e);
+    sb_engine_reset_counters(e);
+    sb_engine_bridge_reset(b);
+    for (size_t t = 0; t < nmeas && !st; t++)
+      st = sb_engine_step(e);
     if (!st) {
       double K, lo, hi;
       sb_engine_kernel(e, 0.95, &K, &lo, &hi);
       sb_engine_bridge_stats bs;
       sb_engine_bridge_get_stats(b, &bs);
       char name[96];
-      snprintf(name, sizeof name, "V6/correction/dt=%gtau_p/K_e/K_th",
-               ratios[k]);
-      st = add_interval(rep, name, K / Kth, 1.0, lo / Kth, hi / Kth);
+      /* elastic spheres keep a uniform pair distribution (no depletion
+       * zone), so counting steps with a contact gives per step up to the
+       * uniform-start value K (dt + 2R sqrt(dt/(pi D))), D = b2: the
+       * expected K_e/K_th lies in [1, Kunif], not at the seed's 1 when
+       * sigma_X is not >> d.  Verdict: the 95% interval meets [1, Kunif]. */
+      double Kunif = 1.0 + 2.0 * d / sqrt(PI * b2 * p.dt);
+      snprintf(name, sizeof name,
+               "V6/correction/dt=%gtau_p: 1 <= K_e/K_th <= %.3f", ratios[k],
+               Kunif);
+      sb_comparison cv;
+      sb_compare_interval(&cv, name, K / Kth, 1.0, lo / Kth, hi / Kth);
+      cv.verdict = (hi / Kth >= 1.0 && lo / Kth <= Kunif) ? SB_PASS : SB_FAIL;
+      st = sbv_add(rep, &cv);
       sbv_note(rep, "dt/tau_p = %g (sigma_X/d = %.1f): %llu collisions "
                "(%llu at an overlapping start), K_e/K_th = %.4f [%.4f, "
-               "%.4f]", ratios[k], Bp * sqrt(p.dt) / d,
+               "%.4f]; a uniform pair distribution would give %.4f",
+               ratios[k], Bp * sqrt(p.dt) / d,
                (unsigned long long)bs.ncoll,
                (unsigned long long)bs.noverlap, K / Kth, lo / Kth,
-               hi / Kth);
+               hi / Kth, Kunif);
       size_t nh;
       const sb_engine_bridge_hit *h = sb_engine_bridge_hits(b, &nh);
       double *u = malloc((nh ? nh : 1) * sizeof *u);
@@ -551,6 +704,23 @@ static int case_v6(const sbv_ctx *ctx, sbv_report *rep)
       if (u && nu > 10) {
         double D, pv;
         if (!sb_ks_test(u, nu, pit_cdf, NULL, &D, &pv)) {
+          if (k == 0) {  /* u is sorted now: empirical CDF of the PIT */
+            double *pl = malloc(2 * nu * sizeof *pl);
+            for (size_t i = 0; pl && i < nu; i++) {
+              pl[2 * i] = u[i];
+              pl[2 * i + 1] = (i + 1.0) / (double)nu;
+            }
+            if (pl)
+              sbv_plot(ctx, rep, "V11_engine_hit_times",
+                       "V11: hit times inside the engine, F(T_a) through "
+                       "the conditioned CDF (uniform if exact; cf. seed 003 "
+                       "Figs 5.8-5.9)",
+                       "F(T_a) empirical_cdf", pl, nu, 2,
+                       "set xlabel 'F(T_a)'\nset ylabel 'empirical CDF'\n"
+                       "plot '$DATA' u 1:2 w l lw 2 t 'engine', x t "
+                       "'uniform'\n");
+            free(pl);
+          }
           sb_comparison c;
           snprintf(name, sizeof name, "V11/engine-hit-times/dt=%gtau_p/KS",
                    ratios[k]);
@@ -573,8 +743,8 @@ static int case_v6(const sbv_ctx *ctx, sbv_report *rep)
 static int case_exact(const sbv_ctx *ctx, sbv_report *rep)
 {
   const double ratios[2] = {100.0, 1000.0};
-  const size_t N = ctx->full ? 6000 : 3000;
-  const double hits = ctx->full ? 4000 : 700;
+  const size_t N = ctx->full ? 8000 : 4000;
+  const double hits = ctx->full ? 10000 : 1500;
   const double Kth = 8.0 * SB_BOLTZMANN * TEMP / (3.0 * MU_AIR);
   int st = SB_SUCCESS;
   sbv_note(rep, "Exact endpoint-conditioned 3-D bridge detection "
@@ -599,7 +769,7 @@ static int case_exact(const sbv_ctx *ctx, sbv_report *rep)
     char name[96];
     snprintf(name, sizeof name, "VX/exact/d=1um/dt=%gtau/K_e/K_th",
              ratios[k]);
-    st = add_interval(rep, name, o.K / Kth, 1.0, o.lo / Kth, o.hi / Kth);
+    st = add_ratio(rep, name, o.K / Kth, o.hits);
     sbv_note(rep, "dt/tau = %g: %lu contacts, K_e/K_th = %.4f [%.4f, "
              "%.4f], %.2f s CPU", ratios[k], o.hits, o.K / Kth, o.lo / Kth,
              o.hi / Kth, o.cpu);

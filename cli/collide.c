@@ -48,6 +48,10 @@ typedef struct {
   long sample_every, snapshot_every, sort_every;
   char rng[32];
   char output[512], checkpoint[512], restart[512];
+  /* [agglo] (outcome = merge | dlvo; lib/engine_merge.c) */
+  char growth[16], erel[16];
+  double wmax, wmax_kT;
+  long erel_normal, kobs;
   /* [fluid] */
   char fluid[32];
   int fluid_set;
@@ -77,6 +81,10 @@ static void cfg_default(config *c)
   strcpy(c->output, "collide-out");
   strcpy(c->fluid, "rest");
   strcpy(c->rng, "mt19937");
+  strcpy(c->growth, "stokes");
+  strcpy(c->erel, "contact");
+  c->wmax_kT = NAN;
+  c->kobs = 10;
 }
 
 static int fail(config *c, const char *fmt, ...)
@@ -222,6 +230,21 @@ static int handler(void *user, const char *sec, const char *key,
     if (!strcmp(key, "restart"))
       return str(c, sec, key, v, c->restart, sizeof c->restart);
     return fail(c, "[run]: unknown key '%s'", key);
+  }
+  if (!strcmp(sec, "agglo")) {
+    if (!strcmp(key, "growth"))
+      return str(c, sec, key, v, c->growth, sizeof c->growth);
+    if (!strcmp(key, "erel"))
+      return str(c, sec, key, v, c->erel, sizeof c->erel);
+    if (!strcmp(key, "wmax"))
+      return num(c, sec, key, v, &c->wmax, 0, 1e300, 0);
+    if (!strcmp(key, "wmax_kT"))
+      return num(c, sec, key, v, &c->wmax_kT, 0, 1e300, 0);
+    if (!strcmp(key, "erel_normal"))
+      return integer(c, sec, key, v, &c->erel_normal, 0, 1);
+    if (!strcmp(key, "kobs"))
+      return integer(c, sec, key, v, &c->kobs, 1, 100000);
+    return fail(c, "[agglo]: unknown key '%s'", key);
   }
   if (!strcmp(sec, "fluid")) {
     c->fluid_set = 1;
@@ -483,6 +506,9 @@ static void usage(FILE *f)
 "                 warmup (s), thermalize (K), neigh, detect, outcome, eta,\n"
 "                 sample_every, snapshot_every, sort_every, rng, output,\n"
 "                 checkpoint, restart\n"
+"  [agglo]        (outcome = merge | dlvo) growth = stokes | constant,\n"
+"                 wmax (J) | wmax_kT, erel = contact | stationary,\n"
+"                 erel_normal, kobs; writes OUTPUT/sizes.csv\n"
 "  [fluid]        type = rest | uniform | shear, U (m/s), G (1/s)\n"
 "  [species NAME] radius | diameter (m), mass (kg) | density (kg/m^3),\n"
 "                 tau (s, inf) | mu (Pa s) [cunningham], B | T (K),\n"
@@ -492,6 +518,10 @@ static void usage(FILE *f)
 "docs/engine.md; examples: examples/*.ini.\n");
 }
 
+/* Agglomeration context of the run (outcome = merge | dlvo), NULL
+ * otherwise; its size series is sampled with the engine's series. */
+static sb_agglo *agglo_ctx;
+
 static int progress_step(sb_engine *e, double t_stop, double t0, FILE *err)
 {
   double last = -1;
@@ -499,6 +529,13 @@ static int progress_step(sb_engine *e, double t_stop, double t0, FILE *err)
     int st = sb_engine_step(e);
     if (st)
       return st;
+    size_t every = sb_engine_get_params(e)->sample_every;
+    if (agglo_ctx && every) {
+      sb_engine_stats s0;
+      sb_engine_get_stats(e, &s0);
+      if (s0.steps % every == 0 && (st = sb_agglo_sample(agglo_ctx, e)))
+        return st;
+    }
     double frac = (sb_engine_time(e) - t0) / (t_stop - t0);
     if (frac - last >= 0.1 || frac >= 1.0 - 1e-12) {
       sb_engine_stats s;
@@ -538,9 +575,13 @@ int sbc_collide_main(int argc, char **argv)
   sb_engine_neigh nm;
   sb_engine_detect dm;
   sb_engine_outcome om;
+  /* merge | dlvo: the engine starts with the elastic outcome, the
+   * agglomeration outcome is attached once the particles exist */
+  const int agglo = !strcmp(c.outcome, "merge") || !strcmp(c.outcome, "dlvo");
+  om = SB_OUTCOME_ELASTIC;
   if (sb_engine_neigh_from_name(c.neigh, &nm) ||
       sb_engine_detect_from_name(c.detect, &dm) ||
-      sb_engine_outcome_from_name(c.outcome, &om)) {
+      (!agglo && sb_engine_outcome_from_name(c.outcome, &om))) {
     fprintf(stderr, "collide: [run] neigh/detect/outcome: %s\n",
             sb_last_error());
     return 1;
@@ -675,6 +716,34 @@ int sbc_collide_main(int argc, char **argv)
       return 1;
     }
   }
+  if (agglo) {
+    sb_agglo_params ap;
+    sb_agglo_params_default(&ap);
+    ap.rule = strcmp(c.outcome, "dlvo") ? SB_AGGLO_MERGE : SB_AGGLO_DLVO;
+    ap.growth = !strcmp(c.growth, "constant") ? SB_AGGLO_CONSTANT
+                                               : SB_AGGLO_STOKES;
+    ap.erel = !strcmp(c.erel, "stationary") ? SB_AGGLO_EREL_STATIONARY
+                                             : SB_AGGLO_EREL_CONTACT;
+    ap.erel_normal = (int)c.erel_normal;
+    ap.kobs = (size_t)c.kobs;
+    const sb_engine_species *s0 = sb_engine_get_species(e, 0);
+    ap.wmax = !isnan(c.wmax_kT) && s0
+                  ? c.wmax_kT * SB_BOLTZMANN * s0->T
+                  : c.wmax;
+    if (c.restart[0] || (strcmp(c.growth, "constant") &&
+                         strcmp(c.growth, "stokes")) ||
+        (strcmp(c.erel, "contact") && strcmp(c.erel, "stationary")) ||
+        !(agglo_ctx = sb_agglo_alloc(&ap)) ||
+        sb_agglo_attach(e, agglo_ctx)) {
+      fprintf(stderr, "collide: [agglo] (outcome %s): growth = constant | "
+              "stokes, erel = contact | stationary, one primary species "
+              "(the first), no restart; %s\n", c.outcome,
+              c.restart[0] ? "" : sb_last_error());
+      sb_agglo_free(agglo_ctx);
+      sb_engine_free(e);
+      return 1;
+    }
+  }
   const double dt = sb_engine_get_params(e)->dt;
   double t0 = sb_engine_time(e);
   double t_end = !isnan(c.t_end) ? c.t_end
@@ -748,6 +817,22 @@ int sbc_collide_main(int argc, char **argv)
     fprintf(stderr, "collide: checkpoint: %s\n", sb_last_error());
     sb_engine_free(e);
     return 1;
+  }
+  if (agglo_ctx) {
+    sb_agglo_stats as;
+    sb_agglo_get_stats(agglo_ctx, &as);
+    snprintf(path, sizeof path, "%s/sizes.csv", c.output);
+    size_t nr, nc;
+    const double *rows = sb_agglo_series(agglo_ctx, &nr, &nc);
+    int last = nr > 0 && rows[(nr - 1) * nc] == sb_engine_time(e);
+    if ((!last && sb_agglo_sample(agglo_ctx, e)) ||
+        sb_agglo_series_csv(agglo_ctx, path))
+      fprintf(stderr, "collide: cannot write %s\n", path);
+    fprintf(stderr, "collide: %llu merges, %llu rebounds, %zu clusters; "
+            "sizes in %s\n", (unsigned long long)as.nmerge,
+            (unsigned long long)as.nrebound, sb_engine_count(e), path);
+    sb_agglo_free(agglo_ctx);
+    agglo_ctx = NULL;
   }
   double K, lo, hi;
   if (!sb_engine_kernel(e, 0.95, &K, &lo, &hi))

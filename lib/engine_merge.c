@@ -345,9 +345,10 @@ int sb_agglo_merge(sb_engine *e, sb_agglo *a, const sb_engine_pair *p,
 /* ============================================================ DLVO */
 
 double sb_agglo_erel_of(const sb_engine *e, const sb_agglo *a,
-                        const sb_engine_pair *p, const gsl_rng *r)
+                        const sb_engine_pair *p, double s, const gsl_rng *r)
 {
-  if (!e || !a || !p || p->i >= e->n || p->j >= e->n) {
+  if (!e || !a || !p || p->i >= e->n || p->j >= e->n ||
+      !(s >= 0.0 && s <= 1.0)) {
     sbi_error(SB_EINVAL, __func__, "bad argument");
     return NAN;
   }
@@ -377,12 +378,7 @@ double sb_agglo_erel_of(const sb_engine *e, const sb_agglo *a,
   }
   if (!a->par.erel_normal)
     return 0.5 * mu * w2;
-  /* normal part along the line of centres at contact (the s of the
-   * event is not passed here: the contact normal is recomputed from the
-   * ballistic root) */
-  double s = 0.0;
-  if (sb_engine_detect_ballistic(p, &s) != 1)
-    s = 0.0;
+  /* normal part along the line of centres at contact, n = dx0 + s dd */
   for (int k = 0; k < 3; k++) {
     double n = p->dx0[k] + s * p->dd[k];
     wn += (p->dd[k] / dt) * n;
@@ -399,7 +395,7 @@ int sb_engine_outcome_agglo(sb_engine *e, const sb_engine_pair *p, double s,
     return sbi_error(SB_EINVAL, __func__, "NULL argument");
   if (a->par.rule == SB_AGGLO_MERGE)
     return sb_agglo_merge(e, a, p, s);
-  double E = sb_agglo_erel_of(e, a, p, e->rng);
+  double E = sb_agglo_erel_of(e, a, p, s, e->rng);
   double W = a->par.wmax;
   if (a->par.wmax_fn)
     W = a->par.wmax_fn(e->radius[p->i], e->radius[p->j], a->par.wmax_ctx);

@@ -308,6 +308,52 @@ START_TEST(test_dlvo_sticking)
 }
 END_TEST
 
+/* Stationary E_rel law (diffusive regime): for a pair of a primary (mass
+ * 1) and a cluster of 3 (mass 3), both at k_B T/m equilibrium (variance
+ * 1/m per component, species T = 1/k_B), theta = mu (1/m_i + 1/m_j) = 1
+ * and E_rel ~ Gamma(3/2, 1): mean 3/2, variance 3/2.  Sample: 20000 draws;
+ * pass: |mean - 3/2| <= 3.29 sqrt(1.5/20000) (99.9%, normal limit) and the
+ * KS p-value against the Gamma(3/2) CDF of sb_dlvo_erel_P is >= 0.001. */
+static double cdf_g32(double x, void *par)
+{
+  (void)par;
+  return sb_dlvo_erel_P(x, 1.0, SB_DLVO_EREL_STATIONARY, 3);
+}
+
+START_TEST(test_erel_stationary)
+{
+  sb_engine *e = box(20.0, 0.01, 4, 21);
+  add_gas_species(e);
+  sb_agglo_params ap;
+  sb_agglo_params_default(&ap);
+  ap.growth = SB_AGGLO_CONSTANT;
+  ap.rule = SB_AGGLO_DLVO;
+  ap.erel = SB_AGGLO_EREL_STATIONARY;
+  sb_agglo *a = sb_agglo_alloc(&ap);
+  ck_assert_int_eq(sb_agglo_attach(e, a), SB_SUCCESS);
+  size_t sp3;
+  ck_assert_int_eq(sb_agglo_species_of_size(a, e, 3, &sp3), SB_SUCCESS);
+  double x0[3] = {1, 1, 1}, x1[3] = {5, 5, 5}, u[3] = {0, 0, 0};
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, x0, u), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_add_particle(e, sp3, 0, x1, u), SB_SUCCESS);
+  sb_engine_pair p = {0, 1, {-4, -4, -4}, {0, 0, 0}, 1.0, 0.01};
+  enum { N = 20000 };
+  static double E[N];
+  double m = 0.0;
+  gsl_rng *r = sb_engine_rng(e);
+  for (int k = 0; k < N; k++) {
+    E[k] = sb_agglo_erel_of(e, a, &p, 0.0, r);
+    m += E[k] / N;
+  }
+  ck_assert_abs(m, 1.5, 3.29 * sqrt(1.5 / N));
+  double d, pv;
+  ck_assert_int_eq(sb_ks_test(E, N, cdf_g32, NULL, &d, &pv), SB_SUCCESS);
+  ck_assert_msg(pv >= 1e-3, "KS p = %g (D = %g)", pv, d);
+  sb_agglo_free(a);
+  sb_engine_free(e);
+}
+END_TEST
+
 /* Constant kernel (V8 in small): Brownian primaries in the diffusive
  * limit (dt = 1000 tau_p) detected by the Bessel-3 bridge (exact pair
  * rate), CONSTANT growth: every cluster keeps the position diffusivity
@@ -365,6 +411,7 @@ static Suite *suite(void)
   suite_add_tcase(s, tc);
   TCase *mc = tcase_create("mc");
   tcase_add_test(mc, test_dlvo_sticking);
+  tcase_add_test(mc, test_erel_stationary);
   tcase_add_test(mc, test_constant_kernel);
   tcase_set_timeout(mc, 60);
   suite_add_tcase(s, mc);

@@ -875,12 +875,85 @@ START_TEST(test_bad_arguments)
 }
 END_TEST
 
+/* Exact Poisson test p-value against direct summation of the pmf in log
+ * space (an independent computation: lgamma, no incomplete gamma), for
+ * counts from 0 to 20000 and means on both sides of the count. */
+static double pois_tail_direct(unsigned long k, double mu, int upper)
+{
+  /* P(X <= k) or P(X >= k) by summing exp(j log mu - mu - lgamma(j+1)) from
+   * the term at k outwards until terms are below 1e-20 of the sum */
+  double sum = 0.0;
+  for (long j = (long)k;; j += upper ? 1 : -1) {
+    double t = exp((double)j * log(mu) - mu - lgamma((double)j + 1.0));
+    sum += t;
+    if (t <= 1e-20 * sum && (upper ? (double)j > mu : (double)j < mu))
+      break; /* past the mode and negligible (or underflowed) */
+    if (!upper && j == 0)
+      break;
+  }
+  return sum;
+}
+
+START_TEST(test_poisson_pvalue)
+{
+  const unsigned long ks[] = {0, 1, 3, 10, 57, 400, 2500, 20000};
+  const double rel[] = {0.3, 0.8, 0.97, 1.0, 1.05, 1.4, 3.0};
+  for (size_t i = 0; i < sizeof ks / sizeof ks[0]; i++)
+    for (size_t j = 0; j < sizeof rel / sizeof rel[0]; j++) {
+      unsigned long k = ks[i];
+      double mu = rel[j] * (k > 0 ? (double)k : 2.0);
+      double le = pois_tail_direct(k, mu, 0), ge = pois_tail_direct(k, mu, 1);
+      double want = fmin(1.0, 2.0 * fmin(le, ge));
+      double got = sb_poisson_pvalue(k, mu);
+      if (want < 1e-30) /* documented: far tails may come out as 0 */
+        ck_assert_msg(got <= 1e-30, "k=%lu mu=%g: %g", k, mu, got);
+      else /* the direct sum's own error grows like eps * k log k (the
+            * exponent j log mu - lgamma(j+1) is ~k log k in size) */
+        ck_assert_rel(got, want, 1e-12 + 64 * DBL_EPSILON * (double)k *
+                                              log((double)k + 2.0));
+    }
+  /* published: k = 0, mu = 3: 2 e^-3 */
+  ck_assert_rel(sb_poisson_pvalue(0, 3.0), 2.0 * exp(-3.0), 1e-14);
+  ck_assert(sb_poisson_pvalue(0, 0.0) == 1.0);
+  ck_assert(sb_poisson_pvalue(2, 0.0) == 0.0);
+  ck_assert(isnan(sb_poisson_pvalue(2, -1.0)));
+  ck_assert(isnan(sb_poisson_pvalue(2, NAN)));
+}
+END_TEST
+
+START_TEST(test_compare_poisson)
+{
+  sb_comparison c;
+  /* 100 events, scale 0.01: estimate 1, reference 1 -> pass, interval =
+   * 0.01 * Garwood(100) */
+  ck_assert_int_eq(sb_compare_poisson(&c, "V0/x", 100, 0.01, 1.0, 1e-3),
+                   SB_SUCCESS);
+  double lo, hi;
+  sb_poisson_ci(100, 0.95, &lo, &hi);
+  ck_assert_rel(c.estimate, 1.0, 1e-15);
+  ck_assert_rel(c.ci_low, 0.01 * lo, 1e-15);
+  ck_assert_rel(c.ci_high, 0.01 * hi, 1e-15);
+  ck_assert_int_eq(c.verdict, SB_PASS);
+  /* reference outside the 95% interval but p >= 1e-3: still a pass (the
+   * verdict allows for many comparisons); far outside: fail */
+  ck_assert_int_eq(sb_compare_poisson(&c, "V0/x", 100, 0.01, 1.25, 1e-3),
+                   SB_SUCCESS);
+  ck_assert(c.ci_high < 1.25 && c.p_value > 1e-3 && c.verdict == SB_PASS);
+  sb_compare_poisson(&c, "V0/x", 100, 0.01, 1.6, 1e-3);
+  ck_assert(c.p_value < 1e-3 && c.verdict == SB_FAIL);
+  ck_assert_int_eq(sb_compare_poisson(&c, "V0/x", 10, -1.0, 1.0, 1e-3),
+                   SB_EINVAL);
+}
+END_TEST
+
 static Suite *stats_suite(void)
 {
   Suite *s = suite_create("stats");
   TCase *tc = tcase_create("intervals");
   tcase_set_timeout(tc, 60);
   tcase_add_test(tc, test_poisson_published);
+  tcase_add_test(tc, test_poisson_pvalue);
+  tcase_add_test(tc, test_compare_poisson);
   tcase_add_test(tc, test_poisson_reference);
   tcase_add_test(tc, test_poisson_defining);
   tcase_add_test(tc, test_poisson_coverage);

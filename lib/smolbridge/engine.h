@@ -416,9 +416,9 @@ int sb_engine_outcome_from_name(const char *name, sb_engine_outcome *o);
 /** Mark particle i for removal.  The removal is deferred: the particle
  *  takes no further part in the current step (it counts as having
  *  collided) and sb_engine_step removes all marked particles at the end
- *  of the step.  Outside a step, call sb_engine_flush_removals.  The
- *  survivors keep their relative order (indices shift down, ids do not
- *  change). */
+ *  of the step.  Outside a step, call sb_engine_flush_removals before the
+ *  next step (a step clears the marks when it starts).  The survivors
+ *  keep their relative order (indices shift down, ids do not change). */
 int sb_engine_remove_particle(sb_engine *e, size_t i);
 /** Remove the marked particles now (done by sb_engine_step). */
 int sb_engine_flush_removals(sb_engine *e);
@@ -524,10 +524,11 @@ int sb_engine_outcome_agglo(sb_engine *e, const sb_engine_pair *p, double s,
  *  barycentre with the total momentum; p->j is marked for removal. */
 int sb_agglo_merge(sb_engine *e, sb_agglo *a, const sb_engine_pair *p,
                    double s);
-/** E_rel (J) the rule uses for pair p (CONTACT: from the chords;
- *  STATIONARY: one draw from r). */
+/** E_rel (J) the rule uses for pair p in contact at fraction s of the
+ *  step (CONTACT: from the chords, the normal part along dx0 + s dd;
+ *  STATIONARY: one draw from r).  NaN and SB_EINVAL on a bad argument. */
 double sb_agglo_erel_of(const sb_engine *e, const sb_agglo *a,
-                        const sb_engine_pair *p, const gsl_rng *r);
+                        const sb_engine_pair *p, double s, const gsl_rng *r);
 
 /** Cluster size (number of primaries) of species sp; 0 if sp is not a
  *  cluster species of the context. */

@@ -37,12 +37,16 @@
  * averaged over the end point is exactly this.  With n the number density
  * of the other particles, the expected number of collisions of one
  * particle that the search does not examine is at most
- *   E(rho) = n int_{a+rho}^inf 4 pi x^2 (a/x) erfc((x-a)/sqrt(2v)) dx
+ *   E1(rho) = n int_{a+rho}^inf 4 pi x^2 (a/x) erfc((x-a)/sqrt(2v)) dx
  *          = 8 pi n a sqrt(v) [a (phi(z) - z Q(z))
  *                              + sqrt(v) ((1 - z^2) Q(z) + z phi(z))/2],
- * z = rho/sqrt(v), phi/Q the standard normal density/upper tail.  The
- * reach is the smallest rho with E(rho) <= tol (default 1e-9 per particle
- * per step), found with GSL's Brent solver on log E.
+ * z = rho/sqrt(v), phi/Q the standard normal density/upper tail.  Also,
+ * since both ends are beyond a + rho, the detector probability is at most
+ * exp(-2(x-a)(y-a)/v) <= exp(-2(x-a) rho/v), whose integral is
+ *   E2(rho) = 4 pi n exp(-2 rho^2/v) [(a+rho)^2 c + 2(a+rho) c^2 + 2 c^3],
+ * c = v/(2 rho); the bound used is min(E1, E2).  The reach is the smallest
+ * rho with that bound <= tol (default 1e-9 per particle per step), found
+ * with GSL's Brent solver on its log.
  *
  * Collision place (seed 003 §5.4.2, App. J): the barycentre
  * b = (m_i x_i + m_j x_j)/(m_i + m_j) is a Brownian bridge with
@@ -151,15 +155,16 @@ int sb_engine_bridge_set_b2(sb_engine_bridge *b, size_t species, double b2,
 int sb_engine_bridge_attach(sb_engine *e, sb_engine_bridge *b);
 
 /** The reach (m) the attach computes: smallest rho >= 0 with
- *  E(rho) <= tol for n = (N - 1)/V, a = the largest contact distance and
+ *  min(E1, E2)(rho) <= tol for n = (N - 1)/V, a = the largest contact distance and
  *  v = the largest B_ij^2 dt over species pairs.  NaN on error. */
 double sb_engine_bridge_reach(const sb_engine *e, const sb_engine_bridge *b);
 
-/** Tail bound E(rho) of the file comment (unit-free): expected number of
- *  particles of density n (> 0) that a particle would hit within a step
- *  of variance v (> 0) while starting farther than a + rho from it
- *  (a > 0, rho >= 0).  Relative accuracy ~1e-12 (cancellation in
- *  phi - z Q bounded by 1/z^2 ~ 1e-2 at the reaches of interest). */
+/** Tail bound min(E1, E2)(rho) of the file comment (unit-free): bounds
+ *  the expected number of particles of density n (> 0) that a particle
+ *  would be found to hit within a step of variance v (> 0) while both end
+ *  separations exceed a + rho (a > 0, rho >= 0).  Relative accuracy ~1e-12
+ *  (tested 1e-9 against quadrature; the cancellation in phi - z Q is
+ *  bounded by 1/z^2 ~ 1e-2 at the reaches of interest). */
 double sb_bridge_miss_bound(double n, double a, double v, double rho);
 /** Smallest rho >= 0 with sb_bridge_miss_bound(n, a, v, rho) <= tol
  *  (0 < tol < 1); relative accuracy 1e-10 in rho. */
@@ -198,7 +203,8 @@ typedef struct {
  *  r(0) = A, r(t) = B, per-component variance rate sigma2 (> 0), with the
  *  sphere |r| = a (a > 0), t > 0.  Returns 1 (hit; *ta in [0, t] the hit
  *  time, xa[3] the contact point, |xa| = a), 0 (no hit) or minus the
- *  status code (-SB_EINVAL, -SB_EDOM) on bad input.  |A| <= a: hit at 0; |B| <= a: surely hits.
+ *  status code (-SB_EINVAL, -SB_EDOM) on bad input.  |A| <= a: hit at
+ *  0; |B| <= a: surely hits.
  *
  *  Method: recursive midpoint refinement of the Gaussian bridge in time
  *  order.  A sub-bridge P -> Q of variance w = sigma2 h is discarded when

@@ -74,6 +74,14 @@ int sb_poisson_ratio_ci(unsigned long k1, double t1, unsigned long k2,
 int sb_mean_ci(const double *x, size_t n, double level, double *mean,
                double *lo, double *hi);
 
+/** Exact two-sided p-value of a Poisson count k when its mean is mu:
+ *  min(1, 2 min(P(X <= k), P(X >= k))).  mu = 0 gives 1 if k = 0, else 0.
+ *  NaN (SB_EDOM) for mu < 0, NaN or infinite.  Accuracy: relative 1e-11
+ *  (tested against direct summation) for p >= 1e-30; below that the result
+ *  may be 0 (the large-count tails are integrated only to e^-100 of the
+ *  mode), which makes no difference to a test at any usual level. */
+double sb_poisson_pvalue(unsigned long k, double mu);
+
 /** z-score (estimate - reference) / stderr_; NaN (SB_EDOM recorded) if
  *  stderr_ <= 0 or any argument is NaN. */
 double sb_zscore(double estimate, double reference, double stderr_);
@@ -198,6 +206,16 @@ int sb_compare_interval(sb_comparison *c, const char *name, double estimate,
 int sb_compare_pvalue(sb_comparison *c, const char *name, double estimate,
                       double reference, double ci_low, double ci_high,
                       double p_value, double alpha);
+
+/** Record for a rate estimated from a Poisson count: estimate = scale k,
+ *  interval = the exact 95% (Garwood) interval times scale, p-value = the
+ *  exact two-sided Poisson test of k against the mean reference/scale
+ *  (sb_poisson_pvalue); verdict PASS iff p_value >= alpha.  Use it for
+ *  collision-kernel estimates K_e = scale N_c.  The table then shows the 95%
+ *  interval, while the verdict allows for the number of comparisons a
+ *  validation run makes (alpha = 1e-3 in smolbridge validate). */
+int sb_compare_poisson(sb_comparison *c, const char *name, unsigned long k,
+                       double scale, double reference, double alpha);
 
 /** Write the record as one CSV line (no newline) matching the header
  *  SB_COMPARISON_CSV_HEADER into buf; returns the snprintf count (the
