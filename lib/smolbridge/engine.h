@@ -510,7 +510,9 @@ void sb_agglo_free(sb_agglo *a);
 
 /** Register the primary species as size 1 and install the outcome
  *  (sb_engine_outcome_agglo) in e.  Every particle present must be a
- *  primary.  With a custom detector (e.g. sb_engine_bridge_attach), attach
+ *  primary or a cluster species of this context (re-attaching during a
+ *  run is allowed, e.g. after sb_engine_bridge_attach updated the
+ *  reach).  With a custom detector (e.g. sb_engine_bridge_attach), attach
  *  the detector first: this call replaces the outcome.  The context must
  *  outlive its use by the engine; it belongs to one engine. */
 int sb_agglo_attach(sb_engine *e, sb_agglo *a);
