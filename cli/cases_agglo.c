@@ -371,22 +371,29 @@ static int compare(const sbv_ctx *ctx, sbv_report *rep, const char *tag,
 }
 
 /* Output grid: every quarter half-life to 5 half-lives (tau = K11 n0 t,
- * constant-kernel half-life tau = 2); the four compared times flagged. */
+ * constant-kernel half-life tau = 2); the four compared times flagged
+ * (th = the time in half-lives, else 0).  R runs of N0 primaries each. */
 #define NT 20
-static void grid(double *taus, double *thalves)
+typedef struct {
+  double taus[NT], th[NT];
+  size_t R, N0;
+} v8_grid;
+
+static void grid(const sbv_ctx *ctx, v8_grid *g)
 {
   for (size_t it = 0; it < NT; it++) {
     double h = 0.25 * (double)(it + 1);
-    taus[it] = 2.0 * h;
-    thalves[it] = (h == 0.5 || h == 1.0 || h == 2.0 || h == 5.0) ? h : 0.0;
+    g->taus[it] = 2.0 * h;
+    g->th[it] = (h == 0.5 || h == 1.0 || h == 2.0 || h == 5.0) ? h : 0.0;
   }
+  g->R = ctx->full ? 40 : 10;
+  g->N0 = ctx->full ? 4000 : 600;
 }
 
 static int case_constant(const sbv_ctx *ctx, sbv_report *rep)
 {
-  double taus[NT], th[NT];
-  grid(taus, th);
-  const size_t R = ctx->full ? 40 : 10, N0 = ctx->full ? 4000 : 600;
+  v8_grid gr;
+  grid(ctx, &gr);
   sbv_note(rep, "Constant kernel K = 4 pi b2 d (b2 = 2 D, d = 1 um, water "
            "20 C), Bessel-3 bridge detection (ends Y = X + tau_p U), "
            "dt = 1000 tau_p, merge at the mass barycentre.  Criterion: "
@@ -399,15 +406,14 @@ static int case_constant(const sbv_ctx *ctx, sbv_report *rep)
            "by ~0.9%% at phi = 1e-6, i.e. M0 -0.3%% at the half-life "
            "(measured -1.2%% at phi = 1e-5 in --full, which resolves it: "
            "hence phi = 1e-6).");
-  return compare(ctx, rep, "agglo-constant", 0, 1e-6, R, N0, NT, taus, th,
-                 1, KOBS, 1);
+  return compare(ctx, rep, "agglo-constant", 0, 1e-6, gr.R, gr.N0, NT,
+                 gr.taus, gr.th, 1, KOBS, 1);
 }
 
 static int case_brownian(const sbv_ctx *ctx, sbv_report *rep)
 {
-  double taus[NT], th[NT];
-  grid(taus, th);
-  const size_t R = ctx->full ? 40 : 10, N0 = ctx->full ? 4000 : 600;
+  v8_grid gr;
+  grid(ctx, &gr);
   sbv_note(rep, "Continuum Brownian kernel (seed 003 eq 2.9) with growing "
            "clusters: STOKES growth (r = r1 k^1/3, tau_p = tau1 k^2/3, "
            "B = B1 k^-5/6, D = D1 k^-1/3), bridge detection, reach and "
@@ -415,14 +421,14 @@ static int case_brownian(const sbv_ctx *ctx, sbv_report *rep)
            "discrete with K(i,j) = K11 (i^-1/3 + j^-1/3)(i^1/3 + j^1/3)/4 "
            "(the lumped tail approximates sizes > 100 by their mean).  "
            "Compared: M0 and n_1..n_5 (criterion as V8/agglo-constant).");
-  int st = compare(ctx, rep, "agglo-brownian", 1, 1e-6, R, N0, NT, taus, th,
-                   1, 5, 2);
+  int st = compare(ctx, rep, "agglo-brownian", 1, 1e-6, gr.R, gr.N0, NT,
+                   gr.taus, gr.th, 1, 5, 2);
   if (st)
     return st;
   /* finite-density deviation: M0 ratio measured at higher phi (notes,
    * 95% Student intervals over the runs: a measurement, not a verdict) */
   double ref[NT * NCOL];
-  st = pbe_ref(1, NT, taus, ref);
+  st = pbe_ref(1, NT, gr.taus, ref);
   if (st)
     return st;
   const double phis[2] = {1e-3, 1e-2};
@@ -435,7 +441,7 @@ static int case_brownian(const sbv_ctx *ctx, sbv_report *rep)
     for (size_t r = 0; r < Rd && !st; r++) {
       run_t rr = {phis[q], Nd, SB_AGGLO_STOKES, 3.0, 500,
                   ctx->seed * 7919UL + (10 + q) * 104729UL + r + 1, NT,
-                  taus, &runs[r * NT * NCOL], 0.0, 0.0};
+                  gr.taus, &runs[r * NT * NCOL], 0.0, 0.0};
       st = run_engine(&rr);
       ovl += rr.overlap_frac / (double)Rd;
       sph = rr.steps_per_half;
@@ -448,7 +454,7 @@ static int case_brownian(const sbv_ctx *ctx, sbv_report *rep)
              "barycentre engulfing a neighbour)", phis[q], Rd, Nd, sph,
              100.0 * ovl);
     for (size_t it = 0; it < NT; it++) {
-      if (th[it] != 1.0 && th[it] != 5.0)
+      if (gr.th[it] != 1.0 && gr.th[it] != 5.0)
         continue;
       double x[64], mean, lo, hi;
       for (size_t r = 0; r < Rd; r++)
@@ -465,11 +471,11 @@ static int case_brownian(const sbv_ctx *ctx, sbv_report *rep)
        * hard-sphere pair distribution (Carnahan-Starling).  Constant-
        * kernel estimate of the M0 ratio: */
       double g = (1.0 - 0.5 * phis[q]) / pow(1.0 - phis[q], 3);
-      double te = taus[it] * g * (1.0 + sqrt(24.0 * phis[q]));
-      double pred = (1.0 + taus[it] / 2.0) / (1.0 + te / 2.0);
+      double te = gr.taus[it] * g * (1.0 + sqrt(24.0 * phis[q]));
+      double pred = (1.0 + gr.taus[it] / 2.0) / (1.0 + te / 2.0);
       sbv_note(rep, "  t = %g t_half: M0 engine/CVODE = %.3f [%.3f, %.3f] "
                "(95%%); screening estimate (1 + sqrt(24 phi)) g_CS: %.3f",
-               th[it], mean, lo, hi, pred);
+               gr.th[it], mean, lo, hi, pred);
     }
   }
   free(runs);

@@ -186,20 +186,30 @@ static int place_uniform(const sbv_ctx *ctx, unsigned long stream,
   return SB_SUCCESS;
 }
 
+/* Default engine parameters for a cubic box of edge L, step dt and room
+ * for N particles, the engine seeded from the independent stream. */
+static int cube_params(const sbv_ctx *ctx, unsigned long stream, double L,
+                       double dt, size_t N, sb_engine_params *p)
+{
+  sb_engine_params_default(p);
+  p->L[0] = p->L[1] = p->L[2] = L;
+  p->dt = dt;
+  p->capacity = N;
+  gsl_rng *sr = sbv_rng_alloc(ctx, stream);
+  if (!sr)
+    return SB_ENOMEM;
+  p->seed = gsl_rng_get(sr);
+  gsl_rng_free(sr);
+  p->rng_type = gsl_rng_taus2;
+  return SB_SUCCESS;
+}
+
 static int run_firsthit(const sbv_ctx *ctx, unsigned long stream,
                         const fh_run *q, fh_out *o)
 {
   sb_engine_params p;
-  sb_engine_params_default(&p);
-  p.L[0] = p.L[1] = p.L[2] = q->L;
-  p.dt = q->dt;
-  p.capacity = q->N;
-  gsl_rng *sr = sbv_rng_alloc(ctx, stream);  /* independent stream */
-  if (!sr)
+  if (cube_params(ctx, stream, q->L, q->dt, q->N, &p))
     return SB_ENOMEM;
-  p.seed = gsl_rng_get(sr);
-  gsl_rng_free(sr);
-  p.rng_type = gsl_rng_taus2;
   p.outcome = SB_OUTCOME_COUNT;
   sb_engine *e = sb_engine_alloc(&p);
   if (!e)
@@ -282,6 +292,17 @@ static double teff(const fh_run *q)
   return q->T + 2.0 * q->d * sqrt(q->T / (PI * q->b2));
 }
 
+/* Run q with Bessel-3 bridge detection on the positions in a box sized
+ * (box_for) for about `hits` first contacts at the kernel Kth. */
+static int run_bessel(const sbv_ctx *ctx, unsigned long stream, fh_run *q,
+                      double Kth, double hits, fh_out *o)
+{
+  q->L = box_for(Kth, q->N, teff(q), hits, q->b2 * q->T);
+  q->mode = SB_BRIDGE_BESSEL;
+  q->ends = SB_BRIDGE_ENDS_POSITION;
+  return run_firsthit(ctx, stream, q, o);
+}
+
 /* Record a kernel ratio K_e/K_th = scale * hits against 1: exact
  * two-sided Poisson test of the contact count, pass iff p >= ALPHA (the
  * table shows the 95% interval; with dozens of comparisons per run a 95%
@@ -304,6 +325,16 @@ static void brownian(double d, double *tau, double *m, double *b2)
   *b2 = 2.0 * SB_BOLTZMANN * TEMP * *tau / *m;  /* eq 5.17 */
 }
 
+/* A fresh run of Brownian particles of diameter d in air, dt = ratio tau. */
+static void brownian_run(fh_run *q, double d, double ratio)
+{
+  memset(q, 0, sizeof *q);
+  q->d = d;
+  brownian(q->d, &q->tau, &q->mass, &q->b2);
+  q->b2brown = q->b2;
+  q->dt = ratio * q->tau;
+}
+
 /* ================================================= V4 bridge, Brownian */
 
 static int case_v4(const sbv_ctx *ctx, sbv_report *rep)
@@ -324,18 +355,12 @@ static int case_v4(const sbv_ctx *ctx, sbv_report *rep)
   for (int a = 0; a < 3 && !st; a++)
     for (int k = 0; k < 3 && !st; k++) {
       fh_run q;
-      memset(&q, 0, sizeof q);
-      q.d = dps[a];
-      brownian(q.d, &q.tau, &q.mass, &q.b2);
-      q.b2brown = q.b2;
-      q.dt = ratios[k] * q.tau;
+      brownian_run(&q, dps[a], ratios[k]);
       q.N = N;
       q.T = (double)nsteps * q.dt;
-      q.L = box_for(Kth, N, teff(&q), hits, q.b2 * q.T);
-      q.mode = SB_BRIDGE_BESSEL;
-      q.ends = SB_BRIDGE_ENDS_POSITION;
       fh_out o;
-      st = run_firsthit(ctx, 100 + (unsigned long)(3 * a + k), &q, &o);
+      st = run_bessel(ctx, 100 + (unsigned long)(3 * a + k), &q, Kth, hits,
+                      &o);
       if (st)
         break;
       char name[96];
@@ -396,11 +421,9 @@ static int case_v5(const sbv_ctx *ctx, sbv_report *rep)
       q.N = N;
       q.T = (double)nsteps * q.dt;
       double Kth = sb_kernel_diffusion(0.5 * q.d, 0.5 * q.d, q.b2, q.b2);
-      q.L = box_for(Kth, N, teff(&q), hits, q.b2 * q.T);
-      q.mode = SB_BRIDGE_BESSEL;
-      q.ends = SB_BRIDGE_ENDS_POSITION;
       fh_out o;
-      st = run_firsthit(ctx, 200 + (unsigned long)(3 * series + k), &q, &o);
+      st = run_bessel(ctx, 200 + (unsigned long)(3 * series + k), &q, Kth,
+                      hits, &o);
       if (st)
         break;
       char name[96];
@@ -460,13 +483,10 @@ static int case_v7(const sbv_ctx *ctx, sbv_report *rep)
   double Kco = sb_kernel_brownian_co(0.5 * d, 0.5 * d, TEMP, mu);
   double Kst = sb_kernel_saffman_turner(0.5 * d, 0.5 * d, eps, nu);
   double Kth = Kco + Kst;
-  q.L = box_for(Kth, N, teff(&q), hits, q.b2 * q.T);
-  q.mode = SB_BRIDGE_BESSEL;
-  q.ends = SB_BRIDGE_ENDS_POSITION;
   /* the split is accumulated by the bridge outcome: run a reinsert run
    * for it after the first-hit kernel */
   fh_out o;
-  int st = run_firsthit(ctx, 300, &q, &o);
+  int st = run_bessel(ctx, 300, &q, Kth, hits, &o);
   if (st)
     return st;
   st = add_ratio(rep, "V7/brownian+turb/K_e/(K_co+K_ST)", o.K / Kth, o.hits);
@@ -480,16 +500,8 @@ static int case_v7(const sbv_ctx *ctx, sbv_report *rep)
   memset(&bs, 0, sizeof bs);
   {
     sb_engine_params p;
-    sb_engine_params_default(&p);
-    p.L[0] = p.L[1] = p.L[2] = q.L;
-    p.dt = q.dt;
-    p.capacity = N;
-    gsl_rng *sr = sbv_rng_alloc(ctx, 301);
-    if (!sr)
+    if (cube_params(ctx, 301, q.L, q.dt, N, &p))
       return SB_ENOMEM;
-    p.seed = gsl_rng_get(sr);
-    gsl_rng_free(sr);
-    p.rng_type = gsl_rng_taus2;
     sb_engine *e = sb_engine_alloc(&p);
     sb_engine_bridge *b = sb_engine_bridge_alloc(NULL);
     sb_engine_species sp = {0.5 * d, q.mass, q.tau, sqrt(q.b2) / q.tau, 0.0};
@@ -548,11 +560,7 @@ static int case_v3(const sbv_ctx *ctx, sbv_report *rep)
     for (int k = 0; k < 3 && !st; k++)
       for (int det = 1; det <= 3 && !st; det++) {
         fh_run q;
-        memset(&q, 0, sizeof q);
-        q.d = dps[a];
-        brownian(q.d, &q.tau, &q.mass, &q.b2);
-        q.b2brown = q.b2;
-        q.dt = ratios[k] * q.tau;
+        brownian_run(&q, dps[a], ratios[k]);
         q.N = det == 3 ? N / 4 : N;
         /* the bridge reference rate sets the duration (~400 contacts) */
         q.T = (det == 3 ? 30.0 : 300.0) * q.dt;
@@ -631,20 +639,12 @@ static int case_v6(const sbv_ctx *ctx, sbv_report *rep)
            "K_th (1 + 2 d/sqrt(pi B_pos^2 dt)) (listed), which tends to "
            "K_th only for sigma_X >> d.", N, Kth, nwarm, target, nmeas);
   for (int k = 0; k < 3 && !st; k++) {
-    sb_engine_params p;
-    sb_engine_params_default(&p);
     const double dt = ratios[k] * taup;
     const double L = cbrt(Kth * (double)N * (double)N * (double)nmeas * dt /
                           (2.0 * target));
-    p.L[0] = p.L[1] = p.L[2] = L;
-    p.dt = dt;
-    p.capacity = N;
-    gsl_rng *sr = sbv_rng_alloc(ctx, 500 + (unsigned long)k);
-    if (!sr)
+    sb_engine_params p;
+    if (cube_params(ctx, 500 + (unsigned long)k, L, dt, N, &p))
       return SB_ENOMEM;
-    p.seed = gsl_rng_get(sr);
-    gsl_rng_free(sr);
-    p.rng_type = gsl_rng_taus2;
     sb_engine *e = sb_engine_alloc(&p);
     if (!e)
       return SB_ENOMEM;
@@ -752,11 +752,7 @@ static int case_exact(const sbv_ctx *ctx, sbv_report *rep)
            "counting as V4, d = 1 um.");
   for (int k = 0; k < 2 && !st; k++) {
     fh_run q;
-    memset(&q, 0, sizeof q);
-    q.d = 1e-6;
-    brownian(q.d, &q.tau, &q.mass, &q.b2);
-    q.b2brown = q.b2;
-    q.dt = ratios[k] * q.tau;
+    brownian_run(&q, 1e-6, ratios[k]);
     q.N = N;
     q.T = 300.0 * q.dt;
     q.L = box_for(Kth, N, teff(&q), hits, q.b2 * q.T);

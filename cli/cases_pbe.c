@@ -20,13 +20,6 @@ static int add_rel(sbv_report *rep, const char *name, double est,
   return sbv_add(rep, &c);
 }
 
-static double exact_n(int kind, int k, double tau)
-{
-  return kind == 0   ? sb_pbe_const_mono_n(k, tau)
-         : kind == 1 ? sb_pbe_add_mono_n(k, tau)
-                     : sb_pbe_mult_mono_n(k, tau);
-}
-
 /* Discrete system, K = 60 sizes + lumped tail, vs analytic n_k, k <= 50. */
 static int case_discrete(const sbv_ctx *ctx, sbv_report *rep)
 {
@@ -56,35 +49,26 @@ static int case_discrete(const sbv_ctx *ctx, sbv_report *rep)
         return st;
       }
       const double *n = sb_pbe_state(p);
-      double worst = 0, nw = 0, aw = 0;
-      for (int k = 1; k <= 50; k++) {
-        double a = exact_n(kind, k, ts[it]), e = fabs(n[k - 1] / a - 1);
-        if (e >= worst) {
-          worst = e;
-          nw = n[k - 1];
-          aw = a;
-        }
-        if (kind == 0 && it == 1) {
-          plotdata[(k - 1) * 5 + 0] = k;
-          plotdata[(k - 1) * 5 + 1] = n[k - 1];
-          plotdata[(k - 1) * 5 + 2] = a;
-        }
-        if (kind == 0 && it == 2) {
-          plotdata[(k - 1) * 5 + 3] = n[k - 1];
-          plotdata[(k - 1) * 5 + 4] = a;
-        }
+      sb_pbe_analytic_cmp cmp;
+      sb_pbe_compare_analytic(n, 50, (sb_pbe_kernel_kind)kind, ts[it], 0,
+                              &cmp);
+      for (int k = 1; k <= 50 && kind == 0 && it > 0; k++) {
+        double *row = plotdata + (k - 1) * 5; /* tau = 1: cols 1-2, 10: 3-4 */
+        row[0] = k;
+        row[2 * it - 1] = n[k - 1];
+        row[2 * it] = sb_pbe_mono_n(SB_PBE_CONSTANT, k, ts[it]);
       }
       char name[96];
-      snprintf(name, sizeof name, "V8/pbe-discrete/%s/tau=%g/worst-n_k", 
+      snprintf(name, sizeof name, "V8/pbe-discrete/%s/tau=%g/worst-n_k",
                names[kind], ts[it]);
-      add_rel(rep, name, nw, aw, 1e-6);
+      add_rel(rep, name, cmp.nworst, cmp.exact_worst, 1e-6);
       snprintf(name, sizeof name, "V8/pbe-discrete/%s/tau=%g/M1", names[kind],
                ts[it]);
       double m[3];
       sb_pbe_state_moments(p, m);
       add_rel(rep, name, m[1], 1.0, 1e-12);
       sbv_note(rep, "- %s, tau = %g: max relative error on n_k (k <= 50) "
-               "%.2g, M1 drift %.2g, %ld steps", names[kind], ts[it], worst,
+               "%.2g, M1 drift %.2g, %ld steps", names[kind], ts[it], cmp.maxrel,
                r.m1_drift, r.nsteps);
     }
     sb_pbe_free(p);
@@ -103,60 +87,52 @@ static int case_discrete(const sbv_ctx *ctx, sbv_report *rep)
 }
 
 /* Sectional, constant kernel, 300 sections over 12 decades, tau to 1e4. */
-typedef struct {
-  double rows[16 * 5];
-  int n;
-} sect_rows;
 
-static int sect_out(double t, const double *v, const double *n, size_t nb,
-                    const double mom[3], void *data)
+/* Sectional solver, 300 sections over 12 decades, monodisperse start (NULL
+ * on error, recorded). */
+static sb_pbe *sectional_300(sb_kernel_spec *ks, sb_kernel_type type)
 {
-  sect_rows *s = data;
-  (void)v;
-  (void)n;
-  (void)nb;
-  double m[3];
-  sb_pbe_analytic_moments(SB_PBE_CONSTANT, 0, t, m);
-  double *r = s->rows + 5 * s->n++;
-  r[0] = t;
-  r[1] = mom[0];
-  r[2] = m[0];
-  r[3] = mom[2];
-  r[4] = m[2];
-  return 0;
+  sb_kernel_spec_init(ks, type);
+  sb_pbe_config c;
+  sb_pbe_config_init(&c);
+  sb_pbe_config_sectional(&c, 300, 12.0);
+  c.kparams = ks;
+  sb_pbe *p = sb_pbe_alloc(&c);
+  if (p)
+    sb_pbe_init_mono(p, 1.0);
+  return p;
 }
 
 static int case_sectional(const sbv_ctx *ctx, sbv_report *rep)
 {
   sb_kernel_spec ks;
-  sb_kernel_spec_init(&ks, SB_KERNEL_CONSTANT);
-  sb_pbe_config c;
-  sb_pbe_config_init(&c);
-  c.method = SB_PBE_SECTIONAL;
-  c.nsizes = 300;
-  c.ratio = pow(10.0, 12.0 / 299.0);
-  c.kparams = &ks;
-  sb_pbe *p = sb_pbe_alloc(&c);
+  sb_pbe *p = sectional_300(&ks, SB_KERNEL_CONSTANT);
   if (!p)
     return sb_last_status();
-  sb_pbe_init_mono(p, 1.0);
-  double ts[] = {0.01, 0.1, 1, 10, 100, 1000, 10000};
-  sect_rows s = {{0}, 0};
+  double ts[] = {0.01, 0.1, 1, 10, 100, 1000, 10000}, mom[7][3];
   sb_pbe_report r;
-  int st = sb_pbe_solve(p, ts, 7, sect_out, &s, &r);
+  int st = sb_pbe_solve_moments(p, ts, 7, mom, &r);
   sb_pbe_free(p);
   if (st) {
     sbv_note(rep, "- %s", sb_last_error());
     return st;
   }
+  double rows[7 * 5]; /* tau, M0, M0 exact, M2, M2 exact */
+  for (int i = 0; i < 7; i++) {
+    double m[3], *row = rows + 5 * i;
+    sb_pbe_analytic_moments(SB_PBE_CONSTANT, 0, ts[i], m);
+    row[0] = ts[i];
+    row[1] = mom[i][0];
+    row[2] = m[0];
+    row[3] = mom[i][2];
+    row[4] = m[2];
+  }
   char name[96];
-  for (int i = 0; i < s.n; i += 3) {
-    snprintf(name, sizeof name, "V8/pbe-sectional/constant/tau=%g/M0",
-             s.rows[5 * i]);
-    add_rel(rep, name, s.rows[5 * i + 1], s.rows[5 * i + 2], 0.01);
-    snprintf(name, sizeof name, "V8/pbe-sectional/constant/tau=%g/M2",
-             s.rows[5 * i]);
-    add_rel(rep, name, s.rows[5 * i + 3], s.rows[5 * i + 4], 0.01);
+  for (int i = 0; i < 7; i += 3) {
+    snprintf(name, sizeof name, "V8/pbe-sectional/constant/tau=%g/M0", ts[i]);
+    add_rel(rep, name, rows[5 * i + 1], rows[5 * i + 2], 0.01);
+    snprintf(name, sizeof name, "V8/pbe-sectional/constant/tau=%g/M2", ts[i]);
+    add_rel(rep, name, rows[5 * i + 3], rows[5 * i + 4], 0.01);
   }
   add_rel(rep, "V8/pbe-sectional/constant/M1-drift", 1.0 + r.m1_drift, 1.0,
           1e-10);
@@ -165,7 +141,7 @@ static int case_sectional(const sbv_ctx *ctx, sbv_report *rep)
            r.m1_drift, r.nsteps);
   sbv_plot(ctx, rep, "pbe_sectional_constant",
            "Sectional (fixed pivot) vs analytic moments, constant kernel",
-           "tau M0 M0exact M2 M2exact", s.rows, (size_t)s.n, 5,
+           "tau M0 M0exact M2 M2exact", rows, 7, 5,
            "set logscale xy\nset xlabel 'tau'\nplot $DATA u 1:2 w p pt 6 t "
            "'M0', $DATA u 1:3 w l t 'M0 exact', $DATA u 1:4 w p pt 4 t 'M2', "
            "$DATA u 1:5 w l t 'M2 exact'");
@@ -174,52 +150,20 @@ static int case_sectional(const sbv_ctx *ctx, sbv_report *rep)
 
 /* Gelation of the multiplicative kernel: M2 = 1/(1 - tau) diverges at
  * tau = 1; estimate by linear extrapolation of 1/M2 through M2 = 20. */
-typedef struct {
-  double t[400], m2[400];
-  int n;
-} gel_rows;
-static int gel_out(double t, const double *v, const double *n, size_t nb,
-                   const double mom[3], void *data)
-{
-  gel_rows *g = data;
-  (void)v;
-  (void)n;
-  (void)nb;
-  g->t[g->n] = t;
-  g->m2[g->n++] = mom[2];
-  return mom[2] > 50.0 || g->n >= 400;
-}
-
 static int case_gelation(const sbv_ctx *ctx, sbv_report *rep)
 {
   (void)ctx;
   sb_kernel_spec ks;
-  sb_kernel_spec_init(&ks, SB_KERNEL_MULTIPLICATIVE);
-  sb_pbe_config c;
-  sb_pbe_config_init(&c);
-  c.method = SB_PBE_SECTIONAL;
-  c.nsizes = 300;
-  c.ratio = pow(10.0, 12.0 / 299.0);
-  c.kparams = &ks;
-  sb_pbe *p = sb_pbe_alloc(&c);
+  sb_pbe *p = sectional_300(&ks, SB_KERNEL_MULTIPLICATIVE);
   if (!p)
     return sb_last_status();
-  sb_pbe_init_mono(p, 1.0);
   double ts[200];
   int nt = 0;
   for (double t = 0.5; t < 0.9999 && nt < 200; t += 0.0025)
     ts[nt++] = t;
-  gel_rows g = {{0}, {0}, 0};
-  sb_pbe_solve(p, ts, (size_t)nt, gel_out, &g, NULL); /* stopped by gel_out */
+  double tgel; /* NaN if M2 never crossed 20 */
+  sb_pbe_gelation_time(p, ts, (size_t)nt, 20.0, &tgel);
   sb_pbe_free(p);
-  int i = 0;
-  while (i + 1 < g.n && g.m2[i] <= 20.0)
-    i++;
-  double tgel = NAN;
-  if (i + 1 < g.n) {
-    double a = 1 / g.m2[i], b = 1 / g.m2[i + 1];
-    tgel = g.t[i] + a * (g.t[i + 1] - g.t[i]) / (a - b);
-  }
   add_rel(rep, "V8/pbe-gelation/multiplicative/tau_gel", tgel, 1.0, 0.01);
   sbv_note(rep, "- sectional, 300 sections over 12 decades; 1/M2 "
            "extrapolated to 0 through M2 = 20; exact tau_gel = 1 "
@@ -245,9 +189,7 @@ static int case_selfpres(const sbv_ctx *ctx, sbv_report *rep)
   for (int g = 0; g < 2; g++) {
     sb_pbe_config c;
     sb_pbe_config_init(&c);
-    c.method = SB_PBE_SECTIONAL;
-    c.ratio = pow(2.0, 1.0 / (g ? 8.0 : 4.0));
-    c.nsizes = (size_t)ceil(9 * log(10.0) / log(c.ratio)) + 1;
+    sb_pbe_config_sectional_ratio(&c, pow(2.0, 1.0 / (g ? 8.0 : 4.0)), 9.0);
     c.kernel = k_brown_co;
     c.kparams = NULL;
     sb_pbe *p = sb_pbe_alloc(&c);
@@ -263,16 +205,9 @@ static int case_selfpres(const sbv_ctx *ctx, sbv_report *rep)
     }
     const double *v = sb_pbe_volumes(p), *n = sb_pbe_state(p);
     size_t nb = sb_pbe_nbins(p);
-    double m[3], s0 = 0, s1 = 0, s2 = 0;
+    double m[3];
     sb_pbe_state_moments(p, m);
-    for (size_t i = 0; i < nb; i++)
-      if (n[i] > 0) {
-        double l = log(v[i]) / 3;
-        s0 += n[i];
-        s1 += n[i] * l;
-        s2 += n[i] * l * l;
-      }
-    sg[g] = exp(sqrt(s2 / s0 - (s1 / s0) * (s1 / s0)));
+    sg[g] = sb_pbe_sigma_g(v, n, nb);
     if (g) {
       m0t = m[0] * t;
       mr = m[0] * m[2] / (m[1] * m[1]);

@@ -38,6 +38,10 @@ static int radius2(double x) { return x > 0.0 && !isnan(x); }
       "radii must be > 0 (r2 may be +inf) (got r1 = %g, r2 = %g)", r1, r2); \
   REQ(pos(D), "separation D must be finite and > 0 (got %g)", D)
 
+#define REQ_VDW(A, r1, r2, D)                                     \
+  REQ(fin(A), "Hamaker constant A must be finite (got %g)", A);  \
+  REQ_GEOM(r1, r2, D)
+
 /* Plain double wrapper around an _e call. */
 #define VAL(call)                                                          \
   do {                                                                     \
@@ -111,8 +115,7 @@ static double ham_t(double r1, double r2, double D, double *dlog)
 int sb_dlvo_vdw_hamaker_e(double A, double r1, double r2, double D,
                           sb_result *res)
 {
-  REQ(fin(A), "Hamaker constant A must be finite (got %g)", A);
-  REQ_GEOM(r1, r2, D);
+  REQ_VDW(A, r1, r2, D);
   double dl, t = ham_t(r1, r2, D, &dl), eg;
   double g = ham_g(t, &eg);
   /* t carries ~4 ulp; g'(t) t <= 2 g for every t (g' = (2t/(1+2t))^2) is
@@ -132,8 +135,7 @@ double sb_dlvo_vdw_hamaker(double A, double r1, double r2, double D)
 int sb_dlvo_vdw_hamaker_force_e(double A, double r1, double r2, double D,
                                 sb_result *res)
 {
-  REQ(fin(A), "Hamaker constant A must be finite (got %g)", A);
-  REQ_GEOM(r1, r2, D);
+  REQ_VDW(A, r1, r2, D);
   /* F = (A/6) g'(t) dt/dD = -(A/6) (2t/(1+2t))^2 t (1/D + 1/(D+2r1+2r2)):
    * products of positive factors, no cancellation. */
   double dl, t = ham_t(r1, r2, D, &dl);
@@ -148,34 +150,41 @@ double sb_dlvo_vdw_hamaker_force(double A, double r1, double r2, double D)
   VAL(sb_dlvo_vdw_hamaker_force_e(A, r1, r2, D, &r_));
 }
 
+/* Derjaguin energy (force = 0) or force (force = 1). */
+static int derjaguin(double A, double r1, double r2, double D, sb_result *res,
+                     int force)
+{
+  REQ_VDW(A, r1, r2, D);
+  if (force) {
+    res->val = -A * reff(r1, r2) / (6.0 * D * D);
+    res->err = 5.0 * EPS * fabs(res->val);
+  } else {
+    res->val = -A * reff(r1, r2) / (6.0 * D);
+    res->err = 4.0 * EPS * fabs(res->val);
+  }
+  return SB_SUCCESS;
+}
+
 int sb_dlvo_vdw_derjaguin_e(double A, double r1, double r2, double D,
                             sb_result *res)
 {
-  REQ(fin(A), "Hamaker constant A must be finite (got %g)", A);
-  REQ_GEOM(r1, r2, D);
-  res->val = -A * reff(r1, r2) / (6.0 * D);
-  res->err = 4.0 * EPS * fabs(res->val);
-  return SB_SUCCESS;
+  return derjaguin(A, r1, r2, D, res, 0);
 }
 
 double sb_dlvo_vdw_derjaguin(double A, double r1, double r2, double D)
 {
-  VAL(sb_dlvo_vdw_derjaguin_e(A, r1, r2, D, &r_));
+  VAL(derjaguin(A, r1, r2, D, &r_, 0));
 }
 
 int sb_dlvo_vdw_derjaguin_force_e(double A, double r1, double r2, double D,
                                   sb_result *res)
 {
-  REQ(fin(A), "Hamaker constant A must be finite (got %g)", A);
-  REQ_GEOM(r1, r2, D);
-  res->val = -A * reff(r1, r2) / (6.0 * D * D);
-  res->err = 5.0 * EPS * fabs(res->val);
-  return SB_SUCCESS;
+  return derjaguin(A, r1, r2, D, res, 1);
 }
 
 double sb_dlvo_vdw_derjaguin_force(double A, double r1, double r2, double D)
 {
-  VAL(sb_dlvo_vdw_derjaguin_force_e(A, r1, r2, D, &r_));
+  VAL(derjaguin(A, r1, r2, D, &r_, 1));
 }
 
 /* ------------------------------------------------------------ double layer */
@@ -622,6 +631,11 @@ static double gam_pq(int k2, double x, int upper, double *err)
     return upper ? 1.0 : 0.0;
   }
   double v, rel = 2.0 * EPS * (1.0 + x);
+  if (k2 >= 3 && !upper && x < 2.0) { /* k = 3/2, 2: the positive series */
+    v = p_series(k2, x, &rel);
+    *err = rel * v;
+    return v;
+  }
   switch (k2) {
   case 1:
     if (upper) { /* erfc(sqrt x) = 2 M(sqrt(2x)) e^-x: no x eps loss */
@@ -637,11 +651,6 @@ static double gam_pq(int k2, double x, int upper, double *err)
     *err = rel * v;
     return v;
   case 3:
-    if (!upper && x < 2.0) {
-      v = p_series(3, x, &rel);
-      *err = rel * v;
-      return v;
-    }
     if (upper) { /* e^-x (2 M(sqrt(2x)) + 2 sqrt(x/pi)) */
       v = (2.0 * sbi_mills(sqrt(2.0 * x)) + 2.0 * sqrt(x / M_PI)) * exp(-x);
       *err = 10.0 * EPS * v;
@@ -655,55 +664,48 @@ static double gam_pq(int k2, double x, int upper, double *err)
       return v;
     }
   default: /* 4: k = 2 */
-    if (!upper && x < 2.0) {
-      v = p_series(4, x, &rel);
-      *err = rel * v;
-      return v;
-    }
     v = upper ? (1.0 + x) * exp(-x) : -expm1(-x) - x * exp(-x);
     *err = (4.0 + 2.0 * x) * EPS * (upper ? v : 1.0 + x * exp(-x));
     return v;
   }
 }
 
-int sb_dlvo_erel_P_e(double E, double theta, sb_dlvo_erel_law law, int dim,
-                     sb_result *res)
+/* P (upper = 0) or Q (upper = 1) of the law at E. */
+static int erel_pq(double E, double theta, sb_dlvo_erel_law law, int dim,
+                   int upper, sb_result *res)
 {
   int k2;
   int s = law_k2(E, theta, law, dim, res, &k2);
   if (s != SB_SUCCESS)
     return s;
   if (isinf(E)) {
-    res->val = 1.0, res->err = 0.0;
+    res->val = upper ? 0.0 : 1.0, res->err = 0.0;
     return SB_SUCCESS;
   }
-  res->val = gam_pq(k2, E / theta, 0, &res->err);
+  res->val = gam_pq(k2, E / theta, upper, &res->err);
   return SB_SUCCESS;
+}
+
+int sb_dlvo_erel_P_e(double E, double theta, sb_dlvo_erel_law law, int dim,
+                     sb_result *res)
+{
+  return erel_pq(E, theta, law, dim, 0, res);
 }
 
 double sb_dlvo_erel_P(double E, double theta, sb_dlvo_erel_law law, int dim)
 {
-  VAL(sb_dlvo_erel_P_e(E, theta, law, dim, &r_));
+  VAL(erel_pq(E, theta, law, dim, 0, &r_));
 }
 
 int sb_dlvo_erel_Q_e(double E, double theta, sb_dlvo_erel_law law, int dim,
                      sb_result *res)
 {
-  int k2;
-  int s = law_k2(E, theta, law, dim, res, &k2);
-  if (s != SB_SUCCESS)
-    return s;
-  if (isinf(E)) {
-    res->val = 0.0, res->err = 0.0;
-    return SB_SUCCESS;
-  }
-  res->val = gam_pq(k2, E / theta, 1, &res->err);
-  return SB_SUCCESS;
+  return erel_pq(E, theta, law, dim, 1, res);
 }
 
 double sb_dlvo_erel_Q(double E, double theta, sb_dlvo_erel_law law, int dim)
 {
-  VAL(sb_dlvo_erel_Q_e(E, theta, law, dim, &r_));
+  VAL(erel_pq(E, theta, law, dim, 1, &r_));
 }
 
 double sb_dlvo_erel_logQ(double E, double theta, sb_dlvo_erel_law law,

@@ -836,42 +836,19 @@ int sb_engine_run_until(sb_engine *e, double t_end)
 
 size_t sb_engine_count(const sb_engine *e) { return e ? e->n : 0; }
 double sb_engine_time(const sb_engine *e) { return e ? e->t : NAN; }
-const double *sb_engine_positions(const sb_engine *e)
-{
-  return e ? e->x : NULL;
-}
-const double *sb_engine_velocities(const sb_engine *e)
-{
-  return e ? e->u : NULL;
-}
-const double *sb_engine_start_positions(const sb_engine *e)
-{
-  return e ? e->x0 : NULL;
-}
-const double *sb_engine_start_velocities(const sb_engine *e)
-{
-  return e ? e->u0 : NULL;
-}
-const double *sb_engine_radii(const sb_engine *e)
-{
-  return e ? e->radius : NULL;
-}
-const double *sb_engine_masses(const sb_engine *e)
-{
-  return e ? e->mass : NULL;
-}
-const size_t *sb_engine_species_of(const sb_engine *e)
-{
-  return e ? e->species : NULL;
-}
-const int *sb_engine_families(const sb_engine *e)
-{
-  return e ? e->family : NULL;
-}
-const uint64_t *sb_engine_ids(const sb_engine *e)
-{
-  return e ? e->id : NULL;
-}
+/* Read-only view of a particle array (NULL for a NULL engine). */
+#define ARRAY_VIEW(type, fn, field) \
+  const type *fn(const sb_engine *e) { return e ? e->field : NULL; }
+ARRAY_VIEW(double, sb_engine_positions, x)
+ARRAY_VIEW(double, sb_engine_velocities, u)
+ARRAY_VIEW(double, sb_engine_start_positions, x0)
+ARRAY_VIEW(double, sb_engine_start_velocities, u0)
+ARRAY_VIEW(double, sb_engine_radii, radius)
+ARRAY_VIEW(double, sb_engine_masses, mass)
+ARRAY_VIEW(size_t, sb_engine_species_of, species)
+ARRAY_VIEW(int, sb_engine_families, family)
+ARRAY_VIEW(uint64_t, sb_engine_ids, id)
+#undef ARRAY_VIEW
 gsl_rng *sb_engine_rng(sb_engine *e) { return e ? e->rng : NULL; }
 
 /* ============================================================ names */

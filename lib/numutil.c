@@ -184,6 +184,23 @@ double sbi_ig_cdf(const sbi_igpt *p, double *rel)
   return f;
 }
 
+/* ex (M(lo) - M(z + h)), lo = z - h (see sbi_mills_diff), or 0 when ex
+ * underflowed; *rel (if rel) gets its relative error bound. */
+static double ex_mills_diff(const sbi_igpt *p, double z, double h, double lo,
+                            double *rel)
+{
+  if (p->ex == 0.0) {
+    if (rel)
+      *rel = 0.0;
+    return 0.0;
+  }
+  double rd;
+  double d = sbi_mills_diff(z, h, lo, &rd);
+  if (rel)
+    *rel = rd + 3.0 * EPS;
+  return p->ex * d;
+}
+
 double sbi_ig_sf(const sbi_igpt *p, double *rel)
 {
   double c = p->c;
@@ -195,16 +212,7 @@ double sbi_ig_sf(const sbi_igpt *p, double *rel)
       *rel = ((2.0 + 2.0 * c * c) * q + 6.0 * t2) * EPS / s + EPS;
     return s;
   }
-  if (p->ex == 0.0) {
-    if (rel)
-      *rel = 0.0;
-    return 0.0;
-  }
-  double rd;
-  double d = sbi_mills_diff(p->kap, p->eps, c, &rd);
-  if (rel)
-    *rel = rd + 3.0 * EPS;
-  return p->ex * d;
+  return ex_mills_diff(p, p->kap, p->eps, c, rel);
 }
 
 double sbi_ig_sbcdf(const sbi_igpt *p, double *rel)
@@ -217,16 +225,7 @@ double sbi_ig_sbcdf(const sbi_igpt *p, double *rel)
       *rel = (2.0 * ph + 6.0 * t2) * EPS / s + EPS;
     return s;
   }
-  if (p->ex == 0.0) {
-    if (rel)
-      *rel = 0.0;
-    return 0.0;
-  }
-  double rd;
-  double d = sbi_mills_diff(p->eps, p->kap, -c, &rd);
-  if (rel)
-    *rel = rd + 3.0 * EPS;
-  return p->ex * d;
+  return ex_mills_diff(p, p->eps, p->kap, -c, rel);
 }
 
 double sbi_ig_sbsf(const sbi_igpt *p, double *rel)
@@ -368,33 +367,73 @@ double sbi_ig_quantile_start(double p, int upper, double phi, double pi)
 
 /* --------------------------------------------------- monotone solver */
 
+/* Bracket and fallback steps of the two monotone solvers below. */
+typedef struct {
+  double lo, hi;      /* g(lo) < 0, g(hi) > 0 (infinite: not found yet) */
+  double up, dn, cap; /* expansion steps up and down, unbracketed cap */
+} guard;
+
+/* Replace the Newton-type step y -> *yn (newton: it is usable) when it is
+ * unusable, out of the bracket or not converging fast enough (step not
+ * halving every two iterations: |*yn - y| > before / 2): bisect, or expand
+ * toward the sign change; an unbracketed long step from a flat region is
+ * capped.  Returns 1 when *yn was replaced. */
+static int safeguard(guard *s, int newton, double y, double gy,
+                     double before, double *yn)
+{
+  int bracketed = isfinite(s->lo) && isfinite(s->hi);
+  if (!newton || !(*yn > s->lo && *yn < s->hi) ||
+      (bracketed && fabs(*yn - y) > 0.5 * before)) {
+    if (bracketed)
+      *yn = 0.5 * (s->lo + s->hi);
+    else if (gy < 0.0) {
+      *yn = y + s->up;
+      s->up *= 2.0;
+    } else {
+      *yn = y - s->dn;
+      s->dn *= 2.0;
+    }
+    return 1;
+  }
+  if (!bracketed && fabs(*yn - y) > s->cap) {
+    *yn = *yn > y ? y + s->cap : y - s->cap;
+    s->cap *= 2.0;
+    return 1;
+  }
+  return 0;
+}
+
+/* Store the solver's result: *root = r, *dy = d (if dy), return status. */
+static int solved(double *root, double *dy, double r, double d, int status)
+{
+  *root = r;
+  if (dy)
+    *dy = d;
+  return status;
+}
+
 int sbi_solve_increasing(sbi_fdf g, void *ctx, double y0, double step,
                          double tol, double *root, double *dy)
 {
   const int maxit = 100;
   const double gacc = 1e-10;
-  double lo = -INFINITY, hi = INFINITY;
-  double up = step, dn = step, cap = 4.0 * step;
+  guard s = {-INFINITY, INFINITY, step, step, 4.0 * step};
   double y = y0, d = 0.0, d2 = NAN;
   double gy = g(y, ctx, &d, &d2);
   double last = INFINITY, before = INFINITY;
   double best = y, gbest = fabs(gy);
 
   for (int it = 0; it < maxit; it++) {
-    if (gy == 0.0) {
-      *root = y;
-      if (dy)
-        *dy = 0.0;
-      return SB_SUCCESS;
-    }
+    if (gy == 0.0)
+      return solved(root, dy, y, 0.0, SB_SUCCESS);
     if (fabs(gy) < gbest) {
       gbest = fabs(gy);
       best = y;
     }
     if (gy < 0.0)
-      lo = y;
+      s.lo = y;
     else
-      hi = y;
+      s.hi = y;
     int newton = isfinite(gy) && isfinite(d) && d > 0.0;
     double yn = NAN;
     if (newton) {
@@ -410,47 +449,19 @@ int sbi_solve_increasing(sbi_fdf g, void *ctx, double y0, double step,
     /* converged: the correction is below tol or g is small enough that
      * the correction is final (checked before the bracket test: a sub-ulp
      * correction may land on the bracket end) */
-    if (newton && (fabs(yn - y) <= tol || fabs(gy) <= gacc)) {
-      *root = yn;
-      if (dy)
-        *dy = fabs(yn - y);
-      return SB_SUCCESS;
-    }
-    int bracketed = isfinite(lo) && isfinite(hi);
-    if (!newton || !(yn > lo && yn < hi) ||
-        (bracketed && fabs(yn - y) > 0.5 * before)) {
-      /* unusable, out of the bracket, or not converging fast enough (step
-       * not halving every two iterations): bisect or expand */
-      if (bracketed)
-        yn = 0.5 * (lo + hi);
-      else if (gy < 0.0) {
-        yn = y + up;
-        up *= 2.0;
-      } else {
-        yn = y - dn;
-        dn *= 2.0;
-      }
-    } else if (!bracketed && fabs(yn - y) > cap) {
-      /* a long step from a flat region: go part of the way */
-      yn = yn > y ? y + cap : y - cap;
-      cap *= 2.0;
-    }
-    if (bracketed && hi - lo <= tol) {
-      *root = best;
-      if (dy)
-        *dy = hi - lo;
-      return SB_SUCCESS;
-    }
+    if (newton && (fabs(yn - y) <= tol || fabs(gy) <= gacc))
+      return solved(root, dy, yn, fabs(yn - y), SB_SUCCESS);
+    int bracketed = isfinite(s.lo) && isfinite(s.hi);
+    safeguard(&s, newton, y, gy, before, &yn);
+    if (bracketed && s.hi - s.lo <= tol)
+      return solved(root, dy, best, s.hi - s.lo, SB_SUCCESS);
     before = last;
     last = fabs(yn - y);
     y = yn;
     d2 = NAN;
     gy = g(y, ctx, &d, &d2);
   }
-  *root = best;
-  if (dy)
-    *dy = last;
-  return SB_EMAXITER;
+  return solved(root, dy, best, last, SB_EMAXITER);
 }
 
 int sbi_solve_increasing4(sbi_fdf4 g, void *ctx, double y0, double step,
@@ -458,8 +469,7 @@ int sbi_solve_increasing4(sbi_fdf4 g, void *ctx, double y0, double step,
 {
   const int maxit = 100;
   const double tol = 1e-14; /* bracket width at which bisection stops */
-  double lo = -INFINITY, hi = INFINITY;
-  double up = step, dn = step, cap = 4.0 * step;
+  guard s = {-INFINITY, INFINITY, step, step, 4.0 * step};
   double y = y0, d[4] = {NAN, NAN, NAN, 0.0};
   double gy = g(y, INFINITY, ctx, d);
   double last = INFINITY, before = INFINITY;
@@ -467,20 +477,16 @@ int sbi_solve_increasing4(sbi_fdf4 g, void *ctx, double y0, double step,
 
   for (int it = 0; it < maxit; it++) {
     int final = d[3] != 0.0;
-    if (gy == 0.0 && final) {
-      *root = y;
-      if (dy)
-        *dy = 0.0;
-      return SB_SUCCESS;
-    }
+    if (gy == 0.0 && final)
+      return solved(root, dy, y, 0.0, SB_SUCCESS);
     if (final && fabs(gy) < gbest) {
       gbest = fabs(gy);
       best = y;
     }
     if (gy < 0.0)
-      lo = y;
+      s.lo = y;
     else if (gy > 0.0)
-      hi = y;
+      s.hi = y;
     int newton = isfinite(gy) && isfinite(d[0]) && d[0] > 0.0;
     double yn = NAN, k = INFINITY;
     if (newton) {
@@ -496,12 +502,9 @@ int sbi_solve_increasing4(sbi_fdf4 g, void *ctx, double y0, double step,
         if (isfinite(c3) && fabs(c2) + fabs(c3) <= 0.25) {
           yn = y - r * (1.0 + c2 + c3);
           if (fabs(r) * k * k * k <= 1e-18) {
-            if (final) {
-              *root = yn;
-              if (dy)
-                *dy = 4.0 * fabs(r) * k * k * k;
-              return SB_SUCCESS;
-            }
+            if (final)
+              return solved(root, dy, yn, 4.0 * fabs(r) * k * k * k,
+                            SB_SUCCESS);
             /* close enough: one final-accuracy value at yn decides */
             y = yn;
             gy = g(y, 0.0, ctx, d);
@@ -512,38 +515,16 @@ int sbi_solve_increasing4(sbi_fdf4 g, void *ctx, double y0, double step,
         }
       }
     }
-    int bracketed = isfinite(lo) && isfinite(hi);
-    if (!newton || !(yn > lo && yn < hi) ||
-        (bracketed && fabs(yn - y) > 0.5 * before)) {
-      /* unusable, out of the bracket, or not converging: bisect/expand */
-      if (bracketed)
-        yn = 0.5 * (lo + hi);
-      else if (gy < 0.0) {
-        yn = y + up;
-        up *= 2.0;
-      } else {
-        yn = y - dn;
-        dn *= 2.0;
-      }
+    int bracketed = isfinite(s.lo) && isfinite(s.hi);
+    if (safeguard(&s, newton, y, gy, before, &yn))
       k = INFINITY;
-    } else if (!bracketed && fabs(yn - y) > cap) {
-      yn = yn > y ? y + cap : y - cap;
-      cap *= 2.0;
-      k = INFINITY;
-    }
-    if (bracketed && hi - lo <= tol * fmax(1.0, fabs(y))) {
-      *root = isfinite(gbest) ? best : 0.5 * (lo + hi);
-      if (dy)
-        *dy = hi - lo;
-      return SB_SUCCESS;
-    }
+    if (bracketed && s.hi - s.lo <= tol * fmax(1.0, fabs(y)))
+      return solved(root, dy, isfinite(gbest) ? best : 0.5 * (s.lo + s.hi),
+                    s.hi - s.lo, SB_SUCCESS);
     before = last;
     last = fabs(yn - y);
     y = yn;
     gy = g(y, k, ctx, d);
   }
-  *root = best;
-  if (dy)
-    *dy = last;
-  return SB_EMAXITER;
+  return solved(root, dy, best, last, SB_EMAXITER);
 }

@@ -58,9 +58,7 @@ START_TEST(test_analytic_normalisation)
     for (int kind = 0; kind < 3; kind++) {
       double s0 = 0, s1 = 0, m[3];
       for (int k = 1; k <= 200000; k++) {
-        double n = kind == 0   ? sb_pbe_const_mono_n(k, tau)
-                   : kind == 1 ? sb_pbe_add_mono_n(k, tau)
-                               : sb_pbe_mult_mono_n(k, tau);
+        double n = sb_pbe_mono_n((sb_pbe_kernel_kind)kind, k, tau);
         s0 += n;
         s1 += k * n;
       }
@@ -122,17 +120,23 @@ END_TEST
 
 /* ------------------------------------------------ discrete system */
 
+/* Default config with `nsizes` sizes and the built-in kernel `type` with
+ * K = 1 (its spec in *ks). */
+static sb_pbe_config kernel_config(sb_kernel_spec *ks, sb_kernel_type type,
+                                   size_t nsizes)
+{
+  sb_kernel_spec_init(ks, type);
+  sb_pbe_config c;
+  sb_pbe_config_init(&c);
+  c.nsizes = nsizes;
+  c.kparams = ks;
+  return c;
+}
+
 typedef struct {
-  int kind;
+  sb_pbe_kernel_kind kind;
   double maxrel;
 } cmp_ctx;
-
-static double exact_n(int kind, int k, double tau)
-{
-  return kind == 0 ? sb_pbe_const_mono_n(k, tau)
-         : kind == 1 ? sb_pbe_add_mono_n(k, tau)
-                     : sb_pbe_mult_mono_n(k, tau);
-}
 
 static int cmp_out(double t, const double *v, const double *n, size_t nb,
                    const double mom[3], void *data)
@@ -142,13 +146,12 @@ static int cmp_out(double t, const double *v, const double *n, size_t nb,
   (void)nb;
   if (t == 0)
     return 0;
-  for (int k = 1; k <= 50; k++) {
-    double e = fabs(n[k - 1] / exact_n(c->kind, k, t) - 1);
-    if (e > c->maxrel)
-      c->maxrel = e;
-  }
+  sb_pbe_analytic_cmp cmp;
+  ck_assert_int_eq(sb_pbe_compare_analytic(n, 50, c->kind, t, 0, &cmp),
+                   SB_SUCCESS);
+  c->maxrel = fmax(c->maxrel, cmp.maxrel);
   double m[3];
-  sb_pbe_analytic_moments((sb_pbe_kernel_kind)c->kind, 0, t, m);
+  sb_pbe_analytic_moments(c->kind, 0, t, m);
   ck_assert_rel(mom[0], m[0], 1e-6);
   ck_assert_rel(mom[1], m[1], 1e-12);
   return 0;
@@ -162,11 +165,7 @@ START_TEST(test_discrete_vs_analytic)
 {
   int kind = _i / 3;
   sb_kernel_spec ks;
-  sb_kernel_spec_init(&ks, (sb_kernel_type)kind); /* K = 1 */
-  sb_pbe_config c;
-  sb_pbe_config_init(&c);
-  c.nsizes = 60;
-  c.kparams = &ks;
+  sb_pbe_config c = kernel_config(&ks, (sb_kernel_type)kind, 60);
   c.rtol = 1e-10;
   c.atol = 1e-40; /* n_50 ~ 1e-64 at tau = 0.1: relative control */
   const sb_pbe_linsol ls[] = {SB_PBE_LS_GMRES, SB_PBE_LS_DENSE,
@@ -176,7 +175,7 @@ START_TEST(test_discrete_vs_analytic)
   ck_assert_ptr_nonnull(p);
   ck_assert_int_eq(sb_pbe_init_mono(p, 1.0), SB_SUCCESS);
   double t1[] = {0, 0.1, 1, 10}, t2[] = {0, 0.1, 0.5, 0.9};
-  cmp_ctx cx = {kind, 0};
+  cmp_ctx cx = {(sb_pbe_kernel_kind)kind, 0};
   sb_pbe_report rep;
   ck_assert_int_eq(sb_pbe_solve(p, kind == 2 ? t2 : t1, 4, cmp_out, &cx, &rep),
                    SB_SUCCESS);
@@ -193,11 +192,7 @@ END_TEST
 START_TEST(test_discrete_truncation_drift)
 {
   sb_kernel_spec ks;
-  sb_kernel_spec_init(&ks, SB_KERNEL_CONSTANT);
-  sb_pbe_config c;
-  sb_pbe_config_init(&c);
-  c.nsizes = 20;
-  c.kparams = &ks;
+  sb_pbe_config c = kernel_config(&ks, SB_KERNEL_CONSTANT, 20);
   c.tail = 0;
   sb_pbe *p = sb_pbe_alloc(&c);
   sb_pbe_init_mono(p, 1.0);
@@ -236,11 +231,7 @@ START_TEST(test_source_removal)
 {
   double r = 0.3, S = 2.0;
   sb_kernel_spec ks;
-  sb_kernel_spec_init(&ks, SB_KERNEL_CONSTANT);
-  sb_pbe_config c;
-  sb_pbe_config_init(&c);
-  c.nsizes = 40;
-  c.kparams = &ks;
+  sb_pbe_config c = kernel_config(&ks, SB_KERNEL_CONSTANT, 40);
   c.rtol = 1e-10;
   c.removal = removal_rate;
   c.rparams = &r;
@@ -374,11 +365,8 @@ START_TEST(test_fft_solve)
 {
   int kind = _i;
   sb_kernel_spec ks;
-  sb_kernel_spec_init(&ks, (sb_kernel_type)kind);
-  sb_pbe_config c;
-  sb_pbe_config_init(&c);
-  c.nsizes = kind ? 500 : 2000;
-  c.kparams = &ks;
+  sb_pbe_config c = kernel_config(&ks, (sb_kernel_type)kind,
+                                  kind ? 500 : 2000);
   c.rtol = 1e-10;
   c.gain = SB_PBE_GAIN_FFT;
   sb_pbe *p = sb_pbe_alloc(&c);
@@ -389,17 +377,14 @@ START_TEST(test_fft_solve)
   for (int it = 0; it < 3; it++) {
     ck_assert_int_eq(sb_pbe_solve(p, &ts[it], 1, NULL, NULL, &rep),
                      SB_SUCCESS);
-    const double *n = sb_pbe_state(p);
-    int checked = 0;
-    for (int k = 1; k <= 50; k++) {
-      double e = exact_n(kind, k, ts[it]);
-      if (e < 1e-6)
-        continue;
-      checked++;
-      ck_assert_msg(fabs(n[k - 1] / e - 1) <= 1e-6, "kind %d tau %g k %d: "
-                    "%.10g vs %.10g", kind, ts[it], k, n[k - 1], e);
-    }
-    ck_assert_int_ge(checked, 3);
+    sb_pbe_analytic_cmp cmp;
+    ck_assert_int_eq(sb_pbe_compare_analytic(sb_pbe_state(p), 50,
+                                             (sb_pbe_kernel_kind)kind, ts[it],
+                                             1e-6, &cmp),
+                     SB_SUCCESS);
+    ck_assert_msg(cmp.maxrel <= 1e-6, "kind %d tau %g k %zu: %.10g vs %.10g",
+                  kind, ts[it], cmp.kworst, cmp.nworst, cmp.exact_worst);
+    ck_assert_uint_ge(cmp.nchecked, 3);
     ck_assert_msg(rep.m1_drift <= 1e-12, "M1 drift %g", rep.m1_drift);
   }
   sb_pbe_free(p);
@@ -408,132 +393,84 @@ END_TEST
 
 /* ------------------------------------------------ sectional method */
 
-typedef struct {
-  int kind, exp_start;
-  double maxerr0, maxerr2;
-} sect_ctx;
-
-static int sect_out(double t, const double *v, const double *n, size_t nb,
-                    const double mom[3], void *data)
+/* Config of a sectional solver with 300 sections over 12 decades (ratio
+ * 10^(12/299)), kernel `type` with K = 1 (spec in *ks). */
+static sb_pbe_config sect_config(sb_kernel_spec *ks, sb_kernel_type type)
 {
-  sect_ctx *c = data;
-  (void)v;
-  (void)n;
-  (void)nb;
-  double m[3];
-  sb_pbe_analytic_moments((sb_pbe_kernel_kind)c->kind, c->exp_start, t, m);
-  c->maxerr0 = fmax(c->maxerr0, fabs(mom[0] / m[0] - 1));
-  c->maxerr2 = fmax(c->maxerr2, fabs(mom[2] / m[2] - 1));
-  return 0;
+  sb_pbe_config c = kernel_config(ks, type, 300);
+  ck_assert_int_eq(sb_pbe_config_sectional(&c, 300, 12.0), SB_SUCCESS);
+  return c;
 }
 
-/* Constant kernel, 300 sections over 12 decades (ratio 10^(12/299)),
- * tau from 0.01 to 10^4: M0 and M2 within 1%, M1 to 1e-10. */
-START_TEST(test_sectional_constant)
+/* 300 sections over 12 decades, rtol 1e-8; M0 and M2 within 1% of the
+ * analytic moments at every output, M1 to 1e-10:
+ *  - constant kernel, monodisperse and exponential start (grid from
+ *    1e-4 v0), tau from 0.01 to 10^4;
+ *  - additive kernel, monodisperse: the fixed pivot over-predicts M2 and
+ *    the error grows with tau (docs/pbe.md); within 1% up to tau = 1. */
+static const struct {
+  sb_kernel_type kernel;
+  int exp_start;
+  size_t nt;
+  double ts[7];
+} sect_cases[] = {
+    {SB_KERNEL_CONSTANT, 0, 7, {0.01, 0.1, 1, 10, 100, 1000, 10000}},
+    {SB_KERNEL_CONSTANT, 1, 7, {0.01, 0.1, 1, 10, 100, 1000, 10000}},
+    {SB_KERNEL_ADDITIVE, 0, 3, {0.1, 0.3, 1.0}},
+};
+
+START_TEST(test_sectional_moments)
 {
-  int exp_start = _i;
+  int exp_start = sect_cases[_i].exp_start;
   sb_kernel_spec ks;
-  sb_kernel_spec_init(&ks, SB_KERNEL_CONSTANT);
-  sb_pbe_config c;
-  sb_pbe_config_init(&c);
-  c.method = SB_PBE_SECTIONAL;
-  c.nsizes = 300;
-  c.ratio = pow(10.0, 12.0 / 299.0);
+  sb_pbe_config c = sect_config(&ks, sect_cases[_i].kernel);
   c.v1 = exp_start ? 1e-4 : 1.0; /* exp: grid from 1e-4 v0 */
-  c.kparams = &ks;
-  c.rtol = 1e-8;
   sb_pbe *p = sb_pbe_alloc(&c);
   ck_assert_ptr_nonnull(p);
   if (exp_start)
     ck_assert_int_eq(sb_pbe_init_exp(p, 1.0, 1.0), SB_SUCCESS);
   else
     sb_pbe_init_mono(p, 1.0);
-  double ts[] = {0.01, 0.1, 1, 10, 100, 1000, 10000};
-  sect_ctx cx = {0, exp_start, 0, 0};
+  const double *ts = sect_cases[_i].ts;
+  double mom[7][3], maxerr0 = 0, maxerr2 = 0;
   sb_pbe_report rep;
-  ck_assert_int_eq(sb_pbe_solve(p, ts, 7, sect_out, &cx, &rep), SB_SUCCESS);
-  ck_assert_msg(cx.maxerr0 <= 0.01, "M0 error %g", cx.maxerr0);
-  ck_assert_msg(cx.maxerr2 <= 0.01, "M2 error %g", cx.maxerr2);
-  ck_assert_msg(rep.m1_drift <= 1e-10, "M1 drift %g", rep.m1_drift);
-  sb_pbe_free(p);
-}
-END_TEST
-
-/* Additive kernel, sectional: the fixed pivot over-predicts M2 and the
- * error grows with tau (docs/pbe.md); within 1% up to tau = 1 at 300
- * sections over 12 decades. */
-START_TEST(test_sectional_additive)
-{
-  sb_kernel_spec ks;
-  sb_kernel_spec_init(&ks, SB_KERNEL_ADDITIVE);
-  sb_pbe_config c;
-  sb_pbe_config_init(&c);
-  c.method = SB_PBE_SECTIONAL;
-  c.nsizes = 300;
-  c.ratio = pow(10.0, 12.0 / 299.0);
-  c.kparams = &ks;
-  sb_pbe *p = sb_pbe_alloc(&c);
-  sb_pbe_init_mono(p, 1.0);
-  double ts[] = {0.1, 0.3, 1.0};
-  sect_ctx cx = {1, 0, 0, 0};
-  sb_pbe_report rep;
-  ck_assert_int_eq(sb_pbe_solve(p, ts, 3, sect_out, &cx, &rep), SB_SUCCESS);
-  ck_assert_msg(cx.maxerr0 <= 0.01, "M0 error %g", cx.maxerr0);
-  ck_assert_msg(cx.maxerr2 <= 0.01, "M2 error %g", cx.maxerr2);
+  ck_assert_int_eq(sb_pbe_solve_moments(p, ts, sect_cases[_i].nt, mom, &rep),
+                   SB_SUCCESS);
+  for (size_t i = 0; i < sect_cases[_i].nt; i++) {
+    double m[3];
+    sb_pbe_analytic_moments((sb_pbe_kernel_kind)sect_cases[_i].kernel,
+                            exp_start, ts[i], m);
+    maxerr0 = fmax(maxerr0, fabs(mom[i][0] / m[0] - 1));
+    maxerr2 = fmax(maxerr2, fabs(mom[i][2] / m[2] - 1));
+  }
+  ck_assert_msg(maxerr0 <= 0.01, "M0 error %g", maxerr0);
+  ck_assert_msg(maxerr2 <= 0.01, "M2 error %g", maxerr2);
   ck_assert_msg(rep.m1_drift <= 1e-10, "M1 drift %g", rep.m1_drift);
   sb_pbe_free(p);
 }
 END_TEST
 
 /* Gelation, multiplicative kernel K v v', monodisperse: M2 = 1/(1 - tau)
- * diverges at tau = 1.  Estimate: from outputs on a fine grid of tau,
- * take the first two where M2 > 20 M2(0) and extrapolate 1/M2 linearly to
- * zero.  Must be 1 +- 1% (sectional, 300 sections, 12 decades); the
- * discrete system (K = 300 + tail) must match M2 = 1/(1 - tau) within
- * 1e-6 up to tau = 0.7, where sizes above K carry no M2 (n_k decays as
- * exp(-k (tau - 1 - log tau)), rate 0.057 at tau = 0.7). */
-typedef struct {
-  double t[256], m2[256];
-  int n;
-} gel_ctx;
-static int gel_out(double t, const double *v, const double *n, size_t nb,
-                   const double mom[3], void *data)
-{
-  gel_ctx *g = data;
-  (void)v;
-  (void)n;
-  (void)nb;
-  g->t[g->n] = t;
-  g->m2[g->n++] = mom[2];
-  return mom[2] > 50.0; /* stop well past the crossing of 20 */
-}
-
+ * diverges at tau = 1.  Estimate (sb_pbe_gelation_time): from outputs on a
+ * fine grid of tau, take the first two where M2 > 20 M2(0) and extrapolate
+ * 1/M2 linearly to zero.  Must be 1 +- 1% (sectional, 300 sections, 12
+ * decades); the discrete system (K = 300 + tail) must match
+ * M2 = 1/(1 - tau) within 1e-6 up to tau = 0.7, where sizes above K carry
+ * no M2 (n_k decays as exp(-k (tau - 1 - log tau)), rate 0.057 at
+ * tau = 0.7). */
 START_TEST(test_gelation)
 {
   sb_kernel_spec ks;
-  sb_kernel_spec_init(&ks, SB_KERNEL_MULTIPLICATIVE);
-  sb_pbe_config c;
-  sb_pbe_config_init(&c);
-  c.method = SB_PBE_SECTIONAL;
-  c.nsizes = 300;
-  c.ratio = pow(10.0, 12.0 / 299.0);
-  c.kparams = &ks;
+  sb_pbe_config c = sect_config(&ks, SB_KERNEL_MULTIPLICATIVE);
   sb_pbe *p = sb_pbe_alloc(&c);
   sb_pbe_init_mono(p, 1.0);
   double ts[200];
   int nt = 0;
   for (double t = 0.5; t < 0.9999 && nt < 200; t += 0.0025)
     ts[nt++] = t;
-  gel_ctx g = {{0}, {0}, 0};
-  /* stopped by gel_out (SB_EINVAL) once M2 > 50 */
-  ck_assert_int_eq(sb_pbe_solve(p, ts, (size_t)nt, gel_out, &g, NULL),
-                   SB_EINVAL);
-  int i = 0;
-  while (i + 1 < g.n && g.m2[i] <= 20.0)
-    i++;
-  ck_assert_int_lt(i + 1, g.n);
-  double a = 1 / g.m2[i], b = 1 / g.m2[i + 1];
-  double tgel = g.t[i] + a * (g.t[i + 1] - g.t[i]) / (a - b);
+  double tgel;
+  ck_assert_int_eq(sb_pbe_gelation_time(p, ts, (size_t)nt, 20.0, &tgel),
+                   SB_SUCCESS);
   ck_assert_msg(fabs(tgel - 1.0) <= 0.01, "gelation at tau = %g", tgel);
   sb_pbe_free(p);
 
@@ -542,11 +479,10 @@ START_TEST(test_gelation)
   c.rtol = 1e-10;
   p = sb_pbe_alloc(&c);
   sb_pbe_init_mono(p, 1.0);
-  double td[] = {0.2, 0.4, 0.6, 0.7};
-  g.n = 0;
-  ck_assert_int_eq(sb_pbe_solve(p, td, 4, gel_out, &g, NULL), SB_SUCCESS);
+  double td[] = {0.2, 0.4, 0.6, 0.7}, mom[4][3];
+  ck_assert_int_eq(sb_pbe_solve_moments(p, td, 4, mom, NULL), SB_SUCCESS);
   for (int k = 0; k < 4; k++)
-    ck_assert_rel(g.m2[k], 1 / (1 - td[k]), 1e-6);
+    ck_assert_rel(mom[k][2], 1 / (1 - td[k]), 1e-6);
   sb_pbe_free(p);
 }
 END_TEST
@@ -572,16 +508,7 @@ static int sp_out(double t, const double *v, const double *n, size_t nb,
                   const double mom[3], void *data)
 {
   sp_ctx *c = data;
-  double s0 = 0, s1 = 0, s2 = 0;
-  for (size_t i = 0; i < nb; i++)
-    if (n[i] > 0) {
-      double l = log(v[i]) / 3;
-      s0 += n[i];
-      s1 += n[i] * l;
-      s2 += n[i] * l * l;
-    }
-  double mu = s1 / s0;
-  c->sg[c->n] = exp(sqrt(s2 / s0 - mu * mu));
+  c->sg[c->n] = sb_pbe_sigma_g(v, n, nb);
   c->mr[c->n] = mom[0] * mom[2] / (mom[1] * mom[1]);
   c->m0t[c->n++] = mom[0] * t;
   return 0;
@@ -603,9 +530,9 @@ START_TEST(test_self_preserving)
   for (int g = 0; g < 2; g++) {
     sb_pbe_config c;
     sb_pbe_config_init(&c);
-    c.method = SB_PBE_SECTIONAL;
-    c.ratio = pow(2.0, 1.0 / (g ? 8.0 : 4.0));
-    c.nsizes = (size_t)ceil(9 * log(10.0) / log(c.ratio)) + 1;
+    ck_assert_int_eq(sb_pbe_config_sectional_ratio(
+                         &c, pow(2.0, 1.0 / (g ? 8.0 : 4.0)), 9.0),
+                     SB_SUCCESS);
     c.kernel = k_brown_co;
     c.kparams = NULL;
     sb_pbe *p = sb_pbe_alloc(&c);
@@ -672,6 +599,19 @@ START_TEST(test_errors)
   double bad[] = {1, 0.5};
   ck_assert_int_eq(sb_pbe_solve(p, bad, 2, NULL, NULL, NULL), SB_EINVAL);
   ck_assert_int_eq(sb_pbe_init_mono(p, -1), SB_EDOM);
+  /* the check helpers reject what they cannot compare */
+  sb_pbe_init_mono(p, 1.0);
+  double tgel, zero[3] = {0, 0, 0};
+  ck_assert_int_eq(sb_pbe_gelation_time(p, &t, 1, 20.0, &tgel), SB_EINVAL);
+  ck_assert(isnan(tgel)); /* constant kernel: M2 = 1 + tau never crosses */
+  ck_assert(isnan(sb_pbe_sigma_g(sb_pbe_volumes(p), zero, 3)));
+  sb_pbe_analytic_cmp cmp;
+  ck_assert_int_eq(sb_pbe_compare_analytic(zero, 0, SB_PBE_CONSTANT, 1, 0,
+                                           &cmp), SB_EINVAL);
+  ck_assert_int_eq(sb_pbe_compare_analytic(zero, 3, SB_PBE_MULTIPLICATIVE, 1,
+                                           0, &cmp), SB_EDOM);
+  ck_assert_int_eq(sb_pbe_config_sectional(&c, 1, 12.0), SB_EINVAL);
+  ck_assert_int_eq(sb_pbe_config_sectional_ratio(&c, 1.0, 9.0), SB_EINVAL);
   sb_pbe_free(p);
 
   /* CVODE failure: too few steps allowed.  The message must come back
@@ -706,8 +646,7 @@ static Suite *pbe_suite(void)
   tcase_add_loop_test(tc, test_discrete_vs_analytic, 0, 9);
   tcase_add_test(tc, test_discrete_truncation_drift);
   tcase_add_test(tc, test_source_removal);
-  tcase_add_loop_test(tc, test_sectional_constant, 0, 2);
-  tcase_add_test(tc, test_sectional_additive);
+  tcase_add_loop_test(tc, test_sectional_moments, 0, 3);
   tcase_add_test(tc, test_gelation);
   tcase_add_test(tc, test_errors);
   suite_add_tcase(s, tc);

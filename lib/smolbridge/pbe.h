@@ -224,6 +224,73 @@ typedef enum {
 int sb_pbe_analytic_moments(sb_pbe_kernel_kind kind, int exp_start,
                             double tau, double m[3]);
 
+/* ------------------------------------------------- checks (pbe_check.c)
+ * Shared by the tests, `smolbridge validate` and the benches, so that the
+ * comparisons are written once. */
+
+/** Sectional grid of `nsections` pivots spanning `decades` decades above
+ *  v1: sets method SB_PBE_SECTIONAL, nsizes = nsections and
+ *  ratio = 10^(decades/(nsections - 1)); other fields are left as they are.
+ *  SB_EINVAL if cfg is NULL, nsections < 2 or decades is not finite > 0. */
+int sb_pbe_config_sectional(sb_pbe_config *cfg, size_t nsections,
+                            double decades);
+/** The same with a given pivot ratio (> 1, finite): nsizes is the
+ *  smallest count reaching `decades` decades above v1,
+ *  ceil(decades ln 10 / ln ratio) + 1. */
+int sb_pbe_config_sectional_ratio(sb_pbe_config *cfg, double ratio,
+                                  double decades);
+
+/** Integrate like sb_pbe_solve (no output callback) and store the moments
+ *  M0, M1, M2 at each times[i] in m[i] (see sb_pbe_output_fn); rows past
+ *  a failure are left as they were.  Returns sb_pbe_solve's status
+ *  (SB_EINVAL also for m NULL). */
+int sb_pbe_solve_moments(sb_pbe *p, const double *times, size_t ntimes,
+                         double m[][3], sb_pbe_report *rep);
+
+/** Number-weighted geometric standard deviation of the diameter
+ *  (d ~ v^(1/3)) of a distribution: exp of the standard deviation of
+ *  ln(v_i)/3 weighted by n_i over the bins with n_i > 0 (sectional pivots
+ *  stand for their sections).  NaN and SB_EINVAL if no bin has n_i > 0. */
+double sb_pbe_sigma_g(const double *v, const double *n, size_t nbins);
+
+/** n_k/N0 of the monodisperse analytic solution for `kind`: dispatches to
+ *  sb_pbe_const_mono_n, sb_pbe_add_mono_n or sb_pbe_mult_mono_n (same
+ *  domain and accuracy); NaN and SB_EINVAL for an unknown kind. */
+double sb_pbe_mono_n(sb_pbe_kernel_kind kind, double k, double tau);
+
+/** Result of sb_pbe_compare_analytic. */
+typedef struct {
+  double maxrel;  /**< max of |n_k/exact_k - 1| over the checked k (NaN
+                       counts as +inf); 0 if none was checked */
+  size_t kworst;  /**< the k where it is reached (the largest k on ties);
+                       0 if none was checked */
+  double nworst;  /**< n_k at kworst */
+  double exact_worst; /**< the analytic n_k at kworst */
+  size_t nchecked;    /**< number of k checked (exact_k >= nmin) */
+} sb_pbe_analytic_cmp;
+
+/** Maximum relative error of a discrete solution n[0..kmax-1] (sizes
+ *  k = 1..kmax, in units of N0, monodisperse start, e.g. sb_pbe_state) at
+ *  dimensionless time tau against sb_pbe_mono_n(kind, k, tau), over the k
+ *  whose analytic n_k >= nmin (nmin = 0: all).  Returns SB_SUCCESS, or
+ *  SB_EINVAL (NULL pointer, kmax = 0) / the analytic solution's status
+ *  (SB_EDOM: tau outside its domain), with *res zeroed. */
+int sb_pbe_compare_analytic(const double *n, size_t kmax,
+                            sb_pbe_kernel_kind kind, double tau, double nmin,
+                            sb_pbe_analytic_cmp *res);
+
+/** Gelation time estimate: solve p (initial state set) to the increasing
+ *  `times`, find the first output where M2 > m2_cross and extrapolate 1/M2
+ *  linearly to zero through it and the next output (the solve stops
+ *  there).  For the multiplicative kernel M2 = 1/(1 - tau), so 1/M2 is
+ *  linear in tau and the estimate is limited by the discretisation only.
+ *  *tgel is NaN on failure.  Returns SB_SUCCESS, the solve's status
+ *  (SB_ESOLVER, ...), or SB_EINVAL when M2 has not crossed m2_cross
+ *  before the last time.  On success the error record keeps the solve's
+ *  "stopped by the output callback" entry (the stop is this function's). */
+int sb_pbe_gelation_time(sb_pbe *p, const double *times, size_t ntimes,
+                         double m2_cross, double *tgel);
+
 #ifdef __cplusplus
 }
 #endif
