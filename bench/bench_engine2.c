@@ -37,7 +37,7 @@ static double now(void)
   return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
-/* First-hit counting (as cli/cases_engine2.c): the detector records the
+/* First-hit counting (as lib/validate/cases_engine2.c): the detector records the
  * first detected contact of every pair and lets the particles pass. */
 typedef struct {
   sb_engine_bridge *b;

@@ -48,7 +48,7 @@ typedef struct {
   long sample_every, snapshot_every, sort_every;
   char rng[32];
   char output[512], checkpoint[512], restart[512];
-  /* [agglo] (outcome = merge | dlvo; lib/engine_merge.c) */
+  /* [agglo] (outcome = merge | dlvo; lib/engine/engine_merge.c) */
   char growth[16], erel[16];
   double wmax, wmax_kT;
   long erel_normal, kobs;

@@ -6,33 +6,55 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
-#include <gsl/gsl_rng.h>
 #include <smolbridge/common.h>
+#include <smolbridge/validate.h>
 
-#include "cases.h"
 #include "cli.h"
-#include "report.h"
 
-/* The case tables of all modules, in the order they run. */
-static const struct {
-  const sbv_case *cases;
-  const size_t *n;
-} tables[] = {
-    {sbv_cases_bridge, &sbv_ncases_bridge},
-    {sbv_cases_langevin, &sbv_ncases_langevin},
-    {sbv_cases_pbe, &sbv_ncases_pbe},
-    {sbv_cases_engine, &sbv_ncases_engine},
-    {sbv_cases_engine2, &sbv_ncases_engine2},
-    {sbv_cases_agglo, &sbv_ncases_agglo},
-};
-
-gsl_rng *sbv_rng_alloc(const sbv_ctx *ctx, unsigned long stream)
+/* Progress lines go to stderr. */
+static void progress_to_stderr(const char *line, void *data)
 {
-  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
-  if (r) /* distinct, reproducible seeds per (base seed, stream) */
-    gsl_rng_set(r, ctx->seed * 1000003UL + stream * 7919UL + 1UL);
-  return r;
+  (void)data;
+  fprintf(stderr, "%s\n", line);
+}
+
+/* Is there an executable `name` on PATH? */
+static int on_path(const char *name)
+{
+  const char *path = getenv("PATH");
+  if (!path)
+    return 0;
+  char buf[4096];
+  while (*path) {
+    size_t n = strcspn(path, ":");
+    if (n > 0 && n + strlen(name) + 2 < sizeof buf) {
+      memcpy(buf, path, n);
+      buf[n] = '/';
+      strcpy(buf + n + 1, name);
+      if (access(buf, X_OK) == 0)
+        return 1;
+    }
+    path += n;
+    if (*path == ':')
+      path++;
+  }
+  return 0;
+}
+
+/* Render a plot script with gnuplot, when it is installed (it is optional:
+ * the data and the script are always written). */
+static int render_with_gnuplot(const char *dir, const char *script,
+                               void *data)
+{
+  const int *have_gnuplot = data;
+  if (!*have_gnuplot)
+    return -1;
+  char cmd[2300];
+  snprintf(cmd, sizeof cmd, "cd '%s' && gnuplot '%s' 2>/dev/null", dir,
+           script);
+  return system(cmd) == 0 ? 0 : -1;
 }
 
 static void usage(FILE *out)
@@ -107,15 +129,17 @@ int sbc_validate_main(int argc, char **argv)
       {"case", required_argument, NULL, 'c'},
       {"list", no_argument, NULL, 'l'}, {"help", no_argument, NULL, 'h'},
       {NULL, 0, NULL, 0}};
-  sbv_ctx ctx = {0, 12345UL, "validate-out", stderr};
+  sb_validate_options vo;
+  sb_validate_options_init(&vo);
+  vo.outdir = "validate-out";
   char *prefixes[64];
   int nprefixes = 0, list = 0, opt;
   optind = 1;
   while ((opt = getopt_long(argc, argv, "ho:", opts, NULL)) != -1) {
     switch (opt) {
-    case 'q': ctx.full = 0; break;
-    case 'f': ctx.full = 1; break;
-    case 'o': ctx.outdir = optarg; break;
+    case 'q': vo.full = 0; break;
+    case 'f': vo.full = 1; break;
+    case 'o': vo.outdir = optarg; break;
     case 's': {
       char *end;
       errno = 0;
@@ -125,7 +149,7 @@ int sbc_validate_main(int argc, char **argv)
                         "integer, got '%s'\n", optarg);
         return 2;
       }
-      ctx.seed = s;
+      vo.seed = s;
       break;
     }
     case 'c':
@@ -147,75 +171,71 @@ int sbc_validate_main(int argc, char **argv)
     return 2;
   }
 
-  size_t nsel = 0;
-  for (size_t t = 0; t < sizeof tables / sizeof tables[0]; t++)
-    for (size_t i = 0; i < *tables[t].n; i++) {
-      const sbv_case *c = &tables[t].cases[i];
-      if (!selected(c->name, prefixes, nprefixes))
-        continue;
-      nsel++;
-      if (list)
-        printf("%-32s %s\n", c->name, c->description);
-    }
+  size_t ncases = sb_validate_ncases(), nsel = 0;
+  for (size_t i = 0; i < ncases; i++) {
+    const char *name = sb_validate_case_name(i);
+    if (!selected(name, prefixes, nprefixes))
+      continue;
+    nsel++;
+    if (list)
+      printf("%-32s %s\n", name, sb_validate_case_description(i));
+  }
   if (list)
     return 0;
   if (nsel == 0) {
     fprintf(stderr, "smolbridge validate: no case matches\n");
     return 2;
   }
-  if (make_dirs(ctx.outdir) != 0) {
+  if (make_dirs(vo.outdir) != 0) {
     fprintf(stderr, "smolbridge validate: cannot create '%s': %s\n",
-            ctx.outdir, strerror(errno));
+            vo.outdir, strerror(errno));
     return 2;
   }
 
-  sbv_report *rep = sbv_report_alloc();
+  sb_validate_report *rep = sb_validate_report_alloc();
   if (!rep) {
     fprintf(stderr, "smolbridge validate: out of memory\n");
     return 2;
   }
-  const char *mode = ctx.full ? "full" : "quick";
+  int have_gnuplot = on_path("gnuplot");
+  vo.progress = progress_to_stderr;
+  vo.render = render_with_gnuplot;
+  vo.render_data = &have_gnuplot;
+  const char *mode = vo.full ? "full" : "quick";
   fprintf(stderr, "smolbridge validate (%s, seed %lu): %zu cases -> %s/\n",
-          mode, ctx.seed, nsel, ctx.outdir);
+          mode, vo.seed, nsel, vo.outdir);
   double t_all = now_seconds();
   size_t k = 0;
-  for (size_t t = 0; t < sizeof tables / sizeof tables[0]; t++)
-    for (size_t i = 0; i < *tables[t].n; i++) {
-      const sbv_case *c = &tables[t].cases[i];
-      if (!selected(c->name, prefixes, nprefixes))
-        continue;
-      fprintf(stderr, "[%zu/%zu] %s: %s ...\n", ++k, nsel, c->name,
-              c->description);
-      if (sbv_report_begin_case(rep, c->name) != SB_SUCCESS) {
-        sbv_report_free(rep);
-        fprintf(stderr, "smolbridge validate: out of memory\n");
-        return 2;
-      }
-      double t0 = now_seconds();
-      int st = c->run(&ctx, rep);
-      double dt = now_seconds() - t0;
-      sbv_report_end_case(rep, st, dt);
-      fprintf(stderr, "[%zu/%zu] %s done in %.1f s%s%s\n", k, nsel, c->name,
-              dt, st ? ": " : "", st ? sb_strerror(st) : "");
-    }
+  for (size_t i = 0; i < ncases; i++) {
+    const char *name = sb_validate_case_name(i);
+    if (!selected(name, prefixes, nprefixes))
+      continue;
+    fprintf(stderr, "[%zu/%zu] %s: %s ...\n", ++k, nsel, name,
+            sb_validate_case_description(i));
+    double t0 = now_seconds();
+    int st = sb_validate_run(i, &vo, rep);
+    fprintf(stderr, "[%zu/%zu] %s done in %.1f s%s%s\n", k, nsel, name,
+            now_seconds() - t0, st ? ": " : "", st ? sb_strerror(st) : "");
+  }
 
   printf("\n");
-  sbv_report_print_table(rep, stdout);
+  sb_validate_report_fprint(rep, stdout);
   char path[1100];
   int io = 0;
-  snprintf(path, sizeof path, "%s/validate.csv", ctx.outdir);
-  io |= sbv_report_write_csv(rep, path);
-  snprintf(path, sizeof path, "%s/report.md", ctx.outdir);
-  io |= sbv_report_write_markdown(rep, path, mode, ctx.seed);
-  size_t nfail = sbv_report_nfail(rep);
+  snprintf(path, sizeof path, "%s/validate.csv", vo.outdir);
+  io |= sb_validate_report_write_csv(rep, path);
+  snprintf(path, sizeof path, "%s/report.md", vo.outdir);
+  io |= sb_validate_report_write_markdown(rep, path, &vo);
+  size_t nrecs = sb_validate_report_nrecords(rep);
+  size_t nfail = sb_validate_report_nfailed(rep);
   printf("\n%zu comparisons, %zu passed, %zu failed (%.1f s); report in "
          "%s/report.md\n",
-         rep->nrecs, rep->nrecs - (nfail > rep->nrecs ? rep->nrecs : nfail),
-         nfail, now_seconds() - t_all, ctx.outdir);
-  sbv_report_free(rep);
+         nrecs, nrecs - (nfail > nrecs ? nrecs : nfail), nfail,
+         now_seconds() - t_all, vo.outdir);
+  sb_validate_report_free(rep);
   if (io) {
     fprintf(stderr, "smolbridge validate: could not write the report in "
-                    "'%s'\n", ctx.outdir);
+                    "'%s'\n", vo.outdir);
     return 2;
   }
   return nfail ? 1 : 0;

@@ -13,5 +13,6 @@
 #include <smolbridge/pbe.h>
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
+#include <smolbridge/validate.h>
 
 #endif /* SMOLBRIDGE_H */

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Reference vectors for tests/test_dlvo.c (mpmath, 60 digits).
 
-Independent of lib/dlvo.c: the van der Waals energy is the Hamaker (1937)
+Independent of lib/dlvo/dlvo.c: the van der Waals energy is the Hamaker (1937)
 expression written with the centre distance r = D + r1 + r2 (as in
 Hamaker's paper), evaluated at 60 digits
 (its cancellation at large D costs < 20 of them); forces are numerical

@@ -13,8 +13,8 @@
  *         for the norm), simulated in 3D.  See docs/simulate.md for why
  *         the per-sub-step Bessel-3 correction computed from the norms
  *         alone is exact although the simulation knows the full 3D points.
- *     The simulators are lib/simulate.c (sb_sim_*), which writes its
- *     crossing formulas independently of lib/bridge.c.
+ *     The simulators are lib/simulate/simulate.c (sb_sim_*), which writes its
+ *     crossing formulas independently of lib/bridge/bridge.c.
  *     Because the correction is itself a crossing formula, the grid is made
  *     fine (v_step = v/n much smaller than the length scales), so the
  *     correction only acts at scales where the Bessel-3 bridge is locally a
@@ -80,10 +80,10 @@ static gsl_rng *rng_new(unsigned long seed)
 
 /* ================================================= A/B: path simulation */
 
-/* The path simulators are the reference module lib/simulate.c
+/* The path simulators are the reference module lib/simulate/simulate.c
  * (smolbridge/simulate.h): exact grid values, sub-step crossings drawn
  * exactly with crossing formulas written there independently of
- * lib/bridge.c, so P(cross) and the first-crossing sub-step have no
+ * lib/bridge/bridge.c, so P(cross) and the first-crossing sub-step have no
  * discretisation bias.  The 3-D simulation of the Bessel-3 bridge (3-D BM
  * conditioned on its end NORM: von Mises-Fisher end point, then a 3-D
  * Brownian bridge) and why the correction from the norms alone is exact
@@ -382,7 +382,7 @@ END_TEST
 
 /* Bessel-3 bridge: 1 - rho = -expm1(-2a(x+y-a)/v) from ~1 (seed-like
  * collisions, v << a^2) down to 5e-4 (v >> a^2).  This covers both ways
- * lib/bridge_hit.c evaluates the CDF (the closed-form difference of two
+ * lib/bridge/bridge_hit.c evaluates the CDF (the closed-form difference of two
  * inverse-Gaussian laws, and the quadrature used when that difference
  * cancels, i.e. 1 - rho small) and every regime a sampler with a
  * rejection/inversion switch would have; y = a is the end-point case. */

@@ -2,7 +2,7 @@
 #include <pthread.h>
 #include <string.h>
 
-#include "internal.h"
+#include "common/internal.h"
 #include "testutil.h"
 
 START_TEST(test_strerror_all_codes)

@@ -1,5 +1,5 @@
 /* test_engine_bridge.c — Bessel-3 bridge detection for the engine
- * (lib/engine_bridge.c): tail bound and reach, detector probabilities and
+ * (lib/engine/engine_bridge.c): tail bound and reach, detector probabilities and
  * hit times, periodic end points, barycentre place, correction step. */
 #include <math.h>
 #include <stdlib.h>

@@ -1,5 +1,5 @@
 /* test_engine_exact.c — exact endpoint-conditioned 3-D bridge detection
- * (sb_bb3_hit_sample, lib/engine_exact.c) against a brute-force fine-step
+ * (sb_bb3_hit_sample, lib/engine/engine_exact.c) against a brute-force fine-step
  * simulation, a closed form, and the Bessel-3 criterion. */
 #include <math.h>
 #include <stdlib.h>

@@ -316,7 +316,7 @@ START_TEST(test_bridge_bruteforce)
   int st = SB_SUCCESS;
   for (size_t i = 0; i < M; i += 3) {
     /* three independent paths: the components of one 3-D particle of the
-     * reference simulator (exact steps, lib/simulate.c) */
+     * reference simulator (exact steps, lib/simulate/simulate.c) */
     double x[3] = {x0, x0, x0}, u[3] = {u0, u0, u0};
     st |= sb_sim_langevin(&p, s / N1, N1, r, 1, x, u);
     double xs[3] = {x[0], x[1], x[2]}, uss[3] = {u[0], u[1], u[2]};

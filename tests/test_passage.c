@@ -20,7 +20,7 @@
 #include <gsl/gsl_rng.h>
 
 #include <smolbridge/passage.h>
-#include "numutil.h"
+#include "common/numutil.h"
 #include "refdata.h"
 #include "testutil.h"
 

@@ -1,5 +1,5 @@
-/* test_stats.c — Check suite for the stats module (lib/stats.c,
- * lib/stats_ks.c).
+/* test_stats.c — Check suite for the stats module (lib/stats/stats.c,
+ * lib/stats/stats_ks.c).
  *
  * Reference values: tests/data/stats_*.csv from tests/gen_stats_ref.py
  * (mpmath, 50-60 digits, methods independent of the C code and of GSL),

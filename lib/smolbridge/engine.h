@@ -403,8 +403,8 @@ int sb_engine_outcome_from_name(const char *name, sb_engine_outcome *o);
 
 /* ============================================================
  * Agglomeration (issue 7): particle removal, merge and DLVO outcomes,
- * cluster sizes and size-distribution observers.  lib/engine_merge.c,
- * lib/engine_sizes.c; theory and validation: docs/agglomeration.md.
+ * cluster sizes and size-distribution observers (lib/engine/engine_merge.c);
+ * theory and validation: docs/agglomeration.md.
  *
  * A cluster of k primaries is a particle of the engine species registered
  * for size k (one species per size, created on the first merge that makes
@@ -521,7 +521,7 @@ int sb_agglo_attach(sb_engine *e, sb_agglo *a);
  *  the context, then merge or rebound. */
 int sb_engine_outcome_agglo(sb_engine *e, const sb_engine_pair *p, double s,
                             void *ctx);
-/** Merge pair p now (see the file comment of lib/engine_merge.c): slot
+/** Merge pair p now (see the file comment of lib/engine/engine_merge.c): slot
  *  p->i receives the cluster of k_i + k_j primaries at the mass
  *  barycentre with the total momentum; p->j is marked for removal. */
 int sb_agglo_merge(sb_engine *e, sb_agglo *a, const sb_engine_pair *p,

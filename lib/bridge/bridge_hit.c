@@ -1,0 +1,678 @@
+/* bridge_hit.c — the hitting time T_a of a level a by a Brownian bridge or a
+ * Bessel-3 bridge, conditioned on T_a <= t: density, CDF, survival
+ * function, quantile and exact sampler (smolbridge/bridge.h,
+ * docs/bridge.md).
+ *
+ * Notation: alpha = x - a > 0, v = sigma2 t, w = t - u,
+ *   s(u) = u t / w (time change),  q(u) = sqrt(sigma2 u t w),
+ *   for a "drift length" L >= 0:  eps = alpha w / q,  kap = L u / q,
+ *   c = (L u - alpha w) / q = kap - eps.
+ * BB: S = s(T) is IG(alpha t / L, alpha^2 / sigma2) with L = |y - a|, so
+ *   P(T <= u) = F_IG(eps, kap).
+ * B3B: with L1 = |y - a|, L2 = y + a, rho = exp(-min(a,y)(2 alpha +
+ *   L1 + L2)/v):
+ *   P(T <= u) = [F_IG(u; L1) - rho F_IG(u; L2)] / (1 - rho)        (1)
+ *             = int_{L1}^{L2} (alpha + L)/v exp(-((alpha+L)^2 -
+ *               (alpha+L1)^2)/(2v)) P_L(u) dL / (1 - rho),          (2)
+ *   P_L(u) = [L F_IG(u; L) + alpha F_sb(u; L)] / (alpha + L), the law of T
+ *   given the bridge minimum m (L = a + y - 2m).  (1) is used unless it
+ *   cancels (rho F2 / F1 > 0.95, error amplification > 39), then (2) by
+ *   Gauss-Legendre quadrature (Gauss-Kronrod if needed).
+ */
+#include <float.h>
+#include <math.h>
+
+#include <gsl/gsl_cdf.h>
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_rng.h>
+#include <gsl/gsl_randist.h>
+
+#include <smolbridge/bridge.h>
+#include "common/internal.h"
+#include "common/numutil.h"
+
+#define EPS DBL_EPSILON
+#define INV_RT2PI 0.39894228040143267793994605993438187 /* 1/sqrt(2 pi) */
+
+enum { W_PDF, W_CDF, W_SF };
+enum { T_NONE, T_ZERO, T_END }; /* trivial laws: T = 0 or T = t a.s. */
+
+typedef struct {
+  int b3;          /* 0: Brownian bridge, 1: Bessel-3 bridge */
+  int trivial;
+  double sigma2, t, v, a, y;
+  sbi_dd al;       /* alpha = x - a > 0 */
+  sbi_dd L1, L2;   /* |y - a|, y + a (L2 for B3B only) */
+  double rho, omr; /* B3B: rho and 1 - rho */
+  double rmax;     /* B3B: use (1) while rho G2 <= rmax G1 (0.95) */
+  double mn;       /* B3B: min(a, y); 0 means the single law P_a */
+} hit_par;
+
+/* One evaluation time u in (0, t), with w = t - u. */
+typedef struct {
+  double u;
+  sbi_dd w, den; /* den = sigma2 u t w */
+  double q;      /* sqrt(den) */
+} hit_time;
+
+/* ------------------------------------------------------------ set-up */
+
+static int hit_setup(const char *fn, int b3, double x, double y, double a,
+                     double sigma2, double t, hit_par *h, sb_result *res)
+{
+  if (!isfinite(x) || !isfinite(y) || !isfinite(a))
+    return sbi_fail(res, SB_EDOM, fn, "x = %g, y = %g, a = %g must be finite",
+                    x, y, a);
+  if (!(sigma2 > 0.0) || !isfinite(sigma2))
+    return sbi_fail(res, SB_EDOM, fn,
+                    "sigma2 = %g must be positive and finite", sigma2);
+  if (!(t > 0.0) || !isfinite(t))
+    return sbi_fail(res, SB_EDOM, fn, "t = %g must be positive and finite",
+                    t);
+  if (b3 && (a < 0.0 || x < 0.0 || y < 0.0))
+    return sbi_fail(res, SB_EDOM, fn, "x = %g, y = %g, a = %g: Bessel-3 "
+                    "radii and level must be >= 0", x, y, a);
+  h->b3 = b3;
+  h->sigma2 = sigma2;
+  h->t = t;
+  h->v = sigma2 * t;
+  h->a = a;
+  h->y = y;
+  h->trivial = T_NONE;
+  h->rmax = 0.95;
+  if (x <= a) {
+    h->trivial = T_ZERO; /* starts on or below the level */
+    return SB_SUCCESS;
+  }
+  if (b3 && a == 0.0) {
+    if (y > 0.0)
+      return sbi_fail(res, SB_EDOM, fn, "a = 0: a Bessel-3 bridge with y = "
+                      "%g > 0 never hits 0", y);
+    h->trivial = T_END; /* ends at the origin: T_0 = t */
+    return SB_SUCCESS;
+  }
+  h->al = sbi_dd_sum(x, -a);
+  sbi_dd be = sbi_dd_sum(y, -a);
+  h->L1 = be.hi < 0.0 ? sbi_dd_neg(be) : be;
+  if (b3) {
+    h->L2 = sbi_dd_sum(y, a);
+    h->mn = a < y ? a : y;
+    double mx = a < y ? y : a;
+    /* (L2 - L1)(2 alpha + L1 + L2)/(2v) = min(a,y) (2 alpha + 2 max(a,y))/v */
+    double k = h->mn * (2.0 * (h->al.hi + mx)) / h->v;
+    if (!(k > 0.0))
+      h->mn = 0.0; /* min(a, y) negligible (k underflows): the y -> 0 law */
+    h->rho = exp(-k);
+    h->omr = -expm1(-k);
+  }
+  return SB_SUCCESS;
+}
+
+static hit_time make_time(const hit_par *h, double u, sbi_dd w)
+{
+  hit_time T;
+  T.u = u;
+  T.w = w;
+  T.den = sbi_dd_mul(sbi_dd_mul_d(sbi_dd_prod(h->sigma2, u), h->t), w);
+  T.q = sqrt(T.den.hi);
+  return T;
+}
+
+/* IG point of the drift length L at time T. */
+static sbi_igpt point(const hit_par *h, const hit_time *T, sbi_dd L)
+{
+  sbi_dd num = sbi_dd_add(sbi_dd_mul_d(L, T->u),
+                          sbi_dd_neg(sbi_dd_mul(h->al, T->w)));
+  return sbi_igpt_make(num, T->den, h->al.hi * T->w.hi / T->q,
+                       L.hi * T->u / T->q);
+}
+
+/* ------------------------------------------------ B3B: the mixture (2) */
+
+typedef struct {
+  const hit_par *h;
+  const hit_time *T;
+  int sf;
+} mix_ctx;
+
+/* integrand of (2) in l = L - L1 in [0, 2 min(a, y)] (exact end points;
+ * L = L1 + l is formed in double-double) */
+static double mix_integrand(double l, void *vc)
+{
+  const mix_ctx *m = vc;
+  const hit_par *h = m->h;
+  double al = h->al.hi;
+  sbi_dd Ld = sbi_dd_add(h->L1, (sbi_dd){l, 0.0});
+  sbi_igpt p = point(h, m->T, Ld);
+  /* weight (alpha + L)/v exp(-((alpha+L)^2 - (alpha+L1)^2)/(2v)) / (alpha+L)
+   * times (alpha + L) P_L = L F + alpha F_sb (or the complements) */
+  double wgt = exp(-l * (2.0 * (al + h->L1.hi) + l) / (2.0 * h->v)) / h->v;
+  return wgt * sbi_ig_mix(&p, Ld.hi, al, m->sf, NULL);
+}
+
+/* (2) by quadrature over l in [0, 2 min(a, y)].  Where (2) is used the
+ * integrand varies little over the interval (the direct form (1) would
+ * cancel otherwise), so 3- and 4-point Gauss-Legendre (GSL's fixed tables,
+ * 7 evaluations) agree to ~1e-16; |I4 - I3| bounds the error of I4.  If
+ * they disagree by more than 1e-13 relative, 21-point Gauss-Kronrod
+ * (gsl_integration_qk21, which never calls the GSL error handler) on 1, 2,
+ * 4, ... 64 equal panels until GSL's error estimate is below 1e-13.
+ * Returns the probability, *err its absolute error bound. */
+static double mixture(const hit_par *h, const hit_time *T, int sf,
+                      double *err)
+{
+  mix_ctx m = {h, T, sf};
+  gsl_function F = {mix_integrand, &m};
+  double hi = 2.0 * h->mn, tot = 0.0, e = 0.0;
+  gsl_integration_glfixed_table *g3 = gsl_integration_glfixed_table_alloc(3);
+  gsl_integration_glfixed_table *g4 = gsl_integration_glfixed_table_alloc(4);
+  int done = 0;
+  if (g3 && g4) {
+    double i3 = gsl_integration_glfixed(&F, 0.0, hi, g3);
+    tot = gsl_integration_glfixed(&F, 0.0, hi, g4);
+    e = fabs(tot - i3) + 8.0 * EPS * fabs(tot);
+    done = e <= 1e-13 * fabs(tot);
+  }
+  if (g3)
+    gsl_integration_glfixed_table_free(g3);
+  if (g4)
+    gsl_integration_glfixed_table_free(g4);
+  for (int n = 1; !done && n <= 64; n *= 2) {
+    tot = 0.0;
+    e = 0.0;
+    double step = hi / n;
+    for (int i = 0; i < n; i++) {
+      double r, ae, ra, rc;
+      double b = i == n - 1 ? hi : (i + 1) * step;
+      gsl_integration_qk21(&F, i * step, b, &r, &ae, &ra, &rc);
+      tot += r;
+      e += ae;
+    }
+    done = e <= 1e-13 * fabs(tot);
+  }
+  *err = (e + 4.0 * EPS * fabs(tot)) / h->omr;
+  return tot / h->omr;
+}
+
+/* ---------------------------------------------------- core evaluation */
+
+/* cdf and sf of the conditioned law at T (0 < u < t), both computed
+ * directly (the smaller one never as 1 - the other).  err: absolute. */
+typedef struct {
+  double cdf, sf, ecdf, esf; /* values and their absolute error bounds */
+  double dens; /* dG/dy, y = log s (the density of log S) */
+  double sfl;  /* d log(dens)/dy (quantile iteration) */
+  double sfl2; /* d^2 log(dens)/dy^2 */
+  double rused; /* B3B: rho G2/G1 of the value returned by (1), else 0 */
+} hit_prob;
+
+/* the complement of a value with absolute error e: add the rounding of
+ * 1 - x */
+static double comp_err(double e, double c) { return e + EPS * c; }
+
+/* d^2 log(dens)/dy^2 of the IG part: dens = eps phi(c) with
+ * d eps/dy = -eps/2, d kap/dy = kap/2, so dc/dy = b/2 and db/dy = c/2
+ * (b = kap + eps): d/dy (-1/2 - c b/2) = -(b^2 + c^2)/4 */
+static double ig_sfl2(const sbi_igpt *p)
+{
+  double b = p->kap + p->eps;
+  return -0.25 * (b * b + p->c * p->c);
+}
+
+/* BB: only the requested tail is evaluated (the other is 1 - it) */
+static hit_prob bb_prob(const hit_par *h, const hit_time *T, int want)
+{
+  hit_prob r;
+  r.rused = 0.0;
+  sbi_igpt p = point(h, T, h->L1);
+  double rel;
+  r.dens = p.eps * p.ex * INV_RT2PI;
+  r.sfl = -0.5 - 0.5 * p.c * (p.kap + p.eps);
+  r.sfl2 = ig_sfl2(&p);
+  if (want == W_CDF) {
+    r.cdf = sbi_ig_cdf(&p, &rel);
+    r.sf = 1.0 - r.cdf;
+    r.ecdf = (rel + 2.0 * EPS) * r.cdf;
+    r.esf = comp_err(r.ecdf, r.sf);
+  } else {
+    r.sf = sbi_ig_sf(&p, &rel);
+    r.cdf = 1.0 - r.sf;
+    r.esf = (rel + 2.0 * EPS) * r.sf;
+    r.ecdf = comp_err(r.esf, r.cdf);
+  }
+  return r;
+}
+
+static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
+{
+  hit_prob r;
+  double rel1, rel2;
+  r.rused = 0.0;
+  if (h->mn == 0.0) {
+    /* y = 0: the mixture collapses to the single law P_a (L1 = L2 = a) */
+    sbi_igpt p = point(h, T, h->L1);
+    r.dens = p.eps * p.ex * INV_RT2PI * h->a * h->t /
+             ((h->al.hi + h->a) * T->w.hi);
+    /* d log(1/w)/dy = u/t */
+    r.sfl = -0.5 - 0.5 * p.c * (p.kap + p.eps) + T->u / h->t;
+    r.sfl2 = ig_sfl2(&p) + (T->u / h->t) * (T->w.hi / h->t);
+    double al = h->al.hi, L = h->L1.hi, w = al + L;
+    double f = sbi_ig_cdf(&p, &rel1), g = sbi_ig_sbcdf(&p, &rel2);
+    r.cdf = (L * f + al * g) / w;
+    r.ecdf = (L * f * rel1 + al * g * rel2) / w + 4.0 * EPS * r.cdf;
+    f = sbi_ig_sf(&p, &rel1);
+    g = sbi_ig_sbsf(&p, &rel2);
+    r.sf = (L * f + al * g) / w;
+    r.esf = (L * f * rel1 + al * g * rel2) / w + 4.0 * EPS * r.sf;
+    return r;
+  }
+  sbi_igpt p1 = point(h, T, h->L1), p2 = point(h, T, h->L2);
+  /* density: the BB one times hw / (1 - rho), hw = 1 - exp(-k/w),
+   * k = 2ay/sigma2; d log(hw)/dy = (1 - hw)(k/w)(u/t)/hw as dw/dy = -wu/t */
+  double kw = 2.0 * h->a * h->y / (h->sigma2 * T->w.hi);
+  double hw = -expm1(-kw);
+  r.dens = p1.eps * p1.ex * INV_RT2PI * (hw / h->omr);
+  /* with ph = (1 - hw)/hw = 1/(e^{k/w} - 1) and z1 = d(k/w)/dy =
+   * (k/w)(u/t) = d^2(k/w)/dy^2: d^2 log hw/dy^2 = ph z1 (1 - z1/hw) */
+  double z1 = kw * (T->u / h->t), ph = (1.0 - hw) / hw;
+  r.sfl = -0.5 - 0.5 * p1.c * (p1.kap + p1.eps) + ph * z1;
+  r.sfl2 = ig_sfl2(&p1) + ph * z1 * (1.0 - z1 / hw);
+  /* the requested tail first; if it is the larger one (> 1/2) the other is
+   * computed directly and this one is its complement */
+  for (int pass = 0; pass < 2; pass++) {
+    int sf = (want == W_SF) != (pass == 1);
+    double g1 = sf ? sbi_ig_sf(&p1, &rel1) : sbi_ig_cdf(&p1, &rel1);
+    double g2 = sf ? sbi_ig_sf(&p2, &rel2) : sbi_ig_cdf(&p2, &rel2);
+    g2 *= h->rho;
+    double num = g1 - g2;
+    if (pass == 0 && num > 0.5 * h->omr)
+      continue; /* the larger tail: compute the other one */
+    double val, err;
+    r.rused = g1 > 0.0 ? g2 / g1 : 0.0;
+    if (g2 <= h->rmax * g1) {
+      val = num / h->omr;
+      err = (g1 * rel1 + g2 * rel2 + 2.0 * EPS * (g1 + g2)) / h->omr +
+            2.0 * EPS * val;
+    } else {
+      val = mixture(h, T, sf, &err);
+    }
+    if (sf) {
+      r.sf = val;
+      r.esf = err;
+      r.cdf = 1.0 - val;
+      r.ecdf = comp_err(err, r.cdf);
+    } else {
+      r.cdf = val;
+      r.ecdf = err;
+      r.sf = 1.0 - val;
+      r.esf = comp_err(err, r.sf);
+    }
+    break;
+  }
+  return r;
+}
+
+/* want: W_CDF or W_SF, the value whose relative accuracy matters (B3B
+ * computes the smaller tail directly and the other as its complement) */
+static hit_prob prob_at(const hit_par *h, const hit_time *T, int want)
+{
+  return h->b3 ? b3_prob(h, T, want) : bb_prob(h, T, want);
+}
+
+/* density at T (0 < u < t), with relative error bound *rel */
+static double pdf_at(const hit_par *h, const hit_time *T, double *rel)
+{
+  /* BB hitting density given T <= t: f_alpha(u) g_{t-u}(L1)/g_t(alpha+L1)
+   * = alpha t / (q u) phi(c) */
+  sbi_igpt p = point(h, T, h->L1);
+  double f = h->al.hi * h->t / (T->q * T->u) * p.ex * INV_RT2PI;
+  *rel = 8.0 * EPS;
+  if (!h->b3)
+    return f;
+  /* B3B: times [1 - exp(-2ay/(sigma2 w))] / (1 - rho); for y = 0 the limit
+   * a t / (x w) */
+  double ratio;
+  if (h->mn == 0.0)
+    ratio = h->a * h->t / ((h->al.hi + h->a) * T->w.hi);
+  else
+    ratio = -expm1(-2.0 * h->a * h->y / (h->sigma2 * T->w.hi)) / h->omr;
+  *rel += 6.0 * EPS;
+  return f * ratio;
+}
+
+/* --------------------------------------------------- pdf, cdf, sf */
+
+static int hit_entry(const char *fn, int b3, int what, double u, double x,
+                     double y, double a, double sigma2, double t,
+                     sb_result *res)
+{
+  hit_par h;
+  int st = hit_setup(fn, b3, x, y, a, sigma2, t, &h, res);
+  if (st)
+    return st;
+  if (isnan(u))
+    return sbi_fail(res, SB_EDOM, fn, "u = %g is not a number", u);
+  double val;
+  /* outside (0, t), and the trivial laws */
+  double t0 = h.trivial == T_ZERO ? 0.0 : t; /* the atom if trivial */
+  if (h.trivial != T_NONE || u <= 0.0 || u >= t) {
+    if (what == W_PDF)
+      val = 0.0;
+    else {
+      int below = h.trivial != T_NONE ? u < t0 : u <= 0.0;
+      double c = below ? 0.0 : 1.0;
+      val = what == W_CDF ? c : 1.0 - c;
+    }
+    *res = (sb_result){val, 0.0};
+    return SB_SUCCESS;
+  }
+  hit_time T = make_time(&h, u, sbi_dd_sum(t, -u));
+  if (!(T.den.hi > DBL_MIN)) {
+    /* sigma2 u t w underflows: u or t - u is negligibly small */
+    int early = u < 0.5 * t;
+    val = what == W_PDF ? 0.0 : ((what == W_CDF) == early ? 0.0 : 1.0);
+    *res = (sb_result){val, 0.0};
+    return SB_SUCCESS;
+  }
+  if (what == W_PDF) {
+    double rel;
+    val = pdf_at(&h, &T, &rel);
+    *res = (sb_result){val, rel * val};
+    return SB_SUCCESS;
+  }
+  hit_prob p = prob_at(&h, &T, what);
+  val = what == W_CDF ? p.cdf : p.sf;
+  *res = (sb_result){val, what == W_CDF ? p.ecdf : p.esf};
+  return SB_SUCCESS;
+}
+
+#define HIT_PAIR(pfx, b3, name, what)                                       \
+  int sb_##pfx##_hit_##name##_e(double u, double x, double y, double a,     \
+                                double sigma2, double t, sb_result *res)    \
+  {                                                                         \
+    sb_result r;                                                            \
+    int st = hit_entry(__func__, b3, what, u, x, y, a, sigma2, t, &r);      \
+    if (res)                                                                \
+      *res = r;                                                             \
+    return st;                                                              \
+  }                                                                         \
+  double sb_##pfx##_hit_##name(double u, double x, double y, double a,      \
+                               double sigma2, double t)                     \
+  {                                                                         \
+    sb_result r;                                                            \
+    hit_entry(__func__, b3, what, u, x, y, a, sigma2, t, &r);               \
+    return r.val;                                                           \
+  }
+
+HIT_PAIR(bb, 0, pdf, W_PDF)
+HIT_PAIR(bb, 0, cdf, W_CDF)
+HIT_PAIR(bb, 0, sf, W_SF)
+HIT_PAIR(bes3b, 1, pdf, W_PDF)
+HIT_PAIR(bes3b, 1, cdf, W_CDF)
+HIT_PAIR(bes3b, 1, sf, W_SF)
+
+/* ---------------------------------------------------------- quantile */
+
+typedef struct {
+  hit_par *h;    /* h->rmax is switched by the iteration */
+  double sref;   /* s = sref exp(y), u = t s/(t + s), w = t^2/(t + s) */
+  double logtg;  /* log p (lower) or log (1 - p) (upper) */
+  int upper;
+  double err, dlog; /* last absolute error of the probability, dg/dy */
+} hit_qctx;
+
+/* g(y) = log G - log p (lower) or log(1 - p) - log SF (upper), y =
+ * log(s/sref); with D1 = dens / G (or / SF), sfl = d log(dens)/dy and
+ * sfl2 = d sfl/dy (closed forms in hit_prob), the upper sign for SF:
+ *   g' = D1,  g'' = D1 (sfl -+ D1),  g''' = g'' (sfl -+ 2 D1) + D1 sfl2.
+ * B3B: (1) is used while kprev (the solver's last dimensionless step) is
+ * large, even where it cancels moderately (rho G2/G1 <= 1 - 1e-6: relative
+ * noise <= ~1e-9, ample to steer); near the root the accurate form
+ * (quadrature where (1) cancels) gives the final value. */
+static double hit_qfun(double y, double kprev, void *vc, double d[4])
+{
+  hit_qctx *c = vc;
+  hit_par *h = c->h;
+  double s = c->sref * exp(y), t = h->t;
+  d[3] = 1.0;
+  /* g is increasing in both tails: -inf at u = 0, +inf at u = t */
+  if (!(s > 0.0))
+    return -INFINITY;
+  if (isinf(s))
+    return INFINITY;
+  double u = t * s / (t + s), w = t * t / (t + s);
+  hit_time T = make_time(h, u, (sbi_dd){w, 0.0});
+  if (!(T.den.hi > DBL_MIN) || !(u > 0.0) || !(w > 0.0))
+    return u < 0.5 * t ? -INFINITY : INFINITY;
+  /* kprev < 0.05: the next error ~ kprev^4 is acceptable, so this value is
+   * likely the last one */
+  int cheap = kprev >= 0.05;
+  h->rmax = cheap ? 1.0 - 1e-6 : 0.95;
+  hit_prob p = prob_at(h, &T, c->upper ? W_SF : W_CDF);
+  h->rmax = 0.95;
+  /* (1) was accurate anyway unless it entered the cancelling range */
+  if (cheap && p.rused > 0.95 && p.rused <= 1.0 - 1e-6)
+    d[3] = 0.0;
+  double pr = c->upper ? p.sf : p.cdf;
+  if (!(pr > 0.0)) {
+    d[0] = 0.0;
+    return c->upper ? INFINITY : -INFINITY;
+  }
+  double D1 = p.dens / pr, sg = c->upper ? 1.0 : -1.0;
+  d[0] = D1;
+  d[1] = D1 * (p.sfl + sg * D1);
+  d[2] = d[1] * (p.sfl + 2.0 * sg * D1) + D1 * p.sfl2;
+  c->dlog = D1;
+  c->err = (c->upper ? p.esf : p.ecdf) / pr;
+  double lp = log(pr);
+  return c->upper ? c->logtg - lp : lp - c->logtg;
+}
+
+/* Starting guess for S = s(T): the law (1 - pi) IG + pi SB (size-biased)
+ * with drift length L (sbi_ig_quantile_start); Levy if L = 0 */
+static double s_guess(const hit_par *h, double L, double pi, double p,
+                      int upper)
+{
+  double al = h->al.hi, shape = al * al / h->sigma2;
+  if (L > 0.0) {
+    double mean = al * h->t / L;
+    double g = mean * sbi_ig_quantile_start(p, upper, shape / mean, pi);
+    if (g > 0.0 && isfinite(g))
+      return g;
+  }
+  double z = upper ? (p < 1e-8 ? p * 1.2533141373155002512
+                               : gsl_cdf_ugaussian_Pinv(0.5 + 0.5 * p))
+                   : gsl_cdf_ugaussian_Qinv(0.5 * p);
+  return shape / (z * z);
+}
+
+/* g(u) = G(u) - p (lower) or (1 - p) - SF(u) (upper), increasing, on the
+ * same path as the public cdf/sf (w = t - u); *f = pdf(u) = g'(u) */
+static double hit_g_at(const hit_par *h, double u, double p, int upper,
+                       double *f)
+{
+  hit_time T = make_time(h, u, sbi_dd_sum(h->t, -u));
+  if (!(T.den.hi > DBL_MIN)) {
+    *f = 0.0;
+    return NAN;
+  }
+  hit_prob pr = prob_at(h, &T, upper ? W_SF : W_CDF);
+  double rel;
+  *f = pdf_at(h, &T, &rel);
+  return upper ? (1.0 - p) - pr.sf : pr.cdf - p;
+}
+
+/* Final polish in u: where the law is very concentrated one ulp of u moves
+ * G by more than the probabilities' own error, and the rounding of
+ * u = t s/(t + s) (a couple of ulp) matters.  Newton steps on g(u), then
+ * the better of u and its neighbour towards the root (the best double). */
+static double polish_u(const hit_par *h, double u, double p, int upper)
+{
+  double f, g = hit_g_at(h, u, p, upper, &f);
+  if (!isfinite(g))
+    return u;
+  for (int it = 0; it < 3 && f > 0.0; it++) {
+    double un = u - g / f;
+    if (!(un > 0.0 && un < h->t) || un == u)
+      break;
+    double fn, gn = hit_g_at(h, un, p, upper, &fn);
+    if (!(fabs(gn) < fabs(g)))
+      break;
+    u = un;
+    g = gn;
+    f = fn;
+  }
+  double nb = nextafter(u, g > 0.0 ? 0.0 : h->t), fnb;
+  if (nb > 0.0 && nb < h->t) {
+    double gnb = hit_g_at(h, nb, p, upper, &fnb);
+    if (fabs(gnb) < fabs(g))
+      u = nb;
+  }
+  return u;
+}
+
+static int hit_quantile(const char *fn, int b3, double p, double x, double y,
+                        double a, double sigma2, double t, sb_result *res)
+{
+  hit_par h;
+  int st = hit_setup(fn, b3, x, y, a, sigma2, t, &h, res);
+  if (st)
+    return st;
+  if (!(p >= 0.0 && p <= 1.0))
+    return sbi_fail(res, SB_EDOM, fn, "p = %g must be in [0, 1]", p);
+  if (h.trivial != T_NONE) {
+    *res = (sb_result){h.trivial == T_ZERO ? 0.0 : t, 0.0};
+    return SB_SUCCESS;
+  }
+  if (p == 0.0 || p == 1.0) {
+    *res = (sb_result){p == 0.0 ? 0.0 : t, 0.0};
+    return SB_SUCCESS;
+  }
+  int upper = p > 0.5;
+  double tg = upper ? 1.0 - p : p;
+  /* Start.  BB: the IG law of S.  B3B: for rho <= 1/2, (1) is dominated
+   * by its first term, the IG law with L1 (exact as rho -> 0); for rho
+   * near 1 the mixture (2) spans a short range of L, so its law is close to
+   * P_L at the median of L = a + y - 2m (see the sampler), the mixture of
+   * the IG and its size-biased version with weight alpha/(alpha + L) on
+   * the latter (y = 0: exactly P_a). */
+  double Lg = h.L1.hi, pi = 0.0;
+  if (b3 && h.mn == 0.0)
+    pi = h.al.hi / (h.al.hi + Lg);
+  else if (b3 && h.rho > 0.5) {
+    double A = h.al.hi + Lg;
+    double e = -2.0 * h.v * log1p(-0.5 * h.omr) / (A * A);
+    Lg += A * e / (1.0 + sqrt(1.0 + e));
+    pi = h.al.hi / (h.al.hi + Lg);
+  }
+  double sref = s_guess(&h, Lg, pi, tg, upper);
+  if (!(sref > 0.0) || isinf(sref))
+    sref = t;
+  hit_qctx c = {&h, sref, log(tg), upper, 0.0, 1.0};
+  double yy, dy;
+  st = sbi_solve_increasing4(hit_qfun, &c, 0.0, 1.0, &yy, &dy);
+  double s = sref * exp(yy);
+  double u = isinf(s) ? t : t * s / (t + s);
+  double w = isinf(s) ? 0.0 : t * t / (t + s);
+  /* d log G / d log u = dlog t / w: polish if a few ulp of u matter */
+  if (st == SB_SUCCESS && u > 0.0 && u < t && c.dlog * t / w > 100.0) {
+    u = polish_u(&h, u, p, upper);
+    w = t - u;
+  }
+  /* du = (u w / t) dy; plus the noise of the probability */
+  res->val = u;
+  res->err = u * w / t * (2.0 * dy + 8.0 * EPS + c.err / c.dlog) +
+             2.0 * EPS * u;
+  if (st)
+    sbi_error(st, fn, "no convergence for p = %g", p);
+  return st;
+}
+
+#define HIT_QUANT(pfx, b3)                                                  \
+  int sb_##pfx##_hit_quantile_e(double p, double x, double y, double a,     \
+                                double sigma2, double t, sb_result *res)    \
+  {                                                                         \
+    sb_result r;                                                            \
+    int st = hit_quantile(__func__, b3, p, x, y, a, sigma2, t, &r);         \
+    if (res)                                                                \
+      *res = r;                                                             \
+    return st;                                                              \
+  }                                                                         \
+  double sb_##pfx##_hit_quantile(double p, double x, double y, double a,    \
+                                 double sigma2, double t)                   \
+  {                                                                         \
+    sb_result r;                                                            \
+    hit_quantile(__func__, b3, p, x, y, a, sigma2, t, &r);                  \
+    return r.val;                                                           \
+  }
+
+HIT_QUANT(bb, 0)
+HIT_QUANT(bes3b, 1)
+
+/* ---------------------------------------------------------- samplers */
+
+static double s_to_u(double s, double t)
+{
+  return isinf(s) ? t : t * s / (t + s);
+}
+
+double sb_bb_hit_sample(const gsl_rng *r, double x, double y, double a,
+                        double sigma2, double t)
+{
+  hit_par h;
+  if (hit_setup(__func__, 0, x, y, a, sigma2, t, &h, NULL))
+    return NAN;
+  if (r == NULL) {
+    sbi_fail(NULL, SB_EINVAL, __func__, "r is NULL");
+    return NAN;
+  }
+  if (h.trivial == T_ZERO)
+    return 0.0;
+  double al = h.al.hi, L = h.L1.hi;
+  /* S = T t/(t - T) ~ IG(alpha t / L, alpha^2 / sigma2) (Levy if L = 0) */
+  double S = sbi_ig_sample(r, L > 0.0 ? al * t / L : INFINITY,
+                           al * al / sigma2);
+  return s_to_u(S, t);
+}
+
+double sb_bes3b_hit_sample(const gsl_rng *r, double x, double y, double a,
+                           double sigma2, double t)
+{
+  hit_par h;
+  if (hit_setup(__func__, 1, x, y, a, sigma2, t, &h, NULL))
+    return NAN;
+  if (r == NULL) {
+    sbi_fail(NULL, SB_EINVAL, __func__, "r is NULL");
+    return NAN;
+  }
+  if (h.trivial != T_NONE)
+    return h.trivial == T_ZERO ? 0.0 : t;
+  double al = h.al.hi, L1 = h.L1.hi, L;
+  /* 1. L = a + y - 2m from the law of the minimum m of the 1-D bridge
+   *    restricted to (0, a] (the Bessel-3 bridge is the 1-D bridge
+   *    conditioned on m > 0): P(L <= l) = [1 - exp(-((alpha+l)^2 -
+   *    (alpha+L1)^2)/(2v))] / (1 - rho), inverted in closed form with
+   *    l = L1 + (alpha + L1) e / (1 + sqrt(1 + e)), e = dlt/(alpha+L1)^2,
+   *    dlt = -2 v log(1 - U (1 - rho)) (no cancellation). */
+  if (h.mn == 0.0)
+    L = L1;
+  else {
+    double U = gsl_rng_uniform(r);
+    double A = al + L1;
+    double e = -2.0 * h.v * log1p(-U * h.omr) / (A * A);
+    L = L1 + A * e / (1.0 + sqrt(1.0 + e));
+    if (L > h.L2.hi)
+      L = h.L2.hi;
+  }
+  /* 2. Given m, S = s(T) is IG(alpha t/L, alpha^2/sigma2) with probability
+   *    L/(alpha + L), else its size-biased version IG + sigma2 t^2 Z^2/L^2
+   *    (Laplace transforms; docs/bridge.md). */
+  double U2 = gsl_rng_uniform(r);
+  double mean = L > 0.0 ? al * t / L : INFINITY;
+  double S = sbi_ig_sample(r, mean, al * al / sigma2);
+  if (U2 * (al + L) >= L) {
+    double z = gsl_ran_gaussian_ziggurat(r, 1.0);
+    S += L > 0.0 ? sigma2 * (t * t) * (z * z) / (L * L) : INFINITY;
+  }
+  return s_to_u(S, t);
+}

@@ -1,0 +1,894 @@
+/* engine.c — the collision engine: parameters, allocation, species and
+ * particles (structure of arrays), fluid velocity, transport (exact
+ * Langevin step), run control and accessors.  Neighbour search, detection,
+ * outcomes, observers and checkpoints live in the other lib/engine_*.c
+ * files; docs/engine.md explains the algorithm. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_randist.h>
+
+#include "common/internal.h"
+#include "engine_internal.h"
+
+/* ============================================================ parameters */
+
+void sb_engine_params_default(sb_engine_params *p)
+{
+  if (!p)
+    return;
+  memset(p, 0, sizeof *p);
+  p->dim = 3;
+  p->L[0] = p->L[1] = p->L[2] = 1e-4;
+  p->dt = 1e-6;
+  p->seed = 1;
+  p->capacity = 1024;
+  p->neigh = SB_NEIGH_CELLS;
+  p->detect = SB_DETECT_BALLISTIC;
+  p->outcome = SB_OUTCOME_ELASTIC;
+  p->eta = 1.0;
+  p->sample_every = 0;
+}
+
+static int check_params(const sb_engine_params *p, const char *func)
+{
+  if (!p)
+    return sbi_error(SB_EINVAL, func, "params is NULL");
+  if (p->dim != 2 && p->dim != 3)
+    return sbi_error(SB_EINVAL, func, "dim = %d: must be 2 or 3", p->dim);
+  for (int k = 0; k < p->dim; k++)
+    if (!(p->L[k] > 0.0) || !isfinite(p->L[k]))
+      return sbi_error(SB_EINVAL, func, "L[%d] = %g: must be finite > 0", k,
+                       p->L[k]);
+  if (!(p->dt > 0.0) || !isfinite(p->dt))
+    return sbi_error(SB_EINVAL, func, "dt = %g: must be finite > 0", p->dt);
+  if (p->capacity == 0 || p->capacity > ((size_t)1 << 40))
+    return sbi_error(SB_EINVAL, func, "capacity = %zu: must be in 1..2^40",
+                     p->capacity);
+  if ((unsigned)p->neigh > SB_NEIGH_BRUTE)
+    return sbi_error(SB_EINVAL, func, "neigh = %d: unknown", (int)p->neigh);
+  if ((unsigned)p->detect > SB_DETECT_OVERLAP)
+    return sbi_error(SB_EINVAL, func,
+                     "detect = %d: unknown or custom (use "
+                     "sb_engine_set_detector)",
+                     (int)p->detect);
+  if ((unsigned)p->outcome > SB_OUTCOME_COUNT)
+    return sbi_error(SB_EINVAL, func,
+                     "outcome = %d: unknown or custom (use "
+                     "sb_engine_set_outcome_fn)",
+                     (int)p->outcome);
+  if (!(p->eta >= 0.0 && p->eta <= 1.0))
+    return sbi_error(SB_EINVAL, func, "eta = %g: must be in [0, 1]", p->eta);
+  return SB_SUCCESS;
+}
+
+/* ============================================================ life cycle */
+
+sb_engine *sb_engine_alloc(const sb_engine_params *p)
+{
+  if (check_params(p, __func__))
+    return NULL;
+  sb_engine *e = calloc(1, sizeof *e);
+  if (!e) {
+    sbi_error(SB_ENOMEM, __func__, "out of memory");
+    return NULL;
+  }
+  e->par = *p;
+  if (e->par.dim == 2)
+    e->par.L[2] = 1.0;  /* unused; keeps the volume formula uniform */
+  size_t c = p->capacity;
+  e->x = calloc(3 * c, sizeof(double));
+  e->u = calloc(3 * c, sizeof(double));
+  e->x0 = calloc(3 * c, sizeof(double));
+  e->u0 = calloc(3 * c, sizeof(double));
+  e->disp = calloc(3 * c, sizeof(double));
+  e->us = calloc(3 * c, sizeof(double));
+  e->radius = calloc(c, sizeof(double));
+  e->mass = calloc(c, sizeof(double));
+  e->species = calloc(c, sizeof(size_t));
+  e->family = calloc(c, sizeof(int));
+  e->id = calloc(c, sizeof(uint64_t));
+  e->hit = calloc(c, 1);
+  e->dn = calloc(c, sizeof(double));
+  e->xs = calloc(4 * c, sizeof(double));
+  e->cell_of = calloc(c, sizeof(size_t));
+  e->cell_list = calloc(c, sizeof(size_t));
+  e->order = calloc(c, sizeof(size_t));
+  e->key = calloc(c, sizeof(double));
+  e->rng = gsl_rng_alloc(p->rng_type ? p->rng_type : gsl_rng_mt19937);
+  if (!e->x || !e->u || !e->x0 || !e->u0 || !e->disp || !e->us ||
+      !e->radius || !e->mass || !e->species || !e->family || !e->id ||
+      !e->hit || !e->dn || !e->xs || !e->cell_of || !e->cell_list || !e->order ||
+      !e->key || !e->rng) {
+    sb_engine_free(e);
+    sbi_error(SB_ENOMEM, __func__, "out of memory (capacity %zu)", c);
+    return NULL;
+  }
+  gsl_rng_set(e->rng, p->seed);
+  e->detect_fn = NULL;
+  e->fluid = SB_FLUID_REST;
+  return e;
+}
+
+void sb_engine_free(sb_engine *e)
+{
+  if (!e)
+    return;
+  free(e->x);
+  free(e->u);
+  free(e->x0);
+  free(e->u0);
+  free(e->disp);
+  free(e->us);
+  free(e->radius);
+  free(e->mass);
+  free(e->species);
+  free(e->family);
+  free(e->id);
+  free(e->hit);
+  free(e->spec);
+  free(e->coef);
+  free(e->vsd);
+  free(e->series);
+  free(e->pairs);
+  free(e->ev);
+  free(e->cell_of);
+  free(e->cell_start);
+  free(e->cell_list);
+  free(e->dn);
+  free(e->xs);
+  free(e->order);
+  free(e->key);
+  if (e->rng)
+    gsl_rng_free(e->rng);
+  free(e);
+}
+
+const sb_engine_params *sb_engine_get_params(const sb_engine *e)
+{
+  return e ? &e->par : NULL;
+}
+
+/* ============================================================ species */
+
+/* Step coefficients of one species.  Free flight (tau = inf) is the exact
+ * limit of the Langevin step: decay 1, gain dt, no noise. */
+static int species_coef(const sb_engine_species *s, double dt,
+                        sb_langevin_coef *c)
+{
+  if (isinf(s->tau)) {
+    *c = (sb_langevin_coef){dt, 1.0, dt, 0.0, 0.0, 0.0};
+    return SB_SUCCESS;
+  }
+  return sb_langevin_coef_init(c, s->tau, s->B, dt);
+}
+
+int sbi_engine_update_coef(sb_engine *e)
+{
+  for (size_t k = 0; k < e->nspec; k++) {
+    int st = species_coef(&e->spec[k], e->par.dt, &e->coef[k]);
+    if (st)
+      return st;
+  }
+  return SB_SUCCESS;
+}
+
+int sb_engine_add_species(sb_engine *e, const sb_engine_species *s,
+                          size_t *idx)
+{
+  if (!e || !s)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  if (!(s->radius > 0.0) || !isfinite(s->radius))
+    return sbi_error(SB_EINVAL, __func__, "radius = %g: must be finite > 0",
+                     s->radius);
+  if (!(s->mass > 0.0) || !isfinite(s->mass))
+    return sbi_error(SB_EINVAL, __func__, "mass = %g: must be finite > 0",
+                     s->mass);
+  if (!(s->tau > 0.0))
+    return sbi_error(SB_EINVAL, __func__, "tau = %g: must be > 0 (or inf)",
+                     s->tau);
+  if (isfinite(s->tau) && (!(s->B >= 0.0) || !isfinite(s->B)))
+    return sbi_error(SB_EINVAL, __func__, "B = %g: must be finite >= 0",
+                     s->B);
+  if (!(s->T >= 0.0) || !isfinite(s->T))
+    return sbi_error(SB_EINVAL, __func__, "T = %g: must be finite >= 0",
+                     s->T);
+  if (isinf(s->tau) && s->T == 0.0)
+    return sbi_error(SB_EINVAL, __func__,
+                     "free-flight species (tau = inf) needs T > 0");
+  sb_langevin_coef c;
+  if (species_coef(s, e->par.dt, &c))
+    return sbi_error(SB_EINVAL, __func__,
+                     "tau = %g, B = %g, dt = %g: no Langevin step", s->tau,
+                     s->B, e->par.dt);
+  if (e->nspec == e->capspec) {
+    size_t nc = e->capspec ? 2 * e->capspec : 4;
+    sb_engine_species *ns = realloc(e->spec, nc * sizeof *ns);
+    if (!ns)
+      return sbi_error(SB_ENOMEM, __func__, "out of memory");
+    e->spec = ns;
+    sb_langevin_coef *ncf = realloc(e->coef, nc * sizeof *ncf);
+    if (!ncf)
+      return sbi_error(SB_ENOMEM, __func__, "out of memory");
+    e->coef = ncf;
+    double *nv = realloc(e->vsd, nc * sizeof *nv);
+    if (!nv)
+      return sbi_error(SB_ENOMEM, __func__, "out of memory");
+    e->vsd = nv;
+    e->capspec = nc;
+  }
+  size_t k = e->nspec++;
+  e->spec[k] = *s;
+  e->coef[k] = c;
+  /* Equilibrium velocity variance: k_B T / m, or B^2 tau / 2 (the
+   * stationary variance of the Langevin model, seed 003 eq A.4). */
+  double var = s->T > 0.0 ? SB_BOLTZMANN * s->T / s->mass
+                          : 0.5 * s->B * s->B * s->tau;
+  e->vsd[k] = sqrt(var);
+  if (s->radius > e->rmax)
+    e->rmax = s->radius;
+  if (idx)
+    *idx = k;
+  return SB_SUCCESS;
+}
+
+const sb_engine_species *sb_engine_get_species(const sb_engine *e,
+                                               size_t idx)
+{
+  return (e && idx < e->nspec) ? &e->spec[idx] : NULL;
+}
+
+/* ============================================================ particles */
+
+int sb_engine_add_particle(sb_engine *e, size_t species, int family,
+                           const double x[3], const double u[3])
+{
+  if (!e || !x || !u)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  if (e->n >= e->par.capacity)
+    return sbi_error(SB_EINVAL, __func__, "capacity %zu is full",
+                     e->par.capacity);
+  if (species >= e->nspec)
+    return sbi_error(SB_EINVAL, __func__, "species %zu does not exist",
+                     species);
+  if (family < 0 || family >= SB_ENGINE_MAXFAM)
+    return sbi_error(SB_EINVAL, __func__, "family = %d: must be in 0..%d",
+                     family, SB_ENGINE_MAXFAM - 1);
+  for (int k = 0; k < e->par.dim; k++)
+    if (!isfinite(x[k]) || !isfinite(u[k]))
+      return sbi_error(SB_EINVAL, __func__, "x[%d] = %g, u[%d] = %g: must "
+                       "be finite", k, x[k], k, u[k]);
+  size_t i = e->n++;
+  for (int k = 0; k < 3; k++) {
+    int on = k < e->par.dim;
+    e->x[3 * i + k] = on ? sbi_wrap(x[k], e->par.L[k]) : 0.0;
+    e->u[3 * i + k] = on ? u[k] : 0.0;
+  }
+  e->radius[i] = e->spec[species].radius;
+  e->mass[i] = e->spec[species].mass;
+  e->species[i] = species;
+  e->family[i] = family;
+  e->id[i] = e->next_id++;
+  e->hit[i] = 0;
+  e->norder = 0;  /* sweep order must be rebuilt */
+  return SB_SUCCESS;
+}
+
+int sb_engine_set_particle(sb_engine *e, size_t i, const double x[3],
+                           const double u[3])
+{
+  if (!e || !x || !u || i >= e->n)
+    return sbi_error(SB_EINVAL, __func__, "bad particle index or NULL");
+  for (int k = 0; k < e->par.dim; k++) {
+    if (!isfinite(x[k]) || !isfinite(u[k]))
+      return sbi_error(SB_EINVAL, __func__, "non-finite state");
+  }
+  for (int k = 0; k < e->par.dim; k++) {
+    e->x[3 * i + k] = sbi_wrap(x[k], e->par.L[k]);
+    e->u[3 * i + k] = u[k];
+  }
+  return SB_SUCCESS;
+}
+
+int sbi_engine_fluid_eval(sb_engine *e, size_t n, const double *x,
+                          double *us)
+{
+  switch (e->fluid) {
+  case SB_FLUID_REST:
+    memset(us, 0, 3 * n * sizeof *us);
+    return SB_SUCCESS;
+  case SB_FLUID_UNIFORM:
+    for (size_t i = 0; i < n; i++)
+      for (int k = 0; k < 3; k++)
+        us[3 * i + k] = k < e->par.dim ? e->fluid_p[k] : 0.0;
+    return SB_SUCCESS;
+  case SB_FLUID_SHEAR:
+    for (size_t i = 0; i < n; i++) {
+      us[3 * i] = e->fluid_p[0] * (x[3 * i + 1] - 0.5 * e->par.L[1]);
+      us[3 * i + 1] = us[3 * i + 2] = 0.0;
+    }
+    return SB_SUCCESS;
+  case SB_FLUID_CALLBACK: {
+    int st = e->fluid_fn(n, x, us, e->fluid_ctx);
+    if (st)
+      return sbi_error(SB_EINVAL, "sb_engine_step",
+                       "fluid callback failed (status %d)", st);
+    if (e->par.dim == 2)
+      for (size_t i = 0; i < n; i++)
+        us[3 * i + 2] = 0.0;
+    return SB_SUCCESS;
+  }
+  }
+  return SB_EINVAL;
+}
+
+int sbi_engine_equilibrium_velocity(sb_engine *e, size_t sp,
+                                    const double x[3], double u[3])
+{
+  double us[3];
+  int st = sbi_engine_fluid_eval(e, 1, x, us);
+  if (st)
+    return st;
+  for (int k = 0; k < 3; k++)
+    u[k] = k < e->par.dim
+               ? us[k] + gsl_ran_gaussian_ziggurat(e->rng, e->vsd[sp])
+               : 0.0;
+  return SB_SUCCESS;
+}
+
+/* Cell grid for the overlap checks of sb_engine_fill_random. */
+typedef struct {
+  int nc[3];
+  double cs[3];
+  size_t *head, *next;
+} fill_grid;
+
+static size_t fill_cell(const fill_grid *g, const double *x)
+{
+  size_t c = 0;
+  for (int k = 2; k >= 0; k--) {
+    int ck = (int)(x[k] / g->cs[k]);
+    if (ck >= g->nc[k])
+      ck = g->nc[k] - 1;
+    c = c * (size_t)g->nc[k] + (size_t)ck;
+  }
+  return c;
+}
+
+static int fill_free(const sb_engine *e, const fill_grid *g, const double *x,
+                     double r)
+{
+  int c0[3], off[3][3], noff[3];
+  for (int k = 0; k < 3; k++) {
+    c0[k] = (int)(x[k] / g->cs[k]);
+    if (c0[k] >= g->nc[k])
+      c0[k] = g->nc[k] - 1;
+    /* neighbour offsets, without repeats when there are < 3 cells */
+    noff[k] = g->nc[k] >= 3 ? 3 : g->nc[k];
+    for (int o = 0; o < noff[k]; o++)
+      off[k][o] = g->nc[k] >= 3 ? o - 1 : o;
+  }
+  for (int a = 0; a < noff[0]; a++)
+    for (int b = 0; b < noff[1]; b++)
+      for (int d = 0; d < noff[2]; d++) {
+        int cc[3] = {c0[0] + off[0][a], c0[1] + off[1][b],
+                     c0[2] + off[2][d]};
+        size_t c = 0;
+        for (int k = 2; k >= 0; k--) {
+          int v = ((cc[k] % g->nc[k]) + g->nc[k]) % g->nc[k];
+          c = c * (size_t)g->nc[k] + (size_t)v;
+        }
+        for (size_t j = g->head[c]; j != SIZE_MAX; j = g->next[j]) {
+          double d2 = 0.0;
+          for (int k = 0; k < e->par.dim; k++) {
+            double dk = sbi_minimg(x[k] - e->x[3 * j + k], e->par.L[k]);
+            d2 += dk * dk;
+          }
+          double sg = r + e->radius[j];
+          if (d2 < sg * sg)
+            return 0;
+        }
+      }
+  return 1;
+}
+
+int sb_engine_fill_random(sb_engine *e, size_t species, int family, size_t n)
+{
+  if (!e)
+    return sbi_error(SB_EINVAL, __func__, "engine is NULL");
+  double lo[3] = {0, 0, 0};
+  return sb_engine_fill_box(e, species, family, n, lo, e->par.L, NULL);
+}
+
+int sb_engine_fill_box(sb_engine *e, size_t species, int family, size_t n,
+                       const double lo[3], const double hi[3],
+                       const double drift[3])
+{
+  if (!e || !lo || !hi)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  for (int k = 0; k < e->par.dim; k++) {
+    if (!(lo[k] >= 0.0 && lo[k] < hi[k] && hi[k] <= e->par.L[k]))
+      return sbi_error(SB_EINVAL, __func__,
+                       "region [%g, %g] in direction %d: need 0 <= lo < hi "
+                       "<= L = %g", lo[k], hi[k], k, e->par.L[k]);
+    if (drift && !isfinite(drift[k]))
+      return sbi_error(SB_EINVAL, __func__, "drift[%d] = %g: not finite", k,
+                       drift[k]);
+  }
+  if (species >= e->nspec)
+    return sbi_error(SB_EINVAL, __func__, "species %zu does not exist",
+                     species);
+  if (n > e->par.capacity - e->n)
+    return sbi_error(SB_EINVAL, __func__, "%zu particles exceed the "
+                     "capacity %zu (holding %zu)", n, e->par.capacity, e->n);
+  const int dim = e->par.dim;
+  const double r = e->spec[species].radius;
+  fill_grid g = {{1, 1, 1}, {1, 1, 1}, NULL, NULL};
+  /* cells of edge >= 2 rmax, at most ~2 cells per particle */
+  double cs = 2.0 * (e->rmax > r ? e->rmax : r);
+  double vol = 1.0;
+  for (int k = 0; k < dim; k++)
+    vol *= e->par.L[k];
+  double ntot = (double)(e->n + n) + 1.0;
+  double csmin = pow(vol / (2.0 * ntot), 1.0 / dim);
+  if (cs < csmin)
+    cs = csmin;
+  size_t ncell = 1;
+  for (int k = 0; k < 3; k++) {
+    if (k < dim) {
+      double m = floor(e->par.L[k] / cs);
+      g.nc[k] = m < 1 ? 1 : (m > 1e6 ? 1000000 : (int)m);
+      g.cs[k] = e->par.L[k] / g.nc[k];
+    } else {
+      g.nc[k] = 1;
+      g.cs[k] = 1e300;
+    }
+    ncell *= (size_t)g.nc[k];
+  }
+  g.head = malloc(ncell * sizeof(size_t));
+  g.next = malloc((e->n + n) * sizeof(size_t));
+  if (!g.head || !g.next) {
+    free(g.head);
+    free(g.next);
+    return sbi_error(SB_ENOMEM, __func__, "out of memory");
+  }
+  for (size_t c = 0; c < ncell; c++)
+    g.head[c] = SIZE_MAX;
+  for (size_t j = 0; j < e->n; j++) {
+    size_t c = fill_cell(&g, &e->x[3 * j]);
+    g.next[j] = g.head[c];
+    g.head[c] = j;
+  }
+  int st = SB_SUCCESS;
+  for (size_t a = 0; a < n && !st; a++) {
+    double x[3] = {0, 0, 0}, u[3];
+    size_t tries = 0;
+    for (;;) {
+      for (int k = 0; k < dim; k++)
+        x[k] = lo[k] + (hi[k] - lo[k]) * gsl_rng_uniform(e->rng);
+      if (fill_free(e, &g, x, r))
+        break;
+      if (++tries >= 10000) {
+        st = sbi_error(SB_EMAXITER, __func__,
+                       "no free position after 10000 tries (box too full)");
+        break;
+      }
+    }
+    if (st)
+      break;
+    st = sbi_engine_equilibrium_velocity(e, species, x, u);
+    if (!st && drift)
+      for (int k = 0; k < dim; k++)
+        u[k] += drift[k];
+    if (!st)
+      st = sb_engine_add_particle(e, species, family, x, u);
+    if (!st) {
+      size_t j = e->n - 1, c = fill_cell(&g, &e->x[3 * j]);
+      g.next[j] = g.head[c];
+      g.head[c] = j;
+    }
+  }
+  free(g.head);
+  free(g.next);
+  return st;
+}
+
+double sb_engine_kinetic_energy(const sb_engine *e, double p[3])
+{
+  double ek = 0.0, pm[3] = {0, 0, 0};
+  if (e)
+    for (size_t i = 0; i < e->n; i++) {
+      const double *u = &e->u[3 * i];
+      ek += 0.5 * e->mass[i] * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+      for (int k = 0; k < 3; k++)
+        pm[k] += e->mass[i] * u[k];
+    }
+  if (p)
+    for (int k = 0; k < 3; k++)
+      p[k] = pm[k];
+  return ek;
+}
+
+int sb_engine_thermalize(sb_engine *e, double T)
+{
+  if (!e || !isfinite(T))
+    return sbi_error(SB_EINVAL, __func__, "NULL engine or non-finite T");
+  if (e->n < 2)
+    return sbi_error(SB_EINVAL, __func__, "needs at least 2 particles");
+  double M = 0.0, p[3];
+  sb_engine_kinetic_energy(e, p);
+  for (size_t i = 0; i < e->n; i++)
+    M += e->mass[i];
+  for (size_t i = 0; i < e->n; i++)
+    for (int k = 0; k < e->par.dim; k++)
+      e->u[3 * i + k] -= p[k] / M;
+  if (T > 0.0) {
+    double ek = sb_engine_kinetic_energy(e, NULL);
+    if (!(ek > 0.0))
+      return sbi_error(SB_EINVAL, __func__, "all particles at rest");
+    /* equipartition over dim (N - 1) degrees of freedom (total momentum
+     * fixed at 0) */
+    double want = 0.5 * e->par.dim * (double)(e->n - 1) * SB_BOLTZMANN * T;
+    double f = sqrt(want / ek);
+    for (size_t i = 0; i < 3 * e->n; i++)
+      e->u[i] *= f;
+  }
+  return SB_SUCCESS;
+}
+
+/* ============================================================ settings */
+
+int sb_engine_set_neigh(sb_engine *e, sb_engine_neigh m)
+{
+  if (!e || (unsigned)m > SB_NEIGH_BRUTE)
+    return sbi_error(SB_EINVAL, __func__, "bad engine or method %d", (int)m);
+  e->par.neigh = m;
+  return SB_SUCCESS;
+}
+
+int sb_engine_set_detect(sb_engine *e, sb_engine_detect d)
+{
+  if (!e || (unsigned)d > SB_DETECT_OVERLAP)
+    return sbi_error(SB_EINVAL, __func__, "bad engine or detector %d",
+                     (int)d);
+  e->par.detect = d;
+  e->detect_fn = NULL;
+  e->detect_reach = 0.0;
+  return SB_SUCCESS;
+}
+
+int sb_engine_set_detector(sb_engine *e, sb_engine_detect_fn fn, void *ctx,
+                           double reach)
+{
+  if (!e || !fn || !(reach >= 0.0) || !isfinite(reach))
+    return sbi_error(SB_EINVAL, __func__, "bad engine, callback or reach");
+  e->par.detect = SB_DETECT_CUSTOM;
+  e->detect_fn = fn;
+  e->detect_ctx = ctx;
+  e->detect_reach = reach;
+  return SB_SUCCESS;
+}
+
+int sb_engine_set_outcome(sb_engine *e, sb_engine_outcome o, double eta)
+{
+  if (!e || (unsigned)o > SB_OUTCOME_COUNT)
+    return sbi_error(SB_EINVAL, __func__, "bad engine or outcome %d",
+                     (int)o);
+  if (!(eta >= 0.0 && eta <= 1.0))
+    return sbi_error(SB_EINVAL, __func__, "eta = %g: must be in [0, 1]",
+                     eta);
+  e->par.outcome = o;
+  e->par.eta = eta;
+  e->outcome_fn = NULL;
+  return SB_SUCCESS;
+}
+
+int sb_engine_set_outcome_fn(sb_engine *e, sb_engine_outcome_fn fn,
+                             void *ctx)
+{
+  if (!e || !fn)
+    return sbi_error(SB_EINVAL, __func__, "NULL engine or callback");
+  e->par.outcome = SB_OUTCOME_CUSTOM;
+  e->outcome_fn = fn;
+  e->outcome_ctx = ctx;
+  return SB_SUCCESS;
+}
+
+int sb_engine_set_fluid(sb_engine *e, sb_engine_fluid f, const double p[3])
+{
+  if (!e || f == SB_FLUID_CALLBACK || (unsigned)f > SB_FLUID_CALLBACK)
+    return sbi_error(SB_EINVAL, __func__,
+                     "bad engine or field %d (callbacks: "
+                     "sb_engine_set_fluid_fn)",
+                     (int)f);
+  double q[3] = {0, 0, 0};
+  if (p)
+    for (int k = 0; k < 3; k++) {
+      if (!isfinite(p[k]))
+        return sbi_error(SB_EINVAL, __func__, "p[%d] = %g: not finite", k,
+                         p[k]);
+      q[k] = p[k];
+    }
+  e->fluid = f;
+  memcpy(e->fluid_p, q, sizeof q);
+  e->fluid_fn = NULL;
+  return SB_SUCCESS;
+}
+
+int sb_engine_set_fluid_fn(sb_engine *e, sb_engine_fluid_fn fn, void *ctx)
+{
+  if (!e || !fn)
+    return sbi_error(SB_EINVAL, __func__, "NULL engine or callback");
+  e->fluid = SB_FLUID_CALLBACK;
+  e->fluid_fn = fn;
+  e->fluid_ctx = ctx;
+  return SB_SUCCESS;
+}
+
+int sb_engine_set_sample_every(sb_engine *e, size_t every)
+{
+  if (!e)
+    return sbi_error(SB_EINVAL, __func__, "engine is NULL");
+  e->par.sample_every = every;
+  return SB_SUCCESS;
+}
+
+int sb_engine_set_dt(sb_engine *e, double dt)
+{
+  if (!e || !(dt > 0.0) || !isfinite(dt))
+    return sbi_error(SB_EINVAL, __func__, "dt = %g: must be finite > 0",
+                     e ? dt : NAN);
+  double old = e->par.dt;
+  e->par.dt = dt;
+  if (sbi_engine_update_coef(e)) {
+    e->par.dt = old;
+    sbi_engine_update_coef(e);
+    return sbi_error(SB_EINVAL, __func__, "dt = %g: invalid step", dt);
+  }
+  return SB_SUCCESS;
+}
+
+/* ============================================================ run */
+
+/* Transport: x0 <- x, u0 <- u, U_s at x0, exact Langevin step of every
+ * particle with its species' coefficients (langevin_step.c, seed 003 eq
+ * 1.16):
+ *   x += w dt + (u - w) gain + s_xu z1 + s_xc z2,  u = w + (u - w) decay
+ *   + s_u z1,
+ * disp = x - x0.  The same update as sb_langevin_step3_coef, fused with
+ * the copies and the displacement so that the particle data are read and
+ * written once; the Gaussians are drawn first for a block of particles
+ * (GSL ziggurat, in the documented order: particle, component, z1 then z2,
+ * so a run does not depend on the block size) and the arithmetic loop
+ * then runs without calls.  In 2-D the third component is stepped too
+ * (keeping the draw order independent of dim) and reset. */
+#define SBI_TRANSPORT_BLOCK 256
+static int transport(sb_engine *e)
+{
+  const size_t n = e->n;
+  const double *us = NULL;
+  if (e->fluid != SB_FLUID_REST) {
+    /* x is the start position x0 here */
+    int st = sbi_engine_fluid_eval(e, n, e->x, e->us);
+    if (st)
+      return st;
+    us = e->us;
+  }
+  double z[6 * SBI_TRANSPORT_BLOCK];
+  double *restrict x = e->x, *restrict u = e->u;
+  double *restrict x0 = e->x0, *restrict u0 = e->u0, *restrict dp = e->disp;
+  const sb_langevin_coef *coef = e->coef;
+  const size_t *sp = e->species;
+  for (size_t i0 = 0; i0 < n; i0 += SBI_TRANSPORT_BLOCK) {
+    const size_t m = n - i0 < SBI_TRANSPORT_BLOCK ? n - i0
+                                                   : SBI_TRANSPORT_BLOCK;
+    for (size_t q = 0; q < 6 * m; q++)
+      z[q] = gsl_ran_gaussian_ziggurat(e->rng, 1.0);
+    for (size_t a = 0; a < m; a++) {
+      const size_t i = i0 + a;
+      const sb_langevin_coef *c = &coef[sp[i]];
+      for (int k = 0; k < 3; k++) {
+        const size_t q = 3 * i + k;
+        const double w = us ? us[q] : 0.0, z1 = z[6 * a + 2 * k],
+                     z2 = z[6 * a + 2 * k + 1];
+        const double xo = x[q], uo = u[q], v = uo - w;
+        const double xn = xo + (w * c->dt + v * c->gain + c->s_xu * z1 +
+                                c->s_xc * z2);
+        x0[q] = xo;
+        u0[q] = uo;
+        x[q] = xn;
+        u[q] = w + v * c->decay + c->s_u * z1;
+        dp[q] = xn - xo;
+      }
+    }
+  }
+  if (e->par.dim == 2)
+    for (size_t i = 0; i < n; i++)
+      x[3 * i + 2] = u[3 * i + 2] = dp[3 * i + 2] = 0.0;
+  return SB_SUCCESS;
+}
+
+int sb_engine_step(sb_engine *e)
+{
+  if (!e)
+    return sbi_error(SB_EINVAL, __func__, "engine is NULL");
+  int st = transport(e);
+  if (st)
+    return st;
+  memset(e->hit, 0, e->n);
+  st = sbi_engine_find_pairs(e, e->par.neigh, e->x0, e->disp,
+                             e->par.detect == SB_DETECT_CUSTOM
+                                 ? e->detect_reach
+                                 : 0.0);
+  if (st)
+    return st;
+  st = sbi_engine_detect_and_process(e);
+  if (st)
+    return st;
+  if (e->nremove) {  /* merged partners (engine_merge.c) */
+    st = sbi_engine_purge(e);
+    if (st)
+      return st;
+  }
+  const int dim = e->par.dim;
+  for (size_t i = 0; i < e->n; i++)
+    for (int k = 0; k < dim; k++)
+      e->x[3 * i + k] = sbi_wrap(e->x[3 * i + k], e->par.L[k]);
+  e->steps++;
+  e->t += e->par.dt;
+  if (e->par.sort_every && e->steps % e->par.sort_every == 0) {
+    st = sb_engine_sort(e);
+    if (st)
+      return st;
+  }
+  if (e->par.sample_every && e->steps % e->par.sample_every == 0) {
+    st = sbi_engine_sample(e);
+    if (st)
+      return st;
+  }
+  return SB_SUCCESS;
+}
+
+/* Permute a per-particle array of `w` elements of `size` bytes by perm
+ * (new[k] = old[perm[k]]) through the scratch buffer tmp. */
+static void permute(void *a, size_t w, size_t size, const size_t *perm,
+                    size_t n, void *tmp)
+{
+  char *src = a, *dst = tmp;
+  for (size_t k = 0; k < n; k++)
+    memcpy(dst + k * w * size, src + perm[k] * w * size, w * size);
+  memcpy(a, tmp, n * w * size);
+}
+
+int sb_engine_sort(sb_engine *e)
+{
+  if (!e)
+    return sbi_error(SB_EINVAL, __func__, "engine is NULL");
+  const size_t n = e->n;
+  if (n < 2)
+    return SB_SUCCESS;
+  const int dim = e->par.dim;
+  double vol = 1.0;
+  for (int k = 0; k < dim; k++)
+    vol *= e->par.L[k];
+  /* the grid of the linked cells when the cut-off is below the mean
+   * spacing (dilute): their counting sort then scatters sequentially */
+  double cs = sbi_cell_edge_min(vol, n, dim);
+  int nc[3] = {1, 1, 1};
+  size_t ncell = 1;
+  for (int k = 0; k < dim; k++) {
+    double m = floor(e->par.L[k] / cs);
+    nc[k] = m < 1 ? 1 : (m > 1e6 ? 1000000 : (int)m);
+    ncell *= (size_t)nc[k];
+  }
+  size_t *cnt = calloc(ncell + 1, sizeof *cnt);
+  size_t *perm = malloc(n * sizeof *perm);
+  if (!cnt || !perm) {
+    free(cnt);
+    free(perm);
+    return sbi_error(SB_ENOMEM, __func__, "out of memory");
+  }
+  size_t *cof = e->cell_of;
+  for (size_t i = 0; i < n; i++) {
+    size_t c = 0;
+    for (int k = dim - 1; k >= 0; k--) {
+      int ck = (int)(e->x[3 * i + k] / e->par.L[k] * nc[k]);
+      ck = ck >= nc[k] ? nc[k] - 1 : (ck < 0 ? 0 : ck);
+      c = c * (size_t)nc[k] + (size_t)ck;
+    }
+    cof[i] = c;
+    cnt[c + 1]++;
+  }
+  for (size_t c = 0; c < ncell; c++)
+    cnt[c + 1] += cnt[c];
+  for (size_t i = 0; i < n; i++)
+    perm[cnt[cof[i]]++] = i;
+  free(cnt);
+  /* scratch: x0 (3 cap doubles) holds any array of <= 24 bytes per
+   * particle */
+  void *tmp = e->x0;
+  permute(e->x, 3, sizeof(double), perm, n, tmp);
+  permute(e->u, 3, sizeof(double), perm, n, tmp);
+  permute(e->radius, 1, sizeof(double), perm, n, tmp);
+  permute(e->mass, 1, sizeof(double), perm, n, tmp);
+  permute(e->species, 1, sizeof(size_t), perm, n, tmp);
+  permute(e->family, 1, sizeof(int), perm, n, tmp);
+  permute(e->id, 1, sizeof(uint64_t), perm, n, tmp);
+  free(perm);
+  e->norder = 0;
+  return SB_SUCCESS;
+}
+
+int sb_engine_run_until(sb_engine *e, double t_end)
+{
+  if (!e || !isfinite(t_end))
+    return sbi_error(SB_EINVAL, __func__, "NULL engine or non-finite t_end");
+  while (e->t < t_end - 0.5 * e->par.dt) {
+    int st = sb_engine_step(e);
+    if (st)
+      return st;
+  }
+  return SB_SUCCESS;
+}
+
+/* ============================================================ accessors */
+
+size_t sb_engine_count(const sb_engine *e) { return e ? e->n : 0; }
+double sb_engine_time(const sb_engine *e) { return e ? e->t : NAN; }
+/* Read-only view of a particle array (NULL for a NULL engine). */
+#define ARRAY_VIEW(type, fn, field) \
+  const type *fn(const sb_engine *e) { return e ? e->field : NULL; }
+ARRAY_VIEW(double, sb_engine_positions, x)
+ARRAY_VIEW(double, sb_engine_velocities, u)
+ARRAY_VIEW(double, sb_engine_start_positions, x0)
+ARRAY_VIEW(double, sb_engine_start_velocities, u0)
+ARRAY_VIEW(double, sb_engine_radii, radius)
+ARRAY_VIEW(double, sb_engine_masses, mass)
+ARRAY_VIEW(size_t, sb_engine_species_of, species)
+ARRAY_VIEW(int, sb_engine_families, family)
+ARRAY_VIEW(uint64_t, sb_engine_ids, id)
+#undef ARRAY_VIEW
+gsl_rng *sb_engine_rng(sb_engine *e) { return e ? e->rng : NULL; }
+
+/* ============================================================ names */
+
+static int lookup(const char *name, const char *const *names, int n,
+                  int *out, const char *func)
+{
+  if (name)
+    for (int k = 0; k < n; k++)
+      if (!strcmp(name, names[k])) {
+        *out = k;
+        return SB_SUCCESS;
+      }
+  return sbi_error(SB_EINVAL, func, "unknown name '%s'",
+                   name ? name : "(null)");
+}
+
+int sb_engine_neigh_from_name(const char *name, sb_engine_neigh *m)
+{
+  static const char *const names[] = {"cells", "sweep", "brute"};
+  int k = 0, st = lookup(name, names, 3, &k, __func__);
+  if (!st && m)
+    *m = (sb_engine_neigh)k;
+  return st;
+}
+
+int sb_engine_detect_from_name(const char *name, sb_engine_detect *d)
+{
+  static const char *const names[] = {"ballistic", "overlap"};
+  int k = 0, st = lookup(name, names, 2, &k, __func__);
+  if (!st && d)
+    *d = (sb_engine_detect)k;
+  return st;
+}
+
+int sb_engine_outcome_from_name(const char *name, sb_engine_outcome *o)
+{
+  static const char *const names[] = {"elastic", "reinsert", "count"};
+  int k = 0, st = lookup(name, names, 3, &k, __func__);
+  if (!st && o)
+    *o = (sb_engine_outcome)k;
+  return st;
+}

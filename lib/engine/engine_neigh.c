@@ -1,0 +1,322 @@
+/* engine_neigh.c — neighbour search: linked cells (O(N)) and brute force
+ * (O(N^2) reference), the dispatcher, and the exact segment test.
+ *
+ * Candidate criterion.  Over a step particle i moves on the segment
+ * x0_i + s disp_i, s in [0, 1] (the straight "chord" the ballistic
+ * detector uses).  Two segments can come within sigma_ij + reach only if
+ *     |dx0_ij| <= r_i + r_j + |disp_i| + |disp_j| + reach      (*)
+ * (triangle inequality).  Both methods return every pair satisfying (*)
+ * (cells: with cell edge >= cut = 2 r_max + 2 max|disp| + reach, every such
+ * pair lies in neighbouring cells), hence a superset of the pairs that can
+ * collide.  Periodic images: the minimum image is used, which is exact as
+ * long as cut < L/2 in every direction (checked; otherwise SB_EINVAL,
+ * "step too large for the box").
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "common/internal.h"
+#include "engine_internal.h"
+
+int sbi_engine_push_pair(sb_engine *e, size_t i, size_t j)
+{
+  if (e->npairs == e->cappairs) {
+    size_t nc = e->cappairs ? 2 * e->cappairs : 1024;
+    size_t *np = realloc(e->pairs, 2 * nc * sizeof *np);
+    if (!np)
+      return sbi_error(SB_ENOMEM, "sb_engine_step",
+                       "out of memory (%zu candidate pairs)", nc);
+    e->pairs = np;
+    e->cappairs = nc;
+  }
+  e->pairs[2 * e->npairs] = i < j ? i : j;
+  e->pairs[2 * e->npairs + 1] = i < j ? j : i;
+  e->npairs++;
+  return SB_SUCCESS;
+}
+
+double sbi_engine_max_disp(const sb_engine *e, const double *disp)
+{
+  double m = 0.0;
+  if (!disp)
+    return 0.0;
+  for (size_t i = 0; i < e->n; i++) {
+    const double *d = &disp[3 * i];
+    double v = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    if (v > m)
+      m = v;
+  }
+  return sqrt(m);
+}
+
+/* |disp_i| into e->dn; returns the cut-off 2 rmax + 2 max|disp| + reach
+ * and checks it against half the box. */
+static int cutoff(sb_engine *e, const double *disp, double reach,
+                  double *cut, const char *func)
+{
+  double m = 0.0;
+  for (size_t i = 0; i < e->n; i++) {
+    double v = 0.0;
+    if (disp) {
+      const double *d = &disp[3 * i];
+      v = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    }
+    if (!isfinite(v))
+      return sbi_error(SB_EINVAL, func, "particle %zu: non-finite "
+                       "displacement", i);
+    e->dn[i] = v;
+    if (v > m)
+      m = v;
+  }
+  *cut = 2.0 * e->rmax + 2.0 * m + reach;
+  for (int k = 0; k < e->par.dim; k++)
+    if (!(*cut < 0.5 * e->par.L[k]))
+      return sbi_error(SB_EINVAL, func,
+                       "step too large for the box: reach 2 r_max + 2 "
+                       "max|disp| + extra = %g m is not below L[%d]/2 = %g m",
+                       *cut, k, 0.5 * e->par.L[k]);
+  return SB_SUCCESS;
+}
+
+/* Criterion (*) for one pair. */
+static inline int near(const sb_engine *e, const double *x0, size_t i,
+                       size_t j, double reach)
+{
+  double d2 = 0.0;
+  for (int k = 0; k < e->par.dim; k++) {
+    double d = sbi_minimg(x0[3 * i + k] - x0[3 * j + k], e->par.L[k]);
+    d2 += d * d;
+  }
+  double lim = e->radius[i] + e->radius[j] + e->dn[i] + e->dn[j] + reach;
+  return d2 <= lim * lim;
+}
+
+static int brute(sb_engine *e, const double *x0, double reach)
+{
+  for (size_t i = 0; i < e->n; i++)
+    for (size_t j = i + 1; j < e->n; j++)
+      if (near(e, x0, i, j, reach)) {
+        int st = sbi_engine_push_pair(e, i, j);
+        if (st)
+          return st;
+      }
+  return SB_SUCCESS;
+}
+
+/* Linked cells: counting sort of the particles by cell (positions and
+ * reach radii r + |disp| are scattered into e->xs in cell order, so the
+ * pair loop reads contiguous memory), then for every particle a:
+ *  - its own cell: the particles after it in cell order (plain
+ *    differences: two points of one cell are less than L/2 apart when the
+ *    direction has >= 2 cells);
+ *  - a neighbouring cell only when a lies within `cut` of the shared face
+ *    (edge, corner), i.e. rarely in dilute systems where the cells are much
+ *    larger than the cut-off; a pair in neighbouring cells is within the
+ *    cut-off of the face from both sides, so it is seen twice and reported
+ *    from its first member in cell order.
+ * Cell edge >= cut, about SBI_CELL_PPC particles per cell (larger cells
+ * are still correct, only slower per cell).  Directions with 1 or 2 cells use the
+ * minimum image. */
+static int cells(sb_engine *e, const double *x0, double cut, double reach)
+{
+  const int dim = e->par.dim;
+  const size_t n = e->n;
+  const double *L = e->par.L;
+  double vol = 1.0;
+  for (int k = 0; k < dim; k++)
+    vol *= L[k];
+  double cs = cut, csmin = sbi_cell_edge_min(vol, n, dim);
+  if (cs < csmin)
+    cs = csmin;
+  int nc[3] = {1, 1, 1};
+  double inv[3] = {0, 0, 0}, edge[3] = {1e300, 1e300, 1e300};
+  size_t ncell = 1, stride[3] = {1, 1, 1};
+  for (int k = 0; k < dim; k++) {
+    double m = floor(L[k] / cs);
+    nc[k] = m < 1 ? 1 : (m > 1e6 ? 1000000 : (int)m);
+    inv[k] = nc[k] / L[k];
+    edge[k] = L[k] / nc[k];
+    stride[k] = ncell;
+    ncell *= (size_t)nc[k];
+  }
+  if (ncell + 1 > e->capcells) {
+    size_t *p = realloc(e->cell_start, (ncell + 1) * sizeof *p);
+    if (!p)
+      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+    e->cell_start = p;
+    e->capcells = ncell + 1;
+  }
+  size_t *start = e->cell_start, *list = e->cell_list, *cof = e->cell_of;
+  memset(start, 0, (ncell + 1) * sizeof *start);
+  for (size_t i = 0; i < n; i++) {
+    size_t c = 0;
+    for (int k = 0; k < dim; k++) {
+      int ck = (int)(x0[3 * i + k] * inv[k]);
+      ck = ck >= nc[k] ? nc[k] - 1 : (ck < 0 ? 0 : ck);
+      c += (size_t)ck * stride[k];
+    }
+    cof[i] = c;
+    start[c + 1]++;
+  }
+  for (size_t c = 0; c < ncell; c++)
+    start[c + 1] += start[c];
+  /* stable scatter (increasing index within a cell); start[c] becomes the
+   * end of cell c, shifted back below */
+  double *xs = e->xs;
+  for (size_t i = 0; i < n; i++) {
+    size_t a = start[cof[i]]++;
+    list[a] = i;
+    xs[4 * a] = x0[3 * i];
+    xs[4 * a + 1] = x0[3 * i + 1];
+    xs[4 * a + 2] = x0[3 * i + 2];
+    xs[4 * a + 3] = e->radius[i] + e->dn[i];
+  }
+  for (size_t c = ncell; c > 0; c--)
+    start[c] = start[c - 1];
+  start[0] = 0;
+
+  int own_wrap = 0;  /* a direction with a single cell: minimum image */
+  for (int k = 0; k < dim; k++)
+    own_wrap |= nc[k] == 1;
+  int ci[3] = {0, 0, 0};
+  for (size_t c = 0; c < ncell; c++) {
+    /* cell coordinates of c (cells are visited in storage order) */
+    if (c) {
+      for (int k = 0; k < 3; k++) {
+        if (++ci[k] < nc[k])
+          break;
+        ci[k] = 0;
+      }
+    }
+    const size_t end = start[c + 1];
+    for (size_t a = start[c]; a < end; a++) {
+      const double *xa = &xs[4 * a];
+      const double ra = xa[3] + reach;
+      const size_t i = list[a];
+      for (size_t b = a + 1; b < end; b++) {
+        const double *xb = &xs[4 * b];
+        double d0 = xa[0] - xb[0], d1 = xa[1] - xb[1], d2 = xa[2] - xb[2];
+        if (own_wrap) {
+          d0 = sbi_minimg(d0, L[0]);
+          d1 = sbi_minimg(d1, L[1]);
+          d2 = dim == 3 ? sbi_minimg(d2, L[2]) : 0.0;
+        }
+        double lim = ra + xb[3];
+        if (d0 * d0 + d1 * d1 + d2 * d2 <= lim * lim) {
+          int st = sbi_engine_push_pair(e, i, list[b]);
+          if (st)
+            return st;
+        }
+      }
+      /* neighbouring cells within the cut-off of a */
+      int off[3][3], noff[3], any = 0;
+      for (int k = 0; k < 3; k++) {
+        noff[k] = 1;
+        off[k][0] = 0;
+        if (k >= dim || nc[k] == 1)
+          continue;
+        if (nc[k] == 2) {  /* the other cell is adjacent on both sides */
+          off[k][noff[k]++] = 1;
+          any = 1;
+          continue;
+        }
+        double lo = xa[k] - ci[k] * edge[k];
+        if (lo < cut)
+          off[k][noff[k]++] = -1;
+        if (edge[k] - lo < cut)
+          off[k][noff[k]++] = 1;
+        any |= noff[k] > 1;
+      }
+      if (!any)
+        continue;
+      for (int q2 = 0; q2 < noff[2]; q2++)
+        for (int q1 = 0; q1 < noff[1]; q1++)
+          for (int q0 = 0; q0 < noff[0]; q0++) {
+            if (!q0 && !q1 && !q2)
+              continue;  /* own cell: done above */
+            const int q[3] = {off[0][q0], off[1][q1], off[2][q2]};
+            size_t c2 = 0;
+            for (int k = 0; k < dim; k++) {
+              int v = ci[k] + q[k];
+              v = v < 0 ? v + nc[k] : (v >= nc[k] ? v - nc[k] : v);
+              c2 += (size_t)v * stride[k];
+            }
+            for (size_t b = start[c2]; b < start[c2 + 1]; b++) {
+              if (b <= a)
+                continue;  /* reported from its first member */
+              const double *xb = &xs[4 * b];
+              double d2 = 0.0;
+              for (int k = 0; k < dim; k++) {
+                double d = sbi_minimg(xa[k] - xb[k], L[k]);
+                d2 += d * d;
+              }
+              double lim = ra + xb[3];
+              if (d2 <= lim * lim) {
+                int st = sbi_engine_push_pair(e, i, list[b]);
+                if (st)
+                  return st;
+              }
+            }
+          }
+    }
+  }
+  return SB_SUCCESS;
+}
+
+int sbi_engine_find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
+                          const double *disp, double reach)
+{
+  e->npairs = 0;
+  if (e->n < 2)
+    return SB_SUCCESS;
+  double cut = 0.0;
+  int st = cutoff(e, disp, reach, &cut, "sb_engine_step");
+  if (st)
+    return st;
+  switch (m) {
+  case SB_NEIGH_CELLS:
+    return cells(e, x0, cut, reach);
+  case SB_NEIGH_SWEEP:
+    return sbi_engine_sweep(e, x0, disp, reach);
+  case SB_NEIGH_BRUTE:
+    return brute(e, x0, reach);
+  }
+  return sbi_error(SB_EINVAL, "sb_engine_step", "unknown method %d", (int)m);
+}
+
+int sb_engine_neighbours(sb_engine *e, sb_engine_neigh m, const double *disp,
+                         double reach, size_t *npairs, const size_t **pairs)
+{
+  if (!e || !npairs || !pairs || (unsigned)m > SB_NEIGH_BRUTE ||
+      !(reach >= 0.0) || !isfinite(reach))
+    return sbi_error(SB_EINVAL, __func__, "bad argument");
+  int st = sbi_engine_find_pairs(e, m, e->x, disp, reach);
+  *npairs = st ? 0 : e->npairs;
+  *pairs = e->pairs;
+  return st;
+}
+
+int sb_engine_pair_can_meet(const sb_engine *e, const double *disp,
+                            double reach, size_t i, size_t j)
+{
+  if (!e || i >= e->n || j >= e->n || i == j)
+    return 0;
+  double a[3] = {0, 0, 0}, d[3] = {0, 0, 0};
+  for (int k = 0; k < e->par.dim; k++) {
+    a[k] = sbi_minimg(e->x[3 * i + k] - e->x[3 * j + k], e->par.L[k]);
+    if (disp)
+      d[k] = disp[3 * i + k] - disp[3 * j + k];
+  }
+  double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  double ad = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
+  double s = dd > 0.0 ? -ad / dd : 0.0;
+  s = s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
+  double m2 = 0.0;
+  for (int k = 0; k < 3; k++) {
+    double v = a[k] + s * d[k];
+    m2 += v * v;
+  }
+  double lim = e->radius[i] + e->radius[j] + reach;
+  return m2 <= lim * lim;
+}

@@ -1,0 +1,372 @@
+/* kernel.c — collision and agglomeration kernels (SI units).
+ * Formulas, sources and derivations: lib/smolbridge/kernel.h, docs/kernel.md.
+ */
+#include <math.h>
+#include <string.h>
+
+#include <gsl/gsl_math.h> /* M_PI under -std=c11 */
+
+#include <smolbridge/kernel.h>
+
+#include "common/internal.h"
+
+/* Boltzmann constant, J/K (exact in SI 2019; same value as SB_BOLTZMANN). */
+static const double kB = 1.380649e-23;
+
+/* x finite and > 0 */
+static int pos(double x) { return isfinite(x) && x > 0.0; }
+/* x finite and >= 0 */
+static int nonneg(double x) { return isfinite(x) && x >= 0.0; }
+
+#define CHECK(cond, ...)                                      \
+  do {                                                        \
+    if (!(cond)) {                                            \
+      sbi_error(SB_EDOM, __func__, __VA_ARGS__);              \
+      return NAN;                                             \
+    }                                                         \
+  } while (0)
+
+#define CHECK_RADII(a, b)                                               \
+  CHECK(pos(a) && pos(b), "radii must be finite and > 0 (got %g, %g)", \
+        (a), (b))
+
+/* Stokes–Einstein diffusivity with optional Cunningham slip correction
+ * (Davies 1945 coefficients, Knudsen number lambda/r). */
+static double diffusivity(double r, double T, double mu, double lambda)
+{
+  double c = 1.0;
+  if (lambda > 0.0) {
+    double kn = lambda / r;
+    c = 1.0 + kn * (1.257 + 0.4 * exp(-1.1 / kn));
+  }
+  return kB * T * c / (6.0 * M_PI * mu * r);
+}
+
+/* K_co = 4 pi (D_i + D_j)(r_i + r_j) */
+static double k_co(double ri, double rj, double T, double mu, double lambda)
+{
+  return 4.0 * M_PI * (diffusivity(ri, T, mu, lambda) +
+                       diffusivity(rj, T, mu, lambda)) * (ri + rj);
+}
+
+/* K_fm = pi (r_i + r_j)^2 c_ij, c_ij^2 = (8kT/pi)(1/m_i + 1/m_j) */
+static double k_fm(double ri, double rj, double T, double rho)
+{
+  double mi = rho * (4.0 / 3.0) * M_PI * ri * ri * ri;
+  double mj = rho * (4.0 / 3.0) * M_PI * rj * rj * rj;
+  double c = sqrt(8.0 * kB * T / M_PI * (1.0 / mi + 1.0 / mj));
+  double r = ri + rj;
+  return M_PI * r * r * c;
+}
+
+double sb_kernel_brownian_co(double r_i, double r_j, double T, double mu)
+{
+  CHECK_RADII(r_i, r_j);
+  CHECK(pos(T) && pos(mu), "T and mu must be > 0 (got %g, %g)", T, mu);
+  /* (2kT/3mu)(1/r_i + 1/r_j)(r_i + r_j): the same as k_co with lambda 0,
+   * written this way so that the monodisperse value is exactly 8kT/3mu
+   * up to rounding. */
+  return 2.0 * kB * T / (3.0 * mu) * (1.0 / r_i + 1.0 / r_j) * (r_i + r_j);
+}
+
+double sb_kernel_brownian_fm(double r_i, double r_j, double T, double rho_p)
+{
+  CHECK_RADII(r_i, r_j);
+  CHECK(pos(T) && pos(rho_p), "T and rho_p must be > 0 (got %g, %g)", T,
+        rho_p);
+  return k_fm(r_i, r_j, T, rho_p);
+}
+
+double sb_kernel_brownian_tr(double r_i, double r_j, double T, double mu,
+                             double rho_p, double lambda)
+{
+  CHECK_RADII(r_i, r_j);
+  CHECK(pos(T) && pos(mu) && pos(rho_p),
+        "T, mu, rho_p must be > 0 (got %g, %g, %g)", T, mu, rho_p);
+  CHECK(nonneg(lambda), "lambda must be >= 0 (got %g)", lambda);
+  double kco = k_co(r_i, r_j, T, mu, lambda);
+  double kfm = k_fm(r_i, r_j, T, rho_p);
+  double kn = kco / (2.0 * kfm); /* Dahneke's Knudsen number */
+  /* (1 + kn)/(1 + 2kn(1 + kn)); for kn -> inf this is 1/(2kn), giving
+   * kco/(2kn) = kfm. */
+  if (kn > 1e150) /* avoid overflow of kn^2: the fm limit is exact here */
+    return kfm;
+  return kco * (1.0 + kn) / (1.0 + 2.0 * kn * (1.0 + kn));
+}
+
+double sb_kernel_kinetic(double d_i, double d_j, double m_i, double m_j,
+                         double T)
+{
+  CHECK(pos(d_i) && pos(d_j), "diameters must be > 0 (got %g, %g)", d_i,
+        d_j);
+  CHECK(pos(m_i) && pos(m_j) && pos(T),
+        "masses and T must be > 0 (got %g, %g, %g)", m_i, m_j, T);
+  double r = 0.5 * (d_i + d_j);
+  return M_PI * r * r * sqrt(8.0 * kB * T / M_PI * (1.0 / m_i + 1.0 / m_j));
+}
+
+double sb_kernel_gravity(double r_i, double r_j, double rho_p, double rho_f,
+                         double mu, double g)
+{
+  CHECK_RADII(r_i, r_j);
+  CHECK(pos(rho_p) && nonneg(rho_f) && pos(mu) && nonneg(g),
+        "need rho_p > 0, rho_f >= 0, mu > 0, g >= 0 (got %g, %g, %g, %g)",
+        rho_p, rho_f, mu, g);
+  /* |U_i - U_j| = 2|rho_p - rho_f| g |r_i^2 - r_j^2|/(9 mu), with the
+   * difference of squares factored to avoid cancellation. */
+  double du = 2.0 * fabs(rho_p - rho_f) * g * fabs(r_i - r_j) * (r_i + r_j) /
+              (9.0 * mu);
+  double r = r_i + r_j;
+  return M_PI * r * r * du;
+}
+
+double sb_kernel_shear(double r_i, double r_j, double G)
+{
+  CHECK_RADII(r_i, r_j);
+  CHECK(nonneg(G), "G must be >= 0 (got %g)", G);
+  double r = r_i + r_j;
+  return 4.0 / 3.0 * G * r * r * r;
+}
+
+double sb_kernel_saffman_turner(double r_i, double r_j, double eps,
+                                double nu)
+{
+  CHECK_RADII(r_i, r_j);
+  CHECK(nonneg(eps) && pos(nu), "need eps >= 0, nu > 0 (got %g, %g)", eps,
+        nu);
+  double r = r_i + r_j;
+  return sqrt(8.0 * M_PI * eps / (15.0 * nu)) * r * r * r;
+}
+
+double sb_kernel_abrahamson(double r_i, double r_j, double u2_i,
+                            double u2_j)
+{
+  CHECK_RADII(r_i, r_j);
+  CHECK(nonneg(u2_i) && nonneg(u2_j),
+        "velocity variances must be >= 0 (got %g, %g)", u2_i, u2_j);
+  /* Flux of a Maxwellian relative velocity (per-component variance
+   * s2 = u2_i + u2_j) through a sphere of radius r: pi r^2 E|w|, with
+   * E|w| = sqrt(8 s2/pi). */
+  double r = r_i + r_j;
+  return sqrt(8.0 * M_PI * (u2_i + u2_j)) * r * r;
+}
+
+double sb_kernel_diffusion(double r_i, double r_j, double b2_i, double b2_j)
+{
+  CHECK_RADII(r_i, r_j);
+  CHECK(nonneg(b2_i) && nonneg(b2_j),
+        "variance rates must be >= 0 (got %g, %g)", b2_i, b2_j);
+  return 2.0 * M_PI * (b2_i + b2_j) * (r_i + r_j);
+}
+
+double sb_brownian_b2(double r, double T, double mu)
+{
+  CHECK(pos(r) && pos(T) && pos(mu), "r, T, mu must be > 0 (got %g, %g, %g)",
+        r, T, mu);
+  return kB * T / (3.0 * M_PI * mu * r);
+}
+
+double sb_turb_pair_b2(double r, double eps, double nu)
+{
+  CHECK(pos(r) && nonneg(eps) && pos(nu),
+        "need r > 0, eps >= 0, nu > 0 (got %g, %g, %g)", r, eps, nu);
+  return sqrt(2.0 / (15.0 * M_PI)) * sqrt(eps / nu) * r * r;
+}
+
+double sb_kernel_brownian_turb(double r_i, double r_j, double T, double mu,
+                               double eps, double nu)
+{
+  CHECK_RADII(r_i, r_j);
+  CHECK(pos(T) && pos(mu), "T and mu must be > 0 (got %g, %g)", T, mu);
+  CHECK(nonneg(eps) && pos(nu), "need eps >= 0, nu > 0 (got %g, %g)", eps,
+        nu);
+  double r = r_i + r_j;
+  double b2 = sb_brownian_b2(r_i, T, mu) + sb_brownian_b2(r_j, T, mu) +
+              sb_turb_pair_b2(r, eps, nu);
+  return 2.0 * M_PI * b2 * r;
+}
+
+/* ------------------------------------------------------ test kernels */
+
+double sb_kernel_constant(double v_i, double v_j, double K)
+{
+  (void)v_i;
+  (void)v_j;
+  return K;
+}
+
+double sb_kernel_additive(double v_i, double v_j, double K)
+{
+  return K * (v_i + v_j);
+}
+
+double sb_kernel_multiplicative(double v_i, double v_j, double K)
+{
+  return K * v_i * v_j;
+}
+
+/* ------------------------------------------------------ callback form */
+
+static const char *const type_names[SB_KERNEL_NTYPES] = {
+    [SB_KERNEL_CONSTANT] = "constant",
+    [SB_KERNEL_ADDITIVE] = "additive",
+    [SB_KERNEL_MULTIPLICATIVE] = "multiplicative",
+    [SB_KERNEL_BROWNIAN_CO] = "brownian-co",
+    [SB_KERNEL_BROWNIAN_FM] = "brownian-fm",
+    [SB_KERNEL_BROWNIAN_TR] = "brownian-tr",
+    [SB_KERNEL_GRAVITY] = "gravity",
+    [SB_KERNEL_SHEAR] = "shear",
+    [SB_KERNEL_SAFFMAN_TURNER] = "saffman-turner",
+    [SB_KERNEL_BROWNIAN_TURB] = "brownian-turb",
+};
+
+const char *sb_kernel_type_name(sb_kernel_type type)
+{
+  if ((int)type < 0 || type >= SB_KERNEL_NTYPES)
+    return NULL;
+  return type_names[type];
+}
+
+int sb_kernel_type_from_name(const char *name, sb_kernel_type *type)
+{
+  if (name && type)
+    for (int t = 0; t < SB_KERNEL_NTYPES; t++)
+      if (!strcmp(name, type_names[t])) {
+        *type = (sb_kernel_type)t;
+        return SB_SUCCESS;
+      }
+  return sbi_error(SB_EINVAL, __func__, "unknown kernel name '%s'",
+                   name ? name : "(null)");
+}
+
+int sb_kernel_spec_init(sb_kernel_spec *s, sb_kernel_type type)
+{
+  if (!s || (int)type < 0 || type >= SB_KERNEL_NTYPES)
+    return sbi_error(SB_EINVAL, __func__, "invalid kernel type %d",
+                     (int)type);
+  s->type = type;
+  s->K = 1.0;
+  s->T = 293.15;
+  s->mu = 1.002e-3;
+  s->rho_p = 1000.0;
+  s->rho_f = 998.2;
+  s->lambda = 0.0;
+  s->g = 9.80665;
+  s->G = 1.0;
+  s->eps = 1e-4;
+  s->nu = 1.004e-6;
+  return SB_SUCCESS;
+}
+
+int sb_kernel_spec_set(sb_kernel_spec *s, const char *key, double value)
+{
+  static const struct {
+    const char *key;
+    size_t off;
+  } fields[] = {
+      {"K", offsetof(sb_kernel_spec, K)},
+      {"T", offsetof(sb_kernel_spec, T)},
+      {"mu", offsetof(sb_kernel_spec, mu)},
+      {"rho_p", offsetof(sb_kernel_spec, rho_p)},
+      {"rho_f", offsetof(sb_kernel_spec, rho_f)},
+      {"lambda", offsetof(sb_kernel_spec, lambda)},
+      {"g", offsetof(sb_kernel_spec, g)},
+      {"G", offsetof(sb_kernel_spec, G)},
+      {"eps", offsetof(sb_kernel_spec, eps)},
+      {"nu", offsetof(sb_kernel_spec, nu)},
+  };
+  if (s && key)
+    for (size_t i = 0; i < sizeof fields / sizeof fields[0]; i++)
+      if (!strcmp(key, fields[i].key)) {
+        *(double *)((char *)s + fields[i].off) = value;
+        return SB_SUCCESS;
+      }
+  return sbi_error(SB_EINVAL, __func__, "unknown kernel parameter '%s'",
+                   key ? key : "(null)");
+}
+
+int sb_kernel_spec_check(const sb_kernel_spec *s)
+{
+  if (!s)
+    return sbi_error(SB_EINVAL, __func__, "spec is NULL");
+#define NEED(cond, what)                                                 \
+  if (!(cond))                                                           \
+    return sbi_error(SB_EDOM, __func__, "kernel %s: %s",                 \
+                     type_names[s->type], what)
+  switch (s->type) {
+  case SB_KERNEL_CONSTANT:
+  case SB_KERNEL_ADDITIVE:
+  case SB_KERNEL_MULTIPLICATIVE:
+    NEED(nonneg(s->K), "K must be finite and >= 0");
+    break;
+  case SB_KERNEL_BROWNIAN_CO:
+    NEED(pos(s->T) && pos(s->mu), "T and mu must be > 0");
+    break;
+  case SB_KERNEL_BROWNIAN_FM:
+    NEED(pos(s->T) && pos(s->rho_p), "T and rho_p must be > 0");
+    break;
+  case SB_KERNEL_BROWNIAN_TR:
+    NEED(pos(s->T) && pos(s->mu) && pos(s->rho_p),
+         "T, mu, rho_p must be > 0");
+    NEED(nonneg(s->lambda), "lambda must be >= 0");
+    break;
+  case SB_KERNEL_GRAVITY:
+    NEED(pos(s->rho_p) && nonneg(s->rho_f) && pos(s->mu) && nonneg(s->g),
+         "need rho_p > 0, rho_f >= 0, mu > 0, g >= 0");
+    break;
+  case SB_KERNEL_SHEAR:
+    NEED(nonneg(s->G), "G must be >= 0");
+    break;
+  case SB_KERNEL_SAFFMAN_TURNER:
+    NEED(nonneg(s->eps) && pos(s->nu), "need eps >= 0, nu > 0");
+    break;
+  case SB_KERNEL_BROWNIAN_TURB:
+    NEED(pos(s->T) && pos(s->mu), "T and mu must be > 0");
+    NEED(nonneg(s->eps) && pos(s->nu), "need eps >= 0, nu > 0");
+    break;
+  default:
+    return sbi_error(SB_EINVAL, __func__, "invalid kernel type %d",
+                     (int)s->type);
+  }
+#undef NEED
+  return SB_SUCCESS;
+}
+
+double sb_radius_from_volume(double v)
+{
+  return cbrt(3.0 * v / (4.0 * M_PI));
+}
+
+double sb_kernel_spec_fn(double v_i, double v_j, const void *spec)
+{
+  const sb_kernel_spec *s = spec;
+  switch (s->type) {
+  case SB_KERNEL_CONSTANT:
+    return s->K;
+  case SB_KERNEL_ADDITIVE:
+    return s->K * (v_i + v_j);
+  case SB_KERNEL_MULTIPLICATIVE:
+    return s->K * v_i * v_j;
+  default:
+    break;
+  }
+  double ri = sb_radius_from_volume(v_i), rj = sb_radius_from_volume(v_j);
+  switch (s->type) {
+  case SB_KERNEL_BROWNIAN_CO:
+    return sb_kernel_brownian_co(ri, rj, s->T, s->mu);
+  case SB_KERNEL_BROWNIAN_FM:
+    return sb_kernel_brownian_fm(ri, rj, s->T, s->rho_p);
+  case SB_KERNEL_BROWNIAN_TR:
+    return sb_kernel_brownian_tr(ri, rj, s->T, s->mu, s->rho_p, s->lambda);
+  case SB_KERNEL_GRAVITY:
+    return sb_kernel_gravity(ri, rj, s->rho_p, s->rho_f, s->mu, s->g);
+  case SB_KERNEL_SHEAR:
+    return sb_kernel_shear(ri, rj, s->G);
+  case SB_KERNEL_SAFFMAN_TURNER:
+    return sb_kernel_saffman_turner(ri, rj, s->eps, s->nu);
+  case SB_KERNEL_BROWNIAN_TURB:
+    return sb_kernel_brownian_turb(ri, rj, s->T, s->mu, s->eps, s->nu);
+  default:
+    return NAN;
+  }
+}

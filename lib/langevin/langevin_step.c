@@ -1,0 +1,144 @@
+/* langevin_step.c — exact transition of the Langevin model over one step:
+ * scalar, and batched 3-D for the engine.
+ *
+ * Seed 003 eq 1.16 (Peirano, Chibbaro, Pozorski & Minier 2006) writes the
+ * step as a Cholesky factorisation of the exact 2x2 covariance of the noise
+ * (var_x, cov_xu, var_u; see langevin.h): U takes sqrt(var_u) z1, X takes
+ * (cov_xu/sqrt(var_u)) z1 + sqrt(var_x|u) z2.  The coefficients are written
+ * here without any difference of nearly equal terms:
+ *   s_u  = B sqrt(tau)     sqrt(a (2-a)/2)
+ *   s_xu = B tau sqrt(tau) sqrt(a^3 / (2 (2-a)))      (= cov_xu / s_u)
+ *   s_xc = B tau sqrt(tau) sqrt(c(h)),  c(h) = h - 2 tanh(h/2),
+ * with a = -expm1(-h), h = dt/tau; c(h) comes from
+ * sb_langevin_var_x_cond (its small-h series).  None divides by var_u, so
+ * the step stays well defined as dt -> 0 (all three -> 0). */
+#include <math.h>
+
+#include <gsl/gsl_randist.h>
+#include <smolbridge/langevin.h>
+
+#include "common/internal.h"
+
+static int coef_fill(sb_langevin_coef *c, double tau, double B, double dt)
+{
+  double h = dt / tau, a = -expm1(-h);
+  double st = sqrt(tau), bt = B * st;  /* B sqrt(tau) */
+  c->dt = dt;
+  c->decay = exp(-h);
+  c->gain = tau * a;
+  c->s_u = bt * sqrt(0.5 * a * (2.0 - a));
+  c->s_xu = bt * tau * sqrt(a * a * a / (2.0 * (2.0 - a)));
+  /* unit-free c(h): var_x_cond with tau = B = 1 at t = h (never fails:
+   * h >= 0 is finite since dt and tau are) */
+  c->s_xc = bt * tau * sqrt(sb_langevin_var_x_cond(1.0, 1.0, h));
+  return SB_SUCCESS;
+}
+
+static int bad_params(const char *func, double tau, double B, double dt)
+{
+  if (!(tau > 0) || !isfinite(tau))
+    return sbi_error(SB_EDOM, func, "tau = %g must be positive and finite",
+                     tau);
+  if (!(B >= 0) || !isfinite(B))
+    return sbi_error(SB_EDOM, func, "B = %g must be >= 0 and finite", B);
+  if (!(dt >= 0) || !isfinite(dt))
+    return sbi_error(SB_EDOM, func, "dt = %g must be >= 0 and finite", dt);
+  return SB_SUCCESS;
+}
+
+int sb_langevin_coef_init(sb_langevin_coef *c, double tau, double B,
+                          double dt)
+{
+  if (!c)
+    return sbi_error(SB_EINVAL, __func__, "c is NULL");
+  int st = bad_params(__func__, tau, B, dt);
+  if (st) {
+    c->dt = c->decay = c->gain = c->s_u = c->s_xu = c->s_xc = NAN;
+    return st;
+  }
+  return coef_fill(c, tau, B, dt);
+}
+
+/* One component: the exact update with coefficients c, fluid velocity w.
+ * Draw order z1 then z2 (documented in the header). */
+static inline void step1(const sb_langevin_coef *c, double w,
+                         const gsl_rng *r, double *x, double *u)
+{
+  double z1 = gsl_ran_gaussian_ziggurat(r, 1.0);
+  double z2 = gsl_ran_gaussian_ziggurat(r, 1.0);
+  double v = *u - w;
+  *x += w * c->dt + v * c->gain + c->s_xu * z1 + c->s_xc * z2;
+  *u = w + v * c->decay + c->s_u * z1;
+}
+
+int sb_langevin_step(const sb_langevin *p, double dt, const gsl_rng *r,
+                     double *x, double *u)
+{
+  if (!p || !r || !x || !u)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  int st = bad_params(__func__, p->tau, p->B, dt);
+  if (st)
+    return st;
+  if (!isfinite(p->us) || !isfinite(*x) || !isfinite(*u))
+    return sbi_error(SB_EDOM, __func__,
+                     "us = %g, x = %g, u = %g must be finite", p->us, *x,
+                     *u);
+  if (dt == 0)
+    return SB_SUCCESS;
+  sb_langevin_coef c;
+  coef_fill(&c, p->tau, p->B, dt);
+  step1(&c, p->us, r, x, u);
+  return SB_SUCCESS;
+}
+
+int sb_langevin_step3(size_t n, double dt, const double *tau,
+                      const double *B, const double *us, double *x,
+                      double *u, const gsl_rng *r)
+{
+  if (n == 0)
+    return SB_SUCCESS;
+  if (!tau || !B || !x || !u || !r)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  /* validate everything first: either all particles move or none */
+  for (size_t i = 0; i < n; i++) {
+    int st = bad_params(__func__, tau[i], B[i], dt);
+    if (st)
+      return sbi_error(st, __func__,
+                       "particle %zu: tau = %g, B = %g, dt = %g (need tau > "
+                       "0, B >= 0, dt >= 0, finite)", i, tau[i], B[i], dt);
+  }
+  if (dt == 0)
+    return SB_SUCCESS;
+  for (size_t i = 0; i < n; i++) {
+    sb_langevin_coef c;
+    coef_fill(&c, tau[i], B[i], dt);
+    for (int k = 0; k < 3; k++)
+      step1(&c, us ? us[3 * i + k] : 0.0, r, &x[3 * i + k], &u[3 * i + k]);
+  }
+  return SB_SUCCESS;
+}
+
+int sb_langevin_step3_coef(size_t n, const sb_langevin_coef *coef,
+                           const size_t *cidx, const double *us, double *x,
+                           double *u, const gsl_rng *r)
+{
+  if (n == 0)
+    return SB_SUCCESS;
+  if (!coef || !x || !u || !r)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  for (size_t i = 0; i < n; i++) {
+    const sb_langevin_coef *c = &coef[cidx ? cidx[i] : i];
+    double *xi = x + 3 * i, *ui = u + 3 * i;
+    if (us) {
+      const double *w = us + 3 * i;
+      step1(c, w[0], r, &xi[0], &ui[0]);
+      step1(c, w[1], r, &xi[1], &ui[1]);
+      step1(c, w[2], r, &xi[2], &ui[2]);
+    } else {
+      step1(c, 0.0, r, &xi[0], &ui[0]);
+      step1(c, 0.0, r, &xi[1], &ui[1]);
+      step1(c, 0.0, r, &xi[2], &ui[2]);
+    }
+  }
+  return SB_SUCCESS;
+}

@@ -1,0 +1,422 @@
+/* passage.c — first-passage laws: Brownian motion with drift (inverse
+ * Gaussian, Levy, defective) and Bessel-3 down to a level.  Formulas and
+ * derivations: smolbridge/passage.h and docs/passage.md. */
+#include <float.h>
+#include <math.h>
+
+#include <gsl/gsl_cdf.h>
+#include <gsl/gsl_rng.h>
+#include <gsl/gsl_sf_erf.h>
+
+#include <smolbridge/passage.h>
+#include "common/internal.h"
+#include "common/numutil.h"
+
+#define EPS DBL_EPSILON
+#define INV_RT2PI 0.39894228040143267793994605993438187 /* 1/sqrt(2 pi) */
+
+/* --------------------------------------------------- BM with drift */
+
+enum { W_PDF, W_CDF, W_SF };
+
+typedef struct {
+  sbi_dd d;      /* |x - a| exactly (x - a as a double-double) */
+  double nu;     /* drift towards the level, mu sign(a - x) */
+  double nua;    /* |nu| */
+  double sigma2;
+  double mass;   /* P(T < inf) */
+  double kmass;  /* -log(mass) = 2 |nu| d / sigma2 (0 if nu >= 0) */
+} fpt_par;
+
+/* 1 - mass, computed directly */
+static double cmass(const fpt_par *q) { return -expm1(-q->kmass); }
+
+static int is_bad(double v) { return !isfinite(v); }
+
+/* Validate (x, a, mu, sigma2) and fill *q.  Returns a status. */
+static int fpt_setup(const char *fn, double x, double a, double mu,
+                     double sigma2, fpt_par *q, sb_result *res)
+{
+  if (is_bad(x) || is_bad(a) || is_bad(mu))
+    return sbi_fail(res, SB_EDOM, fn, "x = %g, a = %g, mu = %g must be finite",
+                    x, a, mu);
+  if (!(sigma2 > 0.0) || is_bad(sigma2))
+    return sbi_fail(res, SB_EDOM, fn,
+                    "sigma2 = %g must be positive and finite", sigma2);
+  sbi_dd d = sbi_dd_sum(x, -a);
+  if (d.hi < 0.0)
+    d = sbi_dd_neg(d);
+  q->d = d;
+  q->nu = x < a ? mu : -mu;
+  q->nua = fabs(mu);
+  q->sigma2 = sigma2;
+  if (q->nu >= 0.0 || d.hi == 0.0) {
+    q->mass = 1.0;
+    q->kmass = 0.0;
+  } else {
+    /* mass = exp(-2 |nu| d / sigma2), exponent in double-double */
+    sbi_dd k = sbi_dd_div(sbi_dd_mul_d(d, 2.0 * q->nua), (sbi_dd){sigma2, 0});
+    q->mass = k.hi < 746.0 ? sbi_dd_expneg(k) : 0.0;
+    q->kmass = k.hi + k.lo;
+  }
+  return SB_SUCCESS;
+}
+
+/* Inverse-Gaussian point (drift |nu|) at time t, 0 < t < inf. */
+static sbi_igpt fpt_point(const fpt_par *q, double t)
+{
+  sbi_dd den = sbi_dd_prod(q->sigma2, t);
+  sbi_dd num = sbi_dd_add(sbi_dd_prod(q->nua, t), sbi_dd_neg(q->d));
+  double s = sqrt(den.hi);
+  return sbi_igpt_make(num, den, q->d.hi / s, q->nua * t / s);
+}
+
+/* Core of pdf/cdf/sf: validated parameters, t >= 0. */
+static void fpt_eval(const fpt_par *q, int what, double t, sb_result *res)
+{
+  double val, err;
+  if (q->d.hi == 0.0) {
+    /* starts on the level: T = 0 */
+    res->val = what == W_CDF ? 1.0 : 0.0;
+    res->err = 0.0;
+    return;
+  }
+  if (t == 0.0 || isinf(t)) {
+    int at0 = t == 0.0;
+    if (what == W_PDF)
+      val = 0.0;
+    else if (what == W_CDF)
+      val = at0 ? 0.0 : q->mass;
+    else
+      val = at0 ? 1.0 : cmass(q);
+    res->val = val;
+    res->err = 2.0 * EPS * val;
+    return;
+  }
+  sbi_igpt p = fpt_point(q, t);
+  double rel = 0.0;
+  if (what == W_PDF) {
+    /* f = mass (eps / t) phi(c): for nu < 0 the exponent (d + |nu| t)^2
+     * equals (d - |nu| t)^2 + 4 |nu| t d, i.e. the defective factor */
+    val = q->mass * (p.eps / t) * p.ex * INV_RT2PI;
+    rel = 8.0 * EPS;
+  } else if (what == W_CDF) {
+    val = q->mass * sbi_ig_cdf(&p, &rel);
+    rel += 2.0 * EPS;
+  } else {
+    double s = sbi_ig_sf(&p, &rel);
+    if (q->mass < 1.0) {
+      /* P(T > t) = (1 - mass) + mass P_IG(S > t): positive terms */
+      double m = q->mass * s, cm = cmass(q);
+      val = cm + m;
+      rel = (4.0 * EPS * cm + (rel + 2.0 * EPS) * m) / val;
+    } else {
+      val = s;
+    }
+  }
+  err = rel * val;
+  res->val = val;
+  res->err = err;
+}
+
+static int fpt_entry(const char *fn, int what, double t, double x, double a,
+                     double mu, double sigma2, sb_result *res)
+{
+  fpt_par q;
+  int st = fpt_setup(fn, x, a, mu, sigma2, &q, res);
+  if (st)
+    return st;
+  if (isnan(t) || t < 0.0)
+    return sbi_fail(res, SB_EDOM, fn, "t = %g must be >= 0", t);
+  fpt_eval(&q, what, t, res);
+  return SB_SUCCESS;
+}
+
+#define FPT_PAIR(name, what)                                                \
+  int sb_bm_fpt_##name##_e(double t, double x, double a, double mu,         \
+                           double sigma2, sb_result *res)                   \
+  {                                                                         \
+    sb_result r;                                                            \
+    int st = fpt_entry(__func__, what, t, x, a, mu, sigma2, &r);            \
+    if (res)                                                                \
+      *res = r;                                                             \
+    return st;                                                              \
+  }                                                                         \
+  double sb_bm_fpt_##name(double t, double x, double a, double mu,          \
+                          double sigma2)                                    \
+  {                                                                         \
+    sb_result r;                                                            \
+    fpt_entry(__func__, what, t, x, a, mu, sigma2, &r);                     \
+    return r.val;                                                           \
+  }
+
+FPT_PAIR(pdf, W_PDF)
+FPT_PAIR(cdf, W_CDF)
+FPT_PAIR(sf, W_SF)
+
+int sb_bm_fpt_mass_e(double x, double a, double mu, double sigma2,
+                     sb_result *res)
+{
+  fpt_par q;
+  sb_result r;
+  int st = fpt_setup(__func__, x, a, mu, sigma2, &q, &r);
+  if (!st) {
+    r.val = q.mass;
+    r.err = 2.0 * EPS * q.mass;
+  }
+  if (res)
+    *res = r;
+  return st;
+}
+
+double sb_bm_fpt_mass(double x, double a, double mu, double sigma2)
+{
+  sb_result r;
+  sb_bm_fpt_mass_e(x, a, mu, sigma2, &r);
+  return r.val;
+}
+
+/* ------------------------------------------------------- quantile */
+
+typedef struct {
+  const fpt_par *q;
+  double sref;   /* s = sref exp(y) */
+  double logtg;  /* log of the target probability of the IG part */
+  int upper;     /* 0: solve F_IG = target, 1: solve SF_IG = target */
+  double rel, dlog; /* last relative error of F/SF and d log/dy */
+} fpt_qctx;
+
+/* g(y) = log F_IG(s) - log target (lower) or log target - log SF_IG(s)
+ * (upper); increasing in y = log(s/sref).  With D1 = s pdf / F (or / SF)
+ * and s f'(s)/f(s) = -3/2 - c b/2 for the inverse Gaussian (b = kap + eps):
+ *   g' = D1,  g'' = D1 (-1/2 - c b/2 -+ D1)   (- lower, + upper). */
+static double fpt_qfun(double y, void *vctx, double *dg, double *d2g)
+{
+  fpt_qctx *c = vctx;
+  double s = c->sref * exp(y);
+  /* g is increasing in both tails: -inf at s = 0, +inf at s = inf */
+  if (!(s > 0.0))
+    return -INFINITY;
+  if (isinf(s))
+    return INFINITY;
+  sbi_igpt p = fpt_point(c->q, s);
+  double pr = c->upper ? sbi_ig_sf(&p, &c->rel) : sbi_ig_cdf(&p, &c->rel);
+  double spdf = p.eps * p.ex * INV_RT2PI; /* s times the IG density */
+  if (!(pr > 0.0)) {
+    *dg = 0.0;
+    return c->upper ? INFINITY : -INFINITY;
+  }
+  double D1 = spdf / pr;
+  double sfl = -0.5 - 0.5 * p.c * (p.kap + p.eps);
+  *dg = D1;
+  *d2g = D1 * (sfl + (c->upper ? D1 : -D1));
+  c->dlog = D1;
+  double lp = log(pr);
+  return c->upper ? c->logtg - lp : lp - c->logtg;
+}
+
+/* g(t) = F_IG(t) - tg (lower) or tg - SF_IG(t) (upper), *f = IG density */
+static double fpt_g_at(const fpt_par *q, double t, double tg, int upper,
+                       double *f)
+{
+  sbi_igpt p = fpt_point(q, t);
+  *f = p.eps * p.ex * INV_RT2PI / t;
+  return upper ? tg - sbi_ig_sf(&p, NULL) : sbi_ig_cdf(&p, NULL) - tg;
+}
+
+/* Final polish in t when the law is so concentrated that the rounding of
+ * t = sref exp(y) (a couple of ulp) matters: Newton on g(t), then the
+ * better of t and its neighbour towards the root (the best double). */
+static double polish_t(const fpt_par *q, double t, double tg, int upper)
+{
+  double f, g = fpt_g_at(q, t, tg, upper, &f);
+  for (int it = 0; it < 3 && f > 0.0; it++) {
+    double tn = t - g / f;
+    if (!(tn > 0.0) || isinf(tn) || tn == t)
+      break;
+    double fn, gn = fpt_g_at(q, tn, tg, upper, &fn);
+    if (!(fabs(gn) < fabs(g)))
+      break;
+    t = tn;
+    g = gn;
+    f = fn;
+  }
+  double nb = nextafter(t, g > 0.0 ? 0.0 : INFINITY), fnb;
+  if (nb > 0.0) {
+    double gnb = fpt_g_at(q, nb, tg, upper, &fnb);
+    if (fabs(gnb) < fabs(g))
+      t = nb;
+  }
+  return t;
+}
+
+int sb_bm_fpt_quantile_e(double p, double x, double a, double mu,
+                         double sigma2, sb_result *res)
+{
+  fpt_par q;
+  sb_result r = {NAN, NAN};
+  int st = fpt_setup(__func__, x, a, mu, sigma2, &q, &r);
+  if (st) {
+    if (res)
+      *res = r;
+    return st;
+  }
+  if (!(p >= 0.0 && p <= 1.0)) {
+    st = sbi_fail(&r, SB_EDOM, __func__, "p = %g must be in [0, 1]", p);
+    if (res)
+      *res = r;
+    return st;
+  }
+  if (q.d.hi == 0.0 || p == 0.0) {
+    r.val = 0.0;
+    r.err = 0.0;
+  } else if (p >= q.mass) {
+    r.val = INFINITY;
+    r.err = 0.0;
+  } else {
+    /* target for the inverse-Gaussian part (drift |nu|) */
+    double pl = q.mass < 1.0 ? p / q.mass : p;
+    int upper = pl > 0.5;
+    double tg = upper ? (q.mass < 1.0 ? (q.mass - p) / q.mass : 1.0 - p) : pl;
+    double dist = q.d.hi, shape = dist * dist / sigma2, sref;
+    if (q.nua > 0.0) {
+      double mean = dist / q.nua;
+      sref = mean * sbi_ig_quantile_guess(tg, upper, shape / mean);
+    } else {
+      /* Levy: P(T <= s) = 2 Q(dist / sqrt(sigma2 s)) exactly */
+      double z = upper ? (tg < 1e-8 ? tg * 1.2533141373155002512
+                                    : gsl_cdf_ugaussian_Pinv(0.5 + 0.5 * tg))
+                       : gsl_cdf_ugaussian_Qinv(0.5 * tg);
+      sref = shape / (z * z);
+    }
+    if (!(sref > 0.0) || isinf(sref))
+      sref = shape;
+    fpt_qctx c = {&q, sref, log(tg), upper, 0.0, 1.0};
+    double y, dy;
+    st = sbi_solve_increasing(fpt_qfun, &c, 0.0, 1.0, 1e-11, &y, &dy);
+    r.val = sref * exp(y);
+    if (st == SB_SUCCESS && c.dlog > 100.0 && r.val > 0.0 && isfinite(r.val))
+      r.val = polish_t(&q, r.val, tg, upper);
+    /* last step, rounding of exp and of the target, noise of F or SF */
+    r.err = r.val * (2.0 * dy + 8.0 * EPS + (c.rel + 4.0 * EPS) / c.dlog);
+    if (st)
+      sbi_error(st, __func__, "no convergence for p = %g", p);
+  }
+  if (res)
+    *res = r;
+  return st;
+}
+
+double sb_bm_fpt_quantile(double p, double x, double a, double mu,
+                          double sigma2)
+{
+  sb_result r;
+  sb_bm_fpt_quantile_e(p, x, a, mu, sigma2, &r);
+  return r.val;
+}
+
+/* -------------------------------------------------------- sampler */
+
+double sb_bm_fpt_sample(const gsl_rng *r, double x, double a, double mu,
+                        double sigma2)
+{
+  fpt_par q;
+  if (fpt_setup(__func__, x, a, mu, sigma2, &q, NULL))
+    return NAN;
+  if (r == NULL) {
+    sbi_fail(NULL, SB_EINVAL, __func__, "r is NULL");
+    return NAN;
+  }
+  if (q.d.hi == 0.0)
+    return 0.0;
+  double shape = q.d.hi * q.d.hi / sigma2;
+  if (q.nu == 0.0)
+    return sbi_ig_sample(r, INFINITY, shape);
+  if (q.nu < 0.0 && gsl_rng_uniform(r) >= q.mass)
+    return INFINITY; /* never reaches the level */
+  return sbi_ig_sample(r, q.d.hi / q.nua, shape);
+}
+
+/* ---------------------------------------------- Bessel-3 down to a */
+
+static int bes3_entry(const char *fn, int what, double t, double x, double a,
+                      double sigma2, sb_result *res)
+{
+  if (isnan(t) || is_bad(x) || is_bad(a))
+    return sbi_fail(res, SB_EDOM, fn,
+                    "t = %g, x = %g, a = %g: t must be a number, x and a "
+                    "finite", t, x, a);
+  if (x < 0.0 || a < 0.0)
+    return sbi_fail(res, SB_EDOM, fn,
+                    "x = %g, a = %g: a Bessel-3 radius must be >= 0", x, a);
+  if (!(sigma2 > 0.0) || is_bad(sigma2))
+    return sbi_fail(res, SB_EDOM, fn,
+                    "sigma2 = %g must be positive and finite", sigma2);
+  if (t < 0.0)
+    return sbi_fail(res, SB_EDOM, fn, "t = %g must be >= 0", t);
+  double val, rel;
+  if (x <= a) {
+    /* starts inside: T = 0 */
+    res->val = what == W_CDF ? 1.0 : 0.0;
+    res->err = 0.0;
+    return SB_SUCCESS;
+  }
+  sbi_dd d = sbi_dd_sum(x, -a);
+  double h = a / x;         /* P(T < inf) */
+  double ch = d.hi / x;     /* 1 - a/x */
+  if (a == 0.0 || t == 0.0 || isinf(t)) {
+    if (what == W_PDF)
+      val = 0.0;
+    else if (what == W_CDF)
+      val = t == 0.0 ? 0.0 : h;
+    else
+      val = t == 0.0 ? 1.0 : ch;
+    res->val = val;
+    res->err = 2.0 * EPS * val;
+    return SB_SUCCESS;
+  }
+  /* eps = d / sqrt(sigma2 t); exp(-eps^2/2) from the exact d^2/(2 sigma2 t) */
+  sbi_dd den = sbi_dd_prod(sigma2, t);
+  double eps = d.hi / sqrt(den.hi);
+  sbi_dd E = sbi_dd_div(sbi_dd_mul(d, d), sbi_dd_mul_d(den, 2.0));
+  double ex = E.hi < 746.0 ? sbi_dd_expneg(E) : 0.0;
+  if (what == W_PDF) {
+    val = h * (eps / t) * ex * INV_RT2PI;
+    rel = 8.0 * EPS;
+  } else if (what == W_CDF) {
+    /* (a/x) erfc(eps/sqrt 2) = (a/x) 2 Q(eps) = (a/x) 2 exp(-eps^2/2) M(eps) */
+    double tail = eps <= 3.0 ? gsl_cdf_ugaussian_Q(eps)
+                             : ex * sbi_mills(eps);
+    val = 2.0 * h * tail;
+    rel = eps <= 3.0 ? (4.0 + 2.0 * eps * eps) * EPS : 8.0 * EPS;
+  } else {
+    /* (1 - a/x) + (a/x) erf(eps/sqrt 2): positive terms */
+    double e = gsl_sf_erf(eps * 0.70710678118654752440);
+    val = ch + h * e;
+    rel = 4.0 * EPS;
+  }
+  res->val = val;
+  res->err = rel * val;
+  return SB_SUCCESS;
+}
+
+#define BES3_PAIR(name, what)                                               \
+  int sb_bes3_fpt_##name##_e(double t, double x, double a, double sigma2,   \
+                             sb_result *res)                                \
+  {                                                                         \
+    sb_result r;                                                            \
+    int st = bes3_entry(__func__, what, t, x, a, sigma2, &r);               \
+    if (res)                                                                \
+      *res = r;                                                             \
+    return st;                                                              \
+  }                                                                         \
+  double sb_bes3_fpt_##name(double t, double x, double a, double sigma2)    \
+  {                                                                         \
+    sb_result r;                                                            \
+    bes3_entry(__func__, what, t, x, a, sigma2, &r);                        \
+    return r.val;                                                           \
+  }
+
+BES3_PAIR(pdf, W_PDF)
+BES3_PAIR(cdf, W_CDF)
+BES3_PAIR(sf, W_SF)

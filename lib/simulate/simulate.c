@@ -1,0 +1,270 @@
+/* simulate.c — reference simulators (brute-force Monte Carlo of the
+ * processes).  What is exact and why: smolbridge/simulate.h and
+ * docs/simulate.md.
+ *
+ * The per-sub-step crossing probabilities below are written out here on
+ * purpose, independently of lib/bridge/bridge.c: the simulators exist to check
+ * sb_bb_cross_prob / sb_bes3b_cross_prob and the hitting-time laws, so
+ * they must not call them. */
+#include <math.h>
+#include <stddef.h>
+
+#include <gsl/gsl_math.h>
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+
+#include <smolbridge/langevin.h>
+#include <smolbridge/simulate.h>
+#include "common/internal.h"
+
+/* ------------------------------------------ per-sub-step crossing laws */
+
+/* 1-D Brownian bridge from x0 > a to x1 > a with variance v over the
+ * sub-step: P(min <= a) = exp(-2 (x0 - a)(x1 - a)/v) (reflection
+ * principle: the density of paths ending at x1 that touch a equals that
+ * of paths ending at the mirror image 2a - x1). */
+static double step_bb(double x0, double x1, double a, double v)
+{
+  return exp(-2.0 * (x0 - a) * (x1 - a) / v);
+}
+
+/* Bessel-3 bridge from r0 > a to r1 > a, variance v per component:
+ * P(min <= a) = q^a_v(r0, r1)/q_v(r0, r1) complemented, with the Bessel-3
+ * transition density q_v(x, y) = (y/x)[g_v(y - x) - g_v(y + x)] and its
+ * version killed at a, (y/x)[g_v(y - x) - g_v(x + y - 2a)] (the Bessel-3
+ * process is BM on (0, inf) h-transformed by h(x) = x).  The ratio
+ * [g(x+y-2a) - g(x+y)] / [g(y-x) - g(y+x)] is written with all exponents
+ * <= 0 so that it cannot overflow:
+ *   exp(-2 (r0-a)(r1-a)/v) expm1(-2a(r0+r1-a)/v) / expm1(-2 r0 r1/v).
+ * Level a = 0 is never reached. */
+static double step_bes3b(double r0, double r1, double a, double v)
+{
+  if (a <= 0.0)
+    return 0.0;
+  return exp(-2.0 * (r0 - a) * (r1 - a) / v) *
+         expm1(-2.0 * a * (r0 + r1 - a) / v) / expm1(-2.0 * r0 * r1 / v);
+}
+
+/* ------------------------------------------------------ path kernels */
+
+/* The kernels assume validated arguments. */
+
+static int path_bb(const gsl_rng *r, double x, double y, double a,
+                   double s2, double t, int n)
+{
+  if (x <= a)
+    return 0;
+  const double dt = t / n;
+  double X = x;
+  for (int k = 0; k < n; k++) {
+    double Xn;
+    if (k == n - 1) {
+      Xn = y;
+    } else {
+      /* exact sequential bridge sampling: given X_k with T left */
+      double T = t - k * dt;
+      Xn = X + (y - X) * dt / T +
+           sqrt(s2 * dt * (T - dt) / T) * gsl_ran_gaussian_ziggurat(r, 1.0);
+    }
+    if (Xn <= a || gsl_rng_uniform(r) < step_bb(X, Xn, a, s2 * dt))
+      return k;
+    X = Xn;
+  }
+  return -1;
+}
+
+static int path_bes3b(const gsl_rng *r, double x, double y, double a,
+                      double s2, double t, int n)
+{
+  if (x <= a)
+    return 0;
+  const double dt = t / n;
+  /* End point on the sphere of radius y: density prop. to the Gaussian
+   * kernel exp(-|y w - B_0|^2/(2 s2 t)) prop. to exp(kappa c), c the cosine
+   * of the angle to B_0.  The area element of S^2 is uniform in c, so c
+   * has density prop. to exp(kappa c) on [-1, 1]; inversion:
+   * c = 1 + log1p((1 - U) expm1(-2 kappa))/kappa (stable for all kappa > 0;
+   * kappa = 0, i.e. y = 0 or x = 0, is the uniform law). */
+  const double kappa = x * y / (s2 * t);
+  double U = gsl_rng_uniform(r);
+  double c = kappa > 0.0
+                 ? 1.0 + log1p((1.0 - U) * expm1(-2.0 * kappa)) / kappa
+                 : 2.0 * U - 1.0;
+  c = c > 1.0 ? 1.0 : (c < -1.0 ? -1.0 : c);
+  double sn = sqrt(fmax(0.0, 1.0 - c * c));
+  double phi = 2.0 * M_PI * gsl_rng_uniform(r);
+  const double Y[3] = {y * c, y * sn * cos(phi), y * sn * sin(phi)};
+  double X[3] = {x, 0.0, 0.0};
+  double R = x;
+  for (int k = 0; k < n; k++) {
+    double Rn;
+    if (k == n - 1) {
+      Rn = y;
+    } else {
+      /* three independent 1-D bridges towards Y */
+      double T = t - k * dt;
+      double sd = sqrt(s2 * dt * (T - dt) / T);
+      for (int j = 0; j < 3; j++)
+        X[j] += (Y[j] - X[j]) * dt / T + sd * gsl_ran_gaussian_ziggurat(r, 1.0);
+      Rn = sqrt(X[0] * X[0] + X[1] * X[1] + X[2] * X[2]);
+    }
+    /* Given the norms at the grid times, the pieces of R between them are
+     * independent Bessel-3 bridges (R is Markov; conditioning on R_t is an
+     * h-transform), so this Bernoulli reproduces P(hit) exactly. */
+    if (Rn <= a || gsl_rng_uniform(r) < step_bes3b(R, Rn, a, s2 * dt))
+      return k;
+    R = Rn;
+  }
+  return -1;
+}
+
+static int path_bes3(const gsl_rng *r, double x, double a, double s2,
+                     double t, int n)
+{
+  if (x <= a)
+    return 0;
+  const double dt = t / n, sd = sqrt(s2 * dt);
+  double X[3] = {x, 0.0, 0.0}, R = x;
+  for (int k = 0; k < n; k++) {
+    for (int j = 0; j < 3; j++)
+      X[j] += sd * gsl_ran_gaussian_ziggurat(r, 1.0);
+    double Rn = sqrt(X[0] * X[0] + X[1] * X[1] + X[2] * X[2]);
+    /* same Markov argument: sub-step pieces are Bessel-3 bridges */
+    if (Rn <= a || gsl_rng_uniform(r) < step_bes3b(R, Rn, a, s2 * dt))
+      return k;
+    R = Rn;
+  }
+  return -1;
+}
+
+/* ---------------------------------------------------------- validation */
+
+enum { K_BB, K_BES3B, K_BES3 };
+
+/* y is ignored for K_BES3 (pass 0). */
+static int check_args(const char *fn, int kind, const gsl_rng *r, double x,
+                      double y, double a, double s2, double t, int n,
+                      const void *out)
+{
+  if (!r || !out)
+    return sbi_error(SB_EINVAL, fn, "NULL argument");
+  if (n < 1)
+    return sbi_error(SB_EINVAL, fn, "n = %d < 1", n);
+  if (!isfinite(x) || !isfinite(y) || !isfinite(a))
+    return sbi_error(SB_EDOM, fn, "x = %g, y = %g, a = %g: not finite", x,
+                     y, a);
+  if (!(s2 > 0.0) || !isfinite(s2))
+    return sbi_error(SB_EDOM, fn, "sigma2 = %g: need 0 < sigma2 < inf", s2);
+  if (!(t > 0.0) || !isfinite(t))
+    return sbi_error(SB_EDOM, fn, "t = %g: need 0 < t < inf", t);
+  if (kind != K_BB && (a < 0.0 || x < 0.0 || y < 0.0))
+    return sbi_error(SB_EDOM, fn, "x = %g, y = %g, a = %g: Bessel-3 radii "
+                     "must be >= 0", x, y, a);
+  return SB_SUCCESS;
+}
+
+static int run_path(const char *fn, int kind, const gsl_rng *r, double x,
+                    double y, double a, double s2, double t, int n, int *k)
+{
+  int st = check_args(fn, kind, r, x, y, a, s2, t, n, k);
+  if (st != SB_SUCCESS)
+    return st;
+  *k = kind == K_BB      ? path_bb(r, x, y, a, s2, t, n)
+       : kind == K_BES3B ? path_bes3b(r, x, y, a, s2, t, n)
+                         : path_bes3(r, x, a, s2, t, n);
+  return SB_SUCCESS;
+}
+
+static int run_hits(const char *fn, int kind, const gsl_rng *r, double x,
+                    double y, double a, double s2, double t, int n,
+                    unsigned long npaths, unsigned long *hits,
+                    unsigned long *ncross)
+{
+  int st = check_args(fn, kind, r, x, y, a, s2, t, n, hits);
+  if (st != SB_SUCCESS)
+    return st;
+  if (!ncross)
+    return sbi_error(SB_EINVAL, fn, "NULL argument");
+  for (int k = 0; k < n; k++)
+    hits[k] = 0;
+  unsigned long nh = 0;
+  for (unsigned long i = 0; i < npaths; i++) {
+    int k = kind == K_BB      ? path_bb(r, x, y, a, s2, t, n)
+            : kind == K_BES3B ? path_bes3b(r, x, y, a, s2, t, n)
+                              : path_bes3(r, x, a, s2, t, n);
+    if (k >= 0) {
+      hits[k]++;
+      nh++;
+    }
+  }
+  *ncross = nh;
+  return SB_SUCCESS;
+}
+
+/* ---------------------------------------------------------- public API */
+
+int sb_sim_bb_path(const gsl_rng *r, double x, double y, double a,
+                   double sigma2, double t, int n, int *k)
+{
+  return run_path(__func__, K_BB, r, x, y, a, sigma2, t, n, k);
+}
+
+int sb_sim_bes3b_path(const gsl_rng *r, double x, double y, double a,
+                      double sigma2, double t, int n, int *k)
+{
+  return run_path(__func__, K_BES3B, r, x, y, a, sigma2, t, n, k);
+}
+
+int sb_sim_bes3_path(const gsl_rng *r, double x, double a, double sigma2,
+                     double t, int n, int *k)
+{
+  return run_path(__func__, K_BES3, r, x, 0.0, a, sigma2, t, n, k);
+}
+
+int sb_sim_bb_hits(const gsl_rng *r, double x, double y, double a,
+                   double sigma2, double t, int n, unsigned long npaths,
+                   unsigned long *hits, unsigned long *ncross)
+{
+  return run_hits(__func__, K_BB, r, x, y, a, sigma2, t, n, npaths, hits,
+                  ncross);
+}
+
+int sb_sim_bes3b_hits(const gsl_rng *r, double x, double y, double a,
+                      double sigma2, double t, int n, unsigned long npaths,
+                      unsigned long *hits, unsigned long *ncross)
+{
+  return run_hits(__func__, K_BES3B, r, x, y, a, sigma2, t, n, npaths, hits,
+                  ncross);
+}
+
+int sb_sim_bes3_hits(const gsl_rng *r, double x, double a, double sigma2,
+                     double t, int n, unsigned long npaths,
+                     unsigned long *hits, unsigned long *ncross)
+{
+  return run_hits(__func__, K_BES3, r, x, 0.0, a, sigma2, t, n, npaths,
+                  hits, ncross);
+}
+
+int sb_sim_langevin(const sb_langevin *p, double dt, long nsteps,
+                    const gsl_rng *r, size_t np, double *x, double *u)
+{
+  if (!p || !r || (np > 0 && (!x || !u)))
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  if (nsteps < 0)
+    return sbi_error(SB_EINVAL, __func__, "nsteps = %ld < 0", nsteps);
+  if (!isfinite(p->us))
+    return sbi_error(SB_EDOM, __func__, "us = %g: not finite", p->us);
+  sb_langevin_coef c;
+  int st = sb_langevin_coef_init(&c, p->tau, p->B, dt);
+  if (st != SB_SUCCESS)
+    return st; /* its message names tau, B or dt */
+  /* one coefficient set for all: step particle by particle (same draws as
+   * one sb_langevin_step3_coef call over all particles); a fluid at rest
+   * is passed as NULL, which steps with us = 0 exactly */
+  const double us3[3] = {p->us, p->us, p->us};
+  const double *us = p->us != 0.0 ? us3 : NULL;
+  for (long k = 0; k < nsteps; k++)
+    for (size_t i = 0; i < np; i++)
+      sb_langevin_step3_coef(1, &c, NULL, us, x + 3 * i, u + 3 * i, r);
+  return SB_SUCCESS;
+}

@@ -1,0 +1,141 @@
+/* smolbridge/validate.h — the validation suite as a library.
+ *
+ * A validation case runs a Monte Carlo (or numerical) experiment and
+ * compares its estimates with the library's theoretical references; each
+ * comparison is a record (sb_comparison, <smolbridge/stats.h>) with its
+ * estimate, reference, interval, p-value and verdict.  This header lists
+ * the registered cases, runs them into a report, and writes the report as
+ * a table, CSV or Markdown.  `smolbridge validate` is a thin front end to
+ * it (docs/validation.md describes every case and its verdict rule).
+ *
+ * Typical use:
+ *
+ *   sb_validate_options opt;
+ *   sb_validate_options_init(&opt);            // quick mode, seed 12345
+ *   sb_validate_report *rep = sb_validate_report_alloc();
+ *   size_t i;
+ *   if (sb_validate_case_index("V9/two-spheres-45", &i) == SB_SUCCESS)
+ *     sb_validate_run(i, &opt, rep);
+ *   for (size_t k = 0; k < sb_validate_report_nrecords(rep); k++) {
+ *     const sb_comparison *c = sb_validate_report_record(rep, k);
+ *     ...
+ *   }
+ *   sb_validate_report_free(rep);
+ *
+ * Determinism: a case draws only from generators seeded by the base seed
+ * and a stream number of its own, so the same options give bit-identical
+ * records whatever the order or selection of cases.  Cases are thread-safe
+ * as long as two threads do not share a report; plot files of two
+ * concurrent runs must go to different directories.
+ *
+ * The library never prints.  Progress lines go to the optional progress
+ * callback; plots are written as data (.dat) and gnuplot scripts (.gp) into
+ * `outdir`, and rendered only through the optional render callback (the
+ * command-line tool passes one that runs gnuplot).
+ */
+#ifndef SMOLBRIDGE_VALIDATE_H
+#define SMOLBRIDGE_VALIDATE_H
+
+#include <stddef.h>
+#include <stdio.h>
+#include <smolbridge/common.h>
+#include <smolbridge/stats.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Receives one progress line (no trailing newline). */
+typedef void (*sb_validate_progress_fn)(const char *line, void *data);
+
+/** Renders the gnuplot script `script` (a file name relative to `dir`);
+ *  returns 0 when a picture was made.  `dir` is the options' outdir. */
+typedef int (*sb_validate_render_fn)(const char *dir, const char *script,
+                                     void *data);
+
+/** How to run cases. */
+typedef struct {
+  int full;                /**< 0: quick sample sizes; 1: the full ones */
+  unsigned long seed;      /**< base seed: same seed, same records */
+  const char *outdir;      /**< existing directory for plot data and
+                                scripts; NULL writes no plot files */
+  sb_validate_progress_fn progress; /**< NULL: no progress lines */
+  void *progress_data;
+  sb_validate_render_fn render;     /**< NULL: plots are not rendered */
+  void *render_data;
+} sb_validate_options;
+
+/** Defaults: quick mode, seed 12345, no outdir, no callbacks. */
+void sb_validate_options_init(sb_validate_options *opt);
+
+/* ------------------------------------------------------------- registry */
+
+/** Number of registered cases. */
+size_t sb_validate_ncases(void);
+
+/** Name ("V4/bridge-brownian") and one-line description of case i, in
+ *  run order; NULL (SB_EINVAL recorded) when i >= sb_validate_ncases(). */
+const char *sb_validate_case_name(size_t i);
+const char *sb_validate_case_description(size_t i);
+
+/** Index of the case called exactly `name`; SB_EINVAL if there is none. */
+int sb_validate_case_index(const char *name, size_t *index);
+
+/* ------------------------------------------------------------- reports */
+
+/** Records, notes and timings of the cases run into it. */
+typedef struct sb_validate_report sb_validate_report;
+
+/** A new empty report (NULL and SB_ENOMEM recorded on failure). */
+sb_validate_report *sb_validate_report_alloc(void);
+void sb_validate_report_free(sb_validate_report *rep);
+
+/** Run case `index` and append its records, notes and timing to `rep`.
+ *  Returns the case's status: SB_SUCCESS when it ran to the end (its
+ *  records may still have failing verdicts), otherwise the error that
+ *  stopped it (the records made before stay in the report and the case
+ *  counts as failed).  SB_EINVAL for a bad index, NULL options or report. */
+int sb_validate_run(size_t index, const sb_validate_options *opt,
+                    sb_validate_report *rep);
+
+/** Comparison records, in the order the cases made them. */
+size_t sb_validate_report_nrecords(const sb_validate_report *rep);
+const sb_comparison *sb_validate_report_record(const sb_validate_report *rep,
+                                               size_t i);
+
+/** Cases run into the report: name, status returned by the case, wall
+ *  time in seconds, Markdown notes ("" if none) and their records
+ *  (first, count).  Out-of-range k gives NULL / SB_EINVAL / NaN / 0. */
+size_t sb_validate_report_ncases(const sb_validate_report *rep);
+const char *sb_validate_report_case_name(const sb_validate_report *rep,
+                                         size_t k);
+int sb_validate_report_case_status(const sb_validate_report *rep, size_t k);
+double sb_validate_report_case_seconds(const sb_validate_report *rep,
+                                       size_t k);
+const char *sb_validate_report_case_notes(const sb_validate_report *rep,
+                                          size_t k);
+size_t sb_validate_report_case_records(const sb_validate_report *rep,
+                                       size_t k, size_t *first);
+
+/** Failed records plus cases that did not complete. */
+size_t sb_validate_report_nfailed(const sb_validate_report *rep);
+
+/** The comparison table, one line per record (and one per case that did
+ *  not complete).  SB_EIO if writing fails. */
+int sb_validate_report_fprint(const sb_validate_report *rep, FILE *out);
+
+/** validate.csv: SB_COMPARISON_CSV_HEADER and one line per record. */
+int sb_validate_report_write_csv(const sb_validate_report *rep,
+                                 const char *path);
+
+/** report.md: verdict rules, then per case its notes, plots and table.
+ *  `opt` gives the mode and seed printed in the heading. */
+int sb_validate_report_write_markdown(const sb_validate_report *rep,
+                                      const char *path,
+                                      const sb_validate_options *opt);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SMOLBRIDGE_VALIDATE_H */

@@ -1,0 +1,132 @@
+/* registry.c — the table of validation cases, and running one case into a
+ * report (the public interface of <smolbridge/validate.h>). */
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include <smolbridge/validate.h>
+#include "common/internal.h"
+#include "cases.h"
+#include "report.h"
+
+/* The case tables of all modules, in the order they run. */
+static const struct {
+  const sbv_case *cases;
+  const size_t *n;
+} tables[] = {
+    {sbv_cases_bridge, &sbv_ncases_bridge},
+    {sbv_cases_langevin, &sbv_ncases_langevin},
+    {sbv_cases_pbe, &sbv_ncases_pbe},
+    {sbv_cases_engine, &sbv_ncases_engine},
+    {sbv_cases_engine2, &sbv_ncases_engine2},
+    {sbv_cases_agglo, &sbv_ncases_agglo},
+};
+enum { NTABLES = sizeof tables / sizeof tables[0] };
+
+/* Case i of the concatenated tables, or NULL. */
+static const sbv_case *case_at(size_t i)
+{
+  for (size_t t = 0; t < NTABLES; t++) {
+    if (i < *tables[t].n)
+      return &tables[t].cases[i];
+    i -= *tables[t].n;
+  }
+  return NULL;
+}
+
+void sb_validate_options_init(sb_validate_options *opt)
+{
+  if (!opt)
+    return;
+  memset(opt, 0, sizeof *opt);
+  opt->seed = 12345UL;
+}
+
+size_t sb_validate_ncases(void)
+{
+  size_t n = 0;
+  for (size_t t = 0; t < NTABLES; t++)
+    n += *tables[t].n;
+  return n;
+}
+
+const char *sb_validate_case_name(size_t i)
+{
+  const sbv_case *c = case_at(i);
+  if (!c)
+    sbi_error(SB_EINVAL, __func__, "case index %zu out of range (%zu cases)",
+              i, sb_validate_ncases());
+  return c ? c->name : NULL;
+}
+
+const char *sb_validate_case_description(size_t i)
+{
+  const sbv_case *c = case_at(i);
+  if (!c)
+    sbi_error(SB_EINVAL, __func__, "case index %zu out of range (%zu cases)",
+              i, sb_validate_ncases());
+  return c ? c->description : NULL;
+}
+
+int sb_validate_case_index(const char *name, size_t *index)
+{
+  if (!name)
+    return sbi_error(SB_EINVAL, __func__, "NULL name");
+  size_t n = sb_validate_ncases();
+  for (size_t i = 0; i < n; i++)
+    if (strcmp(case_at(i)->name, name) == 0) {
+      if (index)
+        *index = i;
+      return SB_SUCCESS;
+    }
+  return sbi_error(SB_EINVAL, __func__, "no case called '%s'", name);
+}
+
+gsl_rng *sbv_rng_alloc(const sbv_ctx *ctx, unsigned long stream)
+{
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+  if (r) /* distinct, reproducible seeds per (base seed, stream) */
+    gsl_rng_set(r, ctx->seed * 1000003UL + stream * 7919UL + 1UL);
+  return r;
+}
+
+void sbv_progress(const sbv_ctx *ctx, const char *fmt, ...)
+{
+  const sb_validate_options *o = ctx->opt;
+  if (!o || !o->progress)
+    return;
+  char line[512];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(line, sizeof line, fmt, ap);
+  va_end(ap);
+  o->progress(line, o->progress_data);
+}
+
+static double wall_seconds(void)
+{
+  struct timespec ts;
+  if (timespec_get(&ts, TIME_UTC) != TIME_UTC)
+    return 0.0;
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int sb_validate_run(size_t index, const sb_validate_options *opt,
+                    sb_validate_report *rep)
+{
+  const sbv_case *c = case_at(index);
+  if (!c)
+    return sbi_error(SB_EINVAL, __func__,
+                     "case index %zu out of range (%zu cases)", index,
+                     sb_validate_ncases());
+  if (!opt || !rep)
+    return sbi_error(SB_EINVAL, __func__, "NULL options or report");
+  if (sbv_report_begin_case(rep, c->name) != SB_SUCCESS)
+    return sbi_error(SB_ENOMEM, __func__, "out of memory");
+  sbv_ctx ctx = {opt->full != 0, opt->seed, opt->outdir, opt};
+  double t0 = wall_seconds();
+  int st = c->run(&ctx, rep);
+  sbv_report_end_case(rep, st, wall_seconds() - t0);
+  return st;
+}
