@@ -61,25 +61,36 @@ static void usage(FILE *out)
 {
   fprintf(out,
 "Usage: smolbridge validate [--quick|--full] [--out DIR] [--seed N]\n"
-"                           [--case PREFIX]... [--list]\n"
+"                           [--seeds N] [--case PREFIX]... [--list]\n"
 "\n"
 "Run the validation cases: each compares a Monte Carlo (or numerical)\n"
-"estimate with its theoretical reference and gives a verdict.\n"
+"estimate with its theoretical reference and gives a verdict by a rule\n"
+"stated in its row.\n"
 "\n"
-"  --quick         reduced sample sizes, whole suite in under 2 minutes\n"
+"  --quick         reduced sample sizes, whole suite in about a minute\n"
 "                  (default)\n"
-"  --full          the sample sizes of the source studies (slow)\n"
+"  --full          the sample sizes of the source studies, or enough for\n"
+"                  +-1%% (95%%) on the engine kernels (slow: hours; the\n"
+"                  run time of each case is in docs/validation.md)\n"
 "  --out DIR       output directory (default: validate-out); receives\n"
 "                  validate.csv, report.md and one .dat/.gp/.png per plot\n"
 "  --seed N        base random seed (default 12345); same seed, same output\n"
+"  --seeds N       calibration: run the selected cases with the N seeds\n"
+"                  SEED, SEED+1, ..., SEED+N-1 and pool each record over\n"
+"                  them (mean estimate/reference and its 95%% interval,\n"
+"                  bias in standard errors, fraction of p < 0.05, KS test\n"
+"                  of the p-values); writes calibration.csv, calibration.md,\n"
+"                  all_seeds.csv and the p-value QQ plot calibration_qq\n"
 "  --case PREFIX   run only cases whose name starts with PREFIX (e.g. V11);\n"
 "                  may be repeated\n"
 "  --list          list the cases and exit\n"
 "  -h, --help      this help\n"
 "\n"
-"Table columns: case, estimate, reference, 95%% interval of the estimate,\n"
-"p-value (when the comparison is a test), verdict. Exit status: 0 if every\n"
-"comparison passes, 1 if any fails, 2 on a usage or output error.\n");
+"Table columns: case, estimate, reference, interval, p-value (of the test\n"
+"behind the row), rule, verdict (pass, FAIL, or info for descriptive\n"
+"rows).  The interval is the one the rule reads.  Exit status: 0 if no\n"
+"comparison (or, with --seeds, no pooled record) fails, 1 if one does, 2\n"
+"on a usage or output error.\n");
 }
 
 /* mkdir -p */
@@ -120,12 +131,179 @@ static double now_seconds(void)
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+static void count_verdicts(const sb_validate_report *rep, size_t *npass,
+                           size_t *nfail, size_t *ninfo)
+{
+  *npass = *nfail = *ninfo = 0;
+  for (size_t i = 0; i < sb_validate_report_nrecords(rep); i++) {
+    sb_verdict v = sb_validate_report_record(rep, i)->verdict;
+    *npass += v == SB_PASS;
+    *nfail += v == SB_FAIL;
+    *ninfo += v == SB_INFO;
+  }
+}
+
+/* Append one seed's records to all_seeds.csv (seed as first column). */
+static int append_seed_csv(FILE *f, const sb_validate_report *rep,
+                           unsigned long seed)
+{
+  char line[1024];
+  for (size_t i = 0; i < sb_validate_report_nrecords(rep); i++) {
+    sb_comparison_csv(sb_validate_report_record(rep, i), line, sizeof line);
+    fprintf(f, "%lu,%s\n", seed, line);
+  }
+  return ferror(f) ? SB_EIO : SB_SUCCESS;
+}
+
+/* calibration.md: per-case summary, then every pooled record. */
+static int write_calibration_md(const sb_validate_calibration *cal,
+                                const sb_validate_options *vo,
+                                unsigned long base, unsigned long nseeds,
+                                const char *path)
+{
+  FILE *f = fopen(path, "w");
+  if (!f)
+    return SB_EIO;
+  fprintf(f, "# smolbridge calibration\n\nsmolbridge %s, mode `%s`, seeds "
+             "%lu..%lu (%lu runs).\n\n", sb_version(),
+          vo->full ? "full" : "quick", base, base + nseeds - 1, nseeds);
+  fprintf(f, "Per record: mean over the seeds of estimate/reference (or of "
+             "estimate - reference, `d`, when the reference is 0) with its "
+             "Student 95%% interval; bias z = (mean - target)/standard error; "
+             "fraction of p-values below 0.05 (about 0.05 when calibrated); "
+             "Kolmogorov-Smirnov p-value of the p-values against the uniform "
+             "law (not computed for discrete p-values: fewer than 80%% "
+             "distinct).  A record fails calibration when |z| > 3 or KS p < "
+             "1e-3 (tests and intervals), or when it failed on any seed "
+             "(tolerance bands and demonstrations of expected failures, "
+             "which must hold on every seed).\n\n");
+  fprintf(f, "| case | records | failing | record-seeds failed | max |z| | "
+             "p < 0.05 | KS p (all p-values) | verdict |\n"
+             "|---|---|---|---|---|---|---|---|\n");
+  for (size_t k = 0; k < sb_validate_calibration_ncases(cal); k++) {
+    sb_validate_calibration_case_summary s;
+    sb_validate_calibration_case(cal,
+                                 sb_validate_calibration_case_name(cal, k),
+                                 &s);
+    fprintf(f, "| %s | %zu | %zu | %zu/%zu | %.2f | %.3f | %.3g | %s |\n",
+            s.case_name, s.nrows, s.nrows_failed, s.nrecords_failed,
+            s.nrecords, s.max_abs_bias_z, s.frac_p05, s.ks_p,
+            sb_verdict_name(s.verdict));
+  }
+  fprintf(f, "\n![p-value QQ plot](calibration_qq.png)\n\n```\n");
+  sb_validate_calibration_fprint(cal, f);
+  fprintf(f, "```\n");
+  return fclose(f) == 0 ? SB_SUCCESS : SB_EIO;
+}
+
+/* --seeds N: run the selection with N seeds and pool. */
+static int calibrate(sb_validate_options *vo, char **prefixes,
+                     int nprefixes, size_t nsel, unsigned long nseeds)
+{
+  const unsigned long base = vo->seed;
+  const char *outdir = vo->outdir;
+  char path[1100];
+  snprintf(path, sizeof path, "%s/all_seeds.csv", outdir);
+  FILE *all = fopen(path, "w");
+  sb_validate_calibration *cal = sb_validate_calibration_alloc();
+  if (!all || !cal) {
+    fprintf(stderr, "smolbridge validate: cannot write '%s'\n", path);
+    if (all)
+      fclose(all);
+    sb_validate_calibration_free(cal);
+    return 2;
+  }
+  fprintf(all, "seed,%s\n", SB_COMPARISON_CSV_HEADER);
+  fprintf(stderr, "smolbridge validate --seeds %lu (%s, seeds %lu..%lu): "
+                  "%zu cases -> %s/\n", nseeds, vo->full ? "full" : "quick",
+          base, base + nseeds - 1, nsel, outdir);
+  double t_all = now_seconds();
+  int rc = 0;
+  size_t ncases = sb_validate_ncases();
+  for (unsigned long k = 0; k < nseeds && !rc; k++) {
+    sb_validate_options o = *vo;
+    o.seed = base + k;
+    o.outdir = NULL;  /* per-seed plots would overwrite each other */
+    o.progress = NULL;
+    sb_validate_report *rep = sb_validate_report_alloc();
+    if (!rep) {
+      rc = 2;
+      break;
+    }
+    double t0 = now_seconds();
+    for (size_t i = 0; i < ncases; i++)
+      if (selected(sb_validate_case_name(i), prefixes, nprefixes))
+        sb_validate_run(i, &o, rep);
+    size_t npass, nfail, ninfo;
+    count_verdicts(rep, &npass, &nfail, &ninfo);
+    double el = now_seconds() - t_all;
+    fprintf(stderr, "[seed %lu, %lu/%lu] %zu rows, %zu failed (%.1f s; "
+                    "about %.0f s to go)\n", o.seed, k + 1, nseeds,
+            sb_validate_report_nrecords(rep), nfail, now_seconds() - t0,
+            el / (double)(k + 1) * (double)(nseeds - k - 1));
+    if (sb_validate_calibration_add(cal, rep) != SB_SUCCESS ||
+        append_seed_csv(all, rep, o.seed) != SB_SUCCESS)
+      rc = 2;
+    sb_validate_report_free(rep);
+  }
+  if (fclose(all) != 0)
+    rc = 2;
+  if (rc) {
+    sb_validate_calibration_free(cal);
+    fprintf(stderr, "smolbridge validate: calibration failed (out of memory "
+                    "or write error)\n");
+    return rc;
+  }
+  /* per-case summary on stdout, records failing calibration below it */
+  printf("\n%-28s %7s %7s %9s %8s %8s %8s %s\n", "case", "records",
+         "failing", "max |z|", "p<0.05", "KS p", "seeds", "verdict");
+  size_t nbad = 0;
+  for (size_t k = 0; k < sb_validate_calibration_ncases(cal); k++) {
+    sb_validate_calibration_case_summary s;
+    sb_validate_calibration_case(cal,
+                                 sb_validate_calibration_case_name(cal, k),
+                                 &s);
+    printf("%-28s %7zu %7zu %9.2f %8.3f %8.3g %8lu %s\n", s.case_name,
+           s.nrows, s.nrows_failed, s.max_abs_bias_z, s.frac_p05, s.ks_p,
+           nseeds, s.verdict == SB_FAIL ? "FAIL" : "pass");
+    nbad += s.nrows_failed;
+  }
+  if (nbad) {
+    printf("\nRecords failing calibration:\n");
+    for (size_t i = 0; i < sb_validate_calibration_nrows(cal); i++) {
+      sb_validate_calibration_row r;
+      sb_validate_calibration_get_row(cal, i, &r);
+      if (r.verdict == SB_FAIL)
+        printf("  %-44s pooled %.4f [%.4f, %.4f], z = %.2f, KS p = %.3g, "
+               "failed on %zu/%zu seeds\n", r.name, r.mean, r.mean_lo,
+               r.mean_hi, r.bias_z, r.ks_p, r.nfail, r.nseeds);
+    }
+  }
+  int io = 0;
+  snprintf(path, sizeof path, "%s/calibration.csv", outdir);
+  io |= sb_validate_calibration_write_csv(cal, path);
+  snprintf(path, sizeof path, "%s/calibration.md", outdir);
+  io |= write_calibration_md(cal, vo, base, nseeds, path);
+  io |= sb_validate_calibration_qq_plot(cal, vo, "calibration_qq");
+  printf("\n%zu records pooled over %lu seeds, %zu failing calibration "
+         "(%.1f s); %s/calibration.md\n", sb_validate_calibration_nrows(cal),
+         nseeds, nbad, now_seconds() - t_all, outdir);
+  sb_validate_calibration_free(cal);
+  if (io) {
+    fprintf(stderr, "smolbridge validate: could not write the calibration "
+                    "in '%s'\n", outdir);
+    return 2;
+  }
+  return nbad ? 1 : 0;
+}
+
 int sbc_validate_main(int argc, char **argv)
 {
   static const struct option opts[] = {
       {"quick", no_argument, NULL, 'q'}, {"full", no_argument, NULL, 'f'},
       {"out", required_argument, NULL, 'o'},
       {"seed", required_argument, NULL, 's'},
+      {"seeds", required_argument, NULL, 'n'},
       {"case", required_argument, NULL, 'c'},
       {"list", no_argument, NULL, 'l'}, {"help", no_argument, NULL, 'h'},
       {NULL, 0, NULL, 0}};
@@ -134,6 +312,7 @@ int sbc_validate_main(int argc, char **argv)
   vo.outdir = "validate-out";
   char *prefixes[64];
   int nprefixes = 0, list = 0, opt;
+  unsigned long nseeds = 0;
   optind = 1;
   while ((opt = getopt_long(argc, argv, "ho:", opts, NULL)) != -1) {
     switch (opt) {
@@ -150,6 +329,18 @@ int sbc_validate_main(int argc, char **argv)
         return 2;
       }
       vo.seed = s;
+      break;
+    }
+    case 'n': {
+      char *end;
+      errno = 0;
+      unsigned long v = strtoul(optarg, &end, 10);
+      if (errno || *end || optarg[0] == '-' || v < 2 || v > 100000) {
+        fprintf(stderr, "smolbridge validate: --seeds needs an integer from "
+                        "2 to 100000, got '%s'\n", optarg);
+        return 2;
+      }
+      nseeds = v;
       break;
     }
     case 'c':
@@ -192,15 +383,18 @@ int sbc_validate_main(int argc, char **argv)
     return 2;
   }
 
+  int have_gnuplot = on_path("gnuplot");
+  vo.render = render_with_gnuplot;
+  vo.render_data = &have_gnuplot;
+  if (nseeds)
+    return calibrate(&vo, prefixes, nprefixes, nsel, nseeds);
+  vo.progress = progress_to_stderr;
+
   sb_validate_report *rep = sb_validate_report_alloc();
   if (!rep) {
     fprintf(stderr, "smolbridge validate: out of memory\n");
     return 2;
   }
-  int have_gnuplot = on_path("gnuplot");
-  vo.progress = progress_to_stderr;
-  vo.render = render_with_gnuplot;
-  vo.render_data = &have_gnuplot;
   const char *mode = vo.full ? "full" : "quick";
   fprintf(stderr, "smolbridge validate (%s, seed %lu): %zu cases -> %s/\n",
           mode, vo.seed, nsel, vo.outdir);
@@ -226,12 +420,13 @@ int sbc_validate_main(int argc, char **argv)
   io |= sb_validate_report_write_csv(rep, path);
   snprintf(path, sizeof path, "%s/report.md", vo.outdir);
   io |= sb_validate_report_write_markdown(rep, path, &vo);
-  size_t nrecs = sb_validate_report_nrecords(rep);
-  size_t nfail = sb_validate_report_nfailed(rep);
-  printf("\n%zu comparisons, %zu passed, %zu failed (%.1f s); report in "
-         "%s/report.md\n",
-         nrecs, nrecs - (nfail > nrecs ? nrecs : nfail), nfail,
+  size_t npass, nfail, ninfo;
+  count_verdicts(rep, &npass, &nfail, &ninfo);
+  printf("\n%zu comparisons: %zu passed, %zu failed, %zu informational "
+         "(%.1f s); report in %s/report.md\n",
+         sb_validate_report_nrecords(rep), npass, nfail, ninfo,
          now_seconds() - t_all, vo.outdir);
+  nfail = sb_validate_report_nfailed(rep);  /* + cases not completed */
   sb_validate_report_free(rep);
   if (io) {
     fprintf(stderr, "smolbridge validate: could not write the report in "

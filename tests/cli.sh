@@ -65,10 +65,10 @@ expect_rc 2 "$sb" validate --seed -3
 rm -rf "$out"
 first=$("$sb" validate --list | awk 'NR == 1 {print $1}')
 if "$sb" validate --quick --case "$first" --out "$out" >"$out.txt" 2>&1; then
-  head -n 1 "$out/validate.csv" | grep -qx 'case,estimate,reference,ci_low,ci_high,p_value,verdict' \
+  head -n 1 "$out/validate.csv" | grep -qx 'case,estimate,reference,ci_low,ci_high,p_value,rule,level,verdict' \
     || fail "validate.csv header"
   [ -s "$out/report.md" ] || fail "no report.md"
-  awk -F, 'NR > 1 && $7 != "pass" && $7 != "fail" { bad = 1 } END { exit bad }' \
+  awk -F, 'NR > 1 && $9 != "pass" && $9 != "fail" && $9 != "info" { bad = 1 } END { exit bad }' \
     "$out/validate.csv" || fail "verdict column not pass/fail"
   awk -F, 'NR > 1 && $1 !~ /^V[0-9]+\// { bad = 1 } END { exit bad }' \
     "$out/validate.csv" || fail "case names must start with a V-number"

@@ -336,7 +336,7 @@ START_TEST(test_erel_stationary)
   double x0[3] = {1, 1, 1}, x1[3] = {5, 5, 5}, u[3] = {0, 0, 0};
   ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, x0, u), SB_SUCCESS);
   ck_assert_int_eq(sb_engine_add_particle(e, sp3, 0, x1, u), SB_SUCCESS);
-  sb_engine_pair p = {0, 1, {-4, -4, -4}, {0, 0, 0}, 1.0, 0.01};
+  sb_engine_pair p = {0, 1, {-4, -4, -4}, {0, 0, 0}, 1.0, 0.01, 0.0};
   enum { N = 20000 };
   static double E[N];
   double m = 0.0;

@@ -182,7 +182,7 @@ START_TEST(test_detector_probability)
   bp.record_cap = 200000;
   sb_engine_bridge *b = sb_engine_bridge_alloc(&bp);
   sb_engine_pair p = {0, 1, {1.6e-6, 0.3e-6, 0}, {0.1e-6, -0.5e-6, 0.8e-6},
-                      d, dt};
+                      d, dt, 0.0};
   gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
   gsl_rng_set(r, 3);
   const long n = 200000;
@@ -229,7 +229,7 @@ START_TEST(test_periodic_unwrapped)
   const double b2 = 0.5 * d * d / dt;  /* v = B_ij^2 dt = a^2 */
   sb_engine *e = two_particles(d, b2, dt, L);
   sb_engine_bridge *b = sb_engine_bridge_alloc(NULL);
-  sb_engine_pair p = {0, 1, {2 * d, 0, 0}, {L - 4 * d, 0, 0}, d, dt};
+  sb_engine_pair p = {0, 1, {2 * d, 0, 0}, {L - 4 * d, 0, 0}, d, dt, 0.0};
   gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
   int hits = 0;
   for (int k = 0; k < 2000; k++) {

@@ -745,52 +745,78 @@ START_TEST(test_comparison)
 {
   sb_comparison c;
   char buf[512];
-  ck_assert_int_eq(sb_compare_interval(&c, "V11/bes3b_hit/mean", 0.5, 0.25,
-                                       0.1, 0.9), SB_SUCCESS);
+  ck_assert_int_eq(sb_compare(&c, "V11/bes3b_hit/mean", SB_RULE_COVER, 0.5,
+                              0.25, 0.1, 0.9, 0.95, NAN), SB_SUCCESS);
   ck_assert_int_eq(c.verdict, SB_PASS);
   ck_assert(isnan(c.p_value));
   int n = sb_comparison_csv(&c, buf, sizeof buf);
-  ck_assert_str_eq(buf, "V11/bes3b_hit/mean,0.5,0.25,0.1,0.9,nan,pass");
+  ck_assert_str_eq(buf,
+                   "V11/bes3b_hit/mean,0.5,0.25,0.1,0.9,nan,cover,0.95,pass");
   ck_assert_int_eq(n, (int)strlen(buf));
   ck_assert_str_eq(SB_COMPARISON_CSV_HEADER,
-                   "case,estimate,reference,ci_low,ci_high,p_value,verdict");
+                   "case,estimate,reference,ci_low,ci_high,p_value,rule,"
+                   "level,verdict");
+  sb_comparison_rule_text(&c, buf, sizeof buf);
+  ck_assert_str_eq(buf, "ref in 95% CI");
 
-  ck_assert_int_eq(sb_compare_interval(&c, "x", 1, 2, 0, 1.5), SB_SUCCESS);
+  /* each rule reads the field it names */
+  ck_assert_int_eq(sb_compare(&c, "x", SB_RULE_COVER, 1, 2, 0, 1.5, 0.95,
+                              NAN), SB_SUCCESS);
   ck_assert_int_eq(c.verdict, SB_FAIL);
-  ck_assert_int_eq(sb_compare_interval(&c, "x", 1, NAN, 0, 1.5), SB_SUCCESS);
+  sb_compare(&c, "x", SB_RULE_COVER, 1, NAN, 0, 1.5, 0.95, NAN);
   ck_assert_int_eq(c.verdict, SB_FAIL);
-  ck_assert_int_eq(sb_compare_interval(&c, "x", 1, 1, 2, 0), SB_EINVAL);
+  sb_compare(&c, "x", SB_RULE_ACCEPT, 1, 2, 0, 1.5, 0.999, 0.3);
+  ck_assert_int_eq(c.verdict, SB_PASS);  /* estimate 1 in [0, 1.5] */
+  sb_compare(&c, "x", SB_RULE_ACCEPT, 2, 1, 0, 1.5, 0.999, 0.3);
   ck_assert_int_eq(c.verdict, SB_FAIL);
-
-  ck_assert_int_eq(sb_compare_pvalue(&c, "V11/bm_fpt/ks", 0.0123, NAN, NAN,
-                                     NAN, 0.2, 0.01), SB_SUCCESS);
+  sb_comparison_rule_text(&c, buf, sizeof buf);
+  ck_assert_str_eq(buf, "est in 99.9% acceptance");
+  sb_compare(&c, "x", SB_RULE_BAND, 1, 1 + 1e-13, 1 - 1e-12, 1 + 1e-12, NAN,
+             NAN);
   ck_assert_int_eq(c.verdict, SB_PASS);
+  sb_compare(&c, "x", SB_RULE_ABOVE, 3, 1, 1.2, 5, 0.95, NAN);
+  ck_assert_int_eq(c.verdict, SB_PASS);
+  sb_compare(&c, "x", SB_RULE_ABOVE, 3, 1, 0.9, 5, 0.95, NAN);
+  ck_assert_int_eq(c.verdict, SB_FAIL);
+  sb_compare(&c, "x", SB_RULE_BELOW, 0.5, 1, 0.2, 0.8, 0.95, NAN);
+  ck_assert_int_eq(c.verdict, SB_PASS);
+  sb_comparison_rule_text(&c, buf, sizeof buf);
+  ck_assert_str_eq(buf, "95% CI below ref");
+  sb_compare(&c, "x", SB_RULE_INFO, 100, 1, NAN, NAN, NAN, NAN);
+  ck_assert_int_eq(c.verdict, SB_INFO);
   sb_comparison_csv(&c, buf, sizeof buf);
-  ck_assert_str_eq(buf, "V11/bm_fpt/ks,0.0123,nan,nan,nan,0.2,pass");
-  ck_assert_int_eq(sb_compare_pvalue(&c, "a", 0, 0, 0, 0, 0.001, 0.01),
-                   SB_SUCCESS);
-  ck_assert_int_eq(c.verdict, SB_FAIL);
-  ck_assert_int_eq(sb_compare_pvalue(&c, "a", 0, 0, 0, 0, NAN, 0.01),
+  ck_assert_str_eq(buf, "x,100,1,nan,nan,nan,info,nan,info");
+
+  /* bad arguments: record filled, verdict FAIL */
+  ck_assert_int_eq(sb_compare(&c, "x", SB_RULE_COVER, 1, 1, 2, 0, 0.95, NAN),
                    SB_EINVAL);
   ck_assert_int_eq(c.verdict, SB_FAIL);
-  ck_assert_int_eq(sb_compare_pvalue(&c, "a", 0, 0, 0, 0, 0.5, 1.0),
+  ck_assert_int_eq(sb_compare(&c, "x", SB_RULE_COVER, 1, 1, 0, 2, 1.0, NAN),
                    SB_EINVAL);
-  ck_assert_int_eq(sb_compare_pvalue(&c, NULL, 0, 0, 0, 0, 0.5, 0.1),
+  ck_assert_int_eq(sb_compare(&c, "x", SB_RULE_COVER, 1, 1, 0, 2, 0.95, 1.5),
                    SB_EINVAL);
+  ck_assert_int_eq(sb_compare(&c, "x", (sb_rule)42, 1, 1, 0, 2, 0.95, NAN),
+                   SB_EINVAL);
+  ck_assert_int_eq(c.verdict, SB_FAIL);
+  ck_assert_int_eq(sb_compare(&c, NULL, SB_RULE_COVER, 1, 1, 0, 2, 0.95,
+                              NAN), SB_EINVAL);
+  ck_assert_int_eq(sb_compare(NULL, "x", SB_RULE_COVER, 1, 1, 0, 2, 0.95,
+                              NAN), SB_EINVAL);
 
   /* shortest round-trip numbers, infinities, quoting */
-  sb_compare_interval(&c, "V1/a,b \"q\"", 0.1 + 0.2, INFINITY, -INFINITY,
-                      INFINITY);
+  sb_compare(&c, "V1/a,b \"q\"", SB_RULE_COVER, 0.1 + 0.2, INFINITY,
+             -INFINITY, INFINITY, 0.95, NAN);
   sb_comparison_csv(&c, buf, sizeof buf);
   ck_assert_str_eq(buf, "\"V1/a,b \"\"q\"\"\",0.30000000000000004,inf,"
-                        "-inf,inf,nan,pass");
+                        "-inf,inf,nan,cover,0.95,pass");
   ck_assert(strtod("0.30000000000000004", NULL) == 0.1 + 0.2);
 
   /* truncated name, short buffer, NULL record */
   char longname[200];
   memset(longname, 'v', sizeof longname - 1);
   longname[199] = '\0';
-  ck_assert_int_eq(sb_compare_interval(&c, longname, 1, 1, 0, 2), SB_ELOSS);
+  ck_assert_int_eq(sb_compare(&c, longname, SB_RULE_COVER, 1, 1, 0, 2, 0.95,
+                              NAN), SB_ELOSS);
   ck_assert_uint_eq(strlen(c.name), sizeof c.name - 1);
   ck_assert_int_eq(c.verdict, SB_PASS);
   char small[10];
@@ -800,6 +826,8 @@ START_TEST(test_comparison)
   ck_assert_int_eq(sb_comparison_csv(&c, NULL, 0), n);
   ck_assert_int_eq(sb_comparison_csv(NULL, buf, sizeof buf), -1);
   ck_assert_int_eq(sb_last_status(), SB_EINVAL);
+  ck_assert_str_eq(sb_rule_name(SB_RULE_BELOW), "below");
+  ck_assert_str_eq(sb_verdict_name(SB_INFO), "info");
 }
 END_TEST
 
@@ -925,24 +953,116 @@ START_TEST(test_compare_poisson)
 {
   sb_comparison c;
   /* 100 events, scale 0.01: estimate 1, reference 1 -> pass, interval =
-   * 0.01 * Garwood(100) */
+   * 0.01 * Garwood(100) at 1 - alpha */
   ck_assert_int_eq(sb_compare_poisson(&c, "V0/x", 100, 0.01, 1.0, 1e-3),
                    SB_SUCCESS);
   double lo, hi;
-  sb_poisson_ci(100, 0.95, &lo, &hi);
+  sb_poisson_ci(100, 0.999, &lo, &hi);
   ck_assert_rel(c.estimate, 1.0, 1e-15);
   ck_assert_rel(c.ci_low, 0.01 * lo, 1e-15);
   ck_assert_rel(c.ci_high, 0.01 * hi, 1e-15);
   ck_assert_int_eq(c.verdict, SB_PASS);
-  /* reference outside the 95% interval but p >= 1e-3: still a pass (the
-   * verdict allows for many comparisons); far outside: fail */
-  ck_assert_int_eq(sb_compare_poisson(&c, "V0/x", 100, 0.01, 1.25, 1e-3),
-                   SB_SUCCESS);
-  ck_assert(c.ci_high < 1.25 && c.p_value > 1e-3 && c.verdict == SB_PASS);
-  sb_compare_poisson(&c, "V0/x", 100, 0.01, 1.6, 1e-3);
-  ck_assert(c.p_value < 1e-3 && c.verdict == SB_FAIL);
+  ck_assert_int_eq(c.rule, SB_RULE_COVER);
+  ck_assert_rel(c.level, 0.999, 1e-15);
+  /* The printed interval is the one the test inverts: just inside either
+   * end passes with p >= alpha, just outside fails with p < alpha. */
+  for (int side = 0; side < 2; side++) {
+    double edge = side ? c.ci_high : c.ci_low;
+    sb_comparison in, out;
+    double f = side ? 1.0 : -1.0;
+    sb_compare_poisson(&in, "V0/x", 100, 0.01, edge * (1 - f * 1e-9), 1e-3);
+    sb_compare_poisson(&out, "V0/x", 100, 0.01, edge * (1 + f * 1e-9), 1e-3);
+    ck_assert_msg(in.verdict == SB_PASS && in.p_value >= 1e-3 * (1 - 1e-6),
+                  "side %d inside: p = %g", side, in.p_value);
+    ck_assert_msg(out.verdict == SB_FAIL && out.p_value <= 1e-3 * (1 + 1e-6),
+                  "side %d outside: p = %g", side, out.p_value);
+  }
   ck_assert_int_eq(sb_compare_poisson(&c, "V0/x", 10, -1.0, 1.0, 1e-3),
                    SB_EINVAL);
+  ck_assert_int_eq(c.verdict, SB_FAIL);
+}
+END_TEST
+
+/* Binomial p-value against direct summation of the pmf (lgamma), and the
+ * binomial record's interval/test consistency. */
+static double binom_tail_direct(unsigned long k, unsigned long n, double p,
+                                int upper)
+{
+  double sum = 0.0;
+  for (long j = (long)k; j >= 0 && j <= (long)n; j += upper ? 1 : -1)
+    sum += exp(lgamma((double)n + 1) - lgamma((double)j + 1) -
+               lgamma((double)(n - (unsigned long)j) + 1) +
+               (double)j * log(p) + (double)(n - (unsigned long)j) *
+               log1p(-p));
+  return sum;
+}
+
+START_TEST(test_binomial_pvalue)
+{
+  const unsigned long ns[] = {1, 2, 7, 50, 400, 3000};
+  const double ps[] = {0.001, 0.1, 0.37, 0.5, 0.9, 0.999};
+  for (size_t a = 0; a < sizeof ns / sizeof ns[0]; a++)
+    for (size_t b = 0; b < sizeof ps / sizeof ps[0]; b++) {
+      unsigned long n = ns[a];
+      const unsigned long ks[] = {0, 1, n / 3, n / 2, n > 1 ? n - 1 : 0, n};
+      for (size_t q = 0; q < 6; q++) {
+        unsigned long k = ks[q];
+        double le = binom_tail_direct(k, n, ps[b], 0);
+        double ge = binom_tail_direct(k, n, ps[b], 1);
+        double want = fmin(1.0, 2.0 * fmin(le, ge));
+        double got = sb_binomial_pvalue(k, n, ps[b]);
+        if (want < 1e-30) /* documented: far tails may come out as 0 */
+          ck_assert_msg(got <= 1e-30, "k=%lu n=%lu p=%g: %g", k, n, ps[b],
+                        got);
+        else
+          ck_assert_rel(got, want, 1e-10);
+      }
+    }
+  ck_assert(sb_binomial_pvalue(0, 5, 0.0) == 1.0);
+  ck_assert(sb_binomial_pvalue(1, 5, 0.0) == 0.0);
+  ck_assert(sb_binomial_pvalue(5, 5, 1.0) == 1.0);
+  ck_assert(isnan(sb_binomial_pvalue(6, 5, 0.5)));
+  ck_assert(isnan(sb_binomial_pvalue(0, 0, 0.5)));
+  ck_assert(isnan(sb_binomial_pvalue(1, 5, 1.5)));
+
+  sb_comparison c;
+  ck_assert_int_eq(sb_compare_binomial(&c, "V0/psi", 30, 100, 0.3, 1e-3),
+                   SB_SUCCESS);
+  ck_assert_int_eq(c.verdict, SB_PASS);
+  ck_assert_rel(c.estimate, 0.3, 1e-15);
+  for (int side = 0; side < 2; side++) {
+    double edge = side ? c.ci_high : c.ci_low, f = side ? 1.0 : -1.0;
+    sb_comparison in, out;
+    sb_compare_binomial(&in, "V0/psi", 30, 100, edge * (1 - f * 1e-9), 1e-3);
+    sb_compare_binomial(&out, "V0/psi", 30, 100, edge * (1 + f * 1e-9),
+                        1e-3);
+    ck_assert(in.verdict == SB_PASS && out.verdict == SB_FAIL);
+    ck_assert_rel(in.p_value, 1e-3, 1e-6);
+  }
+  ck_assert_int_eq(sb_compare_binomial(&c, "V0/psi", 3, 2, 0.3, 1e-3),
+                   SB_EINVAL);
+}
+END_TEST
+
+START_TEST(test_compare_mean)
+{
+  /* t test of 5 replicas: mean 2, s = sqrt(2.5); t_{0.9995}(4) =
+   * 8.61030158137927509 (mpmath root of the t_4 tail) */
+  const double x[5] = {0, 1, 2, 3, 4};
+  sb_comparison c;
+  ck_assert_int_eq(sb_compare_mean(&c, "V0/m", x, 5, 2.0, 1e-3), SB_SUCCESS);
+  ck_assert_int_eq(c.verdict, SB_PASS);
+  ck_assert_rel(c.p_value, 1.0, 1e-14);
+  ck_assert_rel(c.ci_high - 2.0, 8.61030158137927509 * sqrt(2.5 / 5.0), 1e-10);
+  /* reference at the interval's end: p = alpha */
+  sb_compare_mean(&c, "V0/m", x, 5, c.ci_high, 1e-3);
+  ck_assert_rel(c.p_value, 1e-3, 1e-8);
+  /* reference 5: t = 3 sqrt(2), two-sided p = 0.0132355995636826895
+   * (mpmath quadrature of the t_4 density, 30 digits) */
+  sb_compare_mean(&c, "V0/m", x, 5, 5.0, 1e-3);
+  ck_assert_rel(c.p_value, 0.0132355995636826895, 1e-10);
+  ck_assert_int_eq(c.verdict, SB_PASS);
+  ck_assert_int_eq(sb_compare_mean(&c, "V0/m", x, 1, 5.0, 1e-3), SB_EINVAL);
 }
 END_TEST
 
@@ -954,6 +1074,8 @@ static Suite *stats_suite(void)
   tcase_add_test(tc, test_poisson_published);
   tcase_add_test(tc, test_poisson_pvalue);
   tcase_add_test(tc, test_compare_poisson);
+  tcase_add_test(tc, test_binomial_pvalue);
+  tcase_add_test(tc, test_compare_mean);
   tcase_add_test(tc, test_poisson_reference);
   tcase_add_test(tc, test_poisson_defining);
   tcase_add_test(tc, test_poisson_coverage);

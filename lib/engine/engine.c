@@ -96,11 +96,19 @@ sb_engine *sb_engine_alloc(const sb_engine_params *p)
   e->cell_list = calloc(c, sizeof(size_t));
   e->order = calloc(c, sizeof(size_t));
   e->key = calloc(c, sizeof(double));
+  e->sub_p = calloc(3 * c, sizeof(double));
+  e->sub_v = calloc(3 * c, sizeof(double));
+  e->sub_t = calloc(c, sizeof(double));
+  e->ver = calloc(c, sizeof(uint32_t));
+  e->far = calloc(c, sizeof(size_t));
+  e->isfar = calloc(c, 1);
   e->rng = gsl_rng_alloc(p->rng_type ? p->rng_type : gsl_rng_mt19937);
   if (!e->x || !e->u || !e->x0 || !e->u0 || !e->disp || !e->us ||
       !e->radius || !e->mass || !e->species || !e->family || !e->id ||
       !e->hit || !e->dn || !e->xs || !e->cell_of || !e->cell_list || !e->order ||
-      !e->key || !e->rng) {
+      !e->key || !e->sub_p || !e->sub_v || !e->sub_t || !e->ver ||
+      !e->far || !e->isfar ||
+      !e->rng) {
     sb_engine_free(e);
     sbi_error(SB_ENOMEM, __func__, "out of memory (capacity %zu)", c);
     return NULL;
@@ -140,6 +148,12 @@ void sb_engine_free(sb_engine *e)
   free(e->xs);
   free(e->order);
   free(e->key);
+  free(e->sub_p);
+  free(e->sub_v);
+  free(e->sub_t);
+  free(e->ver);
+  free(e->far);
+  free(e->isfar);
   if (e->rng)
     gsl_rng_free(e->rng);
   free(e);
@@ -555,6 +569,14 @@ int sb_engine_set_detect(sb_engine *e, sb_engine_detect d)
   e->par.detect = d;
   e->detect_fn = NULL;
   e->detect_reach = 0.0;
+  return SB_SUCCESS;
+}
+
+int sb_engine_set_redetect(sb_engine *e, int on)
+{
+  if (!e)
+    return sbi_error(SB_EINVAL, __func__, "engine is NULL");
+  e->redetect = on != 0;
   return SB_SUCCESS;
 }
 

@@ -4,7 +4,7 @@
  * the bytes of gsl_rng_fwrite).
  *
  * Format (native binary; portable only between builds with the same
- * type sizes and endianness): the 8-byte magic "SBENGCK1", then the fields
+ * type sizes and endianness): the 8-byte magic "SBENGCK2", then the fields
  * in the order written by sb_engine_checkpoint_save.  Callbacks cannot be
  * saved: a custom detector / outcome / fluid callback is replaced on load
  * by the defaults (ballistic, elastic, fluid at rest); set them again.
@@ -17,7 +17,7 @@
 #include "common/internal.h"
 #include "engine_internal.h"
 
-static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '1'};
+static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '2'};
 
 #define W(ptr, size, count)                                 \
   do {                                                      \
@@ -52,6 +52,8 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
   W(&e->ncoll, sizeof e->ncoll, 1);
   W(&e->ncand, sizeof e->ncand, 1);
   W(&e->dropped, sizeof e->dropped, 1);
+  W(&e->nredetect, sizeof e->nredetect, 1);
+  W(&e->redetect, sizeof e->redetect, 1);
   W(e->fam, sizeof e->fam, 1);
   W(&e->nseries, sizeof e->nseries, 1);
   W(e->series, sizeof *e->series, e->nseries);
@@ -151,6 +153,8 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   R(&e->ncoll, sizeof e->ncoll, 1);
   R(&e->ncand, sizeof e->ncand, 1);
   R(&e->dropped, sizeof e->dropped, 1);
+  R(&e->nredetect, sizeof e->nredetect, 1);
+  R(&e->redetect, sizeof e->redetect, 1);
   R(e->fam, sizeof e->fam, 1);
   {
     size_t ns;

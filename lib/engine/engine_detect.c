@@ -35,6 +35,7 @@ void sbi_engine_make_pair(const sb_engine *e, size_t i, size_t j,
   }
   p->sigma = e->radius[i] + e->radius[j];
   p->dt = e->par.dt;
+  p->t0 = e->t;
 }
 
 static void quad(const sb_engine_pair *p, double *a, double *b, double *c)
@@ -109,17 +110,18 @@ static int overlapping(const sb_engine_pair *p)
   return d2 < p->sigma * p->sigma * (1.0 - SB_ENGINE_TOUCH);
 }
 
-static int ev_cmp(const void *a, const void *b)
+/* ------------------------------------------------------- event heap */
+
+static int ev_less(const sbi_event *p, const sbi_event *q)
 {
-  const sbi_event *p = a, *q = b;
   if (p->s != q->s)
-    return p->s < q->s ? -1 : 1;
+    return p->s < q->s;
   if (p->p.i != q->p.i)
-    return p->p.i < q->p.i ? -1 : 1;
-  return (p->p.j > q->p.j) - (p->p.j < q->p.j);
+    return p->p.i < q->p.i;
+  return p->p.j < q->p.j;
 }
 
-static int push_event(sb_engine *e, const sb_engine_pair *p, double s)
+static int heap_push(sb_engine *e, const sbi_event *ev)
 {
   if (e->nev == e->capev) {
     size_t nc = e->capev ? 2 * e->capev : 64;
@@ -129,57 +131,284 @@ static int push_event(sb_engine *e, const sb_engine_pair *p, double s)
     e->ev = ne;
     e->capev = nc;
   }
-  e->ev[e->nev].s = s;
-  e->ev[e->nev].p = *p;
-  e->nev++;
+  size_t c = e->nev++;
+  e->ev[c] = *ev;
+  while (c > 0) {
+    size_t up = (c - 1) / 2;
+    if (!ev_less(&e->ev[c], &e->ev[up]))
+      break;
+    sbi_event t = e->ev[c];
+    e->ev[c] = e->ev[up];
+    e->ev[up] = t;
+    c = up;
+  }
   return SB_SUCCESS;
+}
+
+static sbi_event heap_pop(sb_engine *e)
+{
+  sbi_event top = e->ev[0];
+  e->ev[0] = e->ev[--e->nev];
+  size_t c = 0;
+  for (;;) {
+    size_t l = 2 * c + 1, r = l + 1, m = c;
+    if (l < e->nev && ev_less(&e->ev[l], &e->ev[m]))
+      m = l;
+    if (r < e->nev && ev_less(&e->ev[r], &e->ev[m]))
+      m = r;
+    if (m == c)
+      break;
+    sbi_event t = e->ev[c];
+    e->ev[c] = e->ev[m];
+    e->ev[m] = t;
+    c = m;
+  }
+  return top;
+}
+
+/* ------------------------------------------------------- detection */
+
+/* Run the engine's detector on pair record p (interval [t, 1] of the
+ * step, t = the record's start fraction); push an event if it hits. */
+static int detect_push(sb_engine *e, const sb_engine_pair *p, double t)
+{
+  const sb_engine_detect det = e->par.detect;
+  const int count_only = e->par.outcome == SB_OUTCOME_COUNT;
+  double s = 0.0;
+  int hit;
+  if (count_only && det != SB_DETECT_CUSTOM && overlapping(p))
+    return SB_SUCCESS;  /* pass-through: an overlap is not a new contact */
+  if (det == SB_DETECT_BALLISTIC)
+    hit = sb_engine_detect_ballistic(p, &s);
+  else if (det == SB_DETECT_OVERLAP)
+    hit = sb_engine_detect_overlap(p, &s);
+  else
+    hit = e->detect_fn(e, p, e->rng, e->detect_ctx, &s);
+  if (hit < 0)
+    return sbi_error(SB_EINVAL, "sb_engine_step",
+                     "detector failed on pair (%zu, %zu)", p->i, p->j);
+  if (!hit)
+    return SB_SUCCESS;
+  if (!(s >= 0.0 && s <= 1.0))
+    return sbi_error(SB_EINVAL, "sb_engine_step",
+                     "detector returned s = %g outside [0, 1]", s);
+  sbi_event ev;
+  ev.p = *p;
+  ev.s_rec = s;
+  ev.s = t + s * (1.0 - t);
+  ev.vi = e->ver[p->i];
+  ev.vj = e->ver[p->j];
+  return heap_push(e, &ev);
+}
+
+/* Position of particle k at step fraction s on its current path piece
+ * (unwrapped, in the frame of x0_k). */
+static void path_at(const sb_engine *e, size_t k, double s, double x[3])
+{
+  for (int c = 0; c < 3; c++)
+    x[c] = e->sub_p[3 * k + c] + (s - e->sub_t[k]) * e->sub_v[3 * k + c];
+}
+
+/* Pair record of (a, b) over the rest [t, 1] of the step, from their
+ * current path pieces (i = min(a, b)). */
+static void make_subpair(const sb_engine *e, size_t a, size_t b, double t,
+                         sb_engine_pair *p)
+{
+  size_t i = a < b ? a : b, j = a < b ? b : a;
+  double xi[3], xj[3];
+  path_at(e, i, t, xi);
+  path_at(e, j, t, xj);
+  const double f = 1.0 - t;
+  p->i = i;
+  p->j = j;
+  for (int k = 0; k < 3; k++) {
+    p->dx0[k] = k < e->par.dim ? sbi_minimg(xi[k] - xj[k], e->par.L[k])
+                               : 0.0;
+    p->dd[k] = (e->sub_v[3 * i + k] - e->sub_v[3 * j + k]) * f;
+  }
+  p->sigma = e->radius[i] + e->radius[j];
+  p->dt = e->par.dt * f;
+  p->t0 = e->t + t * e->par.dt;
+}
+
+typedef struct {
+  double t;     /* step fraction of the collision that changed a */
+  size_t skip;  /* partner already re-examined from the other side */
+} redetect_ctx;
+
+static int redetect_one(sb_engine *e, size_t a, size_t k, void *vctx)
+{
+  const redetect_ctx *c = vctx;
+  if (e->hit[k] == 2 || k == c->skip)
+    return SB_SUCCESS;  /* removed in this step, or done */
+  sb_engine_pair p;
+  make_subpair(e, a, k, c->t, &p);
+  e->nredetect++;
+  return detect_push(e, &p, c->t);
+}
+
+/* Snapshot of a particle's end state, to see whether an outcome changed
+ * it. */
+typedef struct {
+  double x[3], u[3];
+  size_t sp;
+} pstate;
+
+static void snap(const sb_engine *e, size_t k, pstate *q)
+{
+  memcpy(q->x, &e->x[3 * k], sizeof q->x);
+  memcpy(q->u, &e->u[3 * k], sizeof q->u);
+  q->sp = e->species[k];
+}
+
+static int changed(const sb_engine *e, size_t k, const pstate *q)
+{
+  return memcmp(q->x, &e->x[3 * k], sizeof q->x) != 0 ||
+         memcmp(q->u, &e->u[3 * k], sizeof q->u) != 0 ||
+         q->sp != e->species[k];
+}
+
+/* Particle k's end changed by an outcome at step fraction t: a new path
+ * piece from `from` (its position at t after the outcome) to its new end;
+ * returns the new bound on the distance of its path from x0_k plus its
+ * radius. */
+static double new_piece(sb_engine *e, size_t k, double t,
+                        const double *from)
+{
+  const double f = 1.0 - t;
+  double len2 = 0.0, r0 = 0.0, r1 = 0.0;
+  for (int c = 0; c < 3; c++) {
+    /* positions in the frame of x0_k (outcomes keep the end unwrapped; a
+     * reinsertion or a declared position may be anywhere in the box) */
+    double xe = e->x0[3 * k + c], xt = e->x0[3 * k + c];
+    if (c < e->par.dim) {
+      xe += sbi_minimg(e->x[3 * k + c] - e->x0[3 * k + c], e->par.L[c]);
+      xt += sbi_minimg(from[c] - e->x0[3 * k + c], e->par.L[c]);
+    }
+    e->sub_v[3 * k + c] = f > 0.0 ? (xe - xt) / f : 0.0;
+    e->sub_p[3 * k + c] = xt;
+    len2 += (xe - xt) * (xe - xt);
+    r0 += (xt - e->x0[3 * k + c]) * (xt - e->x0[3 * k + c]);
+    r1 += (xe - e->x0[3 * k + c]) * (xe - e->x0[3 * k + c]);
+  }
+  e->sub_t[k] = t;
+  e->ver[k]++;
+  /* still inside the region the search covered around x0_k?  then widen
+   * its reach (others' searches see it from the cells); else it goes to
+   * the far list, checked against its piece directly */
+  double r = sqrt(r0 > r1 ? r0 : r1);
+  if (!e->isfar[k]) {
+    if (e->radius[k] + r <= e->grid.ext_max || !e->grid.valid) {
+      if (r > e->dn[k])
+        e->dn[k] = r;
+    } else {
+      e->isfar[k] = 1;
+      e->far[e->nfar++] = k;
+    }
+  }
+  return e->radius[k] + sqrt(len2);  /* from the piece's start */
+}
+
+/* Where particle k is at step fraction t after the outcome: the position
+ * the outcome declared (sb_engine_outcome_path), else for the elastic
+ * outcome its old path at t (a bounce changes the velocity, not the
+ * place), else its new end (a jump: reinsertion, or a custom outcome that
+ * declared nothing). */
+static void position_after(const sb_engine *e, size_t k, double t,
+                           double x[3])
+{
+  for (int q = 0; q < e->ndeclared; q++)
+    if (e->declared[q].k == k) {
+      memcpy(x, e->declared[q].x, 3 * sizeof(double));
+      return;
+    }
+  if (e->par.outcome == SB_OUTCOME_ELASTIC) {
+    path_at(e, k, t, x);
+    return;
+  }
+  memcpy(x, &e->x[3 * k], 3 * sizeof(double));
 }
 
 int sbi_engine_detect_and_process(sb_engine *e)
 {
   e->nev = 0;
   e->ncand += e->npairs;
-  const sb_engine_detect det = e->par.detect;
-  const int count_only = e->par.outcome == SB_OUTCOME_COUNT;
+  const size_t n = e->n;
+  for (size_t q = 0; q < e->nfar; q++)
+    e->isfar[e->far[q]] = 0;
+  e->nfar = 0;
+  for (size_t k = 0; k < n; k++) {
+    memcpy(&e->sub_p[3 * k], &e->x0[3 * k], 3 * sizeof(double));
+    memcpy(&e->sub_v[3 * k], &e->disp[3 * k], 3 * sizeof(double));
+    e->sub_t[k] = 0.0;
+    e->ver[k] = 0;
+  }
   for (size_t q = 0; q < e->npairs; q++) {
     sb_engine_pair p;
     sbi_engine_make_pair(e, e->pairs[2 * q], e->pairs[2 * q + 1], &p);
-    double s = 0.0;
-    int hit;
-    if (count_only && det != SB_DETECT_CUSTOM && overlapping(&p))
-      continue;  /* pass-through: an overlap is not a new contact */
-    if (det == SB_DETECT_BALLISTIC)
-      hit = sb_engine_detect_ballistic(&p, &s);
-    else if (det == SB_DETECT_OVERLAP)
-      hit = sb_engine_detect_overlap(&p, &s);
-    else
-      hit = e->detect_fn(e, &p, e->rng, e->detect_ctx, &s);
-    if (hit < 0)
-      return sbi_error(SB_EINVAL, "sb_engine_step",
-                       "detector failed on pair (%zu, %zu)", p.i, p.j);
-    if (hit) {
-      if (!(s >= 0.0 && s <= 1.0))
-        return sbi_error(SB_EINVAL, "sb_engine_step",
-                         "detector returned s = %g outside [0, 1]", s);
-      int st = push_event(e, &p, s);
+    int st = detect_push(e, &p, 0.0);
+    if (st)
+      return st;
+  }
+  const int redetect = e->par.detect != SB_DETECT_CUSTOM || e->redetect;
+  /* a dense inelastic system can chatter (inelastic collapse): bound the
+   * work of one step */
+  uint64_t budget = 1000 * (uint64_t)(n + 1) + 16 * (uint64_t)e->npairs,
+           used = 0;
+  /* earliest first; an event whose particle changed its path since it was
+   * detected is stale: with re-detection its pair was examined again on
+   * the new path, otherwise it is dropped (and counted) */
+  while (e->nev > 0) {
+    sbi_event ev = heap_pop(e);
+    const sb_engine_pair *p = &ev.p;
+    const size_t i = p->i, j = p->j;
+    if (e->hit[i] == 2 || e->hit[j] == 2)
+      continue;  /* a partner was removed (merged) earlier in the step */
+    if (ev.vi != e->ver[i] || ev.vj != e->ver[j]) {
+      if (!redetect)
+        e->dropped++;
+      continue;
+    }
+    if (++used > budget)
+      return sbi_error(SB_EMAXITER, "sb_engine_step",
+                       "more than %llu collisions in one step (inelastic "
+                       "collapse, or a step far too long for the density)",
+                       (unsigned long long)budget);
+    pstate si, sj;
+    snap(e, i, &si);
+    snap(e, j, &sj);
+    e->ndeclared = 0;
+    e->in_outcome_t = ev.s;
+    e->hit[i] = e->hit[i] ? e->hit[i] : 1;
+    e->hit[j] = e->hit[j] ? e->hit[j] : 1;
+    sbi_engine_count_collision(e, i, j);
+    int st = sbi_engine_apply_outcome(e, p, ev.s_rec);
+    if (st)
+      return st;
+    const size_t who[2] = {i, j};
+    const int ch[2] = {e->hit[i] != 2 && changed(e, i, &si),
+                       e->hit[j] != 2 && changed(e, j, &sj)};
+    double ext[2] = {0.0, 0.0};
+    for (int q = 0; q < 2; q++) {
+      if (e->hit[who[q]] == 2)
+        e->ver[who[q]]++;  /* removed: its events are stale */
+      else if (ch[q]) {
+        double from[3];
+        position_after(e, who[q], ev.s, from);
+        ext[q] = new_piece(e, who[q], ev.s, from);
+      }
+    }
+    if (!redetect)
+      continue;
+    for (int q = 0; q < 2; q++) {
+      if (!ch[q])
+        continue;
+      redetect_ctx rc = {ev.s, (q == 1 && ch[0]) ? who[0] : (size_t)-1};
+      st = sbi_engine_partners(e, who[q], &e->sub_p[3 * who[q]], ext[q],
+                               redetect_one, &rc);
       if (st)
         return st;
     }
-  }
-  if (e->nev > 1)
-    qsort(e->ev, e->nev, sizeof *e->ev, ev_cmp);
-  /* earliest first; one collision per particle per step */
-  for (size_t k = 0; k < e->nev; k++) {
-    const sb_engine_pair *p = &e->ev[k].p;
-    if (e->hit[p->i] || e->hit[p->j]) {
-      e->dropped++;
-      continue;
-    }
-    e->hit[p->i] = e->hit[p->j] = 1;
-    sbi_engine_count_collision(e, p->i, p->j);
-    int st = sbi_engine_apply_outcome(e, p, e->ev[k].s);
-    if (st)
-      return st;
   }
   return SB_SUCCESS;
 }

@@ -9,11 +9,30 @@
 #include <smolbridge/engine.h>
 #include <smolbridge/langevin.h>
 
-/* A detected collision waiting to be processed. */
+/* A detected collision waiting to be processed: the pair record the
+ * detector saw (it may cover the rest of the step after an earlier
+ * collision), the contact fraction s_rec of that record's interval, the
+ * contact as a fraction of the whole step (the processing order), and
+ * the versions of both particles' paths when it was detected (an event
+ * whose particle has changed its path since is stale). */
 typedef struct {
-  double s;            /* contact fraction of the step */
+  double s;            /* contact fraction of the whole step */
+  double s_rec;        /* ... of the record's interval p.dt */
   sb_engine_pair p;
+  uint32_t vi, vj;
 } sbi_event;
+
+/* The linked-cell grid of the last neighbour search (for re-detection
+ * after a collision inside the step). */
+typedef struct {
+  int valid;
+  int nc[3];
+  size_t stride[3];
+  double inv[3];
+  double cut;        /* cut-off the grid was built for, m */
+  double reach;      /* detector reach of the search, m */
+  double ext_max;    /* largest r + |disp| it covers, m */
+} sbi_grid;
 
 struct sb_engine {
   sb_engine_params par;
@@ -30,7 +49,28 @@ struct sb_engine {
   size_t *species;           /* cap: index into spec[] */
   int *family;               /* cap */
   uint64_t *id;              /* cap */
-  unsigned char *hit;        /* cap: collided in this step */
+  unsigned char *hit;        /* cap: collided in this step (2: removed) */
+
+  /* paths inside the step: particle k is at sub_p + (s - sub_t) sub_v for
+   * s >= sub_t (s the fraction of the step); an outcome that changes a
+   * particle's end starts a new straight piece at the contact and bumps
+   * its version */
+  double *sub_p, *sub_v, *sub_t; /* 3 cap, 3 cap, cap */
+  uint32_t *ver;             /* cap */
+  size_t *far;               /* cap: particles whose new piece left the
+                                region of the search (engine_neigh.c) */
+  size_t nfar;
+  unsigned char *isfar;      /* cap */
+  int redetect;              /* re-detect after an outcome (built-in
+                                detectors always; custom ones on request) */
+  uint64_t nredetect;        /* re-detections since the counter reset */
+  struct {
+    size_t k;
+    double x[3];
+  } declared[2];             /* positions at the collision declared by the
+                                running outcome (sb_engine_outcome_path) */
+  int ndeclared;
+  double in_outcome_t;       /* step fraction of the running outcome */
 
   /* species and their step coefficients */
   size_t nspec, capspec;
@@ -67,6 +107,7 @@ struct sb_engine {
   size_t nev, capev;
   size_t *cell_of, *cell_start, *cell_list;
   size_t capcells;
+  sbi_grid grid;             /* the cells of this step's search */
   double *dn;                /* cap: |disp_i| (cells, brute) */
   double *xs;                /* 4 cap: cells: x0 and r + |disp| in cell
                                 order (contiguous inner loop) */
@@ -121,6 +162,13 @@ int sbi_engine_find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
                           const double *disp, double reach);
 int sbi_engine_sweep(sb_engine *e, const double *x0, const double *disp,
                      double reach);
+/* Partners of particle a for re-detection after a collision inside the
+ * step (engine_neigh.c): fn(e, a, k, ctx) for every k whose path can come
+ * within reach of a's new path piece, which stays within ext_a of c. */
+int sbi_engine_partners(sb_engine *e, size_t a, const double c[3],
+                        double ext_a,
+                        int (*fn)(sb_engine *, size_t, size_t, void *),
+                        void *ctx);
 /* Largest |disp_i| (Euclidean, over the active dimensions). */
 double sbi_engine_max_disp(const sb_engine *e, const double *disp);
 

@@ -175,6 +175,16 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach)
   for (size_t c = ncell; c > 0; c--)
     start[c] = start[c - 1];
   start[0] = 0;
+  /* keep the grid for re-detection after collisions in this step */
+  sbi_grid *g = &e->grid;
+  g->valid = 1;
+  for (int k = 0; k < 3; k++) {
+    g->nc[k] = nc[k];
+    g->stride[k] = stride[k];
+    g->inv[k] = inv[k];
+  }
+  g->cut = cut;
+  g->reach = reach;
 
   int own_wrap = 0;  /* a direction with a single cell: minimum image */
   for (int k = 0; k < dim; k++)
@@ -268,12 +278,14 @@ int sbi_engine_find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
                           const double *disp, double reach)
 {
   e->npairs = 0;
+  e->grid.valid = 0;
   if (e->n < 2)
     return SB_SUCCESS;
   double cut = 0.0;
   int st = cutoff(e, disp, reach, &cut, "sb_engine_step");
   if (st)
     return st;
+  e->grid.ext_max = 0.5 * (cut - reach);  /* r_max + max |disp| */
   switch (m) {
   case SB_NEIGH_CELLS:
     return cells(e, x0, cut, reach);
@@ -319,4 +331,97 @@ int sb_engine_pair_can_meet(const sb_engine *e, const double *disp,
   }
   double lim = e->radius[i] + e->radius[j] + reach;
   return m2 <= lim * lim;
+}
+
+/* Partners of particle a for re-detection, whose new path piece stays
+ * within ext_a (its radius included) of the point c (same frame as x0):
+ * every k != a whose path can come within reach of it.  Particles that
+ * kept a piece near their start (within the r + |disp| the search was
+ * built for, e->dn updated) are found from the cells of this step's
+ * search around c when they cover ext_a (else by a scan of all); the few
+ * whose piece left that region (reinsertions, long bounces) are in
+ * e->far and are checked against their current piece.  Calls
+ * fn(e, a, k, ctx) for each candidate (possibly twice); stops on a
+ * non-zero return. */
+static double dist2_min(const sb_engine *e, const double *p, const double *q)
+{
+  double d2 = 0.0;
+  for (int c = 0; c < e->par.dim; c++) {
+    double d = sbi_minimg(p[c] - q[c], e->par.L[c]);
+    d2 += d * d;
+  }
+  return d2;
+}
+
+int sbi_engine_partners(sb_engine *e, size_t a, const double c[3],
+                        double ext_a,
+                        int (*fn)(sb_engine *, size_t, size_t, void *),
+                        void *ctx)
+{
+  const int dim = e->par.dim;
+  const double *x0 = e->x0;
+  const double reach = e->grid.valid ? e->grid.reach : e->detect_reach;
+  const sbi_grid *g = &e->grid;
+  int st;
+  /* the far list first: their pieces, not their starts */
+  for (size_t q = 0; q < e->nfar; q++) {
+    size_t k = e->far[q];
+    if (k == a)
+      continue;
+    double len2 = 0.0;
+    for (int d = 0; d < dim; d++)
+      len2 += e->sub_v[3 * k + d] * e->sub_v[3 * k + d];
+    double ext_k = e->radius[k] + sqrt(len2) * (1.0 - e->sub_t[k]);
+    double lim = ext_a + ext_k + reach;
+    if (dist2_min(e, c, &e->sub_p[3 * k]) <= lim * lim &&
+        (st = fn(e, a, k, ctx)))
+      return st;
+  }
+  if (g->valid && ext_a <= g->ext_max) {
+    double cw[3] = {0, 0, 0};
+    int ca[3] = {0, 0, 0};
+    for (int k = 0; k < dim; k++) {
+      cw[k] = sbi_wrap(c[k], e->par.L[k]);
+      int v = (int)(cw[k] * g->inv[k]);
+      ca[k] = v >= g->nc[k] ? g->nc[k] - 1 : (v < 0 ? 0 : v);
+    }
+    int lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+      lo[k] = hi[k] = 0;
+      if (k < dim && g->nc[k] >= 3)
+        lo[k] = -1, hi[k] = 1;
+      else if (k < dim && g->nc[k] == 2)
+        hi[k] = 1;  /* the other cell, once */
+    }
+    for (int q2 = lo[2]; q2 <= hi[2]; q2++)
+      for (int q1 = lo[1]; q1 <= hi[1]; q1++)
+        for (int q0 = lo[0]; q0 <= hi[0]; q0++) {
+          const int q[3] = {q0, q1, q2};
+          size_t c2 = 0;
+          for (int k = 0; k < dim; k++) {
+            int v = ca[k] + q[k];
+            v = ((v % g->nc[k]) + g->nc[k]) % g->nc[k];
+            c2 += (size_t)v * g->stride[k];
+          }
+          for (size_t b = e->cell_start[c2]; b < e->cell_start[c2 + 1];
+               b++) {
+            size_t k = e->cell_list[b];
+            if (k == a || e->isfar[k])
+              continue;
+            double lim = ext_a + e->radius[k] + e->dn[k] + reach;
+            if (dist2_min(e, cw, &x0[3 * k]) <= lim * lim &&
+                (st = fn(e, a, k, ctx)))
+              return st;
+          }
+        }
+    return SB_SUCCESS;
+  }
+  for (size_t k = 0; k < e->n; k++) {
+    if (k == a || e->isfar[k])
+      continue;
+    double lim = ext_a + e->radius[k] + e->dn[k] + reach;
+    if (dist2_min(e, c, &x0[3 * k]) <= lim * lim && (st = fn(e, a, k, ctx)))
+      return st;
+  }
+  return SB_SUCCESS;
 }

@@ -37,7 +37,7 @@ void sb_engine_reset_counters(sb_engine *e)
 {
   if (!e)
     return;
-  e->ncoll = e->ncand = e->dropped = 0;
+  e->ncoll = e->ncand = e->dropped = e->nredetect = 0;
   memset(e->fam, 0, sizeof e->fam);
   e->t_reset = e->t;
 }
@@ -50,6 +50,7 @@ int sb_engine_get_stats(const sb_engine *e, sb_engine_stats *st)
   st->ncoll = e->ncoll;
   st->ncand = e->ncand;
   st->dropped = e->dropped;
+  st->redetected = e->nredetect;
   memcpy(st->fam, e->fam, sizeof e->fam);
   st->t = e->t;
   st->t_reset = e->t_reset;

@@ -35,7 +35,7 @@ int sb_engine_outcome_elastic(sb_engine *e, const sb_engine_pair *p,
 {
   if (!e || !p || p->i >= e->n || p->j >= e->n || !(s >= 0.0 && s <= 1.0))
     return sbi_error(SB_EINVAL, __func__, "bad argument");
-  const double dt = e->par.dt;
+  const double dt = p->dt;  /* the interval the record covers */
   double nv[3], nn = 0.0;
   for (int k = 0; k < 3; k++) {
     nv[k] = p->dx0[k] + s * p->dd[k];
@@ -119,6 +119,25 @@ int sb_engine_outcome_reinsert(sb_engine *e, const sb_engine_pair *p,
     e->u[3 * j + k] = u[k];
     e->disp[3 * j + k] = 0.0;
   }
+  return SB_SUCCESS;
+}
+
+int sb_engine_outcome_path(sb_engine *e, size_t k, const double x[3])
+{
+  if (!e || !x || k >= e->n)
+    return sbi_error(SB_EINVAL, __func__, "bad engine, particle or NULL");
+  for (int q = 0; q < e->ndeclared; q++)
+    if (e->declared[q].k == k) {
+      memcpy(e->declared[q].x, x, 3 * sizeof(double));
+      return SB_SUCCESS;
+    }
+  if (e->ndeclared == 2)
+    return sbi_error(SB_EINVAL, __func__,
+                     "only the two partners of the collision (particle %zu)",
+                     k);
+  e->declared[e->ndeclared].k = k;
+  memcpy(e->declared[e->ndeclared].x, x, 3 * sizeof(double));
+  e->ndeclared++;
   return SB_SUCCESS;
 }
 

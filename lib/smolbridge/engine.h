@@ -26,9 +26,16 @@
  *     (+ the detector's extra reach);
  *  4. the detector is called for every candidate pair and returns the
  *     contact fraction s in [0, 1] of the step (or "no collision");
- *  5. events are sorted by (s, i, j) and processed in that order; a
- *     particle takes part in at most one collision per step (later events
- *     involving it are dropped and counted in sb_engine_stats.dropped);
+ *  5. events are processed earliest first (ties by (i, j)); when an
+ *     outcome changes the end of a particle's step (elastic bounce,
+ *     reinsertion, merge), its path from the contact on is a new straight
+ *     piece to its new end, its pending events are void, and every pair it
+ *     forms is examined again over the rest of the step, so a particle can
+ *     take part in several collisions in one step, in time order.  The
+ *     built-in detectors always re-examine; a custom detector does when
+ *     sb_engine_set_redetect allows it (its record then covers the rest of
+ *     the step, see sb_engine_pair); otherwise the void events are dropped
+ *     and counted in sb_engine_stats.dropped;
  *  6. positions are wrapped into the box, time advances by dt.
  * Given the seed and the same calls, a run is bit-identical (the engine
  * owns its generator, MT19937 by default; a checkpoint stores its state).
@@ -128,13 +135,18 @@ typedef struct {
                        velocities; T = 0 uses B^2 tau / 2 instead */
 } sb_engine_species;
 
-/** State of a candidate pair handed to a detector / outcome. */
+/** State of a candidate pair handed to a detector / outcome.  The record
+ *  covers the interval [t0, t0 + dt]: the whole step, or, after a
+ *  collision inside the step changed the path of i or j, the rest of the
+ *  step from that collision on (the detector's contact fraction s is then
+ *  a fraction of this interval: the contact happens at t0 + s dt). */
 typedef struct {
   size_t i, j;     /**< particle indices, i < j */
-  double dx0[3];   /**< x_i - x_j at step start (minimum image), m */
-  double dd[3];    /**< change of x_i - x_j over the step, m */
+  double dx0[3];   /**< x_i - x_j at t0 (minimum image), m */
+  double dd[3];    /**< change of x_i - x_j over the interval, m */
   double sigma;    /**< contact distance r_i + r_j, m */
-  double dt;       /**< step, s */
+  double dt;       /**< length of the interval, s (the step, or less) */
+  double t0;       /**< time at its start, s */
 } sb_engine_pair;
 
 typedef struct sb_engine sb_engine;
@@ -219,6 +231,13 @@ int sb_engine_set_detect(sb_engine *e, sb_engine_detect d);
  *  pairs whose chords stay apart). */
 int sb_engine_set_detector(sb_engine *e, sb_engine_detect_fn fn, void *ctx,
                            double reach);
+/** Whether a custom detector is called again, on the rest of the step,
+ *  for the pairs of a particle whose path an outcome changed (on = 1).
+ *  Off by default: allow it when the detector decides from the pair
+ *  record alone (dx0, dd, dt: chord-type and position-end bridge
+ *  detectors; the partner's position at the collision time is then its
+ *  chord point).  Built-in detectors always re-detect. */
+int sb_engine_set_redetect(sb_engine *e, int on);
 /** Built-in outcome (not SB_OUTCOME_CUSTOM); eta in [0, 1]. */
 int sb_engine_set_outcome(sb_engine *e, sb_engine_outcome o, double eta);
 int sb_engine_set_outcome_fn(sb_engine *e, sb_engine_outcome_fn fn,
@@ -261,9 +280,18 @@ int sb_engine_outcome_elastic(sb_engine *e, const sb_engine_pair *p,
                               double s);
 
 /** Reinsert particle p->j at a uniformly random non-overlapping position
- *  with an equilibrium velocity (the partner i is untouched). */
+ *  with an equilibrium velocity (the partner i is untouched).  j stays at
+ *  that place for the rest of the step. */
 int sb_engine_outcome_reinsert(sb_engine *e, const sb_engine_pair *p,
                                double s);
+
+/** For an outcome callback that changes where partner k (p->i or p->j)
+ *  ends the step: declare its position x (m, any image) at the collision
+ *  time; the engine then takes its path for the rest of the step as the
+ *  straight line from x to its new end, and examines its pairs again
+ *  from there.  Without a declaration a custom outcome's change is taken
+ *  as a jump: the particle is at its new end from the collision on. */
+int sb_engine_outcome_path(sb_engine *e, size_t k, const double x[3]);
 
 /* ======================================================= neighbours */
 
@@ -308,8 +336,12 @@ typedef struct {
   uint64_t steps;      /**< steps taken in total */
   uint64_t ncoll;      /**< collisions since the counter reset */
   uint64_t ncand;      /**< candidate pairs examined since the reset */
-  uint64_t dropped;    /**< events dropped (a partner had already
-                            collided in the same step) since the reset */
+  uint64_t dropped;    /**< events dropped since the reset: a custom
+                            detector without re-detection saw a partner's
+                            path change earlier in the step (0 with the
+                            built-in detectors) */
+  uint64_t redetected; /**< pair records examined again after a
+                            collision changed a path, since the reset */
   uint64_t fam[SB_ENGINE_MAXFAM][SB_ENGINE_MAXFAM]; /**< collisions by
                             family pair (a <= b in fam[a][b]) */
   double t;            /**< time, s (steps * dt, summed per dt change) */

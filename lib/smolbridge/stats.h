@@ -82,6 +82,16 @@ int sb_mean_ci(const double *x, size_t n, double level, double *mean,
  *  mode), which makes no difference to a test at any usual level. */
 double sb_poisson_pvalue(unsigned long k, double mu);
 
+/** Exact two-sided p-value of a binomial count k of n trials when the
+ *  success probability is p: min(1, 2 min(P(X <= k), P(X >= k))), from
+ *  the incomplete beta function (the Clopper-Pearson machinery; closed
+ *  forms where a shape is 1).  NaN (SB_EDOM) for n = 0, k > n or p
+ *  outside [0, 1].  Accuracy: relative 1e-10 (tested against direct
+ *  summation) for p >= 1e-30; below that the result may be 0 (shapes
+ *  above 200 integrate the tails to e^-100 of the mode), which makes no
+ *  difference to a test at any usual level. */
+double sb_binomial_pvalue(unsigned long k, unsigned long n, double p);
+
 /** z-score (estimate - reference) / stderr_; NaN (SB_EDOM recorded) if
  *  stderr_ <= 0 or any argument is NaN. */
 double sb_zscore(double estimate, double reference, double stderr_);
@@ -179,54 +189,104 @@ int sb_chi2_test(const double *x, size_t n, const double *edges,
 
 /* ------------------------------------------------- comparison record */
 
-typedef enum { SB_PASS = 0, SB_FAIL = 1 } sb_verdict;
+/** Verdict of a comparison.  SB_INFO marks a descriptive row that cannot
+ *  fail (and does not count as a pass). */
+typedef enum { SB_PASS = 0, SB_FAIL = 1, SB_INFO = 2 } sb_verdict;
+
+/** How a comparison record turns into a verdict.  The interval stored in
+ *  the record is always the one the rule reads, so a reader can check
+ *  every verdict from the printed numbers. */
+typedef enum {
+  /** PASS iff ci_low <= reference <= ci_high, where [ci_low, ci_high] is
+   *  a confidence interval of the estimate with coverage `level`
+   *  (stochastic estimates: kernels, probabilities, means). */
+  SB_RULE_COVER = 0,
+  /** PASS iff ci_low <= estimate <= ci_high, where [ci_low, ci_high] is
+   *  the region holding the statistic with probability `level` when the
+   *  reference law is true (goodness-of-fit statistics: KS distance,
+   *  chi-square; p_value >= 1 - level is then the same rule). */
+  SB_RULE_ACCEPT = 1,
+  /** Deterministic comparison: PASS iff ci_low <= reference <= ci_high,
+   *  a tolerance band around the (numerical) estimate; level is NaN. */
+  SB_RULE_BAND = 2,
+  /** Demonstration that the estimate lies significantly above the
+   *  reference (an expected failure of an approximate method): PASS iff
+   *  reference < ci_low, ci at `level`. */
+  SB_RULE_ABOVE = 3,
+  /** ... significantly below: PASS iff ci_high < reference. */
+  SB_RULE_BELOW = 4,
+  /** Descriptive only: verdict SB_INFO whatever the numbers. */
+  SB_RULE_INFO = 5
+} sb_rule;
 
 /** One line of a validation report.  NaN marks a field that does not apply
- *  (for example no p-value for an interval-only comparison). */
+ *  (no p-value for a tolerance band, no level for SB_RULE_BAND). */
 typedef struct {
   char name[96];     /**< "V11/bes3b_hit/ks": V-number/what/how */
   double estimate;   /**< Monte Carlo (or numerical) estimate */
   double reference;  /**< theoretical reference value */
-  double ci_low;     /**< interval for the estimate (coverage in docs) */
+  double ci_low;     /**< the interval the rule reads (see sb_rule) */
   double ci_high;
-  double p_value;    /**< p-value of the test, NaN if none */
+  double p_value;    /**< p-value of the test behind the row, NaN if none;
+                          for SB_RULE_COVER rows built by the helpers below
+                          p_value >= 1 - level iff the row passes */
+  double level;      /**< coverage of the interval (NaN for bands) */
+  sb_rule rule;
   sb_verdict verdict;
 } sb_comparison;
 
-/** Record whose verdict is PASS iff ci_low <= reference <= ci_high
- *  (FAIL if any of the three is NaN).  p_value is set to NaN.  Returns
- *  SB_EINVAL (record filled, verdict FAIL) for NULL c/name or
- *  ci_low > ci_high; SB_ELOSS if the name was truncated to 95 bytes. */
-int sb_compare_interval(sb_comparison *c, const char *name, double estimate,
-                        double reference, double ci_low, double ci_high);
+/** Fill a record and set its verdict by `rule`.  A NaN in a field the
+ *  rule reads fails the row (except SB_RULE_INFO).  SB_EINVAL (record
+ *  filled, verdict FAIL) for NULL c/name, an unknown rule, ci_low >
+ *  ci_high, a level outside (0,1) where the rule needs one, or a p_value
+ *  outside [0,1] (NaN allowed); SB_ELOSS if the name was truncated to 95
+ *  bytes. */
+int sb_compare(sb_comparison *c, const char *name, sb_rule rule,
+               double estimate, double reference, double ci_low,
+               double ci_high, double level, double p_value);
 
-/** Record whose verdict is PASS iff p_value >= alpha. ci_* may be NaN.
- *  SB_EINVAL (verdict FAIL) for alpha outside (0,1), p_value outside
- *  [0,1] or NaN, NULL c/name; SB_ELOSS if the name was truncated. */
-int sb_compare_pvalue(sb_comparison *c, const char *name, double estimate,
-                      double reference, double ci_low, double ci_high,
-                      double p_value, double alpha);
-
-/** Record for a rate estimated from a Poisson count: estimate = scale k,
- *  interval = the exact 95% (Garwood) interval times scale, p-value = the
+/** Rate estimated from a Poisson count: estimate = scale k, interval = the
+ *  exact Garwood interval at level 1 - alpha times scale, p-value = the
  *  exact two-sided Poisson test of k against the mean reference/scale
- *  (sb_poisson_pvalue); verdict PASS iff p_value >= alpha.  Use it for
- *  collision-kernel estimates K_e = scale N_c.  The table then shows the 95%
- *  interval, while the verdict allows for the number of comparisons a
- *  validation run makes (alpha = 1e-3 in smolbridge validate). */
+ *  (sb_poisson_pvalue); rule SB_RULE_COVER.  The test and the interval are
+ *  inversions of each other: PASS iff p >= alpha iff the reference lies in
+ *  the printed interval.  Use it for collision kernels K_e = scale N_c. */
 int sb_compare_poisson(sb_comparison *c, const char *name, unsigned long k,
                        double scale, double reference, double alpha);
+
+/** Proportion k/n against the probability `reference`: Clopper-Pearson
+ *  interval at 1 - alpha, exact two-sided binomial test
+ *  (sb_binomial_pvalue); rule SB_RULE_COVER, verdict as above. */
+int sb_compare_binomial(sb_comparison *c, const char *name, unsigned long k,
+                        unsigned long n, double reference, double alpha);
+
+/** Mean of n >= 2 independent replicas x[] against `reference`: Student-t
+ *  interval at 1 - alpha (sb_mean_ci) and the two-sided one-sample t test
+ *  (exact for normal replicas, asymptotically right otherwise); rule
+ *  SB_RULE_COVER. */
+int sb_compare_mean(sb_comparison *c, const char *name, const double *x,
+                    size_t n, double reference, double alpha);
+
+/** Short names of rules ("cover", "accept", "band", "above", "below",
+ *  "info") and verdicts ("pass", "fail", "info"), as in the CSV. */
+const char *sb_rule_name(sb_rule rule);
+const char *sb_verdict_name(sb_verdict v);
+
+/** The rule in words for a table ("ref in 99.9% CI", "est in 99.9%
+ *  acceptance", "ref in tolerance band", "95% CI above ref", "95% CI
+ *  below ref", "informational"); snprintf semantics; -1 for NULL c. */
+int sb_comparison_rule_text(const sb_comparison *c, char *buf, size_t len);
 
 /** Write the record as one CSV line (no newline) matching the header
  *  SB_COMPARISON_CSV_HEADER into buf; returns the snprintf count (the
  *  length the full line needs; the line is complete iff count < len;
  *  buf may be NULL when len is 0), or -1 (SB_EINVAL recorded) for a NULL
  *  record.  Numbers use the shortest "%.{15,16,17}g" form that reads back
- *  exactly; NaN is written "nan", infinities "inf"/"-inf"; the verdict is
- *  "pass" or "fail"; a name holding a comma, quote or newline is quoted
- *  RFC 4180 style. */
+ *  exactly; NaN is written "nan", infinities "inf"/"-inf"; rule and
+ *  verdict by their short names; a name holding a comma, quote or newline
+ *  is quoted RFC 4180 style. */
 #define SB_COMPARISON_CSV_HEADER \
-  "case,estimate,reference,ci_low,ci_high,p_value,verdict"
+  "case,estimate,reference,ci_low,ci_high,p_value,rule,level,verdict"
 int sb_comparison_csv(const sb_comparison *c, char *buf, size_t len);
 
 #ifdef __cplusplus

@@ -134,6 +134,84 @@ int sb_validate_report_write_markdown(const sb_validate_report *rep,
                                       const char *path,
                                       const sb_validate_options *opt);
 
+/* ---------------------------------------------------------- calibration
+ * One seed's "pass" is weak evidence.  A calibration pools the reports of
+ * the same cases run with independent seeds: per record the mean of
+ * estimate/reference (or estimate - reference when the reference is 0)
+ * with its Student 95% interval and the bias in standard errors, the
+ * fraction of p-values below 0.05 and a Kolmogorov-Smirnov test of the
+ * p-values against the uniform law.  `smolbridge validate --seeds N`. */
+
+typedef struct sb_validate_calibration sb_validate_calibration;
+
+/** One record pooled over seeds. */
+typedef struct {
+  char name[96];        /**< record name */
+  char case_name[96];   /**< the case that made it */
+  sb_rule rule;         /**< its verdict rule */
+  size_t nseeds;        /**< seeds in which the record appeared */
+  size_t nfail;         /**< seeds in which it failed */
+  int deterministic;    /**< the same estimate in every seed */
+  int is_ratio;         /**< 1: mean of estimate/reference (target 1);
+                             0: of estimate - reference (target 0) */
+  double mean, mean_lo, mean_hi; /**< pooled value, Student 95% interval */
+  double bias_z;        /**< (mean - target) / standard error */
+  size_t npvalues;      /**< p-values pooled */
+  double frac_p05;      /**< fraction of them below 0.05 */
+  double ks_d, ks_p;    /**< KS of the p-values vs U(0,1); NaN when fewer
+                             than 5 or fewer than 80% distinct (discrete
+                             tests on small counts) */
+  /** FAIL: |bias_z| > 3 or ks_p < 1e-3 (cover/accept rows), or any failed
+   *  seed (demonstrations and tolerance bands, which must hold on every
+   *  seed); PASS otherwise; INFO for informational and deterministic rows
+   *  that never failed. */
+  sb_verdict verdict;
+} sb_validate_calibration_row;
+
+/** All rows of one case pooled. */
+typedef struct {
+  char case_name[96];
+  size_t nrows, nrows_failed;       /**< records, and failing ones */
+  size_t nrecords, nrecords_failed; /**< record-seeds, failing ones */
+  double max_abs_bias_z;            /**< over cover/accept rows */
+  size_t npvalues;
+  double frac_p05, ks_d, ks_p;      /**< over all p-values of the case */
+  sb_verdict verdict;               /**< FAIL iff a row fails */
+} sb_validate_calibration_case_summary;
+
+sb_validate_calibration *sb_validate_calibration_alloc(void);
+void sb_validate_calibration_free(sb_validate_calibration *c);
+
+/** Pool the records of one seed's report (call once per seed). */
+int sb_validate_calibration_add(sb_validate_calibration *c,
+                                const sb_validate_report *rep);
+
+size_t sb_validate_calibration_nseeds(const sb_validate_calibration *c);
+size_t sb_validate_calibration_nrows(const sb_validate_calibration *c);
+/** Row i (in first-seen order); SB_EINVAL out of range. */
+int sb_validate_calibration_get_row(const sb_validate_calibration *c,
+                                    size_t i,
+                                    sb_validate_calibration_row *row);
+/** The cases pooled, in first-seen order, and the summary of one. */
+size_t sb_validate_calibration_ncases(const sb_validate_calibration *c);
+const char *sb_validate_calibration_case_name(
+    const sb_validate_calibration *c, size_t k);
+int sb_validate_calibration_case(const sb_validate_calibration *c,
+                                 const char *case_name,
+                                 sb_validate_calibration_case_summary *sum);
+
+/** calibration.csv: one line per record (header first). */
+int sb_validate_calibration_write_csv(const sb_validate_calibration *c,
+                                      const char *path);
+/** The per-record table. */
+int sb_validate_calibration_fprint(const sb_validate_calibration *c,
+                                   FILE *out);
+/** p-value QQ plot, one curve per case: OUTDIR/NAME.dat and NAME.gp,
+ *  rendered through opt->render (nothing when opt->outdir is NULL). */
+int sb_validate_calibration_qq_plot(const sb_validate_calibration *c,
+                                    const sb_validate_options *opt,
+                                    const char *name);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,6 +1,7 @@
 /* stats.c — confidence intervals (Garwood, Clopper-Pearson, Student t),
- * z-scores, chi-square goodness of fit and the comparison record.
- * The Kolmogorov-Smirnov tests live in stats_ks.c.  Theory: docs/stats.md.
+ * exact Poisson and binomial tests, z-scores, chi-square goodness of fit.
+ * The Kolmogorov-Smirnov tests live in stats_ks.c, the comparison records
+ * of validation reports in compare.c.  Theory: docs/stats.md.
  *
  * Why the intervals do not call gsl_cdf_gamma_Pinv / gsl_cdf_beta_Pinv:
  * GSL 2.7's gamma inverse fails to converge (error handler -> abort) for
@@ -443,6 +444,71 @@ int sb_binomial_ci(unsigned long k, unsigned long n, double level,
   return SB_SUCCESS;
 }
 
+/* Exact binomial tails at p, 0 < p < 1, 0 <= k <= n (n >= 1):
+ * P(X >= k) = I_p(k, n-k+1) and P(X <= k) = I_{1-p}(n-k, k+1), with the
+ * closed forms where a Beta shape is 1 (or the tail is the whole law). */
+static int binomial_tails(unsigned long k, unsigned long n, double p,
+                          double *ge, double *le)
+{
+  double kd = (double)k, nd = (double)n, md = (double)(n - k);
+  law_t L;
+  int bad = 0;
+  if (k == 0)
+    *ge = 1.0;
+  else if (k == 1)
+    *ge = -expm1(nd * log1p(-p));
+  else if (k == n)
+    *ge = exp(nd * log(p));
+  else {
+    if (law_init(&L, 1, kd, md + 1.0) != SB_SUCCESS) {
+      law_free(&L);
+      return SB_ENOMEM;
+    }
+    *ge = law_tail(&L, p, 0);
+    bad |= L.bad;
+    law_free(&L);
+  }
+  if (k == n)
+    *le = 1.0;
+  else if (k == 0)
+    *le = exp(nd * log1p(-p));
+  else if (k == n - 1)
+    *le = -expm1(nd * log(p));
+  else {
+    if (law_init(&L, 1, kd + 1.0, md) != SB_SUCCESS) {
+      law_free(&L);
+      return SB_ENOMEM;
+    }
+    *le = law_tail(&L, p, 1);
+    bad |= L.bad;
+    law_free(&L);
+  }
+  return bad ? SB_ELOSS : SB_SUCCESS;
+}
+
+double sb_binomial_pvalue(unsigned long k, unsigned long n, double p)
+{
+  if (n == 0 || k > n || !(p >= 0.0 && p <= 1.0)) {
+    sbi_error(SB_EDOM, __func__,
+              "need n >= 1, k <= n, 0 <= p <= 1 (k = %lu, n = %lu, p = %g)",
+              k, n, p);
+    return NAN;
+  }
+  if (p == 0.0)
+    return k == 0 ? 1.0 : 0.0;
+  if (p == 1.0)
+    return k == n ? 1.0 : 0.0;
+  double ge, le;
+  int st = binomial_tails(k, n, p, &ge, &le);
+  if (st != SB_SUCCESS) {
+    sbi_error(st, __func__, "tail probability failed (k = %lu, n = %lu, "
+              "p = %g)", k, n, p);
+    return NAN;
+  }
+  double q = 2.0 * (le < ge ? le : ge);
+  return q < 1.0 ? q : 1.0;
+}
+
 int sb_poisson_ratio_ci(unsigned long k1, double t1, unsigned long k2,
                         double t2, double level, double *ratio, double *lo,
                         double *hi)
@@ -702,152 +768,3 @@ out:
   return st;
 }
 
-/* ---------------------------------------------------- comparison record */
-
-/* Copy name into c->name; 1 if truncated. */
-static int set_name(sb_comparison *c, const char *name)
-{
-  size_t cap = sizeof c->name;
-  size_t len = strlen(name);
-  size_t k = len < cap - 1 ? len : cap - 1;
-  memcpy(c->name, name, k);
-  c->name[k] = '\0';
-  return len > k;
-}
-
-static int fill(sb_comparison *c, const char *name, double estimate,
-                double reference, double ci_low, double ci_high,
-                double p_value)
-{
-  c->estimate = estimate;
-  c->reference = reference;
-  c->ci_low = ci_low;
-  c->ci_high = ci_high;
-  c->p_value = p_value;
-  c->verdict = SB_FAIL;
-  if (!name) {
-    c->name[0] = '\0';
-    return 0;
-  }
-  return set_name(c, name);
-}
-
-int sb_compare_interval(sb_comparison *c, const char *name, double estimate,
-                        double reference, double ci_low, double ci_high)
-{
-  if (!c)
-    return sbi_error(SB_EINVAL, __func__, "NULL record");
-  int trunc = fill(c, name, estimate, reference, ci_low, ci_high, NAN);
-  if (!name)
-    return sbi_error(SB_EINVAL, __func__, "NULL name");
-  if (ci_low > ci_high)
-    return sbi_error(SB_EINVAL, __func__, "ci_low %g > ci_high %g", ci_low,
-                     ci_high);
-  c->verdict = (ci_low <= reference && reference <= ci_high) ? SB_PASS
-                                                              : SB_FAIL;
-  if (trunc)
-    return sbi_error(SB_ELOSS, __func__, "name truncated to %zu bytes",
-                     sizeof c->name - 1);
-  return SB_SUCCESS;
-}
-
-int sb_compare_pvalue(sb_comparison *c, const char *name, double estimate,
-                      double reference, double ci_low, double ci_high,
-                      double p_value, double alpha)
-{
-  if (!c)
-    return sbi_error(SB_EINVAL, __func__, "NULL record");
-  int trunc = fill(c, name, estimate, reference, ci_low, ci_high, p_value);
-  if (!name)
-    return sbi_error(SB_EINVAL, __func__, "NULL name");
-  if (!(alpha > 0.0 && alpha < 1.0))
-    return sbi_error(SB_EINVAL, __func__, "alpha = %g not in (0,1)", alpha);
-  if (!(p_value >= 0.0 && p_value <= 1.0))
-    return sbi_error(SB_EINVAL, __func__, "p_value = %g not in [0,1]",
-                     p_value);
-  c->verdict = p_value >= alpha ? SB_PASS : SB_FAIL;
-  if (trunc)
-    return sbi_error(SB_ELOSS, __func__, "name truncated to %zu bytes",
-                     sizeof c->name - 1);
-  return SB_SUCCESS;
-}
-
-int sb_compare_poisson(sb_comparison *c, const char *name, unsigned long k,
-                       double scale, double reference, double alpha)
-{
-  if (!c)
-    return sbi_error(SB_EINVAL, __func__, "NULL record");
-  if (!(scale > 0.0 && isfinite(scale)) || !(reference >= 0.0) ||
-      !isfinite(reference)) {
-    fill(c, name ? name : "", NAN, reference, NAN, NAN, NAN);
-    return sbi_error(SB_EINVAL, __func__,
-                     "scale = %g must be > 0 and reference = %g >= 0", scale,
-                     reference);
-  }
-  double lo, hi;
-  int st = sb_poisson_rate_ci(k, scale, 0.95, &lo, &hi);
-  double p = sb_poisson_pvalue(k, reference / scale);
-  if (st != SB_SUCCESS || isnan(p)) {
-    fill(c, name ? name : "", scale * (double)k, reference, lo, hi, NAN);
-    return st != SB_SUCCESS ? st : sb_last_status();
-  }
-  return sb_compare_pvalue(c, name, scale * (double)k, reference, lo, hi, p,
-                           alpha);
-}
-
-/* Shortest of %.15g, %.16g, %.17g that reads back to v; "nan", "inf". */
-static void fmt_num(char *out, size_t len, double v)
-{
-  if (isnan(v)) {
-    snprintf(out, len, "nan");
-    return;
-  }
-  if (isinf(v)) {
-    snprintf(out, len, v > 0 ? "inf" : "-inf");
-    return;
-  }
-  for (int prec = 15; prec <= 17; prec++) {
-    snprintf(out, len, "%.*g", prec, v);
-    if (strtod(out, NULL) == v)
-      break;
-  }
-  /* A locale with a decimal comma must not split the CSV field. */
-  for (char *q = out; *q; q++)
-    if (*q == ',')
-      *q = '.';
-}
-
-int sb_comparison_csv(const sb_comparison *c, char *buf, size_t len)
-{
-  if (!c) {
-    sbi_error(SB_EINVAL, __func__, "NULL record");
-    return -1;
-  }
-  char line[2 * sizeof c->name + 6 * 32 + 16];
-  size_t pos = 0;
-  const char *nul = memchr(c->name, '\0', sizeof c->name);
-  size_t nlen = nul ? (size_t)(nul - c->name) : sizeof c->name;
-  int quote = 0;
-  for (size_t i = 0; i < nlen; i++)
-    if (strchr(",\"\r\n", c->name[i]))
-      quote = 1;
-  if (quote)
-    line[pos++] = '"';
-  for (size_t i = 0; i < nlen; i++) {
-    if (c->name[i] == '"')
-      line[pos++] = '"';
-    line[pos++] = c->name[i];
-  }
-  if (quote)
-    line[pos++] = '"';
-  const double v[5] = {c->estimate, c->reference, c->ci_low, c->ci_high,
-                       c->p_value};
-  for (int i = 0; i < 5; i++) {
-    char num[32];
-    fmt_num(num, sizeof num, v[i]);
-    pos += (size_t)snprintf(line + pos, sizeof line - pos, ",%s", num);
-  }
-  snprintf(line + pos, sizeof line - pos, ",%s",
-           c->verdict == SB_PASS ? "pass" : "fail");
-  return snprintf(buf, len, "%s", line);
-}

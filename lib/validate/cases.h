@@ -52,6 +52,51 @@ void sbv_note(sbv_report *rep, const char *fmt, ...)
 #endif
     ;
 
+/* ------------------------------------------------------ rows (records.c)
+ * Each helper appends one comparison row with its rule (sb_rule) and the
+ * interval that rule reads.  Tests are at level SBV_ALPHA: a quick run
+ * makes ~250 rows, so a correct code fails a given run with probability
+ * about 250 SBV_ALPHA = 2.5% (family-wise). */
+#define SBV_ALPHA 1e-4
+
+/* k successes in n trials vs probability P: exact binomial test and the
+ * Clopper-Pearson interval at 1 - SBV_ALPHA (rule cover). */
+int sbv_add_freq(sbv_report *rep, const char *name, unsigned long k,
+                 unsigned long n, double P);
+/* Rate scale * k from a Poisson count vs reference: exact test, Garwood
+ * interval (rule cover). */
+int sbv_add_poisson(sbv_report *rep, const char *name, unsigned long k,
+                    double scale, double reference);
+/* Mean of n >= 2 independent replicas vs reference: t interval and test. */
+int sbv_add_mean(sbv_report *rep, const char *name, const double *x,
+                 size_t n, double reference);
+/* Chi-square statistic (reference: its dof) in the acceptance region
+ * [0, chi2_{1-SBV_ALPHA}(dof)]; test_status from sb_chi2_test (a failed
+ * test fails the row; SB_ELOSS, small expected counts, does not). */
+int sbv_add_chi2(sbv_report *rep, const char *name, int test_status,
+                 double chi2, double dof, double p);
+/* KS distance of n samples in [0, D_crit(n, SBV_ALPHA)] (reference: the
+ * mean of D_n under H0, 0.8687/sqrt(n)); p the KS p-value. */
+int sbv_add_ks(sbv_report *rep, const char *name, size_t n, double d,
+               double p);
+/* Median of m sorted samples xs vs the reference median: exact
+ * order-statistic interval at 1 - SBV_ALPHA and the sign test. */
+int sbv_add_median(sbv_report *rep, const char *name, const double *xs,
+                   size_t m, double med_ref);
+/* Deterministic comparison: reference inside [lo, hi] (rule band); the
+ * relative form uses est (1 -+ tol). */
+int sbv_add_band(sbv_report *rep, const char *name, double est, double ref,
+                 double lo, double hi);
+int sbv_add_relband(sbv_report *rep, const char *name, double est,
+                    double ref, double tol);
+/* Demonstration of an expected failure: the interval [lo, hi] at `level`
+ * lies entirely above (above = 1) or below the reference. */
+int sbv_add_side(sbv_report *rep, const char *name, int above, double est,
+                 double ref, double lo, double hi, double level, double p);
+/* Descriptive row (never fails). */
+int sbv_add_info(sbv_report *rep, const char *name, double est, double ref,
+                 double lo, double hi, double level);
+
 /* A fresh Mersenne-Twister generator seeded from (ctx->seed, stream):
  * give every case (and every independent part of a case) its own stream. */
 gsl_rng *sbv_rng_alloc(const sbv_ctx *ctx, unsigned long stream);
@@ -83,6 +128,8 @@ extern const sbv_case sbv_cases_pbe[];
 extern const size_t sbv_ncases_pbe;
 extern const sbv_case sbv_cases_engine[];
 extern const size_t sbv_ncases_engine;
+extern const sbv_case sbv_cases_v2[];
+extern const size_t sbv_ncases_v2;
 extern const sbv_case sbv_cases_engine2[];
 extern const size_t sbv_ncases_engine2;
 extern const sbv_case sbv_cases_agglo[];

@@ -198,24 +198,34 @@ static int pbe_ref(int brownian, size_t nt, const double *taus, double *ref)
 
 /* ====================================================== statistics */
 
-/* Interval for column col at time it over R runs (see the file comment);
- * returns the mean. */
+/* Record for column col at time it over R runs against ref (see the file
+ * comment): the Student interval of the runs' mean with the one-sample t
+ * test, or, for small pooled counts, the Garwood interval of the pooled
+ * count with the exact Poisson test; rule cover at LEVEL.  Returns the
+ * mean; lo/hi receive the interval. */
 static double interval(const double *runs, size_t R, size_t N0, size_t it,
-                       size_t col, size_t nt, double *lo, double *hi)
+                       size_t col, size_t nt, double ref, double *lo,
+                       double *hi, double *p)
 {
   double x[64], pooled = 0.0;
   for (size_t r = 0; r < R; r++) {
     x[r] = runs[(r * nt + it) * NCOL + col];
     pooled += x[r] * (double)N0;
   }
-  double mean = pooled / ((double)R * (double)N0);
+  double RN = (double)R * (double)N0, mean = pooled / RN;
   if (pooled < 20.0) {
     double plo, phi;
-    sb_poisson_ci((unsigned long)llround(pooled), LEVEL, &plo, &phi);
-    *lo = plo / ((double)R * (double)N0);
-    *hi = phi / ((double)R * (double)N0);
+    unsigned long k = (unsigned long)llround(pooled);
+    sb_poisson_ci(k, LEVEL, &plo, &phi);
+    *lo = plo / RN;
+    *hi = phi / RN;
+    *p = isnan(ref) ? NAN : sb_poisson_pvalue(k, ref * RN);
   } else {
-    sb_mean_ci(x, R, LEVEL, NULL, lo, hi);
+    sb_comparison c;
+    sb_compare_mean(&c, "", x, R, isnan(ref) ? mean : ref, 1.0 - LEVEL);
+    *lo = c.ci_low;
+    *hi = c.ci_high;
+    *p = isnan(ref) ? NAN : c.p_value;
     if (*lo < 0.0)
       *lo = 0.0;  /* counts are >= 0: no loss of coverage */
   }
@@ -223,10 +233,10 @@ static double interval(const double *runs, size_t R, size_t N0, size_t it,
 }
 
 static int add_rec(sbv_report *rep, const char *name, double est, double ref,
-                   double lo, double hi)
+                   double lo, double hi, double p)
 {
   sb_comparison c;
-  sb_compare_interval(&c, name, est, ref, lo, hi);
+  sb_compare(&c, name, SB_RULE_COVER, est, ref, lo, hi, LEVEL, p);
   return sbv_add(rep, &c);
 }
 
@@ -257,8 +267,8 @@ static int compare(const sbv_ctx *ctx, sbv_report *rep, const char *tag,
       }
     }
     sb_comparison c;
-    sb_compare_interval(&c, "V8/agglo-constant/CVODE-vs-analytic/max-rel-"
-                        "err", worst, 0.0, 0.0, 1e-6);
+    sb_compare(&c, "V8/agglo-constant/CVODE-vs-analytic/max-rel-err",
+               SB_RULE_BAND, worst, 0.0, 0.0, 1e-6, NAN, NAN);
     sbv_note(rep, "- CVODE (discrete, 100 sizes + exact lumped tail, rtol "
              "1e-9) vs analytic n_k (k <= 10) and M0 on the output grid: "
              "max relative error %.2g (criterion <= 1e-6)", worst);
@@ -290,8 +300,9 @@ static int compare(const sbv_ctx *ctx, sbv_report *rep, const char *tag,
     if (!(thalves[it] > 0.0))
       continue;
     for (size_t col = 0; col <= kcmp; col++) {
-      double lo, hi;
-      double mean = interval(runs, R, N0, it, col, nt, &lo, &hi);
+      double lo, hi, pv;
+      double mean = interval(runs, R, N0, it, col, nt, ref[it * NCOL + col],
+                             &lo, &hi, &pv);
       char name[96];
       if (col == 0)
         snprintf(name, sizeof name, "V8/%s/t=%gt_half/M0/N0", tag,
@@ -302,7 +313,7 @@ static int compare(const sbv_ctx *ctx, sbv_report *rep, const char *tag,
       if (col == 0 && fabs(mean / ref[it * NCOL] - 1.0) > worst_dev)
         worst_dev = fabs(mean / ref[it * NCOL] - 1.0);
       if (plots || col == 0)
-        add_rec(rep, name, mean, ref[it * NCOL + col], lo, hi);
+        add_rec(rep, name, mean, ref[it * NCOL + col], lo, hi, pv);
     }
   }
   sbv_note(rep, "  largest |M0 engine/CVODE - 1| over the compared times: "
@@ -319,7 +330,8 @@ static int compare(const sbv_ctx *ctx, sbv_report *rep, const char *tag,
       for (size_t c = 0; c < 4; c++) {
         double lo = NAN, hi = NAN, mean = NAN, rf = NAN;
         if (c < ncmp) {
-          mean = interval(runs, R, N0, idx[c], k, nt, &lo, &hi);
+          double pv;
+          mean = interval(runs, R, N0, idx[c], k, nt, NAN, &lo, &hi, &pv);
           rf = ref[idx[c] * NCOL + k];
         }
         double *row = &pd[(k - 1) * 17 + 1 + 4 * c];
@@ -347,9 +359,10 @@ static int compare(const sbv_ctx *ctx, sbv_report *rep, const char *tag,
     double *pm = calloc(nt * 5, sizeof(double));
     if (pm) {
       for (size_t it = 0; it < nt; it++) {
-        double lo, hi;
+        double lo, hi, pv;
         pm[it * 5] = taus[it] / 2.0;  /* constant-kernel half-lives */
-        pm[it * 5 + 1] = interval(runs, R, N0, it, 0, nt, &lo, &hi);
+        pm[it * 5 + 1] = interval(runs, R, N0, it, 0, nt, NAN, &lo, &hi,
+                                  &pv);
         pm[it * 5 + 2] = lo;
         pm[it * 5 + 3] = hi;
         pm[it * 5 + 4] = ref[it * NCOL];
@@ -583,20 +596,18 @@ static int case_dlvo(const sbv_ctx *ctx, sbv_report *rep)
     if (st)
       return st;
     unsigned long nd = (unsigned long)(as.nmerge + as.nrebound);
-    double lo, hi, pred = sb_dlvo_erel_Q(xs[q], 1.0, SB_DLVO_EREL_COLLISION,
-                                         3);
-    sb_binomial_ci((unsigned long)as.nmerge, nd, LEVEL, &lo, &hi);
+    double pred = sb_dlvo_erel_Q(xs[q], 1.0, SB_DLVO_EREL_COLLISION, 3);
     char name[96];
     if (q < 3)
       snprintf(name, sizeof name, "V8/agglo-dlvo/x=%g/psi", xs[q]);
     else
       snprintf(name, sizeof name, "V8/agglo-dlvo/pair-3mM-10mV/psi");
     sb_comparison c;
-    sb_compare_interval(&c, name, (double)as.nmerge / nd, pred, lo, hi);
+    sb_compare_binomial(&c, name, (unsigned long)as.nmerge, nd, pred,
+                        1.0 - LEVEL);
     if ((st = sbv_add(rep, &c)))
       return st;
-    double V = L * L * L, klo, khi;
-    sb_poisson_ci((unsigned long)as.nmerge, LEVEL, &klo, &khi);
+    double V = L * L * L;
     double scale = 2.0 * V / expo;
     if (q < 3)
       snprintf(name, sizeof name, "V8/agglo-dlvo/x=%g/psiK/(K_kin g)",
@@ -604,8 +615,8 @@ static int case_dlvo(const sbv_ctx *ctx, sbv_report *rep)
     else
       snprintf(name, sizeof name, "V8/agglo-dlvo/pair-3mM-10mV/psiK/"
                "(K_kin g)");
-    sb_compare_interval(&c, name, as.nmerge * scale / (Kkin * g), pred,
-                        klo * scale / (Kkin * g), khi * scale / (Kkin * g));
+    sb_compare_poisson(&c, name, (unsigned long)as.nmerge,
+                       scale / (Kkin * g), pred, 1.0 - LEVEL);
     if ((st = sbv_add(rep, &c)))
       return st;
     sbv_note(rep, "- %sx = %.4g: %lu contacts, %llu merges, psi = %.4f "

@@ -47,45 +47,11 @@
 
 #include "cases.h"
 
-#define ALPHA 1e-3   /* verdict: p-value >= ALPHA */
 #define NGRID 100    /* sub-steps per simulated bridge */
 
 typedef struct {
   double x, y, a, s2, t;
 } bpar;
-
-/* ================================================== record helpers */
-
-/* Frequency k/n vs probability P: 95% Clopper-Pearson interval, two-sided
- * z-test p-value. */
-static int add_freq(sbv_report *rep, const char *name, unsigned long k,
-                    unsigned long n, double P)
-{
-  sb_comparison c;
-  double lo = NAN, hi = NAN, f = (double)k / (double)n;
-  sb_binomial_ci(k, n, 0.95, &lo, &hi);
-  double pv = sb_zscore_pvalue(sb_zscore(f, P, sqrt(P * (1 - P) / n)));
-  if (P == 0.0 || P == 1.0) /* degenerate reference: exact or impossible */
-    pv = (f == P) ? 1.0 : 0.0;
-  sb_compare_pvalue(&c, name, f, P, lo, hi, pv, ALPHA);
-  return sbv_add(rep, &c);
-}
-
-/* Chi-square statistic vs its mean (the dof), central 95% interval. */
-static int add_chi2(sbv_report *rep, const char *name, int st, double chi2,
-                    double dof, double pv)
-{
-  sb_comparison c;
-  double lo = NAN, hi = NAN;
-  if (st != SB_SUCCESS && st != SB_ELOSS)
-    pv = NAN; /* the test did not run: the record fails */
-  if (dof >= 1) {
-    lo = gsl_cdf_chisq_Pinv(0.025, dof);
-    hi = gsl_cdf_chisq_Pinv(0.975, dof);
-  }
-  sb_compare_pvalue(&c, name, chi2, dof, lo, hi, pv, ALPHA);
-  return sbv_add(rep, &c);
-}
 
 /* F(q) = p for a continuous CDF on [lo, hi] (Brent); NaN if not bracketed. */
 typedef struct {
@@ -171,13 +137,14 @@ static int check_sampler(const sbv_ctx *ctx, sbv_report *rep,
   int st = SB_SUCCESS;
   if (c->mass < 1.0 || ninf > 0) {
     snprintf(name, sizeof name, "%s/inf-fraction", c->name);
-    st |= add_freq(rep, name, ninf, n, 1.0 - c->mass);
+    st |= sbv_add_freq(rep, name, ninf, n, 1.0 - c->mass);
   }
   if (nbad > 0)
     sbv_note(rep, "- %s: %lu draws were NaN or outside [%g, %g] "
                   "(the tests below fail)", c->name, nbad, c->lo, c->hi);
 
-  /* KS (sorts xs), then the median with its order-statistic interval */
+  /* KS (sorts xs), the median with its order-statistic interval and sign
+   * test */
   double d = NAN, pks = NAN, chi2 = NAN, dof = NAN, pc = NAN;
   if (sb_ks_test(xs, m, c->cdf, c->par, &d, &pks) != SB_SUCCESS || nbad)
     pks = NAN;
@@ -186,20 +153,10 @@ static int check_sampler(const sbv_ctx *ctx, sbv_report *rep,
     for (hi = 1.0; c->cdf(hi, c->par) < 0.5 && hi < 1e300; hi *= 4.0)
       ;
   double med_ref = cdf_solve(c->cdf, c->par, 0.5, c->lo, hi);
-  double med = NAN, mlo = NAN, mhi = NAN;
-  if (m > 0) {
-    double h = 0.98 * sqrt((double)m); /* 1.96 sqrt(m)/2 */
-    long j = (long)floor(0.5 * m - h), k = (long)ceil(0.5 * m + h);
-    j = j < 0 ? 0 : j;
-    k = k > (long)m - 1 ? (long)m - 1 : k;
-    med = m % 2 ? xs[m / 2] : 0.5 * (xs[m / 2 - 1] + xs[m / 2]);
-    mlo = xs[j];
-    mhi = xs[k];
-  }
-  sb_comparison rec;
-  snprintf(name, sizeof name, "%s/median+KS", c->name);
-  sb_compare_pvalue(&rec, name, med, med_ref, mlo, mhi, pks, ALPHA);
-  st |= sbv_add(rep, &rec);
+  snprintf(name, sizeof name, "%s/median", c->name);
+  st |= sbv_add_median(rep, name, xs, nbad ? 0 : m, med_ref);
+  snprintf(name, sizeof name, "%s/KS", c->name);
+  st |= sbv_add_ks(rep, name, m, d, pks);
 
   /* chi-square on NB bins, equiprobable under the module's quantile */
   double edges[NB + 1];
@@ -217,7 +174,7 @@ static int check_sampler(const sbv_ctx *ctx, sbv_report *rep,
     sbv_note(rep, "- %s: quantile not increasing: chi-square skipped",
              c->name);
   snprintf(name, sizeof name, "%s/chi2-20bins", c->name);
-  st |= add_chi2(rep, name, nbad ? SB_EINVAL : cst, chi2, dof, pc);
+  st |= sbv_add_chi2(rep, name, nbad ? SB_EINVAL : cst, chi2, dof, pc);
   free(xs);
   return st ? SB_ENOMEM : SB_SUCCESS;
 }
@@ -277,7 +234,7 @@ static int case_bb_hit_ks(const sbv_ctx *ctx, sbv_report *rep)
   size_t n = nsamples(ctx);
   sbv_note(rep, "%zu draws per set; KS p-value and chi-square on 20 bins "
                 "equiprobable under sb_bb_hit_quantile; pass iff p >= %g. "
-                "Reference median: root of sb_bb_hit_cdf = 1/2.", n, ALPHA);
+                "Reference median: root of sb_bb_hit_cdf = 1/2.", n, SBV_ALPHA);
   for (int i = 0; i < (int)(sizeof bbh_sets / sizeof bbh_sets[0]); i++) {
     char name[64];
     snprintf(name, sizeof name, "V11/bb-hit-ks/%d", i + 1);
@@ -307,7 +264,7 @@ static int case_bes3b_hit_ks(const sbv_ctx *ctx, sbv_report *rep)
   sbv_note(rep, "%zu draws per set; KS and chi-square (20 bins "
                 "equiprobable under sb_bes3b_hit_quantile); pass iff p >= "
                 "%g.  The sets span 1 - rho = 1 - exp(-2a(x+y-a)/v) from ~1 "
-                "to 5e-4 (closed-form and quadrature routes of the CDF).", n, ALPHA);
+                "to 5e-4 (closed-form and quadrature routes of the CDF).", n, SBV_ALPHA);
   for (int i = 0; i < (int)(sizeof b3h_sets / sizeof b3h_sets[0]); i++) {
     const bpar *p = &b3h_sets[i];
     char name[64];
@@ -359,7 +316,7 @@ static int case_bm_fpt_ks(const sbv_ctx *ctx, sbv_report *rep)
   size_t n = nsamples(ctx);
   sbv_note(rep, "%zu draws per set.  Finite draws vs sb_bm_fpt_cdf / mass "
                 "(KS, chi-square); fraction of +inf draws vs 1 - mass "
-                "(z-test); pass iff p >= %g.", n, ALPHA);
+                "(exact binomial test); pass iff p >= %g.", n, SBV_ALPHA);
   for (int i = 0; i < (int)(sizeof sets / sizeof sets[0]); i++) {
     fpar p = sets[i];
     p.mass = sb_bm_fpt_mass(p.x, p.a, p.mu, p.s2);
@@ -367,11 +324,9 @@ static int case_bm_fpt_ks(const sbv_ctx *ctx, sbv_report *rep)
                   "P(T < inf) = %.6g", i + 1, p.x, p.a, p.mu, p.s2, p.mass);
     if (!(p.mass > 0 && p.mass <= 1)) {
       sbv_note(rep, "  sb_bm_fpt_mass returned %g: set skipped", p.mass);
-      sb_comparison c;
       char name[64];
       snprintf(name, sizeof name, "V11/bm-fpt-ks/%d/mass", i + 1);
-      sb_compare_pvalue(&c, name, p.mass, NAN, NAN, NAN, NAN, ALPHA);
-      sbv_add(rep, &c);
+      sbv_add_band(rep, name, p.mass, p.mass, 1e-300, 1.0); /* fails */
       continue;
     }
     char name[64];
@@ -434,7 +389,7 @@ static int hit_histogram(const sbv_ctx *ctx, sbv_report *rep,
   int st = nb >= 2 ? sb_chi2_test(xs, m, edges, nb, cdf, (void *)p, &chi2,
                                   &dof, &pv)
                    : SB_EINVAL;
-  int rs = add_chi2(rep, name, st, chi2, dof, pv);
+  int rs = sbv_add_chi2(rep, name, st, chi2, dof, pv);
   if (plotname) {
     char title[160];
     snprintf(title, sizeof title, "%s first-crossing time: x=%g y=%g a=%g "
@@ -462,12 +417,12 @@ static int cross_case(const sbv_ctx *ctx, sbv_report *rep, int bessel,
   sbv_note(rep, "%lu simulated %s per set on %d sub-steps; sub-step "
                 "crossings drawn exactly (Bernoulli with the bridge formula "
                 "of the sub-step), so there is no discretisation bias.  "
-                "Records: crossing frequency vs sb_%s_cross_prob (z-test); "
+                "Records: crossing frequency vs sb_%s_cross_prob (exact binomial test); "
                 "first-crossing histogram vs sb_%s_hit_cdf (chi-square, bins "
                 "of expected count >= 40); pass iff p >= %g.",
            npaths, bessel ? "3D Brownian motions conditioned on the end "
                             "norm" : "1D Brownian bridges",
-           NGRID, bessel ? "bes3b" : "bb", bessel ? "bes3b" : "bb", ALPHA);
+           NGRID, bessel ? "bes3b" : "bb", bessel ? "bes3b" : "bb", SBV_ALPHA);
   for (int i = 0; i < nsets; i++) {
     const bpar *p = &sets[i];
     gsl_rng *r = sbv_rng_alloc(ctx, (bessel ? 20 : 10) + (unsigned long)i);
@@ -492,7 +447,7 @@ static int cross_case(const sbv_ctx *ctx, sbv_report *rep, int bessel,
     }
     char name[96];
     snprintf(name, sizeof name, "%s/%d/cross-prob", prefix, i + 1);
-    int st = add_freq(rep, name, nh, npaths, P);
+    int st = sbv_add_freq(rep, name, nh, npaths, P);
     snprintf(name, sizeof name, "%s/%d/hit-time-chi2", prefix, i + 1);
     st |= hit_histogram(ctx, rep, name, bessel, p, hits, NGRID, nh,
                         i == 0 ? plotname : NULL);
@@ -548,12 +503,12 @@ static int case_bes3_fpt(const sbv_ctx *ctx, sbv_report *rep)
   sbv_note(rep, "%lu 3D Brownian motions from |B_0| = %g, sigma2 = %g, "
                 "%d steps of %g, sub-step crossings of a = %g drawn "
                 "exactly given the norms; total mass a/x = %g.  Pass iff "
-                "z-test p >= %g.", N, x, s2, NS, dt, a, a / x, ALPHA);
+                "exact binomial test p >= %g.", N, x, s2, NS, dt, a, a / x, SBV_ALPHA);
   const double tt[3] = {t / 4, t / 2, t};
   for (int j = 0; j < 3; j++) {
     char name[64];
     snprintf(name, sizeof name, "V11/bes3-fpt-mc/cdf(t=%g)", tt[j]);
-    if (add_freq(rep, name, cnt[j], N, sb_bes3_fpt_cdf(tt[j], x, a, s2)))
+    if (sbv_add_freq(rep, name, cnt[j], N, sb_bes3_fpt_cdf(tt[j], x, a, s2)))
       return SB_ENOMEM;
   }
   return SB_SUCCESS;
@@ -593,7 +548,7 @@ static int case_bes3b_hit_hist(const sbv_ctx *ctx, sbv_report *rep)
                 "(expected counts from sb_bes3b_hit_cdf), pass iff p >= %g.  "
                 "Particles of 1 um in water at 296.15 K, units um and us; "
                 "the seed does not print its collisions' x, y: ours are "
-                "below.", n, NB, ALPHA);
+                "below.", n, NB, SBV_ALPHA);
   double *xs = malloc(n * sizeof *xs), *plot = malloc(NB * 4 * sizeof *plot);
   if (!xs || !plot) {
     free(xs);
@@ -641,7 +596,7 @@ static int case_bes3b_hit_hist(const sbv_ctx *ctx, sbv_report *rep)
                           &chi2, &dof, &pv);
     char name[64], pname[64], title[160];
     snprintf(name, sizeof name, "V11/bes3b-hit-histogram/fig5.%d", 8 + c);
-    st |= add_chi2(rep, name, cs, chi2, dof, pv);
+    st |= sbv_add_chi2(rep, name, cs, chi2, dof, pv);
     snprintf(pname, sizeof pname, "V11_bes3b_hit_fig5_%d", 8 + c);
     snprintf(title, sizeof title, "Collision time T_a (us), Bessel-3 bridge "
              "x=%g y=%g a=%g um, dt=%g us, %zu draws (cf. seed Fig 5.%d)",

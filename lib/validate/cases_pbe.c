@@ -14,10 +14,7 @@
 static int add_rel(sbv_report *rep, const char *name, double est,
                    double ref, double tol)
 {
-  sb_comparison c;
-  double lo = est - tol * fabs(est), hi = est + tol * fabs(est);
-  sb_compare_interval(&c, name, est, ref, lo, hi);
-  return sbv_add(rep, &c);
+  return sbv_add_relband(rep, name, est, ref, tol);
 }
 
 /* Discrete system, K = 60 sizes + lumped tail, vs analytic n_k, k <= 50. */

@@ -19,6 +19,7 @@ static const struct {
     {sbv_cases_langevin, &sbv_ncases_langevin},
     {sbv_cases_pbe, &sbv_ncases_pbe},
     {sbv_cases_engine, &sbv_ncases_engine},
+    {sbv_cases_v2, &sbv_ncases_v2},
     {sbv_cases_engine2, &sbv_ncases_engine2},
     {sbv_cases_agglo, &sbv_ncases_agglo},
 };

@@ -165,7 +165,7 @@ size_t sb_validate_report_nfailed(const sbv_report *rep)
     return 0;
   size_t nfail = 0;
   for (size_t i = 0; i < rep->nrecs; i++)
-    nfail += rep->recs[i].verdict != SB_PASS;
+    nfail += rep->recs[i].verdict == SB_FAIL;
   for (size_t i = 0; i < rep->ncases; i++)
     nfail += rep->cases[i].status != SB_SUCCESS;
   return nfail;
@@ -173,7 +173,7 @@ size_t sb_validate_report_nfailed(const sbv_report *rep)
 
 static const char *verdict_text(sb_verdict v)
 {
-  return v == SB_PASS ? "pass" : "FAIL";
+  return v == SB_PASS ? "pass" : v == SB_INFO ? "info" : "FAIL";
 }
 
 static void fmt_num(char *buf, size_t len, double x)
@@ -188,11 +188,11 @@ int sb_validate_report_fprint(const sbv_report *rep, FILE *out)
 {
   if (!rep || !out)
     return sbi_error(SB_EINVAL, __func__, "NULL report or stream");
-  fprintf(out, "%-40s %13s %13s %29s %10s %s\n", "case", "estimate",
-          "reference", "95% interval", "p-value", "verdict");
+  fprintf(out, "%-44s %12s %12s %27s %9s %-22s %s\n", "case", "estimate",
+          "reference", "interval", "p-value", "rule", "verdict");
   for (size_t i = 0; i < rep->nrecs; i++) {
     const sb_comparison *c = &rep->recs[i];
-    char e[32], r[32], lo[32], hi[32], p[32], iv[72];
+    char e[32], r[32], lo[32], hi[32], p[32], iv[72], rule[48];
     fmt_num(e, sizeof e, c->estimate);
     fmt_num(r, sizeof r, c->reference);
     fmt_num(lo, sizeof lo, c->ci_low);
@@ -202,12 +202,13 @@ int sb_validate_report_fprint(const sbv_report *rep, FILE *out)
       snprintf(iv, sizeof iv, "-");
     else
       snprintf(iv, sizeof iv, "[%s, %s]", lo, hi);
-    fprintf(out, "%-40s %13s %13s %29s %10s %s\n", c->name, e, r, iv, p,
-            verdict_text(c->verdict));
+    sb_comparison_rule_text(c, rule, sizeof rule);
+    fprintf(out, "%-44s %12s %12s %27s %9s %-22s %s\n", c->name, e, r, iv, p,
+            rule, verdict_text(c->verdict));
   }
   for (size_t i = 0; i < rep->ncases; i++)
     if (rep->cases[i].status != SB_SUCCESS)
-      fprintf(out, "%-40s did not complete: %s\n", rep->cases[i].case_name,
+      fprintf(out, "%-44s did not complete: %s\n", rep->cases[i].case_name,
               sb_strerror(rep->cases[i].status));
   if (ferror(out))
     return sbi_error(SB_EIO, __func__, "write error");
@@ -247,10 +248,24 @@ int sb_validate_report_write_markdown(const sbv_report *rep, const char *path,
   fprintf(f, "smolbridge %s, mode `%s`, seed %lu: %zu comparisons, %zu "
              "failed.\n\n",
           sb_version(), mode, seed, rep->nrecs, nfail);
-  fprintf(f, "Verdict rule: an interval comparison passes when the reference "
-             "lies inside the 95%% interval of the estimate; a test comparison "
-             "passes when its p-value is at least the threshold stated in the "
-             "case notes.\n\n");
+  fprintf(f,
+          "Each row states the rule that gives its verdict, and the "
+          "interval printed is the one that rule reads:\n\n"
+          "- `ref in X%% CI`: pass iff the reference lies in the confidence "
+          "interval of the estimate at level X (exact Poisson, binomial or "
+          "Student intervals; the p-value is that of the test the interval "
+          "inverts, so p >= 1 - X iff pass);\n"
+          "- `est in X%% acceptance`: a goodness-of-fit statistic (KS "
+          "distance, chi-square) must lie in the region that holds it with "
+          "probability X when the reference law is true;\n"
+          "- `ref in tolerance band`: a deterministic number within the "
+          "stated numerical tolerance;\n"
+          "- `X%% CI above ref` / `below ref`: the demonstration of an "
+          "expected failure of an approximate method;\n"
+          "- `informational`: a descriptive row, no verdict.\n\n"
+          "Tests run at alpha = 1e-4 per row unless a case says otherwise, "
+          "so a correct code fails a quick run (~250 rows) with probability "
+          "about 2.5%%.\n\n");
   for (size_t k = 0; k < rep->ncases; k++) {
     const struct sbv_case_log *c = &rep->cases[k];
     fprintf(f, "## %s\n\n", c->case_name);
@@ -258,18 +273,19 @@ int sb_validate_report_write_markdown(const sbv_report *rep, const char *path,
       fprintf(f, "**Did not complete:** %s.\n\n", sb_strerror(c->status));
     if (c->notes)
       fprintf(f, "%s\n", c->notes);
-    fprintf(f, "| case | estimate | reference | 95%% interval | p-value | "
-               "verdict |\n|---|---|---|---|---|---|\n");
+    fprintf(f, "| case | estimate | reference | interval | p-value | rule | "
+               "verdict |\n|---|---|---|---|---|---|---|\n");
     for (size_t i = c->first; i < c->first + c->count; i++) {
       const sb_comparison *r = &rep->recs[i];
-      char e[32], ref[32], lo[32], hi[32], p[32];
+      char e[32], ref[32], lo[32], hi[32], p[32], rule[48];
       fmt_num(e, sizeof e, r->estimate);
       fmt_num(ref, sizeof ref, r->reference);
       fmt_num(lo, sizeof lo, r->ci_low);
       fmt_num(hi, sizeof hi, r->ci_high);
       fmt_num(p, sizeof p, r->p_value);
-      fprintf(f, "| %s | %s | %s | [%s, %s] | %s | %s |\n", r->name, e, ref,
-              lo, hi, p, verdict_text(r->verdict));
+      sb_comparison_rule_text(r, rule, sizeof rule);
+      fprintf(f, "| %s | %s | %s | [%s, %s] | %s | %s | %s |\n", r->name, e,
+              ref, lo, hi, p, rule, verdict_text(r->verdict));
     }
     fprintf(f, "\n_%.1f s_\n\n", c->seconds);
   }
