@@ -32,7 +32,7 @@ static double k_all(int which, double ri, double rj)
 
 START_TEST(test_monodisperse_limits)
 {
-  /* 003 eq 2.11: 8kT/(3 mu); eq 2.12: 4 sqrt(6 kT d/rho_p) */
+  /* Mohaupt 2011, eq 2.11: 8kT/(3 mu); eq 2.12: 4 sqrt(6 kT d/rho_p) */
   for (double r = 1e-9; r < 1e-4; r *= 7.3) {
     ck_assert_rel(sb_kernel_brownian_co(r, r, T20, MUW),
                   8 * kB * T20 / (3 * MUW), TOL_TIGHT);
@@ -93,7 +93,8 @@ END_TEST
 
 START_TEST(test_transition_limits)
 {
-  /* Air at 20 C: mu = 1.81e-5, lambda = 67.3 nm (003 §2.2.4). */
+  /* Air at 20 C: mu = 1.81e-5, lambda = 67.3 nm (Mohaupt 2011,
+   * §2.2.4). */
   const double mu = 1.81e-5, rho = 1000.0, lam = 6.73e-8;
   for (int slip = 0; slip < 2; slip++) {
     double l = slip ? lam : 0.0;
@@ -128,8 +129,8 @@ END_TEST
 
 START_TEST(test_pair_diffusivity)
 {
-  /* 003 eqs 6.17–6.19: K = 2 pi B_ij^2(r) r, r = r_i + r_j, is exactly
-   * Saffman–Turner; eq 6.16 total strain sqrt(270/pi) gives
+  /* Mohaupt 2011, eqs 6.17–6.19: K = 2 pi B_ij^2(r) r, r = r_i + r_j, is
+   * exactly Saffman–Turner; eq 6.16 total strain sqrt(270/pi) gives
    * B^2 = (1/3)(tau_S Gamma) Gamma r^2/15. */
   for (double ri = 1e-8; ri < 1e-4; ri *= 4.3) {
     double rj = 0.37 * ri, r = ri + rj, eps = 1e-3, nu = 1e-6;
@@ -142,14 +143,14 @@ START_TEST(test_pair_diffusivity)
     double bi = sb_brownian_b2(ri, T20, MUW), bj = sb_brownian_b2(rj, T20, MUW);
     ck_assert_rel(sb_kernel_diffusion(ri, rj, bi, bj),
                   sb_kernel_brownian_co(ri, rj, T20, MUW), TOL_TIGHT);
-    /* combined = sum of kernels (003 §6.4) */
+    /* combined = sum of kernels (Mohaupt 2011, §6.4) */
     ck_assert_rel(sb_kernel_brownian_turb(ri, rj, T20, MUW, eps, nu),
                   sb_kernel_brownian_co(ri, rj, T20, MUW) +
                       sb_kernel_saffman_turner(ri, rj, eps, nu),
                   TOL_TIGHT);
   }
-  /* 003 eq 6.22: per-particle turbulent term sqrt(eps/(30 pi nu)) d^2 is
-   * half the pair value at r = d */
+  /* Mohaupt 2011, eq 6.22: per-particle turbulent term sqrt(eps/(30 pi nu))
+   * d^2 is half the pair value at r = d */
   double d = 1e-6;
   ck_assert_rel(0.5 * sb_turb_pair_b2(d, 1e-4, 1e-6),
                 sqrt(1e-4 / (30 * M_PI * 1e-6)) * d * d, TOL_TIGHT);
@@ -177,7 +178,8 @@ START_TEST(test_abrahamson_flux)
   double r = ri + rj;
   ck_assert_rel(sb_kernel_abrahamson(ri, rj, u2i, u2j), M_PI * r * r * mean,
                 1e-12);
-  /* the seed's energy form with the square root restored */
+  /* the energy form of Mohaupt (2011) eq 2.7 with the square root
+   * restored */
   double Ei = 1.5 * u2i, Ej = 1.5 * u2j;
   ck_assert_rel(sb_kernel_abrahamson(ri, rj, u2i, u2j),
                 sqrt(32 * M_PI / 3) * sqrt((Ei + Ej) / 2) * r * r, TOL_TIGHT);

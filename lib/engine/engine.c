@@ -222,7 +222,7 @@ int sb_engine_add_species(sb_engine *e, const sb_engine_species *s,
   e->spec[k] = *s;
   e->coef[k] = c;
   /* Equilibrium velocity variance: k_B T / m, or B^2 tau / 2 (the
-   * stationary variance of the Langevin model, seed 003 eq A.4). */
+   * stationary variance of the Langevin model, Mohaupt 2011, eq A.4). */
   double var = s->T > 0.0 ? SB_BOLTZMANN * s->T / s->mass
                           : 0.5 * s->B * s->B * s->tau;
   e->vsd[k] = sqrt(var);
@@ -652,8 +652,8 @@ int sb_engine_set_dt(sb_engine *e, double dt)
 /* ============================================================ run */
 
 /* Transport: x0 <- x, u0 <- u, U_s at x0, exact Langevin step of every
- * particle with its species' coefficients (langevin_step.c, seed 003 eq
- * 1.16):
+ * particle with its species' coefficients (langevin_step.c; Mohaupt
+ * 2011, eq 1.16):
  *   x += w dt + (u - w) gain + s_xu z1 + s_xc z2,  u = w + (u - w) decay
  *   + s_u z1,
  * disp = x - x0.  The same update as sb_langevin_step3_coef, fused with

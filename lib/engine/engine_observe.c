@@ -5,7 +5,7 @@
  * Kernel estimate.  With n particles in a volume V the expected number of
  * collisions per unit time is K n (n - 1) / (2 V) (K n_c^2 V / 2 with the
  * pair count n (n - 1)/2 in place of n^2/2), so
- *     K_e = 2 N_c V / (n (n - 1) t)                 (issue 5; seed 003 §2.4)
+ *     K_e = 2 N_c V / (n (n - 1) t)                 (Mohaupt 2011, eq 2.16)
  * and, N_c being Poisson, K_e's exact interval is the Garwood interval of
  * N_c times the same scale (sb_poisson_rate_ci).  Successive collisions
  * are not strictly independent (re-collisions of a pair), so the interval

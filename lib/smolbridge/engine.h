@@ -4,15 +4,17 @@
  * the exact Langevin step of <smolbridge/langevin.h> (or by free flight,
  * tau = +inf, for molecules), pairs that can collide during a step are
  * found by an O(N) neighbour search (linked cells, or the sort-and-sweep of
- * seed 000 §4.1 with the per-particle anisotropic reach of §5.1), a
+ * Thomine 2008, §4.1, with the per-particle anisotropic reach of its
+ * §5.1), a
  * detector decides whether and when each candidate pair touches (overlap at
  * step end, Sundaram & Collins 1996; or the exact contact time of the
- * straight-line relative motion, seed 000 §4.2 / seed 003 App. F), the
+ * straight-line relative motion, Thomine 2008, §4.2; Mohaupt 2011,
+ * App. F), the
  * events are processed earliest-first, and an outcome is applied (elastic
- * with energy-loss factor eta, seed 000 §4.3-4.4; or "reinsert", which
+ * with energy-loss factor eta, Thomine 2008, §4.3-4.4; or "reinsert", which
  * removes one partner and puts it back at random to keep the concentration
- * constant, seed 003 §5.3).  Observers count collisions and estimate the
- * collision kernel with an exact Poisson interval.
+ * constant, Mohaupt 2011, §5.3.2).  Observers count collisions and estimate
+ * the collision kernel with an exact Poisson interval.
  *
  * Theory, derivations, every parameter and its unit: docs/engine.md.
  *
@@ -402,7 +404,7 @@ int sb_engine_outcome_from_name(const char *name, sb_engine_outcome *o);
 
 
 /* ============================================================
- * Agglomeration (issue 7): particle removal, merge and DLVO outcomes,
+ * Agglomeration: particle removal, merge and DLVO outcomes,
  * cluster sizes and size-distribution observers (lib/engine/engine_merge.c);
  * theory and validation: docs/agglomeration.md.
  *
@@ -483,10 +485,10 @@ typedef struct {
   sb_agglo_wmax_fn wmax_fn;   /**< NULL (default): constant wmax */
   void *wmax_ctx;
   sb_agglo_erel erel;         /**< default SB_AGGLO_EREL_CONTACT */
-  int erel_normal;            /**< 0 (default): the full E_rel of seed 003
-                                   App. C; 1: its part along the line of
-                                   centres (what works against a central
-                                   force) */
+  int erel_normal;            /**< 0 (default): the full E_rel of
+                                   Mohaupt 2011, App. C; 1: its part
+                                   along the line of centres (what works
+                                   against a central force) */
   size_t kmax;                /**< largest cluster size allowed (a merge
                                    beyond it fails with SB_EINVAL);
                                    default 2^20 */

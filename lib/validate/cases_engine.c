@@ -1,33 +1,36 @@
 /* cases_engine.c — `smolbridge validate` cases of the collision engine
- * (issue 5): V1, V2, V9 of DESIGN.md.
+ * (docs/engine.md §10): V1, V2, V9.
  *
- *  V1/kinetic-gases     MD hard-sphere gases He, Ne, Ar, Kr, Xe (seed 003
- *                       Table 3.1: n = 250, L = 10 nm, T = 300 K, dt =
+ *  V1/kinetic-gases     MD hard-sphere gases He, Ne, Ar, Kr, Xe (Mohaupt
+ *                       2011, Table 3.1: n = 250, L = 10 nm, T = 300 K, dt =
  *                       1e-14 s; He also at 1e-15 and 1e-13 s), elastic,
  *                       ballistic detection: K_e vs kinetic theory
  *                       K_th = pi d^2 sqrt(16 k_B T/(pi m)) g(sigma)
  *  V2/brownian-ballistic  Brownian spheres, exact Langevin step with
  *                       dt/tau_p = 0.1, contact-time detection, reinsert
- *                       outcome (seed 003 Table 3.2, d_p = 0.75, 1, 2 um):
+ *                       outcome (Mohaupt 2011, Table 3.2, d_p = 0.75, 1,
+ *                       2 um):
  *                       K_e vs Smoluchowski 8 k_B T/(3 mu) (Dahneke
  *                       transition form) times the exact transient of
  *                       pairs since their last (re)insertion
- *  V9/two-spheres-45    two equal spheres, 45° impact (seed 000 §7):
+ *  V9/two-spheres-45    two equal spheres, 45° impact (Thomine 2008, §7):
  *                       post-collision velocities vs the analytic ones
- *  V9/crossing-jets     two 2-D beams crossing at +-50° (seed 000 §8-9,
- *                       reduced): exit (end) distribution of the two
+ *  V9/crossing-jets     two 2-D beams crossing at +-50° (Thomine 2008,
+ *                       §8-9, reduced): exit (end) distribution of the two
  *                       families with and without collisions
  *
- * Verdicts: kernels pass iff the reference lies in the exact 95% Poisson
- * (Garwood) interval of K_e; the 45° case iff |computed - analytic| <=
+ * Verdicts: kernels pass iff the exact two-sided Poisson test of the
+ * collision count against the reference rate gives p >= 1e-3
+ * (sb_compare_poisson; the table shows the exact 95% Garwood interval of
+ * K_e); the 45° case iff |computed - analytic| <=
  * 1e-12 (interval est +- 1e-12); jets: see case_jets.
  *
  * Reductions (quick mode, so that all engine cases take well under 60 s):
  * V1 stops at ~1000 collisions per run (400 for dt = 1e-15 s) instead of
- * running as long as seed 003 Figs 3.6-3.7; --full runs 20 000.  V2 quick
- * uses phi = 2e-2 (n = 1000) instead of the seed's 1e-4, whose runs need
- * ~1e10 particle-steps per diameter (--full: the seed's set-up, about an
- * hour per diameter); both run to ~400 expected collisions and compare
+ * running as long as Mohaupt (2011) Figs 3.6-3.7; --full runs 20 000.  V2
+ * quick uses phi = 2e-2 (n = 1000) instead of the thesis' 1e-4, whose runs
+ * need ~1e10 particle-steps per diameter (--full: the thesis' set-up, about
+ * an hour per diameter); both run to ~400 expected collisions and compare
  * with a reference that includes the exact Smoluchowski transient of
  * every pair since its last (re)insertion (see case_brownian).
  */
@@ -162,8 +165,8 @@ static int case_gases(const sbv_ctx *ctx, sbv_report *rep)
   }
   if (!st)
     sbv_plot(ctx, rep, "V1_kinetic_gases",
-             "V1: K_e/K_th over time, MD hard-sphere gases (seed 003 Figs "
-             "3.6-3.7)",
+             "V1: K_e/K_th over time, MD hard-sphere gases (Mohaupt 2011, "
+             "Figs 3.6-3.7)",
              "t/t_end He Ne Ar Kr Xe He_dt1e-15 He_dt1e-13", plot, NSAMP,
              (size_t)nrun + 1,
              "set xlabel 't / t_end'\nset ylabel 'K_e / K_th'\n"
@@ -255,12 +258,12 @@ static int case_brownian(const sbv_ctx *ctx, sbv_report *rep)
 {
   const double T = 296.15, mu = 1.83245e-5, rho = 1000.0;
   const double dps[3] = {0.75e-6, 1e-6, 2e-6};
-  /* --full: seed 003 Table 3.2 (phi = 1e-4, L = 1e-4 m, n = 453, 191,
+  /* --full: Mohaupt 2011, Table 3.2 (phi = 1e-4, L = 1e-4 m, n = 453, 191,
    * 24); ~1e10 particle-steps per diameter, see docs/engine.md for the
    * cost.  Quick: phi = 2e-2 with n = 1000 (collisions per particle-step
    * scale as phi/d; the reference accounts for the larger transient).
    * Run length: `target` expected collisions (+-10% 95% interval for 400;
-   * the seed ran to N_c^th = 500), estimated with the steady transient
+   * the thesis ran to N_c^th = 500), estimated with the steady transient
    * factor 1 + sqrt(24 phi). */
   const double phi = ctx->full ? 1e-4 : 2e-2;
   const double target = 400.0;
@@ -268,12 +271,13 @@ static int case_brownian(const sbv_ctx *ctx, sbv_report *rep)
   if (!plot)
     return SB_ENOMEM;
   int st = SB_SUCCESS;
-  sbv_note(rep, "Seed 003 Table 3.2: T = 296.15 K, mu = 1.83245e-5 Pa s, "
-           "rho_p = 1000 kg/m^3, dt/tau_p = 0.1, fluid at rest, exact "
+  sbv_note(rep, "Mohaupt (2011) Table 3.2: T = 296.15 K, "
+           "mu = 1.83245e-5 Pa s, rho_p = 1000 kg/m^3, dt/tau_p = 0.1, "
+           "fluid at rest, exact "
            "Langevin step, contact-time detection, reinsert outcome; "
            "phi = %g (%s), run length for %.0f expected collisions "
            "(95%% interval ~ +-%.0f%%).", phi,
-           ctx->full ? "the seed's, L = 1e-4 m" : "quick; seed: 1e-4",
+           ctx->full ? "the thesis', L = 1e-4 m" : "quick; thesis: 1e-4",
            target, 196.0 / sqrt(target));
   sbv_note(rep, "Reference K_ref(t) = K_tr (1 + d I(t)/(sqrt(pi D12) P t)): "
            "K_tr = Dahneke transition kernel (sb_kernel_brownian_tr, "
@@ -281,7 +285,9 @@ static int case_brownian(const sbv_ctx *ctx, sbv_report *rep)
            "Smoluchowski transient of every pair since its last "
            "(re)insertion (I(t) = sum over pair segments of 2 sqrt(length), "
            "D12 = 2 k_B T/(3 pi mu d), P = n(n-1)/2); see docs/engine.md.  "
-           "Pass iff K_ref is in the exact 95%% Poisson interval of K_e.");
+           "Pass iff the exact two-sided Poisson test of the collision "
+           "count against K_ref gives p >= %g (the interval shown is the "
+           "exact 95%% interval of K_e).", ALPHA);
   for (int id = 0; id < 3 && !st; id++) {
     const double d = dps[id];
     double tau = sb_stokes_tau(rho, d, mu, 1.0);
@@ -361,7 +367,7 @@ static int case_brownian(const sbv_ctx *ctx, sbv_report *rep)
   if (!st)
     sbv_plot(ctx, rep, "V2_brownian_ballistic",
              "V2: K_e/K_ref(t) over time, Brownian spheres, dt/tau_p = 0.1 "
-             "(seed 003 Figs 3.8-3.10)",
+             "(Mohaupt 2011, Figs 3.8-3.10)",
              "t/t_end dp0.75um dp1um dp2um", plot, NSAMP, 4,
              "set xlabel 't / t_end'\nset ylabel 'K_e / K_ref(t)'\n"
              "set yrange [0:2]\n"
@@ -424,11 +430,11 @@ static int case_45(const sbv_ctx *ctx, sbv_report *rep)
 
 /* Two 2-D beams of free-flying discs (radius 2 um, 400 each, area
  * fraction 0.13 in their 0.2 mm x 0.2 mm source squares) cross at +-50°
- * with speed 1 m/s and a thermal spread of 2% (seed 000 §8: injection
- * angle 50°).  Family 0 starts high and moves down, family 1 low and up;
- * the run stops when the beams' centres have exchanged heights.  Without
- * collisions every particle of family 0 ends in the lower half ("no
- * mixing, the families stay grouped", seed 000 §9.1); with elastic
+ * with speed 1 m/s and a thermal spread of 2% (Thomine 2008, §8:
+ * injection angle 50°).  Family 0 starts high and moves down, family 1 low and
+ * up; the run stops when the beams' centres have exchanged heights.  Without
+ * collisions every particle of family 0 ends in the lower half (the
+ * families stay grouped, no mixing: Thomine 2008, §9.1); with elastic
  * collisions part of it is deflected back (mixing, §9.2-9.3).  The "exit
  * distribution" is the final y-histogram of each family (plot). */
 static int run_jets(const sbv_ctx *ctx, int collide, size_t *crossed,
@@ -541,7 +547,7 @@ static int case_jets(const sbv_ctx *ctx, sbv_report *rep)
   }
   sbv_plot(ctx, rep, "V9_crossing_jets",
            "V9: final y-distribution of the two families, crossing jets "
-           "(seed 000 Figs 22-23)",
+           "(Thomine 2008, Figs 22-24)",
            "y/L fam0_nocoll fam1_nocoll fam0_coll fam1_coll", plot, NB, 5,
            "set xlabel 'y / L'\nset ylabel 'particles per bin'\n"
            "plot $DATA u 1:2 w histeps lc rgb 'red' t 'family 0, no "
@@ -556,16 +562,18 @@ static int case_jets(const sbv_ctx *ctx, sbv_report *rep)
 
 const sbv_case sbv_cases_engine[] = {
     {"V1/kinetic-gases",
-     "MD hard-sphere gases He..Xe vs kinetic theory (seed 003 Table 3.1)",
+     "MD hard-sphere gases He..Xe vs kinetic theory (Mohaupt 2011, "
+     "Table 3.1)",
      case_gases},
     {"V2/brownian-ballistic",
-     "Brownian spheres, dt/tau_p = 0.1, contact time vs Smoluchowski",
+     "Brownian spheres, dt/tau_p = 0.1, contact time vs Smoluchowski "
+     "(Mohaupt 2011, Table 3.2)",
      case_brownian},
     {"V9/two-spheres-45",
-     "two equal spheres at 45°: velocities vs analytic (seed 000 §7)",
+     "two equal spheres at 45°: velocities vs analytic (Thomine 2008, §7)",
      case_45},
     {"V9/crossing-jets",
-     "2-D crossing jets with/without collisions (seed 000 §8-9)",
+     "2-D crossing jets with/without collisions (Thomine 2008, §8-9)",
      case_jets},
 };
 
