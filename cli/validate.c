@@ -77,9 +77,10 @@ static void usage(FILE *out)
 "  --list          list the cases and exit\n"
 "  -h, --help      this help\n"
 "\n"
-"Table columns: case, estimate, reference, 95%% interval of the estimate,\n"
-"p-value (when the comparison is a test), verdict. Exit status: 0 if every\n"
-"comparison passes, 1 if any fails, 2 on a usage or output error.\n");
+"Table columns: case, estimate, reference, interval of the estimate (95%%\n"
+"unless the case notes say otherwise), p-value (when the comparison is a\n"
+"test), verdict; the rules are in docs/validation.md. Exit status: 0 if\n"
+"every comparison passes, 1 if any fails, 2 on a usage or output error.\n");
 }
 
 /* mkdir -p */

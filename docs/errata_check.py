@@ -428,7 +428,7 @@ def check_i52():
           (1 + mp.erf(mp.sqrt(be * u) - mp.sqrt(al / u))) / 2 -
           mp.exp(2 * mp.sqrt(al * be)) *
           mp.erfc(mp.sqrt(be * u) + mp.sqrt(al / u)) / 2) / mp.sqrt(be)
-    check("[M] eqs I.47, I.50, I.52: prefactor 1/pi where 1/sqrt(pi) "
+    check("[M] eqs I.47, I.50, I.52-I.54: prefactor 1/pi where 1/sqrt(pi) "
           "(as in I.44, I.51)",
           rel(integral / mp.sqrt(PI), h2) < 1e-20,
           ["alpha = 0.3, beta = 1.7, u = 0.8: (1/sqrt(pi)) int = %s, "

@@ -451,8 +451,8 @@ static int case_v5(const sbv_ctx *ctx, sbv_report *rep)
         sxx += (logd[k] - mx) * (logd[k] - mx);
         sxy += (logd[k] - mx) * (logK[series][k] - my);
       }
-      sbv_note(rep, "log-log slope of K_e vs d: %.3f (expected %d; seed "
-               "Figs 5.5-5.6)", sxy / sxx, series ? 3 : 1);
+      sbv_note(rep, "log-log slope of K_e vs d: %.3f (expected %d; Mohaupt "
+               "2011, Figs 5.5-5.6)", sxy / sxx, series ? 3 : 1);
     }
   }
   return st;

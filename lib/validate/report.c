@@ -247,10 +247,13 @@ int sb_validate_report_write_markdown(const sbv_report *rep, const char *path,
   fprintf(f, "smolbridge %s, mode `%s`, seed %lu: %zu comparisons, %zu "
              "failed.\n\n",
           sb_version(), mode, seed, rep->nrecs, nfail);
-  fprintf(f, "Verdict rule: an interval comparison passes when the reference "
-             "lies inside the 95%% interval of the estimate; a test comparison "
-             "passes when its p-value is at least the threshold stated in the "
-             "case notes.\n\n");
+  fprintf(f, "Verdict rules (docs/validation.md): a comparison with a "
+             "p-value passes when the p-value is at least the threshold "
+             "stated in the case notes (1e-3 throughout); an interval "
+             "comparison passes when the reference lies inside the interval "
+             "shown (95%% unless the notes say otherwise, or a tolerance "
+             "band); cases that show a known failure state the expected "
+             "relation in the record name.\n\n");
   for (size_t k = 0; k < rep->ncases; k++) {
     const struct sbv_case_log *c = &rep->cases[k];
     fprintf(f, "## %s\n\n", c->case_name);
