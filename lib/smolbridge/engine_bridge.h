@@ -18,8 +18,8 @@
  *      y <= a (Mohaupt 2011, eqs 5.13-5.15; sb_bes3b_cross_prob).  The hit
  *      time T_a is drawn exactly from the conditioned first-passage law
  *      (eqs 5.20-5.22; sb_bes3b_hit_sample, no bisection).  This law ignores
- *      the angle between A and B: the collision *rate* is exact, but which pair
- *      collides, when and where is not (docs/engine_bridge.md).
+ *      the angle between A and B: the collision *rate* is exact, but which
+ *      pair collides, when and where is not (docs/engine_bridge.md).
  *  SB_BRIDGE_EXACT   the event is sampled from the full 3-D bridge
  *      (sb_bb3_hit_sample below): exact up to the stated tolerance, and the
  *      contact point comes with the hit time.
