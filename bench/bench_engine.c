@@ -1,15 +1,15 @@
 /* bench_engine.c — speed of the collision engine.
  *
  *  1. Particle-steps per second vs N = 1e3 ... 1e6 for a dilute Brownian
- *     suspension (seed 003 Table 3.2 physics: d_p = 1 um, rho_p = 1000
+ *     suspension (Mohaupt 2011, Table 3.2 physics: d_p = 1 um, rho_p = 1000
  *     kg/m^3, T = 296.15 K, mu = 1.83245e-5 Pa s, dt/tau_p = 0.1,
  *     phi = 1e-4, fluid at rest) with everything on: exact Langevin step,
- *     linked cells, contact-time detection, reinsert outcome.  Issue 5
- *     goals: per-particle cost flat within +-30% from 1e4 to 1e6, and
- *     >= 1e7 particle-steps/s (<= 100 ns) at N = 1e6, single core.
+ *     linked cells, contact-time detection, reinsert outcome.  Goals:
+ *     per-particle cost flat within +-30% from 1e4 to 1e6, and >= 1e7
+ *     particle-steps/s (<= 100 ns) at N = 1e6, single core.
  *  2. Linked cells vs sort-and-sweep (the neighbour search alone, on the
  *     trial step x -> x + u dt): isotropic Brownian configuration and two
- *     counter-flowing jets along x (seed 000 §5.1), N = 1e5; ratio
+ *     counter-flowing jets along x (Thomine 2008, §5.1), N = 1e5; ratio
  *     sweep/cells of the median times.
  *
  * Figures are medians over repetitions (--reps, default 5; --quick: 3 and

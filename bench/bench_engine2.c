@@ -1,5 +1,5 @@
 /* bench_engine2.c — speed of the diffusive-bridge collision detection
- * (issue 6).
+ * (docs/engine_bridge.md).
  *
  *  1. Headline: wall time to estimate the Brownian kernel to +-2% (95%:
  *     ~9600 collisions) for d_p = 0.1 um monodisperse, phi = 1e-4,

@@ -1,5 +1,5 @@
 /* bench_langevin.c — cost of the exact Langevin step, in ns per 3-D
- * particle-step (issue 3: goal <= 40 ns single core with GSL's ziggurat
+ * particle-step (goal: <= 40 ns single core with GSL's ziggurat
  * Gaussian), and how much of it is the Gaussian generator.
  *
  * A 3-D particle-step draws 6 standard Gaussians (z1, z2 per component).
@@ -80,7 +80,7 @@ static void setup(ctx_t *c, const gsl_rng_type *T)
 {
   c->r = gsl_rng_alloc(T);
   gsl_rng_set(c->r, 42);
-  /* seed 003 Table D.1: tau_p = 3e-6 s, B from d_p = 1 um, rho_p =
+  /* Mohaupt 2011, Table D.1: tau_p = 3e-6 s, B from d_p = 1 um, rho_p =
    * 1000 kg/m^3 at 293.15 K; dt = tau_p (a mixed regime, no shortcut) */
   double tau = 3e-6, B = 2.27, dt = 3e-6;
   sb_langevin_coef_init(&c->coef[0], tau, B, dt);

@@ -1,4 +1,4 @@
-/* bench_pbe.c — wall time of the population-balance solvers (issue 4):
+/* bench_pbe.c — wall time of the population-balance solvers:
  * constant kernel K = 1, N0 = 1, monodisperse, integrated to t = 1000
  * (tau = 1000), with K = 1000 discrete sizes and with 200 sections over
  * 12 decades, for the linear solvers and gain evaluations; cost of one

@@ -1,7 +1,7 @@
 /* bench_refs.c — ns per call of the bridge and passage references
- * (issue 2, part 8), single thread, median of repeated batches.
+ * single thread, median of repeated batches.
  *
- * Goals (issue 2): crossing probability <= 50 ns; hit-time quantile and
+ * Goals: crossing probability <= 50 ns; hit-time quantile and
  * sampler <= 1 us; first-passage pdf/cdf <= 100 ns.  exp() and GSL's
  * ziggurat Gaussian are timed for scale.  Arguments come from arrays of
  * 4096 pre-generated random parameter sets (fixed seed), so the compiler
@@ -170,7 +170,8 @@ int main(int argc, char **argv)
   gsl_rng_set(r, 20240601UL);
   sbb_args cross, hit, b3A, b3B, fpt, b3f;
   if (fill_cross(&cross, r) || fill_hit(&hit, r, 1.0, 1e-2, 1e1) ||
-      /* Bessel-3 regime A: v << a^2, 1 - rho ~ 1 (seed's collisions) */
+      /* Bessel-3 regime A: v << a^2, 1 - rho ~ 1 (the collisions of
+       * Mohaupt 2011, ch. 5) */
       fill_hit(&b3A, r, 1.0, 1e-2, 0.3) ||
       /* regime B: v >> a^2 (a = 0.01, v in [0.5, 5]), 1 - rho ~ 1e-2 */
       fill_hit(&b3B, r, 0.01, 0.5, 5.0) || fill_fpt(&fpt, r) ||
@@ -213,7 +214,7 @@ int main(int argc, char **argv)
       {"sb_bes3_fpt_cdf", k_b3f_cdf, &b3f, G_FPT},
   };
   sbb_print_machine(stdout);
-  printf("# goals (issue 2): crossing <= %.0f ns, hit quantile/sampler <= "
+  printf("# goals: crossing <= %.0f ns, hit quantile/sampler <= "
          "%.0f ns, fpt pdf/cdf <= %.0f ns\n", G_CROSS, G_HIT, G_FPT);
   sbb_table_header(stdout);
   int miss = 0, ngoal = 0;

@@ -17,6 +17,7 @@
 #include <ini.h>
 
 #include <smolbridge/engine.h>
+#include <smolbridge/kernel.h>
 #include <smolbridge/langevin.h>
 
 #include "cli.h"
@@ -427,6 +428,92 @@ static long species_count(const config *c, const spec_cfg *s, double vol)
 
 /* ------------------------------------------------------------ output */
 
+/* Per-species-pair kernels sampled with the time series: the pairs
+ * (a <= b) of the species declared in the file (at most 4 species, 10
+ * pairs, in series.csv; all tracked pairs in summary.json). */
+#define SERIES_MAXSP 4
+typedef struct {
+  int nsp;            /* species with columns in series.csv */
+  double *rows;       /* per sample: t, then K, lo, hi per pair */
+  size_t nrows, cap;
+} pair_series;
+
+static int npairs_of(int nsp) { return nsp * (nsp + 1) / 2; }
+
+/* "he" for the section [species he] */
+static const char *short_name(const config *c, size_t k)
+{
+  if ((int)k >= c->nsp)
+    return "cluster";
+  const char *n = c->sp[k].name;
+  return strncmp(n, "species ", 8) == 0 ? n + 8 : n;
+}
+
+static int pair_series_sample(pair_series *ps, const sb_engine *e)
+{
+  if (ps->nsp <= 1)
+    return 0;
+  size_t w = 1 + 3 * (size_t)npairs_of(ps->nsp);
+  if (ps->nrows == ps->cap) {
+    size_t nc = ps->cap ? 2 * ps->cap : 256;
+    double *nr = realloc(ps->rows, nc * w * sizeof *nr);
+    if (!nr)
+      return -1;
+    ps->rows = nr;
+    ps->cap = nc;
+  }
+  double *r = ps->rows + ps->nrows++ * w;
+  r[0] = sb_engine_time(e);
+  int q = 0;
+  for (int a = 0; a < ps->nsp; a++)
+    for (int b = a; b < ps->nsp; b++, q++) {
+      sb_engine_pair_stats st;
+      sb_engine_pair_kernel(e, (size_t)a, (size_t)b, 0.95, &st);
+      r[1 + 3 * q] = st.K;
+      r[2 + 3 * q] = st.lo;
+      r[3 + 3 * q] = st.hi;
+    }
+  return 0;
+}
+
+/* The theoretical kernels that apply to species pair (a, b) with the fluid
+ * at rest, written as JSON members: free flight (both tau = inf) at a
+ * common T: kinetic theory; Langevin species: the continuum (Smoluchowski)
+ * kernel 4 pi (D_a + D_b)(r_a + r_b), D = (B tau)^2/2, and with a common
+ * T > 0 the free-molecular kernel and the transition kernel of
+ * Gopalakrishnan & Hogan (2011) with its Kn_D. */
+static void json_references(FILE *f, const config *c,
+                            const sb_engine_species *sa,
+                            const sb_engine_species *sb)
+{
+  fprintf(f, "\"references\": {");
+  int rest = !strcmp(c->fluid, "rest");
+  int same_T = sa->T > 0 && sa->T == sb->T;
+  const char *sep = "";
+  if (rest && isinf(sa->tau) && isinf(sb->tau) && same_T) {
+    fprintf(f, "\"kinetic\": %.17g",
+            sb_kernel_kinetic(2 * sa->radius, 2 * sb->radius, sa->mass,
+                              sb->mass, sa->T));
+  } else if (rest && isfinite(sa->tau) && isfinite(sb->tau)) {
+    double ba = sa->B * sa->tau, bb = sb->B * sb->tau;
+    fprintf(f, "\"continuum\": %.17g",
+            sb_kernel_diffusion(sa->radius, sb->radius, ba * ba, bb * bb));
+    sep = ", ";
+    if (same_T) {
+      double R = sa->radius + sb->radius;
+      double mr = sa->mass * sb->mass / (sa->mass + sb->mass);
+      fprintf(f, "%s\"free_molecular\": %.17g, \"transition_gh\": %.17g, "
+              "\"Kn_D\": %.17g", sep,
+              PI * R * R * sqrt(8 * SB_BOLTZMANN * sa->T / (PI * mr)),
+              sb_kernel_brownian_gh(sa->radius, sb->radius, sa->mass,
+                                    sb->mass, sa->tau, sb->tau, sa->T),
+              sb_kernel_brownian_gh_kn(sa->radius, sb->radius, sa->mass,
+                                       sb->mass, sa->tau, sb->tau, sa->T));
+    }
+  }
+  fprintf(f, "}");
+}
+
 static void write_json(FILE *f, const config *c, const sb_engine *e,
                        double secs)
 {
@@ -462,13 +549,43 @@ static void write_json(FILE *f, const config *c, const sb_engine *e,
   fprintf(f, "  ],\n  \"particles\": %zu,\n", sb_engine_count(e));
   fprintf(f, "  \"time\": %.17g,\n  \"steps\": %llu,\n", st.t,
           (unsigned long long)st.steps);
-  fprintf(f, "  \"t_measure_start\": %.17g,\n", st.t_reset);
+  fprintf(f, "  \"t_measure_start\": %.17g,\n  \"t_measure_end\": %.17g,\n",
+          st.t_reset, st.t);
+  fprintf(f, "  \"pair_exposure\": %.17g,\n", st.exposure);
   fprintf(f, "  \"collisions\": %llu,\n  \"candidates\": %llu,\n  "
-          "\"dropped\": %llu,\n",
+          "\"dropped\": %llu,\n  \"redetected\": %llu,\n",
           (unsigned long long)st.ncoll, (unsigned long long)st.ncand,
-          (unsigned long long)st.dropped);
-  fprintf(f, "  \"kernel\": {\"K\": %.17g, \"ci95\": [%.17g, %.17g]},\n",
-          isnan(K) ? 0.0 : K, isnan(lo) ? 0.0 : lo, isnan(hi) ? 0.0 : hi);
+          (unsigned long long)st.dropped,
+          (unsigned long long)st.redetected);
+  if (isnan(K))
+    fprintf(f, "  \"kernel\": {\"K\": null, \"ci95\": null, \"why\": "
+            "\"no pair exposure in the measured interval\"},\n");
+  else
+    fprintf(f, "  \"kernel\": {\"K\": %.17g, \"ci95\": [%.17g, %.17g]},\n",
+            K, lo, hi);
+  /* per species pair (a <= b), with the theory that applies */
+  fprintf(f, "  \"pair_kernels\": [");
+  int firstp = 1;
+  const sb_engine_species *sa, *sb;
+  for (size_t a = 0; a < SB_ENGINE_PAIR_SPECIES &&
+                     (sa = sb_engine_get_species(e, a)); a++)
+    for (size_t b = a; b < SB_ENGINE_PAIR_SPECIES &&
+                       (sb = sb_engine_get_species(e, b)); b++) {
+      sb_engine_pair_stats ps;
+      sb_engine_pair_kernel(e, a, b, 0.95, &ps);
+      if (!(ps.exposure > 0.0))
+        continue;
+      fprintf(f, "%s\n    {\"species\": [\"%s\", \"%s\"], "
+              "\"collisions\": %llu, \"exposure\": %.17g, \"K\": %.17g, "
+              "\"ci95\": [%.17g, %.17g], ", firstp ? "" : ",",
+              short_name(c, a), short_name(c, b),
+              (unsigned long long)ps.ncoll, ps.exposure, ps.K, ps.lo,
+              ps.hi);
+      json_references(f, c, sa, sb);
+      fprintf(f, "}");
+      firstp = 0;
+    }
+  fprintf(f, "%s],\n", firstp ? "" : "\n  ");
   fprintf(f, "  \"family_collisions\": [");
   int first = 1;
   for (int a = 0; a < SB_ENGINE_MAXFAM; a++)
@@ -481,18 +598,36 @@ static void write_json(FILE *f, const config *c, const sb_engine *e,
   fprintf(f, "],\n  \"wall_seconds\": %.3f\n}\n", secs);
 }
 
-static int write_series(const char *path, const sb_engine *e)
+static int write_series(const char *path, const sb_engine *e,
+                        const config *c, const pair_series *ps)
 {
   FILE *f = fopen(path, "w");
   if (!f)
     return -1;
   size_t n;
   const sb_engine_sample *s = sb_engine_series(e, &n);
-  fprintf(f, "t,ncoll,K,K_lo,K_hi,ekin,px,py,pz\n");
-  for (size_t k = 0; k < n; k++)
-    fprintf(f, "%.17g,%llu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+  int np = ps->nsp > 1 ? npairs_of(ps->nsp) : 0;
+  fprintf(f, "t,ncoll,K,K_lo,K_hi,ekin,px,py,pz");
+  for (int a = 0; a < ps->nsp && np; a++)
+    for (int b = a; b < ps->nsp; b++)
+      fprintf(f, ",K_%s_%s,K_%s_%s_lo,K_%s_%s_hi", short_name(c, a),
+              short_name(c, b), short_name(c, a), short_name(c, b),
+              short_name(c, a), short_name(c, b));
+  fprintf(f, "\n");
+  size_t w = 1 + 3 * (size_t)np;
+  for (size_t k = 0; k < n; k++) {
+    fprintf(f, "%.17g,%llu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g",
             s[k].t, (unsigned long long)s[k].ncoll, s[k].K, s[k].K_lo,
             s[k].K_hi, s[k].ekin, s[k].p[0], s[k].p[1], s[k].p[2]);
+    /* the pair row sampled at the same time, if any */
+    const double *r = NULL;
+    for (size_t q = 0; np && q < ps->nrows; q++)
+      if (ps->rows[q * w] == s[k].t)
+        r = ps->rows + q * w;
+    for (int q = 0; q < 3 * np; q++)
+      fprintf(f, ",%.17g", r ? r[1 + q] : NAN);
+    fprintf(f, "\n");
+  }
   return fclose(f) ? -1 : 0;
 }
 
@@ -522,7 +657,8 @@ static void usage(FILE *f)
  * otherwise; its size series is sampled with the engine's series. */
 static sb_agglo *agglo_ctx;
 
-static int progress_step(sb_engine *e, double t_stop, double t0, FILE *err)
+static int progress_step(sb_engine *e, double t_stop, double t0, FILE *err,
+                         pair_series *ps)
 {
   double last = -1;
   while (sb_engine_time(e) < t_stop - 0.5 * sb_engine_get_params(e)->dt) {
@@ -530,6 +666,12 @@ static int progress_step(sb_engine *e, double t_stop, double t0, FILE *err)
     if (st)
       return st;
     size_t every = sb_engine_get_params(e)->sample_every;
+    if (ps && every) {
+      sb_engine_stats s0;
+      sb_engine_get_stats(e, &s0);
+      if (s0.steps % every == 0 && pair_series_sample(ps, e))
+        return SB_ENOMEM;
+    }
     if (agglo_ctx && every) {
       sb_engine_stats s0;
       sb_engine_get_stats(e, &s0);
@@ -746,13 +888,23 @@ int sbc_collide_main(int argc, char **argv)
   }
   const double dt = sb_engine_get_params(e)->dt;
   double t0 = sb_engine_time(e);
+  /* t_end is the absolute end time (the warm-up is inside it); steps
+   * counts the measured steps, after the warm-up */
+  const double warm = c.restart[0] ? 0.0 : c.warmup;
   double t_end = !isnan(c.t_end) ? c.t_end
-                 : c.steps >= 0  ? t0 + (double)c.steps * dt
+                 : c.steps >= 0  ? t0 + warm + (double)c.steps * dt
                                  : NAN;
   if (isnan(t_end)) {
     fprintf(stderr, "collide: [run] t_end or steps is required\n");
     sb_engine_free(e);
     return 1;
+  }
+  if (!(t_end - t0 - warm >= 0.5 * dt)) {
+    fprintf(stderr, "collide: nothing to measure: the warm-up (%g s) does "
+            "not end before t_end (%g s from t = %g s)\n", warm, t_end - t0,
+            t0);
+    sb_engine_free(e);
+    return 2;
   }
   if (mkdir_p(c.output)) {
     fprintf(stderr, "collide: cannot create '%s': %s\n", c.output,
@@ -771,10 +923,13 @@ int sbc_collide_main(int argc, char **argv)
   fprintf(stderr, "collide: %zu particles, dt = %g s, t = %g -> %g s, "
           "seed %lu, output %s/\n", sb_engine_count(e), dt, t0, t_end,
           c.seed, c.output);
+  pair_series pser = {c.nsp <= SERIES_MAXSP ? c.nsp : 0, NULL, 0, 0};
+  if (agglo_ctx)
+    pser.nsp = 0;  /* cluster sizes: sizes.csv */
   double tw0 = (double)clock() / CLOCKS_PER_SEC;
   int st = SB_SUCCESS;
   if (c.warmup > 0 && !c.restart[0]) {
-    st = progress_step(e, t0 + c.warmup, t0, stderr);
+    st = progress_step(e, t0 + c.warmup, t0, stderr, NULL);
     sb_engine_reset_counters(e);
   }
   char path[1100];
@@ -786,7 +941,7 @@ int sbc_collide_main(int argc, char **argv)
       if (ts < t_next)
         t_next = ts;
     }
-    st = progress_step(e, t_next, sb_engine_time(e), stderr);
+    st = progress_step(e, t_next, sb_engine_time(e), stderr, &pser);
     if (!st && c.snapshot_every > 0) {
       snprintf(path, sizeof path, "%s/snap_%06ld.csv", c.output, snap++);
       st = sb_engine_snapshot_csv(e, path);
@@ -794,12 +949,15 @@ int sbc_collide_main(int argc, char **argv)
   }
   if (st) {
     fprintf(stderr, "collide: step failed: %s\n", sb_last_error());
+    free(pser.rows);
     sb_engine_free(e);
     return 1;
   }
   double secs = (double)clock() / CLOCKS_PER_SEC - tw0;
   snprintf(path, sizeof path, "%s/series.csv", c.output);
-  if (write_series(path, e)) {
+  int werr = write_series(path, e, &c, &pser);
+  free(pser.rows);
+  if (werr) {
     fprintf(stderr, "collide: cannot write %s\n", path);
     sb_engine_free(e);
     return 1;
@@ -835,9 +993,19 @@ int sbc_collide_main(int argc, char **argv)
     agglo_ctx = NULL;
   }
   double K, lo, hi;
+  sb_engine_stats fs;
+  sb_engine_get_stats(e, &fs);
   if (!sb_engine_kernel(e, 0.95, &K, &lo, &hi))
-    fprintf(stderr, "collide: done; K_e = %.6g [%.6g, %.6g] (95%%)\n", K, lo,
-            hi);
+    fprintf(stderr, "collide: done; K_e = %.6g [%.6g, %.6g] (95%%) over "
+            "[%g, %g] s\n", K, lo, hi, fs.t_reset, fs.t);
+  else
+    fprintf(stderr, "collide: done; no kernel: %s\n", sb_last_error());
+  if (fs.dropped)
+    fprintf(stderr, "collide: warning: %llu collision events were dropped "
+            "(the custom detector does not re-examine pairs after an "
+            "outcome within a step); the kernel is low by about that many "
+            "collisions of %llu: shorten dt\n",
+            (unsigned long long)fs.dropped, (unsigned long long)fs.ncoll);
   sb_engine_free(e);
   return 0;
 }

@@ -1,7 +1,8 @@
 /* eval_dlvo.c — `smolbridge eval` entries of the dlvo module.  Radius
  * r2 = inf selects a sphere–plane pair.  The pair-level entries (energy,
  * force, barrier) take one surface potential psi for both surfaces and a
- * numeric model = vdw + 2 edl (0: Derjaguin + LSA, the seed's model;
+ * numeric model = vdw + 2 edl (0: Derjaguin + LSA, the model of
+ * Mohaupt 2011, §1.2.3;
  * 1: Hamaker + LSA; 2: Derjaguin + HHF; 3: Hamaker + HHF) to stay within
  * the table's argument limit; laws are numbered as sb_dlvo_erel_law. */
 #include <math.h>

@@ -10,6 +10,17 @@ SBE_WRAP4(kernel_brownian_co)
 SBE_WRAP4(kernel_brownian_fm)
 SBE_WRAP6(kernel_brownian_tr)
 SBE_WRAP5(kernel_kinetic)
+static int sbe_w_kernel_brownian_gh(const double *i, double *o)
+{
+  o[0] = sb_kernel_brownian_gh(i[0], i[1], i[2], i[3], i[4], i[5], i[6]);
+  return 0;
+}
+static int sbe_w_kernel_brownian_gh_kn(const double *i, double *o)
+{
+  o[0] = sb_kernel_brownian_gh_kn(i[0], i[1], i[2], i[3], i[4], i[5], i[6]);
+  return 0;
+}
+SBE_WRAP1(kernel_gh_H)
 SBE_WRAP6(kernel_gravity)
 SBE_WRAP3(kernel_shear)
 SBE_WRAP4(kernel_saffman_turner)
@@ -37,8 +48,11 @@ SBE_WRAP2(pbe_add_exp_logn)
 #define KT {"k", "tau", NULL}
 #define XT {"x", "tau", NULL}
 #define KIN {"d_i", "d_j", "m_i", "m_j", "T", NULL}
+#define GH RR("m_i", "m_j", "tau_i", "tau_j", "T")
+#define KN {"kn", NULL}
 #define RTMU {"r", "T", "mu", NULL}
 #define REPSNU {"r", "eps", "nu", NULL}
+
 #define E(n, args, text) {#n, args, {NULL}, sbe_w_##n, text}
 
 static const sbe_func funcs[] = {
@@ -47,6 +61,10 @@ static const sbe_func funcs[] = {
       "Brownian free-molecular kernel, m^3/s"),
     E(kernel_brownian_tr, RR("T", "mu", "rho_p", "lambda"),
       "Brownian transition kernel (Dahneke), m^3/s"),
+    E(kernel_brownian_gh, GH,
+      "Langevin transition kernel (Gopalakrishnan & Hogan 2011), m^3/s"),
+    E(kernel_brownian_gh_kn, GH, "its diffusive Knudsen number Kn_D"),
+    E(kernel_gh_H, KN, "dimensionless kernel H(Kn_D)"),
     E(kernel_kinetic, KIN, "hard-sphere kinetic theory, m^3/s"),
     E(kernel_gravity, RR("rho_p", "rho_f", "mu", "g"),
       "differential settling kernel, m^3/s"),

@@ -138,7 +138,8 @@ static const sbe_func funcs[] = {
     E(langevin_vacf, TBT, "OU/Langevin: velocity autocorrelation"),
     EO(langevin_coef_init, A_COEF,
        O_COEF,
-       "OU/Langevin: coefficients of the exact step (seed 003 eq 1.16)"),
+       "OU/Langevin: coefficients of the exact step (Mohaupt 2011, "
+       "eq 1.16)"),
     EO(langevin_step,
        A_STEP,
        O_STEP, "OU/Langevin: one exact step from (x, u)"),

@@ -34,8 +34,8 @@ def f17(x):
 
 def ou_moments(tau, B, us, t, x0, u0):
     """Mean and covariance of (X_t, U_t) given (x0, u0): textbook forms
-    (e.g. Gardiner, Handbook of Stochastic Methods, sec. 3.8.4; seed 003
-    eqs D.1-D.6 with us = 0)."""
+    (e.g. Gardiner, Handbook of Stochastic Methods, sec. 3.8.4; Mohaupt
+    2011, eqs D.1-D.6 with us = 0)."""
     tau, B, us, t, x0, u0 = map(mpf, (tau, B, us, t, x0, u0))
     e = exp(-t / tau)
     mean_x = x0 + us * t + (u0 - us) * tau * (1 - e)
@@ -50,7 +50,7 @@ def var_row(tau, B, t):
     tau_, B_, t_ = map(mpf, (tau, B, t))
     _, _, vx, vu, cv = ou_moments(tau, B, 0.0, t, 0.0, 0.0)
     e = exp(-t_ / tau_)
-    # conditional variance of X given U (the x-noise of seed eq 1.16)
+    # conditional variance of X given U (the x-noise of Mohaupt 2011, eq 1.16)
     vxc = B_**2 * tau_**2 * (t_ - 2 * tau_ * (1 - e) / (1 + e))
     # MSD with a Maxwellian initial velocity (Ornstein 1919; Uhlenbeck &
     # Ornstein 1930): <(X_t - X_0)^2> = B^2 tau^2 (t - tau (1 - e)).

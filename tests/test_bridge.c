@@ -10,9 +10,10 @@
  *    functions (the first-passage densities of passage.c and the transition
  *    densities written out here): crossing probabilities and hitting-time
  *    CDFs;
- *  - the two printed versions of the seed's Bessel-3-bridge hitting-time CDF
- *    (seed 003 eq 5.21-5.22 and App. I eq I.60-I.61), coded here as printed,
- *    against the same quadrature: 5.21-5.22 is right, I.60-I.61 is not;
+ *  - the two printed versions of the Bessel-3-bridge hitting-time CDF in
+ *    Mohaupt (2011) (eq 5.21-5.22 and App. I eq I.60-I.61), coded here as
+ *    printed, against the same quadrature: 5.21-5.22 is right, I.60-I.61
+ *    is not;
  *  - Monte Carlo means of the samplers (fixed seeds, 5-sigma criteria; the
  *    KS / chi-square checks of the samplers live in test_bridge_mc.c).
  */
@@ -84,7 +85,7 @@ END_TEST
 
 START_TEST(test_cross_special)
 {
-  /* overlap at an end point (seed 003 eq 5.15): certain crossing */
+  /* overlap at an end point (Mohaupt 2011, eq 5.15): certain crossing */
   ck_assert(sb_bb_cross_prob(0.5, 2.0, 1.0, 1.0) == 1.0);
   ck_assert(sb_bb_cross_prob(2.0, 1.0, 1.0, 1.0) == 1.0);
   ck_assert(sb_bb_cross_logprob(2.0, -3.0, 1.0, 1.0) == 0.0);
@@ -296,11 +297,11 @@ START_TEST(test_hit_vs_quadrature)
 }
 END_TEST
 
-/* ------------------------------------- the seed's two printed versions */
+/* ------------------- the two printed versions in Mohaupt (2011) */
 
-/* Seed 003 eq 5.21-5.22 (= App. I eq I.62-I.63 with K = B), B_ij = B the
+/* Mohaupt 2011, eq 5.21-5.22 (= App. I eq I.62-I.63 with K = B), B_ij = B the
  * per-component diffusion coefficient (sigma2 = B^2), Delta t = dt. */
-static double seed_522(double u, double x, double y, double a, double B,
+static double thesis_522(double u, double x, double y, double a, double B,
                        double dt)
 {
   double k = sqrt(1.0 / u - 1.0 / dt), B2 = B * B;
@@ -317,10 +318,10 @@ static double seed_522(double u, double x, double y, double a, double B,
   return 0.5 * (1.0 - (i1 - i2 - i3 + i4) / den);
 }
 
-/* Seed 003 App. I eq I.60-I.61 as printed (standard Bessel-3, sigma2 = 1):
- * I2 and I4 carry exp(-(x+y)^2/2t) and exp(-(x+y-2a)^2/2t) and the second
- * erf argument has sqrt(2t) where 5.22 has sqrt(2) t. */
-static double seed_I61(double u, double x, double y, double a, double t)
+/* Mohaupt 2011, App. I eq I.60-I.61 as printed (standard Bessel-3,
+ * sigma2 = 1): I2 and I4 carry exp(-(x+y)^2/2t) and exp(-(x+y-2a)^2/2t)
+ * and the second erf argument has sqrt(2t) where 5.22 has sqrt(2) t. */
+static double thesis_I61(double u, double x, double y, double a, double t)
 {
   double k = sqrt(1.0 / u - 1.0 / t);
 #define E(z) exp(-(z) * (z) / (2.0 * t))
@@ -335,7 +336,7 @@ static double seed_I61(double u, double x, double y, double a, double t)
   return 0.5 * (1.0 - (i1 - i2 - i3 + i4) / den);
 }
 
-START_TEST(test_seed_versions)
+START_TEST(test_thesis_versions)
 {
   /* Quadrature of the density n_{x,a}(s) q_{t-s}(a, y) (independent
    * pieces) decides: 5.21-5.22 agrees to 1e-9, I.60-I.61 is off by 1e-3 or
@@ -354,8 +355,8 @@ START_TEST(test_seed_versions)
       double u = f * h.t, res, err;
       ck_assert_int_eq(gsl_integration_qags(&F, 0.0, u, 1e-300, 1e-11, 1000,
                                             w, &res, &err), GSL_SUCCESS);
-      double s522 = seed_522(u, h.x, h.y, h.a, sqrt(h.s2), h.t);
-      double s61 = seed_I61(u, h.x, h.y, h.a, h.t);
+      double s522 = thesis_522(u, h.x, h.y, h.a, sqrt(h.s2), h.t);
+      double s61 = thesis_I61(u, h.x, h.y, h.a, h.t);
       ck_assert_msg(fabs(s522 - res) <= TOL_QUAD * res,
                     "eq 5.22, case %zu u=%g: %.17g vs quadrature %.17g", k, u,
                     s522, res);
@@ -368,8 +369,8 @@ START_TEST(test_seed_versions)
       best61 = fmin(best61, fabs(s61 - res) / res);
     }
   }
-  printf("seed eq 5.21-5.22 vs quadrature: max rel diff %.2g; eq I.60-I.61: "
-         "min rel diff %.2g (misprint)\n", worst522, best61);
+  printf("Mohaupt 2011 eq 5.21-5.22 vs quadrature: max rel diff %.2g; "
+         "eq I.60-I.61: min rel diff %.2g (misprint)\n", worst522, best61);
   gsl_integration_workspace_free(w);
 }
 END_TEST
@@ -638,7 +639,7 @@ static Suite *bridge_suite(void)
   tc = tcase_create("hitting");
   tcase_add_test(tc, test_hit_reference);
   tcase_add_test(tc, test_hit_vs_quadrature);
-  tcase_add_test(tc, test_seed_versions);
+  tcase_add_test(tc, test_thesis_versions);
   tcase_add_test(tc, test_quantile_reference);
   tcase_add_test(tc, test_quantile_roundtrip);
   tcase_add_test(tc, test_quantile_best_double);

@@ -1,5 +1,5 @@
 /* test_bridge_mc.c — Monte Carlo validation of the bridge and passage
- * references (issue 2, part 7; DESIGN case V11).
+ * references (validation case V11, docs/validation.md).
  *
  * Three groups of checks, all with fixed seeds (MT19937) and stated sizes:
  *
@@ -27,8 +27,9 @@
  *  B. The same simulations record the grid interval of the FIRST crossing;
  *     its histogram (conditioned on crossing) is compared with the
  *     conditioned hitting-time CDF by chi-square, p >= 1e-3 (V11: "hit-time
- *     histograms vs CDF", seed 003 Figs 5.8-5.9).  Exact for the same reason:
- *     "first crossing in sub-step k" is decided by exact Bernoulli draws.
+ *     histograms vs CDF"; Mohaupt 2011, Figs 5.8-5.9).  Exact for the same
+ *     reason: "first crossing in sub-step k" is decided by exact Bernoulli
+ *     draws.
  *
  *  C. Samplers vs their CDFs: sb_bb_hit_sample, sb_bes3b_hit_sample (both
  *     regimes of 1 - rho, see b3h_sets), sb_bm_fpt_sample
@@ -226,8 +227,8 @@ END_TEST
 static const bpar bes_sets[] = {
     {1.0, 1.2, 0.5, 1.0, 1.0},  /* P = 0.446, 1D formula 0.497 */
     {0.5, 0.6, 0.2, 1.0, 2.0},  /* v >> a^2: 1 - rho = 0.165 */
-    {2.0, 2.0, 1.0, 1.0, 1.0},  /* DESIGN: |A| = |B| = 2r, v = r^2: 0.135 */
-    {1.1, 1.2, 1.0, 1.0, 0.1},  /* seed-like: v = 0.1 a^2 */
+    {2.0, 2.0, 1.0, 1.0, 1.0},  /* |A| = |B| = 2r, v = r^2: 0.135 */
+    {1.1, 1.2, 1.0, 1.0, 0.1},  /* as Mohaupt 2011, ch. 5: v = 0.1 a^2 */
 };
 
 START_TEST(test_bes3b_cross_mc)

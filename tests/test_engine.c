@@ -1,5 +1,6 @@
 #define _POSIX_C_SOURCE 200809L
-/* test_engine.c — engine core: two spheres at 45° (seed 000 §7) against
+/* test_engine.c — engine core: two spheres at 45° (Thomine 2008, §7)
+ * against
  * the analytic post-collision state, inelastic collisions against the
  * restitution relations, conservation in a many-body run, determinism
  * across neighbour-search methods, checkpoint round trip, transport in a
@@ -732,7 +733,8 @@ START_TEST(test_errors)
 }
 END_TEST
 
-/* A custom detector plugs in (the interface issue 6 uses): here a
+/* A custom detector plugs in (the interface the bridge detector of
+ * engine_bridge.c uses): here a
  * detector that reports every candidate at s = 1/2 with an extra reach;
  * and a custom outcome that counts calls. */
 static int det_all(const sb_engine *e, const sb_engine_pair *p,

@@ -1,4 +1,4 @@
-/* test_engine_agglo.c — agglomeration in the engine (issue 7): particle
+/* test_engine_agglo.c — agglomeration in the engine: particle
  * removal, the merge outcome (conservation, barycentre, sizes, growth
  * laws), the size observers, the DLVO sticking fraction and a small
  * constant-kernel run against the analytic Smoluchowski solution.

@@ -46,7 +46,7 @@ static int brute(const gsl_rng *r, const double *A, const double *B,
 }
 
 /* Configurations (a = 1, sigma2 = 1, t = 1 so v = a^2): |A| = |B| = 2 on
- * the same side (issue: ~0.08), opposite (~0.99), perpendicular, and an
+ * the same side (~0.08), opposite (~0.99), perpendicular, and an
  * asymmetric pair.  Exact: 40000 draws; brute force: 4000 paths of 1024
  * steps.  Pass: |p_exact - p_brute| <= 3.5 combined standard errors plus
  * 0.01 (the brute force's own sub-step bias, measured <= 0.006 between

@@ -6,9 +6,9 @@
  * kinetic-theory kernel of identical hard spheres is
  *     K_kin = pi d^2 <|v_i - v_j|> = pi d^2 sqrt(16 k_B T / (pi m))
  * (relative velocity Maxwellian with variance 2 k_B T / m per component;
- * DESIGN.md; seed 003 eq 3.6 is garbled).  In an equilibrium hard-sphere
- * fluid the pair density at contact is enhanced by the contact value of
- * the radial distribution function, here Carnahan-Starling
+ * Mohaupt 2011, eq 3.6, is misprinted: docs/errata.md).  In an equilibrium
+ * hard-sphere fluid the pair density at contact is enhanced by the contact
+ * value of the radial distribution function, here Carnahan-Starling
  *     g(sigma) = (1 - phi/2) / (1 - phi)^3
  * (1.3% at phi = 0.005; Enskog's correction to the collision frequency).
  *
@@ -78,7 +78,7 @@ static void check_kernel(const sb_engine *e, double Kref, const char *what)
 }
 
 /* A. Molecular dynamics of a hard-sphere gas (free flight, elastic,
- * ballistic detection), the set-up of seed 003 §3.2.1 with n = 250:
+ * ballistic detection), the set-up of Mohaupt (2011) §3.2.1 with n = 250:
  * phi = 0.005, dt = 0.05 (mean free path 22 d, v dt ~ 0.08 d), velocities
  * thermalised to k_B T/m = 1 (zero momentum), 300 time units after a
  * 20-unit warm-up: ~2500 collisions.  Reference K_kin g_CS(phi). */
@@ -133,7 +133,8 @@ START_TEST(test_ideal_gas_count)
   sb_engine_free(e);
 
   /* overlap detection with dt = 1.3 (mean |v_rel| dt ~ 3 d): K_e well
-   * below the reference (seed 003 §3.3: pass-through is missed) */
+   * below the reference (Mohaupt 2011, §3.3: pass-through is
+   * missed) */
   e = gas(250, 0.005, 1.3, 78, SB_DETECT_OVERLAP, SB_OUTCOME_COUNT,
           INFINITY);
   Kref = PI * pair_mean_speed(e);

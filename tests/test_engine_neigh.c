@@ -7,7 +7,7 @@
  * Every pair within r_i + r_j (+ reach) must be in each method's list, and
  * no list may hold a pair twice.  Configurations: random isotropic
  * (polydisperse, 2-D and 3-D, rectangular boxes), counter-flowing and
- * crossing jets (seed 000 §5.1, §8), small boxes with fewer than three
+ * crossing jets (Thomine 2008, §5.1, §8), small boxes with fewer than three
  * cells per direction, particles straddling the periodic boundaries, and
  * an extra detector reach.
  */
@@ -67,7 +67,7 @@ static sb_engine *build(const config *c, unsigned long seed, double **disp)
       x[1] = c->L[1] * (0.4 + 0.2 * gsl_rng_uniform(r));
       u[0] += fam ? -c->U : c->U;
     } else if (c->jets == 2) {
-      /* crossing jets at +-50 degrees (seed 000 §8) */
+      /* crossing jets at +-50 degrees (Thomine 2008, §8) */
       double a = 50.0 * 3.14159265358979323846 / 180.0;
       u[0] += c->U * cos(a);
       u[1] += (fam ? -1 : 1) * c->U * sin(a);

@@ -32,7 +32,7 @@ static double k_all(int which, double ri, double rj)
 
 START_TEST(test_monodisperse_limits)
 {
-  /* 003 eq 2.11: 8kT/(3 mu); eq 2.12: 4 sqrt(6 kT d/rho_p) */
+  /* Mohaupt 2011, eq 2.11: 8kT/(3 mu); eq 2.12: 4 sqrt(6 kT d/rho_p) */
   for (double r = 1e-9; r < 1e-4; r *= 7.3) {
     ck_assert_rel(sb_kernel_brownian_co(r, r, T20, MUW),
                   8 * kB * T20 / (3 * MUW), TOL_TIGHT);
@@ -91,9 +91,65 @@ START_TEST(test_spot_values)
 }
 END_TEST
 
+/* Gopalakrishnan & Hogan (2011) transition kernel: H against a 40-digit
+ * mpmath evaluation of the fit (including Kn = 1e60 and 1e120, where the
+ * polynomials would overflow), both limits for unequal Langevin spheres,
+ * the first-order continuum coefficient, symmetry and domain errors. */
+START_TEST(test_gopalakrishnan_hogan)
+{
+  static const double kn[] = {1e-6, 0.01, 0.28, 0.55, 1, 3, 10, 1e3,
+                              1e60, 1e120};
+  static const double want[] = {
+      1.2566352442958505224e-11, 0.001238747028610448409,
+      0.67973136903989217568, 1.8992434090529458277,
+      4.1269407515326935185, 14.147017131550644183,
+      49.224843066346163804, 5012.3366534941810628,
+      5.0132565492620010048e+60, 5.0132565492620010048e+120};
+  for (size_t i = 0; i < sizeof kn / sizeof kn[0]; i++)
+    ck_assert_rel(sb_kernel_gh_H(kn[i]), want[i], 32 * DBL_EPSILON);
+  ck_assert(sb_kernel_gh_H(0.0) == 0.0);
+  ck_assert(isnan(sb_kernel_gh_H(-1.0)));
+
+  /* unequal spheres: 20 nm and 200 nm-like parameters, scaled so that
+   * Kn_D sweeps the limits by the temperature */
+  const double ri = 1e-8, rj = 1e-7, mi = 4e-21, mj = 4e-18;
+  const double ti = 4e-9, tj = 3e-7;
+  double fi = mi / ti, fj = mj / tj, fr = fi * fj / (fi + fj);
+  double mr = mi * mj / (mi + mj), R = ri + rj;
+  /* continuum: 4 pi (D_i + D_j) R with D = kT/f; relative deviation
+   * -1.446 Kn_D to first order */
+  double T = 1e-12;  /* tiny kT: tiny Kn_D */
+  double k0 = sb_kernel_brownian_gh_kn(ri, rj, mi, mj, ti, tj, T);
+  ck_assert_rel(k0, sqrt(kB * T * mr) / (fr * R), 1e-15);
+  double kco = 4 * M_PI * R * (kB * T / fi + kB * T / fj);
+  ck_assert_rel(sb_kernel_brownian_gh(ri, rj, mi, mj, ti, tj, T), kco,
+                2.0 * k0);
+  /* first-order coefficient: 25.836/(4 pi) - 3.502 = -1.4460 */
+  double T2 = 1e-5;
+  double k2 = sb_kernel_brownian_gh_kn(ri, rj, mi, mj, ti, tj, T2);
+  double kco2 = 4 * M_PI * R * (kB * T2 / fi + kB * T2 / fj);
+  double slope = (sb_kernel_brownian_gh(ri, rj, mi, mj, ti, tj, T2) / kco2 -
+                  1.0) / k2;
+  ck_assert_msg(k2 < 1e-3 && fabs(slope + 1.44607) < 0.01,
+                "Kn = %g, slope %g", k2, slope);
+  /* free molecular: pi R^2 sqrt(8 kT/(pi m_red)), deviation ~ 1/Kn_D */
+  double T3 = 1e20;
+  double k3 = sb_kernel_brownian_gh_kn(ri, rj, mi, mj, ti, tj, T3);
+  ck_assert(k3 > 1e6);
+  ck_assert_rel(sb_kernel_brownian_gh(ri, rj, mi, mj, ti, tj, T3),
+                M_PI * R * R * sqrt(8 * kB * T3 / (M_PI * mr)), 2.0 / k3);
+  /* symmetric in the two particles */
+  ck_assert(sb_kernel_brownian_gh(ri, rj, mi, mj, ti, tj, 300) ==
+            sb_kernel_brownian_gh(rj, ri, mj, mi, tj, ti, 300));
+  ck_assert(isnan(sb_kernel_brownian_gh(ri, rj, mi, mj, 0.0, tj, 300)));
+  ck_assert(isnan(sb_kernel_brownian_gh(ri, rj, mi, NAN, ti, tj, 300)));
+}
+END_TEST
+
 START_TEST(test_transition_limits)
 {
-  /* Air at 20 C: mu = 1.81e-5, lambda = 67.3 nm (003 §2.2.4). */
+  /* Air at 20 C: mu = 1.81e-5, lambda = 67.3 nm (Mohaupt 2011,
+   * §2.2.4). */
   const double mu = 1.81e-5, rho = 1000.0, lam = 6.73e-8;
   for (int slip = 0; slip < 2; slip++) {
     double l = slip ? lam : 0.0;
@@ -128,8 +184,8 @@ END_TEST
 
 START_TEST(test_pair_diffusivity)
 {
-  /* 003 eqs 6.17–6.19: K = 2 pi B_ij^2(r) r, r = r_i + r_j, is exactly
-   * Saffman–Turner; eq 6.16 total strain sqrt(270/pi) gives
+  /* Mohaupt 2011, eqs 6.17–6.19: K = 2 pi B_ij^2(r) r, r = r_i + r_j, is
+   * exactly Saffman–Turner; eq 6.16 total strain sqrt(270/pi) gives
    * B^2 = (1/3)(tau_S Gamma) Gamma r^2/15. */
   for (double ri = 1e-8; ri < 1e-4; ri *= 4.3) {
     double rj = 0.37 * ri, r = ri + rj, eps = 1e-3, nu = 1e-6;
@@ -142,14 +198,14 @@ START_TEST(test_pair_diffusivity)
     double bi = sb_brownian_b2(ri, T20, MUW), bj = sb_brownian_b2(rj, T20, MUW);
     ck_assert_rel(sb_kernel_diffusion(ri, rj, bi, bj),
                   sb_kernel_brownian_co(ri, rj, T20, MUW), TOL_TIGHT);
-    /* combined = sum of kernels (003 §6.4) */
+    /* combined = sum of kernels (Mohaupt 2011, §6.4) */
     ck_assert_rel(sb_kernel_brownian_turb(ri, rj, T20, MUW, eps, nu),
                   sb_kernel_brownian_co(ri, rj, T20, MUW) +
                       sb_kernel_saffman_turner(ri, rj, eps, nu),
                   TOL_TIGHT);
   }
-  /* 003 eq 6.22: per-particle turbulent term sqrt(eps/(30 pi nu)) d^2 is
-   * half the pair value at r = d */
+  /* Mohaupt 2011, eq 6.22: per-particle turbulent term sqrt(eps/(30 pi nu))
+   * d^2 is half the pair value at r = d */
   double d = 1e-6;
   ck_assert_rel(0.5 * sb_turb_pair_b2(d, 1e-4, 1e-6),
                 sqrt(1e-4 / (30 * M_PI * 1e-6)) * d * d, TOL_TIGHT);
@@ -177,7 +233,8 @@ START_TEST(test_abrahamson_flux)
   double r = ri + rj;
   ck_assert_rel(sb_kernel_abrahamson(ri, rj, u2i, u2j), M_PI * r * r * mean,
                 1e-12);
-  /* the seed's energy form with the square root restored */
+  /* the energy form of Mohaupt (2011) eq 2.7 with the square root
+   * restored */
   double Ei = 1.5 * u2i, Ej = 1.5 * u2j;
   ck_assert_rel(sb_kernel_abrahamson(ri, rj, u2i, u2j),
                 sqrt(32 * M_PI / 3) * sqrt((Ei + Ej) / 2) * r * r, TOL_TIGHT);
@@ -257,6 +314,7 @@ static Suite *kernel_suite(void)
   tcase_add_test(tc, test_symmetry);
   tcase_add_test(tc, test_spot_values);
   tcase_add_test(tc, test_transition_limits);
+  tcase_add_test(tc, test_gopalakrishnan_hogan);
   tcase_add_test(tc, test_pair_diffusivity);
   tcase_add_test(tc, test_abrahamson_flux);
   tcase_add_test(tc, test_domain_errors);

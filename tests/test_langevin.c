@@ -14,8 +14,8 @@
 #include "refdata.h"
 #include "testutil.h"
 
-/* Accuracy promised for the moments (the issue asks for 1e-12 at
- * dt/tau = 1e-8 ... 1e8; the implementation reaches a few ulps). */
+/* Accuracy promised for the moments (the specification asks for 1e-12
+ * at dt/tau = 1e-8 ... 1e8; the implementation reaches a few ulps). */
 #define TOL_MOM 1e-13
 /* Conditioned moments (information form; a few bits lost in det P). */
 #define TOL_BRIDGE 1e-11
@@ -62,10 +62,10 @@ START_TEST(test_var_vectors)
 }
 END_TEST
 
-/* The issue's points: dt/tau = 1e-8, 1e-4, 1, 1e4, 1e8 to relative 1e-12,
+/* Decade points dt/tau = 1e-8, 1e-4, 1, 1e4, 1e8 to relative 1e-12,
  * for the moment functions AND for the coefficients the exact step uses
  * (s_u^2 = var_u, s_u s_xu = cov, s_xu^2 + s_xc^2 = var_x). */
-START_TEST(test_var_issue_points)
+START_TEST(test_var_decade_points)
 {
   sbt_table t;
   sbt_table_load("langevin_var.csv", &t);
@@ -289,7 +289,7 @@ END_TEST
 START_TEST(test_bridge_limits)
 {
   /* Diffusive limit (dt/tau = 1e6): X_s is a Brownian bridge with
-   * B_pos = B tau (seed 003 eq J.5): variance B^2 tau^2 s (dt - s)/dt.
+   * B_pos = B tau (Mohaupt 2011, eq J.5): variance B^2 tau^2 s (dt - s)/dt.
    * The mean: Y = X + tau U is exactly a Brownian motion with B_pos
    * (integrate dU = -U/tau dt + B dW), started at x0 + tau u0.  The OU
    * velocity is time-reversible with U -> -U, so seen from the end the
@@ -384,7 +384,7 @@ END_TEST
 
 START_TEST(test_si_helpers)
 {
-  /* seed 003 Table D.1: d_p = 1 um, rho_p/rho_f = 1000, tau_p = 3e-6 s
+  /* Mohaupt 2011, Table D.1: d_p = 1 um, rho_p/rho_f = 1000, tau_p = 3e-6 s
    * corresponds to a gas with nu_f = rho_p d^2/(18 rho_f tau_p)
    * = 1.85e-5 m^2/s; tau_p then comes back exactly. */
   double rho_f = 1.2, rho_p = 1000 * rho_f, d = 1e-6;
@@ -608,7 +608,7 @@ static Suite *langevin_suite(void)
   Suite *s = suite_create("langevin");
   TCase *tc = tcase_create("reference");
   tcase_add_test(tc, test_var_vectors);
-  tcase_add_test(tc, test_var_issue_points);
+  tcase_add_test(tc, test_var_decade_points);
   tcase_add_test(tc, test_moments_vectors);
   tcase_add_test(tc, test_bridge_vectors);
   suite_add_tcase(s, tc);

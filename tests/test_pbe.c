@@ -157,7 +157,7 @@ static int cmp_out(double t, const double *v, const double *n, size_t nb,
   return 0;
 }
 
-/* The issue's criterion: max relative error <= 1e-6 on n_k, k <= 50, at
+/* Criterion: max relative error <= 1e-6 on n_k, k <= 50, at
  * tau = 0.1, 1, 10 (multiplicative: 0.1, 0.5, 0.9, before gelation);
  * K = 60 sizes plus the lumped tail (exact for these kernels).  All three
  * linear solvers. */
@@ -489,7 +489,8 @@ END_TEST
 
 /* ------------------------------------------------ self-preserving form */
 
-/* Brownian continuum kernel in units of K0 = 2kT/(3 mu) (seed 003 eq 2.9):
+/* Brownian continuum kernel in units of K0 = 2kT/(3 mu) (Mohaupt 2011,
+ * eq 2.9):
  * K = (v^-1/3 + w^-1/3)(v^1/3 + w^1/3), homogeneous of degree 0. */
 static double k_brown_co(double v, double w, const void *par)
 {

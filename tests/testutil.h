@@ -2,7 +2,8 @@
  *
  * Check's ck_assert_double_eq_tol is absolute-only.  Reference values span
  * hundreds of decades, so the suites compare with a relative tolerance given
- * as a named multiple of DBL_EPSILON (or an explicit bound from the issue).
+ * as a named multiple of DBL_EPSILON (or an explicit bound from the
+ * specification).
  */
 #ifndef SB_TESTUTIL_H
 #define SB_TESTUTIL_H
@@ -14,7 +15,7 @@
 #include <stdlib.h>
 
 /* Named tolerances.  TOL_REF is the accuracy promised against the
- * arbitrary-precision reference vectors (issue 2, part 7). */
+ * arbitrary-precision reference vectors. */
 #define TOL_ULPS(n) ((n) * DBL_EPSILON)
 #define TOL_TIGHT TOL_ULPS(16)  /* ~3.6e-15: simple closed forms */
 #define TOL_REF 1e-12           /* promised accuracy of reference functions */
@@ -52,8 +53,8 @@ static inline double sbt_reldiff(double a, double b)
   } while (0)
 
 /* An `_e` result against a reference value: relative error <= tol, and
- * the error estimate err covers the actual difference (DESIGN: honest
- * err).  `what` names the call in the failure message. */
+ * the error estimate err covers the actual difference (an honest
+ * err, docs/api.md).  `what` names the call in the failure message. */
 #define ck_assert_result(res, want, tol, what)                              \
   do {                                                                      \
     double sbt_g_ = (res).val, sbt_e_ = (res).err, sbt_w_ = (want);         \

@@ -236,7 +236,7 @@ int sb_engine_add_species(sb_engine *e, const sb_engine_species *s,
   e->spec[k] = *s;
   e->coef[k] = c;
   /* Equilibrium velocity variance: k_B T / m, or B^2 tau / 2 (the
-   * stationary variance of the Langevin model, seed 003 eq A.4). */
+   * stationary variance of the Langevin model, Mohaupt 2011, eq A.4). */
   double var = s->T > 0.0 ? SB_BOLTZMANN * s->T / s->mass
                           : 0.5 * s->B * s->B * s->tau;
   e->vsd[k] = sqrt(var);
@@ -674,8 +674,8 @@ int sb_engine_set_dt(sb_engine *e, double dt)
 /* ============================================================ run */
 
 /* Transport: x0 <- x, u0 <- u, U_s at x0, exact Langevin step of every
- * particle with its species' coefficients (langevin_step.c, seed 003 eq
- * 1.16):
+ * particle with its species' coefficients (langevin_step.c; Mohaupt
+ * 2011, eq 1.16):
  *   x += w dt + (u - w) gain + s_xu z1 + s_xc z2,  u = w + (u - w) decay
  *   + s_u z1,
  * disp = x - x0.  The same update as sb_langevin_step3_coef, fused with
@@ -735,10 +735,11 @@ int sb_engine_step(sb_engine *e)
 {
   if (!e)
     return sbi_error(SB_EINVAL, __func__, "engine is NULL");
+  memset(e->hit, 0, e->n);
+  sbi_engine_pair_counts(e, e->pairs0);
   int st = transport(e);
   if (st)
     return st;
-  memset(e->hit, 0, e->n);
   st = sbi_engine_find_pairs(e, e->par.neigh, e->x0, e->disp,
                              e->par.detect == SB_DETECT_CUSTOM
                                  ? e->detect_reach
@@ -757,6 +758,7 @@ int sb_engine_step(sb_engine *e)
   for (size_t i = 0; i < e->n; i++)
     for (int k = 0; k < dim; k++)
       e->x[3 * i + k] = sbi_wrap(e->x[3 * i + k], e->par.L[k]);
+  sbi_engine_add_exposure(e, e->par.dt);
   e->steps++;
   e->t += e->par.dt;
   if (e->par.sort_every && e->steps % e->par.sort_every == 0) {

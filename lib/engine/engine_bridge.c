@@ -131,7 +131,7 @@ static void species_b2(const sb_engine *e, const sb_engine_bridge *b,
     return;
   }
   const sb_engine_species *s = &e->spec[sp];
-  double bp = s->B * s->tau;  /* B_pos = B tau_p, seed 003 eq 5.9 */
+  double bp = s->B * s->tau;  /* B_pos = B tau_p: Mohaupt 2011, eqs 5.7, J.2 */
   *b2 = *b2b = bp * bp;
 }
 
@@ -439,7 +439,7 @@ static void unit_orthogonal(const gsl_rng *r, const double w[3], double e[3])
     e[k] = c * pv[k] + sn * qv[k];
 }
 
-/* Correction step, seed 003 §5.4.3 (see the header). */
+/* Correction step, Mohaupt 2011, §5.4.3 (see the header). */
 static int correct(sb_engine *e, const sb_engine_bridge *b,
                    const sb_engine_pair *p, double s)
 {

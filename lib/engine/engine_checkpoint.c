@@ -54,6 +54,9 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
   W(&e->dropped, sizeof e->dropped, 1);
   W(&e->nredetect, sizeof e->nredetect, 1);
   W(&e->redetect, sizeof e->redetect, 1);
+  W(&e->expo, sizeof e->expo, 1);
+  W(e->pexpo, sizeof e->pexpo, 1);
+  W(e->pcoll, sizeof e->pcoll, 1);
   W(e->fam, sizeof e->fam, 1);
   W(&e->nseries, sizeof e->nseries, 1);
   W(e->series, sizeof *e->series, e->nseries);
@@ -155,6 +158,9 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   R(&e->dropped, sizeof e->dropped, 1);
   R(&e->nredetect, sizeof e->nredetect, 1);
   R(&e->redetect, sizeof e->redetect, 1);
+  R(&e->expo, sizeof e->expo, 1);
+  R(e->pexpo, sizeof e->pexpo, 1);
+  R(e->pcoll, sizeof e->pcoll, 1);
   R(e->fam, sizeof e->fam, 1);
   {
     size_t ns;

@@ -6,13 +6,15 @@
  * r(s) = dx0 + s dd (dd = disp_i - disp_j) touches the contact sphere
  * |r| = sigma where
  *     a s^2 + 2 b s + c = 0,  a = dd.dd,  b = dx0.dd,  c = dx0.dx0 - sigma^2
- * (seed 000 eq 2 with beta = 2b; seed 003 eq F.4 with t = s dt).  For
+ * (Thomine 2008, eq 2 with beta = 2b; Mohaupt 2011, eq F.4 with
+ * t = s dt).  For
  * c > 0 (apart at the start) a contact in the step needs b < 0
- * (approaching, seed 003 Fig 3.3) and b^2 - a c >= 0; the first root is
+ * (approaching, Mohaupt 2011, Fig 3.3) and b^2 - a c >= 0; the first root is
  *     s = (-b - sqrt(b^2 - a c)) / a = c / (-b + sqrt(b^2 - a c)),
  * the second form free of cancellation (-b > 0).  The second root is the
- * time the spheres would separate again (seed 000 §4.2).  Seed 000 §4.4
- * writes the 3-D root with +sqrt: a misprint (it is the exit time).
+ * time the spheres would separate again (Thomine 2008, §4.2).  Its §4.4
+ * writes the 3-D root with +sqrt: a misprint (it is the exit time;
+ * docs/errata.md).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -87,9 +89,9 @@ int sb_engine_detect_overlap(const sb_engine_pair *p, double *s)
   }
   if (!(e2 < p->sigma * p->sigma))
     return 0;
-  /* overlapping at the end: contact time from the chords (seed 003
-   * §3.1.1, "completed by the exact collision time, App. F"); s = 0 if
-   * the pair already overlapped at the start */
+  /* overlapping at the end: contact time from the chords (Mohaupt
+   * 2011, §3.1.1: the overlap test is completed by the exact collision
+   * time of App. F); s = 0 if the pair already overlapped at the start */
   double a, b, c;
   quad(p, &a, &b, &c);
   if (c <= 0.0) {

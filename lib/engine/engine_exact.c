@@ -1,6 +1,6 @@
 /* engine_exact.c — exact endpoint-conditioned detection of the first
- * contact of a 3-D Brownian bridge with a sphere (beyond seed 003: its
- * Bessel-3 criterion sees only |A| and |B|).
+ * contact of a 3-D Brownian bridge with a sphere (beyond Mohaupt 2011,
+ * whose Bessel-3 criterion sees only |A| and |B|).
  *
  * The relative position r(u) of a diffusive pair over a step, given r(0) =
  * A and r(t) = B, is a 3-D Brownian bridge with per-component variance

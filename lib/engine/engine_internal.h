@@ -9,6 +9,18 @@
 #include <smolbridge/engine.h>
 #include <smolbridge/langevin.h>
 
+/* Species pairs tracked for per-pair kernels. */
+#define SBI_NPAIRSP (SB_ENGINE_PAIR_SPECIES * (SB_ENGINE_PAIR_SPECIES + 1) / 2)
+static inline size_t sbi_pair_index(size_t a, size_t b)
+{
+  if (a > b) {
+    size_t t = a;
+    a = b;
+    b = t;
+  }
+  return a * (2 * SB_ENGINE_PAIR_SPECIES - a - 1) / 2 + b;
+}
+
 /* A detected collision waiting to be processed: the pair record the
  * detector saw (it may cover the rest of the step after an earlier
  * collision), the contact fraction s_rec of that record's interval, the
@@ -96,6 +108,13 @@ struct sb_engine {
   uint64_t steps;
   double t, t_reset;
   uint64_t ncoll, ncand, dropped;
+  /* pair exposure since the reset: expo = int n(n-1)/2 dt; per species
+   * pair (a <= b < SB_ENGINE_PAIR_SPECIES) pexpo = int P_ab dt with
+   * P_ab = n_a n_b (a < b) or n_a (n_a - 1)/2, and the collisions pcoll */
+  double expo;
+  double pexpo[SBI_NPAIRSP];
+  uint64_t pcoll[SBI_NPAIRSP];
+  double pairs0[SBI_NPAIRSP + 1]; /* scratch: pair counts at step start */
   uint64_t fam[SB_ENGINE_MAXFAM][SB_ENGINE_MAXFAM];
   sb_engine_sample *series;
   size_t nseries, capseries;
@@ -194,6 +213,12 @@ int sbi_engine_fluid_eval(sb_engine *e, size_t n, const double *x,
 
 /* Observers (engine_observe.c). */
 void sbi_engine_count_collision(sb_engine *e, size_t i, size_t j);
+/* Pair counts now: out[SBI_NPAIRSP] per species pair, out[SBI_NPAIRSP]
+ * all pairs n(n-1)/2. */
+void sbi_engine_pair_counts(const sb_engine *e, double *out);
+/* Add the exposure of a step of length dt from the pair counts at its
+ * start (e->pairs0) and now (trapezoid). */
+void sbi_engine_add_exposure(sb_engine *e, double dt);
 int sbi_engine_sample(sb_engine *e);
 
 /* Remove the particles marked for removal (engine_merge.c). */

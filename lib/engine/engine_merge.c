@@ -1,4 +1,4 @@
-/* engine_merge.c — agglomeration in the collision engine (issue 7):
+/* engine_merge.c — agglomeration in the collision engine:
  * particle removal, the merge outcome, the DLVO sticking outcome and the
  * cluster-size bookkeeping (one engine species per cluster size).
  *
@@ -17,8 +17,8 @@
  * species is the one of size k (created on the first merge that makes
  * size k): its radius, mass, tau_p and B follow from k by the growth law.
  *
- * DLVO (seed 003 §1.2.4, App. C): the pair sticks (merges) if its relative
- * kinetic energy E_rel exceeds the energy barrier W_max, otherwise it
+ * DLVO (Mohaupt 2011, §1.2.4, App. C): the pair sticks (merges) if its
+ * relative kinetic energy E_rel exceeds the energy barrier W_max, otherwise it
  * rebounds.  E_rel = mu |w|^2/2 (or its normal part) with w the relative
  * chord velocity dd/dt at contact (ballistic: exact for free flight and a
  * good approximation for dt << tau_p), or drawn from the stationary

@@ -4,10 +4,14 @@
  *
  * Kernel estimate.  With n particles in a volume V the expected number of
  * collisions per unit time is K n (n - 1) / (2 V) (K n_c^2 V / 2 with the
- * pair count n (n - 1)/2 in place of n^2/2), so
- *     K_e = 2 N_c V / (n (n - 1) t)                 (issue 5; seed 003 §2.4)
- * and, N_c being Poisson, K_e's exact interval is the Garwood interval of
- * N_c times the same scale (sb_poisson_rate_ci).  Successive collisions
+ * pair count n (n - 1)/2 in place of n^2/2), so over the measurement
+ *     K_e = N_c V / int n (n - 1)/2 dt    (= 2 N_c V / (n (n - 1) t) for a
+ * constant n; Mohaupt 2011, eq 2.16), the integral (the pair exposure)
+ * accumulated step by step (trapezoid) so that removals and merges are
+ * accounted for; and per species pair (a, b) K_ab = N_ab V / int P_ab dt,
+ * P_ab = n_a n_b for a != b, n_a (n_a - 1)/2 for a = b.  N_c being
+ * Poisson, K_e's exact interval is the Garwood interval of N_c times the
+ * same scale (sb_poisson_rate_ci).  Successive collisions
  * are not strictly independent (re-collisions of a pair), so the interval
  * is exact for a Poisson process and approximate otherwise.
  */
@@ -24,6 +28,9 @@
 void sbi_engine_count_collision(sb_engine *e, size_t i, size_t j)
 {
   e->ncoll++;
+  size_t si = e->species[i], sj = e->species[j];
+  if (si < SB_ENGINE_PAIR_SPECIES && sj < SB_ENGINE_PAIR_SPECIES)
+    e->pcoll[sbi_pair_index(si, sj)]++;
   int a = e->family[i], b = e->family[j];
   if (a > b) {
     int t = a;
@@ -39,6 +46,9 @@ void sb_engine_reset_counters(sb_engine *e)
     return;
   e->ncoll = e->ncand = e->dropped = e->nredetect = 0;
   memset(e->fam, 0, sizeof e->fam);
+  e->expo = 0.0;
+  memset(e->pexpo, 0, sizeof e->pexpo);
+  memset(e->pcoll, 0, sizeof e->pcoll);
   e->t_reset = e->t;
 }
 
@@ -54,6 +64,7 @@ int sb_engine_get_stats(const sb_engine *e, sb_engine_stats *st)
   memcpy(st->fam, e->fam, sizeof e->fam);
   st->t = e->t;
   st->t_reset = e->t_reset;
+  st->exposure = e->expo;
   return SB_SUCCESS;
 }
 
@@ -81,14 +92,67 @@ int sb_engine_kernel(const sb_engine *e, double level, double *K,
   if (!(level > 0.0 && level < 1.0))
     return sbi_error(SB_EINVAL, __func__, "level = %g: must be in (0, 1)",
                      level);
-  double t = e->t - e->t_reset;
-  if (!(t > 0.0) || e->n < 2)
+  if (!(e->expo > 0.0))
     return sbi_error(SB_EDOM, __func__,
-                     "no elapsed time (%g s) or fewer than 2 particles", t);
-  double nn = (double)e->n;
-  double scale = 2.0 * volume(e) / (nn * (nn - 1.0) * t);
+                     "no pair exposure since the reset (no step taken, or "
+                     "fewer than 2 particles)");
+  double scale = volume(e) / e->expo;
   *K = scale * (double)e->ncoll;
   int st = sb_poisson_rate_ci((unsigned long)e->ncoll, scale, level, lo, hi);
+  if (st)
+    return sbi_error(st, __func__, "Poisson interval failed: %s",
+                     sb_last_error());
+  return SB_SUCCESS;
+}
+
+void sbi_engine_pair_counts(const sb_engine *e, double *out)
+{
+  double nsp[SB_ENGINE_PAIR_SPECIES] = {0};
+  for (size_t i = 0; i < e->n; i++)
+    if (e->species[i] < SB_ENGINE_PAIR_SPECIES && e->hit[i] != 2)
+      nsp[e->species[i]] += 1.0;
+  for (size_t a = 0; a < SB_ENGINE_PAIR_SPECIES; a++)
+    for (size_t b = a; b < SB_ENGINE_PAIR_SPECIES; b++)
+      out[sbi_pair_index(a, b)] =
+          a == b ? 0.5 * nsp[a] * (nsp[a] - 1.0) : nsp[a] * nsp[b];
+  double n = (double)e->n;
+  out[SBI_NPAIRSP] = 0.5 * n * (n - 1.0);
+}
+
+void sbi_engine_add_exposure(sb_engine *e, double dt)
+{
+  double now[SBI_NPAIRSP + 1];
+  sbi_engine_pair_counts(e, now);
+  for (size_t q = 0; q < SBI_NPAIRSP; q++)
+    e->pexpo[q] += 0.5 * (e->pairs0[q] + now[q]) * dt;
+  e->expo += 0.5 * (e->pairs0[SBI_NPAIRSP] + now[SBI_NPAIRSP]) * dt;
+}
+
+int sb_engine_pair_kernel(const sb_engine *e, size_t a, size_t b,
+                          double level, sb_engine_pair_stats *ps)
+{
+  if (!e || !ps)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  ps->ncoll = 0;
+  ps->exposure = ps->K = ps->lo = ps->hi = NAN;
+  if (a >= SB_ENGINE_PAIR_SPECIES || b >= SB_ENGINE_PAIR_SPECIES)
+    return sbi_error(SB_EINVAL, __func__,
+                     "species %zu, %zu: only the first %d species are "
+                     "tracked", a, b, SB_ENGINE_PAIR_SPECIES);
+  if (!(level > 0.0 && level < 1.0))
+    return sbi_error(SB_EINVAL, __func__, "level = %g: must be in (0, 1)",
+                     level);
+  size_t q = sbi_pair_index(a, b);
+  ps->ncoll = e->pcoll[q];
+  ps->exposure = e->pexpo[q];
+  if (!(e->pexpo[q] > 0.0))
+    return sbi_error(SB_EDOM, __func__,
+                     "no exposure of species pair (%zu, %zu) since the "
+                     "reset", a, b);
+  double scale = volume(e) / e->pexpo[q];
+  ps->K = scale * (double)e->pcoll[q];
+  int st = sb_poisson_rate_ci((unsigned long)e->pcoll[q], scale, level,
+                              &ps->lo, &ps->hi);
   if (st)
     return sbi_error(st, __func__, "Poisson interval failed: %s",
                      sb_last_error());
@@ -109,7 +173,7 @@ int sbi_engine_sample(sb_engine *e)
   s->t = e->t;
   s->ncoll = e->ncoll;
   s->K = s->K_lo = s->K_hi = NAN;
-  if (e->t > e->t_reset && e->n >= 2)
+  if (e->expo > 0.0)
     sb_engine_kernel(e, 0.95, &s->K, &s->K_lo, &s->K_hi);
   s->ekin = sb_engine_kinetic_energy(e, s->p);
   return SB_SUCCESS;

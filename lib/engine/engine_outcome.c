@@ -1,25 +1,26 @@
 /* engine_outcome.c — collision outcomes: elastic with energy-loss factor
- * eta (seed 000 §4.3-4.4), reinsertion (seed 003 §5.3), count-only, and
- * the dispatcher to a user outcome.
+ * eta (Thomine 2008, §4.3-4.4), reinsertion (Mohaupt 2011, §5.3.2),
+ * count-only, and the dispatcher to a user outcome.
  *
  * Elastic collision.  With n the unit normal at contact (from j to i) and
  * w the chord velocities (disp/dt), the tangential components are kept
  * and the normal components change so that
- *   m_i w_i.n + m_j w_j.n is conserved             (seed 000 eq 4/6)
+ *   m_i w_i.n + m_j w_j.n is conserved             (Thomine 2008, eqs 4, 6)
  *   (w_i - w_j).n  ->  -e (w_i - w_j).n,  e = sqrt(eta).
- * With eta = 1 this is seed 000's solution (eqs 7-9: the normal kinetic
- * energy conserved).  For eta < 1 seed 000 eq 5 multiplies the *total*
+ * With eta = 1 this is Thomine's solution (2008, eqs 7-9: the normal
+ * kinetic energy conserved).  For eta < 1 his eq 5 multiplies the *total*
  * normal kinetic energy by eta, which depends on the frame (it is not
  * Galilean invariant, and its square root can be negative when the centre
  * of mass moves fast); we apply eta to the kinetic energy of the relative
  * normal motion, mu w_n^2 / 2 (mu the reduced mass), i.e. a restitution
- * coefficient e = sqrt(eta).  The seed's sign choice in eq 9 also depends
+ * coefficient e = sqrt(eta).  His sign choice in eq 9 also depends
  * on the orientation of i (its test case has R moving away from S along
  * i); writing the rule on w_n avoids the ambiguity.  In impulse form:
  *   J = (1 + e) mu w_n,  dw_i = -J n / m_i,  dw_j = +J n / m_j.
  * The same impulse is applied to the particle velocities u (for free
  * flight u = w, exact), and the end positions are re-advanced from the
- * contact: x += (1 - s) dt dw (seed 000 §4.3, last equation).
+ * contact: x += (1 - s) dt dw (Thomine 2008, §4.3, last
+ * equation).
  */
 #include <math.h>
 #include <stdlib.h>

@@ -1,12 +1,12 @@
 /* engine_sweep.c — sort-and-sweep neighbour search with the per-particle
- * anisotropic reach of seed 000 §4.1 and §5.1 (eqs 13-16), in 3-D and with
- * periodic images.
+ * anisotropic reach of Thomine (2008) §4.1 and §5.1 (eqs 13-16), in 3-D
+ * and with periodic images.
  *
  * The particles are sorted by their start abscissa x0.  For a particle R,
  * a partner S to its right (0 <= dx = x_S - x_R, minimum image) can only
  * meet R during the step if
  *     dx <= (d_R,x - d_min,x) + r_R + r_max + reach           (eq 14)
- * where d = displacement over the step (seed 000 writes V dt; here the
+ * where d = displacement over the step (Thomine writes V dt; here the
  * chord of the exact Langevin step) and d_min,x = min_i d_i,x (eq 13): the
  * x-gap closes at most at the rate of R against the fastest left-mover.
  * Across x (k = y, z), a partner above (dy >= 0) or below must satisfy
@@ -14,14 +14,14 @@
  *    -dy <= (d_max,k - d_R,k) + r_R + r_max + reach            (eq 16)
  * These are necessary conditions for |x0_RS + s (d_S - d_R)| <= sigma +
  * reach at some s in [0, 1] (each component must close the gap), so the
- * sweep returns a superset of the colliding pairs.  Seed 000 uses the
+ * sweep returns a superset of the colliding pairs.  Thomine uses the
  * velocities and 2-D; the z bounds are the same as the y bounds (its
  * §4.4 uses the isotropic D_max in z).
  *
  * Sorting: the order of the previous step is reused and repaired by
  * insertion sort (nearly sorted input, O(N + inversions)), with a budget of
- * 8N shifts after which a full qsort is done (seed 000 §4.5.1 discusses
- * quicksort's bad cases on nearly sorted input).
+ * 8N shifts after which a full qsort is done (Thomine 2008, §4.5.1,
+ * discusses quicksort's bad cases on nearly sorted input).
  */
 #include <math.h>
 #include <stdlib.h>

@@ -94,6 +94,71 @@ double sb_kernel_brownian_tr(double r_i, double r_j, double T, double mu,
   return kco * (1.0 + kn) / (1.0 + 2.0 * kn * (1.0 + kn));
 }
 
+/* Transition regime of Langevin spheres (Gopalakrishnan & Hogan 2011,
+ * eq 7).  g(Kn) = H(Kn)/Kn^2 is the kernel in units of kT R/f_red:
+ *   g = (4 pi + 25.836 Kn + sqrt(8 pi) 11.211 Kn^2)
+ *       / (1 + 3.502 Kn + 7.211 Kn^2 + 11.211 Kn^3),
+ * finite at Kn = 0 (the continuum 4 pi); for huge Kn it is evaluated in
+ * powers of 1/Kn (no overflow). */
+static double gh_g(double kn)
+{
+  const double s8pi = sqrt(8.0 * M_PI);
+  if (kn > 1e50) {
+    double u = 1.0 / kn;
+    return u * (s8pi * 11.211 + u * (25.836 + u * 4.0 * M_PI)) /
+           (11.211 + u * (7.211 + u * (3.502 + u)));
+  }
+  return (4.0 * M_PI + kn * (25.836 + kn * s8pi * 11.211)) /
+         (1.0 + kn * (3.502 + kn * (7.211 + kn * 11.211)));
+}
+
+double sb_kernel_gh_H(double kn)
+{
+  CHECK(kn >= 0.0 && isfinite(kn), "Kn_D must be finite and >= 0 (got %g)",
+        kn);
+  if (kn > 1e100)  /* H ~ sqrt(8 pi) Kn: kn^2 would overflow */
+    return kn * (kn * gh_g(kn));
+  return kn * kn * gh_g(kn);
+}
+
+/* Kn_D = sqrt(kT m_red)/(f_red R), f = m/tau; NaN on bad input. */
+static double gh_knd(double r_i, double r_j, double m_i, double m_j,
+                     double tau_i, double tau_j, double T, double *m_red,
+                     double *f_red, double *R)
+{
+  double f_i = m_i / tau_i, f_j = m_j / tau_j;
+  *m_red = m_i * m_j / (m_i + m_j);
+  *f_red = f_i * f_j / (f_i + f_j);
+  *R = r_i + r_j;
+  return sqrt(kB * T * *m_red) / (*f_red * *R);
+}
+
+double sb_kernel_brownian_gh_kn(double r_i, double r_j, double m_i,
+                                double m_j, double tau_i, double tau_j,
+                                double T)
+{
+  CHECK_RADII(r_i, r_j);
+  CHECK(pos(m_i) && pos(m_j) && pos(tau_i) && pos(tau_j) && pos(T),
+        "masses, tau and T must be finite and > 0 (got %g, %g, %g, %g, %g)",
+        m_i, m_j, tau_i, tau_j, T);
+  double mr, fr, R;
+  return gh_knd(r_i, r_j, m_i, m_j, tau_i, tau_j, T, &mr, &fr, &R);
+}
+
+double sb_kernel_brownian_gh(double r_i, double r_j, double m_i, double m_j,
+                             double tau_i, double tau_j, double T)
+{
+  CHECK_RADII(r_i, r_j);
+  CHECK(pos(m_i) && pos(m_j) && pos(tau_i) && pos(tau_j) && pos(T),
+        "masses, tau and T must be finite and > 0 (got %g, %g, %g, %g, %g)",
+        m_i, m_j, tau_i, tau_j, T);
+  double mr, fr, R;
+  double kn = gh_knd(r_i, r_j, m_i, m_j, tau_i, tau_j, T, &mr, &fr, &R);
+  /* beta = H f_red R^3/m_red = (H/Kn^2) kT R/f_red: no division by a
+   * vanishing Kn^2 */
+  return gh_g(kn) * kB * T * R / fr;
+}
+
 double sb_kernel_kinetic(double d_i, double d_j, double m_i, double m_j,
                          double T)
 {

@@ -20,8 +20,9 @@ double sb_stokes_tau(double rho_p, double d_p, double mu_f, double cc)
               ">= 1, all finite", rho_p, d_p, mu_f, cc);
     return NAN;
   }
-  /* seed 003 eq 1.4: tau_p = (rho_p/rho_f) d_p^2 / (18 nu_f), mu = rho nu;
-   * the slip correction divides the drag by Cc, so tau_p is multiplied. */
+  /* Mohaupt 2011, eq 1.4: tau_p = (rho_p/rho_f) d_p^2 / (18 nu_f),
+   * mu = rho nu; the slip correction divides the drag by Cc, so tau_p is
+   * multiplied. */
   return rho_p * d_p * d_p * cc / (18.0 * mu_f);
 }
 
@@ -43,7 +44,7 @@ double sb_brownian_B(double T, double m_p, double tau_p)
               m_p, tau_p);
     return NAN;
   }
-  /* seed 003 eq A.5: B^2 tau_p / 2 = k_B T / m_p (equipartition) */
+  /* Mohaupt 2011, eq A.5: B^2 tau_p / 2 = k_B T / m_p (equipartition) */
   return sqrt(2.0 * SB_BOLTZMANN * T / (m_p * tau_p));
 }
 

@@ -1,11 +1,11 @@
 /* langevin_step.c — exact transition of the Langevin model over one step:
  * scalar, and batched 3-D for the engine.
  *
- * Seed 003 eq 1.16 (Peirano, Chibbaro, Pozorski & Minier 2006) writes the
- * step as a Cholesky factorisation of the exact 2x2 covariance of the noise
- * (var_x, cov_xu, var_u; see langevin.h): U takes sqrt(var_u) z1, X takes
- * (cov_xu/sqrt(var_u)) z1 + sqrt(var_x|u) z2.  The coefficients are written
- * here without any difference of nearly equal terms:
+ * Mohaupt (2011) eq 1.16 (Peirano, Chibbaro, Pozorski & Minier 2006)
+ * writes the step as a Cholesky factorisation of the exact 2x2 covariance
+ * of the noise (var_x, cov_xu, var_u; see langevin.h): U takes sqrt(var_u) z1,
+ * X takes (cov_xu/sqrt(var_u)) z1 + sqrt(var_x|u) z2.  The coefficients are
+ * written here without any difference of nearly equal terms:
  *   s_u  = B sqrt(tau)     sqrt(a (2-a)/2)
  *   s_xu = B tau sqrt(tau) sqrt(a^3 / (2 (2-a)))      (= cov_xu / s_u)
  *   s_xc = B tau sqrt(tau) sqrt(c(h)),  c(h) = h - 2 tanh(h/2),

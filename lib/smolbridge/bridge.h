@@ -8,14 +8,16 @@
  *
  * Crossing probabilities P(min over [0, t] <= a):
  *   BB   P = exp(-2 alpha beta / v)                         (reflection)
- *   B3B  P = expm1(2a(x+y-a)/v) / expm1(2xy/v)              (seed 003 eq 5.13)
+ *   B3B  P = expm1(2a(x+y-a)/v) / expm1(2xy/v)       (Mohaupt 2011, eq 5.13)
  *          = exp(-2 alpha beta/v) expm1(-2a(x+y-a)/v) / expm1(-2xy/v)
  *   and directly P(no crossing) = expm1(-2 alpha beta/v) / expm1(-2xy/v) for
  *   B3B, -expm1(-2 alpha beta/v) for BB.  The B3B form follows from the
  *   Bessel-3 transition density q_v(x,y) = (y/x)[g_v(y-x) - g_v(y+x)] and its
  *   version killed at a, (y/x)[g_v(y-x) - g_v(x+y-2a)], g_v the N(0, v)
- *   density.  Both are 1 when x <= a or y <= a (overlap at an end point,
- *   seed 003 eq 5.15): log 0, no-crossing 0.  B3B with a = 0 gives P = 0.
+ *   density.  Both are 1 when x <= a or y <= a (overlap at an end point;
+ *   Mohaupt 2011, eq 5.15, writes min(1, P), which fails when both ends
+ *   overlap: docs/errata.md): log 0, no-crossing 0.  B3B with a = 0 gives
+ *   P = 0.
  * Domain: finite x, y, a; v >= 0 finite (v = 0 is the limit: P = 0 unless an
  * end point overlaps).  B3B: x >= 0, y >= 0 and a >= 0 (a < 0 is SB_EDOM).
  * Accuracy: relative error <= 1e-14 typically (tested <= 1e-13 against
@@ -38,10 +40,11 @@
  *        [G(u; |beta|) - rho G(u; y + a)] / (1 - rho), G(u; L) the BB law
  *        above with |beta| replaced by L and
  *        rho = exp(-[(alpha + y + a)^2 - (alpha + |beta|)^2]/(2v)).  This
- *        agrees with seed 003 eq 5.21-5.22 (and App. I eq I.62-I.63) but NOT
- *        with App. I eq I.60-I.61, which is misprinted (tests/test_bridge.c
- *        shows it against quadrature).  Where the difference cancels
- *        (rho G(u; y+a) > 0.95 G(u; |beta|), i.e. 1 - rho small:
+ *        agrees with Mohaupt (2011) eq 5.21-5.22 (and App. I eq I.62-I.63)
+ *        but NOT with App. I eq I.60-I.61, which is misprinted
+ *        (tests/test_bridge.c shows it against quadrature).  Where the
+ *        difference cancels (rho G(u; y+a) > 0.95 G(u; |beta|), i.e.
+ *        1 - rho small:
  *        a (x+y) << v) the CDF is computed from the equivalent positive
  *        mixture over the bridge minimum by 3- and 4-point Gauss-Legendre
  *        quadrature (slower: about 1 us per CDF).

@@ -15,7 +15,7 @@
  *                  + ln(D(D + 2r1 + 2r2)/((D + 2r1)(D + 2r2)))]
  *    = -(A/6) g(t), t = 2 r1 r2/(D(D + 2r1 + 2r2)),
  *      g(t) = t + t/(1 + 2t) - ln(1 + 2t)   (sphere–plane: t = r1/D);
- *    its Derjaguin (D << r) limit is seed 003 eqs 1.6–1.7, W = -A R/(6D)
+ *    its Derjaguin (D << r) limit is Mohaupt (2011) eqs 1.6–1.7, W = -A R/(6D)
  *    (Israelachvili 2011, ch. 13), and at large D it decays as
  *    -(16/9) A r1^3 r2^3/D^6 (spheres) or -(2/9) A r1^3/D^3 (plane).
  *    A is the Hamaker constant of the two bodies across the medium.
@@ -26,11 +26,11 @@
  *      g_i = tanh(z e psi_i/(4 kT)),   eps = eps_r eps_0,
  *    equivalently 128 pi R n0 kT g1 g2 exp(-kappa D)/kappa^2 with
  *    kappa^2 = 2 n0 z^2 e^2/(eps kT).  Valid for kappa D >~ 1 (weak
- *    overlap), any potential.  This is the seed's eq 1.9 corrected: the
- *    seed prints the flat-plate energy per unit area with kappa^-1 in the
- *    denominator (dimensionally wrong), omits the Derjaguin factor
+ *    overlap), any potential.  This is Mohaupt (2011) eq 1.9 corrected:
+ *    the thesis prints the flat-plate energy per unit area with kappa^-1
+ *    in the denominator (dimensionally wrong), omits the Derjaguin factor
  *    2 pi R/kappa, and writes g = tanh(e phi0/4) without z/kT (eq 1.10);
- *    its forces (eqs 1.13–1.14) have the sign of +dW/dD.
+ *    its forces (eqs 1.13–1.14) have the sign of +dW/dD (docs/errata.md).
  *  - double layer at constant surface potential, low potentials
  *    (Hogg, Healy & Fuerstenau 1966, "HHF"), Derjaguin approximation:
  *      W = pi eps R [(psi1 + psi2)^2 ln(1 + exp(-kappa D))
@@ -84,7 +84,8 @@ double sb_dlvo_vdw_hamaker_force(double A, double r1, double r2, double D);
 int sb_dlvo_vdw_hamaker_force_e(double A, double r1, double r2, double D,
                                 sb_result *res);
 
-/** Derjaguin (short-distance) form -A R/(6D), J (seed 003 eqs 1.6–1.7). */
+/** Derjaguin (short-distance) form -A R/(6D), J (Mohaupt 2011,
+ *  eqs 1.6–1.7). */
 double sb_dlvo_vdw_derjaguin(double A, double r1, double r2, double D);
 int sb_dlvo_vdw_derjaguin_e(double A, double r1, double r2, double D,
                             sb_result *res);
@@ -128,12 +129,12 @@ int sb_dlvo_edl_hhf_force_e(double D, double r1, double r2, double kappa,
 /* ============================================================ a pair */
 
 typedef enum {
-  SB_DLVO_VDW_DERJAGUIN = 0, /**< -A R/(6D) (the seed's eqs 1.6–1.7) */
+  SB_DLVO_VDW_DERJAGUIN = 0, /**< -A R/(6D) (Mohaupt 2011, eqs 1.6–1.7) */
   SB_DLVO_VDW_HAMAKER = 1    /**< full Hamaker sphere–sphere/plane form */
 } sb_dlvo_vdw_model;
 
 typedef enum {
-  SB_DLVO_EDL_LSA = 0, /**< linear superposition (the seed's eq 1.9) */
+  SB_DLVO_EDL_LSA = 0, /**< linear superposition (Mohaupt 2011, eq 1.9) */
   SB_DLVO_EDL_HHF = 1  /**< constant potential, low potential (HHF) */
 } sb_dlvo_edl_model;
 
@@ -156,12 +157,12 @@ typedef struct {
 /** Check every field of *p (SB_SUCCESS or SB_EDOM with a message). */
 int sb_dlvo_pair_check(const sb_dlvo_pair *p);
 
-/** Total DLVO energy W(D) = W_vdw + W_edl, J (seed 003 eqs 1.11–1.12,
- *  corrected as above).  D > 0. */
+/** Total DLVO energy W(D) = W_vdw + W_edl, J (Mohaupt 2011, eqs
+ *  1.11–1.12, corrected as above).  D > 0. */
 double sb_dlvo_energy(const sb_dlvo_pair *p, double D);
 int sb_dlvo_energy_e(const sb_dlvo_pair *p, double D, sb_result *res);
-/** Total force F(D) = -dW/dD, N (> 0 repulsive; seed eqs 1.13–1.14 with
- *  the sign corrected). */
+/** Total force F(D) = -dW/dD, N (> 0 repulsive; Mohaupt 2011, eqs
+ *  1.13–1.14, with the sign corrected). */
 double sb_dlvo_force(const sb_dlvo_pair *p, double D);
 int sb_dlvo_force_e(const sb_dlvo_pair *p, double D, sb_result *res);
 
@@ -204,7 +205,8 @@ int sb_dlvo_barrier(const sb_dlvo_pair *p, sb_dlvo_barrier_t *b);
 
 /* ============================================================ kinetic energy */
 
-/** Relative kinetic energy of two particles (seed 003 App. C, eq C.13):
+/** Relative kinetic energy of two particles (Mohaupt 2011, App. C,
+ *  eq C.13):
  *  E = (1/2) m1 m2/(m1 + m2) |v1 - v2|^2, J.  Masses [kg] > 0, velocities
  *  [m/s] 3-vectors, finite.  NaN and SB_EDOM otherwise. */
 double sb_dlvo_erel(double m1, double m2, const double v1[3],
@@ -216,7 +218,7 @@ double sb_dlvo_erel(double m1, double m2, const double v1[3],
 double sb_dlvo_erel_normal(double m1, double m2, const double v1[3],
                            const double v2[3], const double n[3]);
 
-/** Sticking rule (seed 003 §1.2.4): 1 (adhesion) if E_rel > W_max,
+/** Sticking rule (Mohaupt 2011, §1.2.4): 1 (adhesion) if E_rel > W_max,
  *  0 (rebound) otherwise (also if either is NaN). */
 int sb_dlvo_sticks(double E_rel, double W_max);
 

@@ -4,15 +4,17 @@
  * the exact Langevin step of <smolbridge/langevin.h> (or by free flight,
  * tau = +inf, for molecules), pairs that can collide during a step are
  * found by an O(N) neighbour search (linked cells, or the sort-and-sweep of
- * seed 000 §4.1 with the per-particle anisotropic reach of §5.1), a
+ * Thomine 2008, §4.1, with the per-particle anisotropic reach of its
+ * §5.1), a
  * detector decides whether and when each candidate pair touches (overlap at
  * step end, Sundaram & Collins 1996; or the exact contact time of the
- * straight-line relative motion, seed 000 §4.2 / seed 003 App. F), the
+ * straight-line relative motion, Thomine 2008, §4.2; Mohaupt 2011,
+ * App. F), the
  * events are processed earliest-first, and an outcome is applied (elastic
- * with energy-loss factor eta, seed 000 §4.3-4.4; or "reinsert", which
+ * with energy-loss factor eta, Thomine 2008, §4.3-4.4; or "reinsert", which
  * removes one partner and puts it back at random to keep the concentration
- * constant, seed 003 §5.3).  Observers count collisions and estimate the
- * collision kernel with an exact Poisson interval.
+ * constant, Mohaupt 2011, §5.3.2).  Observers count collisions and estimate
+ * the collision kernel with an exact Poisson interval.
  *
  * Theory, derivations, every parameter and its unit: docs/engine.md.
  *
@@ -61,6 +63,10 @@ extern "C" {
 /** Maximum number of family tags (0 .. SB_ENGINE_MAXFAM-1) for per-family
  *  collision counts. */
 #define SB_ENGINE_MAXFAM 8
+
+/** Species 0 .. SB_ENGINE_PAIR_SPECIES-1 get per-species-pair collision
+ *  counts and kernels (sb_engine_pair_kernel). */
+#define SB_ENGINE_PAIR_SPECIES 16
 
 /** Neighbour-search method (all return a superset of the pairs that can
  *  collide during the step; docs/engine.md §neighbours). */
@@ -345,7 +351,11 @@ typedef struct {
   uint64_t fam[SB_ENGINE_MAXFAM][SB_ENGINE_MAXFAM]; /**< collisions by
                             family pair (a <= b in fam[a][b]) */
   double t;            /**< time, s (steps * dt, summed per dt change) */
-  double t_reset;      /**< time of the last counter reset, s */
+  double t_reset;      /**< time of the last counter reset: the kernel is
+                            measured over [t_reset, t], s */
+  double exposure;     /**< pair exposure int n (n - 1)/2 dt over that
+                            interval, s (what sb_engine_kernel divides
+                            by) */
 } sb_engine_stats;
 
 int sb_engine_get_stats(const sb_engine *e, sb_engine_stats *st);
@@ -353,13 +363,31 @@ int sb_engine_get_stats(const sb_engine *e, sb_engine_stats *st);
 /** Zero the collision counters and start the kernel measurement now. */
 void sb_engine_reset_counters(sb_engine *e);
 
-/** Kernel estimate K_e = 2 N_c V / (n (n - 1) (t - t_reset)) (m^3/s in
- *  3-D, m^2/s in 2-D; V the box volume/area, n particles, N_c collisions
- *  since the reset) with the exact (Garwood) Poisson interval at `level`
- *  (e.g. 0.95) of the same scale times N_c.  SB_EDOM if no time elapsed or
- *  n < 2.  lo/hi may be NULL. */
+/** Kernel estimate K_e = N_c V / int n (n - 1)/2 dt over [t_reset, t]
+ *  (= 2 N_c V / (n (n - 1) (t - t_reset)) for a constant n; m^3/s in
+ *  3-D, m^2/s in 2-D; V the box volume/area, N_c collisions since the
+ *  reset) with the exact (Garwood) Poisson interval at `level` (e.g.
+ *  0.95) of the same scale times N_c.  The kernel of one species pair in a
+ *  mixture is sb_engine_pair_kernel.  SB_EDOM if there is no exposure yet
+ *  (no step since the reset, or n < 2).  lo/hi may be NULL. */
 int sb_engine_kernel(const sb_engine *e, double level, double *K,
                      double *lo, double *hi);
+
+/** Collisions, exposure and kernel of one species pair (a, b) since the
+ *  reset. */
+typedef struct {
+  uint64_t ncoll;   /**< collisions between a and b */
+  double exposure;  /**< int P_ab dt, s; P_ab = n_a n_b (a != b) or
+                         n_a (n_a - 1)/2 (a = b) */
+  double K;         /**< N_ab V / exposure, m^3/s (3-D) */
+  double lo, hi;    /**< exact Poisson (Garwood) interval at `level` */
+} sb_engine_pair_stats;
+
+/** The kernel of species pair (a, b), a and b < SB_ENGINE_PAIR_SPECIES
+ *  (SB_EINVAL otherwise); SB_EDOM (ncoll and exposure still set) if the
+ *  pair had no exposure. */
+int sb_engine_pair_kernel(const sb_engine *e, size_t a, size_t b,
+                          double level, sb_engine_pair_stats *ps);
 
 /** One time-series sample (every params.sample_every steps). */
 typedef struct {
@@ -434,7 +462,7 @@ int sb_engine_outcome_from_name(const char *name, sb_engine_outcome *o);
 
 
 /* ============================================================
- * Agglomeration (issue 7): particle removal, merge and DLVO outcomes,
+ * Agglomeration: particle removal, merge and DLVO outcomes,
  * cluster sizes and size-distribution observers (lib/engine/engine_merge.c);
  * theory and validation: docs/agglomeration.md.
  *
@@ -515,10 +543,10 @@ typedef struct {
   sb_agglo_wmax_fn wmax_fn;   /**< NULL (default): constant wmax */
   void *wmax_ctx;
   sb_agglo_erel erel;         /**< default SB_AGGLO_EREL_CONTACT */
-  int erel_normal;            /**< 0 (default): the full E_rel of seed 003
-                                   App. C; 1: its part along the line of
-                                   centres (what works against a central
-                                   force) */
+  int erel_normal;            /**< 0 (default): the full E_rel of
+                                   Mohaupt 2011, App. C; 1: its part
+                                   along the line of centres (what works
+                                   against a central force) */
   size_t kmax;                /**< largest cluster size allowed (a merge
                                    beyond it fails with SB_EINVAL);
                                    default 2^20 */

@@ -1,10 +1,10 @@
 /* smolbridge/engine_bridge.h — collision engine II: detection of
- * collisions between diffusive particles by diffusion bridges (seed 003
- * ch. 5, App. H-J; turbulent pair diffusivity ch. 6).
+ * collisions between diffusive particles by diffusion bridges (Mohaupt
+ * 2011, ch. 5, App. H-J; turbulent pair diffusivity ch. 6).
  *
  * Over one step of length dt the relative position of a pair, r(t) =
  * x_i - x_j, is modelled as a 3-D Brownian motion with per-component
- * variance rate B_ij^2 = b2_i + b2_j (seed 003 eq 5.9; b2 = B_pos^2 =
+ * variance rate B_ij^2 = b2_i + b2_j (Mohaupt 2011, eq 5.9; b2 = B_pos^2 =
  * (B tau_p)^2 in the diffusive limit dt >> tau_p), conditioned on its end
  * points A = r(0), B = r(dt).  A pair collides during the step when |r|
  * reaches the contact distance a = r_i + r_j.  A and B are taken from the
@@ -12,23 +12,23 @@
  * never from the minimum image of the end positions.
  *
  * Detection modes (sb_engine_bridge_params.mode):
- *  SB_BRIDGE_BESSEL  the seed's criterion: |r| is a Bessel-3 bridge from
- *      x = |A| to y = |B|, it hits a with probability
- *      min(1, expm1(2a(x+y-a)/v)/expm1(2xy/v)), v = B_ij^2 dt (seed 003
- *      eqs 5.13-5.15; sb_bes3b_cross_prob).  The hit time T_a is drawn
- *      exactly from the conditioned first-passage law (eqs 5.20-5.22;
- *      sb_bes3b_hit_sample, no bisection).  This law ignores the angle
- *      between A and B: the collision *rate* is exact, but which pair
- *      collides, when and where is not (docs/engine_bridge.md).
+ *  SB_BRIDGE_BESSEL  the thesis' criterion: |r| is a Bessel-3 bridge
+ *      from x = |A| to y = |B|, it hits a with probability
+ *      expm1(2a(x+y-a)/v)/expm1(2xy/v), v = B_ij^2 dt, and 1 if x <= a or
+ *      y <= a (Mohaupt 2011, eqs 5.13-5.15; sb_bes3b_cross_prob).  The hit
+ *      time T_a is drawn exactly from the conditioned first-passage law
+ *      (eqs 5.20-5.22; sb_bes3b_hit_sample, no bisection).  This law ignores
+ *      the angle between A and B: the collision *rate* is exact, but which
+ *      pair collides, when and where is not (docs/engine_bridge.md).
  *  SB_BRIDGE_EXACT   the event is sampled from the full 3-D bridge
  *      (sb_bb3_hit_sample below): exact up to the stated tolerance, and the
  *      contact point comes with the hit time.
  *
  * End points (params.ends): SB_BRIDGE_ENDS_POSITION uses the positions X
- * (the seed); SB_BRIDGE_ENDS_DIFFUSIVE uses Y = X + tau_p U, which for the
- * Langevin model at rest is *exactly* a Brownian motion with B_pos = B tau_p
- * at any dt/tau_p (dY = tau_p B dW); |X - Y| = tau_p |U| ~ B_pos
- * sqrt(tau_p/2), negligible against the radii in the diffusive regime.
+ * (as the thesis does); SB_BRIDGE_ENDS_DIFFUSIVE uses Y = X + tau_p U,
+ * which for the Langevin model at rest is *exactly* a Brownian motion with
+ * B_pos = B tau_p at any dt/tau_p (dY = tau_p B dW); |X - Y| = tau_p |U| ~
+ * B_pos sqrt(tau_p/2), negligible against the radii in the diffusive regime.
  *
  * Neighbour reach (tail bound).  A pair whose straight chords stay farther
  * apart than a + rho has |A| >= a + rho.  For a 3-D Brownian motion from
@@ -48,7 +48,7 @@
  * rho with that bound <= tol (default 1e-9 per particle per step), found
  * with GSL's Brent solver on its log.
  *
- * Collision place (seed 003 §5.4.2, App. J): the barycentre
+ * Collision place (Mohaupt 2011, §5.4.2, App. J): the barycentre
  * b = (m_i x_i + m_j x_j)/(m_i + m_j) is a Brownian bridge with
  * B_bary^2 = (m_i^2 b2_i + m_j^2 b2_j)/(m_i + m_j)^2 (eq 5.25); at T_a it
  * is N(b0 + (b1 - b0) T_a/dt, T_a (dt - T_a)/dt B_bary^2) per component
@@ -56,8 +56,8 @@
  *
  * Outcomes (params.outcome):
  *  SB_BRIDGE_OUT_REINSERT  partner j is put back at random (kernel
- *      validation, seed 003 §5.3.2; sb_engine_outcome_reinsert);
- *  SB_BRIDGE_OUT_CORRECT   correction step (seed 003 §5.4.3): the pair is
+ *      validation, Mohaupt 2011, §5.3.2; sb_engine_outcome_reinsert);
+ *  SB_BRIDGE_OUT_CORRECT   correction step (Mohaupt 2011, §5.4.3): the pair is
  *      placed in contact at time T_a around the barycentre b(T_a), along a
  *      random unit vector e orthogonal to b1 - b0 (x_i = b + m_j a e/M,
  *      x_j = b - m_i a e/M; for equal masses each is one radius from b),
@@ -65,11 +65,11 @@
  *      is placed so that the barycentre keeps its end value b1;
  *  SB_BRIDGE_OUT_COUNT     count only.
  *
- * Collision split (seed 003 ch. 6): each species has a total b2 and a
+ * Collision split (Mohaupt 2011, §6.4): each species has a total b2 and a
  * Brownian part b2_brown (sb_engine_bridge_set_b2); a collision adds
  * f = (b2b_i + b2b_j)/(b2_i + b2_j) to the Brownian count and 1 - f to the
  * turbulent one (the expected share: the kernel 2 pi B_ij^2 a is linear in
- * B_ij^2, seed eq 6.18).
+ * B_ij^2, Mohaupt 2011, eq 6.18).
  *
  * Units: SI (m, s, m^2/s) for the engine functions; sb_bb3_* and
  * sb_bridge_miss_bound are unit-free.  3-D engines only.
@@ -88,12 +88,13 @@ extern "C" {
 #endif
 
 typedef enum {
-  SB_BRIDGE_BESSEL = 0,   /**< Bessel-3 bridge criterion (seed 003 ch. 5) */
+  SB_BRIDGE_BESSEL = 0,   /**< Bessel-3 bridge criterion
+                               (Mohaupt 2011, §5.3) */
   SB_BRIDGE_EXACT = 1     /**< full 3-D bridge (sb_bb3_hit_sample) */
 } sb_bridge_mode;
 
 typedef enum {
-  SB_BRIDGE_ENDS_POSITION = 0,  /**< X (seed) */
+  SB_BRIDGE_ENDS_POSITION = 0,  /**< X (as Mohaupt 2011) */
   SB_BRIDGE_ENDS_DIFFUSIVE = 1  /**< Y = X + tau_p U (exact BM) */
 } sb_bridge_ends;
 

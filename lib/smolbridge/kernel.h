@@ -25,49 +25,84 @@ extern "C" {
 
 /* ------------------------------------------------------ physical kernels */
 
-/** Brownian, continuum regime (Smoluchowski 1917; seed 003 eq 2.9):
+/** Brownian, continuum regime (Smoluchowski 1917; Mohaupt 2011,
+ *  eq 2.9):
  *  K = 4 pi (D_i + D_j)(r_i + r_j), D = kT/(6 pi mu r)
  *    = (2kT/3mu)(1/r_i + 1/r_j)(r_i + r_j).  Monodisperse: 8kT/(3mu).
  *  Valid for Knudsen number lambda/r << 1. */
 double sb_kernel_brownian_co(double r_i, double r_j, double T, double mu);
 
-/** Brownian, free-molecular regime (kinetic theory of spheres; seed 003
- *  eq 2.10): K = pi (r_i + r_j)^2 sqrt(8kT/(pi m_red)), m = rho_p 4/3 pi r^3,
- *  m_red = m_i m_j/(m_i + m_j).  Monodisperse: 4 sqrt(6 kT d/rho_p).
- *  Valid for lambda/r >> 1. */
+/** Brownian, free-molecular regime (kinetic theory of spheres;
+ *  Mohaupt 2011, eq 2.10): K = pi (r_i + r_j)^2 sqrt(8kT/(pi m_red)),
+ *  m = rho_p 4/3 pi r^3, m_red = m_i m_j/(m_i + m_j).  Monodisperse:
+ *  4 sqrt(6 kT d/rho_p).  Valid for lambda/r >> 1. */
 double sb_kernel_brownian_fm(double r_i, double r_j, double T, double rho_p);
 
 /** Brownian, transition regime, Dahneke (1983) flux-matching form:
  *  K = K_co (1 + Kn_D)/(1 + 2 Kn_D + 2 Kn_D^2),  Kn_D = K_co/(2 K_fm)
  *    = 2 (D_i + D_j)/(c_ij (r_i + r_j)),  c_ij = sqrt(c_i^2 + c_j^2),
  *  c = sqrt(8kT/(pi m)).  Tends to K_co as Kn_D -> 0 and to K_fm as
- *  Kn_D -> infinity.  (Seed 003 eq 2.13 omits the factor K_co's size
- *  dependence and eq 2.14 writes r_i + r_j for d_i + d_j.)  D includes the
- *  Cunningham slip correction C = 1 + (lambda/r)(1.257 + 0.4 exp(-1.1 r/
- *  lambda)) (Davies 1945) when the gas mean free path lambda > 0; lambda = 0
- *  gives Stokes–Einstein D. */
+ *  Kn_D -> infinity.  (Mohaupt 2011, eq 2.13, omits K_co's size
+ *  dependence and eq 2.14 writes r_i + r_j for d_i + d_j: docs/errata.md.)
+ *  D includes the Cunningham slip correction C = 1 + (lambda/r)(1.257 +
+ *  0.4 exp(-1.1 r/lambda)) (Davies 1945) when the gas mean free path
+ *  lambda > 0; lambda = 0 gives Stokes–Einstein D. */
 double sb_kernel_brownian_tr(double r_i, double r_j, double T, double mu,
                              double rho_p, double lambda);
 
+/** Brownian kernel of Langevin spheres in the transition regime,
+ *  Gopalakrishnan & Hogan (2011, Aerosol Sci. Technol. 45:1499, eq 7):
+ *  with the diffusive Knudsen number
+ *    Kn_D = sqrt(k_B T m_red) / (f_red R),  R = r_i + r_j,
+ *  f = m/tau the friction coefficients, m_red and f_red the reduced mass
+ *  and friction, and
+ *    H(Kn) = (4 pi Kn^2 + 25.836 Kn^3 + sqrt(8 pi) 11.211 Kn^4)
+ *            / (1 + 3.502 Kn + 7.211 Kn^2 + 11.211 Kn^3),
+ *  the kernel is beta = H f_red R^3 / m_red (m^3/s).  Inputs: radii (m),
+ *  masses (kg), relaxation times tau_p (s), temperature (K); every one
+ *  finite and > 0 (else NaN, SB_EDOM).
+ *  Limits (exact, tested): Kn_D -> 0, H -> 4 pi Kn^2 and beta -> the
+ *  continuum 4 pi (D_i + D_j) R with D = kT tau/m; Kn_D -> inf,
+ *  H -> sqrt(8 pi) Kn and beta -> the free-molecular pi R^2 sqrt(8 kT /
+ *  (pi m_red)).  Accuracy: H is a fit of the authors' mean-first-passage
+ *  Langevin simulations over 0.01 <= Kn_D <= 10 (their paper gives its
+ *  quality; outside that range it only interpolates between the limits).
+ *  Its first-order continuum correction H/(4 pi Kn^2) = 1 - 1.446 Kn_D
+ *  agrees within 1% with the exact 1 - |zeta(1/2)| Kn_D = 1 - 1.4604 Kn_D
+ *  from the Milne extrapolation length of the Klein-Kramers equation
+ *  (Marshall & Watson 1985).  Unlike sb_kernel_brownian_tr (Dahneke) it
+ *  takes the particles' Langevin parameters directly, as the engine does.
+ *  Cost: a few ns. */
+double sb_kernel_brownian_gh(double r_i, double r_j, double m_i, double m_j,
+                             double tau_i, double tau_j, double T);
+/** Its diffusive Knudsen number Kn_D (same arguments; NaN on bad input). */
+double sb_kernel_brownian_gh_kn(double r_i, double r_j, double m_i,
+                                double m_j, double tau_i, double tau_j,
+                                double T);
+/** The dimensionless kernel H(Kn_D) of the fit, Kn_D >= 0 finite. */
+double sb_kernel_gh_H(double kn);
+
 /** Kinetic theory of hard spheres (gas molecules), diameters d (m), masses
  *  m (kg): K = pi ((d_i + d_j)/2)^2 sqrt(8kT/(pi m_red)).  Monodisperse:
- *  pi d^2 sqrt(16 kT/(pi m)).  (Seed 003 eq 3.6 is garbled.) */
+ *  pi d^2 sqrt(16 kT/(pi m)).  (Mohaupt 2011, eq 3.6, is
+ *  misprinted: docs/errata.md.) */
 double sb_kernel_kinetic(double d_i, double d_j, double m_i, double m_j,
                          double T);
 
-/** Differential gravitational settling (seed 003 eq 2.3; Pearson et al.
- *  1984): K = pi (r_i + r_j)^2 |U_i - U_j|, Stokes terminal velocity
- *  U = 2 (rho_p - rho_f) g r^2/(9 mu).  No hydrodynamic interaction
- *  (collision efficiency 1); valid for particle Reynolds number << 1. */
+/** Differential gravitational settling (Pearson, Valioulis & List
+ *  1984; Mohaupt 2011, eq 2.3): K = pi (r_i + r_j)^2 |U_i - U_j|, Stokes
+ *  terminal velocity U = 2 (rho_p - rho_f) g r^2/(9 mu).  No hydrodynamic
+ *  interaction (collision efficiency 1); valid for particle Reynolds
+ *  number << 1. */
 double sb_kernel_gravity(double r_i, double r_j, double rho_p, double rho_f,
                          double mu, double g);
 
-/** Laminar shear, velocity gradient G (Smoluchowski 1917; seed 003 eq
- *  2.4): K = (4/3) G (r_i + r_j)^3. */
+/** Laminar shear, velocity gradient G (Smoluchowski 1917; Mohaupt 2011,
+ *  eq 2.4): K = (4/3) G (r_i + r_j)^3. */
 double sb_kernel_shear(double r_i, double r_j, double G);
 
 /** Saffman & Turner (1956) turbulent kernel, inertialess particles much
- *  smaller than the Kolmogorov scale (seed 003 eq 2.5):
+ *  smaller than the Kolmogorov scale (Mohaupt 2011, eq 2.5):
  *  K = sqrt(8 pi eps/(15 nu)) (r_i + r_j)^3. */
 double sb_kernel_saffman_turner(double r_i, double r_j, double eps,
                                 double nu);
@@ -77,30 +112,34 @@ double sb_kernel_saffman_turner(double r_i, double r_j, double eps,
  *  variances u2_i, u2_j (m^2/s^2):
  *  K = sqrt(8 pi) (r_i + r_j)^2 sqrt(u2_i + u2_j)
  *    = sqrt(32 pi/3) (r_i + r_j)^2 sqrt((E_i + E_j)/2),  E = (3/2) u2
- *  (the kinetic energy per unit mass).  Seed 003 eq 2.7 drops the square
- *  root on (E_i + E_j)/2.  With u2 = kT/m it equals sb_kernel_kinetic. */
+ *  (the kinetic energy per unit mass).  Mohaupt (2011) eq 2.7 drops the
+ *  square root on (E_i + E_j)/2 (docs/errata.md).  With u2 = kT/m it
+ *  equals sb_kernel_kinetic. */
 double sb_kernel_abrahamson(double r_i, double r_j, double u2_i,
                             double u2_j);
 
-/** Pure diffusion (seed 003 eqs 5.19, 6.18): each particle's position
+/** Pure diffusion (Friedlander 2000; Mohaupt 2011,
+ *  eqs 5.19, 6.18): each particle's position
  *  diffuses with per-component variance rate b2 = B_pos^2 (m^2/s), the
  *  relative position with B_ij^2 = b2_i + b2_j; K = 2 pi B_ij^2 (r_i + r_j)
  *  = 4 pi D_ij (r_i + r_j), D_ij = B_ij^2/2.  Monodisperse: 4 pi B_pos^2 d. */
 double sb_kernel_diffusion(double r_i, double r_j, double b2_i, double b2_j);
 
 /** Per-particle Brownian position variance rate in the diffusive limit,
- *  B_pos^2 = 2 kT tau_p/m_p = 2 D = kT/(3 pi mu r) (m^2/s) (seed 003 eq 6.22,
- *  first term). */
+ *  B_pos^2 = 2 kT tau_p/m_p = 2 D = kT/(3 pi mu r) (m^2/s) (Mohaupt 2011,
+ *  eq 6.22, first term). */
 double sb_brownian_b2(double r, double T, double mu);
 
-/** Turbulent relative (pair) variance rate at centre separation r (seed 003
- *  eqs 6.13–6.17; Brunk et al. 1998 with total strain tau_S Gamma_k =
- *  sqrt(270/pi)): B_ij^2(r) = D_ij(r)/3 = sqrt(2/(15 pi)) sqrt(eps/nu) r^2.
+/** Turbulent relative (pair) variance rate at centre separation r (Mohaupt
+ *  2011, eqs 6.13–6.17; Brunk, Koch & Lion 1998 with total strain
+ *  tau_S Gamma_k = sqrt(270/pi)):
+ *  B_ij^2(r) = D_ij(r)/3 = sqrt(2/(15 pi)) sqrt(eps/nu) r^2.
  *  With r = r_i + r_j, sb_kernel_diffusion-type 2 pi B_ij^2 r recovers
  *  Saffman–Turner exactly (eqs 6.18–6.19). */
 double sb_turb_pair_b2(double r, double eps, double nu);
 
-/** Combined Brownian + turbulent pair diffusion (seed 003 eqs 6.20–6.23):
+/** Combined Brownian + turbulent pair diffusion (Mohaupt 2011,
+ *  eqs 6.20–6.23):
  *  B_ij^2 = b2_Brown,i + b2_Brown,j + B_turb,ij^2(r_i + r_j) and
  *  K = 2 pi B_ij^2 (r_i + r_j) = K_co + K_Saffman–Turner. */
 double sb_kernel_brownian_turb(double r_i, double r_j, double T, double mu,

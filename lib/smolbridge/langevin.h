@@ -2,8 +2,8 @@
  * moments, exact transition (scalar and batched 3-D), conditioned ("bridge")
  * sampling, and SI helpers for Brownian particles.
  *
- * Model, per Cartesian component (seed 003 eq 1.15 with U_s held constant
- * over the step):
+ * Model, per Cartesian component (Mohaupt 2011, eq 1.15, with U_s held
+ * constant over the step):
  *
  *     dX = U dt,     dU = (us - U)/tau dt + B dW,
  *
@@ -16,7 +16,7 @@
  * Notation used below: h = t/tau, e = exp(-h), a = 1 - e = -expm1(-h).
  *
  * Exact moments from (x0, u0) at time 0 (Ito isometry; see docs/langevin.md
- * for the derivation; seed 003 App. D, eqs D.1–D.6, is the case us = 0):
+ * for the derivation; Mohaupt 2011, App. D, eqs D.1–D.6, is the case us = 0):
  *   mean_u = us + (u0 - us) e
  *   mean_x = x0 + us t + (u0 - us) tau a
  *   var_u  = B^2 tau/2 (1 - e^2)                   (-> B^2 tau/2, stationary)
@@ -95,12 +95,13 @@ int sb_langevin_cov_xu_e(double tau, double B, double t, sb_result *res);
 
 /** Variance of X_t given U_t (and the start state): B^2 tau^2
  *  [t - 2 tau (1-e)/(1+e)] = B^2 tau^3 (h - 2 tanh(h/2)).  It is the
- *  variance of the zeta_x term of seed 003 eq 1.16.  Small t: B^2 t^3/12. */
+ *  variance of the zeta_x term of Mohaupt (2011) eq 1.16.  Small t:
+ *  B^2 t^3/12. */
 double sb_langevin_var_x_cond(double tau, double B, double t);
 int sb_langevin_var_x_cond_e(double tau, double B, double t, sb_result *res);
 
 /** Stationary (equilibrium) velocity variance B^2 tau / 2 (= k_B T / m_p
- *  for Brownian particles, seed 003 eq A.4). */
+ *  for Brownian particles; Mohaupt 2011, eq A.4). */
 double sb_langevin_var_stat(double tau, double B);
 
 /** Mean-square displacement <(X_t - X_0)^2> with a stationary (Maxwellian)
@@ -125,7 +126,8 @@ double sb_langevin_vacf(double tau, double B, double t);
 
 /* ================================================== exact transition */
 
-/** Exact one-step transition (seed 003 eq 1.16, Peirano et al. 2006):
+/** Exact one-step transition (Peirano, Chibbaro, Pozorski &
+ *  Minier 2006; Mohaupt 2011, eq 1.16):
  *  replaces (*x, *u) by a draw of (X_dt, U_dt) given (X_0, U_0) = (*x, *u),
  *
  *    U_dt = us + (u - us) e + s_u z1
@@ -196,7 +198,7 @@ int sb_langevin_step3_coef(size_t n, const sb_langevin_coef *coef,
  *  and covariance to a few ulps; means to 1e-11 conditional standard
  *  deviations or one ulp of the value.
  *  Diffusive limit (dt >> tau): X_s tends to the Brownian bridge with
- *  B_pos = B tau (variance B^2 tau^2 s(dt-s)/dt, seed 003 eq J.5) between
+ *  B_pos = B tau (variance B^2 tau^2 s(dt-s)/dt, Mohaupt 2011, eq J.5) between
  *  x0 + tau u0 and x1 - tau u1 (Y = X + tau U is exactly a Brownian
  *  motion).  Domain: valid *p with B > 0, dt > 0, s in [0, dt],
  *  all finite, and s, dt - s each either 0 or >= 1e-60 tau (SB_EDOM
@@ -221,7 +223,7 @@ int sb_langevin_bridge_sample(const sb_langevin *p, double dt, double s,
 #define SB_BOLTZMANN 1.380649e-23
 
 /** Stokes relaxation time tau_p = rho_p d_p^2 Cc / (18 mu_f), s
- *  (seed 003 eq 1.4 with mu_f = rho_f nu_f; Cc the Cunningham slip
+ *  (Mohaupt 2011, eq 1.4, with mu_f = rho_f nu_f; Cc the Cunningham slip
  *  correction, 1 for none).  rho_p [kg/m^3] > 0, d_p [m] > 0,
  *  mu_f [Pa s] > 0, cc >= 1.  NaN and SB_EDOM otherwise. */
 double sb_stokes_tau(double rho_p, double d_p, double mu_f, double cc);
@@ -230,7 +232,7 @@ double sb_stokes_tau(double rho_p, double d_p, double mu_f, double cc);
 double sb_sphere_mass(double rho_p, double d_p);
 
 /** Brownian velocity-diffusion coefficient B = sqrt(2 k_B T / (m_p tau_p)),
- *  m/s^{3/2} (seed 003 eq 1.5 / A.5: it makes the stationary velocity
+ *  m/s^{3/2} (Mohaupt 2011, eqs 1.5, A.5: it makes the stationary velocity
  *  variance B^2 tau_p/2 equal k_B T/m_p).  T [K] > 0, m_p [kg] > 0,
  *  tau_p [s] > 0. */
 double sb_brownian_B(double T, double m_p, double tau_p);

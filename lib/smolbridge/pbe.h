@@ -2,7 +2,8 @@
  * coagulation, integrated with SUNDIALS CVODE (BDF, Newton), and its
  * analytic solutions.
  *
- * Discrete system (seed 003 eq 2.2), sizes k = 1..K, volumes v_k = k v1:
+ * Discrete system (Smoluchowski 1917; Mohaupt 2011, eq 2.2), sizes
+ * k = 1..K, volumes v_k = k v1:
  *   dn_k/dt = 1/2 sum_{i+j=k} K(v_i,v_j) n_i n_j - n_k sum_{i=1..K} K(v_i,v_k) n_i
  *             + s_k(t) - r(t, v_k) n_k
  * (collisions that would make a size above K leave the system: their mass

@@ -60,9 +60,9 @@
  *
  * Langevin (sb_sim_langevin): np particles with 3 velocity/position
  * components each, all with the parameters p (tau, B, fluid velocity us in
- * every component), advanced in place by nsteps exact steps of dt (seed 003
- * eq 1.16, sb_langevin_step3_coef): exact in law at the grid times, nothing
- * is discretised.  Draw order: step, particle, component, as
+ * every component), advanced in place by nsteps exact steps of dt (Mohaupt
+ * 2011, eq 1.16; sb_langevin_step3_coef): exact in law at the grid times,
+ * nothing is discretised.  Draw order: step, particle, component, as
  * sb_langevin_step3_coef.  Cost: 6 Gaussian draws per particle and step.
  * Arguments as sb_langevin_coef_init (tau > 0, B >= 0, dt >= 0 finite),
  * finite us, nsteps >= 0.

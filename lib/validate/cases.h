@@ -9,7 +9,8 @@
  * Rules for a case:
  *  - deterministic: use only the gsl_rng seeded from ctx->seed (create your
  *    own with sbv_rng_alloc(ctx, stream) so cases are independent of order);
- *  - ctx->full selects the seeds' sample sizes; quick mode must keep the
+ *  - ctx->full selects the sample sizes of the source studies (Mohaupt
+ *    2011, Thomine 2008); quick mode must keep the
  *    whole quick suite under two minutes (aim for a few seconds per case);
  *  - state sample size and criterion in the record name or in the notes;
  *  - optionally write a plot with sbv_plot() (data file + gnuplot script in

@@ -1,6 +1,6 @@
 /* cases_agglo.c — `smolbridge validate` cases of agglomeration in the
- * engine (issue 7): the V8 flagship comparison of the engine's size
- * distribution with the CVODE population balance.
+ * engine (docs/agglomeration.md): the V8 flagship comparison of the engine's
+ * size distribution with the CVODE population balance.
  *
  *  V8/agglo-constant   constant kernel: Brownian primaries in the diffusive
  *                      limit (dt = 1000 tau_p, Bessel-3 bridge detection:
@@ -11,15 +11,16 @@
  *                      rate and B_ij^2 = 2 b2 the relative one (engine
  *                      B is the *velocity* noise).  n_k/N0 (k = 1..10) and
  *                      M0/N0 at t = 0.5, 1, 2, 5 half-lives vs CVODE
- *                      (discrete, 200 sizes + tail) and the analytic
+ *                      (discrete, 100 sizes + lumped tail) and the analytic
  *                      solution; one overlay plot of n_k, one of M0(t).
  *  V8/agglo-brownian   continuum Brownian kernel with growing clusters
  *                      (growth STOKES: r ~ k^1/3, D ~ k^-1/3, tau_p and B
  *                      recomputed per size): the same comparison with
  *                      the discrete PBE of K(i,j) = K11 (i^-1/3 + j^-1/3)
- *                      (i^1/3 + j^1/3)/4, K11 = 16 pi D1 r1 (seed 003 eq
- *                      2.9), dilute; plus the measured deviation at
- *                      volume fractions 1e-3 and 1e-2 (notes).
+ *                      (i^1/3 + j^1/3)/4, K11 = 16 pi D1 r1 (Smoluchowski
+ *                      1917; Mohaupt 2011, eq 2.9), dilute; plus the
+ *                      measured deviation at volume fractions 1e-3 and
+ *                      1e-2 (notes).
  *  V8/agglo-dlvo       sticking fraction psi of a ballistic gas with a
  *                      barrier W_max = x k_B T vs the fraction of
  *                      contacts with E_rel > W_max predicted by the
@@ -427,9 +428,10 @@ static int case_brownian(const sbv_ctx *ctx, sbv_report *rep)
 {
   v8_grid gr;
   grid(ctx, &gr);
-  sbv_note(rep, "Continuum Brownian kernel (seed 003 eq 2.9) with growing "
-           "clusters: STOKES growth (r = r1 k^1/3, tau_p = tau1 k^2/3, "
-           "B = B1 k^-5/6, D = D1 k^-1/3), bridge detection, reach and "
+  sbv_note(rep, "Continuum Brownian kernel (Mohaupt 2011, eq 2.9) with "
+           "growing clusters: STOKES growth (r = r1 k^1/3, "
+           "tau_p = tau1 k^2/3, B = B1 k^-5/6, D = D1 k^-1/3), bridge "
+           "detection, reach and "
            "outcome re-attached at each output time.  Reference: CVODE "
            "discrete with K(i,j) = K11 (i^-1/3 + j^-1/3)(i^1/3 + j^1/3)/4 "
            "(the lumped tail approximates sizes > 100 by their mean).  "

@@ -1,5 +1,5 @@
-/* cases_bridge.c — `smolbridge validate` cases V11 (DESIGN.md): the bridge
- * and first-passage references against Monte Carlo.
+/* cases_bridge.c — `smolbridge validate` cases V11 (docs/validation.md):
+ * the bridge and first-passage references against Monte Carlo.
  *
  *  V11/bb-cross-mc          1D Brownian-bridge crossing probability and
  *                           first-crossing-time histogram vs simulated
@@ -12,23 +12,23 @@
  *                           regimes of 1 - rho (near 1 and small)
  *  V11/bm-fpt-ks            sb_bm_fpt_sample vs sb_bm_fpt_cdf, incl. the
  *                           defective law (fraction of +inf vs 1 - mass)
- *  V11/bes3b-hit-histogram  seed 003 Figs 5.8-5.9: histograms of sampled
+ *  V11/bes3b-hit-histogram  Mohaupt 2011, Figs 5.8-5.9: histograms of sampled
  *                           collision times vs the density
  *
  * Verdicts.  Every record is a test with a p-value; it passes iff
- * p >= 1e-3 (the seeds are fixed, so the verdicts are reproducible).  The
- * interval shown is the 95% interval of the estimate (Clopper-Pearson for
+ * p >= 1e-3 (the generator seeds are fixed, so the verdicts are reproducible).
+ * The interval shown is the 95% interval of the estimate (Clopper-Pearson for
  * frequencies, order statistics for medians, central chi-square interval
  * for chi-square statistics).  The simulation methods and why they are
  * exact are explained in smolbridge/simulate.h and docs/simulate.md; the
  * simulators are the library's reference module (sb_sim_*), shared with
  * tests/test_bridge_mc.c, which checks the same things in `make check`.
  *
- * Sample sizes.  --full uses the seed's 100 000 draws per collision for
- * the hitting-time histograms and samplers (003 §5.4.1 and App. I.4:
- * "100000 representations aleatoires de T_a pour chaque collision") and
- * 10^6 simulated paths per crossing probability (the seed validates
- * crossing only through collision kernels, V4-V5: no path count to copy).
+ * Sample sizes.  --full uses the 100 000 draws of T_a per collision of
+ * Mohaupt (2011, §5.4.1 and App. I.4) for the hitting-time histograms and
+ * samplers, and 10^6 simulated paths per crossing probability (the thesis
+ * validates crossing only through collision kernels, V4-V5: no path count
+ * to copy).
  * --quick uses 5e4 draws and 1e5 paths.
  */
 #include <math.h>
@@ -471,8 +471,9 @@ static int case_bes3b_cross(const sbv_ctx *ctx, sbv_report *rep)
 {
   static const bpar sets[] = {
       {1.0, 1.2, 0.5, 1.0, 1.0}, /* v > a^2: far from the 1D formula */
-      {2.0, 2.0, 1.0, 1.0, 1.0}, /* DESIGN: |A| = |B| = 2r, v = r^2 */
-      {1.1, 1.2, 1.0, 1.0, 0.1}, /* seed-like: v = 0.1 a^2 */
+      /* |A| = |B| = 2r, v = r^2 (docs/engine_bridge.md §6): */
+      {2.0, 2.0, 1.0, 1.0, 1.0},
+      {1.1, 1.2, 1.0, 1.0, 0.1}, /* as in Mohaupt 2011, ch. 5: v = 0.1 a^2 */
   };
   return cross_case(ctx, rep, 1, sets, 3, ctx->full ? 1000000UL : 100000UL,
                     "V11/bes3b-cross-mc", "V11_bes3b_cross_hit_hist");
@@ -514,16 +515,16 @@ static int case_bes3_fpt(const sbv_ctx *ctx, sbv_report *rep)
   return SB_SUCCESS;
 }
 
-/* ==================================== seed 003 Figs 5.8-5.9 analogue */
+/* ========================= Mohaupt 2011, Figs 5.8-5.9 analogue */
 
-/* Collision of two 1 um particles in water at 296.15 K (seed 003 Tables
- * 5.1-5.2: d_p = 1 um, tau_p = 3.03 us, mu_f = 1.83245e-5 Pa s).
+/* Collision of two 1 um particles in air at 296.15 K (Mohaupt 2011,
+ * Tables 5.1-5.2: d_p = 1 um, tau_p = 3.03 us, mu_f = 1.83245e-5 Pa s).
  * Relative motion: per-component rate B_ij^2 = 2 (2 D), D = kT/(3 pi mu d)
- * (eq 5.9 with B_pos^2 = 2D).  Units: um and us.  The seed does not print
- * the x, y of its two "arbitrarily chosen" collisions; we take one with
+ * (eq 5.9 with B_pos^2 = 2D).  Units: um and us.  The thesis does not print
+ * the x, y of its two collisions (chosen arbitrarily there); we take one with
  * dt = 100 tau_p (x = 1.10, y = 1.05 um) and one with dt = 1000 tau_p
  * (x = 1.4, y = 1.6 um); a = r_ij = d_p = 1 um. */
-static void seed_collisions(bpar out[2])
+static void thesis_collisions(bpar out[2])
 {
   const double kB = 1.3806503e-23, T = 296.15, mu = 1.83245e-5, d = 1e-6;
   const double tau_p = 3.03;                            /* us */
@@ -539,15 +540,15 @@ static int case_bes3b_hit_hist(const sbv_ctx *ctx, sbv_report *rep)
 {
   enum { NB = 50 };
   bpar col[2];
-  seed_collisions(col);
+  thesis_collisions(col);
   size_t n = nsamples(ctx);
-  sbv_note(rep, "Analogue of seed 003 Figs 5.8-5.9 (and App. I Figs "
+  sbv_note(rep, "Analogue of Mohaupt (2011) Figs 5.8-5.9 (and App. I Figs "
                 "I.2-I.4): %zu collision times T_a drawn with "
-                "sb_bes3b_hit_sample per collision (the seed used 100000), "
+                "sb_bes3b_hit_sample per collision (the thesis used 100000), "
                 "histogram vs sb_bes3b_hit_pdf; chi-square on %d equal bins "
                 "(expected counts from sb_bes3b_hit_cdf), pass iff p >= %g.  "
-                "Particles of 1 um in water at 296.15 K, units um and us; "
-                "the seed does not print its collisions' x, y: ours are "
+                "Particles of 1 um in air at 296.15 K, units um and us; "
+                "the thesis does not print its collisions' x, y: ours are "
                 "below.", n, NB, SBV_ALPHA);
   double *xs = malloc(n * sizeof *xs), *plot = malloc(NB * 4 * sizeof *plot);
   if (!xs || !plot) {
@@ -599,7 +600,8 @@ static int case_bes3b_hit_hist(const sbv_ctx *ctx, sbv_report *rep)
     st |= sbv_add_chi2(rep, name, cs, chi2, dof, pv);
     snprintf(pname, sizeof pname, "V11_bes3b_hit_fig5_%d", 8 + c);
     snprintf(title, sizeof title, "Collision time T_a (us), Bessel-3 bridge "
-             "x=%g y=%g a=%g um, dt=%g us, %zu draws (cf. seed Fig 5.%d)",
+             "x=%g y=%g a=%g um, dt=%g us, %zu draws (cf. Mohaupt 2011, Fig "
+             "5.%d)",
              p->x, p->y, p->a, p->t, n, 8 + c);
     sbv_plot(ctx, rep, pname, title,
              "u_us  MC_density  ref_bin_density  ref_pdf", plot, NB, 4,
@@ -633,7 +635,7 @@ const sbv_case sbv_cases_bridge[] = {
      "sb_bm_fpt_sample vs its CDF, incl. the defective law",
      case_bm_fpt_ks},
     {"V11/bes3b-hit-histogram",
-     "collision-time histograms vs density (seed 003 Figs 5.8-5.9)",
+     "collision-time histograms vs density (Mohaupt 2011, Figs 5.8-5.9)",
      case_bes3b_hit_hist},
 };
 

@@ -1,15 +1,15 @@
 /* cases_engine.c — `smolbridge validate` cases of the collision engine
- * (issue 5): V1, V2, V9 of DESIGN.md.
+ * (docs/engine.md §10): V1, V2, V9.
  *
- *  V1/kinetic-gases     MD hard-sphere gases He, Ne, Ar, Kr, Xe (seed 003
- *                       Table 3.1: n = 250, L = 10 nm, T = 300 K, dt =
+ *  V1/kinetic-gases     MD hard-sphere gases He, Ne, Ar, Kr, Xe (Mohaupt
+ *                       2011, Table 3.1: n = 250, L = 10 nm, T = 300 K, dt =
  *                       1e-14 s; He also at 1e-15 and 1e-13 s), elastic,
  *                       ballistic detection: K_e vs kinetic theory
  *                       K_th = pi d^2 sqrt(16 k_B T/(pi m)) g(sigma)
- *  V9/two-spheres-45    two equal spheres, 45° impact (seed 000 §7):
+ *  V9/two-spheres-45    two equal spheres, 45° impact (Thomine 2008, §7):
  *                       post-collision velocities vs the analytic ones
- *  V9/crossing-jets     two 2-D beams crossing at +-50° (seed 000 §8-9,
- *                       reduced): exit (end) distribution of the two
+ *  V9/crossing-jets     two 2-D beams crossing at +-50° (Thomine 2008,
+ *                       §8-9, reduced): exit (end) distribution of the two
  *                       families with and without collisions
  *
  * V2 (Brownian spheres, contact time) lives in cases_v2.c.
@@ -148,8 +148,8 @@ static int case_gases(const sbv_ctx *ctx, sbv_report *rep)
   }
   if (!st)
     sbv_plot(ctx, rep, "V1_kinetic_gases",
-             "V1: K_e/K_th over time, MD hard-sphere gases (seed 003 Figs "
-             "3.6-3.7)",
+             "V1: K_e/K_th over time, MD hard-sphere gases (Mohaupt 2011, "
+             "Figs 3.6-3.7)",
              "t/t_end He Ne Ar Kr Xe He_dt1e-15 He_dt1e-13", plot, NSAMP,
              (size_t)nrun + 1,
              "set xlabel 't / t_end'\nset ylabel 'K_e / K_th'\n"
@@ -157,6 +157,162 @@ static int case_gases(const sbv_ctx *ctx, sbv_report *rep)
              "plot for [c=2:8] $DATA u 1:c w lp t columnhead(c), 1 lc "
              "rgb 'black' notitle");
   free(plot);
+  return st;
+}
+
+/* ======================================= V1 dense gas, long steps */
+
+/* Helium at phi = 0.05 (Enskog factor g = 1.137) with dt = 0.3 mean free
+ * times: a molecule often meets two partners in one step, which the
+ * engine processes in time order, re-detecting after each bounce.  With
+ * one collision per particle per step this run would lose ~10% of its
+ * contacts; here K_e must equal the Enskog rate. */
+static int case_dense(const sbv_ctx *ctx, sbv_report *rep)
+{
+  const gas *g = &GASES[0];
+  const size_t n = 2000;
+  const double T = 300.0, phi = 0.05;
+  const double m = g->M * 1e-3 / AVOGADRO, d = 2.0 * g->rvdw;
+  const double V = (double)n * PI * d * d * d / 6.0 / phi, L = cbrt(V);
+  const double Kth = sb_kernel_kinetic(d, d, m, m, T) * g_cs(phi);
+  const double nu = (double)n / V * Kth;  /* collisions per molecule, 1/s */
+  const double dt = 0.3 / nu;
+  const double target = ctx->full ? 400000.0 : 20000.0;
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = L;
+  p.dt = dt;
+  p.capacity = n;
+  p.seed = ctx->seed * 1000 + 160;
+  sb_engine *e = sb_engine_alloc(&p);
+  if (!e)
+    return SB_ENOMEM;
+  sb_engine_species s = {g->rvdw, m, INFINITY, 0.0, T};
+  int st = sb_engine_add_species(e, &s, NULL);
+  if (!st)
+    st = sb_engine_fill_random(e, 0, 0, n);
+  if (!st)
+    st = sb_engine_thermalize(e, T);
+  /* warm-up: 20 mean free times relax the random (non-overlapping)
+   * placement to the equilibrium pair structure */
+  if (!st)
+    st = sb_engine_run_until(e, 20.0 / nu);
+  sb_engine_reset_counters(e);
+  double t1 = sb_engine_time(e);
+  if (!st)
+    st = sb_engine_run_until(e, t1 + 2.0 * target / (nu * (double)n));
+  if (!st) {
+    double K, lo, hi;
+    sb_engine_stats es;
+    sb_engine_get_stats(e, &es);
+    sb_engine_kernel(e, 0.95, &K, &lo, &hi);
+    st = add_kernel(rep, "V1/dense/He/phi=0.05/dt=0.3t_free", K, es.ncoll,
+                    Kth);
+    sbv_note(rep, "Helium, %zu molecules at phi = %.2f (L = %.3g m), 300 "
+             "K, dt = 0.3 mean free times (%.3g s); %llu collisions in "
+             "%llu steps (%.2f per molecule and step), %llu re-examined "
+             "pairs, %llu dropped; K_e/K_th = %.4f [%.4f, %.4f] (95%%), "
+             "K_th = kinetic x Carnahan-Starling g = %.4f.", n, phi, L, dt,
+             (unsigned long long)es.ncoll,
+             (unsigned long long)(es.steps),
+             2.0 * (double)es.ncoll / (double)n /
+                 ((es.t - es.t_reset) / dt),
+             (unsigned long long)es.redetected,
+             (unsigned long long)es.dropped, K / Kth, lo / Kth, hi / Kth,
+             g_cs(phi));
+  }
+  sb_engine_free(e);
+  return st;
+}
+
+/* ================================================= V1 binary mixture */
+
+/* Contact values of the radial distribution functions of a hard-sphere
+ * mixture, Boublik (1970) / Mansoori, Carnahan, Starling & Leland (1971):
+ *   g_ij = 1/(1 - x3) + 3 h x2/(1 - x3)^2 + 2 (h x2)^2/(1 - x3)^3,
+ *   h = d_i d_j/(d_i + d_j),  x_k = (pi/6) sum_l n_l d_l^k,
+ * which reduces to Carnahan-Starling for one species.  The equilibrium
+ * collision rate of a pair type is the kinetic one times g_ij (Enskog). */
+static double g_mix(double di, double dj, const double *n, const double *d,
+                    int ns)
+{
+  double x2 = 0.0, x3 = 0.0;
+  for (int l = 0; l < ns; l++) {
+    x2 += PI / 6.0 * n[l] * d[l] * d[l];
+    x3 += PI / 6.0 * n[l] * d[l] * d[l] * d[l];
+  }
+  double h = di * dj / (di + dj), om = 1.0 - x3;
+  return 1.0 / om + 3.0 * h * x2 / (om * om) +
+         2.0 * h * h * x2 * x2 / (om * om * om);
+}
+
+static int case_mixture(const sbv_ctx *ctx, sbv_report *rep)
+{
+  /* He and Xe (Mohaupt 2011, Table 3.1 values) at 300 K, one box */
+  const gas *g[2] = {&GASES[0], &GASES[4]};
+  const size_t nsp[2] = {150, 150};
+  const double L = 12e-9, T = 300.0, dt = 1e-14;
+  const double target = ctx->full ? 40000.0 : 600.0; /* Xe-Xe contacts */
+  double m[2], d[2], nd[2];
+  for (int k = 0; k < 2; k++) {
+    m[k] = g[k]->M * 1e-3 / AVOGADRO;
+    d[k] = 2.0 * g[k]->rvdw;
+    nd[k] = (double)nsp[k] / (L * L * L);
+  }
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = L;
+  p.dt = dt;
+  p.capacity = nsp[0] + nsp[1];
+  p.seed = ctx->seed * 1000 + 150;
+  sb_engine *e = sb_engine_alloc(&p);
+  if (!e)
+    return SB_ENOMEM;
+  int st = SB_SUCCESS;
+  for (int k = 0; k < 2 && !st; k++) {
+    sb_engine_species s = {g[k]->rvdw, m[k], INFINITY, 0.0, T};
+    st = sb_engine_add_species(e, &s, NULL);
+    if (!st)
+      st = sb_engine_fill_random(e, (size_t)k, k, nsp[k]);
+  }
+  if (!st)
+    st = sb_engine_thermalize(e, T);
+  /* run length from the rarest pair (Xe-Xe) */
+  double Kxx = sb_kernel_kinetic(d[1], d[1], m[1], m[1], T) *
+               g_mix(d[1], d[1], nd, d, 2);
+  double Pxx = 0.5 * (double)nsp[1] * (double)(nsp[1] - 1);
+  double t_end = target * L * L * L / (Kxx * Pxx);
+  if (!st)
+    st = sb_engine_run_until(e, 0.1 * t_end);  /* warm-up */
+  sb_engine_reset_counters(e);
+  if (!st)
+    st = sb_engine_run_until(e, 1.1 * t_end);
+  sbv_note(rep, "Binary hard-sphere gas, %zu He + %zu Xe in (12 nm)^3 at "
+           "300 K, free flight, elastic, contact time, dt = 1e-14 s; after "
+           "a warm-up of 10%% of the run, the kernel of each pair type "
+           "(sb_engine_pair_kernel: its collisions over its pair exposure) "
+           "vs kinetic theory times the Boublik-Mansoori contact value "
+           "g_ij; exact Poisson test.", nsp[0], nsp[1]);
+  static const char *lab[2] = {"He", "Xe"};
+  for (size_t a = 0; a < 2 && !st; a++)
+    for (size_t b = a; b < 2 && !st; b++) {
+      sb_engine_pair_stats ps;
+      st = sb_engine_pair_kernel(e, a, b, 0.95, &ps);
+      if (st)
+        break;
+      double gab = g_mix(d[a], d[b], nd, d, 2);
+      double Kth = sb_kernel_kinetic(d[a], d[b], m[a], m[b], T) * gab;
+      char name[96];
+      snprintf(name, sizeof name, "V1/mixture/%s-%s/K_e/K_th", lab[a],
+               lab[b]);
+      double scale = ps.ncoll ? ps.K / (double)ps.ncoll / Kth : 1.0;
+      st = sbv_add_poisson(rep, name, (unsigned long)ps.ncoll, scale, 1.0);
+      sbv_note(rep, "- %s-%s: %llu collisions, K_e = %.4g m^3/s, K_th = "
+               "%.4g (g = %.4f), K_e/K_th = %.4f [%.4f, %.4f] (95%%)",
+               lab[a], lab[b], (unsigned long long)ps.ncoll, ps.K, Kth, gab,
+               ps.K / Kth, ps.lo / Kth, ps.hi / Kth);
+    }
+  sb_engine_free(e);
   return st;
 }
 
@@ -211,11 +367,11 @@ static int case_45(const sbv_ctx *ctx, sbv_report *rep)
 
 /* Two 2-D beams of free-flying discs (radius 2 um, 400 each, area
  * fraction 0.13 in their 0.2 mm x 0.2 mm source squares) cross at +-50°
- * with speed 1 m/s and a thermal spread of 2% (seed 000 §8: injection
- * angle 50°).  Family 0 starts high and moves down, family 1 low and up;
- * the run stops when the beams' centres have exchanged heights.  Without
- * collisions every particle of family 0 ends in the lower half ("no
- * mixing, the families stay grouped", seed 000 §9.1); with elastic
+ * with speed 1 m/s and a thermal spread of 2% (Thomine 2008, §8:
+ * injection angle 50°).  Family 0 starts high and moves down, family 1 low and
+ * up; the run stops when the beams' centres have exchanged heights.  Without
+ * collisions every particle of family 0 ends in the lower half (the
+ * families stay grouped, no mixing: Thomine 2008, §9.1); with elastic
  * collisions part of it is deflected back (mixing, §9.2-9.3).  The "exit
  * distribution" is the final y-histogram of each family (plot). */
 static int run_jets(const sbv_ctx *ctx, int collide, size_t *crossed,
@@ -321,7 +477,7 @@ static int case_jets(const sbv_ctx *ctx, sbv_report *rep)
   }
   sbv_plot(ctx, rep, "V9_crossing_jets",
            "V9: final y-distribution of the two families, crossing jets "
-           "(seed 000 Figs 22-23)",
+           "(Thomine 2008, Figs 22-24)",
            "y/L fam0_nocoll fam1_nocoll fam0_coll fam1_coll", plot, NB, 5,
            "set xlabel 'y / L'\nset ylabel 'particles per bin'\n"
            "plot $DATA u 1:2 w histeps lc rgb 'red' t 'family 0, no "
@@ -336,13 +492,22 @@ static int case_jets(const sbv_ctx *ctx, sbv_report *rep)
 
 const sbv_case sbv_cases_engine[] = {
     {"V1/kinetic-gases",
-     "MD hard-sphere gases He..Xe vs kinetic theory (seed 003 Table 3.1)",
+     "MD hard-sphere gases He..Xe vs kinetic theory (Mohaupt 2011, "
+     "Table 3.1)",
      case_gases},
+    {"V1/dense-long-steps",
+     "hard-sphere helium at phi = 0.05 with dt = 0.3 mean free times: "
+     "several collisions per molecule and step",
+     case_dense},
+    {"V1/kinetic-mixture",
+     "binary He + Xe gas: the kernel of each pair type vs kinetic theory "
+     "(Mohaupt 2011, Table 3.1 values)",
+     case_mixture},
     {"V9/two-spheres-45",
-     "two equal spheres at 45°: velocities vs analytic (seed 000 §7)",
+     "two equal spheres at 45°: velocities vs analytic (Thomine 2008, §7)",
      case_45},
     {"V9/crossing-jets",
-     "2-D crossing jets with/without collisions (seed 000 §8-9)",
+     "2-D crossing jets with/without collisions (Thomine 2008, §8-9)",
      case_jets},
 };
 

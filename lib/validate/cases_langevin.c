@@ -1,6 +1,6 @@
-/* cases_langevin.c — `smolbridge validate` cases V10 (DESIGN.md): the exact
- * Langevin scheme (seed 003 eq 1.16, sb_langevin_step3_coef) against the
- * Ornstein–Uhlenbeck statistics, as in seed 003 App. D.
+/* cases_langevin.c — `smolbridge validate` cases V10 (docs/langevin.md):
+ * the exact Langevin scheme (Mohaupt 2011, eq 1.16; sb_langevin_step3_coef)
+ * against the Ornstein–Uhlenbeck statistics, as in Mohaupt (2011) App. D.
  *
  *  V10/ou-short-time   Table D.1: tau_p = 3e-6 s, dt = 1e-10 s,
  *                      t_max = 1e-5 s (ballistic: dt/tau_p = 3.3e-5), U(0)
@@ -9,7 +9,7 @@
  *                      the four curves (Figs D.1-D.4)
  *  V10/ou-long-time    Table D.2: dt = 1e-2 s, t_max = 250 s (diffusive:
  *                      dt/tau_p = 3.3e3), same records (Figs D.5-D.8)
- *  V10/ou-error-slope  D.3, eq D.14: RMS error of the estimated mean and
+ *  V10/ou-error-slope  §D.3, eq D.14: RMS error of the estimated mean and
  *                      variance of U vs the number of particles N = 1e2 ...
  *                      1e6 at t_max of both set-ups; fitted log-log slope
  *                      must be -1/2 +- 0.1 (Figs D.9-D.12)
@@ -26,7 +26,7 @@
  * in its acceptance region.  Slopes: -1/2 in the least-squares slope's t
  * interval (approximate).
  *
- * Sample sizes.  --full: the seed's N = 10 000 particles (3 components
+ * Sample sizes.  --full: the thesis' N = 10 000 particles (3 components
  * each, pooled: 30 000 samples) and its dt, so 1e5 steps (short) and
  * 25 000 steps (long); slope study with 40 replicates per N reaching t_max
  * in 10 exact steps.  --quick: N = 100 (short) and 300 (long) with the
@@ -50,7 +50,7 @@
 
 #define NPLOT 100     /* plotted times per set-up */
 
-/* seed 003 Tables D.1-D.2 (plus our rho_p, T: see the top of the file) */
+/* Mohaupt 2011, Tables D.1-D.2 (plus our rho_p, T: see the top of the file) */
 #define TAU_P 3e-6
 #define D_P 1e-6
 #define RHO_P 1000.0
@@ -58,7 +58,7 @@
 
 typedef struct {
   const char *name;     /* record prefix */
-  const char *figs;     /* seed figures reproduced */
+  const char *figs;     /* figures of Mohaupt 2011 reproduced */
   double dt, tmax;
   size_t n_quick, n_full;  /* particles */
   double check_t[4];    /* times of the records */
@@ -187,7 +187,7 @@ static int run_setup(const sbv_ctx *ctx, sbv_report *rep, const lsetup *S,
     st = SB_ENOMEM;
     goto done;
   }
-  sbv_note(rep, "%s (seed 003 %s): %zu particles x 3 components pooled "
+  sbv_note(rep, "%s (Mohaupt 2011, %s): %zu particles x 3 components pooled "
                 "(%zu samples), tau_p = %g s, B = %.6g m/s^1.5, dt = %g s "
                 "(dt/tau_p = %.3g), %ld steps to t_max = %g s, X(0) = U(0) "
                 "= 0, us = 0.", S->name, S->figs, np, n, TAU_P, B, S->dt,
@@ -241,7 +241,7 @@ static int run_setup(const sbv_ctx *ctx, sbv_report *rep, const lsetup *S,
   char plotname[64], title[160];
   snprintf(plotname, sizeof plotname, "V10_%s",
            S == &short_time ? "ou_short_time" : "ou_long_time");
-  snprintf(title, sizeof title, "V10 %s (seed 003 %s): %zu samples, "
+  snprintf(title, sizeof title, "V10 %s (Mohaupt 2011, %s): %zu samples, "
            "dt/tau_p = %.3g", S == &short_time ? "short times" : "long times",
            S->figs, n, S->dt / TAU_P);
   /* a 2x2 multiplot: one overall title instead of one per panel */
@@ -385,8 +385,8 @@ static int case_slope(const sbv_ctx *ctx, sbv_report *rep)
   st |= add_slope(rep, "V10/ou-error-slope/long-time/mean-U", lnN, rms[2]);
   st |= add_slope(rep, "V10/ou-error-slope/long-time/var-U", lnN, rms[3]);
   if (sbv_plot(ctx, rep, "V10_ou_error_slope",
-               "V10 statistical error of E[U] and Var[U] vs N (seed 003 "
-               "Figs D.9-D.12)",
+               "V10 statistical error of E[U] and Var[U] vs N (Mohaupt "
+               "2011, Figs D.9-D.12)",
                "N rmsE_short exactE_short rmsV_short exactV_short "
                "rmsE_long exactE_long rmsV_long exactV_long",
                plot, NN, 9,
@@ -409,13 +409,15 @@ static int case_slope(const sbv_ctx *ctx, sbv_report *rep)
 
 const sbv_case sbv_cases_langevin[] = {
     {"V10/ou-short-time",
-     "exact Langevin step vs OU moments, short times (seed 003 Table D.1)",
+     "exact Langevin step vs OU moments, short times (Mohaupt 2011, "
+     "Table D.1)",
      case_short},
     {"V10/ou-long-time",
-     "exact Langevin step vs OU moments, long times (seed 003 Table D.2)",
+     "exact Langevin step vs OU moments, long times (Mohaupt 2011, "
+     "Table D.2)",
      case_long},
     {"V10/ou-error-slope",
-     "statistical error of E[U], Var[U] ~ N^-1/2 (seed 003 eq D.14)",
+     "statistical error of E[U], Var[U] ~ N^-1/2 (Mohaupt 2011, eq D.14)",
      case_slope},
 };
 
