@@ -173,7 +173,8 @@ static int write_calibration_md(const sb_validate_calibration *cal,
              "fraction of p-values below 0.05 (about 0.05 when calibrated); "
              "Kolmogorov-Smirnov p-value of the p-values against the uniform "
              "law (not computed for discrete p-values: fewer than 80%% "
-             "distinct).  A record fails calibration when |z| > 3 or KS p < "
+             "distinct).  A record fails calibration when the t test of no bias "
+             "gives p < 0.0027 (|z| > 3 for many seeds) or KS p < "
              "1e-3 (tests and intervals), or when it failed on any seed "
              "(tolerance bands and demonstrations of expected failures, "
              "which must hold on every seed).\n\n");

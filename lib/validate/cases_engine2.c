@@ -487,16 +487,21 @@ static int case_v6(const sbv_ctx *ctx, sbv_report *rep)
       sb_engine_bridge_stats bs;
       sb_engine_bridge_get_stats(b, &bs);
       char name[96];
-      /* elastic spheres keep a uniform pair distribution (no depletion
-       * zone), so counting steps with a contact gives per step up to the
-       * uniform-start value K (dt + 2R sqrt(dt/(pi D))), D = b2: the
-       * expected K_e/K_th lies in [1, Kunif], not at the thesis' 1 when
-       * sigma_X is not >> d.  Verdict: the 95% interval meets [1, Kunif]. */
+      /* Elastic spheres keep no depletion zone: for the equilibrium
+       * (uniform) pair distribution, counting the steps in which a pair's
+       * bridge touches gives per step the uniform-start value
+       * K (dt + 2 d sqrt(dt/(pi D))), D = b2, i.e. K_e/K_th = Kunif, and
+       * 1 (the thesis' value) only for sigma_X >> d.  Measured (--full,
+       * 5600-6200 collisions): 1.136 [1.108, 1.164] at dt = 0.1 tau_p,
+       * 1.022 [0.995, 1.049] at 1, 1.023 [0.996, 1.050] at 5: between 1
+       * and Kunif, so the correction step does not keep the equilibrium
+       * pair distribution near contact.  Informational: the row shows
+       * K_e/K_th against Kunif. */
       double Kunif = 1.0 + 2.0 * d / sqrt(PI * b2 * p.dt);
-      snprintf(name, sizeof name,
-               "V6/correction/dt=%gtau_p: 1 <= K_e/K_th <= %.3f", ratios[k],
-               Kunif);
-      st = sbv_add_info(rep, name, K / Kth, 1.0, lo / Kth, hi / Kth, 0.95);
+      snprintf(name, sizeof name, "V6/correction/dt=%gtau_p/K_e/K_th",
+               ratios[k]);
+      st = sbv_add_info(rep, name, K / Kth, Kunif, lo / Kth, hi / Kth,
+                        0.95);
       sbv_note(rep, "dt/tau_p = %g (sigma_X/d = %.1f): %llu collisions "
                "(%llu at an overlapping start), K_e/K_th = %.4f [%.4f, "
                "%.4f]; a uniform pair distribution would give %.4f",

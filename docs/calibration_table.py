@@ -1,0 +1,94 @@
+#!/usr/bin/env python3
+"""Write the calibration table of docs/validation.md from calibration.csv
+(smolbridge validate --seeds N): one row per case, pooling its records.
+
+usage: calibration_table.py CALIBRATION.csv VALIDATION.md NSEEDS
+(the per-case KS p-value is read from calibration.md beside the csv)
+"""
+import os
+import csv
+import math
+import sys
+
+
+def main():
+    cal, md, nseeds = sys.argv[1], sys.argv[2], int(sys.argv[3])
+    ks = {}
+    calmd = os.path.join(os.path.dirname(cal), "calibration.md")
+    if os.path.exists(calmd):
+        for line in open(calmd):
+            f = [x.strip() for x in line.split("|")]
+            if len(f) > 8 and f[1].startswith("V"):
+                ks[f[1]] = f[7]
+    cases = {}
+    order = []
+    with open(cal, newline="") as f:
+        for r in csv.DictReader(f):
+            c = r["case"]
+            if c not in cases:
+                cases[c] = []
+                order.append(c)
+            cases[c].append(r)
+    lines = [
+        f"Quick mode, {nseeds} seeds (12345 onwards).  Per case: records "
+        "(stochastic ones, i.e. tests and intervals), the largest pooled "
+        "bias |z| among them and the record it belongs to with its pooled "
+        "estimate/reference, the fraction of p-values below 0.05 over "
+        "all records and the KS p-value of all of them against the uniform "
+        "law (per record: calibration-quick.csv), and the records failing "
+        "calibration.",
+        "",
+        "| case | records (stochastic) | max \\|z\\| | at (pooled est/ref [95%]) "
+        "| p < 0.05 | KS p | records failing | verdict |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for c in order:
+        rows = cases[c]
+        stoch = [r for r in rows if r["rule"] in ("cover", "accept")
+                 and r["kind"] != "deterministic"]
+        worst, wz = None, -1.0
+        for r in stoch:
+            try:
+                z = abs(float(r["bias_z"]))
+            except ValueError:
+                continue
+            if not math.isnan(z) and z > wz:
+                worst, wz = r, z
+        nfail = sum(r["verdict"] == "fail" for r in rows)
+        # fraction of p < 0.05 over all records with p-values
+        num = den = 0.0
+        for r in rows:
+            try:
+                n, f5 = int(r["npvalues"]), float(r["frac_p05"])
+            except ValueError:
+                continue
+            if n and not math.isnan(f5):
+                num += f5 * n
+                den += n
+        at = "-"
+        if worst is not None:
+            kind = "" if worst["kind"] == "est/ref" else "d "
+            at = (f"{worst['record']}: {kind}{float(worst['pooled']):.4f} "
+                  f"[{float(worst['pooled_lo']):.4f}, "
+                  f"{float(worst['pooled_hi']):.4f}]")
+        lines.append(
+            f"| {c} | {len(rows)} ({len(stoch)}) | "
+            f"{wz:.2f} | {at} | "
+            f"{(num / den if den else float('nan')):.3f} | "
+            f"{ks.get(c, '-')} | {nfail} | "
+            f"{'fail' if nfail else 'pass'} |"
+            if worst is not None else
+            f"| {c} | {len(rows)} ({len(stoch)}) | - | - | "
+            f"{(num / den if den else float('nan')):.3f} | "
+            f"{ks.get(c, '-')} | {nfail} | "
+            f"{'fail' if nfail else 'pass'} |")
+    text = open(md).read()
+    a = text.index("<!-- calibration:begin -->")
+    b = text.index("<!-- calibration:end -->")
+    text = (text[:a] + "<!-- calibration:begin -->\n" + "\n".join(lines)
+            + "\n" + text[b:])
+    open(md, "w").write(text)
+
+
+if __name__ == "__main__":
+    main()
