@@ -98,6 +98,11 @@ int sbv_add_side(sbv_report *rep, const char *name, int above, double est,
 int sbv_add_info(sbv_report *rep, const char *name, double est, double ref,
                  double lo, double hi, double level);
 
+/* Root of f in the bracket [lo, hi] (signs must differ at the ends) by
+ * GSL's Brent solver to relative tolerance rtol; NaN if not bracketed. */
+double sbv_brent(double (*f)(double, void *), void *par, double lo,
+                 double hi, double rtol);
+
 /* A fresh Mersenne-Twister generator seeded from (ctx->seed, stream):
  * give every case (and every independent part of a case) its own stream. */
 gsl_rng *sbv_rng_alloc(const sbv_ctx *ctx, unsigned long stream);

@@ -38,7 +38,6 @@
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_math.h>
 #include <gsl/gsl_rng.h>
-#include <gsl/gsl_roots.h>
 
 #include <smolbridge/bridge.h>
 #include <smolbridge/passage.h>
@@ -70,26 +69,7 @@ static double cdf_solve(sb_cdf_fn cdf, void *par, double p, double lo,
                         double hi)
 {
   rootpar rp = {cdf, par, p};
-  gsl_function F = {root_f, &rp};
-  double flo = root_f(lo, &rp), fhi = root_f(hi, &rp);
-  if (!(flo < 0 && fhi > 0))
-    return NAN;
-  gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-  if (!s)
-    return NAN;
-  double q = NAN;
-  if (gsl_root_fsolver_set(s, &F, lo, hi) == GSL_SUCCESS)
-    for (int i = 0; i < 200; i++) {
-      if (gsl_root_fsolver_iterate(s) != GSL_SUCCESS)
-        break;
-      q = gsl_root_fsolver_root(s);
-      if (gsl_root_test_interval(gsl_root_fsolver_x_lower(s),
-                                 gsl_root_fsolver_x_upper(s), 0,
-                                 1e-12) == GSL_SUCCESS)
-        break;
-    }
-  gsl_root_fsolver_free(s);
-  return q;
+  return sbv_brent(root_f, &rp, lo, hi, 1e-12);
 }
 
 /* ================================================ sampler checks */

@@ -75,26 +75,32 @@ static double ks_f(double d, void *vp)
 static double ks_critical(size_t n, double alpha)
 {
   kspar k = {n, log(alpha)};
-  gsl_function F = {ks_f, &k};
-  double lo = 1e-6, hi = 1.0 - 1e-12;
-  if (!(ks_f(lo, &k) > 0.0 && ks_f(hi, &k) < 0.0))
+  return sbv_brent(ks_f, &k, 1e-6, 1.0 - 1e-12, 1e-12);
+}
+
+double sbv_brent(double (*f)(double, void *), void *par, double lo,
+                 double hi, double rtol)
+{
+  gsl_function F = {f, par};
+  double flo = f(lo, par), fhi = f(hi, par);
+  if (!((flo < 0 && fhi > 0) || (flo > 0 && fhi < 0)))
     return NAN;
   gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
   if (!s)
     return NAN;
-  double d = NAN;
+  double x = NAN;
   if (gsl_root_fsolver_set(s, &F, lo, hi) == GSL_SUCCESS)
     for (int i = 0; i < 200; i++) {
       if (gsl_root_fsolver_iterate(s) != GSL_SUCCESS)
         break;
-      d = gsl_root_fsolver_root(s);
+      x = gsl_root_fsolver_root(s);
       if (gsl_root_test_interval(gsl_root_fsolver_x_lower(s),
                                  gsl_root_fsolver_x_upper(s), 0,
-                                 1e-12) == GSL_SUCCESS)
+                                 rtol) == GSL_SUCCESS)
         break;
     }
   gsl_root_fsolver_free(s);
-  return d;
+  return x;
 }
 
 int sbv_add_ks(sbv_report *rep, const char *name, size_t n, double d,
