@@ -211,6 +211,20 @@ static void path_at(const sb_engine *e, size_t k, double s, double x[3])
     x[c] = e->sub_p[3 * k + c] + (s - e->sub_t[k]) * e->sub_v[3 * k + c];
 }
 
+int sb_engine_position_at(const sb_engine *e, size_t k, double t,
+                          double x[3])
+{
+  if (!e || !x || k >= e->n)
+    return sbi_error(SB_EINVAL, __func__, "bad engine, particle or NULL");
+  double f = (t - e->t) / e->par.dt;
+  if (!e->in_step || !(f >= e->sub_t[k] - 1e-12 && f <= 1.0 + 1e-12))
+    return sbi_error(SB_EINVAL, __func__,
+                     "t = %g is not in the current piece of particle %zu's "
+                     "step", t, k);
+  path_at(e, k, f, x);
+  return SB_SUCCESS;
+}
+
 /* Pair record of (a, b) over the rest [t, 1] of the step, from their
  * current path pieces (i = min(a, b)). */
 static void make_subpair(const sb_engine *e, size_t a, size_t b, double t,
@@ -353,6 +367,7 @@ int sbi_engine_detect_and_process(sb_engine *e)
       return st;
   }
   const int redetect = e->par.detect != SB_DETECT_CUSTOM || e->redetect;
+  e->in_step = 1;
   /* a dense inelastic system can chatter (inelastic collapse): bound the
    * work of one step */
   uint64_t budget = 1000 * (uint64_t)(n + 1) + 16 * (uint64_t)e->npairs,
@@ -371,11 +386,13 @@ int sbi_engine_detect_and_process(sb_engine *e)
         e->dropped++;
       continue;
     }
-    if (++used > budget)
+    if (++used > budget) {
+      e->in_step = 0;
       return sbi_error(SB_EMAXITER, "sb_engine_step",
                        "more than %llu collisions in one step (inelastic "
                        "collapse, or a step far too long for the density)",
                        (unsigned long long)budget);
+    }
     pstate si, sj;
     snap(e, i, &si);
     snap(e, j, &sj);
@@ -408,9 +425,12 @@ int sbi_engine_detect_and_process(sb_engine *e)
       redetect_ctx rc = {ev.s, (q == 1 && ch[0]) ? who[0] : (size_t)-1};
       st = sbi_engine_partners(e, who[q], &e->sub_p[3 * who[q]], ext[q],
                                redetect_one, &rc);
-      if (st)
+      if (st) {
+        e->in_step = 0;
         return st;
+      }
     }
   }
+  e->in_step = 0;
   return SB_SUCCESS;
 }

@@ -83,6 +83,7 @@ struct sb_engine {
                                 running outcome (sb_engine_outcome_path) */
   int ndeclared;
   double in_outcome_t;       /* step fraction of the running outcome */
+  int in_step;               /* events of a step are being processed */
 
   /* species and their step coefficients */
   size_t nspec, capspec;

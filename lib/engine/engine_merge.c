@@ -313,7 +313,7 @@ static size_t size_of(const sb_agglo *a, const sb_engine *e, size_t i)
 int sb_agglo_merge(sb_engine *e, sb_agglo *a, const sb_engine_pair *p,
                    double s)
 {
-  (void)s;  /* end-of-step barycentre: see the file comment */
+  /* the end of step: barycentre of the ends (see the file comment) */
   if (!e || !a || !p || p->i >= e->n || p->j >= e->n || p->i == p->j)
     return sbi_error(SB_EINVAL, __func__, "bad argument");
   const size_t i = p->i, j = p->j;
@@ -327,6 +327,15 @@ int sb_agglo_merge(sb_engine *e, sb_agglo *a, const sb_engine_pair *p,
     return st;
   const double mi = e->mass[i], mj = e->mass[j], M = mi + mj;
   const double fi = mi / M, fj = mj / M;
+  /* the cluster is at the barycentre of the contact positions at the
+   * contact time (x_j = x_i - (dx0 + s dd) there), so the engine can
+   * examine its pairs over the rest of the step from that place */
+  double xi[3], bc[3] = {0, 0, 0};
+  if (sb_engine_position_at(e, i, p->t0 + s * p->dt, xi) == SB_SUCCESS) {
+    for (int k = 0; k < e->par.dim; k++)
+      bc[k] = xi[k] - fj * (p->dx0[k] + s * p->dd[k]);
+    sb_engine_outcome_path(e, i, bc);
+  }
   for (int k = 0; k < e->par.dim; k++) {
     /* x_j next to x_i: x_i - x_j = dx0 + dd (unwrapped chords) */
     double rel = p->dx0[k] + p->dd[k];
@@ -406,8 +415,16 @@ int sb_engine_outcome_agglo(sb_engine *e, const sb_engine_pair *p, double s,
   if (sb_dlvo_sticks(E, W))
     return sb_agglo_merge(e, a, p, s);
   a->st.nrebound++;
-  if (a->par.erel == SB_AGGLO_EREL_CONTACT)
+  if (a->par.erel == SB_AGGLO_EREL_CONTACT) {
+    /* a bounce changes the velocities, not the places at contact */
+    double x[3];
+    const double tc = p->t0 + s * p->dt;
+    if (sb_engine_position_at(e, p->i, tc, x) == SB_SUCCESS)
+      sb_engine_outcome_path(e, p->i, x);
+    if (sb_engine_position_at(e, p->j, tc, x) == SB_SUCCESS)
+      sb_engine_outcome_path(e, p->j, x);
     return sb_engine_outcome_elastic(e, p, s);
+  }
   return SB_SUCCESS;  /* diffusive: the pair stays where the step put it */
 }
 

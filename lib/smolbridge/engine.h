@@ -299,6 +299,14 @@ int sb_engine_outcome_reinsert(sb_engine *e, const sb_engine_pair *p,
  *  as a jump: the particle is at its new end from the collision on. */
 int sb_engine_outcome_path(sb_engine *e, size_t k, const double x[3]);
 
+/** Inside a detector or outcome callback: the position (m, unwrapped
+ *  frame of the particle's start of step) of particle k at time t on its
+ *  current straight piece of the step (the chord, or the piece it got
+ *  after a collision earlier in the step).  SB_EINVAL outside a step or
+ *  for a t before that piece. */
+int sb_engine_position_at(const sb_engine *e, size_t k, double t,
+                          double x[3]);
+
 /* ======================================================= neighbours */
 
 /** Candidate pairs for the trial straight-line step x -> x + disp from
