@@ -1,0 +1,117 @@
+/* pgd_internal.h — the Eulerian grid behind sb_pgd, the particle arrays
+ * behind sb_pgd_lag, and the pieces the domain-decomposition driver
+ * (pgd_dd.c) calls one by one.  Private to lib/pgd. */
+#ifndef SB_PGD_INTERNAL_H
+#define SB_PGD_INTERNAL_H
+
+#include <stddef.h>
+#include <smolbridge/pgd.h>
+
+#define SBI_PGD_G 2  /* ghost layers (the MUSCL slopes need two) */
+
+struct sb_pgd {
+  sb_pgd_params p;
+  size_t nx, ny;       /* interior cells */
+  size_t gx, gy;       /* ghost layers in x and y (gy = 0 in 1-D) */
+  size_t sx, sy;       /* padded sizes: nx + 2 gx, ny + 2 gy */
+  double dx, dy;       /* cell sizes (dy = 1 in 1-D: per unit length) */
+  double *rho, *qx, *qy;     /* padded state */
+  double *r0, *qx0, *qy0;    /* state at the start of an RK2 step */
+  double *dr, *dqx, *dqy;    /* accumulated flux divergence of a stage */
+  double *ugx, *ugy;         /* gas velocity at cell centres (padded) */
+  int *inflow_at[4];         /* per side and boundary cell: inflow index
+                                or -1 */
+  size_t nb[4];              /* boundary cells per side */
+  int external[4];           /* ghosts of this side are set by the caller */
+  double *bflux[4];          /* outward flux integrated over the current
+                                step: 3 per boundary cell (mass, qx, qy) */
+  double in_tot[3], out_tot[3];
+  double t;
+  size_t steps;
+  double *line;              /* work buffer for one line of cells */
+};
+
+/* Padded index of cell (i, j); i, j may be -G .. n-1+G. */
+static inline size_t sbi_pgd_idx(const struct sb_pgd *g, long i, long j)
+{
+  return (size_t)(i + (long)g->gx) +
+         g->sx * (size_t)(j + (long)g->gy);
+}
+
+/* Velocity of a cell from its moments (0 in vacuum). */
+static inline double sbi_pgd_vel(double rho, double q, double floor_)
+{
+  return rho > floor_ ? q / rho : 0.0;
+}
+
+/* Allocate the solver; if `external` is not NULL, sides with a nonzero
+ * flag get their ghost cells from the caller (domain decomposition). */
+struct sb_pgd *sbi_pgd_alloc(const sb_pgd_params *p, const int external[4]);
+
+/* Ghost cells of the non-external sides from the boundary conditions. */
+void sbi_pgd_fill_ghosts(struct sb_pgd *g);
+
+/* Exact drag relaxation over h in every interior cell. */
+void sbi_pgd_drag(struct sb_pgd *g, double h);
+
+/* Transport: number of stages of the scheme (1 upwind, 2 MUSCL/RK2);
+ * begin() saves the state and clears the step's boundary fluxes; stage(s)
+ * advances stage s with the ghost cells as they are. */
+int sbi_pgd_nstages(const struct sb_pgd *g);
+void sbi_pgd_transport_begin(struct sb_pgd *g);
+void sbi_pgd_stage(struct sb_pgd *g, double dt, int stage);
+
+/* Largest |ux|/dx + |uy|/dy over interior cells (gas velocity included
+ * where there is drag) and inflow states. */
+double sbi_pgd_speed(const struct sb_pgd *g);
+
+/* Courant bound of the scheme (1 or 1/2). */
+double sbi_pgd_cfl_limit(sb_pgd_scheme s);
+
+/* Gas velocity at (x, y) from the parameters. */
+void sbi_pgd_gas_at(const sb_pgd_params *p, double x, double y,
+                    double ug[2]);
+
+/* ------------------------------------------------------------ particles */
+
+typedef struct {
+  sb_pgd_particle *q;
+  size_t n, cap;
+} sbi_parts;
+
+int sbi_parts_push(sbi_parts *a, const sb_pgd_particle *q);
+void sbi_parts_free(sbi_parts *a);
+
+/* Exact drag-and-transport move of one particle over h (gas frozen at its
+ * start position). */
+void sbi_lag_move(const sb_pgd_params *p, sb_pgd_particle *q, double h);
+
+/* Inject the mass M with momentum P[2] that crossed one face during a
+ * step of length dt: p->inject_time x p->inject_face particles entering
+ * at the face (normal direction `dir` 0 = x, 1 = y, at coordinate xn,
+ * along [s0, s0 + len] in the other direction), each moved over the part
+ * of the step left after its entry.  Appends to out.  SB_ENOMEM. */
+int sbi_lag_inject(const sb_pgd_params *p, int dir, double xn, double s0,
+                   double len, double M, const double P[2], double dt,
+                   sbi_parts *out);
+
+/* Where a particle is after a move: wraps periodic directions in place;
+ * returns 0 inside the domain, 1 if it left through a side (to remove). */
+int sbi_lag_place(const sb_pgd_params *p, sb_pgd_particle *q);
+
+/* Largest |vx|/dx + |vy|/dy over particles. */
+double sbi_lag_speed(const sb_pgd_params *p, const sb_pgd_particle *q,
+                     size_t n);
+
+/* Cell (i, j) containing a point of the domain (clamped). */
+void sbi_lag_cell(const sb_pgd_params *p, const double x[2], size_t *i,
+                  size_t *j);
+
+/* Step bound from a speed (|ux|/dx + |uy|/dy), p->cfl and p->dt_max. */
+double sbi_pgd_dt_from_speed(const sb_pgd_params *p, double speed);
+
+/* Inflow speed bound of p (|ux|/dx + |uy|/dy over inflow states) and of
+ * the gas where there is drag (sampled at cell centres for a callback). */
+double sbi_pgd_param_speed(const sb_pgd_params *p);
+
+#endif /* SB_PGD_INTERNAL_H */
