@@ -353,6 +353,8 @@ int sb_pgd_dd_step(sb_pgd_dd *d, double dt)
       d->b[k].e->steps++;
     }
   /* particles: move, keep those still in their block */
+  double pe, pg;
+  sbi_lag_coef(&d->p, dt, &pe, &pg);
   d->moving.n = 0;
   for (size_t k = 0; k < d->nblocks; k++) {
     dd_block *b = &d->b[k];
@@ -361,7 +363,7 @@ int sb_pgd_dd_step(sb_pgd_dd *d, double dt)
     size_t w = 0;
     for (size_t m = 0; m < b->parts.n; m++) {
       sb_pgd_particle q = b->parts.q[m];
-      sbi_lag_move(&d->p, &q, dt);
+      sbi_lag_move_coef(&d->p, &q, dt, pe, pg);
       int stay = q.x[0] >= b->p.origin[0] &&
                  q.x[0] < b->p.origin[0] + b->p.L[0] &&
                  q.x[1] >= b->p.origin[1] &&

@@ -35,11 +35,12 @@ struct sb_pgd *sbi_pgd_alloc(const sb_pgd_params *p, const int external[4])
   g->dy = p->dim == 2 ? p->L[1] / (double)g->ny : 1.0;
   size_t n = g->sx * g->sy, nmax = g->sx > g->sy ? g->sx : g->sy;
   double **arr[] = {&g->rho, &g->qx, &g->qy, &g->r0, &g->qx0, &g->qy0,
-                    &g->dr, &g->dqx, &g->dqy, &g->ugx, &g->ugy};
+                    &g->dr, &g->dqx, &g->dqy, &g->ugx, &g->ugy,
+                    &g->ux, &g->uy};
   int ok = 1;
   for (size_t k = 0; k < sizeof arr / sizeof arr[0]; k++)
     ok &= (*arr[k] = calloc(n, sizeof(double))) != NULL;
-  ok &= (g->line = calloc(16 * nmax, sizeof(double))) != NULL;
+  ok &= (g->line = calloc(12 * nmax, sizeof(double))) != NULL;
   for (int s = 0; s < 4; s++) {
     g->nb[s] = s < 2 ? g->ny : (p->dim == 2 ? g->nx : 0);
     g->external[s] = external ? external[s] != 0 : 0;
@@ -85,7 +86,8 @@ void sb_pgd_free(sb_pgd *g)
   if (!g)
     return;
   double *arr[] = {g->rho, g->qx, g->qy, g->r0, g->qx0, g->qy0,
-                   g->dr, g->dqx, g->dqy, g->ugx, g->ugy, g->line};
+                   g->dr, g->dqx, g->dqy, g->ugx, g->ugy, g->line,
+                   g->ux, g->uy};
   for (size_t k = 0; k < sizeof arr / sizeof arr[0]; k++)
     free(arr[k]);
   for (int s = 0; s < 4; s++) {

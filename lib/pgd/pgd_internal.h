@@ -18,6 +18,7 @@ struct sb_pgd {
   double *rho, *qx, *qy;     /* padded state */
   double *r0, *qx0, *qy0;    /* state at the start of an RK2 step */
   double *dr, *dqx, *dqy;    /* accumulated flux divergence of a stage */
+  double *ux, *uy;           /* velocities of a stage (0 in vacuum) */
   double *ugx, *ugy;         /* gas velocity at cell centres (padded) */
   int *inflow_at[4];         /* per side and boundary cell: inflow index
                                 or -1 */
@@ -28,7 +29,7 @@ struct sb_pgd {
   double in_tot[3], out_tot[3];
   double t;
   size_t steps;
-  double *line;              /* work buffer for one line of cells */
+  double *line;              /* work buffers for one line of cells */
 };
 
 /* Padded index of cell (i, j); i, j may be -G .. n-1+G. */
@@ -82,9 +83,14 @@ typedef struct {
 int sbi_parts_push(sbi_parts *a, const sb_pgd_particle *q);
 void sbi_parts_free(sbi_parts *a);
 
+/* Decay e^{-h/tau} and position gain tau (1 - e^{-h/tau}) of a move h
+ * (1 and h without drag). */
+void sbi_lag_coef(const sb_pgd_params *p, double h, double *e, double *g);
+
 /* Exact drag-and-transport move of one particle over h (gas frozen at its
- * start position). */
-void sbi_lag_move(const sb_pgd_params *p, sb_pgd_particle *q, double h);
+ * start position), with the coefficients of sbi_lag_coef(h). */
+void sbi_lag_move_coef(const sb_pgd_params *p, sb_pgd_particle *q, double h,
+                       double e, double gain);
 
 /* Inject the mass M with momentum P[2] that crossed one face during a
  * step of length dt: p->inject_time x p->inject_face particles entering

@@ -43,7 +43,7 @@ void sbi_parts_free(sbi_parts *a)
 }
 
 /* Decay e^{-h/tau} and position gain tau (1 - e^{-h/tau}) of a step h. */
-static void lag_coef(const sb_pgd_params *p, double h, double *e, double *g)
+void sbi_lag_coef(const sb_pgd_params *p, double h, double *e, double *g)
 {
   sb_langevin_coef c;
   if (isinf(p->tau) || sb_langevin_coef_init(&c, p->tau, 0.0, h)) {
@@ -55,8 +55,8 @@ static void lag_coef(const sb_pgd_params *p, double h, double *e, double *g)
   *g = c.gain;
 }
 
-static void move(const sb_pgd_params *p, sb_pgd_particle *q, double h,
-                 double e, double gain)
+void sbi_lag_move_coef(const sb_pgd_params *p, sb_pgd_particle *q, double h,
+                       double e, double gain)
 {
   double ug[2] = {0, 0};
   if (!isinf(p->tau))
@@ -66,13 +66,6 @@ static void move(const sb_pgd_params *p, sb_pgd_particle *q, double h,
     q->x[d] += ug[d] * h + dv * gain;
     q->v[d] = ug[d] + dv * e;
   }
-}
-
-void sbi_lag_move(const sb_pgd_params *p, sb_pgd_particle *q, double h)
-{
-  double e, g;
-  lag_coef(p, h, &e, &g);
-  move(p, q, h, e, g);
 }
 
 int sbi_lag_inject(const sb_pgd_params *p, int dir, double xn, double s0,
@@ -87,13 +80,13 @@ int sbi_lag_inject(const sb_pgd_params *p, int dir, double xn, double s0,
   for (size_t kt = 0; kt < nt; kt++) {
     /* entered at t + (1 - th) dt: moves over th dt before the step ends */
     double th = ((double)kt + 0.5) / (double)nt, e, g;
-    lag_coef(p, th * dt, &e, &g);
+    sbi_lag_coef(p, th * dt, &e, &g);
     for (size_t ks = 0; ks < ns; ks++) {
       q.x[dir] = xn;
       q.x[1 - dir] = s0 + ((double)ks + 0.5) / (double)ns * len;
       q.v[0] = P[0] / M;
       q.v[1] = P[1] / M;
-      move(p, &q, th * dt, e, g);
+      sbi_lag_move_coef(p, &q, th * dt, e, g);
       if (sbi_parts_push(out, &q))
         return SB_ENOMEM;
     }
@@ -240,10 +233,10 @@ int sb_pgd_lag_step(sb_pgd_lag *l, double dt)
   if (!(dt > 0) || !isfinite(dt))
     return sbi_error(SB_EINVAL, __func__, "dt = %g: must be > 0", dt);
   double e, g;
-  lag_coef(&l->p, dt, &e, &g);
+  sbi_lag_coef(&l->p, dt, &e, &g);
   size_t n0 = l->a.n;
   for (size_t k = 0; k < n0; k++)
-    move(&l->p, &l->a.q[k], dt, e, g);
+    sbi_lag_move_coef(&l->p, &l->a.q[k], dt, e, g);
   if (inject_inflows(&l->p, dt, &l->a, l->in_tot))
     return sbi_error(SB_ENOMEM, __func__, "out of memory");
   /* remove the particles that left; keep the order of the others */

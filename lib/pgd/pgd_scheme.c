@@ -25,57 +25,62 @@ static inline double minmod(double a, double b)
   return 0.0;
 }
 
-/* Interface fluxes of one line of n cells gathered with their G ghost
- * cells on each side: r, un (normal velocity), ut (transverse velocity)
- * at indices 0 .. n+3 (interior cell k at k + 2).  F[3 m .. 3 m + 2] =
- * (mass, normal momentum, transverse momentum) flux through interface m
- * (m = 0 .. n; interface m is the left face of interior cell m). */
-static void line_fluxes(int muscl, size_t n, const double *r,
-                        const double *un, const double *ut, double fl,
-                        double *F, double *w)
+/* Face states of `count` consecutive cells (r, un, ut point at the first;
+ * neighbours at -off and +off): density and normal/transverse velocity on
+ * the low (L: west or south) and high (H: east or north) faces, MUSCL
+ * reconstruction with minmod slopes.  The velocity slope du is shared
+ * out so that (rho_L u_L + rho_H u_H)/2 = rho u: u_H = u + (rho_L/rho)
+ * du/2, u_L = u - (rho_H/rho) du/2 (the cell's momentum is kept; each
+ * face velocity stays between the neighbours' velocities). */
+static void faces(size_t count, const double *r, const double *un,
+                  const double *ut, ptrdiff_t off, double fl, double *RL,
+                  double *NL, double *TL, double *RH, double *NH, double *TH)
 {
-  const size_t m = n + 4;
-  const double *rE = r, *rW = r, *unE = un, *unW = un, *utE = ut, *utW = ut;
-  if (muscl) {
-    double *RE = w, *RW = w + m, *NE = w + 2 * m, *NW = w + 3 * m,
-           *TE = w + 4 * m, *TW = w + 5 * m;
-    for (size_t c = 1; c + 1 < m; c++) {
-      double dr = minmod(r[c] - r[c - 1], r[c + 1] - r[c]);
-      RE[c] = r[c] + 0.5 * dr;
-      RW[c] = r[c] - 0.5 * dr;
-      if (!(r[c] > fl)) {
-        NE[c] = NW[c] = un[c];
-        TE[c] = TW[c] = ut[c];
-        continue;
-      }
-      /* vacuum neighbours carry no velocity: no slope towards them.  A
-       * sharp density peak (more than twice a neighbour: not a resolved
-       * smooth profile) squeezed from both sides is a delta-shock: its
-       * mass moves with one velocity, so no slope either (a converging
-       * slope would hold the peak back in its cell) */
-      int lv = r[c - 1] > fl, rv = r[c + 1] > fl;
-      int peak = r[c] >= r[c - 1] && r[c] >= r[c + 1] &&
-                 r[c] > 2 * fmin(r[c - 1], r[c + 1]) && un[c + 1] < un[c - 1];
-      int slope = lv && rv && !peak;
-      double dn = slope ? minmod(un[c] - un[c - 1], un[c + 1] - un[c]) : 0;
-      double dt = slope ? minmod(ut[c] - ut[c - 1], ut[c + 1] - ut[c]) : 0;
-      /* u_E = u + (rho_W/rho) du/2, u_W = u - (rho_E/rho) du/2 keeps
-       * (rho_E u_E + rho_W u_W)/2 = rho u: the cell's momentum */
-      double aE = 0.5 * RW[c] / r[c], aW = 0.5 * RE[c] / r[c];
-      NE[c] = un[c] + aE * dn;
-      NW[c] = un[c] - aW * dn;
-      TE[c] = ut[c] + aE * dt;
-      TW[c] = ut[c] - aW * dt;
+  for (size_t k = 0; k < count; k++) {
+    const double rc = r[k], rm = r[(ptrdiff_t)k - off],
+                 rp = r[(ptrdiff_t)k + off];
+    double dr = minmod(rc - rm, rp - rc);
+    RH[k] = rc + 0.5 * dr;
+    RL[k] = rc - 0.5 * dr;
+    const double nc = un[k], tc = ut[k];
+    if (!(rc > fl)) {
+      NL[k] = NH[k] = nc;
+      TL[k] = TH[k] = tc;
+      continue;
     }
-    rE = RE, rW = RW, unE = NE, unW = NW, utE = TE, utW = TW;
+    const double nm = un[(ptrdiff_t)k - off], np = un[(ptrdiff_t)k + off];
+    /* vacuum neighbours carry no velocity: no slope towards them.  A
+     * sharp density peak (more than twice a neighbour: not a resolved
+     * smooth profile) squeezed from both sides is a delta-shock: its
+     * mass moves with one velocity, so no slope either (a converging
+     * slope would hold the peak back in its cell) */
+    int peak = rc >= rm && rc >= rp && rc > 2 * fmin(rm, rp) && np < nm;
+    double dn = 0, dt = 0;
+    if (rm > fl && rp > fl && !peak) {
+      dn = minmod(nc - nm, np - nc);
+      dt = minmod(tc - ut[(ptrdiff_t)k - off], ut[(ptrdiff_t)k + off] - tc);
+    }
+    const double aH = 0.5 * RL[k] / rc, aL = 0.5 * RH[k] / rc;
+    NH[k] = nc + aH * dn;
+    NL[k] = nc - aL * dn;
+    TH[k] = tc + aH * dt;
+    TL[k] = tc - aL * dt;
   }
-  for (size_t k = 0; k <= n; k++) {
-    size_t L = k + 1, R = k + 2;
-    double aL = unE[L] > 0 ? rE[L] * unE[L] : 0.0;
-    double aR = unW[R] < 0 ? rW[R] * unW[R] : 0.0;
-    F[3 * k] = aL + aR;
-    F[3 * k + 1] = aL * unE[L] + aR * unW[R];
-    F[3 * k + 2] = aL * utE[L] + aR * utW[R];
+}
+
+/* Kinetic fluxes through `count` interfaces: (rH, nH, tH) the high-face
+ * state of the cell below/left of each interface, (rL, nL, tL) the
+ * low-face state of the cell above/right. */
+static void kflux(size_t count, const double *rH, const double *nH,
+                  const double *tH, const double *rL, const double *nL,
+                  const double *tL, double *Fm, double *Fn, double *Ft)
+{
+  for (size_t k = 0; k < count; k++) {
+    double a = nH[k] > 0 ? rH[k] * nH[k] : 0.0;
+    double b = nL[k] < 0 ? rL[k] * nL[k] : 0.0;
+    Fm[k] = a + b;
+    Fn[k] = a * nH[k] + b * nL[k];
+    Ft[k] = a * tH[k] + b * tL[k];
   }
 }
 
@@ -106,53 +111,115 @@ static void boundary_flux(struct sb_pgd *g, int s, size_t k, const double f[3],
   for (int c = 0; c < 3; c++) {
     double v = f[c] * wdt_len;
     b[c] += v;
-    if (c == 0 ? v > 0 : f[0] > 0)
+    if (f[0] > 0)
       g->out_tot[c] += v;
     else
       g->in_tot[c] -= v;
   }
 }
 
-/* One direction's flux divergence into dr, dqx, dqy; dir 0 = x rows,
- * 1 = y columns. */
-static void sweep(struct sb_pgd *g, int dir, double dt, double bw)
+/* x direction: flux divergence of every row into dr, dqx, dqy. */
+static void sweep_x(struct sb_pgd *g, double dt, double bw)
 {
   const int muscl = g->p.scheme == SB_PGD_MUSCL;
+  const double fl = g->p.rho_floor, lam = dt / g->dx;
+  const double flen = dt * bw * g->dy;
+  const size_t nx = g->nx, m = nx + 4;
+  double *w = g->line, *Fm = w + 6 * m, *Fn = Fm + m, *Ft = Fn + m;
+  for (size_t j = 0; j < g->ny; j++) {
+    const size_t c0 = sbi_pgd_idx(g, 0, (long)j);
+    const double *r = g->rho + c0, *un = g->ux + c0, *ut = g->uy + c0;
+    if (muscl) { /* faces of cells -1 .. nx */
+      double *RL = w, *NL = w + m, *TL = w + 2 * m, *RH = w + 3 * m,
+             *NH = w + 4 * m, *TH = w + 5 * m;
+      faces(nx + 2, r - 1, un - 1, ut - 1, 1, fl, RL, NL, TL, RH, NH, TH);
+      kflux(nx + 1, RH, NH, TH, RL + 1, NL + 1, TL + 1, Fm, Fn, Ft);
+    } else {
+      kflux(nx + 1, r - 1, un - 1, ut - 1, r, un, ut, Fm, Fn, Ft);
+    }
+    double *dr = g->dr + c0, *dn = g->dqx + c0, *dt_ = g->dqy + c0;
+    for (size_t k = 0; k < nx; k++) {
+      dr[k] -= lam * (Fm[k + 1] - Fm[k]);
+      dn[k] -= lam * (Fn[k + 1] - Fn[k]);
+      dt_[k] -= lam * (Ft[k + 1] - Ft[k]);
+    }
+    /* outward fluxes through the two ends of the row, as (mass, qx, qy) */
+    double fa[3] = {-Fm[0], -Fn[0], -Ft[0]};
+    double fb[3] = {Fm[nx], Fn[nx], Ft[nx]};
+    if (g->p.bc[SB_PGD_WEST] != SB_PGD_PERIODIC || g->external[SB_PGD_WEST])
+      boundary_flux(g, SB_PGD_WEST, j, fa, flen);
+    if (g->p.bc[SB_PGD_EAST] != SB_PGD_PERIODIC || g->external[SB_PGD_EAST])
+      boundary_flux(g, SB_PGD_EAST, j, fb, flen);
+  }
+}
+
+/* y direction, row interface by row interface (contiguous in memory):
+ * interface j separates rows j - 1 and j. */
+static void sweep_y(struct sb_pgd *g, double dt, double bw)
+{
+  const int muscl = g->p.scheme == SB_PGD_MUSCL;
+  const double fl = g->p.rho_floor, lam = dt / g->dy;
+  const double flen = dt * bw * g->dx;
+  const size_t nx = g->nx, ny = g->ny;
+  const ptrdiff_t off = (ptrdiff_t)g->sx;
+  double *w = g->line;
+  /* faces of the row below (H only needed) and of the current row */
+  double *pRH = w, *pNH = w + nx, *pTH = w + 2 * nx;
+  double *RL = w + 3 * nx, *NL = w + 4 * nx, *TL = w + 5 * nx;
+  double *RH = w + 6 * nx, *NH = w + 7 * nx, *TH = w + 8 * nx;
+  double *Gm = w + 9 * nx, *Gn = w + 10 * nx, *Gt = w + 11 * nx;
+  for (long j = muscl ? -1 : 0; j <= (long)ny; j++) {
+    const size_t c0 = sbi_pgd_idx(g, 0, j);
+    const double *r = g->rho + c0, *un = g->uy + c0, *ut = g->ux + c0;
+    if (muscl) {
+      faces(nx, r, un, ut, off, fl, RL, NL, TL, RH, NH, TH);
+      if (j >= 0)
+        kflux(nx, pRH, pNH, pTH, RL, NL, TL, Gm, Gn, Gt);
+      double *t;
+      t = pRH, pRH = RH, RH = t;
+      t = pNH, pNH = NH, NH = t;
+      t = pTH, pTH = TH, TH = t;
+      if (j < 0)
+        continue;
+    } else {
+      kflux(nx, r - off, un - off, ut - off, r, un, ut, Gm, Gn, Gt);
+    }
+    if (j >= 1) { /* top face of row j - 1 */
+      const size_t b0 = c0 - g->sx;
+      for (size_t i = 0; i < nx; i++) {
+        g->dr[b0 + i] -= lam * Gm[i];
+        g->dqy[b0 + i] -= lam * Gn[i];
+        g->dqx[b0 + i] -= lam * Gt[i];
+      }
+    }
+    if (j < (long)ny) { /* bottom face of row j */
+      for (size_t i = 0; i < nx; i++) {
+        g->dr[c0 + i] += lam * Gm[i];
+        g->dqy[c0 + i] += lam * Gn[i];
+        g->dqx[c0 + i] += lam * Gt[i];
+      }
+    }
+    int s = j == 0 ? SB_PGD_SOUTH : j == (long)ny ? SB_PGD_NORTH : -1;
+    if (s >= 0 && (g->p.bc[s] != SB_PGD_PERIODIC || g->external[s])) {
+      double sg = s == SB_PGD_SOUTH ? -1.0 : 1.0;
+      for (size_t i = 0; i < nx; i++) {
+        double f[3] = {sg * Gm[i], sg * Gt[i], sg * Gn[i]};
+        boundary_flux(g, s, i, f, flen);
+      }
+    }
+  }
+}
+
+/* Velocities of every padded cell (0 in vacuum). */
+static void velocities(struct sb_pgd *g)
+{
   const double fl = g->p.rho_floor;
-  const size_t n = dir ? g->ny : g->nx, nl = dir ? g->nx : g->ny;
-  const size_t m = n + 4;
-  const size_t stride = dir ? g->sx : 1;
-  const double lam = dt / (dir ? g->dy : g->dx);
-  const double flen = dt * bw * (dir ? g->dx : g->dy);
-  const double *qn = dir ? g->qy : g->qx, *qt = dir ? g->qx : g->qy;
-  double *dn = dir ? g->dqy : g->dqx, *dtr = dir ? g->dqx : g->dqy;
-  double *r = g->line, *un = r + m, *ut = un + m, *F = ut + m, *w = F + 3 * m;
-  const int sl = dir ? SB_PGD_SOUTH : SB_PGD_WEST;
-  for (size_t l = 0; l < nl; l++) {
-    size_t c0 = dir ? sbi_pgd_idx(g, (long)l, -SBI_PGD_G)
-                    : sbi_pgd_idx(g, -SBI_PGD_G, (long)l);
-    for (size_t k = 0; k < m; k++) {
-      size_t c = c0 + k * stride;
-      r[k] = g->rho[c];
-      un[k] = sbi_pgd_vel(r[k], qn[c], fl);
-      ut[k] = sbi_pgd_vel(r[k], qt[c], fl);
-    }
-    line_fluxes(muscl, n, r, un, ut, fl, F, w);
-    for (size_t k = 0; k < n; k++) {
-      size_t c = c0 + (k + SBI_PGD_G) * stride;
-      const double *a = F + 3 * k, *b = a + 3;
-      g->dr[c] -= lam * (b[0] - a[0]);
-      dn[c] -= lam * (b[1] - a[1]);
-      dtr[c] -= lam * (b[2] - a[2]);
-    }
-    /* outward fluxes through the two ends of the line, as (mass, qx, qy) */
-    const double *a = F, *b = F + 3 * n;
-    double fa[3] = {-a[0], dir ? -a[2] : -a[1], dir ? -a[1] : -a[2]};
-    double fb[3] = {b[0], dir ? b[2] : b[1], dir ? b[1] : b[2]};
-    if (g->p.bc[sl] != SB_PGD_PERIODIC || g->external[sl])
-      boundary_flux(g, sl, l, fa, flen);
-    if (g->p.bc[sl + 1] != SB_PGD_PERIODIC || g->external[sl + 1])
-      boundary_flux(g, sl + 1, l, fb, flen);
+  const size_t n = g->sx * g->sy;
+  for (size_t c = 0; c < n; c++) {
+    double r = g->rho[c];
+    double inv = r > fl ? 1.0 / r : 0.0;
+    g->ux[c] = g->qx[c] * inv;
+    g->uy[c] = g->qy[c] * inv;
   }
 }
 
@@ -164,9 +231,10 @@ void sbi_pgd_stage(struct sb_pgd *g, double dt, int stage)
   memset(g->dqx, 0, n * sizeof(double));
   memset(g->dqy, 0, n * sizeof(double));
   double bw = muscl ? 0.5 : 1.0;  /* Heun: each stage's flux counts 1/2 */
-  sweep(g, 0, dt, bw);
+  velocities(g);
+  sweep_x(g, dt, bw);
   if (g->p.dim == 2)
-    sweep(g, 1, dt, bw);
+    sweep_y(g, dt, bw);
   for (size_t j = 0; j < g->ny; j++) {
     size_t c = sbi_pgd_idx(g, 0, (long)j);
     for (size_t i = 0; i < g->nx; i++, c++) {
@@ -209,18 +277,22 @@ double sbi_pgd_speed(const struct sb_pgd *g)
   const double iy = g->p.dim == 2 ? 1.0 / g->dy : 0.0;
   const int drag = !isinf(g->p.tau);
   double s = 0;
+  /* max over cells of (|qx| ix + |qy| iy)/rho, without dividing: the
+   * drag relaxes u towards the gas, so |u| is bounded by max(|u|, |U|) */
   for (size_t j = 0; j < g->ny; j++) {
     size_t c = sbi_pgd_idx(g, 0, (long)j);
     for (size_t i = 0; i < g->nx; i++, c++) {
-      double ux = fabs(sbi_pgd_vel(g->rho[c], g->qx[c], fl));
-      double uy = fabs(sbi_pgd_vel(g->rho[c], g->qy[c], fl));
-      if (drag) { /* the drag relaxes u towards the gas */
-        ux = fmax(ux, fabs(g->ugx[c]));
-        uy = fmax(uy, fabs(g->ugy[c]));
+      double r = g->rho[c];
+      if (!(r > fl))
+        continue;
+      double ax = fabs(g->qx[c]), ay = fabs(g->qy[c]);
+      if (drag) {
+        ax = fmax(ax, r * fabs(g->ugx[c]));
+        ay = fmax(ay, r * fabs(g->ugy[c]));
       }
-      double v = ux * ix + uy * iy;
-      if (v > s)
-        s = v;
+      double v = ax * ix + ay * iy;
+      if (v > s * r)
+        s = v / r;
     }
   }
   for (size_t k = 0; k < g->p.ninflow; k++) {
@@ -239,14 +311,9 @@ double sb_pgd_dt(const sb_pgd *g)
   return sbi_pgd_dt_from_speed(&g->p, sbi_pgd_speed(g));
 }
 
-int sb_pgd_step(sb_pgd *g, double dt)
+/* One Strang step, dt already checked. */
+static void step(sb_pgd *g, double dt)
 {
-  if (!g)
-    return sbi_error(SB_EINVAL, __func__, "NULL solver");
-  double lim = sb_pgd_dt(g);
-  if (!(dt > 0) || !isfinite(dt) || dt > lim * (1 + 1e-12))
-    return sbi_error(SB_EINVAL, __func__, "dt = %g: must be in (0, %g] "
-                     "(CFL %g)", dt, lim, g->p.cfl);
   sbi_pgd_drag(g, 0.5 * dt);
   sbi_pgd_transport_begin(g);
   for (int s = 0; s < sbi_pgd_nstages(g); s++) {
@@ -256,6 +323,17 @@ int sb_pgd_step(sb_pgd *g, double dt)
   sbi_pgd_drag(g, 0.5 * dt);
   g->t += dt;
   g->steps++;
+}
+
+int sb_pgd_step(sb_pgd *g, double dt)
+{
+  if (!g)
+    return sbi_error(SB_EINVAL, __func__, "NULL solver");
+  double lim = sb_pgd_dt(g);
+  if (!(dt > 0) || !isfinite(dt) || dt > lim * (1 + 1e-12))
+    return sbi_error(SB_EINVAL, __func__, "dt = %g: must be in (0, %g] "
+                     "(CFL %g)", dt, lim, g->p.cfl);
+  step(g, dt);
   return SB_SUCCESS;
 }
 
@@ -272,9 +350,7 @@ int sb_pgd_advance(sb_pgd *g, double t_end, size_t *nsteps)
     int last = dt >= left * (1 - 1e-12);
     if (last)
       dt = left;
-    int st = sb_pgd_step(g, dt);
-    if (st)
-      return st;
+    step(g, dt);
     k++;
     if (last)
       g->t = t_end;
