@@ -37,7 +37,7 @@ struct sb_pgd_dd {
   sbi_parts moving;      /* particles changing block during a step */
   double t;
   size_t steps;
-  double in_tot[3], out_tot[3];
+  sbi_budget bud;
 };
 
 void sb_pgd_dd_free(sb_pgd_dd *d)
@@ -242,10 +242,10 @@ static void exchange(sb_pgd_dd *d, dd_block *b)
  * Eulerian cell (absorbed), or out of the domain (counted). */
 static int route(sb_pgd_dd *d, sb_pgd_particle *q)
 {
-  if (sbi_lag_place(&d->p, q)) {
-    d->out_tot[0] += q->w;
-    d->out_tot[1] += q->w * q->v[0];
-    d->out_tot[2] += q->w * q->v[1];
+  int side = sbi_lag_place(&d->p, q);
+  if (side) {
+    sbi_budget_add(&d->bud, side - 1, 1, q->w, q->w * q->v[0],
+                   q->w * q->v[1]);
     return SB_SUCCESS;
   }
   size_t i, j;
@@ -285,9 +285,7 @@ static int inject_all(sb_pgd_dd *d, double dt)
           if (sbi_lag_inject(q, dir, xn, q->origin[1 - dir] +
                              (double)c * len, len, M, P, dt, &d->moving))
             return SB_ENOMEM;
-          d->in_tot[0] += M;
-          d->in_tot[1] += P[0];
-          d->in_tot[2] += P[1];
+          sbi_budget_add(&d->bud, in->side, 0, M, P[0], P[1]);
         }
       }
       continue;
@@ -295,13 +293,13 @@ static int inject_all(sb_pgd_dd *d, double dt)
     for (int s = 0; s < 4; s++) {
       const double *f = b->e->bflux[s];
       if (b->nbr[s] < 0) { /* physical side: count what crossed it */
-        for (size_t c = 0; c < b->e->nb[s]; c++)
-          for (int m = 0; m < 3; m++) {
-            if (f[3 * c] > 0)
-              d->out_tot[m] += f[3 * c + m];
-            else
-              d->in_tot[m] -= f[3 * c + m];
-          }
+        for (size_t c = 0; c < b->e->nb[s]; c++) {
+          const double *v = f + 3 * c;
+          if (v[0] > 0)
+            sbi_budget_add(&d->bud, s, 1, v[0], v[1], v[2]);
+          else
+            sbi_budget_add(&d->bud, s, 0, -v[0], -v[1], -v[2]);
+        }
         continue;
       }
       if (d->b[b->nbr[s]].kind != 'L')
@@ -481,10 +479,11 @@ void sb_pgd_dd_totals(const sb_pgd_dd *d, double tot[3])
 void sb_pgd_dd_boundary_totals(const sb_pgd_dd *d, double in[3],
                                double out[3])
 {
-  for (int k = 0; k < 3; k++) {
-    if (in)
-      in[k] = d->in_tot[k];
-    if (out)
-      out[k] = d->out_tot[k];
-  }
+  sbi_budget_get(&d->bud, -1, in, out);
+}
+
+void sb_pgd_dd_side_totals(const sb_pgd_dd *d, sb_pgd_side s, double in[3],
+                           double out[3])
+{
+  sbi_budget_get(&d->bud, (int)s & 3, in, out);
 }

@@ -217,12 +217,13 @@ void sb_pgd_totals(const sb_pgd *g, double tot[3])
 
 void sb_pgd_boundary_totals(const sb_pgd *g, double in[3], double out[3])
 {
-  for (int k = 0; k < 3; k++) {
-    if (in)
-      in[k] = g->in_tot[k];
-    if (out)
-      out[k] = g->out_tot[k];
-  }
+  sbi_budget_get(&g->bud, -1, in, out);
+}
+
+void sb_pgd_side_totals(const sb_pgd *g, sb_pgd_side s, double in[3],
+                        double out[3])
+{
+  sbi_budget_get(&g->bud, (int)s & 3, in, out);
 }
 
 /* ------------------------------------------------------------ ghosts */

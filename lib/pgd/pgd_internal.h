@@ -9,6 +9,38 @@
 
 #define SBI_PGD_G 2  /* ghost layers (the MUSCL slopes need two) */
 
+/* Mass and momentum that crossed each side, in and out. */
+typedef struct {
+  double in[4][3], out[4][3];
+} sbi_budget;
+
+static inline void sbi_budget_add(sbi_budget *b, int side, int out,
+                                  double m, double px, double py)
+{
+  double *v = out ? b->out[side] : b->in[side];
+  v[0] += m;
+  v[1] += px;
+  v[2] += py;
+}
+
+/* Sums over one side (0..3) or all (-1); in/out may be NULL. */
+static inline void sbi_budget_get(const sbi_budget *b, int side,
+                                  double in[3], double out[3])
+{
+  for (int k = 0; k < 3; k++) {
+    double a = 0, c = 0;
+    for (int s = 0; s < 4; s++)
+      if (side < 0 || s == side) {
+        a += b->in[s][k];
+        c += b->out[s][k];
+      }
+    if (in)
+      in[k] = a;
+    if (out)
+      out[k] = c;
+  }
+}
+
 struct sb_pgd {
   sb_pgd_params p;
   size_t nx, ny;       /* interior cells */
@@ -26,7 +58,7 @@ struct sb_pgd {
   int external[4];           /* ghosts of this side are set by the caller */
   double *bflux[4];          /* outward flux integrated over the current
                                 step: 3 per boundary cell (mass, qx, qy) */
-  double in_tot[3], out_tot[3];
+  sbi_budget bud;
   double t;
   size_t steps;
   double *line;              /* work buffers for one line of cells */
@@ -102,7 +134,7 @@ int sbi_lag_inject(const sb_pgd_params *p, int dir, double xn, double s0,
                    sbi_parts *out);
 
 /* Where a particle is after a move: wraps periodic directions in place;
- * returns 0 inside the domain, 1 if it left through a side (to remove). */
+ * returns 0 inside the domain, 1 + the side it left through otherwise. */
 int sbi_lag_place(const sb_pgd_params *p, sb_pgd_particle *q);
 
 /* Largest |vx|/dx + |vy|/dy over particles. */

@@ -19,7 +19,7 @@ struct sb_pgd_lag {
   double pspeed;  /* speed bound of inflow states and gas */
   double t;
   size_t steps;
-  double in_tot[3], out_tot[3];
+  sbi_budget bud;
 };
 
 int sbi_parts_push(sbi_parts *a, const sb_pgd_particle *q)
@@ -101,7 +101,7 @@ int sbi_lag_place(const sb_pgd_params *p, sb_pgd_particle *q)
     if (x >= lo && x < lo + L)
       continue;
     if (p->bc[2 * d] != SB_PGD_PERIODIC)
-      return 1;
+      return 1 + 2 * d + (x >= lo + L);
     x = fmod(x - lo, L);
     if (x < 0)
       x += L;
@@ -200,7 +200,7 @@ double sb_pgd_lag_dt(const sb_pgd_lag *l)
 
 /* Inject the inflow of every inflow face of p over a step dt. */
 static int inject_inflows(const sb_pgd_params *p, double dt, sbi_parts *out,
-                          double in_tot[3])
+                          sbi_budget *bud)
 {
   const double dx = p->L[0] / (double)p->nx, dy = p->L[1] / (double)p->ny;
   for (size_t m = 0; m < p->ninflow; m++) {
@@ -218,9 +218,7 @@ static int inject_inflows(const sb_pgd_params *p, double dt, sbi_parts *out,
       double s0 = p->origin[1 - dir] + (double)k * len;
       if (sbi_lag_inject(p, dir, xn, s0, len, M, P, dt, out))
         return SB_ENOMEM;
-      in_tot[0] += M;
-      in_tot[1] += P[0];
-      in_tot[2] += P[1];
+      sbi_budget_add(bud, in->side, 0, M, P[0], P[1]);
     }
   }
   return SB_SUCCESS;
@@ -237,16 +235,16 @@ int sb_pgd_lag_step(sb_pgd_lag *l, double dt)
   size_t n0 = l->a.n;
   for (size_t k = 0; k < n0; k++)
     sbi_lag_move_coef(&l->p, &l->a.q[k], dt, e, g);
-  if (inject_inflows(&l->p, dt, &l->a, l->in_tot))
+  if (inject_inflows(&l->p, dt, &l->a, &l->bud))
     return sbi_error(SB_ENOMEM, __func__, "out of memory");
   /* remove the particles that left; keep the order of the others */
   size_t w = 0;
   for (size_t k = 0; k < l->a.n; k++) {
     sb_pgd_particle *q = &l->a.q[k];
-    if (sbi_lag_place(&l->p, q)) {
-      l->out_tot[0] += q->w;
-      l->out_tot[1] += q->w * q->v[0];
-      l->out_tot[2] += q->w * q->v[1];
+    int side = sbi_lag_place(&l->p, q);
+    if (side) {
+      sbi_budget_add(&l->bud, side - 1, 1, q->w, q->w * q->v[0],
+                     q->w * q->v[1]);
       continue;
     }
     l->a.q[w++] = *q;
@@ -324,10 +322,11 @@ void sb_pgd_lag_totals(const sb_pgd_lag *l, double tot[3])
 void sb_pgd_lag_boundary_totals(const sb_pgd_lag *l, double in[3],
                                 double out[3])
 {
-  for (int k = 0; k < 3; k++) {
-    if (in)
-      in[k] = l->in_tot[k];
-    if (out)
-      out[k] = l->out_tot[k];
-  }
+  sbi_budget_get(&l->bud, -1, in, out);
+}
+
+void sb_pgd_lag_side_totals(const sb_pgd_lag *l, sb_pgd_side s, double in[3],
+                            double out[3])
+{
+  sbi_budget_get(&l->bud, (int)s & 3, in, out);
 }

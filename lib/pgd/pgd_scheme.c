@@ -39,24 +39,28 @@ static void faces(size_t count, const double *r, const double *un,
   for (size_t k = 0; k < count; k++) {
     const double rc = r[k], rm = r[(ptrdiff_t)k - off],
                  rp = r[(ptrdiff_t)k + off];
-    double dr = minmod(rc - rm, rp - rc);
-    RH[k] = rc + 0.5 * dr;
-    RL[k] = rc - 0.5 * dr;
     const double nc = un[k], tc = ut[k];
-    if (!(rc > fl)) {
+    const double nm = un[(ptrdiff_t)k - off], np = un[(ptrdiff_t)k + off];
+    /* A delta-shock: a density jump by more than a factor 2 (not a
+     * resolved smooth profile) where the flow converges.  There the
+     * cell is first order: a reconstructed profile inside the delta
+     * would move its mass with face velocities that differ from its
+     * momentum (the delta then lags), so the kinetic upwind flux of
+     * the cell state is used, which moves the mass centroid exactly
+     * with the momentum. */
+    int delta = np < nm && fmax(fmax(rm, rc), rp) > 2 * fmin(fmin(rm, rc), rp);
+    if (delta || !(rc > fl)) {
+      RL[k] = RH[k] = rc;
       NL[k] = NH[k] = nc;
       TL[k] = TH[k] = tc;
       continue;
     }
-    const double nm = un[(ptrdiff_t)k - off], np = un[(ptrdiff_t)k + off];
-    /* vacuum neighbours carry no velocity: no slope towards them.  A
-     * sharp density peak (more than twice a neighbour: not a resolved
-     * smooth profile) squeezed from both sides is a delta-shock: its
-     * mass moves with one velocity, so no slope either (a converging
-     * slope would hold the peak back in its cell) */
-    int peak = rc >= rm && rc >= rp && rc > 2 * fmin(rm, rp) && np < nm;
+    double dr = minmod(rc - rm, rp - rc);
+    RH[k] = rc + 0.5 * dr;
+    RL[k] = rc - 0.5 * dr;
+    /* vacuum neighbours carry no velocity: no slope towards them */
     double dn = 0, dt = 0;
-    if (rm > fl && rp > fl && !peak) {
+    if (rm > fl && rp > fl) {
       dn = minmod(nc - nm, np - nc);
       dt = minmod(tc - ut[(ptrdiff_t)k - off], ut[(ptrdiff_t)k + off] - tc);
     }
@@ -108,14 +112,15 @@ static void boundary_flux(struct sb_pgd *g, int s, size_t k, const double f[3],
                           double wdt_len)
 {
   double *b = g->bflux[s] + 3 * k;
+  double v[3];
   for (int c = 0; c < 3; c++) {
-    double v = f[c] * wdt_len;
-    b[c] += v;
-    if (f[0] > 0)
-      g->out_tot[c] += v;
-    else
-      g->in_tot[c] -= v;
+    v[c] = f[c] * wdt_len;
+    b[c] += v[c];
   }
+  if (f[0] > 0)
+    sbi_budget_add(&g->bud, s, 1, v[0], v[1], v[2]);
+  else
+    sbi_budget_add(&g->bud, s, 0, -v[0], -v[1], -v[2]);
 }
 
 /* x direction: flux divergence of every row into dr, dqx, dqy. */

@@ -23,8 +23,11 @@
  *    dt (max|ux|/dx + max|uy|/dy) <= 1.
  *  - SB_PGD_MUSCL: the same kinetic flux on a piecewise-linear
  *    reconstruction of rho and u (minmod slopes, the u slope weighted so
- *    that the reconstruction conserves rho u), SSP-RK2 (Heun) in time.
- *    Second order for smooth solutions, positive and velocity-bounded for
+ *    that the reconstruction conserves rho u), SSP-RK2 (Heun) in time;
+ *    first order in cells where the flow converges onto a density jump
+ *    larger than a factor 2 (delta-shocks).  Second order for smooth
+ *    solutions with monotone velocity (measured 1.5 at velocity extrema,
+ *    where the limiter clips), positive and velocity-bounded for
  *    dt (max|ux|/dx + max|uy|/dy) <= 1/2.
  *  Drag: Strang splitting D(dt/2) T(dt) D(dt/2) with the exact relaxation
  *  u <- U + (u - U) exp(-t/tau) in each cell (second order overall).
@@ -173,6 +176,9 @@ void sb_pgd_totals(const sb_pgd *g, double tot[3]);
 /** Mass and momentum that entered (in) and left (out) through the sides
  *  since t = 0, so that totals(t) = totals(0) + in - out + drag impulse. */
 void sb_pgd_boundary_totals(const sb_pgd *g, double in[3], double out[3]);
+/** The same through one side. */
+void sb_pgd_side_totals(const sb_pgd *g, sb_pgd_side s, double in[3],
+                        double out[3]);
 
 /** Cell-centred fields as CSV with a header: "x,rho,u" (1-D) or
  *  "x,y,rho,ux,uy" (2-D), 17 significant digits. */
@@ -323,6 +329,8 @@ int sb_pgd_lag_deposit(const sb_pgd_lag *l, double *rho, double *qx,
 void sb_pgd_lag_totals(const sb_pgd_lag *l, double tot[3]);
 void sb_pgd_lag_boundary_totals(const sb_pgd_lag *l, double in[3],
                                 double out[3]);
+void sb_pgd_lag_side_totals(const sb_pgd_lag *l, sb_pgd_side s, double in[3],
+                            double out[3]);
 
 /* ================================================== domain decomposition */
 
@@ -354,6 +362,8 @@ int sb_pgd_dd_fields(const sb_pgd_dd *d, double *rho, double *qx,
 void sb_pgd_dd_totals(const sb_pgd_dd *d, double tot[3]);
 void sb_pgd_dd_boundary_totals(const sb_pgd_dd *d, double in[3],
                                double out[3]);
+void sb_pgd_dd_side_totals(const sb_pgd_dd *d, sb_pgd_side s, double in[3],
+                           double out[3]);
 size_t sb_pgd_dd_particles(const sb_pgd_dd *d);
 
 /* ================================================== comparison */
