@@ -258,6 +258,7 @@ static int route(sb_pgd_dd *d, sb_pgd_particle *q)
   b->e->rho[c] += q->w * iA;
   b->e->qx[c] += q->w * q->v[0] * iA;
   b->e->qy[c] += q->w * q->v[1] * iA;
+  b->e->speed_ok = 0;
   return SB_SUCCESS;
 }
 
@@ -330,7 +331,7 @@ int sb_pgd_dd_step(sb_pgd_dd *d, double dt)
   int nst = 1;
   for (size_t k = 0; k < d->nblocks; k++)
     if (d->b[k].kind == 'E') {
-      sbi_pgd_drag(d->b[k].e, 0.5 * dt);
+      sbi_pgd_drag(d->b[k].e, 0.5 * dt, 0);
       sbi_pgd_transport_begin(d->b[k].e);
       nst = sbi_pgd_nstages(d->b[k].e);
     }
@@ -346,7 +347,7 @@ int sb_pgd_dd_step(sb_pgd_dd *d, double dt)
   }
   for (size_t k = 0; k < d->nblocks; k++)
     if (d->b[k].kind == 'E') {
-      sbi_pgd_drag(d->b[k].e, 0.5 * dt);
+      sbi_pgd_drag(d->b[k].e, 0.5 * dt, 1);
       d->b[k].e->t += dt;
       d->b[k].e->steps++;
     }

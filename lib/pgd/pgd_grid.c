@@ -146,6 +146,7 @@ int sb_pgd_init(sb_pgd *g, sb_pgd_init_fn f, void *data)
       g->qy[c] = dim == 2 ? my / area : 0.0;
     }
   gsl_integration_glfixed_table_free(tab);
+  g->speed_ok = 0;
   return SB_SUCCESS;
 }
 
@@ -162,6 +163,7 @@ int sb_pgd_set_cell(sb_pgd *g, size_t i, size_t j, double rho, double ux,
   g->rho[c] = rho;
   g->qx[c] = rho * ux;
   g->qy[c] = g->p.dim == 2 ? rho * uy : 0.0;
+  g->speed_ok = 0;
   return SB_SUCCESS;
 }
 

@@ -61,6 +61,8 @@ struct sb_pgd {
   sbi_budget bud;
   double t;
   size_t steps;
+  double speed;              /* max (|ux|/dx + |uy|/dy) of the cells, */
+  int speed_ok;              /* kept up to date by the step's last pass */
   double *line;              /* work buffers for one line of cells */
 };
 
@@ -84,8 +86,9 @@ struct sb_pgd *sbi_pgd_alloc(const sb_pgd_params *p, const int external[4]);
 /* Ghost cells of the non-external sides from the boundary conditions. */
 void sbi_pgd_fill_ghosts(struct sb_pgd *g);
 
-/* Exact drag relaxation over h in every interior cell. */
-void sbi_pgd_drag(struct sb_pgd *g, double h);
+/* Exact drag relaxation over h in every interior cell; with `track`,
+ * the cells' speed bound is recomputed on the way. */
+void sbi_pgd_drag(struct sb_pgd *g, double h, int track);
 
 /* Transport: number of stages of the scheme (1 upwind, 2 MUSCL/RK2);
  * begin() saves the state and clears the step's boundary fluxes; stage(s)
@@ -95,7 +98,9 @@ void sbi_pgd_transport_begin(struct sb_pgd *g);
 void sbi_pgd_stage(struct sb_pgd *g, double dt, int stage);
 
 /* Largest |ux|/dx + |uy|/dy over interior cells (gas velocity included
- * where there is drag) and inflow states. */
+ * where there is drag) and inflow states; the cells' part is cached by
+ * the last pass of a step, and must be invalidated (speed_ok = 0) by
+ * anything else that changes cells. */
 double sbi_pgd_speed(const struct sb_pgd *g);
 
 /* Courant bound of the scheme (1 or 1/2). */

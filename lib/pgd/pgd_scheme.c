@@ -18,12 +18,12 @@
 
 static inline double minmod(double a, double b)
 {
-  if (a > 0 && b > 0)
-    return a < b ? a : b;
-  if (a < 0 && b < 0)
-    return a > b ? a : b;
-  return 0.0;
+  double m = fabs(a) < fabs(b) ? a : b;
+  return a * b > 0 ? m : 0.0;
 }
+
+static inline double dmin(double a, double b) { return a < b ? a : b; }
+static inline double dmax(double a, double b) { return a > b ? a : b; }
 
 /* Face states of `count` consecutive cells (r, un, ut point at the first;
  * neighbours at -off and +off): density and normal/transverse velocity on
@@ -48,7 +48,7 @@ static void faces(size_t count, const double *r, const double *un,
      * momentum (the delta then lags), so the kinetic upwind flux of
      * the cell state is used, which moves the mass centroid exactly
      * with the momentum. */
-    int delta = np < nm && fmax(fmax(rm, rc), rp) > 2 * fmin(fmin(rm, rc), rp);
+    int delta = np < nm && dmax(dmax(rm, rc), rp) > 2 * dmin(dmin(rm, rc), rp);
     if (delta || !(rc > fl)) {
       RL[k] = RH[k] = rc;
       NL[k] = NH[k] = nc;
@@ -64,7 +64,7 @@ static void faces(size_t count, const double *r, const double *un,
       dn = minmod(nc - nm, np - nc);
       dt = minmod(tc - ut[(ptrdiff_t)k - off], ut[(ptrdiff_t)k + off] - tc);
     }
-    const double aH = 0.5 * RL[k] / rc, aL = 0.5 * RH[k] / rc;
+    const double half = 0.5 / rc, aH = RL[k] * half, aL = RH[k] * half;
     NH[k] = nc + aH * dn;
     NL[k] = nc - aL * dn;
     TH[k] = tc + aH * dt;
@@ -228,6 +228,26 @@ static void velocities(struct sb_pgd *g)
   }
 }
 
+/* Speed bound of one cell, folded into *s: (|qx| ix + |qy| iy)/rho, the
+ * gas velocity included where there is drag (the drag relaxes u towards
+ * it, so |u| stays below max(|u|, |U|)); no division unless *s grows. */
+static inline void speed_acc(double r, double qx, double qy, double gx,
+                             double gy, int drag, double ix, double iy,
+                             double fl, double *s)
+{
+  if (!(r > fl))
+    return;
+  double ax = fabs(qx), ay = fabs(qy);
+  if (drag) {
+    double bx = r * fabs(gx), by = r * fabs(gy);
+    ax = ax > bx ? ax : bx;
+    ay = ay > by ? ay : by;
+  }
+  double v = ax * ix + ay * iy;
+  if (v > *s * r)
+    *s = v / r;
+}
+
 void sbi_pgd_stage(struct sb_pgd *g, double dt, int stage)
 {
   const int muscl = g->p.scheme == SB_PGD_MUSCL;
@@ -240,6 +260,11 @@ void sbi_pgd_stage(struct sb_pgd *g, double dt, int stage)
   sweep_x(g, dt, bw);
   if (g->p.dim == 2)
     sweep_y(g, dt, bw);
+  const int last = stage == sbi_pgd_nstages(g) - 1;
+  const int drag = !isinf(g->p.tau);
+  const double fl = g->p.rho_floor, ix = 1.0 / g->dx;
+  const double iy = g->p.dim == 2 ? 1.0 / g->dy : 0.0;
+  double sp = 0;
   for (size_t j = 0; j < g->ny; j++) {
     size_t c = sbi_pgd_idx(g, 0, (long)j);
     for (size_t i = 0; i < g->nx; i++, c++) {
@@ -258,22 +283,36 @@ void sbi_pgd_stage(struct sb_pgd *g, double dt, int stage)
       g->rho[c] = r;
       g->qx[c] = x;
       g->qy[c] = y;
+      if (last)
+        speed_acc(r, x, y, g->ugx[c], g->ugy[c], drag, ix, iy, fl, &sp);
     }
   }
+  g->speed = sp;
+  g->speed_ok = last;
 }
 
-void sbi_pgd_drag(struct sb_pgd *g, double h)
+void sbi_pgd_drag(struct sb_pgd *g, double h, int track)
 {
   if (isinf(g->p.tau) || !(h > 0))
     return;
   const double e = exp(-h / g->p.tau), a = -expm1(-h / g->p.tau);
+  const double fl = g->p.rho_floor, ix = 1.0 / g->dx;
+  const double iy = g->p.dim == 2 ? 1.0 / g->dy : 0.0;
+  double sp = 0;
   for (size_t j = 0; j < g->ny; j++) {
     size_t c = sbi_pgd_idx(g, 0, (long)j);
     for (size_t i = 0; i < g->nx; i++, c++) {
-      g->qx[c] = e * g->qx[c] + a * g->rho[c] * g->ugx[c];
-      g->qy[c] = e * g->qy[c] + a * g->rho[c] * g->ugy[c];
+      double r = g->rho[c];
+      double x = e * g->qx[c] + a * r * g->ugx[c];
+      double y = e * g->qy[c] + a * r * g->ugy[c];
+      g->qx[c] = x;
+      g->qy[c] = y;
+      if (track)
+        speed_acc(r, x, y, g->ugx[c], g->ugy[c], 1, ix, iy, fl, &sp);
     }
   }
+  g->speed = sp;
+  g->speed_ok = track;
 }
 
 double sbi_pgd_speed(const struct sb_pgd *g)
@@ -282,22 +321,14 @@ double sbi_pgd_speed(const struct sb_pgd *g)
   const double iy = g->p.dim == 2 ? 1.0 / g->dy : 0.0;
   const int drag = !isinf(g->p.tau);
   double s = 0;
-  /* max over cells of (|qx| ix + |qy| iy)/rho, without dividing: the
-   * drag relaxes u towards the gas, so |u| is bounded by max(|u|, |U|) */
-  for (size_t j = 0; j < g->ny; j++) {
-    size_t c = sbi_pgd_idx(g, 0, (long)j);
-    for (size_t i = 0; i < g->nx; i++, c++) {
-      double r = g->rho[c];
-      if (!(r > fl))
-        continue;
-      double ax = fabs(g->qx[c]), ay = fabs(g->qy[c]);
-      if (drag) {
-        ax = fmax(ax, r * fabs(g->ugx[c]));
-        ay = fmax(ay, r * fabs(g->ugy[c]));
-      }
-      double v = ax * ix + ay * iy;
-      if (v > s * r)
-        s = v / r;
+  if (g->speed_ok) {
+    s = g->speed;
+  } else {
+    for (size_t j = 0; j < g->ny; j++) {
+      size_t c = sbi_pgd_idx(g, 0, (long)j);
+      for (size_t i = 0; i < g->nx; i++, c++)
+        speed_acc(g->rho[c], g->qx[c], g->qy[c], g->ugx[c], g->ugy[c], drag,
+                  ix, iy, fl, &s);
     }
   }
   for (size_t k = 0; k < g->p.ninflow; k++) {
@@ -319,13 +350,13 @@ double sb_pgd_dt(const sb_pgd *g)
 /* One Strang step, dt already checked. */
 static void step(sb_pgd *g, double dt)
 {
-  sbi_pgd_drag(g, 0.5 * dt);
+  sbi_pgd_drag(g, 0.5 * dt, 0);
   sbi_pgd_transport_begin(g);
   for (int s = 0; s < sbi_pgd_nstages(g); s++) {
     sbi_pgd_fill_ghosts(g);
     sbi_pgd_stage(g, dt, s);
   }
-  sbi_pgd_drag(g, 0.5 * dt);
+  sbi_pgd_drag(g, 0.5 * dt, 1);
   g->t += dt;
   g->steps++;
 }
