@@ -30,6 +30,7 @@ typedef struct {
 
 struct sb_pgd_dd {
   sb_pgd_params p;
+  sbi_locator loc;
   size_t px, py, nbx, nby;
   double dx, dy, pspeed;
   dd_block *b;
@@ -147,6 +148,7 @@ sb_pgd_dd *sb_pgd_dd_alloc(const sb_pgd_params *p, size_t px, size_t py,
   d->dx = p->L[0] / (double)p->nx;
   d->dy = p->L[1] / (double)p->ny;
   d->pspeed = sbi_pgd_param_speed(p);
+  sbi_locator_init(&d->loc, p);
   for (size_t bj = 0; bj < py; bj++)
     for (size_t bi = 0; bi < px; bi++) {
       dd_block *b = &d->b[bi + px * bj];
@@ -163,6 +165,7 @@ sb_pgd_dd *sb_pgd_dd_alloc(const sb_pgd_params *p, size_t px, size_t py,
         sb_pgd_dd_free(d);
         return NULL;
       }
+      sbi_pgd_geometry(b->e, d->dx, d->dy, p->origin, b->i0, b->j0);
     }
   return d;
 }
@@ -248,8 +251,8 @@ static int route(sb_pgd_dd *d, sb_pgd_particle *q)
                    q->w * q->v[1]);
     return SB_SUCCESS;
   }
-  size_t i, j;
-  sbi_lag_cell(&d->p, q->x, &i, &j);
+  size_t i = sbi_locate1(&d->loc, 0, q->x[0]);
+  size_t j = sbi_locate1(&d->loc, 1, q->x[1]);
   dd_block *b = &d->b[i / d->nbx + d->px * (j / d->nby)];
   if (b->kind == 'L')
     return sbi_parts_push(&b->parts, q);
@@ -279,12 +282,15 @@ static int inject_all(sb_pgd_dd *d, double dt)
         double un = sgn * in->u[dir], len = dir ? d->dx : d->dy;
         if (!(un > 0) || !(in->rho > 0))
           continue;
-        double xn = q->origin[dir] + (sgn > 0 ? 0.0 : q->L[dir]);
+        /* global arithmetic, as the single-domain particles */
+        double xn = d->p.origin[dir] + (sgn > 0 ? 0.0 : d->p.L[dir]);
+        size_t off = dir ? b->i0 : b->j0;
         for (size_t c = in->first; c < in->first + in->count; c++) {
           double M = in->rho * un * len * dt;
           double P[2] = {M * in->u[0], M * in->u[1]};
-          if (sbi_lag_inject(q, dir, xn, q->origin[1 - dir] +
-                             (double)c * len, len, M, P, dt, &d->moving))
+          if (sbi_lag_inject(&d->p, dir, xn, d->p.origin[1 - dir] +
+                             (double)(off + c) * len, len, M, P, dt,
+                             &d->moving))
             return SB_ENOMEM;
           sbi_budget_add(&d->bud, in->side, 0, M, P[0], P[1]);
         }
@@ -305,14 +311,16 @@ static int inject_all(sb_pgd_dd *d, double dt)
       }
       if (d->b[b->nbr[s]].kind != 'L')
         continue;
-      int dir = s >= SB_PGD_SOUTH;
-      double xn = q->origin[dir] + (s == SB_PGD_EAST || s == SB_PGD_NORTH
-                                        ? q->L[dir] : 0.0);
+      int dir = s >= SB_PGD_SOUTH, hi = s == SB_PGD_EAST || s == SB_PGD_NORTH;
+      size_t face = dir ? b->j0 + (hi ? d->nby : 0) : b->i0 + (hi ? d->nbx : 0);
+      double xn = d->p.origin[dir] + (double)face * (dir ? d->dy : d->dx);
       double len = dir ? d->dx : d->dy;
+      size_t off = dir ? b->i0 : b->j0;
       for (size_t c = 0; c < b->e->nb[s]; c++) {
         double P[2] = {f[3 * c + 1], f[3 * c + 2]};
-        if (sbi_lag_inject(q, dir, xn, q->origin[1 - dir] + (double)c * len,
-                           len, f[3 * c], P, dt, &d->moving))
+        if (sbi_lag_inject(&d->p, dir, xn, d->p.origin[1 - dir] +
+                           (double)(off + c) * len, len, f[3 * c], P, dt,
+                           &d->moving))
           return SB_ENOMEM;
       }
     }
@@ -320,14 +328,9 @@ static int inject_all(sb_pgd_dd *d, double dt)
   return SB_SUCCESS;
 }
 
-int sb_pgd_dd_step(sb_pgd_dd *d, double dt)
+/* One step, dt already checked. */
+static int dd_step(sb_pgd_dd *d, double dt)
 {
-  if (!d)
-    return sbi_error(SB_EINVAL, __func__, "NULL decomposition");
-  double lim = sb_pgd_dd_dt(d);
-  if (!(dt > 0) || !isfinite(dt) || dt > lim * (1 + 1e-12))
-    return sbi_error(SB_EINVAL, __func__, "dt = %g: must be in (0, %g]", dt,
-                     lim);
   int nst = 1;
   for (size_t k = 0; k < d->nblocks; k++)
     if (d->b[k].kind == 'E') {
@@ -363,31 +366,40 @@ int sb_pgd_dd_step(sb_pgd_dd *d, double dt)
     for (size_t m = 0; m < b->parts.n; m++) {
       sb_pgd_particle q = b->parts.q[m];
       sbi_lag_move_coef(&d->p, &q, dt, pe, pg);
-      int stay = q.x[0] >= b->p.origin[0] &&
-                 q.x[0] < b->p.origin[0] + b->p.L[0] &&
-                 q.x[1] >= b->p.origin[1] &&
-                 q.x[1] < b->p.origin[1] + b->p.L[1];
-      if (stay) {
-        size_t i, j; /* the cell rule decides ties at block edges */
-        sbi_lag_cell(&d->p, q.x, &i, &j);
-        stay = i / d->nbx + d->px * (j / d->nby) == k;
-      }
+      /* still in the block: the cell rule decides, as in route() */
+      size_t i = sbi_locate1(&d->loc, 0, q.x[0]);
+      size_t j = sbi_locate1(&d->loc, 1, q.x[1]);
+      int stay = q.x[0] >= d->p.origin[0] && q.x[1] >= d->p.origin[1] &&
+                 q.x[0] < d->p.origin[0] + d->p.L[0] &&
+                 q.x[1] < d->p.origin[1] + d->p.L[1] &&
+                 i / d->nbx + d->px * (j / d->nby) == k;
       if (stay)
         b->parts.q[w++] = q;
       else if (sbi_parts_push(&d->moving, &q))
-        return sbi_error(SB_ENOMEM, __func__, "out of memory");
+        return sbi_error(SB_ENOMEM, "sb_pgd_dd_step", "out of memory");
     }
     b->parts.n = w;
   }
   if (inject_all(d, dt))
-    return sbi_error(SB_ENOMEM, __func__, "out of memory");
+    return sbi_error(SB_ENOMEM, "sb_pgd_dd_step", "out of memory");
   for (size_t m = 0; m < d->moving.n; m++)
     if (route(d, &d->moving.q[m]))
-      return sbi_error(SB_ENOMEM, __func__, "out of memory");
+      return sbi_error(SB_ENOMEM, "sb_pgd_dd_step", "out of memory");
   d->moving.n = 0;
   d->t += dt;
   d->steps++;
   return SB_SUCCESS;
+}
+
+int sb_pgd_dd_step(sb_pgd_dd *d, double dt)
+{
+  if (!d)
+    return sbi_error(SB_EINVAL, __func__, "NULL decomposition");
+  double lim = sb_pgd_dd_dt(d);
+  if (!(dt > 0) || !isfinite(dt) || dt > lim * (1 + 1e-12))
+    return sbi_error(SB_EINVAL, __func__, "dt = %g: must be in (0, %g]", dt,
+                     lim);
+  return dd_step(d, dt);
 }
 
 int sb_pgd_dd_advance(sb_pgd_dd *d, double t_end, size_t *nsteps)
@@ -403,7 +415,7 @@ int sb_pgd_dd_advance(sb_pgd_dd *d, double t_end, size_t *nsteps)
     int last = dt >= left * (1 - 1e-12);
     if (last)
       dt = left;
-    int st = sb_pgd_dd_step(d, dt);
+    int st = dd_step(d, dt);
     if (st)
       return st;
     k++;
@@ -443,9 +455,8 @@ int sb_pgd_dd_fields(const sb_pgd_dd *d, double *rho, double *qx, double *qy)
     }
     for (size_t m = 0; m < b->parts.n; m++) {
       const sb_pgd_particle *q = &b->parts.q[m];
-      size_t i, j;
-      sbi_lag_cell(&d->p, q->x, &i, &j);
-      size_t o = i + nx * j;
+      size_t o = sbi_locate1(&d->loc, 0, q->x[0]) +
+                 nx * sbi_locate1(&d->loc, 1, q->x[1]);
       if (rho)
         rho[o] += q->w * iA;
       if (qx)

@@ -62,18 +62,28 @@ struct sb_pgd *sbi_pgd_alloc(const sb_pgd_params *p, const int external[4])
     for (size_t k = in->first; k < in->first + in->count; k++)
       g->inflow_at[in->side][k] = (int)m;
   }
+  sbi_pgd_geometry(g, g->dx, g->dy, p->origin, 0, 0);
+  return g;
+}
+
+void sbi_pgd_geometry(struct sb_pgd *g, double dx, double dy,
+                      const double origin[2], size_t i0, size_t j0)
+{
+  g->dx = dx;
+  g->dy = dy;
   /* the gas is steady: sample it once at the cell centres */
   for (size_t j = 0; j < g->ny; j++)
     for (size_t i = 0; i < g->nx; i++) {
       double ug[2];
-      sbi_pgd_gas_at(p, p->origin[0] + ((double)i + 0.5) * g->dx,
-                     p->dim == 2 ? p->origin[1] + ((double)j + 0.5) * g->dy
-                                 : 0.0, ug);
+      sbi_pgd_gas_at(&g->p, origin[0] + ((double)(i0 + i) + 0.5) * dx,
+                     g->p.dim == 2
+                         ? origin[1] + ((double)(j0 + j) + 0.5) * dy
+                         : 0.0,
+                     ug);
       size_t c = sbi_pgd_idx(g, (long)i, (long)j);
       g->ugx[c] = ug[0];
       g->ugy[c] = ug[1];
     }
-  return g;
 }
 
 sb_pgd *sb_pgd_alloc(const sb_pgd_params *p)

@@ -83,6 +83,12 @@ static inline double sbi_pgd_vel(double rho, double q, double floor_)
  * flag get their ghost cells from the caller (domain decomposition). */
 struct sb_pgd *sbi_pgd_alloc(const sb_pgd_params *p, const int external[4]);
 
+/* Cell sizes and gas samples of a block whose first cell is (i0, j0) of
+ * a grid with lower-left corner `origin` (the same arithmetic as the
+ * whole grid, so that a decomposition reproduces it bit for bit). */
+void sbi_pgd_geometry(struct sb_pgd *g, double dx, double dy,
+                      const double origin[2], size_t i0, size_t j0);
+
 /* Ghost cells of the non-external sides from the boundary conditions. */
 void sbi_pgd_fill_ghosts(struct sb_pgd *g);
 
@@ -146,9 +152,28 @@ int sbi_lag_place(const sb_pgd_params *p, sb_pgd_particle *q);
 double sbi_lag_speed(const sb_pgd_params *p, const sb_pgd_particle *q,
                      size_t n);
 
-/* Cell (i, j) containing a point of the domain (clamped). */
-void sbi_lag_cell(const sb_pgd_params *p, const double x[2], size_t *i,
-                  size_t *j);
+/* Cell (i, j) containing a point of the domain (clamped), with the
+ * grid's inverse spacings precomputed: one rule everywhere, so that a
+ * particle's cell (and block) is decided the same way by every caller. */
+typedef struct {
+  double o[2], inv[2];
+  size_t n[2];
+} sbi_locator;
+
+static inline void sbi_locator_init(sbi_locator *L, const sb_pgd_params *p)
+{
+  for (int d = 0; d < 2; d++) {
+    L->o[d] = p->origin[d];
+    L->n[d] = d ? p->ny : p->nx;
+    L->inv[d] = (double)L->n[d] / p->L[d];
+  }
+}
+
+static inline size_t sbi_locate1(const sbi_locator *L, int d, double x)
+{
+  double f = floor((x - L->o[d]) * L->inv[d]);
+  return f < 0 ? 0 : f >= (double)L->n[d] ? L->n[d] - 1 : (size_t)f;
+}
 
 /* Step bound from a speed (|ux|/dx + |uy|/dy), p->cfl and p->dt_max. */
 double sbi_pgd_dt_from_speed(const sb_pgd_params *p, double speed);

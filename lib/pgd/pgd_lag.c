@@ -15,6 +15,7 @@
 
 struct sb_pgd_lag {
   sb_pgd_params p;
+  sbi_locator loc;
   sbi_parts a;
   double pspeed;  /* speed bound of inflow states and gas */
   double t;
@@ -125,15 +126,6 @@ double sbi_lag_speed(const sb_pgd_params *p, const sb_pgd_particle *q,
   return s;
 }
 
-void sbi_lag_cell(const sb_pgd_params *p, const double x[2], size_t *i,
-                  size_t *j)
-{
-  double fi = floor((x[0] - p->origin[0]) / p->L[0] * (double)p->nx);
-  double fj = floor((x[1] - p->origin[1]) / p->L[1] * (double)p->ny);
-  *i = fi < 0 ? 0 : fi >= (double)p->nx ? p->nx - 1 : (size_t)fi;
-  *j = fj < 0 ? 0 : fj >= (double)p->ny ? p->ny - 1 : (size_t)fj;
-}
-
 /* ------------------------------------------------------------ public */
 
 sb_pgd_lag *sb_pgd_lag_alloc(const sb_pgd_params *p)
@@ -152,6 +144,7 @@ sb_pgd_lag *sb_pgd_lag_alloc(const sb_pgd_params *p)
     return NULL;
   }
   l->p = *p;
+  sbi_locator_init(&l->loc, p);
   l->pspeed = sbi_pgd_param_speed(p);
   return l;
 }
@@ -296,9 +289,8 @@ int sb_pgd_lag_deposit(const sb_pgd_lag *l, double *rho, double *qx,
     memset(qy, 0, n * sizeof *qy);
   for (size_t k = 0; k < l->a.n; k++) {
     const sb_pgd_particle *q = &l->a.q[k];
-    size_t i, j;
-    sbi_lag_cell(p, q->x, &i, &j);
-    size_t c = i + p->nx * j;
+    size_t c = sbi_locate1(&l->loc, 0, q->x[0]) +
+               p->nx * sbi_locate1(&l->loc, 1, q->x[1]);
     if (rho)
       rho[c] += q->w * iA;
     if (qx)

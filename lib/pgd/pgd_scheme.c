@@ -230,7 +230,9 @@ static void velocities(struct sb_pgd *g)
 
 /* Speed bound of one cell, folded into *s: (|qx| ix + |qy| iy)/rho, the
  * gas velocity included where there is drag (the drag relaxes u towards
- * it, so |u| stays below max(|u|, |U|)); no division unless *s grows. */
+ * it, so |u| stays below max(|u|, |U|)).  Divides only near or above the
+ * running maximum; the result is the exact maximum of the quotients,
+ * independent of the order of the cells (domain decomposition). */
 static inline void speed_acc(double r, double qx, double qy, double gx,
                              double gy, int drag, double ix, double iy,
                              double fl, double *s)
@@ -244,8 +246,11 @@ static inline void speed_acc(double r, double qx, double qy, double gx,
     ay = ay > by ? ay : by;
   }
   double v = ax * ix + ay * iy;
-  if (v > *s * r)
-    *s = v / r;
+  if (v >= *s * r * (1 - 1e-12)) {
+    double w = v / r;
+    if (w > *s)
+      *s = w;
+  }
 }
 
 void sbi_pgd_stage(struct sb_pgd *g, double dt, int stage)
