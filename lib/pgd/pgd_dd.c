@@ -363,16 +363,16 @@ static int dd_step(sb_pgd_dd *d, double dt)
     if (b->kind != 'L')
       continue;
     size_t w = 0;
+    sbi_lag_move_all(&d->p, b->parts.q, b->parts.n, dt, pe, pg);
     for (size_t m = 0; m < b->parts.n; m++) {
-      sb_pgd_particle q = b->parts.q[m];
-      sbi_lag_move_coef(&d->p, &q, dt, pe, pg);
+      const sb_pgd_particle q = b->parts.q[m];
       /* still in the block: the cell rule decides, as in route() */
       size_t i = sbi_locate1(&d->loc, 0, q.x[0]);
       size_t j = sbi_locate1(&d->loc, 1, q.x[1]);
       int stay = q.x[0] >= d->p.origin[0] && q.x[1] >= d->p.origin[1] &&
                  q.x[0] < d->p.origin[0] + d->p.L[0] &&
                  q.x[1] < d->p.origin[1] + d->p.L[1] &&
-                 i / d->nbx + d->px * (j / d->nby) == k;
+                 i - b->i0 < d->nbx && j - b->j0 < d->nby; /* unsigned */
       if (stay)
         b->parts.q[w++] = q;
       else if (sbi_parts_push(&d->moving, &q))

@@ -134,6 +134,9 @@ void sbi_lag_coef(const sb_pgd_params *p, double h, double *e, double *g);
  * start position), with the coefficients of sbi_lag_coef(h). */
 void sbi_lag_move_coef(const sb_pgd_params *p, sb_pgd_particle *q, double h,
                        double e, double gain);
+/* The same for n particles. */
+void sbi_lag_move_all(const sb_pgd_params *p, sb_pgd_particle *q, size_t n,
+                      double h, double e, double gain);
 
 /* Inject the mass M with momentum P[2] that crossed one face during a
  * step of length dt: p->inject_time x p->inject_face particles entering
@@ -171,8 +174,8 @@ static inline void sbi_locator_init(sbi_locator *L, const sb_pgd_params *p)
 
 static inline size_t sbi_locate1(const sbi_locator *L, int d, double x)
 {
-  double f = floor((x - L->o[d]) * L->inv[d]);
-  return f < 0 ? 0 : f >= (double)L->n[d] ? L->n[d] - 1 : (size_t)f;
+  double f = (x - L->o[d]) * L->inv[d]; /* truncation = floor for f >= 0 */
+  return !(f > 0) ? 0 : f >= (double)L->n[d] ? L->n[d] - 1 : (size_t)f;
 }
 
 /* Step bound from a speed (|ux|/dx + |uy|/dy), p->cfl and p->dt_max. */

@@ -60,13 +60,24 @@ void sbi_lag_move_coef(const sb_pgd_params *p, sb_pgd_particle *q, double h,
                        double e, double gain)
 {
   double ug[2] = {0, 0};
-  if (!isinf(p->tau))
+  if (p->gas && !isinf(p->tau)) {
     sbi_pgd_gas_at(p, q->x[0], q->x[1], ug);
+  } else if (!isinf(p->tau)) {
+    ug[0] = p->ugas[0];
+    ug[1] = p->ugas[1];
+  }
   for (int d = 0; d < 2; d++) {
     double dv = q->v[d] - ug[d];
     q->x[d] += ug[d] * h + dv * gain;
     q->v[d] = ug[d] + dv * e;
   }
+}
+
+void sbi_lag_move_all(const sb_pgd_params *p, sb_pgd_particle *q, size_t n,
+                      double h, double e, double gain)
+{
+  for (size_t k = 0; k < n; k++)
+    sbi_lag_move_coef(p, q + k, h, e, gain);
 }
 
 int sbi_lag_inject(const sb_pgd_params *p, int dir, double xn, double s0,
@@ -225,9 +236,7 @@ int sb_pgd_lag_step(sb_pgd_lag *l, double dt)
     return sbi_error(SB_EINVAL, __func__, "dt = %g: must be > 0", dt);
   double e, g;
   sbi_lag_coef(&l->p, dt, &e, &g);
-  size_t n0 = l->a.n;
-  for (size_t k = 0; k < n0; k++)
-    sbi_lag_move_coef(&l->p, &l->a.q[k], dt, e, g);
+  sbi_lag_move_all(&l->p, l->a.q, l->a.n, dt, e, g);
   if (inject_inflows(&l->p, dt, &l->a, &l->bud))
     return sbi_error(SB_ENOMEM, __func__, "out of memory");
   /* remove the particles that left; keep the order of the others */
