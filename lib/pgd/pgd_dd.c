@@ -262,6 +262,7 @@ static int route(sb_pgd_dd *d, sb_pgd_particle *q)
   b->e->qx[c] += q->w * q->v[0] * iA;
   b->e->qy[c] += q->w * q->v[1] * iA;
   b->e->speed_ok = 0;
+  b->e->empty = 0;
   return SB_SUCCESS;
 }
 

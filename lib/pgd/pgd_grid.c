@@ -157,6 +157,7 @@ int sb_pgd_init(sb_pgd *g, sb_pgd_init_fn f, void *data)
     }
   gsl_integration_glfixed_table_free(tab);
   g->speed_ok = 0;
+  g->empty = 0;
   return SB_SUCCESS;
 }
 
@@ -174,6 +175,7 @@ int sb_pgd_set_cell(sb_pgd *g, size_t i, size_t j, double rho, double ux,
   g->qx[c] = rho * ux;
   g->qy[c] = g->p.dim == 2 ? rho * uy : 0.0;
   g->speed_ok = 0;
+  g->empty = 0;
   return SB_SUCCESS;
 }
 

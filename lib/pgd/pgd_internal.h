@@ -63,6 +63,7 @@ struct sb_pgd {
   size_t steps;
   double speed;              /* max (|ux|/dx + |uy|/dy) of the cells, */
   int speed_ok;              /* kept up to date by the step's last pass */
+  int empty;                 /* every cell is vacuum (skip the work) */
   double *line;              /* work buffers for one line of cells */
 };
 
