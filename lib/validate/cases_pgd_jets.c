@@ -264,11 +264,11 @@ static int case_jets(const sbv_ctx *ctx, sbv_report *rep)
              "at rest for tau = 200 and tau = 1.  At tau = 1 the jets do "
              "NOT agree: they still meet (at t = ln 2, speed 1/2) and the "
              "particle jets cross while the Eulerian ones merge and stop "
-             "near (3/4, 3/4).  With any uniform gas the offset between "
-             "the two jets' bands changes by tau (the jets' velocity "
-             "relative to the gas decays as e^{-t/tau}), so jets 1/9 wide "
-             "starting 1/2 apart stop meeting only for tau < ~0.4: the "
-             "agreeing case shown is tau = 0.05 with gas (1, 1)");
+             "near (3/4, 3/4).  With any uniform gas, d(y - x)/dt = "
+             "-e^{-t/tau} for the west jet (and the opposite for the "
+             "south jet), so their bands [4/9, 5/9] and [-5/9, -4/9] of "
+             "y - x stay apart only for tau < 4/9: the agreeing case shown "
+             "is tau = 0.05 with gas (1, 1)");
     sbv_note(rep, "- criteria: disagreeing cases: relative L1 >= 0.5 on "
              "the finest grid and not shrinking (ratio >= 0.8) under 3x "
              "refinement; agreeing case: the relative L1 shrinks at the "
