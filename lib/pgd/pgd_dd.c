@@ -26,6 +26,9 @@ typedef struct {
   struct sb_pgd *e;      /* Eulerian block */
   sbi_parts parts;       /* Lagrangian block */
   int nbr[4];            /* neighbour block per side, -1: physical side */
+  double *pend[4];       /* Eulerian block: mass and momentum sent towards
+                            a Lagrangian neighbour and not yet injected
+                            (3 per boundary cell) */
 } dd_block;
 
 struct sb_pgd_dd {
@@ -48,6 +51,8 @@ void sb_pgd_dd_free(sb_pgd_dd *d)
   for (size_t k = 0; k < d->nblocks; k++) {
     sb_pgd_free(d->b[k].e);
     sbi_parts_free(&d->b[k].parts);
+    for (int s = 0; s < 4; s++)
+      free(d->b[k].pend[s]);
   }
   free(d->b);
   sbi_parts_free(&d->moving);
@@ -166,6 +171,13 @@ sb_pgd_dd *sb_pgd_dd_alloc(const sb_pgd_params *p, size_t px, size_t py,
         return NULL;
       }
       sbi_pgd_geometry(b->e, d->dx, d->dy, p->origin, b->i0, b->j0);
+      for (int s = 0; s < 4; s++)
+        if (b->nbr[s] >= 0 && kinds[b->nbr[s]] == 'L' &&
+            !(b->pend[s] = calloc(3 * b->e->nb[s], sizeof(double)))) {
+          sb_pgd_dd_free(d);
+          sbi_error(SB_ENOMEM, __func__, "out of memory");
+          return NULL;
+        }
     }
   return d;
 }
@@ -317,12 +329,23 @@ static int inject_all(sb_pgd_dd *d, double dt)
       double xn = d->p.origin[dir] + (double)face * (dir ? d->dy : d->dx);
       double len = dir ? d->dx : d->dy;
       size_t off = dir ? b->i0 : b->j0;
+      /* a face's outflow becomes particles once it carries at least the
+       * mass of a cell at the vacuum threshold; smaller amounts wait (the
+       * diffuse fringe of a jet would otherwise make many particles of
+       * negligible weight), so nothing is lost */
+      const double mmin = d->p.rho_floor * d->dx * d->dy;
+      double *pe = b->pend[s];
       for (size_t c = 0; c < b->e->nb[s]; c++) {
-        double P[2] = {f[3 * c + 1], f[3 * c + 2]};
+        for (int m = 0; m < 3; m++)
+          pe[3 * c + m] += f[3 * c + m];
+        if (!(pe[3 * c] > mmin))
+          continue;
+        double P[2] = {pe[3 * c + 1], pe[3 * c + 2]};
         if (sbi_lag_inject(&d->p, dir, xn, d->p.origin[1 - dir] +
-                           (double)(off + c) * len, len, f[3 * c], P, dt,
+                           (double)(off + c) * len, len, pe[3 * c], P, dt,
                            &d->moving))
           return SB_ENOMEM;
+        pe[3 * c] = pe[3 * c + 1] = pe[3 * c + 2] = 0.0;
       }
     }
   }
@@ -479,6 +502,10 @@ void sb_pgd_dd_totals(const sb_pgd_dd *d, double tot[3])
       sb_pgd_totals(b->e, t);
       for (int m = 0; m < 3; m++)
         tot[m] += t[m];
+      for (int s = 0; s < 4; s++)
+        for (size_t c = 0; b->pend[s] && c < b->e->nb[s]; c++)
+          for (int m = 0; m < 3; m++)
+            tot[m] += b->pend[s][3 * c + m];
       continue;
     }
     for (size_t m = 0; m < b->parts.n; m++) {
