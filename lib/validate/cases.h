@@ -140,5 +140,9 @@ extern const sbv_case sbv_cases_engine2[];
 extern const size_t sbv_ncases_engine2;
 extern const sbv_case sbv_cases_agglo[];
 extern const size_t sbv_ncases_agglo;
+extern const sbv_case sbv_cases_pgd[];
+extern const size_t sbv_ncases_pgd;
+extern const sbv_case sbv_cases_pgd_jets[];
+extern const size_t sbv_ncases_pgd_jets;
 
 #endif /* SB_VALIDATE_CASES_H */

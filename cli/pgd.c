@@ -1,0 +1,690 @@
+/* pgd.c — `smolbridge pgd CONFIG.ini`: pressureless gas dynamics from an
+ * INI file (libinih): a 1-D Riemann problem or a 2-D run with inflows,
+ * Eulerian, Lagrangian or domain-decomposed.  Writes fields.csv (and for
+ * 2-D fields.vtk), exact.csv for Riemann problems, and summary.json to
+ * the output directory.  Keys, units and defaults: docs/pgd.md. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+
+#include <ini.h>
+
+#include <smolbridge/pgd.h>
+
+#include "cli.h"
+
+typedef struct {
+  sb_pgd_params p;
+  double t_end, output_every;
+  char method[16], output[512], kinds[64];
+  size_t bx, by;
+  int have_riemann, have_initial, have_ny, have_L[2], have_x0;
+  sb_pgd_riemann rp;
+  double init_rho, init_u[2];
+  /* inflow sections under construction */
+  struct {
+    char name[64];
+    int side;
+    double first, count, rho, u[2];
+  } in[SB_PGD_MAXINFLOW];
+  int nin;
+  char err[512];
+} config;
+
+static int fail(config *c, const char *fmt, ...)
+{
+  if (!c->err[0]) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(c->err, sizeof c->err, fmt, ap);
+    va_end(ap);
+  }
+  return 0; /* inih: error on this line */
+}
+
+static int num(config *c, const char *sec, const char *key, const char *v,
+               double *out, double lo, double hi, const char *what)
+{
+  char *end;
+  errno = 0;
+  double x = strtod(v, &end);
+  while (*end == ' ' || *end == '\t')
+    end++;
+  int inf_ok = isinf(hi) && isinf(x) && x > 0;
+  if (end == v || *end || (errno == ERANGE && !inf_ok) || isnan(x) ||
+      !(x >= lo && x <= hi) || (isinf(x) && !inf_ok))
+    return fail(c, "[%s] %s = '%s': must be %s", sec, key, v, what);
+  *out = x;
+  return 1;
+}
+
+static int count(config *c, const char *sec, const char *key, const char *v,
+                 size_t *out, double lo, double hi)
+{
+  double x;
+  char what[96];
+  snprintf(what, sizeof what, "an integer in [%g, %g]", lo, hi);
+  if (!num(c, sec, key, v, &x, lo, hi, what))
+    return 0;
+  if (x != floor(x))
+    return fail(c, "[%s] %s = '%s': must be %s", sec, key, v, what);
+  *out = (size_t)x;
+  return 1;
+}
+
+/* One or two numbers "a [b]". */
+static int pair(config *c, const char *sec, const char *key, const char *v,
+                double out[2], int *n)
+{
+  char *end;
+  errno = 0;
+  double a = strtod(v, &end), b = 0;
+  const char *p = end;
+  int k = end != v && isfinite(a) && errno != ERANGE;
+  if (k) {
+    while (*p == ' ' || *p == '\t' || *p == ',')
+      p++;
+    if (*p) {
+      b = strtod(p, &end);
+      k = end != p && isfinite(b) ? 2 : 0;
+      while (k && (*end == ' ' || *end == '\t'))
+        end++;
+      if (*end)
+        k = 0;
+    }
+  }
+  if (!k)
+    return fail(c, "[%s] %s = '%s': must be one or two finite numbers "
+                "(x [y])", sec, key, v);
+  out[0] = a;
+  out[1] = b;
+  if (n)
+    *n = k;
+  return 1;
+}
+
+static int side_of(const char *v)
+{
+  static const char *names[4] = {"west", "east", "south", "north"};
+  for (int s = 0; s < 4; s++)
+    if (!strcmp(v, names[s]))
+      return s;
+  return -1;
+}
+
+static int handler(void *user, const char *sec, const char *key,
+                   const char *v)
+{
+  config *c = user;
+  sb_pgd_params *p = &c->p;
+  if (!strcmp(sec, "run")) {
+    if (!strcmp(key, "dim")) {
+      size_t d;
+      if (!count(c, sec, key, v, &d, 1, 2))
+        return 0;
+      p->dim = (int)d;
+      return 1;
+    }
+    if (!strcmp(key, "nx"))
+      return count(c, sec, key, v, &p->nx, 2, 1e8);
+    if (!strcmp(key, "ny")) {
+      c->have_ny = 1;
+      return count(c, sec, key, v, &p->ny, 2, 1e8);
+    }
+    if (!strcmp(key, "L")) {
+      c->have_L[0] = c->have_L[1] = 1;
+      if (!num(c, sec, key, v, &p->L[0], 1e-300, 1e300, "a length > 0"))
+        return 0;
+      p->L[1] = p->L[0];
+      return 1;
+    }
+    if (!strcmp(key, "Lx") || !strcmp(key, "Ly")) {
+      int d = key[1] == 'y';
+      c->have_L[d] = 1;
+      return num(c, sec, key, v, &p->L[d], 1e-300, 1e300, "a length > 0");
+    }
+    if (!strcmp(key, "origin")) {
+      double o[2];
+      if (!pair(c, sec, key, v, o, NULL))
+        return 0;
+      p->origin[0] = o[0];
+      p->origin[1] = o[1];
+      return 1;
+    }
+    if (!strcmp(key, "t_end"))
+      return num(c, sec, key, v, &c->t_end, 0, 1e300, "a time >= 0");
+    if (!strcmp(key, "scheme")) {
+      sb_pgd_scheme s;
+      if (sb_pgd_scheme_from_name(v, &s))
+        return fail(c, "[run] scheme = '%s': must be upwind or muscl", v);
+      p->scheme = s;
+      return 1;
+    }
+    if (!strcmp(key, "cfl"))
+      return num(c, sec, key, v, &p->cfl, 1e-6, 1,
+                 "in (0, 1] (upwind) or (0, 0.5] (muscl)");
+    if (!strcmp(key, "dt_max"))
+      return num(c, sec, key, v, &p->dt_max, 1e-300, INFINITY,
+                 "a time > 0 or inf");
+    if (!strcmp(key, "method")) {
+      if (strcmp(v, "euler") && strcmp(v, "lagrange") &&
+          strcmp(v, "decomposition"))
+        return fail(c, "[run] method = '%s': must be euler, lagrange or "
+                    "decomposition", v);
+      snprintf(c->method, sizeof c->method, "%s", v);
+      return 1;
+    }
+    if (!strcmp(key, "output")) {
+      if (!*v || strlen(v) >= sizeof c->output)
+        return fail(c, "[run] output: must be a directory name (< 512 "
+                    "characters)");
+      snprintf(c->output, sizeof c->output, "%s", v);
+      return 1;
+    }
+    if (!strcmp(key, "output_every"))
+      return num(c, sec, key, v, &c->output_every, 1e-300, 1e300,
+                 "a time interval > 0");
+    if (!strcmp(key, "rho_floor"))
+      return num(c, sec, key, v, &p->rho_floor, 0, 1e300, "a density >= 0");
+    return fail(c, "[run]: unknown key '%s' (dim, nx, ny, L, Lx, Ly, "
+                "origin, t_end, scheme, cfl, dt_max, method, output, "
+                "output_every, rho_floor)", key);
+  }
+  if (!strcmp(sec, "riemann")) {
+    c->have_riemann = 1;
+    sb_pgd_riemann *r = &c->rp;
+    if (!strcmp(key, "x0")) {
+      c->have_x0 = 1;
+      return num(c, sec, key, v, &r->x0, -1e300, 1e300, "a position");
+    }
+    if (!strcmp(key, "rho_l"))
+      return num(c, sec, key, v, &r->rho_l, 0, 1e300, "a density >= 0");
+    if (!strcmp(key, "rho_r"))
+      return num(c, sec, key, v, &r->rho_r, 0, 1e300, "a density >= 0");
+    if (!strcmp(key, "u_l"))
+      return num(c, sec, key, v, &r->u_l, -1e300, 1e300, "a velocity");
+    if (!strcmp(key, "u_r"))
+      return num(c, sec, key, v, &r->u_r, -1e300, 1e300, "a velocity");
+    return fail(c, "[riemann]: unknown key '%s' (x0, rho_l, u_l, rho_r, "
+                "u_r)", key);
+  }
+  if (!strcmp(sec, "initial")) {
+    c->have_initial = 1;
+    if (!strcmp(key, "rho"))
+      return num(c, sec, key, v, &c->init_rho, 0, 1e300, "a density >= 0");
+    if (!strcmp(key, "u"))
+      return pair(c, sec, key, v, c->init_u, NULL);
+    return fail(c, "[initial]: unknown key '%s' (rho, u)", key);
+  }
+  if (!strcmp(sec, "drag")) {
+    if (!strcmp(key, "tau"))
+      return num(c, sec, key, v, &p->tau, 1e-300, INFINITY,
+                 "a time > 0 or inf (no drag)");
+    if (!strcmp(key, "U"))
+      return pair(c, sec, key, v, p->ugas, NULL);
+    return fail(c, "[drag]: unknown key '%s' (tau, U)", key);
+  }
+  if (!strcmp(sec, "boundary")) {
+    int s = side_of(key);
+    if (s < 0)
+      return fail(c, "[boundary]: unknown key '%s' (west, east, south, "
+                  "north)", key);
+    if (!strcmp(v, "transmissive"))
+      p->bc[s] = SB_PGD_TRANSMISSIVE;
+    else if (!strcmp(v, "outflow"))
+      p->bc[s] = SB_PGD_OUTFLOW;
+    else if (!strcmp(v, "periodic"))
+      p->bc[s] = SB_PGD_PERIODIC;
+    else
+      return fail(c, "[boundary] %s = '%s': must be transmissive, outflow "
+                  "or periodic", key, v);
+    return 1;
+  }
+  if (!strcmp(sec, "particles")) {
+    if (!strcmp(key, "inject_time"))
+      return count(c, sec, key, v, &p->inject_time, 1, 1000);
+    if (!strcmp(key, "inject_face"))
+      return count(c, sec, key, v, &p->inject_face, 1, 1000);
+    return fail(c, "[particles]: unknown key '%s' (inject_time, "
+                "inject_face)", key);
+  }
+  if (!strcmp(sec, "decomposition")) {
+    if (!strcmp(key, "blocks")) {
+      double b[2];
+      int n;
+      if (!pair(c, sec, key, v, b, &n))
+        return 0;
+      if (n != 2 || b[0] < 1 || b[1] < 1 || b[0] > 64 || b[1] > 64 ||
+          b[0] != floor(b[0]) || b[1] != floor(b[1]))
+        return fail(c, "[decomposition] blocks = '%s': must be two "
+                    "integers px py in [1, 64]", v);
+      c->bx = (size_t)b[0];
+      c->by = (size_t)b[1];
+      return 1;
+    }
+    if (!strcmp(key, "kinds")) {
+      if (strlen(v) >= sizeof c->kinds || strspn(v, "EL") != strlen(v))
+        return fail(c, "[decomposition] kinds = '%s': letters E "
+                    "(Eulerian) and L (Lagrangian), one per block", v);
+      snprintf(c->kinds, sizeof c->kinds, "%s", v);
+      return 1;
+    }
+    return fail(c, "[decomposition]: unknown key '%s' (blocks, kinds)",
+                key);
+  }
+  if (!strncmp(sec, "inflow", 6) && (sec[6] == ' ' || !sec[6])) {
+    int k;
+    for (k = 0; k < c->nin; k++)
+      if (!strcmp(c->in[k].name, sec))
+        break;
+    if (k == c->nin) {
+      if (c->nin == SB_PGD_MAXINFLOW)
+        return fail(c, "[%s]: more than %d inflow sections", sec,
+                    SB_PGD_MAXINFLOW);
+      c->nin++;
+      memset(&c->in[k], 0, sizeof c->in[k]);
+      snprintf(c->in[k].name, sizeof c->in[k].name, "%s", sec);
+      c->in[k].side = -1;
+      c->in[k].count = -1;
+      c->in[k].rho = NAN;
+    }
+    if (!strcmp(key, "side")) {
+      c->in[k].side = side_of(v);
+      if (c->in[k].side < 0)
+        return fail(c, "[%s] side = '%s': must be west, east, south or "
+                    "north", sec, v);
+      return 1;
+    }
+    if (!strcmp(key, "first"))
+      return num(c, sec, key, v, &c->in[k].first, 0, 1e8,
+                 "a boundary cell index >= 0");
+    if (!strcmp(key, "count"))
+      return num(c, sec, key, v, &c->in[k].count, 1, 1e8,
+                 "a number of cells >= 1");
+    if (!strcmp(key, "rho"))
+      return num(c, sec, key, v, &c->in[k].rho, 0, 1e300, "a density >= 0");
+    if (!strcmp(key, "u"))
+      return pair(c, sec, key, v, c->in[k].u, NULL);
+    return fail(c, "[%s]: unknown key '%s' (side, first, count, rho, u)",
+                sec, key);
+  }
+  return fail(c, "unknown section [%s] (run, riemann, initial, drag, "
+              "boundary, inflow NAME, particles, decomposition)", sec);
+}
+
+/* ------------------------------------------------------------ helpers */
+
+static int mkdir_p(const char *path)
+{
+  char buf[1024];
+  snprintf(buf, sizeof buf, "%s", path);
+  for (char *p = buf + 1; *p; p++)
+    if (*p == '/') {
+      *p = 0;
+      if (mkdir(buf, 0777) && errno != EEXIST)
+        return -1;
+      *p = '/';
+    }
+  if (mkdir(buf, 0777) && errno != EEXIST)
+    return -1;
+  struct stat st;
+  return stat(buf, &st) == 0 && S_ISDIR(st.st_mode) ? 0 : -1;
+}
+
+/* Remove the files a previous run may have left (ours only). */
+static void clean_outputs(const char *dir)
+{
+  static const char *fixed[] = {"fields.csv", "fields.vtk", "exact.csv",
+                                "summary.json", "series.csv"};
+  char path[1100];
+  for (size_t k = 0; k < sizeof fixed / sizeof fixed[0]; k++) {
+    snprintf(path, sizeof path, "%s/%s", dir, fixed[k]);
+    remove(path);
+  }
+  for (int k = 0; k < 100000; k++) {
+    snprintf(path, sizeof path, "%s/fields_%05d.csv", dir, k);
+    if (remove(path) != 0)
+      break;
+  }
+}
+
+static void rp_init(double x, double y, double *rho, double u[2], void *d)
+{
+  (void)y;
+  double r, v;
+  sb_pgd_riemann_eval(d, x, 0, &r, &v);
+  *rho = r;
+  u[0] = v;
+  u[1] = 0;
+}
+
+static void uniform_init(double x, double y, double *rho, double u[2],
+                         void *d)
+{
+  (void)x, (void)y;
+  const config *c = d;
+  *rho = c->init_rho;
+  u[0] = c->init_u[0];
+  u[1] = c->init_u[1];
+}
+
+/* Fields of a Lagrangian or decomposed run as CSV (cell centres). */
+static int write_fields(const sb_pgd_params *p, const double *rho,
+                        const double *qx, const double *qy, const char *path)
+{
+  FILE *f = fopen(path, "w");
+  if (!f)
+    return -1;
+  double dx = p->L[0] / (double)p->nx, dy = p->L[1] / (double)p->ny;
+  fprintf(f, "x,y,rho,ux,uy\n");
+  for (size_t j = 0; j < p->ny; j++)
+    for (size_t i = 0; i < p->nx; i++) {
+      size_t k = i + p->nx * j;
+      double r = rho[k], ok = r > p->rho_floor;
+      fprintf(f, "%.17g,%.17g,%.17g,%.17g,%.17g\n",
+              p->origin[0] + ((double)i + 0.5) * dx,
+              p->origin[1] + ((double)j + 0.5) * dy, r, ok ? qx[k] / r : 0.0,
+              ok ? qy[k] / r : 0.0);
+    }
+  return fclose(f) ? -1 : 0;
+}
+
+static void usage(FILE *f)
+{
+  fprintf(f,
+"Usage: smolbridge pgd CONFIG.ini\n"
+"\n"
+"Pressureless gas dynamics (the T = 0 moment system of a spray) on a\n"
+"regular grid; dimensionless or any consistent units.\n"
+"  [run]            dim (1 | 2), nx, ny, L | Lx Ly, origin, t_end,\n"
+"                   scheme = upwind | muscl, cfl, dt_max,\n"
+"                   method = euler | lagrange | decomposition (2-D),\n"
+"                   output (directory), output_every, rho_floor\n"
+"  [riemann]        (1-D) x0, rho_l, u_l, rho_r, u_r\n"
+"  [initial]        uniform initial state: rho, u = ux [uy]\n"
+"  [drag]           tau (inf: none), U = gas velocity ux [uy]\n"
+"  [boundary]       west | east | south | north = transmissive | outflow\n"
+"                   | periodic\n"
+"  [inflow NAME]    side, first, count (boundary cells), rho, u = ux uy\n"
+"  [particles]      inject_time, inject_face (per inflow face and step)\n"
+"  [decomposition]  blocks = px py, kinds (E/L per block from the south-\n"
+"                   west, row by row)\n"
+"Writes OUTPUT/fields.csv (x,rho,u in 1-D; x,y,rho,ux,uy in 2-D),\n"
+"fields.vtk (2-D), exact.csv (Riemann problems), summary.json, and\n"
+"fields_NNNNN.csv every output_every.  Keys, units, defaults:\n"
+"docs/pgd.md; examples: examples/pgd_*.ini.\n"
+"Exit status: 0 done, 1 the run failed, 2 usage or input error.\n");
+}
+
+/* ------------------------------------------------------------ main */
+
+int sbc_pgd_main(int argc, char **argv)
+{
+  if (argc < 2 || !strcmp(argv[1], "-h") || !strcmp(argv[1], "--help")) {
+    usage(argc < 2 ? stderr : stdout);
+    return argc < 2 ? 2 : 0;
+  }
+  if (argc > 2) {
+    fprintf(stderr, "pgd: one CONFIG.ini expected\n");
+    return 2;
+  }
+  const char *file = argv[1];
+  static config c;
+  memset(&c, 0, sizeof c);
+  sb_pgd_params_default(&c.p, 1);
+  c.p.dim = 0; /* set from [run] dim (default 1) */
+  c.t_end = NAN;
+  c.rp.tau = INFINITY;
+  snprintf(c.method, sizeof c.method, "euler");
+  snprintf(c.output, sizeof c.output, "pgd-out");
+  c.bx = c.by = 3;
+  c.p.nx = 0;
+  int line = ini_parse(file, handler, &c);
+  if (line < 0) {
+    fprintf(stderr, "pgd: cannot read '%s'\n", file);
+    return 2;
+  }
+  if (line > 0) {
+    fprintf(stderr, "pgd: %s:%d: %s\n", file, line,
+            c.err[0] ? c.err : "syntax error (expected key = value or "
+                               "[section])");
+    return 2;
+  }
+  sb_pgd_params *p = &c.p;
+  if (!p->dim)
+    p->dim = 1;
+#define INPUT_ERROR(...)                                                    \
+  do {                                                                      \
+    fprintf(stderr, "pgd: %s: ", file);                                     \
+    fprintf(stderr, __VA_ARGS__);                                           \
+    fputc('\n', stderr);                                                    \
+    return 2;                                                               \
+  } while (0)
+  if (!p->nx)
+    INPUT_ERROR("[run] nx is required");
+  if (isnan(c.t_end))
+    INPUT_ERROR("[run] t_end is required");
+  if (p->dim == 1) {
+    p->ny = 1;
+    if (c.nin)
+      INPUT_ERROR("[inflow]: 1-D inflows are not available from the "
+                  "command line (use 2-D, or the library)");
+    if (!c.have_riemann && !c.have_initial)
+      INPUT_ERROR("1-D runs need [riemann] (or [initial])");
+    if (strcmp(c.method, "euler"))
+      INPUT_ERROR("[run] method = %s: 1-D runs are Eulerian", c.method);
+    p->ugas[1] = 0;
+  } else {
+    if (!c.have_ny)
+      p->ny = p->nx;
+    if (c.have_riemann)
+      INPUT_ERROR("[riemann] is 1-D (dim = 1)");
+  }
+  if (c.have_riemann) {
+    c.rp.tau = p->tau;
+    c.rp.ugas = p->ugas[0];
+    if (!c.have_x0) /* default: the middle of the domain */
+      c.rp.x0 = p->origin[0] + 0.5 * p->L[0];
+  }
+  for (int k = 0; k < c.nin; k++) {
+    if (c.in[k].side < 0 || c.in[k].count < 1 || isnan(c.in[k].rho))
+      INPUT_ERROR("[%s]: side, count and rho are required", c.in[k].name);
+    if (sb_pgd_params_add_inflow(p, (sb_pgd_side)c.in[k].side,
+                                 (size_t)c.in[k].first,
+                                 (size_t)c.in[k].count, c.in[k].rho,
+                                 c.in[k].u[0], c.in[k].u[1]))
+      INPUT_ERROR("[%s]: %s", c.in[k].name, sb_last_error());
+  }
+  if (sb_pgd_params_check(p))
+    INPUT_ERROR("%s", sb_last_error());
+  const int lag = !strcmp(c.method, "lagrange");
+  const int dd = !strcmp(c.method, "decomposition");
+  if ((lag || dd) && c.have_initial && c.init_rho > 0)
+    INPUT_ERROR("[initial]: particle runs start empty (inflows only)");
+  if (dd) {
+    if (!c.kinds[0])
+      INPUT_ERROR("[decomposition] kinds is required for method = "
+                  "decomposition");
+    if (strlen(c.kinds) != c.bx * c.by)
+      INPUT_ERROR("[decomposition] kinds: %zu letters for %zu x %zu "
+                  "blocks", strlen(c.kinds), c.bx, c.by);
+  }
+#undef INPUT_ERROR
+
+  /* ---- build */
+  sb_pgd *g = NULL;
+  sb_pgd_lag *l = NULL;
+  sb_pgd_dd *d = NULL;
+  if (dd)
+    d = sb_pgd_dd_alloc(p, c.bx, c.by, c.kinds);
+  else if (lag)
+    l = sb_pgd_lag_alloc(p);
+  else
+    g = sb_pgd_alloc(p);
+  if (!g && !l && !d) {
+    fprintf(stderr, "pgd: %s: %s\n", file, sb_last_error());
+    return 2;
+  }
+  int st = SB_SUCCESS;
+  if (g && c.have_riemann)
+    st = sb_pgd_init(g, rp_init, &c.rp);
+  else if (g && c.have_initial)
+    st = sb_pgd_init(g, uniform_init, &c);
+  if (st) {
+    fprintf(stderr, "pgd: initial state: %s\n", sb_last_error());
+    sb_pgd_free(g);
+    return 2;
+  }
+  if (mkdir_p(c.output)) {
+    fprintf(stderr, "pgd: cannot create directory '%s': %s\n", c.output,
+            strerror(errno));
+    sb_pgd_free(g);
+    sb_pgd_lag_free(l);
+    sb_pgd_dd_free(d);
+    return 1;
+  }
+  clean_outputs(c.output);
+  fprintf(stderr, "pgd: %d-D, %zu x %zu cells, %s, %s, t_end = %g -> %s/\n",
+          p->dim, p->nx, p->ny, c.method, sb_pgd_scheme_name(p->scheme),
+          c.t_end, c.output);
+
+  /* ---- run */
+  const size_t nn = p->nx * p->ny;
+  double *f = malloc(3 * nn * sizeof *f);
+  char path[1100];
+  clock_t c0 = clock();
+  double t = 0, next = c.output_every > 0 ? c.output_every : INFINITY;
+  size_t nsteps = 0;
+  int snap = 0;
+  while (!st && f && t < c.t_end) {
+    double stop = fmin(c.t_end, next);
+    size_t k = 0;
+    st = g ? sb_pgd_advance(g, stop, &k)
+           : l ? sb_pgd_lag_advance(l, stop, &k)
+               : sb_pgd_dd_advance(d, stop, &k);
+    nsteps += k;
+    t = stop;
+    if (!st && t == next && t < c.t_end) {
+      snprintf(path, sizeof path, "%s/fields_%05d.csv", c.output, snap++);
+      if (g)
+        st = sb_pgd_write_csv(g, path);
+      else {
+        if (l)
+          sb_pgd_lag_deposit(l, f, f + nn, f + 2 * nn);
+        else
+          sb_pgd_dd_fields(d, f, f + nn, f + 2 * nn);
+        st = write_fields(p, f, f + nn, f + 2 * nn, path) ? SB_EIO : 0;
+      }
+      next += c.output_every;
+      fprintf(stderr, "pgd: t = %g (%.0f%%)\n", t, 100 * t / c.t_end);
+    }
+  }
+  double secs = (double)(clock() - c0) / CLOCKS_PER_SEC;
+  if (!f)
+    st = SB_ENOMEM;
+  if (st) {
+    fprintf(stderr, "pgd: run failed at t = %g: %s\n", t, sb_last_error());
+    goto done;
+  }
+
+  /* ---- outputs */
+  snprintf(path, sizeof path, "%s/fields.csv", c.output);
+  if (g) {
+    st = sb_pgd_write_csv(g, path);
+    if (!st && p->dim == 2) {
+      snprintf(path, sizeof path, "%s/fields.vtk", c.output);
+      st = sb_pgd_write_vtk(g, path);
+    }
+  } else {
+    if (l)
+      sb_pgd_lag_deposit(l, f, f + nn, f + 2 * nn);
+    else
+      sb_pgd_dd_fields(d, f, f + nn, f + 2 * nn);
+    st = write_fields(p, f, f + nn, f + 2 * nn, path) ? SB_EIO : 0;
+  }
+  double tot[3], in[3], out[3];
+  if (g) {
+    sb_pgd_totals(g, tot);
+    sb_pgd_boundary_totals(g, in, out);
+  } else if (l) {
+    sb_pgd_lag_totals(l, tot);
+    sb_pgd_lag_boundary_totals(l, in, out);
+  } else {
+    sb_pgd_dd_totals(d, tot);
+    sb_pgd_dd_boundary_totals(d, in, out);
+  }
+  sb_pgd_riemann_sol w;
+  double l1 = NAN, w1 = NAN;
+  if (!st && g && c.have_riemann) {
+    snprintf(path, sizeof path, "%s/exact.csv", c.output);
+    FILE *e = fopen(path, "w");
+    if (!e) {
+      st = SB_EIO;
+    } else {
+      double h = p->L[0] / (double)p->nx;
+      fprintf(e, "x,rho,u\n");
+      for (size_t i = 0; i < p->nx; i++) {
+        double x = p->origin[0] + ((double)i + 0.5) * h, m, q;
+        sb_pgd_riemann_integral(&c.rp, c.t_end, x - 0.5 * h, x + 0.5 * h, &m,
+                                &q);
+        fprintf(e, "%.17g,%.17g,%.17g\n", x, m / h, m > 0 ? q / m : 0.0);
+      }
+      st = fclose(e) ? SB_EIO : 0;
+      sb_pgd_fields(g, f, NULL, NULL);
+      sb_pgd_riemann_error(&c.rp, c.t_end, p->origin[0], h, p->nx, f, &l1,
+                           &w1);
+    }
+    sb_pgd_riemann_solve(&c.rp, c.t_end, &w);
+  }
+  if (st) {
+    fprintf(stderr, "pgd: cannot write the outputs in '%s'\n", c.output);
+    goto done;
+  }
+  snprintf(path, sizeof path, "%s/summary.json", c.output);
+  FILE *js = fopen(path, "w");
+  if (!js) {
+    fprintf(stderr, "pgd: cannot write %s\n", path);
+    st = SB_EIO;
+    goto done;
+  }
+  fprintf(js, "{\n  \"program\": \"smolbridge pgd\",\n  \"version\": "
+          "\"%s\",\n  \"dim\": %d,\n  \"nx\": %zu,\n  \"ny\": %zu,\n"
+          "  \"method\": \"%s\",\n  \"scheme\": \"%s\",\n  \"t\": %.17g,\n"
+          "  \"steps\": %zu,\n  \"cpu_seconds\": %.3f,\n", sb_version(),
+          p->dim, p->nx, p->ny, c.method, sb_pgd_scheme_name(p->scheme),
+          c.t_end, nsteps, secs);
+  fprintf(js, "  \"mass\": %.17g,\n  \"momentum\": [%.17g, %.17g],\n"
+          "  \"inflow\": [%.17g, %.17g, %.17g],\n"
+          "  \"outflow\": [%.17g, %.17g, %.17g]", tot[0], tot[1], tot[2],
+          in[0], in[1], in[2], out[0], out[1], out[2]);
+  if (l || d)
+    fprintf(js, ",\n  \"particles\": %zu",
+            l ? sb_pgd_lag_count(l) : sb_pgd_dd_particles(d));
+  if (g && c.have_riemann) {
+    static const char *wn[] = {"contact", "vacuum", "delta", "none"};
+    fprintf(js, ",\n  \"exact\": {\"wave\": \"%s\", \"x_left\": %.17g, "
+            "\"x_right\": %.17g, \"delta_mass\": %.17g, \"l1\": %.17g, "
+            "\"w1\": %.17g}", wn[w.type], w.xl, w.xr, w.mass, l1, w1);
+  }
+  fprintf(js, "\n}\n");
+  if (fclose(js)) {
+    st = SB_EIO;
+    fprintf(stderr, "pgd: cannot write %s\n", path);
+    goto done;
+  }
+  fprintf(stderr, "pgd: done, %zu steps, %.2f s; mass %.10g (in %.10g, out "
+          "%.10g)\n", nsteps, secs, tot[0], in[0], out[0]);
+done:
+  free(f);
+  sb_pgd_free(g);
+  sb_pgd_lag_free(l);
+  sb_pgd_dd_free(d);
+  return st ? 1 : 0;
+}

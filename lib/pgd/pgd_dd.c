@@ -1,0 +1,529 @@
+/* pgd_dd.c — Euler-Lagrange coupling by domain decomposition (the
+ * exercise "Couplage Euler-Lagrange" (2022), part 4: 3 x 3 subdomains,
+ * each Eulerian or Lagrangian).
+ *
+ * One global step dt for every block.  Eulerian blocks exchange ghost
+ * cells at every stage; towards a Lagrangian neighbour their ghost cells
+ * are vacuum, so the flux through that face is purely outgoing, and the
+ * mass and momentum it carries over the step (integrated with the stage
+ * weights) are injected there as particles, as an inflow would be.
+ * Particles that end a step inside an Eulerian block are absorbed by the
+ * cell that contains them (mass and momentum added).  Both transfers move
+ * exactly the same mass and momentum from one representation to the
+ * other, so the coupling conserves both (up to the drag, a source). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <smolbridge/pgd.h>
+#include "common/internal.h"
+#include "pgd_internal.h"
+
+typedef struct {
+  char kind;             /* 'E' or 'L' */
+  size_t i0, j0;         /* first global cell */
+  sb_pgd_params p;       /* the block's own grid */
+  struct sb_pgd *e;      /* Eulerian block */
+  sbi_parts parts;       /* Lagrangian block */
+  int nbr[4];            /* neighbour block per side, -1: physical side */
+  double *pend[4];       /* Eulerian block: mass and momentum sent towards
+                            a Lagrangian neighbour and not yet injected
+                            (3 per boundary cell) */
+} dd_block;
+
+struct sb_pgd_dd {
+  sb_pgd_params p;
+  sbi_locator loc;
+  size_t px, py, nbx, nby;
+  double dx, dy, pspeed;
+  dd_block *b;
+  size_t nblocks;
+  sbi_parts moving;      /* particles changing block during a step */
+  double t;
+  size_t steps;
+  sbi_budget bud;
+};
+
+void sb_pgd_dd_free(sb_pgd_dd *d)
+{
+  if (!d)
+    return;
+  for (size_t k = 0; k < d->nblocks; k++) {
+    sb_pgd_free(d->b[k].e);
+    sbi_parts_free(&d->b[k].parts);
+    for (int s = 0; s < 4; s++)
+      free(d->b[k].pend[s]);
+  }
+  free(d->b);
+  sbi_parts_free(&d->moving);
+  free(d);
+}
+
+/* Neighbour of block (bi, bj) across side s, or -1 at a physical side. */
+static int neighbour(const sb_pgd_dd *d, size_t bi, size_t bj, int s)
+{
+  long i = (long)bi, j = (long)bj, nx = (long)d->px, ny = (long)d->py;
+  int per = d->p.bc[s] == SB_PGD_PERIODIC;
+  switch (s) {
+  case SB_PGD_WEST: i--; break;
+  case SB_PGD_EAST: i++; break;
+  case SB_PGD_SOUTH: j--; break;
+  default: j++; break;
+  }
+  if (i < 0 || i >= nx || j < 0 || j >= ny) {
+    if (!per)
+      return -1;
+    i = (i + nx) % nx;
+    j = (j + ny) % ny;
+  }
+  return (int)(i + nx * j);
+}
+
+/* The block's parameters: its grid, physical sides and inflow parts. */
+static void block_params(const sb_pgd_dd *d, dd_block *b, size_t bi,
+                         size_t bj)
+{
+  sb_pgd_params *q = &b->p;
+  *q = d->p;
+  q->nx = d->nbx;
+  q->ny = d->nby;
+  q->L[0] = (double)d->nbx * d->dx;
+  q->L[1] = (double)d->nby * d->dy;
+  q->origin[0] = d->p.origin[0] + (double)b->i0 * d->dx;
+  q->origin[1] = d->p.origin[1] + (double)b->j0 * d->dy;
+  for (int s = 0; s < 4; s++) {
+    b->nbr[s] = neighbour(d, bi, bj, s);
+    int self = b->nbr[s] == (int)(bi + d->px * bj);
+    if (b->nbr[s] >= 0 && !self)
+      q->bc[s] = SB_PGD_OUTFLOW;  /* placeholder: ghosts set here */
+    if (self)                     /* one block across a periodic direction */
+      b->nbr[s] = -1;
+  }
+  q->ninflow = 0;
+  for (size_t m = 0; m < d->p.ninflow; m++) {
+    const sb_pgd_inflow *in = &d->p.inflow[m];
+    if (b->nbr[in->side] >= 0)
+      continue;
+    int along_y = in->side < SB_PGD_SOUTH;
+    size_t lo = along_y ? b->j0 : b->i0, n = along_y ? d->nby : d->nbx;
+    size_t a = in->first > lo ? in->first : lo;
+    size_t e = in->first + in->count < lo + n ? in->first + in->count
+                                              : lo + n;
+    if (a >= e)
+      continue;
+    sb_pgd_inflow *o = &q->inflow[q->ninflow++];
+    *o = *in;
+    o->first = a - lo;
+    o->count = e - a;
+  }
+}
+
+sb_pgd_dd *sb_pgd_dd_alloc(const sb_pgd_params *p, size_t px, size_t py,
+                           const char *kinds)
+{
+  if (sb_pgd_params_check(p)) {
+    sbi_error(SB_EINVAL, __func__, "%s", sb_last_error());
+    return NULL;
+  }
+  if (p->dim != 2 || px < 1 || py < 1 || p->nx % px || p->ny % py ||
+      p->nx / px < 2 || p->ny / py < 2) {
+    sbi_error(SB_EINVAL, __func__, "need dim = 2 and %zu x %zu blocks of "
+              "at least 2 x 2 cells dividing the %zu x %zu grid", px, py,
+              p->nx, p->ny);
+    return NULL;
+  }
+  if (!kinds || strlen(kinds) != px * py ||
+      strspn(kinds, "EL") != px * py) {
+    sbi_error(SB_EINVAL, __func__, "kinds '%s': need %zu letters E or L",
+              kinds ? kinds : "(null)", px * py);
+    return NULL;
+  }
+  sb_pgd_dd *d = calloc(1, sizeof *d);
+  if (!d || !(d->b = calloc(px * py, sizeof *d->b))) {
+    free(d);
+    sbi_error(SB_ENOMEM, __func__, "out of memory");
+    return NULL;
+  }
+  d->p = *p;
+  d->px = px;
+  d->py = py;
+  d->nblocks = px * py;
+  d->nbx = p->nx / px;
+  d->nby = p->ny / py;
+  d->dx = p->L[0] / (double)p->nx;
+  d->dy = p->L[1] / (double)p->ny;
+  d->pspeed = sbi_pgd_param_speed(p);
+  sbi_locator_init(&d->loc, p);
+  for (size_t bj = 0; bj < py; bj++)
+    for (size_t bi = 0; bi < px; bi++) {
+      dd_block *b = &d->b[bi + px * bj];
+      b->kind = kinds[bi + px * bj];
+      b->i0 = bi * d->nbx;
+      b->j0 = bj * d->nby;
+      block_params(d, b, bi, bj);
+      if (b->kind != 'E')
+        continue;
+      int ext[4];
+      for (int s = 0; s < 4; s++)
+        ext[s] = b->nbr[s] >= 0;
+      if (!(b->e = sbi_pgd_alloc(&b->p, ext))) {
+        sb_pgd_dd_free(d);
+        return NULL;
+      }
+      sbi_pgd_geometry(b->e, d->dx, d->dy, p->origin, b->i0, b->j0);
+      for (int s = 0; s < 4; s++)
+        if (b->nbr[s] >= 0 && kinds[b->nbr[s]] == 'L' &&
+            !(b->pend[s] = calloc(3 * b->e->nb[s], sizeof(double)))) {
+          sb_pgd_dd_free(d);
+          sbi_error(SB_ENOMEM, __func__, "out of memory");
+          return NULL;
+        }
+    }
+  return d;
+}
+
+double sb_pgd_dd_time(const sb_pgd_dd *d) { return d ? d->t : NAN; }
+
+size_t sb_pgd_dd_particles(const sb_pgd_dd *d)
+{
+  size_t n = 0;
+  for (size_t k = 0; d && k < d->nblocks; k++)
+    n += d->b[k].parts.n;
+  return n;
+}
+
+double sb_pgd_dd_dt(const sb_pgd_dd *d)
+{
+  if (!d)
+    return NAN;
+  double s = d->pspeed;
+  for (size_t k = 0; k < d->nblocks; k++) {
+    const dd_block *b = &d->b[k];
+    double v = b->kind == 'E' ? sbi_pgd_speed(b->e)
+                              : sbi_lag_speed(&d->p, b->parts.q, b->parts.n);
+    if (v > s)
+      s = v;
+  }
+  return sbi_pgd_dt_from_speed(&d->p, s);
+}
+
+/* Ghost cells of Eulerian block b across its interfaces. */
+static void exchange(sb_pgd_dd *d, dd_block *b)
+{
+  struct sb_pgd *g = b->e;
+  const long nx = (long)d->nbx, ny = (long)d->nby;
+  for (int s = 0; s < 4; s++) {
+    if (b->nbr[s] < 0)
+      continue;
+    const dd_block *o = &d->b[b->nbr[s]];
+    long n = s < 2 ? ny : nx;
+    for (long k = 0; k < n; k++)
+      for (long l = 1; l <= SBI_PGD_G; l++) {
+        size_t gh, src = 0;
+        switch (s) {
+        case SB_PGD_WEST:
+          gh = sbi_pgd_idx(g, -l, k);
+          if (o->kind == 'E')
+            src = sbi_pgd_idx(o->e, nx - l, k);
+          break;
+        case SB_PGD_EAST:
+          gh = sbi_pgd_idx(g, nx - 1 + l, k);
+          if (o->kind == 'E')
+            src = sbi_pgd_idx(o->e, l - 1, k);
+          break;
+        case SB_PGD_SOUTH:
+          gh = sbi_pgd_idx(g, k, -l);
+          if (o->kind == 'E')
+            src = sbi_pgd_idx(o->e, k, ny - l);
+          break;
+        default:
+          gh = sbi_pgd_idx(g, k, ny - 1 + l);
+          if (o->kind == 'E')
+            src = sbi_pgd_idx(o->e, k, l - 1);
+          break;
+        }
+        if (o->kind == 'E') {
+          g->rho[gh] = o->e->rho[src];
+          g->qx[gh] = o->e->qx[src];
+          g->qy[gh] = o->e->qy[src];
+        } else { /* towards particles: only outgoing flux */
+          g->rho[gh] = g->qx[gh] = g->qy[gh] = 0.0;
+        }
+      }
+  }
+}
+
+/* Send a particle where it now is: a Lagrangian block's list, an
+ * Eulerian cell (absorbed), or out of the domain (counted). */
+static int route(sb_pgd_dd *d, sb_pgd_particle *q)
+{
+  int side = sbi_lag_place(&d->p, q);
+  if (side) {
+    sbi_budget_add(&d->bud, side - 1, 1, q->w, q->w * q->v[0],
+                   q->w * q->v[1]);
+    return SB_SUCCESS;
+  }
+  size_t i = sbi_locate1(&d->loc, 0, q->x[0]);
+  size_t j = sbi_locate1(&d->loc, 1, q->x[1]);
+  dd_block *b = &d->b[i / d->nbx + d->px * (j / d->nby)];
+  if (b->kind == 'L')
+    return sbi_parts_push(&b->parts, q);
+  size_t c = sbi_pgd_idx(b->e, (long)(i - b->i0), (long)(j - b->j0));
+  double iA = 1.0 / (d->dx * d->dy);
+  b->e->rho[c] += q->w * iA;
+  b->e->qx[c] += q->w * q->v[0] * iA;
+  b->e->qy[c] += q->w * q->v[1] * iA;
+  b->e->speed_ok = 0;
+  b->e->empty = 0;
+  return SB_SUCCESS;
+}
+
+/* Particles for the step: physical inflow faces of Lagrangian blocks and
+ * the outgoing fluxes of Eulerian blocks towards Lagrangian ones, into
+ * d->moving. */
+static int inject_all(sb_pgd_dd *d, double dt)
+{
+  for (size_t k = 0; k < d->nblocks; k++) {
+    dd_block *b = &d->b[k];
+    const sb_pgd_params *q = &b->p;
+    if (b->kind == 'L') {
+      for (size_t m = 0; m < q->ninflow; m++) {
+        const sb_pgd_inflow *in = &q->inflow[m];
+        int dir = in->side >= SB_PGD_SOUTH;
+        double sgn = in->side == SB_PGD_WEST || in->side == SB_PGD_SOUTH
+                         ? 1.0 : -1.0;
+        double un = sgn * in->u[dir], len = dir ? d->dx : d->dy;
+        if (!(un > 0) || !(in->rho > 0))
+          continue;
+        /* global arithmetic, as the single-domain particles */
+        double xn = d->p.origin[dir] + (sgn > 0 ? 0.0 : d->p.L[dir]);
+        size_t off = dir ? b->i0 : b->j0;
+        for (size_t c = in->first; c < in->first + in->count; c++) {
+          double M = in->rho * un * len * dt;
+          double P[2] = {M * in->u[0], M * in->u[1]};
+          if (sbi_lag_inject(&d->p, dir, xn, d->p.origin[1 - dir] +
+                             (double)(off + c) * len, len, M, P, dt,
+                             &d->moving))
+            return SB_ENOMEM;
+          sbi_budget_add(&d->bud, in->side, 0, M, P[0], P[1]);
+        }
+      }
+      continue;
+    }
+    for (int s = 0; s < 4; s++) {
+      const double *f = b->e->bflux[s];
+      if (b->nbr[s] < 0) { /* physical side: count what crossed it */
+        for (size_t c = 0; c < b->e->nb[s]; c++) {
+          const double *v = f + 3 * c;
+          if (v[0] > 0)
+            sbi_budget_add(&d->bud, s, 1, v[0], v[1], v[2]);
+          else
+            sbi_budget_add(&d->bud, s, 0, -v[0], -v[1], -v[2]);
+        }
+        continue;
+      }
+      if (d->b[b->nbr[s]].kind != 'L')
+        continue;
+      int dir = s >= SB_PGD_SOUTH, hi = s == SB_PGD_EAST || s == SB_PGD_NORTH;
+      size_t face = dir ? b->j0 + (hi ? d->nby : 0) : b->i0 + (hi ? d->nbx : 0);
+      double xn = d->p.origin[dir] + (double)face * (dir ? d->dy : d->dx);
+      double len = dir ? d->dx : d->dy;
+      size_t off = dir ? b->i0 : b->j0;
+      /* a face's outflow becomes particles once it carries at least the
+       * mass of a cell at the vacuum threshold; smaller amounts wait (the
+       * diffuse fringe of a jet would otherwise make many particles of
+       * negligible weight), so nothing is lost */
+      const double mmin = d->p.rho_floor * d->dx * d->dy;
+      double *pe = b->pend[s];
+      for (size_t c = 0; c < b->e->nb[s]; c++) {
+        for (int m = 0; m < 3; m++)
+          pe[3 * c + m] += f[3 * c + m];
+        if (!(pe[3 * c] > mmin))
+          continue;
+        double P[2] = {pe[3 * c + 1], pe[3 * c + 2]};
+        if (sbi_lag_inject(&d->p, dir, xn, d->p.origin[1 - dir] +
+                           (double)(off + c) * len, len, pe[3 * c], P, dt,
+                           &d->moving))
+          return SB_ENOMEM;
+        pe[3 * c] = pe[3 * c + 1] = pe[3 * c + 2] = 0.0;
+      }
+    }
+  }
+  return SB_SUCCESS;
+}
+
+/* One step, dt already checked. */
+static int dd_step(sb_pgd_dd *d, double dt)
+{
+  int nst = 1;
+  for (size_t k = 0; k < d->nblocks; k++)
+    if (d->b[k].kind == 'E') {
+      sbi_pgd_drag(d->b[k].e, 0.5 * dt, 0);
+      sbi_pgd_transport_begin(d->b[k].e);
+      nst = sbi_pgd_nstages(d->b[k].e);
+    }
+  for (int s = 0; s < nst; s++) {
+    for (size_t k = 0; k < d->nblocks; k++)
+      if (d->b[k].kind == 'E') {
+        sbi_pgd_fill_ghosts(d->b[k].e);
+        exchange(d, &d->b[k]);
+      }
+    for (size_t k = 0; k < d->nblocks; k++)
+      if (d->b[k].kind == 'E')
+        sbi_pgd_stage(d->b[k].e, dt, s);
+  }
+  for (size_t k = 0; k < d->nblocks; k++)
+    if (d->b[k].kind == 'E') {
+      sbi_pgd_drag(d->b[k].e, 0.5 * dt, 1);
+      d->b[k].e->t += dt;
+      d->b[k].e->steps++;
+    }
+  /* particles: move, keep those still in their block */
+  double pe, pg;
+  sbi_lag_coef(&d->p, dt, &pe, &pg);
+  d->moving.n = 0;
+  for (size_t k = 0; k < d->nblocks; k++) {
+    dd_block *b = &d->b[k];
+    if (b->kind != 'L')
+      continue;
+    size_t w = 0;
+    sbi_lag_move_all(&d->p, b->parts.q, b->parts.n, dt, pe, pg);
+    for (size_t m = 0; m < b->parts.n; m++) {
+      const sb_pgd_particle q = b->parts.q[m];
+      /* still in the block: the cell rule decides, as in route() */
+      size_t i = sbi_locate1(&d->loc, 0, q.x[0]);
+      size_t j = sbi_locate1(&d->loc, 1, q.x[1]);
+      int stay = q.x[0] >= d->p.origin[0] && q.x[1] >= d->p.origin[1] &&
+                 q.x[0] < d->p.origin[0] + d->p.L[0] &&
+                 q.x[1] < d->p.origin[1] + d->p.L[1] &&
+                 i - b->i0 < d->nbx && j - b->j0 < d->nby; /* unsigned */
+      if (stay)
+        b->parts.q[w++] = q;
+      else if (sbi_parts_push(&d->moving, &q))
+        return sbi_error(SB_ENOMEM, "sb_pgd_dd_step", "out of memory");
+    }
+    b->parts.n = w;
+  }
+  if (inject_all(d, dt))
+    return sbi_error(SB_ENOMEM, "sb_pgd_dd_step", "out of memory");
+  for (size_t m = 0; m < d->moving.n; m++)
+    if (route(d, &d->moving.q[m]))
+      return sbi_error(SB_ENOMEM, "sb_pgd_dd_step", "out of memory");
+  d->moving.n = 0;
+  d->t += dt;
+  d->steps++;
+  return SB_SUCCESS;
+}
+
+int sb_pgd_dd_step(sb_pgd_dd *d, double dt)
+{
+  if (!d)
+    return sbi_error(SB_EINVAL, __func__, "NULL decomposition");
+  double lim = sb_pgd_dd_dt(d);
+  if (!(dt > 0) || !isfinite(dt) || dt > lim * (1 + 1e-12))
+    return sbi_error(SB_EINVAL, __func__, "dt = %g: must be in (0, %g]", dt,
+                     lim);
+  return dd_step(d, dt);
+}
+
+int sb_pgd_dd_advance(sb_pgd_dd *d, double t_end, size_t *nsteps)
+{
+  if (!d)
+    return sbi_error(SB_EINVAL, __func__, "NULL decomposition");
+  if (!(t_end >= d->t) || !isfinite(t_end))
+    return sbi_error(SB_EINVAL, __func__, "t_end = %g before t = %g", t_end,
+                     d->t);
+  size_t k = 0;
+  while (d->t < t_end) {
+    double dt = sb_pgd_dd_dt(d), left = t_end - d->t;
+    int last = dt >= left * (1 - 1e-12);
+    if (last)
+      dt = left;
+    int st = dd_step(d, dt);
+    if (st)
+      return st;
+    k++;
+    if (last)
+      d->t = t_end;
+  }
+  if (nsteps)
+    *nsteps = k;
+  return SB_SUCCESS;
+}
+
+int sb_pgd_dd_fields(const sb_pgd_dd *d, double *rho, double *qx, double *qy)
+{
+  if (!d)
+    return sbi_error(SB_EINVAL, __func__, "NULL decomposition");
+  const size_t nx = d->p.nx, n = nx * d->p.ny;
+  const double iA = 1.0 / (d->dx * d->dy);
+  double *f[3] = {rho, qx, qy};
+  for (int m = 0; m < 3; m++)
+    if (f[m])
+      memset(f[m], 0, n * sizeof(double));
+  for (size_t k = 0; k < d->nblocks; k++) {
+    const dd_block *b = &d->b[k];
+    if (b->kind == 'E') {
+      for (size_t j = 0; j < d->nby; j++)
+        for (size_t i = 0; i < d->nbx; i++) {
+          size_t c = sbi_pgd_idx(b->e, (long)i, (long)j);
+          size_t o = b->i0 + i + nx * (b->j0 + j);
+          if (rho)
+            rho[o] = b->e->rho[c];
+          if (qx)
+            qx[o] = b->e->qx[c];
+          if (qy)
+            qy[o] = b->e->qy[c];
+        }
+      continue;
+    }
+    for (size_t m = 0; m < b->parts.n; m++) {
+      const sb_pgd_particle *q = &b->parts.q[m];
+      size_t o = sbi_locate1(&d->loc, 0, q->x[0]) +
+                 nx * sbi_locate1(&d->loc, 1, q->x[1]);
+      if (rho)
+        rho[o] += q->w * iA;
+      if (qx)
+        qx[o] += q->w * q->v[0] * iA;
+      if (qy)
+        qy[o] += q->w * q->v[1] * iA;
+    }
+  }
+  return SB_SUCCESS;
+}
+
+void sb_pgd_dd_totals(const sb_pgd_dd *d, double tot[3])
+{
+  tot[0] = tot[1] = tot[2] = 0;
+  for (size_t k = 0; k < d->nblocks; k++) {
+    const dd_block *b = &d->b[k];
+    if (b->kind == 'E') {
+      double t[3];
+      sb_pgd_totals(b->e, t);
+      for (int m = 0; m < 3; m++)
+        tot[m] += t[m];
+      for (int s = 0; s < 4; s++)
+        for (size_t c = 0; b->pend[s] && c < b->e->nb[s]; c++)
+          for (int m = 0; m < 3; m++)
+            tot[m] += b->pend[s][3 * c + m];
+      continue;
+    }
+    for (size_t m = 0; m < b->parts.n; m++) {
+      tot[0] += b->parts.q[m].w;
+      tot[1] += b->parts.q[m].w * b->parts.q[m].v[0];
+      tot[2] += b->parts.q[m].w * b->parts.q[m].v[1];
+    }
+  }
+}
+
+void sb_pgd_dd_boundary_totals(const sb_pgd_dd *d, double in[3],
+                               double out[3])
+{
+  sbi_budget_get(&d->bud, -1, in, out);
+}
+
+void sb_pgd_dd_side_totals(const sb_pgd_dd *d, sb_pgd_side s, double in[3],
+                           double out[3])
+{
+  sbi_budget_get(&d->bud, (int)s & 3, in, out);
+}

@@ -1,0 +1,382 @@
+/* pgd_exact.c — exact solutions of 1-D pressureless gas dynamics: the
+ * Riemann problem (contact, vacuum, delta-shock) with optional uniform
+ * drag, its error norms against a cell field, and smooth solutions by
+ * characteristics.
+ *
+ * The delta-shock: mass w(t) at x(t) moving with sigma.  The generalised
+ * Rankine-Hugoniot conditions (Bouchut 1994; Sheng & Zhang 1999) are the
+ * mass and momentum balances of the point:
+ *   dw/dt       = rho_l (u_l - sigma) + rho_r (sigma - u_r),
+ *   d(w sigma)/dt = rho_l u_l (u_l - sigma) + rho_r u_r (sigma - u_r).
+ * With w(0) = 0 and sigma constant, eliminating dw/dt gives
+ *   rho_l (u_l - sigma)^2 = rho_r (sigma - u_r)^2,
+ * whose root between u_r and u_l is the sqrt(rho)-weighted mean of u_l
+ * and u_r; then w = sqrt(rho_l rho_r)(u_l - u_r) t.  docs/pgd.md has the
+ * derivation; tests/test_pgd_exact.c checks it against an event-driven
+ * sticky-particle simulation.
+ *
+ * Drag towards a uniform gas velocity U: in xi = x - U t, v = (u - U)
+ * e^{t/tau} and the time s = tau (1 - e^{-t/tau}) the equations become the
+ * drag-free system (the drag force is linear in the momentum, so it
+ * commutes with sticky collisions); every solution maps back. */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_roots.h>
+#include <smolbridge/pgd.h>
+#include "common/internal.h"
+
+/* Drag time map: s(t), e(t) = e^{-t/tau} (s = t, e = 1 without drag). */
+static void drag_map(double tau, double t, double *s, double *e)
+{
+  if (isinf(tau)) {
+    *s = t;
+    *e = 1.0;
+  } else {
+    *s = -tau * expm1(-t / tau);
+    *e = exp(-t / tau);
+  }
+}
+
+double sb_pgd_delta_speed(double rho_l, double u_l, double rho_r, double u_r)
+{
+  if (!(rho_l > 0) || !(rho_r > 0) || !(u_l > u_r) || !isfinite(rho_l) ||
+      !isfinite(rho_r) || !isfinite(u_l) || !isfinite(u_r))
+    return NAN;
+  double a = sqrt(rho_l), b = sqrt(rho_r);
+  return (a * u_l + b * u_r) / (a + b);
+}
+
+double sb_pgd_delta_mass_rate(double rho_l, double u_l, double rho_r,
+                              double u_r)
+{
+  if (!(rho_l > 0) || !(rho_r > 0) || !(u_l > u_r) || !isfinite(rho_l) ||
+      !isfinite(rho_r) || !isfinite(u_l) || !isfinite(u_r))
+    return NAN;
+  return sqrt(rho_l) * sqrt(rho_r) * (u_l - u_r);
+}
+
+static int check_rp(const sb_pgd_riemann *rp, double t, const char *f)
+{
+  if (!rp)
+    return sbi_error(SB_EINVAL, f, "NULL problem");
+  if (!(rp->rho_l >= 0) || !(rp->rho_r >= 0) || !isfinite(rp->rho_l) ||
+      !isfinite(rp->rho_r))
+    return sbi_error(SB_EDOM, f, "rho_l = %g, rho_r = %g: must be >= 0 and "
+                     "finite", rp->rho_l, rp->rho_r);
+  if (!isfinite(rp->u_l) || !isfinite(rp->u_r) || !isfinite(rp->x0) ||
+      !isfinite(rp->ugas))
+    return sbi_error(SB_EDOM, f, "x0, u_l, u_r, ugas must be finite");
+  if (!(rp->tau > 0))
+    return sbi_error(SB_EDOM, f, "tau = %g: must be > 0 (INFINITY: no "
+                     "drag)", rp->tau);
+  if (!(t >= 0) || !isfinite(t))
+    return sbi_error(SB_EDOM, f, "t = %g: must be >= 0 and finite", t);
+  return SB_SUCCESS;
+}
+
+int sb_pgd_riemann_solve(const sb_pgd_riemann *rp, double t,
+                         sb_pgd_riemann_sol *sol)
+{
+  int st = check_rp(rp, t, __func__);
+  if (st)
+    return st;
+  if (!sol)
+    return sbi_error(SB_EINVAL, __func__, "NULL solution");
+  double s, e;
+  drag_map(rp->tau, t, &s, &e);
+  const double U = isinf(rp->tau) ? 0.0 : rp->ugas;
+  const double vl = rp->u_l - U, vr = rp->u_r - U, x0 = rp->x0 + U * t;
+  sol->mass = 0.0;
+  sol->vel = NAN;
+  sol->ul = U + vl * e;
+  sol->ur = U + vr * e;
+  if (rp->rho_l == 0 && rp->rho_r == 0) {
+    sol->type = SB_PGD_WAVE_NONE;
+    sol->xl = sol->xr = x0;
+  } else if (rp->rho_r == 0 || rp->rho_l == 0 || vl == vr) {
+    /* one state against vacuum, or both with the same velocity */
+    sol->type = SB_PGD_WAVE_CONTACT;
+    sol->xl = sol->xr = x0 + (rp->rho_l > 0 ? vl : vr) * s;
+  } else if (vl < vr) {
+    sol->type = SB_PGD_WAVE_VACUUM;
+    sol->xl = x0 + vl * s;
+    sol->xr = x0 + vr * s;
+  } else {
+    double sig = sb_pgd_delta_speed(rp->rho_l, vl, rp->rho_r, vr);
+    sol->type = SB_PGD_WAVE_DELTA;
+    sol->xl = sol->xr = x0 + sig * s;
+    sol->mass = sb_pgd_delta_mass_rate(rp->rho_l, vl, rp->rho_r, vr) * s;
+    sol->vel = U + sig * e;
+  }
+  return SB_SUCCESS;
+}
+
+int sb_pgd_riemann_eval(const sb_pgd_riemann *rp, double x, double t,
+                        double *rho, double *u)
+{
+  sb_pgd_riemann_sol w;
+  int st = sb_pgd_riemann_solve(rp, t, &w);
+  if (st)
+    return st;
+  double r = 0, v = 0;
+  if (x < w.xl) {
+    r = rp->rho_l;
+    v = r > 0 ? w.ul : 0.0;
+  } else if (x >= w.xr) {
+    r = rp->rho_r;
+    v = r > 0 ? w.ur : 0.0;
+  }
+  if (rho)
+    *rho = r;
+  if (u)
+    *u = v;
+  return SB_SUCCESS;
+}
+
+/* Mass and momentum in [a, b] from a solved wave pattern. */
+static void integral_sol(const sb_pgd_riemann *rp,
+                         const sb_pgd_riemann_sol *w, double a, double b,
+                         double *mass, double *mom)
+{
+  double ll = fmin(b, w->xl) - a, lr = b - fmax(a, w->xr);
+  ll = ll > 0 ? ll : 0.0;
+  lr = lr > 0 ? lr : 0.0;
+  double m = rp->rho_l * ll + rp->rho_r * lr;
+  double q = rp->rho_l * w->ul * ll + rp->rho_r * w->ur * lr;
+  if (w->type == SB_PGD_WAVE_DELTA && a <= w->xl && w->xl < b) {
+    m += w->mass;
+    q += w->mass * w->vel;
+  }
+  *mass = m;
+  *mom = q;
+}
+
+int sb_pgd_riemann_integral(const sb_pgd_riemann *rp, double t, double a,
+                            double b, double *mass, double *mom)
+{
+  sb_pgd_riemann_sol w;
+  int st = sb_pgd_riemann_solve(rp, t, &w);
+  if (st)
+    return st;
+  if (!(a <= b))
+    return sbi_error(SB_EDOM, __func__, "interval [%g, %g] is empty", a, b);
+  double m, q;
+  integral_sol(rp, &w, a, b, &m, &q);
+  if (mass)
+    *mass = m;
+  if (mom)
+    *mom = q;
+  return SB_SUCCESS;
+}
+
+/* Integral over a segment of |d| for d linear from d0 to d1. */
+static double abs_linear(double d0, double d1, double len)
+{
+  if ((d0 >= 0) == (d1 >= 0))
+    return 0.5 * (fabs(d0) + fabs(d1)) * len;
+  return 0.5 * (d0 * d0 + d1 * d1) / fabs(d0 - d1) * len;
+}
+
+int sb_pgd_riemann_error(const sb_pgd_riemann *rp, double t, double a,
+                         double h, size_t n, const double *rho, double *l1,
+                         double *w1)
+{
+  sb_pgd_riemann_sol w;
+  int st = sb_pgd_riemann_solve(rp, t, &w);
+  if (st)
+    return st;
+  if (!rho || n == 0 || !(h > 0) || !isfinite(a))
+    return sbi_error(SB_EINVAL, __func__, "need rho, n > 0, h > 0");
+  double sl1 = 0, sw1 = 0, Mnum = 0;
+  const int has_delta = w.type == SB_PGD_WAVE_DELTA;
+  for (size_t i = 0; i < n; i++) {
+    double ca = a + (double)i * h, cb = a + (double)(i + 1) * h;
+    double m, q;
+    integral_sol(rp, &w, ca, cb, &m, &q);
+    sl1 += fabs(rho[i] * h - m);
+    if (w1) {
+      /* breakpoints of the exact cumulative mass inside the cell */
+      double bp[4] = {ca, 0, 0, cb};
+      int nb = 1;
+      if (w.xl > ca && w.xl < cb)
+        bp[nb++] = w.xl;
+      if (w.xr > ca && w.xr < cb && w.xr != w.xl)
+        bp[nb++] = w.xr;
+      bp[nb] = cb;
+      for (int k = 0; k < nb; k++) {
+        double p = bp[k], r = bp[k + 1], Mp, Mr;
+        integral_sol(rp, &w, a, p, &Mp, &q); /* mass in [a, p) */
+        integral_sol(rp, &w, a, r, &Mr, &q);
+        if (has_delta && p == w.xl)
+          Mp += w.mass;  /* right limit at the delta */
+        double np = Mnum + rho[i] * (p - ca), nr = Mnum + rho[i] * (r - ca);
+        sw1 += abs_linear(np - Mp, nr - Mr, r - p);
+      }
+      Mnum += rho[i] * h;
+    }
+  }
+  if (l1)
+    *l1 = sl1;
+  if (w1)
+    *w1 = sw1;
+  return SB_SUCCESS;
+}
+
+/* ------------------------------------------------------------ smooth */
+
+typedef struct {
+  const sb_pgd_smooth *s;
+  double x, Ut, sf;
+} foot_par;
+
+static double foot_f(double xi, void *v)
+{
+  const foot_par *fp = v;
+  double U = isinf(fp->s->tau) ? 0.0 : fp->s->ugas;
+  return xi + fp->Ut + (fp->s->u0(xi, fp->s->data) - U) * fp->sf - fp->x;
+}
+
+static int check_smooth(const sb_pgd_smooth *s, double t, const char *f)
+{
+  if (!s || !s->rho0 || !s->u0)
+    return sbi_error(SB_EINVAL, f, "NULL problem or functions");
+  if (!(s->tau > 0) || !isfinite(s->ugas))
+    return sbi_error(SB_EDOM, f, "tau = %g (> 0 or INFINITY), ugas finite",
+                     s->tau);
+  if (!(t >= 0) || !isfinite(t))
+    return sbi_error(SB_EDOM, f, "t = %g: must be >= 0", t);
+  return SB_SUCCESS;
+}
+
+int sb_pgd_smooth_foot(const sb_pgd_smooth *s, double x, double t,
+                       double *xi)
+{
+  int st = check_smooth(s, t, __func__);
+  if (st)
+    return st;
+  if (!isfinite(x) || !xi)
+    return sbi_error(SB_EINVAL, __func__, "x = %g: must be finite", x);
+  double sf, e;
+  drag_map(s->tau, t, &sf, &e);
+  double U = isinf(s->tau) ? 0.0 : s->ugas;
+  foot_par fp = {s, x, U * t, sf};
+  gsl_function F = {foot_f, &fp};
+  double g0 = x - U * t, f0 = foot_f(g0, &fp);
+  if (!isfinite(f0))
+    return sbi_error(SB_EDOM, __func__, "u0 not finite near %g", g0);
+  if (f0 == 0) {
+    *xi = g0;
+    return SB_SUCCESS;
+  }
+  /* bracket by expanding away from the guess (f increases with xi while
+   * the characteristics have not crossed) */
+  double d = fabs(f0) + 1e-12 * (1 + fabs(g0)), lo = g0, hi = g0;
+  int k;
+  for (k = 0; k < 200; k++) {
+    if (f0 > 0)
+      lo = g0 - d;
+    else
+      hi = g0 + d;
+    double fl = foot_f(lo, &fp), fh = foot_f(hi, &fp);
+    if (!isfinite(fl) || !isfinite(fh))
+      return sbi_error(SB_EDOM, __func__, "u0 not finite in [%g, %g]", lo,
+                       hi);
+    if (fl <= 0 && fh >= 0)
+      break;
+    d *= 2;
+  }
+  if (k == 200)
+    return sbi_error(SB_EMAXITER, __func__, "no foot found for x = %g at "
+                     "t = %g (characteristics crossed?)", x, t);
+  gsl_root_fsolver *r = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+  if (!r)
+    return sbi_error(SB_ENOMEM, __func__, "out of memory");
+  gsl_root_fsolver_set(r, &F, lo, hi); /* signs checked above */
+  int it;
+  for (it = 0; it < 300; it++) {
+    gsl_root_fsolver_iterate(r);
+    double a = gsl_root_fsolver_x_lower(r), b = gsl_root_fsolver_x_upper(r);
+    if (gsl_root_test_interval(a, b, DBL_MIN, 4 * DBL_EPSILON) ==
+        GSL_SUCCESS)
+      break;
+  }
+  *xi = gsl_root_fsolver_root(r);
+  gsl_root_fsolver_free(r);
+  if (it == 300)
+    return sbi_error(SB_EMAXITER, __func__, "root finding did not converge "
+                     "for x = %g", x);
+  return SB_SUCCESS;
+}
+
+typedef struct {
+  const sb_pgd_smooth *s;
+  double U;
+} mom_par;
+
+static double mom_f(double xi, void *v)
+{
+  const mom_par *m = v;
+  return m->s->rho0(xi, m->s->data) * (m->s->u0(xi, m->s->data) - m->U);
+}
+
+/* Composite 10-point Gauss-Legendre on k panels, k doubled until two
+ * successive sums agree to 1e-14 relative (smooth integrand). */
+static int quad_smooth(gsl_function *F, double a, double b, double *res)
+{
+  gsl_integration_glfixed_table *tab = gsl_integration_glfixed_table_alloc(10);
+  if (!tab)
+    return SB_ENOMEM;
+  double prev = NAN;
+  int st = SB_EMAXITER;
+  for (size_t k = 1; k <= 4096; k *= 2) {
+    double sum = 0, h = (b - a) / (double)k;
+    for (size_t i = 0; i < k; i++)
+      sum += gsl_integration_glfixed(F, a + (double)i * h,
+                                     a + (double)(i + 1) * h, tab);
+    if (k > 1 && fabs(sum - prev) <= 1e-14 * fabs(sum) + 1e-300) {
+      *res = sum;
+      st = SB_SUCCESS;
+      break;
+    }
+    prev = sum;
+    *res = sum;
+  }
+  gsl_integration_glfixed_table_free(tab);
+  return st;
+}
+
+int sb_pgd_smooth_integral(const sb_pgd_smooth *s, double t, double a,
+                           double b, double *mass, double *mom)
+{
+  int st = check_smooth(s, t, __func__);
+  if (st)
+    return st;
+  if (!s->mass0)
+    return sbi_error(SB_EINVAL, __func__, "mass0 (primitive of rho0) is "
+                     "required");
+  if (!(a <= b))
+    return sbi_error(SB_EDOM, __func__, "interval [%g, %g] is empty", a, b);
+  double xa, xb;
+  if ((st = sb_pgd_smooth_foot(s, a, t, &xa)) ||
+      (st = sb_pgd_smooth_foot(s, b, t, &xb)))
+    return st;
+  double m = s->mass0(xb, s->data) - s->mass0(xa, s->data);
+  if (mass)
+    *mass = m;
+  if (mom) {
+    double sf, e, q = 0;
+    drag_map(s->tau, t, &sf, &e);
+    double U = isinf(s->tau) ? 0.0 : s->ugas;
+    mom_par mp = {s, U};
+    gsl_function F = {mom_f, &mp};
+    if (xb > xa && (st = quad_smooth(&F, xa, xb, &q)))
+      return sbi_error(st, __func__, "quadrature of the momentum over "
+                       "[%g, %g] did not converge", xa, xb);
+    *mom = U * m + e * q;
+  }
+  return SB_SUCCESS;
+}

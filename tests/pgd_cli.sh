@@ -1,0 +1,117 @@
+#!/bin/sh
+# `smolbridge pgd`: the example INI files run and give the right answers
+# (checked here against the closed forms, computed independently in awk),
+# input errors give file:line, the key and the valid values with exit
+# status 2, and a new run does not leave a previous run's files behind.
+set -u
+sb="${top_builddir:-.}/smolbridge"
+src="${srcdir:-.}"
+out="${top_builddir:-.}/tests/pgd-cli-out"
+rm -rf "$out"
+mkdir -p "$out"
+fails=0
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+# run an example with its output redirected into $out/NAME
+run_example() {  # run_example FILE NAME [sed expressions...]
+  f=$1; name=$2; shift 2
+  sed -e "s|^output = .*|output = $out/$name|" "$@" "$src/examples/$f" \
+    > "$out/$name.ini"
+  "$sb" pgd "$out/$name.ini" >"$out/$name.log" 2>&1 || \
+    { fail "$f ($name) exited $?: $(cat "$out/$name.log")"; return 1; }
+}
+
+# --- delta-shock: excess mass and centroid against the generalised
+# Rankine-Hugoniot values sigma = (sqrt(rl) ul + sqrt(rr) ur)/(sqrt(rl) +
+# sqrt(rr)), w = sqrt(rl rr)(ul - ur) t
+if run_example pgd_delta_shock.ini delta; then
+  awk -F, 'NR > 1 { x = $1; r = $2; h = 1 / 400
+      sig = (sqrt(1) * 2 + sqrt(0.25) * -1) / (1 + sqrt(0.25))
+      xd = 0.5 + sig * 0.2; w = sqrt(0.25) * 3 * 0.2
+      if (x > xd - 0.05 && x < xd + 0.05) {
+        bg = x < xd ? 1 : 0.25; m += (r - bg) * h; mx += (r - bg) * h * x } }
+    END { c = mx / m; d = m - w; if (d < 0) d = -d; e = c - xd; if (e < 0) e = -e
+      if (d > 1e-6 * w || e > 5 * h) {
+        printf "delta mass %.10g (exact %.10g), centroid %.6f (exact %.6f)\n", m, w, c, xd
+        exit 1 } }' "$out/delta/fields.csv" || fail "delta-shock answer"
+  head -n 1 "$out/delta/fields.csv" | grep -qx 'x,rho,u' || fail "fields.csv header"
+  [ "$(wc -l < "$out/delta/fields.csv")" -eq 401 ] || fail "fields.csv rows"
+  [ -s "$out/delta/exact.csv" ] || fail "exact.csv missing"
+  grep -q '"wave": "delta"' "$out/delta/summary.json" || fail "summary.json wave"
+fi
+
+# --- vacuum with drag: edges at 0.5 -+ tau (1 - exp(-t/tau))
+if run_example pgd_vacuum.ini vacuum; then
+  awk -F, 'NR > 1 { x = $1; r = $2; e = 0.5 * (1 - exp(-0.4))
+      if (x > 0.5 - e + 0.06 && x < 0.5 + e - 0.06 && r > 1e-3) bad++
+      if ((x < 0.5 - e - 0.06 || x > 0.5 + e + 0.06) && (r < 0.999 || r > 1.001)) bad++ }
+    END { exit bad > 0 }' "$out/vacuum/fields.csv" || fail "vacuum edges"
+fi
+
+# --- crossing jets, Euler: mass budget closes; the merged jet moves at
+# (1/2, 1/2) (momentum of two equal perpendicular jets) near the corner
+if run_example pgd_crossing_jets.ini jets; then
+  awk -F, 'NR > 1 && $1 > 0.75 && $2 > 0.75 { m += $3; px += $3 * $4; py += $3 * $5 }
+    END { ux = px / m; uy = py / m
+      if (ux < 0.47 || ux > 0.51 || uy < 0.47 || uy > 0.51) {
+        printf "merged jet velocity (%g, %g)\n", ux, uy; exit 1 } }' \
+    "$out/jets/fields.csv" || fail "Eulerian jets do not merge at (1/2, 1/2)"
+  [ -s "$out/jets/fields.vtk" ] || fail "fields.vtk missing"
+  awk '/"mass"/ { gsub(/[,]/, ""); m = $2 }
+       /"inflow"/ { gsub(/[][,]/, " "); i = $2 }
+       /"outflow"/ { gsub(/[][,]/, " "); o = $2 }
+       END { d = m - (i - o); if (d < 0) d = -d; exit !(d < 1e-13) }' \
+    "$out/jets/summary.json" || fail "jets mass budget"
+fi
+# --- the same jets with weighted particles: they cross; the west jet
+# leaves through the east side at (1, 0) with rho = 1
+if run_example pgd_crossing_jets.ini jetsL -e 's|^method = .*|method = lagrange|'; then
+  awk -F, 'NR > 1 && $1 > 0.9 && $2 > 0.46 && $2 < 0.54 {
+      n++; if ($3 < 0.99 || $3 > 1.01 || $4 < 0.99 || $4 > 1.0) bad++ }
+    END { exit !(n > 0 && bad == 0) }' "$out/jetsL/fields.csv" \
+    || fail "Lagrangian jets do not cross"
+  grep -q '"particles"' "$out/jetsL/summary.json" || fail "particle count"
+fi
+# --- decomposition (Lagrangian centre block): the mass budget closes
+if run_example pgd_crossing_jets.ini jetsD -e 's|^method = .*|method = decomposition|'; then
+  awk '/"mass"/ { gsub(/[,]/, ""); m = $2 }
+       /"inflow"/ { gsub(/[][,]/, " "); i = $2 }
+       /"outflow"/ { gsub(/[][,]/, " "); o = $2 }
+       END { d = m - (i - o); if (d < 0) d = -d; exit !(d < 1e-13) }' \
+    "$out/jetsD/summary.json" || fail "decomposition mass budget"
+fi
+
+# --- a previous run's snapshots do not survive a new run
+run_example pgd_vacuum.ini snaps -e 's|^t_end = .*|t_end = 0.2\noutput_every = 0.05|'
+[ -f "$out/snaps/fields_00002.csv" ] || fail "no snapshots written"
+run_example pgd_vacuum.ini snaps
+[ -f "$out/snaps/fields_00000.csv" ] && fail "old snapshots left in the output"
+
+# --- input errors: exit 2, file:line, key and valid values
+bad() {  # bad EXPECTED-TEXT INI-LINES...
+  want=$1; shift
+  printf '%s\n' "$@" > "$out/bad.ini"
+  msg=$("$sb" pgd "$out/bad.ini" 2>&1 >/dev/null)
+  rc=$?
+  [ $rc -eq 2 ] || fail "'$*' exited $rc, want 2"
+  case "$msg" in *"$want"*) ;; *) fail "message '$msg' lacks '$want'" ;; esac
+}
+bad "bad.ini:3: [run] scheme = 'weno': must be upwind or muscl" \
+  "[run]" "nx = 10" "scheme = weno" "t_end = 1"
+bad "bad.ini:2: [run]: unknown key 'nz'" "[run]" "nz = 10"
+bad "bad.ini:3: [boundary] west = 'wall': must be transmissive, outflow or periodic" \
+  "[run]" "[boundary]" "west = wall"
+bad "[run] nx is required" "[run]" "t_end = 1" "[riemann]" "rho_l = 1"
+bad "cfl = 0.8: must be in (0, 0.5]" \
+  "[run]" "nx = 10" "t_end = 1" "scheme = muscl" "cfl = 0.8" "[riemann]" "rho_l = 1"
+bad "bad.ini:4: [inflow a] side = 'up'" \
+  "[run]" "dim = 2" "[inflow a]" "side = up"
+bad "bad.ini:2: unknown section [foo]" "[foo]" "a = 1"
+"$sb" pgd "$out/no-such.ini" >/dev/null 2>&1; [ $? -eq 2 ] || fail "missing file"
+"$sb" pgd >/dev/null 2>&1; [ $? -eq 2 ] || fail "no argument"
+"$sb" pgd --help >/dev/null 2>&1 || fail "--help"
+# an output that cannot be created: a failed run (1)
+printf '[run]\nnx = 10\nt_end = 0.1\noutput = /proc/none/x\n[riemann]\nrho_l = 1\n' > "$out/io.ini"
+"$sb" pgd "$out/io.ini" >/dev/null 2>&1; [ $? -eq 1 ] || fail "unwritable output"
+
+[ $fails -eq 0 ] && echo "pgd cli: all checks passed" && rm -rf "$out"
+exit $((fails > 0))

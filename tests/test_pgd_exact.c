@@ -1,0 +1,319 @@
+/* test_pgd_exact.c — the exact solutions of 1-D pressureless gas dynamics
+ * (lib/pgd/pgd_exact.c) against independent computations: an
+ * event-driven sticky-particle simulation (delta-shock speed and mass),
+ * the generalised Rankine-Hugoniot balances differentiated numerically,
+ * conservation over a window, limits, brute-force quadrature of the error
+ * norms, and moving particles for the smooth solutions. */
+#include <check.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include <smolbridge/pgd.h>
+#include "testutil.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* Event-driven sticky particles: N particles of mass rho_l h left of x0
+ * (velocity u_l) and of mass rho_r h right of x0 (velocity u_r), spaced h,
+ * centred in their slots.  Colliding particles merge, conserving mass and
+ * momentum.  Returns the cluster's mass, position and velocity at t. */
+static void sticky(double x0, double rl, double ul, double rr, double ur,
+                   double h, double t, double *M, double *X, double *V)
+{
+  /* the innermost pair meets first */
+  double tc = h / (ul - ur);
+  double m = (rl + rr) * h, x = x0 - 0.5 * h + ul * tc;
+  double v = (rl * ul + rr * ur) / (rl + rr);
+  long kl = 1, kr = 1; /* next particles: slot k on each side */
+  for (;;) {
+    /* times at which the next left/right particle meets the cluster */
+    double xl = x0 - ((double)kl + 0.5) * h, xr = x0 + ((double)kr + 0.5) * h;
+    /* cluster: x + v (s - tc); left: xl + ul s */
+    double sl = (x - v * tc - xl) / (ul - v);
+    double sr = (xr - x + v * tc) / (v - ur);
+    double s = sl < sr ? sl : sr;
+    if (s > t)
+      break;
+    double pos = x + v * (s - tc);
+    double mi = sl < sr ? rl * h : rr * h, ui = sl < sr ? ul : ur;
+    v = (m * v + mi * ui) / (m + mi);
+    m += mi;
+    x = pos;
+    tc = s;
+    if (sl < sr)
+      kl++;
+    else
+      kr++;
+  }
+  *M = m;
+  *X = x + v * (t - tc);
+  *V = v;
+}
+
+START_TEST(delta_vs_sticky_particles)
+{
+  const double cases[][4] = {{1, 1, 1, -1}, {1, 2, 0.25, -1},
+                             {0.3, 0.5, 4, -2}, {2, 3, 1, 2.5}};
+  const double h = 2e-5, t = 0.3;
+  for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+    const double *q = cases[c];
+    sb_pgd_riemann rp = {0.1, q[0], q[1], q[2], q[3], INFINITY, 0};
+    sb_pgd_riemann_sol w;
+    ck_assert_int_eq(sb_pgd_riemann_solve(&rp, t, &w), SB_SUCCESS);
+    ck_assert_int_eq(w.type, SB_PGD_WAVE_DELTA);
+    double M, X, V;
+    sticky(rp.x0, q[0], q[1], q[2], q[3], h, t, &M, &X, &V);
+    /* discreteness: at most one particle per side, one spacing */
+    double mtol = 2 * (q[0] + q[2]) * h;
+    ck_assert_abs(w.mass, M, mtol);
+    ck_assert_abs(w.xl, X, 4 * h);
+    ck_assert_abs(w.vel, V, 1e-3);
+    ck_assert_rel(sb_pgd_delta_speed(q[0], q[1], q[2], q[3]), w.vel,
+                  TOL_TIGHT);
+  }
+}
+END_TEST
+
+/* The generalised Rankine-Hugoniot balances, from the solution at t +- e:
+ * dw/dt = rho_l (u_l - sigma) + rho_r (sigma - u_r) and
+ * d(w sigma)/dt = rho_l u_l (u_l - sigma) + rho_r u_r (sigma - u_r). */
+START_TEST(delta_rankine_hugoniot)
+{
+  const double cases[][4] = {{1, 2, 0.25, -1}, {3, 1, 0.5, 0.2},
+                             {0.01, 10, 100, -1}};
+  for (size_t c = 0; c < 3; c++) {
+    const double *q = cases[c];
+    sb_pgd_riemann rp = {0, q[0], q[1], q[2], q[3], INFINITY, 0};
+    const double t = 0.7, e = 1e-4;
+    sb_pgd_riemann_sol a, b, m;
+    sb_pgd_riemann_solve(&rp, t - e, &a);
+    sb_pgd_riemann_solve(&rp, t + e, &b);
+    sb_pgd_riemann_solve(&rp, t, &m);
+    double sig = (b.xl - a.xl) / (2 * e);
+    double dw = (b.mass - a.mass) / (2 * e);
+    double dp = (b.mass * b.vel - a.mass * a.vel) / (2 * e);
+    ck_assert_rel(sig, m.vel, 1e-9);
+    ck_assert_rel(dw, q[0] * (q[1] - sig) + q[2] * (sig - q[3]), 1e-9);
+    ck_assert_rel(dp, q[0] * q[1] * (q[1] - sig) + q[2] * q[3] * (sig - q[3]),
+                  1e-9);
+  }
+}
+END_TEST
+
+/* Mass and momentum in a window enclosing every wave change only by the
+ * fluxes through its ends (and, with drag, by the drag impulse). */
+START_TEST(riemann_conservation)
+{
+  const double cases[][4] = {{1, 2, 0.25, -1}, {1, -1, 2, 1.5},
+                             {0.5, 0.3, 0.5, 0.3}, {1, 1, 0, 0},
+                             {0, 0, 2, -1}};
+  const double a = -3, b = 3, t = 0.8;
+  for (size_t c = 0; c < 5; c++) {
+    const double *q = cases[c];
+    sb_pgd_riemann rp = {0.2, q[0], q[1], q[2], q[3], INFINITY, 0};
+    double m0, p0, m1, p1;
+    sb_pgd_riemann_integral(&rp, 0, a, b, &m0, &p0);
+    sb_pgd_riemann_integral(&rp, t, a, b, &m1, &p1);
+    ck_assert_rel(m1, m0 + t * (q[0] * q[1] - q[2] * q[3]), 1e-14);
+    ck_assert_abs(p1, p0 + t * (q[0] * q[1] * q[1] - q[2] * q[3] * q[3]),
+                  1e-13 * (1 + fabs(p1)));
+  }
+  /* with drag: d/dt (momentum) = end fluxes + (U M - P)/tau, checked by
+   * central differences */
+  sb_pgd_riemann rp = {0.2, 1, 2, 0.5, -1, 0.4, 0.3};
+  const double e = 1e-5;
+  double ma, pa, mb, pb, m, p;
+  sb_pgd_riemann_integral(&rp, t - e, a, b, &ma, &pa);
+  sb_pgd_riemann_integral(&rp, t + e, a, b, &mb, &pb);
+  sb_pgd_riemann_integral(&rp, t, a, b, &m, &p);
+  double ul, ur;
+  sb_pgd_riemann_eval(&rp, a, t, NULL, &ul);
+  sb_pgd_riemann_eval(&rp, b, t, NULL, &ur);
+  double flux_m = rp.rho_l * ul - rp.rho_r * ur;
+  double flux_p = rp.rho_l * ul * ul - rp.rho_r * ur * ur;
+  ck_assert_rel((mb - ma) / (2 * e), flux_m, 1e-8);
+  ck_assert_rel((pb - pa) / (2 * e), flux_p + (rp.ugas * m - p) / rp.tau,
+                1e-7);
+}
+END_TEST
+
+START_TEST(riemann_limits)
+{
+  sb_pgd_riemann_sol w;
+  /* equal densities: the mean velocity; one side nearly empty: that side
+   * stops mattering; equal velocities: no delta */
+  ck_assert_rel(sb_pgd_delta_speed(2, 3, 2, -1), 1.0, TOL_TIGHT);
+  ck_assert_rel(sb_pgd_delta_speed(1, 3, 1e-20, -1), 3.0, 1e-9);
+  ck_assert_abs(sb_pgd_delta_mass_rate(1, 3, 1e-20, -1), 0.0, 1e-9);
+  ck_assert(isnan(sb_pgd_delta_speed(1, 1, 1, 1)));
+  ck_assert(isnan(sb_pgd_delta_mass_rate(1, -1, 1, 1)));
+  sb_pgd_riemann rp = {0, 1, 0.5, 2, 0.5, INFINITY, 0};
+  sb_pgd_riemann_solve(&rp, 2, &w);
+  ck_assert_int_eq(w.type, SB_PGD_WAVE_CONTACT);
+  ck_assert_rel(w.xl, 1.0, TOL_TIGHT);
+  /* vacuum between diverging states */
+  rp = (sb_pgd_riemann){0, 1, -1, 2, 0.5, INFINITY, 0};
+  sb_pgd_riemann_solve(&rp, 2, &w);
+  ck_assert_int_eq(w.type, SB_PGD_WAVE_VACUUM);
+  ck_assert_rel(w.xl, -2.0, TOL_TIGHT);
+  ck_assert_rel(w.xr, 1.0, TOL_TIGHT);
+  double r, u;
+  sb_pgd_riemann_eval(&rp, 0, 2, &r, &u);
+  ck_assert(r == 0 && u == 0);
+  sb_pgd_riemann_eval(&rp, 1.5, 2, &r, &u);
+  ck_assert(r == 2 && u == 0.5);
+  /* right side vacuum: the left state advances as a contact */
+  rp = (sb_pgd_riemann){0, 1, 1, 0, -5, INFINITY, 0};
+  sb_pgd_riemann_solve(&rp, 2, &w);
+  ck_assert_int_eq(w.type, SB_PGD_WAVE_CONTACT);
+  ck_assert_rel(w.xl, 2.0, TOL_TIGHT);
+  /* drag: tau -> 0 leaves every velocity at ugas (the delta too), and
+   * tau -> infinity is the drag-free solution */
+  rp = (sb_pgd_riemann){0, 1, 2, 0.25, -1, 1e-6, 0.3};
+  sb_pgd_riemann_solve(&rp, 1, &w);
+  ck_assert_rel(w.vel, 0.3, 1e-12);
+  ck_assert_rel(w.ul, 0.3, 1e-12);
+  ck_assert_rel(w.xl, 0.3 + 0.7e-6, 1e-9); /* sigma' = 0.7, s = tau */
+  rp.tau = 1e12;
+  sb_pgd_riemann_sol f;
+  sb_pgd_riemann rf = rp;
+  rf.tau = INFINITY;
+  sb_pgd_riemann_solve(&rp, 1, &w);
+  sb_pgd_riemann_solve(&rf, 1, &f);
+  ck_assert_rel(w.xl, f.xl, 1e-9);
+  ck_assert_rel(w.mass, f.mass, 1e-9);
+  /* errors */
+  rp.rho_l = -1;
+  ck_assert_int_eq(sb_pgd_riemann_solve(&rp, 1, &w), SB_EDOM);
+  rp.rho_l = 1;
+  rp.tau = 0;
+  ck_assert_int_eq(sb_pgd_riemann_solve(&rp, 1, &w), SB_EDOM);
+  rp.tau = INFINITY;
+  ck_assert_int_eq(sb_pgd_riemann_solve(&rp, -1, &w), SB_EDOM);
+}
+END_TEST
+
+/* The exact L1 and W1 of sb_pgd_riemann_error against brute force. */
+START_TEST(riemann_error_norms)
+{
+  sb_pgd_riemann rps[2] = {{0.43, 1, 2, 0.25, -1, INFINITY, 0},
+                           {0.43, 1, -1, 0.5, 1, INFINITY, 0}};
+  const size_t n = 37;
+  const double a = 0.01, h = 1.0 / n, t = 0.13;
+  double rho[37];
+  for (int c = 0; c < 2; c++) {
+    for (size_t i = 0; i < n; i++)
+      rho[i] = 0.8 + 0.5 * sin(3.0 * (double)i) * sin(3.0 * (double)i);
+    double l1, w1;
+    ck_assert_int_eq(sb_pgd_riemann_error(&rps[c], t, a, h, n, rho, &l1, &w1),
+                     SB_SUCCESS);
+    /* brute force from point values (midpoint rule) plus the delta */
+    sb_pgd_riemann_sol w;
+    sb_pgd_riemann_solve(&rps[c], t, &w);
+    const size_t k = 2000000;
+    double dx = (double)n * h / (double)k, sw = 0, Me = 0, cell[37] = {0};
+    int added = w.type != SB_PGD_WAVE_DELTA;
+    for (size_t j = 0; j < k; j++) {
+      double x = a + ((double)j + 0.5) * dx, r;
+      size_t i = (size_t)((x - a) / h);
+      if (!added && x - 0.5 * dx >= w.xl) {
+        Me += w.mass;
+        cell[i] += w.mass;
+        added = 1;
+      }
+      sb_pgd_riemann_eval(&rps[c], x, t, &r, NULL);
+      Me += r * dx;
+      cell[i] += r * dx;
+      double Mn = 0;
+      for (size_t m = 0; m < i; m++)
+        Mn += rho[m] * h;
+      Mn += rho[i] * (x + 0.5 * dx - a - (double)i * h);
+      sw += fabs(Mn - Me) * dx;
+    }
+    double sl = 0;
+    for (size_t i = 0; i < n; i++)
+      sl += fabs(rho[i] * h - cell[i]);
+    ck_assert_rel(w1, sw, 1e-5);
+    ck_assert_rel(l1, sl, 1e-5);
+  }
+}
+END_TEST
+
+/* ------------------------------------------------------------ smooth */
+
+static double r0(double x, void *d) { (void)d; return 1 + 0.5 * sin(2 * M_PI * x); }
+static double m0(double x, void *d)
+{
+  (void)d;
+  return x - 0.5 * cos(2 * M_PI * x) / (2 * M_PI);
+}
+static double u0(double x, void *d) { (void)d; return 1 + 0.2 * sin(2 * M_PI * x); }
+
+/* Mass in [a, b] by exact particle motion: N particles of mass rho0 dxi
+ * (midpoint rule over [a - 2, b + 2]) counted where they are at t. */
+static double particle_mass(const sb_pgd_smooth *s, double t, double a,
+                            double b, double *mom)
+{
+  const size_t N = 400000;
+  double lo = a - 2, hi = b + 2, dxi = (hi - lo) / (double)N, m = 0, p = 0;
+  double sf = isinf(s->tau) ? t : -s->tau * expm1(-t / s->tau);
+  double e = isinf(s->tau) ? 1 : exp(-t / s->tau);
+  double U = isinf(s->tau) ? 0 : s->ugas;
+  for (size_t k = 0; k < N; k++) {
+    double xi = lo + ((double)k + 0.5) * dxi;
+    double v = s->u0(xi, NULL);
+    double x = xi + U * t + (v - U) * sf;
+    if (x >= a && x < b) {
+      m += s->rho0(xi, NULL) * dxi;
+      p += s->rho0(xi, NULL) * dxi * (U + (v - U) * e);
+    }
+  }
+  *mom = p;
+  return m;
+}
+
+START_TEST(smooth_vs_particles)
+{
+  sb_pgd_smooth s = {r0, m0, u0, NULL, INFINITY, 0};
+  for (int drag = 0; drag < 2; drag++) {
+    s.tau = drag ? 0.4 : INFINITY;
+    s.ugas = drag ? -0.5 : 0;
+    const double t = 0.5;
+    double xi;
+    ck_assert_int_eq(sb_pgd_smooth_foot(&s, 0.3, 0, &xi), SB_SUCCESS);
+    ck_assert_rel(xi, 0.3, TOL_TIGHT);
+    double m, p, mp, pp;
+    ck_assert_int_eq(sb_pgd_smooth_integral(&s, t, 0.2, 0.45, &m, &p),
+                     SB_SUCCESS);
+    mp = particle_mass(&s, t, 0.2, 0.45, &pp);
+    /* particle discreteness: one particle (mass <= 1.5 dxi) per edge */
+    ck_assert_abs(m, mp, 2 * 1.5 * 4.25 / 400000);
+    ck_assert_abs(p, pp, 2 * 1.5 * 1.2 * 4.25 / 400000);
+    /* one period holds the mass of one period */
+    ck_assert_int_eq(sb_pgd_smooth_integral(&s, t, -0.37, 0.63, &m, NULL),
+                     SB_SUCCESS);
+    ck_assert_rel(m, 1.0, 1e-13);
+  }
+}
+END_TEST
+
+Suite *suite(void)
+{
+  Suite *s = suite_create("pgd_exact");
+  TCase *tc = tcase_create("riemann");
+  tcase_add_test(tc, delta_vs_sticky_particles);
+  tcase_add_test(tc, delta_rankine_hugoniot);
+  tcase_add_test(tc, riemann_conservation);
+  tcase_add_test(tc, riemann_limits);
+  suite_add_tcase(s, tc);
+  tc = tcase_create("norms");
+  tcase_set_timeout(tc, 30);
+  tcase_add_test(tc, riemann_error_norms);
+  tcase_add_test(tc, smooth_vs_particles);
+  suite_add_tcase(s, tc);
+  return s;
+}
+
+int main(void) { return sbt_run_suite(suite()); }
