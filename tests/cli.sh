@@ -57,6 +57,14 @@ expect_rc 2 "$sb" eval bb_cross_prob x=1 x=1 y=1 a=0 v=1
 expect_rc 1 "$sb" eval bb_cross_prob x=1 y=1 a=0 v=-1
 msg=$("$sb" eval bes3b_cross_prob x=1 y=1 a=-1 v=1 2>&1 >/dev/null)
 [ -n "$msg" ] || fail "no message for a < 0"
+# a domain error names the function called and its arguments
+msg=$("$sb" eval dlvo_energy D=-1 r1=1e-6 r2=1e-6 A=1e-20 T=300 eps_r=78 z=1 \
+      kappa=1e8 psi=0.01 model=0 2>&1 >/dev/null)
+case "$msg" in *"dlvo_energy(D=-1, r1="*) ;; *) fail "eval domain message: $msg" ;; esac
+# seeds are integers 0 .. 2^32-1, as in collide
+for s in nan inf -1 1.5 4294967296; do
+  expect_rc 2 "$sb" eval bb_hit_sample seed=$s x=2 y=1.5 a=1 sigma2=1 t=1
+done
 
 # --- validate: listing, filtering, report files and CSV header
 expect_rc 0 "$sb" validate --list
@@ -84,7 +92,7 @@ expect_rc 2 "$sb" pbe --kernel no-such-kernel --n0 1 --init mono --method discre
 if "$sb" pbe --kernel constant --param K=2 --n0 3 --init mono --method discrete \
      --sizes 30 --times 0.5,1 --out "$out-p.csv" 2>/dev/null; then
   head -n 1 "$out-p.csv" | grep -qx 't,k,v,n' || fail "pbe csv header"
-  head -n 1 "$out-p-moments.csv" | grep -qx 't,M0,M1,M2' || fail "pbe moments header"
+  head -n 1 "$out-p-moments.csv" | grep -qx 't,M0,M1,M2,tail_n,tail_M1' || fail "pbe moments header"
   m0=$(awk -F, '$1 == 1 {print $2}' "$out-p-moments.csv")
   want=$(awk 'BEGIN { tau = 2 * 3 * 1; printf "%.17g", 3 / (1 + tau / 2) }')
   relclose "$m0" "$want" 1e-8 || fail "pbe M0(t=1) = $m0, want $want"
@@ -92,6 +100,26 @@ else
   fail "smolbridge pbe failed"
 fi
 rm -f "$out-p.csv" "$out-p-moments.csv"
+# gelation (multiplicative kernel, t_gel = 1/(K M2(0)) = 1): exit 1 with a
+# message, outputs only before it, no negative M0
+msg=$("$sb" pbe --kernel multiplicative --n0 1 --sizes 20 --times 0.5,1,2,5 \
+        --out "$out-g.csv" -q 2>&1)
+rc=$?
+[ $rc -eq 1 ] || fail "pbe past gelation exited $rc, want 1"
+case "$msg" in *"gelation at t = 1/(K M2(0)) = 1"*) ;; *) fail "pbe gelation message: $msg" ;; esac
+awk -F, 'NR > 1 && ($1 >= 1 || $2 < 0) { bad = 1 } END { exit bad }' \
+  "$out-g-moments.csv" || fail "pbe wrote moments at or past gelation"
+# a short size range: the lumped tail is written (row k = K+1) and
+# reported; M0 and M1 of the rows equal the moments file's
+msg=$("$sb" pbe --kernel constant --param K=1 --n0 1 --sizes 1000 --times 1000 \
+        --out "$out-t.csv" -q 2>&1) || fail "pbe tail run failed"
+case "$msg" in *"% of the mass"*"lumped tail"*) ;; *) fail "pbe tail warning: $msg" ;; esac
+m1=$(awk -F, 'NR > 1 { m += $3 * $4 } END { printf "%.17g", m }' "$out-t.csv")
+relclose "$m1" 1 1e-9 || fail "pbe rows hold M1 = $m1, want 1"
+m0=$(awk -F, 'NR > 1 { m += $4 } END { printf "%.17g", m }' "$out-t.csv")
+m0f=$(awk -F, 'NR == 2 { print $2 }' "$out-t-moments.csv")
+relclose "$m0" "$m0f" 1e-12 || fail "pbe rows M0 = $m0, moments file $m0f"
+rm -f "$out-g.csv" "$out-g-moments.csv" "$out-t.csv" "$out-t-moments.csv"
 
 # --- collide: an example configuration runs and writes its outputs; an
 # unknown key is rejected with a message naming the file, line and key
@@ -109,7 +137,7 @@ fi
 printf '[run]\nL = 1e-4\nbogus = 3\n' > "$out/bad.ini"
 msg=$("$sb" collide "$out/bad.ini" 2>&1 >/dev/null)
 rc=$?
-[ $rc -eq 1 ] || fail "collide bad.ini exited $rc, want 1"
+[ $rc -eq 2 ] || fail "collide bad.ini exited $rc, want 2"
 case "$msg" in *bad.ini:3*bogus*) ;; *) fail "collide bad key message: $msg" ;; esac
 rm -rf "$out"
 
