@@ -139,6 +139,24 @@ msg=$("$sb" collide "$out/bad.ini" 2>&1 >/dev/null)
 rc=$?
 [ $rc -eq 2 ] || fail "collide bad.ini exited $rc, want 2"
 case "$msg" in *bad.ini:3*bogus*) ;; *) fail "collide bad key message: $msg" ;; esac
+# help and docs in step: every key of `collide --help` is in the
+# engine chapter's tables
+doc="${srcdir:-.}/docs/engine.md"
+for k in $("$sb" collide --help | awk '/^  [A-Za-z_0-9]+ .* default / {print $1}'); do
+  grep -q "^| \`$k\`\|^| \`[a-z_]*\` or \`$k\`\|, \`$k\`" "$doc" \
+    || fail "collide key '$k' is not in docs/engine.md §9"
+done
+# --set overrides a key and is recorded in summary.json
+sed "s|^output = .*|output = $out/collide|" "$ini" > "$out/two.ini"
+if "$sb" collide "$out/two.ini" --set run.dt=2e-5 --set species.sphere.T=301 \
+     2>/dev/null; then
+  grep -q '"dt": 2.0000000000000002e-05' "$out/collide/summary.json" \
+    || fail "--set run.dt not applied"
+  grep -q '"overrides": \["run.dt=2e-5", "species.sphere.T=301"\]' \
+    "$out/collide/summary.json" || fail "--set not recorded in summary.json"
+else
+  fail "collide --set failed"
+fi
 rm -rf "$out"
 
 [ "$fails" -eq 0 ] && echo "cli: all checks passed"
