@@ -68,7 +68,8 @@ typedef struct {
   /* species */
   col_species sp[COL_MAXSPEC];
   int nsp;
-  double b2_total[COL_MAXSPEC]; /* bridge b2 with turbulence (setup) */
+  double b2_total[COL_MAXSPEC]; /* bridge b2 (turbulence included) and */
+  double b2_brown[COL_MAXSPEC]; /* its Brownian part (set up by setup) */
   /* bookkeeping */
   col_seen seen[COL_MAXSEEN];
   int nseen;

@@ -151,9 +151,7 @@ int col_firsthit_result(const col_run *r, const col_config *c,
   const sb_engine *e = r->e;
   const sb_engine_params *p = sb_engine_get_params(e);
   const sb_engine_species *s = sb_engine_get_species(e, 0);
-  double b2 = c->sp[0].b2 > 0 ? c->sp[0].b2 : (s->B * s->tau) * (s->B * s->tau);
-  if (c->eps > 0)
-    b2 = c->b2_total[0];
+  double b2 = isfinite(s->tau) ? c->b2_total[0] : NAN;
   sb_engine_stats es;
   sb_engine_get_stats(e, &es);
   double R = 2.0 * s->radius;  /* contact distance */

@@ -102,6 +102,18 @@ static int species_build(col_config *c, int k, sb_engine_species *o)
   if (!isfinite(B))
     return col_fail(c, "%s: [%s]: B = %g m s^-3/2 from these keys is not "
                     "finite", s->where, n, B);
+  /* the bridge's position variance rate; with turbulence each particle
+   * moves with the virtual diffusion b2_Brown + B_turb^2(d)/2 (Mohaupt
+   * 2011, eqs 6.20-6.23, monodisperse form) */
+  if (isfinite(tau)) {
+    double b2 = !isnan(s->b2) ? s->b2 : (B * tau) * (B * tau);
+    c->b2_brown[k] = c->b2_total[k] = b2;
+    if (c->eps > 0) {
+      c->b2_total[k] =
+          b2 + 0.5 * sb_turb_pair_b2(2.0 * s->radius, c->eps, c->nu);
+      B = sqrt(c->b2_total[k]) / tau;
+    }
+  }
   *o = (sb_engine_species){s->radius, m, tau, B, T};
   return 0;
 }
@@ -128,10 +140,12 @@ static void fluid_at(const col_config *c, const double x[3], double u[3])
 }
 
 /* Standard deviation of a placed particle's velocity components. */
-static double velocity_sd(const col_species *s, const sb_engine_species *q)
+static double velocity_sd(const col_config *c, int k,
+                          const sb_engine_species *q)
 {
-  if (!isnan(s->b2) && isfinite(q->tau) && !(q->T > 0))
-    return sqrt(0.5 * s->b2 / q->tau);
+  const col_species *s = &c->sp[k];
+  if ((!isnan(s->b2) || c->eps > 0) && isfinite(q->tau) && !(q->T > 0))
+    return sqrt(0.5 * c->b2_total[k] / q->tau);
   if (q->T > 0)
     return sqrt(SB_BOLTZMANN * q->T / q->mass);
   return sqrt(q->B * q->B * q->tau / 2.0);
@@ -193,7 +207,7 @@ static int place_uniform(col_config *c, col_run *r, size_t sp, size_t n,
   const col_species *s = &c->sp[sp];
   double lo[3], hi[3];
   region_of(c, s, lo, hi);
-  const double vsd = velocity_sd(s, q);
+  const double vsd = velocity_sd(c, (int)sp, q);
   for (size_t i = 0; i < n; i++) {
     double x[3] = {0, 0, 0}, u[3] = {0, 0, 0}, us[3];
     for (int k = 0; k < c->dim; k++) {
@@ -257,7 +271,7 @@ static int place_lattice(col_config *c, col_run *r, const long *nplace,
   int st = 0;
   for (int sp = 0; sp < c->nsp && !st; sp++) {
     const col_species *s = &c->sp[sp];
-    const double vsd = velocity_sd(s, &q[sp]);
+    const double vsd = velocity_sd(c, sp, &q[sp]);
     for (long i = 0; i < nplace[sp] && !st; i++) {
       long id = site[next++], b = id % nb, cidx = id / nb;
       double x[3] = {0, 0, 0}, u[3] = {0, 0, 0}, us[3];
@@ -369,17 +383,9 @@ static int attach_bridge(col_config *c, col_run *r)
       return col_fail(c, "%s: [%s] tau = inf with detect = %s: the bridge "
                       "detectors need Langevin (finite tau) species",
                       c->sp[k].where, c->sp[k].name, c->detect);
-    double b2 = !isnan(c->sp[k].b2) ? c->sp[k].b2
-                                    : (s->B * s->tau) * (s->B * s->tau);
-    c->b2_total[k] = b2;
-    if (c->eps > 0) {
-      /* Mohaupt 2011, eqs 6.20-6.23: each particle moves with the virtual
-       * diffusion b2_Brown + B_turb^2(d)/2 (monodisperse form) */
-      double bt = sb_turb_pair_b2(2.0 * s->radius, c->eps, c->nu);
-      c->b2_total[k] = b2 + 0.5 * bt;
-    }
     if (!isnan(c->sp[k].b2) || c->eps > 0)
-      if (sb_engine_bridge_set_b2(r->bridge, (size_t)k, c->b2_total[k], b2))
+      if (sb_engine_bridge_set_b2(r->bridge, (size_t)k, c->b2_total[k],
+                                  c->b2_brown[k]))
         return col_fail(c, "%s: [%s]: %s", c->sp[k].where, c->sp[k].name,
                         sb_last_error());
   }
