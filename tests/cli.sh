@@ -66,6 +66,14 @@ for s in nan inf -1 1.5 4294967296; do
   expect_rc 2 "$sb" eval bb_hit_sample seed=$s x=2 y=1.5 a=1 sigma2=1 t=1
 done
 
+# every `smolbridge eval` command quoted in full in examples/ runs
+for f in "${srcdir:-.}"/examples/*.ini; do
+  sed -n 's/^;  *smolbridge eval /eval /p' "$f" | while read -r cmd; do
+    # shellcheck disable=SC2086
+    "$sb" $cmd >/dev/null 2>&1 || echo "FAIL: $f: smolbridge $cmd"
+  done
+done | grep FAIL && fails=$((fails + 1))
+
 # --- validate: listing, filtering, report files and CSV header
 expect_rc 0 "$sb" validate --list
 expect_rc 2 "$sb" validate --case NoSuchCase
