@@ -1,0 +1,16 @@
+#!/bin/sh
+# The Python module (python/smolbridge) against the library just built:
+# skipped (exit 77) when configure found no python3 or numpy is missing.
+set -u
+py="${PYTHON:-:}"
+if [ "$py" = ":" ] || ! "$py" -c 'import numpy' 2>/dev/null; then
+  echo "python: skipped (no python3 with numpy; Debian: apt-get install python3-numpy)"
+  exit 77
+fi
+top="${top_builddir:-.}"
+top="$(cd "$top" && pwd)"
+src="$(cd "${srcdir:-.}" && pwd)"
+lib="$top/.libs/libsmolbridge.so"
+[ -f "$lib" ] || { echo "python: no $lib (static-only build?)"; exit 77; }
+SMOLBRIDGE_LIB="$lib" SMOLBRIDGE_BIN="$top/smolbridge" \
+  PYTHONPATH="$src/python" "$py" "$src/tests/test_python.py"
