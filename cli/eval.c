@@ -11,7 +11,7 @@
 
 static const sbe_table *const tables[] = {&sbe_table_bridge,
                                           &sbe_table_langevin, &sbe_table_kernel,
-                                          &sbe_table_dlvo};
+                                          &sbe_table_dlvo, &sbe_table_stats};
 
 static void usage(FILE *out)
 {

@@ -41,8 +41,12 @@ static void usage(FILE *out)
 "  shear           G (1/s)\n"
 "  saffman-turner  eps (m^2/s^3), nu (m^2/s)\n"
 "  brownian-turb   T, mu, eps, nu\n"
+"  kinetic         T, rho_p             hard spheres, mass rho_p v\n"
+"  abrahamson      u2 (m^2/s^2)         inertial, velocity variance u2\n"
+"  diffusion       b2 (m^2/s)           pure diffusion, B_pos^2 = b2\n"
 "Defaults: K = 1, water at 20 C (T 293.15, mu 1.002e-3, rho_f 998.2,\n"
-"nu 1.004e-6), rho_p 1000, lambda 0, g 9.80665, G 1, eps 1e-4.\n"
+"nu 1.004e-6), rho_p 1000, lambda 0, g 9.80665, G 1, eps 1e-4, u2 1,\n"
+"b2 1e-12.\n"
 "Physical kernels take volumes in m^3 (radius (3v/4pi)^(1/3)).\n"
 "\n"
 "Options:\n"
@@ -218,7 +222,7 @@ int sbc_pbe_main(int argc, char **argv)
   sb_kernel_type type;
   sb_kernel_spec spec;
   if (sb_kernel_type_from_name(kname, &type))
-    BAD("unknown kernel '%s' (see --help)", kname);
+    BAD("--kernel %s: %s", kname, sb_last_error());
   sb_kernel_spec_init(&spec, type);
   for (int i = 0; i < nparams; i++) {
     char key[32];
@@ -227,8 +231,12 @@ int sbc_pbe_main(int argc, char **argv)
       BAD("--param needs KEY=VALUE, got '%s'", params[i]);
     memcpy(key, params[i], (size_t)(eq - params[i]));
     key[eq - params[i]] = '\0';
-    if (parse_num(eq + 1, &x) || sb_kernel_spec_set(&spec, key, x))
-      BAD("bad --param '%s'", params[i]);
+    if (parse_num(eq + 1, &x))
+      BAD("--param %s: '%s' is not a finite number", params[i], eq + 1);
+    if (sb_kernel_spec_set(&spec, key, x))
+      BAD("--param %s: unknown parameter '%s'; valid: K, T, mu, rho_p, "
+          "rho_f, lambda, g, G, eps, nu, u2, b2 (those of --kernel %s are "
+          "listed by --help)", params[i], key, kname);
   }
   if (sb_kernel_spec_check(&spec))
     BAD("%s", sb_last_error());

@@ -57,6 +57,13 @@ expect_rc 2 "$sb" eval bb_cross_prob x=1 x=1 y=1 a=0 v=1
 expect_rc 1 "$sb" eval bb_cross_prob x=1 y=1 a=0 v=-1
 msg=$("$sb" eval bes3b_cross_prob x=1 y=1 a=-1 v=1 2>&1 >/dev/null)
 [ -n "$msg" ] || fail "no message for a < 0"
+# stats functions: the Garwood interval of k = 10 (tabulated values) and
+# the chi-square tail at its 95% point
+got=$("$sb" eval poisson_ci k=10 level=0.95 | sed -n 's/^lo=//p')
+relclose "$got" 4.7953886961324335 1e-12 || fail "poisson_ci lo = $got"
+got=$("$sb" eval chi2_sf x=3.841458820694124 dof=1)
+relclose "$got" 0.05 1e-10 || fail "chi2_sf = $got"
+expect_rc 1 "$sb" eval binomial_ci k=-1 n=10 level=0.95
 # a domain error names the function called and its arguments
 msg=$("$sb" eval dlvo_energy D=-1 r1=1e-6 r2=1e-6 A=1e-20 T=300 eps_r=78 z=1 \
       kappa=1e8 psi=0.01 model=0 2>&1 >/dev/null)
@@ -128,6 +135,24 @@ m0=$(awk -F, 'NR > 1 { m += $4 } END { printf "%.17g", m }' "$out-t.csv")
 m0f=$(awk -F, 'NR == 2 { print $2 }' "$out-t-moments.csv")
 relclose "$m0" "$m0f" 1e-12 || fail "pbe rows M0 = $m0, moments file $m0f"
 rm -f "$out-g.csv" "$out-g-moments.csv" "$out-t.csv" "$out-t-moments.csv"
+# the kernels of the library that pbe gained: pure diffusion is constant
+# for one size, K = 4 pi b2 d, so M0 = N0/(1 + K N0 t/2)
+if "$sb" pbe --kernel diffusion --param b2=1e-12 --n0 1e12 --v1 5.2e-19 \
+     --sizes 50 --times 100 --out "$out-d.csv" -q 2>/dev/null; then
+  m0=$(awk -F, 'NR == 2 { print $2 }' "$out-d-moments.csv")
+  want=$(awk 'BEGIN { pi = atan2(0, -1); r = (3 * 5.2e-19 / (4 * pi)) ^ (1 / 3);
+    K = 4 * pi * 1e-12 * 2 * r; printf "%.17g", 1e12 / (1 + K * 1e12 * 100 / 2) }')
+  relclose "$m0" "$want" 1e-7 || fail "pbe diffusion M0 = $m0, want $want"
+else
+  fail "pbe --kernel diffusion failed"
+fi
+for k in kinetic abrahamson; do
+  expect_rc 0 "$sb" pbe --kernel $k --n0 1e12 --v1 5.2e-19 --sizes 10 \
+    --times 1e-3 --out "$out-k.csv" -q
+done
+msg=$("$sb" pbe --kernel blah --n0 1 --times 1 --out "$out-k.csv" 2>&1)
+case "$msg" in *"valid: constant, additive"*) ;; *) fail "pbe kernel list: $msg" ;; esac
+rm -f "$out-d.csv" "$out-d-moments.csv" "$out-k.csv" "$out-k-moments.csv"
 
 # --- collide: an example configuration runs and writes its outputs; an
 # unknown key is rejected with a message naming the file, line and key
