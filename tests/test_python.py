@@ -47,6 +47,11 @@ check(np.allclose(nk, [sb.pbe_const_mono_n(k, 6.0) for k in range(1, 6)],
                   rtol=1e-6), "pbe n_k vs analytic")
 check(r["n"].shape == (2, 40) and r["tail_n"].shape == (2,),
       "pbe array shapes")
+r = sb.pbe("diffusion", n0=1e12, v1=5.2e-19, times=[100], sizes=50, b2=1e-12)
+rad = (3 * 5.2e-19 / (4 * math.pi)) ** (1 / 3)
+K = 4 * math.pi * 1e-12 * 2 * rad
+check(abs(r["moments"][0, 0] / (1e12 / (1 + K * 1e12 * 50)) - 1) < 1e-7,
+      "pbe diffusion kernel M0")
 try:
     sb.pbe("nonsense", n0=1, times=[1])
     check(False, "pbe accepted an unknown kernel")

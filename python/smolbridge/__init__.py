@@ -152,9 +152,11 @@ for _n, _a in _FUNCS.items():
 # ------------------------------------------------------------------ pbe
 
 
-class _KernelSpec(_ct.Structure):
-    _fields_ = [("type", _ct.c_int)] + [(k, _ct.c_double) for k in (
-        "K", "T", "mu", "rho_p", "rho_f", "lambda_", "g", "G", "eps", "nu")]
+# sb_kernel_spec is only filled and read by the library (init, set,
+# check, fn): an opaque, generously sized and aligned buffer keeps this
+# module independent of its layout.
+def _KernelSpec():
+    return (_ct.c_double * 64)()
 
 
 _OUTFN = _ct.CFUNCTYPE(_ct.c_int, _ct.c_double, _ct.POINTER(_ct.c_double),
@@ -185,10 +187,10 @@ _lib.sb_pbe_tail.argtypes = [_ct.c_void_p, _ct.POINTER(_ct.c_double),
                              _ct.POINTER(_ct.c_double)]
 _lib.sb_kernel_type_from_name.argtypes = [_ct.c_char_p,
                                           _ct.POINTER(_ct.c_int)]
-_lib.sb_kernel_spec_init.argtypes = [_ct.POINTER(_KernelSpec), _ct.c_int]
-_lib.sb_kernel_spec_set.argtypes = [_ct.POINTER(_KernelSpec), _ct.c_char_p,
+_lib.sb_kernel_spec_init.argtypes = [_ct.c_void_p, _ct.c_int]
+_lib.sb_kernel_spec_set.argtypes = [_ct.c_void_p, _ct.c_char_p,
                                     _ct.c_double]
-_lib.sb_kernel_spec_check.argtypes = [_ct.POINTER(_KernelSpec)]
+_lib.sb_kernel_spec_check.argtypes = [_ct.c_void_p]
 
 
 def pbe(kernel, n0, times, sizes=100, method="discrete", init="mono", v1=1.0,
@@ -206,12 +208,12 @@ def pbe(kernel, n0, times, sizes=100, method="discrete", init="mono", v1=1.0,
     kt = _ct.c_int()
     if _lib.sb_kernel_type_from_name(kernel.encode(), _ct.byref(kt)):
         raise ValueError("pbe: %s" % _message())
-    _lib.sb_kernel_spec_init(_ct.byref(spec), kt)
+    _lib.sb_kernel_spec_init(spec, kt)
     for k, x in params.items():
         key = "lambda" if k == "lambda_" else k
-        if _lib.sb_kernel_spec_set(_ct.byref(spec), key.encode(), float(x)):
+        if _lib.sb_kernel_spec_set(spec, key.encode(), float(x)):
             raise ValueError("pbe: %s" % _message())
-    if _lib.sb_kernel_spec_check(_ct.byref(spec)):
+    if _lib.sb_kernel_spec_check(spec):
         raise ValueError("pbe: %s" % _message())
     cfg = _PbeConfig()
     _lib.sb_pbe_config_init(_ct.byref(cfg))
@@ -221,7 +223,7 @@ def pbe(kernel, n0, times, sizes=100, method="discrete", init="mono", v1=1.0,
     if method == "sectional":
         cfg.ratio = float(ratio) if ratio else 10.0 ** (12.0 / (sizes - 1))
     cfg.kernel = _ct.cast(_lib.sb_kernel_spec_fn, _ct.c_void_p)
-    cfg.kparams = _ct.cast(_ct.pointer(spec), _ct.c_void_p)
+    cfg.kparams = _ct.cast(spec, _ct.c_void_p)
     cfg.rtol = float(rtol)
     cfg.atol = float(atol)
     p = _lib.sb_pbe_alloc(_ct.byref(cfg))
