@@ -289,6 +289,17 @@ void col_warn(col_config *c, const char *fmt, ...)
   va_end(ap);
 }
 
+/* Copy a string into a field of the same configuration (snprintf's
+ * restrict-qualified arguments must not overlap). */
+static void copy(char *dst, size_t n, const char *src)
+{
+  size_t len = strlen(src);
+  if (len >= n)
+    len = n - 1;
+  memmove(dst, src, len);
+  dst[len] = 0;
+}
+
 /* ------------------------------------------------------------ defaults */
 
 void col_defaults(col_config *c)
@@ -457,11 +468,11 @@ static col_species *species_for(col_config *c, const char *sec)
   }
   col_species *s = &c->sp[c->nsp++];
   species_defaults(s);
-  snprintf(s->name, sizeof s->name, "%s", sec);
-  snprintf(s->where, sizeof s->where, "%s", c->where);
+  copy(s->name, sizeof s->name, sec);
+  copy(s->where, sizeof s->where, c->where);
   for (int i = 0; i < c->nsections; i++)  /* its header, if read */
     if (!strcmp(c->sections[i], sec))
-      snprintf(s->where, sizeof s->where, "%s", c->section_where[i]);
+      copy(s->where, sizeof s->where, c->section_where[i]);
   return s;
 }
 
@@ -496,7 +507,7 @@ static int set_key(col_config *c, const char *section, const char *key,
                       "[species NAME]", c->where, section);
     snprintf(sec, sizeof sec, "species %s", sname);
   } else
-    snprintf(sec, sizeof sec, "%s", section);
+    copy(sec, sizeof sec, section);
   const keydef *k = find_key(species ? "species" : sec, key);
   if (!k) {
     char valid[600];
@@ -526,9 +537,9 @@ static int set_key(col_config *c, const char *section, const char *key,
   if (c->nseen == COL_MAXSEEN)
     return col_fail(c, "%s: more than %d keys", c->where, COL_MAXSEEN);
   col_seen *sn = &c->seen[c->nseen++];
-  snprintf(sn->sec, sizeof sn->sec, "%s", sec);
-  snprintf(sn->key, sizeof sn->key, "%s", key);
-  snprintf(sn->where, sizeof sn->where, "%s", c->where);
+  copy(sn->sec, sizeof sn->sec, sec);
+  copy(sn->key, sizeof sn->key, key);
+  copy(sn->where, sizeof sn->where, c->where);
   sn->override = override;
 store:;
   col_species *sp = NULL;
@@ -559,7 +570,7 @@ store:;
         if (k->type == K_BOOL)
           *(long *)field = i == 0;
         else
-          snprintf((char *)field, k->aux, "%s", value);
+          copy((char *)field, k->aux, value);
         return 0;
       }
     char valid[300];
@@ -575,7 +586,7 @@ store:;
                       c->where, sec, key);
     if (!value[0])
       return col_fail(c, "%s: [%s] %s: empty path", c->where, sec, key);
-    snprintf((char *)field, 512, "%s", value);
+    copy((char *)field, 512, value);
     return 0;
   case K_VEC:
     if (parse_list(c, sec, k, value, (double *)field, &n))
@@ -599,7 +610,7 @@ store:;
       o[5] = 0;
     } else
       memcpy(o, q, sizeof q);
-    snprintf(sp->part_where[sp->npart], COL_WHERE, "%s", c->where);
+    copy(sp->part_where[sp->npart], COL_WHERE, c->where);
     sp->part_n[sp->npart++] = n;
     return 0;
   }
@@ -636,7 +647,7 @@ static void header(reader *r, const char *s)
   if (is_species(name, &sn)) {
     char tmp[72];
     snprintf(tmp, sizeof tmp, "species %s", sn);
-    snprintf(name, sizeof name, "%s", tmp);
+    copy(name, sizeof name, tmp);
   }
   col_config *c = r->c;
   for (int i = 0; i < c->nsections; i++)
@@ -647,7 +658,7 @@ static void header(reader *r, const char *s)
       return;
     }
   if (c->nsections < COL_MAXSPEC + 8) {
-    snprintf(c->sections[c->nsections], sizeof c->sections[0], "%s", name);
+    copy(c->sections[c->nsections], sizeof c->sections[0], name);
     snprintf(c->section_where[c->nsections], COL_WHERE, "%s:%d", r->path,
              r->line);
     c->nsections++;
