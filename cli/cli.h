@@ -41,6 +41,7 @@ extern const sbe_table sbe_table_bridge;   /* bridge and passage */
 extern const sbe_table sbe_table_langevin; /* langevin */
 extern const sbe_table sbe_table_kernel;   /* kernel, pbe analytic solutions */
 extern const sbe_table sbe_table_dlvo;     /* dlvo */
+extern const sbe_table sbe_table_stats;    /* stats */
 
 /* Wrapper generators for plain `double sb_NAME(double, ...)` functions. */
 #define SBE_WRAP1(f) static int sbe_w_##f(const double *i, double *o) \

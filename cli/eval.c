@@ -11,7 +11,7 @@
 
 static const sbe_table *const tables[] = {&sbe_table_bridge,
                                           &sbe_table_langevin, &sbe_table_kernel,
-                                          &sbe_table_dlvo};
+                                          &sbe_table_dlvo, &sbe_table_stats};
 
 static void usage(FILE *out)
 {
@@ -131,8 +131,15 @@ int sbc_eval_main(int argc, char **argv)
       return 2;
     }
     if (parse_double(eq + 1, &in[k]) != 0) {
-      fprintf(stderr, "smolbridge eval: '%s' is not a number (argument "
-                      "%s)\n", eq + 1, f->args[k]);
+      fprintf(stderr, "smolbridge eval: %s: '%s' is not a number (argument "
+                      "%s)\n", f->name, eq + 1, f->args[k]);
+      return 2;
+    }
+    /* a generator seed is an integer that MT19937 accepts */
+    if (!strcmp(f->args[k], "seed") &&
+        !(in[k] >= 0 && in[k] <= 4294967295.0 && in[k] == floor(in[k]))) {
+      fprintf(stderr, "smolbridge eval: %s: seed = %s: must be an integer "
+                      "from 0 to 4294967295\n", f->name, eq + 1);
       return 2;
     }
     given[k] = 1;
@@ -159,9 +166,14 @@ int sbc_eval_main(int argc, char **argv)
       printf("%s=%.17g\n", f->outs[k], out[k]);
   }
   if (status != SB_SUCCESS) {
-    fprintf(stderr, "smolbridge eval: %s (%s)\n",
-            sb_last_error()[0] ? sb_last_error() : sb_strerror(status),
-            sb_strerror(status));
+    /* name the function called and its arguments: the library's message
+     * may come from an inner routine */
+    fprintf(stderr, "smolbridge eval: %s(", f->name);
+    for (int k = 0; k < nargs; k++)
+      fprintf(stderr, "%s%s=%.17g", k ? ", " : "", f->args[k], in[k]);
+    const char *msg = sb_last_error();
+    fprintf(stderr, "): %s%s%s\n", sb_strerror(status), msg[0] ? ": " : "",
+            msg);
     return 1;
   }
   return 0;

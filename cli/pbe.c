@@ -41,8 +41,12 @@ static void usage(FILE *out)
 "  shear           G (1/s)\n"
 "  saffman-turner  eps (m^2/s^3), nu (m^2/s)\n"
 "  brownian-turb   T, mu, eps, nu\n"
+"  kinetic         T, rho_p             hard spheres, mass rho_p v\n"
+"  abrahamson      u2 (m^2/s^2)         inertial, velocity variance u2\n"
+"  diffusion       b2 (m^2/s)           pure diffusion, B_pos^2 = b2\n"
 "Defaults: K = 1, water at 20 C (T 293.15, mu 1.002e-3, rho_f 998.2,\n"
-"nu 1.004e-6), rho_p 1000, lambda 0, g 9.80665, G 1, eps 1e-4.\n"
+"nu 1.004e-6), rho_p 1000, lambda 0, g 9.80665, G 1, eps 1e-4, u2 1,\n"
+"b2 1e-12.\n"
 "Physical kernels take volumes in m^3 (radius (3v/4pi)^(1/3)).\n"
 "\n"
 "Options:\n"
@@ -77,6 +81,10 @@ typedef struct {
   FILE *dist, *mom;
   int quiet;
   double t0;
+  const sb_pbe *p;
+  double m1_0;        /* M1 of the initial state */
+  int tail_warned;
+  char stop[400];     /* why the output stopped the solve */
 } out_ctx;
 
 static double now(void)
@@ -90,9 +98,36 @@ static int on_output(double t, const double *v, const double *n, size_t nb,
                      const double m[3], void *data)
 {
   out_ctx *o = data;
+  double tn, tm;
+  sb_pbe_tail(o->p, &tn, &tm);
+  /* A negative concentration means the model broke down: past gelation
+   * the lumped class carries the gel's mass with a vanishing number. */
+  double nmin = tn;
+  for (size_t k = 0; k < nb; k++)
+    nmin = n[k] < nmin ? n[k] : nmin;
+  if (nmin < -1e-9 * m[0] || !(m[0] > 0)) {
+    snprintf(o->stop, sizeof o->stop, "at t = %g the solution has a "
+             "negative number concentration (min %g, M0 = %g): the "
+             "population balance broke down (gelation: a kernel growing "
+             "faster than linearly in volume makes an infinite cluster in "
+             "finite time); outputs stop before t = %g", t, nmin, m[0], t);
+    return 1;
+  }
   for (size_t k = 0; k < nb; k++)
     fprintf(o->dist, "%.10g,%zu,%.17g,%.17g\n", t, k + 1, v[k], n[k]);
-  fprintf(o->mom, "%.10g,%.17g,%.17g,%.17g\n", t, m[0], m[1], m[2]);
+  if (tn > 0)  /* the lumped tail: sizes above K, at their mean volume */
+    fprintf(o->dist, "%.10g,%zu,%.17g,%.17g\n", t, nb + 1, tm / tn, tn);
+  fprintf(o->mom, "%.10g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t, m[0], m[1],
+          m[2], tn, tm);
+  if (o->m1_0 > 0 && tm > 1e-6 * o->m1_0 && !o->tail_warned) {
+    fprintf(stderr, "smolbridge pbe: warning: at t = %g, %.3g%% of the "
+            "mass (number %g, mean volume %g) is in the lumped tail above "
+            "the largest size (%g): its sizes are not resolved and M2 is "
+            "a lower bound; the tail is the row k = %zu of the output; "
+            "raise --sizes\n", t, 100.0 * tm / o->m1_0, tn, tm / tn,
+            v[nb - 1], nb + 1);
+    o->tail_warned = 1;
+  }
   if (!o->quiet)
     fprintf(stderr, "smolbridge pbe: t = %g done (%.2f s): M0 = %.6g, "
                     "M1 = %.10g, M2 = %.6g\n", t, now() - o->t0, m[0], m[1],
@@ -187,7 +222,7 @@ int sbc_pbe_main(int argc, char **argv)
   sb_kernel_type type;
   sb_kernel_spec spec;
   if (sb_kernel_type_from_name(kname, &type))
-    BAD("unknown kernel '%s' (see --help)", kname);
+    BAD("--kernel %s: %s", kname, sb_last_error());
   sb_kernel_spec_init(&spec, type);
   for (int i = 0; i < nparams; i++) {
     char key[32];
@@ -196,8 +231,12 @@ int sbc_pbe_main(int argc, char **argv)
       BAD("--param needs KEY=VALUE, got '%s'", params[i]);
     memcpy(key, params[i], (size_t)(eq - params[i]));
     key[eq - params[i]] = '\0';
-    if (parse_num(eq + 1, &x) || sb_kernel_spec_set(&spec, key, x))
-      BAD("bad --param '%s'", params[i]);
+    if (parse_num(eq + 1, &x))
+      BAD("--param %s: '%s' is not a finite number", params[i], eq + 1);
+    if (sb_kernel_spec_set(&spec, key, x))
+      BAD("--param %s: unknown parameter '%s'; valid: K, T, mu, rho_p, "
+          "rho_f, lambda, g, G, eps, nu, u2, b2 (those of --kernel %s are "
+          "listed by --help)", params[i], key, kname);
   }
   if (sb_kernel_spec_check(&spec))
     BAD("%s", sb_last_error());
@@ -241,7 +280,10 @@ int sbc_pbe_main(int argc, char **argv)
   int rc = 1;
   sb_pbe *p = sb_pbe_alloc(&cfg);
   char mpath[1100];
-  out_ctx oc = {NULL, NULL, quiet, now()};
+  out_ctx oc;
+  memset(&oc, 0, sizeof oc);
+  oc.quiet = quiet;
+  oc.t0 = now();
   if (!p) {
     fprintf(stderr, "smolbridge pbe: %s\n", sb_last_error());
     goto done;
@@ -264,14 +306,47 @@ int sbc_pbe_main(int argc, char **argv)
     goto done;
   }
   fprintf(oc.dist, "t,k,v,n\n");
-  fprintf(oc.mom, "t,M0,M1,M2\n");
+  fprintf(oc.mom, "t,M0,M1,M2,tail_n,tail_M1\n");
+  {
+    double m0[3];
+    sb_pbe_state_moments(p, m0);
+    oc.m1_0 = m0[1];
+    oc.p = p;
+    /* multiplicative kernel: M2 = M2(0)/(1 - K M2(0) t) for any start,
+     * so gelation is at t = 1/(K M2(0)); past it the model has no
+     * mass-conserving solution (post-gel models are not implemented) */
+    if (type == SB_KERNEL_MULTIPLICATIVE && spec.K > 0) {
+      double tgel = 1.0 / (spec.K * m0[2]);
+      size_t keep = 0;
+      while (keep < nt && times[keep] < tgel)
+        keep++;
+      if (keep < nt) {
+        fprintf(stderr, "smolbridge pbe: gelation at t = 1/(K M2(0)) = %g: "
+                "the multiplicative kernel makes an infinite cluster then "
+                "and the population balance has no mass-conserving "
+                "solution beyond it (post-gel models, Flory or "
+                "Stockmayer, are not implemented); the outputs stop before "
+                "t = %g\n", tgel, times[keep]);
+        snprintf(oc.stop, sizeof oc.stop, "gelation at t = %g", tgel);
+        nt = keep;
+      }
+    }
+  }
   sb_pbe_report rep;
-  st = sb_pbe_solve(p, times, nt, on_output, &oc, &rep);
-  fprintf(stderr, "smolbridge pbe: %s; %ld steps, %ld RHS evaluations, M1 "
-                  "drift %.3g (relative)\n",
-          st ? sb_last_error() : "solved", rep.nsteps, rep.nrhs,
-          rep.m1_drift);
-  rc = st ? 1 : 0;
+  memset(&rep, 0, sizeof rep);
+  st = nt ? sb_pbe_solve(p, times, nt, on_output, &oc, &rep) : SB_SUCCESS;
+  if (oc.stop[0] && st == SB_EINVAL)
+    fprintf(stderr, "smolbridge pbe: %s\n", oc.stop);
+  else
+    fprintf(stderr, "smolbridge pbe: %s; %ld steps, %ld RHS evaluations, "
+            "M1 drift %.3g (relative)\n", st ? sb_last_error() : "solved",
+            rep.nsteps, rep.nrhs, rep.m1_drift);
+  if (!st && cfg.method == SB_PBE_SECTIONAL && rep.m1_drift > 1e-6)
+    fprintf(stderr, "smolbridge pbe: warning: %.3g%% of the mass left the "
+            "grid above the largest pivot (%g): raise --sizes or --ratio\n",
+            100.0 * rep.m1_drift,
+            sb_pbe_volumes(p)[sb_pbe_nbins(p) - 1]);
+  rc = st || oc.stop[0] ? 1 : 0;
   if (!st && plot) {
     /* gnuplot script: one curve n(v) per output time */
     char gp[1100], cmd[2300];

@@ -62,6 +62,7 @@ static void usage(FILE *out)
   fprintf(out,
 "Usage: smolbridge validate [--quick|--full] [--out DIR] [--seed N]\n"
 "                           [--seeds N] [--case PREFIX]... [--list]\n"
+"                           [--write-ini DIR]\n"
 "\n"
 "Run the validation cases: each compares a Monte Carlo (or numerical)\n"
 "estimate with its theoretical reference and gives a verdict by a rule\n"
@@ -84,6 +85,12 @@ static void usage(FILE *out)
 "  --case PREFIX   run only cases whose name starts with PREFIX (e.g. V11);\n"
 "                  may be repeated\n"
 "  --list          list the cases and exit\n"
+"  --write-ini DIR write the engine runs of the selected cases as\n"
+"                  smolbridge collide configurations (same mode and seed:\n"
+"                  the same estimates; 'expect' comment lines name the\n"
+"                  summary.json field of each record) instead of running\n"
+"                  them; runs collide cannot reproduce are listed in\n"
+"                  DIR/NOT-WRITTEN.txt\n"
 "  -h, --help      this help\n"
 "\n"
 "Table columns: case, estimate, reference, interval, p-value (of the test\n"
@@ -197,6 +204,41 @@ static int write_calibration_md(const sb_validate_calibration *cal,
   return fclose(f) == 0 ? SB_SUCCESS : SB_EIO;
 }
 
+/* --write-ini DIR: the selected cases' engine runs as collide files. */
+static int write_ini(const sb_validate_options *vo, const char *dir,
+                     char **prefixes, int nprefixes)
+{
+  if (make_dirs(dir) != 0) {
+    fprintf(stderr, "smolbridge validate: cannot create '%s': %s\n", dir,
+            strerror(errno));
+    return 2;
+  }
+  char path[1100];
+  snprintf(path, sizeof path, "%s/NOT-WRITTEN.txt", dir);
+  remove(path);
+  size_t total = 0;
+  for (size_t i = 0; i < sb_validate_ncases(); i++) {
+    const char *name = sb_validate_case_name(i);
+    if (!selected(name, prefixes, nprefixes))
+      continue;
+    size_t n = 0;
+    int st = sb_validate_write_ini(i, vo, dir, &n);
+    if (st == SB_EINVAL && n == 0)
+      fprintf(stderr, "%s: no files: %s\n", name, sb_last_error());
+    else if (st) {
+      fprintf(stderr, "%s: %s\n", name, sb_last_error());
+      return 2;
+    } else
+      fprintf(stderr, "%s: %zu files\n", name, n);
+    total += n;
+  }
+  fprintf(stderr, "smolbridge validate: %zu configurations in %s/ (%s, "
+          "seed %lu); run each with smolbridge collide FILE; the 'expect' "
+          "lines say which summary.json field gives which record\n", total,
+          dir, vo->full ? "full" : "quick", vo->seed);
+  return total ? 0 : 2;
+}
+
 /* --seeds N: run the selection with N seeds and pool. */
 static int calibrate(sb_validate_options *vo, char **prefixes,
                      int nprefixes, size_t nsel, unsigned long nseeds)
@@ -307,7 +349,9 @@ int sbc_validate_main(int argc, char **argv)
       {"seeds", required_argument, NULL, 'n'},
       {"case", required_argument, NULL, 'c'},
       {"list", no_argument, NULL, 'l'}, {"help", no_argument, NULL, 'h'},
+      {"write-ini", required_argument, NULL, 'w'},
       {NULL, 0, NULL, 0}};
+  const char *ini_dir = NULL;
   sb_validate_options vo;
   sb_validate_options_init(&vo);
   vo.outdir = "validate-out";
@@ -352,6 +396,7 @@ int sbc_validate_main(int argc, char **argv)
       prefixes[nprefixes++] = optarg;
       break;
     case 'l': list = 1; break;
+    case 'w': ini_dir = optarg; break;
     case 'h': usage(stdout); return 0;
     default: usage(stderr); return 2;
     }
@@ -378,6 +423,8 @@ int sbc_validate_main(int argc, char **argv)
     fprintf(stderr, "smolbridge validate: no case matches\n");
     return 2;
   }
+  if (ini_dir)
+    return write_ini(&vo, ini_dir, prefixes, nprefixes);
   if (make_dirs(vo.outdir) != 0) {
     fprintf(stderr, "smolbridge validate: cannot create '%s': %s\n",
             vo.outdir, strerror(errno));

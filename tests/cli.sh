@@ -57,6 +57,29 @@ expect_rc 2 "$sb" eval bb_cross_prob x=1 x=1 y=1 a=0 v=1
 expect_rc 1 "$sb" eval bb_cross_prob x=1 y=1 a=0 v=-1
 msg=$("$sb" eval bes3b_cross_prob x=1 y=1 a=-1 v=1 2>&1 >/dev/null)
 [ -n "$msg" ] || fail "no message for a < 0"
+# stats functions: the Garwood interval of k = 10 (tabulated values) and
+# the chi-square tail at its 95% point
+got=$("$sb" eval poisson_ci k=10 level=0.95 | sed -n 's/^lo=//p')
+relclose "$got" 4.7953886961324335 1e-12 || fail "poisson_ci lo = $got"
+got=$("$sb" eval chi2_sf x=3.841458820694124 dof=1)
+relclose "$got" 0.05 1e-10 || fail "chi2_sf = $got"
+expect_rc 1 "$sb" eval binomial_ci k=-1 n=10 level=0.95
+# a domain error names the function called and its arguments
+msg=$("$sb" eval dlvo_energy D=-1 r1=1e-6 r2=1e-6 A=1e-20 T=300 eps_r=78 z=1 \
+      kappa=1e8 psi=0.01 model=0 2>&1 >/dev/null)
+case "$msg" in *"dlvo_energy(D=-1, r1="*) ;; *) fail "eval domain message: $msg" ;; esac
+# seeds are integers 0 .. 2^32-1, as in collide
+for s in nan inf -1 1.5 4294967296; do
+  expect_rc 2 "$sb" eval bb_hit_sample seed=$s x=2 y=1.5 a=1 sigma2=1 t=1
+done
+
+# every `smolbridge eval` command quoted in full in examples/ runs
+for f in "${srcdir:-.}"/examples/*.ini; do
+  sed -n 's/^;  *smolbridge eval /eval /p' "$f" | while read -r cmd; do
+    # shellcheck disable=SC2086
+    "$sb" $cmd >/dev/null 2>&1 || echo "FAIL: $f: smolbridge $cmd"
+  done
+done | grep FAIL && fails=$((fails + 1))
 
 # --- validate: listing, filtering, report files and CSV header
 expect_rc 0 "$sb" validate --list
@@ -84,7 +107,7 @@ expect_rc 2 "$sb" pbe --kernel no-such-kernel --n0 1 --init mono --method discre
 if "$sb" pbe --kernel constant --param K=2 --n0 3 --init mono --method discrete \
      --sizes 30 --times 0.5,1 --out "$out-p.csv" 2>/dev/null; then
   head -n 1 "$out-p.csv" | grep -qx 't,k,v,n' || fail "pbe csv header"
-  head -n 1 "$out-p-moments.csv" | grep -qx 't,M0,M1,M2' || fail "pbe moments header"
+  head -n 1 "$out-p-moments.csv" | grep -qx 't,M0,M1,M2,tail_n,tail_M1' || fail "pbe moments header"
   m0=$(awk -F, '$1 == 1 {print $2}' "$out-p-moments.csv")
   want=$(awk 'BEGIN { tau = 2 * 3 * 1; printf "%.17g", 3 / (1 + tau / 2) }')
   relclose "$m0" "$want" 1e-8 || fail "pbe M0(t=1) = $m0, want $want"
@@ -92,6 +115,44 @@ else
   fail "smolbridge pbe failed"
 fi
 rm -f "$out-p.csv" "$out-p-moments.csv"
+# gelation (multiplicative kernel, t_gel = 1/(K M2(0)) = 1): exit 1 with a
+# message, outputs only before it, no negative M0
+msg=$("$sb" pbe --kernel multiplicative --n0 1 --sizes 20 --times 0.5,1,2,5 \
+        --out "$out-g.csv" -q 2>&1)
+rc=$?
+[ $rc -eq 1 ] || fail "pbe past gelation exited $rc, want 1"
+case "$msg" in *"gelation at t = 1/(K M2(0)) = 1"*) ;; *) fail "pbe gelation message: $msg" ;; esac
+awk -F, 'NR > 1 && ($1 >= 1 || $2 < 0) { bad = 1 } END { exit bad }' \
+  "$out-g-moments.csv" || fail "pbe wrote moments at or past gelation"
+# a short size range: the lumped tail is written (row k = K+1) and
+# reported; M0 and M1 of the rows equal the moments file's
+msg=$("$sb" pbe --kernel constant --param K=1 --n0 1 --sizes 1000 --times 1000 \
+        --out "$out-t.csv" -q 2>&1) || fail "pbe tail run failed"
+case "$msg" in *"% of the mass"*"lumped tail"*) ;; *) fail "pbe tail warning: $msg" ;; esac
+m1=$(awk -F, 'NR > 1 { m += $3 * $4 } END { printf "%.17g", m }' "$out-t.csv")
+relclose "$m1" 1 1e-9 || fail "pbe rows hold M1 = $m1, want 1"
+m0=$(awk -F, 'NR > 1 { m += $4 } END { printf "%.17g", m }' "$out-t.csv")
+m0f=$(awk -F, 'NR == 2 { print $2 }' "$out-t-moments.csv")
+relclose "$m0" "$m0f" 1e-12 || fail "pbe rows M0 = $m0, moments file $m0f"
+rm -f "$out-g.csv" "$out-g-moments.csv" "$out-t.csv" "$out-t-moments.csv"
+# the kernels of the library that pbe gained: pure diffusion is constant
+# for one size, K = 4 pi b2 d, so M0 = N0/(1 + K N0 t/2)
+if "$sb" pbe --kernel diffusion --param b2=1e-12 --n0 1e12 --v1 5.2e-19 \
+     --sizes 50 --times 100 --out "$out-d.csv" -q 2>/dev/null; then
+  m0=$(awk -F, 'NR == 2 { print $2 }' "$out-d-moments.csv")
+  want=$(awk 'BEGIN { pi = atan2(0, -1); r = (3 * 5.2e-19 / (4 * pi)) ^ (1 / 3);
+    K = 4 * pi * 1e-12 * 2 * r; printf "%.17g", 1e12 / (1 + K * 1e12 * 100 / 2) }')
+  relclose "$m0" "$want" 1e-7 || fail "pbe diffusion M0 = $m0, want $want"
+else
+  fail "pbe --kernel diffusion failed"
+fi
+for k in kinetic abrahamson; do
+  expect_rc 0 "$sb" pbe --kernel $k --n0 1e12 --v1 5.2e-19 --sizes 10 \
+    --times 1e-3 --out "$out-k.csv" -q
+done
+msg=$("$sb" pbe --kernel blah --n0 1 --times 1 --out "$out-k.csv" 2>&1)
+case "$msg" in *"valid: constant, additive"*) ;; *) fail "pbe kernel list: $msg" ;; esac
+rm -f "$out-d.csv" "$out-d-moments.csv" "$out-k.csv" "$out-k-moments.csv"
 
 # --- collide: an example configuration runs and writes its outputs; an
 # unknown key is rejected with a message naming the file, line and key
@@ -109,8 +170,26 @@ fi
 printf '[run]\nL = 1e-4\nbogus = 3\n' > "$out/bad.ini"
 msg=$("$sb" collide "$out/bad.ini" 2>&1 >/dev/null)
 rc=$?
-[ $rc -eq 1 ] || fail "collide bad.ini exited $rc, want 1"
+[ $rc -eq 2 ] || fail "collide bad.ini exited $rc, want 2"
 case "$msg" in *bad.ini:3*bogus*) ;; *) fail "collide bad key message: $msg" ;; esac
+# help and docs in step: every key of `collide --help` is in the
+# engine chapter's tables
+doc="${srcdir:-.}/docs/engine.md"
+for k in $("$sb" collide --help | awk '/^  [A-Za-z_0-9]+ .* default / {print $1}'); do
+  grep -q "^| \`$k\`\|^| \`[a-z_]*\` or \`$k\`\|, \`$k\`" "$doc" \
+    || fail "collide key '$k' is not in docs/engine.md §9"
+done
+# --set overrides a key and is recorded in summary.json
+sed "s|^output = .*|output = $out/collide|" "$ini" > "$out/two.ini"
+if "$sb" collide "$out/two.ini" --set run.dt=2e-5 --set species.sphere.T=301 \
+     2>/dev/null; then
+  grep -q '"dt": 2.0000000000000002e-05' "$out/collide/summary.json" \
+    || fail "--set run.dt not applied"
+  grep -q '"overrides": \["run.dt=2e-5", "species.sphere.T=301"\]' \
+    "$out/collide/summary.json" || fail "--set not recorded in summary.json"
+else
+  fail "collide --set failed"
+fi
 rm -rf "$out"
 
 [ "$fails" -eq 0 ] && echo "cli: all checks passed"

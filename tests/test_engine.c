@@ -426,6 +426,30 @@ START_TEST(test_checkpoint_roundtrip)
   assert_same(a, b);
   const uint64_t *ia = sb_engine_ids(a), *ib = sb_engine_ids(b);
   ck_assert(!memcmp(ia, ib, sb_engine_count(a) * sizeof *ia));
+  /* equal states give byte-identical files (no pointer, no padding) */
+  {
+    char pb[] = "/tmp/sb_engine_ckpt_XXXXXX";
+    int fb = mkstemp(pb);
+    ck_assert_int_ge(fb, 0);
+    close(fb);
+    ck_assert_int_eq(sb_engine_checkpoint_save(a, path), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_checkpoint_save(b, pb), SB_SUCCESS);
+    FILE *fa = fopen(path, "rb"), *fbf = fopen(pb, "rb");
+    ck_assert(fa && fbf);
+    int ca, cb;
+    long pos = 0, diff = -1;
+    do {
+      ca = fgetc(fa);
+      cb = fgetc(fbf);
+      if (ca != cb && diff < 0)
+        diff = pos;
+      pos++;
+    } while (ca != EOF && cb != EOF);
+    fclose(fa);
+    fclose(fbf);
+    remove(pb);
+    ck_assert_msg(diff < 0, "checkpoints differ at byte %ld", diff);
+  }
   /* truncated file: clean SB_EFORMAT, no abort from GSL */
   FILE *f = fopen(path, "r+b");
   ck_assert_ptr_nonnull(f);

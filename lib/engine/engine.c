@@ -877,23 +877,39 @@ gsl_rng *sb_engine_rng(sb_engine *e) { return e ? e->rng : NULL; }
 
 /* ============================================================ names */
 
-static int lookup(const char *name, const char *const *names, int n,
-                  int *out, const char *func)
+/* One list per setting, NULL-terminated; the index is the enum value.  A
+ * new built-in (e.g. a detector) is one more name here and in the enum. */
+static const char *const NEIGH_NAMES[] = {"cells", "sweep", "brute", NULL};
+static const char *const DETECT_NAMES[] = {"ballistic", "overlap", NULL};
+static const char *const OUTCOME_NAMES[] = {"elastic", "reinsert", "count",
+                                            NULL};
+
+const char *const *sb_engine_neigh_names(void) { return NEIGH_NAMES; }
+const char *const *sb_engine_detect_names(void) { return DETECT_NAMES; }
+const char *const *sb_engine_outcome_names(void) { return OUTCOME_NAMES; }
+
+static int lookup(const char *name, const char *const *names, int *out,
+                  const char *func)
 {
   if (name)
-    for (int k = 0; k < n; k++)
+    for (int k = 0; names[k]; k++)
       if (!strcmp(name, names[k])) {
         *out = k;
         return SB_SUCCESS;
       }
-  return sbi_error(SB_EINVAL, func, "unknown name '%s'",
-                   name ? name : "(null)");
+  char valid[256] = "";
+  for (int k = 0; names[k]; k++) {
+    size_t len = strlen(valid);
+    snprintf(valid + len, sizeof valid - len, "%s%s", k ? ", " : "",
+             names[k]);
+  }
+  return sbi_error(SB_EINVAL, func, "unknown name '%s'; valid: %s",
+                   name ? name : "(null)", valid);
 }
 
 int sb_engine_neigh_from_name(const char *name, sb_engine_neigh *m)
 {
-  static const char *const names[] = {"cells", "sweep", "brute"};
-  int k = 0, st = lookup(name, names, 3, &k, __func__);
+  int k = 0, st = lookup(name, NEIGH_NAMES, &k, __func__);
   if (!st && m)
     *m = (sb_engine_neigh)k;
   return st;
@@ -901,8 +917,7 @@ int sb_engine_neigh_from_name(const char *name, sb_engine_neigh *m)
 
 int sb_engine_detect_from_name(const char *name, sb_engine_detect *d)
 {
-  static const char *const names[] = {"ballistic", "overlap"};
-  int k = 0, st = lookup(name, names, 2, &k, __func__);
+  int k = 0, st = lookup(name, DETECT_NAMES, &k, __func__);
   if (!st && d)
     *d = (sb_engine_detect)k;
   return st;
@@ -910,8 +925,7 @@ int sb_engine_detect_from_name(const char *name, sb_engine_detect *d)
 
 int sb_engine_outcome_from_name(const char *name, sb_engine_outcome *o)
 {
-  static const char *const names[] = {"elastic", "reinsert", "count"};
-  int k = 0, st = lookup(name, names, 3, &k, __func__);
+  int k = 0, st = lookup(name, OUTCOME_NAMES, &k, __func__);
   if (!st && o)
     *o = (sb_engine_outcome)k;
   return st;

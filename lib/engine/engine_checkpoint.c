@@ -34,7 +34,25 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
     return sbi_error(SB_EIO, __func__, "cannot open '%s' for writing", path);
   const size_t n = e->n;
   W(MAGIC, 1, 8);
-  W(&e->par, sizeof e->par, 1);
+  {
+    /* field by field into zeroed storage: the generator-type pointer and
+     * the struct's padding would make two identical runs' files differ
+     * (the type is stored by name below) */
+    sb_engine_params par;
+    memset(&par, 0, sizeof par);
+    par.dim = e->par.dim;
+    memcpy(par.L, e->par.L, sizeof par.L);
+    par.dt = e->par.dt;
+    par.seed = e->par.seed;
+    par.capacity = e->par.capacity;
+    par.neigh = e->par.neigh;
+    par.detect = e->par.detect;
+    par.outcome = e->par.outcome;
+    par.eta = e->par.eta;
+    par.sample_every = e->par.sample_every;
+    par.sort_every = e->par.sort_every;
+    W(&par, sizeof par, 1);
+  }
   W(&n, sizeof n, 1);
   W(&e->next_id, sizeof e->next_id, 1);
   W(&e->nspec, sizeof e->nspec, 1);

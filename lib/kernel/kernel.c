@@ -1,6 +1,7 @@
 /* kernel.c — collision and agglomeration kernels (SI units).
  * Formulas, sources and derivations: lib/smolbridge/kernel.h, docs/kernel.md.
  */
+#include <stdio.h>
 #include <math.h>
 #include <string.h>
 
@@ -283,6 +284,9 @@ static const char *const type_names[SB_KERNEL_NTYPES] = {
     [SB_KERNEL_SHEAR] = "shear",
     [SB_KERNEL_SAFFMAN_TURNER] = "saffman-turner",
     [SB_KERNEL_BROWNIAN_TURB] = "brownian-turb",
+    [SB_KERNEL_KINETIC] = "kinetic",
+    [SB_KERNEL_ABRAHAMSON] = "abrahamson",
+    [SB_KERNEL_DIFFUSION] = "diffusion",
 };
 
 const char *sb_kernel_type_name(sb_kernel_type type)
@@ -300,8 +304,14 @@ int sb_kernel_type_from_name(const char *name, sb_kernel_type *type)
         *type = (sb_kernel_type)t;
         return SB_SUCCESS;
       }
-  return sbi_error(SB_EINVAL, __func__, "unknown kernel name '%s'",
-                   name ? name : "(null)");
+  char valid[300] = "";
+  for (int t = 0; t < SB_KERNEL_NTYPES; t++) {
+    size_t n = strlen(valid);
+    snprintf(valid + n, sizeof valid - n, "%s%s", t ? ", " : "",
+             type_names[t]);
+  }
+  return sbi_error(SB_EINVAL, __func__, "unknown kernel name '%s'; valid: %s",
+                   name ? name : "(null)", valid);
 }
 
 int sb_kernel_spec_init(sb_kernel_spec *s, sb_kernel_type type)
@@ -320,6 +330,8 @@ int sb_kernel_spec_init(sb_kernel_spec *s, sb_kernel_type type)
   s->G = 1.0;
   s->eps = 1e-4;
   s->nu = 1.004e-6;
+  s->u2 = 1.0;
+  s->b2 = 1e-12;
   return SB_SUCCESS;
 }
 
@@ -339,6 +351,8 @@ int sb_kernel_spec_set(sb_kernel_spec *s, const char *key, double value)
       {"G", offsetof(sb_kernel_spec, G)},
       {"eps", offsetof(sb_kernel_spec, eps)},
       {"nu", offsetof(sb_kernel_spec, nu)},
+      {"u2", offsetof(sb_kernel_spec, u2)},
+      {"b2", offsetof(sb_kernel_spec, b2)},
   };
   if (s && key)
     for (size_t i = 0; i < sizeof fields / sizeof fields[0]; i++)
@@ -389,6 +403,15 @@ int sb_kernel_spec_check(const sb_kernel_spec *s)
     NEED(pos(s->T) && pos(s->mu), "T and mu must be > 0");
     NEED(nonneg(s->eps) && pos(s->nu), "need eps >= 0, nu > 0");
     break;
+  case SB_KERNEL_KINETIC:
+    NEED(pos(s->T) && pos(s->rho_p), "T and rho_p must be > 0");
+    break;
+  case SB_KERNEL_ABRAHAMSON:
+    NEED(nonneg(s->u2), "u2 must be finite and >= 0");
+    break;
+  case SB_KERNEL_DIFFUSION:
+    NEED(nonneg(s->b2), "b2 must be finite and >= 0");
+    break;
   default:
     return sbi_error(SB_EINVAL, __func__, "invalid kernel type %d",
                      (int)s->type);
@@ -431,6 +454,13 @@ double sb_kernel_spec_fn(double v_i, double v_j, const void *spec)
     return sb_kernel_saffman_turner(ri, rj, s->eps, s->nu);
   case SB_KERNEL_BROWNIAN_TURB:
     return sb_kernel_brownian_turb(ri, rj, s->T, s->mu, s->eps, s->nu);
+  case SB_KERNEL_KINETIC:
+    return sb_kernel_kinetic(2.0 * ri, 2.0 * rj, s->rho_p * v_i,
+                             s->rho_p * v_j, s->T);
+  case SB_KERNEL_ABRAHAMSON:
+    return sb_kernel_abrahamson(ri, rj, s->u2, s->u2);
+  case SB_KERNEL_DIFFUSION:
+    return sb_kernel_diffusion(ri, rj, s->b2, s->b2);
   default:
     return NAN;
   }

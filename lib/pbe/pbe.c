@@ -34,7 +34,7 @@
 static const sb_kernel_spec default_kernel = {SB_KERNEL_CONSTANT, 1.0,
                                               293.15, 1.002e-3, 1000.0,
                                               998.2, 0.0, 9.80665, 1.0,
-                                              1e-4, 1.004e-6};
+                                              1e-4, 1.004e-6, 1.0, 1e-12};
 
 void sb_pbe_config_init(sb_pbe_config *cfg)
 {

@@ -463,10 +463,15 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status);
 
 /** Names used by the CLI ("cells", "sweep", "brute"; "ballistic",
  *  "overlap"; "elastic", "reinsert", "count"); return SB_EINVAL for an
- *  unknown name. */
+ *  unknown name, with the valid names in the message. */
 int sb_engine_neigh_from_name(const char *name, sb_engine_neigh *m);
 int sb_engine_detect_from_name(const char *name, sb_engine_detect *d);
 int sb_engine_outcome_from_name(const char *name, sb_engine_outcome *o);
+/** The names the _from_name functions accept, NULL-terminated, in enum
+ *  order (static storage; for help texts and error messages). */
+const char *const *sb_engine_neigh_names(void);
+const char *const *sb_engine_detect_names(void);
+const char *const *sb_engine_outcome_names(void);
 
 
 /* ============================================================

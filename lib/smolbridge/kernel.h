@@ -173,6 +173,9 @@ typedef enum {
   SB_KERNEL_SHEAR,          /* G */
   SB_KERNEL_SAFFMAN_TURNER, /* eps, nu */
   SB_KERNEL_BROWNIAN_TURB,  /* T, mu, eps, nu */
+  SB_KERNEL_KINETIC,        /* T, rho_p: hard spheres, m = rho_p v */
+  SB_KERNEL_ABRAHAMSON,     /* u2: same velocity variance for all sizes */
+  SB_KERNEL_DIFFUSION,      /* b2: same position variance rate */
   SB_KERNEL_NTYPES
 } sb_kernel_type;
 
@@ -190,22 +193,28 @@ typedef struct {
   double G;      /**< laminar shear rate, 1/s */
   double eps;    /**< turbulent dissipation rate, m^2/s^3 */
   double nu;     /**< kinematic viscosity, m^2/s */
+  double u2;     /**< velocity variance per component, m^2/s^2
+                      (abrahamson) */
+  double b2;     /**< position variance rate B_pos^2, m^2/s (diffusion) */
 } sb_kernel_spec;
 
 /** Fill *s with `type` and defaults: K = 1, water at 20 C (T = 293.15,
  *  mu = 1.002e-3, rho_f = 998.2, nu = 1.004e-6), rho_p = 1000, lambda = 0,
- *  g = 9.80665, G = 1, eps = 1e-4.  SB_EINVAL for an unknown type. */
+ *  g = 9.80665, G = 1, eps = 1e-4, u2 = 1, b2 = 1e-12.  SB_EINVAL for an
+ *  unknown type. */
 int sb_kernel_spec_init(sb_kernel_spec *s, sb_kernel_type type);
 
 /** Type from its name ("constant", "additive", "multiplicative",
  *  "brownian-co", "brownian-fm", "brownian-tr", "gravity", "shear",
- *  "saffman-turner", "brownian-turb"); returns SB_EINVAL if unknown. */
+ *  "saffman-turner", "brownian-turb", "kinetic", "abrahamson",
+ *  "diffusion"); returns SB_EINVAL if unknown, with the valid names in
+ *  the message. */
 int sb_kernel_type_from_name(const char *name, sb_kernel_type *type);
 /** Name of a type (NULL if out of range). */
 const char *sb_kernel_type_name(sb_kernel_type type);
 
 /** Set a parameter by its field name ("K", "T", "mu", "rho_p", "rho_f",
- *  "lambda", "g", "G", "eps", "nu"); SB_EINVAL if unknown. */
+ *  "lambda", "g", "G", "eps", "nu", "u2", "b2"); SB_EINVAL if unknown. */
 int sb_kernel_spec_set(sb_kernel_spec *s, const char *key, double value);
 
 /** Check that the parameters used by s->type are valid (SB_EDOM if not). */

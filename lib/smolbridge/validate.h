@@ -81,6 +81,17 @@ const char *sb_validate_case_description(size_t i);
 /** Index of the case called exactly `name`; SB_EINVAL if there is none. */
 int sb_validate_case_index(const char *name, size_t *index);
 
+/** Write the engine runs of case `index` as `smolbridge collide`
+ *  configurations DIR/RUN.ini (DIR must exist) instead of running them:
+ *  the same options (mode, seed) give files whose runs reproduce the
+ *  case's estimates; "; expect RECORD = FIELD [* FACTOR]" comment lines
+ *  say which summary.json field gives each record.  Runs collide cannot
+ *  reproduce are listed in DIR/NOT-WRITTEN.txt.  *nfiles (may be NULL)
+ *  receives the number of files.  SB_EINVAL for a case without engine runs
+ *  collide reproduces (the message lists those that have), SB_EIO. */
+int sb_validate_write_ini(size_t index, const sb_validate_options *opt,
+                          const char *dir, size_t *nfiles);
+
 /* ------------------------------------------------------------- reports */
 
 /** Records, notes and timings of the cases run into it. */

@@ -24,15 +24,18 @@
 #include <smolbridge/stats.h>
 #include <smolbridge/validate.h>
 
+/* Growing list of comparison records, plus free-text notes per case. */
+typedef struct sb_validate_report sbv_report;
+
 typedef struct {
   int full;                 /* 0: quick (default), 1: full */
   unsigned long seed;       /* base seed */
   const char *outdir;       /* plot directory (exists), or NULL */
   const sb_validate_options *opt;  /* callbacks */
+  const char *ini_dir;      /* write mode (ini.c), or NULL */
+  sbv_report *ini_rep;      /* write mode: the report of the case */
 } sbv_ctx;
 
-/* Growing list of comparison records, plus free-text notes per case. */
-typedef struct sb_validate_report sbv_report;
 
 /* One progress line (printf-style, no newline) to the caller's progress
  * callback, if any. */
@@ -116,6 +119,31 @@ gsl_rng *sbv_rng_alloc(const sbv_ctx *ctx, unsigned long stream);
 int sbv_plot(const sbv_ctx *ctx, sbv_report *rep, const char *name,
              const char *title, const char *header, const double *data,
              size_t nrows, size_t ncols, const char *gnuplot_body);
+
+/* ------------------------------------------------- write mode (ini.c)
+ * sb_validate_write_ini runs a case with ctx->ini_dir set: each engine run
+ * that `smolbridge collide` can reproduce is written as DIR/RUN.ini
+ * instead of being run, and returns unit values (K = 1, one hit), so that
+ * the record the case then adds has as its estimate the factor between a
+ * summary.json field and the record ("; expect" lines).  Runs that collide
+ * cannot reproduce are listed with sbv_ini_skip. */
+int sbv_writing(const sbv_ctx *ctx);
+/* Open DIR/RUN.ini with its header and "[run]\noutput = RUN-out"; the
+ * caller writes the other [run] keys, then the sections. */
+FILE *sbv_ini_begin(const sbv_ctx *ctx, sbv_report *rep, const char *run,
+                    const char *what);
+/* Close it; `field` (may be NULL) is the summary.json field of the next
+ * record added (sbv_add appends its expect line). */
+int sbv_ini_end(sbv_report *rep, FILE *f, const char *field);
+/* Append "; expect RECORD = FIELD * FACTOR" to the last file. */
+void sbv_ini_expect(sbv_report *rep, const char *record, const char *field,
+                    double factor);
+/* A run left out, and why (printf-style). */
+void sbv_ini_skip(sbv_report *rep, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
 
 typedef int (*sbv_case_fn)(const sbv_ctx *ctx, sbv_report *rep);
 

@@ -558,7 +558,34 @@ static int case_dlvo(const sbv_ctx *ctx, sbv_report *rep)
            "(flux-weighted Gamma(2) law).  Effective kernel: 2 V N_merge/"
            "int n(n-1) dt with the Garwood 99.9%% interval vs psi K_kin "
            "g_CS.", TEMP, N, phi, tend);
-  for (int q = 0; q < 4; q++) {
+  for (int q = 0; q < 4 && sbv_writing(ctx); q++) {
+    if (q == 3) {
+      sbv_ini_skip(rep, "  V8/agglo-dlvo/pair-3mM-10mV: the barrier of a "
+                   "DLVO pair (sb_dlvo_barrier per radius pair) is not a "
+                   "collide key; set [agglo] wmax to its W_max");
+      break;
+    }
+    char fn[64], rec[96];
+    snprintf(fn, sizeof fn, "V8_dlvo_x%g", xs[q]);
+    FILE *f = sbv_ini_begin(ctx, rep, fn, "V8: DLVO sticking, ballistic "
+                            "gas");
+    if (!f)
+      return SB_EIO;
+    fprintf(f, "seed = %lu\nL = %.17g\ndt = %.17g\nt_end = %.17g\n"
+            "detect = ballistic\noutcome = dlvo\n\n[agglo]\n"
+            "growth = constant\nwmax_kT = %.17g\nerel = contact\n\n"
+            "[species grain]\nradius = %.17g\nmass = %.17g\ntau = inf\n"
+            "T = %.17g\ncount = %zu\n", ctx->seed * 31UL +
+            (unsigned long)q + 7UL, L, dt, tend, xs[q], 0.5 * d, m, TEMP, N);
+    int st = sbv_ini_end(rep, f, NULL);
+    if (st)
+      return st;
+    snprintf(rec, sizeof rec, "V8/agglo-dlvo/x=%g/psi", xs[q]);
+    sbv_ini_expect(rep, rec, "agglo.sticking_fraction", 1.0);
+    snprintf(rec, sizeof rec, "V8/agglo-dlvo/x=%g/psiK/(K_kin g)", xs[q]);
+    sbv_ini_expect(rep, rec, "agglo.merge_kernel", 1.0 / (Kkin * g));
+  }
+  for (int q = 0; q < 4 && !sbv_writing(ctx); q++) {
     sb_engine_params p;
     sb_engine_params_default(&p);
     p.L[0] = p.L[1] = p.L[2] = L;

@@ -598,7 +598,7 @@ static int case_bes3b_hit_hist(const sbv_ctx *ctx, sbv_report *rep)
     double chi2 = NAN, dof = NAN, pv = NAN;
     int cs = sb_chi2_test(xs, n, tedges, nt - 1, cb_bes3b_hit_cdf,
                           (void *)p, &chi2, &dof, &pv);
-    char name[64], pname[64], title[160];
+    char name[64], pname[64], title[200];
     snprintf(name, sizeof name, "V11/bes3b-hit-histogram/fig5.%d", 8 + c);
     st |= sbv_add_chi2(rep, name, cs, chi2, dof, pv);
     snprintf(pname, sizeof pname, "V11_bes3b_hit_fig5_%d", 8 + c);

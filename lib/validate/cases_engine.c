@@ -102,6 +102,24 @@ static int case_gases(const sbv_ctx *ctx, sbv_report *rep)
                               : (run == 5 ? 400 : 1000);
     double rate = Kth * (double)n * (double)(n - 1) / (2.0 * L * L * L);
     double t_end = target / rate;
+    if (sbv_writing(ctx)) {
+      char fn[64], rec[96];
+      snprintf(fn, sizeof fn, "V1_%s_dt%.0e", g->name, dt);
+      snprintf(rec, sizeof rec, "V1/%s/dt=%.0e", g->name, dt);
+      FILE *f = sbv_ini_begin(ctx, rep, fn, "V1: MD hard-sphere gas");
+      if (!f) {
+        st = SB_EIO;
+        break;
+      }
+      fprintf(f, "seed = %lu\nL = %.17g\ndt = %.17g\nt_end = %.17g\n"
+              "thermalize = %.17g\ndetect = ballistic\noutcome = elastic\n"
+              "\n[species %s]\nradius = %.17g\nmass = %.17g\ntau = inf\n"
+              "T = %.17g\ncount = %zu\n", ctx->seed * 1000 + 100 +
+              (unsigned long)run, L, dt, t_end, T, g->name, g->rvdw, m, T, n);
+      st = sbv_ini_end(rep, f, NULL);
+      sbv_ini_expect(rep, rec, "kernel.K", 1.0);
+      continue;
+    }
     sb_engine_params p;
     sb_engine_params_default(&p);
     p.L[0] = p.L[1] = p.L[2] = L;
@@ -178,6 +196,25 @@ static int case_dense(const sbv_ctx *ctx, sbv_report *rep)
   const double nu = (double)n / V * Kth;  /* collisions per molecule, 1/s */
   const double dt = 0.3 / nu;
   const double target = ctx->full ? 400000.0 : 20000.0;
+  if (sbv_writing(ctx)) {
+    double t1 = 0.0;  /* the time the warm-up reaches, step by step */
+    while (t1 < 20.0 / nu - 0.5 * dt)
+      t1 += dt;
+    FILE *f = sbv_ini_begin(ctx, rep, "V1_dense_He_phi0.05",
+                            "V1: dense helium, long steps");
+    if (!f)
+      return SB_EIO;
+    fprintf(f, "seed = %lu\nL = %.17g\ndt = %.17g\nwarmup = %.17g\n"
+            "t_end = %.17g\nthermalize = %.17g\ndetect = ballistic\n"
+            "outcome = elastic\n\n[species He]\nradius = %.17g\n"
+            "mass = %.17g\ntau = inf\nT = %.17g\ncount = %zu\n",
+            ctx->seed * 1000 + 160, L, dt, 20.0 / nu,
+            t1 + 2.0 * target / (nu * (double)n), T, g->rvdw, m, T, n);
+    int st = sbv_ini_end(rep, f, NULL);
+    sbv_ini_expect(rep, "V1/dense/He/phi=0.05/dt=0.3t_free", "kernel.K",
+                   1.0);
+    return st;
+  }
   sb_engine_params p;
   sb_engine_params_default(&p);
   p.L[0] = p.L[1] = p.L[2] = L;
@@ -282,6 +319,35 @@ static int case_mixture(const sbv_ctx *ctx, sbv_report *rep)
                g_mix(d[1], d[1], nd, d, 2);
   double Pxx = 0.5 * (double)nsp[1] * (double)(nsp[1] - 1);
   double t_end = target * L * L * L / (Kxx * Pxx);
+  if (sbv_writing(ctx)) {
+    sb_engine_free(e);
+    if (st)
+      return st;
+    FILE *f = sbv_ini_begin(ctx, rep, "V1_mixture_He_Xe",
+                            "V1: binary He + Xe gas");
+    if (!f)
+      return SB_EIO;
+    fprintf(f, "seed = %lu\nL = %.17g\ndt = %.17g\nwarmup = %.17g\n"
+            "t_end = %.17g\nthermalize = %.17g\ndetect = ballistic\n"
+            "outcome = elastic\n", ctx->seed * 1000 + 150, L, dt,
+            0.1 * t_end, 1.1 * t_end, T);
+    for (int k = 0; k < 2; k++)
+      fprintf(f, "\n[species %s]\nradius = %.17g\nmass = %.17g\n"
+              "tau = inf\nT = %.17g\nfamily = %d\ncount = %zu\n",
+              k ? "Xe" : "He", g[k]->rvdw, m[k], T, k, nsp[k]);
+    st = sbv_ini_end(rep, f, NULL);
+    static const char *lb[2] = {"He", "Xe"};
+    for (int a = 0; a < 2; a++)
+      for (int b = a; b < 2; b++) {
+        char rec[96], fld[96];
+        double Kth = sb_kernel_kinetic(d[a], d[b], m[a], m[b], T) *
+                     g_mix(d[a], d[b], nd, d, 2);
+        snprintf(rec, sizeof rec, "V1/mixture/%s-%s/K_e/K_th", lb[a], lb[b]);
+        snprintf(fld, sizeof fld, "pair_kernels[%s,%s].K", lb[a], lb[b]);
+        sbv_ini_expect(rep, rec, fld, 1.0 / Kth);
+      }
+    return st;
+  }
   if (!st)
     st = sb_engine_run_until(e, 0.1 * t_end);  /* warm-up */
   sb_engine_reset_counters(e);
@@ -338,6 +404,31 @@ static int case_45(const sbv_ctx *ctx, sbv_report *rep)
   const double c = 5e-5;
   double xa[3] = {c - s2 * r - 0.5 * v * dt, c, c}, ua[3] = {v, 0, 0};
   double xb[3] = {c, c - s2 * r, c}, ub[3] = {0, 0, 0};
+  if (sbv_writing(ctx)) {
+    sb_engine_free(e);
+    FILE *f = sbv_ini_begin(ctx, rep, "V9_two_spheres_45",
+                            "V9: two spheres, impact at 45 degrees");
+    if (!f)
+      return SB_EIO;
+    fprintf(f, "L = 1e-4\ndt = %.17g\nsteps = 1\nsnapshot_every = 1\n"
+            "outcome = elastic\n\n[species sphere]\nradius = %.17g\n"
+            "mass = 1e-15\ntau = inf\nT = 300\n"
+            "particle = %.17g %.17g %.17g %.17g %.17g %.17g\n"
+            "particle = %.17g %.17g %.17g %.17g %.17g %.17g\n", dt, r,
+            xa[0], xa[1], xa[2], ua[0], ua[1], ua[2], xb[0], xb[1], xb[2],
+            ub[0], ub[1], ub[2]);
+    st = sbv_ini_end(rep, f, NULL);
+    static const char *const lab[4] = {"A_ux", "A_uy", "B_ux", "B_uy"};
+    static const char *const col[4] = {"id 0 ux", "id 0 uy", "id 1 ux",
+                                       "id 1 uy"};
+    for (int k = 0; k < 4; k++) {
+      char rec[96], fld[96];
+      snprintf(rec, sizeof rec, "V9/two-spheres-45/%s", lab[k]);
+      snprintf(fld, sizeof fld, "snap_000000.csv %s", col[k]);
+      sbv_ini_expect(rep, rec, fld, 1.0);
+    }
+    return st;
+  }
   if (!st)
     st = sb_engine_add_particle(e, 0, 0, xa, ua);
   if (!st)
@@ -398,6 +489,35 @@ static int run_jets(const sbv_ctx *ctx, int collide, size_t *crossed,
   double lo1[3] = {0.1 * L, 0.2 * L, 0}, hi1[3] = {0.3 * L, 0.4 * L, 0};
   double u0[3] = {U * cos(a), -U * sin(a), 0}, u1[3] = {U * cos(a),
                                                        U * sin(a), 0};
+  if (sbv_writing(ctx)) {
+    sb_engine_free(e);
+    double t_end = 0.4 * L / (U * sin(a)), t = 0.0;
+    long nst = 0;
+    while (t < t_end - 0.5 * p.dt) {
+      t += p.dt;
+      nst++;
+    }
+    FILE *f = sbv_ini_begin(ctx, ctx->ini_rep, collide ? "V9_jets_collisions"
+                                              : "V9_jets_no_collision",
+                            "V9: crossing jets in 2-D");
+    if (!f)
+      return SB_EIO;
+    fprintf(f, "seed = %lu\ndim = 2\nL = %.17g\ndt = %.17g\n"
+            "t_end = %.17g\nsnapshot_every = %ld\noutcome = %s\n",
+            p.seed, L, p.dt, t_end, nst, collide ? "elastic" : "count");
+    for (int k = 0; k < 2; k++) {
+      const double *lo = k ? lo1 : lo0, *hi = k ? hi1 : hi0;
+      const double *u = k ? u1 : u0;
+      fprintf(f, "\n[species jet%d]\nradius = %.17g\nmass = %.17g\n"
+              "tau = inf\nT = %.17g\nfamily = %d\ncount = %zu\n"
+              "region = %.17g %.17g %.17g %.17g\ndrift = %.17g %.17g\n", k,
+              r, m, s.T, k, nb, lo[0], hi[0], lo[1], hi[1], u[0], u[1]);
+    }
+    memset(crossed, 0, 2 * sizeof *crossed);
+    nfam[0] = nfam[1] = 1;  /* unit values */
+    *n01 = 0;
+    return sbv_ini_end(ctx->ini_rep, f, NULL);
+  }
   if (!st)
     st = sb_engine_fill_box(e, 0, 0, nb, lo0, hi0, u0);
   if (!st)
@@ -437,6 +557,21 @@ static int case_jets(const sbv_ctx *ctx, sbv_report *rep)
     st = run_jets(ctx, c, cr[c], nf[c], h[c], NB, &n01[c]);
   if (st)
     return st;
+  if (sbv_writing(ctx)) {
+    for (int c = 0; c < 2; c++)
+      for (int f = 0; f < 2; f++) {
+        char rec[96], fld[160];
+        snprintf(rec, sizeof rec, "V9/crossing-jets/%s/fam%d-%s",
+                 c ? "collisions" : "no-collision", f,
+                 c ? "mixed" : "crossed");
+        snprintf(fld, sizeof fld, "%s: last snapshot, fraction of family "
+                 "%d with y %s L/2", c ? "V9_jets_collisions"
+                                       : "V9_jets_no_collision", f,
+                 (f == 0) != (c == 1) ? "<" : ">=");
+        sbv_ini_expect(rep, rec, fld, 1.0);
+      }
+    return st;
+  }
   /* no collisions: every particle crosses (reference 1 inside the
    * Clopper-Pearson interval of the crossed fraction) */
   for (int f = 0; f < 2 && !st; f++) {

@@ -119,6 +119,9 @@ static int case_v4(const sbv_ctx *ctx, sbv_report *rep)
       q.N = N;
       q.T = (double)nsteps * q.dt;
       fh_out o;
+      char fn[64];
+      snprintf(fn, sizeof fn, "V4_d%.2gum_dt%gtau", q.d * 1e6, ratios[k]);
+      fh_set_name(rep, fn);
       st = run_bessel(ctx, 100 + (unsigned long)(3 * a + k), &q, Kth, hits,
                       &o);
       if (st)
@@ -149,6 +152,7 @@ static int case_v4(const sbv_ctx *ctx, sbv_report *rep)
     q.T = (ctx->full ? 300.0 : 30.0) * q.dt;
     q.L = cbrt((double)N * 3.14159265358979 / 6.0 * pow(q.d, 3) / 0.05);
     fh_out o;
+    fh_set_name(rep, "V4_d1um_dt300tau_phi0.05");
     st = run_firsthit(ctx, 190, &q, &o);
     if (!st)
       st = add_ratio(rep, "V4/bridge/d=1um/dt=300tau/phi=0.05/K_e/K_th",
@@ -204,6 +208,10 @@ static int case_v5(const sbv_ctx *ctx, sbv_report *rep)
       q.T = (double)nsteps * q.dt;
       double Kth = sb_kernel_diffusion(0.5 * q.d, 0.5 * q.d, q.b2, q.b2);
       fh_out o;
+      char fn[64];
+      snprintf(fn, sizeof fn, "V5_%s_d%gdref", series ? "Bd" : "B1e-3",
+               mult[k]);
+      fh_set_name(rep, fn);
       st = run_bessel(ctx, 200 + (unsigned long)(3 * series + k), &q, Kth,
                       hits, &o);
       if (st)
@@ -259,6 +267,8 @@ static int case_v7(const sbv_ctx *ctx, sbv_report *rep)
   double bt = sb_turb_pair_b2(d, eps, nu);
   q.b2 = bb + 0.5 * bt;
   q.b2brown = bb;
+  q.eps = eps;
+  q.nu = nu;
   q.dt = 1000.0 * q.tau;
   q.N = N;
   q.T = (ctx->full ? 2000.0 : 300.0) * q.dt;
@@ -268,6 +278,7 @@ static int case_v7(const sbv_ctx *ctx, sbv_report *rep)
   /* the split is accumulated by the bridge outcome: run a reinsert run
    * for it after the first-hit kernel */
   fh_out o;
+  fh_set_name(rep, "V7_brownian_turb");
   int st = run_bessel(ctx, 300, &q, Kth, hits, &o);
   if (st)
     return st;
@@ -280,6 +291,12 @@ static int case_v7(const sbv_ctx *ctx, sbv_report *rep)
    * (reinsert), same particles and box */
   sb_engine_bridge_stats bs;
   memset(&bs, 0, sizeof bs);
+  if (sbv_writing(ctx)) {
+    sbv_ini_skip(rep, "  V7 collision-split run (reinsert): no record; "
+                 "run V7_brownian_turb.ini with outcome = reinsert and "
+                 "read bridge.brownian_share");
+    return st;
+  }
   {
     sb_engine_params p;
     if (fh_cube_params(ctx, 301, q.L, q.dt, N, &p))
@@ -387,6 +404,11 @@ static int case_v3(const sbv_ctx *ctx, sbv_report *rep)
           }
         }
         fh_out o;
+        static const char *dnf[4] = {"", "chord", "overlap", "MD"};
+        char fn[64];
+        snprintf(fn, sizeof fn, "V3_%s_d%.2gum_dt%gtau", dnf[det],
+                 q.d * 1e6, ratios[k]);
+        fh_set_name(rep, fn);
         st = run_firsthit(ctx, 400 + (unsigned long)(6 * a + 2 * k + det),
                           &q, &o);
         if (st)
@@ -460,6 +482,29 @@ static int case_v6(const sbv_ctx *ctx, sbv_report *rep)
     sb_engine_params p;
     if (fh_cube_params(ctx, 500 + (unsigned long)k, L, dt, N, &p))
       return SB_ENOMEM;
+    if (sbv_writing(ctx)) {
+      char fn[64], rec[96];
+      snprintf(fn, sizeof fn, "V6_correction_dt%gtau", ratios[k]);
+      FILE *f = sbv_ini_begin(ctx, rep, fn, "V6: correction step");
+      if (!f)
+        return SB_EIO;
+      double tau = p.dt * 1e-6;
+      fprintf(f, "seed = %lu\nrng = taus2\nL = %.17g\ndt = %.17g\n"
+              "warmup = %.17g\nsteps = %zu\ndetect = bridge\n"
+              "outcome = correction\n\n[observe]\nhit_times = 20000\n"
+              "\n[species p]\nradius = %.17g\nmass = %.17g\n"
+              "tau = %.17g\nB = %.17g\ncount = %zu\n", p.seed, L, p.dt,
+              (double)nwarm * p.dt, nmeas, 0.5 * d, m, tau, Bp / tau, N);
+      if ((st = sbv_ini_end(rep, f, NULL)))
+        return st;
+      snprintf(rec, sizeof rec, "V6/correction/dt=%gtau_p/K_e/K_th",
+               ratios[k]);
+      sbv_ini_expect(rep, rec, "kernel.K", 1.0 / Kth);
+      snprintf(rec, sizeof rec, "V11/engine-hit-times/dt=%gtau_p/KS",
+               ratios[k]);
+      sbv_ini_expect(rep, rec, "hit_times.ks_D", 1.0);
+      continue;
+    }
     sb_engine *e = sb_engine_alloc(&p);
     if (!e)
       return SB_ENOMEM;
@@ -574,6 +619,9 @@ static int case_exact(const sbv_ctx *ctx, sbv_report *rep)
     q.mode = SB_BRIDGE_EXACT;
     q.ends = SB_BRIDGE_ENDS_DIFFUSIVE;
     fh_out o;
+    char fn[64];
+    snprintf(fn, sizeof fn, "VX_dt%gtau", ratios[k]);
+    fh_set_name(rep, fn);
     st = run_firsthit(ctx, 600 + (unsigned long)k, &q, &o);
     if (st)
       break;

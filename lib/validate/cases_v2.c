@@ -108,6 +108,9 @@ static int first_hit(const sbv_ctx *ctx, sbv_report *rep, double *plot)
     q.builtin = FH_CHORD;
     q.L = fh_box_for(ph.KL, N, fh_teff(&q), hits, q.b2 * q.T);
     fh_out o;
+    char fn[64];
+    snprintf(fn, sizeof fn, "V2_first-hit_d%.2fum", ph.d * 1e6);
+    fh_set_name(rep, fn);
     st = run_firsthit(ctx, 200 + (unsigned long)id, &q, &o);
     if (st)
       break;

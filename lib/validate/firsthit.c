@@ -13,6 +13,7 @@
 #include <smolbridge/stats.h>
 
 #include "firsthit.h"
+#include "report.h"
 
 #define PI 3.14159265358979323846
 
@@ -183,12 +184,67 @@ double fh_box_for(double K, size_t N, double Teff, double hits, double b2T)
   return L > Lmin ? L : Lmin;
 }
 
+/* The run as a collide configuration (write mode); the expect line of
+ * the case's next record is added by sbv_add. */
+static int write_firsthit(const sbv_ctx *ctx, unsigned long stream,
+                          const fh_run *q, const sb_engine_params *p,
+                          fh_out *o)
+{
+  sbv_report *rep = ctx->ini_rep;
+  memset(o, 0, sizeof *o);
+  o->hits = 1;  /* unit values: the record's estimate is the factor */
+  o->expected_per_K = o->K = o->lo = o->hi = 1.0;
+  char name[128];
+  snprintf(name, sizeof name, "%s", rep->ini_next[0] ? rep->ini_next
+                                                      : "firsthit");
+  rep->ini_next[0] = 0;
+  if (q->builtin == FH_MD) {
+    sbv_ini_skip(rep, "  %s: MD-type detection (x + u dt with the start "
+                 "velocities) is not a collide detector", name);
+    return SB_SUCCESS;
+  }
+  FILE *f = sbv_ini_begin(ctx, rep, name, "first-hit counting run");
+  if (!f)
+    return SB_EIO;
+  static const char *const det[] = {"bridge", "ballistic", "overlap"};
+  fprintf(f, "seed = %lu\nrng = taus2\nL = %.17g\ndt = %.17g\n"
+          "t_end = %.17g\n", p->seed, q->L, q->dt, q->T);
+  if (q->t1 > 0)
+    fprintf(f, "warmup = %.17g\n", q->t1);
+  fprintf(f, "detect = %s\noutcome = count\nplacement = uniform\n"
+          "placement_seed = %lu\n",
+          q->builtin != FH_BRIDGE     ? det[q->builtin]
+          : q->mode == SB_BRIDGE_EXACT ? "exact"
+                                       : "bridge",
+          (ctx->seed * 1000003UL + (100000 + stream) * 7919UL + 1UL) &
+              0xffffffffUL);
+  if (q->builtin == FH_BRIDGE)
+    fprintf(f, "\n[bridge]\nends = %s\n",
+            q->ends == SB_BRIDGE_ENDS_DIFFUSIVE ? "diffusive" : "position");
+  if (q->eps > 0)
+    fprintf(f, "\n[turbulence]\neps = %.17g\nnu = %.17g\n", q->eps, q->nu);
+  fprintf(f, "\n[observe]\nfirst_hit = yes\n");
+  if (q->a_eff > 0)
+    fprintf(f, "first_hit_radius = %.17g\n", q->a_eff);
+  fprintf(f, "\n[species p]\nradius = %.17g\nmass = %.17g\ntau = %.17g\n"
+          "b2 = %.17g\ncount = %zu\n", 0.5 * q->d, q->mass, q->tau,
+          q->eps > 0 ? q->b2brown : q->b2, q->N);
+  return sbv_ini_end(rep, f, "first_hit.K");
+}
+
+void fh_set_name(sbv_report *rep, const char *name)
+{
+  snprintf(rep->ini_next, sizeof rep->ini_next, "%s", name);
+}
+
 int run_firsthit(const sbv_ctx *ctx, unsigned long stream, const fh_run *q,
                  fh_out *o)
 {
   sb_engine_params p;
   if (fh_cube_params(ctx, stream, q->L, q->dt, q->N, &p))
     return SB_ENOMEM;
+  if (sbv_writing(ctx))
+    return write_firsthit(ctx, stream, q, &p, o);
   p.outcome = SB_OUTCOME_COUNT;
   sb_engine *e = sb_engine_alloc(&p);
   if (!e)

@@ -60,6 +60,8 @@ typedef struct {
   size_t N;
   double T;        /* simulated time, s */
   double t1;       /* warm-up: first hits before t1 are not counted, s */
+  double eps, nu;  /* turbulence behind b2 - b2brown (V7), else 0; for
+                      the configuration written in write mode */
   int builtin;     /* FH_* */
   sb_bridge_mode mode;
   sb_bridge_ends ends;
@@ -78,9 +80,14 @@ typedef struct {
 /* Defaults: builtin FH_BRIDGE, Bessel mode, position ends, no warm-up. */
 void fh_run_init(fh_run *q);
 
-/* One run (engine seeded from `stream`). */
+/* One run (engine seeded from `stream`).  Write mode (sbv_writing): the
+ * run is written as a collide configuration instead (`name` its file),
+ * and o gets unit values (one hit, K = 1). */
 int run_firsthit(const sbv_ctx *ctx, unsigned long stream, const fh_run *q,
                  fh_out *o);
+/* Write-mode file name of the next run_firsthit call (rep: the report the
+ * case writes to). */
+void fh_set_name(sbv_report *rep, const char *name);
 
 /* (T - t1) + 2 a_eff (sqrt(T) - sqrt(t1)) / sqrt(pi D), D = b2. */
 double fh_teff(const fh_run *q);

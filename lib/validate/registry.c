@@ -127,9 +127,61 @@ int sb_validate_run(size_t index, const sb_validate_options *opt,
     return sbi_error(SB_EINVAL, __func__, "NULL options or report");
   if (sbv_report_begin_case(rep, c->name) != SB_SUCCESS)
     return sbi_error(SB_ENOMEM, __func__, "out of memory");
-  sbv_ctx ctx = {opt->full != 0, opt->seed, opt->outdir, opt};
+  sbv_ctx ctx = {opt->full != 0, opt->seed, opt->outdir, opt, NULL, NULL};
   double t0 = wall_seconds();
   int st = c->run(&ctx, rep);
   sbv_report_end_case(rep, st, wall_seconds() - t0);
+  return st;
+}
+
+/* Cases with engine runs that `smolbridge collide` reproduces (all or
+ * some of them: the others are listed in the README written). */
+static const char *const INI_CASES[] = {
+    "V1/kinetic-gases", "V1/dense-long-steps", "V1/kinetic-mixture",
+    "V9/two-spheres-45", "V9/crossing-jets", "V2/brownian-ballistic",
+    "V4/bridge-brownian", "V5/constant-B", "V7/brownian-turb",
+    "V3/diffusive-fail", "V6/correction-step", "VX/exact-detection",
+    "V8/agglo-dlvo", NULL};
+
+int sb_validate_write_ini(size_t index, const sb_validate_options *opt,
+                          const char *dir, size_t *nfiles)
+{
+  if (nfiles)
+    *nfiles = 0;
+  const sbv_case *c = case_at(index);
+  if (!c || !opt || !dir)
+    return sbi_error(SB_EINVAL, __func__, "bad case index, options or "
+                     "directory");
+  int ok = 0;
+  for (int i = 0; INI_CASES[i]; i++)
+    ok |= !strcmp(INI_CASES[i], c->name);
+  if (!ok)
+    return sbi_error(SB_EINVAL, __func__, "case %s has no engine run that "
+                     "smolbridge collide reproduces (cases with files: "
+                     "V1, V2, V3 (chord, overlap), V4, V5, V6, V7, V9, VX, "
+                     "V8/agglo-dlvo)", c->name);
+  sb_validate_report *rep = sb_validate_report_alloc();
+  if (!rep)
+    return sbi_error(SB_ENOMEM, __func__, "out of memory");
+  sb_validate_options o = *opt;
+  o.outdir = NULL;
+  o.progress = NULL;
+  sbv_report_begin_case(rep, c->name);
+  sbv_ctx ctx = {opt->full != 0, opt->seed, NULL, &o, dir, rep};
+  int st = c->run(&ctx, rep);
+  sbv_report_end_case(rep, st, 0.0);
+  if (!st && rep->ini_skipped[0]) {
+    char path[1100];
+    snprintf(path, sizeof path, "%s/NOT-WRITTEN.txt", dir);
+    FILE *f = fopen(path, "a");
+    if (f) {
+      fprintf(f, "%s: runs without a collide configuration:\n%s", c->name,
+              rep->ini_skipped);
+      fclose(f);
+    }
+  }
+  if (nfiles)
+    *nfiles = rep->nini;
+  sb_validate_report_free(rep);
   return st;
 }

@@ -73,6 +73,12 @@ int sbv_add(sbv_report *rep, const sb_comparison *c)
            sizeof *rep->recs))
     return SB_ENOMEM;
   rep->recs[rep->nrecs++] = *c;
+  if (rep->ini_path[0] && rep->ini_field[0]) {
+    /* write mode: the run returned unit values, so the estimate is the
+     * factor between the summary field and the record */
+    sbv_ini_expect(rep, c->name, rep->ini_field, c->estimate);
+    rep->ini_field[0] = 0;
+  }
   return SB_SUCCESS;
 }
 

@@ -19,6 +19,13 @@ struct sb_validate_report {
   size_t nrecs, caprecs;
   struct sbv_case_log *cases;
   size_t ncases, capcases;
+  /* write mode (ini.c): the configuration written last, the summary.json
+   * field its next record comes from, files written, runs left out */
+  char ini_path[1100];
+  char ini_field[96];
+  char ini_next[128];      /* file name of the next first-hit run */
+  size_t nini;
+  char ini_skipped[2048];
 };
 
 /* Start the log of a case: later sbv_add/sbv_note calls belong to it. */

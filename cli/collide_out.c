@@ -1,0 +1,507 @@
+/* collide_out.c — the output directory of a `smolbridge collide` run:
+ * prepared before the run (created, its previous run's files removed,
+ * writability of it and of the checkpoint path checked, so nothing is
+ * lost after the compute), then series.csv, summary.json, sizes.csv,
+ * hits.csv and manifest.txt (the files of this run). */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <dirent.h>
+#include <unistd.h>
+
+#include <smolbridge/bridge.h>
+#include <smolbridge/engine.h>
+#include <smolbridge/engine_bridge.h>
+#include <smolbridge/kernel.h>
+#include <smolbridge/langevin.h>
+#include <smolbridge/stats.h>
+
+#include "collide.h"
+
+#define PI 3.14159265358979323846
+
+static int mkdir_p(const char *path)
+{
+  char buf[1024];
+  if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf) {
+    errno = ENAMETOOLONG;
+    return -1;
+  }
+  for (char *p = buf + 1; *p; p++)
+    if (*p == '/') {
+      *p = 0;
+      if (mkdir(buf, 0777) && errno != EEXIST)
+        return -1;
+      *p = '/';
+    }
+  if (mkdir(buf, 0777) && errno != EEXIST)
+    return -1;
+  struct stat st;
+  if (stat(buf, &st) || !S_ISDIR(st.st_mode)) {
+    errno = ENOTDIR;
+    return -1;
+  }
+  return 0;
+}
+
+/* Files a run writes (also those of earlier versions without a
+ * manifest). */
+static int ours(const char *name)
+{
+  static const char *const fixed[] = {"series.csv", "summary.json",
+                                      "sizes.csv", "hits.csv",
+                                      "manifest.txt", NULL};
+  for (int i = 0; fixed[i]; i++)
+    if (!strcmp(name, fixed[i]))
+      return 1;
+  size_t n = strlen(name);
+  return !strncmp(name, "snap_", 5) && n > 9 &&
+         !strcmp(name + n - 4, ".csv");
+}
+
+int col_out_prepare(col_config *c)
+{
+  const char *where = col_given(c, "run", "output")
+                          ? col_where(c, "run", "output")
+                          : "[run] output (default)";
+  if (mkdir_p(c->output))
+    return col_fail(c, "%s: [run] output = %s: cannot create the "
+                    "directory: %s", where, c->output, strerror(errno));
+  DIR *d = opendir(c->output);
+  if (!d)
+    return col_fail(c, "%s: [run] output = %s: %s", where, c->output,
+                    strerror(errno));
+  struct dirent *de;
+  char path[1100];
+  while ((de = readdir(d)))
+    if (ours(de->d_name)) {
+      snprintf(path, sizeof path, "%s/%s", c->output, de->d_name);
+      if (remove(path) && errno != ENOENT) {
+        int e = errno;
+        closedir(d);
+        return col_fail(c, "%s: [run] output = %s: cannot remove the "
+                        "previous run's %s: %s", where, c->output,
+                        de->d_name, strerror(e));
+      }
+    }
+  closedir(d);
+  snprintf(path, sizeof path, "%s/manifest.txt", c->output);
+  FILE *f = fopen(path, "w");
+  if (!f || fputs("# smolbridge collide: run in progress\n", f) < 0 ||
+      fclose(f))
+    return col_fail(c, "%s: [run] output = %s: not writable: %s", where,
+                    c->output, strerror(errno));
+  if (c->checkpoint[0]) {
+    struct stat st;
+    int existed = stat(c->checkpoint, &st) == 0;
+    FILE *g = fopen(c->checkpoint, "ab");
+    if (!g)
+      return col_fail(c, "%s: [run] checkpoint = %s: not writable: %s",
+                      col_where(c, "run", "checkpoint"), c->checkpoint,
+                      strerror(errno));
+    fclose(g);
+    if (!existed)
+      remove(c->checkpoint);
+  }
+  return 0;
+}
+
+void col_snap_path(const col_config *c, long k, char *buf, size_t len)
+{
+  snprintf(buf, len, "%s/snap_%06ld.csv", c->output, k);
+}
+
+/* ------------------------------------------------------------ pairs */
+
+static int npairs_of(int nsp) { return nsp * (nsp + 1) / 2; }
+
+int col_pairs_sample(col_pairs *ps, const sb_engine *e)
+{
+  if (ps->nsp <= 1)
+    return 0;
+  size_t w = 1 + 3 * (size_t)npairs_of(ps->nsp);
+  if (ps->nrows == ps->cap) {
+    size_t nc = ps->cap ? 2 * ps->cap : 256;
+    double *nr = realloc(ps->rows, nc * w * sizeof *nr);
+    if (!nr)
+      return -1;
+    ps->rows = nr;
+    ps->cap = nc;
+  }
+  double *r = ps->rows + ps->nrows++ * w;
+  r[0] = sb_engine_time(e);
+  int q = 0;
+  for (int a = 0; a < ps->nsp; a++)
+    for (int b = a; b < ps->nsp; b++, q++) {
+      sb_engine_pair_stats st;
+      sb_engine_pair_kernel(e, (size_t)a, (size_t)b, 0.95, &st);
+      r[1 + 3 * q] = st.K;
+      r[2 + 3 * q] = st.lo;
+      r[3 + 3 * q] = st.hi;
+    }
+  return 0;
+}
+
+static int write_series(const char *path, const sb_engine *e,
+                        const col_config *c, const col_pairs *ps)
+{
+  FILE *f = fopen(path, "w");
+  if (!f)
+    return -1;
+  size_t n;
+  const sb_engine_sample *s = sb_engine_series(e, &n);
+  int np = ps->nsp > 1 ? npairs_of(ps->nsp) : 0;
+  fprintf(f, "t,ncoll,K,K_lo,K_hi,ekin,px,py,pz");
+  for (int a = 0; a < ps->nsp && np; a++)
+    for (int b = a; b < ps->nsp; b++) {
+      const char *x = col_short_name(c, (size_t)a);
+      const char *y = col_short_name(c, (size_t)b);
+      fprintf(f, ",K_%s_%s,K_%s_%s_lo,K_%s_%s_hi", x, y, x, y, x, y);
+    }
+  fprintf(f, "\n");
+  size_t w = 1 + 3 * (size_t)np;
+  for (size_t k = 0; k < n; k++) {
+    fprintf(f, "%.17g,%llu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g",
+            s[k].t, (unsigned long long)s[k].ncoll, s[k].K, s[k].K_lo,
+            s[k].K_hi, s[k].ekin, s[k].p[0], s[k].p[1], s[k].p[2]);
+    const double *r = NULL;  /* the pair row sampled at the same time */
+    for (size_t q = 0; np && q < ps->nrows; q++)
+      if (ps->rows[q * w] == s[k].t)
+        r = ps->rows + q * w;
+    for (int q = 0; q < 3 * np; q++)
+      fprintf(f, ",%.17g", r ? r[1 + q] : NAN);
+    fprintf(f, "\n");
+  }
+  return fclose(f) ? -1 : 0;
+}
+
+/* ------------------------------------------------------------ JSON */
+
+static void jstr(FILE *f, const char *s)
+{
+  fputc('"', f);
+  for (; *s; s++) {
+    unsigned char ch = (unsigned char)*s;
+    if (ch == '"' || ch == '\\')
+      fprintf(f, "\\%c", ch);
+    else if (ch < 0x20)
+      fprintf(f, "\\u%04x", ch);
+    else
+      fputc(ch, f);
+  }
+  fputc('"', f);
+}
+
+/* A number, or null for NaN/inf (not JSON). */
+static void jnum(FILE *f, double x)
+{
+  if (isfinite(x))
+    fprintf(f, "%.17g", x);
+  else
+    fprintf(f, "null");
+}
+
+/* The theoretical kernels that apply to species pair (a, b) with the
+ * fluid at rest: free flight at a common T: kinetic theory; Langevin
+ * species: the continuum kernel 4 pi (D_a + D_b)(r_a + r_b), D = (B
+ * tau)^2/2, and at a common T > 0 the free-molecular kernel and the
+ * transition kernel of Gopalakrishnan & Hogan (2011) with its Kn_D. */
+static void json_references(FILE *f, const col_config *c,
+                            const sb_engine_species *sa,
+                            const sb_engine_species *sb)
+{
+  fprintf(f, "\"references\": {");
+  int rest = !strcmp(c->fluid, "rest");
+  int same_T = sa->T > 0 && sa->T == sb->T;
+  if (rest && isinf(sa->tau) && isinf(sb->tau) && same_T) {
+    fprintf(f, "\"kinetic\": ");
+    jnum(f, sb_kernel_kinetic(2 * sa->radius, 2 * sb->radius, sa->mass,
+                              sb->mass, sa->T));
+  } else if (rest && isfinite(sa->tau) && isfinite(sb->tau)) {
+    double ba = sa->B * sa->tau, bb = sb->B * sb->tau;
+    fprintf(f, "\"continuum\": ");
+    jnum(f, sb_kernel_diffusion(sa->radius, sb->radius, ba * ba, bb * bb));
+    if (same_T) {
+      double R = sa->radius + sb->radius;
+      double mr = sa->mass * sb->mass / (sa->mass + sb->mass);
+      fprintf(f, ", \"free_molecular\": ");
+      jnum(f, PI * R * R * sqrt(8 * SB_BOLTZMANN * sa->T / (PI * mr)));
+      fprintf(f, ", \"transition_gh\": ");
+      jnum(f, sb_kernel_brownian_gh(sa->radius, sb->radius, sa->mass,
+                                    sb->mass, sa->tau, sb->tau, sa->T));
+      fprintf(f, ", \"Kn_D\": ");
+      jnum(f, sb_kernel_brownian_gh_kn(sa->radius, sb->radius, sa->mass,
+                                       sb->mass, sa->tau, sb->tau, sa->T));
+    }
+  }
+  fprintf(f, "}");
+}
+
+/* Why there is no kernel estimate. */
+static const char *why_no_kernel(const sb_engine *e, const sb_engine_stats *s)
+{
+  if (sb_engine_count(e) < 2 && !(s->exposure > 0))
+    return "fewer than 2 particles: no pairs";
+  if (!(s->t > s->t_reset))
+    return "no measured time after the warm-up";
+  return "no pair exposure in the measured interval";
+}
+
+static double uniform_cdf(double u, void *p)
+{
+  (void)p;
+  return u < 0 ? 0 : (u > 1 ? 1 : u);
+}
+
+/* hits.csv and the KS test of the hit times through their CDF (PIT). */
+static int write_hits(FILE *js, const col_config *c, const col_run *r,
+                      const char *path)
+{
+  size_t nh;
+  const sb_engine_bridge_hit *h = sb_engine_bridge_hits(r->bridge, &nh);
+  FILE *f = fopen(path, "w");
+  if (!f)
+    return -1;
+  double *u = malloc((nh ? nh : 1) * sizeof *u);
+  fprintf(f, "x,y,a,sigma2,dt,ta,F\n");
+  for (size_t i = 0; i < nh; i++) {
+    double F = sb_bes3b_hit_cdf(h[i].ta, h[i].x, h[i].y, h[i].a,
+                                h[i].sigma2, h[i].dt);
+    if (u)
+      u[i] = F;
+    fprintf(f, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", h[i].x,
+            h[i].y, h[i].a, h[i].sigma2, h[i].dt, h[i].ta, F);
+  }
+  double D = NAN, p = NAN;
+  if (u && nh > 0)
+    sb_ks_test(u, nh, uniform_cdf, NULL, &D, &p);
+  free(u);
+  fprintf(js, "  \"hit_times\": {\"recorded\": %zu, \"cap\": %ld, "
+          "\"file\": \"hits.csv\", \"ks_D\": ", nh, c->hit_times);
+  jnum(js, D);
+  fprintf(js, ", \"ks_p\": ");
+  jnum(js, p);
+  fprintf(js, "},\n");
+  return fclose(f) ? -1 : 0;
+}
+
+static void json_run(FILE *f, const col_config *c, const sb_engine *e)
+{
+  const sb_engine_params *p = sb_engine_get_params(e);
+  fprintf(f, "  \"seed\": %lu,\n", c->restart[0] ? p->seed : c->seed);
+  fprintf(f, "  \"dim\": %d,\n  \"L\": [%.17g, %.17g, %.17g],\n", p->dim,
+          p->L[0], p->L[1], p->dim == 3 ? p->L[2] : 0.0);
+  fprintf(f, "  \"dt\": %.17g,\n  \"neigh\": \"%s\",\n  \"detect\": "
+          "\"%s\",\n  \"outcome\": \"%s\",\n  \"eta\": %.17g,\n",
+          p->dt, c->neigh, c->detect, c->outcome, p->eta);
+  fprintf(f, "  \"fluid\": \"%s\",\n", c->fluid);
+  fprintf(f, "  \"rng\": \"%s\",\n",
+          p->rng_type ? p->rng_type->name : gsl_rng_mt19937->name);
+  fprintf(f, "  \"placement\": \"%s\",\n",
+          c->restart[0] ? "restart" : c->placement);
+  fprintf(f, "  \"restart\": ");
+  jstr(f, c->restart);
+  fprintf(f, ",\n  \"overrides\": [");
+  for (int i = 0; i < c->noverrides; i++) {
+    fprintf(f, "%s", i ? ", " : "");
+    jstr(f, c->overrides[i]);
+  }
+  fprintf(f, "],\n  \"warnings\": [");
+  for (int i = 0; i < c->nwarn; i++) {
+    fprintf(f, "%s", i ? ", " : "");
+    jstr(f, c->warn[i]);
+  }
+  fprintf(f, "],\n  \"species\": [\n");
+  const sb_engine_species *s;
+  for (size_t k = 0; (s = sb_engine_get_species(e, k)); k++) {
+    fprintf(f, "    {\"name\": ");
+    jstr(f, col_short_name(c, k));
+    fprintf(f, ", \"radius\": %.17g, \"mass\": %.17g, \"tau\": ", s->radius,
+            s->mass);
+    if (isinf(s->tau))
+      fprintf(f, "\"inf\"");
+    else
+      fprintf(f, "%.17g", s->tau);
+    fprintf(f, ", \"B\": %.17g, \"T\": %.17g}%s\n", s->B, s->T,
+            sb_engine_get_species(e, k + 1) ? "," : "");
+  }
+  fprintf(f, "  ],\n");
+}
+
+static void json_kernels(FILE *f, const col_config *c, const sb_engine *e)
+{
+  sb_engine_stats st;
+  sb_engine_get_stats(e, &st);
+  double K = NAN, lo = NAN, hi = NAN;
+  int kst = sb_engine_kernel(e, 0.95, &K, &lo, &hi);
+  fprintf(f, "  \"particles\": %zu,\n", sb_engine_count(e));
+  fprintf(f, "  \"time\": %.17g,\n  \"steps\": %llu,\n", st.t,
+          (unsigned long long)st.steps);
+  fprintf(f, "  \"t_measure_start\": %.17g,\n  \"t_measure_end\": %.17g,\n",
+          st.t_reset, st.t);
+  fprintf(f, "  \"pair_exposure\": %.17g,\n", st.exposure);
+  fprintf(f, "  \"collisions\": %llu,\n  \"candidates\": %llu,\n  "
+          "\"dropped\": %llu,\n  \"redetected\": %llu,\n",
+          (unsigned long long)st.ncoll, (unsigned long long)st.ncand,
+          (unsigned long long)st.dropped,
+          (unsigned long long)st.redetected);
+  if (kst || !isfinite(K)) {
+    fprintf(f, "  \"kernel\": {\"K\": null, \"ci95\": null, \"why\": ");
+    jstr(f, why_no_kernel(e, &st));
+    fprintf(f, "},\n");
+  } else
+    fprintf(f, "  \"kernel\": {\"K\": %.17g, \"ci95\": [%.17g, %.17g]},\n",
+            K, lo, hi);
+  fprintf(f, "  \"pair_kernels\": [");
+  int firstp = 1;
+  const sb_engine_species *sa, *sb;
+  for (size_t a = 0; a < SB_ENGINE_PAIR_SPECIES &&
+                     (sa = sb_engine_get_species(e, a)); a++)
+    for (size_t b = a; b < SB_ENGINE_PAIR_SPECIES &&
+                       (sb = sb_engine_get_species(e, b)); b++) {
+      sb_engine_pair_stats ps;
+      sb_engine_pair_kernel(e, a, b, 0.95, &ps);
+      if (!(ps.exposure > 0.0))
+        continue;
+      fprintf(f, "%s\n    {\"species\": [", firstp ? "" : ",");
+      jstr(f, col_short_name(c, a));
+      fprintf(f, ", ");
+      jstr(f, col_short_name(c, b));
+      fprintf(f, "], \"collisions\": %llu, \"exposure\": %.17g, \"K\": ",
+              (unsigned long long)ps.ncoll, ps.exposure);
+      jnum(f, ps.K);
+      fprintf(f, ", \"ci95\": [");
+      jnum(f, ps.lo);
+      fprintf(f, ", ");
+      jnum(f, ps.hi);
+      fprintf(f, "], ");
+      json_references(f, c, sa, sb);
+      fprintf(f, "}");
+      firstp = 0;
+    }
+  fprintf(f, "%s],\n", firstp ? "" : "\n  ");
+  fprintf(f, "  \"family_collisions\": [");
+  int first = 1;
+  for (int a = 0; a < SB_ENGINE_MAXFAM; a++)
+    for (int b = a; b < SB_ENGINE_MAXFAM; b++)
+      if (st.fam[a][b]) {
+        fprintf(f, "%s{\"a\": %d, \"b\": %d, \"n\": %llu}", first ? "" : ", ",
+                a, b, (unsigned long long)st.fam[a][b]);
+        first = 0;
+      }
+  fprintf(f, "],\n");
+}
+
+static void json_contexts(FILE *f, const col_config *c, const col_run *r)
+{
+  if (r->bridge) {
+    sb_engine_bridge_stats bs;
+    sb_engine_bridge_get_stats(r->bridge, &bs);
+    fprintf(f, "  \"bridge\": {\"reach\": ");
+    jnum(f, sb_engine_bridge_reach(r->e, r->bridge));
+    fprintf(f, ", \"detections\": %llu, \"collisions\": %llu, "
+            "\"overlapping_at_start\": %llu, \"brownian_share\": ",
+            (unsigned long long)bs.ndetect, (unsigned long long)bs.ncoll,
+            (unsigned long long)bs.noverlap);
+    jnum(f, bs.ncoll ? bs.coll_brown / (double)bs.ncoll : NAN);
+    fprintf(f, ", \"turbulent_share\": ");
+    jnum(f, bs.ncoll ? bs.coll_turb / (double)bs.ncoll : NAN);
+    fprintf(f, "},\n");
+  }
+  if (r->agglo) {
+    sb_agglo_stats as;
+    sb_agglo_get_stats(r->agglo, &as);
+    sb_engine_stats st;
+    sb_engine_get_stats(r->e, &st);
+    const sb_engine_params *p = sb_engine_get_params(r->e);
+    double V = p->L[0] * p->L[1] * (p->dim == 3 ? p->L[2] : 1.0);
+    double m[3] = {NAN, NAN, NAN};
+    sb_agglo_moments(r->agglo, r->e, m);
+    unsigned long long nd = as.nmerge + as.nrebound;
+    fprintf(f, "  \"agglo\": {\"merges\": %llu, \"rebounds\": %llu, "
+            "\"sticking_fraction\": ", (unsigned long long)as.nmerge,
+            (unsigned long long)as.nrebound);
+    jnum(f, nd ? (double)as.nmerge / (double)nd : NAN);
+    fprintf(f, ", \"merge_kernel\": ");
+    jnum(f, st.exposure > 0 ? (double)as.nmerge * V / st.exposure : NAN);
+    fprintf(f, ", \"mean_Erel_J\": ");
+    jnum(f, nd ? as.erel_sum / (double)nd : NAN);
+    fprintf(f, ", \"M0\": %.17g, \"M1\": %.17g, \"M2\": %.17g, \"file\": "
+            "\"sizes.csv\"},\n", m[0], m[1], m[2]);
+  }
+  if (r->fh) {
+    col_fh_result o;
+    col_firsthit_result(r, c, &o);
+    fprintf(f, "  \"first_hit\": {\"hits\": %lu, \"warmup_hits\": %lu, "
+            "\"pairs_apart\": %.17g, \"radius\": %.17g, \"D\": %.17g, "
+            "\"t1\": %.17g, \"t\": %.17g, \"expected_per_K\": %.17g, "
+            "\"K\": ", o.hits, o.warm, o.pairs_apart, o.radius, o.D, o.t1,
+            o.t, o.expected_per_K);
+    jnum(f, o.K);
+    fprintf(f, ", \"ci95\": [");
+    jnum(f, o.lo);
+    fprintf(f, ", ");
+    jnum(f, o.hi);
+    fprintf(f, "]},\n");
+  }
+}
+
+int col_out_write(const col_config *c, const col_run *r,
+                  const col_pairs *ps, double secs, const char *status,
+                  const char *why, long nsnap)
+{
+  char path[1100], files[8][32];
+  int nf = 0, err = 0;
+  if (r->e) {
+    snprintf(path, sizeof path, "%s/series.csv", c->output);
+    err |= write_series(path, r->e, c, ps);
+    snprintf(files[nf++], 32, "series.csv");
+  }
+  if (r->agglo) {
+    snprintf(path, sizeof path, "%s/sizes.csv", c->output);
+    err |= sb_agglo_series_csv(r->agglo, path) != 0;
+    snprintf(files[nf++], 32, "sizes.csv");
+  }
+  snprintf(path, sizeof path, "%s/summary.json", c->output);
+  FILE *f = fopen(path, "w");
+  if (!f)
+    return -1;
+  snprintf(files[nf++], 32, "summary.json");
+  fprintf(f, "{\n  \"program\": \"smolbridge collide\",\n");
+  fprintf(f, "  \"version\": \"%s\",\n  \"status\": \"%s\",\n",
+          sb_version(), status);
+  if (why) {
+    fprintf(f, "  \"error\": ");
+    jstr(f, why);
+    fprintf(f, ",\n");
+  }
+  if (r->e) {
+    json_run(f, c, r->e);
+    json_kernels(f, c, r->e);
+    json_contexts(f, c, r);
+    if (r->bridge && c->hit_times > 0) {
+      snprintf(path, sizeof path, "%s/hits.csv", c->output);
+      err |= write_hits(f, c, r, path);
+      snprintf(files[nf++], 32, "hits.csv");
+    }
+  }
+  fprintf(f, "  \"snapshots\": %ld,\n  \"wall_seconds\": %.3f\n}\n", nsnap,
+          secs);
+  err |= fclose(f) != 0;
+  snprintf(path, sizeof path, "%s/manifest.txt", c->output);
+  FILE *m = fopen(path, "w");
+  if (!m)
+    return -1;
+  fprintf(m, "# files written by smolbridge collide (%s); the next run "
+          "into this directory removes them\n", status);
+  for (int i = 0; i < nf; i++)
+    fprintf(m, "%s\n", files[i]);
+  for (long k = 0; k < nsnap; k++)
+    fprintf(m, "snap_%06ld.csv\n", k);
+  err |= fclose(m) != 0;
+  return err ? -1 : 0;
+}

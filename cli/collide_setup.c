@@ -1,0 +1,512 @@
+/* collide_setup.c — build the engine of a `smolbridge collide` run from
+ * its configuration: species (with the alternative keys resolved and
+ * checked against the box), particles (explicit, random, lattice or
+ * uniform placement), fluid, bridge detector, turbulence, agglomeration
+ * and first-hit counting.  Errors name the section and key at fault. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+
+#include <smolbridge/engine.h>
+#include <smolbridge/engine_bridge.h>
+#include <smolbridge/kernel.h>
+#include <smolbridge/langevin.h>
+
+#include "collide.h"
+
+#define PI 3.14159265358979323846
+
+/* Random placement (no overlaps) is used up to this total volume fraction;
+ * random sequential addition jams near 0.38 in 3-D. */
+#define RANDOM_PHI_MAX 0.3
+
+void col_run_free(col_run *r)
+{
+  col_firsthit_free(r->fh);
+  sb_agglo_free(r->agglo);
+  sb_engine_bridge_free(r->bridge);
+  sb_engine_free(r->e);
+  memset(r, 0, sizeof *r);
+}
+
+static double volume_of(const col_config *c)
+{
+  return c->Lx * c->Ly * (c->dim == 3 ? c->Lz : 1.0);
+}
+
+static double particle_volume(const col_config *c, double r)
+{
+  return c->dim == 3 ? 4.0 / 3.0 * PI * r * r * r : PI * r * r;
+}
+
+/* Species k from its keys; messages name the key at fault. */
+static int species_build(col_config *c, int k, sb_engine_species *o)
+{
+  col_species *s = &c->sp[k];
+  const char *n = s->name;
+  double Lmin = fmin(c->Lx, c->Ly);
+  if (c->dim == 3)
+    Lmin = fmin(Lmin, c->Lz);
+  const char *rk = col_given(c, n, "diameter") ? "diameter" : "radius";
+  if (!(4.0 * s->radius < Lmin))
+    return col_fail(c, "%s: [%s] %s = %g m: the particle does not fit the "
+                    "box (a diameter must stay below half the smallest "
+                    "edge, %g m)", col_where(c, n, rk), n, rk,
+                    col_given(c, n, "diameter") ? s->diameter : s->radius,
+                    0.5 * Lmin);
+  double d = 2.0 * s->radius, m = s->mass;
+  if (isnan(m)) {
+    m = sb_sphere_mass(s->density, d);  /* spheres, also in 2-D */
+    if (!(m > 0) || !isfinite(m))
+      return col_fail(c, "%s: [%s] density = %g kg/m^3 with radius %g m "
+                      "gives the mass %g kg: not a finite positive number",
+                      col_where(c, n, "density"), n, s->density, s->radius,
+                      m);
+  }
+  double tau = s->tau;
+  if (isnan(tau)) {
+    tau = sb_stokes_tau(s->density, d, s->mu, s->cc);
+    if (!(tau > 0) || !isfinite(tau))
+      return col_fail(c, "%s: [%s] mu = %g Pa s gives the Stokes tau = %g "
+                      "s: not a finite positive number",
+                      col_where(c, n, "mu"), n, s->mu, tau);
+  }
+  double T = isnan(s->T) ? 0.0 : s->T, B = s->B;
+  if (isinf(tau)) {
+    if (!(T > 0) && s->npart == 0)
+      return col_fail(c, "%s: [%s]: free flight (tau = inf) needs T > 0 "
+                      "(K) for the velocities of the placed particles",
+                      col_given(c, n, "T") ? col_where(c, n, "T")
+                                           : s->where, n);
+    if (!isnan(s->b2))
+      return col_fail(c, "%s: [%s] b2: a free-flight species (tau = inf) "
+                      "has no diffusion", col_where(c, n, "b2"), n);
+    B = 0.0;
+  } else if (!isnan(s->b2)) {
+    B = sqrt(s->b2) / tau;
+  } else if (isnan(B)) {
+    if (!col_given(c, n, "T"))
+      return col_fail(c, "%s: [%s]: a Langevin species (finite tau) needs "
+                      "T (K, B = sqrt(2 k_B T/(m tau))), b2 (m^2/s) or B "
+                      "(m s^-3/2)", s->where, n);
+    if (!(T > 0))
+      return col_fail(c, "%s: [%s] T = 0 K gives no Brownian motion (B = "
+                      "sqrt(2 k_B T/(m tau)) = 0); give T > 0, or b2 "
+                      "(m^2/s) or B (m s^-3/2) with T = 0",
+                      col_where(c, n, "T"), n);
+    B = sb_brownian_B(T, m, tau);
+  }
+  if (!isfinite(B))
+    return col_fail(c, "%s: [%s]: B = %g m s^-3/2 from these keys is not "
+                    "finite", s->where, n, B);
+  /* the bridge's position variance rate; with turbulence each particle
+   * moves with the virtual diffusion b2_Brown + B_turb^2(d)/2 (Mohaupt
+   * 2011, eqs 6.20-6.23, monodisperse form) */
+  if (isfinite(tau)) {
+    double b2 = !isnan(s->b2) ? s->b2 : (B * tau) * (B * tau);
+    c->b2_brown[k] = c->b2_total[k] = b2;
+    if (c->eps > 0) {
+      c->b2_total[k] =
+          b2 + 0.5 * sb_turb_pair_b2(2.0 * s->radius, c->eps, c->nu);
+      B = sqrt(c->b2_total[k]) / tau;
+    }
+  }
+  *o = (sb_engine_species){s->radius, m, tau, B, T};
+  return 0;
+}
+
+static long species_count(const col_config *c, const col_species *s)
+{
+  if (s->count >= 0)
+    return s->count + s->npart;
+  if (!isnan(s->phi))
+    return lround(s->phi * volume_of(c) / particle_volume(c, s->radius)) +
+           s->npart;
+  return s->npart;
+}
+
+/* Fluid velocity at x (as the engine's built-in fields). */
+static void fluid_at(const col_config *c, const double x[3], double u[3])
+{
+  u[0] = u[1] = u[2] = 0.0;
+  if (!strcmp(c->fluid, "uniform"))
+    for (int k = 0; k < c->nU; k++)
+      u[k] = c->U[k];
+  else if (!strcmp(c->fluid, "shear"))
+    u[0] = c->G * (x[1] - 0.5 * c->Ly);
+}
+
+/* Standard deviation of a placed particle's velocity components. */
+static double velocity_sd(const col_config *c, int k,
+                          const sb_engine_species *q)
+{
+  const col_species *s = &c->sp[k];
+  if ((!isnan(s->b2) || c->eps > 0) && isfinite(q->tau) && !(q->T > 0))
+    return sqrt(0.5 * c->b2_total[k] / q->tau);
+  if (q->T > 0)
+    return sqrt(SB_BOLTZMANN * q->T / q->mass);
+  return sqrt(q->B * q->B * q->tau / 2.0);
+}
+
+/* Explicit particles: inside the box, no two overlapping. */
+static int check_explicit(col_config *c)
+{
+  const double L[3] = {c->Lx, c->Ly, c->Lz};
+  for (int a = 0; a < c->nsp; a++)
+    for (int p = 0; p < c->sp[a].npart; p++) {
+      const double *x = c->sp[a].part[p];
+      for (int k = 0; k < c->dim; k++)
+        if (!(x[k] >= 0.0 && x[k] < L[k]))
+          return col_fail(c, "%s: [%s] particle: %c = %g m is outside "
+                          "the box [0, %g)", c->sp[a].part_where[p],
+                          c->sp[a].name, 'x' + k, x[k], L[k]);
+      for (int b = a; b < c->nsp; b++)
+        for (int q = (b == a ? p + 1 : 0); q < c->sp[b].npart; q++) {
+          const double *y = c->sp[b].part[q];
+          double d2 = 0.0;
+          for (int k = 0; k < c->dim; k++) {
+            double dx = x[k] - y[k];
+            dx -= L[k] * floor(dx / L[k] + 0.5);
+            d2 += dx * dx;
+          }
+          double s = c->sp[a].radius + c->sp[b].radius;
+          if (d2 < s * s && strcmp(c->placement, "uniform"))
+            return col_fail(c, "%s: [%s] particle overlaps the particle "
+                            "at %s (centres %g m apart, radii sum %g m)",
+                            c->sp[b].part_where[q], c->sp[b].name,
+                            c->sp[a].part_where[p], sqrt(d2), s);
+        }
+    }
+  return 0;
+}
+
+/* Region of species s (the whole box by default). */
+static void region_of(const col_config *c, const col_species *s,
+                      double lo[3], double hi[3])
+{
+  const double L[3] = {c->Lx, c->Ly, c->Lz};
+  for (int k = 0; k < 3; k++) {
+    lo[k] = 0.0;
+    hi[k] = k < c->dim ? L[k] : 0.0;
+  }
+  for (int k = 0; k < c->dim && s->nregion; k++) {
+    lo[k] = s->region[2 * k];
+    hi[k] = s->region[2 * k + 1];
+  }
+}
+
+/* Independent uniform positions (overlaps allowed) and Gaussian
+ * velocities, x and u drawn per component in turn: the placement of the
+ * first-hit validation cases. */
+static int place_uniform(col_config *c, col_run *r, size_t sp, size_t n,
+                         gsl_rng *g, const sb_engine_species *q)
+{
+  const col_species *s = &c->sp[sp];
+  double lo[3], hi[3];
+  region_of(c, s, lo, hi);
+  const double vsd = velocity_sd(c, (int)sp, q);
+  for (size_t i = 0; i < n; i++) {
+    double x[3] = {0, 0, 0}, u[3] = {0, 0, 0}, us[3];
+    for (int k = 0; k < c->dim; k++) {
+      x[k] = lo[k] + (hi[k] - lo[k]) * gsl_rng_uniform(g);
+      u[k] = gsl_ran_gaussian_ziggurat(g, vsd);
+    }
+    fluid_at(c, x, us);
+    for (int k = 0; k < c->dim; k++)
+      u[k] += us[k] + (s->ndrift ? s->drift[k] : 0.0);
+    if (sb_engine_add_particle(r->e, sp, (int)s->family, x, u))
+      return col_fail(c, "%s: [%s]: %s", s->where, s->name,
+                      sb_last_error());
+  }
+  return 0;
+}
+
+/* Lattice sites for every placed particle (FCC in 3-D, square in 2-D) at
+ * a spacing of at least the largest diameter, sites chosen at random:
+ * reaches volume fractions where random addition jams. */
+static int place_lattice(col_config *c, col_run *r, const long *nplace,
+                         const sb_engine_species *q)
+{
+  double dmax = 0.0;
+  long total = 0;
+  for (int k = 0; k < c->nsp; k++) {
+    if (nplace[k] > 0 && 2.0 * c->sp[k].radius > dmax)
+      dmax = 2.0 * c->sp[k].radius;
+    total += nplace[k];
+    if (c->sp[k].nregion && nplace[k] > 0)
+      return col_fail(c, "%s: [%s] region: not with placement = lattice",
+                      col_where(c, c->sp[k].name, "region"), c->sp[k].name);
+  }
+  const double L[3] = {c->Lx, c->Ly, c->Lz};
+  const int nb = c->dim == 3 ? 4 : 1;   /* sites per cell */
+  const double cell = c->dim == 3 ? sqrt(2.0) * dmax : dmax;
+  long m[3] = {1, 1, 1}, nsites = nb;
+  for (int k = 0; k < c->dim; k++) {
+    m[k] = (long)floor(L[k] / cell);
+    nsites *= m[k];
+  }
+  if (nsites < total)
+    return col_fail(c, "[run] placement = lattice: %ld particles but only "
+                    "%ld lattice sites fit the box (spacing %g m): lower "
+                    "count/phi or enlarge the box", total, nsites, cell);
+  static const double basis[4][3] = {
+      {0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
+  long *site = malloc((size_t)nsites * sizeof *site);
+  if (!site)
+    return col_fail(c, "out of memory");
+  for (long i = 0; i < nsites; i++)
+    site[i] = i;
+  gsl_rng *g = sb_engine_rng(r->e);
+  /* partial Fisher-Yates: the first `total` sites in random order */
+  for (long i = 0; i < total; i++) {
+    long j = i + (long)gsl_rng_uniform_int(g, (unsigned long)(nsites - i));
+    long t = site[i];
+    site[i] = site[j];
+    site[j] = t;
+  }
+  long next = 0;
+  int st = 0;
+  for (int sp = 0; sp < c->nsp && !st; sp++) {
+    const col_species *s = &c->sp[sp];
+    const double vsd = velocity_sd(c, sp, &q[sp]);
+    for (long i = 0; i < nplace[sp] && !st; i++) {
+      long id = site[next++], b = id % nb, cidx = id / nb;
+      double x[3] = {0, 0, 0}, u[3] = {0, 0, 0}, us[3];
+      long ix[3] = {cidx % m[0], (cidx / m[0]) % m[1],
+                    cidx / (m[0] * m[1])};
+      for (int k = 0; k < c->dim; k++)
+        x[k] = (ix[k] + basis[b][k] + 0.25) * (L[k] / (double)m[k]);
+      fluid_at(c, x, us);
+      for (int k = 0; k < c->dim; k++)
+        u[k] = us[k] + gsl_ran_gaussian_ziggurat(g, vsd) +
+               (s->ndrift ? s->drift[k] : 0.0);
+      if (sb_engine_add_particle(r->e, (size_t)sp, (int)s->family, x, u))
+        st = col_fail(c, "%s: [%s]: %s", s->where, s->name,
+                      sb_last_error());
+    }
+  }
+  free(site);
+  return st;
+}
+
+static int place(col_config *c, col_run *r, const sb_engine_species *q)
+{
+  if (check_explicit(c))
+    return -1;
+  long nplace[COL_MAXSPEC];
+  double phi = 0.0;
+  for (int k = 0; k < c->nsp; k++) {
+    const col_species *s = &c->sp[k];
+    nplace[k] = species_count(c, s) - s->npart;
+    phi += (double)species_count(c, s) * particle_volume(c, s->radius) /
+           volume_of(c);
+    for (int p = 0; p < s->npart; p++)
+      if (sb_engine_add_particle(r->e, (size_t)k, (int)s->family, s->part[p],
+                                 s->part[p] + 3))
+        return col_fail(c, "%s: [%s] particle: %s", s->part_where[p],
+                        s->name, sb_last_error());
+  }
+  if (!c->placement[0]) {
+    strcpy(c->placement, phi > RANDOM_PHI_MAX ? "lattice" : "random");
+    if (phi > RANDOM_PHI_MAX)
+      col_warn(c, "total volume fraction %.3g > %g: particles start on a "
+               "lattice (placement = lattice); use warmup to let the "
+               "structure relax", phi, RANDOM_PHI_MAX);
+  } else if (!strcmp(c->placement, "random") && phi > RANDOM_PHI_MAX)
+    return col_fail(c, "%s: [run] placement = random at a total volume "
+                    "fraction %.3g: random addition jams near 0.38; above "
+                    "%g use placement = lattice (or uniform: overlaps "
+                    "allowed)", col_where(c, "run", "placement"), phi,
+                    RANDOM_PHI_MAX);
+  if (!strcmp(c->placement, "lattice"))
+    return place_lattice(c, r, nplace, q);
+  gsl_rng *g = NULL;
+  if (!strcmp(c->placement, "uniform")) {
+    if (c->placement_seed >= 0) {
+      g = gsl_rng_alloc(gsl_rng_mt19937);
+      if (!g)
+        return col_fail(c, "out of memory");
+      gsl_rng_set(g, (unsigned long)c->placement_seed);
+    } else
+      g = sb_engine_rng(r->e);
+  }
+  int st = 0;
+  for (int k = 0; k < c->nsp && !st; k++) {
+    col_species *s = &c->sp[k];
+    if (nplace[k] <= 0)
+      continue;
+    if (g)
+      st = place_uniform(c, r, (size_t)k, (size_t)nplace[k], g, &q[k]);
+    else {
+      double lo[3], hi[3];
+      region_of(c, s, lo, hi);
+      if (sb_engine_fill_box(r->e, (size_t)k, (int)s->family,
+                             (size_t)nplace[k], lo, hi,
+                             s->ndrift ? s->drift : NULL))
+        st = col_fail(c, "%s: [%s]: %s%s", s->where, s->name,
+                      sb_last_error(),
+                      sb_last_status() == SB_EMAXITER
+                          ? " (the box or region is too full for random "
+                            "placement: placement = lattice reaches higher "
+                            "volume fractions)"
+                          : "");
+    }
+  }
+  if (g && g != sb_engine_rng(r->e))
+    gsl_rng_free(g);
+  return st;
+}
+
+/* Bridge detector (bridge | exact) with turbulence and hit records. */
+static int attach_bridge(col_config *c, col_run *r)
+{
+  sb_engine_bridge_params bp;
+  sb_engine_bridge_params_default(&bp);
+  bp.mode = !strcmp(c->detect, "exact") ? SB_BRIDGE_EXACT : SB_BRIDGE_BESSEL;
+  bp.ends = !strcmp(c->ends, "diffusive") ? SB_BRIDGE_ENDS_DIFFUSIVE
+                                           : SB_BRIDGE_ENDS_POSITION;
+  bp.outcome = !strcmp(c->outcome, "reinsert")     ? SB_BRIDGE_OUT_REINSERT
+               : !strcmp(c->outcome, "correction") ? SB_BRIDGE_OUT_CORRECT
+                                                   : SB_BRIDGE_OUT_COUNT;
+  bp.tol = c->tol;
+  bp.exact_tol = c->exact_tol;
+  bp.record_cap = (size_t)c->hit_times;
+  r->bridge = sb_engine_bridge_alloc(&bp);
+  if (!r->bridge)
+    return col_fail(c, "[bridge]: %s", sb_last_error());
+  for (int k = 0; k < c->nsp && !c->restart[0]; k++) {
+    const sb_engine_species *s = sb_engine_get_species(r->e, (size_t)k);
+    if (isinf(s->tau))
+      return col_fail(c, "%s: [%s] tau = inf with detect = %s: the bridge "
+                      "detectors need Langevin (finite tau) species",
+                      c->sp[k].where, c->sp[k].name, c->detect);
+    if (!isnan(c->sp[k].b2) || c->eps > 0)
+      if (sb_engine_bridge_set_b2(r->bridge, (size_t)k, c->b2_total[k],
+                                  c->b2_brown[k]))
+        return col_fail(c, "%s: [%s]: %s", c->sp[k].where, c->sp[k].name,
+                        sb_last_error());
+  }
+  if (sb_engine_bridge_attach(r->e, r->bridge))
+    return col_fail(c, "[run] detect = %s: %s", c->detect, sb_last_error());
+  return 0;
+}
+
+static int attach_agglo(col_config *c, col_run *r)
+{
+  if (c->nsp > 1)
+    return col_fail(c, "%s: [run] outcome = %s: one primary species (the "
+                    "clusters are species of their own); %d given",
+                    col_where(c, "run", "outcome"), c->outcome, c->nsp);
+  sb_agglo_params ap;
+  sb_agglo_params_default(&ap);
+  ap.rule = strcmp(c->outcome, "dlvo") ? SB_AGGLO_MERGE : SB_AGGLO_DLVO;
+  ap.growth = !strcmp(c->growth, "constant") ? SB_AGGLO_CONSTANT
+                                              : SB_AGGLO_STOKES;
+  ap.erel = !strcmp(c->erel, "stationary") ? SB_AGGLO_EREL_STATIONARY
+                                           : SB_AGGLO_EREL_CONTACT;
+  ap.erel_normal = (int)c->erel_normal;
+  ap.kobs = (size_t)c->kobs;
+  const sb_engine_species *s0 = sb_engine_get_species(r->e, 0);
+  if (!isnan(c->wmax_kT) && !(s0->T > 0))
+    return col_fail(c, "%s: [agglo] wmax_kT: the first species has T = 0; "
+                    "give wmax in J", col_where(c, "agglo", "wmax_kT"));
+  ap.wmax = !isnan(c->wmax_kT) ? c->wmax_kT * SB_BOLTZMANN * s0->T : c->wmax;
+  r->agglo = sb_agglo_alloc(&ap);
+  if (!r->agglo || sb_agglo_attach(r->e, r->agglo))
+    return col_fail(c, "[run] outcome = %s: %s", c->outcome,
+                    sb_last_error());
+  return 0;
+}
+
+int col_setup(col_config *c, col_run *r)
+{
+  memset(r, 0, sizeof *r);
+  sb_engine_neigh nm;
+  sb_engine_detect dm = SB_DETECT_BALLISTIC;
+  sb_engine_outcome om = SB_OUTCOME_ELASTIC;
+  sb_engine_neigh_from_name(c->neigh, &nm);
+  if (!col_bridge(c))
+    sb_engine_detect_from_name(c->detect, &dm);
+  if (!col_bridge(c) && !col_agglo(c))
+    sb_engine_outcome_from_name(c->outcome, &om);
+  if (col_bridge(c))
+    om = SB_OUTCOME_COUNT;  /* replaced by the bridge's outcome */
+  sb_engine_species q[COL_MAXSPEC];
+  if (c->restart[0]) {
+    int st;
+    r->e = sb_engine_checkpoint_load(c->restart, &st);
+    if (!r->e)
+      return col_fail(c, "%s: [run] restart = %s: %s",
+                      col_where(c, "run", "restart"), c->restart,
+                      sb_last_error());
+    if ((col_given(c, "run", "dt") && sb_engine_set_dt(r->e, c->dt)) ||
+        sb_engine_set_neigh(r->e, nm) ||
+        (!col_bridge(c) && (sb_engine_set_detect(r->e, dm) ||
+                            sb_engine_set_outcome(r->e, om, c->eta))))
+      return col_fail(c, "[run] restart: %s", sb_last_error());
+    c->dim = sb_engine_get_params(r->e)->dim;
+  } else {
+    sb_engine_params p;
+    sb_engine_params_default(&p);
+    p.dim = (int)c->dim;
+    p.L[0] = c->Lx;
+    p.L[1] = c->Ly;
+    p.L[2] = c->dim == 3 ? c->Lz : 1.0;
+    p.dt = c->dt;
+    p.seed = c->seed;
+    p.neigh = nm;
+    p.detect = dm;
+    p.outcome = om;
+    p.eta = c->eta;
+    p.sort_every = (size_t)c->sort_every;
+    p.rng_type = strcmp(c->rng, "taus2") ? gsl_rng_mt19937 : gsl_rng_taus2;
+    long total = 0;
+    for (int k = 0; k < c->nsp; k++) {
+      if (species_build(c, k, &q[k]))
+        return -1;
+      total += species_count(c, &c->sp[k]);
+    }
+    p.capacity = total > 0 ? (size_t)total : 1;
+    r->e = sb_engine_alloc(&p);
+    if (!r->e)
+      return col_fail(c, "[run]: %s", sb_last_error());
+    for (int k = 0; k < c->nsp; k++)
+      if (sb_engine_add_species(r->e, &q[k], NULL))
+        return col_fail(c, "%s: [%s]: %s", c->sp[k].where, c->sp[k].name,
+                        sb_last_error());
+  }
+  /* fluid (on restart the saved field is kept unless [fluid] is given) */
+  if (!c->restart[0] || col_given(c, "fluid", "type")) {
+    double fp[3] = {0, 0, 0};
+    sb_engine_fluid f = SB_FLUID_REST;
+    if (!strcmp(c->fluid, "uniform")) {
+      f = SB_FLUID_UNIFORM;
+      memcpy(fp, c->U, sizeof fp);
+    } else if (!strcmp(c->fluid, "shear")) {
+      f = SB_FLUID_SHEAR;
+      fp[0] = c->G;
+    }
+    if (sb_engine_set_fluid(r->e, f, fp))
+      return col_fail(c, "[fluid]: %s", sb_last_error());
+  }
+  if (!c->restart[0]) {
+    if (place(c, r, q))
+      return -1;
+    if (c->thermalize > 0 && sb_engine_thermalize(r->e, c->thermalize))
+      return col_fail(c, "%s: [run] thermalize: %s",
+                      col_where(c, "run", "thermalize"), sb_last_error());
+  }
+  if (col_bridge(c) && attach_bridge(c, r))
+    return -1;
+  if (col_agglo(c) && attach_agglo(c, r))
+    return -1;
+  if (c->first_hit) {
+    double reach = r->bridge ? sb_engine_bridge_reach(r->e, r->bridge) : 0.0;
+    if (col_firsthit_attach(r, dm, reach))
+      return col_fail(c, "[observe] first_hit: %s", sb_last_error());
+  }
+  return 0;
+}

@@ -1,0 +1,80 @@
+/* ini.c — write mode of the validation cases: instead of running an
+ * engine run, a case writes it as a `smolbridge collide` configuration,
+ * with comment lines that say which summary.json field gives each record
+ * of the case (sb_validate_write_ini; docs/validation.md). */
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <smolbridge/validate.h>
+#include "common/internal.h"
+#include "cases.h"
+#include "report.h"
+
+int sbv_writing(const sbv_ctx *ctx) { return ctx->ini_dir != NULL; }
+
+FILE *sbv_ini_begin(const sbv_ctx *ctx, sbv_report *rep, const char *run,
+                    const char *what)
+{
+  char name[128];
+  snprintf(name, sizeof name, "%s", run);
+  for (char *p = name; *p; p++)  /* a file name */
+    if (!((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') ||
+          (*p >= '0' && *p <= '9') || *p == '.' || *p == '-' || *p == '_'))
+      *p = '_';
+  snprintf(rep->ini_path, sizeof rep->ini_path, "%s/%s.ini", ctx->ini_dir,
+           name);
+  rep->ini_field[0] = 0;
+  FILE *f = fopen(rep->ini_path, "w");
+  if (!f) {
+    sbi_error(SB_EIO, "sb_validate_write_ini", "cannot write '%s'",
+              rep->ini_path);
+    rep->ini_path[0] = 0;
+    return NULL;
+  }
+  fprintf(f, "; %s\n; written by: smolbridge validate --case %s "
+          "--write-ini (%s, seed %lu)\n; run: smolbridge collide %s.ini\n"
+          "; the same seed gives the same estimate: each 'expect' line "
+          "names a\n; record of the case and the summary.json field (times "
+          "a factor) that gives it\n", what,
+          rep->ncases ? rep->cases[rep->ncases - 1].case_name : "?",
+          ctx->full ? "--full" : "--quick", ctx->seed, name);
+  fprintf(f, "[run]\noutput = %s-out\n", name);
+  rep->nini++;
+  return f;
+}
+
+int sbv_ini_end(sbv_report *rep, FILE *f, const char *field)
+{
+  snprintf(rep->ini_field, sizeof rep->ini_field, "%s", field ? field : "");
+  if (fclose(f))
+    return sbi_error(SB_EIO, "sb_validate_write_ini", "write error on '%s'",
+                     rep->ini_path);
+  return SB_SUCCESS;
+}
+
+void sbv_ini_expect(sbv_report *rep, const char *record, const char *field,
+                    double factor)
+{
+  if (!rep->ini_path[0])
+    return;
+  FILE *f = fopen(rep->ini_path, "a");
+  if (!f)
+    return;
+  if (factor == 1.0)
+    fprintf(f, "; expect %s = %s\n", record, field);
+  else
+    fprintf(f, "; expect %s = %s * %.17g\n", record, field, factor);
+  fclose(f);
+}
+
+void sbv_ini_skip(sbv_report *rep, const char *fmt, ...)
+{
+  char line[400];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(line, sizeof line, fmt, ap);
+  va_end(ap);
+  size_t n = strlen(rep->ini_skipped);
+  snprintf(rep->ini_skipped + n, sizeof rep->ini_skipped - n, "%s\n", line);
+}

@@ -1,0 +1,235 @@
+#!/bin/sh
+# Bad inputs to `smolbridge collide` and the messages they must give:
+# exit status 2, the file and line (or the --set option), the section,
+# key and value, and the valid values; warnings for keys that do not
+# apply; outputs that never mix across runs.  One line per case:
+#   check "what" RC 'expected substring' [sed script applied to base.ini]
+set -u
+sb="${top_builddir:-.}/smolbridge"
+dir="${top_builddir:-.}/tests/collide-errors-out"
+rm -rf "$dir"
+mkdir -p "$dir"
+fails=0
+n=0
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+cat > "$dir/base.ini" <<EOF
+[run]
+L = 1e-5
+dt = 1e-7
+steps = 10
+output = $dir/out
+[species a]
+radius = 1e-7
+density = 1000
+mu = 1e-3
+T = 300
+count = 10
+EOF
+# check WHAT RC SUBSTRING SED [extra args...]
+check() {
+  what=$1 rc=$2 want=$3 script=$4
+  shift 4
+  n=$((n + 1))
+  sed "$script" "$dir/base.ini" > "$dir/t.ini"
+  msg=$("$sb" collide "$dir/t.ini" "$@" 2>&1 >/dev/null)
+  got=$?
+  [ "$got" -eq "$rc" ] || { fail "$what: exit $got, want $rc: $msg"; return; }
+  case "$msg" in
+    *"$want"*) ;;
+    *) fail "$what: message lacks '$want': $msg" ;;
+  esac
+}
+A='/^T = 300/a\'   # append after the species' T line (sed a\ form)
+
+# unknown names: file:line, key, value, valid values
+check "detect" 2 't.ini:5: [run] detect = brige: unknown; valid: ballistic, overlap, bridge, exact' '4a\
+detect = brige'
+check "neigh" 2 '[run] neigh = cell: unknown; valid: cells, sweep, brute' '4a\
+neigh = cell'
+check "outcome" 2 '[run] outcome = stick: unknown; valid: elastic, reinsert, count, correction, merge, dlvo' '4a\
+outcome = stick'
+check "fluid type" 2 't.ini:13: [fluid] type = shaer: unknown; valid: rest, uniform, shear' '$a\
+[fluid]\
+type = shaer'
+check "growth" 2 '[agglo] growth = fractal: unknown; valid: stokes, constant' '$a\
+[agglo]\
+growth = fractal'
+check "rng" 2 '[run] rng = ranlux: unknown; valid: mt19937, taus2' '4a\
+rng = ranlux'
+check "placement" 2 '[run] placement = grid: unknown; valid: random, lattice, uniform' '4a\
+placement = grid'
+check "ends" 2 '[bridge] ends = middle: unknown; valid: position, diffusive' '$a\
+[bridge]\
+ends = middle'
+check "unknown key" 2 't.ini:5: [run] bogus: unknown key; valid: seed,' '4a\
+bogus = 1'
+check "unknown species key" 2 '[species a] colour: unknown key; valid: radius,' '$a\
+colour = red'
+check "unknown section" 2 'unknown section [bogus]; valid: [run]' '$a\
+[bogus]\
+x = 1'
+check "key before section" 2 't.ini:1: x = 1 before any section' '1i\
+x = 1'
+check "species without name" 2 'a species section needs a name' 's/\[species a\]/[species]/'
+# duplicates and conflicts
+check "duplicate key" 2 't.ini:4: [run] dt given twice (first at ' '3a\
+dt = 2e-7'
+check "duplicate section" 2 't.ini:12: section [species a] repeated (first at ' '$a\
+[species a]\
+count = 5'
+check "count and phi" 2 '[species a] phi conflicts with count' '$a\
+phi = 0.01'
+check "radius and diameter" 2 '[species a] diameter conflicts with radius' '$a\
+diameter = 2e-7'
+check "density and mass" 2 '[species a] mass conflicts with density' '$a\
+mass = 1e-18'
+check "tau and mu" 2 '[species a] tau conflicts with mu' '$a\
+tau = 1e-6'
+check "B and T" 2 '[species a] B conflicts with T' '$a\
+B = 1'
+check "L and Lx" 2 '[run] Lx conflicts with L' '4a\
+Lx = 1e-5'
+check "steps and t_end" 2 '[run] t_end conflicts with steps' '4a\
+t_end = 1e-6'
+check "wmax and wmax_kT" 2 '[agglo] wmax_kT conflicts with wmax' '4a\
+outcome = merge
+$a\
+[agglo]\
+wmax = 1e-21\
+wmax_kT = 1'
+# keys that do not apply: warnings (the run goes on), or errors
+check "agglo without merging" 0 '[agglo] ignored: outcome is not merge or dlvo' '$a\
+[agglo]\
+growth = constant'
+check "U with rest" 0 '[fluid] U ignored: type = rest' '$a\
+[fluid]\
+U = 1 0 0'
+check "G with uniform" 0 '[fluid] G ignored: type = uniform' '$a\
+[fluid]\
+type = uniform\
+U = 0 0 0\
+G = 1'
+check "eta with count" 0 '[run] eta ignored' '4a\
+outcome = count\
+eta = 0.5'
+check "shear without G" 2 '[fluid] type = shear needs G' '$a\
+[fluid]\
+type = shear'
+check "uniform without U" 2 '[fluid] type = uniform needs U' '$a\
+[fluid]\
+type = uniform'
+check "correction without bridge" 2 'outcome = correction (the correction step of the bridge detectors) needs detect = bridge' '4a\
+outcome = correction'
+check "bridge with elastic" 2 'outcome = elastic with detect = bridge' '4a\
+detect = bridge'
+check "bridge in 2-D" 2 'detect = bridge needs dim = 3' '4a\
+dim = 2\
+detect = bridge\
+outcome = count'
+check "turbulence without bridge" 2 '[turbulence] needs detect = bridge' '$a\
+[turbulence]\
+eps = 1e-4\
+nu = 1e-6'
+check "first_hit without count" 2 '[observe] first_hit needs outcome = count' '$a\
+[observe]\
+first_hit = yes'
+check "hit_times without bridge" 2 '[observe] hit_times records bridge hits' '$a\
+[observe]\
+hit_times = 10'
+# values
+check "not a number" 2 't.ini:3: [run] dt = abc: not a number; valid: > 0 s' 's/^dt = .*/dt = abc/'
+check "negative dt" 2 '[run] dt = -1: out of range; valid: > 0 s' 's/^dt = .*/dt = -1/'
+check "eta range" 2 '[run] eta = 2: out of range; valid: 0 .. 1' '4a\
+eta = 2'
+check "dim range" 2 '[run] dim = 4: out of range; valid: integer 2 .. 3' '4a\
+dim = 4'
+check "seed nan" 2 '[run] seed = nan: not a finite number' '4a\
+seed = nan'
+check "seed negative" 2 '[run] seed = -1: out of range' '4a\
+seed = -1'
+check "seed fraction" 2 '[run] seed = 1.5: not an integer' '4a\
+seed = 1.5'
+check "inline # comment" 2 "'#' starts a comment only at the beginning of a line" 's/^dt = 1e-7/dt = 1e-7 # s/'
+check "indented key" 2 't.ini:3: the line starts with a blank' 's/^dt/  dt/'
+check "long line" 2 't.ini:3: line longer than' "s/^dt = 1e-7/dt = 1e-7 ; $(printf '%0200d' 0)/"
+check "region numbers" 2 '[species a] region: 4 numbers for dim = 3' '$a\
+region = 0 1e-6 0 1e-6'
+check "particle numbers" 2 '[species a] particle: 4 numbers for dim = 3' 's/^count = 10/particle = 1e-6 1e-6 0 0/'
+# errors found when the run is built: the real cause
+check "radius 1e300" 2 '[species a] radius = 1e+300 m: the particle does not fit the box' 's/^radius = .*/radius = 1e300/'
+check "radius > box" 2 'the particle does not fit the box' 's/^radius = .*/radius = 4e-6/'
+check "T = 0" 2 '[species a] T = 0 K gives no Brownian motion' 's/^T = 300/T = 0/'
+check "no T" 2 'a Langevin species (finite tau) needs T' '/^T = 300/d'
+check "free flight T = 0" 2 'free flight (tau = inf) needs T > 0' 's/^mu = .*/tau = inf/; s/^T = 300/T = 0/'
+check "particle outside" 2 '[species a] particle: z = 2e-05 m is outside the box' 's/^count = 10/particle = 1e-6 1e-6 2e-5 0 0 0/'
+check "particles overlap" 2 'particle overlaps the particle at' 's/^count = 10/particle = 1e-6 1e-6 1e-6 0 0 0\
+particle = 1.1e-6 1e-6 1e-6 0 0 0/'
+check "random too dense" 2 'random addition jams' 's/^L = .*/L = 2e-6/; s/^count = 10/phi = 0.45/; 4a\
+placement = random'
+check "warm-up past the end" 2 'nothing to measure' 's/^steps = 10/t_end = 1e-6\
+warmup = 2e-6/'
+check "missing L" 2 '[run] L (or Lx, Ly, Lz) is required' '/^L = /d'
+check "missing dt" 2 '[run] dt is required' '/^dt = /d'
+check "missing steps" 2 '[run] t_end or steps is required' '/^steps = /d'
+check "no species" 2 'no [species NAME] section' '6,$d'
+check "unwritable output" 2 '[run] output = /proc/nope: cannot create the directory' 's|^output = .*|output = /proc/nope|'
+check "unwritable checkpoint" 2 '[run] checkpoint = /proc/x.ck: not writable' '4a\
+checkpoint = /proc/x.ck'
+check "merging restart" 2 'restart with outcome = merge' '4a\
+outcome = merge\
+restart = /nonexistent.ck'
+# --set
+check "--set unknown key" 2 '--set run.dtt=1: [run] dtt: unknown key' '' --set run.dtt=1
+check "--set bad form" 2 '--set dt=1: expected SECTION.KEY=VALUE' '' --set dt=1
+check "--set unknown species" 2 '--set species.b.phi=0.1: no section [species b]; species: a' '' --set species.b.phi=0.1
+check "--set bad value" 2 '--set run.dt=-1: [run] dt = -1: out of range' '' --set run.dt=-1
+
+# files that are not configurations
+n=$((n + 3))
+mkdir -p "$dir/adir"
+msg=$("$sb" collide "$dir/adir" 2>&1); rc=$?
+[ $rc -eq 2 ] && case "$msg" in *"is a directory"*) ;; *) false ;; esac \
+  || fail "directory: $rc $msg"
+: > "$dir/empty.ini"
+msg=$("$sb" collide "$dir/empty.ini" 2>&1); rc=$?
+[ $rc -eq 2 ] && case "$msg" in *"no keys (empty file?)"*) ;; *) false ;; esac \
+  || fail "empty file: $rc $msg"
+msg=$("$sb" collide "$dir/none.ini" 2>&1); rc=$?
+[ $rc -eq 2 ] && case "$msg" in *"cannot read"*) ;; *) false ;; esac \
+  || fail "missing file: $rc $msg"
+
+# nothing stale: a second run removes the first run's snapshots
+n=$((n + 1))
+sed '4a\
+snapshot_every = 1' "$dir/base.ini" > "$dir/s.ini"
+"$sb" collide "$dir/s.ini" >/dev/null 2>&1
+sed '4a\
+snapshot_every = 5' "$dir/base.ini" > "$dir/s.ini"
+"$sb" collide "$dir/s.ini" >/dev/null 2>&1
+nsnap=$(ls "$dir/out" | grep -c '^snap_')
+[ "$nsnap" -eq 2 ] || fail "stale snapshots: $nsnap files, want 2"
+grep -qx 'snap_000001.csv' "$dir/out/manifest.txt" || fail "manifest lacks snapshots"
+# no particles: the kernel is undefined, with the reason
+n=$((n + 1))
+sed 's/^count = 10/count = 0/' "$dir/base.ini" > "$dir/z.ini"
+"$sb" collide "$dir/z.ini" >/dev/null 2>&1 || fail "count = 0 run failed"
+grep -q '"kernel": {"K": null, "ci95": null, "why": "fewer than 2 particles' \
+  "$dir/out/summary.json" || fail "count = 0: kernel not null with a reason"
+# phi = 0.5 (the documented maximum) runs: lattice start, with a warning
+n=$((n + 1))
+sed 's/^L = .*/L = 2e-6/; s/^count = 10/phi = 0.5/' "$dir/base.ini" > "$dir/p.ini"
+msg=$("$sb" collide "$dir/p.ini" 2>&1 >/dev/null) || fail "phi = 0.5: $msg"
+case "$msg" in *"start on a lattice"*) ;; *) fail "phi = 0.5: no lattice warning: $msg" ;; esac
+# checkpoints of identical runs are byte-identical
+n=$((n + 1))
+sed "4a\\
+checkpoint = $dir/a.ck" "$dir/base.ini" > "$dir/c.ini"
+"$sb" collide "$dir/c.ini" >/dev/null 2>&1
+sed "4a\\
+checkpoint = $dir/b.ck" "$dir/base.ini" > "$dir/c.ini"
+"$sb" collide "$dir/c.ini" >/dev/null 2>&1
+cmp -s "$dir/a.ck" "$dir/b.ck" || fail "checkpoints of identical runs differ"
+
+[ "$fails" -eq 0 ] && echo "collide_errors: $n cases checked"
+[ "$fails" -eq 0 ] && rm -rf "$dir"
+exit $((fails > 0))
