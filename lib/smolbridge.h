@@ -13,6 +13,7 @@
 #include <smolbridge/pbe.h>
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
+#include <smolbridge/spray.h>
 #include <smolbridge/validate.h>
 
 #endif /* SMOLBRIDGE_H */

@@ -87,5 +87,7 @@ extern const sbv_case sbv_cases_engine2[];
 extern const size_t sbv_ncases_engine2;
 extern const sbv_case sbv_cases_agglo[];
 extern const size_t sbv_ncases_agglo;
+extern const sbv_case sbv_cases_spray[];
+extern const size_t sbv_ncases_spray;
 
 #endif /* SB_VALIDATE_CASES_H */

@@ -21,6 +21,7 @@ static const struct {
     {sbv_cases_engine, &sbv_ncases_engine},
     {sbv_cases_engine2, &sbv_ncases_engine2},
     {sbv_cases_agglo, &sbv_ncases_agglo},
+    {sbv_cases_spray, &sbv_ncases_spray},
 };
 enum { NTABLES = sizeof tables / sizeof tables[0] };
 
