@@ -20,6 +20,7 @@ static void usage(FILE *out)
 "  eval --list                   list the functions and their arguments\n"
 "  pbe --kernel NAME ...         solve the Smoluchowski population balance\n"
 "  collide CONFIG.ini            run the collision engine\n"
+"  spray CONFIG.ini              homogeneous spray kinetics (Bird, Nanbu, breakup)\n"
 "  validate [--quick|--full]     run the validation cases, write a report\n"
 "\n"
 "  smolbridge COMMAND --help     help on one command\n"
@@ -53,6 +54,8 @@ int main(int argc, char **argv)
     return sbc_pbe_main(argc - 1, argv + 1);
   if (!strcmp(cmd, "collide"))
     return sbc_collide_main(argc - 1, argv + 1);
+  if (!strcmp(cmd, "spray"))
+    return sbc_spray_main(argc - 1, argv + 1);
   if (!strcmp(cmd, "validate"))
     return sbc_validate_main(argc - 1, argv + 1);
   fprintf(stderr, "smolbridge: unknown command '%s'\n\n", cmd);
