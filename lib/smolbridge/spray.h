@@ -31,7 +31,8 @@
  *    pair into one particle.  Candidate pairs: Poisson majorant (default)
  *    or Bird's no-time-counter count per step.
  *  - Nanbu type (Nanbu 1980, J. Phys. Soc. Japan 49:2042): variable weights
- *    w_i; particle i collides with j at rate w_j B_ij / V and only particle
+ *    w_i; particle i collides with j at rate w_j B_ij / V (j over all
+ *    parcels, i included: two droplets of one parcel) and only particle
  *    i changes.  Momentum and energy are martingales (conserved on average;
  *    their random walk is the variance the method adds, docs/spray.md).
  *    Coalescence uses the mass-flow rule (Eibeck & Wagner 2001, Ann. Appl.

@@ -68,23 +68,25 @@ int sbv_spray_case_coal_const(const sbv_ctx *ctx, sbv_report *rep)
   const size_t N0 = ctx->full ? 100000 : 20000, R = ctx->full ? 16 : 8;
   const double r1 = 1e-5, taus[2] = {1.0, 4.0};
   const size_t ks[CC_K] = {1, 2, 3, 5, 8};
-  static const char *mname[2] = {"bird", "nanbu"};
-  double *x = malloc(2 * 2 * (CC_K + 1) * R * sizeof *x);
+  /* third run: Bird with theta_cr = pi/6, a quarter of the collisions
+   * merge (impact parameter below (r + r*)/2), B0 = 4: the same K = 1 */
+  static const char *mname[3] = {"bird", "nanbu", "bird-theta=pi/6"};
+  double *x = malloc(3 * 2 * (CC_K + 1) * R * sizeof *x);
   double plot[12][5];
   memset(plot, 0, sizeof plot);
   if (!x)
     return SB_ENOMEM;
   int st = SB_SUCCESS;
-  for (int meth = 0; meth < 2 && !st; meth++) {
+  for (int meth = 0; meth < 3 && !st; meth++) {
     gsl_rng *rng = sbv_rng_alloc(ctx, 600 + (unsigned long)meth);
     for (size_t rr = 0; rr < R && !st; rr++) {
       sb_spray_params p;
       sb_spray_params_default(&p);
-      p.method = (sb_spray_method)meth;
+      p.method = meth == 1 ? SB_SPRAY_NANBU : SB_SPRAY_BIRD;
       p.cross = SB_SPRAY_MAXWELL;
-      p.B0 = 1.0;
-      p.volume = (double)N0; /* N0 = 1 m^-3, tau = B0 N0 t = t */
-      p.theta_cr = 0.5 * PI;
+      p.B0 = meth == 2 ? 4.0 : 1.0;
+      p.volume = (double)N0; /* N0 = 1 m^-3, tau = B0 sin^2 N0 t = t */
+      p.theta_cr = meth == 2 ? PI / 6.0 : 0.5 * PI;
       p.capacity = N0;
       sb_spray *s = sb_spray_alloc(&p);
       if (!s || !rng) {
@@ -103,7 +105,7 @@ int sbv_spray_case_coal_const(const sbv_ctx *ctx, sbv_report *rep)
         for (int q = 0; q < CC_K; q++)
           row[(1 + q) * R + rr] = nk[ks[q] - 1] / p.volume /
                                   sb_pbe_const_mono_n((double)ks[q], t);
-        if (it == 1)
+        if (it == 1 && meth < 2)
           for (int k = 0; k < 12; k++)
             plot[k][1 + meth] += nk[k] / p.volume / (double)R;
       }
@@ -140,7 +142,10 @@ int sbv_spray_case_coal_const(const sbv_ctx *ctx, sbv_report *rep)
            "criterion: replica means of M0 (1 + tau/2) and n_k/n_k,exact "
            "= 1 (t-test p >= 1e-3); n_k exact = (tau/2)^(k-1)/(1 + "
            "tau/2)^(k+1) (sb_pbe_const_mono_n); Nanbu uses the mass-flow "
-           "rule (exact mass, variable weights)", N0, R);
+           "rule (exact mass, variable weights); 'bird-theta=pi/6': B0 = 4 "
+           "m^3/s, theta_cr = pi/6, so a fraction sin^2(pi/6) = 1/4 of the "
+           "collisions merge (impact parameter <= (r + r*)/2) and K = 1 "
+           "again", N0, R);
   sbv_plot(ctx, rep, "V14_coal_constant",
            "V14: size distribution, constant kernel, tau = 4",
            "k bird nanbu exact", &plot[0][0], 12, 4,
