@@ -623,8 +623,9 @@ int sbv_spray_case_reitz(const sbv_ctx *ctx, sbv_report *rep)
   const size_t Np = ctx->full ? 5000 : 1000;
   const int nsteps = 200;
   double dV[2] = {0, 0}, ksp = NAN, nchild_rel = NAN;
-  double hist[30][3];
+  double hist[30][3], cdfp[40][3]; /* children histogram, parents' CDF */
   memset(hist, 0, sizeof hist);
+  memset(cdfp, 0, sizeof cdfp);
   for (int meth = 0; meth < 2 && !st; meth++) {
     gsl_rng *rng = sbv_rng_alloc(ctx, 900 + (unsigned long)meth);
     sb_spray_params p;
@@ -686,8 +687,16 @@ int sbv_spray_case_reitz(const sbv_ctx *ctx, sbv_report *rep)
           if (tag[i] == 0)
             xs[m++] = r[i];
         double D, pks;
-        sb_ks_test(xs, m, pf_cdf, &pf, &D, &pks);
+        sb_ks_test(xs, m, pf_cdf, &pf, &D, &pks); /* sorts xs */
         ksp = pks;
+        for (int b = 0, q = 0; b < 40; b++) { /* radius in um */
+          double x = gt[0] + (gt[NG - 1] - gt[0]) * b / 39.0;
+          while ((size_t)q < m && xs[q] <= x)
+            q++;
+          cdfp[b][0] = 1e6 * x;
+          cdfp[b][1] = (double)q / (double)m;
+          cdfp[b][2] = pf_cdf(x, &pf);
+        }
         sb_comparison cmp;
         sb_compare_pvalue(&cmp, "V14/reitz/nanbu/parent-radius-KS", D, 0.0,
                           NAN, NAN, pks, SBV_SPRAY_ALPHA);
@@ -710,7 +719,7 @@ int sbv_spray_case_reitz(const sbv_ctx *ctx, sbv_report *rep)
         for (size_t i = 0; i < sb_spray_count(s); i++) {
           if (tag[i] == 1) {
             nmc += w[i];
-            int b = (int)((r[i] - 4.0e-6) / 2e-6 * 30);
+            int b = (int)((r[i] - 4.8e-6) / 0.45e-6 * 30);
             if (b >= 0 && b < 30)
               hist[b][1] += w[i];
           }
@@ -740,7 +749,7 @@ int sbv_spray_case_reitz(const sbv_ctx *ctx, sbv_report *rep)
   if (st)
     return st;
   for (int b = 0; b < 30; b++)
-    hist[b][0] = 4.0e-6 + (b + 0.5) * 2e-6 / 30;
+    hist[b][0] = 4.8 + (b + 0.5) * 0.45 / 30; /* um */
   sbv_note(rep, "- water drops in a gas of rho_g = 10 kg/m^3 at U = 100 "
            "m/s, sigma = 0.072 N/m, mu_l = 1e-3 Pa s; B0 = 0.61, B1 = 10; "
            "at a0 = 50 um: Lambda = %.4g m, Omega = %.4g /s, R = %.4g m, "
@@ -755,9 +764,17 @@ int sbv_spray_case_reitz(const sbv_ctx *ctx, sbv_report *rep)
            "push-forward CDF: KS p = %.3g; children number / integral - 1 "
            "= %.2g (criterion 2e-3: emission at the current R)", Np,
            Np / 50, dV[0], dV[1], ksp, nchild_rel);
-  sbv_plot(ctx, rep, "V14_reitz_children", "V14: children radii (Nanbu)",
-           "r weight unused", &hist[0][0], 30, 3,
-           "set xlabel 'r (m)'\nset ylabel 'number'\nplot $DATA u 1:2 w "
-           "boxes t 'children'");
+  sbv_plot(ctx, rep, "V14_reitz_children",
+           "V14: Reitz children radii (Nanbu, at 2 tau)",
+           "r_um number unused", &hist[0][0], 30, 3,
+           "set xlabel 'r (um)'\nset ylabel 'droplets'\nset style fill "
+           "solid 0.5\nplot $DATA u 1:2 w boxes t 'children (R = B0 "
+           "Lambda of the shrinking parents)'");
+  sbv_plot(ctx, rep, "V14_reitz_parents",
+           "V14: parent radius CDF at 2 tau vs the push-forward",
+           "r_um empirical reference", &cdfp[0][0], 40, 3,
+           "set xlabel 'r (um)'\nset ylabel 'P(a <= r)'\nset key top "
+           "left\nplot $DATA u 1:2 w steps t 'Nanbu parents', $DATA u "
+           "1:3 w l t 'exact flow of U[40, 60] um'");
   return SB_SUCCESS;
 }

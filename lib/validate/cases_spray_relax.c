@@ -284,6 +284,12 @@ int sbv_spray_case_two_temp(const sbv_ctx *ctx, sbv_report *rep)
           sb_spray_two_temp_hs(&mr, tend * k / NP, &Tac, &Tbc);
           plot[k][1] += Ta / T / (double)R;
           plot[k][2] += Tb / T / (double)R;
+          plot[k][3] += Tac / T / (double)R;
+          plot[k][4] += Tbc / T / (double)R;
+          if (k == 1) {
+            plot[0][1] += mr.T_a0 / T / (double)R;
+            plot[0][2] += mr.T_b0 / T / (double)R;
+          }
           double d = ((Ta - Tb) - (Tac - Tbc)) / T;
           dsum[k] += d / (double)R;
           dsq[k] += d * d / (double)R;
@@ -330,15 +336,11 @@ int sbv_spray_case_two_temp(const sbv_ctx *ctx, sbv_report *rep)
   if (st)
     return st;
   for (int k = 0; k <= NP; k++) {
-    double Ta, Tb, t = tend * k / NP;
-    sb_spray_two_temp_hs(&mx0, t, &Ta, &Tb);
-    plot[k][0] = t / tau;
+    plot[k][0] = (double)k / NP * tend / tau;
     if (k == 0) {
-      plot[0][1] = 2.0;
-      plot[0][2] = 1.0;
+      plot[0][3] = plot[0][1];
+      plot[0][4] = plot[0][2];
     }
-    plot[k][3] = Ta / T;
-    plot[k][4] = Tb / T;
     if (k == 2 * NP / 3) { /* t ~ tau, in units of T_b(0) */
       dev = dsum[k];
       devse = sqrt((dsq[k] - dsum[k] * dsum[k]) / (double)(R - 1));
