@@ -11,6 +11,7 @@ int sbc_validate_main(int argc, char **argv);
 int sbc_pbe_main(int argc, char **argv);       /* cli/pbe.c */
 int sbc_collide_main(int argc, char **argv);   /* cli/collide.c */
 int sbc_pgd_main(int argc, char **argv);       /* cli/pgd.c */
+int sbc_spray_main(int argc, char **argv);     /* cli/spray.c */
 
 /* ------------------------------------------------------------ eval table
  * `smolbridge eval NAME key=value ...` calls a public function through an

@@ -21,6 +21,7 @@ static void usage(FILE *out)
 "  pbe --kernel NAME ...         solve the Smoluchowski population balance\n"
 "  collide CONFIG.ini            run the collision engine\n"
 "  pgd CONFIG.ini                pressureless gas dynamics (Euler/Lagrange)\n"
+"  spray CONFIG.ini              homogeneous spray kinetics (Bird, Nanbu, breakup)\n"
 "  validate [--quick|--full]     run the validation cases, write a report\n"
 "\n"
 "  smolbridge COMMAND --help     help on one command\n"
@@ -56,6 +57,8 @@ int main(int argc, char **argv)
     return sbc_collide_main(argc - 1, argv + 1);
   if (!strcmp(cmd, "pgd"))
     return sbc_pgd_main(argc - 1, argv + 1);
+  if (!strcmp(cmd, "spray"))
+    return sbc_spray_main(argc - 1, argv + 1);
   if (!strcmp(cmd, "validate"))
     return sbc_validate_main(argc - 1, argv + 1);
   fprintf(stderr, "smolbridge: unknown command '%s'\n\n", cmd);

@@ -14,6 +14,7 @@
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
 #include <smolbridge/pgd.h>
+#include <smolbridge/spray.h>
 #include <smolbridge/validate.h>
 
 #endif /* SMOLBRIDGE_H */

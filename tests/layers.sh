@@ -10,7 +10,7 @@
 #   1 stats passage bridge langevin        mathematical references
 #   2 simulate                             reference simulators
 #   3 kernel dlvo                          physics
-#   4 pbe engine pgd                       solvers
+#   4 pbe engine pgd spray                 solvers
 #   5 validate                             validation cases and reports
 #   6 cli                                  the smolbridge command
 set -u
@@ -21,7 +21,7 @@ layer() {
     stats|passage|bridge|langevin) echo 1 ;;
     simulate) echo 2 ;;
     kernel|dlvo) echo 3 ;;
-    pbe|engine|pgd) echo 4 ;;
+    pbe|engine|pgd|spray) echo 4 ;;
     validate) echo 5 ;;
     cli) echo 6 ;;
     *) echo -1 ;;

@@ -172,5 +172,7 @@ extern const sbv_case sbv_cases_pgd[];
 extern const size_t sbv_ncases_pgd;
 extern const sbv_case sbv_cases_pgd_jets[];
 extern const size_t sbv_ncases_pgd_jets;
+extern const sbv_case sbv_cases_spray[];
+extern const size_t sbv_ncases_spray;
 
 #endif /* SB_VALIDATE_CASES_H */

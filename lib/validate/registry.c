@@ -24,6 +24,7 @@ static const struct {
     {sbv_cases_agglo, &sbv_ncases_agglo},
     {sbv_cases_pgd, &sbv_ncases_pgd},
     {sbv_cases_pgd_jets, &sbv_ncases_pgd_jets},
+    {sbv_cases_spray, &sbv_ncases_spray},
 };
 enum { NTABLES = sizeof tables / sizeof tables[0] };
 

@@ -1,0 +1,441 @@
+/* smolbridge/spray.h — homogeneous spray kinetics: stochastic particle
+ * solutions of  d_t f = Q(f)  for droplets with velocity v and radius r
+ * (collision, coalescence), and the TAB and Reitz-wave breakup models,
+ * with the exact solutions they are checked against.
+ *
+ * Model (C. Baranger, "Modélisation, étude mathématique et simulation des
+ * collisions dans les fluides complexes", PhD thesis, ENS Cachan / CEA-DIF):
+ *   Q(f) = int [f(v') f(v_*') - f(v) f(v_*)] B dsigma dv* dr*,
+ *   hard spheres  B = |v - v_*| pi (r + r_*)^2 / (4 pi)  per unit solid angle
+ *   (isotropic scattering in the centre-of-mass frame), or a Maxwell-type
+ *   kernel B = B0 / (4 pi) independent of |v - v_*| (Bobylev 1975, Krook &
+ *   Wu 1976 give an exact solution).  Post-collision velocities for masses
+ *   m, m_* (m = rho_l 4/3 pi r^3):
+ *     v' = G + m_* /(m + m_*) |g| sigma,  v_*' = G - m/(m + m_*) |g| sigma,
+ *     G = (m v + m_* v_*)/(m + m_*), g = v - v_*, sigma uniform on the sphere.
+ *   Coalescence by impact parameter b (hard-sphere geometry:
+ *   b = (r + r_*) cos(chi/2), chi the deflection angle): the pair merges iff
+ *   b <= (r + r_*) sin(theta_cr), i.e. a fraction sin^2(theta_cr) of the
+ *   collisions; theta_cr = pi/2 is coalescence efficiency 1, theta_cr = 0
+ *   pure bouncing.
+ *
+ * Two stochastic particle methods, both exact in time (the collision times
+ * are those of the N-particle jump process, sampled by thinning a Poisson
+ * process whose rate bounds every pair's rate; see docs/spray.md):
+ *  - Bird type (Bird 1994, "Molecular Gas Dynamics and the Direct
+ *    Simulation of Gas Flows", §11.1): every simulation particle stands for
+ *    the same number W of droplets; a pair (i, j) collides at rate
+ *    W B_ij N/((N-1) V) (Bird's N N-bar convention: each particle's rate is
+ *    exactly n B); both velocities change, so momentum and energy are
+ *    conserved at every collision to round-off.  Coalescence merges the
+ *    pair into one particle.  Candidate pairs: Poisson majorant (default)
+ *    or Bird's no-time-counter count per step.
+ *  - Nanbu type (Nanbu 1980, J. Phys. Soc. Japan 49:2042): variable weights
+ *    w_i; particle i collides with j at rate w_j B_ij / V (j over all
+ *    parcels, i included: two droplets of one parcel) and only particle
+ *    i changes.  Momentum and energy are martingales (conserved on average;
+ *    their random walk is the variance the method adds, docs/spray.md).
+ *    Coalescence uses the mass-flow rule (Eibeck & Wagner 2001, Ann. Appl.
+ *    Probab. 11:1137): i becomes the merged droplet and its weight becomes
+ *    w_i m_i/(m_i + m_j), so the liquid mass is conserved exactly.
+ *
+ * Units: SI (m, s, kg, K); velocities m/s; B0 m^3/s; V m^3.
+ * Errors: status codes of <smolbridge/common.h>, message in sb_last_error().
+ * Thread safety: a sb_spray object is used by one thread at a time; the
+ * caller passes the gsl_rng.  Theory, derivations, accuracy and
+ * validation: docs/spray.md.
+ */
+#ifndef SMOLBRIDGE_SPRAY_H
+#define SMOLBRIDGE_SPRAY_H
+
+#include <stddef.h>
+#include <gsl/gsl_rng.h>
+#include <smolbridge/common.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------ options */
+
+typedef enum {
+  SB_SPRAY_BIRD = 0,  /**< constant weight, pair updates, exact conservation */
+  SB_SPRAY_NANBU = 1  /**< variable weights, one-sided updates */
+} sb_spray_method;
+
+typedef enum {
+  SB_SPRAY_HARD_SPHERE = 0, /**< B = pi (r + r_*)^2 |v - v_*| */
+  SB_SPRAY_MAXWELL = 1      /**< B = B0, independent of velocities and radii */
+} sb_spray_cross;
+
+typedef enum {
+  SB_SPRAY_MAJORANT = 0, /**< candidate pairs from a Poisson process whose
+                              rate bounds all pair rates: exact in time */
+  SB_SPRAY_NTC = 1       /**< Bird's no-time-counter: a fixed number of
+                              candidates per call (remainder carried);
+                              Bird method only */
+} sb_spray_select;
+
+/** Optional velocity rule for a droplet formed by coalescence (radius r, in
+ *  m): set v (on entry the momentum-conserving velocity).  For example the
+ *  settling velocity of the new size (sb_spray_stokes_settling).  Must be
+ *  thread-safe if the ctx is shared. */
+typedef void (*sb_spray_merge_fn)(double r, double v[3], void *ctx);
+
+typedef struct {
+  sb_spray_method method;
+  sb_spray_cross cross;
+  sb_spray_select select;
+  double volume;    /**< V of the homogeneous cell, m^3 (> 0) */
+  double rho_l;     /**< droplet (liquid) density, kg/m^3 (> 0) */
+  double weight;    /**< Bird: droplets per simulation particle W (> 0) */
+  double B0;        /**< Maxwell-type rate coefficient, m^3/s (> 0) */
+  double theta_cr;  /**< critical impact angle in [0, pi/2]: coalescence
+                         iff b <= (r + r_*) sin(theta_cr) (0: none) */
+  sb_spray_merge_fn merge_velocity; /**< NULL: momentum conserved */
+  void *merge_ctx;
+  size_t capacity;  /**< initial capacity (grows when needed) */
+} sb_spray_params;
+
+/** Defaults: Bird, hard spheres, majorant, V = 1, rho_l = 1000, W = 1,
+ *  B0 = 1, theta_cr = 0 (elastic only), momentum rule, capacity 1024. */
+void sb_spray_params_default(sb_spray_params *p);
+
+/** Names for configuration files: "bird"/"nanbu", "hard-sphere"/"maxwell",
+ *  "majorant"/"ntc".  SB_EINVAL for an unknown name. */
+int sb_spray_method_from_name(const char *name, sb_spray_method *m);
+int sb_spray_cross_from_name(const char *name, sb_spray_cross *c);
+int sb_spray_select_from_name(const char *name, sb_spray_select *s);
+
+/* ------------------------------------------------------------ the system */
+
+typedef struct sb_spray sb_spray;
+
+/** NULL on error (SB_EINVAL: bad parameter, named in sb_last_error();
+ *  SB_ENOMEM). */
+sb_spray *sb_spray_alloc(const sb_spray_params *p);
+void sb_spray_free(sb_spray *s);
+const sb_spray_params *sb_spray_get_params(const sb_spray *s);
+
+/** Add one parcel: velocity v (m/s), radius r (m, > 0), weight w (> 0;
+ *  ignored by the Bird method, which uses params.weight), tag (free
+ *  label kept through collisions and inherited by children).  *index (may
+ *  be NULL) receives its index. */
+int sb_spray_add(sb_spray *s, const double v[3], double r, double w, int tag,
+                 size_t *index);
+
+/** Add n parcels of radius r, weight w and tag, velocities Maxwellian at
+ *  temperature T (K) for the droplet mass m = rho_l 4/3 pi r^3 (variance
+ *  k_B T/m per component) around the mean u (may be NULL: 0). */
+int sb_spray_add_maxwellian(sb_spray *s, size_t n, double r, double w,
+                            int tag, double T, const double u[3],
+                            gsl_rng *rng);
+
+/** Remove every parcel (the clock and counters are kept). */
+void sb_spray_clear(sb_spray *s);
+
+size_t sb_spray_count(const sb_spray *s);
+double sb_spray_time(const sb_spray *s);
+/** Arrays of the current parcels (valid until the next call that adds,
+ *  removes or merges parcels): v[3 i + k], r[i], w[i], tag[i]. */
+const double *sb_spray_velocities(const sb_spray *s);
+const double *sb_spray_radii(const sb_spray *s);
+const double *sb_spray_weights(const sb_spray *s);
+const int *sb_spray_tags(const sb_spray *s);
+/** TAB deformation y and dy/dt (1/s) of each parcel. */
+const double *sb_spray_tab_y(const sb_spray *s);
+const double *sb_spray_tab_ydot(const sb_spray *s);
+/** Reitz breakup: liquid volume shed by each parcel and not yet emitted
+ *  as children, summed over the parcel's droplets (m^3). */
+const double *sb_spray_shed_volume(const sb_spray *s);
+
+/** Set parcel i's velocity / TAB state (SB_EINVAL if i is out of range). */
+int sb_spray_set_velocity(sb_spray *s, size_t i, const double v[3]);
+int sb_spray_set_tab(sb_spray *s, size_t i, double y, double ydot);
+
+/** Totals over the parcels (weights included):
+ *  number = sum w, mass = sum w m, momentum = sum w m v, energy =
+ *  sum w m |v|^2 / 2, volume = liquid volume sum w 4/3 pi r^3 plus the shed
+ *  volume not yet emitted (conserved by coalescence and breakup).  All sums
+ *  are compensated (Neumaier). */
+typedef struct {
+  double number, mass, momentum[3], energy, volume;
+} sb_spray_totals;
+int sb_spray_get_totals(const sb_spray *s, sb_spray_totals *t);
+
+/** Weighted moment sum_i w_i |v_i - u|^k / sum_i w_i over the parcels
+ *  with tag == tag (tag < 0: all), u may be NULL (0).  NaN if none. */
+double sb_spray_velocity_moment(const sb_spray *s, int k, const double u[3],
+                                int tag);
+
+/** Weighted temperature of the parcels with tag (tag < 0: all):
+ *  sum w m |v - u_tag|^2 / (3 k_B sum w), u_tag their mass-weighted mean
+ *  velocity.  NaN if none. */
+double sb_spray_temperature(const sb_spray *s, int tag);
+
+/* ------------------------------------------------------------ collisions */
+
+/** Counters since the allocation (or sb_spray_reset_stats). */
+typedef struct {
+  unsigned long long candidates; /**< candidate pairs drawn */
+  unsigned long long bounces;    /**< accepted, elastic outcome */
+  unsigned long long merges;     /**< accepted, coalescence */
+  unsigned long long tab_breakups, reitz_children;
+} sb_spray_stats;
+int sb_spray_get_stats(const sb_spray *s, sb_spray_stats *st);
+void sb_spray_reset_stats(sb_spray *s);
+
+/** What happened in one accepted collision (for observers). */
+typedef enum { SB_SPRAY_BOUNCE = 0, SB_SPRAY_MERGE = 1 } sb_spray_event_kind;
+typedef struct {
+  sb_spray_event_kind kind;
+  double t;                 /**< event time, s */
+  size_t i, j;              /**< parcel indices before the event */
+  int tag_i, tag_j;
+  double r_i, r_j, w_i, w_j;  /**< before */
+  double vi[3], vj[3];        /**< velocities before */
+  double vi_new[3], vj_new[3];/**< after (Nanbu: vj_new = vj; merge: the
+                                   merged droplet's velocity in vi_new) */
+} sb_spray_event;
+typedef void (*sb_spray_event_fn)(const sb_spray_event *ev, void *ctx);
+/** Call fn for every accepted collision (NULL to stop). */
+void sb_spray_set_observer(sb_spray *s, sb_spray_event_fn fn, void *ctx);
+
+/** Advance the collision (and coalescence) operator by dt > 0 seconds.
+ *  The Bird method needs N >= 2 to do anything (fewer parcels: time just
+ *  advances).  Returns SB_SUCCESS, SB_EINVAL, SB_ENOMEM. */
+int sb_spray_collide(sb_spray *s, double dt, gsl_rng *rng);
+
+/** Post-collision velocities of masses m1, m2 (> 0, or any positive
+ *  numbers proportional to them, e.g. r^3) for the unit vector sigma:
+ *  v1' = G + m2/(m1+m2)|g| sigma, v2' = G - m1/(m1+m2)|g| sigma.
+ *  Momentum and energy are conserved (to round-off).  Outputs may alias
+ *  the inputs. */
+void sb_spray_post_collision(const double v1[3], const double v2[3],
+                             double m1, double m2, const double sigma[3],
+                             double v1p[3], double v2p[3]);
+
+/** Does a collision with deflection cosine cos_chi = sigma . g/|g|
+ *  coalesce for the critical angle theta_cr?  Returns 1 iff
+ *  b^2/(r+r_*)^2 = (1 + cos_chi)/2 <= sin^2(theta_cr). */
+int sb_spray_coalesces(double cos_chi, double theta_cr);
+
+/** Pair rate coefficient B (m^3/s) of the cross-section model:
+ *  hard spheres pi (r1 + r2)^2 |g|, Maxwell B0. */
+double sb_spray_pair_rate(sb_spray_cross c, double B0, double r1, double r2,
+                          double g);
+
+/** Stokes settling velocity 2 (rho_l - rho_g) g r^2/(9 mu_g) along the unit
+ *  vector of `gvec` (m/s^2, its norm is g) as an sb_spray_merge_fn: ctx is
+ *  a const sb_spray_settling *.  Valid for droplet Reynolds numbers << 1. */
+typedef struct {
+  double rho_l, rho_g, mu_g; /**< kg/m^3, kg/m^3, Pa s */
+  double gvec[3];            /**< gravity, m/s^2 */
+} sb_spray_settling;
+void sb_spray_stokes_settling(double r, double v[3], void *ctx);
+
+/* ------------------------------------------------------------ breakup */
+
+/* The breakup steps do not advance the clock (sb_spray_collide does); a
+ * time step of a full model is collide(dt) then tab_step / reitz_step(dt)
+ * (first-order splitting, as in the thesis's four-step splitting). */
+
+/** Gas seen by the droplets (constant over a call). */
+typedef struct {
+  double u[3];    /**< gas velocity, m/s */
+  double rho_g;   /**< gas density, kg/m^3 */
+  double mu_g;    /**< gas viscosity, Pa s (Reitz stripping test; 0: off) */
+} sb_spray_gas;
+
+/** Liquid properties for breakup (rho_l comes from the spray params). */
+typedef struct {
+  double sigma;   /**< surface tension, N/m */
+  double mu_l;    /**< liquid viscosity, Pa s */
+} sb_spray_liquid;
+
+/** How children are represented.  PARCEL: the parcel takes a child radius
+ *  and its weight is scaled to conserve mass (one parcel; variable
+ *  weights; Nanbu method only).  PARTICLES: children of the parcel's weight are added until
+ *  the parent volume is used (the last child takes the remainder), so
+ *  every parcel keeps the same weight (Bird method).  AUTO: PARTICLES for
+ *  Bird, PARCEL for Nanbu. */
+typedef enum {
+  SB_SPRAY_CHILDREN_AUTO = 0,
+  SB_SPRAY_CHILDREN_PARCEL = 1,
+  SB_SPRAY_CHILDREN_PARTICLES = 2
+} sb_spray_children;
+
+/* TAB (O'Rourke & Amsden 1987, SAE 872089): deformation y of the equator
+ * (in units of C_b r, C_b = 1/2) obeys
+ *   y'' = (2/3)(rho_g/rho_l) |u - v|^2/r^2 - 8 sigma/(rho_l r^3) y
+ *         - C_d mu_l/(rho_l r^2) y'
+ * (the forcing is quadratic in |u - v|: the thesis slides print |u - v|);
+ * C_d = 5 in O'Rourke & Amsden; Lamb's (1932, §355) damping of the n = 2
+ * mode gives C_d = 10 (the slides' value).  Breakup when |y| reaches 1.
+ * At constant relative velocity, with We = rho_g |u - v|^2 r/sigma,
+ * 1/t_d = C_d mu_l/(2 rho_l r^2), omega^2 = 8 sigma/(rho_l r^3) - 1/t_d^2:
+ *   y(t) = We/12 + e^{-t/t_d} [(y0 - We/12) cos wt
+ *          + (y0'/w + (y0 - We/12)/(w t_d)) sin wt]. */
+typedef struct {
+  double Cd;      /**< damping constant (default 5) */
+  sb_spray_children children;
+  int child_tag;  /**< >= 0: tag of the children; < 0: the parent's */
+  size_t max_children; /**< PARTICLES: cap per breakup (default 10000);
+                            beyond it the last child takes the rest */
+} sb_spray_tab_params;
+void sb_spray_tab_params_default(sb_spray_tab_params *p);
+
+/** Closed-form TAB state at time t for constant relative speed urel (m/s),
+ *  radius r, from (y0, ydot0).  Underdamped case (omega^2 > 0) exact;
+ *  overdamped and critical cases use the matching closed forms.  Returns
+ *  SB_EDOM for non-positive r, sigma, rho or negative mu, t. */
+int sb_spray_tab_state(double t, double r, double urel, double rho_g,
+                       double rho_l, const sb_spray_liquid *liq, double Cd,
+                       double y0, double ydot0, double *y, double *ydot);
+
+/** First time in (0, tmax] at which |y| = 1 for the motion above; +inf if
+ *  none (found by bracketing between extrema and GSL Brent; absolute
+ *  accuracy 1e-12 of the oscillation period).  *ydot_b (may be NULL)
+ *  receives y' at breakup. */
+int sb_spray_tab_breakup_time(double r, double urel, double rho_g,
+                              double rho_l, const sb_spray_liquid *liq,
+                              double Cd, double y0, double ydot0,
+                              double tmax, double *tb, double *ydot_b);
+
+/** Critical Weber number of a droplet starting at rest (y0 = y0' = 0):
+ *  12/(1 + exp(-pi/(omega t_d))) — 6 without damping (the first maximum
+ *  We/12 (1 + e^{-pi/(omega t_d)}) is the largest).  It depends on
+ *  r, rho_l and the liquid only (omega, t_d); NaN (SB_EDOM) when
+ *  overdamped. */
+double sb_spray_tab_we_crit(double r, double rho_l,
+                            const sb_spray_liquid *liq, double Cd);
+
+/** Sauter mean radius of the children, from energy conservation
+ *  (O'Rourke & Amsden 1987): parent surface + oscillation energy (K = 10/3)
+ *  at y = 1 equals children surface + normal kinetic energy:
+ *    r/r32 = 7/3 + rho_l r^3 ydot^2/(8 sigma). */
+double sb_spray_tab_r32(double r, double ydot, double rho_l, double sigma);
+
+/** Advance every parcel's TAB state by dt in the gas (relative velocity
+ *  u - v held constant over the call), break up the parcels that reach
+ *  |y| = 1: the children's number law is exponential with mean r32/3 (so
+ *  their Sauter radius is r32; truncated at the parent radius), they get
+ *  the normal velocity r ydot/2 in a random direction perpendicular to
+ *  u - v, and y = y' = 0.  A PARCEL draws its radius from the mass-weighted
+ *  law (Gamma, shape 4, scale r32/3) since it stands for w r^3/r_c^3
+ *  droplets. */
+int sb_spray_tab_step(sb_spray *s, const sb_spray_gas *gas,
+                      const sb_spray_liquid *liq,
+                      const sb_spray_tab_params *tp, double dt,
+                      gsl_rng *rng);
+
+/* Reitz wave breakup (Reitz 1987, Atomisation Spray Technol. 3:309): for a
+ * droplet of radius a at relative speed U, We_g = rho_g U^2 a/sigma,
+ * We_l = rho_l U^2 a/sigma, Re_l = rho_l U a/mu_l, Z = sqrt(We_l)/Re_l,
+ * T = Z sqrt(We_g):
+ *   Lambda/a = 9.02 (1 + 0.45 Z^0.5)(1 + 0.4 T^0.7)/(1 + 0.87 We_g^1.67)^0.6
+ *   Omega sqrt(rho_l a^3/sigma) = (0.34 + 0.38 We_g^1.5)/((1+Z)(1+1.4 T^0.6))
+ * stable radius R = B0 Lambda, breakup time tau = 3.726 B1 a/(Lambda Omega),
+ * and (the thesis slides: chi = -nu (r - R), nu = 1/tau; the slides print
+ * nu = C r/(Lambda Omega), which is tau, not its inverse)
+ *   da/dt = -(a - R)/tau  while a > R  (and We_g > sqrt(Re_g)/2 when the
+ *   stripping test is on, Re_g = rho_g U a/mu_g);
+ * the shed liquid forms children of radius R (the same velocity). */
+typedef struct {
+  double B0;       /**< 0.61 */
+  double B1;       /**< 10 */
+  double emit_fraction; /**< PARCEL children: emit a child parcel when the
+                             shed volume exceeds this fraction of the
+                             parcel's volume (default 0.03) */
+  sb_spray_children children;
+  int child_tag;   /**< >= 0: tag of the children; < 0: the parent's */
+  int stripping;   /**< 1: no breakup unless We_g > sqrt(Re_g)/2 */
+} sb_spray_reitz_params;
+void sb_spray_reitz_params_default(sb_spray_reitz_params *p);
+
+/** Wavelength Lambda (m) and growth rate Omega (1/s) of the fastest
+ *  Kelvin-Helmholtz wave (Reitz 1987 fits above).  SB_EDOM for
+ *  non-positive a, U, rho_g, rho_l, sigma or negative mu_l.  mu_l = 0
+ *  gives Z = T = 0 (inviscid). */
+int sb_spray_reitz_wave(double a, double U, double rho_g, double rho_l,
+                        const sb_spray_liquid *liq, double *Lambda,
+                        double *Omega);
+
+/** Closed form of da/dt = -(a - R)/tau with tau = a/c, R and c = Lambda
+ *  Omega/(3.726 B1) held constant (a0 > R > 0, c > 0, t >= 0):
+ *    (a - a0) + R ln((a - R)/(a0 - R)) = -c t, i.e.
+ *    a(t) = R + R W0( (a0 - R)/R exp((a0 - R - c t)/R) )
+ *  (W0: Lambert's function, GSL; evaluated through its logarithm when the
+ *  argument overflows).  a0 <= R returns a0 (no breakup). */
+double sb_spray_reitz_radius_frozen(double a0, double R, double c, double t);
+
+/** Radius a(t) of the full model (Lambda, Omega re-evaluated at the current
+ *  radius) at constant U: t(a) = int_a^a0 tau(x)/(x - R(x)) dx by GSL
+ *  adaptive quadrature, inverted with GSL Brent; relative accuracy ~1e-10.
+ *  Stops at the stable radius (a_inf with a_inf = R(a_inf)). */
+int sb_spray_reitz_radius(double a0, double t, double U, double rho_g,
+                          double rho_l, const sb_spray_liquid *liq,
+                          const sb_spray_reitz_params *rp, double *a);
+
+/** Advance every parcel by dt: radius relaxation with Lambda, Omega of the
+ *  parcel's radius at the start of the call (exact closed form within the
+ *  step), shed volume accumulated per parcel and emitted as children of
+ *  radius R (PARTICLES: whenever one child's worth W 4/3 pi R^3 is
+ *  available; PARCEL: a child parcel when the shed volume exceeds
+ *  emit_fraction of the parcel's volume).  Liquid volume (parcels + shed)
+ *  is conserved to round-off. */
+int sb_spray_reitz_step(sb_spray *s, const sb_spray_gas *gas,
+                        const sb_spray_liquid *liq,
+                        const sb_spray_reitz_params *rp, double dt);
+
+/* ------------------------------------------------------------ exact results */
+
+/** BKW solution (Bobylev 1975; Krook & Wu 1976) of the homogeneous
+ *  Boltzmann equation with a Maxwell-type kernel, equal masses, per-
+ *  component variance theta = k_B T/m (m^2/s^2), per-particle collision
+ *  rate lambda = n B0 (1/s):
+ *    f(v) = (2 pi K theta)^{-3/2} exp(-v^2/(2 K theta))
+ *           [(5K - 3)/(2K) + (1 - K) v^2/(2 K^2 theta)],
+ *    K(t) = 1 - (1 - K0) exp(-lambda t/6),  3/5 <= K0 <= 1.
+ *  f is a probability density in R^3 (integral 1). */
+double sb_spray_bkw_K(double K0, double lambda, double t);
+double sb_spray_bkw_pdf(double v, double K, double theta);
+/** P(|v| <= s) = (5K-3)/(2K) P(3/2, x) + 3(1-K)/(2K) P(5/2, x),
+ *  x = s^2/(2 K theta), P the regularized lower incomplete gamma (GSL). */
+double sb_spray_bkw_speed_cdf(double s, double K, double theta);
+/** E|v|^4 = theta^2 (30 K - 15 K^2);  E|v|^6 = theta^3 K^2 (315 - 210 K). */
+double sb_spray_bkw_m4(double K, double theta);
+double sb_spray_bkw_m6(double K, double theta);
+/** One velocity from the BKW density (the speed is sqrt(K theta) times a
+ *  chi with 3 degrees of freedom with probability (5K - 3)/(2K), else with
+ *  5; the direction is isotropic).  SB_EDOM outside the domain. */
+int sb_spray_bkw_sample(double K, double theta, gsl_rng *rng, double v[3]);
+
+/** Two-temperature relaxation of a binary mixture (number densities n_a,
+ *  n_b in 1/m^3, masses m_a, m_b in kg, zero mean velocities) from T_a0,
+ *  T_b0 (K); the mixture temperature (n_a T_a + n_b T_b)/(n_a + n_b) is
+ *  constant and Delta = T_a - T_b obeys:
+ *   Maxwell kernel (exact for any distributions):
+ *     dDelta/dt = -2 B0 (n_a + n_b) m_a m_b/(m_a + m_b)^2 Delta;
+ *   hard spheres with both species Maxwellian (exact at t = 0, a closure
+ *   afterwards; d = r_a + r_b, s^2 = k_B (T_a/m_a + T_b/m_b)):
+ *     dDelta/dt = -(16/3) sqrt(2/pi) pi d^2 (n_a + n_b)
+ *                  m_a m_b/(m_a + m_b)^2 s Delta,
+ *   solved in closed form (s^2 is linear in Delta).  Outputs T_a, T_b at t.
+ *  SB_EDOM for non-positive arguments (T may be any positive values). */
+typedef struct {
+  double n_a, n_b, m_a, m_b, r_a, r_b, T_a0, T_b0;
+} sb_spray_mixture;
+int sb_spray_two_temp_maxwell(const sb_spray_mixture *mx, double B0,
+                              double t, double *T_a, double *T_b);
+int sb_spray_two_temp_hs(const sb_spray_mixture *mx, double t, double *T_a,
+                         double *T_b);
+/** The hard-sphere rate dT_a/dt (K/s) for Maxwellian species at T_a, T_b. */
+double sb_spray_two_temp_hs_rate(const sb_spray_mixture *mx, double T_a,
+                                 double T_b);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SMOLBRIDGE_SPRAY_H */

@@ -1,0 +1,68 @@
+/* spray_outcome.c — what happens in one collision: pair rate, post-
+ * collision velocities for unequal masses, the impact-parameter
+ * coalescence test, and the Stokes settling velocity rule.  Pure
+ * functions (no state). */
+#include <math.h>
+
+#include <smolbridge/spray.h>
+
+#include "common/internal.h"
+#include "spray_internal.h"
+
+double sb_spray_pair_rate(sb_spray_cross c, double B0, double r1, double r2,
+                          double g)
+{
+  if (c == SB_SPRAY_MAXWELL)
+    return B0;
+  double d = r1 + r2;
+  return SBI_PI * d * d * g;
+}
+
+/* In the centre-of-mass frame the relative velocity keeps its modulus and
+ * turns to |g| sigma; v = G + m2/M g, v* = G - m1/M g (Baranger, thesis
+ * slides, with m proportional to r^3).  Momentum m1 v1 + m2 v2 = M G and
+ * energy M |G|^2/2 + mu |g|^2/2 are unchanged. */
+void sb_spray_post_collision(const double v1[3], const double v2[3],
+                             double m1, double m2, const double sigma[3],
+                             double v1p[3], double v2p[3])
+{
+  double M = m1 + m2, a1 = m1 / M, a2 = m2 / M;
+  double G[3], g2 = 0.0;
+  for (int k = 0; k < 3; k++) {
+    double g = v1[k] - v2[k];
+    g2 += g * g;
+    G[k] = a1 * v1[k] + a2 * v2[k];
+  }
+  double g = sqrt(g2);
+  for (int k = 0; k < 3; k++) {
+    double gs = g * sigma[k];
+    v1p[k] = G[k] + a2 * gs;
+    v2p[k] = G[k] - a1 * gs;
+  }
+}
+
+/* Hard-sphere geometry: b = (r + r*) cos(chi/2), so
+ * (b/(r + r*))^2 = (1 + cos chi)/2; coalescence iff b <= (r + r*) sin
+ * theta_cr, i.e. chi in [pi - 2 theta_cr, pi] as in the thesis's
+ * coalescence term. */
+int sb_spray_coalesces(double cos_chi, double theta_cr)
+{
+  if (!(theta_cr > 0))
+    return 0;
+  double s = sin(theta_cr);
+  return 0.5 * (1.0 + cos_chi) <= s * s;
+}
+
+void sb_spray_stokes_settling(double r, double v[3], void *ctx)
+{
+  const sb_spray_settling *p = ctx;
+  double g = sqrt(p->gvec[0] * p->gvec[0] + p->gvec[1] * p->gvec[1] +
+                  p->gvec[2] * p->gvec[2]);
+  if (!(g > 0)) {
+    v[0] = v[1] = v[2] = 0.0;
+    return;
+  }
+  double U = 2.0 * (p->rho_l - p->rho_g) * g * r * r / (9.0 * p->mu_g);
+  for (int k = 0; k < 3; k++)
+    v[k] = U * p->gvec[k] / g;
+}

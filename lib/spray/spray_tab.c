@@ -1,0 +1,407 @@
+/* spray_tab.c — TAB breakup (O'Rourke & Amsden 1987, SAE 872089): the
+ * damped, forced oscillator of the droplet's deformation solved in closed
+ * form at constant relative velocity, the breakup time (|y| = 1), the
+ * critical Weber number and the children's Sauter radius from energy
+ * conservation.  Derivations: docs/spray.md, "TAB". */
+#include <math.h>
+#include <string.h>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_roots.h>
+
+#include <smolbridge/spray.h>
+
+#include "common/internal.h"
+#include "spray_internal.h"
+
+void sb_spray_tab_params_default(sb_spray_tab_params *p)
+{
+  if (!p)
+    return;
+  p->Cd = 5.0;
+  p->children = SB_SPRAY_CHILDREN_AUTO;
+  p->child_tag = -1;
+  p->max_children = 10000;
+}
+
+/* Oscillator z'' + 2 beta z' + w0^2 z = 0 for z = y - y_eq, with
+ * y_eq = F/w0^2 = We/12, F = (2/3)(rho_g/rho_l) U^2/r^2,
+ * w0^2 = 8 sigma/(rho_l r^3), beta = 1/t_d = Cd mu_l/(2 rho_l r^2). */
+typedef struct {
+  double yeq, beta, w02, w2; /* w2 = w0^2 - beta^2 */
+  double z0, zd0;
+} osc;
+
+static int osc_init(osc *o, double r, double urel, double rho_g,
+                    double rho_l, const sb_spray_liquid *liq, double Cd,
+                    double y0, double ydot0, const char *func)
+{
+  if (!liq)
+    return sbi_error(SB_EDOM, func, "NULL liquid");
+  if (!(r > 0) || !(rho_g >= 0) || !(rho_l > 0) || !(liq->sigma > 0) ||
+      !(liq->mu_l >= 0) || !(Cd >= 0) || !isfinite(urel) || !isfinite(r) ||
+      !isfinite(y0) || !isfinite(ydot0))
+    return sbi_error(SB_EDOM, func, "need r, rho_l, sigma > 0 and rho_g, "
+                     "mu_l, Cd >= 0, finite (r = %g, rho_l = %g, sigma = %g)",
+                     r, rho_l, liq->sigma);
+  o->w02 = 8.0 * liq->sigma / (rho_l * r * r * r);
+  o->beta = Cd * liq->mu_l / (2.0 * rho_l * r * r);
+  o->w2 = o->w02 - o->beta * o->beta;
+  o->yeq = (2.0 / 3.0) * (rho_g / rho_l) * urel * urel / (r * r) / o->w02;
+  o->z0 = y0 - o->yeq;
+  o->zd0 = ydot0;
+  return SB_SUCCESS;
+}
+
+/* e^{-beta t} C(t) and e^{-beta t} S(t), C'' = -w2 C, S'' = -w2 S,
+ * C(0) = 1, C'(0) = 0, S(0) = 0, S'(0) = 1, without overflow. */
+static void osc_cs(const osc *o, double t, double *ec, double *es)
+{
+  double w2 = o->w2, b = o->beta;
+  if (fabs(w2) * t * t < 1e-10) {
+    double e = exp(-b * t);
+    *ec = e * (1.0 - 0.5 * w2 * t * t);
+    *es = e * t * (1.0 - w2 * t * t / 6.0);
+  } else if (w2 > 0) {
+    double w = sqrt(w2), e = exp(-b * t);
+    *ec = e * cos(w * t);
+    *es = e * sin(w * t) / w;
+  } else {
+    double k = sqrt(-w2);
+    double ep = exp((k - b) * t), em = exp(-(k + b) * t);
+    *ec = 0.5 * (ep + em);
+    *es = 0.5 * (ep - em) / k;
+  }
+}
+
+/* z = e^{-bt}[z0 C + (zd0 + b z0) S],  z' = e^{-bt}[zd0 C - (b zd0 +
+ * w0^2 z0) S] */
+static void osc_eval(const osc *o, double t, double *y, double *yd)
+{
+  double ec, es;
+  osc_cs(o, t, &ec, &es);
+  if (y)
+    *y = o->yeq + o->z0 * ec + (o->zd0 + o->beta * o->z0) * es;
+  if (yd)
+    *yd = o->zd0 * ec - (o->beta * o->zd0 + o->w02 * o->z0) * es;
+}
+
+int sb_spray_tab_state(double t, double r, double urel, double rho_g,
+                       double rho_l, const sb_spray_liquid *liq, double Cd,
+                       double y0, double ydot0, double *y, double *ydot)
+{
+  osc o;
+  int st = osc_init(&o, r, urel, rho_g, rho_l, liq, Cd, y0, ydot0, __func__);
+  if (st)
+    return st;
+  if (!(t >= 0))
+    return sbi_error(SB_EDOM, __func__, "t = %g: must be >= 0", t);
+  osc_eval(&o, t, y, ydot);
+  return SB_SUCCESS;
+}
+
+typedef struct {
+  const osc *o;
+  double level;
+} root_ctx;
+
+static double root_f(double t, void *p)
+{
+  const root_ctx *c = p;
+  double y;
+  osc_eval(c->o, t, &y, NULL);
+  return y - c->level;
+}
+
+/* Crossing of y = level in [a, b] where y is monotone; NAN if none. */
+static double cross_in(const osc *o, double a, double b, double level,
+                       double tol)
+{
+  root_ctx c = {o, level};
+  double fa = root_f(a, &c), fb = root_f(b, &c);
+  if (fa == 0)
+    return a;
+  if ((fa < 0) == (fb < 0) && fb != 0)
+    return NAN;
+  if (fb == 0)
+    return b;
+  gsl_function F = {root_f, &c};
+  gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+  if (!s)
+    return NAN;
+  gsl_root_fsolver_set(s, &F, a, b);
+  double x = 0.5 * (a + b);
+  for (int it = 0; it < 200; it++) {
+    gsl_root_fsolver_iterate(s);
+    x = gsl_root_fsolver_root(s);
+    double lo = gsl_root_fsolver_x_lower(s), hi = gsl_root_fsolver_x_upper(s);
+    if (gsl_root_test_interval(lo, hi, tol, 0) == GSL_SUCCESS)
+      break;
+  }
+  gsl_root_fsolver_free(s);
+  return x;
+}
+
+/* Times t > 0 where y' = 0: y' = e^{-bt}[zd0 C - (b zd0 + w0^2 z0) S]. */
+static double next_extremum(const osc *o, double after)
+{
+  double p = o->zd0, q = o->beta * o->zd0 + o->w02 * o->z0;
+  if (o->w2 > 0) {
+    double w = sqrt(o->w2);
+    /* zd0 cos wt - (q/w) sin wt = R cos(wt + phi) */
+    double phi = atan2(q / w, p);
+    double t0 = (0.5 * SBI_PI - phi) / w, per = SBI_PI / w;
+    double k = ceil((after - t0) / per + 1e-12);
+    double t = t0 + k * per;
+    while (t <= after)
+      t += per;
+    return t;
+  }
+  /* overdamped / critical: at most one extremum, where S/C = p/q */
+  if (q == 0 || p / q <= 0)
+    return INFINITY;
+  double ratio = p / q, t;
+  if (o->w2 == 0)
+    t = ratio;
+  else {
+    double k = sqrt(-o->w2);
+    if (k * ratio >= 1)
+      return INFINITY;
+    t = atanh(k * ratio) / k;
+  }
+  return t > after ? t : INFINITY;
+}
+
+int sb_spray_tab_breakup_time(double r, double urel, double rho_g,
+                              double rho_l, const sb_spray_liquid *liq,
+                              double Cd, double y0, double ydot0,
+                              double tmax, double *tb, double *ydot_b)
+{
+  osc o;
+  int st = osc_init(&o, r, urel, rho_g, rho_l, liq, Cd, y0, ydot0, __func__);
+  if (st)
+    return st;
+  if (!tb || !(tmax >= 0))
+    return sbi_error(SB_EDOM, __func__, "NULL tb or tmax = %g < 0", tmax);
+  *tb = INFINITY;
+  if (fabs(y0) >= 1) {
+    *tb = 0;
+    if (ydot_b)
+      *ydot_b = ydot0;
+    return SB_SUCCESS;
+  }
+  double scale = o.w02 > 0 ? 1.0 / sqrt(o.w02) : 1.0;
+  double tol = 1e-12 * scale;
+  /* envelope of |z|: e^{-bt} sqrt(A^2 + B^2) (underdamped) */
+  double amp = INFINITY;
+  if (o.w2 > 0) {
+    double B = (o.zd0 + o.beta * o.z0) / sqrt(o.w2);
+    amp = sqrt(o.z0 * o.z0 + B * B);
+  }
+  double a = 0.0;
+  for (int seg = 0; seg < 100000 && a < tmax; seg++) {
+    double b = next_extremum(&o, a);
+    if (b > tmax)
+      b = tmax;
+    double t1 = cross_in(&o, a, b, 1.0, tol);
+    double t2 = cross_in(&o, a, b, -1.0, tol);
+    double t = isnan(t1) ? t2 : (isnan(t2) ? t1 : fmin(t1, t2));
+    if (!isnan(t) && t > 0) {
+      *tb = t;
+      if (ydot_b)
+        osc_eval(&o, t, NULL, ydot_b);
+      return SB_SUCCESS;
+    }
+    a = b;
+    if (o.w2 > 0) {
+      double env = amp * exp(-o.beta * a);
+      if (o.yeq + env < 1.0 && o.yeq - env > -1.0)
+        break; /* the decaying oscillation can no longer reach |y| = 1 */
+    }
+  }
+  return SB_SUCCESS;
+}
+
+double sb_spray_tab_we_crit(double r, double rho_l,
+                            const sb_spray_liquid *liq, double Cd)
+{
+  osc o;
+  if (osc_init(&o, r, 0.0, 0.0, rho_l, liq, Cd, 0.0, 0.0, __func__))
+    return NAN;
+  if (!(o.w2 > 0)) {
+    sbi_error(SB_EDOM, __func__, "overdamped oscillator (w0^2 = %g <= "
+              "beta^2 = %g)", o.w02, o.beta * o.beta);
+    return NAN;
+  }
+  return 12.0 / (1.0 + exp(-SBI_PI * o.beta / sqrt(o.w2)));
+}
+
+double sb_spray_tab_r32(double r, double ydot, double rho_l, double sigma)
+{
+  if (!(r > 0) || !(rho_l > 0) || !(sigma > 0) || !isfinite(ydot)) {
+    sbi_error(SB_EDOM, __func__, "need r, rho_l, sigma > 0, finite ydot");
+    return NAN;
+  }
+  return r / (7.0 / 3.0 + rho_l * r * r * r * ydot * ydot / (8.0 * sigma));
+}
+
+/* ------------------------------------------------------------ stepping */
+
+typedef struct {
+  sb_spray *s;
+  const sb_spray_gas *gas;
+  const sb_spray_liquid *liq;
+  const sb_spray_tab_params *tp;
+  sb_spray_children mode;
+  gsl_rng *rng;
+} tab_ctx;
+
+/* Child radius.  The children's number law is exponential with mean
+ * r32/3, so its Sauter radius E r^3/E r^2 is r32 (O'Rourke & Amsden's
+ * chi-square law with two degrees of freedom).  PARTICLES draws that law;
+ * a PARCEL stands for w r^3/r_c^3 droplets, so it draws the mass-weighted
+ * law r^3 e^{-3r/r32} (Gamma, shape 4) to represent the same number law.
+ * Radii above the parent's are redrawn (probability <= e^{-7} for the
+ * exponential, since r >= 7/3 r32). */
+static double child_radius(gsl_rng *rng, double r32, double r, int parcel)
+{
+  for (int k = 0; k < 1000; k++) {
+    double x = parcel ? gsl_ran_gamma(rng, 4.0, r32 / 3.0)
+                      : gsl_ran_exponential(rng, r32 / 3.0);
+    if (x > 0 && x <= r)
+      return x;
+  }
+  return r32 < r ? r32 : r;
+}
+
+/* Direction perpendicular to the relative velocity u - v. */
+static void normal_dir(const tab_ctx *c, const double v[3], double n[3])
+{
+  double e[3], m = 0;
+  for (int k = 0; k < 3; k++) {
+    e[k] = c->gas->u[k] - v[k];
+    m += e[k] * e[k];
+  }
+  if (!(m > 0)) {
+    gsl_ran_dir_3d(c->rng, &n[0], &n[1], &n[2]);
+    return;
+  }
+  m = sqrt(m);
+  for (int k = 0; k < 3; k++)
+    e[k] /= m;
+  sbi_spray_perp_dir(e, c->rng, n);
+}
+
+static int advance(tab_ctx *c, size_t i, double dt, int depth);
+
+/* Break parcel i up (deformation rate yd at breakup), children advance
+ * for the remaining time trem. */
+static int breakup(tab_ctx *c, size_t i, double yd, double trem, int depth)
+{
+  sb_spray *s = c->s;
+  double r = s->r[i], r32 = sb_spray_tab_r32(r, yd, s->p.rho_l,
+                                              c->liq->sigma);
+  double vn = 0.5 * r * fabs(yd); /* C_v C_b r ydot, C_v = 1, C_b = 1/2 */
+  int tag = c->tp->child_tag >= 0 ? c->tp->child_tag : s->tag[i];
+  s->st.tab_breakups++;
+  if (c->mode == SB_SPRAY_CHILDREN_PARCEL) {
+    double rc = child_radius(c->rng, r32, r, 1), n[3];
+    normal_dir(c, s->v + 3 * i, n);
+    s->w[i] *= (r / rc) * (r / rc) * (r / rc);
+    s->r[i] = rc;
+    for (int k = 0; k < 3; k++)
+      s->v[3 * i + k] += vn * n[k];
+    s->y[i] = s->yd[i] = 0.0;
+    s->tag[i] = tag;
+    return trem > 0 ? advance(c, i, trem, depth + 1) : SB_SUCCESS;
+  }
+  /* PARTICLES: children of the parcel's weight until the volume is used */
+  double left = r * r * r, v0[3];
+  memcpy(v0, s->v + 3 * i, sizeof v0);
+  size_t first = s->n, nch = 0;
+  while (left > 0) {
+    double rc = child_radius(c->rng, r32, r, 0);
+    double rc3 = rc * rc * rc;
+    if (rc3 >= left || nch + 1 >= c->tp->max_children)
+      rc3 = left;
+    left -= rc3;
+    rc = cbrt(rc3);
+    double n[3], v[3];
+    normal_dir(c, v0, n);
+    for (int k = 0; k < 3; k++)
+      v[k] = v0[k] + vn * n[k];
+    if (nch == 0) { /* the first child reuses the parent's slot */
+      memcpy(s->v + 3 * i, v, sizeof v);
+      s->r[i] = rc;
+      s->y[i] = s->yd[i] = 0.0;
+      s->tag[i] = tag;
+    } else {
+      int st = sbi_spray_reserve(s, 1, "sb_spray_tab_step");
+      if (st)
+        return st;
+      size_t k = sbi_spray_push(s, v, rc, s->w[i], tag);
+      s->shed[k] = 0.0;
+    }
+    nch++;
+  }
+  if (trem > 0) {
+    size_t last = s->n;
+    int st = advance(c, i, trem, depth + 1);
+    for (size_t k = first; k < last && !st; k++)
+      st = advance(c, k, trem, depth + 1);
+    return st;
+  }
+  return SB_SUCCESS;
+}
+
+static int advance(tab_ctx *c, size_t i, double dt, int depth)
+{
+  sb_spray *s = c->s;
+  const double *v = s->v + 3 * i;
+  double U2 = 0;
+  for (int k = 0; k < 3; k++) {
+    double d = c->gas->u[k] - v[k];
+    U2 += d * d;
+  }
+  double tb, yb;
+  int st = sb_spray_tab_breakup_time(s->r[i], sqrt(U2), c->gas->rho_g,
+                                     s->p.rho_l, c->liq, c->tp->Cd, s->y[i],
+                                     s->yd[i], dt, &tb, &yb);
+  if (st)
+    return st;
+  if (tb <= dt && depth < 64)
+    return breakup(c, i, yb, dt - tb, depth);
+  return sb_spray_tab_state(dt, s->r[i], sqrt(U2), c->gas->rho_g, s->p.rho_l,
+                            c->liq, c->tp->Cd, s->y[i], s->yd[i], &s->y[i],
+                            &s->yd[i]);
+}
+
+int sb_spray_tab_step(sb_spray *s, const sb_spray_gas *gas,
+                      const sb_spray_liquid *liq,
+                      const sb_spray_tab_params *tp, double dt,
+                      gsl_rng *rng)
+{
+  if (!s || !gas || !liq || !tp || !rng)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  if (!(dt > 0) || !isfinite(dt))
+    return sbi_error(SB_EINVAL, __func__, "dt = %g: must be finite > 0", dt);
+  if (!(gas->rho_g >= 0) || !(liq->sigma > 0) || !(liq->mu_l >= 0) ||
+      !(tp->Cd >= 0) || tp->max_children < 1)
+    return sbi_error(SB_EINVAL, __func__, "need rho_g >= 0, sigma > 0, "
+                     "mu_l >= 0, Cd >= 0, max_children >= 1");
+  tab_ctx c = {s, gas, liq, tp, tp->children, rng};
+  if (c.mode == SB_SPRAY_CHILDREN_AUTO)
+    c.mode = s->p.method == SB_SPRAY_BIRD ? SB_SPRAY_CHILDREN_PARTICLES
+                                          : SB_SPRAY_CHILDREN_PARCEL;
+  if (c.mode == SB_SPRAY_CHILDREN_PARCEL && s->p.method == SB_SPRAY_BIRD)
+    return sbi_error(SB_EINVAL, __func__, "children = parcel changes "
+                     "weights: not with the Bird method");
+  size_t n0 = s->n;
+  for (size_t i = 0; i < n0; i++) {
+    int st = advance(&c, i, dt, 0);
+    if (st)
+      return st;
+  }
+  return SB_SUCCESS;
+}

@@ -1,0 +1,237 @@
+#!/usr/bin/python3
+"""Reference values for tests/test_spray.c, from first principles with mpmath.
+
+Writes (into tests/data/):
+  spray_bkw.csv    kind,x,K,value  kind 0: BKW density, 1: speed CDF (by
+                   quadrature of 4 pi v^2 f), 4 and 6: moments E|v|^4, E|v|^6
+                   (by quadrature), theta = 1.  Before writing, the script checks that BKW
+                   solves the Boltzmann equation for isotropic Maxwell
+                   scattering in Bobylev's Fourier form,
+                     d phi/dt = lambda [ (1/2) int_{-1}^{1} phi(k sqrt((1+u)/2))
+                                 phi(k sqrt((1-u)/2)) du - phi(k) ],
+                   with phi(k) = exp(-K k^2/2) (1 - (1-K) k^2/2) and
+                   dK/dt = lambda (1 - K)/6 (it aborts on a mismatch).
+  spray_tab.csv    case,r,U,rho_g,rho_l,sigma,mu_l,Cd,y0,yd0,t,y,yd  TAB
+                   equation y'' = (2/3)(rho_g/rho_l)U^2/r^2 - 8 sigma/(rho_l
+                   r^3) y - Cd mu_l/(rho_l r^2) y' integrated by mpmath's
+                   Taylor-series ODE solver (odefun); t = -1 rows give the
+                   first time |y| = 1 (findroot on the ODE solution) in y.
+  spray_reitz.csv  kind,a,U,rho_g,rho_l,sigma,mu_l,t,value  Reitz (1987)
+                   fits (kind 0 Lambda, 1 Omega); kind 3: radius of the full model
+                   da/dt = -(a - B0 Lambda(a)) Lambda(a) Omega(a)/(3.726 B1 a)
+                   (B0 = 0.61, B1 = 10) by odefun; kind 2: the same with
+                   Lambda, Omega fixed at a0.
+  spray_twotemp.csv  na,nb,ma,mb,ra,rb,Ta0,Tb0,t,Ta  hard-sphere Maxwellian
+                   closure dD/dt = -C D s(D) integrated by odefun.
+Run: /usr/bin/python3 tests/gen_spray_ref.py   (about a minute)
+"""
+import os
+import sys
+from mpmath import mp, mpf, exp, sqrt, pi, quad, odefun, findroot, inf
+
+mp.dps = 30
+HERE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
+
+
+def s20(x):
+    return mp.nstr(x, 20)
+
+
+# ------------------------------------------------------------------ BKW
+def bkw_pdf(v, K):
+    v, K = mpf(v), mpf(K)
+    return (2 * pi * K) ** mpf(-1.5) * exp(-v * v / (2 * K)) * (
+        (5 * K - 3) / (2 * K) + (1 - K) * v * v / (2 * K * K))
+
+
+def bkw_phi(k, K):
+    return exp(-K * k * k / 2) * (1 - (1 - K) * k * k / 2)
+
+
+def check_bkw():
+    lam = mpf(1)
+    for K in [mpf("0.6"), mpf("0.7"), mpf("0.9"), mpf("0.999")]:
+        dK = lam * (1 - K) / 6
+        for k in [mpf("0.3"), mpf(1), mpf(2), mpf("3.5")]:
+            # d phi/dt = (d phi/dK) dK/dt
+            dphi = mp.diff(lambda KK: bkw_phi(k, KK), K) * dK
+            gain = quad(lambda u: bkw_phi(k * sqrt((1 + u) / 2), K) *
+                        bkw_phi(k * sqrt((1 - u) / 2), K), [-1, 1]) / 2
+            rhs = lam * (gain - bkw_phi(k, K))
+            if abs(dphi - rhs) > mpf(10) ** -20:
+                sys.exit("BKW is not a solution: K=%s k=%s %s %s" %
+                         (K, k, dphi, rhs))
+        # the Fourier transform of the density is phi
+        for k in [mpf("0.5"), mpf(2)]:
+            ft = quad(lambda v: 4 * pi * v * v * bkw_pdf(v, K) *
+                      (mp.sin(k * v) / (k * v)), [0, inf])
+            if abs(ft - bkw_phi(k, K)) > mpf(10) ** -20:
+                sys.exit("BKW Fourier transform mismatch")
+
+
+def write_bkw():
+    rows = ["kind,x,K,value"]
+    for K in ["0.6", "0.65", "0.8", "0.95", "1"]:
+        Km = mpf(K)
+        for v in ["0", "0.1", "1", "1.7320508075688772", "3", "6", "12"]:
+            rows.append("0,%s,%s,%s" % (v, K, s20(bkw_pdf(v, Km))))
+        for s in ["0.01", "0.5", "1", "2", "4", "8"]:
+            c = quad(lambda x: 4 * pi * x * x * bkw_pdf(x, Km), [0, mpf(s)])
+            rows.append("1,%s,%s,%s" % (s, K, s20(c)))
+        for n, name in [(4, "4"), (6, "6")]:
+            m = quad(lambda x: 4 * pi * x ** (2 + n) * bkw_pdf(x, Km),
+                     [0, inf])
+            rows.append("%s,0,%s,%s" % (name, K, s20(m)))
+    return rows
+
+
+# ------------------------------------------------------------------ TAB
+TAB_CASES = [
+    # r, U, rho_g, rho_l, sigma, mu_l, Cd, y0, yd0, tmax
+    ("1e-4", "80", "1.2", "1000", "0.072", "1e-3", "5", "0", "0", "4e-4"),
+    ("1e-4", "120", "1.2", "1000", "0.072", "1e-3", "5", "0.2", "-1000",
+     "4e-4"),
+    ("1e-4", "59", "1.2", "1000", "0.072", "0", "5", "0", "0", "4e-4"),
+    ("5e-5", "150", "20", "700", "0.025", "2e-3", "10", "-0.3", "2000",
+     "2e-4"),
+    ("1e-5", "50", "1.2", "1000", "0.072", "0.5", "5", "0.5", "0", "1e-4"),
+]
+
+
+def tab_solve(c):
+    r, U, rg, rl, sg, mu, Cd, y0, yd0, tmax = [mpf(x) for x in c]
+    F = mpf(2) / 3 * rg / rl * U * U / (r * r)
+    w02 = 8 * sg / (rl * r ** 3)
+    b2 = Cd * mu / (rl * r * r)
+    sol = odefun(lambda t, y: [y[1], F - w02 * y[0] - b2 * y[1]], 0,
+                 [y0, yd0])
+    return sol, tmax
+
+
+def write_tab():
+    rows = ["case,r,U,rho_g,rho_l,sigma,mu_l,Cd,y0,yd0,t,y,yd"]
+    for i, c in enumerate(TAB_CASES):
+        sol, tmax = tab_solve(c)
+        pre = "%d,%s" % (i, ",".join(c[:9]))
+        for f in [mpf("0.01"), mpf("0.1"), mpf("0.37"), mpf("0.8"), mpf(1)]:
+            t = f * tmax
+            y, yd = sol(t)
+            rows.append("%s,%s,%s,%s" % (pre, s20(t), s20(y), s20(yd)))
+        # first |y| = 1 on a fine scan, refined by findroot
+        n = 4000
+        prev = sol(mpf(0))[0]
+        tb = None
+        for j in range(1, n + 1):
+            t = tmax * j / n
+            y = sol(t)[0]
+            for lev in (1, -1):
+                if (prev - lev) * (y - lev) <= 0 and abs(prev) < 1:
+                    g = lambda s, lev=lev: sol(s)[0] - lev
+                    tb = findroot(g, (tmax * (j - 1) / n, t),
+                                  solver="anderson")
+                    break
+            if tb is not None:
+                break
+            prev = y
+        rows.append("%s,-1,%s,0" % (pre, s20(tb) if tb is not None
+                                    else "inf"))
+    return rows
+
+
+# ------------------------------------------------------------------ Reitz
+def wave(a, U, rg, rl, sg, mu):
+    We = rg * U * U * a / sg
+    Z = mu / sqrt(rl * a * sg)
+    T = Z * sqrt(We)
+    L = a * mpf("9.02") * (1 + mpf("0.45") * sqrt(Z)) * \
+        (1 + mpf("0.4") * T ** mpf("0.7")) / \
+        (1 + mpf("0.87") * We ** mpf("1.67")) ** mpf("0.6")
+    O = (mpf("0.34") + mpf("0.38") * We ** mpf("1.5")) / \
+        ((1 + Z) * (1 + mpf("1.4") * T ** mpf("0.6"))) * \
+        sqrt(sg / (rl * a ** 3))
+    return L, O
+
+
+REITZ_CASES = [
+    # a, U, rho_g, rho_l, sigma, mu_l
+    ("5e-5", "100", "10", "1000", "0.072", "1e-3"),
+    ("2e-5", "300", "20", "700", "0.025", "3e-3"),
+    ("1e-4", "50", "1.2", "1000", "0.072", "0"),
+]
+
+
+def write_reitz():
+    B0, B1 = mpf("0.61"), mpf(10)
+    rows = ["kind,a,U,rho_g,rho_l,sigma,mu_l,t,value"]
+    for c in REITZ_CASES:
+        a0, U, rg, rl, sg, mu = [mpf(x) for x in c]
+        L, O = wave(a0, U, rg, rl, sg, mu)
+        pre = ",".join(c)
+        rows.append("0,%s,0,%s" % (pre, s20(L)))
+        rows.append("1,%s,0,%s" % (pre, s20(O)))
+        tau = mpf("3.726") * B1 * a0 / (L * O)
+        R0 = B0 * L
+        if a0 <= R0:
+            continue
+        c0 = L * O / (mpf("3.726") * B1)
+        frozen = odefun(lambda t, a: -c0 * (a - R0) / a, 0, a0)
+
+        def full_rhs(t, a):
+            LL, OO = wave(a, U, rg, rl, sg, mu)
+            return -(a - B0 * LL) * LL * OO / (mpf("3.726") * B1 * a)
+        full = odefun(full_rhs, 0, a0)
+        for f in ["0.1", "0.5", "1", "2", "5"]:
+            t = mpf(f) * tau
+            rows.append("2,%s,%s,%s" % (pre, s20(t), s20(frozen(t))))
+            rows.append("3,%s,%s,%s" % (pre, s20(t), s20(full(t))))
+    return rows
+
+
+# ------------------------------------------------------------ two-temp
+KB = mpf("1.380649e-23")
+TT_CASES = [
+    # na, nb, ma, mb, ra, rb, Ta0, Tb0
+    ("1e9", "1e9", "4.1887902047863905e-12", "8.377580409572781e-12",
+     "1e-5", "1.2599210498948732e-5", "6.0e11", "3.0e11"),
+    ("2e9", "5e8", "1e-12", "1e-11", "2e-5", "5e-6", "1e11", "5e11"),
+]
+
+
+def write_twotemp():
+    rows = ["na,nb,ma,mb,ra,rb,Ta0,Tb0,t,Ta"]
+    for c in TT_CASES:
+        na, nb, ma, mb, ra, rb, Ta0, Tb0 = [mpf(x) for x in c]
+        n = na + nb
+        M = ma + mb
+        d = ra + rb
+        C = mpf(16) / 3 * sqrt(2 / pi) * pi * d * d * n * ma * mb / (M * M)
+        Tm = (na * Ta0 + nb * Tb0) / n
+
+        def rhs(t, D):
+            Ta = Tm + nb / n * D
+            Tb = Tm - na / n * D
+            return -C * D * sqrt(KB * (Ta / ma + Tb / mb))
+        D0 = Ta0 - Tb0
+        sol = odefun(rhs, 0, D0)
+        rate = abs(rhs(0, D0) / D0)
+        for f in ["0.1", "1", "3", "10"]:
+            t = mpf(f) / rate
+            D = sol(t)
+            rows.append("%s,%s,%s" % (",".join(c), s20(t),
+                                      s20(Tm + nb / n * D)))
+    return rows
+
+
+def main():
+    check_bkw()
+    for name, fn in [("spray_bkw.csv", write_bkw), ("spray_tab.csv", write_tab),
+                     ("spray_reitz.csv", write_reitz),
+                     ("spray_twotemp.csv", write_twotemp)]:
+        rows = fn()
+        with open(os.path.join(HERE, name), "w") as f:
+            f.write("\n".join(rows) + "\n")
+        print("wrote", name, len(rows) - 1, "rows")
+
+
+if __name__ == "__main__":
+    main()

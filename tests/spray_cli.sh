@@ -1,0 +1,63 @@
+#!/bin/sh
+# End-to-end checks of `smolbridge spray`: help and exit codes, input
+# errors naming file, line and key, the example configurations (BKW check,
+# breakup with volume conservation), and a failing check exiting 1.
+set -u
+sb="${top_builddir:-.}/smolbridge"
+ex="${srcdir:-.}/examples"
+out="${top_builddir:-.}/tests/spray-cli-out"
+fails=0
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+expect_rc() {  # expect_rc RC CMD...
+  want=$1; shift
+  "$@" >/dev/null 2>&1
+  got=$?
+  [ "$got" -eq "$want" ] || fail "'$*' exited $got, want $want"
+}
+rm -rf "$out"
+mkdir -p "$out"
+
+expect_rc 0 "$sb" spray --help
+expect_rc 2 "$sb" spray
+expect_rc 2 "$sb" spray "$out/no-such.ini"
+printf '[run]\nvolume = 1\nbogus = 3\n' > "$out/bad.ini"
+msg=$("$sb" spray "$out/bad.ini" 2>&1 >/dev/null)
+rc=$?
+[ $rc -eq 2 ] || fail "bad key: exit $rc, want 2"
+case "$msg" in *bad.ini:3*bogus*) ;; *) fail "bad key message: $msg" ;; esac
+printf '[run]\nmethod = dsmc\n' > "$out/bad2.ini"
+msg=$("$sb" spray "$out/bad2.ini" 2>&1 >/dev/null)
+case "$msg" in *bad2.ini:2*bird*nanbu*) ;; *) fail "bad value message: $msg" ;; esac
+printf '[run]\nvolume = 1\ndt = 1\nsteps = 1\n' > "$out/nopop.ini"
+expect_rc 2 "$sb" spray "$out/nopop.ini"
+
+# BKW example: the run checks itself (exit 0), writes its files
+sed "s|^output = .*|output = $out/bkw|" "$ex/spray_bkw.ini" > "$out/bkw.ini"
+if "$sb" spray "$out/bkw.ini" 2>/dev/null; then
+  head -n 1 "$out/bkw/series.csv" | grep -q '^t,parcels,number,.*,M4_bkw$' \
+    || fail "series.csv header"
+  grep -q '"bkw"' "$out/bkw/summary.json" || fail "summary.json: no bkw"
+  # Bird conserves energy exactly: the energy column is constant
+  awk -F, 'NR == 2 { e = $5 } NR > 2 { d = ($5 - e) / e; if (d < 0) d = -d;
+    if (d > 1e-12) bad = 1 } END { exit bad }' "$out/bkw/series.csv" \
+    || fail "Bird energy not conserved"
+else
+  fail "spray $ex/spray_bkw.ini failed"
+fi
+# the same with an impossible tolerance: the check fails, exit 1
+sed "s|^bkw = 1|bkw = 1\nnse = 1e-6|" "$out/bkw.ini" > "$out/bkw-strict.ini"
+expect_rc 1 "$sb" spray "$out/bkw-strict.ini"
+
+# breakup example: volume conserved, every drop below 7 um at the end
+sed "s|^output = .*|output = $out/brk|" "$ex/spray_breakup.ini" > "$out/brk.ini"
+if "$sb" spray "$out/brk.ini" 2>/dev/null; then
+  awk -F, 'NR == 2 { v = $9 } END { d = ($9 - v) / v; if (d < 0) d = -d;
+    exit !(d < 1e-13) }' "$out/brk/series.csv" || fail "volume not conserved"
+  awk -F, 'NR > 1 && $2 >= 7e-6 { bad = 1 } END { exit bad }' \
+    "$out/brk/final.csv" || fail "a drop above 7 um after Reitz breakup"
+else
+  fail "spray $ex/spray_breakup.ini failed"
+fi
+rm -rf "$out"
+[ "$fails" -eq 0 ] && echo "spray cli: all checks passed"
+exit $((fails > 0))
