@@ -46,6 +46,7 @@ typedef struct {
   long steps;
   char neigh[32], detect[32], outcome[32];
   double eta;
+  double lv_eps, lv_xtol, lv_tol;   /* detect = langevin (0: default) */
   long sample_every, snapshot_every, sort_every;
   char rng[32];
   char output[512], checkpoint[512], restart[512];
@@ -213,6 +214,12 @@ static int handler(void *user, const char *sec, const char *key,
       return str(c, sec, key, v, c->outcome, sizeof c->outcome);
     if (!strcmp(key, "eta"))
       return num(c, sec, key, v, &c->eta, 0, 1, 0);
+    if (!strcmp(key, "langevin_eps"))
+      return num(c, sec, key, v, &c->lv_eps, 1e-300, 0.1, 0);
+    if (!strcmp(key, "langevin_xtol"))
+      return num(c, sec, key, v, &c->lv_xtol, 1e-300, 0.01, 0);
+    if (!strcmp(key, "langevin_tol"))
+      return num(c, sec, key, v, &c->lv_tol, 1e-300, 0.5, 0);
     if (!strcmp(key, "sample_every"))
       return integer(c, sec, key, v, &c->sample_every, 0, 2000000000L);
     if (!strcmp(key, "sort_every"))
@@ -638,7 +645,9 @@ static void usage(FILE *f)
 "\n"
 "Run the Lagrangian collision engine described by CONFIG.ini:\n"
 "  [run]          seed, dim, L | Lx Ly Lz (m), dt (s), t_end (s) | steps,\n"
-"                 warmup (s), thermalize (K), neigh, detect, outcome, eta,\n"
+"                 warmup (s), thermalize (K), neigh, detect (ballistic |\n"
+"                 overlap | langevin), outcome, eta, langevin_eps,\n"
+"                 langevin_xtol, langevin_tol,\n"
 "                 sample_every, snapshot_every, sort_every, rng, output,\n"
 "                 checkpoint, restart\n"
 "  [agglo]        (outcome = merge | dlvo) growth = stokes | constant,\n"
@@ -794,6 +803,22 @@ int sbc_collide_main(int argc, char **argv)
         sb_engine_free(e);
         return 1;
       }
+    }
+  }
+  /* Langevin detector parameters (not in checkpoints: given again) */
+  if (c.lv_eps > 0 || c.lv_xtol > 0 || c.lv_tol > 0) {
+    sb_engine_langevin_params lp;
+    sb_engine_langevin_params_default(&lp);
+    if (c.lv_eps > 0)
+      lp.eps = c.lv_eps;
+    if (c.lv_xtol > 0)
+      lp.xtol = c.lv_xtol;
+    if (c.lv_tol > 0)
+      lp.tol = c.lv_tol;
+    if (sb_engine_set_langevin(e, &lp)) {
+      fprintf(stderr, "collide: [run] langevin_*: %s\n", sb_last_error());
+      sb_engine_free(e);
+      return 1;
     }
   }
   /* fluid (on restart the saved field is kept unless [fluid] is given) */

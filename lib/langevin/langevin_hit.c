@@ -31,6 +31,9 @@
 #define XFAR 12.0
 /* Chords passing within GRAZE xtol R of the sphere count as grazing. */
 #define GRAZE 6.0
+/* Relative tolerance on R^2 within which a start counts as touching
+ * (SB_ENGINE_TOUCH of the engine). */
+#define TOUCH 1e-9
 #define INV_SQRT_2PI 0.39894228040143267794
 #define INV_SQRT_2 0.70710678118654752440
 
@@ -230,10 +233,17 @@ static double rice_bound(const walk *W, const sbi_lh_level *Li,
       best = N->mu[q];
     }
   }
-  if (!(bd > W->R * W->R))
+  if (!(bd > W->R * W->R * (1.0 - TOUCH)))
     return 1.0;
   double nn = sqrt(bd), n[3] = {best[0] / nn, best[1] / nn, best[2] / nn};
-  if (!(dot3(n, ra) > W->R && dot3(n, rb) > W->R))
+  /* both ends outside the half-space; a start on its boundary is allowed
+   * when the pair separates there (the integrand then vanishes at a) */
+  double va[3];
+  for (int k = 0; k < 3; k++)
+    va[k] = A->u[0][k] - A->u[1][k];
+  const double pa = dot3(n, ra) - W->R, tiny = 0.5 * TOUCH * W->R;
+  if (!(dot3(n, rb) > W->R) ||
+      !(pa > 0.0 || (pa > -tiny && dot3(n, va) > 0.0)))
     return 1.0;
   double x[SBI_LH_NQ], p[SBI_LH_NQ], xmin = INFINITY;
   for (int q = 0; q < SBI_LH_NQ; q++) {
@@ -285,8 +295,10 @@ static double chord_entry(const double *ra, const double *rb, double R,
   lam = lam < 0.0 ? 0.0 : (lam > 1.0 ? 1.0 : lam);
   double m[3] = {ra[0] + lam * d[0], ra[1] + lam * d[1], ra[2] + lam * d[2]};
   *gap = sqrt(dot3(m, m)) - R;
-  if (c <= 0.0)
+  if (c < -TOUCH * R * R)
     return 0.0;
+  if (c <= TOUCH * R * R)  /* touching: in now if approaching */
+    return b < 0.0 ? 0.0 : -1.0;
   if (b >= 0.0 || a == 0.0)
     return -1.0;
   double disc = b * b - a * c;
@@ -510,9 +522,16 @@ static int setup(walk *W, sb_langevin_hitter *w, const sb_langevin_path *pi,
     }
     W->sl[p] = sbi_lh_slot_get(w, q->tau, q->B, dt);
   }
-  double ra[3];
+  /* overlapping, or touching and approaching: a contact now; touching
+   * and separating (a pair that has just bounced): no contact now */
+  double ra[3], va[3];
   rel(A, ra);
-  return dot3(ra, ra) <= R * R;
+  for (int k = 0; k < 3; k++)
+    va[k] = A->u[0][k] - A->u[1][k];
+  double r2 = dot3(ra, ra), R2 = R * R;
+  if (r2 < R2 * (1.0 - TOUCH))
+    return 1;
+  return r2 <= R2 * (1.0 + TOUCH) && dot3(ra, va) < 0.0;
 }
 
 /* Both particles' states at the contact time inside the leaf, drawn from

@@ -1,0 +1,258 @@
+/* firsthit_lv.c — first-hit counting of Langevin spheres in the transition
+ * regime, one or two species, any detector (estimator and protocol:
+ * firsthit.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+
+#include <smolbridge/engine.h>
+#include <smolbridge/engine_bridge.h>
+#include <smolbridge/langevin.h>
+#include <smolbridge/stats.h>
+
+#include "firsthit.h"
+
+#define PI 3.14159265358979323846
+
+typedef struct {
+  const lv_run *q;
+  sb_engine_bridge *b;
+  fh_set s;
+  lv_out *o;
+} lvctx;
+
+static int pair_type(const sb_engine *e, size_t i, size_t j)
+{
+  const size_t *sp = sb_engine_species_of(e);
+  return (int)(sp[i] + sp[j]);
+}
+
+/* Normal relative velocity at a chord contact at fraction s: velocities
+ * interpolated linearly over the step (dt << tau_p for the reference). */
+static double chord_vn(const sb_engine *e, const sb_engine_pair *p, double s)
+{
+  const double *u0 = sb_engine_start_velocities(e);
+  const double *u1 = sb_engine_velocities(e);
+  double n[3], nn = 0.0, vn = 0.0;
+  for (int k = 0; k < 3; k++) {
+    n[k] = p->dx0[k] + s * p->dd[k];
+    nn += n[k] * n[k];
+  }
+  nn = sqrt(nn);
+  for (int k = 0; k < 3; k++) {
+    double ui = u0[3 * p->i + k] + s * (u1[3 * p->i + k] - u0[3 * p->i + k]);
+    double uj = u0[3 * p->j + k] + s * (u1[3 * p->j + k] - u0[3 * p->j + k]);
+    vn += (ui - uj) * n[k] / nn;
+  }
+  return vn;
+}
+
+/* Records the first detected contact of every pair and returns "no
+ * collision" (the particles pass through each other). */
+static int lv_detect(const sb_engine *e, const sb_engine_pair *p,
+                     const gsl_rng *r, void *vctx, double *s)
+{
+  lvctx *f = vctx;
+  const uint64_t *id = sb_engine_ids(e);
+  const uint64_t key = fh_pair_key(id[p->i], id[p->j]);
+  if (fh_set_has(&f->s, key))
+    return 0;  /* its first contact is known: nothing to do */
+  int h;
+  double vn = NAN;
+  switch (f->q->det) {
+  case LV_LANGEVIN: {
+    sb_langevin_contact c;
+    h = sb_engine_langevin_contact(e, p, r, s, &c);
+    if (h == 1) {
+      vn = 0.0;
+      for (int k = 0; k < 3; k++)
+        vn += (c.ui[k] - c.uj[k]) * (c.xi[k] - c.xj[k]) / p->sigma;
+    }
+    break;
+  }
+  case LV_CHORD:
+    h = sb_engine_detect_ballistic(p, s);
+    if (h == 1)
+      vn = chord_vn(e, p, *s);
+    break;
+  case LV_OVERLAP:
+    h = sb_engine_detect_overlap(p, s);
+    break;
+  default:
+    h = sb_engine_detect_bridge(e, p, r, f->b, s);
+  }
+  if (h <= 0)
+    return h;
+  if (fh_set_insert(&f->s, key) < 0)
+    return -1;
+  if (p->t0 + *s * p->dt >= f->q->t1) {
+    lv_out *o = f->o;
+    o->hits[pair_type(e, p->i, p->j)]++;
+    if (!isnan(vn) && o->nvn < f->q->vcap)
+      o->vn[o->nvn++] = vn;
+  }
+  return 0;
+}
+
+/* Independent uniform positions (overlaps allowed), Maxwellian velocities;
+ * pairs overlapping at the start are entered in the set first. */
+static int place(const sbv_ctx *ctx, unsigned long stream, sb_engine *e,
+                 const lv_run *q, lvctx *f)
+{
+  gsl_rng *r = sbv_rng_alloc(ctx, 100000 + stream);
+  if (!r)
+    return SB_ENOMEM;
+  int st = SB_SUCCESS;
+  for (int a = 0; a < q->nsp && !st; a++) {
+    const double vsd = sqrt(SB_BOLTZMANN * q->temp / q->mass[a]);
+    for (size_t i = 0; i < q->N[a] && !st; i++) {
+      double x[3], u[3];
+      for (int k = 0; k < 3; k++) {
+        x[k] = q->L * gsl_rng_uniform(r);
+        u[k] = gsl_ran_gaussian_ziggurat(r, vsd);
+      }
+      st = sb_engine_add_particle(e, (size_t)a, 0, x, u);
+    }
+  }
+  gsl_rng_free(r);
+  if (st)
+    return st;
+  const size_t n = sb_engine_count(e);
+  const double *x = sb_engine_positions(e), *rad = sb_engine_radii(e);
+  const uint64_t *id = sb_engine_ids(e);
+  double nov[3] = {0, 0, 0};
+  for (size_t i = 0; i < n; i++)
+    for (size_t j = i + 1; j < n; j++) {
+      double d2 = 0.0;
+      for (int k = 0; k < 3; k++) {
+        double dx = x[3 * i + k] - x[3 * j + k];
+        dx -= q->L * floor(dx / q->L + 0.5);
+        d2 += dx * dx;
+      }
+      double sg = rad[i] + rad[j];
+      if (d2 <= sg * sg) {
+        if (fh_set_insert(&f->s, fh_pair_key(id[i], id[j])) < 0)
+          return SB_ENOMEM;
+        nov[pair_type(e, i, j)] += 1.0;
+      }
+    }
+  const double N0 = (double)q->N[0], N1 = q->nsp > 1 ? (double)q->N[1] : 0.0;
+  const double tot[3] = {0.5 * N0 * (N0 - 1.0), N0 * N1, 0.5 * N1 * (N1 - 1.0)};
+  const double V = q->L * q->L * q->L;
+  for (int t = 0; t < 3; t++) {
+    int a = t == 2 ? 1 : 0, b = t == 0 ? 0 : 1;
+    if (b >= q->nsp)
+      a = b = 0;
+    double R = 0.5 * (q->d[a] + q->d[b]);
+    f->o->npairs[t] = tot[t] - nov[t];
+    f->o->veff[t] = V - 4.0 * PI * R * R * R / 3.0;
+    f->o->D[t] = SB_BOLTZMANN * q->temp *
+                 (q->tau[a] / q->mass[a] + q->tau[b] / q->mass[b]);
+  }
+  return SB_SUCCESS;
+}
+
+int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
+                lv_out *o)
+{
+  memset(o, 0, sizeof *o);
+  sb_engine_params p;
+  size_t ntot = q->N[0] + (q->nsp > 1 ? q->N[1] : 0);
+  if (fh_cube_params(ctx, stream, q->L, q->dt, ntot, &p))
+    return SB_ENOMEM;
+  p.outcome = SB_OUTCOME_COUNT;
+  sb_engine *e = sb_engine_alloc(&p);
+  lvctx f = {q, NULL, {NULL, 0, 0}, o};
+  if (q->vcap)
+    o->vn = malloc(q->vcap * sizeof *o->vn);
+  int st = (!e || (q->vcap && !o->vn)) ? SB_ENOMEM : SB_SUCCESS;
+  for (int a = 0; a < q->nsp && !st; a++) {
+    double B = sqrt(2.0 * SB_BOLTZMANN * q->temp / (q->mass[a] * q->tau[a]));
+    sb_engine_species s = {0.5 * q->d[a], q->mass[a], q->tau[a], B, q->temp};
+    st = sb_engine_add_species(e, &s, NULL);
+  }
+  if (!st)
+    st = place(ctx, stream, e, q, &f);
+  double reach = 0.0;
+  if (!st && (q->det == LV_BESSEL || q->det == LV_EXACT)) {
+    sb_engine_bridge_params bp;
+    sb_engine_bridge_params_default(&bp);
+    bp.mode = q->det == LV_EXACT ? SB_BRIDGE_EXACT : SB_BRIDGE_BESSEL;
+    bp.outcome = SB_BRIDGE_OUT_COUNT;
+    f.b = sb_engine_bridge_alloc(&bp);
+    st = !f.b ? SB_ENOMEM : sb_engine_bridge_attach(e, f.b);
+    if (!st)
+      reach = sb_engine_bridge_reach(e, f.b);
+  } else if (!st && q->det == LV_LANGEVIN)
+    reach = sb_engine_langevin_reach(e);
+  if (!st && !(reach >= 0.0))
+    st = SB_EINVAL;
+  if (!st)
+    st = sb_engine_set_detector(e, lv_detect, &f, reach);
+  clock_t c0 = clock();
+  if (!st)
+    st = sb_engine_run_until(e, q->T);
+  o->cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
+  if (!st) {
+    sb_engine_stats es;
+    sb_engine_get_stats(e, &es);
+    o->T = es.t;
+    o->steps = (double)es.steps;
+    o->ncand = (double)es.ncand;
+    sb_langevin_hit_stats hs;
+    if (q->det == LV_LANGEVIN && !sb_engine_langevin_stats(e, &hs))
+      o->pruned_mass = hs.pruned_mass;
+  }
+  sb_engine_bridge_free(f.b);
+  free(f.s.set);
+  sb_engine_free(e);
+  if (st) {
+    free(o->vn);
+    o->vn = NULL;
+  }
+  return st;
+}
+
+double lv_expected(const lv_run *q, const lv_out *o, int type, double K)
+{
+  const double D = o->D[type];
+  const double c = o->npairs[type] / o->veff[type];
+  return c * (K * (o->T - q->t1) +
+              K * K * 2.0 * (sqrt(o->T) - sqrt(q->t1)) /
+                  (4.0 * PI * D * sqrt(PI * D)));
+}
+
+/* Inverse of lv_expected in K for a count h (the positive root). */
+static double kernel_of(const lv_run *q, const lv_out *o, int type, double h)
+{
+  const double D = o->D[type];
+  const double c = o->npairs[type] / o->veff[type];
+  const double c1 = c * (o->T - q->t1);
+  const double c2 = c * 2.0 * (sqrt(o->T) - sqrt(q->t1)) /
+                    (4.0 * PI * D * sqrt(PI * D));
+  if (!(c2 > 0.0))
+    return h / c1;
+  /* (-c1 + sqrt(c1^2 + 4 c2 h)) / (2 c2), written without cancellation */
+  return 2.0 * h / (c1 + sqrt(c1 * c1 + 4.0 * c2 * h));
+}
+
+int lv_kernel(const lv_run *q, const lv_out *o, int type, double *K,
+              double *lo, double *hi)
+{
+  if (type < 0 || type > 2 || !(o->npairs[type] > 0.0))
+    return SB_EDOM;
+  double l, u;
+  int st = sb_poisson_ci(o->hits[type], 0.95, &l, &u);
+  if (st)
+    return st;
+  *K = kernel_of(q, o, type, (double)o->hits[type]);
+  if (lo)
+    *lo = kernel_of(q, o, type, l);
+  if (hi)
+    *hi = kernel_of(q, o, type, u);
+  return SB_SUCCESS;
+}
