@@ -135,5 +135,7 @@ extern const sbv_case sbv_cases_engine2[];
 extern const size_t sbv_ncases_engine2;
 extern const sbv_case sbv_cases_agglo[];
 extern const size_t sbv_ncases_agglo;
+extern const sbv_case sbv_cases_v12[];
+extern const size_t sbv_ncases_v12;
 
 #endif /* SB_VALIDATE_CASES_H */

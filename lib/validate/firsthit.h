@@ -181,4 +181,20 @@ int lv_kernel(const lv_run *q, const lv_out *o, int type, double *K,
  * forward map: hits = lv_expected(K)). */
 double lv_expected(const lv_run *q, const lv_out *o, int type, double K);
 
+/* Row: the kernels of pair type `type` of two runs (1: tested, 2:
+ * reference) are equal.  Conditional test: given n = h1 + h2, h1 is
+ * binomial with p = f1(K)/(f1(K) + f2(K)) under H0 (f the runs' forward
+ * maps lv_expected), the common K taken at its estimate from n
+ * (f1 + f2 = n; a plug-in for the small transient term, so the test is
+ * approximately exact); exact binomial p-value and Clopper-Pearson
+ * interval at 1 - SBV_ALPHA, mapped to the ratio K1/K2 through the
+ * runs' secant exposures f(K)/K.  Rule cover, reference 1. */
+int lv_add_compare(sbv_report *rep, const char *name, const lv_run *q1,
+                   const lv_out *o1, const lv_run *q2, const lv_out *o2,
+                   int type);
+/* Row: two samples have the same law (two-sample KS, acceptance region
+ * [0, D_crit] at SBV_ALPHA).  Sorts both arrays. */
+int lv_add_ks2(sbv_report *rep, const char *name, double *x, size_t nx,
+               double *y, size_t ny);
+
 #endif /* SB_VALIDATE_FIRSTHIT_H */

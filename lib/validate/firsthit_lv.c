@@ -6,8 +6,10 @@
 #include <string.h>
 #include <time.h>
 
+#include <gsl/gsl_errno.h>
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
+#include <gsl/gsl_roots.h>
 
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
@@ -217,23 +219,28 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
   return st;
 }
 
-double lv_expected(const lv_run *q, const lv_out *o, int type, double K)
+/* The forward map is f(K) = c1 K + c2 K^2 (firsthit.h). */
+static void coefs(const lv_run *q, const lv_out *o, int type, double *c1,
+                  double *c2)
 {
   const double D = o->D[type];
   const double c = o->npairs[type] / o->veff[type];
-  return c * (K * (o->T - q->t1) +
-              K * K * 2.0 * (sqrt(o->T) - sqrt(q->t1)) /
-                  (4.0 * PI * D * sqrt(PI * D)));
+  *c1 = c * (o->T - q->t1);
+  *c2 = c * 2.0 * (sqrt(o->T) - sqrt(q->t1)) / (4.0 * PI * D * sqrt(PI * D));
+}
+
+double lv_expected(const lv_run *q, const lv_out *o, int type, double K)
+{
+  double c1, c2;
+  coefs(q, o, type, &c1, &c2);
+  return c1 * K + c2 * K * K;
 }
 
 /* Inverse of lv_expected in K for a count h (the positive root). */
 static double kernel_of(const lv_run *q, const lv_out *o, int type, double h)
 {
-  const double D = o->D[type];
-  const double c = o->npairs[type] / o->veff[type];
-  const double c1 = c * (o->T - q->t1);
-  const double c2 = c * 2.0 * (sqrt(o->T) - sqrt(q->t1)) /
-                    (4.0 * PI * D * sqrt(PI * D));
+  double c1, c2;
+  coefs(q, o, type, &c1, &c2);
   if (!(c2 > 0.0))
     return h / c1;
   /* (-c1 + sqrt(c1^2 + 4 c2 h)) / (2 c2), written without cancellation */
@@ -255,4 +262,79 @@ int lv_kernel(const lv_run *q, const lv_out *o, int type, double *K,
   if (hi)
     *hi = kernel_of(q, o, type, u);
   return SB_SUCCESS;
+}
+
+int lv_add_compare(sbv_report *rep, const char *name, const lv_run *q1,
+                   const lv_out *o1, const lv_run *q2, const lv_out *o2,
+                   int type)
+{
+  const unsigned long h1 = o1->hits[type], h2 = o2->hits[type];
+  const unsigned long n = h1 + h2;
+  double a1, b1, a2, b2;
+  coefs(q1, o1, type, &a1, &b1);
+  coefs(q2, o2, type, &a2, &b2);
+  sb_comparison c;
+  if (n == 0 || !(a1 > 0.0) || !(a2 > 0.0)) {
+    sb_compare(&c, name, SB_RULE_COVER, NAN, 1.0, NAN, NAN,
+               1.0 - SBV_ALPHA, NAN);
+    return sbv_add(rep, &c);
+  }
+  /* common K: (a1 + a2) K + (b1 + b2) K^2 = n */
+  const double A = a1 + a2, B = b1 + b2;
+  const double K = 2.0 * (double)n / (A + sqrt(A * A + 4.0 * B * n));
+  const double e1 = a1 + b1 * K, e2 = a2 + b2 * K;  /* f(K)/K */
+  const double pi = e1 / (e1 + e2);
+  double p = sb_binomial_pvalue(h1, n, pi), lo, hi;
+  sb_binomial_ci(h1, n, 1.0 - SBV_ALPHA, &lo, &hi);
+  /* E[h1]/E[h2] = (K1 e1)/(K2 e2): ratio = p/(1 - p) e2/e1 */
+  const double w = e2 / e1;
+  double est = h2 ? (double)h1 / (double)h2 * w : INFINITY;
+  double rlo = lo / (1.0 - lo) * w;
+  double rhi = hi < 1.0 ? hi / (1.0 - hi) * w : INFINITY;
+  sb_compare(&c, name, SB_RULE_COVER, est, 1.0, rlo, rhi, 1.0 - SBV_ALPHA,
+             p);
+  return sbv_add(rep, &c);
+}
+
+typedef struct {
+  size_t nx, ny;
+  double la;
+} ks2par;
+
+static double ks2_f(double d, void *vp)
+{
+  const ks2par *k = vp;
+  double p = sb_ks2_pvalue(k->nx, k->ny, d);
+  return log(p > 1e-300 ? p : 1e-300) - k->la;
+}
+
+int lv_add_ks2(sbv_report *rep, const char *name, double *x, size_t nx,
+               double *y, size_t ny)
+{
+  double d = NAN, p = NAN, crit = NAN;
+  if (nx && ny && sb_ks2_test(x, nx, y, ny, &d, &p) == SB_SUCCESS) {
+    ks2par k = {nx, ny, log(SBV_ALPHA)};
+    gsl_function F = {ks2_f, &k};
+    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    double lo = 1e-6, hi = 1.0 - 1e-9;
+    if (s && ks2_f(lo, &k) > 0.0 && ks2_f(hi, &k) < 0.0 &&
+        gsl_root_fsolver_set(s, &F, lo, hi) == GSL_SUCCESS)
+      for (int i = 0; i < 200; i++) {
+        if (gsl_root_fsolver_iterate(s) != GSL_SUCCESS)
+          break;
+        crit = gsl_root_fsolver_root(s);
+        if (gsl_root_test_interval(gsl_root_fsolver_x_lower(s),
+                                   gsl_root_fsolver_x_upper(s), 0,
+                                   1e-10) == GSL_SUCCESS)
+          break;
+      }
+    if (s)
+      gsl_root_fsolver_free(s);
+  }
+  /* reference: mean of D under H0 ~ 0.8687 / sqrt(n_e) */
+  double ne = nx && ny ? (double)nx * ny / (double)(nx + ny) : NAN;
+  sb_comparison c;
+  sb_compare(&c, name, SB_RULE_ACCEPT, d, 0.868731160636 / sqrt(ne), 0.0,
+             crit, 1.0 - SBV_ALPHA, p);
+  return sbv_add(rep, &c);
 }

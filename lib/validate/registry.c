@@ -22,6 +22,7 @@ static const struct {
     {sbv_cases_v2, &sbv_ncases_v2},
     {sbv_cases_engine2, &sbv_ncases_engine2},
     {sbv_cases_agglo, &sbv_ncases_agglo},
+    {sbv_cases_v12, &sbv_ncases_v12},
 };
 enum { NTABLES = sizeof tables / sizeof tables[0] };
 
