@@ -132,7 +132,7 @@ typedef struct {
 /* Moments of the relative motion at the quadrature nodes of [a, a + h]
  * (levels Li, Lj). */
 typedef struct {
-  double mu[SBI_LH_NQ][3];
+  double mu[SBI_LH_NQ][3], mv[SBI_LH_NQ][3];
   double s2[SBI_LH_NQ], su2[SBI_LH_NQ], c[SBI_LH_NQ];
   double s2max, devmax;
 } nodes;
@@ -171,6 +171,10 @@ static void eval_nodes(const walk *W, const sbi_lh_level *Li,
                  ((cj->ax - xi[q]) * dX[1][k] + cj->bx * A->u[1][k] +
                   cj->cx * Bs->u[1][k] + cj->wx * W->wv[1][k]);
       N->mu[q][k] = ra[k] + xi[q] * dr[k] + d;
+      N->mv[q][k] = ci->au * dX[0][k] + ci->bu * A->u[0][k] +
+                    ci->cu * Bs->u[0][k] + ci->wu * W->wv[0][k] -
+                    (cj->au * dX[1][k] + cj->bu * A->u[1][k] +
+                     cj->cu * Bs->u[1][k] + cj->wu * W->wv[1][k]);
       dev2 += d * d;
     }
     N->s2[q] = ci->vx + cj->vx;
@@ -195,26 +199,10 @@ static void rel(const pstate *S, double r[3])
     r[k] = S->x[0][k] - S->x[1][k];
 }
 
-/* Mean relative velocity at node q (only where the Rice integrand is
- * evaluated). */
-static void node_velocity(const walk *W, const sbi_lh_level *Li,
-                          const sbi_lh_level *Lj, const pstate *A,
-                          const pstate *Bs, int q, double mv[3])
-{
-  mv[0] = mv[1] = mv[2] = 0.0;
-  for (int k = 0; k < W->dim; k++) {
-    double xi_, ui_, xj_, uj_;
-    one_mean(&Li->q[q], A, Bs, 0, k, W->wv[0][k], &xi_, &ui_);
-    one_mean(&Lj->q[q], A, Bs, 1, k, W->wv[1][k], &xj_, &uj_);
-    mv[k] = ui_ - uj_;
-  }
-}
-
 /* The pruning bound on [a, a + h] (file comment); 1 when it does not
  * apply. */
-static double rice_bound(const walk *W, const sbi_lh_level *Li,
-                         const sbi_lh_level *Lj, const nodes *N,
-                         const pstate *A, const pstate *Bs, double h)
+static double rice_bound(const walk *W, const nodes *N, const pstate *A,
+                         const pstate *Bs, double h)
 {
   double ra[3], rb[3];
   rel(A, ra);
@@ -263,9 +251,7 @@ static double rice_bound(const walk *W, const sbi_lh_level *Li,
     if (!(x[q] < XFAR))
       continue;
     const double s2 = N->s2[q], s = sqrt(s2);
-    double mv[3];
-    node_velocity(W, Li, Lj, A, Bs, q, mv);
-    const double qv = dot3(n, mv);
+    const double qv = dot3(n, N->mv[q]);
     const double m = qv - N->c[q] * p[q] / s2;
     const double v = N->su2[q] - N->c[q] * N->c[q] / s2;
     double g;
@@ -331,21 +317,27 @@ static int leaf(walk *W, const pstate *A, const pstate *Bs, double a,
   return 1;
 }
 
-/* Cheap test that the Rice bound of [a, a + h] is negligible: the mean
- * path stays within dev of the chord, dev bounded through the level's
- * coefficient bounds (times 1.25 for the stretches between the nodes);
- * projected on the normal of the chord's closest approach, every node
- * is then farther than XFAR conditional standard deviations from the
- * plane, so rice_bound would return 0. */
-static int far_away(const walk *W, const sbi_lh_level *Li,
-                    const sbi_lh_level *Lj, const pstate *A,
-                    const pstate *Bs, const double *ra, const double *rb)
+/* Closed-form bound on the Rice integral of [a, a + h], from the chord
+ * and the level's coefficient maxima, without evaluating the nodes.
+ * With n the normal of the chord's closest approach (gap g beyond R),
+ * the mean path stays within dev of the chord, so p(t) has mean
+ * mu >= G = g - 1.25 dev (1.25: margin for the stretches between the
+ * nodes).  With s, s' the standard deviations of p and p', |c| <= s s',
+ * E[(p')^- | p = 0] <= s'/sqrt(2 pi) + |mu'| + s' x (x = mu/s), so the
+ * integrand is at most phi(x)/s (s'/sqrt(2 pi) + |mu'|) + s' x phi(x)/s.
+ * Both terms grow with s while s <= G/sqrt(2) (x phi(x) and phi(x)
+ * decrease in x >= G/s > 1): evaluate them at s_max, s'_max and the bound
+ * on |mu'|.  Returns the bound, or 1 if it does not apply (x0 < 1.5). */
+static double quick_bound(const walk *W, const sbi_lh_level *Li,
+                          const sbi_lh_level *Lj, const pstate *A,
+                          const pstate *Bs, const double *ra,
+                          const double *rb, double h)
 {
   double gap;
   if (chord_entry(ra, rb, W->R, &gap) >= 0.0)
-    return 0;
+    return 1.0;
   const sbi_lh_level *L[2] = {Li, Lj};
-  double dev = 0.0;
+  double dev = 0.0, vel = 0.0;
   for (int p = 0; p < 2; p++) {
     double dx = 0.0, ua = 0.0, ub = 0.0, ww = 0.0;
     for (int k = 0; k < W->dim; k++) {
@@ -355,11 +347,23 @@ static int far_away(const walk *W, const sbi_lh_level *Li,
       ub += Bs->u[p][k] * Bs->u[p][k];
       ww += W->wv[p][k] * W->wv[p][k];
     }
-    dev += L[p]->ka * sqrt(dx) + L[p]->kb * sqrt(ua) + L[p]->kc * sqrt(ub) +
-           L[p]->kw * sqrt(ww);
+    dx = sqrt(dx), ua = sqrt(ua), ub = sqrt(ub), ww = sqrt(ww);
+    dev += L[p]->ka * dx + L[p]->kb * ua + L[p]->kc * ub + L[p]->kw * ww;
+    vel += L[p]->kau * dx + L[p]->kbu * ua + L[p]->kcu * ub + L[p]->kwu * ww;
   }
-  double smax = sqrt(Li->vxmax + Lj->vxmax);
-  return smax > 0.0 && gap - 1.25 * dev > XFAR * smax;
+  const double smax = sqrt(Li->vxmax + Lj->vxmax);
+  const double spmax = sqrt(Li->vumax + Lj->vumax);
+  const double G = gap - 1.25 * dev;
+  if (!(smax > 0.0) || !(G > 1.5 * smax))
+    return 1.0;
+  const double x0 = G / smax;
+  if (x0 > 38.0)
+    return 0.0;
+  const double ph = INV_SQRT_2PI * exp(-0.5 * x0 * x0);
+  const double f = ph / smax * (spmax * INV_SQRT_2PI + 1.25 * vel) +
+                   spmax * x0 * ph / smax;
+  double b = SAFETY * h * f;
+  return b < 1.0 ? b : 1.0;
 }
 
 /* Examine [a, a + h] at depth d, with end states A and Bs; 1 if the first
@@ -399,9 +403,15 @@ static int examine(walk *W, const pstate *A, const pstate *Bs, double a,
   rel(A, ra);
   rel(Bs, rb);
   const int sure = dot3(rb, rb) <= W->R * W->R;
-  if (!sure && far_away(W, Li, Lj, A, Bs, ra, rb)) {
-    w->st.pruned++;
-    return 0;
+  if (!sure) {
+    double b = quick_bound(W, Li, Lj, A, Bs, ra, rb, h);
+    if (b < W->eps * h / W->htop) {
+      w->st.pruned++;
+      w->st.pruned_mass += b;
+      if (w->par.audit && !W->auditing)
+        return audit(W, A, Bs, a, d);
+      return 0;
+    }
   }
   nodes N;
   eval_nodes(W, Li, Lj, A, Bs, &N);
@@ -409,7 +419,7 @@ static int examine(walk *W, const pstate *A, const pstate *Bs, double a,
   if (!sure) {
     double share = W->eps * h / W->htop;
     if (N.s2max > 0.0) {
-      double b = rice_bound(W, Li, Lj, &N, A, Bs, h);
+      double b = rice_bound(W, &N, A, Bs, h);
       if (b < share) {
         w->st.pruned++;
         w->st.pruned_mass += b;
@@ -660,5 +670,5 @@ double sb_langevin_hitter_bound(sb_langevin_hitter *w,
   eval_nodes(&W, Li, Lj, &A, &Bs, &N);
   if (!(N.s2max > 0.0))
     return NAN;
-  return rice_bound(&W, Li, Lj, &N, &A, &Bs, dt);
+  return rice_bound(&W, &N, &A, &Bs, dt);
 }

@@ -35,8 +35,10 @@ typedef struct {
   sbi_lh_coef mid;           /* at the midpoint */
   double l11, l21, l22;      /* Cholesky factor of the midpoint covariance */
   /* bounds over the nodes: |E[x] - chord| <= ka |x_b - x_a| + kb |u_a| +
-   * kc |u_b| + kw |w| per component, and the largest variance */
+   * kc |u_b| + kw |w| per component, |E[u]| <= the same with the u
+   * coefficients (kau ...), and the largest variances */
   double ka, kb, kc, kw, vxmax;
+  double kau, kbu, kcu, kwu, vumax;
 } sbi_lh_level;
 
 typedef struct {

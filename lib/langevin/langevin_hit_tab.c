@@ -134,6 +134,7 @@ const sbi_lh_level *sbi_lh_level_get(sb_langevin_hitter *w, sbi_lh_slot *s,
   if (sbi_lh_coef_at(s->tau, s->B, h, 0.5 * h, &L->mid))
     return NULL;
   L->ka = L->kb = L->kc = L->kw = L->vxmax = 0.0;
+  L->kau = L->kbu = L->kcu = L->kwu = L->vumax = 0.0;
   for (int k = 0; k < SBI_LH_NQ; k++) {
     const sbi_lh_coef *q = &L->q[k];
     L->ka = fmax(L->ka, fabs(q->ax - w->xi[k]));
@@ -141,7 +142,14 @@ const sbi_lh_level *sbi_lh_level_get(sb_langevin_hitter *w, sbi_lh_slot *s,
     L->kc = fmax(L->kc, fabs(q->cx));
     L->kw = fmax(L->kw, fabs(q->wx));
     L->vxmax = fmax(L->vxmax, q->vx);
+    L->kau = fmax(L->kau, fabs(q->au));
+    L->kbu = fmax(L->kbu, fabs(q->bu));
+    L->kcu = fmax(L->kcu, fabs(q->cu));
+    L->kwu = fmax(L->kwu, fabs(q->wu));
+    L->vumax = fmax(L->vumax, q->vu);
   }
+  /* the largest values also bound the stretches between the nodes, up to
+   * the margins the caller applies */
   /* Cholesky of [[vx, cxu], [cxu, vu]]; the Schur complement vu - cxu^2/vx
    * is the variance of U given X (positive, no cancellation beyond a
    * factor ~4 for any h/tau) */

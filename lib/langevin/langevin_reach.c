@@ -93,10 +93,14 @@ static double upcross(const zstats *Z, double y)
   return Z->T * u;
 }
 
-/* P(sup |Z| >= y): a component exceeds y/sqrt(dim) in absolute value. */
+/* P(a contact of a pair whose chord passes at distance R + y): with n
+ * the unit normal of the chord's closest approach, every chord point has
+ * n.chord >= R + y, so a contact needs n.Z(t) <= -y, a one-component
+ * excursion (Z isotropic; n is a function of the chord, independent of
+ * Z for Brownian motion, whose bridge is independent of its ends). */
 static double psup(const zstats *Z, double y)
 {
-  double p = 2.0 * Z->dim * upcross(Z, y / sqrt((double)Z->dim));
+  double p = upcross(Z, y);
   return p < 1.0 ? p : 1.0;
 }
 

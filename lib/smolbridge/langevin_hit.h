@@ -156,18 +156,21 @@ void sb_langevin_hitter_reset(sb_langevin_hitter *w);
  *  n (> 0) in dimension dim with species (tau_i, B_i) and (tau_j, B_j) at
  *  equilibrium (tau may be INFINITY: no deviation from the chord).
  *
- *  A contact of such a pair needs the deviation Z(t) = r(t) - r(0) -
- *  (t/dt)(r(dt) - r(0)) of the relative path from its chord to exceed rho
- *  in norm.  Z is a stationary-start Gaussian process vanishing at both
- *  ends (closed-form covariance from the velocity autocorrelation); the
- *  probability that one component exceeds y is at most its expected
- *  number of up-crossings (Rice), computed by quadrature.  The pairs
+ *  Let Z(t) = r(t) - r(0) - (t/dt)(r(dt) - r(0)) be the deviation of the
+ *  relative path from its chord, and n the unit normal of the chord's
+ *  closest approach c to the origin: every chord point has n.chord >= |c|,
+ *  so a contact needs n.Z(t) <= R - |c|, an excursion of one component.
+ *  Z is a stationary-start Gaussian process vanishing at both ends
+ *  (closed-form covariance from the velocity autocorrelation), isotropic;
+ *  the probability that one component exceeds y is at most its expected
+ *  number of up-crossings U(y) (Rice), computed by quadrature.  The pairs
  *  whose chord passes at distance in [d, d + dd] number n (4 pi d^2 +
- *  2 pi d L) dd in 3-D (2 pi d + 2 L in 2-D), L the chord length (rms,
- *  taken as independent of Z: exact for Brownian motion, whose bridge is
- *  independent of its end point), so
+ *  2 pi d L) dd in 3-D (2 pi d + 2 L in 2-D), L the chord length (rms).
+ *  Z is taken as independent of the chord (exact for Brownian motion,
+ *  whose bridge is independent of its end point; an approximation at
+ *  dt <~ tau), so
  *     E(rho) = n int_{R + rho}^inf (4 pi d^2 + 2 pi d L) P(d - R) dd,
- *     P(y) = min(1, 2 dim U(y / sqrt(dim))).
+ *     P(y) = min(1, U(y)).
  *  Accuracy ~1e-6 relative (quadrature).  NaN on bad input. */
 double sb_langevin_miss_bound(int dim, double n, double R, double tau_i,
                               double B_i, double tau_j, double B_j,
