@@ -12,6 +12,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+
 #include <smolbridge/engine.h>
 #include <smolbridge/kernel.h>
 #include <smolbridge/langevin.h>
@@ -368,6 +371,53 @@ START_TEST(test_dense_runs)
 }
 END_TEST
 
+/* Units: the same run (seed, configuration) in unit-free and in SI-like
+ * units (lengths x 1e-7 m, times x 1e-6 s) gives the same contacts: the
+ * engine, the reach and the sampler are scale invariant.  300 particles,
+ * dt = 30 tau_p, pass-through, 20 steps. */
+static int count_contacts(double X, double T)
+{
+  const double tau = 0.5 / sqrt(2.0) * T, v = X / T;
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 120.0 * X;
+  p.dt = 30.0 * tau;
+  p.capacity = 300;
+  p.seed = 21;
+  p.outcome = SB_OUTCOME_COUNT;
+  p.detect = SB_DETECT_LANGEVIN;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  sb_engine_species s = {0.5 * X, 1.0, tau, sqrt(2.0 * v * v / tau),
+                         v * v / SB_BOLTZMANN};
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  gsl_rng_set(r, 5);
+  for (int i = 0; i < 300; i++) {
+    double x[3], u[3];
+    for (int k = 0; k < 3; k++) {
+      x[k] = p.L[0] * gsl_rng_uniform(r);
+      u[k] = v * gsl_ran_gaussian_ziggurat(r, 1.0);
+    }
+    ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, x, u), SB_SUCCESS);
+  }
+  gsl_rng_free(r);
+  for (int k = 0; k < 20; k++)
+    ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  sb_engine_stats st;
+  sb_engine_get_stats(e, &st);
+  sb_engine_free(e);
+  return (int)st.ncoll;
+}
+
+START_TEST(test_units)
+{
+  int a = count_contacts(1.0, 1.0), b = count_contacts(1e-7, 1e-6);
+  ck_assert_int_gt(a, 20);
+  ck_assert_int_eq(a, b);
+}
+END_TEST
+
 /* The long-time kernel by first-hit counting (lib/validate/firsthit_lv.c)
  * at Kn_D = 0.5, dt = tau_p: ~1500 contacts, against the GH fit within
  * 10% (3.5 standard errors of the count plus the fit's few %). */
@@ -419,6 +469,7 @@ static Suite *suite(void)
   tcase_add_test(tm, test_reach_complete);
   tcase_add_test(tm, test_dense_runs);
   tcase_add_test(tm, test_kernel_gh);
+  tcase_add_test(tm, test_units);
   suite_add_tcase(s, tm);
   return s;
 }

@@ -537,9 +537,8 @@ START_TEST(test_args)
 END_TEST
 
 /* The reach: the miss bound decreases in rho, the reach meets the
- * tolerance, free flight needs none, and the reach of a pair with
- * relaxation times tau_j -> 0 at fixed D... (Brownian limit) approaches
- * the scale sqrt(2 D dt) of the relative displacement. */
+ * tolerance, free flight needs none, it stays within a few standard
+ * deviations of the relative displacement, and it scales with the units. */
 START_TEST(test_reach)
 {
   const double n = 1.0, R = 1.0, tau = 1.0, B = sqrt(2.0);
@@ -562,6 +561,18 @@ START_TEST(test_reach)
     }
   ck_assert(sb_langevin_reach(3, n, R, INFINITY, 0, INFINITY, 0, 1.0,
                               1e-9) == 0.0);
+  /* units: lengths X, times T scale the reach by X (SI nanoparticles:
+   * X = 1e-7 m, T = 1e-6 s; a quadrature in metres once returned 0) */
+  const double X[3] = {1e-7, 1e3, 1e-7}, T[3] = {1e-6, 1e2, 1.0};
+  for (int k = 0; k < 3; k++)
+    for (double dt = 0.01; dt <= 1000.0; dt *= 100.0) {
+      double r1 = sb_langevin_reach(3, n, R, tau, B, tau, B, dt, 1e-9);
+      double Bs = B * X[k] / pow(T[k], 1.5);
+      double r2 = sb_langevin_reach(3, n / (X[k] * X[k] * X[k]), R * X[k],
+                                    tau * T[k], Bs, tau * T[k], Bs,
+                                    dt * T[k], 1e-9);
+      ck_assert_rel(r2, X[k] * r1, 1e-5);
+    }
   ck_assert(isnan(sb_langevin_reach(3, -1.0, R, tau, B, tau, B, 1.0, 1e-9)));
 }
 END_TEST

@@ -35,6 +35,7 @@
 typedef struct {
   int dim;
   double n, R, T, L;
+  double sc;                    /* length unit of the integral: max sd */
   double w[NZ];                 /* weights on [0, 1] */
   double s2[NZ], sp2[NZ], c[NZ];  /* pair moments of Z, Z' at the nodes */
   double ltol;
@@ -104,10 +105,14 @@ static double psup(const zstats *Z, double y)
   return p < 1.0 ? p : 1.0;
 }
 
-static double miss_integrand(double y, void *vp)
+/* Integrand in the scaled variable z = y / sc (sc the largest standard
+ * deviation of Z): the integrand then varies on a scale of order one,
+ * whatever the units (in metres it would live within ~1e-7 of the lower
+ * limit, where the adaptive routine cannot find it). */
+static double miss_integrand(double z, void *vp)
 {
   const zstats *Z = vp;
-  const double d = Z->R + y;
+  const double y = z * Z->sc, d = Z->R + y;
   double shell = Z->dim == 3 ? 4.0 * PI * d * d + 2.0 * PI * d * Z->L
                              : 2.0 * PI * d + 2.0 * Z->L;
   return shell * psup(Z, y);
@@ -115,18 +120,21 @@ static double miss_integrand(double y, void *vp)
 
 static double miss(const zstats *Z, double rho)
 {
+  if (!(Z->sc > 0.0))
+    return 0.0;  /* no deviation from the chords: nothing is missed */
   gsl_integration_workspace *ws = gsl_integration_workspace_alloc(200);
   if (!ws)
     return NAN;
   gsl_function F = {miss_integrand, (void *)Z};
   double res = NAN, err;
   gsl_error_handler_t *old = gsl_set_error_handler_off();
-  int st = gsl_integration_qagiu(&F, rho, 0.0, 1e-7, 200, ws, &res, &err);
+  int st = gsl_integration_qagiu(&F, rho / Z->sc, 0.0, 1e-7, 200, ws, &res,
+                                 &err);
   gsl_set_error_handler(old);
   gsl_integration_workspace_free(ws);
   if (st && st != GSL_EROUND)
     return NAN;
-  return Z->n * res;
+  return Z->n * Z->sc * res;
 }
 
 static int zinit(zstats *Z, int dim, double n, double R, double tau_i,
@@ -153,6 +161,10 @@ static int zinit(zstats *Z, int dim, double n, double R, double tau_i,
   double vD = add_particle(Z, xi, tau_i, B_i) + add_particle(Z, xi, tau_j,
                                                              B_j);
   Z->L = sqrt(dim * vD);
+  double s2 = 0.0;
+  for (int q = 0; q < NZ; q++)
+    s2 = Z->s2[q] > s2 ? Z->s2[q] : s2;
+  Z->sc = sqrt(s2);
   return SB_SUCCESS;
 }
 
@@ -167,13 +179,20 @@ double sb_langevin_miss_bound(int dim, double n, double R, double tau_i,
               "%g, dt %g, rho %g)", dim, n, R, dt, rho);
     return NAN;
   }
-  return miss(&Z, rho);
+  double m = miss(&Z, rho);
+  if (isnan(m))
+    sbi_error(SB_EMAXITER, __func__, "quadrature failed (rho = %g)", rho);
+  return m;
 }
 
+/* log(miss) - log(tol); NaN propagates (a failed quadrature is an
+ * error, never "nothing missed"). */
 static double reach_fn(double rho, void *vp)
 {
   const zstats *Z = vp;
   double m = miss(Z, rho);
+  if (isnan(m))
+    return NAN;
   return (m > 0.0 ? log(m) : -745.0) - Z->ltol;
 }
 
@@ -196,12 +215,17 @@ double sb_langevin_reach(int dim, double n, double R, double tau_i,
   if (!(smax > 0.0))
     return 0.0;  /* no deviation from the chords */
   smax = sqrt(smax);
-  if (!(reach_fn(0.0, &Z) > 0.0))
+  double f0 = reach_fn(0.0, &Z);
+  if (isnan(f0)) {
+    sbi_error(SB_EMAXITER, __func__, "miss-bound quadrature failed");
+    return NAN;
+  }
+  if (!(f0 > 0.0))
     return 0.0;
-  double hi = smax;
-  while (reach_fn(hi, &Z) > 0.0) {
+  double hi = smax, fh;
+  while ((fh = reach_fn(hi, &Z)) > 0.0 || isnan(fh)) {
     hi *= 2.0;
-    if (hi > 1e6 * (smax + R)) {
+    if (isnan(fh) || hi > 1e6 * (smax + R)) {
       sbi_error(SB_EMAXITER, __func__, "no bracket");
       return NAN;
     }
