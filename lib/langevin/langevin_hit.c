@@ -29,6 +29,10 @@
 #define SAFETY 4.0
 /* Nodes with mean/sd above this contribute < phi(12) ~ 5e-33 each. */
 #define XFAR 12.0
+/* A sub-interval whose chord clearance (less the mean path's largest
+ * deviation) is below XNEAR times its largest conditional standard
+ * deviation is subdivided without evaluating its Rice bound. */
+#define XNEAR 4.0
 /* Chords passing within GRAZE xtol R of the sphere count as grazing. */
 #define GRAZE 6.0
 /* Relative tolerance on R^2 within which a start counts as touching
@@ -331,21 +335,32 @@ static int leaf(walk *W, const pstate *A, const pstate *Bs, double a,
 static double quick_bound(const walk *W, const sbi_lh_level *Li,
                           const sbi_lh_level *Lj, const pstate *A,
                           const pstate *Bs, const double *ra,
-                          const double *rb, double h)
+                          const double *rb, double h, double *x0out)
 {
   double gap;
+  *x0out = 0.0;
   if (chord_entry(ra, rb, W->R, &gap) >= 0.0)
     return 1.0;
   const sbi_lh_level *L[2] = {Li, Lj};
   double dev = 0.0, vel = 0.0;
-  for (int p = 0; p < 2; p++) {
+  /* same coefficients (one species): the deviations depend on the
+   * relative end states only; otherwise bound each particle's */
+  const int same = Li == Lj;
+  for (int p = 0; p < (same ? 1 : 2); p++) {
     double dx = 0.0, ua = 0.0, ub = 0.0, ww = 0.0;
     for (int k = 0; k < W->dim; k++) {
       double d = Bs->x[p][k] - A->x[p][k];
+      double va = A->u[p][k], vb = Bs->u[p][k], wk = W->wv[p][k];
+      if (same) {
+        d -= Bs->x[1][k] - A->x[1][k];
+        va -= A->u[1][k];
+        vb -= Bs->u[1][k];
+        wk -= W->wv[1][k];
+      }
       dx += d * d;
-      ua += A->u[p][k] * A->u[p][k];
-      ub += Bs->u[p][k] * Bs->u[p][k];
-      ww += W->wv[p][k] * W->wv[p][k];
+      ua += va * va;
+      ub += vb * vb;
+      ww += wk * wk;
     }
     dx = sqrt(dx), ua = sqrt(ua), ub = sqrt(ub), ww = sqrt(ww);
     dev += L[p]->ka * dx + L[p]->kb * ua + L[p]->kc * ub + L[p]->kw * ww;
@@ -354,6 +369,8 @@ static double quick_bound(const walk *W, const sbi_lh_level *Li,
   const double smax = sqrt(Li->vxmax + Lj->vxmax);
   const double spmax = sqrt(Li->vumax + Lj->vumax);
   const double G = gap - 1.25 * dev;
+  if (smax > 0.0)
+    *x0out = G / smax;
   if (!(smax > 0.0) || !(G > 1.5 * smax))
     return 1.0;
   const double x0 = G / smax;
@@ -403,8 +420,9 @@ static int examine(walk *W, const pstate *A, const pstate *Bs, double a,
   rel(A, ra);
   rel(Bs, rb);
   const int sure = dot3(rb, rb) <= W->R * W->R;
+  double x0 = 0.0;
   if (!sure) {
-    double b = quick_bound(W, Li, Lj, A, Bs, ra, rb, h);
+    double b = quick_bound(W, Li, Lj, A, Bs, ra, rb, h, &x0);
     if (b < W->eps * h / W->htop) {
       w->st.pruned++;
       w->st.pruned_mass += b;
@@ -413,6 +431,14 @@ static int examine(walk *W, const pstate *A, const pstate *Bs, double a,
       return 0;
     }
   }
+  /* the chord within XNEAR largest standard deviations of the plane: the
+   * quadrature would hardly ever prune (its bound includes the largest
+   * node probability P(p <= 0)); subdividing is always valid, so skip it
+   * (not a leaf: the spread exceeds smax > 4 delta) */
+  const double smax = sqrt(Li->vxmax + Lj->vxmax);
+  if (x0 < XNEAR && smax > 4.0 * W->delta && d < SBI_LH_MAXDEPTH &&
+      (sure || smax > 0.0))
+    goto subdivide;
   nodes N;
   eval_nodes(W, Li, Lj, A, Bs, &N);
   const double spread = sqrt(N.s2max) + N.devmax;
@@ -445,6 +471,7 @@ static int examine(walk *W, const pstate *A, const pstate *Bs, double a,
   }
   /* exact midpoint states, particle i then j, component by component,
    * z1 then z2 */
+subdivide:;
   pstate M;
   const sbi_lh_level *L[2] = {Li, Lj};
   memset(&M, 0, sizeof M);

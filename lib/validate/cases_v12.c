@@ -257,7 +257,8 @@ static int flat(const sbv_ctx *ctx, sbv_report *rep, double *Hrow,
                "Kn_D = %g (95%% intervals)", kns[k]);
       char body[1024];
       snprintf(body, sizeof body,
-               "set logscale x\nset xlabel 'dt / tau_p'\n"
+               "set logscale x\nset xrange [0.005:2000]\n"
+               "set xlabel 'dt / tau_p'\n"
                "set ylabel 'K_e / K_ref (contact time, dt = 0.01 tau_p)'\n"
                "set key outside\n"
                "k = %g\n"

@@ -2,6 +2,7 @@
  * regime, one or two species, any detector (estimator and protocol:
  * firsthit.h). */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -127,21 +128,73 @@ static int place(const sbv_ctx *ctx, unsigned long stream, sb_engine *e,
   const double *x = sb_engine_positions(e), *rad = sb_engine_radii(e);
   const uint64_t *id = sb_engine_ids(e);
   double nov[3] = {0, 0, 0};
+  /* cells of edge >= the largest contact distance: overlapping pairs lie
+   * in neighbouring cells (at least 3 per direction, or one cell) */
+  double dmax = 0.0;
   for (size_t i = 0; i < n; i++)
-    for (size_t j = i + 1; j < n; j++) {
-      double d2 = 0.0;
-      for (int k = 0; k < 3; k++) {
-        double dx = x[3 * i + k] - x[3 * j + k];
-        dx -= q->L * floor(dx / q->L + 0.5);
-        d2 += dx * dx;
-      }
-      double sg = rad[i] + rad[j];
-      if (d2 <= sg * sg) {
-        if (fh_set_insert(&f->s, fh_pair_key(id[i], id[j])) < 0)
-          return SB_ENOMEM;
-        nov[pair_type(e, i, j)] += 1.0;
-      }
+    dmax = fmax(dmax, 2.0 * rad[i]);
+  int nc = (int)floor(q->L / dmax);
+  nc = nc > 64 ? 64 : nc;
+  if (nc < 3)
+    nc = 1;
+  const size_t ncell = (size_t)nc * nc * nc;
+  size_t *head = malloc(ncell * sizeof *head), *next = malloc(n * sizeof *next);
+  if (!head || !next) {
+    free(head);
+    free(next);
+    return SB_ENOMEM;
+  }
+  for (size_t c = 0; c < ncell; c++)
+    head[c] = SIZE_MAX;
+  int (*cell)[3] = malloc(n * sizeof *cell);
+  if (!cell) {
+    free(head);
+    free(next);
+    return SB_ENOMEM;
+  }
+  for (size_t i = 0; i < n; i++) {
+    size_t c = 0;
+    for (int k = 0; k < 3; k++) {
+      int v = (int)(x[3 * i + k] / q->L * nc);
+      cell[i][k] = v < 0 ? 0 : (v >= nc ? nc - 1 : v);
+      c = c * (size_t)nc + (size_t)cell[i][k];
     }
+    next[i] = head[c];
+    head[c] = i;
+  }
+  const int span = nc == 1 ? 0 : 1;
+  for (size_t i = 0; i < n; i++)
+    for (int a = -span; a <= span; a++)
+      for (int b = -span; b <= span; b++)
+        for (int g = -span; g <= span; g++) {
+          const int o[3] = {a, b, g};
+          size_t c = 0;
+          for (int k = 0; k < 3; k++)
+            c = c * (size_t)nc + (size_t)((cell[i][k] + o[k] + nc) % nc);
+          for (size_t j = head[c]; j != SIZE_MAX; j = next[j]) {
+            if (j <= i)
+              continue;
+            double d2 = 0.0;
+            for (int k = 0; k < 3; k++) {
+              double dx = x[3 * i + k] - x[3 * j + k];
+              dx -= q->L * floor(dx / q->L + 0.5);
+              d2 += dx * dx;
+            }
+            double sg = rad[i] + rad[j];
+            if (d2 <= sg * sg) {
+              if (fh_set_insert(&f->s, fh_pair_key(id[i], id[j])) < 0) {
+                free(head);
+                free(next);
+                free(cell);
+                return SB_ENOMEM;
+              }
+              nov[pair_type(e, i, j)] += 1.0;
+            }
+          }
+        }
+  free(head);
+  free(next);
+  free(cell);
   const double N0 = (double)q->N[0], N1 = q->nsp > 1 ? (double)q->N[1] : 0.0;
   const double tot[3] = {0.5 * N0 * (N0 - 1.0), N0 * N1, 0.5 * N1 * (N1 - 1.0)};
   const double V = q->L * q->L * q->L;
