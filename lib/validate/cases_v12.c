@@ -95,12 +95,30 @@ void v12_size(const v12_phys *ph, int det, double dtt, double hits,
   if (L < 2.5 * (ph->d + 20.0 * sd_step))
     L = 2.5 * (ph->d + 20.0 * sd_step);
   q->L = L;
-  /* particles for ~hits counted contacts: hits = N^2 K (T - t1) / (2 V) */
-  double N = sqrt(2.0 * hits * L * L * L / (ph->Kgh * (T - q->t1)));
+  /* particles for ~hits counted contacts, hits = N^2 K (T - t1) / (2 V),
+   * in the smallest box allowed; denser than V12_PHIMAX (overlapping
+   * particles cost neighbour-search work), the box grows at that density
+   * instead; at most V12_BUDGET particle-steps (then fewer contacts: at
+   * the capped density the box shrinks with N, hits ~ N) */
+  const double vp = PI * pow(ph->d, 3) / 6.0, nmax = V12_PHIMAX / vp;
+  const double KM = ph->Kgh * (T - q->t1);
+  double N = sqrt(2.0 * hits * L * L * L / KM);
+  int capped = 0;
+  if (N > nmax * L * L * L) {
+    capped = 1;
+    const double V = 2.0 * hits / (nmax * nmax * KM);
+    N = nmax * V;
+    L = cbrt(V);
+  }
+  const double nb = fmin(V12_BUDGET / (T / dt), V12_NMAX);
+  if (N > nb) {
+    N = nb;
+    if (capped)
+      L = fmax(cbrt(N / nmax), q->L);
+  }
   if (N < 100.0)
     N = 100.0;
-  if (N > V12_NMAX)
-    N = V12_NMAX;
+  q->L = L;
   q->N[0] = (size_t)N;
 }
 

@@ -12,6 +12,8 @@
 #define V12_TEMP 296.15    /* K */
 #define V12_WARM 50.0      /* warm-up, tau_p */
 #define V12_NMAX 60000.0   /* largest particle number of a run */
+#define V12_PHIMAX 0.2     /* largest volume fraction (overlaps allowed) */
+#define V12_BUDGET 6e8     /* largest particle-steps of a run */
 
 /* One monodisperse species at diffusive Knudsen number kn. */
 typedef struct {
