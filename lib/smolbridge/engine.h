@@ -27,7 +27,10 @@
  *     straight segments x0 + s disp (0 <= s <= 1) come within r_i + r_j
  *     (+ the detector's extra reach);
  *  4. the detector is called for every candidate pair and returns the
- *     contact fraction s in [0, 1] of the step (or "no collision");
+ *     contact fraction s in [0, 1] of the step (or "no collision"); the
+ *     Langevin detector (SB_DETECT_LANGEVIN) samples it from the exact
+ *     conditional law of both particles' paths between their states at
+ *     the two ends of the step, with the states at contact;
  *  5. events are processed earliest first (ties by (i, j)); when an
  *     outcome changes the end of a particle's step (elastic bounce,
  *     reinsertion, merge), its path from the contact on is a new straight
