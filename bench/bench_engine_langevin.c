@@ -128,7 +128,7 @@ int main(int argc, char **argv)
          "Kn_D = 0.5\n");
   sb_validate_options opt;
   sb_validate_options_init(&opt);
-  sbv_ctx ctx = {0, 12345, NULL, &opt};
+  sbv_ctx ctx = {0, 12345, NULL, &opt, NULL, NULL};
   v12_phys ph;
   v12_physics(0.5, &ph);
   const double hits = 9600.0;
