@@ -457,7 +457,8 @@ int sbc_validate_main(int argc, char **argv)
     double t0 = now_seconds();
     int st = sb_validate_run(i, &vo, rep);
     fprintf(stderr, "[%zu/%zu] %s done in %.1f s%s%s\n", k, nsel, name,
-            now_seconds() - t0, st ? ": " : "", st ? sb_strerror(st) : "");
+            now_seconds() - t0, st ? ": " : "",
+            !st ? "" : (*sb_last_error() ? sb_last_error() : sb_strerror(st)));
   }
 
   printf("\n");

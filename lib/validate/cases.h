@@ -172,6 +172,8 @@ extern const sbv_case sbv_cases_pgd[];
 extern const size_t sbv_ncases_pgd;
 extern const sbv_case sbv_cases_pgd_jets[];
 extern const size_t sbv_ncases_pgd_jets;
+extern const sbv_case sbv_cases_pgd_dense[];
+extern const size_t sbv_ncases_pgd_dense;
 extern const sbv_case sbv_cases_spray[];
 extern const size_t sbv_ncases_spray;
 extern const sbv_case sbv_cases_v12[];
