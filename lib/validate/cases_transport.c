@@ -410,9 +410,23 @@ static int case_relax(const sbv_ctx *ctx, sbv_report *rep)
   if (!st) {
     size_t m = n * reps;
     double D = NAN, p = NAN;
-    int kst = sb_ks_test(vfin, m, maxwell_cdf, NULL, &D, &p);
-    st = sbv_add_ks(rep, "V18/maxwell-relaxation/t=15t_free/speeds/KS", m,
-                    kst ? NAN : D, kst ? NAN : p);
+    /* The energy of each replica is exact, so its speeds are not an
+     * independent sample: the constraint pulls the empirical law towards
+     * Maxwell's and KS distances fall below their null law (pooled over
+     * 20 seeds the mean D was 0.74 of it with all molecules).  KS uses
+     * every tenth molecule, whose energy fluctuates nearly freely. */
+    size_t msub = 0;
+    double *vsub = malloc((m / 10 + 1) * sizeof *vsub);
+    if (!vsub) {
+      st = SB_ENOMEM;
+      goto out;
+    }
+    for (size_t i = 0; i < m; i += 10)
+      vsub[msub++] = vfin[i];
+    int kst = sb_ks_test(vsub, msub, maxwell_cdf, NULL, &D, &p);
+    free(vsub);
+    st = sbv_add_ks(rep, "V18/maxwell-relaxation/t=15t_free/speeds/KS",
+                    msub, kst ? NAN : D, kst ? NAN : p);
     double edges[21], chi2 = NAN, dof = NAN, pc = NAN;
     for (int b = 0; b <= 20; b++)
       edges[b] = b < 20 ? 0.2 * b : INFINITY;
@@ -422,9 +436,9 @@ static int case_relax(const sbv_ctx *ctx, sbv_report *rep)
     if (!st)
       st = sbv_add_chi2(rep, "V18/maxwell-relaxation/t=15t_free/speeds/chi2",
                         cst, chi2, dof, pc);
-    sbv_note(rep, "t = 15 mean free times, %zu speeds: KS D = %.4f (p = "
-             "%.3g), chi2 = %.1f on %.0f dof (p = %.3g)", m, D, p, chi2,
-             dof, pc);
+    sbv_note(rep, "t = 15 mean free times: KS of %zu speeds (every tenth "
+             "molecule) D = %.4f (p = %.3g); chi2 of all %zu = %.1f on %.0f "
+             "dof (p = %.3g)", msub, D, p, m, chi2, dof, pc);
   }
   if (!st)
     st = sbv_add_band(rep, "V18/maxwell-relaxation/energy/rel-change", emax,
