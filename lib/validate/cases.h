@@ -178,5 +178,9 @@ extern const sbv_case sbv_cases_spray[];
 extern const size_t sbv_ncases_spray;
 extern const sbv_case sbv_cases_v12[];
 extern const size_t sbv_ncases_v12;
+extern const sbv_case sbv_cases_pair[];
+extern const size_t sbv_ncases_pair;
+extern const sbv_case sbv_cases_transport[];
+extern const size_t sbv_ncases_transport;
 
 #endif /* SB_VALIDATE_CASES_H */
