@@ -176,5 +176,7 @@ extern const sbv_case sbv_cases_spray[];
 extern const size_t sbv_ncases_spray;
 extern const sbv_case sbv_cases_v12[];
 extern const size_t sbv_ncases_v12;
+extern const sbv_case sbv_cases_v16[];
+extern const size_t sbv_ncases_v16;
 
 #endif /* SB_VALIDATE_CASES_H */
