@@ -31,6 +31,9 @@ typedef struct {
   sb_engine_walldet walldet;
   sb_engine_deposit deposit;
   int nodetect;             /* no particle-particle detection */
+  int parabolic;            /* walled directions: density y (W - y) (the
+                               steady profile with a volume source)
+                               instead of uniform */
   size_t warmup, steps;     /* steps (counters reset after the warm-up) */
   size_t nmark;             /* cumulative deposits after these steps */
   size_t mark[V16_MARKS];
