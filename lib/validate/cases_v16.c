@@ -226,11 +226,14 @@ static int case_shear(const sbv_ctx *ctx, sbv_report *rep)
                             0.0, 0.0};
     /* phi = 0.05 (pairs are independent with pass-through particles,
      * so the kernel does not depend on it; a denser box needs fewer
-     * particle-steps); the plain periodic box at the issue's 1e-2 */
+     * particle-steps), flattened along y (L_y = 0.4 of the cube's
+     * edge: a third of the contacts are across the sliding boundary);
+     * the plain periodic box at 1e-2, cubic */
     const size_t n0 = ctx->full ? 8000 : 2000;
     s.sp[0].count = n0;
     s.sp[1].count = run == 2 ? 2 * n0 : 0;
-    box_for(run == 3 ? 1e-2 : 5e-2, n0, 5e-6, 0, 1.0, s.L);
+    box_for(run == 3 ? 1e-2 : 5e-2, n0, 5e-6, 1, run == 3 ? 1.0 : 0.4,
+            s.L);
     double V = s.L[0] * s.L[1] * s.L[2];
     /* steps: largest relative displacement per step 4 radii */
     s.dt = 4.0 * 5e-6 / (s.G * s.L[1]);
