@@ -183,6 +183,54 @@ static int check_explicit(col_config *c)
   return 0;
 }
 
+/* Lees-Edwards images, gravity, per-species fluid properties and drag
+ * laws, walls (docs/engine_forces.md); before the placement, whose
+ * velocities include the settling velocities. */
+static int setup_physics(col_config *c, col_run *r)
+{
+  if (!strcmp(c->fluid, "shear") && c->lees &&
+      sb_engine_set_lees_edwards(r->e, 1))
+    return col_fail(c, "[fluid] lees_edwards: %s", sb_last_error());
+  if (c->ng) {
+    double g[3] = {0, 0, 0};
+    memcpy(g, c->g, (size_t)c->ng * sizeof(double));
+    if (sb_engine_set_gravity(r->e, g))
+      return col_fail(c, "%s: [fluid] g: %s", col_where(c, "fluid", "g"),
+                      sb_last_error());
+  }
+  for (int k = 0; k < c->nsp && !c->restart[0]; k++) {
+    const col_species *s = &c->sp[k];
+    sb_engine_species_fluid fl = {SB_DRAG_STOKES, c->rho_f,
+                                  isnan(s->mu) ? c->mu_f : s->mu};
+    if (!strcmp(s->drag, "schiller-naumann"))
+      fl.drag = SB_DRAG_SCHILLER_NAUMANN;
+    if (isnan(fl.mu))
+      fl.mu = 0.0;
+    if (sb_engine_set_species_fluid(r->e, (size_t)k, &fl))
+      return col_fail(c, "%s: [%s] drag / [fluid] rho, mu: %s", s->where,
+                      s->name, sb_last_error());
+  }
+  for (int k = 0; k < c->dim; k++) {
+    sb_engine_wall w[2];
+    for (int q = 0; q < 2; q++)
+      w[q] = !strcmp(c->wall[2 * k + q], "reflect")  ? SB_WALL_REFLECT
+             : !strcmp(c->wall[2 * k + q], "absorb") ? SB_WALL_ABSORB
+                                                     : SB_WALL_PERIODIC;
+    if ((w[0] != SB_WALL_PERIODIC || w[1] != SB_WALL_PERIODIC) &&
+        sb_engine_set_walls(r->e, k, w[0], w[1]))
+      return col_fail(c, "[walls] %c: %s", "xyz"[k], sb_last_error());
+  }
+  if (sb_engine_set_wall_mode(r->e,
+                              strcmp(c->wall_detect, "ballistic")
+                                  ? SB_WALLDET_BRIDGE
+                                  : SB_WALLDET_BALLISTIC,
+                              strcmp(c->deposit, "reinsert")
+                                  ? SB_DEPOSIT_REMOVE
+                                  : SB_DEPOSIT_REINSERT))
+    return col_fail(c, "[walls]: %s", sb_last_error());
+  return 0;
+}
+
 /* Region of species s (the whole box by default). */
 static void region_of(const col_config *c, const col_species *s,
                       double lo[3], double hi[3])
@@ -196,6 +244,15 @@ static void region_of(const col_config *c, const col_species *s,
     lo[k] = s->region[2 * k];
     hi[k] = s->region[2 * k + 1];
   }
+  /* walls: centres between the contact planes (engine_wall.c) */
+  const double r = isnan(s->radius) ? 0.5 * s->diameter : s->radius;
+  for (int k = 0; k < c->dim; k++)
+    if (strcmp(c->wall[2 * k], "periodic") && isfinite(r)) {
+      if (lo[k] < r)
+        lo[k] = r;
+      if (hi[k] > L[k] - r)
+        hi[k] = L[k] - r;
+    }
 }
 
 /* Independent uniform positions (overlaps allowed) and Gaussian
@@ -215,8 +272,10 @@ static int place_uniform(col_config *c, col_run *r, size_t sp, size_t n,
       u[k] = gsl_ran_gaussian_ziggurat(g, vsd);
     }
     fluid_at(c, x, us);
+    double vs[3] = {0, 0, 0};  /* settling velocity under [fluid] g */
+    sb_engine_settling_velocity(r->e, sp, vs);
     for (int k = 0; k < c->dim; k++)
-      u[k] += us[k] + (s->ndrift ? s->drift[k] : 0.0);
+      u[k] += us[k] + vs[k] + (s->ndrift ? s->drift[k] : 0.0);
     if (sb_engine_add_particle(r->e, sp, (int)s->family, x, u))
       return col_fail(c, "%s: [%s]: %s", s->where, s->name,
                       sb_last_error());
@@ -492,6 +551,8 @@ int col_setup(col_config *c, col_run *r)
     if (sb_engine_set_fluid(r->e, f, fp))
       return col_fail(c, "[fluid]: %s", sb_last_error());
   }
+  if (setup_physics(c, r))
+    return -1;
   if (!c->restart[0]) {
     if (place(c, r, q))
       return -1;

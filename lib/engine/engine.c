@@ -161,6 +161,8 @@ void sb_engine_free(sb_engine *e)
   free(e->lp_x);
   free(e->lp_u);
   free(e->lp_t);
+  free(e->sfl);   /* engine_force.c */
+  free(e->vset);
   sb_langevin_hitter_free(e->lh);
   if (e->rng)
     gsl_rng_free(e->rng);
@@ -356,6 +358,11 @@ int sbi_engine_equilibrium_velocity(sb_engine *e, size_t sp,
     u[k] = k < e->par.dim
                ? us[k] + gsl_ran_gaussian_ziggurat(e->rng, e->vsd[sp])
                : 0.0;
+  /* with gravity: plus the species' settling velocity (engine_force.c) */
+  const double *vs = sbi_engine_settling(e, sp);
+  if (vs)
+    for (int k = 0; k < e->par.dim; k++)
+      u[k] += vs[k];
   return SB_SUCCESS;
 }
 
@@ -710,6 +717,8 @@ static int transport(sb_engine *e)
   double *restrict x0 = e->x0, *restrict u0 = e->u0, *restrict dp = e->disp;
   const sb_langevin_coef *coef = e->coef;
   const size_t *sp = e->species;
+  /* gravity: each species' settling velocity adds to U_s (engine_force.c) */
+  const double *vset = e->has_grav ? e->vset : NULL;
   for (size_t i0 = 0; i0 < n; i0 += SBI_TRANSPORT_BLOCK) {
     const size_t m = n - i0 < SBI_TRANSPORT_BLOCK ? n - i0
                                                    : SBI_TRANSPORT_BLOCK;
@@ -720,7 +729,9 @@ static int transport(sb_engine *e)
       const sb_langevin_coef *c = &coef[sp[i]];
       for (int k = 0; k < 3; k++) {
         const size_t q = 3 * i + k;
-        const double w = us ? us[q] : 0.0, z1 = z[6 * a + 2 * k],
+        const double w = (us ? us[q] : 0.0) +
+                         (vset ? vset[3 * sp[i] + k] : 0.0),
+                     z1 = z[6 * a + 2 * k],
                      z2 = z[6 * a + 2 * k + 1];
         const double xo = x[q], uo = u[q], v = uo - w;
         const double xn = xo + (w * c->dt + v * c->gain + c->s_xu * z1 +
@@ -745,7 +756,13 @@ int sb_engine_step(sb_engine *e)
     return sbi_error(SB_EINVAL, __func__, "engine is NULL");
   memset(e->hit, 0, e->n);
   sbi_engine_pair_counts(e, e->pairs0);
-  int st = transport(e);
+  /* forces, Lees-Edwards, walls: checks and settling (engine_force.c) */
+  int st = sbi_engine_physics_prepare(e);
+  if (st)
+    return st;
+  st = transport(e);
+  if (!st)  /* nonlinear drag, exact shear step (engine_force.c) */
+    st = sbi_engine_after_transport(e);
   if (st)
     return st;
   double reach = 0.0;
@@ -768,10 +785,11 @@ int sb_engine_step(sb_engine *e)
     if (st)
       return st;
   }
-  const int dim = e->par.dim;
-  for (size_t i = 0; i < e->n; i++)
-    for (int k = 0; k < dim; k++)
-      e->x[3 * i + k] = sbi_wrap(e->x[3 * i + k], e->par.L[k]);
+  /* walls and deposition, then wrapping (with the Lees-Edwards shift):
+   * engine_wall.c */
+  st = sbi_engine_boundaries(e);
+  if (st)
+    return st;
   sbi_engine_add_exposure(e, e->par.dt);
   e->steps++;
   e->t += e->par.dt;

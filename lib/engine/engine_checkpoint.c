@@ -4,7 +4,8 @@
  * the bytes of gsl_rng_fwrite).
  *
  * Format (native binary; portable only between builds with the same
- * type sizes and endianness): the 8-byte magic "SBENGCK2", then the fields
+ * type sizes and endianness): the 8-byte magic "SBENGCK3" ("SBENGCK2" files, without the block of
+ * forces, Lees-Edwards and walls, still load), then the fields
  * in the order written by sb_engine_checkpoint_save.  Callbacks cannot be
  * saved: a custom detector / outcome / fluid callback is replaced on load
  * by the defaults (ballistic, elastic, fluid at rest); set them again.
@@ -17,7 +18,10 @@
 #include "common/internal.h"
 #include "engine_internal.h"
 
-static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '2'};
+/* version 3 appends the block of forces, Lees-Edwards and walls
+ * (engine_wall.c) after the generator state; version 2 files still
+ * load (no such settings) */
+static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '3'};
 
 #define W(ptr, size, count)                                 \
   do {                                                      \
@@ -86,6 +90,8 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
   /* the bytes gsl_rng_fwrite writes (fwrite of gsl_rng_state), written
    * directly: GSL's error handler would abort on an I/O error */
   W(gsl_rng_state(e->rng), gsl_rng_size(e->rng), 1);
+  if (sbi_engine_physics_save(e, f))
+    goto fail;
   if (fclose(f))
     return sbi_error(SB_EIO, __func__, "write error on '%s'", path);
   return SB_SUCCESS;
@@ -122,7 +128,8 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   size_t n, nspec;
   uint64_t next_id;
   R(magic, 1, 8);
-  if (memcmp(magic, MAGIC, 8))
+  const int v2 = !memcmp(magic, MAGIC, 7) && magic[7] == '2';
+  if (memcmp(magic, MAGIC, 8) && !v2)
     goto bad;
   R(&par, sizeof par, 1);
   R(&n, sizeof n, 1);
@@ -220,6 +227,8 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   }
   /* counterpart of gsl_rng_fread, without GSL's aborting handler */
   R(gsl_rng_state(e->rng), gsl_rng_size(e->rng), 1);
+  if (!v2 && sbi_engine_physics_load(e, f))
+    goto bad;
   free(spec);
   fclose(f);
   return e;
