@@ -33,7 +33,10 @@ static const char *const ERELS[] = {"contact", "stationary", NULL};
 static const char *const ENDS[] = {"position", "diffusive", NULL};
 static const char *const BOOLS[] = {"yes", "no", NULL};
 static const char *const DRAGS[] = {"stokes", "schiller-naumann", NULL};
-static const char *const WALLS[] = {"periodic", "reflect", "absorb", NULL};
+static const char *const WALLS[] = {"periodic", "reflect", "absorb", "open",
+                                    NULL};
+static const char *const FACES[] = {"x_lo", "x_hi", "y_lo", "y_hi", "z_lo",
+                                    "z_hi", NULL};
 static const char *const WALLDETS[] = {"bridge", "ballistic", NULL};
 static const char *const DEPOSITS[] = {"remove", "reinsert", NULL};
 
@@ -247,6 +250,20 @@ static const keydef KEYS[] = {
      "m", "whole box", "x0 x1 y0 y1 [z0 z1] of the placement"},
     {"species", "drift", K_VEC, S(drift), S(ndrift), R_ANY, 2, 3, NULL,
      "m/s", "0", "added to the placed particles' velocities"},
+    {"species", "inflow", K_NAME, S(inflow), 16, R_ANY, 0, 0, FACES, "-",
+     "- (none)", "face through which a stream of this species enters"},
+    {"species", "inflow_rate", K_NUM, S(inflow_rate), 0, R_POS, 0, 0, NULL,
+     "1/s", "required with inflow",
+     "particles per second through the inlet (density x u_n x area)"},
+    {"species", "inflow_region", K_VEC, S(inflow_region), S(ninflow_region),
+     R_ANY, 2, 4, NULL, "m", "whole face",
+     "inlet: lo hi along the face's first other axis [, lo hi along the "
+     "second]"},
+    {"species", "inflow_velocity", K_VEC, S(inflow_u), S(ninflow_u), R_ANY,
+     2, 3, NULL, "m/s", "required with inflow",
+     "velocity of the entering particles (normal part inward)"},
+    {"species", "inflow_no_overlap", K_BOOL, S(inflow_no_overlap), 0, R_ANY,
+     0, 0, BOOLS, "-", "no", "redraw an entering particle that overlaps"},
 };
 #define NKEYS (sizeof KEYS / sizeof KEYS[0])
 
@@ -1060,9 +1077,28 @@ int col_check(col_config *c)
                       "mass", col_where(c, n, "mu"), n);
     if (isnan(s->mu))
       unused(c, n, "cunningham", "no mu (tau is given)");
-    if (s->count < 0 && isnan(s->phi) && s->npart == 0)
-      return col_fail(c, "%s: [%s]: count, phi or particle is required",
-                      s->where, n);
+    if (s->count < 0 && isnan(s->phi) && s->npart == 0 && !s->inflow[0])
+      return col_fail(c, "%s: [%s]: count, phi, particle or inflow is "
+                      "required", s->where, n);
+    if (s->inflow[0]) {
+      if (isnan(s->inflow_rate) || s->ninflow_u == 0)
+        return col_fail(c, "%s: [%s] inflow: inflow_rate (1/s) and "
+                        "inflow_velocity (m/s) are required",
+                        col_where(c, n, "inflow"), n);
+      if (s->ninflow_u != c->dim)
+        return col_fail(c, "%s: [%s] inflow_velocity: %d numbers for dim "
+                        "= %ld", col_where(c, n, "inflow_velocity"), n,
+                        s->ninflow_u, c->dim);
+      if (s->ninflow_region && s->ninflow_region != 2 * (c->dim - 1))
+        return col_fail(c, "%s: [%s] inflow_region: %d numbers for dim = "
+                        "%ld; valid: %ld", col_where(c, n, "inflow_region"),
+                        n, s->ninflow_region, c->dim, 2 * (c->dim - 1));
+    } else {
+      unused(c, n, "inflow_rate", "no inflow face");
+      unused(c, n, "inflow_region", "no inflow face");
+      unused(c, n, "inflow_velocity", "no inflow face");
+      unused(c, n, "inflow_no_overlap", "no inflow face");
+    }
     if (s->nregion && s->nregion != 2 * c->dim)
       return col_fail(c, "%s: [%s] region: %d numbers for dim = %ld; "
                       "valid: %ld (x0 x1 y0 y1%s)", col_where(c, n,

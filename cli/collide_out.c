@@ -349,6 +349,17 @@ static void json_kernels(FILE *f, const col_config *c, const sb_engine *e)
   for (int q = 0; q < 6; q++)
     fprintf(f, "%s%llu", q ? ", " : "",
             (unsigned long long)sb_engine_deposits(e, q));
+  /* open boundaries: outflows per face (same order), and per inflow
+   * (in species order) the particles injected and the draws skipped */
+  fprintf(f, "],\n  \"outflows\": [");
+  for (int q = 0; q < 6; q++)
+    fprintf(f, "%s%llu", q ? ", " : "",
+            (unsigned long long)sb_engine_outflows(e, q));
+  fprintf(f, "],\n  \"inflows\": [");
+  for (size_t q = 0; q < sb_engine_ninflows(e); q++)
+    fprintf(f, "%s{\"injected\": %llu, \"skipped\": %llu}", q ? ", " : "",
+            (unsigned long long)sb_engine_inflow_injected(e, q),
+            (unsigned long long)sb_engine_inflow_skipped(e, q));
   fprintf(f, "],\n  \"lees_edwards_offset\": %.17g,\n",
           sb_engine_lees_edwards_offset(e));
   fprintf(f, "  \"collisions\": %llu,\n  \"candidates\": %llu,\n  "

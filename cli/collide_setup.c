@@ -215,6 +215,7 @@ static int setup_physics(col_config *c, col_run *r)
     for (int q = 0; q < 2; q++)
       w[q] = !strcmp(c->wall[2 * k + q], "reflect")  ? SB_WALL_REFLECT
              : !strcmp(c->wall[2 * k + q], "absorb") ? SB_WALL_ABSORB
+             : !strcmp(c->wall[2 * k + q], "open")   ? SB_WALL_OPEN
                                                      : SB_WALL_PERIODIC;
     if ((w[0] != SB_WALL_PERIODIC || w[1] != SB_WALL_PERIODIC) &&
         sb_engine_set_walls(r->e, k, w[0], w[1]))
@@ -228,6 +229,37 @@ static int setup_physics(col_config *c, col_run *r)
                                   ? SB_DEPOSIT_REMOVE
                                   : SB_DEPOSIT_REINSERT))
     return col_fail(c, "[walls]: %s", sb_last_error());
+  /* open boundaries: one inflow per species that has one */
+  static const char *const faces[] = {"x_lo", "x_hi", "y_lo", "y_hi",
+                                      "z_lo", "z_hi"};
+  for (int k = 0; k < c->nsp; k++) {
+    const col_species *s = &c->sp[k];
+    if (!s->inflow[0])
+      continue;
+    sb_engine_inflow in;
+    memset(&in, 0, sizeof in);
+    for (int f = 0; f < 6; f++)
+      if (!strcmp(s->inflow, faces[f]))
+        in.face = f;
+    in.species = (size_t)k;
+    in.family = (int)s->family;
+    in.rate = s->inflow_rate;
+    const double *L = sb_engine_get_params(r->e)->L;
+    for (int d = 0, q = 0; d < c->dim; d++) {
+      if (d == in.face / 2)
+        continue;
+      in.lo[q] = s->ninflow_region ? s->inflow_region[2 * q] : 0.0;
+      in.hi[q] = s->ninflow_region ? s->inflow_region[2 * q + 1] : L[d];
+      q++;
+    }
+    for (int d = 0; d < c->dim; d++)
+      in.u[d] = s->inflow_u[d];
+    in.no_overlap = (int)s->inflow_no_overlap;
+    if (sb_engine_add_inflow(r->e, &in, NULL))
+      return col_fail(c, "%s: [%s] inflow: %s", col_where(c, s->name,
+                                                          "inflow"),
+                      s->name, sb_last_error());
+  }
   return 0;
 }
 
@@ -528,6 +560,17 @@ int col_setup(col_config *c, col_run *r)
         return -1;
       total += species_count(c, &c->sp[k]);
     }
+    /* inflows: room for every particle that can enter in the run (none
+     * leaving), at most 2e6 more */
+    double inflow = 0.0;
+    const double T = isfinite(c->t_end)
+                         ? c->t_end
+                         : (c->steps > 0 ? (double)c->steps * c->dt : 0.0) +
+                               (isfinite(c->warmup) ? c->warmup : 0.0);
+    for (int k = 0; k < c->nsp; k++)
+      if (c->sp[k].inflow[0])
+        inflow += c->sp[k].inflow_rate * T * 1.1 + 100.0;
+    total += (long)fmin(inflow, 2e6);
     p.capacity = total > 0 ? (size_t)total : 1;
     r->e = sb_engine_alloc(&p);
     if (!r->e)

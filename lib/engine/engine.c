@@ -793,6 +793,11 @@ int sb_engine_step(sb_engine *e)
   sbi_engine_add_exposure(e, e->par.dt);
   e->steps++;
   e->t += e->par.dt;
+  if (e->ninflow) {  /* open boundaries: this step's arrivals */
+    st = sbi_engine_inject(e);
+    if (st)
+      return st;
+  }
   if (e->par.sort_every && e->steps % e->par.sort_every == 0) {
     st = sb_engine_sort(e);
     if (st)

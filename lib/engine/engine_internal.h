@@ -174,6 +174,14 @@ struct sb_engine {
   sb_engine_walldet walldet;
   sb_engine_deposit deposit;
   uint64_t ndep[6];          /* depositions per face since the reset */
+  /* open boundaries (engine_open.c): inflows, outflow counters and
+   * callback; not in checkpoints */
+  sb_engine_inflow inflow[SB_ENGINE_MAXINFLOW];
+  uint64_t ninj[SB_ENGINE_MAXINFLOW], nskip[SB_ENGINE_MAXINFLOW];
+  size_t ninflow;
+  uint64_t nout[6];          /* outflows per open face since the reset */
+  sb_engine_outflow_fn outflow_fn;
+  void *outflow_ctx;
 };
 
 /* Smallest cell edge of the linked cells (and of sb_engine_sort, so that
@@ -308,6 +316,13 @@ int sbi_engine_boundary_pairs(sb_engine *e, const double *x0,
  * xi, xj (start of the record), and dd shifted by the image velocity. */
 void sbi_engine_boundary_fix_pair(const sb_engine *e, const double *xi,
                                   const double *xj, sb_engine_pair *p);
+/* End of the step, after the time advanced: particles of the inflows
+ * (engine_open.c). */
+int sbi_engine_inject(sb_engine *e);
+/* An open face's particle: count it, call the outflow callback, mark it
+ * for removal (engine_open.c). */
+int sbi_engine_outflow(sb_engine *e, size_t i, int face);
+
 /* End of the step: walls (deposition, reflection), then wrapping with
  * the Lees-Edwards shift. */
 int sbi_engine_boundaries(sb_engine *e);

@@ -35,7 +35,7 @@ int sb_engine_set_walls(sb_engine *e, int k, sb_engine_wall lo,
 {
   if (!e || k < 0 || k >= e->par.dim)
     return sbi_error(SB_EINVAL, __func__, "bad engine or direction %d", k);
-  if ((unsigned)lo > SB_WALL_ABSORB || (unsigned)hi > SB_WALL_ABSORB)
+  if ((unsigned)lo > SB_WALL_OPEN || (unsigned)hi > SB_WALL_OPEN)
     return sbi_error(SB_EINVAL, __func__, "unknown wall type");
   if ((lo == SB_WALL_PERIODIC) != (hi == SB_WALL_PERIODIC))
     return sbi_error(SB_EINVAL, __func__, "direction %d: periodic on one "
@@ -97,11 +97,13 @@ static int reinsert(sb_engine *e, size_t i)
   return SB_SUCCESS;
 }
 
-/* Does particle i touch face f (direction k, side s) during the step? */
-static int touches(sb_engine *e, size_t i, int k, int s)
+/* Does particle i reach the plane at distance a from face f (direction
+ * k, side s) during the step?  a = r: contact with an absorbing wall;
+ * a = 0: the centre leaves through an open face. */
+static int touches(sb_engine *e, size_t i, int k, int s, double a)
 {
-  const double r = e->radius[i], L = e->par.L[k];
-  /* distances to the contact plane, positive inside */
+  const double r = a, L = e->par.L[k];
+  /* distances to the plane, positive inside */
   double h0 = s ? (L - r) - e->x0[3 * i + k] : e->x0[3 * i + k] - r;
   double h1 = s ? (L - r) - e->x[3 * i + k] : e->x[3 * i + k] - r;
   if (h0 <= 0.0 || h1 <= 0.0)
@@ -128,10 +130,20 @@ static int walls(sb_engine *e)
       if (e->wall[2 * k] == SB_WALL_PERIODIC)
         continue;
       const double r = e->radius[i], L = e->par.L[k];
-      int dep = -1;
-      for (int s = 0; s < 2 && dep < 0; s++)
-        if (e->wall[2 * k + s] == SB_WALL_ABSORB && touches(e, i, k, s))
+      int dep = -1, out = -1;
+      for (int s = 0; s < 2 && dep < 0 && out < 0; s++) {
+        if (e->wall[2 * k + s] == SB_WALL_ABSORB && touches(e, i, k, s, r))
           dep = s;
+        else if (e->wall[2 * k + s] == SB_WALL_OPEN &&
+                 touches(e, i, k, s, 0.0))
+          out = s;
+      }
+      if (out >= 0) {  /* leaves through an open face (engine_open.c) */
+        int st = sbi_engine_outflow(e, i, 2 * k + out);
+        if (st)
+          return st;
+        break;
+      }
       if (dep >= 0) {
         e->ndep[2 * k + dep]++;
         if (e->deposit == SB_DEPOSIT_REMOVE) {
@@ -255,7 +267,7 @@ int sbi_engine_physics_load(sb_engine *e, FILE *f)
   }
   for (int q = 0; q < 6; q++) {
     int32_t v = iv[5 + q];
-    if ((unsigned)v > SB_WALL_ABSORB)
+    if ((unsigned)v > SB_WALL_OPEN)
       return SB_EFORMAT;
     e->wall[q] = (sb_engine_wall)v;
   }

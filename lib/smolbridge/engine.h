@@ -797,9 +797,14 @@ typedef enum {
   SB_WALL_PERIODIC = 0,  /**< periodic (both faces of a direction) */
   SB_WALL_REFLECT = 1,   /**< specular wall: y -> 2a - y, u_y -> -u_y
                               (exact fold of the free step) */
-  SB_WALL_ABSORB = 2     /**< deposition: the particle touching the
+  SB_WALL_ABSORB = 2,    /**< deposition: the particle touching the
                               contact plane (centre at a radius from the
                               face) is counted and removed or reinserted */
+  SB_WALL_OPEN = 3       /**< outflow: the particle whose centre crosses
+                              the face (same detector as the absorbing
+                              walls, plane at the face) leaves the box:
+                              counted, passed to the outflow callback,
+                              removed (sb_engine_add_inflow for inflow) */
 } sb_engine_wall;
 
 /** How contact with an absorbing wall is detected over a step. */
@@ -841,6 +846,68 @@ int sb_engine_set_wall_mode(sb_engine *e, sb_engine_walldet det,
 uint64_t sb_engine_deposits(const sb_engine *e, int face);
 /** Whether direction k is periodic (1) or walled (0). */
 int sb_engine_periodic(const sb_engine *e, int k);
+
+/* ============================================================
+ * Open boundaries: inflow of particles through a face at a given rate,
+ * outflow through SB_WALL_OPEN faces (lib/engine/engine_open.c;
+ * docs/engine_forces.md).  With them a box holds a steady stream: jets,
+ * sprays crossing a domain (Thomine 2008, §8-9).
+ * ============================================================ */
+
+#define SB_ENGINE_MAXINFLOW 16
+
+/** A stream entering the box through part of a face.  Particles arrive as
+ *  a Poisson process of the given rate, at uniform points of the inlet
+ *  and uniform times: each one injected at the end of a step is placed
+ *  where its straight path from its entry point and time leads (its
+ *  normal distance from the face is u_n s dt, s the fraction of the step
+ *  since its entry), so that the stream is a spatial Poisson process of
+ *  number density rate/(|u_n| inlet area).  Its flight over the entry
+ *  fraction of the step is straight and without collisions (an O(dt)
+ *  approximation at the inlet only).  The face need not be open: the
+ *  stream may enter through a periodic face as well. */
+typedef struct {
+  int face;          /**< 2k (lo face of direction k, at 0) or 2k + 1 (hi
+                          face, at L[k]) */
+  size_t species;    /**< species of the entering particles */
+  int family;        /**< their family tag */
+  double rate;       /**< particles per second over the whole inlet, >= 0 */
+  double lo[2], hi[2]; /**< inlet: the face's other coordinates in
+                          increasing direction order (x, y, z without k;
+                          2-D: one), lo < hi within the box, m */
+  double u[3];       /**< velocity of the entering particles, m/s; its
+                          component normal to the face points inward */
+  int no_overlap;    /**< 1: redraw (up to 100 times, then skip and
+                          count) a particle that would overlap another;
+                          costs O(N) per particle */
+} sb_engine_inflow;
+
+/** Add an inflow (at most SB_ENGINE_MAXINFLOW); *idx (may be NULL) gets
+ *  its index.  SB_EINVAL on a bad field.  Inflows are not stored in
+ *  checkpoints: add them again after sb_engine_checkpoint_load. */
+int sb_engine_add_inflow(sb_engine *e, const sb_engine_inflow *in,
+                         size_t *idx);
+/** Number of inflows. */
+size_t sb_engine_ninflows(const sb_engine *e);
+/** Particles injected by inflow k, and draws skipped because every
+ *  position tried overlapped a particle, since the counter reset. */
+uint64_t sb_engine_inflow_injected(const sb_engine *e, size_t k);
+uint64_t sb_engine_inflow_skipped(const sb_engine *e, size_t k);
+/** Particles that left through face f (an SB_WALL_OPEN face) since the
+ *  counter reset; 0 for a bad face. */
+uint64_t sb_engine_outflows(const sb_engine *e, int face);
+
+/** Called for each particle leaving through an open face, before its
+ *  removal: its index i (positions, velocities, masses, families readable
+ *  through the accessors: the end-of-step state, outside the box by at
+ *  most one step's flight), the face, and the time t_exit (s) at which
+ *  its straight chord crossed the face.  A non-zero return stops the step
+ *  with that status. */
+typedef int (*sb_engine_outflow_fn)(const sb_engine *e, size_t i, int face,
+                                    double t_exit, void *ctx);
+/** Set (fn != NULL) or clear the outflow callback (not in checkpoints). */
+int sb_engine_set_outflow_fn(sb_engine *e, sb_engine_outflow_fn fn,
+                             void *ctx);
 
 #ifdef __cplusplus
 }
