@@ -335,8 +335,8 @@ static int case_saffman_turner(const sbv_ctx *ctx, sbv_report *rep)
   /* kernel runs (the linked cells are sized by the contact distance:
    * R k >= 0.2 keeps their number near the particle number) */
   static const st_run runs[] = {
-      {0.2, 0.0, 10000, 0},  /* frozen, R k = 0.2: ST holds */
-      {0.2, 1.0, 10000, 0},  /* time-correlated, w0 = 1/tau_eta */
+      {0.2, 0.0, 20000, 0},  /* frozen, R k = 0.2: ST holds */
+      {0.2, 1.0, 20000, 0},  /* time-correlated, w0 = 1/tau_eta */
       {1.0, 0.0, 2000, 1},   /* R k = 1: the edge of the linear range */
       {2.0, 0.0, 800, 1},    /* R k = 2: ST fails (2R = L/3) */
   };
