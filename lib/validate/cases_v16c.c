@@ -18,6 +18,8 @@
 #include <string.h>
 
 #include <gsl/gsl_randist.h>
+#include <gsl/gsl_cdf.h>
+#include <gsl/gsl_integration.h>
 #include <gsl/gsl_sf_bessel.h>
 #include <gsl/gsl_rng.h>
 
@@ -28,6 +30,7 @@
 
 #include "cases.h"
 #include "firsthit.h"
+#include "v16.h"
 #include "v16c.h"
 
 #define PI 3.14159265358979323846
@@ -577,6 +580,126 @@ static int case_combined(const sbv_ctx *ctx, sbv_report *rep)
   return st;
 }
 
+/* Pass-through rate of Langevin spheres (velocity variance v2 per
+ * component each, relaxation time tau) in the linear shear U_x = G y, at
+ * contact distance R: the flux R^2 int E[(w.n)^-] dOmega with w.n ~
+ * N(G R n_x n_y, n.S.n), S = 2 v2 [[1 + (G tau)^2/2, -G tau/2, 0],
+ * [-G tau/2, 1, 0], [0, 0, 1]] the stationary covariance of the relative
+ * peculiar velocity (dc_x = -c_x/tau dt - G c_y dt + B dW_x).  Limits:
+ * v2 -> 0, (4/3) G R^3; G -> 0, sqrt(8 pi) R^2 sqrt(2 v2). */
+static double shear_kinetic_flux(double R, double G, double v2, double tau)
+{
+  gsl_integration_glfixed_table *tb = gsl_integration_glfixed_table_alloc(96);
+  if (!tb)
+    return NAN;
+  const double gt = G * tau;
+  double sum = 0.0;
+  const int nphi = 192;
+  for (size_t i = 0; i < 96; i++) {
+    double mu, wmu;
+    gsl_integration_glfixed_point(-1.0, 1.0, i, &mu, &wmu, tb);
+    const double st = sqrt(1.0 - mu * mu);
+    double sp = 0.0;
+    for (int j = 0; j < nphi; j++) {
+      const double ph = 2.0 * PI * (j + 0.5) / nphi;
+      const double nx = st * cos(ph), ny = st * sin(ph), nz = mu;
+      const double m = G * R * nx * ny;
+      const double var = 2.0 * v2 * ((1.0 + 0.5 * gt * gt) * nx * nx -
+                                     gt * nx * ny + ny * ny + nz * nz);
+      const double sd = sqrt(var), z = m / sd;
+      sp += sd * exp(-0.5 * z * z) / sqrt(2.0 * PI) - m * gsl_cdf_ugaussian_P(-z);
+    }
+    sum += wmu * sp * 2.0 * PI / nphi;
+  }
+  gsl_integration_glfixed_table_free(tb);
+  return R * R * sum;
+}
+
+static int case_shear_kinetic(const sbv_ctx *ctx, sbv_report *rep)
+{
+  if (sbv_writing(ctx)) {
+    sbv_ini_skip(rep, "V16/combined-shear: run by the case");
+    return SB_SUCCESS;
+  }
+  gsl_rng *r = sbv_rng_alloc(ctx, 1650);
+  if (!r)
+    return SB_ENOMEM;
+  const double rad = 5e-6, R = 2.0 * rad, G = 1000.0, tau = 1e-5;
+  static const double pks[] = {0.3, 1.0, 3.0};  /* G R / sqrt(2 v2) */
+  const size_t n = ctx->full ? 8000 : 2000;
+  const double target = ctx->full ? 20000.0 : 2500.0;
+  int st = SB_SUCCESS;
+  sbv_note(rep, "Langevin spheres (d = 10 um, tau_p = %.3g s, B from the "
+           "velocity variance v'^2) in the shear U_x = G (y - L_y/2), G = "
+           "%.0f s^-1 (G tau_p = %.2g), Lees-Edwards boundaries, ballistic "
+           "regime (dt = tau_p/20, contact-time detection), pass-through "
+           "counting (the Rice flux: exact at every Knudsen number, no "
+           "transient), %zu particles at volume fraction 0.5 (overlaps "
+           "allowed), ~%.0f contacts per row.  Reference: the flux of the "
+           "Gaussian relative velocity with mean G R n_x n_y and the "
+           "stationary sheared covariance (shear_kinetic_flux), exact Poisson "
+           "test at 1e-4; informational: against the additive K_kin + "
+           "K_shear = sqrt(8 pi) R^2 sqrt(2 v'^2) + (4/3) G R^3.  Kinetic "
+           "Peclet number Pe_k = G R/sqrt(2 v'^2).", tau, G, G * tau, n,
+           target);
+  /* the reference's limits (quadrature of a kinked integrand as v2 -> 0:
+   * second order, 96 x 192 nodes) */
+  st = sbv_add_relband(rep, "V16/combined-shear/reference/v2->0/shear",
+                       shear_kinetic_flux(R, G, 1e-24 * G * G * R * R, tau),
+                       sb_kernel_shear(rad, rad, G), 1e-3);
+  if (!st)
+    st = sbv_add_relband(rep, "V16/combined-shear/reference/G=0/kinetic",
+                         shear_kinetic_flux(R, 0.0, 1e-6, tau),
+                         sb_kernel_abrahamson(rad, rad, 1e-6, 1e-6), 1e-9);
+  for (size_t k = 0; k < sizeof pks / sizeof pks[0] && !st; k++) {
+    const double s2 = (G * R / pks[k]) * (G * R / pks[k]);  /* 2 v2 */
+    const double v2 = 0.5 * s2;
+    v16_setup su;
+    memset(&su, 0, sizeof su);
+    su.G = G;
+    su.lees = 1;
+    su.nsp = 1;
+    su.sp[0] = (v16_species){rad, 1000.0, tau, sqrt(2.0 * v2 / tau), n,
+                             SB_DRAG_STOKES, 0.0, 0.0};
+    const double V = (double)n * 4.0 / 3.0 * PI * rad * rad * rad / 0.5;
+    const double l = cbrt(V / 0.4);
+    su.L[0] = su.L[2] = l;
+    su.L[1] = 0.4 * l;
+    su.dt = tau / 20.0;
+    const double Kref = shear_kinetic_flux(R, G, v2, tau);
+    const double Kadd = sb_kernel_abrahamson(rad, rad, v2, v2) +
+                        sb_kernel_shear(rad, rad, G);
+    const double P = 0.5 * (double)n * (double)(n - 1);
+    su.warmup = 100;  /* 5 tau_p: the sheared covariance builds up */
+    su.steps = (size_t)ceil(target / (Kref * P / V) / su.dt);
+    su.seed = ctx->seed * 1000 + 1650 + (unsigned long)k;
+    v16_result res;
+    st = v16_run(&su, r, &res);
+    if (st)
+      break;
+    const sb_engine_pair_stats *ps = &res.pk[0][0];
+    char name[160];
+    snprintf(name, sizeof name, "V16/combined-shear/langevin+shear/"
+             "Pe_k=%g/K_e/K_ref", pks[k]);
+    st = pair_row(rep, name, ps, Kref, 0);
+    if (!st) {
+      snprintf(name, sizeof name, "V16/combined-shear/langevin+shear/"
+               "Pe_k=%g/K_e/(K_kin+K_shear)", pks[k]);
+      st = sbv_add_info(rep, name, ps->K / Kadd, 1.0, ps->lo / Kadd,
+                        ps->hi / Kadd, 0.95);
+    }
+    if (!st) {
+      snprintf(name, sizeof name, "V16/combined-shear/langevin+shear/"
+               "Pe_k=%g/K_ref/(K_kin+K_shear)", pks[k]);
+      st = sbv_add_info(rep, name, Kref / Kadd, 1.0, NAN, NAN, 0.95);
+    }
+    sbv_progress(ctx, "  V16 combined-shear Pe_k=%g: %zu steps", pks[k],
+                 su.steps);
+  }
+  gsl_rng_free(r);
+  return st;
+}
+
 const sbv_case sbv_cases_v16c[] = {
     {"V16/abrahamson",
      "inertial particles in a random Gaussian fluid velocity field (per-"
@@ -593,5 +716,10 @@ const sbv_case sbv_cases_v16c[] = {
      "against the exact drift-diffusion kernel and the additive "
      "approximation K_B + K_G",
      case_combined},
+    {"V16/combined-shear",
+     "Langevin (Brownian, ballistic regime) spheres in laminar shear with "
+     "Lees-Edwards boundaries: exact pass-through flux vs the additive "
+     "kinetic + shear kernel",
+     case_shear_kinetic},
 };
 const size_t sbv_ncases_v16c = sizeof sbv_cases_v16c / sizeof sbv_cases_v16c[0];
