@@ -1,5 +1,7 @@
 /* cases_v16c.c — V16: the engine in random fluid velocity fields against
- * Abrahamson's and Saffman & Turner's kernels (docs/engine_forces.md §8).
+ * Abrahamson's and Saffman & Turner's kernels, and combined mechanisms
+ * (Brownian + settling, Langevin + shear) against exact references and
+ * the additive approximation (docs/engine_forces.md §8).
  *
  * Protocol (as V16/shear): particles placed uniformly and independently,
  * outcome count (pass-through), contact-time detection.  With
