@@ -184,5 +184,7 @@ extern const sbv_case sbv_cases_transport[];
 extern const size_t sbv_ncases_transport;
 extern const sbv_case sbv_cases_v16[];
 extern const size_t sbv_ncases_v16;
+extern const sbv_case sbv_cases_v16c[];
+extern const size_t sbv_ncases_v16c;
 
 #endif /* SB_VALIDATE_CASES_H */

@@ -159,6 +159,8 @@ typedef struct {
   int det;                 /* LV_* */
   size_t vcap;             /* keep up to vcap normal velocities at first
                               contacts (0: none) */
+  double g[3];             /* constant acceleration, m/s^2 (0: none;
+                              V16/combined: Brownian + settling) */
 } lv_run;
 
 typedef struct {

@@ -230,6 +230,9 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
     sb_engine_species s = {0.5 * q->d[a], q->mass[a], q->tau[a], B, q->temp};
     st = sb_engine_add_species(e, &s, NULL);
   }
+  /* hook: gravity (settling velocity tau_p g; V16/combined) */
+  if (!st && (q->g[0] != 0.0 || q->g[1] != 0.0 || q->g[2] != 0.0))
+    st = sb_engine_set_gravity(e, q->g);
   if (!st)
     st = place(ctx, stream, e, q, &f);
   double reach = 0.0;
