@@ -182,4 +182,26 @@ int col_out_write(const col_config *c, const col_run *r,
 /* Snapshot path of number k. */
 void col_snap_path(const col_config *c, long k, char *buf, size_t len);
 
+/* ------------------------------------------- collide.c, collide_sweep.c */
+
+/* What one run gives a sweep's summary. */
+typedef struct {
+  char status[16];      /* ok, input error, run error, write error */
+  char why[1100];       /* the message when not ok */
+  char kind[16];        /* K_e (collision kernel) or first-hit */
+  size_t particles;
+  unsigned long long ncoll, steps;
+  double K, lo, hi;     /* m^3/s and its 95% interval, NaN if none */
+  double cpu_seconds;
+} col_point;
+
+/* One run of CONFIG.ini with the overrides; progress on stderr when
+ * verbose; *res (may be NULL) receives the summary.  Exit status as the
+ * command's. */
+int col_run_point(const char *ini, const char *const *sets, int nsets,
+                  int verbose, col_point *res);
+/* --sweep FILE: the points over the ranks (collide_sweep.c). */
+int col_sweep(const char *ini, const char *const *sets, int nsets,
+              const char *file);
+
 #endif /* SB_CLI_COLLIDE_H */
