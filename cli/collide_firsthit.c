@@ -80,6 +80,8 @@ static int detect(const sb_engine *e, const sb_engine_pair *p,
     h = sb_engine_detect_bridge(e, p, r, f->b, s);
   else if (f->builtin == SB_DETECT_OVERLAP)
     h = sb_engine_detect_overlap(p, s);
+  else if (f->builtin == SB_DETECT_LANGEVIN)
+    h = sb_engine_detect_langevin(e, p, r, NULL, s);
   else
     h = sb_engine_detect_ballistic(p, s);
   if (h <= 0)

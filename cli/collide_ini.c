@@ -112,6 +112,17 @@ static const keydef KEYS[] = {
      "elastic", "what a collision does"},
     {"run", "eta", K_NUM, C(eta), 0, R_CLOSED, 0, 1, NULL, "-", "1",
      "energy-loss factor of elastic collisions and DLVO rebounds"},
+    {"run", "langevin_eps", K_NUM, C(lv_eps), 0, R_CLOSED, 1e-300, 0.1,
+     NULL, "-", "1e-6",
+     "detect = langevin: probability budget per pair and step of the "
+     "pruning"},
+    {"run", "langevin_xtol", K_NUM, C(lv_xtol), 0, R_CLOSED, 1e-300, 0.01,
+     NULL, "-", "1e-6",
+     "detect = langevin: contact position resolution relative to r_i + r_j"},
+    {"run", "langevin_tol", K_NUM, C(lv_tol), 0, R_CLOSED, 1e-300, 0.5,
+     NULL, "-", "1e-9",
+     "detect = langevin: neighbour reach, expected contacts missed per "
+     "particle per step"},
     {"run", "sample_every", K_INT, C(sample_every), 0, R_CLOSED, 1, 2e9,
      NULL, "steps", "run/200", "time-series period"},
     {"run", "snapshot_every", K_INT, C(snapshot_every), 0, R_CLOSED, 0, 2e9,
@@ -311,6 +322,7 @@ void col_defaults(col_config *c)
   c->dt = c->t_end = NAN;
   c->steps = -1;
   c->eta = 1.0;
+  c->lv_eps = c->lv_xtol = c->lv_tol = NAN;
   c->sample_every = -1;
   c->placement_seed = -1;
   strcpy(c->neigh, "cells");
@@ -932,6 +944,11 @@ int col_check(col_config *c)
     unused(c, "agglo", "wmax_kT", "outcome = merge (no barrier)");
     unused(c, "agglo", "erel", "outcome = merge");
     unused(c, "agglo", "erel_normal", "outcome = merge");
+  }
+  if (strcmp(c->detect, "langevin")) {
+    unused(c, run, "langevin_eps", "only detect = langevin uses it");
+    unused(c, run, "langevin_xtol", "only detect = langevin uses it");
+    unused(c, run, "langevin_tol", "only detect = langevin uses it");
   }
   if (strcmp(c->outcome, "elastic") && strcmp(c->outcome, "dlvo"))
     unused(c, run, "eta", "only outcome = elastic or dlvo (rebounds) "

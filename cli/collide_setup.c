@@ -503,8 +503,23 @@ int col_setup(col_config *c, col_run *r)
     return -1;
   if (col_agglo(c) && attach_agglo(c, r))
     return -1;
+  if (!isnan(c->lv_eps) || !isnan(c->lv_xtol) || !isnan(c->lv_tol)) {
+    /* not in checkpoints: given again on restart */
+    sb_engine_langevin_params lp;
+    sb_engine_langevin_params_default(&lp);
+    if (!isnan(c->lv_eps))
+      lp.eps = c->lv_eps;
+    if (!isnan(c->lv_xtol))
+      lp.xtol = c->lv_xtol;
+    if (!isnan(c->lv_tol))
+      lp.tol = c->lv_tol;
+    if (sb_engine_set_langevin(r->e, &lp))
+      return col_fail(c, "[run] langevin_*: %s", sb_last_error());
+  }
   if (c->first_hit) {
-    double reach = r->bridge ? sb_engine_bridge_reach(r->e, r->bridge) : 0.0;
+    double reach = r->bridge ? sb_engine_bridge_reach(r->e, r->bridge)
+                   : dm == SB_DETECT_LANGEVIN ? sb_engine_langevin_reach(r->e)
+                                              : 0.0;
     if (col_firsthit_attach(r, dm, reach))
       return col_fail(c, "[observe] first_hit: %s", sb_last_error());
   }

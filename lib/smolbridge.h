@@ -8,6 +8,7 @@
 #include <smolbridge/passage.h>
 #include <smolbridge/bridge.h>
 #include <smolbridge/langevin.h>
+#include <smolbridge/langevin_hit.h>
 #include <smolbridge/simulate.h>
 #include <smolbridge/kernel.h>
 #include <smolbridge/dlvo.h>

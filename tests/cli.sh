@@ -167,6 +167,18 @@ if "$sb" collide "$out/two.ini" 2>/dev/null; then
 else
   fail "smolbridge collide $ini failed"
 fi
+# the Langevin-bridge detector from the INI file (detect = langevin)
+nano="${srcdir:-.}/examples/v12_nano_langevin.ini"
+sed -e "s|^output = .*|output = $out/nano|" -e "s|^steps = .*|steps = 40|" \
+  "$nano" > "$out/nano.ini"
+if "$sb" collide "$out/nano.ini" 2>/dev/null; then
+  grep -q '"detect": "langevin"' "$out/nano/summary.json" ||
+    fail "collide: detect = langevin not in summary.json"
+  grep -q '^  "collisions": 0,' "$out/nano/summary.json" &&
+    fail "collide: no collision with detect = langevin"
+else
+  fail "smolbridge collide $nano failed"
+fi
 printf '[run]\nL = 1e-4\nbogus = 3\n' > "$out/bad.ini"
 msg=$("$sb" collide "$out/bad.ini" 2>&1 >/dev/null)
 rc=$?

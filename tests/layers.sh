@@ -31,6 +31,7 @@ layer() {
 header_module() {
   case "$1" in
     engine_bridge) echo engine ;;
+    langevin_hit) echo langevin ;;
     version) echo common ;;
     *) echo "$1" ;;
   esac

@@ -48,7 +48,8 @@ static int check_params(const sb_engine_params *p, const char *func)
                      p->capacity);
   if ((unsigned)p->neigh > SB_NEIGH_BRUTE)
     return sbi_error(SB_EINVAL, func, "neigh = %d: unknown", (int)p->neigh);
-  if ((unsigned)p->detect > SB_DETECT_OVERLAP)
+  if ((unsigned)p->detect > SB_DETECT_LANGEVIN ||
+      p->detect == SB_DETECT_CUSTOM)
     return sbi_error(SB_EINVAL, func,
                      "detect = %d: unknown or custom (use "
                      "sb_engine_set_detector)",
@@ -102,13 +103,16 @@ sb_engine *sb_engine_alloc(const sb_engine_params *p)
   e->ver = calloc(c, sizeof(uint32_t));
   e->far = calloc(c, sizeof(size_t));
   e->isfar = calloc(c, 1);
+  e->lp_x = calloc(3 * c, sizeof(double));
+  e->lp_u = calloc(3 * c, sizeof(double));
+  e->lp_t = calloc(c, sizeof(double));
   e->rng = gsl_rng_alloc(p->rng_type ? p->rng_type : gsl_rng_mt19937);
   if (!e->x || !e->u || !e->x0 || !e->u0 || !e->disp || !e->us ||
       !e->radius || !e->mass || !e->species || !e->family || !e->id ||
       !e->hit || !e->dn || !e->xs || !e->cell_of || !e->cell_list || !e->order ||
       !e->key || !e->sub_p || !e->sub_v || !e->sub_t || !e->ver ||
-      !e->far || !e->isfar ||
-      !e->rng) {
+      !e->far || !e->isfar || !e->lp_x || !e->lp_u || !e->lp_t ||
+      !e->rng || sbi_engine_langevin_init(e)) {
     sb_engine_free(e);
     sbi_error(SB_ENOMEM, __func__, "out of memory (capacity %zu)", c);
     return NULL;
@@ -154,6 +158,10 @@ void sb_engine_free(sb_engine *e)
   free(e->ver);
   free(e->far);
   free(e->isfar);
+  free(e->lp_x);
+  free(e->lp_u);
+  free(e->lp_t);
+  sb_langevin_hitter_free(e->lh);
   if (e->rng)
     gsl_rng_free(e->rng);
   free(e);
@@ -563,7 +571,7 @@ int sb_engine_set_neigh(sb_engine *e, sb_engine_neigh m)
 
 int sb_engine_set_detect(sb_engine *e, sb_engine_detect d)
 {
-  if (!e || (unsigned)d > SB_DETECT_OVERLAP)
+  if (!e || (unsigned)d > SB_DETECT_LANGEVIN || d == SB_DETECT_CUSTOM)
     return sbi_error(SB_EINVAL, __func__, "bad engine or detector %d",
                      (int)d);
   e->par.detect = d;
@@ -740,10 +748,16 @@ int sb_engine_step(sb_engine *e)
   int st = transport(e);
   if (st)
     return st;
-  st = sbi_engine_find_pairs(e, e->par.neigh, e->x0, e->disp,
-                             e->par.detect == SB_DETECT_CUSTOM
-                                 ? e->detect_reach
-                                 : 0.0);
+  double reach = 0.0;
+  if (e->par.detect == SB_DETECT_CUSTOM)
+    reach = e->detect_reach;
+  else if (e->par.detect == SB_DETECT_LANGEVIN) {
+    reach = sb_engine_langevin_reach(e);
+    if (!(reach >= 0.0))
+      return sbi_error(SB_EINVAL, __func__, "no Langevin reach: %s",
+                       sb_last_error());
+  }
+  st = sbi_engine_find_pairs(e, e->par.neigh, e->x0, e->disp, reach);
   if (st)
     return st;
   st = sbi_engine_detect_and_process(e);
@@ -880,7 +894,11 @@ gsl_rng *sb_engine_rng(sb_engine *e) { return e ? e->rng : NULL; }
 /* One list per setting, NULL-terminated; the index is the enum value.  A
  * new built-in (e.g. a detector) is one more name here and in the enum. */
 static const char *const NEIGH_NAMES[] = {"cells", "sweep", "brute", NULL};
-static const char *const DETECT_NAMES[] = {"ballistic", "overlap", NULL};
+/* SB_DETECT_CUSTOM has no name: it is set with sb_engine_set_detector */
+static const char *const DETECT_NAMES[] = {"ballistic", "overlap",
+                                           "langevin", NULL};
+static const int DETECT_VALUES[] = {SB_DETECT_BALLISTIC, SB_DETECT_OVERLAP,
+                                    SB_DETECT_LANGEVIN};
 static const char *const OUTCOME_NAMES[] = {"elastic", "reinsert", "count",
                                             NULL};
 
@@ -918,6 +936,8 @@ int sb_engine_neigh_from_name(const char *name, sb_engine_neigh *m)
 int sb_engine_detect_from_name(const char *name, sb_engine_detect *d)
 {
   int k = 0, st = lookup(name, DETECT_NAMES, &k, __func__);
+  if (!st)
+    k = DETECT_VALUES[k];
   if (!st && d)
     *d = (sb_engine_detect)k;
   return st;

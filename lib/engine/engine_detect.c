@@ -178,9 +178,13 @@ static int detect_push(sb_engine *e, const sb_engine_pair *p, double t)
   const int count_only = e->par.outcome == SB_OUTCOME_COUNT;
   double s = 0.0;
   int hit;
+  sbi_event ev;
+  ev.hasc = 0;
   if (count_only && det != SB_DETECT_CUSTOM && overlapping(p))
     return SB_SUCCESS;  /* pass-through: an overlap is not a new contact */
-  if (det == SB_DETECT_BALLISTIC)
+  if (det == SB_DETECT_LANGEVIN)
+    hit = sbi_engine_langevin_detect(e, p, t, e->rng, &s, &ev);
+  else if (det == SB_DETECT_BALLISTIC)
     hit = sb_engine_detect_ballistic(p, &s);
   else if (det == SB_DETECT_OVERLAP)
     hit = sb_engine_detect_overlap(p, &s);
@@ -194,8 +198,8 @@ static int detect_push(sb_engine *e, const sb_engine_pair *p, double t)
   if (!(s >= 0.0 && s <= 1.0))
     return sbi_error(SB_EINVAL, "sb_engine_step",
                      "detector returned s = %g outside [0, 1]", s);
-  sbi_event ev;
-  ev.p = *p;
+  if (!ev.hasc)
+    ev.p = *p;
   ev.s_rec = s;
   ev.s = t + s * (1.0 - t);
   ev.vi = e->ver[p->i];
@@ -359,6 +363,8 @@ int sbi_engine_detect_and_process(sb_engine *e)
     e->sub_t[k] = 0.0;
     e->ver[k] = 0;
   }
+  if (e->par.detect == SB_DETECT_LANGEVIN || e->par.detect == SB_DETECT_CUSTOM)
+    sbi_engine_langevin_begin(e);  /* a custom detector may call it */
   for (size_t q = 0; q < e->npairs; q++) {
     sb_engine_pair p;
     sbi_engine_make_pair(e, e->pairs[2 * q], e->pairs[2 * q + 1], &p);
@@ -401,21 +407,43 @@ int sbi_engine_detect_and_process(sb_engine *e)
     e->hit[i] = e->hit[i] ? e->hit[i] : 1;
     e->hit[j] = e->hit[j] ? e->hit[j] : 1;
     sbi_engine_count_collision(e, i, j);
+    const size_t who[2] = {i, j};
+    pstate sc[2];  /* Langevin: the states at contact the outcome sees */
+    if (ev.hasc) {
+      for (int q = 0; q < 2; q++) {
+        memcpy(&e->x[3 * who[q]], ev.cx[q], 3 * sizeof(double));
+        memcpy(&e->u[3 * who[q]], ev.cu[q], 3 * sizeof(double));
+        snap(e, who[q], &sc[q]);
+      }
+      e->contact = &ev;
+    }
     int st = sbi_engine_apply_outcome(e, p, ev.s_rec);
+    e->contact = NULL;
     if (st)
       return st;
-    const size_t who[2] = {i, j};
-    const int ch[2] = {e->hit[i] != 2 && changed(e, i, &si),
-                       e->hit[j] != 2 && changed(e, j, &sj)};
+    const pstate *ref[2] = {ev.hasc ? &sc[0] : &si, ev.hasc ? &sc[1] : &sj};
+    const int ch[2] = {e->hit[i] != 2 && changed(e, i, ref[0]),
+                       e->hit[j] != 2 && changed(e, j, ref[1])};
     double ext[2] = {0.0, 0.0};
     for (int q = 0; q < 2; q++) {
-      if (e->hit[who[q]] == 2)
+      if (e->hit[who[q]] == 2) {
         e->ver[who[q]]++;  /* removed: its events are stale */
-      else if (ch[q]) {
-        double from[3];
-        position_after(e, who[q], ev.s, from);
-        ext[q] = new_piece(e, who[q], ev.s, from);
+        continue;
       }
+      double from[3];
+      if (ev.hasc) {
+        /* the state now is the one after the collision; continue from it
+         * (then the chord piece runs from there to the new end) */
+        memcpy(from, &e->x[3 * who[q]], sizeof from);
+        const pstate *end = q ? &sj : &si;
+        st = sbi_engine_langevin_continue(e, who[q], &ev, ch[q], end->x,
+                                          end->u);
+        if (st)
+          return st;
+      } else if (ch[q])
+        position_after(e, who[q], ev.s, from);
+      if (ch[q])
+        ext[q] = new_piece(e, who[q], ev.s, from);
     }
     if (!redetect)
       continue;

@@ -32,6 +32,10 @@ typedef struct {
   double s_rec;        /* ... of the record's interval p.dt */
   sb_engine_pair p;
   uint32_t vi, vj;
+  /* Langevin detector: both particles' states at the contact, each
+   * position in its own unwrapped frame of the step, and x_i - x_j */
+  int hasc;
+  double cx[2][3], cu[2][3], crel[3];
 } sbi_event;
 
 /* The linked-cell grid of the last neighbour search (for re-detection
@@ -135,6 +139,18 @@ struct sb_engine {
   double *key;               /* sweep: sorted x */
   size_t norder;             /* particles in order[] (0: rebuild) */
 
+  /* Langevin detector (engine_langevin.c).  Inside a step particle k
+   * follows a Langevin path piece from its state (lp_x, lp_u) at step
+   * fraction lp_t (position in its unwrapped frame) to its end state
+   * (x, u); an outcome that changes it starts a new piece. */
+  sb_langevin_hitter *lh;
+  sb_engine_langevin_params lpar;
+  double lreach;             /* cached reach, m (NaN: to compute) */
+  double lreach_dt;
+  size_t lreach_n, lreach_nspec;
+  double *lp_x, *lp_u, *lp_t;  /* 3 cap, 3 cap, cap */
+  const sbi_event *contact;  /* contact of the running outcome, or NULL */
+
   /* deferred removals (engine_merge.c): a particle marked hit[i] = 2 is
    * removed at the end of the step by sbi_engine_purge; nremove counts
    * the marks */
@@ -224,6 +240,25 @@ int sbi_engine_sample(sb_engine *e);
 
 /* Remove the particles marked for removal (engine_merge.c). */
 int sbi_engine_purge(sb_engine *e);
+
+/* Langevin detector (engine_langevin.c). */
+int sbi_engine_langevin_init(sb_engine *e);
+/* Run the detector on record p starting at step fraction t; on a contact
+ * returns 1 with *s (fraction of the record) and fills ev's contact
+ * states and its record (rewritten from the Langevin states); 0; or < 0
+ * on error. */
+int sbi_engine_langevin_detect(const sb_engine *e, const sb_engine_pair *p,
+                               double t, const gsl_rng *r, double *s,
+                               sbi_event *ev);
+/* Pieces start at the step's start. */
+void sbi_engine_langevin_begin(sb_engine *e);
+/* After the outcome of event ev: particle k (a partner, not removed)
+ * continues from its state now (e->x, e->u, at step fraction ev->s) to
+ * its end: the saved end (xe, ue) if `changed` is 0, else a fresh exact
+ * Langevin step. */
+int sbi_engine_langevin_continue(sb_engine *e, size_t k, const sbi_event *ev,
+                                 int changed, const double xe[3],
+                                 const double ue[3]);
 
 /* Recompute per-species step coefficients after a dt change. */
 int sbi_engine_update_coef(sb_engine *e);

@@ -337,8 +337,10 @@ int sb_agglo_merge(sb_engine *e, sb_agglo *a, const sb_engine_pair *p,
     sb_engine_outcome_path(e, i, bc);
   }
   for (int k = 0; k < e->par.dim; k++) {
-    /* x_j next to x_i: x_i - x_j = dx0 + dd (unwrapped chords) */
-    double rel = p->dx0[k] + p->dd[k];
+    /* x_j next to x_i: x_i - x_j = dx0 + dd (unwrapped chords); with the
+     * Langevin detector both are at contact (the engine then moves the
+     * cluster by a fresh Langevin step over the rest of the step) */
+    double rel = e->contact ? e->contact->crel[k] : p->dx0[k] + p->dd[k];
     double xb = e->x[3 * i + k] - fj * rel;
     e->u[3 * i + k] = fi * e->u[3 * i + k] + fj * e->u[3 * j + k];
     e->disp[3 * i + k] += xb - e->x[3 * i + k];
@@ -377,6 +379,20 @@ double sb_agglo_erel_of(const sb_engine *e, const sb_agglo *a,
                                    ? SB_DLVO_EREL_STATIONARY_NORMAL
                                    : SB_DLVO_EREL_STATIONARY,
                                e->par.dim);
+  }
+  if (e->contact) {
+    /* Langevin detector: the sampled velocities at contact */
+    const sbi_event *c = e->contact;
+    double w[3], w2 = 0.0, cn = 0.0, cc = 0.0;
+    for (int k = 0; k < 3; k++) {
+      w[k] = c->cu[0][k] - c->cu[1][k];
+      w2 += w[k] * w[k];
+      cn += w[k] * c->crel[k];
+      cc += c->crel[k] * c->crel[k];
+    }
+    if (!a->par.erel_normal)
+      return 0.5 * mu * w2;
+    return cc > 0.0 ? 0.5 * mu * cn * cn / cc : 0.0;
   }
   /* relative chord velocity at contact (constant along a chord) */
   const double dt = p->dt;

@@ -31,11 +31,44 @@
 #include "common/internal.h"
 #include "engine_internal.h"
 
+/* Elastic collision at a Langevin contact: the same impulse rule on the
+ * velocities at contact (e->u holds them), normal from the contact
+ * separation; positions stay (the engine continues both partners from
+ * their new states by a fresh Langevin step). */
+static int elastic_contact(sb_engine *e, const sb_engine_pair *p)
+{
+  const sbi_event *c = e->contact;
+  const size_t i = p->i, j = p->j;
+  double nv[3], nn = 0.0, wn = 0.0;
+  for (int k = 0; k < 3; k++) {
+    nv[k] = c->crel[k];
+    nn += nv[k] * nv[k];
+  }
+  nn = sqrt(nn);
+  if (!(nn > 0.0))
+    return SB_SUCCESS;
+  for (int k = 0; k < 3; k++) {
+    nv[k] /= nn;
+    wn += (e->u[3 * i + k] - e->u[3 * j + k]) * nv[k];
+  }
+  if (!(wn < 0.0))
+    return SB_SUCCESS;
+  const double mi = e->mass[i], mj = e->mass[j];
+  const double J = (1.0 + sqrt(e->par.eta)) * mi * mj / (mi + mj) * wn;
+  for (int k = 0; k < e->par.dim; k++) {
+    e->u[3 * i + k] -= J * nv[k] / mi;
+    e->u[3 * j + k] += J * nv[k] / mj;
+  }
+  return SB_SUCCESS;
+}
+
 int sb_engine_outcome_elastic(sb_engine *e, const sb_engine_pair *p,
                               double s)
 {
   if (!e || !p || p->i >= e->n || p->j >= e->n || !(s >= 0.0 && s <= 1.0))
     return sbi_error(SB_EINVAL, __func__, "bad argument");
+  if (e->contact)
+    return elastic_contact(e, p);
   const double dt = p->dt;  /* the interval the record covers */
   double nv[3], nn = 0.0;
   for (int k = 0; k < 3; k++) {

@@ -27,7 +27,10 @@
  *     straight segments x0 + s disp (0 <= s <= 1) come within r_i + r_j
  *     (+ the detector's extra reach);
  *  4. the detector is called for every candidate pair and returns the
- *     contact fraction s in [0, 1] of the step (or "no collision");
+ *     contact fraction s in [0, 1] of the step (or "no collision"); the
+ *     Langevin detector (SB_DETECT_LANGEVIN) samples it from the exact
+ *     conditional law of both particles' paths between their states at
+ *     the two ends of the step, with the states at contact;
  *  5. events are processed earliest first (ties by (i, j)); when an
  *     outcome changes the end of a particle's step (elastic bounce,
  *     reinsertion, merge), its path from the contact on is a new straight
@@ -55,6 +58,7 @@
 #include <stdint.h>
 #include <gsl/gsl_rng.h>
 #include <smolbridge/common.h>
+#include <smolbridge/langevin_hit.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -81,7 +85,13 @@ typedef enum {
   SB_DETECT_BALLISTIC = 0,  /**< exact contact time of the chords */
   SB_DETECT_OVERLAP = 1,    /**< overlap at step end (contact time then
                                  taken from the chords' entry root) */
-  SB_DETECT_CUSTOM = 2      /**< user callback, sb_engine_set_detector */
+  SB_DETECT_CUSTOM = 2,     /**< user callback, sb_engine_set_detector */
+  SB_DETECT_LANGEVIN = 3    /**< first contact sampled from the exact
+                                 conditional law of the pair's Langevin
+                                 paths between the step's end states,
+                                 valid at every dt/tau_p
+                                 (sb_engine_set_langevin;
+                                 docs/engine_langevin.md) */
 } sb_engine_detect;
 
 /** Built-in outcomes. */
@@ -343,6 +353,74 @@ int sb_engine_detect_ballistic(const sb_engine_pair *p, double *s);
  *  entry root of the chords (0 if they overlapped at the start). */
 int sb_engine_detect_overlap(const sb_engine_pair *p, double *s);
 
+/* ================================================ Langevin detector */
+
+/** Parameters of SB_DETECT_LANGEVIN (sb_engine_langevin_params_default). */
+typedef struct {
+  double eps;   /**< probability budget per pair and step of the pruning
+                     (sb_langevin_hit_params.eps), in (0, 0.1]; default
+                     1e-6 */
+  double xtol;  /**< position resolution of the contact relative to
+                     r_i + r_j, in (0, 0.01]; default 1e-6 */
+  double tol;   /**< neighbour reach: expected contacts missed per
+                     particle per step (sb_langevin_reach), in (0, 1);
+                     default 1e-9 */
+} sb_engine_langevin_params;
+
+void sb_engine_langevin_params_default(sb_engine_langevin_params *p);
+
+/** Set the parameters of the Langevin detector (whether or not it is the
+ *  engine's detector now); they are not stored in checkpoints (a loaded
+ *  engine uses the defaults).  SB_EINVAL on a bad value. */
+int sb_engine_set_langevin(sb_engine *e, const sb_engine_langevin_params *p);
+
+/** The neighbour reach (m) of the Langevin detector for the current
+ *  particle number, species, box and dt: the largest sb_langevin_reach
+ *  over species pairs (with r_i + r_j = 2 r_max and n = (N - 1)/V; beyond
+ *  8 species, over the 8 whose positions spread most in a step).  Cached;
+ *  recomputed when dt, the species or the particle number grow.  NaN on
+ *  error. */
+double sb_engine_langevin_reach(sb_engine *e);
+
+/** The Langevin detector as a detector callback (for wrappers, e.g.
+ *  first-contact counting): samples the first contact of the record's
+ *  pair from the exact conditional law (ctx unused, r the generator to
+ *  draw from).  The states at the record's start are the step's start
+ *  states, or, for a record that starts inside the step, the particles'
+ *  states on their current Langevin path pieces (drawn from their
+ *  bridges).  3-D or 2-D, every species (free flight and B = 0 are
+ *  deterministic paths).  Returns 1/0/-1 as sb_engine_detect_fn. */
+int sb_engine_detect_langevin(const sb_engine *e, const sb_engine_pair *p,
+                              const gsl_rng *r, void *ctx, double *s);
+
+/** As sb_engine_detect_langevin, also returning both particles' states at
+ *  the contact in *c (c may be NULL): time c->t from the record's start
+ *  t0 (s), positions x_i in i's unwrapped frame and x_j in the image next
+ *  to it (|x_i - x_j| = r_i + r_j), velocities. */
+int sb_engine_langevin_contact(const sb_engine *e, const sb_engine_pair *p,
+                               const gsl_rng *r, double *s,
+                               sb_langevin_contact *c);
+
+/** Counters of the Langevin detector since the engine's allocation (or
+ *  sb_engine_reset_counters); SB_EINVAL if the detector never ran. */
+int sb_engine_langevin_stats(const sb_engine *e, sb_langevin_hit_stats *st);
+
+/** Inside an outcome callback, with SB_DETECT_LANGEVIN: the states of
+ *  p->i and p->j at the contact (positions in m with x_i - x_j the contact
+ *  separation, |x_i - x_j| = r_i + r_j; velocities in m/s, drawn from
+ *  the conditional law at the contact time).  Any argument may be NULL.
+ *  SB_EINVAL when no contact state is available (another detector, or
+ *  outside an outcome).
+ *
+ *  With this detector an outcome sees each partner's state at the contact
+ *  in sb_engine_positions / sb_engine_velocities (position in the
+ *  particle's unwrapped frame of the step).  A partner whose state the
+ *  outcome changes (velocity, position, species) continues from its new
+ *  state by a fresh exact Langevin step over the rest of the step; an
+ *  unchanged one continues on its bridge to its end state. */
+int sb_engine_contact_state(const sb_engine *e, double xi[3], double ui[3],
+                            double xj[3], double uj[3]);
+
 /* ======================================================= observers */
 
 /** Counters since the start (or the last sb_engine_reset_counters). */
@@ -462,13 +540,14 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status);
 /* ======================================================= names */
 
 /** Names used by the CLI ("cells", "sweep", "brute"; "ballistic",
- *  "overlap"; "elastic", "reinsert", "count"); return SB_EINVAL for an
- *  unknown name, with the valid names in the message. */
+ *  "overlap", "langevin"; "elastic", "reinsert", "count"); return
+ *  SB_EINVAL for an unknown name, with the valid names in the message. */
 int sb_engine_neigh_from_name(const char *name, sb_engine_neigh *m);
 int sb_engine_detect_from_name(const char *name, sb_engine_detect *d);
 int sb_engine_outcome_from_name(const char *name, sb_engine_outcome *o);
 /** The names the _from_name functions accept, NULL-terminated, in enum
- *  order (static storage; for help texts and error messages). */
+ *  order (detectors: SB_DETECT_CUSTOM has no name) (static storage; for
+ *  help texts and error messages). */
 const char *const *sb_engine_neigh_names(void);
 const char *const *sb_engine_detect_names(void);
 const char *const *sb_engine_outcome_names(void);

@@ -174,5 +174,7 @@ extern const sbv_case sbv_cases_pgd_jets[];
 extern const size_t sbv_ncases_pgd_jets;
 extern const sbv_case sbv_cases_spray[];
 extern const size_t sbv_ncases_spray;
+extern const sbv_case sbv_cases_v12[];
+extern const size_t sbv_ncases_v12;
 
 #endif /* SB_VALIDATE_CASES_H */

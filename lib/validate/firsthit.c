@@ -20,8 +20,7 @@
 typedef struct {
   sb_engine_bridge *b;  /* bridge detector (FH_BRIDGE) */
   int builtin;          /* FH_* */
-  uint64_t *set;        /* open addressing, 0 = empty */
-  size_t cap, n;
+  fh_set s;             /* pairs seen */
   size_t n0;            /* pairs overlapping at the start */
   size_t nwarm;         /* first contacts during the warm-up */
   double t1;            /* end of the warm-up, s */
@@ -32,9 +31,7 @@ static size_t slot(uint64_t key, size_t cap)
   return (size_t)((key * 0x9E3779B97F4A7C15ULL) >> 17) & (cap - 1);
 }
 
-/* Insert key; 1 if new, 0 if present, -1 out of memory.  Grows at half
- * load (rehash). */
-static int fh_insert(firsthit *f, uint64_t key)
+int fh_set_insert(fh_set *f, uint64_t key)
 {
   if (2 * (f->n + 1) > f->cap) {
     size_t nc = f->cap ? 2 * f->cap : 1024;
@@ -63,9 +60,26 @@ static int fh_insert(firsthit *f, uint64_t key)
   }
 }
 
-static uint64_t pair_key(uint64_t a, uint64_t b)
+int fh_set_has(const fh_set *f, uint64_t key)
+{
+  if (!f->cap)
+    return 0;
+  for (size_t h = slot(key, f->cap);; h = (h + 1) & (f->cap - 1)) {
+    if (f->set[h] == key)
+      return 1;
+    if (!f->set[h])
+      return 0;
+  }
+}
+
+uint64_t fh_pair_key(uint64_t a, uint64_t b)
 {
   return ((a < b ? a : b) << 32 | (a < b ? b : a)) + 1;
+}
+
+static int fh_insert(firsthit *f, uint64_t key)
+{
+  return fh_set_insert(&f->s, key);
 }
 
 /* Wraps a detector: records the pair's first detected contact and
@@ -90,7 +104,7 @@ static int fh_detect(const sb_engine *e, const sb_engine_pair *p,
   if (h <= 0)
     return h;
   const uint64_t *id = sb_engine_ids(e);
-  int fresh = fh_insert(f, pair_key(id[p->i], id[p->j]));
+  int fresh = fh_insert(f, fh_pair_key(id[p->i], id[p->j]));
   if (fresh < 0)
     return -1;
   /* the record covers [t0, t0 + dt] */
@@ -136,12 +150,12 @@ static int place_uniform(const sbv_ctx *ctx, unsigned long stream,
         d2 += dx * dx;
       }
       if (d2 <= a2) {
-        if (fh_insert(f, pair_key(id[i], id[j])) < 0)
+        if (fh_insert(f, fh_pair_key(id[i], id[j])) < 0)
           return SB_ENOMEM;
         nov++;
       }
     }
-  f->n0 = f->n;
+  f->n0 = f->s.n;
   *npout = 0.5 * (double)q->N * (double)(q->N - 1) - (double)nov;
   return SB_SUCCESS;
 }
@@ -252,7 +266,7 @@ int run_firsthit(const sbv_ctx *ctx, unsigned long stream, const fh_run *q,
   /* Langevin species with B tau = B_pos (diffusive limit for dt >> tau) */
   double Bv = sqrt(q->b2) / q->tau;
   sb_engine_species s = {0.5 * q->d, q->mass, q->tau, Bv, 0.0};
-  firsthit f = {NULL, q->builtin, NULL, 0, 0, 0, 0, q->t1};
+  firsthit f = {NULL, q->builtin, {NULL, 0, 0}, 0, 0, q->t1};
   double npout = 0.0;  /* pairs apart at the start */
   sb_engine_bridge_params bp;
   sb_engine_bridge_params_default(&bp);
@@ -294,14 +308,14 @@ int run_firsthit(const sbv_ctx *ctx, unsigned long stream, const fh_run *q,
     double V = q->L * q->L * q->L, R = q->d;
     double vb = 4.0 * PI * R * R * R / 3.0;
     o->expected_per_K = npout * fh_teff(&qq) / (V - vb);
-    o->hits = (unsigned long)(f.n - f.n0 - f.nwarm);
+    o->hits = (unsigned long)(f.s.n - f.n0 - f.nwarm);
     double scale = 1.0 / o->expected_per_K;
     o->K = scale * (double)o->hits;
     o->steps = (double)es.steps;
     st = sb_poisson_rate_ci(o->hits, scale, 0.95, &o->lo, &o->hi);
   }
   sb_engine_bridge_free(f.b);
-  free(f.set);
+  free(f.s.set);
   sb_engine_free(e);
   return st;
 }

@@ -77,6 +77,17 @@ typedef struct {
   double steps;
 } fh_out;
 
+/* Set of pair keys (open addressing, 0 = empty; grows at half load). */
+typedef struct {
+  uint64_t *set;
+  size_t cap, n;
+} fh_set;
+/* Insert; 1 if new, 0 if present, -1 out of memory. */
+int fh_set_insert(fh_set *f, uint64_t key);
+int fh_set_has(const fh_set *f, uint64_t key);
+/* Key of the unordered pair of particle ids (a, b). */
+uint64_t fh_pair_key(uint64_t a, uint64_t b);
+
 /* Defaults: builtin FH_BRIDGE, Bessel mode, position ends, no warm-up. */
 void fh_run_init(fh_run *q);
 
@@ -105,5 +116,92 @@ int fh_cube_params(const sbv_ctx *ctx, unsigned long stream, double L,
 /* |zeta(1/2)|: the Milne extrapolation length of the Klein-Kramers
  * equation in units of sqrt(k_B T / m) tau. */
 #define FH_MILNE 1.4603545088095868
+
+/* ------------------------------------------------------------------
+ * First-hit counting of Langevin spheres in the transition regime
+ * (firsthit_lv.c): one or two species (per pair type counts), any
+ * detector, normal relative velocities at the first contacts, and the
+ * long-time kernel with the transient removed self-consistently.
+ *
+ * Estimator.  For a pair uniform (outside contact) at t = 0 the
+ * absorption rate tends to K (1 + a / sqrt(pi D t)) + O(tau_p / t), with
+ * D = D_i + D_j (Einstein, D = k_B T tau_p / m) and a = K / (4 pi D) the
+ * capacitance radius of the absorber that the outer diffusion field sees
+ * (the Smoluchowski transient of that sphere; for a pure diffusion
+ * absorber a = R, for Langevin spheres at small Kn_D a = R - l with the
+ * Milne length l of V2).  Integrated over (t1, T]:
+ *   E[hits] = P/(V - v_a) [K (T - t1) + K^2 2 (sqrt T - sqrt t1) /
+ *             (4 pi D sqrt(pi D))],
+ * a quadratic in K solved exactly; the Garwood interval of the count maps
+ * through the same increasing function.  The O(tau_p/t) remainder
+ * integrates to O(tau_p log(T/t1)) against T - t1: the warm-up t1 >= 50
+ * tau_p keeps it below ~0.2% (measured by varying t1, docs/validation.md,
+ * V12).  At large Kn_D, a << R and the rate is close to free-molecular
+ * from the start. */
+
+enum {
+  LV_LANGEVIN = 0,  /* sb_engine_langevin_contact */
+  LV_CHORD = 1,     /* contact time of the displacement chords */
+  LV_OVERLAP = 2,   /* overlap at step end */
+  LV_BESSEL = 3,    /* Bessel-3 bridge of the positions (Mohaupt 2011,
+                       ch. 5) */
+  LV_EXACT = 4      /* exact 3-D Brownian bridge (sb_bb3_hit_sample) */
+};
+
+typedef struct {
+  int nsp;                 /* 1 or 2 species */
+  double d[2];             /* diameters, m */
+  double tau[2], mass[2];  /* s, kg */
+  size_t N[2];             /* particles of each species */
+  double temp;             /* K */
+  double dt, L;            /* s, m */
+  double t1, T;            /* warm-up end and run end, s */
+  int det;                 /* LV_* */
+  size_t vcap;             /* keep up to vcap normal velocities at first
+                              contacts (0: none) */
+} lv_run;
+
+typedef struct {
+  unsigned long hits[3];   /* first contacts after the warm-up, per pair
+                              type (species 0-0, 0-1, 1-1) */
+  double npairs[3];        /* pairs apart at the start, per type */
+  double veff[3];          /* V minus the contact ball, m^3 */
+  double D[3];             /* relative diffusivities, m^2/s */
+  double T;                /* time reached, s */
+  double *vn;              /* normal relative velocities (< 0: approach)
+                              at first contacts after the warm-up, all
+                              types, m/s; caller frees */
+  size_t nvn;
+  double cpu, steps, ncand;
+  double pruned_mass;      /* Langevin detector: summed pruned bounds */
+} lv_out;
+
+/* Run (engine seeded from `stream`); o->vn is allocated when vcap > 0. */
+int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
+                lv_out *o);
+
+/* Long-time kernel of pair type `type` from a run (estimator above) with
+ * its 95% interval; SB_EDOM if the type had no pairs. */
+int lv_kernel(const lv_run *q, const lv_out *o, int type, double *K,
+              double *lo, double *hi);
+/* The expected count of pair type `type` for a kernel K (the estimator's
+ * forward map: hits = lv_expected(K)). */
+double lv_expected(const lv_run *q, const lv_out *o, int type, double K);
+
+/* Row: the kernels of pair type `type` of two runs (1: tested, 2:
+ * reference) are equal.  Conditional test: given n = h1 + h2, h1 is
+ * binomial with p = f1(K)/(f1(K) + f2(K)) under H0 (f the runs' forward
+ * maps lv_expected), the common K taken at its estimate from n
+ * (f1 + f2 = n; a plug-in for the small transient term, so the test is
+ * approximately exact); exact binomial p-value and Clopper-Pearson
+ * interval at 1 - SBV_ALPHA, mapped to the ratio K1/K2 through the
+ * runs' secant exposures f(K)/K.  Rule cover, reference 1. */
+int lv_add_compare(sbv_report *rep, const char *name, const lv_run *q1,
+                   const lv_out *o1, const lv_run *q2, const lv_out *o2,
+                   int type);
+/* Row: two samples have the same law (two-sample KS, acceptance region
+ * [0, D_crit] at SBV_ALPHA).  Sorts both arrays. */
+int lv_add_ks2(sbv_report *rep, const char *name, double *x, size_t nx,
+               double *y, size_t ny);
 
 #endif /* SB_VALIDATE_FIRSTHIT_H */

@@ -22,6 +22,7 @@ static const struct {
     {sbv_cases_v2, &sbv_ncases_v2},
     {sbv_cases_engine2, &sbv_ncases_engine2},
     {sbv_cases_agglo, &sbv_ncases_agglo},
+    {sbv_cases_v12, &sbv_ncases_v12},
     {sbv_cases_pgd, &sbv_ncases_pgd},
     {sbv_cases_pgd_jets, &sbv_ncases_pgd_jets},
     {sbv_cases_spray, &sbv_ncases_spray},

@@ -1,0 +1,177 @@
+/* bench_engine_langevin.c — speed of the Langevin-bridge detector
+ * (SB_DETECT_LANGEVIN, docs/engine_langevin.md).
+ *
+ *  1. Overhead over the Bessel-3 bridge detector (Mohaupt 2011, ch. 5) at
+ *     the same dt: wall time per step of the whole engine (transport,
+ *     neighbour search, detection; pass-through counting) for Kn_D = 0.5
+ *     spheres (d = 100 nm, V12's physics), phi = 1e-4, N = 2e4 (quick:
+ *     5e3), at dt/tau_p = 1 and 100.  Goal: langevin / Bessel-3 <= 3.
+ *  2. Headline: wall time to the long-time kernel at Kn_D = 0.5 to +-2%
+ *     (95%: ~9600 first contacts, V12's first-hit protocol) with
+ *     `langevin` at dt/tau_p = 1, 10 and 100 (the best is the figure)
+ *     against contact time at dt/tau_p = 0.01 (the converged reference of
+ *     V12), one run on this machine.  The contact-time run is timed over
+ *     its first steps and extrapolated to its length (its cost per step is
+ *     constant); --full runs it to the end.  Goal: ratio >= 100.
+ * Options: --quick (smaller N), --full (no extrapolation).
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <gsl/gsl_rng.h>
+
+#include <smolbridge/engine.h>
+#include <smolbridge/engine_bridge.h>
+#include <smolbridge/kernel.h>
+#include <smolbridge/langevin.h>
+#include <smolbridge/validate.h>
+
+#include "validate/cases.h"
+#include "validate/firsthit.h"
+#include "validate/v12.h"
+
+#define PI 3.14159265358979323846
+
+static double now(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+/* Seconds per step of an engine of N Kn_D = 0.5 spheres at dt/tau_p = dtt
+ * with detector `bessel` (1) or langevin (0), pass-through. */
+static double per_step(size_t N, double dtt, int bessel, double *cand)
+{
+  v12_phys ph;
+  v12_physics(0.5, &ph);
+  const double phi = 1e-4;
+  const double L = cbrt((double)N * PI * pow(ph.d, 3) / 6.0 / phi);
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = L;
+  p.dt = dtt * ph.tau;
+  p.capacity = N;
+  p.seed = 7;
+  p.rng_type = gsl_rng_taus2;
+  p.outcome = SB_OUTCOME_COUNT;
+  p.detect = bessel ? SB_DETECT_BALLISTIC : SB_DETECT_LANGEVIN;
+  sb_engine *e = sb_engine_alloc(&p);
+  double B = sb_brownian_B(ph.temp, ph.m, ph.tau);
+  sb_engine_species s = {0.5 * ph.d, ph.m, ph.tau, B, ph.temp};
+  sb_engine_bridge *b = NULL;
+  if (!e || sb_engine_add_species(e, &s, NULL) ||
+      sb_engine_fill_random(e, 0, 0, N))
+    goto fail;
+  if (bessel) {
+    sb_engine_bridge_params bp;
+    sb_engine_bridge_params_default(&bp);
+    bp.outcome = SB_BRIDGE_OUT_COUNT;
+    b = sb_engine_bridge_alloc(&bp);
+    if (!b || sb_engine_bridge_attach(e, b))
+      goto fail;
+  }
+  const int warm = 3, steps = dtt >= 100.0 ? 10 : 40;
+  for (int k = 0; k < warm; k++)
+    if (sb_engine_step(e))
+      goto fail;
+  sb_engine_reset_counters(e);
+  double t0 = now();
+  for (int k = 0; k < steps; k++)
+    if (sb_engine_step(e))
+      goto fail;
+  double t = (now() - t0) / steps;
+  sb_engine_stats st;
+  sb_engine_get_stats(e, &st);
+  *cand = (double)st.ncand / ((double)steps * (double)N);
+  sb_engine_bridge_free(b);
+  sb_engine_free(e);
+  return t;
+fail:
+  fprintf(stderr, "bench: %s\n", sb_last_error());
+  sb_engine_bridge_free(b);
+  sb_engine_free(e);
+  return NAN;
+}
+
+int main(int argc, char **argv)
+{
+  int quick = 0, full = 0;
+  for (int k = 1; k < argc; k++) {
+    quick |= !strcmp(argv[k], "--quick");
+    full |= !strcmp(argv[k], "--full");
+  }
+  printf("bench_engine_langevin: Kn_D = 0.5 spheres (d = 100 nm, rho = "
+         "1000 kg/m^3, 296.15 K), single thread\n\n");
+  /* 1. overhead per step */
+  const size_t N = quick ? 5000 : 20000;
+  printf("1. Engine step, N = %zu, phi = 1e-4, pass-through counting\n", N);
+  printf("   %-10s %14s %14s %8s %10s %10s  %s\n", "dt/tau_p", "Bessel-3 us",
+         "langevin us", "ratio", "cand B", "cand L", "goal <= 3");
+  const double dts[2] = {1.0, 100.0};
+  int met = 0;
+  for (int k = 0; k < 2; k++) {
+    double cb, cl;
+    double tb = per_step(N, dts[k], 1, &cb);
+    double tl = per_step(N, dts[k], 0, &cl);
+    int ok = tl / tb <= 3.0;
+    met += ok;
+    printf("   %-10g %14.1f %14.1f %8.2f %10.2f %10.2f  %s\n", dts[k],
+           1e6 * tb, 1e6 * tl, tl / tb, cb, cl, ok ? "PASS" : "MISS");
+  }
+  /* 2. headline */
+  printf("\n2. Time to the kernel to +-2%% (95%%, ~9600 first contacts), "
+         "Kn_D = 0.5\n");
+  sb_validate_options opt;
+  sb_validate_options_init(&opt);
+  sbv_ctx ctx = {0, 12345, NULL, &opt, NULL, NULL};
+  v12_phys ph;
+  v12_physics(0.5, &ph);
+  const double hits = 9600.0;
+  double best = INFINITY, bestdt = NAN;
+  for (int k = 0; k < 3; k++) {
+    const double dtt = k == 0 ? 1.0 : (k == 1 ? 10.0 : 100.0);
+    lv_run q;
+    lv_out o;
+    double t0 = now();
+    if (v12_run(&ctx, 9, &ph, LV_LANGEVIN, dtt, hits, 300.0, 0, &q, &o)) {
+      fprintf(stderr, "bench: %s\n", sb_last_error());
+      return 1;
+    }
+    double t = now() - t0;
+    double K, lo, hi;
+    lv_kernel(&q, &o, 0, &K, &lo, &hi);
+    printf("   langevin, dt = %5g tau_p: %6.2f s, %lu contacts, N = %zu, "
+           "%.0f steps, K/K_GH = %.4f [%.4f, %.4f]\n", dtt, t, o.hits[0],
+           q.N[0], o.steps, K / ph.Kgh, lo / ph.Kgh, hi / ph.Kgh);
+    if (t < best)
+      best = t, bestdt = dtt;
+  }
+  lv_run q;
+  v12_size(&ph, LV_CHORD, 0.01, hits, V12_WARM * ph.tau,
+           (V12_WARM + 300.0) * ph.tau, 0, &q);
+  const double Tfull = q.T;
+  const double frac = full ? 1.0 : (quick ? 0.02 : 0.1);
+  if (!full)
+    q.T = q.dt * ceil(frac * Tfull / q.dt);
+  lv_out o;
+  double t0 = now();
+  if (lv_firsthit(&ctx, 9, &q, &o)) {
+    fprintf(stderr, "bench: %s\n", sb_last_error());
+    return 1;
+  }
+  double tc = (now() - t0) * Tfull / q.T;
+  printf("   contact time, dt = 0.01 tau_p: %.1f s%s (N = %zu, %.0f "
+         "steps)\n", tc, full ? "" : " (extrapolated from its first steps)",
+         q.N[0], Tfull / q.dt);
+  int ok = tc / best >= 100.0;
+  met += ok;
+  printf("   speed-up of langevin (dt = %g tau_p) over contact time: %.0fx  "
+         "%s (goal >= 100)\n", bestdt, tc / best, ok ? "PASS" : "MISS");
+  printf("\n%d of 3 goals met\n", met);
+  return 0;
+}

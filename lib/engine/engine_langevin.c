@@ -1,0 +1,356 @@
+/* engine_langevin.c — the Langevin-bridge detector of the engine
+ * (SB_DETECT_LANGEVIN): exact conditional sampling of a pair's first
+ * contact between the states the exact Langevin step produced
+ * (<smolbridge/langevin_hit.h>), its neighbour reach, and the Langevin path
+ * pieces that carry particles through collisions inside a step.
+ *
+ * Pieces.  Over a step particle k is known at the start (x0, u0) and the
+ * end (x, u); its path in between is the Langevin bridge.  A collision at
+ * step fraction t gives both partners' states at t (drawn by the
+ * sampler); what happens after depends on the outcome: a partner the
+ * outcome leaves unchanged continues on the bridge from its contact state
+ * to its end (exact by the Markov property), a changed one (bounce,
+ * merge, reinsertion) continues by a fresh exact Langevin step from its
+ * new state.  A record that starts inside the step (re-detection after a
+ * collision) needs both states at its start: a partner that is not at the
+ * start of its piece is drawn from its piece's bridge at that time.  Each
+ * pair's interior path is drawn independently of the other pairs' (as for
+ * every pairwise detector), which is exact for dilute suspensions, where
+ * a particle rarely has two partners close at once.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_randist.h>
+
+#include "common/internal.h"
+#include "engine_internal.h"
+
+void sb_engine_langevin_params_default(sb_engine_langevin_params *p)
+{
+  if (!p)
+    return;
+  p->eps = 1e-6;
+  p->xtol = 1e-6;
+  p->tol = 1e-9;
+}
+
+static sb_langevin_hitter *new_hitter(const sb_engine *e,
+                                      const sb_engine_langevin_params *p)
+{
+  sb_langevin_hit_params hp;
+  sb_langevin_hit_params_default(&hp);
+  hp.dim = e->par.dim;
+  hp.eps = p->eps;
+  hp.xtol = p->xtol;
+  return sb_langevin_hitter_alloc(&hp);
+}
+
+int sbi_engine_langevin_init(sb_engine *e)
+{
+  sb_engine_langevin_params_default(&e->lpar);
+  e->lreach = NAN;
+  e->lh = new_hitter(e, &e->lpar);
+  return e->lh ? SB_SUCCESS : SB_ENOMEM;
+}
+
+int sb_engine_set_langevin(sb_engine *e, const sb_engine_langevin_params *p)
+{
+  if (!e || !p || !(p->eps > 0.0 && p->eps <= 0.1) ||
+      !(p->xtol > 0.0 && p->xtol <= 0.01) || !(p->tol > 0.0 && p->tol < 1.0))
+    return sbi_error(SB_EINVAL, __func__,
+                     "eps in (0, 0.1], xtol in (0, 0.01], tol in (0, 1)");
+  sb_langevin_hitter *h = new_hitter(e, p);
+  if (!h)
+    return sbi_error(SB_ENOMEM, __func__, "out of memory");
+  sb_langevin_hitter_free(e->lh);
+  e->lh = h;
+  e->lpar = *p;
+  e->lreach = NAN;
+  return SB_SUCCESS;
+}
+
+int sb_engine_langevin_stats(const sb_engine *e, sb_langevin_hit_stats *st)
+{
+  if (!e || !st || !e->lh)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  return sb_langevin_hitter_stats(e->lh, st);
+}
+
+/* ------------------------------------------------------------ reach */
+
+/* Per-step position variance of species sp (0 for free flight). */
+static double spread(const sb_engine_species *s, double dt)
+{
+  return isinf(s->tau) ? 0.0 : sb_langevin_var_x(s->tau, s->B, dt);
+}
+
+double sb_engine_langevin_reach(sb_engine *e)
+{
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return NAN;
+  }
+  if (e->n < 2 || e->nspec == 0)
+    return 0.0;
+  if (!isnan(e->lreach) && e->lreach_dt == e->par.dt &&
+      e->lreach_nspec == e->nspec && e->n <= e->lreach_n)
+    return e->lreach;
+  /* the (at most) 8 species that spread most in a step */
+  size_t pick[8], np = 0;
+  for (size_t sp = 0; sp < e->nspec; sp++) {
+    double v = spread(&e->spec[sp], e->par.dt);
+    if (np < 8)
+      pick[np++] = sp;
+    else {
+      size_t lo = 0;
+      for (size_t q = 1; q < np; q++)
+        if (spread(&e->spec[pick[q]], e->par.dt) <
+            spread(&e->spec[pick[lo]], e->par.dt))
+          lo = q;
+      if (v > spread(&e->spec[pick[lo]], e->par.dt))
+        pick[lo] = sp;
+    }
+  }
+  double V = e->par.L[0] * e->par.L[1] * (e->par.dim == 3 ? e->par.L[2] : 1.0);
+  double n = (double)(e->n - 1) / V, R = 2.0 * e->rmax, rho = 0.0;
+  for (size_t a = 0; a < np; a++)
+    for (size_t b = a; b < np; b++) {
+      const sb_engine_species *sa = &e->spec[pick[a]], *sb = &e->spec[pick[b]];
+      double r = sb_langevin_reach(e->par.dim, n, R, sa->tau,
+                                   isinf(sa->tau) ? 0.0 : sa->B, sb->tau,
+                                   isinf(sb->tau) ? 0.0 : sb->B, e->par.dt,
+                                   e->lpar.tol);
+      if (isnan(r))
+        return NAN;
+      if (r > rho)
+        rho = r;
+    }
+  e->lreach = rho;
+  e->lreach_dt = e->par.dt;
+  e->lreach_n = e->n;
+  e->lreach_nspec = e->nspec;
+  return rho;
+}
+
+/* ------------------------------------------------------------ pieces */
+
+void sbi_engine_langevin_begin(sb_engine *e)
+{
+  memcpy(e->lp_x, e->x0, 3 * e->n * sizeof(double));
+  memcpy(e->lp_u, e->u0, 3 * e->n * sizeof(double));
+  for (size_t k = 0; k < e->n; k++)
+    e->lp_t[k] = 0.0;
+}
+
+/* State of particle k at step fraction t on its current piece (position
+ * in its frame); draws from r inside a stochastic piece. */
+static int state_at(const sb_engine *e, size_t k, double t, const gsl_rng *r,
+                    double x[3], double u[3])
+{
+  const double t0 = e->lp_t[k];
+  if (t <= t0 || t >= 1.0) {
+    const double *xs = t >= 1.0 ? &e->x[3 * k] : &e->lp_x[3 * k];
+    const double *us = t >= 1.0 ? &e->u[3 * k] : &e->lp_u[3 * k];
+    memcpy(x, xs, 3 * sizeof(double));
+    memcpy(u, us, 3 * sizeof(double));
+    return SB_SUCCESS;
+  }
+  const sb_engine_species *sp = &e->spec[e->species[k]];
+  const double h = (1.0 - t0) * e->par.dt, s = (t - t0) * e->par.dt;
+  x[0] = x[1] = x[2] = u[0] = u[1] = u[2] = 0.0;
+  for (int c = 0; c < e->par.dim; c++) {
+    const double xa = e->lp_x[3 * k + c], ua = e->lp_u[3 * k + c];
+    const double w = e->us[3 * k + c];
+    if (isinf(sp->tau)) {
+      x[c] = xa + ua * s;
+      u[c] = ua;
+    } else if (sp->B == 0.0) {
+      double a = -expm1(-s / sp->tau);
+      x[c] = xa + w * s + (ua - w) * sp->tau * a;
+      u[c] = w + (ua - w) * (1.0 - a);
+    } else {
+      sb_langevin p = {sp->tau, sp->B, w};
+      double ss = s < 1e-50 * sp->tau ? 0.0 : (h - s < 1e-50 * sp->tau ? h : s);
+      int st = sb_langevin_bridge_sample(&p, h, ss, xa, ua, e->x[3 * k + c],
+                                         e->u[3 * k + c], r, &x[c], &u[c]);
+      if (st)
+        return st;
+    }
+  }
+  return SB_SUCCESS;
+}
+
+static void fill_path(const sb_engine *e, size_t k, const double *xa,
+                      const double *ua, const double *sh,
+                      sb_langevin_path *q)
+{
+  const sb_engine_species *sp = &e->spec[e->species[k]];
+  q->tau = sp->tau;
+  q->B = isinf(sp->tau) ? 0.0 : sp->B;
+  q->mass = e->mass[k];
+  for (int c = 0; c < 3; c++) {
+    q->us[c] = e->us[3 * k + c];
+    q->x0[c] = xa[c] + sh[c];
+    q->u0[c] = ua[c];
+    q->x1[c] = e->x[3 * k + c] + sh[c];
+    q->u1[c] = e->u[3 * k + c];
+  }
+}
+
+int sbi_engine_langevin_detect(const sb_engine *e, const sb_engine_pair *p,
+                               double t, const gsl_rng *r, double *s,
+                               sbi_event *ev)
+{
+  const size_t i = p->i, j = p->j;
+  double xi[3], ui[3], xj[3], uj[3];
+  double shi[3] = {0, 0, 0}, shj[3] = {0, 0, 0};
+  /* Inside the step a partner's state at t is drawn from its own bridge,
+   * independently of the other particle, so the draw ignores that the
+   * pair has not touched before t; the draw is repeated while the pair
+   * overlaps at t (conditioning on no overlap at t, the part of that
+   * condition that matters most; docs/engine_langevin.md). */
+  const int drawn = t > e->lp_t[i] || t > e->lp_t[j];
+  for (int tries = 0;; tries++) {
+    if (state_at(e, i, t, r, xi, ui) || state_at(e, j, t, r, xj, uj))
+      return -1;
+    /* j in the image next to i at t: shift sh (a multiple of the box) */
+    double d2 = 0.0;
+    for (int c = 0; c < e->par.dim; c++) {
+      double d = xi[c] - xj[c];
+      shj[c] = d - sbi_minimg(d, e->par.L[c]);
+      d2 += (d - shj[c]) * (d - shj[c]);
+    }
+    if (!drawn || t <= 0.0 || tries >= 1000 ||
+        d2 >= p->sigma * p->sigma * (1.0 + SB_ENGINE_TOUCH))
+      break;
+  }
+  sb_langevin_path pi, pj;
+  fill_path(e, i, xi, ui, shi, &pi);
+  fill_path(e, j, xj, uj, shj, &pj);
+  const double dtr = (1.0 - t) * e->par.dt;
+  if (!(dtr > 0.0))
+    return 0;
+  sb_langevin_contact c;
+  int h = sb_langevin_hitter_sample(e->lh, &pi, &pj, p->sigma, dtr, r, &c);
+  if (h <= 0)
+    return h < 0 ? -1 : 0;
+  double f = c.t / dtr;
+  *s = f < 0.0 ? 0.0 : (f > 1.0 ? 1.0 : f);
+  if (ev) {
+    ev->hasc = 1;
+    ev->p = *p;
+    for (int k = 0; k < 3; k++) {
+      ev->cx[0][k] = c.xi[k];
+      ev->cu[0][k] = c.ui[k];
+      ev->cx[1][k] = c.xj[k] - shj[k];
+      ev->cu[1][k] = c.uj[k];
+      ev->crel[k] = c.xi[k] - c.xj[k];
+      /* the record's chord from the Langevin states it was built on */
+      ev->p.dx0[k] = pi.x0[k] - pj.x0[k];
+      ev->p.dd[k] = (pi.x1[k] - pj.x1[k]) - ev->p.dx0[k];
+    }
+  }
+  return 1;
+}
+
+int sb_engine_langevin_contact(const sb_engine *e, const sb_engine_pair *p,
+                               const gsl_rng *r, double *s,
+                               sb_langevin_contact *c)
+{
+  if (!e || !p || !r || !s || p->i >= e->n || p->j >= e->n)
+    return -1;
+  double t = (p->t0 - e->t) / e->par.dt;
+  t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+  sbi_event ev;
+  int h = sbi_engine_langevin_detect(e, p, t, r, s, c ? &ev : NULL);
+  if (h == 1 && c) {
+    c->t = *s * p->dt;
+    for (int k = 0; k < 3; k++) {
+      c->xi[k] = ev.cx[0][k];
+      c->ui[k] = ev.cu[0][k];
+      c->xj[k] = ev.cx[0][k] - ev.crel[k];
+      c->uj[k] = ev.cu[1][k];
+    }
+  }
+  return h;
+}
+
+int sb_engine_detect_langevin(const sb_engine *e, const sb_engine_pair *p,
+                              const gsl_rng *r, void *ctx, double *s)
+{
+  (void)ctx;
+  return sb_engine_langevin_contact(e, p, r, s, NULL);
+}
+
+/* ------------------------------------------------------------ after */
+
+int sbi_engine_langevin_continue(sb_engine *e, size_t k, const sbi_event *ev,
+                                 int changed, const double xe[3],
+                                 const double ue[3])
+{
+  const double t = ev->s;
+  memcpy(&e->lp_x[3 * k], &e->x[3 * k], 3 * sizeof(double));
+  memcpy(&e->lp_u[3 * k], &e->u[3 * k], 3 * sizeof(double));
+  e->lp_t[k] = t;
+  if (!changed) {
+    memcpy(&e->x[3 * k], xe, 3 * sizeof(double));
+    memcpy(&e->u[3 * k], ue, 3 * sizeof(double));
+    return SB_SUCCESS;
+  }
+  /* a jump (reinsertion, declared position) sees the fluid at its new
+   * place */
+  const int q = ev->p.i == k ? 0 : 1;
+  int moved = 0;
+  for (int c = 0; c < 3; c++)
+    moved |= e->x[3 * k + c] != ev->cx[q][c];
+  if (moved && e->fluid != SB_FLUID_REST) {
+    double xw[3];
+    for (int c = 0; c < 3; c++)
+      xw[c] = c < e->par.dim ? sbi_wrap(e->x[3 * k + c], e->par.L[c]) : 0.0;
+    int st = sbi_engine_fluid_eval(e, 1, xw, &e->us[3 * k]);
+    if (st)
+      return st;
+  }
+  const sb_engine_species *sp = &e->spec[e->species[k]];
+  const double h = (1.0 - t) * e->par.dt;
+  sb_langevin_coef cf;
+  if (isinf(sp->tau))
+    cf = (sb_langevin_coef){h, 1.0, h, 0.0, 0.0, 0.0};
+  else if (sb_langevin_coef_init(&cf, sp->tau, sp->B, h))
+    return sbi_error(SB_EINVAL, "sb_engine_step", "no Langevin step");
+  for (int c = 0; c < 3; c++) {
+    double z1 = gsl_ran_gaussian_ziggurat(e->rng, 1.0);
+    double z2 = gsl_ran_gaussian_ziggurat(e->rng, 1.0);
+    if (c >= e->par.dim)
+      continue;
+    const double w = e->us[3 * k + c], v = e->u[3 * k + c] - w;
+    e->x[3 * k + c] += w * cf.dt + v * cf.gain + cf.s_xu * z1 + cf.s_xc * z2;
+    e->u[3 * k + c] = w + v * cf.decay + cf.s_u * z1;
+  }
+  for (int c = 0; c < 3; c++)
+    e->disp[3 * k + c] = e->x[3 * k + c] - e->x0[3 * k + c];
+  return SB_SUCCESS;
+}
+
+int sb_engine_contact_state(const sb_engine *e, double xi[3], double ui[3],
+                            double xj[3], double uj[3])
+{
+  if (!e || !e->contact)
+    return sbi_error(SB_EINVAL, __func__,
+                     "no contact state (Langevin detector, inside an "
+                     "outcome only)");
+  const sbi_event *ev = e->contact;
+  for (int k = 0; k < 3; k++) {
+    if (xi)
+      xi[k] = ev->cx[0][k];
+    if (ui)
+      ui[k] = ev->cu[0][k];
+    if (xj)
+      xj[k] = ev->cx[0][k] - ev->crel[k];
+    if (uj)
+      uj[k] = ev->cu[1][k];
+  }
+  return SB_SUCCESS;
+}

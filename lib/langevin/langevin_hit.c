@@ -1,0 +1,701 @@
+/* langevin_hit.c — first contact of two Langevin particles given their
+ * states at both ends of a step, sampled from the exact conditional law
+ * (method and error budget: <smolbridge/langevin_hit.h>,
+ * docs/engine_langevin.md).
+ *
+ * Rice bound (Rice 1944, §3.3; 1945).  On a sub-interval [a, b] with
+ * known end states, p(t) = n.r(t) - R is a Gaussian process with C^1
+ * paths; at each time (p, p') has mean (mu, mu'), variances (s^2, s'^2)
+ * and covariance c (the two particles' bridge moments: means subtract,
+ * covariances add; every component has the same covariance).  With p(a),
+ * p(b) > 0, a contact inside needs a down-crossing of 0, and
+ *   E[# down-crossings] = int_a^b f_p(t)(0) E[(p')^- | p(t) = 0] dt,
+ * where p' | p = 0 ~ N(m, v), m = mu' - c mu/s^2, v = s'^2 - c^2/s^2, and
+ * E[(Z)^-] = sqrt(v) phi(m/sqrt(v)) - m Phi(-m/sqrt(v)).  The integrand
+ * vanishes at both ends (s -> 0 with mu > 0).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_randist.h>
+
+#include "common/internal.h"
+#include "langevin_hit_internal.h"
+
+/* Multiplier on the quadrature value of the Rice integral (margin for the
+ * quadrature error of a smooth, possibly peaked integrand). */
+#define SAFETY 4.0
+/* Nodes with mean/sd above this contribute < phi(12) ~ 5e-33 each. */
+#define XFAR 12.0
+/* A sub-interval whose chord clearance (less the mean path's largest
+ * deviation) is below XNEAR times its largest conditional standard
+ * deviation is subdivided without evaluating its Rice bound. */
+#define XNEAR 4.0
+/* Chords passing within GRAZE xtol R of the sphere count as grazing. */
+#define GRAZE 6.0
+/* Relative tolerance on R^2 within which a start counts as touching
+ * (SB_ENGINE_TOUCH of the engine). */
+#define TOUCH 1e-9
+#define INV_SQRT_2PI 0.39894228040143267794
+#define INV_SQRT_2 0.70710678118654752440
+
+void sb_langevin_hit_params_default(sb_langevin_hit_params *p)
+{
+  if (!p)
+    return;
+  p->dim = 3;
+  p->eps = 1e-6;
+  p->xtol = 1e-6;
+  p->audit = 0;
+}
+
+sb_langevin_hitter *sb_langevin_hitter_alloc(const sb_langevin_hit_params *p)
+{
+  sb_langevin_hit_params d;
+  if (!p) {
+    sb_langevin_hit_params_default(&d);
+    p = &d;
+  }
+  if ((p->dim != 2 && p->dim != 3) || !(p->eps > 0.0 && p->eps <= 0.1) ||
+      !(p->xtol > 0.0 && p->xtol <= 0.01)) {
+    sbi_error(SB_EINVAL, __func__,
+              "dim = %d (2 or 3), eps = %g (in (0, 0.1]), xtol = %g (in "
+              "(0, 0.01])", p->dim, p->eps, p->xtol);
+    return NULL;
+  }
+  sb_langevin_hitter *w = calloc(1, sizeof *w);
+  gsl_integration_glfixed_table *t =
+      gsl_integration_glfixed_table_alloc(SBI_LH_NQ);
+  if (!w || !t) {
+    free(w);
+    if (t)
+      gsl_integration_glfixed_table_free(t);
+    sbi_error(SB_ENOMEM, __func__, "out of memory");
+    return NULL;
+  }
+  w->par = *p;
+  for (int k = 0; k < SBI_LH_NQ; k++)
+    gsl_integration_glfixed_point(0.0, 1.0, (size_t)k, &w->xi[k], &w->wq[k],
+                                  t);
+  gsl_integration_glfixed_table_free(t);
+  return w;
+}
+
+void sb_langevin_hitter_free(sb_langevin_hitter *w)
+{
+  if (!w)
+    return;
+  sbi_lh_slots_free(w);
+  free(w);
+}
+
+const sb_langevin_hit_params *
+sb_langevin_hitter_params(const sb_langevin_hitter *w)
+{
+  return w ? &w->par : NULL;
+}
+
+int sb_langevin_hitter_stats(const sb_langevin_hitter *w,
+                             sb_langevin_hit_stats *st)
+{
+  if (!w || !st)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  *st = w->st;
+  return SB_SUCCESS;
+}
+
+void sb_langevin_hitter_reset(sb_langevin_hitter *w)
+{
+  if (w)
+    memset(&w->st, 0, sizeof w->st);
+}
+
+/* ------------------------------------------------------------ walk */
+
+/* States of both particles (0 = i, 1 = j) at one time. */
+typedef struct {
+  double x[2][3], u[2][3];
+} pstate;
+
+typedef struct {
+  sb_langevin_hitter *w;
+  const gsl_rng *r;
+  int dim;
+  double R, htop, eps, delta;
+  sbi_lh_slot *sl[2];
+  double tau[2], B[2], mass[2], wv[2][3];
+  int auditing;
+  /* result */
+  double th;         /* contact time from the start of the step */
+  pstate ca, cb;     /* the leaf's end states */
+  double ta, hl;     /* the leaf's start and length */
+} walk;
+
+/* Moments of the relative motion at the quadrature nodes of [a, a + h]
+ * (levels Li, Lj). */
+typedef struct {
+  double mu[SBI_LH_NQ][3], mv[SBI_LH_NQ][3];
+  double s2[SBI_LH_NQ], su2[SBI_LH_NQ], c[SBI_LH_NQ];
+  double s2max, devmax;
+} nodes;
+
+static void one_mean(const sbi_lh_coef *q, const pstate *A, const pstate *B,
+                     int p, int k, double w, double *mx, double *mu)
+{
+  double dx = B->x[p][k] - A->x[p][k];
+  *mx = A->x[p][k] + q->ax * dx + q->bx * A->u[p][k] + q->cx * B->u[p][k] +
+        q->wx * w;
+  *mu = q->au * dx + q->bu * A->u[p][k] + q->cu * B->u[p][k] + q->wu * w;
+}
+
+static void eval_nodes(const walk *W, const sbi_lh_level *Li,
+                       const sbi_lh_level *Lj, const pstate *A,
+                       const pstate *Bs, nodes *N)
+{
+  const double *xi = W->w->xi;
+  /* per particle: x_b - x_a, u_a, u_b, w; relative start and chord */
+  double dX[2][3], ra[3], dr[3];
+  for (int k = 0; k < 3; k++) {
+    dX[0][k] = Bs->x[0][k] - A->x[0][k];
+    dX[1][k] = Bs->x[1][k] - A->x[1][k];
+    ra[k] = A->x[0][k] - A->x[1][k];
+    dr[k] = dX[0][k] - dX[1][k];
+  }
+  N->s2max = 0.0;
+  N->devmax = 0.0;
+  for (int q = 0; q < SBI_LH_NQ; q++) {
+    const sbi_lh_coef *ci = &Li->q[q], *cj = &Lj->q[q];
+    double dev2 = 0.0;
+    for (int k = 0; k < 3; k++) {
+      /* deviation of the mean from the chord ra + xi dr */
+      double d = (ci->ax - xi[q]) * dX[0][k] + ci->bx * A->u[0][k] +
+                 ci->cx * Bs->u[0][k] + ci->wx * W->wv[0][k] -
+                 ((cj->ax - xi[q]) * dX[1][k] + cj->bx * A->u[1][k] +
+                  cj->cx * Bs->u[1][k] + cj->wx * W->wv[1][k]);
+      N->mu[q][k] = ra[k] + xi[q] * dr[k] + d;
+      N->mv[q][k] = ci->au * dX[0][k] + ci->bu * A->u[0][k] +
+                    ci->cu * Bs->u[0][k] + ci->wu * W->wv[0][k] -
+                    (cj->au * dX[1][k] + cj->bu * A->u[1][k] +
+                     cj->cu * Bs->u[1][k] + cj->wu * W->wv[1][k]);
+      dev2 += d * d;
+    }
+    N->s2[q] = ci->vx + cj->vx;
+    N->su2[q] = ci->vu + cj->vu;
+    N->c[q] = ci->cxu + cj->cxu;
+    if (N->s2[q] > N->s2max)
+      N->s2max = N->s2[q];
+    if (dev2 > N->devmax)
+      N->devmax = dev2;
+  }
+  N->devmax = sqrt(N->devmax);
+}
+
+static double dot3(const double *a, const double *b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void rel(const pstate *S, double r[3])
+{
+  for (int k = 0; k < 3; k++)
+    r[k] = S->x[0][k] - S->x[1][k];
+}
+
+/* The pruning bound on [a, a + h] (file comment); 1 when it does not
+ * apply. */
+static double rice_bound(const walk *W, const nodes *N, const pstate *A,
+                         const pstate *Bs, double h)
+{
+  double ra[3], rb[3];
+  rel(A, ra);
+  rel(Bs, rb);
+  /* n along the mean path's closest approach (nodes and both ends) */
+  const double *best = ra;
+  double bd = dot3(ra, ra);
+  if (dot3(rb, rb) < bd) {
+    best = rb;
+    bd = dot3(rb, rb);
+  }
+  for (int q = 0; q < SBI_LH_NQ; q++) {
+    double d = dot3(N->mu[q], N->mu[q]);
+    if (d < bd) {
+      bd = d;
+      best = N->mu[q];
+    }
+  }
+  if (!(bd > W->R * W->R * (1.0 - TOUCH)))
+    return 1.0;
+  double nn = sqrt(bd), n[3] = {best[0] / nn, best[1] / nn, best[2] / nn};
+  /* both ends outside the half-space; a start on its boundary is allowed
+   * when the pair separates there (the integrand then vanishes at a) */
+  double va[3];
+  for (int k = 0; k < 3; k++)
+    va[k] = A->u[0][k] - A->u[1][k];
+  const double pa = dot3(n, ra) - W->R, tiny = 0.5 * TOUCH * W->R;
+  if (!(dot3(n, rb) > W->R) ||
+      !(pa > 0.0 || (pa > -tiny && dot3(n, va) > 0.0)))
+    return 1.0;
+  double x[SBI_LH_NQ], p[SBI_LH_NQ], xmin = INFINITY;
+  for (int q = 0; q < SBI_LH_NQ; q++) {
+    p[q] = dot3(n, N->mu[q]) - W->R;
+    x[q] = N->s2[q] > 0.0 ? p[q] / sqrt(N->s2[q])
+                          : (p[q] > 0.0 ? INFINITY : -INFINITY);
+    if (x[q] < xmin)
+      xmin = x[q];
+  }
+  if (xmin > XFAR)
+    return 0.0;
+  if (!(xmin > -XFAR))
+    return 1.0;
+  /* the largest node probability P(p(t_k) <= 0) is at the smallest x */
+  double rice = 0.0, ptmax = 0.5 * erfc(xmin * INV_SQRT_2);
+  for (int q = 0; q < SBI_LH_NQ; q++) {
+    if (!(x[q] < XFAR))
+      continue;
+    const double s2 = N->s2[q], s = sqrt(s2);
+    const double qv = dot3(n, N->mv[q]);
+    const double m = qv - N->c[q] * p[q] / s2;
+    const double v = N->su2[q] - N->c[q] * N->c[q] / s2;
+    double g;
+    if (!(v > 0.0))
+      g = m < 0.0 ? -m : 0.0;
+    else if (x[q] > 5.0)  /* small term: E[Z^-] <= sd/sqrt(2 pi) + m^- */
+      g = sqrt(v) * INV_SQRT_2PI + (m < 0.0 ? -m : 0.0);
+    else {
+      double sv = sqrt(v), z = m / sv;
+      g = sv * INV_SQRT_2PI * exp(-0.5 * z * z) -
+          m * 0.5 * erfc(z * INV_SQRT_2);
+    }
+    rice += W->w->wq[q] * INV_SQRT_2PI * exp(-0.5 * x[q] * x[q]) / s * g;
+  }
+  double b = SAFETY * h * rice + ptmax;
+  return b < 1.0 ? b : 1.0;
+}
+
+/* Entry fraction of the chord ra -> rb into the ball of radius R, or -1;
+ * *gap receives the chord's closest distance minus R. */
+static double chord_entry(const double *ra, const double *rb, double R,
+                          double *gap)
+{
+  double d[3] = {rb[0] - ra[0], rb[1] - ra[1], rb[2] - ra[2]};
+  double a = dot3(d, d), b = dot3(ra, d), c = dot3(ra, ra) - R * R;
+  double lam = a > 0.0 ? -b / a : 0.0;
+  lam = lam < 0.0 ? 0.0 : (lam > 1.0 ? 1.0 : lam);
+  double m[3] = {ra[0] + lam * d[0], ra[1] + lam * d[1], ra[2] + lam * d[2]};
+  *gap = sqrt(dot3(m, m)) - R;
+  if (c < -TOUCH * R * R)
+    return 0.0;
+  if (c <= TOUCH * R * R)  /* touching: in now if approaching */
+    return b < 0.0 ? 0.0 : -1.0;
+  if (b >= 0.0 || a == 0.0)
+    return -1.0;
+  double disc = b * b - a * c;
+  if (disc < 0.0)
+    return -1.0;
+  double s = c / (-b + sqrt(disc));
+  return s <= 1.0 ? s : -1.0;
+}
+
+/* Leaf [a, a + h]: decide on the chord (file comment of the header). */
+static int leaf(walk *W, const pstate *A, const pstate *Bs, double a,
+                double h)
+{
+  double ra[3], rb[3], gap;
+  rel(A, ra);
+  rel(Bs, rb);
+  double s = chord_entry(ra, rb, W->R, &gap);
+  if (!W->auditing)
+    W->w->st.leaves++;
+  if (s < 0.0) {
+    if (gap < GRAZE * W->delta && !W->auditing)
+      W->w->st.grazing++;
+    return 0;
+  }
+  W->th = a + s * h;
+  W->ca = *A;
+  W->cb = *Bs;
+  W->ta = a;
+  W->hl = h;
+  return 1;
+}
+
+/* Closed-form bound on the Rice integral of [a, a + h], from the chord
+ * and the level's coefficient maxima, without evaluating the nodes.
+ * With n the normal of the chord's closest approach (gap g beyond R),
+ * the mean path stays within dev of the chord, so p(t) has mean
+ * mu >= G = g - 1.25 dev (1.25: margin for the stretches between the
+ * nodes).  With s, s' the standard deviations of p and p', |c| <= s s',
+ * E[(p')^- | p = 0] <= s'/sqrt(2 pi) + |mu'| + s' x (x = mu/s), so the
+ * integrand is at most phi(x)/s (s'/sqrt(2 pi) + |mu'|) + s' x phi(x)/s.
+ * Both terms grow with s while s <= G/sqrt(2) (x phi(x) and phi(x)
+ * decrease in x >= G/s > 1): evaluate them at s_max, s'_max and the bound
+ * on |mu'|.  Returns the bound, or 1 if it does not apply (x0 < 1.5). */
+static double quick_bound(const walk *W, const sbi_lh_level *Li,
+                          const sbi_lh_level *Lj, const pstate *A,
+                          const pstate *Bs, const double *ra,
+                          const double *rb, double h, double *x0out)
+{
+  double gap;
+  *x0out = 0.0;
+  if (chord_entry(ra, rb, W->R, &gap) >= 0.0)
+    return 1.0;
+  const sbi_lh_level *L[2] = {Li, Lj};
+  double dev = 0.0, vel = 0.0;
+  /* same coefficients (one species): the deviations depend on the
+   * relative end states only; otherwise bound each particle's */
+  const int same = Li == Lj;
+  for (int p = 0; p < (same ? 1 : 2); p++) {
+    double dx = 0.0, ua = 0.0, ub = 0.0, ww = 0.0;
+    for (int k = 0; k < W->dim; k++) {
+      double d = Bs->x[p][k] - A->x[p][k];
+      double va = A->u[p][k], vb = Bs->u[p][k], wk = W->wv[p][k];
+      if (same) {
+        d -= Bs->x[1][k] - A->x[1][k];
+        va -= A->u[1][k];
+        vb -= Bs->u[1][k];
+        wk -= W->wv[1][k];
+      }
+      dx += d * d;
+      ua += va * va;
+      ub += vb * vb;
+      ww += wk * wk;
+    }
+    dx = sqrt(dx), ua = sqrt(ua), ub = sqrt(ub), ww = sqrt(ww);
+    dev += L[p]->ka * dx + L[p]->kb * ua + L[p]->kc * ub + L[p]->kw * ww;
+    vel += L[p]->kau * dx + L[p]->kbu * ua + L[p]->kcu * ub + L[p]->kwu * ww;
+  }
+  const double smax = sqrt(Li->vxmax + Lj->vxmax);
+  const double spmax = sqrt(Li->vumax + Lj->vumax);
+  const double G = gap - 1.25 * dev;
+  if (smax > 0.0)
+    *x0out = G / smax;
+  if (!(smax > 0.0) || !(G > 1.5 * smax))
+    return 1.0;
+  const double x0 = G / smax;
+  if (x0 > 38.0)
+    return 0.0;
+  const double ph = INV_SQRT_2PI * exp(-0.5 * x0 * x0);
+  const double f = ph / smax * (spmax * INV_SQRT_2PI + 1.25 * vel) +
+                   spmax * x0 * ph / smax;
+  double b = SAFETY * h * f;
+  return b < 1.0 ? b : 1.0;
+}
+
+/* Examine [a, a + h] at depth d, with end states A and Bs; 1 if the first
+ * contact lies in it (stored in W), 0 if not, < 0 on error. */
+static int examine(walk *W, const pstate *A, const pstate *Bs, double a,
+                   unsigned d);
+
+/* Audit a pruned sub-interval: did it hold a contact? (the draws are
+ * discarded; the statistics other than audit_hits are restored) */
+static int audit(walk *W, const pstate *A, const pstate *Bs, double a,
+                 unsigned d)
+{
+  walk V = *W;
+  V.auditing = 1;
+  V.eps = W->eps * 1e-3;
+  sb_langevin_hit_stats keep = W->w->st;
+  int h = examine(&V, A, Bs, a, d);
+  uint64_t ah = keep.audit_hits + (h > 0);
+  W->w->st = keep;
+  W->w->st.audit_hits = ah;
+  return h < 0 ? h : 0;
+}
+
+static int examine(walk *W, const pstate *A, const pstate *Bs, double a,
+                   unsigned d)
+{
+  sb_langevin_hitter *w = W->w;
+  w->st.nodes++;
+  if (d > w->st.depth_max)
+    w->st.depth_max = d;
+  const sbi_lh_level *Li = sbi_lh_level_get(w, W->sl[0], d);
+  const sbi_lh_level *Lj = sbi_lh_level_get(w, W->sl[1], d);
+  if (!Li || !Lj)
+    return -SB_ENOMEM;
+  const double h = Li->h;
+  double ra[3], rb[3];
+  rel(A, ra);
+  rel(Bs, rb);
+  const int sure = dot3(rb, rb) <= W->R * W->R;
+  double x0 = 0.0;
+  if (!sure) {
+    double b = quick_bound(W, Li, Lj, A, Bs, ra, rb, h, &x0);
+    if (b < W->eps * h / W->htop) {
+      w->st.pruned++;
+      w->st.pruned_mass += b;
+      if (w->par.audit && !W->auditing)
+        return audit(W, A, Bs, a, d);
+      return 0;
+    }
+  }
+  /* the chord within XNEAR largest standard deviations of the plane: the
+   * quadrature would hardly ever prune (its bound includes the largest
+   * node probability P(p <= 0)); subdividing is always valid, so skip it
+   * (not a leaf: the spread exceeds smax > 4 delta) */
+  const double smax = sqrt(Li->vxmax + Lj->vxmax);
+  if (x0 < XNEAR && smax > 4.0 * W->delta && d < SBI_LH_MAXDEPTH &&
+      (sure || smax > 0.0))
+    goto subdivide;
+  nodes N;
+  eval_nodes(W, Li, Lj, A, Bs, &N);
+  const double spread = sqrt(N.s2max) + N.devmax;
+  if (!sure) {
+    double share = W->eps * h / W->htop;
+    if (N.s2max > 0.0) {
+      double b = rice_bound(W, &N, A, Bs, h);
+      if (b < share) {
+        w->st.pruned++;
+        w->st.pruned_mass += b;
+        if (w->par.audit && !W->auditing)
+          return audit(W, A, Bs, a, d);
+        return 0;
+      }
+    } else {
+      /* no noise: the path is its mean, within devmax of the chord
+       * (checked at the nodes; at least twice that margin) */
+      double gap;
+      chord_entry(ra, rb, W->R, &gap);
+      if (gap > 2.0 * N.devmax + W->delta)
+        return 0;
+    }
+  }
+  if (spread <= W->delta)
+    return leaf(W, A, Bs, a, h);
+  if (d >= SBI_LH_MAXDEPTH) {
+    if (!W->auditing)
+      w->st.deep++;
+    return leaf(W, A, Bs, a, h);
+  }
+  /* exact midpoint states, particle i then j, component by component,
+   * z1 then z2 */
+subdivide:;
+  pstate M;
+  const sbi_lh_level *L[2] = {Li, Lj};
+  memset(&M, 0, sizeof M);
+  for (int p = 0; p < 2; p++)
+    for (int k = 0; k < W->dim; k++) {
+      double mx, mu;
+      one_mean(&L[p]->mid, A, Bs, p, k, W->wv[p][k], &mx, &mu);
+      if (L[p]->l11 > 0.0) {
+        double z1 = gsl_ran_gaussian_ziggurat(W->r, 1.0);
+        double z2 = gsl_ran_gaussian_ziggurat(W->r, 1.0);
+        mx += L[p]->l11 * z1;
+        mu += L[p]->l21 * z1 + L[p]->l22 * z2;
+      }
+      M.x[p][k] = mx;
+      M.u[p][k] = mu;
+    }
+  int st = examine(W, A, &M, a, d + 1);
+  if (st)
+    return st;
+  return examine(W, &M, Bs, a + 0.5 * h, d + 1);
+}
+
+/* ------------------------------------------------------------ public */
+
+static int check_path(const sb_langevin_path *q, int dim)
+{
+  if (!(q->tau > 0.0) || !(q->B >= 0.0) || !isfinite(q->B) ||
+      !(q->mass >= 0.0) || !isfinite(q->mass))
+    return 0;
+  for (int k = 0; k < dim; k++)
+    if (!isfinite(q->x0[k]) || !isfinite(q->u0[k]) || !isfinite(q->x1[k]) ||
+        !isfinite(q->u1[k]) || !isfinite(q->us[k]))
+      return 0;
+  return 1;
+}
+
+/* Set up a walk; returns 0, 1 (overlap at the start) or a negative
+ * status. */
+static int setup(walk *W, sb_langevin_hitter *w, const sb_langevin_path *pi,
+                 const sb_langevin_path *pj, double R, double dt,
+                 const gsl_rng *r, pstate *A, pstate *Bs, const char *func)
+{
+  if (!w || !pi || !pj)
+    return -sbi_error(SB_EINVAL, func, "NULL argument");
+  const int dim = w->par.dim;
+  if (!(R > 0.0) || !isfinite(R) || !(dt > 0.0) || !isfinite(dt) ||
+      !check_path(pi, dim) || !check_path(pj, dim))
+    return -sbi_error(SB_EDOM, func,
+                      "R = %g, dt = %g, or a particle's tau, B, mass or "
+                      "state is out of its domain", R, dt);
+  const sb_langevin_path *P[2] = {pi, pj};
+  memset(W, 0, sizeof *W);
+  memset(A, 0, sizeof *A);
+  memset(Bs, 0, sizeof *Bs);
+  W->w = w;
+  W->r = r;
+  W->dim = dim;
+  W->R = R;
+  W->htop = dt;
+  W->eps = w->par.eps;
+  W->delta = w->par.xtol * R;
+  for (int p = 0; p < 2; p++) {
+    const sb_langevin_path *q = P[p];
+    int det = isinf(q->tau) || q->B == 0.0;
+    if (!det && !(dt / q->tau >= 1e-9 && dt / q->tau <= 1e9))
+      return -sbi_error(SB_EDOM, func, "dt/tau = %g outside [1e-9, 1e9]",
+                        dt / q->tau);
+    W->tau[p] = q->tau;
+    W->B[p] = q->B;
+    W->mass[p] = q->mass;
+    for (int k = 0; k < dim; k++) {
+      W->wv[p][k] = isinf(q->tau) ? 0.0 : q->us[k];
+      A->x[p][k] = q->x0[k];
+      A->u[p][k] = q->u0[k];
+      /* without noise the end is where the start state leads */
+      if (det) {
+        sbi_lh_coef c;
+        sbi_lh_coef_at(q->tau, 0.0, dt, dt, &c);
+        Bs->x[p][k] = q->x0[k] + c.bx * q->u0[k] + c.wx * W->wv[p][k];
+        Bs->u[p][k] = c.bu * q->u0[k] + c.wu * W->wv[p][k];
+      } else {
+        Bs->x[p][k] = q->x1[k];
+        Bs->u[p][k] = q->u1[k];
+      }
+    }
+    W->sl[p] = sbi_lh_slot_get(w, q->tau, q->B, dt);
+  }
+  /* overlapping, or touching and approaching: a contact now; touching
+   * and separating (a pair that has just bounced): no contact now */
+  double ra[3], va[3];
+  rel(A, ra);
+  for (int k = 0; k < 3; k++)
+    va[k] = A->u[0][k] - A->u[1][k];
+  double r2 = dot3(ra, ra), R2 = R * R;
+  if (r2 < R2 * (1.0 - TOUCH))
+    return 1;
+  return r2 <= R2 * (1.0 + TOUCH) && dot3(ra, va) < 0.0;
+}
+
+/* Both particles' states at the contact time inside the leaf, drawn from
+ * their bridges, then moved along the line of centres to touch. */
+static int contact_states(walk *W, sb_langevin_contact *c)
+{
+  const double s = W->th - W->ta, h = W->hl;
+  double xs[2][3] = {{0}}, vs[2][3] = {{0}};
+  for (int p = 0; p < 2; p++) {
+    sbi_lh_coef q;
+    double sp = s;
+    if (!isinf(W->tau[p]) && W->B[p] > 0.0) {
+      /* the bridge needs s and h - s >= 1e-60 tau, or exactly an end */
+      if (sp < 1e-50 * W->tau[p])
+        sp = 0.0;
+      else if (h - sp < 1e-50 * W->tau[p])
+        sp = h;
+    }
+    int st = sbi_lh_coef_at(W->tau[p], W->B[p], h, sp, &q);
+    if (st)
+      return -st;
+    double l11 = 0.0, l21 = 0.0, l22 = 0.0;
+    if (q.vx > 0.0) {
+      l11 = sqrt(q.vx);
+      l21 = q.cxu / l11;
+      double sch = q.vu - l21 * l21;
+      l22 = sch > 0.0 ? sqrt(sch) : 0.0;
+    }
+    for (int k = 0; k < W->dim; k++) {
+      one_mean(&q, &W->ca, &W->cb, p, k, W->wv[p][k], &xs[p][k],
+               &vs[p][k]);
+      if (l11 > 0.0) {
+        double z1 = gsl_ran_gaussian_ziggurat(W->r, 1.0);
+        double z2 = gsl_ran_gaussian_ziggurat(W->r, 1.0);
+        xs[p][k] += l11 * z1;
+        vs[p][k] += l21 * z1 + l22 * z2;
+      }
+    }
+  }
+  double r[3] = {xs[0][0] - xs[1][0], xs[0][1] - xs[1][1],
+                 xs[0][2] - xs[1][2]};
+  double rn = sqrt(dot3(r, r));
+  if (rn > 0.0) {
+    double M = W->mass[0] + W->mass[1];
+    double fi = M > 0.0 ? W->mass[1] / M : 0.5, fj = 1.0 - fi;
+    double g = W->R / rn - 1.0;
+    for (int k = 0; k < W->dim; k++) {
+      xs[0][k] += fi * g * r[k];
+      xs[1][k] -= fj * g * r[k];
+    }
+  }
+  if (c) {
+    c->t = W->th;
+    for (int k = 0; k < 3; k++) {
+      c->xi[k] = xs[0][k];
+      c->ui[k] = vs[0][k];
+      c->xj[k] = xs[1][k];
+      c->uj[k] = vs[1][k];
+    }
+  }
+  return 1;
+}
+
+int sb_langevin_hitter_sample(sb_langevin_hitter *w,
+                              const sb_langevin_path *pi,
+                              const sb_langevin_path *pj, double R,
+                              double dt, const gsl_rng *r,
+                              sb_langevin_contact *c)
+{
+  if (!r)
+    return -sbi_error(SB_EINVAL, __func__, "r is NULL");
+  walk W;
+  pstate A, Bs;
+  int st = setup(&W, w, pi, pj, R, dt, r, &A, &Bs, __func__);
+  if (st < 0)
+    return st;
+  w->st.calls++;
+  if (st == 1) {  /* overlapping at the start: contact now */
+    w->st.hits++;
+    if (c) {
+      memset(c, 0, sizeof *c);
+      for (int k = 0; k < W.dim; k++) {
+        c->xi[k] = A.x[0][k];
+        c->ui[k] = A.u[0][k];
+        c->xj[k] = A.x[1][k];
+        c->uj[k] = A.u[1][k];
+      }
+    }
+    return 1;
+  }
+  if (!W.sl[0] || !W.sl[1])
+    return -sbi_error(SB_ENOMEM, __func__, "out of memory");
+  st = examine(&W, &A, &Bs, 0.0, 0);
+  if (st < 0)
+    return -sbi_error(-st, __func__, "coefficients failed");
+  if (!st)
+    return 0;
+  w->st.hits++;
+  st = contact_states(&W, c);
+  if (st < 0)
+    return -sbi_error(-st, __func__, "contact state failed");
+  return 1;
+}
+
+double sb_langevin_hitter_bound(sb_langevin_hitter *w,
+                                const sb_langevin_path *pi,
+                                const sb_langevin_path *pj, double R,
+                                double dt)
+{
+  walk W;
+  pstate A, Bs;
+  int st = setup(&W, w, pi, pj, R, dt, NULL, &A, &Bs, __func__);
+  if (st < 0)
+    return NAN;
+  if (st == 1)
+    return 1.0;
+  double rb[3];
+  rel(&Bs, rb);
+  if (dot3(rb, rb) <= R * R)
+    return 1.0;
+  const sbi_lh_level *Li = sbi_lh_level_get(w, W.sl[0], 0);
+  const sbi_lh_level *Lj = sbi_lh_level_get(w, W.sl[1], 0);
+  if (!Li || !Lj)
+    return NAN;
+  nodes N;
+  eval_nodes(&W, Li, Lj, &A, &Bs, &N);
+  if (!(N.s2max > 0.0))
+    return NAN;
+  return rice_bound(&W, &N, &A, &Bs, dt);
+}

@@ -1,0 +1,73 @@
+/* langevin_hit_internal.h — the pair first-contact sampler's workspace
+ * (private to lib/langevin). */
+#ifndef SB_LANGEVIN_HIT_INTERNAL_H
+#define SB_LANGEVIN_HIT_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <smolbridge/langevin_hit.h>
+
+/* Gauss-Legendre nodes of the Rice integral on a sub-interval. */
+#define SBI_LH_NQ 16
+/* Deepest refinement level (h = dt / 2^60). */
+#define SBI_LH_MAXDEPTH 60
+/* Cached (tau, B, dt) triples (least recently used replaced). */
+#define SBI_LH_NSLOT 8
+
+/* Conditional law of one particle's state at a time a + xi h inside a
+ * sub-interval [a, a + h] given its states at both ends, per component:
+ *   E[x] = x_a + ax (x_b - x_a) + bx u_a + cx u_b + wx w,
+ *   E[u] =       au (x_b - x_a) + bu u_a + cu u_b + wu w,
+ * (w the fluid velocity seen; the coefficients of x_a and x_b sum to 1 for
+ * x and to 0 for u: translation invariance) and covariance (vx, vu, cxu),
+ * the same for every component. */
+typedef struct {
+  double ax, bx, cx, wx;
+  double au, bu, cu, wu;
+  double vx, vu, cxu;
+} sbi_lh_coef;
+
+/* One refinement level of one (tau, B, dt): sub-intervals of length h. */
+typedef struct {
+  int valid;
+  double h;
+  sbi_lh_coef q[SBI_LH_NQ];  /* at the quadrature nodes */
+  sbi_lh_coef mid;           /* at the midpoint */
+  double l11, l21, l22;      /* Cholesky factor of the midpoint covariance */
+  /* bounds over the nodes: |E[x] - chord| <= ka |x_b - x_a| + kb |u_a| +
+   * kc |u_b| + kw |w| per component, |E[u]| <= the same with the u
+   * coefficients (kau ...), and the largest variances */
+  double ka, kb, kc, kw, vxmax;
+  double kau, kbu, kcu, kwu, vumax;
+} sbi_lh_level;
+
+typedef struct {
+  int used;
+  double tau, B, htop;       /* key (B = 0 for free flight) */
+  int det;                   /* no noise: tau = inf or B = 0 */
+  uint64_t stamp;            /* last use */
+  sbi_lh_level *lev[SBI_LH_MAXDEPTH + 1];  /* lazily filled */
+} sbi_lh_slot;
+
+struct sb_langevin_hitter {
+  sb_langevin_hit_params par;
+  double xi[SBI_LH_NQ], wq[SBI_LH_NQ];  /* nodes and weights on [0, 1] */
+  sbi_lh_slot slot[SBI_LH_NSLOT];
+  uint64_t clock;
+  sb_langevin_hit_stats st;
+};
+
+/* The slot of (tau, B, htop), filled or recycled; NULL on allocation
+ * failure. */
+sbi_lh_slot *sbi_lh_slot_get(sb_langevin_hitter *w, double tau, double B,
+                             double htop);
+/* Level d of a slot (computed on first use); NULL on failure. */
+const sbi_lh_level *sbi_lh_level_get(sb_langevin_hitter *w, sbi_lh_slot *s,
+                                     unsigned d);
+/* Coefficients at time s into a sub-interval of length h (0 <= s <= h) of
+ * a particle (tau, B); for the contact states at a leaf.  Status. */
+int sbi_lh_coef_at(double tau, double B, double h, double s, sbi_lh_coef *c);
+/* Release the cached levels. */
+void sbi_lh_slots_free(sb_langevin_hitter *w);
+
+#endif /* SB_LANGEVIN_HIT_INTERNAL_H */

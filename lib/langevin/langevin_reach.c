@@ -1,0 +1,250 @@
+/* langevin_reach.c — neighbour reach for the Langevin pair sampler: the
+ * expected number of contacts missed by examining only the pairs whose
+ * straight chords come within R + rho (derivation in
+ * <smolbridge/langevin_hit.h>).
+ *
+ * Deviation from the chord.  For one particle at equilibrium (velocity a
+ * stationary OU process of variance sigma^2 = B^2 tau/2 per component,
+ * autocorrelation sigma^2 exp(-|s|/tau)), the displacement D(t) = x(t) -
+ * x(0) has (Ornstein 1919; Uhlenbeck & Ornstein 1930)
+ *   Var D(t)        = 2 sigma^2 tau^2 g(t/tau),  g(x) = x - 1 + e^{-x},
+ *   Cov(D(t), u(t)) = sigma^2 tau (1 - e^{-t/tau}),
+ *   Cov(u(t), D(T)) = sigma^2 tau (2 - e^{-t/tau} - e^{-(T-t)/tau}),
+ *   Cov(D(t), D(T)) = [Var D(t) + Var D(T) - Var D(T-t)]/2,
+ * so Z(t) = D(t) - (t/T) D(T) and Z'(t) = u(t) - D(T)/T have closed-form
+ * variances and covariance; the two particles are independent, so the
+ * pair's moments are sums.  g(x) = x^2 exprel_2(-x)/2 (no cancellation);
+ * Var Z still cancels like T/tau for T << tau (digits lost ~ log10(tau/T),
+ * harmless down to T/tau ~ 1e-10 for a reach).
+ */
+#include <math.h>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_roots.h>
+#include <gsl/gsl_sf_exp.h>
+
+#include "common/internal.h"
+#include "langevin_hit_internal.h"
+
+#define NZ 64
+#define PI 3.14159265358979323846
+#define INV_SQRT_2PI 0.39894228040143267794
+#define INV_SQRT_2 0.70710678118654752440
+
+typedef struct {
+  int dim;
+  double n, R, T, L;
+  double sc;                    /* length unit of the integral: max sd */
+  double w[NZ];                 /* weights on [0, 1] */
+  double s2[NZ], sp2[NZ], c[NZ];  /* pair moments of Z, Z' at the nodes */
+  double ltol;
+} zstats;
+
+static double gfun(double x)
+{
+  return 0.5 * x * x * gsl_sf_exprel_2(-x);
+}
+
+/* Add one particle's moments (tau, B) at the nodes; returns Var D(T). */
+static double add_particle(zstats *Z, const double *xi, double tau,
+                           double B)
+{
+  if (isinf(tau) || B == 0.0)
+    return 0.0;
+  const double T = Z->T, s2 = 0.5 * B * B * tau;
+  const double vD = 2.0 * s2 * tau * tau * gfun(T / tau);
+  for (int q = 0; q < NZ; q++) {
+    const double t = xi[q] * T, f = xi[q];
+    const double vt = 2.0 * s2 * tau * tau * gfun(t / tau);
+    const double vr = 2.0 * s2 * tau * tau * gfun((T - t) / tau);
+    const double C = 0.5 * (vt + vD - vr);
+    const double cuD = s2 * tau * (-expm1(-t / tau) - expm1(-(T - t) / tau));
+    const double cDu = -s2 * tau * expm1(-t / tau);
+    double vz = vt - 2.0 * f * C + f * f * vD;
+    double vzp = s2 - 2.0 * cuD / T + vD / (T * T);
+    Z->s2[q] += vz > 0.0 ? vz : 0.0;
+    Z->sp2[q] += vzp > 0.0 ? vzp : 0.0;
+    Z->c[q] += cDu - C / T - f * cuD + f * vD / T;
+  }
+  return vD;
+}
+
+/* Expected up-crossings of level y by one component of Z over [0, T]. */
+static double upcross(const zstats *Z, double y)
+{
+  double u = 0.0;
+  for (int q = 0; q < NZ; q++) {
+    const double s2 = Z->s2[q];
+    if (!(s2 > 0.0))
+      continue;
+    const double s = sqrt(s2), x = y / s;
+    if (x > 38.0)
+      continue;
+    const double m = Z->c[q] * y / s2;
+    double v = Z->sp2[q] - Z->c[q] * Z->c[q] / s2, g;
+    if (v > 0.0) {
+      double sv = sqrt(v), z = m / sv;
+      g = sv * INV_SQRT_2PI * exp(-0.5 * z * z) +
+          m * 0.5 * erfc(-z * INV_SQRT_2);
+    } else
+      g = m > 0.0 ? m : 0.0;
+    u += Z->w[q] * INV_SQRT_2PI * exp(-0.5 * x * x) / s * g;
+  }
+  return Z->T * u;
+}
+
+/* P(a contact of a pair whose chord passes at distance R + y): with n
+ * the unit normal of the chord's closest approach, every chord point has
+ * n.chord >= R + y, so a contact needs n.Z(t) <= -y, a one-component
+ * excursion (Z isotropic; n is a function of the chord, independent of
+ * Z for Brownian motion, whose bridge is independent of its ends). */
+static double psup(const zstats *Z, double y)
+{
+  double p = upcross(Z, y);
+  return p < 1.0 ? p : 1.0;
+}
+
+/* Integrand in the scaled variable z = y / sc (sc the largest standard
+ * deviation of Z): the integrand then varies on a scale of order one,
+ * whatever the units (in metres it would live within ~1e-7 of the lower
+ * limit, where the adaptive routine cannot find it). */
+static double miss_integrand(double z, void *vp)
+{
+  const zstats *Z = vp;
+  const double y = z * Z->sc, d = Z->R + y;
+  double shell = Z->dim == 3 ? 4.0 * PI * d * d + 2.0 * PI * d * Z->L
+                             : 2.0 * PI * d + 2.0 * Z->L;
+  return shell * psup(Z, y);
+}
+
+static double miss(const zstats *Z, double rho)
+{
+  if (!(Z->sc > 0.0))
+    return 0.0;  /* no deviation from the chords: nothing is missed */
+  gsl_integration_workspace *ws = gsl_integration_workspace_alloc(200);
+  if (!ws)
+    return NAN;
+  gsl_function F = {miss_integrand, (void *)Z};
+  double res = NAN, err;
+  gsl_error_handler_t *old = gsl_set_error_handler_off();
+  int st = gsl_integration_qagiu(&F, rho / Z->sc, 0.0, 1e-7, 200, ws, &res,
+                                 &err);
+  gsl_set_error_handler(old);
+  gsl_integration_workspace_free(ws);
+  if (st && st != GSL_EROUND)
+    return NAN;
+  return Z->n * Z->sc * res;
+}
+
+static int zinit(zstats *Z, int dim, double n, double R, double tau_i,
+                 double B_i, double tau_j, double B_j, double dt)
+{
+  if ((dim != 2 && dim != 3) || !(n > 0.0) || !isfinite(n) || !(R > 0.0) ||
+      !isfinite(R) || !(dt > 0.0) || !isfinite(dt) || !(tau_i > 0.0) ||
+      !(tau_j > 0.0) || !(B_i >= 0.0) || !(B_j >= 0.0) || !isfinite(B_i) ||
+      !isfinite(B_j))
+    return SB_EDOM;
+  gsl_integration_glfixed_table *t = gsl_integration_glfixed_table_alloc(NZ);
+  if (!t)
+    return SB_ENOMEM;
+  double xi[NZ];
+  for (int q = 0; q < NZ; q++)
+    gsl_integration_glfixed_point(0.0, 1.0, (size_t)q, &xi[q], &Z->w[q], t);
+  gsl_integration_glfixed_table_free(t);
+  Z->dim = dim;
+  Z->n = n;
+  Z->R = R;
+  Z->T = dt;
+  for (int q = 0; q < NZ; q++)
+    Z->s2[q] = Z->sp2[q] = Z->c[q] = 0.0;
+  double vD = add_particle(Z, xi, tau_i, B_i) + add_particle(Z, xi, tau_j,
+                                                             B_j);
+  Z->L = sqrt(dim * vD);
+  double s2 = 0.0;
+  for (int q = 0; q < NZ; q++)
+    s2 = Z->s2[q] > s2 ? Z->s2[q] : s2;
+  Z->sc = sqrt(s2);
+  return SB_SUCCESS;
+}
+
+double sb_langevin_miss_bound(int dim, double n, double R, double tau_i,
+                              double B_i, double tau_j, double B_j,
+                              double dt, double rho)
+{
+  zstats Z;
+  int st = zinit(&Z, dim, n, R, tau_i, B_i, tau_j, B_j, dt);
+  if (st || !(rho >= 0.0) || !isfinite(rho)) {
+    sbi_error(st ? st : SB_EDOM, __func__, "bad argument (dim %d, n %g, R "
+              "%g, dt %g, rho %g)", dim, n, R, dt, rho);
+    return NAN;
+  }
+  double m = miss(&Z, rho);
+  if (isnan(m))
+    sbi_error(SB_EMAXITER, __func__, "quadrature failed (rho = %g)", rho);
+  return m;
+}
+
+/* log(miss) - log(tol); NaN propagates (a failed quadrature is an
+ * error, never "nothing missed"). */
+static double reach_fn(double rho, void *vp)
+{
+  const zstats *Z = vp;
+  double m = miss(Z, rho);
+  if (isnan(m))
+    return NAN;
+  return (m > 0.0 ? log(m) : -745.0) - Z->ltol;
+}
+
+double sb_langevin_reach(int dim, double n, double R, double tau_i,
+                         double B_i, double tau_j, double B_j, double dt,
+                         double tol)
+{
+  zstats Z;
+  int st = zinit(&Z, dim, n, R, tau_i, B_i, tau_j, B_j, dt);
+  if (st || !(tol > 0.0 && tol < 1.0)) {
+    sbi_error(st ? st : SB_EDOM, __func__, "bad argument (dim %d, n %g, R "
+              "%g, dt %g, tol %g)", dim, n, R, dt, tol);
+    return NAN;
+  }
+  Z.ltol = log(tol);
+  double smax = 0.0;
+  for (int q = 0; q < NZ; q++)
+    if (Z.s2[q] > smax)
+      smax = Z.s2[q];
+  if (!(smax > 0.0))
+    return 0.0;  /* no deviation from the chords */
+  smax = sqrt(smax);
+  double f0 = reach_fn(0.0, &Z);
+  if (isnan(f0)) {
+    sbi_error(SB_EMAXITER, __func__, "miss-bound quadrature failed");
+    return NAN;
+  }
+  if (!(f0 > 0.0))
+    return 0.0;
+  double hi = smax, fh;
+  while ((fh = reach_fn(hi, &Z)) > 0.0 || isnan(fh)) {
+    hi *= 2.0;
+    if (isnan(fh) || hi > 1e6 * (smax + R)) {
+      sbi_error(SB_EMAXITER, __func__, "no bracket");
+      return NAN;
+    }
+  }
+  gsl_function F = {reach_fn, &Z};
+  gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+  if (!s) {
+    sbi_error(SB_ENOMEM, __func__, "out of memory");
+    return NAN;
+  }
+  gsl_root_fsolver_set(s, &F, 0.0, hi);
+  double rho = hi;
+  for (int it = 0; it < 200; it++) {
+    gsl_root_fsolver_iterate(s);
+    double lo = gsl_root_fsolver_x_lower(s), up = gsl_root_fsolver_x_upper(s);
+    rho = up;
+    if (gsl_root_test_interval(lo, up, 0.0, 1e-6) == GSL_SUCCESS)
+      break;
+  }
+  gsl_root_fsolver_free(s);
+  return rho;
+}

@@ -1,0 +1,389 @@
+/* cases_v12.c — V12: one collision detector for every dt/tau_p (Mohaupt
+ * 2011, §7.2).  Brownian kernel of Langevin spheres in the transition
+ * regime measured by first-hit counting (firsthit.h: independent uniform
+ * pairs that pass through each other, first contact of every pair after a
+ * warm-up of 50 tau_p, long-time kernel with the Smoluchowski transient of
+ * the capacitance radius K/(4 pi D) removed) for every detector:
+ *
+ *  flat  K_e versus dt/tau_p at several Kn_D; reference: contact time of
+ *        the chords at dt/tau_p = 0.01 (converged: the chord error falls
+ *        like dt/tau_p), same protocol.  `langevin` rows test K_e/K_ref = 1
+ *        (conditional two-sample test); the other detectors are reported;
+ *  H     the long-time dimensionless kernel H = K m_red/(f_red R^3) of
+ *        `langevin` over Kn_D = 0.01..10 against Gopalakrishnan & Hogan
+ *        (2011), Dahneke (1983) and both limits (reported; the GH fit is
+ *        the published reference, not an exact one).
+ *
+ * Physics: spheres of d = 100 nm, rho_p = 1000 kg/m^3, T = 296.15 K; the
+ * relaxation time sets Kn_D = tau_p sqrt(2 k_B T/m)/d (the model takes
+ * tau_p, m and T as independent: the Langevin parameters are what the
+ * kernel depends on).  Mixtures and velocities at contact: cases_v12b.c.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <smolbridge/kernel.h>
+#include <smolbridge/langevin.h>
+
+#include "cases.h"
+#include "firsthit.h"
+#include "v12.h"
+
+#define PI 3.14159265358979323846
+
+void v12_physics(double kn, v12_phys *p)
+{
+  p->kn = kn;
+  p->d = V12_D;
+  p->temp = V12_TEMP;
+  p->m = sb_sphere_mass(V12_RHO, p->d);
+  p->tau = kn * p->d / sqrt(2.0 * SB_BOLTZMANN * p->temp / p->m);
+  p->Kgh = sb_kernel_brownian_gh(0.5 * p->d, 0.5 * p->d, p->m, p->m, p->tau,
+                                 p->tau, p->temp);
+  p->D = 2.0 * SB_BOLTZMANN * p->temp * p->tau / p->m;
+}
+
+double v12_H_dahneke(double kn)
+{
+  /* Dahneke (1983): K/K_co = (1 + x)/(1 + 2x + 2x^2) with his Knudsen
+   * number x = 2 D_ij/(c_ij R) = sqrt(pi/2) Kn_D (c_ij = sqrt(8 kT /
+   * (pi m_red)), D_ij = kT/f_red); K_co = 4 pi D_ij R, i.e. H_co =
+   * 4 pi Kn_D^2.  Its limit sqrt(8 pi) Kn_D is GH's. */
+  double x = sqrt(0.5 * PI) * kn;
+  return 4.0 * PI * kn * kn * (1.0 + x) / (1.0 + 2.0 * x + 2.0 * x * x);
+}
+
+/* Detector names for rows and notes. */
+const char *v12_det_name(int det)
+{
+  static const char *const n[] = {"langevin", "contact-time", "overlap",
+                                  "bessel3", "exact-bb3"};
+  return det >= 0 && det <= LV_EXACT ? n[det] : "?";
+}
+
+void v12_size(const v12_phys *ph, int det, double dtt, double hits,
+              double t1, double T, size_t vcap, lv_run *q)
+{
+  memset(q, 0, sizeof *q);
+  const double tau = ph->tau, dt = dtt * tau;
+  q->nsp = 1;
+  q->d[0] = ph->d;
+  q->tau[0] = tau;
+  q->mass[0] = ph->m;
+  q->temp = ph->temp;
+  q->dt = dt;
+  q->det = det;
+  q->vcap = vcap;
+  q->t1 = t1;
+  /* the run ends at a step boundary, at least 5 steps in */
+  if (T < 5.0 * dt)
+    T = 5.0 * dt;
+  T = dt * ceil(T / dt - 1e-9);
+  q->T = T;
+  /* box: 10 relative displacement sd over the run (the torus is infinite
+   * space for every pair), 6 diameters, and twice the search cut-off */
+  const double sd_rel = sqrt(2.0 * ph->D * T);
+  const double sd_step = sqrt(2.0 * sb_langevin_var_x(
+                                        tau, sqrt(2.0 * SB_BOLTZMANN *
+                                                  ph->temp / (ph->m * tau)),
+                                        dt));
+  double L = 10.0 * sd_rel;
+  if (L < 6.0 * ph->d)
+    L = 6.0 * ph->d;
+  if (L < 2.5 * (ph->d + 20.0 * sd_step))
+    L = 2.5 * (ph->d + 20.0 * sd_step);
+  q->L = L;
+  /* particles for ~hits counted contacts, hits = N^2 K (T - t1) / (2 V),
+   * in the smallest box allowed; denser than V12_PHIMAX (overlapping
+   * particles cost neighbour-search work), the box grows at that density
+   * instead; at most V12_BUDGET particle-steps (then fewer contacts: at
+   * the capped density the box shrinks with N, hits ~ N) */
+  const double vp = PI * pow(ph->d, 3) / 6.0, nmax = V12_PHIMAX / vp;
+  const double KM = ph->Kgh * (T - q->t1);
+  double N = sqrt(2.0 * hits * L * L * L / KM);
+  int capped = 0;
+  if (N > nmax * L * L * L) {
+    capped = 1;
+    const double V = 2.0 * hits / (nmax * nmax * KM);
+    N = nmax * V;
+    L = cbrt(V);
+  }
+  const double nb = fmin(V12_BUDGET / (T / dt), V12_NMAX);
+  if (N > nb) {
+    N = nb;
+    if (capped)
+      L = fmax(cbrt(N / nmax), q->L);
+  }
+  if (N < 100.0)
+    N = 100.0;
+  q->L = L;
+  q->N[0] = (size_t)N;
+}
+
+int v12_run(const sbv_ctx *ctx, unsigned long stream, const v12_phys *ph,
+            int det, double dtt, double hits, double meas, size_t vcap,
+            lv_run *q, lv_out *o)
+{
+  v12_size(ph, det, dtt, hits, V12_WARM * ph->tau,
+           (V12_WARM + meas) * ph->tau, vcap, q);
+  return lv_firsthit(ctx, stream, q, o);
+}
+
+/* ------------------------------------------------------------ flat */
+
+typedef struct {
+  int det;
+  double dtt;
+} v12_cell;
+
+/* Keep the velocities of a run for the velocity laws (cases_v12b.c). */
+static void keep_vn(v12_vel *vel, int *nvel, double kn, int which,
+                    lv_out *o)
+{
+  for (int k = 0; k < *nvel; k++)
+    if (vel[k].kn == kn) {
+      if (which < 0) {
+        vel[k].vref = o->vn;
+        vel[k].nref = o->nvn;
+      } else {
+        vel[k].vl[which] = o->vn;
+        vel[k].nl[which] = o->nvn;
+      }
+      o->vn = NULL;
+      return;
+    }
+}
+
+static int flat(const sbv_ctx *ctx, sbv_report *rep, double *Hrow,
+                size_t *nH, v12_vel *vel, int *nvel)
+{
+  static const double kn_full[] = {0.01, 0.05, 0.2, 0.5, 1.0, 3.0};
+  static const double kn_quick[] = {0.05, 0.5, 3.0};
+  static const double dts[] = {0.01, 0.1, 1.0, 10.0, 100.0, 1000.0};
+  const int full = ctx->full;
+  const double *kns = full ? kn_full : kn_quick;
+  const int nkn = full ? 6 : 3;
+  const double hits = full ? 40000.0 : 250.0, meas = full ? 300.0 : 150.0;
+  const size_t vcap = full ? 20000 : 2000;
+  *nvel = full ? 2 : 1;
+  vel[0].kn = full ? 0.05 : 0.5;
+  vel[1].kn = 0.5;
+  sbv_note(rep, "Flat: first-hit counting (firsthit.h), warm-up %.0f "
+           "tau_p, measured over %.0f tau_p (or 5 steps), box 10 relative "
+           "displacement sd, ~%.0f contacts per run; reference: contact "
+           "time of the chords at dt/tau_p = 0.01 with the same protocol.  "
+           "%s", V12_WARM, meas, hits, full ? "" : "Quick mode: Kn_D = "
+           "0.05, 0.5, 3; the reference at Kn_D = 0.5 only; `langevin` at "
+           "dt/tau_p = 1 and 100 (1 and 10 at Kn_D = 3) is tested against "
+           "the reference where it exists and against itself elsewhere; "
+           "the other detectors at dt/tau_p = 1.");
+  int st = SB_SUCCESS;
+  double *plot = malloc(nkn * 30 * 6 * sizeof *plot);
+  if (!plot)
+    return SB_ENOMEM;
+  size_t np = 0;
+  *nH = 0;
+  for (int k = 0; k < nkn && !st; k++) {
+    v12_phys ph;
+    v12_physics(kns[k], &ph);
+    const int have_ref = full || fabs(kns[k] - 0.5) < 1e-9;
+    lv_run qr, ql1 = {0}, q;
+    lv_out orf, ol1 = {0}, o;
+    memset(&orf, 0, sizeof orf);
+    if (have_ref) {
+      sbv_progress(ctx, "  V12 flat Kn_D=%g: reference", kns[k]);
+      st = v12_run(ctx, 1200 + 10 * k, &ph, LV_CHORD, 0.01, hits, meas,
+                   vcap, &qr, &orf);
+      if (st)
+        break;
+      keep_vn(vel, nvel, kns[k], -1, &orf);
+      free(orf.vn);
+    }
+    double Kref = ph.Kgh, Kl, Kh;
+    if (have_ref && !lv_kernel(&qr, &orf, 0, &Kref, &Kl, &Kh)) {
+      sbv_note(rep, "- Kn_D = %g: tau_p = %.3g s, N = %zu, L = %.3g m, "
+               "reference K/K_GH = %.4f [%.4f, %.4f] (%lu contacts, %.1f s)",
+               kns[k], ph.tau, qr.N[0], qr.L, Kref / ph.Kgh, Kl / ph.Kgh,
+               Kh / ph.Kgh, orf.hits[0], orf.cpu);
+      double *r = plot + 6 * np++;
+      r[0] = kns[k], r[1] = 0.01, r[2] = LV_CHORD, r[3] = 1.0;
+      r[4] = Kl / Kref, r[5] = Kh / Kref;
+    }
+    for (int det = LV_LANGEVIN; det <= LV_EXACT && !st; det++)
+      for (int t = 0; t < 6 && !st; t++) {
+        const double dtt = dts[t];
+        if (det == LV_CHORD && dtt == 0.01)
+          continue;  /* the reference */
+        const double dt2 = kns[k] > 1.0 ? 10.0 : 100.0;
+        if (!full && (det == LV_LANGEVIN ? (dtt != 1.0 && dtt != dt2)
+                                         : dtt != 1.0))
+          continue;
+        if (full && det != LV_LANGEVIN && det != LV_CHORD && dtt == 0.01)
+          continue;
+        sbv_progress(ctx, "  V12 flat Kn_D=%g %s dt/tau=%g", kns[k],
+                     v12_det_name(det), dtt);
+        const int keep = det == LV_LANGEVIN && (dtt == 1.0 || dtt == 10.0);
+        st = v12_run(ctx, 1200 + 10 * k, &ph, det, dtt, hits, meas,
+                     keep ? vcap : 0, &q, &o);
+        if (st)
+          break;
+        if (keep)
+          keep_vn(vel, nvel, kns[k], dtt == 1.0 ? 0 : 1, &o);
+        free(o.vn);
+        double K, lo, hi;
+        lv_kernel(&q, &o, 0, &K, &lo, &hi);
+        char name[96];
+        snprintf(name, sizeof name, "V12/flat/Kn=%g/dt=%g/%s/K_e/K_ref",
+                 kns[k], dtt, v12_det_name(det));
+        if (det == LV_LANGEVIN && have_ref)
+          st = lv_add_compare(rep, name, &q, &o, &qr, &orf, 0);
+        else if (det == LV_LANGEVIN && dtt == 1.0) {
+          ql1 = q;  /* the self-consistency pair below */
+          ol1 = o;
+        } else if (det == LV_LANGEVIN) {
+          snprintf(name, sizeof name, "V12/flat/Kn=%g/dt=%g/langevin/"
+                   "K_e/K_e(dt=1)", kns[k], dtt);
+          st = lv_add_compare(rep, name, &q, &o, &ql1, &ol1, 0);
+        } else
+          st = sbv_add_info(rep, name, K / Kref, 1.0, lo / Kref, hi / Kref,
+                            0.95);
+        if (np < (size_t)nkn * 30) {
+          double *r = plot + 6 * np++;
+          r[0] = kns[k], r[1] = dtt, r[2] = det, r[3] = K / Kref;
+          r[4] = lo / Kref, r[5] = hi / Kref;
+        }
+        if (det == LV_LANGEVIN && dtt == (full ? 10.0 : 1.0) &&
+            *nH < 16) {  /* the long-time kernel H at this Kn_D */
+          double *h = Hrow + 8 * (*nH)++;
+          double c = ph.tau / pow(ph.d, 3);  /* H = K m_red/(f_red R^3) */
+          h[0] = kns[k], h[1] = K * c, h[2] = lo * c, h[3] = hi * c;
+        }
+        sbv_note(rep, "  - %s dt/tau_p = %g: K/K_ref = %.4f [%.4f, %.4f], "
+                 "%lu contacts, N = %zu, %.3g steps, %.2f candidates per "
+                 "particle and step, %.2f s", v12_det_name(det), dtt,
+                 K / Kref, lo / Kref, hi / Kref, o.hits[0], q.N[0], o.steps,
+                 o.ncand / (o.steps * (double)q.N[0]), o.cpu);
+      }
+  }
+  if (!st) {
+    for (int k = 0; k < nkn; k++) {
+      char nm[64], title[128];
+      snprintf(nm, sizeof nm, "V12_flat_Kn%g", kns[k]);
+      snprintf(title, sizeof title, "V12: K_e / K_ref versus dt/tau_p, "
+               "Kn_D = %g (95%% intervals)", kns[k]);
+      char body[1024];
+      snprintf(body, sizeof body,
+               "set logscale x\nset xrange [0.005:2000]\n"
+               "set xlabel 'dt / tau_p'\n"
+               "set ylabel 'K_e / K_ref (contact time, dt = 0.01 tau_p)'\n"
+               "set key outside\n"
+               "k = %g\n"
+               "plot for [d=0:4] $DATA u ($1==k && $3==d ? $2 : 1/0):4:5:6 "
+               "w yerrorlines t word('langevin contact-time overlap bessel3 "
+               "exact-bb3', d+1), 1 lc rgb 'black' t ''", kns[k]);
+      st = sbv_plot(ctx, rep, nm, title, "Kn_D dt/tau det K/Kref lo hi",
+                    plot, np, 6, body);
+      if (st)
+        break;
+    }
+  }
+  free(plot);
+  return st;
+}
+
+/* ------------------------------------------------------------ H */
+
+/* Long-time H(Kn_D) of `langevin` at dt = 10 tau_p (full; quick: from
+ * the flat runs at dt = tau_p, plus the ends of the range) against GH,
+ * Dahneke and the limits. */
+static int hsweep(const sbv_ctx *ctx, sbv_report *rep, double *Hrow,
+                  size_t nH)
+{
+  static const double kn_full[] = {0.01, 0.02, 0.1, 2.0, 5.0, 10.0};
+  static const double kn_quick[] = {10.0};
+  const int full = ctx->full;
+  const double *kns = full ? kn_full : kn_quick;
+  const int nkn = full ? 6 : 1;
+  const double hits = full ? 20000.0 : 200.0, meas = full ? 300.0 : 150.0;
+  int st = SB_SUCCESS;
+  for (int k = 0; k < nkn && !st && nH < 16; k++) {
+    v12_phys ph;
+    v12_physics(kns[k], &ph);
+    lv_run q;
+    lv_out o;
+    sbv_progress(ctx, "  V12 H Kn_D=%g", kns[k]);
+    st = v12_run(ctx, 1300 + k, &ph, LV_LANGEVIN, full ? 10.0 : 1.0, hits,
+                 meas, 0, &q, &o);
+    if (st)
+      break;
+    double K, lo, hi;
+    lv_kernel(&q, &o, 0, &K, &lo, &hi);
+    double c = ph.tau / pow(ph.d, 3);  /* H = K m_red/(f_red R^3) */
+    double *h = Hrow + 8 * nH++;
+    h[0] = kns[k], h[1] = K * c, h[2] = lo * c, h[3] = hi * c;
+  }
+  sbv_note(rep, "H(Kn_D): long-time kernel of `langevin` (dt = %s tau_p) "
+           "against Gopalakrishnan & Hogan (2011), Dahneke (1983) and the "
+           "limits 4 pi Kn^2, sqrt(8 pi) Kn (informational rows: GH is a "
+           "fit).", full ? "10" : "1");
+  for (size_t r = 0; r < nH && !st; r++) {
+    double *h = Hrow + 8 * r;
+    const double kn = h[0];
+    h[4] = sb_kernel_gh_H(kn);
+    h[5] = v12_H_dahneke(kn);
+    h[6] = 4.0 * PI * kn * kn;
+    h[7] = sqrt(8.0 * PI) * kn;
+    char name[96];
+    snprintf(name, sizeof name, "V12/H/Kn=%g/H_e/H_GH", kn);
+    st = sbv_add_info(rep, name, h[1] / h[4], 1.0, h[2] / h[4], h[3] / h[4],
+                      0.95);
+    sbv_note(rep, "- Kn_D = %g: H_e = %.5g [%.5g, %.5g], H_e/H_GH = %.4f, "
+             "H_Dahneke/H_GH = %.4f", kn, h[1], h[2], h[3], h[1] / h[4],
+             h[5] / h[4]);
+  }
+  if (!st)
+    st = sbv_plot(ctx, rep, "V12_H", "V12: long-time kernel H(Kn_D) of the "
+                  "Langevin detector (95% intervals)",
+                  "Kn H lo hi H_GH H_Dahneke H_co H_fm", Hrow, nH, 8,
+                  "set logscale xy\nset xlabel 'Kn_D'\n"
+                  "set ylabel 'H = K m_red / (f_red R^3)'\nset key left\n"
+                  "plot $DATA u 1:2:3:4 w yerrorbars pt 7 t 'langevin', "
+                  "$DATA u 1:5 w l t 'Gopalakrishnan & Hogan', "
+                  "$DATA u 1:6 w l t 'Dahneke', $DATA u 1:7 w l dt 2 t "
+                  "'continuum', $DATA u 1:8 w l dt 3 t 'free molecular'");
+  return st;
+}
+
+static int case_v12(const sbv_ctx *ctx, sbv_report *rep)
+{
+  double Hrow[16 * 8];
+  size_t nH = 0;
+  v12_vel vel[2];
+  int nvel = 0;
+  memset(vel, 0, sizeof vel);
+  int st = flat(ctx, rep, Hrow, &nH, vel, &nvel);
+  if (!st)
+    st = hsweep(ctx, rep, Hrow, nH);
+  if (!st)
+    st = v12_mixture(ctx, rep);
+  if (!st)
+    st = v12_velocities(ctx, rep, vel, nvel);
+  for (int k = 0; k < 2; k++) {
+    free(vel[k].vref);
+    free(vel[k].vl[0]);
+    free(vel[k].vl[1]);
+  }
+  return st;
+}
+
+const sbv_case sbv_cases_v12[] = {
+    {"V12/langevin-detector",
+     "Langevin-bridge detection at every dt/tau_p: kernel versus dt and "
+     "Kn_D for every detector, H(Kn_D) vs Gopalakrishnan & Hogan, a "
+     "20 + 200 nm mixture, velocities at contact and DLVO sticking "
+     "(Mohaupt 2011, §7.2)",
+     case_v12},
+};
+const size_t sbv_ncases_v12 = sizeof sbv_cases_v12 / sizeof sbv_cases_v12[0];

@@ -1,0 +1,54 @@
+/* v12.h — shared parts of case V12 (private to lib/validate):
+ * cases_v12.c (kernel versus dt and Kn_D, H(Kn_D)) and cases_v12b.c
+ * (mixture, velocities at contact, DLVO sticking). */
+#ifndef SB_VALIDATE_V12_H
+#define SB_VALIDATE_V12_H
+
+#include "cases.h"
+#include "firsthit.h"
+
+#define V12_D 1e-7         /* diameter, m */
+#define V12_RHO 1000.0     /* particle density, kg/m^3 */
+#define V12_TEMP 296.15    /* K */
+#define V12_WARM 50.0      /* warm-up, tau_p */
+#define V12_NMAX 60000.0   /* largest particle number of a run */
+#define V12_PHIMAX 0.2     /* largest volume fraction (overlaps allowed) */
+#define V12_BUDGET 6e8     /* largest particle-steps of a run */
+
+/* One monodisperse species at diffusive Knudsen number kn. */
+typedef struct {
+  double kn, d, m, tau, temp;
+  double Kgh;  /* GH kernel, m^3/s */
+  double D;    /* relative diffusivity 2 k_B T tau / m, m^2/s */
+} v12_phys;
+
+void v12_physics(double kn, v12_phys *p);
+/* Dahneke's H in terms of GH's Kn_D (cases_v12.c). */
+double v12_H_dahneke(double kn);
+const char *v12_det_name(int det);
+
+/* Size a first-hit run: warm-up end t1, end T (raised to 5 steps and a
+ * step boundary), box and particle number for ~hits contacts. */
+void v12_size(const v12_phys *ph, int det, double dtt, double hits,
+              double t1, double T, size_t vcap, lv_run *q);
+/* A first-hit run sized for ~hits counted contacts over meas tau_p after
+ * the warm-up (cases_v12.c: box, particle number, end time). */
+int v12_run(const sbv_ctx *ctx, unsigned long stream, const v12_phys *ph,
+            int det, double dtt, double hits, double meas, size_t vcap,
+            lv_run *q, lv_out *o);
+
+/* Normal relative velocities at first contacts kept from the flat runs:
+ * the reference (contact time, dt = 0.01 tau_p) and `langevin` at dt = 1
+ * and 10 tau_p (NULL when not run). */
+typedef struct {
+  double kn;
+  double *vref, *vl[2];
+  size_t nref, nl[2];
+} v12_vel;
+
+/* cases_v12b.c */
+int v12_mixture(const sbv_ctx *ctx, sbv_report *rep);
+int v12_velocities(const sbv_ctx *ctx, sbv_report *rep, const v12_vel *vel,
+                   int nvel);
+
+#endif /* SB_VALIDATE_V12_H */

@@ -1,0 +1,477 @@
+/* test_engine_langevin.c — the engine's Langevin-bridge detector
+ * (SB_DETECT_LANGEVIN, lib/engine/engine_langevin.c): names and
+ * parameters, the neighbour reach against an all-pairs search, contact
+ * states seen by outcomes (elastic rule, merge, DLVO E_rel), collisions
+ * chained inside one step, 2-D and fluid fields, and the transition-
+ * regime kernel against Gopalakrishnan & Hogan (2011).
+ *
+ * Units: unit-free, diameter 1, mass 1, k_B T = 1 (species T =
+ * 1/k_B), so that Kn_D = tau sqrt(2 k_B T/m)/d = tau sqrt(2).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+
+#include <smolbridge/engine.h>
+#include <smolbridge/kernel.h>
+#include <smolbridge/langevin.h>
+#include <smolbridge/stats.h>
+
+#include "testutil.h"
+#include "validate/cases.h"
+#include "validate/firsthit.h"
+
+static sb_engine *box(int dim, double L, double dt, size_t cap,
+                      unsigned long seed)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.dim = dim;
+  p.L[0] = p.L[1] = p.L[2] = L;
+  p.dt = dt;
+  p.capacity = cap;
+  p.seed = seed;
+  p.detect = SB_DETECT_LANGEVIN;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  return e;
+}
+
+/* Brownian sphere of diameter 1, mass 1, k_B T = 1, relaxation time tau. */
+static void add_species(sb_engine *e, double tau)
+{
+  sb_engine_species s = {0.5, 1.0, tau, sqrt(2.0 / tau), 1.0 / SB_BOLTZMANN};
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+}
+
+START_TEST(test_names_params)
+{
+  sb_engine_detect d;
+  ck_assert_int_eq(sb_engine_detect_from_name("langevin", &d), SB_SUCCESS);
+  ck_assert_int_eq(d, SB_DETECT_LANGEVIN);
+  ck_assert_int_ne(sb_engine_detect_from_name("custom", &d), SB_SUCCESS);
+  sb_engine *e = box(3, 20.0, 1.0, 8, 1);
+  sb_engine_langevin_params lp;
+  sb_engine_langevin_params_default(&lp);
+  ck_assert(lp.eps == 1e-6 && lp.xtol == 1e-6 && lp.tol == 1e-9);
+  lp.eps = 0.0;
+  ck_assert_int_eq(sb_engine_set_langevin(e, &lp), SB_EINVAL);
+  lp.eps = 1e-4;
+  ck_assert_int_eq(sb_engine_set_langevin(e, &lp), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_set_detect(e, SB_DETECT_BALLISTIC), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_set_detect(e, SB_DETECT_LANGEVIN), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_set_detect(e, SB_DETECT_CUSTOM), SB_EINVAL);
+  ck_assert_int_eq(sb_engine_contact_state(e, NULL, NULL, NULL, NULL),
+                   SB_EINVAL);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* Reach.  All pairs are examined (a reach of 15, cells) by a wrapper
+ * that records every contact and the closest distance of the pair's
+ * chords; contacts whose chords stay beyond sigma + rho(tol) are the ones
+ * a search with reach rho(tol) would miss.  Their number must stay below
+ * the bound N steps tol (expected misses per particle and step <= tol;
+ * each contact is seen from one pair), checked at tol = 1e-2 and 1e-4
+ * where it is informative, and at the default 1e-9 (zero expected).
+ * 400 particles, Kn_D = 0.5, dt/tau = 1 and 10, 150 steps each. */
+typedef struct {
+  double rho[3];
+  unsigned long beyond[3], hits;
+} reach_rec;
+
+static int record_all(const sb_engine *e, const sb_engine_pair *p,
+                      const gsl_rng *r, void *ctx, double *s)
+{
+  reach_rec *rr = ctx;
+  int h = sb_engine_detect_langevin(e, p, r, NULL, s);
+  if (h != 1)
+    return h;
+  rr->hits++;
+  double dd = 0, xd = 0;
+  for (int k = 0; k < 3; k++) {
+    dd += p->dd[k] * p->dd[k];
+    xd += p->dx0[k] * p->dd[k];
+  }
+  double lam = dd > 0 ? -xd / dd : 0;
+  lam = lam < 0 ? 0 : (lam > 1 ? 1 : lam);
+  double m2 = 0;
+  for (int k = 0; k < 3; k++) {
+    double v = p->dx0[k] + lam * p->dd[k];
+    m2 += v * v;
+  }
+  for (int q = 0; q < 3; q++)
+    rr->beyond[q] += sqrt(m2) > p->sigma + rr->rho[q];
+  return 0;
+}
+
+START_TEST(test_reach_complete)
+{
+  const double tau = 0.5 / sqrt(2.0), tols[3] = {1e-2, 1e-4, 1e-9};
+  for (int c = 0; c < 2; c++) {
+    const double dt = c ? 10.0 * tau : tau;
+    const size_t N = 400;
+    sb_engine *e = box(3, c ? 70.0 : 40.0, dt, N, 11 + c);
+    add_species(e, tau);
+    ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, N), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_set_outcome(e, SB_OUTCOME_COUNT, 1.0),
+                     SB_SUCCESS);
+    reach_rec rr;
+    memset(&rr, 0, sizeof rr);
+    sb_engine_langevin_params lp;
+    sb_engine_langevin_params_default(&lp);
+    for (int q = 0; q < 3; q++) {
+      lp.tol = tols[q];
+      ck_assert_int_eq(sb_engine_set_langevin(e, &lp), SB_SUCCESS);
+      rr.rho[q] = sb_engine_langevin_reach(e);
+      ck_assert_msg(rr.rho[q] >= 0.0 && rr.rho[q] < 15.0, "rho %g",
+                    rr.rho[q]);
+    }
+    ck_assert(rr.rho[0] <= rr.rho[1] && rr.rho[1] < rr.rho[2]);
+    ck_assert_int_eq(sb_engine_set_detector(e, record_all, &rr, 15.0),
+                     SB_SUCCESS);
+    const int steps = 150;
+    for (int s = 0; s < steps; s++)
+      ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+    ck_assert_msg(rr.hits > 100, "%lu contacts", rr.hits);
+    for (int q = 0; q < 3; q++) {
+      double bound = (double)N * steps * tols[q];
+      ck_assert_msg((double)rr.beyond[q] <= bound + 3.0 * sqrt(bound) + 1,
+                    "dt/tau %g, tol %g: %lu contacts beyond the reach %g "
+                    "(bound %g)", dt / tau, tols[q], rr.beyond[q],
+                    rr.rho[q], bound);
+    }
+    ck_assert_uint_eq(rr.beyond[2], 0);
+    sb_engine_free(e);
+  }
+}
+END_TEST
+
+/* Two particles on a collision course with almost no noise (tau = 1e4,
+ * k_B T tiny through B): the elastic outcome sees both states at contact,
+ * reverses the normal relative velocity there (eta = 1, equal masses:
+ * the velocities are exchanged) and conserves the momentum. */
+typedef struct {
+  int calls;
+  double before[2][3], after[2][3], sep;
+} el_rec;
+
+static int check_elastic(sb_engine *e, const sb_engine_pair *p, double s,
+                         void *ctx)
+{
+  el_rec *er = ctx;
+  double xi[3], xj[3];
+  ck_assert_int_eq(sb_engine_contact_state(e, xi, er->before[0], xj,
+                                           er->before[1]), SB_SUCCESS);
+  double d = 0;
+  for (int k = 0; k < 3; k++)
+    d += (xi[k] - xj[k]) * (xi[k] - xj[k]);
+  er->sep = sqrt(d);
+  /* the engine shows the contact state through the accessors */
+  const double *u = sb_engine_velocities(e);
+  for (int k = 0; k < 3; k++)
+    ck_assert(u[3 * p->i + k] == er->before[0][k]);
+  int st = sb_engine_outcome_elastic(e, p, s);
+  for (int k = 0; k < 3; k++) {
+    er->after[0][k] = u[3 * p->i + k];
+    er->after[1][k] = u[3 * p->j + k];
+  }
+  er->calls++;
+  return st;
+}
+
+START_TEST(test_elastic_contact)
+{
+  sb_engine *e = box(3, 50.0, 2.0, 2, 3);
+  sb_engine_species s = {0.5, 1.0, 1e4, 1e-8, 0.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+  double x0[3] = {10, 10, 10}, u0[3] = {1, 0, 0};
+  double x1[3] = {12, 10.2, 10}, u1[3] = {0, 0, 0};
+  sb_engine_add_particle(e, 0, 0, x0, u0);
+  sb_engine_add_particle(e, 0, 0, x1, u1);
+  el_rec er;
+  memset(&er, 0, sizeof er);
+  sb_engine_set_outcome_fn(e, check_elastic, &er);
+  ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  ck_assert_int_eq(er.calls, 1);
+  ck_assert_rel(er.sep, 1.0, 1e-12);
+  for (int k = 0; k < 3; k++)
+    ck_assert_abs(er.after[0][k] + er.after[1][k],
+                  er.before[0][k] + er.before[1][k], 1e-12);
+  /* normal n along (x_i - x_j) at contact: w_n reversed */
+  double n[3] = {-sqrt(1 - 0.04), -0.2, 0}, wb = 0, wa = 0;
+  for (int k = 0; k < 3; k++) {
+    wb += (er.before[0][k] - er.before[1][k]) * n[k];
+    wa += (er.after[0][k] - er.after[1][k]) * n[k];
+  }
+  ck_assert(wb < 0);
+  ck_assert_abs(wa, -wb, 1e-6);
+  /* after the step the pair is apart and separating */
+  ck_assert_uint_eq(sb_engine_check_overlaps(e, 1e-9), 0);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* A chain inside one step (almost ballistic particles): A hits B at
+ * t = 0.5, B (velocity 1 after the exchange) hits C at t = 2.0; dt = 3.
+ * Both collisions happen, in order, through re-detection. */
+START_TEST(test_chain)
+{
+  sb_engine *e = box(3, 50.0, 3.0, 3, 4);
+  sb_engine_species s = {0.5, 1.0, 1e4, 1e-8, 0.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+  double xa[3] = {10, 10, 10}, xb[3] = {11.5, 10, 10}, xc[3] = {13, 10, 10};
+  double ua[3] = {1, 0, 0}, zero[3] = {0, 0, 0};
+  sb_engine_add_particle(e, 0, 0, xa, ua);
+  sb_engine_add_particle(e, 0, 0, xb, zero);
+  sb_engine_add_particle(e, 0, 0, xc, zero);
+  ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  sb_engine_stats st;
+  sb_engine_get_stats(e, &st);
+  ck_assert_uint_eq(st.ncoll, 2);
+  ck_assert(st.redetected > 0);
+  ck_assert_uint_eq(st.dropped, 0);
+  const double *u = sb_engine_velocities(e);
+  ck_assert_abs(u[0], 0.0, 1e-5);
+  ck_assert_abs(u[3], 0.0, 1e-5);
+  ck_assert_abs(u[6], 1.0, 1e-3);  /* drag: e^{-3e-4} */
+  sb_engine_free(e);
+}
+END_TEST
+
+/* Merge at contact: the cluster starts at the contact barycentre with the
+ * contact momentum; DLVO E_rel (contact, normal) is mu v_n^2 / 2 of the
+ * sampled contact velocities. */
+typedef struct {
+  sb_agglo *a;
+  int calls;
+  double erel, want;
+} dl_rec;
+
+static int check_dlvo(sb_engine *e, const sb_engine_pair *p, double s,
+                      void *ctx)
+{
+  dl_rec *d = ctx;
+  double xi[3], ui[3], xj[3], uj[3];
+  ck_assert_int_eq(sb_engine_contact_state(e, xi, ui, xj, uj), SB_SUCCESS);
+  double vn = 0, R = p->sigma;
+  for (int k = 0; k < 3; k++)
+    vn += (ui[k] - uj[k]) * (xi[k] - xj[k]) / R;
+  const double *m = sb_engine_masses(e);
+  double mu = m[p->i] * m[p->j] / (m[p->i] + m[p->j]);
+  d->want = 0.5 * mu * vn * vn;
+  d->erel = sb_agglo_erel_of(e, d->a, p, s, NULL);
+  d->calls++;
+  return sb_engine_outcome_agglo(e, p, s, d->a);
+}
+
+START_TEST(test_merge_dlvo_contact)
+{
+  sb_engine *e = box(3, 30.0, 1.0, 40, 5);
+  add_species(e, 0.4);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 40), SB_SUCCESS);
+  sb_agglo_params ap;
+  sb_agglo_params_default(&ap);
+  ap.rule = SB_AGGLO_DLVO;
+  ap.erel = SB_AGGLO_EREL_CONTACT;
+  ap.erel_normal = 1;
+  ap.wmax = 0.5;  /* k_B T / 2 */
+  sb_agglo *a = sb_agglo_alloc(&ap);
+  ck_assert_int_eq(sb_agglo_attach(e, a), SB_SUCCESS);
+  dl_rec d = {a, 0, 0, 0};
+  sb_engine_set_outcome_fn(e, check_dlvo, &d);
+  double m3[3];
+  for (int s = 0; s < 400 && d.calls < 20; s++) {
+    ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+    if (d.calls)
+      ck_assert_rel(d.erel, d.want, 1e-12);
+  }
+  ck_assert(d.calls >= 5);
+  sb_agglo_stats as;
+  sb_agglo_get_stats(a, &as);
+  ck_assert_uint_eq(as.nmerge + as.nrebound, (uint64_t)d.calls);
+  ck_assert(as.nmerge > 0 && as.nrebound > 0);
+  sb_agglo_moments(a, e, m3);
+  ck_assert(m3[1] == 40.0);  /* primaries conserved */
+  ck_assert(m3[0] == 40.0 - (double)as.nmerge);
+  sb_agglo_free(a);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* Merge momentum: two nearly ballistic particles meet; the cluster's
+ * velocity after the step is the contact momentum over the total mass
+ * (the fresh step of a tau = 1e4 cluster barely changes it). */
+START_TEST(test_merge_momentum)
+{
+  sb_engine *e = box(3, 50.0, 2.0, 2, 6);
+  sb_engine_species s = {0.5, 1.0, 1e4, 1e-8, 0.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+  double x0[3] = {10, 10, 10}, u0[3] = {1, 0.5, 0};
+  double x1[3] = {12, 10, 10}, u1[3] = {-1, 0, 0};
+  sb_engine_add_particle(e, 0, 0, x0, u0);
+  sb_engine_add_particle(e, 0, 0, x1, u1);
+  sb_agglo_params ap;
+  sb_agglo_params_default(&ap);
+  ap.growth = SB_AGGLO_CONSTANT;
+  sb_agglo *a = sb_agglo_alloc(&ap);
+  ck_assert_int_eq(sb_agglo_attach(e, a), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  ck_assert_uint_eq(sb_engine_count(e), 1);
+  const double *u = sb_engine_velocities(e), *x = sb_engine_positions(e);
+  /* drag over the rest of the step: a factor e^{-1.5e-4} */
+  ck_assert_abs(u[0], 0.0, 1e-5);
+  ck_assert_abs(u[1], 0.25, 1e-4);
+  /* the barycentre moves at the centre-of-mass velocity (0, 0.25)
+   * before and after the contact: at t = 2 it is at (11, 10.5) */
+  ck_assert_abs(x[0], 11.0, 1e-4);
+  ck_assert_abs(x[1], 10.5, 1e-3);
+  sb_agglo_free(a);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* A dense elastic suspension in 3-D with shear and in 2-D at rest
+ * (area fraction 0.25, dt = 2 tau_p): steps run, the detector works
+ * (contacts, no drops) and overlaps at step ends stay rare: below 0.5% of
+ * the contacts (each pair's interior path is drawn on its own, so a
+ * contact state with one partner can overlap a third particle; measured
+ * ~0.1% here). */
+START_TEST(test_dense_runs)
+{
+  for (int dim = 2; dim <= 3; dim++) {
+    const size_t N = dim == 3 ? 300 : 200;
+    sb_engine *e = box(dim, 25.0, 0.7, N, 7 + dim);
+    add_species(e, 0.35);
+    ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, N), SB_SUCCESS);
+    if (dim == 3) {
+      double G[3] = {0.3, 0, 0};
+      sb_engine_set_fluid(e, SB_FLUID_SHEAR, G);
+    }
+    size_t tot = 0;
+    for (int s = 0; s < 60; s++) {
+      ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+      tot += sb_engine_check_overlaps(e, 1e-3);
+    }
+    sb_engine_stats st;
+    sb_engine_get_stats(e, &st);
+    ck_assert(st.ncoll > 50);
+    ck_assert_uint_eq(st.dropped, 0);
+    ck_assert_msg((double)tot <= 0.005 * (double)st.ncoll, "dim %d: %zu "
+                  "overlaps at step ends, %llu contacts", dim, tot,
+                  (unsigned long long)st.ncoll);
+    sb_langevin_hit_stats hs;
+    ck_assert_int_eq(sb_engine_langevin_stats(e, &hs), SB_SUCCESS);
+    ck_assert(hs.calls > 0 && hs.pruned_mass <= 1e-6 * (double)hs.calls);
+    sb_engine_free(e);
+  }
+}
+END_TEST
+
+/* Units: the same run (seed, configuration) in unit-free and in SI-like
+ * units (lengths x 1e-7 m, times x 1e-6 s) gives the same contacts: the
+ * engine, the reach and the sampler are scale invariant.  300 particles,
+ * dt = 30 tau_p, pass-through, 20 steps. */
+static int count_contacts(double X, double T)
+{
+  const double tau = 0.5 / sqrt(2.0) * T, v = X / T;
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 120.0 * X;
+  p.dt = 30.0 * tau;
+  p.capacity = 300;
+  p.seed = 21;
+  p.outcome = SB_OUTCOME_COUNT;
+  p.detect = SB_DETECT_LANGEVIN;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  sb_engine_species s = {0.5 * X, 1.0, tau, sqrt(2.0 * v * v / tau),
+                         v * v / SB_BOLTZMANN};
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  gsl_rng_set(r, 5);
+  for (int i = 0; i < 300; i++) {
+    double x[3], u[3];
+    for (int k = 0; k < 3; k++) {
+      x[k] = p.L[0] * gsl_rng_uniform(r);
+      u[k] = v * gsl_ran_gaussian_ziggurat(r, 1.0);
+    }
+    ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, x, u), SB_SUCCESS);
+  }
+  gsl_rng_free(r);
+  for (int k = 0; k < 20; k++)
+    ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  sb_engine_stats st;
+  sb_engine_get_stats(e, &st);
+  sb_engine_free(e);
+  return (int)st.ncoll;
+}
+
+START_TEST(test_units)
+{
+  int a = count_contacts(1.0, 1.0), b = count_contacts(1e-7, 1e-6);
+  ck_assert_int_gt(a, 20);
+  ck_assert_int_eq(a, b);
+}
+END_TEST
+
+/* The long-time kernel by first-hit counting (lib/validate/firsthit_lv.c)
+ * at Kn_D = 0.5, dt = tau_p: ~1500 contacts, against the GH fit within
+ * 10% (3.5 standard errors of the count plus the fit's few %). */
+START_TEST(test_kernel_gh)
+{
+  sb_validate_options opt;
+  sb_validate_options_init(&opt);
+  sbv_ctx ctx = {0, 77, NULL, &opt, NULL, NULL};
+  const double T = 296.15, d = 1e-7, m = sb_sphere_mass(1000.0, d);
+  const double tau = 0.5 * d / sqrt(2.0 * SB_BOLTZMANN * T / m);
+  lv_run q;
+  memset(&q, 0, sizeof q);
+  q.nsp = 1;
+  q.d[0] = d;
+  q.tau[0] = tau;
+  q.mass[0] = m;
+  q.N[0] = 5000;
+  q.temp = T;
+  q.dt = tau;
+  q.det = LV_LANGEVIN;
+  q.t1 = 50 * tau;
+  q.T = 250 * tau;
+  const double D = 2 * SB_BOLTZMANN * T * tau / m;
+  q.L = 10.0 * sqrt(2 * D * q.T);
+  lv_out o;
+  ck_assert_int_eq(lv_firsthit(&ctx, 1, &q, &o), SB_SUCCESS);
+  double K, lo, hi;
+  ck_assert_int_eq(lv_kernel(&q, &o, 0, &K, &lo, &hi), SB_SUCCESS);
+  double Kgh = sb_kernel_brownian_gh(d / 2, d / 2, m, m, tau, tau, T);
+  ck_assert_msg(o.hits[0] > 800, "%lu contacts", o.hits[0]);
+  ck_assert_msg(fabs(K / Kgh - 1.0) < 0.10, "K/K_GH = %g [%g, %g], %lu "
+                "contacts", K / Kgh, lo / Kgh, hi / Kgh, o.hits[0]);
+}
+END_TEST
+
+static Suite *suite(void)
+{
+  Suite *s = suite_create("engine_langevin");
+  TCase *tc = tcase_create("core");
+  tcase_set_timeout(tc, 30);
+  tcase_add_test(tc, test_names_params);
+  tcase_add_test(tc, test_elastic_contact);
+  tcase_add_test(tc, test_chain);
+  tcase_add_test(tc, test_merge_momentum);
+  tcase_add_test(tc, test_merge_dlvo_contact);
+  suite_add_tcase(s, tc);
+  TCase *tm = tcase_create("mc");
+  tcase_set_timeout(tm, 60);
+  tcase_add_test(tm, test_reach_complete);
+  tcase_add_test(tm, test_dense_runs);
+  tcase_add_test(tm, test_kernel_gh);
+  tcase_add_test(tm, test_units);
+  suite_add_tcase(s, tm);
+  return s;
+}
+
+int main(void) { return sbt_run_suite(suite()); }

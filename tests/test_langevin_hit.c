@@ -1,0 +1,607 @@
+/* test_langevin_hit.c — the pair first-contact sampler
+ * (<smolbridge/langevin_hit.h>) against brute-force fine-step simulation
+ * of the same processes, the audit of its pruning budget, deterministic
+ * limits, the neighbour reach, and argument checks.
+ *
+ * Brute force, marginal over the ends ("forward"): both particles are
+ * moved from given start states by nf exact Langevin sub-steps
+ * (sb_langevin_step coefficients), a contact within a sub-step is the
+ * entry root of its chord; the sampler is then called with the same two
+ * end states.  If the sampler draws from the right conditional law, its
+ * hit indicator and the brute force's have the same mean (paired:
+ * McNemar's exact test on the discordant paths), and the hit times and
+ * contact velocities the same law (two-sample KS).  The chords miss
+ * excursions shorter than a sub-step; nf keeps that bias below the
+ * statistical resolution (sub-steps <= 0.03 tau_p).
+ *
+ * Brute force, fixed ends ("bridge"): each particle's path is built by
+ * nf sequential exact bridge draws (sb_langevin_bridge_sample, the state
+ * at the next sub-step given the current one and the fixed end). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <check.h>
+#include <gsl/gsl_cdf.h>
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+
+#include <smolbridge/langevin.h>
+#include <smolbridge/langevin_hit.h>
+#include <smolbridge/stats.h>
+
+#include "testutil.h"
+
+/* Chord entry fraction of ra -> rb into |r| <= R, or -1. */
+static double entry(const double *ra, const double *rb, double R)
+{
+  double d[3], a = 0, b = 0, c = -R * R;
+  for (int k = 0; k < 3; k++) {
+    d[k] = rb[k] - ra[k];
+    a += d[k] * d[k];
+    b += ra[k] * d[k];
+    c += ra[k] * ra[k];
+  }
+  if (c <= 0)
+    return 0;
+  if (b >= 0 || a == 0 || b * b - a * c < 0)
+    return -1;
+  double s = c / (-b + sqrt(b * b - a * c));
+  return s <= 1 ? s : -1;
+}
+
+/* Result of one brute-force path. */
+typedef struct {
+  int hit;
+  double t, vn;  /* contact time, normal relative velocity (< 0 in) */
+} bres;
+
+static void forward(const gsl_rng *r, sb_langevin_path *P, int dim, int nf,
+                    double dt, double R, bres *o)
+{
+  sb_langevin_coef c[2];
+  for (int p = 0; p < 2; p++)
+    sb_langevin_coef_init(&c[p], P[p].tau, P[p].B, dt / nf);
+  double x[2][3] = {{0}}, u[2][3] = {{0}};
+  for (int p = 0; p < 2; p++)
+    for (int k = 0; k < dim; k++) {
+      x[p][k] = P[p].x0[k];
+      u[p][k] = P[p].u0[k];
+    }
+  o->hit = 0;
+  for (int s = 0; s < nf; s++) {
+    double ra[3], rb[3];
+    for (int k = 0; k < 3; k++)
+      ra[k] = x[0][k] - x[1][k];
+    for (int p = 0; p < 2; p++)
+      for (int k = 0; k < dim; k++) {
+        double z1 = gsl_ran_gaussian_ziggurat(r, 1.0);
+        double z2 = gsl_ran_gaussian_ziggurat(r, 1.0);
+        double w = P[p].us[k], v = u[p][k] - w;
+        x[p][k] += w * c[p].dt + v * c[p].gain + c[p].s_xu * z1 +
+                   c[p].s_xc * z2;
+        u[p][k] = w + v * c[p].decay + c[p].s_u * z1;
+      }
+    for (int k = 0; k < 3; k++)
+      rb[k] = x[0][k] - x[1][k];
+    double f;
+    if (!o->hit && (f = entry(ra, rb, R)) >= 0) {
+      o->hit = 1;
+      o->t = (s + f) * dt / nf;
+      double vn = 0;
+      for (int k = 0; k < 3; k++)
+        vn += (u[0][k] - u[1][k]) * (ra[k] + f * (rb[k] - ra[k])) / R;
+      o->vn = vn;
+    }
+  }
+  for (int p = 0; p < 2; p++)
+    for (int k = 0; k < 3; k++) {
+      P[p].x1[k] = x[p][k];
+      P[p].u1[k] = u[p][k];
+    }
+}
+
+static double contact_vn(const sb_langevin_contact *c, double R)
+{
+  double vn = 0;
+  for (int k = 0; k < 3; k++)
+    vn += (c->ui[k] - c->uj[k]) * (c->xi[k] - c->xj[k]) / R;
+  return vn;
+}
+
+/* Particle with equilibrium velocity variance 1/m per component (k_B T
+ * = 1): B^2 tau/2 = 1/m. */
+static sb_langevin_path particle(double tau, double m)
+{
+  sb_langevin_path q;
+  memset(&q, 0, sizeof q);
+  q.tau = tau;
+  q.mass = m;
+  q.B = sqrt(2.0 / (m * tau));
+  return q;
+}
+
+/* McNemar's exact test on the discordant counts: two-sided binomial
+ * p-value of n10 among n10 + n01 at 1/2. */
+static double mcnemar(long n10, long n01)
+{
+  long n = n10 + n01;
+  if (n == 0)
+    return 1.0;
+  long k = n10 < n01 ? n10 : n01;
+  double p = 2.0 * gsl_cdf_binomial_P((unsigned)k, 0.5, (unsigned)n);
+  return p > 1.0 ? 1.0 : p;
+}
+
+/* One forward configuration: start distance x0 along x (R = 1), dt,
+ * particles qi, qj (velocities drawn from equilibrium, plus drift
+ * `vin` of i towards j), nf sub-steps, npath paths. */
+typedef struct {
+  const char *name;
+  double dt, x0, vin;
+  double tau_i, m_i, tau_j, m_j;
+  double us_j;  /* fluid velocity seen by j along x (relative drift) */
+  int dim, nf, npath;
+} fcase;
+
+static void run_forward(const fcase *fc, unsigned long seed, int check_vn)
+{
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  gsl_rng_set(r, seed);
+  sb_langevin_hit_params hp;
+  sb_langevin_hit_params_default(&hp);
+  hp.dim = fc->dim;
+  sb_langevin_hitter *w = sb_langevin_hitter_alloc(&hp);
+  ck_assert_ptr_nonnull(w);
+  double *tb = malloc(fc->npath * sizeof *tb), *ts = malloc(fc->npath *
+                                                            sizeof *ts);
+  double *vb = malloc(fc->npath * sizeof *vb), *vs = malloc(fc->npath *
+                                                            sizeof *vs);
+  long nb = 0, ns = 0, n10 = 0, n01 = 0;
+  for (int n = 0; n < fc->npath; n++) {
+    sb_langevin_path P[2] = {particle(fc->tau_i, fc->m_i),
+                             particle(fc->tau_j, fc->m_j)};
+    P[0].x0[0] = fc->x0;
+    P[1].us[0] = fc->us_j;
+    for (int p = 0; p < 2; p++)
+      for (int k = 0; k < fc->dim; k++)
+        P[p].u0[k] = P[p].us[k] +
+                     gsl_ran_gaussian_ziggurat(r, 1.0 / sqrt(P[p].mass));
+    P[0].u0[0] -= fc->vin;
+    bres b;
+    forward(r, P, fc->dim, fc->nf, fc->dt, 1.0, &b);
+    sb_langevin_contact c;
+    int h = sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, fc->dt, r, &c);
+    ck_assert_int_ge(h, 0);
+    if (h) {
+      ck_assert(c.t >= 0 && c.t <= fc->dt);
+      double d2 = 0;
+      for (int k = 0; k < 3; k++)
+        d2 += (c.xi[k] - c.xj[k]) * (c.xi[k] - c.xj[k]);
+      ck_assert_rel(sqrt(d2), 1.0, 1e-12);
+      ts[ns] = c.t;
+      vs[ns++] = contact_vn(&c, 1.0);
+    }
+    if (b.hit) {
+      tb[nb] = b.t;
+      vb[nb++] = b.vn;
+    }
+    n10 += b.hit && !h;
+    n01 += !b.hit && h;
+  }
+  double p = mcnemar(n10, n01);
+  ck_assert_msg(p >= 1e-3, "%s: brute %ld, sampler %ld hits of %d "
+                "(discordant %ld / %ld): McNemar p = %g", fc->name, nb, ns,
+                fc->npath, n10, n01, p);
+  double D, pks;
+  ck_assert_int_eq(sb_ks2_test(tb, nb, ts, ns, &D, &pks), SB_SUCCESS);
+  ck_assert_msg(pks >= 1e-3, "%s: hit times KS2 D = %g, p = %g", fc->name,
+                D, pks);
+  if (check_vn) {
+    ck_assert_int_eq(sb_ks2_test(vb, nb, vs, ns, &D, &pks), SB_SUCCESS);
+    ck_assert_msg(pks >= 1e-3, "%s: normal velocity KS2 D = %g, p = %g",
+                  fc->name, D, pks);
+  }
+  sb_langevin_hit_stats st;
+  sb_langevin_hitter_stats(w, &st);
+  ck_assert_uint_eq(st.calls, (uint64_t)fc->npath);
+  ck_assert(st.pruned_mass / st.calls <= hp.eps);
+  free(tb);
+  free(ts);
+  free(vb);
+  free(vs);
+  sb_langevin_hitter_free(w);
+  gsl_rng_free(r);
+}
+
+/* dt/tau = 0.01 and 1 (3-D, equal particles), hit probability, times and
+ * normal velocity at contact; sub-steps 1e-5 and 2.4e-4 tau. */
+START_TEST(test_forward_short)
+{
+  const fcase c1 = {"dt/tau=0.01", 0.01, 1.01, 0, 1, 1, 1, 1, 0, 3, 1024,
+                    3000};
+  const fcase c2 = {"dt/tau=1", 1.0, 1.5, 0, 1, 1, 1, 1, 0, 3, 4096, 3000};
+  run_forward(&c1, 101, 1);
+  run_forward(&c2, 102, 1);
+}
+END_TEST
+
+/* Unequal particles (tau 1 and 4, masses 1 and 8), a relative fluid
+ * drift, and 2-D; dt/tau_i = 1. */
+START_TEST(test_forward_mixed)
+{
+  const fcase c3 = {"unequal", 1.0, 1.5, 0, 1, 1, 4, 8, 0, 3, 2048, 3000};
+  const fcase c4 = {"drift", 1.0, 2.0, 0, 1, 1, 1, 1, -1.0, 3, 2048, 3000};
+  const fcase c5 = {"2-D", 1.0, 1.5, 0, 1, 1, 1, 1, 0, 2, 2048, 3000};
+  run_forward(&c3, 103, 1);
+  run_forward(&c4, 104, 0);
+  run_forward(&c5, 105, 0);
+}
+END_TEST
+
+/* Long steps: dt/tau = 100 and 1000 (diffusive), sub-steps 0.024 and
+ * 0.03 tau. */
+START_TEST(test_forward_long)
+{
+  const fcase c6 = {"dt/tau=100", 100.0, 2.0, 0, 1, 1, 1, 1, 0, 3, 4096,
+                    1500};
+  const fcase c7 = {"dt/tau=1000", 1000.0, 2.0, 0, 1, 1, 1, 1, 0, 3, 32768,
+                    600};
+  run_forward(&c6, 106, 0);
+  run_forward(&c7, 107, 0);
+}
+END_TEST
+
+/* Fixed ends: brute force by sequential bridge draws. */
+static int bridge_brute(const gsl_rng *r, const sb_langevin_path *P, int nf,
+                        double dt, double R, double *t)
+{
+  double x[2][3], u[2][3];
+  for (int p = 0; p < 2; p++)
+    for (int k = 0; k < 3; k++) {
+      x[p][k] = P[p].x0[k];
+      u[p][k] = P[p].u0[k];
+    }
+  const double h = dt / nf;
+  for (int s = 0; s < nf; s++) {
+    double ra[3], rb[3], rem = dt - s * h;
+    for (int k = 0; k < 3; k++)
+      ra[k] = x[0][k] - x[1][k];
+    for (int p = 0; p < 2; p++) {
+      for (int k = 0; k < 3; k++) {
+        sb_langevin lp = {P[p].tau, P[p].B, P[p].us[k]};
+        double xn = P[p].x1[k], un = P[p].u1[k];
+        if (s < nf - 1)
+          sb_langevin_bridge_sample(&lp, rem, h, x[p][k], u[p][k],
+                                    P[p].x1[k], P[p].u1[k], r, &xn, &un);
+        x[p][k] = xn;
+        u[p][k] = un;
+      }
+    }
+    for (int k = 0; k < 3; k++)
+      rb[k] = x[0][k] - x[1][k];
+    double f = entry(ra, rb, R);
+    if (f >= 0) {
+      *t = (s + f) * h;
+      return 1;
+    }
+  }
+  return 0;
+}
+
+/* Three end configurations at dt/tau = 1 (R = 1): the chord passing the
+ * sphere at 1.05 (grazing), a chord passing at 1.2 with transverse
+ * velocities towards the sphere at the start and away at the end (the
+ * mean path bends inwards), and unequal particles.  1000
+ * brute-force paths of 256 bridge sub-steps, 6000 sampler draws:
+ * two-sample binomial z-test |z| <= 3.5 and KS2 on the hit times
+ * (p >= 1e-3). */
+START_TEST(test_fixed_ends)
+{
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  gsl_rng_set(r, 201);
+  sb_langevin_hitter *w = sb_langevin_hitter_alloc(NULL);
+  for (int cfg = 0; cfg < 3; cfg++) {
+    sb_langevin_path P[2] = {particle(1, 1), particle(cfg == 2 ? 3 : 1,
+                                                      cfg == 2 ? 5 : 1)};
+    if (cfg == 0) {
+      double a[3] = {1.05, 1.2, 0}, b[3] = {1.05, -1.2, 0};
+      memcpy(P[0].x0, a, sizeof a);
+      memcpy(P[0].x1, b, sizeof b);
+      P[0].u0[1] = P[0].u1[1] = -1.5;
+    } else if (cfg == 1) {
+      double a[3] = {1.6, 1.2, 0}, b[3] = {-1.6, 1.2, 0};
+      memcpy(P[0].x0, a, sizeof a);
+      memcpy(P[0].x1, b, sizeof b);
+      P[0].u0[0] = P[0].u1[0] = -3.2;
+      P[0].u0[1] = -0.5;
+      P[0].u1[1] = 0.5;
+    } else {
+      double a[3] = {1.2, 0.4, 0.1}, b[3] = {0.1, 1.25, -0.3};
+      memcpy(P[0].x0, a, sizeof a);
+      memcpy(P[0].x1, b, sizeof b);
+      P[1].u1[2] = 0.5;
+    }
+    const int nb = 1000, ns = 6000;
+    double *tb = malloc(nb * sizeof *tb), *ts = malloc(ns * sizeof *ts);
+    long hb = 0, hs = 0;
+    for (int n = 0; n < nb; n++)
+      hb += bridge_brute(r, P, 256, 1.0, 1.0, &tb[hb]);
+    for (int n = 0; n < ns; n++) {
+      sb_langevin_contact c;
+      int h = sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, 1.0, r, &c);
+      ck_assert_int_ge(h, 0);
+      if (h)
+        ts[hs++] = c.t;
+    }
+    double pb = (double)hb / nb, ps = (double)hs / ns;
+    double pp = (double)(hb + hs) / (nb + ns);
+    double z = (pb - ps) / sqrt(pp * (1 - pp) * (1.0 / nb + 1.0 / ns));
+    ck_assert_msg(fabs(z) <= 3.5, "config %d: brute %g, sampler %g, z = %g",
+                  cfg, pb, ps, z);
+    ck_assert_msg(pb > 0.05 && pb < 0.95, "config %d: p = %g (choose a "
+                  "configuration with both outcomes)", cfg, pb);
+    double D, p;
+    ck_assert_int_eq(sb_ks2_test(tb, hb, ts, hs, &D, &p), SB_SUCCESS);
+    ck_assert_msg(p >= 1e-3, "config %d: KS2 D = %g, p = %g", cfg, D, p);
+    free(tb);
+    free(ts);
+  }
+  sb_langevin_hitter_free(w);
+  gsl_rng_free(r);
+}
+END_TEST
+
+/* Given both end states the bridge does not depend on the (constant)
+ * fluid velocity seen: the constant force us/tau adds a term to the
+ * control whose integral, u(T) - u(0) + (x(T) - x(0))/tau, the ends fix,
+ * so the path law (minimum-energy mean and covariance) is unchanged.  The
+ * fluid enters only through the ends the transport produced. */
+START_TEST(test_fluid_free)
+{
+  for (double h = 1e-3; h < 1e4; h *= 10.0) {
+    sb_langevin p0 = {1.0, 1.3, 0.0}, p1 = {1.0, 1.3, 7.0};
+    sb_langevin_mom m0, m1;
+    ck_assert_int_eq(sb_langevin_bridge_moments(&p0, h, 0.3 * h, 0.2, -1.0,
+                                                1.1, 0.4, &m0), SB_SUCCESS);
+    ck_assert_int_eq(sb_langevin_bridge_moments(&p1, h, 0.3 * h, 0.2, -1.0,
+                                                1.1, 0.4, &m1), SB_SUCCESS);
+    ck_assert_abs(m1.mean_x, m0.mean_x, 1e-9 * (1.0 + 7.0 * h));
+    ck_assert_abs(m1.mean_u, m0.mean_u, 1e-9 * 8.0);
+    ck_assert_rel(m1.var_x, m0.var_x, 1e-14);
+  }
+}
+END_TEST
+
+/* The pruning budget, measured: with audit on, every pruned sub-interval
+ * is explored and those holding a contact are counted.  Their expected
+ * number is at most the sum of the pruned bounds (Rice: an upper bound on
+ * the probability), which is at most eps per call.  eps = 1e-2 (so that
+ * misses are frequent enough to count), 3000 calls in the diffusive
+ * configuration where pruning is most active: audit hits <= pruned mass
+ * + 4 sqrt(mass) + 3 and pruned mass / calls <= eps; then the default
+ * eps = 1e-6 misses nothing in 1000 audited calls. */
+START_TEST(test_audit_budget)
+{
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  gsl_rng_set(r, 301);
+  const double eps[2] = {1e-2, 1e-6};
+  const int ncall[2] = {3000, 1000};
+  for (int q = 0; q < 2; q++) {
+    sb_langevin_hit_params hp;
+    sb_langevin_hit_params_default(&hp);
+    hp.eps = eps[q];
+    hp.audit = 1;
+    sb_langevin_hitter *w = sb_langevin_hitter_alloc(&hp);
+    sb_langevin p = {1.0, sqrt(2.0), 0.0};
+    for (int n = 0; n < ncall[q]; n++) {
+      sb_langevin_path P[2] = {particle(1, 1), particle(1, 1)};
+      double dir[3];
+      gsl_ran_dir_3d(r, &dir[0], &dir[1], &dir[2]);
+      const double dt = n % 2 ? 30.0 : 1.0;
+      for (int k = 0; k < 3; k++)
+        P[0].x0[k] = 1.8 * dir[k];
+      for (int a = 0; a < 2; a++)
+        for (int k = 0; k < 3; k++) {
+          P[a].u0[k] = gsl_ran_gaussian_ziggurat(r, 1.0);
+          double x = P[a].x0[k], u = P[a].u0[k];
+          sb_langevin_step(&p, dt, r, &x, &u);
+          P[a].x1[k] = x;
+          P[a].u1[k] = u;
+        }
+      ck_assert_int_ge(sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, dt,
+                                                 r, NULL), 0);
+    }
+    sb_langevin_hit_stats st;
+    sb_langevin_hitter_stats(w, &st);
+    double m = st.pruned_mass;
+    ck_assert_msg(st.pruned > 0, "nothing pruned");
+    ck_assert_msg(m / st.calls <= eps[q], "pruned mass %g per call", m /
+                  st.calls);
+    ck_assert_msg((double)st.audit_hits <= m + 4 * sqrt(m) + 3,
+                  "eps %g: %llu audited misses, bound %g", eps[q],
+                  (unsigned long long)st.audit_hits, m);
+    if (q == 1)
+      ck_assert_uint_eq(st.audit_hits, 0);
+    sb_langevin_hitter_free(w);
+  }
+  gsl_rng_free(r);
+}
+END_TEST
+
+/* The Rice bound is an upper bound: at the top level it exceeds the
+ * brute-force contact probability for fixed ends (dt/tau = 1, two
+ * configurations with p ~ 0.05 and ~ 1e-3); and it tends to 0 far away. */
+START_TEST(test_bound)
+{
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  gsl_rng_set(r, 401);
+  sb_langevin_hitter *w = sb_langevin_hitter_alloc(NULL);
+  const double ys[2] = {1.4, 1.8};
+  for (int c = 0; c < 2; c++) {
+    sb_langevin_path P[2] = {particle(1, 1), particle(1, 1)};
+    P[0].x0[0] = P[0].x1[0] = ys[c];
+    P[0].x0[1] = 1.0;
+    P[0].x1[1] = -1.0;
+    P[0].u0[1] = P[0].u1[1] = -2.0;
+    double bound = sb_langevin_hitter_bound(w, &P[0], &P[1], 1.0, 1.0);
+    const int nb = 3000;
+    long hb = 0;
+    double t;
+    for (int n = 0; n < nb; n++)
+      hb += bridge_brute(r, P, 256, 1.0, 1.0, &t);
+    double lo, hi;
+    sb_binomial_ci((unsigned long)hb, (unsigned long)nb, 0.999, &lo, &hi);
+    ck_assert_msg(bound >= lo, "y = %g: bound %g below brute force %g [%g, "
+                  "%g]", ys[c], bound, (double)hb / nb, lo, hi);
+    ck_assert(bound <= 1.0);
+  }
+  sb_langevin_path P[2] = {particle(1, 1), particle(1, 1)};
+  P[0].x0[0] = P[0].x1[0] = 20.0;
+  ck_assert(sb_langevin_hitter_bound(w, &P[0], &P[1], 1.0, 1.0) < 1e-30);
+  sb_langevin_hitter_free(w);
+  gsl_rng_free(r);
+}
+END_TEST
+
+/* No noise: free flight (tau = inf) is a straight line, so the contact is
+ * the ballistic root; B = 0 relaxes deterministically (velocity decays
+ * like e^{-t/tau}: starting at 1.5 with u = -1, tau = 1, the position
+ * 1.5 - (1 - e^{-t}) reaches 1 at t = ln 2). */
+START_TEST(test_deterministic)
+{
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  sb_langevin_hitter *w = sb_langevin_hitter_alloc(NULL);
+  sb_langevin_path P[2];
+  memset(P, 0, sizeof P);
+  P[0].tau = P[1].tau = INFINITY;
+  P[0].mass = P[1].mass = 1;
+  P[0].x0[0] = 3.0;
+  P[0].u0[0] = -1.0;
+  sb_langevin_contact c;
+  ck_assert_int_eq(sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, 4.0, r,
+                                             &c), 1);
+  ck_assert_rel(c.t, 2.0, 1e-9);
+  ck_assert_rel(c.ui[0], -1.0, 1e-15);
+  P[0].x0[1] = 1.2;  /* passes at 1.2 > R */
+  ck_assert_int_eq(sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, 4.0, r,
+                                             &c), 0);
+  P[0].x0[1] = 0.0;
+  P[0].tau = 1.0;
+  P[0].B = 0.0;
+  P[0].x0[0] = 1.5;
+  ck_assert_int_eq(sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, 4.0, r,
+                                             &c), 1);
+  ck_assert_abs(c.t, log(2.0), 1e-5);
+  ck_assert_rel(c.ui[0], -0.5, 1e-4);
+  /* a stochastic partner against a free-flight particle still works */
+  P[1] = particle(1, 1);
+  P[1].x1[0] = P[1].x0[0] = 0.0;
+  int h = sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, 1.0, r, &c);
+  ck_assert(h == 0 || h == 1);
+  sb_langevin_hitter_free(w);
+  gsl_rng_free(r);
+}
+END_TEST
+
+/* Overlap at the start, bad arguments. */
+START_TEST(test_args)
+{
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  sb_langevin_hitter *w = sb_langevin_hitter_alloc(NULL);
+  sb_langevin_path P[2] = {particle(1, 1), particle(1, 1)};
+  P[0].x0[0] = 0.5;
+  sb_langevin_contact c;
+  ck_assert_int_eq(sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, 1.0, r,
+                                             &c), 1);
+  ck_assert(c.t == 0.0);
+  ck_assert_int_eq(sb_langevin_hitter_sample(w, &P[0], &P[1], -1.0, 1.0, r,
+                                             &c), -SB_EDOM);
+  ck_assert_int_eq(sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, 0.0, r,
+                                             &c), -SB_EDOM);
+  ck_assert_int_eq(sb_langevin_hitter_sample(NULL, &P[0], &P[1], 1.0, 1.0,
+                                             r, &c), -SB_EINVAL);
+  P[1].x1[2] = NAN;
+  ck_assert_int_eq(sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, 1.0, r,
+                                             &c), -SB_EDOM);
+  sb_langevin_hit_params hp;
+  sb_langevin_hit_params_default(&hp);
+  hp.eps = 0.5;
+  ck_assert_ptr_null(sb_langevin_hitter_alloc(&hp));
+  hp.eps = 1e-6;
+  hp.dim = 4;
+  ck_assert_ptr_null(sb_langevin_hitter_alloc(&hp));
+  sb_langevin_hitter_free(w);
+  gsl_rng_free(r);
+}
+END_TEST
+
+/* The reach: the miss bound decreases in rho, the reach meets the
+ * tolerance, free flight needs none, it stays within a few standard
+ * deviations of the relative displacement, and it scales with the units. */
+START_TEST(test_reach)
+{
+  const double n = 1.0, R = 1.0, tau = 1.0, B = sqrt(2.0);
+  double prev = INFINITY;
+  for (double rho = 0.0; rho < 6.0; rho += 0.5) {
+    double m = sb_langevin_miss_bound(3, n, R, tau, B, tau, B, 1.0, rho);
+    ck_assert(m >= 0.0 && m <= prev);
+    prev = m;
+  }
+  for (int dim = 2; dim <= 3; dim++)
+    for (double dt = 0.01; dt <= 1000.0; dt *= 10.0) {
+      double rho = sb_langevin_reach(dim, n, R, tau, B, tau, B, dt, 1e-9);
+      ck_assert_msg(rho > 0.0 && isfinite(rho), "dt %g: rho %g", dt, rho);
+      double m = sb_langevin_miss_bound(dim, n, R, tau, B, tau, B, dt, rho);
+      ck_assert_msg(m <= 1.0001e-9 && m >= 0.9e-9, "dt %g: miss %g", dt, m);
+      /* a deviation of a few relative-displacement sd (per component
+       * (2 D dt)^(1/2) at most, D = B^2 tau^2 / 2) */
+      double sdx = sqrt(2.0 * sb_langevin_var_x(tau, B, dt));
+      ck_assert_msg(rho < 12.0 * sdx, "dt %g: rho %g, sd %g", dt, rho, sdx);
+    }
+  ck_assert(sb_langevin_reach(3, n, R, INFINITY, 0, INFINITY, 0, 1.0,
+                              1e-9) == 0.0);
+  /* units: lengths X, times T scale the reach by X (SI nanoparticles:
+   * X = 1e-7 m, T = 1e-6 s; a quadrature in metres once returned 0) */
+  const double X[3] = {1e-7, 1e3, 1e-7}, T[3] = {1e-6, 1e2, 1.0};
+  for (int k = 0; k < 3; k++)
+    for (double dt = 0.01; dt <= 1000.0; dt *= 100.0) {
+      double r1 = sb_langevin_reach(3, n, R, tau, B, tau, B, dt, 1e-9);
+      double Bs = B * X[k] / pow(T[k], 1.5);
+      double r2 = sb_langevin_reach(3, n / (X[k] * X[k] * X[k]), R * X[k],
+                                    tau * T[k], Bs, tau * T[k], Bs,
+                                    dt * T[k], 1e-9);
+      ck_assert_rel(r2, X[k] * r1, 1e-5);
+    }
+  ck_assert(isnan(sb_langevin_reach(3, -1.0, R, tau, B, tau, B, 1.0, 1e-9)));
+}
+END_TEST
+
+static Suite *suite(void)
+{
+  Suite *s = suite_create("langevin_hit");
+  TCase *tc = tcase_create("core");
+  tcase_add_test(tc, test_args);
+  tcase_add_test(tc, test_deterministic);
+  tcase_add_test(tc, test_reach);
+  tcase_add_test(tc, test_fluid_free);
+  suite_add_tcase(s, tc);
+  TCase *ta = tcase_create("budget");
+  tcase_set_timeout(ta, 30);
+  tcase_add_test(ta, test_bound);
+  tcase_add_test(ta, test_audit_budget);
+  suite_add_tcase(s, ta);
+  TCase *tb = tcase_create("fixed");
+  tcase_set_timeout(tb, 30);
+  tcase_add_test(tb, test_fixed_ends);
+  suite_add_tcase(s, tb);
+  TCase *tf = tcase_create("forward");
+  tcase_set_timeout(tf, 60);
+  tcase_add_test(tf, test_forward_short);
+  tcase_add_test(tf, test_forward_mixed);
+  tcase_add_test(tf, test_forward_long);
+  suite_add_tcase(s, tf);
+  return s;
+}
+
+int main(void) { return sbt_run_suite(suite()); }
