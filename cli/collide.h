@@ -46,7 +46,7 @@ typedef struct {
   long dim;
   double L, Lx, Ly, Lz, dt, t_end, warmup, thermalize, eta;
   double lv_eps, lv_xtol, lv_tol;  /* detect = langevin (NaN: default) */
-  long steps, sample_every, snapshot_every, sort_every;
+  long steps, sample_every, snapshot_every, sort_every, threads;
   long placement_seed;          /* -1: the engine's generator */
   char neigh[16], detect[16], outcome[16], rng[16], placement[16];
   char output[512], checkpoint[512], restart[512];

@@ -14,10 +14,13 @@
 #include <string.h>
 
 
+#include <smolbridge/rng.h>
+
 #include "common/internal.h"
 #include "engine_internal.h"
 
-static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '2'};
+/* version 3: sb_engine_params gained streams and threads */
+static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '3'};
 
 #define W(ptr, size, count)                                 \
   do {                                                      \
@@ -51,6 +54,7 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
     par.eta = e->par.eta;
     par.sample_every = e->par.sample_every;
     par.sort_every = e->par.sort_every;
+    par.streams = e->par.streams;  /* threads: not part of the state */
     W(&par, sizeof par, 1);
   }
   W(&n, sizeof n, 1);
@@ -206,6 +210,8 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
       for (; *t; t++)
         if (!strcmp((*t)->name, name))
           found = *t;
+      if (!strcmp(sb_rng_philox->name, name))
+        found = sb_rng_philox;
       if (!found)
         goto bad;
       gsl_rng *r = gsl_rng_alloc(found);

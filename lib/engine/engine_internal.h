@@ -10,6 +10,22 @@
 #include <smolbridge/langevin.h>
 
 /* Species pairs tracked for per-pair kernels. */
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+/* Threads of a parallel region of engine e (par.threads, or the OpenMP
+ * default); 1 without OpenMP. */
+static inline int sbi_engine_threads(const sb_engine_params *p)
+{
+#ifdef _OPENMP
+  return p->threads > 0 ? p->threads : omp_get_max_threads();
+#else
+  (void)p;
+  return 1;
+#endif
+}
+
 #define SBI_NPAIRSP (SB_ENGINE_PAIR_SPECIES * (SB_ENGINE_PAIR_SPECIES + 1) / 2)
 static inline size_t sbi_pair_index(size_t a, size_t b)
 {
@@ -129,6 +145,9 @@ struct sb_engine {
   size_t npairs, cappairs;
   sbi_event *ev;
   size_t nev, capev;
+  signed char *dhit;         /* capdet: first detection pass (parallel) */
+  double *ds;                /* capdet: its contact fractions */
+  size_t capdet;
   size_t *cell_of, *cell_start, *cell_list;
   size_t capcells;
   sbi_grid grid;             /* the cells of this step's search */
