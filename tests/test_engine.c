@@ -530,8 +530,9 @@ START_TEST(test_sort_permutes)
 }
 END_TEST
 
-/* Keyed streams (params.streams = 1): 3000 Brownian spheres (three
- * transport blocks), elastic collisions, 40 steps.  The run gives the
+/* Keyed streams (params.streams = 1): 6000 Brownian spheres (six
+ * transport blocks, cells scanned in parallel), elastic collisions, 40
+ * steps.  The run gives the
  * same particles, bit for bit, with 1, 2 and 3 threads, and with the
  * particles re-sorted in memory every step (sort_every = 1: other indices,
  * same ids) -- the generator is keyed by id, not by position in memory;
@@ -541,9 +542,9 @@ static sb_engine *stream_engine(int streams, int threads, size_t sort_every)
 {
   sb_engine_params p;
   sb_engine_params_default(&p);
-  p.L[0] = p.L[1] = p.L[2] = 60.0;
+  p.L[0] = p.L[1] = p.L[2] = 75.0;
   p.dt = 0.05;
-  p.capacity = 3000;
+  p.capacity = 6000;
   p.seed = 77;
   p.streams = streams;
   p.threads = threads;
@@ -553,7 +554,7 @@ static sb_engine *stream_engine(int streams, int threads, size_t sort_every)
   ck_assert_ptr_nonnull(e);
   sb_engine_species s = {0.5, 1.0, 1.0, sqrt(2.0), 0.0};
   sb_engine_add_species(e, &s, NULL);
-  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 3000), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 6000), SB_SUCCESS);
   for (int k = 0; k < 40; k++)
     ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
   return e;

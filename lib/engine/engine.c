@@ -152,6 +152,9 @@ void sb_engine_free(sb_engine *e)
   free(e->series);
   free(e->pairs);
   free(e->ev);
+  for (int t = 0; t < e->ntb; t++)
+    free(e->tb[t].p);
+  free(e->tb);
   free(e->dhit);
   free(e->ds);
   free(e->cell_of);

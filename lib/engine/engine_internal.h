@@ -56,6 +56,12 @@ typedef struct {
 
 /* The linked-cell grid of the last neighbour search (for re-detection
  * after a collision inside the step). */
+/* A growing list of candidate pairs (i < j, two entries each). */
+typedef struct {
+  size_t *p;
+  size_t n, cap;
+} sbi_pairbuf;
+
 typedef struct {
   int valid;
   int nc[3];
@@ -145,6 +151,8 @@ struct sb_engine {
   size_t npairs, cappairs;
   sbi_event *ev;
   size_t nev, capev;
+  sbi_pairbuf *tb;           /* ntb: per-thread candidate lists (cells) */
+  int ntb;
   signed char *dhit;         /* capdet: first detection pass (parallel) */
   double *ds;                /* capdet: its contact fractions */
   size_t capdet;
