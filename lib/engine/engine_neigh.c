@@ -351,6 +351,8 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach)
     return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
                      "(candidate pairs)");
   for (int t = 0; t < nt; t++) {
+    if (!tb[t].n)
+      continue;  /* (its list may be NULL) */
     memcpy(e->pairs + 2 * e->npairs, tb[t].p, 2 * tb[t].n * sizeof *tb[t].p);
     e->npairs += tb[t].n;
   }
