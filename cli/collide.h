@@ -27,6 +27,14 @@ typedef struct {
   int nregion;
   double drift[3];
   int ndrift;
+  char drag[24];                    /* drag law (engine_force.c) */
+  char inflow[16];                  /* open boundaries (engine_open.c): */
+  double inflow_rate;               /* face, particles/s, */
+  double inflow_region[4];          /* inlet, velocity */
+  int ninflow_region;
+  double inflow_u[3];
+  int ninflow_u;
+  long inflow_no_overlap;
   int npart;                        /* explicit particles */
   double part[COL_MAXPART][6];      /* x y z ux uy uz (2-D: z = uz = 0) */
   int part_n[COL_MAXPART];           /* numbers given (4 or 6) */
@@ -66,6 +74,12 @@ typedef struct {
   char fluid[16];
   double U[3], G;
   int nU;
+  /* [fluid] forces and Lees-Edwards (docs/engine_forces.md) */
+  long lees;
+  double g[3], rho_f, mu_f;
+  int ng;
+  /* [walls] */
+  char wall[6][16], wall_detect[16], deposit[16];
   /* species */
   col_species sp[COL_MAXSPEC];
   int nsp;

@@ -32,6 +32,13 @@ static const char *const GROWTHS[] = {"stokes", "constant", NULL};
 static const char *const ERELS[] = {"contact", "stationary", NULL};
 static const char *const ENDS[] = {"position", "diffusive", NULL};
 static const char *const BOOLS[] = {"yes", "no", NULL};
+static const char *const DRAGS[] = {"stokes", "schiller-naumann", NULL};
+static const char *const WALLS[] = {"periodic", "reflect", "absorb", "open",
+                                    NULL};
+static const char *const FACES[] = {"x_lo", "x_hi", "y_lo", "y_hi", "z_lo",
+                                    "z_hi", NULL};
+static const char *const WALLDETS[] = {"bridge", "ballistic", NULL};
+static const char *const DEPOSITS[] = {"remove", "reinsert", NULL};
 
 /* Detectors with a context of their own (lib/engine/engine_bridge.c);
  * a new one is a name here and a branch in collide_setup.c. */
@@ -189,6 +196,31 @@ static const keydef KEYS[] = {
      "velocity of type = uniform"},
     {"fluid", "G", K_NUM, C(G), 0, R_ANY, 0, 0, NULL, "1/s",
      "required with shear", "shear rate: U_x = G (y - L_y/2)"},
+    {"fluid", "lees_edwards", K_BOOL, C(lees), 0, R_ANY, 0, 0, BOOLS, "-",
+     "yes", "type = shear: Lees-Edwards sliding boundaries in y"},
+    {"fluid", "g", K_VEC, C(g), C(ng), R_ANY, 2, 3, NULL, "m/s^2", "0 0 0",
+     "constant acceleration (gravity), buoyancy factor 1 - rho/rho_p"},
+    {"fluid", "rho", K_NUM, C(rho_f), 0, R_NONNEG, 0, 0, NULL, "kg/m^3",
+     "0", "fluid density (buoyancy, particle Reynolds number)"},
+    {"fluid", "mu", K_NUM, C(mu_f), 0, R_POS, 0, 0, NULL, "Pa s",
+     "species mu", "fluid viscosity of a nonlinear drag law"},
+    /* -------------------------------------------------------- [walls] */
+    {"walls", "x_lo", K_NAME, C(wall[0]), 16, R_ANY, 0, 0, WALLS, "-",
+     "periodic", "face x = 0 (a wall needs both faces walls)"},
+    {"walls", "x_hi", K_NAME, C(wall[1]), 16, R_ANY, 0, 0, WALLS, "-",
+     "periodic", "face x = L_x"},
+    {"walls", "y_lo", K_NAME, C(wall[2]), 16, R_ANY, 0, 0, WALLS, "-",
+     "periodic", "face y = 0"},
+    {"walls", "y_hi", K_NAME, C(wall[3]), 16, R_ANY, 0, 0, WALLS, "-",
+     "periodic", "face y = L_y"},
+    {"walls", "z_lo", K_NAME, C(wall[4]), 16, R_ANY, 0, 0, WALLS, "-",
+     "periodic", "face z = 0 (3-D)"},
+    {"walls", "z_hi", K_NAME, C(wall[5]), 16, R_ANY, 0, 0, WALLS, "-",
+     "periodic", "face z = L_z (3-D)"},
+    {"walls", "detect", K_NAME, C(wall_detect), 16, R_ANY, 0, 0, WALLDETS,
+     "-", "bridge", "wall contact: Brownian bridge or straight chord"},
+    {"walls", "deposit", K_NAME, C(deposit), 16, R_ANY, 0, 0, DEPOSITS, "-",
+     "remove", "deposited particle: removed, or reinserted uniformly"},
     /* ------------------------------------------------ [species NAME] */
     {"species", "radius", K_NUM, S(radius), 0, R_POS, 0, 0, NULL, "m",
      "required (or diameter)", "sphere radius"},
@@ -216,12 +248,28 @@ static const keydef KEYS[] = {
      "volume (area) fraction"},
     {"species", "particle", K_PARTICLE, 0, 0, R_ANY, 4, 6, NULL, "m, m/s",
      "-", "x y z ux uy uz (2-D: x y ux uy); repeatable, up to 64"},
+    {"species", "drag", K_NAME, S(drag), 24, R_ANY, 0, 0, DRAGS, "-",
+     "stokes", "drag law (schiller-naumann: non-Brownian, needs a mu)"},
     {"species", "family", K_INT, S(family), 0, R_CLOSED, 0,
      SB_ENGINE_MAXFAM - 1, NULL, "-", "0", "family tag"},
     {"species", "region", K_VEC, S(region), S(nregion), R_ANY, 4, 6, NULL,
      "m", "whole box", "x0 x1 y0 y1 [z0 z1] of the placement"},
     {"species", "drift", K_VEC, S(drift), S(ndrift), R_ANY, 2, 3, NULL,
      "m/s", "0", "added to the placed particles' velocities"},
+    {"species", "inflow", K_NAME, S(inflow), 16, R_ANY, 0, 0, FACES, "-",
+     "- (none)", "face through which a stream of this species enters"},
+    {"species", "inflow_rate", K_NUM, S(inflow_rate), 0, R_POS, 0, 0, NULL,
+     "1/s", "required with inflow",
+     "particles per second through the inlet (density x u_n x area)"},
+    {"species", "inflow_region", K_VEC, S(inflow_region), S(ninflow_region),
+     R_ANY, 2, 4, NULL, "m", "whole face",
+     "inlet: lo hi along the face's first other axis [, lo hi along the "
+     "second]"},
+    {"species", "inflow_velocity", K_VEC, S(inflow_u), S(ninflow_u), R_ANY,
+     2, 3, NULL, "m/s", "required with inflow",
+     "velocity of the entering particles (normal part inward)"},
+    {"species", "inflow_no_overlap", K_BOOL, S(inflow_no_overlap), 0, R_ANY,
+     0, 0, BOOLS, "-", "no", "redraw an entering particle that overlaps"},
 };
 #define NKEYS (sizeof KEYS / sizeof KEYS[0])
 
@@ -346,6 +394,12 @@ void col_defaults(col_config *c)
   c->wmax_kT = NAN;
   c->kobs = 10;
   strcpy(c->fluid, "rest");
+  c->lees = 1;
+  c->mu_f = NAN;
+  for (int f = 0; f < 6; f++)
+    strcpy(c->wall[f], "periodic");
+  strcpy(c->wall_detect, "bridge");
+  strcpy(c->deposit, "remove");
 }
 
 static void species_defaults(col_species *s)
@@ -355,6 +409,7 @@ static void species_defaults(col_species *s)
   s->B = s->b2 = s->T = s->phi = NAN;
   s->cc = 1.0;
   s->count = -1;
+  strcpy(s->drag, "stokes");
 }
 
 /* ------------------------------------------------------------ values */
@@ -532,7 +587,7 @@ static int set_key(col_config *c, const char *section, const char *key,
     keys_of(species ? "species" : sec, valid, sizeof valid);
     if (!valid[0])
       return col_fail(c, "%s: unknown section [%s]; valid: [run], [fluid], "
-                      "[bridge], [turbulence], [observe], [agglo], "
+                      "[walls], [bridge], [turbulence], [observe], [agglo], "
                       "[species NAME]", c->where, section);
     return col_fail(c, "%s: [%s] %s: unknown key; valid: %s", c->where, sec,
                     key, valid);
@@ -1028,9 +1083,28 @@ int col_check(col_config *c)
                       "mass", col_where(c, n, "mu"), n);
     if (isnan(s->mu))
       unused(c, n, "cunningham", "no mu (tau is given)");
-    if (s->count < 0 && isnan(s->phi) && s->npart == 0)
-      return col_fail(c, "%s: [%s]: count, phi or particle is required",
-                      s->where, n);
+    if (s->count < 0 && isnan(s->phi) && s->npart == 0 && !s->inflow[0])
+      return col_fail(c, "%s: [%s]: count, phi, particle or inflow is "
+                      "required", s->where, n);
+    if (s->inflow[0]) {
+      if (isnan(s->inflow_rate) || s->ninflow_u == 0)
+        return col_fail(c, "%s: [%s] inflow: inflow_rate (1/s) and "
+                        "inflow_velocity (m/s) are required",
+                        col_where(c, n, "inflow"), n);
+      if (s->ninflow_u != c->dim)
+        return col_fail(c, "%s: [%s] inflow_velocity: %d numbers for dim "
+                        "= %ld", col_where(c, n, "inflow_velocity"), n,
+                        s->ninflow_u, c->dim);
+      if (s->ninflow_region && s->ninflow_region != 2 * (c->dim - 1))
+        return col_fail(c, "%s: [%s] inflow_region: %d numbers for dim = "
+                        "%ld; valid: %ld", col_where(c, n, "inflow_region"),
+                        n, s->ninflow_region, c->dim, 2 * (c->dim - 1));
+    } else {
+      unused(c, n, "inflow_rate", "no inflow face");
+      unused(c, n, "inflow_region", "no inflow face");
+      unused(c, n, "inflow_velocity", "no inflow face");
+      unused(c, n, "inflow_no_overlap", "no inflow face");
+    }
     if (s->nregion && s->nregion != 2 * c->dim)
       return col_fail(c, "%s: [%s] region: %d numbers for dim = %ld; "
                       "valid: %ld (x0 x1 y0 y1%s)", col_where(c, n,

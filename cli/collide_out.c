@@ -344,6 +344,24 @@ static void json_kernels(FILE *f, const col_config *c, const sb_engine *e)
   fprintf(f, "  \"t_measure_start\": %.17g,\n  \"t_measure_end\": %.17g,\n",
           st.t_reset, st.t);
   fprintf(f, "  \"pair_exposure\": %.17g,\n", st.exposure);
+  /* walls: depositions per face x_lo, x_hi, y_lo, y_hi, z_lo, z_hi */
+  fprintf(f, "  \"deposits\": [");
+  for (int q = 0; q < 6; q++)
+    fprintf(f, "%s%llu", q ? ", " : "",
+            (unsigned long long)sb_engine_deposits(e, q));
+  /* open boundaries: outflows per face (same order), and per inflow
+   * (in species order) the particles injected and the draws skipped */
+  fprintf(f, "],\n  \"outflows\": [");
+  for (int q = 0; q < 6; q++)
+    fprintf(f, "%s%llu", q ? ", " : "",
+            (unsigned long long)sb_engine_outflows(e, q));
+  fprintf(f, "],\n  \"inflows\": [");
+  for (size_t q = 0; q < sb_engine_ninflows(e); q++)
+    fprintf(f, "%s{\"injected\": %llu, \"skipped\": %llu}", q ? ", " : "",
+            (unsigned long long)sb_engine_inflow_injected(e, q),
+            (unsigned long long)sb_engine_inflow_skipped(e, q));
+  fprintf(f, "],\n  \"lees_edwards_offset\": %.17g,\n",
+          sb_engine_lees_edwards_offset(e));
   fprintf(f, "  \"collisions\": %llu,\n  \"candidates\": %llu,\n  "
           "\"dropped\": %llu,\n  \"redetected\": %llu,\n",
           (unsigned long long)st.ncoll, (unsigned long long)st.ncand,

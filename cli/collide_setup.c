@@ -184,6 +184,86 @@ static int check_explicit(col_config *c)
   return 0;
 }
 
+/* Lees-Edwards images, gravity, per-species fluid properties and drag
+ * laws, walls (docs/engine_forces.md); before the placement, whose
+ * velocities include the settling velocities. */
+static int setup_physics(col_config *c, col_run *r)
+{
+  if (!strcmp(c->fluid, "shear") && c->lees &&
+      sb_engine_set_lees_edwards(r->e, 1))
+    return col_fail(c, "[fluid] lees_edwards: %s", sb_last_error());
+  if (c->ng) {
+    double g[3] = {0, 0, 0};
+    memcpy(g, c->g, (size_t)c->ng * sizeof(double));
+    if (sb_engine_set_gravity(r->e, g))
+      return col_fail(c, "%s: [fluid] g: %s", col_where(c, "fluid", "g"),
+                      sb_last_error());
+  }
+  for (int k = 0; k < c->nsp && !c->restart[0]; k++) {
+    const col_species *s = &c->sp[k];
+    sb_engine_species_fluid fl = {SB_DRAG_STOKES, c->rho_f,
+                                  isnan(s->mu) ? c->mu_f : s->mu};
+    if (!strcmp(s->drag, "schiller-naumann"))
+      fl.drag = SB_DRAG_SCHILLER_NAUMANN;
+    if (isnan(fl.mu))
+      fl.mu = 0.0;
+    if (sb_engine_set_species_fluid(r->e, (size_t)k, &fl))
+      return col_fail(c, "%s: [%s] drag / [fluid] rho, mu: %s", s->where,
+                      s->name, sb_last_error());
+  }
+  for (int k = 0; k < c->dim; k++) {
+    sb_engine_wall w[2];
+    for (int q = 0; q < 2; q++)
+      w[q] = !strcmp(c->wall[2 * k + q], "reflect")  ? SB_WALL_REFLECT
+             : !strcmp(c->wall[2 * k + q], "absorb") ? SB_WALL_ABSORB
+             : !strcmp(c->wall[2 * k + q], "open")   ? SB_WALL_OPEN
+                                                     : SB_WALL_PERIODIC;
+    if ((w[0] != SB_WALL_PERIODIC || w[1] != SB_WALL_PERIODIC) &&
+        sb_engine_set_walls(r->e, k, w[0], w[1]))
+      return col_fail(c, "[walls] %c: %s", "xyz"[k], sb_last_error());
+  }
+  if (sb_engine_set_wall_mode(r->e,
+                              strcmp(c->wall_detect, "ballistic")
+                                  ? SB_WALLDET_BRIDGE
+                                  : SB_WALLDET_BALLISTIC,
+                              strcmp(c->deposit, "reinsert")
+                                  ? SB_DEPOSIT_REMOVE
+                                  : SB_DEPOSIT_REINSERT))
+    return col_fail(c, "[walls]: %s", sb_last_error());
+  /* open boundaries: one inflow per species that has one */
+  static const char *const faces[] = {"x_lo", "x_hi", "y_lo", "y_hi",
+                                      "z_lo", "z_hi"};
+  for (int k = 0; k < c->nsp; k++) {
+    const col_species *s = &c->sp[k];
+    if (!s->inflow[0])
+      continue;
+    sb_engine_inflow in;
+    memset(&in, 0, sizeof in);
+    for (int f = 0; f < 6; f++)
+      if (!strcmp(s->inflow, faces[f]))
+        in.face = f;
+    in.species = (size_t)k;
+    in.family = (int)s->family;
+    in.rate = s->inflow_rate;
+    const double *L = sb_engine_get_params(r->e)->L;
+    for (int d = 0, q = 0; d < c->dim; d++) {
+      if (d == in.face / 2)
+        continue;
+      in.lo[q] = s->ninflow_region ? s->inflow_region[2 * q] : 0.0;
+      in.hi[q] = s->ninflow_region ? s->inflow_region[2 * q + 1] : L[d];
+      q++;
+    }
+    for (int d = 0; d < c->dim; d++)
+      in.u[d] = s->inflow_u[d];
+    in.no_overlap = (int)s->inflow_no_overlap;
+    if (sb_engine_add_inflow(r->e, &in, NULL))
+      return col_fail(c, "%s: [%s] inflow: %s", col_where(c, s->name,
+                                                          "inflow"),
+                      s->name, sb_last_error());
+  }
+  return 0;
+}
+
 /* Region of species s (the whole box by default). */
 static void region_of(const col_config *c, const col_species *s,
                       double lo[3], double hi[3])
@@ -197,6 +277,15 @@ static void region_of(const col_config *c, const col_species *s,
     lo[k] = s->region[2 * k];
     hi[k] = s->region[2 * k + 1];
   }
+  /* walls: centres between the contact planes (engine_wall.c) */
+  const double r = isnan(s->radius) ? 0.5 * s->diameter : s->radius;
+  for (int k = 0; k < c->dim; k++)
+    if (strcmp(c->wall[2 * k], "periodic") && isfinite(r)) {
+      if (lo[k] < r)
+        lo[k] = r;
+      if (hi[k] > L[k] - r)
+        hi[k] = L[k] - r;
+    }
 }
 
 /* Independent uniform positions (overlaps allowed) and Gaussian
@@ -216,8 +305,10 @@ static int place_uniform(col_config *c, col_run *r, size_t sp, size_t n,
       u[k] = gsl_ran_gaussian_ziggurat(g, vsd);
     }
     fluid_at(c, x, us);
+    double vs[3] = {0, 0, 0};  /* settling velocity under [fluid] g */
+    sb_engine_settling_velocity(r->e, sp, vs);
     for (int k = 0; k < c->dim; k++)
-      u[k] += us[k] + (s->ndrift ? s->drift[k] : 0.0);
+      u[k] += us[k] + vs[k] + (s->ndrift ? s->drift[k] : 0.0);
     if (sb_engine_add_particle(r->e, sp, (int)s->family, x, u))
       return col_fail(c, "%s: [%s]: %s", s->where, s->name,
                       sb_last_error());
@@ -475,6 +566,17 @@ int col_setup(col_config *c, col_run *r)
         return -1;
       total += species_count(c, &c->sp[k]);
     }
+    /* inflows: room for every particle that can enter in the run (none
+     * leaving), at most 2e6 more */
+    double inflow = 0.0;
+    const double T = isfinite(c->t_end)
+                         ? c->t_end
+                         : (c->steps > 0 ? (double)c->steps * c->dt : 0.0) +
+                               (isfinite(c->warmup) ? c->warmup : 0.0);
+    for (int k = 0; k < c->nsp; k++)
+      if (c->sp[k].inflow[0])
+        inflow += c->sp[k].inflow_rate * T * 1.1 + 100.0;
+    total += (long)fmin(inflow, 2e6);
     p.capacity = total > 0 ? (size_t)total : 1;
     r->e = sb_engine_alloc(&p);
     if (!r->e)
@@ -498,6 +600,8 @@ int col_setup(col_config *c, col_run *r)
     if (sb_engine_set_fluid(r->e, f, fp))
       return col_fail(c, "[fluid]: %s", sb_last_error());
   }
+  if (setup_physics(c, r))
+    return -1;
   if (!c->restart[0]) {
     if (place(c, r, q))
       return -1;

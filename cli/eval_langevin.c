@@ -23,6 +23,13 @@ SBE_WRAP4(einstein_D)
 SBE_WRAP2(knudsen)
 SBE_WRAP1(cunningham)
 SBE_WRAP4(cunningham_gen)
+SBE_WRAP2(kolmogorov_time)
+SBE_WRAP2(kolmogorov_length)
+SBE_WRAP2(stokes_number)
+SBE_WRAP3(particle_reynolds)
+SBE_WRAP1(collision_speed)
+SBE_WRAP3(wunsch_dt)
+SBE_WRAP4(wunsch_dt_brownian)
 
 static void mom_out(const sb_langevin_mom *m, double *o)
 {
@@ -118,6 +125,12 @@ static int sbe_w_langevin_bridge_sample(const double *i, double *o)
 #define A_KN {"lambda", "d_p", NULL}
 #define A_CC {"kn", NULL}
 #define A_CCG {"kn", "A1", "A2", "A3", NULL}
+#define A_KOL {"eps", "nu", NULL}
+#define A_ST {"tau_p", "tau_f", NULL}
+#define A_RE {"d_p", "w", "nu_f", NULL}
+#define A_U2 {"u2", NULL}
+#define A_WU {"d_p", "u2", "frac", NULL}
+#define A_WUB {"d_p", "rho_p", "T", "frac", NULL}
 #define E(n, args, text) {#n, args, {NULL}, sbe_w_##n, text}
 #define EO(n, args, outs, text) {#n, args, outs, sbe_w_##n, text}
 
@@ -162,6 +175,17 @@ static const sbe_func funcs[] = {
       "Cunningham slip correction (Davies 1945 coefficients)"),
     E(cunningham_gen, A_CCG,
       "Cunningham correction 1 + Kn (A1 + A2 exp(-A3/Kn))"),
+    E(kolmogorov_time, A_KOL, "SI: Kolmogorov time sqrt(nu/eps) [s]"),
+    E(kolmogorov_length, A_KOL, "SI: Kolmogorov length (nu^3/eps)^1/4 [m]"),
+    E(stokes_number, A_ST, "Stokes number tau_p/tau_f"),
+    E(particle_reynolds, A_RE, "particle Reynolds number w d_p/nu_f"),
+    E(collision_speed, A_U2,
+      "SI: mean relative speed of colliding pairs (3/2) sqrt(pi u2) [m/s]"),
+    E(wunsch_dt, A_WU,
+      "SI: Wunsch step limit frac d_p/((3/2) sqrt(pi u2)) (Mohaupt 2011, "
+      "eq 3.2) [s]"),
+    E(wunsch_dt_brownian, A_WUB,
+      "SI: Wunsch step limit of a Brownian sphere, u2 = k_B T/m_p [s]"),
 };
 
 const sbe_table sbe_table_langevin = {funcs, sizeof funcs / sizeof funcs[0]};

@@ -317,7 +317,8 @@ static int run_my_tasks(const tasks *T, unsigned char **out, size_t *outlen)
     if (!T->nseeds && rank == 0)
       fprintf(stderr, "[%zu/%zu] %s done in %.1f s%s%s\n", c + 1, T->nsel,
               name, now_seconds() - t0, st ? ": " : "",
-              st ? sb_strerror(st) : "");
+              !st ? "" : (*sb_last_error() ? sb_last_error()
+                                           : sb_strerror(st)));
     size_t np_, nf_, ni_;
     count_verdicts(rep, &np_, &nf_, &ni_);
     seed_rows += sb_validate_report_nrecords(rep);

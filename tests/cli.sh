@@ -179,6 +179,18 @@ if "$sb" collide "$out/nano.ini" 2>/dev/null; then
 else
   fail "smolbridge collide $nano failed"
 fi
+# open boundaries: inflows and outflows from the INI file; without
+# collisions every west drop leaves east, every south drop north
+jets="${srcdir:-.}/examples/open_crossing_jets.ini"
+sed -e "s|^output = .*|output = $out/jets|" -e "s|^t_end = .*|t_end = 2e-3|" \
+  "$jets" > "$out/jets.ini"
+if "$sb" collide "$out/jets.ini" --set run.outcome=count 2>/dev/null; then
+  grep -q '"outflows": \[0, [1-9][0-9]*, 0, [1-9][0-9]*, 0, 0\]' \
+    "$out/jets/summary.json" ||
+    fail "collide open boundaries: $(grep outflows "$out/jets/summary.json")"
+else
+  fail "smolbridge collide $jets failed"
+fi
 printf '[run]\nL = 1e-4\nbogus = 3\n' > "$out/bad.ini"
 msg=$("$sb" collide "$out/bad.ini" 2>&1 >/dev/null)
 rc=$?

@@ -427,6 +427,82 @@ START_TEST(test_si_helpers)
 }
 END_TEST
 
+
+/* -------------------------------------------- dimensionless numbers */
+
+/* integrand w^k exp(-w^2/(2 s2)) for the Maxwell relative speed */
+typedef struct { double s2; int k; } speed_mom;
+static double speed_mom_f(double w, void *p)
+{
+  const speed_mom *m = p;
+  return pow(w, m->k) * exp(-w * w / (2.0 * m->s2));
+}
+
+static double speed_moment(double s2, int k)
+{
+  gsl_integration_workspace *ws = gsl_integration_workspace_alloc(200);
+  speed_mom m = {s2, k};
+  gsl_function F = {speed_mom_f, &m};
+  double v = NAN, err;
+  gsl_integration_qagiu(&F, 0.0, 0.0, 1e-13, 200, ws, &v, &err);
+  gsl_integration_workspace_free(ws);
+  return v;
+}
+
+START_TEST(test_dimensionless)
+{
+  /* Mohaupt 2011, eq 6.3: water (nu = 1e-6), eps = 1e-5 and 1e-2 give
+   * eta = 560 um and 100 um */
+  ck_assert_rel(sb_kolmogorov_length(1e-5, 1e-6), 5.6234e-4, 1e-4);
+  ck_assert_rel(sb_kolmogorov_length(1e-2, 1e-6), 1e-4, TOL_TIGHT);
+  ck_assert_rel(sb_kolmogorov_time(1e-4, 1e-6), 0.1, TOL_TIGHT);
+  /* Mohaupt 2011, eq 6.4: tau_k = 0.316 s and 0.01 s at the same eps */
+  ck_assert(fabs(sb_kolmogorov_time(1e-5, 1e-6) - 0.316) < 0.0005);
+  ck_assert_rel(sb_kolmogorov_time(1e-2, 1e-6), 0.01, TOL_TIGHT);
+  /* eta = sqrt(nu tau_eta) by definition of both */
+  ck_assert_rel(sb_kolmogorov_length(3e-3, 1.5e-5),
+                sqrt(1.5e-5 * sb_kolmogorov_time(3e-3, 1.5e-5)), TOL_TIGHT);
+  ck_assert_rel(sb_stokes_number(3e-6, 0.1), 3e-5, TOL_TIGHT);
+  ck_assert_rel(sb_particle_reynolds(1e-5, 0.01, 1e-6), 0.1, TOL_TIGHT);
+  ck_assert(sb_particle_reynolds(1e-5, 0.0, 1e-6) == 0.0);
+  /* collision-weighted mean relative speed E|w|^2/E|w| against GSL
+   * quadrature of the Maxwell law of the relative speed (per-component
+   * variance 2 u2), for three u2 */
+  const double u2s[3] = {7.9e-3, 1.0, 2.5e4};
+  for (int i = 0; i < 3; i++) {
+    double s2 = 2.0 * u2s[i];
+    double ratio = speed_moment(s2, 4) / speed_moment(s2, 3);
+    ck_assert_rel(sb_collision_speed(u2s[i]), ratio, 1e-11);
+  }
+  /* Mohaupt 2011, eq 3.2, and its worked values: Brownian agitation
+   * T_p = k_B T/m_p of a sphere of density 1000 kg/m^3 at 300 K (no
+   * fluid property enters), frac = 13%: 5.5e-8 s at 0.1 um and 5.5e-3 s
+   * at 10 um, given to two figures (computed: 5.4976e-8, 5.4976e-3 s) */
+  double t1 = sb_wunsch_dt_brownian(1e-7, 1000.0, 300.0, 0.13);
+  double t2 = sb_wunsch_dt_brownian(1e-5, 1000.0, 300.0, 0.13);
+  ck_assert(fabs(t1 - 5.5e-8) <= 0.05e-8);
+  ck_assert(fabs(t2 - 5.5e-3) <= 0.05e-3);
+  ck_assert(fabs(t1 - 5.4976e-8) <= 0.0001e-8);
+  /* dt_lim ~ d^(5/2): "five orders of magnitude" between the two */
+  ck_assert_rel(t2 / t1, 1e5, TOL_TIGHT);
+  /* the definition: frac d / ((3/2) sqrt(pi k T / m)) */
+  double m = sb_sphere_mass(1000.0, 1e-7);
+  ck_assert_rel(t1, 0.13 * 1e-7 /
+                (1.5 * sqrt(M_PI * SB_BOLTZMANN * 300.0 / m)), TOL_TIGHT);
+  ck_assert_rel(sb_wunsch_dt(1e-7, SB_BOLTZMANN * 300.0 / m, 0.13), t1,
+                TOL_TIGHT);
+  /* domain errors */
+  ck_assert(isnan(sb_kolmogorov_time(0, 1e-6)));
+  ck_assert_int_eq(sb_last_status(), SB_EDOM);
+  ck_assert(isnan(sb_kolmogorov_length(1e-4, -1)));
+  ck_assert(isnan(sb_stokes_number(1, INFINITY)));
+  ck_assert(isnan(sb_particle_reynolds(1e-5, -0.1, 1e-6)));
+  ck_assert(isnan(sb_collision_speed(0)));
+  ck_assert(isnan(sb_wunsch_dt(1e-7, 1.0, 0.0)));
+  ck_assert(isnan(sb_wunsch_dt_brownian(1e-7, 1000.0, NAN, 0.13)));
+}
+END_TEST
+
 /* ------------------------------------------------------- domain errors */
 
 START_TEST(test_domain)
@@ -621,6 +697,7 @@ static Suite *langevin_suite(void)
   suite_add_tcase(s, tc);
   tc = tcase_create("api");
   tcase_add_test(tc, test_si_helpers);
+  tcase_add_test(tc, test_dimensionless);
   tcase_add_test(tc, test_domain);
   tcase_add_test(tc, test_extremes_finite);
   tcase_add_test(tc, test_step3_order);

@@ -155,6 +155,7 @@ void sb_engine_free(sb_engine *e)
   for (int t = 0; t < e->ntb; t++)
     free(e->tb[t].p);
   free(e->tb);
+  free(e->wst);
   free(e->dhit);
   free(e->ds);
   free(e->cell_of);
@@ -173,6 +174,8 @@ void sb_engine_free(sb_engine *e)
   free(e->lp_x);
   free(e->lp_u);
   free(e->lp_t);
+  free(e->sfl);   /* engine_force.c */
+  free(e->vset);
   sb_langevin_hitter_free(e->lh);
   if (e->rng)
     gsl_rng_free(e->rng);
@@ -368,6 +371,11 @@ int sbi_engine_equilibrium_velocity(sb_engine *e, size_t sp,
     u[k] = k < e->par.dim
                ? us[k] + gsl_ran_gaussian_ziggurat(e->rng, e->vsd[sp])
                : 0.0;
+  /* with gravity: plus the species' settling velocity (engine_force.c) */
+  const double *vs = sbi_engine_settling(e, sp);
+  if (vs)
+    for (int k = 0; k < e->par.dim; k++)
+      u[k] += vs[k];
   return SB_SUCCESS;
 }
 
@@ -734,6 +742,16 @@ static int transport_streams(sb_engine *e, const double *us)
   double *restrict x0 = e->x0, *restrict u0 = e->u0, *restrict dp = e->disp;
   const unsigned long long seed = e->par.seed;
   const uint64_t step = e->steps;
+  /* gravity: each species' settling velocity adds to U_s, as in the
+   * sequential path; the sum goes to a scratch array (e->us keeps the
+   * fluid velocity for the detectors) */
+  double *ws = NULL;
+  const double *vset = e->has_grav ? e->vset : NULL;
+  if (vset) {
+    if (!e->wst && !(e->wst = malloc(3 * e->par.capacity * sizeof *e->wst)))
+      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+    ws = e->wst;
+  }
   int bad = 0;
   const int nt = sbi_engine_threads(&e->par);
   (void)nt;
@@ -746,8 +764,16 @@ static int transport_streams(sb_engine *e, const double *us)
     const size_t m = n - i0 < SBI_STREAM_BLOCK ? n - i0 : SBI_STREAM_BLOCK;
     memcpy(x0 + 3 * i0, x + 3 * i0, 3 * m * sizeof *x);
     memcpy(u0 + 3 * i0, u + 3 * i0, 3 * m * sizeof *u);
-    if (sb_langevin_step3_stream(m, e->coef, e->species + i0,
-                                 us ? us + 3 * i0 : NULL, x + 3 * i0,
+    const double *wb = us ? us + 3 * i0 : NULL;
+    if (ws) {
+      for (size_t i = i0; i < i0 + m; i++)
+        for (int k = 0; k < 3; k++)
+          ws[3 * i + k] = (us ? us[3 * i + k] : 0.0) +
+                          vset[3 * e->species[i] + k];
+      wb = ws + 3 * i0;
+    }
+    if (sb_langevin_step3_stream(m, e->coef, e->species + i0, wb,
+                                 x + 3 * i0,
                                  u + 3 * i0, seed, step, e->id + i0, 0))
       bad |= 1;
     for (size_t q = 3 * i0; q < 3 * (i0 + m); q++)
@@ -784,6 +810,8 @@ static int transport(sb_engine *e)
   double *restrict x0 = e->x0, *restrict u0 = e->u0, *restrict dp = e->disp;
   const sb_langevin_coef *coef = e->coef;
   const size_t *sp = e->species;
+  /* gravity: each species' settling velocity adds to U_s (engine_force.c) */
+  const double *vset = e->has_grav ? e->vset : NULL;
   for (size_t i0 = 0; i0 < n; i0 += SBI_TRANSPORT_BLOCK) {
     const size_t m = n - i0 < SBI_TRANSPORT_BLOCK ? n - i0
                                                    : SBI_TRANSPORT_BLOCK;
@@ -794,7 +822,9 @@ static int transport(sb_engine *e)
       const sb_langevin_coef *c = &coef[sp[i]];
       for (int k = 0; k < 3; k++) {
         const size_t q = 3 * i + k;
-        const double w = us ? us[q] : 0.0, z1 = z[6 * a + 2 * k],
+        const double w = (us ? us[q] : 0.0) +
+                         (vset ? vset[3 * sp[i] + k] : 0.0),
+                     z1 = z[6 * a + 2 * k],
                      z2 = z[6 * a + 2 * k + 1];
         const double xo = x[q], uo = u[q], v = uo - w;
         const double xn = xo + (w * c->dt + v * c->gain + c->s_xu * z1 +
@@ -819,7 +849,13 @@ int sb_engine_step(sb_engine *e)
     return sbi_error(SB_EINVAL, __func__, "engine is NULL");
   memset(e->hit, 0, e->n);
   sbi_engine_pair_counts(e, e->pairs0);
-  int st = transport(e);
+  /* forces, Lees-Edwards, walls: checks and settling (engine_force.c) */
+  int st = sbi_engine_physics_prepare(e);
+  if (st)
+    return st;
+  st = transport(e);
+  if (!st)  /* nonlinear drag, exact shear step (engine_force.c) */
+    st = sbi_engine_after_transport(e);
   if (st)
     return st;
   double reach = 0.0;
@@ -842,19 +878,19 @@ int sb_engine_step(sb_engine *e)
     if (st)
       return st;
   }
-  const int dim = e->par.dim, nt = sbi_engine_threads(&e->par);
-  const size_t n = e->n;
-  double *x = e->x;
-  (void)nt;
-#ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(nt) if (n >= 16384)
-#endif
-  for (size_t i = 0; i < n; i++)
-    for (int k = 0; k < dim; k++)
-      x[3 * i + k] = sbi_wrap(x[3 * i + k], e->par.L[k]);
+  /* walls and deposition, then wrapping (with the Lees-Edwards shift):
+   * engine_wall.c */
+  st = sbi_engine_boundaries(e);
+  if (st)
+    return st;
   sbi_engine_add_exposure(e, e->par.dt);
   e->steps++;
   e->t += e->par.dt;
+  if (e->ninflow) {  /* open boundaries: this step's arrivals */
+    st = sbi_engine_inject(e);
+    if (st)
+      return st;
+  }
   if (e->par.sort_every && e->steps % e->par.sort_every == 0) {
     st = sb_engine_sort(e);
     if (st)

@@ -4,13 +4,15 @@
  * the bytes of gsl_rng_fwrite).
  *
  * Format (native binary; portable only between builds with the same
- * type sizes and endianness): the 8-byte magic "SBENGCK2", then the fields
+ * type sizes and endianness): the 8-byte magic "SBENGCK3" ("SBENGCK2" files, without the block of
+ * forces, Lees-Edwards and walls, still load), then the fields
  * in the order written by sb_engine_checkpoint_save.  Callbacks cannot be
  * saved: a custom detector / outcome / fluid callback is replaced on load
  * by the defaults (ballistic, elastic, fluid at rest); set them again.
  */
 #include <stdio.h>
 #include <stdlib.h>
+#include <stddef.h>
 #include <string.h>
 
 
@@ -19,8 +21,13 @@
 #include "common/internal.h"
 #include "engine_internal.h"
 
-/* version 3: sb_engine_params gained streams and threads */
-static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '3'};
+/* version 3 appends the block of forces, Lees-Edwards and walls
+ * (engine_wall.c) after the generator state; version 4 puts the
+ * streams flag (sb_engine_params.streams) between the two.  The parameter block keeps
+ * the layout of version 2 (the fields before streams), so version 2 and
+ * 3 files still load (no such settings; streams off). */
+static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '4'};
+#define PAR_BYTES offsetof(sb_engine_params, streams)
 
 #define W(ptr, size, count)                                 \
   do {                                                      \
@@ -54,8 +61,7 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
     par.eta = e->par.eta;
     par.sample_every = e->par.sample_every;
     par.sort_every = e->par.sort_every;
-    par.streams = e->par.streams;  /* threads: not part of the state */
-    W(&par, sizeof par, 1);
+    W(&par, PAR_BYTES, 1);  /* streams: below; threads: not state */
   }
   W(&n, sizeof n, 1);
   W(&e->next_id, sizeof e->next_id, 1);
@@ -90,6 +96,12 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
   /* the bytes gsl_rng_fwrite writes (fwrite of gsl_rng_state), written
    * directly: GSL's error handler would abort on an I/O error */
   W(gsl_rng_state(e->rng), gsl_rng_size(e->rng), 1);
+  {
+    int32_t streams = e->par.streams;
+    W(&streams, sizeof streams, 1);
+  }
+  if (sbi_engine_physics_save(e, f))
+    goto fail;
   if (fclose(f))
     return sbi_error(SB_EIO, __func__, "write error on '%s'", path);
   return SB_SUCCESS;
@@ -126,9 +138,12 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   size_t n, nspec;
   uint64_t next_id;
   R(magic, 1, 8);
-  if (memcmp(magic, MAGIC, 8))
+  const int ver = memcmp(magic, MAGIC, 7) ? 0 : magic[7] - '0';
+  if (ver < 2 || ver > 4)
     goto bad;
-  R(&par, sizeof par, 1);
+  const int v2 = ver == 2;
+  memset(&par, 0, sizeof par);
+  R(&par, PAR_BYTES, 1);
   R(&n, sizeof n, 1);
   R(&next_id, sizeof next_id, 1);
   R(&nspec, sizeof nspec, 1);
@@ -226,6 +241,15 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   }
   /* counterpart of gsl_rng_fread, without GSL's aborting handler */
   R(gsl_rng_state(e->rng), gsl_rng_size(e->rng), 1);
+  if (ver >= 4) {
+    int32_t streams;
+    R(&streams, sizeof streams, 1);
+    if (streams != 0 && streams != 1)
+      goto bad;
+    e->par.streams = streams;
+  }
+  if (!v2 && sbi_engine_physics_load(e, f))
+    goto bad;
   free(spec);
   fclose(f);
   return e;

@@ -38,6 +38,8 @@ void sbi_engine_make_pair(const sb_engine *e, size_t i, size_t j,
   p->sigma = e->radius[i] + e->radius[j];
   p->dt = e->par.dt;
   p->t0 = e->t;
+  if (e->lees || e->walled)  /* engine_lees.c */
+    sbi_engine_boundary_fix_pair(e, &e->x0[3 * i], &e->x0[3 * j], p);
 }
 
 static void quad(const sb_engine_pair *p, double *a, double *b, double *c)
@@ -272,6 +274,8 @@ static void make_subpair(const sb_engine *e, size_t a, size_t b, double t,
   p->sigma = e->radius[i] + e->radius[j];
   p->dt = e->par.dt * f;
   p->t0 = e->t + t * e->par.dt;
+  if (e->walled)  /* no image across a wall (engine_lees.c) */
+    sbi_engine_boundary_fix_pair(e, xi, xj, p);
 }
 
 typedef struct {

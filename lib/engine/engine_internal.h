@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <gsl/gsl_rng.h>
 #include <smolbridge/engine.h>
 #include <smolbridge/langevin.h>
@@ -153,6 +154,8 @@ struct sb_engine {
   size_t nev, capev;
   sbi_pairbuf *tb;           /* ntb: per-thread candidate lists (cells) */
   int ntb;
+  double *wst;               /* 3 cap: U_s + settling (streams transport,
+                                allocated on first use) */
   signed char *dhit;         /* capdet: first detection pass (parallel) */
   double *ds;                /* capdet: its contact fractions */
   size_t capdet;
@@ -182,6 +185,32 @@ struct sb_engine {
    * removed at the end of the step by sbi_engine_purge; nremove counts
    * the marks */
   size_t nremove;
+
+  /* forces, Lees-Edwards, walls (engine_force.c, engine_lees.c,
+   * engine_wall.c).  All zero: none of them (the historic engine). */
+  double grav[3];            /* external acceleration, m/s^2 */
+  int has_grav;
+  sb_engine_species_fluid *sfl;  /* per species (nsfl entries; defaults
+                                    beyond) */
+  size_t nsfl;
+  double *vset;              /* 3 per species: settling velocity (m/s) */
+  size_t nvset;              /* species it was computed for (0: stale) */
+  int nonlin;                /* some species has a nonlinear drag law */
+  int lees;                  /* Lees-Edwards images on */
+  double le_off;             /* image shift delta in [0, L_x), m */
+  int walled;                /* some direction has walls */
+  sb_engine_wall wall[6];    /* face 2k (lo), 2k + 1 (hi) */
+  sb_engine_walldet walldet;
+  sb_engine_deposit deposit;
+  uint64_t ndep[6];          /* depositions per face since the reset */
+  /* open boundaries (engine_open.c): inflows, outflow counters and
+   * callback; not in checkpoints */
+  sb_engine_inflow inflow[SB_ENGINE_MAXINFLOW];
+  uint64_t ninj[SB_ENGINE_MAXINFLOW], nskip[SB_ENGINE_MAXINFLOW];
+  size_t ninflow;
+  uint64_t nout[6];          /* outflows per open face since the reset */
+  sb_engine_outflow_fn outflow_fn;
+  void *outflow_ctx;
 };
 
 /* Smallest cell edge of the linked cells (and of sb_engine_sort, so that
@@ -289,5 +318,45 @@ int sbi_engine_langevin_continue(sb_engine *e, size_t k, const sbi_event *ev,
 
 /* Recompute per-species step coefficients after a dt change. */
 int sbi_engine_update_coef(sb_engine *e);
+
+/* Forces, Lees-Edwards and walls (engine_force.c, engine_lees.c,
+ * engine_wall.c); each is a no-op when its feature is off. */
+/* Check the combination of settings and refresh the settling velocities
+ * (called at the start of every step). */
+int sbi_engine_physics_prepare(sb_engine *e);
+/* Settling velocity of species sp (m/s) for initial velocities: NULL when
+ * there is no gravity. */
+const double *sbi_engine_settling(sb_engine *e, size_t sp);
+/* After the linear transport: the nonlinear-drag step of those species
+ * and, with Lees-Edwards, the exact shear correction. */
+int sbi_engine_after_transport(sb_engine *e);
+/* The step coefficients of the shear correction (engine_lees.c): for
+ * x = h/tau, A = x(1+e^-x) - 2(1-e^-x), Bv = 1 - e^-x (1+x),
+ * C = x - (1-e^-x), D = x^2/2 - x + (1-e^-x), by series below x = 1. */
+void sbi_shear_coefs(double x, double c[4]);
+/* Exact-mean correction of the Stokes species' x components in the
+ * linear shear field (Lees-Edwards on). */
+void sbi_engine_shear_correct(sb_engine *e);
+/* After the periodic search: drop pairs across walls and Lees-Edwards
+ * boundaries, add the pairs across the sliding boundary. */
+int sbi_engine_boundary_pairs(sb_engine *e, const double *x0,
+                              const double *disp, double reach, double cut);
+/* Pair record geometry with walls / Lees-Edwards: dx0 from the positions
+ * xi, xj (start of the record), and dd shifted by the image velocity. */
+void sbi_engine_boundary_fix_pair(const sb_engine *e, const double *xi,
+                                  const double *xj, sb_engine_pair *p);
+/* End of the step, after the time advanced: particles of the inflows
+ * (engine_open.c). */
+int sbi_engine_inject(sb_engine *e);
+/* An open face's particle: count it, call the outflow callback, mark it
+ * for removal (engine_open.c). */
+int sbi_engine_outflow(sb_engine *e, size_t i, int face);
+
+/* End of the step: walls (deposition, reflection), then wrapping with
+ * the Lees-Edwards shift. */
+int sbi_engine_boundaries(sb_engine *e);
+/* Checkpoint block of these settings (format version 3). */
+int sbi_engine_physics_save(const sb_engine *e, FILE *f);
+int sbi_engine_physics_load(sb_engine *e, FILE *f);
 
 #endif /* SB_ENGINE_INTERNAL_H */

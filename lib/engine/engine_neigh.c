@@ -373,13 +373,22 @@ int sbi_engine_find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
   e->grid.ext_max = 0.5 * (cut - reach);  /* r_max + max |disp| */
   switch (m) {
   case SB_NEIGH_CELLS:
-    return cells(e, x0, cut, reach);
+    st = cells(e, x0, cut, reach);
+    break;
   case SB_NEIGH_SWEEP:
-    return sbi_engine_sweep(e, x0, disp, reach);
+    st = sbi_engine_sweep(e, x0, disp, reach);
+    break;
   case SB_NEIGH_BRUTE:
-    return brute(e, x0, reach);
+    st = brute(e, x0, reach);
+    break;
+  default:
+    return sbi_error(SB_EINVAL, "sb_engine_step", "unknown method %d",
+                     (int)m);
   }
-  return sbi_error(SB_EINVAL, "sb_engine_step", "unknown method %d", (int)m);
+  /* walls and Lees-Edwards images (engine_lees.c) */
+  if (!st)
+    st = sbi_engine_boundary_pairs(e, x0, disp, reach, cut);
+  return st;
 }
 
 int sb_engine_neighbours(sb_engine *e, sb_engine_neigh m, const double *disp,

@@ -50,6 +50,10 @@ void sb_engine_reset_counters(sb_engine *e)
   e->expo = 0.0;
   memset(e->pexpo, 0, sizeof e->pexpo);
   memset(e->pcoll, 0, sizeof e->pcoll);
+  memset(e->ndep, 0, sizeof e->ndep);  /* wall depositions */
+  memset(e->nout, 0, sizeof e->nout);  /* open boundaries */
+  memset(e->ninj, 0, sizeof e->ninj);
+  memset(e->nskip, 0, sizeof e->nskip);
   e->t_reset = e->t;
 }
 

@@ -94,3 +94,85 @@ double sb_cunningham(double kn)
   /* Davies (1945) */
   return sb_cunningham_gen(kn, 1.257, 0.400, 1.10);
 }
+
+/* ------------------------------------------------ dimensionless numbers */
+
+double sb_kolmogorov_time(double eps, double nu)
+{
+  if (!pos(eps) || !pos(nu)) {
+    sbi_error(SB_EDOM, __func__,
+              "eps = %g, nu = %g must be positive and finite", eps, nu);
+    return NAN;
+  }
+  return sqrt(nu / eps); /* Pope (2000), eq 6.1 */
+}
+
+double sb_kolmogorov_length(double eps, double nu)
+{
+  if (!pos(eps) || !pos(nu)) {
+    sbi_error(SB_EDOM, __func__,
+              "eps = %g, nu = %g must be positive and finite", eps, nu);
+    return NAN;
+  }
+  /* (nu^3/eps)^(1/4) = sqrt(nu) (nu/eps)^(1/4), no overflow of nu^3 */
+  return sqrt(nu) * sqrt(sqrt(nu / eps));
+}
+
+double sb_stokes_number(double tau_p, double tau_f)
+{
+  if (!pos(tau_p) || !pos(tau_f)) {
+    sbi_error(SB_EDOM, __func__,
+              "tau_p = %g, tau_f = %g must be positive and finite", tau_p,
+              tau_f);
+    return NAN;
+  }
+  return tau_p / tau_f;
+}
+
+double sb_particle_reynolds(double d_p, double w, double nu_f)
+{
+  if (!pos(d_p) || !(w >= 0) || !isfinite(w) || !pos(nu_f)) {
+    sbi_error(SB_EDOM, __func__,
+              "d_p = %g, nu_f = %g must be positive and w = %g >= 0, all "
+              "finite", d_p, nu_f, w);
+    return NAN;
+  }
+  return w * d_p / nu_f;
+}
+
+double sb_collision_speed(double u2)
+{
+  if (!pos(u2)) {
+    sbi_error(SB_EDOM, __func__, "u2 = %g must be positive and finite", u2);
+    return NAN;
+  }
+  /* The relative velocity w is Gaussian with per-component variance
+   * s2 = 2 u2; collisions sample it with weight |w| (flux through the
+   * contact sphere), so their mean speed is E|w|^2/E|w| =
+   * 3 s2 / sqrt(8 s2/pi) = (3/2) sqrt(pi u2). */
+  return 1.5 * sqrt(M_PI * u2);
+}
+
+double sb_wunsch_dt(double d_p, double u2, double frac)
+{
+  if (!pos(d_p) || !pos(u2) || !pos(frac)) {
+    sbi_error(SB_EDOM, __func__,
+              "d_p = %g, u2 = %g, frac = %g must be positive and finite",
+              d_p, u2, frac);
+    return NAN;
+  }
+  /* Mohaupt 2011, eq 3.2: (3/2) sqrt(pi T_p) dt_lim / d_p = frac */
+  return frac * d_p / sb_collision_speed(u2);
+}
+
+double sb_wunsch_dt_brownian(double d_p, double rho_p, double T, double frac)
+{
+  if (!pos(d_p) || !pos(rho_p) || !pos(T) || !pos(frac)) {
+    sbi_error(SB_EDOM, __func__,
+              "d_p = %g, rho_p = %g, T = %g, frac = %g must be positive "
+              "and finite", d_p, rho_p, T, frac);
+    return NAN;
+  }
+  double m = rho_p * M_PI * d_p * d_p * d_p / 6.0;
+  return sb_wunsch_dt(d_p, SB_BOLTZMANN * T / m, frac);
+}

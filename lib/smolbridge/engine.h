@@ -106,8 +106,9 @@ typedef enum {
 typedef enum {
   SB_FLUID_REST = 0,      /**< U_s = 0 */
   SB_FLUID_UNIFORM = 1,   /**< U_s = (p[0], p[1], p[2]) m/s */
-  SB_FLUID_SHEAR = 2,     /**< U_s,x = p[0] (y - L_y/2), p[0] in 1/s (no
-                               Lees-Edwards images: the box is periodic) */
+  SB_FLUID_SHEAR = 2,     /**< U_s,x = p[0] (y - L_y/2), p[0] in 1/s; the box
+                               is plainly periodic unless Lees-Edwards
+                               images are on (sb_engine_set_lees_edwards) */
   SB_FLUID_CALLBACK = 3   /**< user callback */
 } sb_engine_fluid;
 
@@ -738,6 +739,197 @@ const double *sb_agglo_series(const sb_agglo *a, size_t *nrows,
 /** Write the time series as CSV (header t,M0,M1,M2,n1,...).  SB_EIO on
  *  failure. */
 int sb_agglo_series_csv(const sb_agglo *a, const char *path);
+
+/* ====================================================================
+ * Forces, Lees-Edwards sliding boundaries and walls (engine_force.c,
+ * engine_lees.c, engine_wall.c; docs/engine_forces.md).  All SI units.
+ * ==================================================================== */
+
+/** Drag law of a species.  The drag force is F = (m / tau_p) f(Re_p)
+ *  (U_s - u), Re_p = rho_f |U_s - u| d / mu, where tau_p is the species'
+ *  Stokes relaxation time and f = C_D Re_p / 24. */
+typedef enum {
+  SB_DRAG_STOKES = 0,          /**< f = 1 (linear: the exact Langevin step) */
+  SB_DRAG_SCHILLER_NAUMANN = 1 /**< f = 1 + 0.15 Re_p^0.687 for Re_p <=
+                                    1000 (Schiller & Naumann 1933), then
+                                    Newton's C_D = 0.44, f = 0.44 Re_p/24
+                                    (Clift, Grace & Weber 1978); non-
+                                    Brownian species only (B = 0) */
+} sb_engine_drag;
+
+/** Fluid properties of a species (defaults: Stokes drag, rho_f = 0, mu =
+ *  0).  rho_f enters the buoyancy factor (1 - rho_f/rho_p) of gravity and
+ *  Re_p; mu enters Re_p (needed by the nonlinear law only).  rho_p is the
+ *  species' mass over its sphere volume 4 pi r^3 / 3. */
+typedef struct {
+  sb_engine_drag drag;
+  double rho_f;   /**< fluid density, kg/m^3, >= 0 */
+  double mu;      /**< fluid dynamic viscosity, Pa s, > 0 for a nonlinear
+                       drag law (ignored by Stokes drag) */
+} sb_engine_species_fluid;
+
+/** Drag factor f(Re) = C_D Re / 24 of a law, Re >= 0 (NaN and SB_EDOM
+ *  otherwise).  Stokes: 1.  Schiller-Naumann: 1 + 0.15 Re^0.687 (Re <=
+ *  1000), 0.44 Re / 24 above (continuous within 0.4% at Re = 1000). */
+double sb_drag_factor(sb_engine_drag law, double Re);
+
+/** Set the fluid properties of species sp (before or after particles are
+ *  added).  SB_EINVAL for a bad value, a nonlinear law on a Brownian
+ *  (B > 0) or free-flight species, or mu <= 0 with a nonlinear law. */
+int sb_engine_set_species_fluid(sb_engine *e, size_t sp,
+                                const sb_engine_species_fluid *f);
+/** The fluid properties of species sp (defaults if never set); SB_EINVAL
+ *  for a bad index. */
+int sb_engine_get_species_fluid(const sb_engine *e, size_t sp,
+                                sb_engine_species_fluid *f);
+
+/** Constant external acceleration g (m/s^2; e.g. gravity (0, -9.81, 0)).
+ *  A particle of species s feels g (1 - rho_f/rho_p) (buoyancy), so with
+ *  Stokes drag it settles at v_s = tau_p g (1 - rho_f/rho_p) relative to
+ *  the fluid: the exact Langevin step with the fluid velocity U_s + v_s
+ *  (exact at every dt).  Free-flight species (tau = inf) are refused
+ *  (SB_EINVAL) when g != 0. */
+int sb_engine_set_gravity(sb_engine *e, const double g[3]);
+/** The engine's acceleration into g. */
+int sb_engine_get_gravity(const sb_engine *e, double g[3]);
+
+/** Terminal (settling) velocity of species sp relative to the fluid under
+ *  the engine's gravity: Stokes tau_p g' (g' = g (1 - rho_f/rho_p)); with
+ *  a nonlinear law the root of f(Re(v)) v = tau_p |g'| along g' (GSL
+ *  Brent, relative accuracy 1e-13).  SB_EINVAL on a bad index. */
+int sb_engine_settling_velocity(const sb_engine *e, size_t sp, double v[3]);
+
+/** Lees-Edwards sliding boundaries for the built-in shear field
+ *  (SB_FLUID_SHEAR, U_x = G (y - L_y/2)): the periodic image of the box at
+ *  y + n L_y is shifted by n delta(t) along x and moves at n G L_y, with
+ *  delta(t) = G L_y t (mod L_x) (Lees & Edwards 1972), so the fluid
+ *  velocity is continuous across the y boundary.  A particle leaving
+ *  through y = L_y (y = 0) re-enters at y - L_y (y + L_y) with x -= delta
+ *  (+= delta) and u_x -= G L_y (+= G L_y); pair separations and relative
+ *  chords across the boundary use the shifted image.  on = 1 requires
+ *  SB_FLUID_SHEAR, y periodic, and a ballistic or overlap detector with
+ *  the count outcome (other combinations return SB_EINVAL at the step).
+ *  Off by default. */
+int sb_engine_set_lees_edwards(sb_engine *e, int on);
+/** Current image shift delta in [0, L_x) (m); 0 when off. */
+double sb_engine_lees_edwards_offset(const sb_engine *e);
+
+/** Boundary of one face of the box. */
+typedef enum {
+  SB_WALL_PERIODIC = 0,  /**< periodic (both faces of a direction) */
+  SB_WALL_REFLECT = 1,   /**< specular wall: y -> 2a - y, u_y -> -u_y
+                              (exact fold of the free step) */
+  SB_WALL_ABSORB = 2,    /**< deposition: the particle touching the
+                              contact plane (centre at a radius from the
+                              face) is counted and removed or reinserted */
+  SB_WALL_OPEN = 3       /**< outflow: the particle whose centre crosses
+                              the face (same detector as the absorbing
+                              walls, plane at the face) leaves the box:
+                              counted, passed to the outflow callback,
+                              removed (sb_engine_add_inflow for inflow) */
+} sb_engine_wall;
+
+/** How contact with an absorbing wall is detected over a step. */
+typedef enum {
+  SB_WALLDET_BRIDGE = 0,    /**< 1-D Brownian bridge of the wall-normal
+                                 coordinate between the step's end points,
+                                 variance rate B_pos^2 = (B tau_p)^2:
+                                 P = exp(-2 h0 h1 / (B_pos^2 dt)) (h the
+                                 distances to the contact plane; Mohaupt
+                                 2011, §5.1): exact for Brownian motion,
+                                 the diffusive regime dt >> tau_p */
+  SB_WALLDET_BALLISTIC = 1  /**< the straight chord crosses the contact
+                                 plane (exact for straight paths: dt <<
+                                 tau_p, free flight, non-Brownian) */
+} sb_engine_walldet;
+
+/** What a deposited particle does. */
+typedef enum {
+  SB_DEPOSIT_REMOVE = 0,    /**< removed (counted) */
+  SB_DEPOSIT_REINSERT = 1   /**< reinserted at a uniform position of the
+                                 accessible volume (overlaps allowed),
+                                 with an equilibrium velocity: a uniform
+                                 volume source keeping N constant */
+} sb_engine_deposit;
+
+/** Set direction k (0 = x, 1 = y, 2 = z) to walls lo (face at 0) and hi
+ *  (face at L[k]); both SB_WALL_PERIODIC restores periodicity; one
+ *  periodic face and one wall is SB_EINVAL.  Pairs are not searched
+ *  across a wall.  Walls are processed at the end of each step, after
+ *  the particle-particle events of the step. */
+int sb_engine_set_walls(sb_engine *e, int k, sb_engine_wall lo,
+                        sb_engine_wall hi);
+/** Detector and outcome of the absorbing walls (defaults: bridge,
+ *  remove). */
+int sb_engine_set_wall_mode(sb_engine *e, sb_engine_walldet det,
+                            sb_engine_deposit dep);
+/** Depositions since the counter reset on face 2k (lo) or 2k + 1 (hi) of
+ *  direction k; 0 for a bad face. */
+uint64_t sb_engine_deposits(const sb_engine *e, int face);
+/** Whether direction k is periodic (1) or walled (0). */
+int sb_engine_periodic(const sb_engine *e, int k);
+
+/* ============================================================
+ * Open boundaries: inflow of particles through a face at a given rate,
+ * outflow through SB_WALL_OPEN faces (lib/engine/engine_open.c;
+ * docs/engine_forces.md).  With them a box holds a steady stream: jets,
+ * sprays crossing a domain (Thomine 2008, §8-9).
+ * ============================================================ */
+
+#define SB_ENGINE_MAXINFLOW 16
+
+/** A stream entering the box through part of a face.  Particles arrive as
+ *  a Poisson process of the given rate, at uniform points of the inlet
+ *  and uniform times: each one injected at the end of a step is placed
+ *  where its straight path from its entry point and time leads (its
+ *  normal distance from the face is u_n s dt, s the fraction of the step
+ *  since its entry), so that the stream is a spatial Poisson process of
+ *  number density rate/(|u_n| inlet area).  Its flight over the entry
+ *  fraction of the step is straight and without collisions (an O(dt)
+ *  approximation at the inlet only).  The face need not be open: the
+ *  stream may enter through a periodic face as well. */
+typedef struct {
+  int face;          /**< 2k (lo face of direction k, at 0) or 2k + 1 (hi
+                          face, at L[k]) */
+  size_t species;    /**< species of the entering particles */
+  int family;        /**< their family tag */
+  double rate;       /**< particles per second over the whole inlet, >= 0 */
+  double lo[2], hi[2]; /**< inlet: the face's other coordinates in
+                          increasing direction order (x, y, z without k;
+                          2-D: one), lo < hi within the box, m */
+  double u[3];       /**< velocity of the entering particles, m/s; its
+                          component normal to the face points inward */
+  int no_overlap;    /**< 1: redraw (up to 100 times, then skip and
+                          count) a particle that would overlap another;
+                          costs O(N) per particle */
+} sb_engine_inflow;
+
+/** Add an inflow (at most SB_ENGINE_MAXINFLOW); *idx (may be NULL) gets
+ *  its index.  SB_EINVAL on a bad field.  Inflows are not stored in
+ *  checkpoints: add them again after sb_engine_checkpoint_load. */
+int sb_engine_add_inflow(sb_engine *e, const sb_engine_inflow *in,
+                         size_t *idx);
+/** Number of inflows. */
+size_t sb_engine_ninflows(const sb_engine *e);
+/** Particles injected by inflow k, and draws skipped because every
+ *  position tried overlapped a particle, since the counter reset. */
+uint64_t sb_engine_inflow_injected(const sb_engine *e, size_t k);
+uint64_t sb_engine_inflow_skipped(const sb_engine *e, size_t k);
+/** Particles that left through face f (an SB_WALL_OPEN face) since the
+ *  counter reset; 0 for a bad face. */
+uint64_t sb_engine_outflows(const sb_engine *e, int face);
+
+/** Called for each particle leaving through an open face, before its
+ *  removal: its index i (positions, velocities, masses, families readable
+ *  through the accessors: the end-of-step state, outside the box by at
+ *  most one step's flight), the face, and the time t_exit (s) at which
+ *  its straight chord crossed the face.  A non-zero return stops the step
+ *  with that status. */
+typedef int (*sb_engine_outflow_fn)(const sb_engine *e, size_t i, int face,
+                                    double t_exit, void *ctx);
+/** Set (fn != NULL) or clear the outflow callback (not in checkpoints). */
+int sb_engine_set_outflow_fn(sb_engine *e, sb_engine_outflow_fn fn,
+                             void *ctx);
 
 #ifdef __cplusplus
 }

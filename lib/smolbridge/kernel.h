@@ -145,6 +145,32 @@ double sb_turb_pair_b2(double r, double eps, double nu);
 double sb_kernel_brownian_turb(double r_i, double r_j, double T, double mu,
                                double eps, double nu);
 
+/** Steady collision rate when the pair diffusivity depends on the
+ *  separation r (the test of the contact-value conjecture of Mohaupt
+ *  2011, §6.3.2, §7.1.1; docs/kernel.md).  The relative position
+ *  diffuses isotropically with per-component variance rate
+ *    b2(r) = b2_0 + b2_2 (r/R)^2   (m^2/s),  R = the contact distance,
+ *  i.e. dc/dt = div(kappa grad c), kappa = b2/2 (Ito SDE dX = grad kappa
+ *  dt + sqrt(b2) dW), absorbing at r = R, uniform far away.  Exact:
+ *    K = 4 pi / int_R^inf ds/(s^2 kappa(s)) = 2 pi b2_2 R / g(t),
+ *    t = sqrt(b2_0/b2_2),  g(t) = (t - atan t)/t^3  (g(0) = 1/3).
+ *  b2_2 = 0: Smoluchowski, 2 pi b2_0 R.  b2_0 = 0 (pure r^2 growth, the
+ *  dissipative range): 6 pi b2_2 R, three times the rate 2 pi b2(R) R
+ *  that the diffusivity frozen at contact gives.  For an anisotropic
+ *  pair diffusivity (Brunk, Koch & Lion 1998) only the radial component
+ *  enters, as b2(r).  Domain: R > 0, b2_0, b2_2 >= 0 not both 0.
+ *  Accuracy: a few ulp (series of g for t <= 0.4). */
+double sb_kernel_diffusion_r2(double R, double b2_0, double b2_2);
+
+/** sb_kernel_diffusion_r2 for Brownian + turbulent pair diffusion with
+ *  the turbulent part growing as r^2: b2_0 = sb_brownian_b2(r_i) +
+ *  sb_brownian_b2(r_j), b2_2 = sb_turb_pair_b2(r_i + r_j, eps, nu).
+ *  Compare sb_kernel_brownian_turb (the same diffusivity frozen at
+ *  contact, = K_co + K_Saffman-Turner); with T -> 0 this is three times
+ *  Saffman-Turner. */
+double sb_kernel_brownian_turb_r2(double r_i, double r_j, double T,
+                                  double mu, double eps, double nu);
+
 /* ------------------------------------------------------ test kernels */
 
 /** Constant kernel K (m^3/s). */

@@ -288,6 +288,58 @@ double sb_cunningham(double kn);
  *  A3 >= 0. */
 double sb_cunningham_gen(double kn, double A1, double A2, double A3);
 
+
+/* ------------------------------------------------ dimensionless numbers
+ * For choosing a regime and a time step (docs/langevin.md §5).  SI units;
+ * NaN and SB_EDOM when an argument is not finite and positive (w >= 0 is
+ * allowed).  Accuracy: a few ulps (plain products, quotients and roots). */
+
+/** Kolmogorov time scale tau_eta = sqrt(nu/eps), s (Pope 2000, §6.1):
+ *  eps [m^2/s^3] > 0, nu [m^2/s] > 0. */
+double sb_kolmogorov_time(double eps, double nu);
+
+/** Kolmogorov length scale eta = (nu^3/eps)^(1/4), m (Pope 2000, §6.1). */
+double sb_kolmogorov_length(double eps, double nu);
+
+/** Stokes number St = tau_p / tau_f, the particle relaxation time over a
+ *  time scale of the flow (tau_f = sb_kolmogorov_time for the
+ *  dissipative range of turbulence: St << 1 means the particle follows
+ *  the sub-Kolmogorov shear, the premise of Saffman & Turner 1956). */
+double sb_stokes_number(double tau_p, double tau_f);
+
+/** Particle Reynolds number Re_p = w d_p / nu_f, w >= 0 the slip speed
+ *  |u_p - u_f| (m/s), d_p [m] > 0, nu_f [m^2/s] > 0.  Stokes drag (and
+ *  sb_stokes_tau) assumes Re_p << 1. */
+double sb_particle_reynolds(double d_p, double w, double nu_f);
+
+/** Mean relative speed of colliding pairs of identical particles whose
+ *  velocities are independent isotropic Gaussians of per-component
+ *  variance u2 (m^2/s^2): the collision-weighted mean
+ *  E|w|^2 / E|w| = (3/2) sqrt(pi u2) (m/s).  For Brownian particles
+ *  u2 = k_B T/m_p. */
+double sb_collision_speed(double u2);
+
+/** Wunsch's time-step limit for overlap (and contact-time) detection
+ *  (Wunsch 2009; Mohaupt 2011, eq 3.2): the thesis writes
+ *    (3/2) sqrt(pi T_p) dt_lim / d_p = 13%,
+ *  calling (3/2) sqrt(pi T_p) dt the mean displacement per step; the
+ *  factor is exactly sb_collision_speed(T_p), the mean relative speed of
+ *  colliding pairs, so dt_lim is the step over which a colliding pair
+ *  approaches by frac d_p:
+ *    dt_lim = frac d_p / ((3/2) sqrt(pi u2)),
+ *  frac = 0.13 the value Wunsch found to detect all collisions.
+ *  u2 [m^2/s^2] the per-component velocity variance (T_p, the agitation
+ *  per unit mass), d_p [m].  Mohaupt's worked values assume Brownian
+ *  agitation u2 = k_B T/m_p with rho_p = 1000 kg/m^3 and T = 300 K (no
+ *  fluid property enters): 5.5e-8 s at 0.1 um, 5.5e-3 s at 10 um (computed
+ *  5.4976e-8 and 5.4976e-3 s; dt_lim ~ d_p^(5/2)). */
+double sb_wunsch_dt(double d_p, double u2, double frac);
+
+/** The same for a Brownian sphere of density rho_p [kg/m^3] at
+ *  temperature T [K]: u2 = k_B T / (rho_p pi d_p^3/6). */
+double sb_wunsch_dt_brownian(double d_p, double rho_p, double T,
+                             double frac);
+
 #ifdef __cplusplus
 }
 #endif

@@ -172,9 +172,17 @@ extern const sbv_case sbv_cases_pgd[];
 extern const size_t sbv_ncases_pgd;
 extern const sbv_case sbv_cases_pgd_jets[];
 extern const size_t sbv_ncases_pgd_jets;
+extern const sbv_case sbv_cases_pgd_dense[];
+extern const size_t sbv_ncases_pgd_dense;
 extern const sbv_case sbv_cases_spray[];
 extern const size_t sbv_ncases_spray;
 extern const sbv_case sbv_cases_v12[];
 extern const size_t sbv_ncases_v12;
+extern const sbv_case sbv_cases_pair[];
+extern const size_t sbv_ncases_pair;
+extern const sbv_case sbv_cases_transport[];
+extern const size_t sbv_ncases_transport;
+extern const sbv_case sbv_cases_v16[];
+extern const size_t sbv_ncases_v16;
 
 #endif /* SB_VALIDATE_CASES_H */

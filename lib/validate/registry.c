@@ -25,7 +25,11 @@ static const struct {
     {sbv_cases_v12, &sbv_ncases_v12},
     {sbv_cases_pgd, &sbv_ncases_pgd},
     {sbv_cases_pgd_jets, &sbv_ncases_pgd_jets},
+    {sbv_cases_pgd_dense, &sbv_ncases_pgd_dense},
     {sbv_cases_spray, &sbv_ncases_spray},
+    {sbv_cases_v16, &sbv_ncases_v16},
+    {sbv_cases_pair, &sbv_ncases_pair},
+    {sbv_cases_transport, &sbv_ncases_transport},
 };
 enum { NTABLES = sizeof tables / sizeof tables[0] };
 
@@ -131,6 +135,7 @@ int sb_validate_run(size_t index, const sb_validate_options *opt,
     return sbi_error(SB_ENOMEM, __func__, "out of memory");
   sbv_ctx ctx = {opt->full != 0, opt->seed, opt->outdir, opt, NULL, NULL};
   double t0 = wall_seconds();
+  sb_clear_error();  /* a failed case reports its own message */
   int st = c->run(&ctx, rep);
   sbv_report_end_case(rep, st, wall_seconds() - t0);
   return st;

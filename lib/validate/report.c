@@ -65,6 +65,8 @@ void sbv_report_end_case(sbv_report *rep, int status, double seconds)
   c->count = rep->nrecs - c->first;
   c->status = status;
   c->seconds = seconds;
+  snprintf(c->message, sizeof c->message, "%s",
+           status != SB_SUCCESS ? sb_last_error() : "");
 }
 
 int sbv_add(sbv_report *rep, const sb_comparison *c)
@@ -214,8 +216,9 @@ int sb_validate_report_fprint(const sbv_report *rep, FILE *out)
   }
   for (size_t i = 0; i < rep->ncases; i++)
     if (rep->cases[i].status != SB_SUCCESS)
-      fprintf(out, "%-44s did not complete: %s\n", rep->cases[i].case_name,
-              sb_strerror(rep->cases[i].status));
+      fprintf(out, "%-44s did not complete: %s%s%s\n",
+              rep->cases[i].case_name, sb_strerror(rep->cases[i].status),
+              rep->cases[i].message[0] ? ": " : "", rep->cases[i].message);
   if (ferror(out))
     return sbi_error(SB_EIO, __func__, "write error");
   return SB_SUCCESS;
@@ -276,7 +279,8 @@ int sb_validate_report_write_markdown(const sbv_report *rep, const char *path,
     const struct sbv_case_log *c = &rep->cases[k];
     fprintf(f, "## %s\n\n", c->case_name);
     if (c->status != SB_SUCCESS)
-      fprintf(f, "**Did not complete:** %s.\n\n", sb_strerror(c->status));
+      fprintf(f, "**Did not complete:** %s%s%s.\n\n", sb_strerror(c->status),
+              c->message[0] ? ": " : "", c->message);
     if (c->notes)
       fprintf(f, "%s\n", c->notes);
     fprintf(f, "| case | estimate | reference | interval | p-value | rule | "

@@ -12,6 +12,7 @@ struct sbv_case_log {
   char *notes;           /* Markdown lines (malloc'd, may be NULL) */
   double seconds;
   int status;            /* the case function's return value */
+  char message[256];     /* sb_last_error() when status != 0 */
 };
 
 struct sb_validate_report {

@@ -1,0 +1,67 @@
+/* v16.h — shared by the V16 cases (lib/validate/cases_v16*.c): one
+ * engine run of non-interacting (count) particles with forces, shear,
+ * Lees-Edwards images and walls, and the references they share. */
+#ifndef SB_VALIDATE_V16_H
+#define SB_VALIDATE_V16_H
+
+#include <stddef.h>
+#include <gsl/gsl_rng.h>
+#include <smolbridge/engine.h>
+
+#include "cases.h"
+
+typedef struct {
+  double r, rho_p, tau, B;  /* m, kg/m^3, s, m s^-3/2 */
+  size_t count;
+  sb_engine_drag drag;
+  double rho_f, mu;         /* kg/m^3, Pa s */
+} v16_species;
+
+#define V16_MARKS 16
+
+typedef struct {
+  double L[3], dt;
+  unsigned long seed;
+  double G;                 /* shear rate (0: fluid at rest) */
+  int lees;                 /* Lees-Edwards images */
+  double g[3];              /* acceleration */
+  size_t nsp;
+  v16_species sp[4];
+  sb_engine_wall walls[3];  /* per direction, both faces (0: periodic) */
+  sb_engine_walldet walldet;
+  sb_engine_deposit deposit;
+  int nodetect;             /* no particle-particle detection */
+  int parabolic;            /* walled directions: density y (W - y) (the
+                               steady profile with a volume source)
+                               instead of uniform */
+  size_t warmup, steps;     /* steps (counters reset after the warm-up) */
+  size_t nmark;             /* cumulative deposits after these steps */
+  size_t mark[V16_MARKS];
+} v16_setup;
+
+typedef struct {
+  sb_engine_pair_stats pk[4][4];  /* a <= b */
+  double vset[4][3];        /* settling velocities, m/s */
+  double umean[3];          /* mean velocity of species 0 at the end */
+  unsigned long long dep[V16_MARKS], ndep;
+  double t;
+  size_t n_end;
+} v16_result;
+
+/* Place the particles uniformly and independently (inside the contact
+ * planes of walled directions) at their equilibrium velocities, run. */
+int v16_run(const v16_setup *s, gsl_rng *r, v16_result *out);
+/* Detector that never detects (deposition runs). */
+int v16_never(const sb_engine *e, const sb_engine_pair *p, const gsl_rng *r,
+              void *ctx, double *s);
+/* Schiller-Naumann terminal speed by bisection, m/s. */
+double v16_terminal_sn(double r, double rho_p, double rho_f, double mu,
+                       double g);
+/* Fraction of particles, uniform in a slab of width W between two
+ * absorbing planes, absorbed by time t (diffusivity D): 1 - S(t),
+ * S = sum_{k odd} 8/(k pi)^2 exp(-(k pi)^2 D t / W^2). */
+double v16_slab_absorbed(double D, double t, double W);
+
+int v16_case_deposition(const sbv_ctx *ctx, sbv_report *rep);
+
+#endif /* SB_VALIDATE_V16_H */

@@ -1,0 +1,237 @@
+#define _POSIX_C_SOURCE 200809L
+/* test_engine_open.c — open boundaries of the engine (lib/engine/
+ * engine_open.c): inflows and outflow through SB_WALL_OPEN faces.
+ *
+ * Independent checks: the stream's particle number in the box against
+ * its Poisson law (mean rate x transit time, by the exact Poisson test on
+ * the pooled count of well separated snapshots); the balance injected =
+ * left + inside, exactly; the outflow callback's crossing time against
+ * the straight chord computed by hand; the arrivals' positions uniform
+ * over the inlet (KS); argument checks; open faces through a checkpoint.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <gsl/gsl_cdf.h>
+
+#include <smolbridge/engine.h>
+#include <smolbridge/langevin.h>
+#include <smolbridge/stats.h>
+
+#include "testutil.h"
+
+/* A 2-D box of edge L with free-flight species of radius r, open in x
+ * (and in y when open_y), periodic otherwise, count outcome. */
+static sb_engine *box2(double L, double dt, double r, size_t cap,
+                       int open_y, unsigned long seed)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.dim = 2;
+  p.L[0] = p.L[1] = L;
+  p.dt = dt;
+  p.capacity = cap;
+  p.seed = seed;
+  p.outcome = SB_OUTCOME_COUNT;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  const double m = 1e-15;
+  sb_engine_species s = {r, m, INFINITY, 0.0, m * 1e-8 / SB_BOLTZMANN};
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_set_walls(e, 0, SB_WALL_OPEN, SB_WALL_OPEN),
+                   SB_SUCCESS);
+  if (open_y)
+    ck_assert_int_eq(sb_engine_set_walls(e, 1, SB_WALL_OPEN, SB_WALL_OPEN),
+                     SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_set_wall_mode(e, SB_WALLDET_BALLISTIC,
+                                           SB_DEPOSIT_REMOVE),
+                   SB_SUCCESS);
+  return e;
+}
+
+/* The number of particles of a stream in the box is Poisson with mean
+ * rate x L/u once the stream fills it; snapshots one transit apart are
+ * independent (each holds only the arrivals of its own transit).  Sample:
+ * 200 snapshots of mean 50; exact Poisson test at 1e-4 on their sum. */
+START_TEST(test_inflow_density)
+{
+  const double L = 1e-3, u = 1.0, dt = 2e-6, rate = 5e4;
+  sb_engine *e = box2(L, dt, 1e-6, 4096, 0, 11);
+  sb_engine_inflow in = {0, 0, 0, rate, {0, 0}, {L, 0}, {u, 0, 0}, 0};
+  ck_assert_int_eq(sb_engine_add_inflow(e, &in, NULL), SB_SUCCESS);
+  const long transit = lround(L / u / dt);
+  unsigned long sum = 0;
+  for (long k = 0; k < 201 * transit; k++) {
+    ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+    if (k >= transit && (k + 1) % transit == 0)
+      sum += sb_engine_count(e);
+  }
+  const double mean = 200.0 * rate * L / u;
+  double lo, hi;
+  ck_assert_int_eq(sb_poisson_ci(sum, 1.0 - 1e-4, &lo, &hi), SB_SUCCESS);
+  ck_assert_msg(lo <= mean && mean <= hi, "count %lu, expected %g, "
+                "interval [%g, %g]", sum, mean, lo, hi);
+  /* every particle is accounted for, exactly */
+  ck_assert_uint_eq(sb_engine_inflow_injected(e, 0),
+                    sb_engine_outflows(e, 0) + sb_engine_outflows(e, 1) +
+                        sb_engine_count(e));
+  ck_assert_uint_eq(sb_engine_outflows(e, 0), 0);  /* none goes back */
+  sb_engine_free(e);
+}
+END_TEST
+
+typedef struct {
+  double t_exit[8];
+  int face[8];
+  double y[8];
+  int n;
+} exits;
+
+static int record(const sb_engine *e, size_t i, int face, double t_exit,
+                  void *ctx)
+{
+  exits *x = ctx;
+  if (x->n < 8) {
+    x->t_exit[x->n] = t_exit;
+    x->face[x->n] = face;
+    x->y[x->n] = sb_engine_positions(e)[3 * i + 1];
+    x->n++;
+  }
+  return 0;
+}
+
+/* Two particles leave through x_hi and y_lo; the callback gets the face
+ * and the time the straight chord crossed it. */
+START_TEST(test_outflow_callback)
+{
+  const double L = 1e-3, dt = 1e-5;
+  sb_engine *e = box2(L, dt, 1e-6, 16, 1, 3);
+  exits x = {{0}, {0}, {0}, 0};
+  ck_assert_int_eq(sb_engine_set_outflow_fn(e, record, &x), SB_SUCCESS);
+  double p0[3] = {0.95e-3, 0.3e-3, 0}, u0[3] = {2.0, 0.5, 0};
+  double p1[3] = {0.5e-3, 0.07e-3, 0}, u1[3] = {0.0, -3.0, 0};
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, p0, u0), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 1, p1, u1), SB_SUCCESS);
+  for (int k = 0; k < 5; k++)
+    ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  ck_assert_int_eq(x.n, 2);
+  ck_assert_uint_eq(sb_engine_count(e), 0);
+  /* by hand: x = 0.95e-3 + 2 t reaches 1e-3 at t = 2.5e-5 (step 3);
+   * y = 0.07e-3 - 3 t reaches 0 at t = 2.333e-5 (step 3) */
+  for (int q = 0; q < 2; q++) {
+    if (x.face[q] == 1)
+      ck_assert_double_eq_tol(x.t_exit[q], 2.5e-5, 1e-15);
+    else {
+      ck_assert_int_eq(x.face[q], 2);
+      ck_assert_double_eq_tol(x.t_exit[q], 0.07e-3 / 3.0, 1e-15);
+    }
+  }
+  ck_assert_uint_eq(sb_engine_outflows(e, 1), 1);
+  ck_assert_uint_eq(sb_engine_outflows(e, 2), 1);
+  sb_engine_free(e);
+}
+END_TEST
+
+static double unif_cdf(double v, void *ctx)
+{
+  (void)ctx;
+  return v < 0 ? 0 : (v > 1 ? 1 : v);
+}
+
+/* Arrivals are uniform across the inlet (KS on 2000 positions at their
+ * first step, p >= 1e-4) and none lands outside it. */
+START_TEST(test_inflow_uniform)
+{
+  const double L = 1e-3, dt = 1e-6, lo = 0.2e-3, hi = 0.7e-3;
+  sb_engine *e = box2(L, dt, 1e-7, 4096, 1, 5);
+  sb_engine_inflow in = {0, 0, 0, 2e8, {lo, 0}, {hi, 0}, {1.0, 0, 0}, 0};
+  ck_assert_int_eq(sb_engine_add_inflow(e, &in, NULL), SB_SUCCESS);
+  double v[2400];
+  size_t n = 0;
+  while (n < 2000) {
+    size_t before = sb_engine_count(e);
+    ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+    const double *x = sb_engine_positions(e);
+    for (size_t i = before; i < sb_engine_count(e) && n < 2400; i++) {
+      ck_assert(x[3 * i] >= 0.0 && x[3 * i] <= dt * 1.0);
+      ck_assert(x[3 * i + 1] >= lo && x[3 * i + 1] < hi);
+      v[n++] = (x[3 * i + 1] - lo) / (hi - lo);
+    }
+  }
+  double d, p;
+  ck_assert_int_eq(sb_ks_test(v, n, unif_cdf, NULL, &d, &p), SB_SUCCESS);
+  ck_assert_msg(p >= 1e-4, "KS p = %g", p);
+  sb_engine_free(e);
+}
+END_TEST
+
+START_TEST(test_inflow_errors)
+{
+  sb_engine *e = box2(1e-3, 1e-6, 1e-6, 16, 0, 1);
+  sb_engine_inflow in = {0, 0, 0, 1e3, {0, 0}, {1e-3, 0}, {1.0, 0, 0}, 0};
+  sb_engine_inflow b = in;
+  b.u[0] = -1.0;  /* outward */
+  ck_assert_int_eq(sb_engine_add_inflow(e, &b, NULL), SB_EINVAL);
+  b = in;
+  b.face = 4;  /* z in 2-D */
+  ck_assert_int_eq(sb_engine_add_inflow(e, &b, NULL), SB_EINVAL);
+  b = in;
+  b.hi[0] = 2e-3;  /* inlet beyond the box */
+  ck_assert_int_eq(sb_engine_add_inflow(e, &b, NULL), SB_EINVAL);
+  b = in;
+  b.rate = -1.0;
+  ck_assert_int_eq(sb_engine_add_inflow(e, &b, NULL), SB_EINVAL);
+  b = in;
+  b.species = 3;
+  ck_assert_int_eq(sb_engine_add_inflow(e, &b, NULL), SB_EINVAL);
+  b = in;
+  b.u[0] = 2e3;  /* crosses the box in one step */
+  ck_assert_int_eq(sb_engine_add_inflow(e, &b, NULL), SB_EINVAL);
+  size_t idx = 99;
+  ck_assert_int_eq(sb_engine_add_inflow(e, &in, &idx), SB_SUCCESS);
+  ck_assert_uint_eq(idx, 0);
+  ck_assert_uint_eq(sb_engine_ninflows(e), 1);
+  ck_assert_int_eq(sb_engine_set_walls(e, 1, SB_WALL_OPEN, 7), SB_EINVAL);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* Open faces survive a checkpoint (the inflows are given again). */
+START_TEST(test_open_checkpoint)
+{
+  sb_engine *e = box2(1e-3, 1e-6, 1e-6, 64, 1, 2);
+  char path[] = "/tmp/sb_open_XXXXXX";
+  int fd = mkstemp(path);
+  ck_assert_int_ge(fd, 0);
+  close(fd);
+  ck_assert_int_eq(sb_engine_checkpoint_save(e, path), SB_SUCCESS);
+  int st = 0;
+  sb_engine *f = sb_engine_checkpoint_load(path, &st);
+  ck_assert_ptr_nonnull(f);
+  ck_assert_int_eq(sb_engine_periodic(f, 0), 0);
+  ck_assert_int_eq(sb_engine_periodic(f, 1), 0);
+  ck_assert_uint_eq(sb_engine_ninflows(f), 0);
+  unlink(path);
+  sb_engine_free(f);
+  sb_engine_free(e);
+}
+END_TEST
+
+static Suite *suite(void)
+{
+  Suite *s = suite_create("engine_open");
+  TCase *tc = tcase_create("open");
+  tcase_set_timeout(tc, 300);
+  tcase_add_test(tc, test_inflow_density);
+  tcase_add_test(tc, test_outflow_callback);
+  tcase_add_test(tc, test_inflow_uniform);
+  tcase_add_test(tc, test_inflow_errors);
+  tcase_add_test(tc, test_open_checkpoint);
+  suite_add_tcase(s, tc);
+  return s;
+}
+
+int main(void) { return sbt_run_suite(suite()); }
