@@ -602,6 +602,26 @@ START_TEST(test_streams_threads_and_order)
   sb_engine *all[] = {a, b, c, d, g, h};
   for (int k = 0; k < 6; k++)
     sb_engine_free(all[k]);
+  /* a checkpoint keeps the streams: the restarted run continues the same
+   * way, bit for bit */
+  sb_engine *s1 = stream_engine(1, 2, 0);
+  char path[] = "/tmp/sb_engine_ckpt_XXXXXX";
+  int fd = mkstemp(path);
+  ck_assert_int_ge(fd, 0);
+  close(fd);
+  ck_assert_int_eq(sb_engine_checkpoint_save(s1, path), SB_SUCCESS);
+  int st;
+  sb_engine *s2 = sb_engine_checkpoint_load(path, &st);
+  remove(path);
+  ck_assert_ptr_nonnull(s2);
+  ck_assert_int_eq(sb_engine_get_params(s2)->streams, 1);
+  for (int k = 0; k < 5; k++) {
+    ck_assert_int_eq(sb_engine_step(s1), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_step(s2), SB_SUCCESS);
+  }
+  assert_same(s1, s2);
+  sb_engine_free(s1);
+  sb_engine_free(s2);
   /* bad values */
   sb_engine_params p;
   sb_engine_params_default(&p);
