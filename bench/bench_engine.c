@@ -7,6 +7,10 @@
  *     linked cells, contact-time detection, reinsert outcome.  Goals:
  *     per-particle cost flat within +-30% from 1e4 to 1e6, and >= 1e7
  *     particle-steps/s (<= 100 ns) at N = 1e6, single core.
+ *  3. Threads (OpenMP build): the same suspension at N = 1e6 on the keyed
+ *     per-particle streams (params.streams) with 1, 2 and 3 threads, and
+ *     taus2 on one thread; the ratio of the rates (goal >= 1.8x at 2
+ *     threads on a quiet 2-core machine).
  *  2. Linked cells vs sort-and-sweep (the neighbour search alone, on the
  *     trial step x -> x + u dt): isotropic Brownian configuration and two
  *     counter-flowing jets along x (Thomine 2008, §5.1), N = 1e5; ratio
@@ -26,7 +30,15 @@
 
 #define PI 3.14159265358979323846
 
+static sb_engine *brownian_x(size_t n, double phi, unsigned long seed,
+                             int streams, int threads);
 static sb_engine *brownian(size_t n, double phi, unsigned long seed)
+{
+  return brownian_x(n, phi, seed, 0, 0);
+}
+
+static sb_engine *brownian_x(size_t n, double phi, unsigned long seed,
+                             int streams, int threads)
 {
   const double T = 296.15, mu = 1.83245e-5, rho = 1000.0, d = 1e-6;
   double tau = sb_stokes_tau(rho, d, mu, 1.0), m = sb_sphere_mass(rho, d);
@@ -40,6 +52,8 @@ static sb_engine *brownian(size_t n, double phi, unsigned long seed)
   p.outcome = SB_OUTCOME_REINSERT;
   p.sort_every = 20;  /* cache locality (indices change, ids do not) */
   p.rng_type = gsl_rng_taus2;  /* faster Gaussian draws than MT19937 */
+  p.streams = streams;
+  p.threads = threads;
   sb_engine *e = sb_engine_alloc(&p);
   if (!e)
     return NULL;
@@ -187,6 +201,33 @@ int main(int argc, char **argv)
            ts.median / tc.median);
     free(disp);
     gsl_rng_free(r);
+    sb_engine_free(e);
+  }
+  /* 3. threads: the keyed streams move the particles on every thread
+   * (and the results do not depend on the thread count); N = 1e6 */
+  size_t nt = quick ? 100000 : 1000000;
+  printf("\n# 3. threads, N = %zu, phi = 1e-4 (ns per particle-step, wall "
+         "clock; particle-steps/s in the last column of the summary)\n", nt);
+  sbb_table_header(stdout);
+  double t1 = NAN;
+  for (int th = 0; th <= 3; th++) {
+    /* th = 0: the sequential generator (taus2), one thread */
+    sb_engine *e = brownian_x(nt, 1e-4, 11, th > 0, th > 0 ? th : 1);
+    if (!e)
+      return 1;
+    sbb_timing t = time_steps(e, quick ? 5 : 4, reps);
+    char name[80];
+    if (th == 0)
+      snprintf(name, sizeof name, "taus2, 1 thread");
+    else
+      snprintf(name, sizeof name, "keyed streams, %d thread%s", th,
+               th > 1 ? "s" : "");
+    sbb_table_row(stdout, name, &t, NAN);
+    if (th == 1)
+      t1 = t.median;
+    if (th > 1)
+      printf("# %d threads: %.2fx the 1-thread streams rate (%.3g "
+             "particle-steps/s)\n", th, t1 / t.median, 1e9 / t.median);
     sb_engine_free(e);
   }
   return miss ? 0 : 0;  /* figures, not a pass/fail test */

@@ -168,13 +168,18 @@ int main(int argc, char **argv)
   if (!r)
     return 1;
   gsl_rng_set(r, 20240601UL);
-  sbb_args cross, hit, b3A, b3B, fpt, b3f;
+  sbb_args cross, hit, b3A, b3B, b3C, b3D, fpt, b3f;
   if (fill_cross(&cross, r) || fill_hit(&hit, r, 1.0, 1e-2, 1e1) ||
       /* Bessel-3 regime A: v << a^2, 1 - rho ~ 1 (the collisions of
        * Mohaupt 2011, ch. 5) */
       fill_hit(&b3A, r, 1.0, 1e-2, 0.3) ||
       /* regime B: v >> a^2 (a = 0.01, v in [0.5, 5]), 1 - rho ~ 1e-2 */
-      fill_hit(&b3B, r, 0.01, 0.5, 5.0) || fill_fpt(&fpt, r) ||
+      fill_hit(&b3B, r, 0.01, 0.5, 5.0) ||
+      /* regimes C and D: a = 1e-4 and 1e-6, 1 - rho ~ 1e-4 and 1e-6 (a
+       * pair that barely reaches contact distance; the mixture (2) of
+       * bridge_hit.c over a very short range of the minimum) */
+      fill_hit(&b3C, r, 1e-4, 0.5, 5.0) || fill_hit(&b3D, r, 1e-6, 0.5, 5.0) ||
+      fill_fpt(&fpt, r) ||
       fill_b3fpt(&b3f, r)) {
     fprintf(stderr, "bench_refs: out of memory\n");
     return 1;
@@ -206,6 +211,9 @@ int main(int argc, char **argv)
       {"sb_bes3b_hit_cdf, 1-rho~1e-2 (info)", k_b3_hc, &b3B, NAN},
       {"sb_bes3b_hit_quantile, 1-rho~1e-2", k_b3_hq, &b3B, G_HIT},
       {"sb_bes3b_hit_sample, 1-rho~1e-2", k_b3_hs, &b3B, G_HIT},
+      {"sb_bes3b_hit_quantile, 1-rho~1e-4", k_b3_hq, &b3C, G_HIT},
+      {"sb_bes3b_hit_quantile, 1-rho~1e-6", k_b3_hq, &b3D, G_HIT},
+      {"sb_bes3b_hit_sample, 1-rho~1e-6", k_b3_hs, &b3D, G_HIT},
       {"sb_bm_fpt_pdf", k_bm_pdf, &fpt, G_FPT},
       {"sb_bm_fpt_cdf", k_bm_cdf, &fpt, G_FPT},
       {"sb_bm_fpt_quantile (info)", k_bm_q, &fpt, NAN},
@@ -230,6 +238,8 @@ int main(int argc, char **argv)
   sbb_args_free(&hit);
   sbb_args_free(&b3A);
   sbb_args_free(&b3B);
+  sbb_args_free(&b3C);
+  sbb_args_free(&b3D);
   sbb_args_free(&fpt);
   sbb_args_free(&b3f);
   gsl_rng_free(r);

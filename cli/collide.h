@@ -54,7 +54,7 @@ typedef struct {
   long dim;
   double L, Lx, Ly, Lz, dt, t_end, warmup, thermalize, eta;
   double lv_eps, lv_xtol, lv_tol;  /* detect = langevin (NaN: default) */
-  long steps, sample_every, snapshot_every, sort_every;
+  long steps, sample_every, snapshot_every, sort_every, threads;
   long placement_seed;          /* -1: the engine's generator */
   char neigh[16], detect[16], outcome[16], rng[16], placement[16];
   char output[512], checkpoint[512], restart[512];
@@ -196,5 +196,27 @@ int col_out_write(const col_config *c, const col_run *r,
                   const char *why, long nsnap);
 /* Snapshot path of number k. */
 void col_snap_path(const col_config *c, long k, char *buf, size_t len);
+
+/* ------------------------------------------- collide.c, collide_sweep.c */
+
+/* What one run gives a sweep's summary. */
+typedef struct {
+  char status[16];      /* ok, input error, run error, write error */
+  char why[1100];       /* the message when not ok */
+  char kind[16];        /* K_e (collision kernel) or first-hit */
+  size_t particles;
+  unsigned long long ncoll, steps;
+  double K, lo, hi;     /* m^3/s and its 95% interval, NaN if none */
+  double cpu_seconds;
+} col_point;
+
+/* One run of CONFIG.ini with the overrides; progress on stderr when
+ * verbose; *res (may be NULL) receives the summary.  Exit status as the
+ * command's. */
+int col_run_point(const char *ini, const char *const *sets, int nsets,
+                  int verbose, col_point *res);
+/* --sweep FILE: the points over the ranks (collide_sweep.c). */
+int col_sweep(const char *ini, const char *const *sets, int nsets,
+              const char *file);
 
 #endif /* SB_CLI_COLLIDE_H */

@@ -24,7 +24,7 @@
 static const char *const OUTCOMES[] = {"elastic", "reinsert", "count",
                                        "correction", "merge", "dlvo", NULL};
 static const char *const NEIGHS[] = {"cells", "sweep", "brute", NULL};
-static const char *const RNGS[] = {"mt19937", "taus2", NULL};
+static const char *const RNGS[] = {"mt19937", "taus2", "philox", NULL};
 static const char *const PLACEMENTS[] = {"random", "lattice", "uniform",
                                          NULL};
 static const char *const FLUIDS[] = {"rest", "uniform", "shear", NULL};
@@ -137,7 +137,13 @@ static const keydef KEYS[] = {
     {"run", "sort_every", K_INT, C(sort_every), 0, R_CLOSED, 0, 2e9, NULL,
      "steps", "0 (off)", "reorder particles in memory (speed)"},
     {"run", "rng", K_NAME, C(rng), 16, R_ANY, 0, 0, RNGS, "-", "mt19937",
-     "generator type"},
+     "generator type; philox: per-particle counter-based streams for "
+     "transport (parallel; results independent of the thread count and "
+     "of the particle order)"},
+    {"run", "threads", K_INT, C(threads), 0, R_CLOSED, 0, 4096, NULL, "-",
+     "0 (OMP_NUM_THREADS)",
+     "threads of the engine's parallel parts (results do not depend on "
+     "it)"},
     {"run", "placement", K_NAME, C(placement), 16, R_ANY, 0, 0, PLACEMENTS,
      "-", "random (lattice above phi 0.3)",
      "random: no overlaps; lattice: FCC/square sites; uniform: overlaps "

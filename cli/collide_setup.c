@@ -14,6 +14,7 @@
 #include <smolbridge/engine_bridge.h>
 #include <smolbridge/kernel.h>
 #include <smolbridge/langevin.h>
+#include <smolbridge/rng.h>
 
 #include "collide.h"
 
@@ -535,6 +536,7 @@ int col_setup(col_config *c, col_run *r)
                       sb_last_error());
     if ((col_given(c, "run", "dt") && sb_engine_set_dt(r->e, c->dt)) ||
         sb_engine_set_neigh(r->e, nm) ||
+        sb_engine_set_threads(r->e, (int)c->threads) ||
         (!col_bridge(c) && (sb_engine_set_detect(r->e, dm) ||
                             sb_engine_set_outcome(r->e, om, c->eta))))
       return col_fail(c, "[run] restart: %s", sb_last_error());
@@ -553,7 +555,11 @@ int col_setup(col_config *c, col_run *r)
     p.outcome = om;
     p.eta = c->eta;
     p.sort_every = (size_t)c->sort_every;
-    p.rng_type = strcmp(c->rng, "taus2") ? gsl_rng_mt19937 : gsl_rng_taus2;
+    p.rng_type = !strcmp(c->rng, "taus2")    ? gsl_rng_taus2
+                 : !strcmp(c->rng, "philox") ? sb_rng_philox
+                                             : gsl_rng_mt19937;
+    p.streams = !strcmp(c->rng, "philox");
+    p.threads = (int)c->threads;
     long total = 0;
     for (int k = 0; k < c->nsp; k++) {
       if (species_build(c, k, &q[k]))

@@ -1,11 +1,13 @@
 /* main.c — the `smolbridge` command: dispatch to subcommands. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <gsl/gsl_errno.h>
 #include <smolbridge/common.h>
 
 #include "cli.h"
+#include "par.h"
 
 static void usage(FILE *out)
 {
@@ -30,7 +32,36 @@ static void usage(FILE *out)
 "See smolbridge(1) and docs/ for the theory behind each function.\n");
 }
 
+static int dispatch(int argc, char **argv);
+
+/* Under mpirun/srun (an MPI build): validate and collide --sweep share
+ * the work between the ranks; every other command runs on rank 0 only. */
 int main(int argc, char **argv)
+{
+  int st = sbc_par_init(&argc, &argv);
+  if (st)
+    return st;
+  int distributed = argc >= 2 && (!strcmp(argv[1], "validate") ||
+                                  !strcmp(argv[1], "collide"));
+  int rc = 0;
+  /* one voice: the other ranks' stderr (the same messages, or progress)
+   * is dropped unless SB_MPI_VERBOSE is set; rank 0 reports their
+   * failures */
+  if (sbc_par_rank() != 0 && !getenv("SB_MPI_VERBOSE") &&
+      !freopen("/dev/null", "w", stderr))
+    return 2;
+  if (distributed || sbc_par_rank() == 0) {
+    if (!distributed && sbc_par_size() > 1)
+      fprintf(stderr, "smolbridge: '%s' runs on rank 0 only (%d ranks); "
+              "validate and collide --sweep use them all\n",
+              argc >= 2 ? argv[1] : "", sbc_par_size());
+    rc = dispatch(argc, argv);
+  }
+  sbc_par_finalize();
+  return rc;
+}
+
+static int dispatch(int argc, char **argv)
 {
   /* The library checks arguments before calling GSL; this is a second line
    * of defence so that no GSL error can abort the command. */
@@ -47,6 +78,9 @@ int main(int argc, char **argv)
   }
   if (!strcmp(cmd, "--version") || !strcmp(cmd, "-V")) {
     printf("smolbridge %s\n", sb_version());
+    char mpi[128];
+    sbc_par_describe(mpi, sizeof mpi);
+    printf("MPI: %s\n", mpi);
     return 0;
   }
   if (!strcmp(cmd, "eval"))

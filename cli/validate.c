@@ -1,6 +1,7 @@
 /* validate.c — `smolbridge validate`: run the registered validation cases,
  * print the comparison table, write validate.csv, report.md and plots. */
 #include <errno.h>
+#include <stdint.h>
 #include <getopt.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,6 +13,7 @@
 #include <smolbridge/validate.h>
 
 #include "cli.h"
+#include "par.h"
 
 /* Progress lines go to stderr. */
 static void progress_to_stderr(const char *line, void *data)
@@ -120,6 +122,11 @@ static int make_dirs(const char *path)
     return -1;
   return 0;
 }
+
+static int validate_selection(sb_validate_options *vo, const size_t *sel,
+                              size_t nsel, unsigned long nseeds, int list,
+                              const char *ini_dir, char **prefixes,
+                              int nprefixes);
 
 static int selected(const char *name, char **prefixes, int nprefixes)
 {
@@ -239,57 +246,213 @@ static int write_ini(const sb_validate_options *vo, const char *dir,
   return total ? 0 : 2;
 }
 
+/* ------------------------------------------------ runs over the ranks
+ *
+ * The work is a list of tasks t = k * nsel + c: case sel[c] with seed
+ * base + k (one seed without --seeds).  Rank r runs the tasks t = r
+ * (mod P); each task's report is packed (sb_validate_report_pack) behind
+ * a header {t, length}; rank 0 gathers them and appends them in task
+ * order, so its reports are the serial run's (the cases draw from
+ * generators keyed by the seed and the case: docs/validation.md).  A
+ * single process takes the same path. */
+
+typedef struct {
+  const sb_validate_options *vo;
+  const size_t *sel;
+  size_t nsel;
+  unsigned long nseeds; /* 0: one seed, progress and plots as usual */
+} tasks;
+
+static int put_task(unsigned char **buf, size_t *len, size_t *cap,
+                    uint64_t t, const void *p, size_t n)
+{
+  uint64_t hdr[2] = {t, n};
+  size_t need = *len + sizeof hdr + n;
+  if (need > *cap) {
+    size_t nc = *cap ? 2 * *cap : 4096;
+    while (nc < need)
+      nc *= 2;
+    unsigned char *q = realloc(*buf, nc);
+    if (!q)
+      return -1;
+    *buf = q;
+    *cap = nc;
+  }
+  memcpy(*buf + *len, hdr, sizeof hdr);
+  memcpy(*buf + *len + sizeof hdr, p, n);
+  *len = need;
+  return 0;
+}
+
+/* This rank's tasks, packed; progress on stderr from rank 0. */
+static int run_my_tasks(const tasks *T, unsigned char **out, size_t *outlen)
+{
+  const int rank = sbc_par_rank(), P = sbc_par_size();
+  const size_t nt = T->nsel * (T->nseeds ? T->nseeds : 1);
+  size_t cap = 0, mine = 0, done = 0;
+  *out = NULL;
+  *outlen = 0;
+  for (size_t t = (size_t)rank; t < nt; t += (size_t)P)
+    mine++;
+  double t_all = now_seconds(), t_seed = t_all;
+  size_t seed_rows = 0, seed_fail = 0;
+  for (size_t t = (size_t)rank; t < nt; t += (size_t)P) {
+    size_t k = t / T->nsel, c = t % T->nsel, i = T->sel[c];
+    sb_validate_options o = *T->vo;
+    if (T->nseeds) {
+      o.seed = T->vo->seed + k;
+      o.outdir = NULL; /* per-seed plots would overwrite each other */
+      o.progress = NULL;
+    } else if (rank != 0)
+      o.progress = NULL;
+    sb_validate_report *rep = sb_validate_report_alloc();
+    if (!rep)
+      return -1;
+    const char *name = sb_validate_case_name(i);
+    if (!T->nseeds && rank == 0)
+      fprintf(stderr, "[%zu/%zu] %s: %s ...%s\n", c + 1, T->nsel, name,
+              sb_validate_case_description(i), sbc_par_tag());
+    double t0 = now_seconds();
+    int st = sb_validate_run(i, &o, rep);
+    if (!T->nseeds && rank == 0)
+      fprintf(stderr, "[%zu/%zu] %s done in %.1f s%s%s\n", c + 1, T->nsel,
+              name, now_seconds() - t0, st ? ": " : "",
+              !st ? "" : (*sb_last_error() ? sb_last_error()
+                                           : sb_strerror(st)));
+    size_t np_, nf_, ni_;
+    count_verdicts(rep, &np_, &nf_, &ni_);
+    seed_rows += sb_validate_report_nrecords(rep);
+    seed_fail += nf_;
+    void *pk;
+    size_t n;
+    int bad = sb_validate_report_pack(rep, &pk, &n) ||
+              put_task(out, outlen, &cap, t, pk, n);
+    if (!bad)
+      free(pk);
+    sb_validate_report_free(rep);
+    if (bad)
+      return -1;
+    done++;
+    /* --seeds: a line per seed's worth of tasks done by rank 0 */
+    if (T->nseeds && rank == 0 && (done % T->nsel == 0 || done == mine)) {
+      double el = now_seconds() - t_all;
+      if (P == 1)  /* a whole seed: its rows */
+        fprintf(stderr, "[seed %lu, %zu/%lu] %zu rows, %zu failed (%.1f s; "
+                "about %.0f s to go)\n", o.seed, k + 1, T->nseeds,
+                seed_rows, seed_fail, now_seconds() - t_seed,
+                el / (double)done * (double)(mine - done));
+      else
+        fprintf(stderr, "[%zu/%zu runs of rank 0] seed %lu done; about "
+                "%.0f s to go\n", done, mine, o.seed,
+                el / (double)done * (double)(mine - done));
+      seed_rows = seed_fail = 0;
+      t_seed = now_seconds();
+    }
+  }
+  return 0;
+}
+
+/* Run the tasks on every rank; on rank 0, *reps[k] gets seed k's report
+ * (nseeds of them, or one).  0, or 2 on a failure (every rank). */
+static int run_tasks(const tasks *T, sb_validate_report ***reps)
+{
+  unsigned char *mine, *all = NULL;
+  size_t nmine, *lens = NULL;
+  int bad = run_my_tasks(T, &mine, &nmine) ? 1 : 0;
+  bad = sbc_par_max_int(bad);
+  if (!bad && sbc_par_gather(mine, nmine, &all, &lens))
+    bad = 1;
+  free(mine);
+  *reps = NULL;
+  if (bad || sbc_par_rank() != 0) {
+    free(all);
+    free(lens);
+    if (bad && sbc_par_rank() == 0)
+      fprintf(stderr, "smolbridge validate: out of memory or MPI failure\n");
+    return bad ? 2 : 0;
+  }
+  const size_t ns = T->nseeds ? T->nseeds : 1, nt = ns * T->nsel;
+  size_t total = 0;
+  for (int r = 0; r < sbc_par_size(); r++)
+    total += lens[r];
+  free(lens);
+  const unsigned char **blob = calloc(nt, sizeof *blob);
+  size_t *blen = calloc(nt, sizeof *blen);
+  sb_validate_report **R = calloc(ns, sizeof *R);
+  int rc = blob && blen && R ? 0 : 2;
+  for (size_t off = 0; !rc && off < total;) {
+    uint64_t hdr[2];
+    memcpy(hdr, all + off, sizeof hdr);
+    if (hdr[0] >= nt || hdr[1] > total - off - sizeof hdr)
+      rc = 2;
+    else {
+      blob[hdr[0]] = all + off + sizeof hdr;
+      blen[hdr[0]] = (size_t)hdr[1];
+      off += sizeof hdr + (size_t)hdr[1];
+    }
+  }
+  for (size_t k = 0; !rc && k < ns; k++) {
+    if (!(R[k] = sb_validate_report_alloc()))
+      rc = 2;
+    for (size_t c = 0; !rc && c < T->nsel; c++) {
+      size_t t = k * T->nsel + c;
+      if (!blob[t] ||
+          sb_validate_report_append_packed(R[k], blob[t], blen[t]))
+        rc = 2;
+    }
+  }
+  free(all);
+  free(blob);
+  free(blen);
+  if (rc) {
+    fprintf(stderr, "smolbridge validate: gathering the reports failed: "
+            "%s\n", sb_last_error());
+    for (size_t k = 0; R && k < ns; k++)
+      sb_validate_report_free(R[k]);
+    free(R);
+    return rc;
+  }
+  *reps = R;
+  return 0;
+}
+
 /* --seeds N: run the selection with N seeds and pool. */
-static int calibrate(sb_validate_options *vo, char **prefixes,
-                     int nprefixes, size_t nsel, unsigned long nseeds)
+static int calibrate(sb_validate_options *vo, const size_t *sel,
+                     size_t nsel, unsigned long nseeds)
 {
   const unsigned long base = vo->seed;
   const char *outdir = vo->outdir;
+  const int root = sbc_par_rank() == 0;
+  if (root)
+    fprintf(stderr, "smolbridge validate --seeds %lu (%s, seeds %lu..%lu): "
+                    "%zu cases -> %s/%s\n", nseeds,
+            vo->full ? "full" : "quick", base, base + nseeds - 1, nsel,
+            outdir, sbc_par_size() > 1 ? " (runs shared by the ranks; "
+                                         "progress of rank 0)" : "");
+  double t_all = now_seconds();
+  tasks T = {vo, sel, nsel, nseeds};
+  sb_validate_report **reps;
+  int rc = run_tasks(&T, &reps);
+  if (rc || !root)
+    return rc;
   char path[1100];
   snprintf(path, sizeof path, "%s/all_seeds.csv", outdir);
   FILE *all = fopen(path, "w");
   sb_validate_calibration *cal = sb_validate_calibration_alloc();
   if (!all || !cal) {
     fprintf(stderr, "smolbridge validate: cannot write '%s'\n", path);
-    if (all)
-      fclose(all);
-    sb_validate_calibration_free(cal);
-    return 2;
-  }
-  fprintf(all, "seed,%s\n", SB_COMPARISON_CSV_HEADER);
-  fprintf(stderr, "smolbridge validate --seeds %lu (%s, seeds %lu..%lu): "
-                  "%zu cases -> %s/\n", nseeds, vo->full ? "full" : "quick",
-          base, base + nseeds - 1, nsel, outdir);
-  double t_all = now_seconds();
-  int rc = 0;
-  size_t ncases = sb_validate_ncases();
-  for (unsigned long k = 0; k < nseeds && !rc; k++) {
-    sb_validate_options o = *vo;
-    o.seed = base + k;
-    o.outdir = NULL;  /* per-seed plots would overwrite each other */
-    o.progress = NULL;
-    sb_validate_report *rep = sb_validate_report_alloc();
-    if (!rep) {
+    rc = 2;
+  } else
+    fprintf(all, "seed,%s\n", SB_COMPARISON_CSV_HEADER);
+  for (unsigned long k = 0; k < nseeds; k++) {
+    const sb_validate_report *rep = reps[k];
+    if (!rc && (sb_validate_calibration_add(cal, rep) != SB_SUCCESS ||
+                append_seed_csv(all, rep, base + k) != SB_SUCCESS))
       rc = 2;
-      break;
-    }
-    double t0 = now_seconds();
-    for (size_t i = 0; i < ncases; i++)
-      if (selected(sb_validate_case_name(i), prefixes, nprefixes))
-        sb_validate_run(i, &o, rep);
-    size_t npass, nfail, ninfo;
-    count_verdicts(rep, &npass, &nfail, &ninfo);
-    double el = now_seconds() - t_all;
-    fprintf(stderr, "[seed %lu, %lu/%lu] %zu rows, %zu failed (%.1f s; "
-                    "about %.0f s to go)\n", o.seed, k + 1, nseeds,
-            sb_validate_report_nrecords(rep), nfail, now_seconds() - t0,
-            el / (double)(k + 1) * (double)(nseeds - k - 1));
-    if (sb_validate_calibration_add(cal, rep) != SB_SUCCESS ||
-        append_seed_csv(all, rep, o.seed) != SB_SUCCESS)
-      rc = 2;
-    sb_validate_report_free(rep);
+    sb_validate_report_free(reps[k]);
   }
-  if (fclose(all) != 0)
+  free(reps);
+  if (all && fclose(all) != 0)
     rc = 2;
   if (rc) {
     sb_validate_calibration_free(cal);
@@ -409,22 +572,40 @@ int sbc_validate_main(int argc, char **argv)
   }
 
   size_t ncases = sb_validate_ncases(), nsel = 0;
+  size_t *sel = malloc((ncases ? ncases : 1) * sizeof *sel);
+  if (!sel) {
+    fprintf(stderr, "smolbridge validate: out of memory\n");
+    return 2;
+  }
   for (size_t i = 0; i < ncases; i++) {
     const char *name = sb_validate_case_name(i);
     if (!selected(name, prefixes, nprefixes))
       continue;
-    nsel++;
-    if (list)
+    sel[nsel++] = i;
+    if (list && sbc_par_rank() == 0)
       printf("%-32s %s\n", name, sb_validate_case_description(i));
   }
+  int rc = validate_selection(&vo, sel, nsel, nseeds, list, ini_dir,
+                              prefixes, nprefixes);
+  free(sel);
+  return rc;
+}
+
+static int validate_selection(sb_validate_options *vo_, const size_t *sel,
+                              size_t nsel, unsigned long nseeds, int list,
+                              const char *ini_dir, char **prefixes,
+                              int nprefixes)
+{
+  sb_validate_options vo = *vo_;
+  const int root = sbc_par_rank() == 0;
   if (list)
     return 0;
   if (nsel == 0) {
     fprintf(stderr, "smolbridge validate: no case matches\n");
     return 2;
   }
-  if (ini_dir)
-    return write_ini(&vo, ini_dir, prefixes, nprefixes);
+  if (ini_dir)  /* quick: rank 0 writes them */
+    return root ? write_ini(&vo, ini_dir, prefixes, nprefixes) : 0;
   if (make_dirs(vo.outdir) != 0) {
     fprintf(stderr, "smolbridge validate: cannot create '%s': %s\n",
             vo.outdir, strerror(errno));
@@ -435,32 +616,23 @@ int sbc_validate_main(int argc, char **argv)
   vo.render = render_with_gnuplot;
   vo.render_data = &have_gnuplot;
   if (nseeds)
-    return calibrate(&vo, prefixes, nprefixes, nsel, nseeds);
+    return calibrate(&vo, sel, nsel, nseeds);
   vo.progress = progress_to_stderr;
 
-  sb_validate_report *rep = sb_validate_report_alloc();
-  if (!rep) {
-    fprintf(stderr, "smolbridge validate: out of memory\n");
-    return 2;
-  }
   const char *mode = vo.full ? "full" : "quick";
-  fprintf(stderr, "smolbridge validate (%s, seed %lu): %zu cases -> %s/\n",
-          mode, vo.seed, nsel, vo.outdir);
+  if (root)
+    fprintf(stderr, "smolbridge validate (%s, seed %lu): %zu cases -> %s/%s\n",
+            mode, vo.seed, nsel, vo.outdir,
+            sbc_par_size() > 1 ? " (cases shared by the ranks; progress of "
+                                 "rank 0)" : "");
   double t_all = now_seconds();
-  size_t k = 0;
-  for (size_t i = 0; i < ncases; i++) {
-    const char *name = sb_validate_case_name(i);
-    if (!selected(name, prefixes, nprefixes))
-      continue;
-    fprintf(stderr, "[%zu/%zu] %s: %s ...\n", ++k, nsel, name,
-            sb_validate_case_description(i));
-    double t0 = now_seconds();
-    int st = sb_validate_run(i, &vo, rep);
-    fprintf(stderr, "[%zu/%zu] %s done in %.1f s%s%s\n", k, nsel, name,
-            now_seconds() - t0, st ? ": " : "",
-            !st ? "" : (*sb_last_error() ? sb_last_error() : sb_strerror(st)));
-  }
-
+  tasks T = {&vo, sel, nsel, 0};
+  sb_validate_report **reps;
+  int rc = run_tasks(&T, &reps);
+  if (rc || !root)
+    return rc;
+  sb_validate_report *rep = reps[0];
+  free(reps);
   printf("\n");
   sb_validate_report_fprint(rep, stdout);
   char path[1100];

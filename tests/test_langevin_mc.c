@@ -215,6 +215,112 @@ START_TEST(test_step3_marginals)
 }
 END_TEST
 
+/* The counter-based stepper (sb_langevin_step3_stream): N = 20000
+ * particles in two classes (coefficient table, cidx) from a fixed start,
+ * one step keyed (seed 2024, step 7, ids 0..N-1): marginals of every
+ * class and component against sb_langevin_moments (check_law); then 64
+ * steps of dt/64 (step keys 0..63) against the law of one step of dt, so
+ * that normals reused across steps or ids would show. */
+START_TEST(test_step3_stream_law)
+{
+  const size_t N = 20000;
+  double *us = malloc(3 * N * sizeof *us), *x = malloc(3 * N * sizeof *x);
+  double *u = malloc(3 * N * sizeof *u);
+  double *cx = malloc(N * sizeof *cx), *cu = malloc(N * sizeof *cu);
+  size_t *cidx = malloc(N * sizeof *cidx);
+  const double cls_tau[2] = {1e-3, 5.0}, cls_B[2] = {3.0, 0.2};
+  const double cls_us[2][3] = {{0.1, -0.2, 0.0}, {1.0, 0.0, -1.0}};
+  const double dt = 0.01, x0 = -0.4, u0 = 0.25;
+  for (int pass = 0; pass < 2; pass++) {
+    const size_t nsub = pass ? 64 : 1;
+    sb_langevin_coef coef[2];
+    for (int c = 0; c < 2; c++)
+      sb_langevin_coef_init(&coef[c], cls_tau[c], cls_B[c],
+                            dt / (double)nsub);
+    for (size_t i = 0; i < N; i++) {
+      cidx[i] = i & 1;
+      for (int k = 0; k < 3; k++) {
+        us[3 * i + k] = cls_us[i & 1][k];
+        x[3 * i + k] = x0;
+        u[3 * i + k] = u0;
+      }
+    }
+    for (size_t j = 0; j < nsub; j++)
+      ck_assert_int_eq(sb_langevin_step3_stream(N, coef, cidx, us, x, u,
+                                                2024, pass ? j : 7, NULL,
+                                                0), SB_SUCCESS);
+    for (int c = 0; c < 2; c++)
+      for (int k = 0; k < 3; k++) {
+        size_t n = 0;
+        for (size_t i = (size_t)c; i < N; i += 2, n++) {
+          cx[n] = x[3 * i + k];
+          cu[n] = u[3 * i + k];
+        }
+        sb_langevin p = {cls_tau[c], cls_B[c], cls_us[c][k]};
+        sb_langevin_mom m;
+        sb_langevin_moments(&p, dt, x0, u0, &m);
+        char what[80];
+        snprintf(what, sizeof what, "step3_stream %zu step(s) class %d "
+                 "comp %d", nsub, c, k);
+        check_law(what, cx, cu, n, &m);
+      }
+  }
+  free(us); free(x); free(u); free(cx); free(cu); free(cidx);
+}
+END_TEST
+
+/* The state of a particle depends on (seed, id, step) and its own state
+ * only: the whole batch, the batch in reverse in pieces of 7 with
+ * explicit ids, and sb_stream_init + sb_langevin_step3_draw one by one
+ * give bit-identical states; a bad id moves nothing. */
+START_TEST(test_step3_stream_keys)
+{
+  enum { N = 300 };
+  static double xa[3 * N], ua[3 * N], xb[3 * N], ub[3 * N], xc[3 * N],
+      uc[3 * N];
+  sb_langevin_coef c;
+  sb_langevin_coef_init(&c, 0.5, 1.5, 0.2);
+  size_t cidx[N];
+  uint64_t ids[N];
+  for (size_t i = 0; i < N; i++) {
+    cidx[i] = 0;
+    ids[i] = 1000 + i;
+    for (int k = 0; k < 3; k++)
+      xa[3 * i + k] = xb[3 * i + k] = xc[3 * i + k] = ua[3 * i + k] =
+          ub[3 * i + k] = uc[3 * i + k] = 0.1 * (double)k;
+  }
+  ck_assert_int_eq(sb_langevin_step3_stream(N, &c, cidx, NULL, xa, ua, 9,
+                                            3, NULL, 1000), SB_SUCCESS);
+  for (size_t end = N; end > 0;) {
+    size_t beg = end >= 7 ? end - 7 : 0;
+    ck_assert_int_eq(sb_langevin_step3_stream(end - beg, &c, cidx + beg,
+                                              NULL, xb + 3 * beg,
+                                              ub + 3 * beg, 9, 3, ids + beg,
+                                              0), SB_SUCCESS);
+    end = beg;
+  }
+  for (size_t i = 0; i < N; i++) {
+    sb_stream s;
+    sb_stream_init(&s, 9, 1000 + i, 3);
+    ck_assert_int_eq(sb_langevin_step3_draw(&c, NULL, xc + 3 * i,
+                                            uc + 3 * i, &s), SB_SUCCESS);
+  }
+  ck_assert(memcmp(xa, xb, sizeof xa) == 0 && memcmp(ua, ub, sizeof ua) == 0);
+  ck_assert(memcmp(xa, xc, sizeof xa) == 0 && memcmp(ua, uc, sizeof ua) == 0);
+  ids[N - 1] = SB_STREAM_MAX_ID + 1;
+  ck_assert_int_eq(sb_langevin_step3_stream(N, &c, cidx, NULL, xb, ub, 9, 4,
+                                            ids, 0), SB_EDOM);
+  ck_assert(memcmp(xa, xb, sizeof xa) == 0);
+  ck_assert_int_eq(sb_langevin_step3_stream(N, &c, cidx, NULL, xb, ub, 9,
+                                            SB_STREAM_MAX_STEP + 1, NULL, 0),
+                   SB_EDOM);
+  ck_assert_int_eq(sb_langevin_step3_stream(1, NULL, NULL, NULL, xb, ub, 9,
+                                            0, NULL, 0), SB_EINVAL);
+  ck_assert_int_eq(sb_langevin_step3_draw(&c, NULL, xb, ub, NULL),
+                   SB_EINVAL);
+}
+END_TEST
+
 /* One step of dt against 64 steps of dt/64 (N = 20000 paths each), and
  * the 64-step sample against the closed-form law, for dt/tau = 0.05, 1,
  * 20.  A wrong variance term that happens to compose (or not) shows up. */
@@ -404,6 +510,8 @@ static Suite *langevin_mc_suite(void)
   tcase_set_timeout(tc, 60);
   tcase_add_test(tc, test_step_marginals);
   tcase_add_test(tc, test_step3_marginals);
+  tcase_add_test(tc, test_step3_stream_law);
+  tcase_add_test(tc, test_step3_stream_keys);
   tcase_add_test(tc, test_step_composition);
   suite_add_tcase(s, tc);
   tc = tcase_create("bridge");

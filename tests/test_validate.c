@@ -194,6 +194,92 @@ START_TEST(test_plots_and_report_files)
 }
 END_TEST
 
+/* A report through a byte buffer (what MPI ranks send to rank 0): the
+ * cases appended from it equal the originals, record for record, notes and
+ * status included, and appending two buffers keeps their order. */
+START_TEST(test_pack_and_append)
+{
+  sb_validate_options opt;
+  sb_validate_options_init(&opt);
+  size_t i1, i2;
+  ck_assert_int_eq(sb_validate_case_index("V9/two-spheres-45", &i1),
+                   SB_SUCCESS);
+  ck_assert_int_eq(sb_validate_case_index("V11/bb-hit-ks", &i2),
+                   SB_SUCCESS);
+  sb_validate_report *a = sb_validate_report_alloc(),
+                     *b = sb_validate_report_alloc(),
+                     *all = sb_validate_report_alloc(),
+                     *g = sb_validate_report_alloc();
+  ck_assert_int_eq(sb_validate_run(i1, &opt, a), SB_SUCCESS);
+  ck_assert_int_eq(sb_validate_run(i2, &opt, b), SB_SUCCESS);
+  ck_assert_int_eq(sb_validate_run(i1, &opt, all), SB_SUCCESS);
+  ck_assert_int_eq(sb_validate_run(i2, &opt, all), SB_SUCCESS);
+  void *pa, *pb;
+  size_t la, lb;
+  ck_assert_int_eq(sb_validate_report_pack(a, &pa, &la), SB_SUCCESS);
+  ck_assert_int_eq(sb_validate_report_pack(b, &pb, &lb), SB_SUCCESS);
+  ck_assert_uint_gt(la, 8);
+  ck_assert_int_eq(sb_validate_report_append_packed(g, pa, la), SB_SUCCESS);
+  ck_assert_int_eq(sb_validate_report_append_packed(g, pb, lb), SB_SUCCESS);
+  ck_assert_uint_eq(sb_validate_report_ncases(g), 2);
+  ck_assert_uint_eq(sb_validate_report_nrecords(g),
+                    sb_validate_report_nrecords(all));
+  for (size_t k = 0; k < 2; k++) {
+    ck_assert_str_eq(sb_validate_report_case_name(g, k),
+                     sb_validate_report_case_name(all, k));
+    ck_assert_int_eq(sb_validate_report_case_status(g, k),
+                     sb_validate_report_case_status(all, k));
+    const char *n1 = sb_validate_report_case_notes(g, k),
+               *n2 = sb_validate_report_case_notes(all, k);
+    ck_assert_str_eq(n1 ? n1 : "", n2 ? n2 : "");
+    size_t f1, f2;
+    ck_assert_uint_eq(sb_validate_report_case_records(g, k, &f1),
+                      sb_validate_report_case_records(all, k, &f2));
+    ck_assert_uint_eq(f1, f2);
+  }
+  for (size_t i = 0; i < sb_validate_report_nrecords(g); i++) {
+    const sb_comparison *x = sb_validate_report_record(g, i),
+                        *y = sb_validate_report_record(all, i);
+    /* bit for bit (NaN fields included) */
+    const double *dx[] = {&x->estimate, &x->reference, &x->ci_low,
+                          &x->ci_high, &x->p_value, &x->level},
+                 *dy[] = {&y->estimate, &y->reference, &y->ci_low,
+                          &y->ci_high, &y->p_value, &y->level};
+    ck_assert_str_eq(x->name, y->name);
+    for (int j = 0; j < 6; j++)
+      ck_assert_msg(!memcmp(dx[j], dy[j], sizeof(double)),
+                    "record %s, field %d differs after the round trip",
+                    x->name, j);
+    ck_assert_int_eq(x->rule, y->rule);
+    ck_assert_int_eq(x->verdict, y->verdict);
+  }
+  /* malformed buffers: a truncated one, a wrong magic, a renamed case */
+  sb_validate_report *bad = sb_validate_report_alloc();
+  ck_assert_int_eq(sb_validate_report_append_packed(bad, pa, la - 1),
+                   SB_EFORMAT);
+  unsigned char *q = malloc(la);
+  memcpy(q, pa, la);
+  q[0] ^= 1;
+  ck_assert_int_eq(sb_validate_report_append_packed(bad, q, la), SB_EFORMAT);
+  memcpy(q, pa, la);
+  /* the case name follows the magic (8) and the count (8) and its length */
+  ck_assert(q[24] == 'V');
+  q[24] = 'W';
+  ck_assert_int_eq(sb_validate_report_append_packed(bad, q, la), SB_EFORMAT);
+  ck_assert_int_eq(sb_validate_report_pack(NULL, &pa, &la), SB_EINVAL);
+  ck_assert_int_eq(sb_validate_report_append_packed(NULL, pb, lb),
+                   SB_EINVAL);
+  free(q);
+  free(pa);
+  free(pb);
+  sb_validate_report_free(a);
+  sb_validate_report_free(b);
+  sb_validate_report_free(all);
+  sb_validate_report_free(g);
+  sb_validate_report_free(bad);
+}
+END_TEST
+
 START_TEST(test_bad_arguments)
 {
   sb_validate_options opt;
@@ -218,6 +304,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_registry_lists_cases);
   tcase_add_test(tc, test_run_case_records_and_determinism);
   tcase_add_test(tc, test_plots_and_report_files);
+  tcase_add_test(tc, test_pack_and_append);
   tcase_add_test(tc, test_bad_arguments);
   suite_add_tcase(s, tc);
   return s;

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include <gsl/gsl_randist.h>
+#include <smolbridge/rng.h>
 
 #include "common/internal.h"
 #include "engine_internal.h"
@@ -43,6 +44,12 @@ static int check_params(const sb_engine_params *p, const char *func)
                        p->L[k]);
   if (!(p->dt > 0.0) || !isfinite(p->dt))
     return sbi_error(SB_EINVAL, func, "dt = %g: must be finite > 0", p->dt);
+  if (p->streams != 0 && p->streams != 1)
+    return sbi_error(SB_EINVAL, func, "streams = %d: must be 0 or 1",
+                     p->streams);
+  if (p->threads < 0 || p->threads > 4096)
+    return sbi_error(SB_EINVAL, func, "threads = %d: must be in 0..4096",
+                     p->threads);
   if (p->capacity == 0 || p->capacity > ((size_t)1 << 40))
     return sbi_error(SB_EINVAL, func, "capacity = %zu: must be in 1..2^40",
                      p->capacity);
@@ -145,6 +152,12 @@ void sb_engine_free(sb_engine *e)
   free(e->series);
   free(e->pairs);
   free(e->ev);
+  for (int t = 0; t < e->ntb; t++)
+    free(e->tb[t].p);
+  free(e->tb);
+  free(e->wst);
+  free(e->dhit);
+  free(e->ds);
   free(e->cell_of);
   free(e->cell_start);
   free(e->cell_list);
@@ -671,6 +684,15 @@ int sb_engine_set_sample_every(sb_engine *e, size_t every)
   return SB_SUCCESS;
 }
 
+int sb_engine_set_threads(sb_engine *e, int threads)
+{
+  if (!e || threads < 0 || threads > 4096)
+    return sbi_error(SB_EINVAL, __func__, "threads = %d: must be in 0..4096 "
+                     "(or NULL engine)", threads);
+  e->par.threads = threads;
+  return SB_SUCCESS;
+}
+
 int sb_engine_set_dt(sb_engine *e, double dt)
 {
   if (!e || !(dt > 0.0) || !isfinite(dt))
@@ -701,6 +723,68 @@ int sb_engine_set_dt(sb_engine *e, double dt)
  * then runs without calls.  In 2-D the third component is stepped too
  * (keeping the draw order independent of dim) and reset. */
 #define SBI_TRANSPORT_BLOCK 256
+
+/* Transport on the counter-based streams (par.streams): particle i takes
+ * the first six normals of the stream (seed, id_i, step) through
+ * sb_langevin_step3_stream (the same update and draw order as above), so
+ * blocks of particles are independent and run on all threads with
+ * bit-identical results. */
+#define SBI_STREAM_BLOCK 1024
+static int transport_streams(sb_engine *e, const double *us)
+{
+  const size_t n = e->n, nb = (n + SBI_STREAM_BLOCK - 1) / SBI_STREAM_BLOCK;
+  if (e->steps > SB_STREAM_MAX_STEP || e->next_id > SB_STREAM_MAX_ID + 1)
+    return sbi_error(SB_EDOM, "sb_engine_step", "streams: step %llu or "
+                     "particle id %llu beyond the streams' range",
+                     (unsigned long long)e->steps,
+                     (unsigned long long)e->next_id);
+  double *restrict x = e->x, *restrict u = e->u;
+  double *restrict x0 = e->x0, *restrict u0 = e->u0, *restrict dp = e->disp;
+  const unsigned long long seed = e->par.seed;
+  const uint64_t step = e->steps;
+  /* gravity: each species' settling velocity adds to U_s, as in the
+   * sequential path; the sum goes to a scratch array (e->us keeps the
+   * fluid velocity for the detectors) */
+  double *ws = NULL;
+  const double *vset = e->has_grav ? e->vset : NULL;
+  if (vset) {
+    if (!e->wst && !(e->wst = malloc(3 * e->par.capacity * sizeof *e->wst)))
+      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+    ws = e->wst;
+  }
+  int bad = 0;
+  const int nt = sbi_engine_threads(&e->par);
+  (void)nt;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(nt) if (nb > 1) \
+    reduction(| : bad)
+#endif
+  for (size_t b = 0; b < nb; b++) {
+    const size_t i0 = b * SBI_STREAM_BLOCK;
+    const size_t m = n - i0 < SBI_STREAM_BLOCK ? n - i0 : SBI_STREAM_BLOCK;
+    memcpy(x0 + 3 * i0, x + 3 * i0, 3 * m * sizeof *x);
+    memcpy(u0 + 3 * i0, u + 3 * i0, 3 * m * sizeof *u);
+    const double *wb = us ? us + 3 * i0 : NULL;
+    if (ws) {
+      for (size_t i = i0; i < i0 + m; i++)
+        for (int k = 0; k < 3; k++)
+          ws[3 * i + k] = (us ? us[3 * i + k] : 0.0) +
+                          vset[3 * e->species[i] + k];
+      wb = ws + 3 * i0;
+    }
+    if (sb_langevin_step3_stream(m, e->coef, e->species + i0, wb,
+                                 x + 3 * i0,
+                                 u + 3 * i0, seed, step, e->id + i0, 0))
+      bad |= 1;
+    for (size_t q = 3 * i0; q < 3 * (i0 + m); q++)
+      dp[q] = x[q] - x0[q];
+  }
+  if (bad)
+    return sbi_error(SB_EDOM, "sb_engine_step",
+                     "streams: a particle id or the step is out of range");
+  return SB_SUCCESS;
+}
+
 static int transport(sb_engine *e)
 {
   const size_t n = e->n;
@@ -711,6 +795,15 @@ static int transport(sb_engine *e)
     if (st)
       return st;
     us = e->us;
+  }
+  if (e->par.streams) {
+    int st = transport_streams(e, us);
+    if (st)
+      return st;
+    if (e->par.dim == 2)
+      for (size_t i = 0; i < n; i++)
+        e->x[3 * i + 2] = e->u[3 * i + 2] = e->disp[3 * i + 2] = 0.0;
+    return SB_SUCCESS;
   }
   double z[6 * SBI_TRANSPORT_BLOCK];
   double *restrict x = e->x, *restrict u = e->u;

@@ -12,16 +12,22 @@
  */
 #include <stdio.h>
 #include <stdlib.h>
+#include <stddef.h>
 #include <string.h>
 
+
+#include <smolbridge/rng.h>
 
 #include "common/internal.h"
 #include "engine_internal.h"
 
 /* version 3 appends the block of forces, Lees-Edwards and walls
- * (engine_wall.c) after the generator state; version 2 files still
- * load (no such settings) */
-static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '3'};
+ * (engine_wall.c) after the generator state; version 4 puts the
+ * streams flag (sb_engine_params.streams) between the two.  The parameter block keeps
+ * the layout of version 2 (the fields before streams), so version 2 and
+ * 3 files still load (no such settings; streams off). */
+static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '4'};
+#define PAR_BYTES offsetof(sb_engine_params, streams)
 
 #define W(ptr, size, count)                                 \
   do {                                                      \
@@ -55,7 +61,7 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
     par.eta = e->par.eta;
     par.sample_every = e->par.sample_every;
     par.sort_every = e->par.sort_every;
-    W(&par, sizeof par, 1);
+    W(&par, PAR_BYTES, 1);  /* streams: below; threads: not state */
   }
   W(&n, sizeof n, 1);
   W(&e->next_id, sizeof e->next_id, 1);
@@ -90,6 +96,10 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
   /* the bytes gsl_rng_fwrite writes (fwrite of gsl_rng_state), written
    * directly: GSL's error handler would abort on an I/O error */
   W(gsl_rng_state(e->rng), gsl_rng_size(e->rng), 1);
+  {
+    int32_t streams = e->par.streams;
+    W(&streams, sizeof streams, 1);
+  }
   if (sbi_engine_physics_save(e, f))
     goto fail;
   if (fclose(f))
@@ -128,10 +138,12 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   size_t n, nspec;
   uint64_t next_id;
   R(magic, 1, 8);
-  const int v2 = !memcmp(magic, MAGIC, 7) && magic[7] == '2';
-  if (memcmp(magic, MAGIC, 8) && !v2)
+  const int ver = memcmp(magic, MAGIC, 7) ? 0 : magic[7] - '0';
+  if (ver < 2 || ver > 4)
     goto bad;
-  R(&par, sizeof par, 1);
+  const int v2 = ver == 2;
+  memset(&par, 0, sizeof par);
+  R(&par, PAR_BYTES, 1);
   R(&n, sizeof n, 1);
   R(&next_id, sizeof next_id, 1);
   R(&nspec, sizeof nspec, 1);
@@ -213,6 +225,8 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
       for (; *t; t++)
         if (!strcmp((*t)->name, name))
           found = *t;
+      if (!strcmp(sb_rng_philox->name, name))
+        found = sb_rng_philox;
       if (!found)
         goto bad;
       gsl_rng *r = gsl_rng_alloc(found);
@@ -227,6 +241,13 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   }
   /* counterpart of gsl_rng_fread, without GSL's aborting handler */
   R(gsl_rng_state(e->rng), gsl_rng_size(e->rng), 1);
+  if (ver >= 4) {
+    int32_t streams;
+    R(&streams, sizeof streams, 1);
+    if (streams != 0 && streams != 1)
+      goto bad;
+    e->par.streams = streams;
+  }
   if (!v2 && sbi_engine_physics_load(e, f))
     goto bad;
   free(spec);

@@ -172,6 +172,21 @@ static sbi_event heap_pop(sb_engine *e)
 
 /* ------------------------------------------------------- detection */
 
+/* The deterministic built-in detectors (no generator, no engine state
+ * written): what detect_push runs for them, callable from any thread. */
+static int detect_pure(const sb_engine *e, const sb_engine_pair *p,
+                       double *s)
+{
+  if (e->par.outcome == SB_OUTCOME_COUNT && overlapping(p))
+    return 0;  /* pass-through: an overlap is not a new contact */
+  return e->par.detect == SB_DETECT_BALLISTIC
+             ? sb_engine_detect_ballistic(p, s)
+             : sb_engine_detect_overlap(p, s);
+}
+
+static int push_hit(sb_engine *e, const sb_engine_pair *p, double t,
+                    int hit, double s, sbi_event *ev);
+
 /* Run the engine's detector on pair record p (interval [t, 1] of the
  * step, t = the record's start fraction); push an event if it hits. */
 static int detect_push(sb_engine *e, const sb_engine_pair *p, double t)
@@ -192,6 +207,14 @@ static int detect_push(sb_engine *e, const sb_engine_pair *p, double t)
     hit = sb_engine_detect_overlap(p, &s);
   else
     hit = e->detect_fn(e, p, e->rng, e->detect_ctx, &s);
+  return push_hit(e, p, t, hit, s, &ev);
+}
+
+/* The detector's answer (hit, s) on p: push the event (ev: the
+ * detector's contact states if ev->hasc). */
+static int push_hit(sb_engine *e, const sb_engine_pair *p, double t,
+                    int hit, double s, sbi_event *ev)
+{
   if (hit < 0)
     return sbi_error(SB_EINVAL, "sb_engine_step",
                      "detector failed on pair (%zu, %zu)", p->i, p->j);
@@ -200,13 +223,13 @@ static int detect_push(sb_engine *e, const sb_engine_pair *p, double t)
   if (!(s >= 0.0 && s <= 1.0))
     return sbi_error(SB_EINVAL, "sb_engine_step",
                      "detector returned s = %g outside [0, 1]", s);
-  if (!ev.hasc)
-    ev.p = *p;
-  ev.s_rec = s;
-  ev.s = t + s * (1.0 - t);
-  ev.vi = e->ver[p->i];
-  ev.vj = e->ver[p->j];
-  return heap_push(e, &ev);
+  if (!ev->hasc)
+    ev->p = *p;
+  ev->s_rec = s;
+  ev->s = t + s * (1.0 - t);
+  ev->vi = e->ver[p->i];
+  ev->vj = e->ver[p->j];
+  return heap_push(e, ev);
 }
 
 /* Position of particle k at step fraction s on its current path piece
@@ -369,13 +392,55 @@ int sbi_engine_detect_and_process(sb_engine *e)
   }
   if (e->par.detect == SB_DETECT_LANGEVIN || e->par.detect == SB_DETECT_CUSTOM)
     sbi_engine_langevin_begin(e);  /* a custom detector may call it */
-  for (size_t q = 0; q < e->npairs; q++) {
-    sb_engine_pair p;
-    sbi_engine_make_pair(e, e->pairs[2 * q], e->pairs[2 * q + 1], &p);
-    int st = detect_push(e, &p, 0.0);
-    if (st)
-      return st;
-  }
+  const size_t np = e->npairs;
+  const int nt = sbi_engine_threads(&e->par);
+  if ((e->par.detect == SB_DETECT_BALLISTIC ||
+       e->par.detect == SB_DETECT_OVERLAP) && nt > 1 && np >= 256) {
+    /* first pass of a deterministic detector on every thread; the events
+     * are then pushed in pair order, as the serial loop below does */
+    if (np > e->capdet) {
+      signed char *h = realloc(e->dhit, np);
+      if (h)
+        e->dhit = h;
+      double *sv = realloc(e->ds, np * sizeof *sv);
+      if (sv)
+        e->ds = sv;
+      if (!h || !sv)
+        return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+      e->capdet = np;
+    }
+    const sb_engine *ce = e;
+    signed char *dh = e->dhit;
+    double *ds = e->ds;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(nt)
+#endif
+    for (size_t q = 0; q < np; q++) {
+      sb_engine_pair p;
+      double s = 0.0;
+      sbi_engine_make_pair(ce, ce->pairs[2 * q], ce->pairs[2 * q + 1], &p);
+      dh[q] = (signed char)detect_pure(ce, &p, &s);
+      ds[q] = s;
+    }
+    for (size_t q = 0; q < np; q++) {
+      if (!dh[q])
+        continue;
+      sb_engine_pair p;
+      sbi_event ev;
+      ev.hasc = 0;
+      sbi_engine_make_pair(e, e->pairs[2 * q], e->pairs[2 * q + 1], &p);
+      int st = push_hit(e, &p, 0.0, dh[q], ds[q], &ev);
+      if (st)
+        return st;
+    }
+  } else
+    for (size_t q = 0; q < np; q++) {
+      sb_engine_pair p;
+      sbi_engine_make_pair(e, e->pairs[2 * q], e->pairs[2 * q + 1], &p);
+      int st = detect_push(e, &p, 0.0);
+      if (st)
+        return st;
+    }
   const int redetect = e->par.detect != SB_DETECT_CUSTOM || e->redetect;
   e->in_step = 1;
   /* a dense inelastic system can chatter (inelastic collapse): bound the

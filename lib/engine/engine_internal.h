@@ -11,6 +11,22 @@
 #include <smolbridge/langevin.h>
 
 /* Species pairs tracked for per-pair kernels. */
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+/* Threads of a parallel region of engine e (par.threads, or the OpenMP
+ * default); 1 without OpenMP. */
+static inline int sbi_engine_threads(const sb_engine_params *p)
+{
+#ifdef _OPENMP
+  return p->threads > 0 ? p->threads : omp_get_max_threads();
+#else
+  (void)p;
+  return 1;
+#endif
+}
+
 #define SBI_NPAIRSP (SB_ENGINE_PAIR_SPECIES * (SB_ENGINE_PAIR_SPECIES + 1) / 2)
 static inline size_t sbi_pair_index(size_t a, size_t b)
 {
@@ -41,6 +57,12 @@ typedef struct {
 
 /* The linked-cell grid of the last neighbour search (for re-detection
  * after a collision inside the step). */
+/* A growing list of candidate pairs (i < j, two entries each). */
+typedef struct {
+  size_t *p;
+  size_t n, cap;
+} sbi_pairbuf;
+
 typedef struct {
   int valid;
   int nc[3];
@@ -130,6 +152,13 @@ struct sb_engine {
   size_t npairs, cappairs;
   sbi_event *ev;
   size_t nev, capev;
+  sbi_pairbuf *tb;           /* ntb: per-thread candidate lists (cells) */
+  int ntb;
+  double *wst;               /* 3 cap: U_s + settling (streams transport,
+                                allocated on first use) */
+  signed char *dhit;         /* capdet: first detection pass (parallel) */
+  double *ds;                /* capdet: its contact fractions */
+  size_t capdet;
   size_t *cell_of, *cell_start, *cell_list;
   size_t capcells;
   sbi_grid grid;             /* the cells of this step's search */

@@ -104,6 +104,113 @@ static int brute(sb_engine *e, const double *x0, double reach)
   return SB_SUCCESS;
 }
 
+/* What cells() scans: the grid and the particles in cell order. */
+typedef struct {
+  int dim, own_wrap;
+  int nc[3];
+  size_t stride[3];
+  double edge[3], L[3];
+  double cut, reach;
+  const size_t *start, *list;
+  const double *xs;
+} cell_scan;
+
+/* Append (i, j), i < j, to b; 0, or -1 out of memory. */
+static int pb_push(sbi_pairbuf *b, size_t i, size_t j)
+{
+  if (b->n == b->cap) {
+    size_t nc = b->cap ? 2 * b->cap : 1024;
+    size_t *np = realloc(b->p, 2 * nc * sizeof *np);
+    if (!np)
+      return -1;
+    b->p = np;
+    b->cap = nc;
+  }
+  b->p[2 * b->n] = i < j ? i : j;
+  b->p[2 * b->n + 1] = i < j ? j : i;
+  b->n++;
+  return 0;
+}
+
+/* The candidate pairs whose first member (in cell order) lies in cell c,
+ * in the order of the serial scan; 0, or -1 out of memory. */
+static int scan_cell(const cell_scan *K, size_t c, sbi_pairbuf *out)
+{
+  const int dim = K->dim;
+  const double *L = K->L, *xs = K->xs;
+  const size_t *start = K->start, *list = K->list;
+  const double reach = K->reach, cut = K->cut;
+  int ci[3] = {0, 0, 0};
+  for (int k = 0; k < dim; k++)
+    ci[k] = (int)((c / K->stride[k]) % (size_t)K->nc[k]);
+  const size_t end = start[c + 1];
+  for (size_t a = start[c]; a < end; a++) {
+    const double *xa = &xs[4 * a];
+    const double ra = xa[3] + reach;
+    const size_t i = list[a];
+    for (size_t b = a + 1; b < end; b++) {
+      const double *xb = &xs[4 * b];
+      double d0 = xa[0] - xb[0], d1 = xa[1] - xb[1], d2 = xa[2] - xb[2];
+      if (K->own_wrap) {
+        d0 = sbi_minimg(d0, L[0]);
+        d1 = sbi_minimg(d1, L[1]);
+        d2 = dim == 3 ? sbi_minimg(d2, L[2]) : 0.0;
+      }
+      double lim = ra + xb[3];
+      if (d0 * d0 + d1 * d1 + d2 * d2 <= lim * lim && pb_push(out, i, list[b]))
+        return -1;
+    }
+    /* neighbouring cells within the cut-off of a */
+    int off[3][3], noff[3], any = 0;
+    for (int k = 0; k < 3; k++) {
+      noff[k] = 1;
+      off[k][0] = 0;
+      if (k >= dim || K->nc[k] == 1)
+        continue;
+      if (K->nc[k] == 2) {  /* the other cell is adjacent on both sides */
+        off[k][noff[k]++] = 1;
+        any = 1;
+        continue;
+      }
+      double lo = xa[k] - ci[k] * K->edge[k];
+      if (lo < cut)
+        off[k][noff[k]++] = -1;
+      if (K->edge[k] - lo < cut)
+        off[k][noff[k]++] = 1;
+      any |= noff[k] > 1;
+    }
+    if (!any)
+      continue;
+    for (int q2 = 0; q2 < noff[2]; q2++)
+      for (int q1 = 0; q1 < noff[1]; q1++)
+        for (int q0 = 0; q0 < noff[0]; q0++) {
+          if (!q0 && !q1 && !q2)
+            continue;  /* own cell: done above */
+          const int q[3] = {off[0][q0], off[1][q1], off[2][q2]};
+          size_t c2 = 0;
+          for (int k = 0; k < dim; k++) {
+            int v = ci[k] + q[k];
+            v = v < 0 ? v + K->nc[k] : (v >= K->nc[k] ? v - K->nc[k] : v);
+            c2 += (size_t)v * K->stride[k];
+          }
+          for (size_t b = start[c2]; b < start[c2 + 1]; b++) {
+            if (b <= a)
+              continue;  /* reported from its first member */
+            const double *xb = &xs[4 * b];
+            double d2 = 0.0;
+            for (int k = 0; k < dim; k++) {
+              double d = sbi_minimg(xa[k] - xb[k], L[k]);
+              d2 += d * d;
+            }
+            double lim = ra + xb[3];
+            if (d2 <= lim * lim && pb_push(out, i, list[b]))
+              return -1;
+          }
+        }
+  }
+  return 0;
+}
+
 /* Linked cells: counting sort of the particles by cell (positions and
  * reach radii r + |disp| are scattered into e->xs in cell order, so the
  * pair loop reads contiguous memory), then for every particle a:
@@ -189,87 +296,65 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach)
   int own_wrap = 0;  /* a direction with a single cell: minimum image */
   for (int k = 0; k < dim; k++)
     own_wrap |= nc[k] == 1;
-  int ci[3] = {0, 0, 0};
-  for (size_t c = 0; c < ncell; c++) {
-    /* cell coordinates of c (cells are visited in storage order) */
-    if (c) {
-      for (int k = 0; k < 3; k++) {
-        if (++ci[k] < nc[k])
-          break;
-        ci[k] = 0;
-      }
-    }
-    const size_t end = start[c + 1];
-    for (size_t a = start[c]; a < end; a++) {
-      const double *xa = &xs[4 * a];
-      const double ra = xa[3] + reach;
-      const size_t i = list[a];
-      for (size_t b = a + 1; b < end; b++) {
-        const double *xb = &xs[4 * b];
-        double d0 = xa[0] - xb[0], d1 = xa[1] - xb[1], d2 = xa[2] - xb[2];
-        if (own_wrap) {
-          d0 = sbi_minimg(d0, L[0]);
-          d1 = sbi_minimg(d1, L[1]);
-          d2 = dim == 3 ? sbi_minimg(d2, L[2]) : 0.0;
-        }
-        double lim = ra + xb[3];
-        if (d0 * d0 + d1 * d1 + d2 * d2 <= lim * lim) {
-          int st = sbi_engine_push_pair(e, i, list[b]);
-          if (st)
-            return st;
-        }
-      }
-      /* neighbouring cells within the cut-off of a */
-      int off[3][3], noff[3], any = 0;
-      for (int k = 0; k < 3; k++) {
-        noff[k] = 1;
-        off[k][0] = 0;
-        if (k >= dim || nc[k] == 1)
-          continue;
-        if (nc[k] == 2) {  /* the other cell is adjacent on both sides */
-          off[k][noff[k]++] = 1;
-          any = 1;
-          continue;
-        }
-        double lo = xa[k] - ci[k] * edge[k];
-        if (lo < cut)
-          off[k][noff[k]++] = -1;
-        if (edge[k] - lo < cut)
-          off[k][noff[k]++] = 1;
-        any |= noff[k] > 1;
-      }
-      if (!any)
-        continue;
-      for (int q2 = 0; q2 < noff[2]; q2++)
-        for (int q1 = 0; q1 < noff[1]; q1++)
-          for (int q0 = 0; q0 < noff[0]; q0++) {
-            if (!q0 && !q1 && !q2)
-              continue;  /* own cell: done above */
-            const int q[3] = {off[0][q0], off[1][q1], off[2][q2]};
-            size_t c2 = 0;
-            for (int k = 0; k < dim; k++) {
-              int v = ci[k] + q[k];
-              v = v < 0 ? v + nc[k] : (v >= nc[k] ? v - nc[k] : v);
-              c2 += (size_t)v * stride[k];
-            }
-            for (size_t b = start[c2]; b < start[c2 + 1]; b++) {
-              if (b <= a)
-                continue;  /* reported from its first member */
-              const double *xb = &xs[4 * b];
-              double d2 = 0.0;
-              for (int k = 0; k < dim; k++) {
-                double d = sbi_minimg(xa[k] - xb[k], L[k]);
-                d2 += d * d;
-              }
-              double lim = ra + xb[3];
-              if (d2 <= lim * lim) {
-                int st = sbi_engine_push_pair(e, i, list[b]);
-                if (st)
-                  return st;
-              }
-            }
-          }
-    }
+  const cell_scan K = {dim, own_wrap, {nc[0], nc[1], nc[2]},
+                       {stride[0], stride[1], stride[2]},
+                       {edge[0], edge[1], edge[2]}, {L[0], L[1], L[2]},
+                       cut, reach, start, list, xs};
+  const int nt = sbi_engine_threads(&e->par);
+  if (nt <= 1 || n < 4096 || ncell < (size_t)(4 * nt)) {
+    sbi_pairbuf pb = {e->pairs, e->npairs, e->cappairs};
+    int st = 0;
+    for (size_t c = 0; c < ncell && !st; c++)
+      st = scan_cell(&K, c, &pb);
+    e->pairs = pb.p;
+    e->npairs = pb.n;
+    e->cappairs = pb.cap;
+    return st ? sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+                          "(%zu candidate pairs)", pb.n) : SB_SUCCESS;
+  }
+  /* in parallel: thread t scans the t-th of nt contiguous ranges of cells
+   * into its own buffer; the buffers concatenated in thread order are the
+   * serial list, pair for pair */
+  if (nt > e->ntb) {
+    sbi_pairbuf *tb = realloc(e->tb, (size_t)nt * sizeof *tb);
+    if (!tb)
+      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+    for (int t = e->ntb; t < nt; t++)
+      tb[t] = (sbi_pairbuf){NULL, 0, 0};
+    e->tb = tb;
+    e->ntb = nt;
+  }
+  sbi_pairbuf *tb = e->tb;
+  int bad = 0;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static, 1) num_threads(nt) reduction(| : bad)
+#endif
+  for (int t = 0; t < nt; t++) {
+    const size_t c0 = ncell * (size_t)t / (size_t)nt,
+                 c1 = ncell * (size_t)(t + 1) / (size_t)nt;
+    tb[t].n = 0;
+    for (size_t c = c0; c < c1 && !bad; c++)
+      bad |= scan_cell(&K, c, &tb[t]);
+  }
+  size_t total = 0;
+  for (int t = 0; t < nt; t++)
+    total += tb[t].n;
+  if (!bad && total > e->cappairs) {
+    size_t *np = realloc(e->pairs, 2 * total * sizeof *np);
+    if (np) {
+      e->pairs = np;
+      e->cappairs = total;
+    } else
+      bad = 1;
+  }
+  if (bad)
+    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+                     "(candidate pairs)");
+  for (int t = 0; t < nt; t++) {
+    if (!tb[t].n)
+      continue;  /* (its list may be NULL) */
+    memcpy(e->pairs + 2 * e->npairs, tb[t].p, 2 * tb[t].n * sizeof *tb[t].p);
+    e->npairs += tb[t].n;
   }
   return SB_SUCCESS;
 }

@@ -16,6 +16,7 @@
 
 #include <gsl/gsl_randist.h>
 #include <smolbridge/langevin.h>
+#include <smolbridge/rng.h>
 
 #include "common/internal.h"
 
@@ -138,6 +139,73 @@ int sb_langevin_step3_coef(size_t n, const sb_langevin_coef *coef,
       step1(c, 0.0, r, &xi[0], &ui[0]);
       step1(c, 0.0, r, &xi[1], &ui[1]);
       step1(c, 0.0, r, &xi[2], &ui[2]);
+    }
+  }
+  return SB_SUCCESS;
+}
+
+/* ------------------------------------------- counter-based streams */
+
+/* one particle from its six normals z[0..5] = (z1, z2) per component */
+static inline void step3_z(const sb_langevin_coef *c, const double *w,
+                           const double *z, double *x, double *u)
+{
+  for (int k = 0; k < 3; k++) {
+    double wk = w ? w[k] : 0.0;
+    double v = u[k] - wk;
+    x[k] += wk * c->dt + v * c->gain + c->s_xu * z[2 * k] +
+            c->s_xc * z[2 * k + 1];
+    u[k] = wk + v * c->decay + c->s_u * z[2 * k];
+  }
+}
+
+int sb_langevin_step3_draw(const sb_langevin_coef *c, const double *us,
+                           double *x, double *u, sb_stream *s)
+{
+  if (!c || !x || !u || !s)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  double z[6];
+  sb_stream_gaussian_fill(s, 6, z);
+  step3_z(c, us, z, x, u);
+  return SB_SUCCESS;
+}
+
+/* particles per call of sb_stream_gaussian_keyed: the normals of a chunk
+ * (6 x 8 bytes each) stay in L1 */
+#define CHUNK 128
+
+int sb_langevin_step3_stream(size_t n, const sb_langevin_coef *coef,
+                             const size_t *cidx, const double *us,
+                             double *x, double *u, uint64_t seed,
+                             uint64_t step, const uint64_t *ids,
+                             uint64_t id0)
+{
+  if (n == 0)
+    return SB_SUCCESS;
+  if (!coef || !x || !u)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  /* every key first: either all particles move or none */
+  if (step > SB_STREAM_MAX_STEP)
+    return sbi_error(SB_EDOM, __func__, "step = %llu exceeds "
+                     "SB_STREAM_MAX_STEP", (unsigned long long)step);
+  if (ids) {
+    for (size_t i = 0; i < n; i++)
+      if (ids[i] > SB_STREAM_MAX_ID)
+        return sbi_error(SB_EDOM, __func__, "ids[%zu] = %llu exceeds "
+                         "SB_STREAM_MAX_ID", i,
+                         (unsigned long long)ids[i]);
+  } else if (id0 > SB_STREAM_MAX_ID || n - 1 > SB_STREAM_MAX_ID - id0)
+    return sbi_error(SB_EDOM, __func__, "ids %llu + [0, %zu) exceed "
+                     "SB_STREAM_MAX_ID", (unsigned long long)id0, n);
+  double z[6 * CHUNK];
+  for (size_t i0 = 0; i0 < n; i0 += CHUNK) {
+    size_t m = n - i0 < CHUNK ? n - i0 : CHUNK;
+    sb_stream_gaussian_keyed(seed, step, m, ids ? ids + i0 : NULL, id0 + i0,
+                             6, z);
+    for (size_t j = 0; j < m; j++) {
+      size_t i = i0 + j;
+      const sb_langevin_coef *c = &coef[cidx ? cidx[i] : i];
+      step3_z(c, us ? us + 3 * i : NULL, z + 6 * j, x + 3 * i, u + 3 * i);
     }
   }
   return SB_SUCCESS;

@@ -137,6 +137,25 @@ typedef struct {
                                   default).  Speeds up large systems
                                   (cache locality) but particle indices
                                   change: follow particles by id. */
+  int streams;               /**< 1: the Langevin transport draws particle
+                                  i's six normals at step k from the
+                                  counter-based stream (seed, id_i, k)
+                                  (smolbridge/rng.h, docs/rng.md) instead
+                                  of the engine's generator: a particle's
+                                  motion then depends on (seed, id, step)
+                                  alone, not on the particle order, and
+                                  transport runs on all threads.  0 (the
+                                  default): from the generator, in particle
+                                  order.  Everything else (placement,
+                                  outcomes, random detectors) uses the
+                                  engine's generator in a fixed order. */
+  int threads;               /**< threads of the parallel parts of a step
+                                  (OpenMP builds: transport with streams,
+                                  wrapping, the first detection pass of
+                                  the deterministic detectors); 0 (the
+                                  default): the OpenMP default
+                                  (OMP_NUM_THREADS).  The results are
+                                  bit-identical for any value. */
 } sb_engine_params;
 
 /** A species: shared physical properties of a class of particles. */
@@ -264,6 +283,9 @@ int sb_engine_set_fluid(sb_engine *e, sb_engine_fluid f, const double p[3]);
 int sb_engine_set_fluid_fn(sb_engine *e, sb_engine_fluid_fn fn, void *ctx);
 /** Time-series sampling period in steps (0: off). */
 int sb_engine_set_sample_every(sb_engine *e, size_t every);
+/** Threads of the parallel parts (see sb_engine_params.threads; 0: the
+ *  OpenMP default).  SB_EINVAL outside 0..4096. */
+int sb_engine_set_threads(sb_engine *e, int threads);
 /** Change the time step (s, > 0). */
 int sb_engine_set_dt(sb_engine *e, double dt);
 

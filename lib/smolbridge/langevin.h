@@ -43,8 +43,10 @@
 #define SMOLBRIDGE_LANGEVIN_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include <gsl/gsl_rng.h>
 #include <smolbridge/common.h>
+#include <smolbridge/rng.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -184,6 +186,31 @@ int sb_langevin_step3(size_t n, double dt, const double *tau,
 int sb_langevin_step3_coef(size_t n, const sb_langevin_coef *coef,
                            const size_t *cidx, const double *us, double *x,
                            double *u, const gsl_rng *r);
+
+/** Batched 3-D exact step drawing from counter-based streams
+ *  (smolbridge/rng.h): particle i takes the first six normals of the
+ *  stream (seed, id_i, step), id_i = ids[i] (or id0 + i if ids is NULL),
+ *  as (z1, z2) for x, then y, then z, with the update of sb_langevin_step.
+ *  The result for a particle depends only on (seed, id_i, step) and its
+ *  own state: any split of the particles over calls or threads, in any
+ *  order, gives bit-identical states (the engine's per-particle stream).
+ *  coef, cidx, us and the layout as sb_langevin_step3_coef.  SB_EDOM (and
+ *  nothing moves) if an id exceeds SB_STREAM_MAX_ID or step
+ *  SB_STREAM_MAX_STEP; SB_EINVAL for NULL coef, x or u with n > 0.
+ *  The normals are Philox4x32-10 ziggurat draws (sb_stream_gaussian);
+ *  cost in bench/bench_langevin.c. */
+int sb_langevin_step3_stream(size_t n, const sb_langevin_coef *coef,
+                             const size_t *cidx, const double *us,
+                             double *x, double *u, uint64_t seed,
+                             uint64_t step, const uint64_t *ids,
+                             uint64_t id0);
+
+/** One particle's 3-D exact step with the next six normals of *s:
+ *  x[0..2], u[0..2], us[0..2] (us may be NULL); the same numbers as
+ *  sb_langevin_step3_stream when *s was just set by sb_stream_init(s,
+ *  seed, id, step).  SB_EINVAL for a NULL pointer (other than us). */
+int sb_langevin_step3_draw(const sb_langevin_coef *c, const double *us,
+                           double *x, double *u, sb_stream *s);
 
 /* ======================================= conditioned ("bridge") sampling */
 

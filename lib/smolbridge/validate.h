@@ -131,6 +131,21 @@ size_t sb_validate_report_case_records(const sb_validate_report *rep,
 /** Failed records plus cases that did not complete. */
 size_t sb_validate_report_nfailed(const sb_validate_report *rep);
 
+/** The cases of rep (records, notes, status, seconds) as a malloc'd byte
+ *  buffer *buf of *len bytes (free() it), for sending to another process
+ *  of the same program (an MPI rank: `mpirun smolbridge validate`).  The
+ *  buffer is a memory image: read it back with the same build only.
+ *  SB_EINVAL (NULL argument), SB_ENOMEM. */
+int sb_validate_report_pack(const sb_validate_report *rep, void **buf,
+                            size_t *len);
+
+/** Append the cases of a buffer from sb_validate_report_pack to rep, as
+ *  if they had been run into it (in their order).  Case names are matched
+ *  to the registry.  SB_EFORMAT for a malformed buffer or an unknown case
+ *  (rep may then hold the cases read before the error), SB_ENOMEM. */
+int sb_validate_report_append_packed(sb_validate_report *rep,
+                                     const void *buf, size_t len);
+
 /** The comparison table, one line per record (and one per case that did
  *  not complete).  SB_EIO if writing fails. */
 int sb_validate_report_fprint(const sb_validate_report *rep, FILE *out);
