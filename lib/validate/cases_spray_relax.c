@@ -12,7 +12,7 @@
  *     particles between events, is a martingale (z-test with the realised
  *     quadratic variation); (iii) the Maxwellian closure's curve is shown
  *     with its measured deviation (a note, not a verdict: it is not exact).
- *  V13/spray-vs-engine  the V1 helium gas (seed 003 Table 3.1: n/V of 250
+ *  V13/spray-vs-engine  the V1 helium gas (Mohaupt 2011, Table 3.1: n/V of 250
  *     molecules in (10 nm)^3, T = 300 K): the MD engine and both
  *     stochastic methods start from the same anisotropic Maxwellian
  *     (T_x = 1.6 T, T_y = T_z = 0.7 T); the anisotropy
