@@ -1,6 +1,6 @@
 #!/bin/sh
 # Regenerate the calibration table of docs/validation.md: run the quick
-# validation suite with 40 seeds (about an hour on one core), keep the
+# validation suite with 40 seeds (about 70 minutes on one core), keep the
 # per-record lines as docs/calibration-quick.csv and rewrite the table
 # between the calibration markers.
 #
