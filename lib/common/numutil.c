@@ -6,6 +6,7 @@
 
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_randist.h>
+#include <gsl/gsl_roots.h>
 
 #include <smolbridge/common.h>
 #include "numutil.h"
@@ -527,4 +528,32 @@ int sbi_solve_increasing4(sbi_fdf4 g, void *ctx, double y0, double step,
     gy = g(y, k, ctx, d);
   }
   return solved(root, dy, best, last, SB_EMAXITER);
+}
+
+int sbi_reach_root(gsl_function *f, double hi0, double hi_max, double xtol,
+                   double *root)
+{
+  *root = NAN;
+  double hi = hi0, fh;
+  while ((fh = GSL_FN_EVAL(f, hi)) > 0.0 || isnan(fh)) {
+    hi *= 2.0;
+    if (isnan(fh) || hi > hi_max)
+      return SB_EMAXITER;
+  }
+  gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+  if (!s)
+    return SB_ENOMEM;
+  /* f(0) > 0 >= f(hi), both finite: GSL raises no error */
+  gsl_root_fsolver_set(s, f, 0.0, hi);
+  double up = hi;
+  for (int it = 0; it < 200; it++) {
+    gsl_root_fsolver_iterate(s);
+    double lo = gsl_root_fsolver_x_lower(s);
+    up = gsl_root_fsolver_x_upper(s);
+    if (gsl_root_test_interval(lo, up, 0.0, xtol) == GSL_SUCCESS)
+      break;
+  }
+  gsl_root_fsolver_free(s);
+  *root = up;
+  return SB_SUCCESS;
 }

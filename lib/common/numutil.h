@@ -18,6 +18,7 @@
 #define SB_NUMUTIL_H
 
 #include <math.h>
+#include <gsl/gsl_math.h>
 #include <gsl/gsl_rng.h>
 #include <smolbridge/common.h>
 #include "internal.h"
@@ -230,5 +231,17 @@ int sbi_solve_increasing(sbi_fdf g, void *ctx, double y0, double step,
 typedef double (*sbi_fdf4)(double y, double kprev, void *ctx, double d[4]);
 int sbi_solve_increasing4(sbi_fdf4 g, void *ctx, double y0, double step,
                           double *root, double *dy);
+
+/* ------------------------------------------------- reach (last zero) */
+
+/* Zero of f where f(0) > 0 turns <= 0 for good (a reach: the distance
+ * beyond which a tail bound stays below its tolerance).  Brackets [0, hi]
+ * by doubling hi from hi0 while f(hi) > 0, then runs GSL's Brent solver
+ * until the bracket is narrower than xtol (absolute).  *root receives the
+ * bracket's upper end, where f <= 0 (a conservative reach).  Returns
+ * SB_SUCCESS, SB_EMAXITER (f NaN, or still > 0 beyond hi_max; *root NaN)
+ * or SB_ENOMEM.  Records no error message: the caller names the cause. */
+int sbi_reach_root(gsl_function *f, double hi0, double hi_max, double xtol,
+                   double *root);
 
 #endif /* SB_NUMUTIL_H */

@@ -11,13 +11,13 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_math.h>
 #include <gsl/gsl_randist.h>
-#include <gsl/gsl_roots.h>
 #include <gsl/gsl_sf_erf.h>
 
 #include <smolbridge/bridge.h>
 #include <smolbridge/engine_bridge.h>
 
 #include "common/internal.h"
+#include "common/numutil.h"
 #include "engine_internal.h"
 
 struct sb_engine_bridge {
@@ -196,32 +196,16 @@ double sb_bridge_reach(double n, double a, double v, double tol)
   if (reach_fn(0.0, &q) <= 0.0)
     return 0.0;
   /* bracket in z = rho/sqrt(v): log E decreases at least like -z^2/2 */
-  double hi = 1.0;
-  while (reach_fn(hi, &q) > 0.0) {
-    hi *= 2.0;
-    if (hi > 1e8) {
-      sbi_error(SB_EMAXITER, __func__, "no bracket (n a^3 = %g)",
-                n * a * a * a);
-      return NAN;
-    }
-  }
   gsl_function F = {reach_fn, &q};
-  gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-  if (!s) {
-    sbi_error(SB_ENOMEM, __func__, "out of memory");
+  double z;
+  int st = sbi_reach_root(&F, 1.0, 1e8, 1e-12, &z);
+  if (st) {
+    if (st == SB_ENOMEM)
+      sbi_error(st, __func__, "out of memory");
+    else
+      sbi_error(st, __func__, "no bracket (n a^3 = %g)", n * a * a * a);
     return NAN;
   }
-  /* f(0) > 0 > f(hi), finite: GSL raises no error */
-  gsl_root_fsolver_set(s, &F, 0.0, hi);
-  double z = hi;
-  for (int it = 0; it < 200; it++) {
-    gsl_root_fsolver_iterate(s);
-    double lo = gsl_root_fsolver_x_lower(s), up = gsl_root_fsolver_x_upper(s);
-    z = up;  /* the upper end satisfies E <= tol */
-    if (gsl_root_test_interval(lo, up, 0.0, 1e-12) == GSL_SUCCESS)
-      break;
-  }
-  gsl_root_fsolver_free(s);
   return z * sqrt(v);
 }
 

@@ -21,10 +21,10 @@
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
-#include <gsl/gsl_roots.h>
 #include <gsl/gsl_sf_exp.h>
 
 #include "common/internal.h"
+#include "common/numutil.h"
 #include "langevin_hit_internal.h"
 
 #define NZ 64
@@ -222,29 +222,11 @@ double sb_langevin_reach(int dim, double n, double R, double tau_i,
   }
   if (!(f0 > 0.0))
     return 0.0;
-  double hi = smax, fh;
-  while ((fh = reach_fn(hi, &Z)) > 0.0 || isnan(fh)) {
-    hi *= 2.0;
-    if (isnan(fh) || hi > 1e6 * (smax + R)) {
-      sbi_error(SB_EMAXITER, __func__, "no bracket");
-      return NAN;
-    }
-  }
   gsl_function F = {reach_fn, &Z};
-  gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-  if (!s) {
-    sbi_error(SB_ENOMEM, __func__, "out of memory");
-    return NAN;
-  }
-  gsl_root_fsolver_set(s, &F, 0.0, hi);
-  double rho = hi;
-  for (int it = 0; it < 200; it++) {
-    gsl_root_fsolver_iterate(s);
-    double lo = gsl_root_fsolver_x_lower(s), up = gsl_root_fsolver_x_upper(s);
-    rho = up;
-    if (gsl_root_test_interval(lo, up, 0.0, 1e-6) == GSL_SUCCESS)
-      break;
-  }
-  gsl_root_fsolver_free(s);
+  double rho;
+  st = sbi_reach_root(&F, smax, 1e6 * (smax + R), 1e-6, &rho);
+  if (st)
+    sbi_error(st, __func__, st == SB_ENOMEM ? "out of memory"
+                                            : "no bracket");
   return rho;
 }
