@@ -523,6 +523,28 @@ size_t sb_engine_check_overlaps(const sb_engine *e, double rel_tol);
  *  family, x, y, z [m], ux, uy, uz [m/s]).  SB_EIO on failure. */
 int sb_engine_snapshot_csv(const sb_engine *e, const char *path);
 
+/** Particle-to-grid assignment (lib/engine/engine_grid.c). */
+typedef enum {
+  SB_GRID_NGP = 0,  /**< nearest grid point: the cell holding the centre */
+  SB_GRID_CIC = 1   /**< cloud in cell: linear weights over the 2^dim
+                         nearest cell centres (Hockney & Eastwood 1988) */
+} sb_engine_grid_scheme;
+
+/** Mass and momentum densities of the particles now, on a regular grid of
+ *  n[0] x n[1] (x n[2] in 3-D; n[2] is ignored in 2-D) cells covering the
+ *  box, cell (i, j, k) = [i h_x, (i + 1) h_x) x ..., h = L/n, stored at
+ *  index i + n[0] (j + n[1] k).  rho receives the mass per cell volume
+ *  (kg/m^3; 2-D: per cell area, kg/m^2), mom (may be NULL) three values
+ *  per cell, the momentum density (rho u).  family >= 0: only that
+ *  family's particles; -1: all.  Along periodic directions CIC weights
+ *  wrap round; along walled or open ones the share beyond the box is
+ *  folded into the edge cell, so the totals (sum rho h^dim) equal the
+ *  particles' mass and momentum to rounding with either scheme.  O(N +
+ *  cells).  SB_EINVAL for NULL, n[k] = 0 or > 2^24, or a bad scheme. */
+int sb_engine_grid_fields(const sb_engine *e, const size_t n[3],
+                          sb_engine_grid_scheme scheme, int family,
+                          double *rho, double *mom);
+
 /* ======================================================= accessors */
 
 size_t sb_engine_count(const sb_engine *e);

@@ -22,6 +22,7 @@
 #include <stdio.h>
 #include <gsl/gsl_rng.h>
 #include <smolbridge/stats.h>
+#include <smolbridge/pgd.h>
 #include <smolbridge/validate.h>
 
 /* Growing list of comparison records, plus free-text notes per case. */
@@ -174,6 +175,15 @@ extern const sbv_case sbv_cases_pgd_jets[];
 extern const size_t sbv_ncases_pgd_jets;
 extern const sbv_case sbv_cases_pgd_dense[];
 extern const size_t sbv_ncases_pgd_dense;
+extern const sbv_case sbv_cases_pgd_engine[];
+extern const size_t sbv_ncases_pgd_engine;
+/* The crossing jets of the exercise "Couplage Euler-Lagrange" (2022) on an
+ * n x n grid of the unit square, n a multiple of 45 (cases_pgd_jets.c):
+ * inflow rho = 1 on the central ninth of the west side with velocity
+ * (1, 0) and of the south side with (0, 1), outflow elsewhere, gas
+ * velocity (ugx, ugy), relaxation time tau. */
+void sbv_pgd_jets_params(sb_pgd_params *p, size_t n, double tau,
+                         sb_pgd_scheme sc, double ugx, double ugy);
 extern const sbv_case sbv_cases_spray[];
 extern const size_t sbv_ncases_spray;
 extern const sbv_case sbv_cases_v12[];

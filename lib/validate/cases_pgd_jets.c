@@ -29,8 +29,8 @@ static int add_atleast(sbv_report *rep, const char *name, double est,
  * of 45): inflow rho = 1 on the central 1/9 of the west side with
  * velocity (1, 0) and of the south side with (0, 1) (5 cells at n = 45),
  * outflow elsewhere, gas velocity (ugx, ugy), relaxation time tau. */
-static void jets(sb_pgd_params *p, size_t n, double tau, sb_pgd_scheme sc,
-                 double ugx, double ugy)
+void sbv_pgd_jets_params(sb_pgd_params *p, size_t n, double tau,
+                         sb_pgd_scheme sc, double ugx, double ugy)
 {
   sb_pgd_params_default(p, 2);
   p->nx = p->ny = n;
@@ -68,7 +68,7 @@ static int run_jets(const jet_cfg *c, size_t n, sb_pgd_scheme sc,
                     double *series, size_t *nser, double *map, jet_out *o)
 {
   sb_pgd_params p;
-  jets(&p, n, c->tau, sc, c->ug[0], c->ug[1]);
+  sbv_pgd_jets_params(&p, n, c->tau, sc, c->ug[0], c->ug[1]);
   sb_pgd *g = sb_pgd_alloc(&p);
   sb_pgd_lag *l = sb_pgd_lag_alloc(&p);
   size_t nn = n * n;
@@ -300,7 +300,7 @@ static int case_dd(const sbv_ctx *ctx, sbv_report *rep)
   for (int sc = 0; sc < 2 && !st; sc++) {
     const char *sn = sc ? "muscl" : "upwind";
     sb_pgd_params p;
-    jets(&p, n, 200, (sb_pgd_scheme)sc, 0, 0);
+    sbv_pgd_jets_params(&p, n, 200, (sb_pgd_scheme)sc, 0, 0);
     /* all-Euler decomposition vs the single-domain solver */
     sb_pgd *g = sb_pgd_alloc(&p);
     sb_pgd_dd *d = sb_pgd_dd_alloc(&p, 3, 3, "EEEEEEEEE");
@@ -386,7 +386,7 @@ static int case_dd(const sbv_ctx *ctx, sbv_report *rep)
   /* mass and momentum budget of a coupled run without drag */
   if (!st) {
     sb_pgd_params p;
-    jets(&p, n, INFINITY, SB_PGD_MUSCL, 0, 0);
+    sbv_pgd_jets_params(&p, n, INFINITY, SB_PGD_MUSCL, 0, 0);
     sb_pgd_dd *d = sb_pgd_dd_alloc(&p, 3, 3, "LELELELEL");
     if (!d || (st = sb_pgd_dd_advance(d, T, NULL))) {
       st = st ? st : sb_last_status();

@@ -26,6 +26,7 @@ static const struct {
     {sbv_cases_pgd, &sbv_ncases_pgd},
     {sbv_cases_pgd_jets, &sbv_ncases_pgd_jets},
     {sbv_cases_pgd_dense, &sbv_ncases_pgd_dense},
+    {sbv_cases_pgd_engine, &sbv_ncases_pgd_engine},
     {sbv_cases_spray, &sbv_ncases_spray},
     {sbv_cases_v16, &sbv_ncases_v16},
     {sbv_cases_v16c, &sbv_ncases_v16c},
