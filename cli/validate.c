@@ -425,10 +425,11 @@ static int calibrate(sb_validate_options *vo, const size_t *sel,
   const int root = sbc_par_rank() == 0;
   if (root)
     fprintf(stderr, "smolbridge validate --seeds %lu (%s, seeds %lu..%lu): "
-                    "%zu cases -> %s/%s\n", nseeds,
+                    "%zu case%s -> %s/%s\n", nseeds,
             vo->full ? "full" : "quick", base, base + nseeds - 1, nsel,
-            outdir, sbc_par_size() > 1 ? " (runs shared by the ranks; "
-                                         "progress of rank 0)" : "");
+            nsel == 1 ? "" : "s", outdir,
+            sbc_par_size() > 1 ? " (runs shared by the ranks; progress of "
+                                 "rank 0)" : "");
   double t_all = now_seconds();
   tasks T = {vo, sel, nsel, nseeds};
   sb_validate_report **reps;
@@ -621,8 +622,9 @@ static int validate_selection(sb_validate_options *vo_, const size_t *sel,
 
   const char *mode = vo.full ? "full" : "quick";
   if (root)
-    fprintf(stderr, "smolbridge validate (%s, seed %lu): %zu cases -> %s/%s\n",
-            mode, vo.seed, nsel, vo.outdir,
+    fprintf(stderr,
+            "smolbridge validate (%s, seed %lu): %zu case%s -> %s/%s\n", mode,
+            vo.seed, nsel, nsel == 1 ? "" : "s", vo.outdir,
             sbc_par_size() > 1 ? " (cases shared by the ranks; progress of "
                                  "rank 0)" : "");
   double t_all = now_seconds();
