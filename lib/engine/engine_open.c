@@ -7,10 +7,13 @@
  * the box as a spatial Poisson process of density R/(u_n A) when arrivals
  * are a Poisson process in time and uniform over the inlet.  A step of
  * length dt receives Poisson(R dt) particles; one that entered a fraction
- * s of the step before its end (s uniform) is placed at its entry point
- * moved by u s dt.  The engine's other particles are at the step's end
- * then, so the stream joins the box's state exactly in law; only the
- * arrivals' own flight over s dt is straight and without collisions.
+ * s of the step before its end (s uniform) is placed where its flight
+ * from the entry point took it over s dt (straight in free flight; with
+ * drag the mean path of the exact Langevin step, see flight()).  The
+ * engine's other particles are at the step's end then, so the stream
+ * joins the box's state exactly in law for non-Brownian particles; the
+ * arrivals' own flight over s dt has no collisions and, for Brownian
+ * ones, no noise.
  *
  * Outflow.  engine_wall.c detects the particles whose centre reaches an
  * open face during the step (the absorbing walls' detector with the plane
@@ -147,6 +150,37 @@ static int overlaps(const sb_engine *e, const double x[3], double r)
   return 0;
 }
 
+/* An arrival's flight over the h = s dt since its entry from x (on the face)
+ * with the inflow velocity: straight for free flight (tau = inf), else the
+ * mean path of the exact Langevin step with linear drag towards the fluid
+ * velocity U at the entry point (plus the settling velocity),
+ *   u = U + (u0 - U) e^{-h/tau},  x += U h + (u0 - U) tau (1 - e^{-h/tau}),
+ * exact for a non-Brownian particle under Stokes drag in a uniform field;
+ * the noise over h is left out (it is O(sqrt(h)) against a step's). */
+static int flight(sb_engine *e, const sb_engine_inflow *in, double tau,
+                  double s, double dt, double x[3], double u[3])
+{
+  const int dim = e->par.dim;
+  if (!isfinite(tau)) {
+    for (int d = 0; d < dim; d++)
+      x[d] += in->u[d] * s * dt;
+    return SB_SUCCESS;
+  }
+  const double h = s * dt;
+  double U[3];
+  int st = sbi_engine_fluid_eval(e, 1, x, U);
+  if (st)
+    return st;
+  const double *vs = sbi_engine_settling(e, in->species);
+  const double decay = exp(-h / tau), grow = -tau * expm1(-h / tau);
+  for (int d = 0; d < dim; d++) {
+    const double Ud = U[d] + (vs ? vs[d] : 0.0);
+    x[d] += Ud * h + (in->u[d] - Ud) * grow;
+    u[d] = Ud + (in->u[d] - Ud) * decay;
+  }
+  return SB_SUCCESS;
+}
+
 int sbi_engine_inject(sb_engine *e)
 {
   const int dim = e->par.dim;
@@ -157,22 +191,26 @@ int sbi_engine_inject(sb_engine *e)
     const double r = e->spec[in->species].radius;
     unsigned int m = in->rate > 0.0 ? gsl_ran_poisson(e->rng, in->rate * dt)
                                     : 0;
+    const double tau = e->spec[in->species].tau;
     for (unsigned int a = 0; a < m; a++) {
-      double x[3] = {0, 0, 0};
+      double x[3] = {0, 0, 0}, u[3] = {in->u[0], in->u[1], in->u[2]};
       int placed = 0;
       for (int tries = 0; tries < 100 && !placed; tries++) {
         const double s = gsl_rng_uniform(e->rng);  /* since entry, / dt */
         for (int d = 0, c = 0; d < dim; d++) {
           if (d == k) {
-            x[d] = (hi ? e->par.L[d] : 0.0) + in->u[d] * s * dt;
+            x[d] = hi ? e->par.L[d] : 0.0;
             continue;
           }
-          x[d] = in->lo[c] + (in->hi[c] - in->lo[c]) * gsl_rng_uniform(e->rng) +
-                 in->u[d] * s * dt;
+          x[d] = in->lo[c] + (in->hi[c] - in->lo[c]) * gsl_rng_uniform(e->rng);
           c++;
-          if (e->wall[2 * d] == SB_WALL_PERIODIC)
-            x[d] = sbi_wrap(x[d], e->par.L[d]);
         }
+        int st = flight(e, in, tau, s, dt, x, u);
+        if (st)
+          return st;
+        for (int d = 0; d < dim; d++)
+          if (d != k && e->wall[2 * d] == SB_WALL_PERIODIC)
+            x[d] = sbi_wrap(x[d], e->par.L[d]);
         placed = 1;
         /* beyond a wall across the stream: not placed */
         for (int d = 0; d < dim; d++)
@@ -188,7 +226,7 @@ int sbi_engine_inject(sb_engine *e)
         e->nskip[q]++;
         continue;
       }
-      int st = sb_engine_add_particle(e, in->species, in->family, x, in->u);
+      int st = sb_engine_add_particle(e, in->species, in->family, x, u);
       if (st)
         return st;
       e->ninj[q]++;
