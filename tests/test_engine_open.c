@@ -220,6 +220,52 @@ START_TEST(test_open_checkpoint)
 }
 END_TEST
 
+/* With drag, an arrival's partial step follows the exact path: after
+ * h since entry, u = u0 e^{-h/tau} and x = u0 tau (1 - e^{-h/tau}) (fluid
+ * at rest), so x = tau (u0 - u) for every arrival of the first step, with
+ * u in [u0 e^{-dt/tau}, u0].  (A straight flight would keep u = u0.) */
+START_TEST(test_inflow_drag_flight)
+{
+  const double L = 1e-3, dt = 1e-4, tau = 2e-4, u0 = 1.0, m = 1e-15;
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.dim = 2;
+  p.L[0] = p.L[1] = L;
+  p.dt = dt;
+  p.capacity = 256;
+  p.seed = 11;
+  p.outcome = SB_OUTCOME_COUNT;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  sb_engine_species s = {1e-9, m, tau, 0.0, 0.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_set_walls(e, 0, SB_WALL_OPEN, SB_WALL_OPEN),
+                   SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_set_wall_mode(e, SB_WALLDET_BALLISTIC,
+                                           SB_DEPOSIT_REMOVE),
+                   SB_SUCCESS);
+  sb_engine_inflow in;
+  memset(&in, 0, sizeof in);
+  in.face = 0;
+  in.rate = 1e6;  /* ~100 arrivals per step */
+  in.lo[0] = 0.25 * L;
+  in.hi[0] = 0.75 * L;
+  in.u[0] = u0;
+  ck_assert_int_eq(sb_engine_add_inflow(e, &in, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  const size_t n = sb_engine_count(e);
+  ck_assert_uint_gt(n, 50);
+  const double *x = sb_engine_positions(e), *u = sb_engine_velocities(e);
+  for (size_t i = 0; i < n; i++) {
+    ck_assert_double_le(u[3 * i], u0);
+    ck_assert_double_ge(u[3 * i], u0 * exp(-dt / tau) * (1 - 1e-12));
+    ck_assert_double_eq_tol(x[3 * i], tau * (u0 - u[3 * i]), 1e-12 * L);
+    ck_assert_double_eq(u[3 * i + 1], 0.0);
+  }
+  sb_engine_free(e);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("engine_open");
@@ -230,6 +276,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_inflow_uniform);
   tcase_add_test(tc, test_inflow_errors);
   tcase_add_test(tc, test_open_checkpoint);
+  tcase_add_test(tc, test_inflow_drag_flight);
   suite_add_tcase(s, tc);
   return s;
 }
