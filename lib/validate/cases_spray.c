@@ -46,6 +46,29 @@ double sbv_spray_mass(double r, double rho)
   return rho * (4.0 / 3.0) * PI * r * r * r;
 }
 
+sb_spray *sbv_spray_new(const sbv_spray_setup *u)
+{
+  sb_spray_params p;
+  sb_spray_params_default(&p);
+  p.method = u->method;
+  if (u->B0 > 0) {
+    p.cross = SB_SPRAY_MAXWELL;
+    p.B0 = u->B0;
+  }
+  if (u->volume > 0)
+    p.volume = u->volume;
+  if (u->rho_l > 0)
+    p.rho_l = u->rho_l;
+  p.theta_cr = u->theta_cr;
+  if (u->capacity > 0)
+    p.capacity = u->capacity;
+  if (u->settling) {
+    p.merge_velocity = sb_spray_stokes_settling;
+    p.merge_ctx = (void *)u->settling;
+  }
+  return sb_spray_alloc(&p);
+}
+
 int sbv_spray_add_replicas(sbv_report *rep, const char *name,
                            const double *x, size_t R, double ref)
 {
@@ -146,14 +169,9 @@ static int case_bkw(const sbv_ctx *ctx, sbv_report *rep)
                                 qp[q]);
     gsl_rng *rng = sbv_rng_alloc(ctx, 100 + (unsigned long)meth);
     for (size_t rr = 0; rr < R && !st; rr++) {
-      sb_spray_params p;
-      sb_spray_params_default(&p);
-      p.method = (sb_spray_method)meth;
-      p.cross = SB_SPRAY_MAXWELL;
-      p.B0 = 1.0;
-      p.volume = (double)N;
-      p.capacity = N;
-      sb_spray *s = sb_spray_alloc(&p);
+      sb_spray *s = sbv_spray_new(&(sbv_spray_setup){
+          .method = (sb_spray_method)meth, .B0 = 1.0, .volume = (double)N,
+          .capacity = N});
       if (!s || !rng) {
         sb_spray_free(s);
         st = SB_ENOMEM;
@@ -298,13 +316,9 @@ static int case_frequency(const sbv_ctx *ctx, sbv_report *rep)
   for (int meth = 0; meth < 2 && !st; meth++) {
     gsl_rng *rng = sbv_rng_alloc(ctx, 200 + (unsigned long)meth);
     for (size_t rr = 0; rr < R && !st; rr++) {
-      sb_spray_params p;
-      sb_spray_params_default(&p);
-      p.method = (sb_spray_method)meth;
-      p.volume = V;
-      p.rho_l = rho;
-      p.capacity = N;
-      sb_spray *s = sb_spray_alloc(&p);
+      sb_spray *s = sbv_spray_new(&(sbv_spray_setup){
+          .method = (sb_spray_method)meth, .volume = V, .rho_l = rho,
+          .capacity = N});
       if (!s || !rng) {
         sb_spray_free(s);
         st = SB_ENOMEM;
@@ -397,13 +411,9 @@ static int case_conservation(const sbv_ctx *ctx, sbv_report *rep)
   double zE = 0, zP[3] = {0, 0, 0}, relE = 0, relP = 0, relsd = 0;
   for (int meth = 0; meth < 2 && !st; meth++) {
     gsl_rng *rng = sbv_rng_alloc(ctx, 300 + (unsigned long)meth);
-    sb_spray_params p;
-    sb_spray_params_default(&p);
-    p.method = (sb_spray_method)meth;
-    p.volume = V;
-    p.rho_l = rho;
-    p.capacity = N;
-    sb_spray *s = sb_spray_alloc(&p);
+    sb_spray *s = sbv_spray_new(&(sbv_spray_setup){
+        .method = (sb_spray_method)meth, .volume = V, .rho_l = rho,
+        .capacity = N});
     if (!s || !rng) {
       sb_spray_free(s);
       gsl_rng_free(rng);

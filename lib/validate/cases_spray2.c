@@ -64,15 +64,11 @@ int sbv_spray_case_coal_const(const sbv_ctx *ctx, sbv_report *rep)
   for (int meth = 0; meth < 3 && !st; meth++) {
     gsl_rng *rng = sbv_rng_alloc(ctx, 600 + (unsigned long)meth);
     for (size_t rr = 0; rr < R && !st; rr++) {
-      sb_spray_params p;
-      sb_spray_params_default(&p);
-      p.method = meth == 1 ? SB_SPRAY_NANBU : SB_SPRAY_BIRD;
-      p.cross = SB_SPRAY_MAXWELL;
-      p.B0 = meth == 2 ? 4.0 : 1.0;
-      p.volume = (double)N0; /* N0 = 1 m^-3, tau = B0 sin^2 N0 t = t */
-      p.theta_cr = meth == 2 ? PI / 6.0 : 0.5 * PI;
-      p.capacity = N0;
-      sb_spray *s = sb_spray_alloc(&p);
+      const double V = (double)N0; /* n0 = 1 m^-3, tau = B0 sin^2 n0 t = t */
+      sb_spray *s = sbv_spray_new(&(sbv_spray_setup){
+          .method = meth == 1 ? SB_SPRAY_NANBU : SB_SPRAY_BIRD,
+          .B0 = meth == 2 ? 4.0 : 1.0, .volume = V,
+          .theta_cr = meth == 2 ? PI / 6.0 : 0.5 * PI, .capacity = N0});
       if (!s || !rng) {
         sb_spray_free(s);
         st = SB_ENOMEM;
@@ -83,15 +79,15 @@ int sbv_spray_case_coal_const(const sbv_ctx *ctx, sbv_report *rep)
       for (int it = 0; it < 2 && !st; it++) {
         st = sb_spray_collide(s, taus[it] - t, rng);
         t = taus[it];
-        double nk[12], M0 = size_counts(s, r1, nk, 12) / p.volume;
+        double nk[12], M0 = size_counts(s, r1, nk, 12) / V;
         double *row = x + ((meth * 2 + it) * (CC_K + 1)) * R;
         row[rr] = M0 * (1.0 + 0.5 * t);
         for (int q = 0; q < CC_K; q++)
-          row[(1 + q) * R + rr] = nk[ks[q] - 1] / p.volume /
+          row[(1 + q) * R + rr] = nk[ks[q] - 1] / V /
                                   sb_pbe_const_mono_n((double)ks[q], t);
         if (it == 1 && meth < 2)
           for (int k = 0; k < 12; k++)
-            plot[k][1 + meth] += nk[k] / p.volume / (double)R;
+            plot[k][1 + meth] += nk[k] / V / (double)R;
       }
       sb_spray_free(s);
     }
@@ -208,16 +204,9 @@ int sbv_spray_case_coal_gravity(const sbv_ctx *ctx, sbv_report *rep)
   for (int meth = 0; meth < 2 && !st; meth++) {
     gsl_rng *rng = sbv_rng_alloc(ctx, 700 + (unsigned long)meth);
     for (size_t rr = 0; rr < R && !st; rr++) {
-      sb_spray_params p;
-      sb_spray_params_default(&p);
-      p.method = (sb_spray_method)meth;
-      p.volume = V;
-      p.rho_l = rho;
-      p.theta_cr = 0.5 * PI;
-      p.merge_velocity = sb_spray_stokes_settling;
-      p.merge_ctx = &set;
-      p.capacity = N0;
-      sb_spray *s = sb_spray_alloc(&p);
+      sb_spray *s = sbv_spray_new(&(sbv_spray_setup){
+          .method = (sb_spray_method)meth, .volume = V, .rho_l = rho,
+          .theta_cr = 0.5 * PI, .capacity = N0, .settling = &set});
       if (!s || !rng) {
         sb_spray_free(s);
         st = SB_ENOMEM;

@@ -171,12 +171,8 @@ int sbv_spray_case_tab(const sbv_ctx *ctx, sbv_report *rep)
   for (int meth = 0; meth < 2 && !st; meth++) {
     gsl_rng *rng = sbv_rng_alloc(ctx, 800 + (unsigned long)meth);
     for (size_t rr = 0; rr < R && !st; rr++) {
-      sb_spray_params p;
-      sb_spray_params_default(&p);
-      p.method = (sb_spray_method)meth;
-      p.rho_l = rho_l;
-      p.capacity = M;
-      sb_spray *s = sb_spray_alloc(&p);
+      sb_spray *s = sbv_spray_new(&(sbv_spray_setup){
+          .method = (sb_spray_method)meth, .rho_l = rho_l, .capacity = M});
       if (!s || !rng) {
         sb_spray_free(s);
         st = SB_ENOMEM;
@@ -334,11 +330,8 @@ int sbv_spray_case_reitz(const sbv_ctx *ctx, sbv_report *rep)
    * model's quadrature solution, dt = tau0/20, /200, /2000 */
   double err[3];
   for (int q = 0; q < 3 && !st; q++) {
-    sb_spray_params p;
-    sb_spray_params_default(&p);
-    p.method = SB_SPRAY_NANBU;
-    p.rho_l = rho_l;
-    sb_spray *s = sb_spray_alloc(&p);
+    sb_spray *s = sbv_spray_new(
+        &(sbv_spray_setup){.method = SB_SPRAY_NANBU, .rho_l = rho_l});
     if (!s)
       return SB_ENOMEM;
     const double zero[3] = {0, 0, 0};
@@ -367,12 +360,9 @@ int sbv_spray_case_reitz(const sbv_ctx *ctx, sbv_report *rep)
   memset(cdfp, 0, sizeof cdfp);
   for (int meth = 0; meth < 2 && !st; meth++) {
     gsl_rng *rng = sbv_rng_alloc(ctx, 900 + (unsigned long)meth);
-    sb_spray_params p;
-    sb_spray_params_default(&p);
-    p.method = (sb_spray_method)meth;
-    p.rho_l = rho_l;
-    p.capacity = meth == 0 ? 64 * Np : 4 * Np;
-    sb_spray *s = sb_spray_alloc(&p);
+    sb_spray *s = sbv_spray_new(&(sbv_spray_setup){
+        .method = (sb_spray_method)meth, .rho_l = rho_l,
+        .capacity = meth == 0 ? 64 * Np : 4 * Np});
     if (!s || !rng) {
       sb_spray_free(s);
       gsl_rng_free(rng);

@@ -159,15 +159,9 @@ int sbv_spray_case_two_temp(const sbv_ctx *ctx, sbv_report *rep)
     for (int meth = 0; meth < 2 && !st; meth++) {
       gsl_rng *rng = sbv_rng_alloc(ctx, 400 + (unsigned long)meth);
       for (size_t rr = 0; rr < R && !st; rr++) {
-        sb_spray_params p;
-        sb_spray_params_default(&p);
-        p.method = (sb_spray_method)meth;
-        p.cross = SB_SPRAY_MAXWELL;
-        p.B0 = B0;
-        p.volume = V;
-        p.rho_l = rho;
-        p.capacity = 2 * Na;
-        sb_spray *s = sb_spray_alloc(&p);
+        sb_spray *s = sbv_spray_new(&(sbv_spray_setup){
+            .method = (sb_spray_method)meth, .B0 = B0, .volume = V,
+            .rho_l = rho, .capacity = 2 * Na});
         if (!s || !rng) {
           sb_spray_free(s);
           st = SB_ENOMEM;
@@ -248,13 +242,9 @@ int sbv_spray_case_two_temp(const sbv_ctx *ctx, sbv_report *rep)
   for (int meth = 0; meth < 2 && !st; meth++) {
     gsl_rng *rng = sbv_rng_alloc(ctx, 410 + (unsigned long)meth);
     for (size_t rr = 0; rr < R && !st; rr++) {
-      sb_spray_params p;
-      sb_spray_params_default(&p);
-      p.method = (sb_spray_method)meth;
-      p.volume = V;
-      p.rho_l = rho;
-      p.capacity = N;
-      sb_spray *s = sb_spray_alloc(&p);
+      sb_spray *s = sbv_spray_new(&(sbv_spray_setup){
+          .method = (sb_spray_method)meth, .volume = V, .rho_l = rho,
+          .capacity = N});
       if (!s || !rng) {
         sb_spray_free(s);
         st = SB_ENOMEM;
@@ -491,13 +481,10 @@ int sbv_spray_case_engine(const sbv_ctx *ctx, sbv_report *rep)
     double r = rvdw, rho = m / ((4.0 / 3.0) * 3.14159265358979323846 * r * r *
                                 r);
     for (size_t rr = 0; rr < Rs && !st; rr++) {
-      sb_spray_params p;
-      sb_spray_params_default(&p);
-      p.method = (sb_spray_method)meth;
-      p.volume = (double)Ns / n;
-      p.rho_l = rho;
-      p.capacity = Ns;
-      sb_spray *s = sb_spray_alloc(&p);
+      const double Vs = (double)Ns / n;
+      sb_spray *s = sbv_spray_new(&(sbv_spray_setup){
+          .method = (sb_spray_method)meth, .volume = Vs, .rho_l = rho,
+          .capacity = Ns});
       if (!s || !rng) {
         sb_spray_free(s);
         st = SB_ENOMEM;
@@ -522,7 +509,7 @@ int sbv_spray_case_engine(const sbv_ctx *ctx, sbv_report *rep)
       /* collisions per unit volume and time over K n^2/2 */
       double coll = meth == 0 ? (double)ss.bounces
                               : 0.5 * (double)ss.bounces;
-      Ks[meth * Rs + rr] = coll / (p.volume * t) / (0.5 * n * n) / Kth;
+      Ks[meth * Rs + rr] = coll / (Vs * t) / (0.5 * n * n) / Kth;
       sb_spray_free(s);
     }
     gsl_rng_free(rng);
