@@ -276,6 +276,161 @@ static double child_density(double a, void *par) /* d(a^3)/R(a)^3 */
   return 3 * a * a / (R * R * R);
 }
 
+/* Children of the model (Reitz 1987): radius R(a) = B0 Lambda(a), born
+ * at the rate d(a^3)/R(a)^3 as the parent shrinks.  Table of the
+ * cumulative number G(a) = int 3 s^2/R(s)^3 ds on CH_NG radii (GSL QAG
+ * per interval, Steffen interpolation).  R(a) need not be monotone (at
+ * high We_g it has a flat maximum near the stable radius). */
+#define CH_NG 400
+typedef struct {
+  double a[CH_NG], G[CH_NG];
+  gsl_interp *aG;
+  gsl_interp_accel *acc;
+} child_law;
+
+static int child_law_init(child_law *c, rz_par *par, double lo, double hi)
+{
+  gsl_function F = {child_density, par};
+  gsl_integration_workspace *ws = gsl_integration_workspace_alloc(200);
+  c->aG = gsl_interp_alloc(gsl_interp_steffen, CH_NG);
+  c->acc = gsl_interp_accel_alloc();
+  if (!ws || !c->aG || !c->acc) {
+    gsl_integration_workspace_free(ws);
+    return SB_ENOMEM;
+  }
+  for (int k = 0; k < CH_NG; k++) {
+    c->a[k] = lo + (hi - lo) * k / (CH_NG - 1.0);
+    c->G[k] = 0;
+    if (k) {
+      double res, e;
+      gsl_integration_qag(&F, c->a[k - 1], c->a[k], 0, 1e-12, 200, 6, ws,
+                          &res, &e);
+      c->G[k] = c->G[k - 1] + res;
+    }
+  }
+  gsl_integration_workspace_free(ws);
+  gsl_interp_init(c->aG, c->a, c->G, CH_NG);
+  return SB_SUCCESS;
+}
+
+static void child_law_free(child_law *c)
+{
+  gsl_interp_free(c->aG);
+  gsl_interp_accel_free(c->acc);
+}
+
+static double child_G(const child_law *c, double a)
+{
+  return gsl_interp_eval(c->aG, c->a, c->G, a, c->acc);
+}
+
+/* One step of the parents rb[] -> ra[]: add to sumd[i] the model's
+ * children minus those of radius R(rb) the step emits (the shed volume
+ * over R(rb)^3) and keep in maxn[i] the model's largest number per step. */
+static void child_step_bound(const child_law *c, const rz_par *par,
+                             const double *rb, const double *ra, size_t np,
+                             double *sumd, double *maxn)
+{
+  for (size_t i = 0; i < np; i++) {
+    if (!(ra[i] < rb[i]))
+      continue;
+    double L, O;
+    sb_spray_reitz_wave(rb[i], par->U, par->rho_g, par->rho_l, par->liq, &L,
+                        &O);
+    double R = par->B0 * L;
+    double n = child_G(c, rb[i]) - child_G(c, ra[i]);
+    double m = (rb[i] * rb[i] * rb[i] - ra[i] * ra[i] * ra[i]) / (R * R * R);
+    sumd[i] += fabs(n - m);
+    maxn[i] = fmax(maxn[i], n);
+  }
+}
+
+static int cmp_double(const void *x, const void *y)
+{
+  double a = *(const double *)x, b = *(const double *)y;
+  return (a > b) - (a < b);
+}
+
+/* Bird children (tag 1, weight 1) of the parents 0..np-1 (started at
+ * a0[], now at their current radii): their radius counting function vs
+ * the model's, sup_x |N_mc(<= x) - N_ref(<= x)| / N_ref.  N_ref: each
+ * parent's path [a_t, a0] cut into CH_NS pieces, each a point mass (its
+ * number G(top) - G(bottom)) at R of its middle.  Bound of a correct
+ * scheme, per parent: the children R(a_start) of each step differ from
+ * the model's (radii between R(a_end) and R(a_start)) by sumd (their
+ * number), at most one step's children per monotone piece of R straddle
+ * x (two pieces: maxn twice), one child may wait in the shed volume, and
+ * the reference's own pieces straddling x (twice the largest). */
+#define CH_NS 2000
+typedef struct {
+  double R, n;
+} rmass;
+
+static int cmp_rmass(const void *x, const void *y)
+{
+  double a = ((const rmass *)x)->R, b = ((const rmass *)y)->R;
+  return (a > b) - (a < b);
+}
+
+static int reitz_children_law(sbv_report *rep, const child_law *c,
+                              const rz_par *par, const sb_spray *s,
+                              const double *a0, size_t np,
+                              const double *sumd, const double *maxn,
+                              double *sup, double *bound)
+{
+  size_t n = sb_spray_count(s), m = 0, nr = np * CH_NS;
+  const double *r = sb_spray_radii(s);
+  const int *tag = sb_spray_tags(s);
+  double *x = malloc(n * sizeof *x);
+  rmass *ref = malloc(nr * sizeof *ref);
+  if (!x || !ref) {
+    free(x);
+    free(ref);
+    return SB_ENOMEM;
+  }
+  for (size_t i = 0; i < n; i++)
+    if (tag[i] == 1)
+      x[m++] = r[i];
+  qsort(x, m, sizeof *x, cmp_double);
+  double nref = 0, b = 0;
+  for (size_t i = 0; i < np; i++) {
+    double big = 0;
+    for (size_t j = 0; j < CH_NS; j++) {
+      double lo = r[i] + (a0[i] - r[i]) * (double)j / CH_NS;
+      double hi = r[i] + (a0[i] - r[i]) * (double)(j + 1) / CH_NS, L, O;
+      sb_spray_reitz_wave(0.5 * (lo + hi), par->U, par->rho_g, par->rho_l,
+                          par->liq, &L, &O);
+      rmass *q = ref + i * CH_NS + j;
+      q->R = par->B0 * L;
+      q->n = child_G(c, hi) - child_G(c, lo);
+      nref += q->n;
+      big = fmax(big, q->n);
+    }
+    b += sumd[i] + 2.0 * maxn[i] + 1.0 + 2.0 * big;
+  }
+  qsort(ref, nr, sizeof *ref, cmp_rmass);
+  /* sup over the jumps of both step functions */
+  double d = 0, cum = 0;
+  size_t k = 0;
+  for (size_t j = 0; j <= nr; j++) {
+    double xr = j < nr ? ref[j].R : INFINITY;
+    while (k < m && x[k] < xr) { /* N_ref constant = cum on [.., xr) */
+      d = fmax(d, fmax(fabs((double)(k + 1) - cum), fabs((double)k - cum)));
+      k++;
+    }
+    d = fmax(d, fabs((double)k - cum));
+    if (j < nr)
+      cum += ref[j].n;
+    d = fmax(d, fabs((double)k - cum));
+  }
+  free(x);
+  free(ref);
+  *sup = d / nref;
+  *bound = b / nref;
+  return sbv_spray_add_tol(rep, "V14/reitz/bird/children-radius-law-sup",
+                           *sup, 0.0, *bound);
+}
+
 /* Push-forward CDF of the parents: a0 = inverse flow (interpolated). */
 typedef struct {
   gsl_interp *ip;
@@ -354,7 +509,8 @@ int sbv_spray_case_reitz(const sbv_ctx *ctx, sbv_report *rep)
   /* (c) mass, distribution and children: parents uniform in [lo, hi] */
   const size_t Np = ctx->full ? 5000 : 1000;
   const int nsteps = 200;
-  double dV[2] = {0, 0}, ksp = NAN, nchild_rel = NAN;
+  double dV[2] = {0, 0}, ksp = NAN, nchild_rel = NAN, chsup = NAN,
+         chbound = NAN;
   double hist[30][3], cdfp[40][3]; /* children histogram, parents' CDF */
   memset(hist, 0, sizeof hist);
   memset(cdfp, 0, sizeof cdfp);
@@ -386,8 +542,33 @@ int sbv_spray_case_reitz(const sbv_ctx *ctx, sbv_report *rep)
     sb_spray_gas gas = {{U, 0, 0}, rho_g, 1.8e-5};
     sb_spray_reitz_params rq = rp;
     rq.child_tag = 1;
-    for (int k = 0; k < nsteps && !st; k++)
+    /* Bird: the parents' radii before and after each step, for the
+     * children's radius law */
+    double *rb = meth == 0 ? calloc(4 * np, sizeof *rb) : NULL;
+    if (meth == 0 && !rb)
+      st = SB_ENOMEM;
+    child_law cl;
+    rz_par cpar = {U, rho_g, rho_l, &liq, rp.B0};
+    if (meth == 0 && !st) {
+      double amin;
+      st = sb_spray_reitz_radius(lo, tend, U, rho_g, rho_l, &liq, &rp, &amin);
+      if (!st)
+        st = child_law_init(&cl, &cpar, 0.99 * amin, hi);
+    }
+    for (int k = 0; k < nsteps && !st; k++) {
+      if (rb)
+        memcpy(rb, sb_spray_radii(s), np * sizeof *rb);
       st = sb_spray_reitz_step(s, &gas, &liq, &rq, tend / nsteps);
+      if (rb && !st)
+        child_step_bound(&cl, &cpar, rb, sb_spray_radii(s), np, rb + 2 * np,
+                         rb + 3 * np);
+    }
+    if (rb && !st)
+      st = reitz_children_law(rep, &cl, &cpar, s, a0s, np, rb + 2 * np,
+                              rb + 3 * np, &chsup, &chbound);
+    if (rb)
+      child_law_free(&cl);
+    free(rb);
     sb_spray_get_totals(s, &t1);
     dV[meth] = fabs(t1.volume - t0.volume) / t0.volume;
     if (meth == 1 && !st) {
@@ -490,6 +671,12 @@ int sbv_spray_case_reitz(const sbv_ctx *ctx, sbv_report *rep)
            "push-forward CDF: KS p = %.3g; children number / integral - 1 "
            "= %.2g (criterion 2e-3: emission at the current R)", Np,
            Np / 50, dV[0], dV[1], ksp, nchild_rel);
+  sbv_note(rep, "- Bird children radii vs the model's law (radius R(a) = "
+           "B0 Lambda(a), number d(a^3)/R(a)^3 along each parent's "
+           "simulated path; Reitz 1987): sup_x |N(<= x) - N_ref(<= x)|/N_ref "
+           "= %.3g, criterion <= %.3g (the scheme's bound: children of one "
+           "step take R at the step's start radius, one step straddles x, "
+           "one child may wait in the shed volume)", chsup, chbound);
   sbv_plot(ctx, rep, "V14_reitz_children",
            "V14: Reitz children radii (Nanbu, at 2 tau)",
            "r_um number unused", &hist[0][0], 30, 3,
