@@ -281,10 +281,10 @@ static int h_reitz(config *c, const char *s, const char *k, const char *v)
   if (!strcmp(k, "children"))
     return word(c, s, k, v, c->reitz_children, sizeof c->reitz_children,
                 CHILDREN);
-  if (!strcmp(k, "stripping")) {
+  if (!strcmp(k, "stripping") || !strcmp(k, "blob")) {
     if (!integer(c, s, k, v, &l, 0, 1))
       return 0;
-    c->rp.stripping = (int)l;
+    *(k[0] == 's' ? &c->rp.stripping : &c->rp.blob) = (int)l;
     return 1;
   }
   if (!strcmp(k, "child_tag")) {
@@ -294,7 +294,7 @@ static int h_reitz(config *c, const char *s, const char *k, const char *v)
     return 1;
   }
   return fail(c, "[reitz]: unknown key '%s' (valid: enable, B0, B1, "
-              "emit_fraction, children, stripping, child_tag)", k);
+              "emit_fraction, children, stripping, blob, child_tag)", k);
 }
 
 static int h_check(config *c, const char *s, const char *k, const char *v)
@@ -415,7 +415,7 @@ static void usage(FILE *f)
 "  [tab]            enable, Cd, children = auto | parcel | particles,\n"
 "                   child_tag\n"
 "  [reitz]          enable, B0, B1, emit_fraction, children, stripping,\n"
-"                   child_tag\n"
+"                   blob, child_tag\n"
 "  [droplets NAME]  count, radius (m), weight, T (K) | theta (m^2/s^2),\n"
 "                   u (m/s), distribution = maxwell | bkw, K0, settling,\n"
 "                   tag\n"

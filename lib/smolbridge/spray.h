@@ -181,6 +181,7 @@ typedef struct {
   unsigned long long bounces;    /**< accepted, elastic outcome */
   unsigned long long merges;     /**< accepted, coalescence */
   unsigned long long tab_breakups, reitz_children;
+  unsigned long long reitz_blobs; /**< Reitz second branch applied */
 } sb_spray_stats;
 int sb_spray_get_stats(const sb_spray *s, sb_spray_stats *st);
 void sb_spray_reset_stats(sb_spray *s);
@@ -350,8 +351,26 @@ typedef struct {
   sb_spray_children children;
   int child_tag;   /**< >= 0: tag of the children; < 0: the parent's */
   int stripping;   /**< 1: no breakup unless We_g > sqrt(Re_g)/2 */
+  int blob;        /**< 1: Reitz's second branch (default 0): a parcel
+                        with B0 Lambda >= a (low We_g) forms its drops
+                        once, radius sb_spray_reitz_blob_radius, weight
+                        w a^3/r^3 (volume kept; PARCEL children only) */
 } sb_spray_reitz_params;
 void sb_spray_reitz_params_default(sb_spray_reitz_params *p);
+
+/** Radius of the drops formed once when B0 Lambda >= a (Reitz 1987, the
+ *  second case of the drop-size law, meant for the injected liquid
+ *  "blobs" at low relative speed):
+ *    r = min( (3 pi a^2 U/(2 Omega))^(1/3), (3 a^2 Lambda/4)^(1/3) ),
+ *  i.e. 4/3 pi r^3 is the liquid volume of a cylinder of radius a and
+ *  length U 2 pi/Omega (one wave period) or Lambda (one wavelength),
+ *  whichever is smaller.  r > a whenever Lambda > 4a/3 (always when
+ *  B0 Lambda >= a with B0 = 0.61) and U 2 pi/Omega > 4a/3: the drops then
+ *  grow.  NaN (SB_EDOM) unless a, U, Lambda, Omega > 0.  Applied by
+ *  sb_spray_reitz_step when params.blob = 1, once per parcel added with
+ *  sb_spray_add (drops born by TAB or Reitz breakup are formed drops). */
+double sb_spray_reitz_blob_radius(double a, double U, double Lambda,
+                                  double Omega);
 
 /** Wavelength Lambda (m) and growth rate Omega (1/s) of the fastest
  *  Kelvin-Helmholtz wave (Reitz 1987 fits above).  SB_EDOM for

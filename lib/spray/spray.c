@@ -127,6 +127,7 @@ void sb_spray_free(sb_spray *s)
   free(s->y);
   free(s->yd);
   free(s->shed);
+  free(s->formed);
   free(s->tag);
   free(s);
 }
@@ -162,6 +163,7 @@ int sbi_spray_reserve(sb_spray *s, size_t extra, const char *func)
       grow((void **)&s->y, cap, sizeof(double)) ||
       grow((void **)&s->yd, cap, sizeof(double)) ||
       grow((void **)&s->shed, cap, sizeof(double)) ||
+      grow((void **)&s->formed, cap, sizeof(unsigned char)) ||
       grow((void **)&s->tag, cap, sizeof(int)))
     return sbi_error(SB_ENOMEM, func, "out of memory (%zu parcels)", cap);
   s->cap = cap;
@@ -176,6 +178,7 @@ size_t sbi_spray_push(sb_spray *s, const double v[3], double r, double w,
   s->r[i] = r;
   s->w[i] = s->p.method == SB_SPRAY_BIRD ? s->p.weight : w;
   s->y[i] = s->yd[i] = s->shed[i] = 0.0;
+  s->formed[i] = 0;
   s->tag[i] = tag;
   return i;
 }
@@ -191,6 +194,7 @@ void sbi_spray_remove(sb_spray *s, size_t i)
   s->y[i] = s->y[last];
   s->yd[i] = s->yd[last];
   s->shed[i] = s->shed[last];
+  s->formed[i] = s->formed[last];
   s->tag[i] = s->tag[last];
 }
 
