@@ -76,6 +76,15 @@ typedef enum {
                               Bird method only */
 } sb_spray_select;
 
+/** Coalescence boundary in impact parameter. */
+typedef enum {
+  SB_SPRAY_COAL_THETA = 0,  /**< fixed critical angle theta_cr (the thesis):
+                                 b_cr = (r + r_*) sin(theta_cr) */
+  SB_SPRAY_COAL_OROURKE = 1 /**< Weber-number dependent (O'Rourke 1981;
+                                 Amsden, O'Rourke & Butler 1989):
+                                 sb_spray_orourke_b2; needs sigma */
+} sb_spray_coal;
+
 /** Optional velocity rule for a droplet formed by coalescence (radius r, in
  *  m): set v (on entry the momentum-conserving velocity).  For example the
  *  settling velocity of the new size (sb_spray_stokes_settling).  Must be
@@ -92,13 +101,16 @@ typedef struct {
   double B0;        /**< Maxwell-type rate coefficient, m^3/s (> 0) */
   double theta_cr;  /**< critical impact angle in [0, pi/2]: coalescence
                          iff b <= (r + r_*) sin(theta_cr) (0: none) */
+  sb_spray_coal coal; /**< coalescence boundary (default: theta_cr) */
+  double sigma;     /**< surface tension, N/m (> 0 for COAL_OROURKE) */
   sb_spray_merge_fn merge_velocity; /**< NULL: momentum conserved */
   void *merge_ctx;
   size_t capacity;  /**< initial capacity (grows when needed) */
 } sb_spray_params;
 
 /** Defaults: Bird, hard spheres, majorant, V = 1, rho_l = 1000, W = 1,
- *  B0 = 1, theta_cr = 0 (elastic only), momentum rule, capacity 1024. */
+ *  B0 = 1, theta_cr = 0 (elastic only), coal = COAL_THETA, sigma = 0.072,
+ *  momentum rule, capacity 1024. */
 void sb_spray_params_default(sb_spray_params *p);
 
 /** Names for configuration files: "bird"/"nanbu", "hard-sphere"/"maxwell",
@@ -220,6 +232,21 @@ void sb_spray_post_collision(const double v1[3], const double v2[3],
  *  coalesce for the critical angle theta_cr?  Returns 1 iff
  *  b^2/(r+r_*)^2 = (1 + cos_chi)/2 <= sin^2(theta_cr). */
 int sb_spray_coalesces(double cos_chi, double theta_cr);
+
+/** Weber-number dependent coalescence boundary of O'Rourke (1981, PhD
+ *  thesis, Princeton; as used in KIVA-II, Amsden, O'Rourke & Butler 1989,
+ *  Los Alamos report LA-11560-MS), from the energy argument of
+ *  Brazier-Smith, Jennings & Latham (1972, Proc. R. Soc. A 326:393):
+ *  a collision coalesces iff b <= b_cr with
+ *    (b_cr/(r1 + r2))^2 = min(1, 2.4 f(gamma)/We),
+ *    f(gamma) = gamma^3 - 2.4 gamma^2 + 2.7 gamma,
+ *    gamma = r_large/r_small >= 1,  We = rho_l |g|^2 r_small/sigma;
+ *  grazing collisions beyond b_cr separate.  Returns (b_cr/(r1+r2))^2, the
+ *  fraction of collisions that merge for this pair (1 when g = 0); NaN
+ *  (SB_EDOM) unless r1, r2, rho_l, sigma > 0 and g >= 0.  For equal
+ *  drops every collision merges iff We <= 3.12. */
+double sb_spray_orourke_b2(double r1, double r2, double g, double rho_l,
+                           double sigma);
 
 /** Pair rate coefficient B (m^3/s) of the cross-section model:
  *  hard spheres pi (r1 + r2)^2 |g|, Maxwell B0. */

@@ -27,6 +27,8 @@ void sb_spray_params_default(sb_spray_params *p)
   p->weight = 1.0;
   p->B0 = 1.0;
   p->theta_cr = 0.0;
+  p->coal = SB_SPRAY_COAL_THETA;
+  p->sigma = 0.072;
   p->capacity = 1024;
 }
 
@@ -97,6 +99,12 @@ static int check_params(const sb_spray_params *p, const char *func)
   if (!(p->theta_cr >= 0 && p->theta_cr <= 0.5 * SBI_PI))
     return sbi_error(SB_EINVAL, func, "theta_cr = %g: must be in [0, pi/2]",
                      p->theta_cr);
+  if (p->coal != SB_SPRAY_COAL_THETA && p->coal != SB_SPRAY_COAL_OROURKE)
+    return sbi_error(SB_EINVAL, func, "coal = %d: unknown model", p->coal);
+  if (p->coal == SB_SPRAY_COAL_OROURKE &&
+      (!(p->sigma > 0) || !isfinite(p->sigma)))
+    return sbi_error(SB_EINVAL, func, "sigma = %g: must be finite > 0 for "
+                     "the O'Rourke coalescence boundary", p->sigma);
   return SB_SUCCESS;
 }
 
