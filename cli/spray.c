@@ -36,7 +36,7 @@ typedef struct {
 
 typedef struct {
   unsigned long seed;
-  char method[16], select[16], cross[16], merge[16], output[512];
+  char method[16], select[16], cross[16], merge[16], coal[16], output[512];
   double B0, volume, weight, rho_l, theta_cr, dt, t_end;
   long steps, sample_every;
   sb_spray_gas gas;
@@ -62,6 +62,7 @@ static void cfg_default(config *c)
   strcpy(c->select, "majorant");
   strcpy(c->cross, "hard-sphere");
   strcpy(c->merge, "momentum");
+  strcpy(c->coal, "theta");
   strcpy(c->output, "spray-out");
   c->B0 = NAN;
   c->volume = NAN;
@@ -166,6 +167,7 @@ static const char *const METHODS[] = {"bird", "nanbu", NULL};
 static const char *const SELECTS[] = {"majorant", "ntc", NULL};
 static const char *const CROSSES[] = {"hard-sphere", "maxwell", NULL};
 static const char *const MERGES[] = {"momentum", "settling", NULL};
+static const char *const COALS[] = {"theta", "orourke", NULL};
 static const char *const CHILDREN[] = {"auto", "parcel", "particles", NULL};
 static const char *const DISTS[] = {"maxwell", "bkw", NULL};
 
@@ -186,6 +188,8 @@ static int h_run(config *c, const char *s, const char *k, const char *v)
     return word(c, s, k, v, c->cross, sizeof c->cross, CROSSES);
   if (!strcmp(k, "merge_velocity"))
     return word(c, s, k, v, c->merge, sizeof c->merge, MERGES);
+  if (!strcmp(k, "coalescence"))
+    return word(c, s, k, v, c->coal, sizeof c->coal, COALS);
   if (!strcmp(k, "B0"))
     return num(c, s, k, v, &c->B0, 1e-300, 1e300);
   if (!strcmp(k, "volume"))
@@ -211,8 +215,8 @@ static int h_run(config *c, const char *s, const char *k, const char *v)
     return 1;
   }
   return fail(c, "[run]: unknown key '%s' (valid: seed, method, select, "
-              "cross, B0, volume, weight, rho_l, theta_cr, merge_velocity, "
-              "dt, t_end, steps, sample_every, output)", k);
+              "cross, B0, volume, weight, rho_l, theta_cr, coalescence, "
+              "merge_velocity, dt, t_end, steps, sample_every, output)", k);
 }
 
 static int h_gas(config *c, const char *s, const char *k, const char *v)
@@ -281,10 +285,10 @@ static int h_reitz(config *c, const char *s, const char *k, const char *v)
   if (!strcmp(k, "children"))
     return word(c, s, k, v, c->reitz_children, sizeof c->reitz_children,
                 CHILDREN);
-  if (!strcmp(k, "stripping")) {
+  if (!strcmp(k, "stripping") || !strcmp(k, "blob")) {
     if (!integer(c, s, k, v, &l, 0, 1))
       return 0;
-    c->rp.stripping = (int)l;
+    *(k[0] == 's' ? &c->rp.stripping : &c->rp.blob) = (int)l;
     return 1;
   }
   if (!strcmp(k, "child_tag")) {
@@ -294,7 +298,7 @@ static int h_reitz(config *c, const char *s, const char *k, const char *v)
     return 1;
   }
   return fail(c, "[reitz]: unknown key '%s' (valid: enable, B0, B1, "
-              "emit_fraction, children, stripping, child_tag)", k);
+              "emit_fraction, children, stripping, blob, child_tag)", k);
 }
 
 static int h_check(config *c, const char *s, const char *k, const char *v)
@@ -408,6 +412,8 @@ static void usage(FILE *f)
 "  [run]            seed, method = bird | nanbu, select = majorant | ntc,\n"
 "                   cross = hard-sphere | maxwell, B0 (m^3/s), volume (m^3),\n"
 "                   weight, rho_l (kg/m^3), theta_cr (rad),\n"
+"                   coalescence = theta | orourke (Weber-dependent,\n"
+"                   uses [liquid] sigma),\n"
 "                   merge_velocity = momentum | settling, dt (s),\n"
 "                   t_end (s) | steps, sample_every, output\n"
 "  [gas]            u (m/s, 3 numbers), rho_g, mu_g, g (m/s^2, 3 numbers)\n"
@@ -415,7 +421,7 @@ static void usage(FILE *f)
 "  [tab]            enable, Cd, children = auto | parcel | particles,\n"
 "                   child_tag\n"
 "  [reitz]          enable, B0, B1, emit_fraction, children, stripping,\n"
-"                   child_tag\n"
+"                   blob, child_tag\n"
 "  [droplets NAME]  count, radius (m), weight, T (K) | theta (m^2/s^2),\n"
 "                   u (m/s), distribution = maxwell | bkw, K0, settling,\n"
 "                   tag\n"
@@ -466,6 +472,9 @@ static sb_spray *build(const config *c, gsl_rng *rng, const char *file,
   p.weight = c->weight;
   p.rho_l = c->rho_l;
   p.theta_cr = c->theta_cr;
+  if (!strcmp(c->coal, "orourke"))
+    p.coal = SB_SPRAY_COAL_OROURKE;
+  p.sigma = c->liq.sigma;
   set->rho_l = c->rho_l;
   set->rho_g = c->gas.rho_g;
   set->mu_g = c->gas.mu_g;

@@ -30,6 +30,12 @@ msg=$("$sb" spray "$out/bad2.ini" 2>&1 >/dev/null)
 case "$msg" in *bad2.ini:2*bird*nanbu*) ;; *) fail "bad value message: $msg" ;; esac
 printf '[run]\nvolume = 1\ndt = 1\nsteps = 1\n' > "$out/nopop.ini"
 expect_rc 2 "$sb" spray "$out/nopop.ini"
+printf '[run]\ncoalescence = brazier\n' > "$out/badcoal.ini"
+msg=$("$sb" spray "$out/badcoal.ini" 2>&1 >/dev/null)
+case "$msg" in *badcoal.ini:2*theta*orourke*) ;; *) fail "bad coalescence message: $msg" ;; esac
+printf '[reitz]\nblob = 2\n' > "$out/badblob.ini"
+msg=$("$sb" spray "$out/badblob.ini" 2>&1 >/dev/null)
+case "$msg" in *badblob.ini:2*blob*) ;; *) fail "bad blob message: $msg" ;; esac
 
 # BKW example: the run checks itself (exit 0), writes its files
 sed "s|^output = .*|output = $out/bkw|" "$ex/spray_bkw.ini" > "$out/bkw.ini"

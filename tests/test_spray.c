@@ -519,6 +519,63 @@ START_TEST(test_reitz_step)
 }
 END_TEST
 
+/* Reitz (1987), second branch: when B0 Lambda >= a (low We_g) the drops
+ * form once with the volume of a cylinder of radius a and length one
+ * wavelength or one wave period's travel U 2 pi/Omega, the smaller. */
+START_TEST(test_reitz_blob)
+{
+  sb_spray_liquid liq = liq_of(0.072, 1e-3);
+  const double a = 50e-6, U = 10, rho_g = 1.2;
+  double L, O;
+  sb_spray_reitz_wave(a, U, rho_g, 1000, &liq, &L, &O);
+  ck_assert(0.61 * L > a); /* We_g = 0.083: the second branch */
+  double r = sb_spray_reitz_blob_radius(a, U, L, O);
+  double vw = PI * a * a * L, vp = PI * a * a * U * (2 * PI / O);
+  ck_assert_rel(4.0 / 3.0 * PI * r * r * r, fmin(vw, vp), 1e-14);
+  ck_assert(r > a);
+  ck_assert(isnan(sb_spray_reitz_blob_radius(a, 0, L, O)));
+  /* Nanbu without and with the branch; Bird (constant weights cannot
+   * keep the volume) is refused */
+  for (int run = 0; run < 3; run++) {
+    int blob = run > 0;
+    sb_spray_params p;
+    sb_spray_params_default(&p);
+    p.method = run < 2 ? SB_SPRAY_NANBU : SB_SPRAY_BIRD;
+    sb_spray *s = sb_spray_alloc(&p);
+    double v[3] = {0, 0, 0};
+    sb_spray_add(s, v, a, 2.0, 0, NULL);
+    sb_spray_gas gas = {{U, 0, 0}, rho_g, 1.8e-5};
+    sb_spray_reitz_params rp;
+    sb_spray_reitz_params_default(&rp);
+    rp.blob = blob;
+    if (run == 2) {
+      ck_assert_int_eq(sb_spray_reitz_step(s, &gas, &liq, &rp, 1e-4),
+                       SB_EINVAL);
+      sb_spray_free(s);
+      continue;
+    }
+    sb_spray_totals t0, t1;
+    sb_spray_get_totals(s, &t0);
+    for (int k = 0; k < 3; k++) /* once: the formed drop is stable */
+      ck_assert_int_eq(sb_spray_reitz_step(s, &gas, &liq, &rp, 1e-4), 0);
+    sb_spray_get_totals(s, &t1);
+    sb_spray_stats st;
+    sb_spray_get_stats(s, &st);
+    ck_assert_int_eq(sb_spray_count(s), 1);
+    ck_assert_rel(t1.volume, t0.volume, 1e-15);
+    if (blob) {
+      ck_assert(st.reitz_blobs == 1);
+      ck_assert_rel(sb_spray_radii(s)[0], r, 1e-15);
+      ck_assert_rel(sb_spray_weights(s)[0], 2.0 * pow(a / r, 3), 1e-15);
+    } else { /* a < B0 Lambda: the first branch does nothing */
+      ck_assert(st.reitz_blobs == 0);
+      ck_assert(sb_spray_radii(s)[0] == a);
+    }
+    sb_spray_free(s);
+  }
+}
+END_TEST
+
 START_TEST(test_totals_and_temperature)
 {
   sb_spray_params p;
@@ -569,6 +626,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_coalescence_mass);
   tcase_add_test(tc, test_tab_step_children);
   tcase_add_test(tc, test_reitz_step);
+  tcase_add_test(tc, test_reitz_blob);
   tcase_add_test(tc, test_totals_and_temperature);
   suite_add_tcase(s, tc);
   return s;

@@ -76,6 +76,15 @@ typedef enum {
                               Bird method only */
 } sb_spray_select;
 
+/** Coalescence boundary in impact parameter. */
+typedef enum {
+  SB_SPRAY_COAL_THETA = 0,  /**< fixed critical angle theta_cr (the thesis):
+                                 b_cr = (r + r_*) sin(theta_cr) */
+  SB_SPRAY_COAL_OROURKE = 1 /**< Weber-number dependent (O'Rourke 1981;
+                                 Amsden, O'Rourke & Butler 1989):
+                                 sb_spray_orourke_b2; needs sigma */
+} sb_spray_coal;
+
 /** Optional velocity rule for a droplet formed by coalescence (radius r, in
  *  m): set v (on entry the momentum-conserving velocity).  For example the
  *  settling velocity of the new size (sb_spray_stokes_settling).  Must be
@@ -92,13 +101,16 @@ typedef struct {
   double B0;        /**< Maxwell-type rate coefficient, m^3/s (> 0) */
   double theta_cr;  /**< critical impact angle in [0, pi/2]: coalescence
                          iff b <= (r + r_*) sin(theta_cr) (0: none) */
+  sb_spray_coal coal; /**< coalescence boundary (default: theta_cr) */
+  double sigma;     /**< surface tension, N/m (> 0 for COAL_OROURKE) */
   sb_spray_merge_fn merge_velocity; /**< NULL: momentum conserved */
   void *merge_ctx;
   size_t capacity;  /**< initial capacity (grows when needed) */
 } sb_spray_params;
 
 /** Defaults: Bird, hard spheres, majorant, V = 1, rho_l = 1000, W = 1,
- *  B0 = 1, theta_cr = 0 (elastic only), momentum rule, capacity 1024. */
+ *  B0 = 1, theta_cr = 0 (elastic only), coal = COAL_THETA, sigma = 0.072,
+ *  momentum rule, capacity 1024. */
 void sb_spray_params_default(sb_spray_params *p);
 
 /** Names for configuration files: "bird"/"nanbu", "hard-sphere"/"maxwell",
@@ -181,6 +193,7 @@ typedef struct {
   unsigned long long bounces;    /**< accepted, elastic outcome */
   unsigned long long merges;     /**< accepted, coalescence */
   unsigned long long tab_breakups, reitz_children;
+  unsigned long long reitz_blobs; /**< Reitz second branch applied */
 } sb_spray_stats;
 int sb_spray_get_stats(const sb_spray *s, sb_spray_stats *st);
 void sb_spray_reset_stats(sb_spray *s);
@@ -219,6 +232,21 @@ void sb_spray_post_collision(const double v1[3], const double v2[3],
  *  coalesce for the critical angle theta_cr?  Returns 1 iff
  *  b^2/(r+r_*)^2 = (1 + cos_chi)/2 <= sin^2(theta_cr). */
 int sb_spray_coalesces(double cos_chi, double theta_cr);
+
+/** Weber-number dependent coalescence boundary of O'Rourke (1981, PhD
+ *  thesis, Princeton; as used in KIVA-II, Amsden, O'Rourke & Butler 1989,
+ *  Los Alamos report LA-11560-MS), from the energy argument of
+ *  Brazier-Smith, Jennings & Latham (1972, Proc. R. Soc. A 326:393):
+ *  a collision coalesces iff b <= b_cr with
+ *    (b_cr/(r1 + r2))^2 = min(1, 2.4 f(gamma)/We),
+ *    f(gamma) = gamma^3 - 2.4 gamma^2 + 2.7 gamma,
+ *    gamma = r_large/r_small >= 1,  We = rho_l |g|^2 r_small/sigma;
+ *  grazing collisions beyond b_cr separate.  Returns (b_cr/(r1+r2))^2, the
+ *  fraction of collisions that merge for this pair (1 when g = 0); NaN
+ *  (SB_EDOM) unless r1, r2, rho_l, sigma > 0 and g >= 0.  For equal
+ *  drops every collision merges iff We <= 3.12. */
+double sb_spray_orourke_b2(double r1, double r2, double g, double rho_l,
+                           double sigma);
 
 /** Pair rate coefficient B (m^3/s) of the cross-section model:
  *  hard spheres pi (r1 + r2)^2 |g|, Maxwell B0. */
@@ -350,8 +378,26 @@ typedef struct {
   sb_spray_children children;
   int child_tag;   /**< >= 0: tag of the children; < 0: the parent's */
   int stripping;   /**< 1: no breakup unless We_g > sqrt(Re_g)/2 */
+  int blob;        /**< 1: Reitz's second branch (default 0): a parcel
+                        with B0 Lambda >= a (low We_g) forms its drops
+                        once, radius sb_spray_reitz_blob_radius, weight
+                        w a^3/r^3 (volume kept; PARCEL children only) */
 } sb_spray_reitz_params;
 void sb_spray_reitz_params_default(sb_spray_reitz_params *p);
+
+/** Radius of the drops formed once when B0 Lambda >= a (Reitz 1987, the
+ *  second case of the drop-size law, meant for the injected liquid
+ *  "blobs" at low relative speed):
+ *    r = min( (3 pi a^2 U/(2 Omega))^(1/3), (3 a^2 Lambda/4)^(1/3) ),
+ *  i.e. 4/3 pi r^3 is the liquid volume of a cylinder of radius a and
+ *  length U 2 pi/Omega (one wave period) or Lambda (one wavelength),
+ *  whichever is smaller.  r > a whenever Lambda > 4a/3 (always when
+ *  B0 Lambda >= a with B0 = 0.61) and U 2 pi/Omega > 4a/3: the drops then
+ *  grow.  NaN (SB_EDOM) unless a, U, Lambda, Omega > 0.  Applied by
+ *  sb_spray_reitz_step when params.blob = 1, once per parcel added with
+ *  sb_spray_add (drops born by TAB or Reitz breakup are formed drops). */
+double sb_spray_reitz_blob_radius(double a, double U, double Lambda,
+                                  double Omega);
 
 /** Wavelength Lambda (m) and growth rate Omega (1/s) of the fastest
  *  Kelvin-Helmholtz wave (Reitz 1987 fits above).  SB_EDOM for

@@ -27,6 +27,8 @@ void sb_spray_params_default(sb_spray_params *p)
   p->weight = 1.0;
   p->B0 = 1.0;
   p->theta_cr = 0.0;
+  p->coal = SB_SPRAY_COAL_THETA;
+  p->sigma = 0.072;
   p->capacity = 1024;
 }
 
@@ -97,6 +99,12 @@ static int check_params(const sb_spray_params *p, const char *func)
   if (!(p->theta_cr >= 0 && p->theta_cr <= 0.5 * SBI_PI))
     return sbi_error(SB_EINVAL, func, "theta_cr = %g: must be in [0, pi/2]",
                      p->theta_cr);
+  if (p->coal != SB_SPRAY_COAL_THETA && p->coal != SB_SPRAY_COAL_OROURKE)
+    return sbi_error(SB_EINVAL, func, "coal = %d: unknown model", p->coal);
+  if (p->coal == SB_SPRAY_COAL_OROURKE &&
+      (!(p->sigma > 0) || !isfinite(p->sigma)))
+    return sbi_error(SB_EINVAL, func, "sigma = %g: must be finite > 0 for "
+                     "the O'Rourke coalescence boundary", p->sigma);
   return SB_SUCCESS;
 }
 
@@ -127,6 +135,7 @@ void sb_spray_free(sb_spray *s)
   free(s->y);
   free(s->yd);
   free(s->shed);
+  free(s->formed);
   free(s->tag);
   free(s);
 }
@@ -162,6 +171,7 @@ int sbi_spray_reserve(sb_spray *s, size_t extra, const char *func)
       grow((void **)&s->y, cap, sizeof(double)) ||
       grow((void **)&s->yd, cap, sizeof(double)) ||
       grow((void **)&s->shed, cap, sizeof(double)) ||
+      grow((void **)&s->formed, cap, sizeof(unsigned char)) ||
       grow((void **)&s->tag, cap, sizeof(int)))
     return sbi_error(SB_ENOMEM, func, "out of memory (%zu parcels)", cap);
   s->cap = cap;
@@ -176,6 +186,7 @@ size_t sbi_spray_push(sb_spray *s, const double v[3], double r, double w,
   s->r[i] = r;
   s->w[i] = s->p.method == SB_SPRAY_BIRD ? s->p.weight : w;
   s->y[i] = s->yd[i] = s->shed[i] = 0.0;
+  s->formed[i] = 0;
   s->tag[i] = tag;
   return i;
 }
@@ -191,6 +202,7 @@ void sbi_spray_remove(sb_spray *s, size_t i)
   s->y[i] = s->y[last];
   s->yd[i] = s->yd[last];
   s->shed[i] = s->shed[last];
+  s->formed[i] = s->formed[last];
   s->tag[i] = s->tag[last];
 }
 

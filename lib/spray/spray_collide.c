@@ -128,7 +128,12 @@ static int outcome(sb_spray *s, size_t i, size_t j, const double g[3],
     event_begin(s, &e, i, j, t);
   double *vi = s->v + 3 * i, *vj = s->v + 3 * j;
   double ri3 = s->r[i] * s->r[i] * s->r[i], rj3 = s->r[j] * s->r[j] * s->r[j];
-  if (sb_spray_coalesces(cchi, s->p.theta_cr)) {
+  int merge = s->p.coal == SB_SPRAY_COAL_OROURKE
+                  ? 0.5 * (1.0 + cchi) <=
+                        sb_spray_orourke_b2(s->r[i], s->r[j], gmod,
+                                            s->p.rho_l, s->p.sigma)
+                  : sb_spray_coalesces(cchi, s->p.theta_cr);
+  if (merge) {
     double m = ri3 + rj3, vn[3];
     for (int k = 0; k < 3; k++)
       vn[k] = (ri3 * vi[k] + rj3 * vj[k]) / m;

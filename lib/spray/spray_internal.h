@@ -18,6 +18,9 @@ struct sb_spray {
   double *w;     /* weights (Bird: all p.weight) */
   double *y, *yd;/* TAB deformation and its rate */
   double *shed;  /* Reitz: shed volume not yet emitted (all droplets) */
+  unsigned char *formed; /* Reitz: 1 once the parcel's drops are formed
+                            (the one-off B0 Lambda > a branch done, or
+                            born as Reitz children): no blob branch */
   int *tag;
   double t;
   double ntc_rem;        /* NTC: fractional candidate carried over */

@@ -53,6 +53,28 @@ int sb_spray_coalesces(double cos_chi, double theta_cr)
   return 0.5 * (1.0 + cos_chi) <= s * s;
 }
 
+/* O'Rourke (1981): the pair coalesces unless the rotational energy of the
+ * combined drop exceeds the surface energy it needs to separate
+ * (Brazier-Smith et al. 1972), which gives b_cr^2/(r1 + r2)^2 =
+ * 2.4 f(gamma)/We, capped at 1 (gamma = r_large/r_small, We on the small
+ * drop's radius and the liquid density). */
+double sb_spray_orourke_b2(double r1, double r2, double g, double rho_l,
+                           double sigma)
+{
+  if (!(r1 > 0) || !(r2 > 0) || !(g >= 0) || !(rho_l > 0) || !(sigma > 0) ||
+      !isfinite(r1) || !isfinite(r2) || !isfinite(g) || !isfinite(rho_l) ||
+      !isfinite(sigma)) {
+    sbi_error(SB_EDOM, __func__, "need r1, r2, rho_l, sigma > 0, g >= 0");
+    return NAN;
+  }
+  double rs = fmin(r1, r2), gam = fmax(r1, r2) / rs;
+  double f = gam * (gam * (gam - 2.4) + 2.7); /* > 0 for all gamma */
+  /* 2.4 f/We = 2.4 f sigma/(rho_l g^2 r_s), compared without dividing
+   * (g = 0 is allowed) */
+  double num = 2.4 * f * sigma, den = rho_l * g * g * rs;
+  return num >= den ? 1.0 : num / den;
+}
+
 void sb_spray_stokes_settling(double r, double v[3], void *ctx)
 {
   const sb_spray_settling *p = ctx;

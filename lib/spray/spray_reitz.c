@@ -1,7 +1,9 @@
 /* spray_reitz.c — Reitz wave breakup (Reitz 1987, Atomisation and Spray
  * Technology 3:309–337): Kelvin–Helmholtz wavelength and growth-rate fits,
  * relaxation of the parent radius to R = B0 Lambda, children carrying the
- * shed liquid.  Derivations and accuracy: docs/spray.md, "Reitz". */
+ * shed liquid, and Reitz's second case (B0 Lambda >= a: the drops form
+ * once at min((3 pi a^2 U/(2 Omega))^(1/3), (3 a^2 Lambda/4)^(1/3))).
+ * Derivations and accuracy: docs/spray.md, "Reitz". */
 #include <float.h>
 #include <math.h>
 #include <string.h>
@@ -26,6 +28,25 @@ void sb_spray_reitz_params_default(sb_spray_reitz_params *p)
   p->children = SB_SPRAY_CHILDREN_AUTO;
   p->child_tag = -1;
   p->stripping = 0;
+  p->blob = 0;
+}
+
+/* Reitz (1987): when B0 Lambda > a the drops form once, with the volume
+ * of the liquid under one wavelength, pi a^2 Lambda, or passing in one
+ * wave period 2 pi/Omega, pi a^2 U 2 pi/Omega, whichever is smaller:
+ * 4/3 pi r^3 = min(...). */
+double sb_spray_reitz_blob_radius(double a, double U, double Lambda,
+                                  double Omega)
+{
+  if (!(a > 0) || !(U > 0) || !(Lambda > 0) || !(Omega > 0) ||
+      !isfinite(a) || !isfinite(U) || !isfinite(Lambda) ||
+      !isfinite(Omega)) {
+    sbi_error(SB_EDOM, __func__, "need a, U, Lambda, Omega > 0 (a = %g, "
+              "U = %g, Lambda = %g, Omega = %g)", a, U, Lambda, Omega);
+    return NAN;
+  }
+  return fmin(cbrt(3.0 * SBI_PI * a * a * U / (2.0 * Omega)),
+              cbrt(0.75 * a * a * Lambda));
 }
 
 /* The fits, for valid arguments (U >= 0).  Z = sqrt(We_l)/Re_l =
@@ -216,6 +237,9 @@ int sb_spray_reitz_step(sb_spray *s, const sb_spray_gas *gas,
   if (mode == SB_SPRAY_CHILDREN_PARCEL && s->p.method == SB_SPRAY_BIRD)
     return sbi_error(SB_EINVAL, __func__, "children = parcel changes "
                      "weights: not with the Bird method");
+  if (rp->blob && mode != SB_SPRAY_CHILDREN_PARCEL)
+    return sbi_error(SB_EINVAL, __func__, "blob = 1 changes the parcel's "
+                     "weight: parcel children (Nanbu method) only");
   const double c43 = (4.0 / 3.0) * SBI_PI, rho_l = s->p.rho_l;
   size_t n0 = s->n;
   for (size_t i = 0; i < n0; i++) {
@@ -227,11 +251,22 @@ int sb_spray_reitz_step(sb_spray *s, const sb_spray_gas *gas,
     double U = sqrt(U2), a = s->r[i], L, O;
     wave(a, U, gas->rho_g, rho_l, liq, &L, &O);
     double R = rp->B0 * L;
-    int active = a > R && U > 0;
-    if (active && rp->stripping) {
+    int breaks = U > 0;
+    if (breaks && rp->stripping) {
       double We = gas->rho_g * U2 * a / liq->sigma;
       double Re = gas->rho_g * U * a / gas->mu_g;
-      active = We > 0.5 * sqrt(Re);
+      breaks = We > 0.5 * sqrt(Re);
+    }
+    int active = breaks && a > R;
+    if (breaks && !active && rp->blob && !s->formed[i]) {
+      /* second branch (B0 Lambda >= a): the drops form once at the
+       * blob radius; the parcel keeps its liquid volume */
+      double rn = sb_spray_reitz_blob_radius(a, U, L, O), q = a / rn;
+      s->w[i] *= q * q * q;
+      s->r[i] = rn;
+      s->formed[i] = 1;
+      s->st.reitz_blobs++;
+      continue;
     }
     if (active) {
       double c = L * O / (3.726 * rp->B1);
@@ -254,7 +289,7 @@ int sb_spray_reitz_step(sb_spray *s, const sb_spray_gas *gas,
       if (st)
         return st;
       for (double q = 0; q < k; q++)
-        sbi_spray_push(s, vel, R, s->w[i], tag);
+        s->formed[sbi_spray_push(s, vel, R, s->w[i], tag)] = 1;
       s->shed[i] -= k * unit;
       s->st.reitz_children += (unsigned long long)k;
     } else if (s->shed[i] >= rp->emit_fraction * s->w[i] * c43 *
@@ -264,7 +299,7 @@ int sb_spray_reitz_step(sb_spray *s, const sb_spray_gas *gas,
         return st;
       double wc = s->shed[i] / vc;
       s->shed[i] = 0.0;
-      sbi_spray_push(s, vel, R, wc, tag);
+      s->formed[sbi_spray_push(s, vel, R, wc, tag)] = 1;
       s->st.reitz_children++;
     }
   }

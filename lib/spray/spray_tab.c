@@ -314,6 +314,7 @@ static int breakup(tab_ctx *c, size_t i, double yd, double trem, int depth)
       s->v[3 * i + k] += vn * n[k];
     s->y[i] = s->yd[i] = 0.0;
     s->tag[i] = tag;
+    s->formed[i] = 1; /* formed drops: no Reitz blob branch */
     return trem > 0 ? advance(c, i, trem, depth + 1) : SB_SUCCESS;
   }
   /* PARTICLES: children of the parcel's weight until the volume is used */
@@ -336,12 +337,14 @@ static int breakup(tab_ctx *c, size_t i, double yd, double trem, int depth)
       s->r[i] = rc;
       s->y[i] = s->yd[i] = 0.0;
       s->tag[i] = tag;
+      s->formed[i] = 1;
     } else {
       int st = sbi_spray_reserve(s, 1, "sb_spray_tab_step");
       if (st)
         return st;
       size_t k = sbi_spray_push(s, v, rc, s->w[i], tag);
       s->shed[k] = 0.0;
+      s->formed[k] = 1;
     }
     nch++;
   }

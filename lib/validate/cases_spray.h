@@ -29,6 +29,23 @@ int sbv_spray_add_z(sbv_report *rep, const char *name, double est,
 int sbv_spray_add_tol(sbv_report *rep, const char *name, double est,
                       double ref, double tol);
 
+/* Set-up of a validation spray: the fields that differ from
+ * sb_spray_params_default.  Zero means the default (V = 1 m^3,
+ * rho_l = 1000 kg/m^3, theta_cr = 0, capacity 1024). */
+typedef struct {
+  sb_spray_method method;
+  double B0;          /* > 0: Maxwell-type kernel B0 (m^3/s); 0: hard spheres */
+  double volume;      /* m^3 */
+  double rho_l;       /* kg/m^3 */
+  double theta_cr;    /* rad */
+  size_t capacity;
+  const sb_spray_settling *settling; /* non-NULL: merged drops take the
+                                        Stokes settling velocity */
+} sbv_spray_setup;
+
+/* Allocate the spray of `u` (NULL on error, as sb_spray_alloc). */
+sb_spray *sbv_spray_new(const sbv_spray_setup *u);
+
 /* Droplet mass 4/3 pi r^3 rho. */
 double sbv_spray_mass(double r, double rho);
 

@@ -4,7 +4,9 @@
  *     equation; breakup time vs We against arccos(1 - 12/We)/omega
  *     (undamped); critical We 6 (undamped) and 12/(1 + e^{-pi/(omega
  *     t_d)}) (damped) by integrating to the first maximum; children's
- *     Sauter radius (Monte Carlo) vs r32 and the energy balance.
+ *     Sauter radius (Monte Carlo) vs r32 and the energy balance (O'Rourke
+ *     & Amsden 1987); Bird's constant-weight children vs the exact
+ *     expectation of their exact-volume scheme (a renewal equation).
  *  V14/spray-reitz  liquid volume conserved to round-off; the closed form
  *     at frozen Lambda, Omega vs rk8pd; the stepped radius vs the full
  *     model's quadrature solution; parents' radius distribution vs the
@@ -70,6 +72,76 @@ static double trunc_exp_cdf(double x, void *par)
   if (x >= p[1])
     return 1.0;
   return expm1(-x / p[0]) / expm1(-p[1] / p[0]);
+}
+
+/* Expected children surface of the Bird (constant weight) TAB breakup:
+ * children radii are drawn i.i.d. from the exponential law of mean m
+ * truncated at the parent radius r_p until the parent's volume is used,
+ * the draw that would exceed the remaining volume v being replaced by a
+ * child of volume v.  In units of r_p (r_p = 1, mt = m/r_p), the
+ * expected sum of the children's r^2 from a remaining volume v solves the
+ * renewal equation
+ *   h(v) = int_0^{min(1, v^{1/3})} g(r) [r^2 + h(v - r^3)] dr
+ *          + (1 - G(v^{1/3})) v^{2/3},
+ * g, G the truncated exponential density and CDF.  Solved on a uniform
+ * grid of v (linear interpolation between nodes; the few draws with
+ * r^3 < dv make it implicit: fixed-point iteration per node), integrals
+ * by GSL QAG.  The scheme's Sauter radius over many breakups (ratio of
+ * sums) converges to r_p / h(1). */
+#define RN_K 2000
+typedef struct {
+  double mt, Z;     /* mean, normalisation 1 - e^{-1/mt} */
+  const double *h;  /* nodes 0..k (h[k] the current iterate) */
+  int k;
+  double v;
+} renew_ctx;
+
+static double renew_h(const renew_ctx *c, double v) /* interpolated */
+{
+  double x = v * RN_K;
+  int j = (int)x;
+  if (j >= c->k)
+    return c->h[c->k];
+  return c->h[j] + (x - j) * (c->h[j + 1] - c->h[j]);
+}
+
+static double renew_integrand(double r, void *par)
+{
+  const renew_ctx *c = par;
+  double g = exp(-r / c->mt) / (c->mt * c->Z);
+  return g * (r * r + renew_h(c, c->v - r * r * r));
+}
+
+static double bird_children_area(double mt)
+{
+  double *h = calloc(RN_K + 1, sizeof *h);
+  gsl_integration_workspace *ws = gsl_integration_workspace_alloc(1000);
+  if (!h || !ws) {
+    free(h);
+    gsl_integration_workspace_free(ws);
+    return NAN;
+  }
+  renew_ctx c = {mt, -expm1(-1.0 / mt), h, 0, 0};
+  gsl_function F = {renew_integrand, &c};
+  for (int k = 1; k <= RN_K; k++) {
+    c.k = k;
+    c.v = (double)k / RN_K;
+    double top = fmin(1.0, cbrt(c.v));
+    double tail = (1.0 + expm1(-top / mt) / c.Z) * pow(c.v, 2.0 / 3.0);
+    h[k] = h[k - 1];
+    for (int it = 0; it < 50; it++) {
+      double res, err, old = h[k];
+      gsl_integration_qag(&F, 0.0, top, 1e-14, 1e-10, 1000,
+                          GSL_INTEG_GAUSS21, ws, &res, &err);
+      h[k] = res + tail;
+      if (fabs(h[k] - old) <= 1e-14 * h[k])
+        break;
+    }
+  }
+  double area = h[RN_K];
+  free(h);
+  gsl_integration_workspace_free(ws);
+  return area;
 }
 
 int sbv_spray_case_tab(const sbv_ctx *ctx, sbv_report *rep)
@@ -158,25 +230,23 @@ int sbv_spray_case_tab(const sbv_ctx *ctx, sbv_report *rep)
    * children's Sauter radius vs that of the exponential law (mean
    * m = r32/3) truncated at r, 3 m P(4,a)/P(3,a).  Bird particles: the
    * exact volume constraint (the last child takes the remainder) biases
-   * the Sauter radius, so the verdict is on the law itself: the first
-   * child of each breakup (kept in the parent's slot) is an exact draw
-   * of the truncated exponential (KS). */
+   * the Sauter radius; verdicts on the law itself (the first child of
+   * each breakup, kept in the parent's slot, is an exact draw of the
+   * truncated exponential: KS) and on the Sauter radius against the
+   * scheme's exact expectation r / h(1) (bird_children_area). */
   const size_t M = ctx->full ? 50000 : 10000, R = ctx->full ? 16 : 8;
   double *x = malloc(2 * R * sizeof *x);
   if (!x)
     return SB_ENOMEM;
   double a = r / (r32 / 3.0);
   double sref = r32 * gsl_sf_gamma_inc_P(4, a) / gsl_sf_gamma_inc_P(3, a);
+  double sbird = r / bird_children_area(r32 / (3.0 * r));
   double ksp = NAN;
   for (int meth = 0; meth < 2 && !st; meth++) {
     gsl_rng *rng = sbv_rng_alloc(ctx, 800 + (unsigned long)meth);
     for (size_t rr = 0; rr < R && !st; rr++) {
-      sb_spray_params p;
-      sb_spray_params_default(&p);
-      p.method = (sb_spray_method)meth;
-      p.rho_l = rho_l;
-      p.capacity = M;
-      sb_spray *s = sb_spray_alloc(&p);
+      sb_spray *s = sbv_spray_new(&(sbv_spray_setup){
+          .method = (sb_spray_method)meth, .rho_l = rho_l, .capacity = M});
       if (!s || !rng) {
         sb_spray_free(s);
         st = SB_ENOMEM;
@@ -202,7 +272,8 @@ int sbv_spray_case_tab(const sbv_ctx *ctx, sbv_report *rep)
         s3 += w[i] * rc[i] * rc[i] * rc[i];
         s2 += w[i] * rc[i] * rc[i];
       }
-      x[meth * R + rr] = s3 / s2 / sref;
+      /* Bird: against the exact expectation of its scheme */
+      x[meth * R + rr] = s3 / s2 / (meth == 0 ? sbird : sref);
       if (meth == 0 && rr == 0 && !st) {
         double *first = malloc(np * sizeof *first), D;
         if (!first) {
@@ -219,13 +290,17 @@ int sbv_spray_case_tab(const sbv_ctx *ctx, sbv_report *rep)
       sb_spray_free(s);
     }
     gsl_rng_free(rng);
-    if (meth == 1 && !st)
-      st = sbv_spray_add_replicas(rep, "V14/tab/children-r32/nanbu-parcel",
-                                  x + R, R, 1.0);
+    if (!st)
+      st = sbv_spray_add_replicas(rep, meth == 0
+                                           ? "V14/tab/children-r32/"
+                                             "bird-particles/scheme"
+                                           : "V14/tab/children-r32/"
+                                             "nanbu-parcel",
+                                  x + meth * R, R, 1.0);
   }
   double bird_r32 = 0;
   for (size_t rr = 0; rr < R; rr++)
-    bird_r32 += x[rr] / (double)R;
+    bird_r32 += x[rr] * sbird / sref / (double)R;
   free(x);
   if (st)
     return st;
@@ -238,10 +313,12 @@ int sbv_spray_case_tab(const sbv_ctx *ctx, sbv_report *rep)
            "%.6g m, exponential law truncated at r, a = 3 r/r32); Bird's "
            "particles (constant weight, exact volume: children are drawn "
            "until the parent's volume is used, the last takes the rest): "
-           "Sauter radius / reference = %.4f (a bias of the exact-volume "
-           "representation, ~ E r^6/(E r^3 r^3)); their first child per "
-           "breakup follows the law exactly (KS p = %.3g)", M / 10, sref,
-           r32, bird_r32, ksp);
+           "Sauter radius / reference = %.4f, the scheme's exact "
+           "expectation r/h(1) = %.6f of the reference (renewal equation "
+           "for the expected children surface h, docs/spray.md §5): a bias "
+           "of the exact-volume representation, checked against r/h(1); "
+           "their first child per breakup follows the law exactly (KS p = "
+           "%.3g)", M / 10, sref, r32, bird_r32, sbird / sref, ksp);
   sbv_plot(ctx, rep, "V14_tab_breakup_time",
            "V14: TAB breakup time vs We (start at rest)",
            "We tb_undamped exact_undamped tb_damped", &plot[0][0], NWE, 4,
@@ -278,6 +355,161 @@ static double child_density(double a, void *par) /* d(a^3)/R(a)^3 */
   sb_spray_reitz_wave(a, p->U, p->rho_g, p->rho_l, p->liq, &L, &O);
   double R = p->B0 * L;
   return 3 * a * a / (R * R * R);
+}
+
+/* Children of the model (Reitz 1987): radius R(a) = B0 Lambda(a), born
+ * at the rate d(a^3)/R(a)^3 as the parent shrinks.  Table of the
+ * cumulative number G(a) = int 3 s^2/R(s)^3 ds on CH_NG radii (GSL QAG
+ * per interval, Steffen interpolation).  R(a) need not be monotone (at
+ * high We_g it has a flat maximum near the stable radius). */
+#define CH_NG 400
+typedef struct {
+  double a[CH_NG], G[CH_NG];
+  gsl_interp *aG;
+  gsl_interp_accel *acc;
+} child_law;
+
+static int child_law_init(child_law *c, rz_par *par, double lo, double hi)
+{
+  gsl_function F = {child_density, par};
+  gsl_integration_workspace *ws = gsl_integration_workspace_alloc(200);
+  c->aG = gsl_interp_alloc(gsl_interp_steffen, CH_NG);
+  c->acc = gsl_interp_accel_alloc();
+  if (!ws || !c->aG || !c->acc) {
+    gsl_integration_workspace_free(ws);
+    return SB_ENOMEM;
+  }
+  for (int k = 0; k < CH_NG; k++) {
+    c->a[k] = lo + (hi - lo) * k / (CH_NG - 1.0);
+    c->G[k] = 0;
+    if (k) {
+      double res, e;
+      gsl_integration_qag(&F, c->a[k - 1], c->a[k], 0, 1e-12, 200, 6, ws,
+                          &res, &e);
+      c->G[k] = c->G[k - 1] + res;
+    }
+  }
+  gsl_integration_workspace_free(ws);
+  gsl_interp_init(c->aG, c->a, c->G, CH_NG);
+  return SB_SUCCESS;
+}
+
+static void child_law_free(child_law *c)
+{
+  gsl_interp_free(c->aG);
+  gsl_interp_accel_free(c->acc);
+}
+
+static double child_G(const child_law *c, double a)
+{
+  return gsl_interp_eval(c->aG, c->a, c->G, a, c->acc);
+}
+
+/* One step of the parents rb[] -> ra[]: add to sumd[i] the model's
+ * children minus those of radius R(rb) the step emits (the shed volume
+ * over R(rb)^3) and keep in maxn[i] the model's largest number per step. */
+static void child_step_bound(const child_law *c, const rz_par *par,
+                             const double *rb, const double *ra, size_t np,
+                             double *sumd, double *maxn)
+{
+  for (size_t i = 0; i < np; i++) {
+    if (!(ra[i] < rb[i]))
+      continue;
+    double L, O;
+    sb_spray_reitz_wave(rb[i], par->U, par->rho_g, par->rho_l, par->liq, &L,
+                        &O);
+    double R = par->B0 * L;
+    double n = child_G(c, rb[i]) - child_G(c, ra[i]);
+    double m = (rb[i] * rb[i] * rb[i] - ra[i] * ra[i] * ra[i]) / (R * R * R);
+    sumd[i] += fabs(n - m);
+    maxn[i] = fmax(maxn[i], n);
+  }
+}
+
+static int cmp_double(const void *x, const void *y)
+{
+  double a = *(const double *)x, b = *(const double *)y;
+  return (a > b) - (a < b);
+}
+
+/* Bird children (tag 1, weight 1) of the parents 0..np-1 (started at
+ * a0[], now at their current radii): their radius counting function vs
+ * the model's, sup_x |N_mc(<= x) - N_ref(<= x)| / N_ref.  N_ref: each
+ * parent's path [a_t, a0] cut into CH_NS pieces, each a point mass (its
+ * number G(top) - G(bottom)) at R of its middle.  Bound of a correct
+ * scheme, per parent: the children R(a_start) of each step differ from
+ * the model's (radii between R(a_end) and R(a_start)) by sumd (their
+ * number), at most one step's children per monotone piece of R straddle
+ * x (two pieces: maxn twice), one child may wait in the shed volume, and
+ * the reference's own pieces straddling x (twice the largest). */
+#define CH_NS 2000
+typedef struct {
+  double R, n;
+} rmass;
+
+static int cmp_rmass(const void *x, const void *y)
+{
+  double a = ((const rmass *)x)->R, b = ((const rmass *)y)->R;
+  return (a > b) - (a < b);
+}
+
+static int reitz_children_law(sbv_report *rep, const child_law *c,
+                              const rz_par *par, const sb_spray *s,
+                              const double *a0, size_t np,
+                              const double *sumd, const double *maxn,
+                              double *sup, double *bound)
+{
+  size_t n = sb_spray_count(s), m = 0, nr = np * CH_NS;
+  const double *r = sb_spray_radii(s);
+  const int *tag = sb_spray_tags(s);
+  double *x = malloc(n * sizeof *x);
+  rmass *ref = malloc(nr * sizeof *ref);
+  if (!x || !ref) {
+    free(x);
+    free(ref);
+    return SB_ENOMEM;
+  }
+  for (size_t i = 0; i < n; i++)
+    if (tag[i] == 1)
+      x[m++] = r[i];
+  qsort(x, m, sizeof *x, cmp_double);
+  double nref = 0, b = 0;
+  for (size_t i = 0; i < np; i++) {
+    double big = 0;
+    for (size_t j = 0; j < CH_NS; j++) {
+      double lo = r[i] + (a0[i] - r[i]) * (double)j / CH_NS;
+      double hi = r[i] + (a0[i] - r[i]) * (double)(j + 1) / CH_NS, L, O;
+      sb_spray_reitz_wave(0.5 * (lo + hi), par->U, par->rho_g, par->rho_l,
+                          par->liq, &L, &O);
+      rmass *q = ref + i * CH_NS + j;
+      q->R = par->B0 * L;
+      q->n = child_G(c, hi) - child_G(c, lo);
+      nref += q->n;
+      big = fmax(big, q->n);
+    }
+    b += sumd[i] + 2.0 * maxn[i] + 1.0 + 2.0 * big;
+  }
+  qsort(ref, nr, sizeof *ref, cmp_rmass);
+  /* sup over the jumps of both step functions */
+  double d = 0, cum = 0;
+  size_t k = 0;
+  for (size_t j = 0; j <= nr; j++) {
+    double xr = j < nr ? ref[j].R : INFINITY;
+    while (k < m && x[k] < xr) { /* N_ref constant = cum on [.., xr) */
+      d = fmax(d, fmax(fabs((double)(k + 1) - cum), fabs((double)k - cum)));
+      k++;
+    }
+    d = fmax(d, fabs((double)k - cum));
+    if (j < nr)
+      cum += ref[j].n;
+    d = fmax(d, fabs((double)k - cum));
+  }
+  free(x);
+  free(ref);
+  *sup = d / nref;
+  *bound = b / nref;
+  return sbv_spray_add_tol(rep, "V14/reitz/bird/children-radius-law-sup",
+                           *sup, 0.0, *bound);
 }
 
 /* Push-forward CDF of the parents: a0 = inverse flow (interpolated). */
@@ -334,11 +566,8 @@ int sbv_spray_case_reitz(const sbv_ctx *ctx, sbv_report *rep)
    * model's quadrature solution, dt = tau0/20, /200, /2000 */
   double err[3];
   for (int q = 0; q < 3 && !st; q++) {
-    sb_spray_params p;
-    sb_spray_params_default(&p);
-    p.method = SB_SPRAY_NANBU;
-    p.rho_l = rho_l;
-    sb_spray *s = sb_spray_alloc(&p);
+    sb_spray *s = sbv_spray_new(
+        &(sbv_spray_setup){.method = SB_SPRAY_NANBU, .rho_l = rho_l});
     if (!s)
       return SB_ENOMEM;
     const double zero[3] = {0, 0, 0};
@@ -361,18 +590,16 @@ int sbv_spray_case_reitz(const sbv_ctx *ctx, sbv_report *rep)
   /* (c) mass, distribution and children: parents uniform in [lo, hi] */
   const size_t Np = ctx->full ? 5000 : 1000;
   const int nsteps = 200;
-  double dV[2] = {0, 0}, ksp = NAN, nchild_rel = NAN;
+  double dV[2] = {0, 0}, ksp = NAN, nchild_rel = NAN, chsup = NAN,
+         chbound = NAN;
   double hist[30][3], cdfp[40][3]; /* children histogram, parents' CDF */
   memset(hist, 0, sizeof hist);
   memset(cdfp, 0, sizeof cdfp);
   for (int meth = 0; meth < 2 && !st; meth++) {
     gsl_rng *rng = sbv_rng_alloc(ctx, 900 + (unsigned long)meth);
-    sb_spray_params p;
-    sb_spray_params_default(&p);
-    p.method = (sb_spray_method)meth;
-    p.rho_l = rho_l;
-    p.capacity = meth == 0 ? 64 * Np : 4 * Np;
-    sb_spray *s = sb_spray_alloc(&p);
+    sb_spray *s = sbv_spray_new(&(sbv_spray_setup){
+        .method = (sb_spray_method)meth, .rho_l = rho_l,
+        .capacity = meth == 0 ? 64 * Np : 4 * Np});
     if (!s || !rng) {
       sb_spray_free(s);
       gsl_rng_free(rng);
@@ -396,8 +623,33 @@ int sbv_spray_case_reitz(const sbv_ctx *ctx, sbv_report *rep)
     sb_spray_gas gas = {{U, 0, 0}, rho_g, 1.8e-5};
     sb_spray_reitz_params rq = rp;
     rq.child_tag = 1;
-    for (int k = 0; k < nsteps && !st; k++)
+    /* Bird: the parents' radii before and after each step, for the
+     * children's radius law */
+    double *rb = meth == 0 ? calloc(4 * np, sizeof *rb) : NULL;
+    if (meth == 0 && !rb)
+      st = SB_ENOMEM;
+    child_law cl;
+    rz_par cpar = {U, rho_g, rho_l, &liq, rp.B0};
+    if (meth == 0 && !st) {
+      double amin;
+      st = sb_spray_reitz_radius(lo, tend, U, rho_g, rho_l, &liq, &rp, &amin);
+      if (!st)
+        st = child_law_init(&cl, &cpar, 0.99 * amin, hi);
+    }
+    for (int k = 0; k < nsteps && !st; k++) {
+      if (rb)
+        memcpy(rb, sb_spray_radii(s), np * sizeof *rb);
       st = sb_spray_reitz_step(s, &gas, &liq, &rq, tend / nsteps);
+      if (rb && !st)
+        child_step_bound(&cl, &cpar, rb, sb_spray_radii(s), np, rb + 2 * np,
+                         rb + 3 * np);
+    }
+    if (rb && !st)
+      st = reitz_children_law(rep, &cl, &cpar, s, a0s, np, rb + 2 * np,
+                              rb + 3 * np, &chsup, &chbound);
+    if (rb)
+      child_law_free(&cl);
+    free(rb);
     sb_spray_get_totals(s, &t1);
     dV[meth] = fabs(t1.volume - t0.volume) / t0.volume;
     if (meth == 1 && !st) {
@@ -500,6 +752,12 @@ int sbv_spray_case_reitz(const sbv_ctx *ctx, sbv_report *rep)
            "push-forward CDF: KS p = %.3g; children number / integral - 1 "
            "= %.2g (criterion 2e-3: emission at the current R)", Np,
            Np / 50, dV[0], dV[1], ksp, nchild_rel);
+  sbv_note(rep, "- Bird children radii vs the model's law (radius R(a) = "
+           "B0 Lambda(a), number d(a^3)/R(a)^3 along each parent's "
+           "simulated path; Reitz 1987): sup_x |N(<= x) - N_ref(<= x)|/N_ref "
+           "= %.3g, criterion <= %.3g (the scheme's bound: children of one "
+           "step take R at the step's start radius, one step straddles x, "
+           "one child may wait in the shed volume)", chsup, chbound);
   sbv_plot(ctx, rep, "V14_reitz_children",
            "V14: Reitz children radii (Nanbu, at 2 tau)",
            "r_um number unused", &hist[0][0], 30, 3,
