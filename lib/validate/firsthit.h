@@ -2,7 +2,8 @@
  * lib/validate).
  *
  * Particles pass through each other and the first detected contact of
- * every pair is counted (a hash set of pair ids): the pairs are then
+ * every pair is counted (the observer of <smolbridge/engine_firsthit.h>,
+ * which also holds the estimator below): the pairs are then
  * independent two-body problems, whatever the volume fraction, and the
  * expected number of first contacts from a uniform start is exactly the
  * Smoluchowski absorbing-sphere flux integrated over time,
@@ -77,17 +78,6 @@ typedef struct {
   double steps;
 } fh_out;
 
-/* Set of pair keys (open addressing, 0 = empty; grows at half load). */
-typedef struct {
-  uint64_t *set;
-  size_t cap, n;
-} fh_set;
-/* Insert; 1 if new, 0 if present, -1 out of memory. */
-int fh_set_insert(fh_set *f, uint64_t key);
-int fh_set_has(const fh_set *f, uint64_t key);
-/* Key of the unordered pair of particle ids (a, b). */
-uint64_t fh_pair_key(uint64_t a, uint64_t b);
-
 /* Defaults: builtin FH_BRIDGE, Bessel mode, position ends, no warm-up. */
 void fh_run_init(fh_run *q);
 
@@ -123,7 +113,8 @@ int fh_cube_params(const sbv_ctx *ctx, unsigned long stream, double L,
  * detector, normal relative velocities at the first contacts, and the
  * long-time kernel with the transient removed self-consistently.
  *
- * Estimator.  For a pair uniform (outside contact) at t = 0 the
+ * Estimator (sb_engine_firsthit_estimate with the capacitance radius).
+ * For a pair uniform (outside contact) at t = 0 the
  * absorption rate tends to K (1 + a / sqrt(pi D t)) + O(tau_p / t), with
  * D = D_i + D_j (Einstein, D = k_B T tau_p / m) and a = K / (4 pi D) the
  * capacitance radius of the absorber that the outer diffusion field sees
@@ -176,6 +167,8 @@ typedef struct {
   size_t nvn;
   double cpu, steps, ncand;
   double pruned_mass;      /* Langevin detector: summed pruned bounds */
+  int unit;                /* write mode: the run was written, not run;
+                              lv_kernel gives K = 1 */
 } lv_out;
 
 /* Run (engine seeded from `stream`); o->vn is allocated when vcap > 0. */
