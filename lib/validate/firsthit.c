@@ -94,6 +94,32 @@ double fh_box_for(double K, size_t N, double Teff, double hits, double b2T)
   return L > Lmin ? L : Lmin;
 }
 
+FILE *fh_ini_open(const sbv_ctx *ctx, unsigned long stream,
+                  const sb_engine_params *p, double L, double T, double t1,
+                  const char *detect, const char *name)
+{
+  sbv_report *rep = ctx->ini_rep;
+  FILE *f = sbv_ini_begin(ctx, rep, name, "first-hit counting run");
+  if (!f)
+    return NULL;
+  fprintf(f, "seed = %lu\nrng = taus2\nL = %.17g\ndt = %.17g\n"
+          "t_end = %.17g\n", p->seed, L, p->dt, T);
+  if (t1 > 0)
+    fprintf(f, "warmup = %.17g\n", t1);
+  fprintf(f, "detect = %s\noutcome = count\nplacement = uniform\n"
+          "placement_seed = %lu\n", detect,
+          sbv_rng_seed(ctx, 100000 + stream));
+  return f;
+}
+
+const char *fh_ini_name(sbv_report *rep, char *buf, size_t n,
+                        const char *dflt)
+{
+  snprintf(buf, n, "%s", rep->ini_next[0] ? rep->ini_next : dflt);
+  rep->ini_next[0] = 0;
+  return buf;
+}
+
 /* The run as a collide configuration (write mode); the expect line of
  * the case's next record is added by sbv_add. */
 static int write_firsthit(const sbv_ctx *ctx, unsigned long stream,
@@ -105,29 +131,20 @@ static int write_firsthit(const sbv_ctx *ctx, unsigned long stream,
   o->hits = 1;  /* unit values: the record's estimate is the factor */
   o->expected_per_K = o->K = o->lo = o->hi = 1.0;
   char name[128];
-  snprintf(name, sizeof name, "%s", rep->ini_next[0] ? rep->ini_next
-                                                      : "firsthit");
-  rep->ini_next[0] = 0;
+  fh_ini_name(rep, name, sizeof name, "firsthit");
   if (q->builtin == FH_MD) {
     sbv_ini_skip(rep, "  %s: MD-type detection (x + u dt with the start "
                  "velocities) is not a collide detector", name);
     return SB_SUCCESS;
   }
-  FILE *f = sbv_ini_begin(ctx, rep, name, "first-hit counting run");
+  static const char *const det[] = {"bridge", "ballistic", "overlap"};
+  FILE *f = fh_ini_open(ctx, stream, p, q->L, q->T, q->t1,
+                        q->builtin != FH_BRIDGE      ? det[q->builtin]
+                        : q->mode == SB_BRIDGE_EXACT ? "exact"
+                                                     : "bridge",
+                        name);
   if (!f)
     return SB_EIO;
-  static const char *const det[] = {"bridge", "ballistic", "overlap"};
-  fprintf(f, "seed = %lu\nrng = taus2\nL = %.17g\ndt = %.17g\n"
-          "t_end = %.17g\n", p->seed, q->L, q->dt, q->T);
-  if (q->t1 > 0)
-    fprintf(f, "warmup = %.17g\n", q->t1);
-  fprintf(f, "detect = %s\noutcome = count\nplacement = uniform\n"
-          "placement_seed = %lu\n",
-          q->builtin != FH_BRIDGE     ? det[q->builtin]
-          : q->mode == SB_BRIDGE_EXACT ? "exact"
-                                       : "bridge",
-          (ctx->seed * 1000003UL + (100000 + stream) * 7919UL + 1UL) &
-              0xffffffffUL);
   if (q->builtin == FH_BRIDGE)
     fprintf(f, "\n[bridge]\nends = %s\n",
             q->ends == SB_BRIDGE_ENDS_DIFFUSIVE ? "diffusive" : "position");

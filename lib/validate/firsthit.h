@@ -33,6 +33,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <smolbridge/engine_bridge.h>
 #include "cases.h"
 
@@ -89,6 +90,18 @@ int run_firsthit(const sbv_ctx *ctx, unsigned long stream, const fh_run *q,
 /* Write-mode file name of the next run_firsthit call (rep: the report the
  * case writes to). */
 void fh_set_name(sbv_report *rep, const char *name);
+
+/* Write mode: open the collide file `name` of a first-hit run (engine
+ * parameters p, box edge L, end T, warm-up t1, collide detector name) and
+ * write its [run] keys, the placement drawn from stream 100000 + stream
+ * as the run draws it; the caller adds the rest and calls sbv_ini_end.
+ * NULL on error. */
+FILE *fh_ini_open(const sbv_ctx *ctx, unsigned long stream,
+                  const sb_engine_params *p, double L, double T, double t1,
+                  const char *detect, const char *name);
+/* The file name set by fh_set_name (then cleared), or dflt, in buf. */
+const char *fh_ini_name(sbv_report *rep, char *buf, size_t n,
+                        const char *dflt);
 
 /* (T - t1) + 2 a_eff (sqrt(T) - sqrt(t1)) / sqrt(pi D), D = b2. */
 double fh_teff(const fh_run *q);
@@ -171,7 +184,10 @@ typedef struct {
                               lv_kernel gives K = 1 */
 } lv_out;
 
-/* Run (engine seeded from `stream`); o->vn is allocated when vcap > 0. */
+/* Run (engine seeded from `stream`); o->vn is allocated when vcap > 0.
+ * Write mode (sbv_writing): the run is written as a collide configuration
+ * instead (named by fh_set_name; runs of two species or with gravity are
+ * listed as not written) and o gets unit values (o->unit). */
 int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
                 lv_out *o);
 

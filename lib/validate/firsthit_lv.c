@@ -149,6 +149,43 @@ static int fill_out(const lv_run *q, const sb_engine_firsthit *fh,
   return SB_SUCCESS;
 }
 
+/* The run as a collide configuration (write mode): one species without
+ * gravity (collide's first_hit counts one pair type, and its placement
+ * adds the settling velocity); o gets unit values (lv_kernel: K = 1), so
+ * the next record's estimate is the factor of its expect line. */
+static int write_lv(const sbv_ctx *ctx, unsigned long stream,
+                    const lv_run *q, const sb_engine_params *p, lv_out *o)
+{
+  sbv_report *rep = ctx->ini_rep;
+  o->unit = 1;
+  for (int t = 0; t < 3; t++)
+    o->npairs[t] = 1.0;
+  char name[128];
+  fh_ini_name(rep, name, sizeof name, "firsthit_lv");
+  if (q->nsp != 1 || q->g[0] != 0.0 || q->g[1] != 0.0 || q->g[2] != 0.0) {
+    sbv_ini_skip(rep, "  %s: %s", name, q->nsp != 1
+                     ? "two species (collide's first_hit counts one pair "
+                       "type)"
+                     : "settling under gravity (collide's uniform "
+                       "placement adds the settling velocity)");
+    return SB_SUCCESS;
+  }
+  static const char *const det[] = {"langevin", "ballistic", "overlap",
+                                    "bridge", "exact"};
+  FILE *f = fh_ini_open(ctx, stream, p, q->L, q->T, q->t1, det[q->det],
+                        name);
+  if (!f)
+    return SB_EIO;
+  /* T gives B = sqrt(2 k_B T / (m tau)) and the Maxwellian velocities
+   * sqrt(k_B T / m), as the run */
+  fprintf(f, "\n[observe]\nfirst_hit = yes\nfirst_hit_capacitance = yes\n"
+          "first_hit_skip_seen = yes\n");
+  fprintf(f, "\n[species p]\nradius = %.17g\nmass = %.17g\ntau = %.17g\n"
+          "T = %.17g\ncount = %zu\n", 0.5 * q->d[0], q->mass[0], q->tau[0],
+          q->temp, q->N[0]);
+  return sbv_ini_end(rep, f, "first_hit.K");
+}
+
 int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
                 lv_out *o)
 {
@@ -157,6 +194,8 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
   size_t ntot = q->N[0] + (q->nsp > 1 ? q->N[1] : 0);
   if (fh_cube_params(ctx, stream, q->L, q->dt, ntot, &p))
     return SB_ENOMEM;
+  if (sbv_writing(ctx))
+    return write_lv(ctx, stream, q, &p, o);
   p.outcome = SB_OUTCOME_COUNT;
   sb_engine *e = sb_engine_alloc(&p);
   lvctx f = {q, NULL, o, NAN};
@@ -277,6 +316,7 @@ int lv_add_compare(sbv_report *rep, const char *name, const lv_run *q1,
                    const lv_out *o1, const lv_run *q2, const lv_out *o2,
                    int type)
 {
+  sbv_ini_no_expect(rep);  /* write mode: two runs, no one file's record */
   const unsigned long h1 = o1->hits[type], h2 = o2->hits[type];
   const unsigned long n = h1 + h2;
   double a1, b1, a2, b2;
