@@ -150,7 +150,8 @@ double sb_engine_firsthit_warmup(const sb_engine_firsthit *f);
 
 /** Counts of species pair (a, b) (a, b < SB_ENGINE_PAIR_SPECIES, in any
  *  order; species without particles give zeros), or of all pairs with
- *  a = b = SB_ENGINE_FIRSTHIT_ALL.  SB_EINVAL otherwise or if the observer
+ *  a = b = SB_ENGINE_FIRSTHIT_ALL (particles of species beyond
+ *  SB_ENGINE_PAIR_SPECIES count there only).  SB_EINVAL otherwise or if the observer
  *  is not attached. */
 int sb_engine_firsthit_get(const sb_engine_firsthit *f, size_t a, size_t b,
                            sb_engine_firsthit_counts *c);
