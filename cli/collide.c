@@ -326,17 +326,17 @@ int col_run_point(const char *ini, const char *const *sets, int nsets,
     snprintf(res->status, sizeof res->status, rc ? "write error" : "ok");
   }
   if (r.fh) {
-    col_fh_result o;
+    sb_engine_firsthit_kernel_result o;
     col_firsthit_result(&r, &c, &o);
     if (verbose)
-      fprintf(stderr, "collide: done; %lu first contacts after t = %g s, "
+      fprintf(stderr, "collide: done; %llu first contacts after t = %g s, "
               "K = %.6g [%.6g, %.6g] (95%%, reference radius %g m)\n",
-              o.hits, o.t1, o.K, o.lo, o.hi, o.radius);
+              (unsigned long long)o.c.hits, o.t1, o.K, o.lo, o.hi, o.a);
     if (res) {
       res->K = o.K;
       res->lo = o.lo;
       res->hi = o.hi;
-      res->ncoll = o.hits;
+      res->ncoll = o.c.hits;
       snprintf(res->kind, sizeof res->kind, "first-hit");
     }
   } else {

@@ -10,6 +10,7 @@
 
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
+#include <smolbridge/engine_firsthit.h>
 
 #define COL_MAXSPEC 16
 #define COL_MAXPART 64
@@ -66,6 +67,7 @@ typedef struct {
   /* [observe] */
   long hit_times, first_hit;
   double first_hit_radius;
+  long first_hit_capacitance, first_hit_skip_seen;
   /* [agglo] (outcome = merge | dlvo) */
   char growth[16], erel[16];
   double wmax, wmax_kT;
@@ -144,7 +146,7 @@ typedef struct {
   sb_engine *e;
   sb_engine_bridge *bridge;     /* detect = bridge | exact */
   sb_agglo *agglo;              /* outcome = merge | dlvo */
-  struct col_firsthit *fh;      /* [observe] first_hit */
+  sb_engine_firsthit *fh;       /* [observe] first_hit */
   double t_end;                 /* absolute end time, s */
   double warm;                  /* warm-up, s (0 on restart) */
 } col_run;
@@ -157,24 +159,15 @@ void col_run_free(col_run *r);
 
 /* Install first-hit counting around the run's detector (bridge context
  * r->bridge, or the built-in `builtin`) with the neighbour reach. */
-int col_firsthit_attach(col_run *r, sb_engine_detect builtin, double reach);
+int col_firsthit_attach(const col_config *c, col_run *r,
+                        sb_engine_detect builtin, double reach);
 /* Start of counting (end of the warm-up), s. */
 void col_firsthit_start(col_run *r, double t1);
-void col_firsthit_free(struct col_firsthit *f);
-
-/* First-hit results (one species). */
-typedef struct {
-  unsigned long hits;   /* first contacts counted after the warm-up */
-  unsigned long warm;   /* first contacts during the warm-up */
-  double pairs_apart;   /* pairs not in contact at the start */
-  double radius;        /* reference radius a (m) */
-  double D;             /* relative diffusivity (b2_i + b2_j)/2, m^2/s */
-  double t1, t;         /* counting interval, s */
-  double expected_per_K;/* E[hits]/K, s/m^3 */
-  double K, lo, hi;     /* hits / expected_per_K, 95% Garwood interval */
-} col_fh_result;
+void col_firsthit_free(sb_engine_firsthit *f);
+/* First-hit results (one species): 0, a status (the counts set, the
+ * kernel NaN when it has no estimate), or -1 without the observer. */
 int col_firsthit_result(const col_run *r, const col_config *c,
-                        col_fh_result *o);
+                        sb_engine_firsthit_kernel_result *o);
 
 /* ------------------------------------------------------ collide_out.c */
 

@@ -176,6 +176,12 @@ static const keydef KEYS[] = {
      "-", "no", "count the first contact of every pair (outcome count)"},
     {"observe", "first_hit_radius", K_NUM, C(first_hit_radius), 0, R_POS, 0,
      0, NULL, "m", "r_i + r_j", "radius of the reference absorbing sphere"},
+    {"observe", "first_hit_capacitance", K_BOOL, C(first_hit_capacitance), 0,
+     R_ANY, 0, 0, BOOLS, "-", "no", "reference radius K/(4 pi D) of the "
+     "measured kernel (Langevin spheres, any Kn_D)"},
+    {"observe", "first_hit_skip_seen", K_BOOL, C(first_hit_skip_seen), 0,
+     R_ANY, 0, 0, BOOLS, "-", "no", "do not pass pairs whose first contact "
+     "is known to the detector (fewer draws)"},
     /* -------------------------------------------------------- [agglo] */
     {"agglo", "growth", K_NAME, C(growth), 16, R_ANY, 0, 0, GROWTHS, "-",
      "stokes", "species of a cluster of k primaries"},
@@ -1028,8 +1034,19 @@ int col_check(col_config *c)
       return col_fail(c, "%s: [observe] first_hit needs exactly one "
                       "species (the reference is one pair type)",
                       col_where(c, "observe", "first_hit"));
-  } else
+    if (c->dim != 3)
+      return col_fail(c, "%s: [observe] first_hit needs dim = 3 (the "
+                      "reference is the 3-D Smoluchowski transient)",
+                      col_where(c, "observe", "first_hit"));
+    if (c->first_hit_capacitance &&
+        conflict(c, "observe", "first_hit_capacitance", "first_hit_radius",
+                 "two reference radii"))
+      return -1;
+  } else {
     unused(c, "observe", "first_hit_radius", "first_hit = no");
+    unused(c, "observe", "first_hit_capacitance", "first_hit = no");
+    unused(c, "observe", "first_hit_skip_seen", "first_hit = no");
+  }
   /* fluid */
   if (!strcmp(c->fluid, "rest")) {
     unused(c, "fluid", "U", "type = rest");

@@ -452,13 +452,20 @@ static void json_contexts(FILE *f, const col_config *c, const col_run *r)
             "\"sizes.csv\"},\n", m[0], m[1], m[2]);
   }
   if (r->fh) {
-    col_fh_result o;
+    sb_engine_firsthit_kernel_result o;
     col_firsthit_result(r, c, &o);
-    fprintf(f, "  \"first_hit\": {\"hits\": %lu, \"warmup_hits\": %lu, "
-            "\"pairs_apart\": %.17g, \"radius\": %.17g, \"D\": %.17g, "
-            "\"t1\": %.17g, \"t\": %.17g, \"expected_per_K\": %.17g, "
-            "\"K\": ", o.hits, o.warm, o.pairs_apart, o.radius, o.D, o.t1,
-            o.t, o.expected_per_K);
+    fprintf(f, "  \"first_hit\": {\"hits\": %llu, \"warmup_hits\": %llu, "
+            "\"pairs_apart\": %.17g, \"radius\": ",
+            (unsigned long long)o.c.hits, (unsigned long long)o.c.warm,
+            o.c.pairs_apart);
+    jnum(f, o.a);
+    fprintf(f, ", \"capacitance\": %s, \"D\": ",
+            c->first_hit_capacitance > 0 ? "true" : "false");
+    jnum(f, o.D);
+    fprintf(f, ", \"t1\": %.17g, \"t\": %.17g, \"expected_per_K\": ", o.t1,
+            o.t);
+    jnum(f, o.expected_per_K);
+    fprintf(f, ", \"K\": ");
     jnum(f, o.K);
     fprintf(f, ", \"ci95\": [");
     jnum(f, o.lo);

@@ -630,7 +630,7 @@ int col_setup(col_config *c, col_run *r)
     double reach = r->bridge ? sb_engine_bridge_reach(r->e, r->bridge)
                    : dm == SB_DETECT_LANGEVIN ? sb_engine_langevin_reach(r->e)
                                               : 0.0;
-    if (col_firsthit_attach(r, dm, reach))
+    if (col_firsthit_attach(c, r, dm, reach))
       return col_fail(c, "[observe] first_hit: %s", sb_last_error());
   }
   return 0;

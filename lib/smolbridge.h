@@ -15,6 +15,7 @@
 #include <smolbridge/pbe.h>
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
+#include <smolbridge/engine_firsthit.h>
 #include <smolbridge/pgd.h>
 #include <smolbridge/spray.h>
 #include <smolbridge/validate.h>

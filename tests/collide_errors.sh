@@ -133,6 +133,19 @@ nu = 1e-6'
 check "first_hit without count" 2 '[observe] first_hit needs outcome = count' '$a\
 [observe]\
 first_hit = yes'
+check "first_hit in 2-D" 2 '[observe] first_hit needs dim = 3' '4a\
+dim = 2\
+outcome = count
+$a\
+[observe]\
+first_hit = yes'
+check "two first_hit reference radii" 2 'first_hit_capacitance conflicts with first_hit_radius' '4a\
+outcome = count
+$a\
+[observe]\
+first_hit = yes\
+first_hit_radius = 2e-7\
+first_hit_capacitance = yes'
 check "hit_times without bridge" 2 '[observe] hit_times records bridge hits' '$a\
 [observe]\
 hit_times = 10'

@@ -30,7 +30,7 @@ layer() {
 # module owning a public header: smolbridge/engine_bridge.h -> engine
 header_module() {
   case "$1" in
-    engine_bridge) echo engine ;;
+    engine_bridge|engine_firsthit) echo engine ;;
     langevin_hit) echo langevin ;;
     version) echo common ;;
     *) echo "$1" ;;

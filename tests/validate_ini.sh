@@ -4,7 +4,12 @@
 # seed, same estimate).  Checked on four kinds of run: a plain gas with a
 # warm-up (V1/dense-long-steps), first-hit counting with exact bridge
 # detection and a separate placement generator (VX), explicit particles
-# (V9/two-spheres-45) and DLVO merging (V8/agglo-dlvo, x = 0.5).
+# (V9/two-spheres-45), DLVO merging (V8/agglo-dlvo, x = 0.5), first-hit
+# counting of Langevin spheres with the capacitance-radius estimator and
+# the Langevin, chord and exact-bridge detectors (V12, Kn_D = 0.05: the
+# short runs; the H(Kn_D) record comes from its own expect line) and
+# laminar shear with Lees-Edwards images and the case's own placement
+# stream (V16/shear, G = 10 and 100).
 set -u
 sb="${top_builddir:-.}/smolbridge"
 sb="$(cd "$(dirname "$sb")" && pwd)/$(basename "$sb")"  # runs cd below
@@ -13,12 +18,14 @@ rm -rf "$dir"
 mkdir -p "$dir"
 fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-cases="--case V1/dense-long-steps --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo"
+cases="--case V1/dense-long-steps --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V12/ --case V16/shear"
 # shellcheck disable=SC2086
 "$sb" validate $cases --write-ini "$dir/ini" 2>"$dir/w.err" \
   || { fail "write-ini failed"; cat "$dir/w.err"; }
 grep -q 'V8/agglo-dlvo/pair-3mM-10mV' "$dir/ini/NOT-WRITTEN.txt" \
   || fail "NOT-WRITTEN.txt lacks the DLVO-pair run"
+grep -q 'V12/mixture: two species' "$dir/ini/NOT-WRITTEN.txt" \
+  || fail "NOT-WRITTEN.txt lacks the V12 mixture"
 # shellcheck disable=SC2086
 "$sb" validate $cases --out "$dir/v" >/dev/null 2>&1
 [ -s "$dir/v/validate.csv" ] || { fail "validate run failed"; exit 1; }
@@ -33,7 +40,9 @@ field() {  # field SUMMARY NAME
   esac
 }
 ncmp=0
-for run in V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 V8_dlvo_x0.5; do
+for run in V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 V8_dlvo_x0.5 \
+    V12_Kn0.05_dt1_langevin V12_Kn0.05_dt1_contact-time \
+    V12_Kn0.05_dt1_exact-bb3 V16_shear_G100 V16_shear_G10; do
   ini="$dir/ini/$run.ini"
   [ -f "$ini" ] || { fail "$run.ini not written"; continue; }
   (cd "$dir/ini" && "$sb" collide "$run.ini" >/dev/null 2>&1) \
@@ -61,7 +70,7 @@ for run in V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 V8_dlvo_x0.5; do
     ncmp=$((ncmp + 1))
   done < "$dir/expect.txt"
 done
-[ "$ncmp" -ge 8 ] || fail "only $ncmp records compared"
+[ "$ncmp" -ge 13 ] || fail "only $ncmp records compared"
 [ "$fails" -eq 0 ] && echo "validate_ini: $ncmp records reproduced by collide from the written files"
 [ "$fails" -eq 0 ] && rm -rf "$dir"
 exit $((fails > 0))

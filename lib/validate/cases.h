@@ -110,6 +110,9 @@ double sbv_brent(double (*f)(double, void *), void *par, double lo,
 /* A fresh Mersenne-Twister generator seeded from (ctx->seed, stream):
  * give every case (and every independent part of a case) its own stream. */
 gsl_rng *sbv_rng_alloc(const sbv_ctx *ctx, unsigned long stream);
+/* Its seed (MT19937 seeds modulo 2^32): a collide file's placement_seed
+ * for a placement drawn from sbv_rng_alloc(ctx, stream). */
+unsigned long sbv_rng_seed(const sbv_ctx *ctx, unsigned long stream);
 
 /* A plot: columns of `data` (nrows x ncols, row-major) are written to
  * OUTDIR/NAME.dat with `header` as a comment; `gnuplot_body` is the plot
@@ -137,6 +140,9 @@ FILE *sbv_ini_begin(const sbv_ctx *ctx, sbv_report *rep, const char *run,
  * record added (sbv_add appends its expect line). */
 int sbv_ini_end(sbv_report *rep, FILE *f, const char *field);
 /* Append "; expect RECORD = FIELD * FACTOR" to the last file. */
+/* The current run's file gets no expect line from the next record (a
+ * record that compares several runs). */
+void sbv_ini_no_expect(sbv_report *rep);
 void sbv_ini_expect(sbv_report *rep, const char *record, const char *field,
                     double factor);
 /* A run left out, and why (printf-style). */

@@ -123,6 +123,12 @@ static int bary_slope(const sbv_ctx *ctx, const mix_sp *s, const mix_sp *b,
 
 int v12_mixture(const sbv_ctx *ctx, sbv_report *rep)
 {
+  if (sbv_writing(ctx)) {
+    sbv_ini_skip(rep, "  V12/mixture: two species (collide's first_hit "
+                 "counts one pair type) and a barycentre Monte Carlo "
+                 "without an engine");
+    return SB_SUCCESS;
+  }
   const int full = ctx->full;
   mix_sp s, b;
   mix_species(20e-9, &s);
@@ -336,6 +342,11 @@ int v12_velocities(const sbv_ctx *ctx, sbv_report *rep, const v12_vel *vel,
    * Maxwellian start are straight-line flights, so |v_n| follows the
    * flux-weighted Maxwellian of variance k_B T / m_red exactly (up to
    * O(dt/tau_p) curvature) */
+  if (sbv_writing(ctx)) {
+    sbv_ini_skip(rep, "  V12/vn/free-molecular: a KS test of the normal "
+                 "velocities at contact (not a summary.json field)");
+    return SB_SUCCESS;
+  }
   v12_phys ph;
   v12_physics(10.0, &ph);
   lv_run q;

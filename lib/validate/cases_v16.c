@@ -85,7 +85,9 @@ int v16_run(const v16_setup *s, gsl_rng *r, v16_result *out)
     st = sb_engine_settling_velocity(e, a, vs);
     if (a < 4)
       memcpy(out->vset[a], vs, sizeof vs);
-    const double sd = q->B > 0.0 ? q->B * sqrt(0.5 * q->tau) : 0.0;
+    /* as smolbridge collide's placement = uniform: x and u drawn per
+     * component in turn, u = N(0, sd) + U_s(x) + settling velocity */
+    const double sd = sqrt(q->B * q->B * q->tau / 2.0);
     for (size_t k = 0; k < q->count && !st; k++) {
       double x[3], u[3];
       for (int c = 0; c < 3; c++) {
@@ -97,10 +99,11 @@ int v16_run(const v16_setup *s, gsl_rng *r, v16_result *out)
         x[c] = lo + w * gsl_rng_uniform(r);
         if (s->walls[c] && s->parabolic) /* density y (W - y): Beta(2, 2) */
           x[c] = lo + w * gsl_ran_beta(r, 2.0, 2.0);
+        u[c] = gsl_ran_gaussian_ziggurat(r, sd);
       }
+      const double us[3] = {s->G * (x[1] - 0.5 * s->L[1]), 0.0, 0.0};
       for (int c = 0; c < 3; c++)
-        u[c] = vs[c] + (sd > 0.0 ? gsl_ran_gaussian_ziggurat(r, sd) : 0.0);
-      u[0] += s->G * (x[1] - 0.5 * s->L[1]);
+        u[c] += us[c] + vs[c];
       st = sb_engine_add_particle(e, a, 0, x, u);
     }
   }
@@ -194,19 +197,70 @@ static void box_for(double phi, size_t n, double r, int ax, double stretch,
 
 /* ====================================================== V16/shear */
 
+/* Write mode: a v16_run without walls as a collide configuration (the
+ * placement drawn from stream `stream` as v16_run draws it: a collide
+ * file's placement_seed); out gets unit values (pk.K = 1 from one
+ * collision) so that a record's estimate is its factor.  One species: the
+ * next record's field is kernel.K; several: the caller writes the expect
+ * lines of pair_kernels[a,b].K (species a, b, ...). */
+static int write_v16(const sbv_ctx *ctx, sbv_report *rep,
+                     const v16_setup *s, unsigned long stream,
+                     const char *name, const char *what, v16_result *out)
+{
+  memset(out, 0, sizeof *out);
+  for (int a = 0; a < 4; a++)
+    for (int b = 0; b < 4; b++)
+      out->pk[a][b].ncoll = 1, out->pk[a][b].K = 1.0;
+  FILE *f = sbv_ini_begin(ctx, rep, name, what);
+  if (!f)
+    return SB_EIO;
+  fprintf(f, "seed = %lu\nLx = %.17g\nLy = %.17g\nLz = %.17g\n"
+          "dt = %.17g\nsteps = %zu\ndetect = ballistic\noutcome = count\n"
+          "placement = uniform\nplacement_seed = %lu\n\n[fluid]\n",
+          s->seed, s->L[0], s->L[1], s->L[2], s->dt, s->steps,
+          sbv_rng_seed(ctx, stream));
+  if (s->G != 0.0)
+    fprintf(f, "type = shear\nG = %.17g\nlees_edwards = %s\n", s->G,
+            s->lees ? "yes" : "no");
+  if (s->g[0] != 0.0 || s->g[1] != 0.0 || s->g[2] != 0.0)
+    fprintf(f, "g = %.17g %.17g %.17g\n", s->g[0], s->g[1], s->g[2]);
+  /* one fluid for all species (the cases' species share it); none for
+   * the linear drag of given tau_p */
+  if (s->sp[0].mu > 0.0)
+    fprintf(f, "rho = %.17g\nmu = %.17g\n", s->sp[0].rho_f, s->sp[0].mu);
+  for (size_t a = 0; a < s->nsp; a++) {
+    const v16_species *q = &s->sp[a];
+    double m = q->rho_p * 4.0 / 3.0 * PI * q->r * q->r * q->r;
+    fprintf(f, "\n[species %c]\nradius = %.17g\nmass = %.17g\n"
+            "tau = %.17g\nB = %.17g\ndrag = %s\ncount = %zu\n",
+            (char)('a' + a), q->r, m, q->tau, q->B,
+            q->drag == SB_DRAG_SCHILLER_NAUMANN ? "schiller-naumann"
+                                                : "stokes",
+            q->count);
+  }
+  return sbv_ini_end(rep, f, s->nsp == 1 ? "kernel.K" : NULL);
+}
+
+/* One run of a case: written (write mode) or run, its placement from
+ * its own stream. */
+static int run_or_write(const sbv_ctx *ctx, sbv_report *rep,
+                        const v16_setup *s, unsigned long stream,
+                        const char *name, const char *what,
+                        v16_result *out)
+{
+  if (sbv_writing(ctx))
+    return write_v16(ctx, rep, s, stream, name, what, out);
+  gsl_rng *r = sbv_rng_alloc(ctx, stream);
+  int st = r ? v16_run(s, r, out) : SB_ENOMEM;
+  gsl_rng_free(r);
+  return st;
+}
+
 static int case_shear(const sbv_ctx *ctx, sbv_report *rep)
 {
-  if (sbv_writing(ctx)) {
-    sbv_ini_skip(rep, "V16/shear: run by the case (uniform placement with "
-                 "the fluid velocity at each position)");
-    return SB_SUCCESS;
-  }
-  gsl_rng *r = sbv_rng_alloc(ctx, 1601);
-  if (!r)
-    return SB_ENOMEM;
+  int st = SB_SUCCESS;
   const double target = ctx->full ? 40000.0 : 2500.0;
   const double tau = 1e-7;  /* 10 um spheres: tracers at G tau << 1 */
-  int st = SB_SUCCESS;
   sbv_note(rep, "Non-Brownian spheres (tau_p = 1e-7 s, B = 0) in the "
            "shear U_x = G (y - L_y/2) with Lees-Edwards boundaries, "
            "uniform independent placement, volume fraction 5e-2 "
@@ -249,7 +303,14 @@ static int case_shear(const sbv_ctx *ctx, sbv_report *rep)
     s.steps = (size_t)ceil(t / s.dt);
     s.seed = ctx->seed * 1000 + 1600 + (unsigned long)run;
     v16_result res;
-    st = v16_run(&s, r, &res);
+    /* the placement of each run from its own stream (a collide file's
+     * placement_seed) */
+    const unsigned long stream = 16010 + (unsigned long)run;
+    static const char *const fn[4] = {"V16_shear_G100", "V16_shear_G10",
+                                      "V16_shear_bidisperse_G100",
+                                      "V16_shear_no_lees_edwards"};
+    st = run_or_write(ctx, rep, &s, stream, fn[run],
+                      "V16: spheres in laminar shear", &res);
     if (st)
       break;
     char name[128];
@@ -257,6 +318,16 @@ static int case_shear(const sbv_ctx *ctx, sbv_report *rep)
       snprintf(name, sizeof name, "V16/shear/G=%.0f/d=10um/K_e/K_th", s.G);
       st = add_pair(rep, name, &res.pk[0][0], Kth);
     } else if (run == 2) {
+      if (sbv_writing(ctx)) {
+        sbv_ini_expect(rep, "V16/shear/bidisperse/G=100/10um-5um/K_e/K_th",
+                       "pair_kernels[a,b].K", 1.0 / Kth);
+        sbv_ini_expect(rep, "V16/shear/bidisperse/G=100/10um-10um/K_e/K_th",
+                       "pair_kernels[a,a].K",
+                       1.0 / sb_kernel_shear(5e-6, 5e-6, s.G));
+        sbv_ini_expect(rep, "V16/shear/bidisperse/G=100/5um-5um/K_e/K_th",
+                       "pair_kernels[b,b].K",
+                       1.0 / sb_kernel_shear(2.5e-6, 2.5e-6, s.G));
+      }
       st = add_pair(rep, "V16/shear/bidisperse/G=100/10um-5um/K_e/K_th",
                     &res.pk[0][1], Kth);
       if (!st)
@@ -280,7 +351,6 @@ static int case_shear(const sbv_ctx *ctx, sbv_report *rep)
     }
     sbv_progress(ctx, "  V16 shear run %d: %zu steps", run, s.steps);
   }
-  gsl_rng_free(r);
   return st;
 }
 
@@ -288,13 +358,6 @@ static int case_shear(const sbv_ctx *ctx, sbv_report *rep)
 
 static int case_settling(const sbv_ctx *ctx, sbv_report *rep)
 {
-  if (sbv_writing(ctx)) {
-    sbv_ini_skip(rep, "V16/settling: run by the case");
-    return SB_SUCCESS;
-  }
-  gsl_rng *r = sbv_rng_alloc(ctx, 1602);
-  if (!r)
-    return SB_ENOMEM;
   const double target = ctx->full ? 40000.0 : 2500.0;
   const double grav = 9.81;
   int st = SB_SUCCESS;
@@ -350,12 +413,18 @@ static int case_settling(const sbv_ctx *ctx, sbv_report *rep)
     s.steps = (size_t)ceil(t / s.dt);
     s.seed = ctx->seed * 1000 + 1610 + (unsigned long)run;
     v16_result res;
-    st = v16_run(&s, r, &res);
+    st = run_or_write(ctx, rep, &s, 16020 + (unsigned long)run,
+                      sn ? "V16_settling_schiller_naumann"
+                         : "V16_settling_stokes",
+                      "V16: bidisperse spheres settling", &res);
     if (st)
       break;
     char name[128];
     snprintf(name, sizeof name, "V16/settling/%s/d=%.0fum-%.0fum/K_e/K_th",
              sn ? "schiller-naumann" : "stokes", 2e6 * r1, 2e6 * r2);
+    /* write mode: the velocity records below are not summary fields */
+    if (sbv_writing(ctx))
+      sbv_ini_expect(rep, name, "pair_kernels[a,b].K", 1.0 / Kth);
     st = add_pair(rep, name, &res.pk[0][1], Kth);
     /* the engine's settling velocity (from its root finder or tau g')
      * against the independent reference, and the mean velocity of the
@@ -376,7 +445,6 @@ static int case_settling(const sbv_ctx *ctx, sbv_report *rep)
              s.dt);
     sbv_progress(ctx, "  V16 settling run %d: %zu steps", run, s.steps);
   }
-  gsl_rng_free(r);
   return st;
 }
 

@@ -10,6 +10,7 @@
 
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
+#include <smolbridge/engine_firsthit.h>
 #include <smolbridge/stats.h>
 
 #include "firsthit.h"
@@ -17,109 +18,26 @@
 
 #define PI 3.14159265358979323846
 
-typedef struct {
-  sb_engine_bridge *b;  /* bridge detector (FH_BRIDGE) */
-  int builtin;          /* FH_* */
-  fh_set s;             /* pairs seen */
-  size_t n0;            /* pairs overlapping at the start */
-  size_t nwarm;         /* first contacts during the warm-up */
-  double t1;            /* end of the warm-up, s */
-} firsthit;
-
-static size_t slot(uint64_t key, size_t cap)
-{
-  return (size_t)((key * 0x9E3779B97F4A7C15ULL) >> 17) & (cap - 1);
-}
-
-int fh_set_insert(fh_set *f, uint64_t key)
-{
-  if (2 * (f->n + 1) > f->cap) {
-    size_t nc = f->cap ? 2 * f->cap : 1024;
-    uint64_t *ns = calloc(nc, sizeof *ns);
-    if (!ns)
-      return -1;
-    for (size_t i = 0; i < f->cap; i++)
-      if (f->set[i]) {
-        size_t h = slot(f->set[i], nc);
-        while (ns[h])
-          h = (h + 1) & (nc - 1);
-        ns[h] = f->set[i];
-      }
-    free(f->set);
-    f->set = ns;
-    f->cap = nc;
-  }
-  for (size_t h = slot(key, f->cap);; h = (h + 1) & (f->cap - 1)) {
-    if (f->set[h] == key)
-      return 0;
-    if (!f->set[h]) {
-      f->set[h] = key;
-      f->n++;
-      return 1;
-    }
-  }
-}
-
-int fh_set_has(const fh_set *f, uint64_t key)
-{
-  if (!f->cap)
-    return 0;
-  for (size_t h = slot(key, f->cap);; h = (h + 1) & (f->cap - 1)) {
-    if (f->set[h] == key)
-      return 1;
-    if (!f->set[h])
-      return 0;
-  }
-}
-
-uint64_t fh_pair_key(uint64_t a, uint64_t b)
-{
-  return ((a < b ? a : b) << 32 | (a < b ? b : a)) + 1;
-}
-
-static int fh_insert(firsthit *f, uint64_t key)
-{
-  return fh_set_insert(&f->s, key);
-}
-
-/* Wraps a detector: records the pair's first detected contact and
- * returns "no collision", so the particles pass through each other. */
-static int fh_detect(const sb_engine *e, const sb_engine_pair *p,
+/* MD-type detection (Mohaupt 2011, §3.2, App. F): the contact time of
+ * the straight motion x + u dt with the velocities at the start of the
+ * step. */
+static int md_detect(const sb_engine *e, const sb_engine_pair *p,
                      const gsl_rng *r, void *ctx, double *s)
 {
-  firsthit *f = ctx;
-  int h;
-  if (f->builtin == FH_MD) {
-    const double *u0 = sb_engine_start_velocities(e);
-    sb_engine_pair q = *p;
-    for (int k = 0; k < 3; k++)
-      q.dd[k] = (u0[3 * p->i + k] - u0[3 * p->j + k]) * p->dt;
-    h = sb_engine_detect_ballistic(&q, s);
-  } else if (f->builtin == FH_CHORD)
-    h = sb_engine_detect_ballistic(p, s);
-  else if (f->builtin == FH_OVERLAP)
-    h = sb_engine_detect_overlap(p, s);
-  else
-    h = sb_engine_detect_bridge(e, p, r, f->b, s);
-  if (h <= 0)
-    return h;
-  const uint64_t *id = sb_engine_ids(e);
-  int fresh = fh_insert(f, fh_pair_key(id[p->i], id[p->j]));
-  if (fresh < 0)
-    return -1;
-  /* the record covers [t0, t0 + dt] */
-  if (fresh && p->t0 + *s * p->dt < f->t1)
-    f->nwarm++;
-  return 0;
+  (void)r;
+  (void)ctx;
+  const double *u0 = sb_engine_start_velocities(e);
+  sb_engine_pair q = *p;
+  for (int k = 0; k < 3; k++)
+    q.dd[k] = (u0[3 * p->i + k] - u0[3 * p->j + k]) * p->dt;
+  return sb_engine_detect_ballistic(&q, s);
 }
 
 /* Independent uniform positions (overlaps allowed), velocities N(0, vsd);
- * the pairs overlapping at the start go into the set first (they are not
- * "first contacts"), so every counted pair starts uniform outside the
- * contact ball.  *npout receives the pairs apart at the start. */
+ * the observer enters the pairs overlapping at the start as seen, so
+ * every counted pair starts uniform outside the contact ball. */
 static int place_uniform(const sbv_ctx *ctx, unsigned long stream,
-                         sb_engine *e, const fh_run *q, firsthit *f,
-                         double *npout)
+                         sb_engine *e, const fh_run *q)
 {
   gsl_rng *r = sbv_rng_alloc(ctx, 100000 + stream);
   if (!r)
@@ -135,29 +53,7 @@ static int place_uniform(const sbv_ctx *ctx, unsigned long stream,
     st = sb_engine_add_particle(e, 0, 0, x, u);
   }
   gsl_rng_free(r);
-  if (st)
-    return st;
-  const double *x = sb_engine_positions(e);
-  const uint64_t *id = sb_engine_ids(e);
-  const double a2 = q->d * q->d;
-  size_t nov = 0;
-  for (size_t i = 0; i < q->N; i++)
-    for (size_t j = i + 1; j < q->N; j++) {
-      double d2 = 0.0;
-      for (int k = 0; k < 3; k++) {
-        double dx = x[3 * i + k] - x[3 * j + k];
-        dx -= q->L * floor(dx / q->L + 0.5);
-        d2 += dx * dx;
-      }
-      if (d2 <= a2) {
-        if (fh_insert(f, fh_pair_key(id[i], id[j])) < 0)
-          return SB_ENOMEM;
-        nov++;
-      }
-    }
-  f->n0 = f->s.n;
-  *npout = 0.5 * (double)q->N * (double)(q->N - 1) - (double)nov;
-  return SB_SUCCESS;
+  return st;
 }
 
 void fh_run_init(fh_run *q)
@@ -198,6 +94,32 @@ double fh_box_for(double K, size_t N, double Teff, double hits, double b2T)
   return L > Lmin ? L : Lmin;
 }
 
+FILE *fh_ini_open(const sbv_ctx *ctx, unsigned long stream,
+                  const sb_engine_params *p, double L, double T, double t1,
+                  const char *detect, const char *name)
+{
+  sbv_report *rep = ctx->ini_rep;
+  FILE *f = sbv_ini_begin(ctx, rep, name, "first-hit counting run");
+  if (!f)
+    return NULL;
+  fprintf(f, "seed = %lu\nrng = taus2\nL = %.17g\ndt = %.17g\n"
+          "t_end = %.17g\n", p->seed, L, p->dt, T);
+  if (t1 > 0)
+    fprintf(f, "warmup = %.17g\n", t1);
+  fprintf(f, "detect = %s\noutcome = count\nplacement = uniform\n"
+          "placement_seed = %lu\n", detect,
+          sbv_rng_seed(ctx, 100000 + stream));
+  return f;
+}
+
+const char *fh_ini_name(sbv_report *rep, char *buf, size_t n,
+                        const char *dflt)
+{
+  snprintf(buf, n, "%s", rep->ini_next[0] ? rep->ini_next : dflt);
+  rep->ini_next[0] = 0;
+  return buf;
+}
+
 /* The run as a collide configuration (write mode); the expect line of
  * the case's next record is added by sbv_add. */
 static int write_firsthit(const sbv_ctx *ctx, unsigned long stream,
@@ -209,29 +131,20 @@ static int write_firsthit(const sbv_ctx *ctx, unsigned long stream,
   o->hits = 1;  /* unit values: the record's estimate is the factor */
   o->expected_per_K = o->K = o->lo = o->hi = 1.0;
   char name[128];
-  snprintf(name, sizeof name, "%s", rep->ini_next[0] ? rep->ini_next
-                                                      : "firsthit");
-  rep->ini_next[0] = 0;
+  fh_ini_name(rep, name, sizeof name, "firsthit");
   if (q->builtin == FH_MD) {
     sbv_ini_skip(rep, "  %s: MD-type detection (x + u dt with the start "
                  "velocities) is not a collide detector", name);
     return SB_SUCCESS;
   }
-  FILE *f = sbv_ini_begin(ctx, rep, name, "first-hit counting run");
+  static const char *const det[] = {"bridge", "ballistic", "overlap"};
+  FILE *f = fh_ini_open(ctx, stream, p, q->L, q->T, q->t1,
+                        q->builtin != FH_BRIDGE      ? det[q->builtin]
+                        : q->mode == SB_BRIDGE_EXACT ? "exact"
+                                                     : "bridge",
+                        name);
   if (!f)
     return SB_EIO;
-  static const char *const det[] = {"bridge", "ballistic", "overlap"};
-  fprintf(f, "seed = %lu\nrng = taus2\nL = %.17g\ndt = %.17g\n"
-          "t_end = %.17g\n", p->seed, q->L, q->dt, q->T);
-  if (q->t1 > 0)
-    fprintf(f, "warmup = %.17g\n", q->t1);
-  fprintf(f, "detect = %s\noutcome = count\nplacement = uniform\n"
-          "placement_seed = %lu\n",
-          q->builtin != FH_BRIDGE     ? det[q->builtin]
-          : q->mode == SB_BRIDGE_EXACT ? "exact"
-                                       : "bridge",
-          (ctx->seed * 1000003UL + (100000 + stream) * 7919UL + 1UL) &
-              0xffffffffUL);
   if (q->builtin == FH_BRIDGE)
     fprintf(f, "\n[bridge]\nends = %s\n",
             q->ends == SB_BRIDGE_ENDS_DIFFUSIVE ? "diffusive" : "position");
@@ -266,23 +179,34 @@ int run_firsthit(const sbv_ctx *ctx, unsigned long stream, const fh_run *q,
   /* Langevin species with B tau = B_pos (diffusive limit for dt >> tau) */
   double Bv = sqrt(q->b2) / q->tau;
   sb_engine_species s = {0.5 * q->d, q->mass, q->tau, Bv, 0.0};
-  firsthit f = {NULL, q->builtin, {NULL, 0, 0}, 0, 0, q->t1};
-  double npout = 0.0;  /* pairs apart at the start */
   sb_engine_bridge_params bp;
   sb_engine_bridge_params_default(&bp);
   bp.mode = q->mode;
   bp.ends = q->ends;
   bp.outcome = SB_BRIDGE_OUT_COUNT;
-  f.b = sb_engine_bridge_alloc(&bp);
-  int st = !f.b ? SB_ENOMEM : SB_SUCCESS;
+  sb_engine_bridge *b = sb_engine_bridge_alloc(&bp);
+  sb_engine_firsthit_params fp;
+  sb_engine_firsthit_params_default(&fp);
+  if (q->builtin == FH_BRIDGE) {
+    fp.detect = sb_engine_detect_bridge;
+    fp.detect_ctx = b;
+  } else if (q->builtin == FH_MD)
+    fp.detect = md_detect;
+  else
+    fp.builtin = q->builtin == FH_OVERLAP ? SB_DETECT_OVERLAP
+                                          : SB_DETECT_BALLISTIC;
+  sb_engine_firsthit *f = sb_engine_firsthit_alloc(&fp);
+  int st = !b || !f ? SB_ENOMEM : SB_SUCCESS;
   if (!st)
     st = sb_engine_add_species(e, &s, NULL);
   if (!st)
-    st = place_uniform(ctx, stream, e, q, &f, &npout);
+    st = place_uniform(ctx, stream, e, q);
   if (!st)
-    st = sb_engine_bridge_set_b2(f.b, 0, q->b2, q->b2brown);
+    st = sb_engine_bridge_set_b2(b, 0, q->b2, q->b2brown);
   if (!st)
-    st = sb_engine_bridge_attach(e, f.b);
+    st = sb_engine_bridge_attach(e, b);
+  if (!st)
+    st = sb_engine_firsthit_set_warmup(f, q->t1);
   if (!st) {
     /* chords and overlap need no reach; the bridge its tail reach; the
      * velocity chords 7 sd of the relative speed (|u_i - u_j| dt) */
@@ -291,31 +215,31 @@ int run_firsthit(const sbv_ctx *ctx, unsigned long stream, const fh_run *q,
                        ? 7.0 * sqrt(2.0) * vsd * q->dt
                        : (q->builtin != FH_BRIDGE
                               ? 0.0
-                              : sb_engine_bridge_reach(e, f.b));
-    st = sb_engine_set_detector(e, fh_detect, &f, reach);
+                              : sb_engine_bridge_reach(e, b));
+    st = sb_engine_firsthit_attach(e, f, reach);
   }
   clock_t c0 = clock();
   if (!st)
     st = sb_engine_run_until(e, q->T);
   o->cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
   if (!st) {
+    /* each pair apart at the start is uniform on the torus minus the
+     * contact ball; the reference radius a_eff (or d) */
+    sb_engine_firsthit_kernel_result k;
+    st = sb_engine_firsthit_kernel(f, e, 0, 0, q->a_eff > 0.0 ? q->a_eff
+                                                              : q->d,
+                                   q->b2, 0.95, &k);
+    o->expected_per_K = k.expected_per_K;
+    o->hits = (unsigned long)k.c.hits;
+    o->K = k.K;
+    o->lo = k.lo;
+    o->hi = k.hi;
     sb_engine_stats es;
     sb_engine_get_stats(e, &es);
-    fh_run qq = *q;
-    qq.T = es.t;  /* the time reached (run_until stops within dt/2) */
-    /* each pair apart at the start is uniform on the torus minus the
-     * contact ball */
-    double V = q->L * q->L * q->L, R = q->d;
-    double vb = 4.0 * PI * R * R * R / 3.0;
-    o->expected_per_K = npout * fh_teff(&qq) / (V - vb);
-    o->hits = (unsigned long)(f.s.n - f.n0 - f.nwarm);
-    double scale = 1.0 / o->expected_per_K;
-    o->K = scale * (double)o->hits;
     o->steps = (double)es.steps;
-    st = sb_poisson_rate_ci(o->hits, scale, 0.95, &o->lo, &o->hi);
   }
-  sb_engine_bridge_free(f.b);
-  free(f.s.set);
+  sb_engine_bridge_free(b);
+  sb_engine_firsthit_free(f);
   sb_engine_free(e);
   return st;
 }

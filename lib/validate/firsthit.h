@@ -2,7 +2,8 @@
  * lib/validate).
  *
  * Particles pass through each other and the first detected contact of
- * every pair is counted (a hash set of pair ids): the pairs are then
+ * every pair is counted (the observer of <smolbridge/engine_firsthit.h>,
+ * which also holds the estimator below): the pairs are then
  * independent two-body problems, whatever the volume fraction, and the
  * expected number of first contacts from a uniform start is exactly the
  * Smoluchowski absorbing-sphere flux integrated over time,
@@ -32,6 +33,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <smolbridge/engine_bridge.h>
 #include "cases.h"
 
@@ -77,17 +79,6 @@ typedef struct {
   double steps;
 } fh_out;
 
-/* Set of pair keys (open addressing, 0 = empty; grows at half load). */
-typedef struct {
-  uint64_t *set;
-  size_t cap, n;
-} fh_set;
-/* Insert; 1 if new, 0 if present, -1 out of memory. */
-int fh_set_insert(fh_set *f, uint64_t key);
-int fh_set_has(const fh_set *f, uint64_t key);
-/* Key of the unordered pair of particle ids (a, b). */
-uint64_t fh_pair_key(uint64_t a, uint64_t b);
-
 /* Defaults: builtin FH_BRIDGE, Bessel mode, position ends, no warm-up. */
 void fh_run_init(fh_run *q);
 
@@ -99,6 +90,18 @@ int run_firsthit(const sbv_ctx *ctx, unsigned long stream, const fh_run *q,
 /* Write-mode file name of the next run_firsthit call (rep: the report the
  * case writes to). */
 void fh_set_name(sbv_report *rep, const char *name);
+
+/* Write mode: open the collide file `name` of a first-hit run (engine
+ * parameters p, box edge L, end T, warm-up t1, collide detector name) and
+ * write its [run] keys, the placement drawn from stream 100000 + stream
+ * as the run draws it; the caller adds the rest and calls sbv_ini_end.
+ * NULL on error. */
+FILE *fh_ini_open(const sbv_ctx *ctx, unsigned long stream,
+                  const sb_engine_params *p, double L, double T, double t1,
+                  const char *detect, const char *name);
+/* The file name set by fh_set_name (then cleared), or dflt, in buf. */
+const char *fh_ini_name(sbv_report *rep, char *buf, size_t n,
+                        const char *dflt);
 
 /* (T - t1) + 2 a_eff (sqrt(T) - sqrt(t1)) / sqrt(pi D), D = b2. */
 double fh_teff(const fh_run *q);
@@ -123,7 +126,8 @@ int fh_cube_params(const sbv_ctx *ctx, unsigned long stream, double L,
  * detector, normal relative velocities at the first contacts, and the
  * long-time kernel with the transient removed self-consistently.
  *
- * Estimator.  For a pair uniform (outside contact) at t = 0 the
+ * Estimator (sb_engine_firsthit_estimate with the capacitance radius).
+ * For a pair uniform (outside contact) at t = 0 the
  * absorption rate tends to K (1 + a / sqrt(pi D t)) + O(tau_p / t), with
  * D = D_i + D_j (Einstein, D = k_B T tau_p / m) and a = K / (4 pi D) the
  * capacitance radius of the absorber that the outer diffusion field sees
@@ -176,9 +180,14 @@ typedef struct {
   size_t nvn;
   double cpu, steps, ncand;
   double pruned_mass;      /* Langevin detector: summed pruned bounds */
+  int unit;                /* write mode: the run was written, not run;
+                              lv_kernel gives K = 1 */
 } lv_out;
 
-/* Run (engine seeded from `stream`); o->vn is allocated when vcap > 0. */
+/* Run (engine seeded from `stream`); o->vn is allocated when vcap > 0.
+ * Write mode (sbv_writing): the run is written as a collide configuration
+ * instead (named by fh_set_name; runs of two species or with gravity are
+ * listed as not written) and o gets unit values (o->unit). */
 int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
                 lv_out *o);
 

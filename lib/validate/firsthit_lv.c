@@ -14,6 +14,7 @@
 
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
+#include <smolbridge/engine_firsthit.h>
 #include <smolbridge/langevin.h>
 #include <smolbridge/stats.h>
 
@@ -21,18 +22,14 @@
 
 #define PI 3.14159265358979323846
 
+/* Detector context: the run, and the normal relative velocity of the
+ * last contact the detector reported (NaN: none). */
 typedef struct {
   const lv_run *q;
   sb_engine_bridge *b;
-  fh_set s;
   lv_out *o;
+  double vn;
 } lvctx;
-
-static int pair_type(const sb_engine *e, size_t i, size_t j)
-{
-  const size_t *sp = sb_engine_species_of(e);
-  return (int)(sp[i] + sp[j]);
-}
 
 /* Normal relative velocity at a chord contact at fraction s: velocities
  * interpolated linearly over the step (dt << tau_p for the reference). */
@@ -54,33 +51,31 @@ static double chord_vn(const sb_engine *e, const sb_engine_pair *p, double s)
   return vn;
 }
 
-/* Records the first detected contact of every pair and returns "no
- * collision" (the particles pass through each other). */
+/* The run's detector, wrapped by the first-contact observer (which skips
+ * the pairs whose first contact is known); keeps the normal relative
+ * velocity of the contact for lv_hit. */
 static int lv_detect(const sb_engine *e, const sb_engine_pair *p,
                      const gsl_rng *r, void *vctx, double *s)
 {
   lvctx *f = vctx;
-  const uint64_t *id = sb_engine_ids(e);
-  const uint64_t key = fh_pair_key(id[p->i], id[p->j]);
-  if (fh_set_has(&f->s, key))
-    return 0;  /* its first contact is known: nothing to do */
   int h;
-  double vn = NAN;
+  f->vn = NAN;
   switch (f->q->det) {
   case LV_LANGEVIN: {
     sb_langevin_contact c;
     h = sb_engine_langevin_contact(e, p, r, s, &c);
     if (h == 1) {
-      vn = 0.0;
+      double vn = 0.0;
       for (int k = 0; k < 3; k++)
         vn += (c.ui[k] - c.uj[k]) * (c.xi[k] - c.xj[k]) / p->sigma;
+      f->vn = vn;
     }
     break;
   }
   case LV_CHORD:
     h = sb_engine_detect_ballistic(p, s);
     if (h == 1)
-      vn = chord_vn(e, p, *s);
+      f->vn = chord_vn(e, p, *s);
     break;
   case LV_OVERLAP:
     h = sb_engine_detect_overlap(p, s);
@@ -88,23 +83,27 @@ static int lv_detect(const sb_engine *e, const sb_engine_pair *p,
   default:
     h = sb_engine_detect_bridge(e, p, r, f->b, s);
   }
-  if (h <= 0)
-    return h;
-  if (fh_set_insert(&f->s, key) < 0)
-    return -1;
-  if (p->t0 + *s * p->dt >= f->q->t1) {
-    lv_out *o = f->o;
-    o->hits[pair_type(e, p->i, p->j)]++;
-    if (!isnan(vn) && o->nvn < f->q->vcap)
-      o->vn[o->nvn++] = vn;
-  }
+  return h;
+}
+
+/* A counted first contact: keep its normal velocity. */
+static int lv_hit(const sb_engine *e, const sb_engine_pair *p, double s,
+                  void *vctx)
+{
+  (void)e;
+  (void)p;
+  (void)s;
+  lvctx *f = vctx;
+  lv_out *o = f->o;
+  if (!isnan(f->vn) && o->nvn < f->q->vcap)
+    o->vn[o->nvn++] = f->vn;
   return 0;
 }
 
-/* Independent uniform positions (overlaps allowed), Maxwellian velocities;
- * pairs overlapping at the start are entered in the set first. */
+/* Independent uniform positions (overlaps allowed), Maxwellian velocities
+ * (the observer enters the pairs overlapping at the start as seen). */
 static int place(const sbv_ctx *ctx, unsigned long stream, sb_engine *e,
-                 const lv_run *q, lvctx *f)
+                 const lv_run *q)
 {
   gsl_rng *r = sbv_rng_alloc(ctx, 100000 + stream);
   if (!r)
@@ -122,93 +121,69 @@ static int place(const sbv_ctx *ctx, unsigned long stream, sb_engine *e,
     }
   }
   gsl_rng_free(r);
-  if (st)
-    return st;
-  const size_t n = sb_engine_count(e);
-  const double *x = sb_engine_positions(e), *rad = sb_engine_radii(e);
-  const uint64_t *id = sb_engine_ids(e);
-  double nov[3] = {0, 0, 0};
-  /* cells of edge >= the largest contact distance: overlapping pairs lie
-   * in neighbouring cells (at least 3 per direction, or one cell) */
-  double dmax = 0.0;
-  for (size_t i = 0; i < n; i++)
-    dmax = fmax(dmax, 2.0 * rad[i]);
-  int nc = (int)floor(q->L / dmax);
-  nc = nc > 64 ? 64 : nc;
-  if (nc < 3)
-    nc = 1;
-  const size_t ncell = (size_t)nc * nc * nc;
-  size_t *head = malloc(ncell * sizeof *head), *next = malloc(n * sizeof *next);
-  if (!head || !next) {
-    free(head);
-    free(next);
-    return SB_ENOMEM;
-  }
-  for (size_t c = 0; c < ncell; c++)
-    head[c] = SIZE_MAX;
-  int (*cell)[3] = malloc(n * sizeof *cell);
-  if (!cell) {
-    free(head);
-    free(next);
-    return SB_ENOMEM;
-  }
-  for (size_t i = 0; i < n; i++) {
-    size_t c = 0;
-    for (int k = 0; k < 3; k++) {
-      int v = (int)(x[3 * i + k] / q->L * nc);
-      cell[i][k] = v < 0 ? 0 : (v >= nc ? nc - 1 : v);
-      c = c * (size_t)nc + (size_t)cell[i][k];
-    }
-    next[i] = head[c];
-    head[c] = i;
-  }
-  const int span = nc == 1 ? 0 : 1;
-  for (size_t i = 0; i < n; i++)
-    for (int a = -span; a <= span; a++)
-      for (int b = -span; b <= span; b++)
-        for (int g = -span; g <= span; g++) {
-          const int o[3] = {a, b, g};
-          size_t c = 0;
-          for (int k = 0; k < 3; k++)
-            c = c * (size_t)nc + (size_t)((cell[i][k] + o[k] + nc) % nc);
-          for (size_t j = head[c]; j != SIZE_MAX; j = next[j]) {
-            if (j <= i)
-              continue;
-            double d2 = 0.0;
-            for (int k = 0; k < 3; k++) {
-              double dx = x[3 * i + k] - x[3 * j + k];
-              dx -= q->L * floor(dx / q->L + 0.5);
-              d2 += dx * dx;
-            }
-            double sg = rad[i] + rad[j];
-            if (d2 <= sg * sg) {
-              if (fh_set_insert(&f->s, fh_pair_key(id[i], id[j])) < 0) {
-                free(head);
-                free(next);
-                free(cell);
-                return SB_ENOMEM;
-              }
-              nov[pair_type(e, i, j)] += 1.0;
-            }
-          }
-        }
-  free(head);
-  free(next);
-  free(cell);
-  const double N0 = (double)q->N[0], N1 = q->nsp > 1 ? (double)q->N[1] : 0.0;
-  const double tot[3] = {0.5 * N0 * (N0 - 1.0), N0 * N1, 0.5 * N1 * (N1 - 1.0)};
+  return st;
+}
+
+/* Per pair type (0-0, 0-1, 1-1): counts from the observer, the volume
+ * outside the contact ball and the relative diffusivity. */
+static int fill_out(const lv_run *q, const sb_engine_firsthit *fh,
+                    lv_out *o)
+{
   const double V = q->L * q->L * q->L;
   for (int t = 0; t < 3; t++) {
-    int a = t == 2 ? 1 : 0, b = t == 0 ? 0 : 1;
+    const size_t sa = t == 2 ? 1 : 0, sb = t == 0 ? 0 : 1;
+    sb_engine_firsthit_counts c;
+    int st = sb_engine_firsthit_get(fh, sa, sb, &c);
+    if (st)
+      return st;
+    o->hits[t] = (unsigned long)c.hits;
+    o->npairs[t] = c.pairs_apart;
+    int a = (int)sa, b = (int)sb;
     if (b >= q->nsp)
       a = b = 0;
     double R = 0.5 * (q->d[a] + q->d[b]);
-    f->o->npairs[t] = tot[t] - nov[t];
-    f->o->veff[t] = V - 4.0 * PI * R * R * R / 3.0;
-    f->o->D[t] = SB_BOLTZMANN * q->temp *
-                 (q->tau[a] / q->mass[a] + q->tau[b] / q->mass[b]);
+    o->veff[t] = V - 4.0 * PI * R * R * R / 3.0;
+    o->D[t] = SB_BOLTZMANN * q->temp *
+              (q->tau[a] / q->mass[a] + q->tau[b] / q->mass[b]);
   }
   return SB_SUCCESS;
+}
+
+/* The run as a collide configuration (write mode): one species without
+ * gravity (collide's first_hit counts one pair type, and its placement
+ * adds the settling velocity); o gets unit values (lv_kernel: K = 1), so
+ * the next record's estimate is the factor of its expect line. */
+static int write_lv(const sbv_ctx *ctx, unsigned long stream,
+                    const lv_run *q, const sb_engine_params *p, lv_out *o)
+{
+  sbv_report *rep = ctx->ini_rep;
+  o->unit = 1;
+  for (int t = 0; t < 3; t++)
+    o->npairs[t] = 1.0;
+  char name[128];
+  fh_ini_name(rep, name, sizeof name, "firsthit_lv");
+  if (q->nsp != 1 || q->g[0] != 0.0 || q->g[1] != 0.0 || q->g[2] != 0.0) {
+    sbv_ini_skip(rep, "  %s: %s", name, q->nsp != 1
+                     ? "two species (collide's first_hit counts one pair "
+                       "type)"
+                     : "settling under gravity (collide's uniform "
+                       "placement adds the settling velocity)");
+    return SB_SUCCESS;
+  }
+  static const char *const det[] = {"langevin", "ballistic", "overlap",
+                                    "bridge", "exact"};
+  FILE *f = fh_ini_open(ctx, stream, p, q->L, q->T, q->t1, det[q->det],
+                        name);
+  if (!f)
+    return SB_EIO;
+  /* T gives B = sqrt(2 k_B T / (m tau)) and the Maxwellian velocities
+   * sqrt(k_B T / m), as the run */
+  fprintf(f, "\n[observe]\nfirst_hit = yes\nfirst_hit_capacitance = yes\n"
+          "first_hit_skip_seen = yes\n");
+  fprintf(f, "\n[species p]\nradius = %.17g\nmass = %.17g\ntau = %.17g\n"
+          "T = %.17g\ncount = %zu\n", 0.5 * q->d[0], q->mass[0], q->tau[0],
+          q->temp, q->N[0]);
+  return sbv_ini_end(rep, f, "first_hit.K");
 }
 
 int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
@@ -219,12 +194,22 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
   size_t ntot = q->N[0] + (q->nsp > 1 ? q->N[1] : 0);
   if (fh_cube_params(ctx, stream, q->L, q->dt, ntot, &p))
     return SB_ENOMEM;
+  if (sbv_writing(ctx))
+    return write_lv(ctx, stream, q, &p, o);
   p.outcome = SB_OUTCOME_COUNT;
   sb_engine *e = sb_engine_alloc(&p);
-  lvctx f = {q, NULL, {NULL, 0, 0}, o};
+  lvctx f = {q, NULL, o, NAN};
+  sb_engine_firsthit_params fp;
+  sb_engine_firsthit_params_default(&fp);
+  fp.detect = lv_detect;
+  fp.detect_ctx = &f;
+  fp.skip_seen = 1;
+  fp.on_hit = lv_hit;
+  fp.hit_ctx = &f;
+  sb_engine_firsthit *fh = sb_engine_firsthit_alloc(&fp);
   if (q->vcap)
     o->vn = malloc(q->vcap * sizeof *o->vn);
-  int st = (!e || (q->vcap && !o->vn)) ? SB_ENOMEM : SB_SUCCESS;
+  int st = (!e || !fh || (q->vcap && !o->vn)) ? SB_ENOMEM : SB_SUCCESS;
   for (int a = 0; a < q->nsp && !st; a++) {
     double B = sqrt(2.0 * SB_BOLTZMANN * q->temp / (q->mass[a] * q->tau[a]));
     sb_engine_species s = {0.5 * q->d[a], q->mass[a], q->tau[a], B, q->temp};
@@ -234,7 +219,7 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
   if (!st && (q->g[0] != 0.0 || q->g[1] != 0.0 || q->g[2] != 0.0))
     st = sb_engine_set_gravity(e, q->g);
   if (!st)
-    st = place(ctx, stream, e, q, &f);
+    st = place(ctx, stream, e, q);
   double reach = 0.0;
   if (!st && (q->det == LV_BESSEL || q->det == LV_EXACT)) {
     sb_engine_bridge_params bp;
@@ -250,7 +235,9 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
   if (!st && !(reach >= 0.0))
     st = SB_EINVAL;
   if (!st)
-    st = sb_engine_set_detector(e, lv_detect, &f, reach);
+    st = sb_engine_firsthit_set_warmup(fh, q->t1);
+  if (!st)
+    st = sb_engine_firsthit_attach(e, fh, reach);
   clock_t c0 = clock();
   if (!st)
     st = sb_engine_run_until(e, q->T);
@@ -264,9 +251,10 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
     sb_langevin_hit_stats hs;
     if (q->det == LV_LANGEVIN && !sb_engine_langevin_stats(e, &hs))
       o->pruned_mass = hs.pruned_mass;
+    st = fill_out(q, fh, o);
   }
   sb_engine_bridge_free(f.b);
-  free(f.s.set);
+  sb_engine_firsthit_free(fh);
   sb_engine_free(e);
   if (st) {
     free(o->vn);
@@ -275,14 +263,28 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
   return st;
 }
 
+/* The estimator's inputs for pair type `type` (capacitance radius). */
+static void lv_inputs(const lv_run *q, const lv_out *o, int type,
+                      sb_engine_firsthit_kernel_result *k)
+{
+  memset(k, 0, sizeof *k);
+  k->c.hits = o->hits[type];
+  k->c.pairs_apart = o->npairs[type];
+  k->radius = SB_ENGINE_FIRSTHIT_CAPACITANCE;
+  k->D = o->D[type];
+  k->t1 = q->t1;
+  k->t = o->T;
+  k->veff = o->veff[type];
+}
+
 /* The forward map is f(K) = c1 K + c2 K^2 (firsthit.h). */
 static void coefs(const lv_run *q, const lv_out *o, int type, double *c1,
                   double *c2)
 {
-  const double D = o->D[type];
-  const double c = o->npairs[type] / o->veff[type];
-  *c1 = c * (o->T - q->t1);
-  *c2 = c * 2.0 * (sqrt(o->T) - sqrt(q->t1)) / (4.0 * PI * D * sqrt(PI * D));
+  sb_engine_firsthit_kernel_result k;
+  lv_inputs(q, o, type, &k);
+  if (sb_engine_firsthit_coefs(&k, c1, c2))
+    *c1 = *c2 = NAN;
 }
 
 double lv_expected(const lv_run *q, const lv_out *o, int type, double K)
@@ -292,38 +294,29 @@ double lv_expected(const lv_run *q, const lv_out *o, int type, double K)
   return c1 * K + c2 * K * K;
 }
 
-/* Inverse of lv_expected in K for a count h (the positive root). */
-static double kernel_of(const lv_run *q, const lv_out *o, int type, double h)
-{
-  double c1, c2;
-  coefs(q, o, type, &c1, &c2);
-  if (!(c2 > 0.0))
-    return h / c1;
-  /* (-c1 + sqrt(c1^2 + 4 c2 h)) / (2 c2), written without cancellation */
-  return 2.0 * h / (c1 + sqrt(c1 * c1 + 4.0 * c2 * h));
-}
-
 int lv_kernel(const lv_run *q, const lv_out *o, int type, double *K,
               double *lo, double *hi)
 {
   if (type < 0 || type > 2 || !(o->npairs[type] > 0.0))
     return SB_EDOM;
-  double l, u;
-  int st = sb_poisson_ci(o->hits[type], 0.95, &l, &u);
-  if (st)
-    return st;
-  *K = kernel_of(q, o, type, (double)o->hits[type]);
+  sb_engine_firsthit_kernel_result k;
+  lv_inputs(q, o, type, &k);
+  int st = o->unit ? SB_SUCCESS : sb_engine_firsthit_estimate(&k, 0.95);
+  if (o->unit)  /* write mode: the record's estimate is the factor */
+    k.K = k.lo = k.hi = 1.0;
+  *K = k.K;
   if (lo)
-    *lo = kernel_of(q, o, type, l);
+    *lo = k.lo;
   if (hi)
-    *hi = kernel_of(q, o, type, u);
-  return SB_SUCCESS;
+    *hi = k.hi;
+  return st;
 }
 
 int lv_add_compare(sbv_report *rep, const char *name, const lv_run *q1,
                    const lv_out *o1, const lv_run *q2, const lv_out *o2,
                    int type)
 {
+  sbv_ini_no_expect(rep);  /* write mode: two runs, no one file's record */
   const unsigned long h1 = o1->hits[type], h2 = o2->hits[type];
   const unsigned long n = h1 + h2;
   double a1, b1, a2, b2;

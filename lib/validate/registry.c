@@ -94,11 +94,22 @@ int sb_validate_case_index(const char *name, size_t *index)
   return sbi_error(SB_EINVAL, __func__, "no case called '%s'", name);
 }
 
+/* Distinct, reproducible seeds per (base seed, stream). */
+static unsigned long stream_seed(const sbv_ctx *ctx, unsigned long stream)
+{
+  return ctx->seed * 1000003UL + stream * 7919UL + 1UL;
+}
+
+unsigned long sbv_rng_seed(const sbv_ctx *ctx, unsigned long stream)
+{
+  return stream_seed(ctx, stream) & 0xffffffffUL;  /* what MT19937 keeps */
+}
+
 gsl_rng *sbv_rng_alloc(const sbv_ctx *ctx, unsigned long stream)
 {
   gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
-  if (r) /* distinct, reproducible seeds per (base seed, stream) */
-    gsl_rng_set(r, ctx->seed * 1000003UL + stream * 7919UL + 1UL);
+  if (r)
+    gsl_rng_set(r, stream_seed(ctx, stream));
   return r;
 }
 
@@ -150,7 +161,8 @@ static const char *const INI_CASES[] = {
     "V9/two-spheres-45", "V9/crossing-jets", "V2/brownian-ballistic",
     "V4/bridge-brownian", "V5/constant-B", "V7/brownian-turb",
     "V3/diffusive-fail", "V6/correction-step", "VX/exact-detection",
-    "V8/agglo-dlvo", NULL};
+    "V8/agglo-dlvo", "V12/langevin-detector", "V16/shear", "V16/settling",
+    NULL};
 
 int sb_validate_write_ini(size_t index, const sb_validate_options *opt,
                           const char *dir, size_t *nfiles)
@@ -168,7 +180,8 @@ int sb_validate_write_ini(size_t index, const sb_validate_options *opt,
     return sbi_error(SB_EINVAL, __func__, "case %s has no engine run that "
                      "smolbridge collide reproduces (cases with files: "
                      "V1, V2, V3 (chord, overlap), V4, V5, V6, V7, V9, VX, "
-                     "V8/agglo-dlvo)", c->name);
+                     "V8/agglo-dlvo, V12 (single-run records), V16/shear, V16/settling)",
+                     c->name);
   sb_validate_report *rep = sb_validate_report_alloc();
   if (!rep)
     return sbi_error(SB_ENOMEM, __func__, "out of memory");

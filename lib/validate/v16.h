@@ -49,7 +49,9 @@ typedef struct {
 } v16_result;
 
 /* Place the particles uniformly and independently (inside the contact
- * planes of walled directions) at their equilibrium velocities, run. */
+ * planes of walled directions) at their equilibrium velocities, drawn
+ * from r in the order of smolbridge collide's placement = uniform (x and
+ * u per component in turn, species in order), run. */
 int v16_run(const v16_setup *s, gsl_rng *r, v16_result *out);
 /* Detector that never detects (deposition runs). */
 int v16_never(const sb_engine *e, const sb_engine_pair *p, const gsl_rng *r,

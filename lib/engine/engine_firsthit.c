@@ -1,0 +1,398 @@
+/* engine_firsthit.c — first-contact observer (smolbridge/engine_firsthit.h):
+ * a set of pair ids (open addressing with linear probing, multiplicative
+ * hashing, Knuth 1998, TAOCP vol. 3, §6.4) around a detector, counts per
+ * species pair, and the Smoluchowski (1917) first-contact estimator of the
+ * kernel with its Garwood interval. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <smolbridge/engine_firsthit.h>
+#include <smolbridge/stats.h>
+
+#include "common/internal.h"
+#include "engine_internal.h"
+
+#define PI 3.14159265358979323846
+#define NPT (SB_ENGINE_PAIR_SPECIES * (SB_ENGINE_PAIR_SPECIES + 1) / 2)
+
+struct sb_engine_firsthit {
+  sb_engine_firsthit_params par;
+  int attached;
+  uint64_t *set;   /* pair keys, 0 = empty; grows at half load */
+  size_t cap, n;
+  double t1;       /* end of the warm-up, s */
+  uint64_t hits[NPT], warm[NPT], contact0[NPT];
+  double pairs_apart[NPT];
+  uint64_t hits_all, warm_all, contact0_all;
+  double pairs_apart_all;
+};
+
+static size_t slot(uint64_t key, size_t cap)
+{
+  return (size_t)((key * 0x9E3779B97F4A7C15ULL) >> 17) & (cap - 1);
+}
+
+/* 1 if new, 0 if present, -1 out of memory. */
+static int set_insert(sb_engine_firsthit *f, uint64_t key)
+{
+  if (2 * (f->n + 1) > f->cap) {
+    size_t nc = f->cap ? 2 * f->cap : 1024;
+    uint64_t *ns = calloc(nc, sizeof *ns);
+    if (!ns)
+      return -1;
+    for (size_t i = 0; i < f->cap; i++)
+      if (f->set[i]) {
+        size_t h = slot(f->set[i], nc);
+        while (ns[h])
+          h = (h + 1) & (nc - 1);
+        ns[h] = f->set[i];
+      }
+    free(f->set);
+    f->set = ns;
+    f->cap = nc;
+  }
+  for (size_t h = slot(key, f->cap);; h = (h + 1) & (f->cap - 1)) {
+    if (f->set[h] == key)
+      return 0;
+    if (!f->set[h]) {
+      f->set[h] = key;
+      f->n++;
+      return 1;
+    }
+  }
+}
+
+static int set_has(const sb_engine_firsthit *f, uint64_t key)
+{
+  if (!f->cap)
+    return 0;
+  for (size_t h = slot(key, f->cap);; h = (h + 1) & (f->cap - 1)) {
+    if (f->set[h] == key)
+      return 1;
+    if (!f->set[h])
+      return 0;
+  }
+}
+
+/* Key of the unordered pair of particle ids (never 0). */
+static uint64_t pair_key(uint64_t a, uint64_t b)
+{
+  return ((a < b ? a : b) << 32 | (a < b ? b : a)) + 1;
+}
+
+/* Index of the species pair of particles i, j, or -1 beyond the table. */
+static long type_of(const sb_engine *e, size_t i, size_t j)
+{
+  size_t a = e->species[i], b = e->species[j];
+  if (a >= SB_ENGINE_PAIR_SPECIES || b >= SB_ENGINE_PAIR_SPECIES)
+    return -1;
+  return (long)sbi_pair_index(a, b);
+}
+
+/* The counting detector: records the pair's first detected contact and
+ * answers "no collision", so the particles pass through each other. */
+static int detect(const sb_engine *e, const sb_engine_pair *p,
+                  const gsl_rng *r, void *ctx, double *s)
+{
+  sb_engine_firsthit *f = ctx;
+  const uint64_t key = pair_key(e->id[p->i], e->id[p->j]);
+  if (f->par.skip_seen && set_has(f, key))
+    return 0;
+  int h;
+  if (f->par.detect)
+    h = f->par.detect(e, p, r, f->par.detect_ctx, s);
+  else if (f->par.builtin == SB_DETECT_OVERLAP)
+    h = sb_engine_detect_overlap(p, s);
+  else if (f->par.builtin == SB_DETECT_LANGEVIN)
+    h = sb_engine_detect_langevin(e, p, r, NULL, s);
+  else
+    h = sb_engine_detect_ballistic(p, s);
+  if (h <= 0)
+    return h;
+  int fresh = set_insert(f, key);
+  if (fresh <= 0)
+    return fresh;  /* known pair (0), or out of memory (-1) */
+  const long t = type_of(e, p->i, p->j);
+  /* the record covers [t0, t0 + dt] */
+  if (p->t0 + *s * p->dt < f->t1) {
+    f->warm_all++;
+    if (t >= 0)
+      f->warm[t]++;
+    return 0;
+  }
+  f->hits_all++;
+  if (t >= 0)
+    f->hits[t]++;
+  if (f->par.on_hit && f->par.on_hit(e, p, *s, f->par.hit_ctx) < 0)
+    return -1;
+  return 0;
+}
+
+void sb_engine_firsthit_params_default(sb_engine_firsthit_params *p)
+{
+  memset(p, 0, sizeof *p);
+  p->builtin = SB_DETECT_BALLISTIC;
+}
+
+sb_engine_firsthit *sb_engine_firsthit_alloc(
+    const sb_engine_firsthit_params *p)
+{
+  if (!p) {
+    sbi_error(SB_EINVAL, __func__, "params is NULL");
+    return NULL;
+  }
+  if (!p->detect && p->builtin != SB_DETECT_BALLISTIC &&
+      p->builtin != SB_DETECT_OVERLAP && p->builtin != SB_DETECT_LANGEVIN) {
+    sbi_error(SB_EINVAL, __func__, "builtin = %d: not a built-in detector "
+              "(ballistic, overlap or langevin)", (int)p->builtin);
+    return NULL;
+  }
+  sb_engine_firsthit *f = calloc(1, sizeof *f);
+  if (!f) {
+    sbi_error(SB_ENOMEM, __func__, "out of memory");
+    return NULL;
+  }
+  f->par = *p;
+  f->par.skip_seen = p->skip_seen != 0;
+  return f;
+}
+
+void sb_engine_firsthit_free(sb_engine_firsthit *f)
+{
+  if (f)
+    free(f->set);
+  free(f);
+}
+
+int sb_engine_firsthit_attach(sb_engine *e, sb_engine_firsthit *f,
+                              double reach)
+{
+  if (!e || !f)
+    return sbi_error(SB_EINVAL, __func__, "engine or observer is NULL");
+  if (f->attached)
+    return sbi_error(SB_EINVAL, __func__, "the observer is attached "
+                     "already");
+  if (!(reach >= 0.0) || !isfinite(reach))
+    return sbi_error(SB_EINVAL, __func__, "reach = %g: must be finite and "
+                     ">= 0", reach);
+  /* particles per species */
+  double ns[SB_ENGINE_PAIR_SPECIES] = {0};
+  for (size_t i = 0; i < e->n; i++)
+    if (e->species[i] < SB_ENGINE_PAIR_SPECIES)
+      ns[e->species[i]] += 1.0;
+  /* pairs in contact now: candidates of the neighbour search without
+   * displacement, checked exactly (minimum image) */
+  int st = sbi_engine_find_pairs(e, SB_NEIGH_CELLS, e->x, NULL, 0.0);
+  if (st)
+    return st;
+  double nov[NPT] = {0}, novall = 0.0;
+  for (size_t k = 0; k < e->npairs; k++) {
+    size_t i = e->pairs[2 * k], j = e->pairs[2 * k + 1];
+    double d2 = 0.0;
+    for (int c = 0; c < e->par.dim; c++) {
+      double L = e->par.L[c], dx = e->x[3 * i + c] - e->x[3 * j + c];
+      dx -= L * floor(dx / L + 0.5);
+      d2 += dx * dx;
+    }
+    const double a = e->radius[i] + e->radius[j];
+    if (d2 <= a * a) {
+      int fresh = set_insert(f, pair_key(e->id[i], e->id[j]));
+      if (fresh < 0)
+        return sbi_error(SB_ENOMEM, __func__, "out of memory");
+      if (fresh) {
+        const long t = type_of(e, i, j);
+        if (t >= 0)
+          nov[t] += 1.0;
+        novall += 1.0;
+      }
+    }
+  }
+  e->npairs = 0;
+  for (size_t a = 0; a < SB_ENGINE_PAIR_SPECIES; a++)
+    for (size_t b = a; b < SB_ENGINE_PAIR_SPECIES; b++) {
+      const size_t t = sbi_pair_index(a, b);
+      const double tot = a == b ? 0.5 * ns[a] * (ns[a] - 1.0) : ns[a] * ns[b];
+      f->contact0[t] = (uint64_t)nov[t];
+      f->pairs_apart[t] = tot - nov[t];
+    }
+  const double N = (double)e->n;
+  f->contact0_all = (uint64_t)novall;
+  f->pairs_apart_all = 0.5 * N * (N - 1.0) - novall;
+  st = sb_engine_set_detector(e, detect, f, reach);
+  if (!st)
+    f->attached = 1;
+  return st;
+}
+
+int sb_engine_firsthit_set_warmup(sb_engine_firsthit *f, double t1)
+{
+  if (!f || !(t1 >= 0.0) || !isfinite(t1))
+    return sbi_error(SB_EINVAL, __func__, "t1 = %g: must be finite and "
+                     ">= 0", f ? t1 : NAN);
+  f->t1 = t1;
+  return SB_SUCCESS;
+}
+
+double sb_engine_firsthit_warmup(const sb_engine_firsthit *f)
+{
+  return f ? f->t1 : NAN;
+}
+
+int sb_engine_firsthit_get(const sb_engine_firsthit *f, size_t a, size_t b,
+                           sb_engine_firsthit_counts *c)
+{
+  if (!f || !c)
+    return sbi_error(SB_EINVAL, __func__, "observer or result is NULL");
+  if (!f->attached)
+    return sbi_error(SB_EINVAL, __func__, "the observer is not attached");
+  if (a == SB_ENGINE_FIRSTHIT_ALL && b == SB_ENGINE_FIRSTHIT_ALL) {
+    c->hits = f->hits_all;
+    c->warm = f->warm_all;
+    c->contact0 = f->contact0_all;
+    c->pairs_apart = f->pairs_apart_all;
+    return SB_SUCCESS;
+  }
+  if (a >= SB_ENGINE_PAIR_SPECIES || b >= SB_ENGINE_PAIR_SPECIES)
+    return sbi_error(SB_EINVAL, __func__, "species pair (%zu, %zu): each "
+                     "must be below %d (or both SB_ENGINE_FIRSTHIT_ALL)", a,
+                     b, SB_ENGINE_PAIR_SPECIES);
+  const size_t t = sbi_pair_index(a, b);
+  c->hits = f->hits[t];
+  c->warm = f->warm[t];
+  c->contact0 = f->contact0[t];
+  c->pairs_apart = f->pairs_apart[t];
+  return SB_SUCCESS;
+}
+
+int sb_engine_firsthit_kernel(const sb_engine_firsthit *f,
+                              const sb_engine *e, size_t a, size_t b,
+                              double radius, double D, double level,
+                              sb_engine_firsthit_kernel_result *k)
+{
+  if (!k)
+    return sbi_error(SB_EINVAL, __func__, "result is NULL");
+  memset(k, 0, sizeof *k);
+  k->K = k->lo = k->hi = NAN;
+  if (!e)
+    return sbi_error(SB_EINVAL, __func__, "engine is NULL");
+  if (a >= SB_ENGINE_PAIR_SPECIES || b >= SB_ENGINE_PAIR_SPECIES ||
+      a >= e->nspec || b >= e->nspec)
+    return sbi_error(SB_EINVAL, __func__, "species pair (%zu, %zu): no "
+                     "such species", a, b);
+  int st = sb_engine_firsthit_get(f, a, b, &k->c);
+  if (st)
+    return st;
+  const double R = e->spec[a].radius + e->spec[b].radius;
+  const double V = e->par.L[0] * e->par.L[1] * e->par.L[2];
+  const double T = e->t, t1 = f->t1;
+  k->radius = radius;
+  k->D = D;
+  k->t1 = t1;
+  k->t = T;
+  k->veff = V - 4.0 * PI * R * R * R / 3.0;
+  if (e->par.dim != 3)
+    return sbi_error(SB_EINVAL, __func__, "dim = %d: the first-contact "
+                     "reference is 3-D", e->par.dim);
+  return sb_engine_firsthit_estimate(k, level);
+}
+
+/* Inputs valid: SB_SUCCESS, or the status with a message from `func`. */
+static int check_inputs(const sb_engine_firsthit_kernel_result *k,
+                        const char *func)
+{
+  if (!(k->radius >= 0.0) || !isfinite(k->radius))
+    return sbi_error(SB_EINVAL, func, "radius = %g: must be > 0 (or "
+                     "SB_ENGINE_FIRSTHIT_CAPACITANCE)", k->radius);
+  if (!(k->D > 0.0) || !isfinite(k->D))
+    return sbi_error(SB_EINVAL, func, "D = %g: must be > 0 (relative "
+                     "diffusivity)", k->D);
+  if (!(k->t1 >= 0.0) || !(k->t >= 0.0) || !(k->veff > 0.0))
+    return sbi_error(SB_EINVAL, func, "t1 = %g s, t = %g s, veff = %g m^3: "
+                     "must be >= 0, >= 0, > 0", k->t1, k->t, k->veff);
+  return SB_SUCCESS;
+}
+
+/* Forward map without checks; the fixed-radius c1 is computed as
+ * P teff / veff, the capacitance form as (P / veff) (t - t1). */
+static void coefs(const sb_engine_firsthit_kernel_result *k, double *c1,
+                  double *c2)
+{
+  const double T = k->t, t1 = k->t1, D = k->D;
+  if (k->radius > 0.0) {
+    const double teff =
+        (T - t1) + 2.0 * k->radius * (sqrt(T) - sqrt(t1)) / sqrt(PI * D);
+    *c1 = k->c.pairs_apart * teff / k->veff;
+    *c2 = 0.0;
+  } else {
+    const double c = k->c.pairs_apart / k->veff;
+    *c1 = c * (T - t1);
+    *c2 = c * 2.0 * (sqrt(T) - sqrt(t1)) / (4.0 * PI * D * sqrt(PI * D));
+  }
+}
+
+int sb_engine_firsthit_coefs(const sb_engine_firsthit_kernel_result *k,
+                             double *c1, double *c2)
+{
+  if (!k || !c1 || !c2)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  int st = check_inputs(k, __func__);
+  if (st)
+    return st;
+  coefs(k, c1, c2);
+  if (!(*c1 > 0.0))
+    return sbi_error(SB_EDOM, __func__, "no exposure (%g pairs apart, "
+                     "counting from t1 = %g s to t = %g s)",
+                     k->c.pairs_apart, k->t1, k->t);
+  return SB_SUCCESS;
+}
+
+/* Inverse of the forward map for a count h (the positive root). */
+static double kernel_of(double c1, double c2, double h)
+{
+  if (!(c2 > 0.0))
+    return h / c1;
+  /* (-c1 + sqrt(c1^2 + 4 c2 h)) / (2 c2), written without cancellation */
+  return 2.0 * h / (c1 + sqrt(c1 * c1 + 4.0 * c2 * h));
+}
+
+int sb_engine_firsthit_estimate(sb_engine_firsthit_kernel_result *k,
+                                double level)
+{
+  if (!k)
+    return sbi_error(SB_EINVAL, __func__, "result is NULL");
+  k->K = k->lo = k->hi = k->a = k->expected_per_K = NAN;
+  int st = check_inputs(k, __func__);
+  if (st)
+    return st;
+  if (!(level > 0.0 && level < 1.0))
+    return sbi_error(SB_EINVAL, __func__, "level = %g: must be in (0, 1)",
+                     level);
+  double c1, c2;
+  coefs(k, &c1, &c2);
+  if (!(c1 > 0.0)) {
+    k->expected_per_K = c1;
+    return sbi_error(SB_EDOM, __func__, "no exposure (%g pairs apart, "
+                     "counting from t1 = %g s to t = %g s)",
+                     k->c.pairs_apart, k->t1, k->t);
+  }
+  if (k->radius > 0.0) {
+    /* linear: the interval is the Garwood interval times the scale */
+    k->a = k->radius;
+    k->expected_per_K = c1;
+    const double scale = 1.0 / c1;
+    k->K = scale * (double)k->c.hits;
+    return sb_poisson_rate_ci(k->c.hits, scale, level, &k->lo, &k->hi);
+  }
+  double l, u;
+  st = sb_poisson_ci(k->c.hits, level, &l, &u);
+  if (st)
+    return st;
+  k->K = kernel_of(c1, c2, (double)k->c.hits);
+  k->lo = kernel_of(c1, c2, l);
+  k->hi = kernel_of(c1, c2, u);
+  k->a = k->K / (4.0 * PI * k->D);
+  k->expected_per_K = c1 + c2 * k->K;
+  return SB_SUCCESS;
+}

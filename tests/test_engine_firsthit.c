@@ -1,0 +1,351 @@
+/* test_engine_firsthit.c — the first-contact observer
+ * (smolbridge/engine_firsthit.h): each pair counted once, pairs in contact
+ * at the start excluded, warm-up, per species pair counts, skip_seen, the
+ * callback, the estimator against its formula, bad arguments, and a Monte
+ * Carlo run of diffusive spheres against the Smoluchowski (1917)
+ * absorbing-sphere count with its start-up transient. */
+#include <math.h>
+#include <stdlib.h>
+
+#include <gsl/gsl_rng.h>
+
+#include <smolbridge/engine.h>
+#include <smolbridge/engine_bridge.h>
+#include <smolbridge/engine_firsthit.h>
+
+#include "testutil.h"
+
+#define PI 3.14159265358979323846
+
+/* Free-flight engine (molecules: straight lines), cube of edge L. */
+static sb_engine *flight_engine(double L, double dt, double r)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = L;
+  p.dt = dt;
+  p.outcome = SB_OUTCOME_COUNT;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  sb_engine_species s = {r, 1e-15, INFINITY, 0.0, 300.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+  return e;
+}
+
+typedef struct {
+  unsigned long calls, hits;
+  double s;
+} counter;
+
+static int counting_ballistic(const sb_engine *e, const sb_engine_pair *p,
+                              const gsl_rng *r, void *ctx, double *s)
+{
+  (void)e;
+  (void)r;
+  counter *c = ctx;
+  c->calls++;
+  return sb_engine_detect_ballistic(p, s);
+}
+
+static int on_hit(const sb_engine *e, const sb_engine_pair *p, double s,
+                  void *ctx)
+{
+  (void)e;
+  (void)p;
+  counter *c = ctx;
+  c->hits++;
+  c->s = s;
+  return 0;
+}
+
+/* A (moving along x at v) passes through B (at rest): one contact at
+ * t = (gap) / v, however long the particles overlap; run for less than a
+ * box crossing. */
+static sb_engine *passing_pair(void)
+{
+  const double L = 1e-4, r = 1e-6, v = 1e-2;
+  sb_engine *e = flight_engine(L, 1e-5, r);
+  double xa[3] = {0.2 * L, 0.5 * L, 0.5 * L}, ua[3] = {v, 0, 0};
+  double xb[3] = {0.5 * L, 0.5 * L, 0.5 * L}, ub[3] = {0, 0, 0};
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xa, ua), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xb, ub), SB_SUCCESS);
+  return e;
+}
+
+START_TEST(test_pass_through_once)
+{
+  /* contact at t = (0.3 L - 2 r)/v = 2.8e-3 s; the overlap lasts 4r/v =
+   * 4e-4 s (40 steps), all re-detected as contacts by the chords */
+  unsigned long calls[2];
+  for (int skip = 0; skip <= 1; skip++) {
+    sb_engine *e = passing_pair();
+    counter c = {0, 0, NAN};
+    sb_engine_firsthit_params fp;
+    sb_engine_firsthit_params_default(&fp);
+    fp.detect = counting_ballistic;
+    fp.detect_ctx = &c;
+    fp.skip_seen = skip;
+    fp.on_hit = on_hit;
+    fp.hit_ctx = &c;
+    sb_engine_firsthit *f = sb_engine_firsthit_alloc(&fp);
+    ck_assert_ptr_nonnull(f);
+    ck_assert_int_eq(sb_engine_firsthit_attach(e, f, 0.0), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_firsthit_attach(e, f, 0.0), SB_EINVAL);
+    ck_assert_int_eq(sb_engine_run_until(e, 5e-3), SB_SUCCESS);
+    sb_engine_firsthit_counts k;
+    ck_assert_int_eq(sb_engine_firsthit_get(f, 0, 0, &k), SB_SUCCESS);
+    ck_assert_uint_eq(k.hits, 1);
+    ck_assert_uint_eq(k.warm, 0);
+    ck_assert_uint_eq(k.contact0, 0);
+    ck_assert_rel(k.pairs_apart, 1.0, 0.0);
+    ck_assert_uint_eq(c.hits, 1);
+    ck_assert(c.s >= 0.0 && c.s <= 1.0);
+    calls[skip] = c.calls;
+    /* the engine itself counts nothing (pass-through) */
+    sb_engine_stats es;
+    sb_engine_get_stats(e, &es);
+    ck_assert_uint_eq(es.ncoll, 0);
+    sb_engine_firsthit_free(f);
+    sb_engine_free(e);
+  }
+  /* the overlapping pair is a candidate at each of the ~40 steps of the
+   * overlap: without skip_seen the detector sees them all */
+  ck_assert_uint_ge(calls[0], calls[1] + 30);
+}
+END_TEST
+
+START_TEST(test_warmup)
+{
+  sb_engine *e = passing_pair();
+  sb_engine_firsthit_params fp;
+  sb_engine_firsthit_params_default(&fp);
+  sb_engine_firsthit *f = sb_engine_firsthit_alloc(&fp);
+  ck_assert_int_eq(sb_engine_firsthit_set_warmup(f, 3e-3), SB_SUCCESS);
+  ck_assert_rel(sb_engine_firsthit_warmup(f), 3e-3, 0.0);
+  ck_assert_int_eq(sb_engine_firsthit_set_warmup(f, -1.0), SB_EINVAL);
+  ck_assert_int_eq(sb_engine_firsthit_attach(e, f, 0.0), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_run_until(e, 5e-3), SB_SUCCESS);
+  sb_engine_firsthit_counts k;
+  ck_assert_int_eq(sb_engine_firsthit_get(f, SB_ENGINE_FIRSTHIT_ALL,
+                                          SB_ENGINE_FIRSTHIT_ALL, &k),
+                   SB_SUCCESS);
+  ck_assert_uint_eq(k.hits, 0);
+  ck_assert_uint_eq(k.warm, 1);
+  sb_engine_firsthit_free(f);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* Species pairs and pairs in contact at the start: one 0-0 pair and one
+ * 0-1 pair overlap, the 1-1 pair is apart. */
+START_TEST(test_species_and_contact0)
+{
+  const double L = 1e-4, r = 1e-6;
+  sb_engine *e = flight_engine(L, 1e-5, r);
+  double u[3] = {0, 0, 0};
+  double x[5][3] = {{0.5 * L, 0.5 * L, 0.5 * L},
+                    {0.5 * L + r, 0.5 * L, 0.5 * L},     /* 0: overlaps */
+                    {0.5 * L - 1.5 * r, 0.5 * L, 0.5 * L}, /* 1: on 0 */
+                    {0.1 * L, 0.1 * L, 0.1 * L},         /* 1: apart */
+                    {0.999 * L, 0.5 * L, 0.5 * L}};      /* 0: periodic */
+  const size_t sp[5] = {0, 0, 1, 1, 0};
+  for (int i = 0; i < 5; i++)
+    ck_assert_int_eq(sb_engine_add_particle(e, sp[i], 0, x[i], u),
+                     SB_SUCCESS);
+  /* particle 4 overlaps none (0.499 L from 0 across the boundary) */
+  sb_engine_firsthit_params fp;
+  sb_engine_firsthit_params_default(&fp);
+  sb_engine_firsthit *f = sb_engine_firsthit_alloc(&fp);
+  sb_engine_firsthit_counts k;
+  ck_assert_int_eq(sb_engine_firsthit_get(f, 0, 0, &k), SB_EINVAL);
+  ck_assert_int_eq(sb_engine_firsthit_attach(e, f, 0.0), SB_SUCCESS);
+  /* 0-0: pairs (0,1) (0,4) (1,4), one in contact */
+  ck_assert_int_eq(sb_engine_firsthit_get(f, 0, 0, &k), SB_SUCCESS);
+  ck_assert_uint_eq(k.contact0, 1);
+  ck_assert_rel(k.pairs_apart, 2.0, 0.0);
+  /* 0-1: 3 x 2 pairs, (0,2) overlapping */
+  ck_assert_int_eq(sb_engine_firsthit_get(f, 1, 0, &k), SB_SUCCESS);
+  ck_assert_uint_eq(k.contact0, 1);
+  ck_assert_rel(k.pairs_apart, 5.0, 0.0);
+  ck_assert_int_eq(sb_engine_firsthit_get(f, 1, 1, &k), SB_SUCCESS);
+  ck_assert_uint_eq(k.contact0, 0);
+  ck_assert_rel(k.pairs_apart, 1.0, 0.0);
+  /* a species without particles, and all pairs */
+  ck_assert_int_eq(sb_engine_firsthit_get(f, 2, 5, &k), SB_SUCCESS);
+  ck_assert_rel(k.pairs_apart, 0.0, 0.0);
+  ck_assert_int_eq(sb_engine_firsthit_get(f, SB_ENGINE_FIRSTHIT_ALL,
+                                          SB_ENGINE_FIRSTHIT_ALL, &k),
+                   SB_SUCCESS);
+  ck_assert_uint_eq(k.contact0, 2);
+  ck_assert_rel(k.pairs_apart, 8.0, 0.0);
+  ck_assert_int_eq(sb_engine_firsthit_get(f, SB_ENGINE_PAIR_SPECIES, 0, &k),
+                   SB_EINVAL);
+  sb_engine_firsthit_free(f);
+  sb_engine_free(e);
+}
+END_TEST
+
+START_TEST(test_kernel_formula_and_errors)
+{
+  sb_engine *e = passing_pair();
+  sb_engine_firsthit_params fp;
+  sb_engine_firsthit_params_default(&fp);
+  fp.builtin = SB_DETECT_CUSTOM;
+  ck_assert_ptr_null(sb_engine_firsthit_alloc(&fp));
+  ck_assert_ptr_null(sb_engine_firsthit_alloc(NULL));
+  fp.builtin = SB_DETECT_OVERLAP;
+  sb_engine_firsthit *f = sb_engine_firsthit_alloc(&fp);
+  ck_assert_int_eq(sb_engine_firsthit_set_warmup(f, 1e-3), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_firsthit_attach(e, f, 0.0), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_run_until(e, 5e-3), SB_SUCCESS);
+  const double a = 1.5e-6, D = 2e-12, L = 1e-4, R = 2e-6;
+  sb_engine_firsthit_kernel_result k;
+  ck_assert_int_eq(sb_engine_firsthit_kernel(f, e, 0, 0, a, D, 0.95, &k),
+                   SB_SUCCESS);
+  const double T = sb_engine_time(e), t1 = 1e-3;
+  const double teff = (T - t1) + 2 * a * (sqrt(T) - sqrt(t1)) / sqrt(PI * D);
+  const double want = 1.0 * teff / (L * L * L - 4 * PI * R * R * R / 3);
+  ck_assert_uint_eq(k.c.hits, 1);
+  ck_assert_rel(k.expected_per_K, want, TOL_TIGHT);
+  ck_assert_rel(k.K, 1.0 / want, TOL_TIGHT);
+  ck_assert(k.lo < k.K && k.K < k.hi);
+  ck_assert_rel(k.t, T, 0.0);
+  double c1, c2;
+  ck_assert_int_eq(sb_engine_firsthit_coefs(&k, &c1, &c2), SB_SUCCESS);
+  ck_assert_rel(c1, want, TOL_TIGHT);
+  ck_assert_rel(c2, 0.0, 0.0);
+  /* the capacitance radius: E[hits] = c (K (T - t1) + K^2 2 (sqrt T -
+   * sqrt t1) / (4 pi D sqrt(pi D))) = 1 solved for K */
+  ck_assert_int_eq(sb_engine_firsthit_kernel(f, e, 0, 0,
+                                             SB_ENGINE_FIRSTHIT_CAPACITANCE,
+                                             D, 0.95, &k),
+                   SB_SUCCESS);
+  const double cc = 1.0 / (L * L * L - 4 * PI * R * R * R / 3);
+  const double q1 = cc * (T - t1);
+  const double q2 = cc * 2 * (sqrt(T) - sqrt(t1)) / (4 * PI * D * sqrt(PI * D));
+  const double Kq = (-q1 + sqrt(q1 * q1 + 4 * q2)) / (2 * q2);
+  ck_assert_rel(k.K, Kq, 1e-9);  /* the textbook root cancels */
+  ck_assert_rel(q1 * k.K + q2 * k.K * k.K, 1.0, 1e-12);
+  ck_assert_rel(k.a, k.K / (4 * PI * D), TOL_TIGHT);
+  ck_assert(k.lo < k.K && k.K < k.hi);
+  ck_assert_int_eq(sb_engine_firsthit_coefs(&k, &c1, &c2), SB_SUCCESS);
+  ck_assert_rel(c1, q1, TOL_TIGHT);
+  ck_assert_rel(c2, q2, TOL_TIGHT);
+  /* the estimator alone, from kept inputs, gives the same */
+  sb_engine_firsthit_kernel_result k2 = k;
+  k2.K = k2.lo = k2.hi = 0.0;
+  ck_assert_int_eq(sb_engine_firsthit_estimate(&k2, 0.95), SB_SUCCESS);
+  ck_assert_rel(k2.K, k.K, 0.0);
+  ck_assert_rel(k2.hi, k.hi, 0.0);
+  /* bad arguments: the counts are still set, K is NaN */
+  ck_assert_int_eq(sb_engine_firsthit_kernel(f, e, 0, 0, -1.0, D, 0.95, &k),
+                   SB_EINVAL);
+  ck_assert(isnan(k.K));
+  ck_assert_uint_eq(k.c.hits, 1);
+  ck_assert_int_eq(sb_engine_firsthit_kernel(f, e, 0, 0, a, NAN, 0.95, &k),
+                   SB_EINVAL);
+  ck_assert_int_eq(sb_engine_firsthit_kernel(f, e, 0, 0, a, D, 1.0, &k),
+                   SB_EINVAL);
+  ck_assert_int_eq(sb_engine_firsthit_kernel(f, e, 0, 2, a, D, 0.95, &k),
+                   SB_EINVAL);
+  /* species pair 1-1 has no pair: no exposure */
+  ck_assert_int_eq(sb_engine_firsthit_kernel(f, e, 1, 1, a, D, 0.95, &k),
+                   SB_EDOM);
+  ck_assert(isnan(k.K));
+  sb_engine_firsthit_free(f);
+  sb_engine_free(e);
+
+  /* 2-D: no reference */
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.dim = 2;
+  p.outcome = SB_OUTCOME_COUNT;
+  e = sb_engine_alloc(&p);
+  sb_engine_species s = {1e-6, 1e-15, INFINITY, 0.0, 300.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+  f = sb_engine_firsthit_alloc(&fp);
+  ck_assert_int_eq(sb_engine_firsthit_attach(e, f, 0.0), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_firsthit_kernel(f, e, 0, 0, a, D, 0.95, &k),
+                   SB_EINVAL);
+  sb_engine_firsthit_free(f);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* Diffusive spheres (dt = 1000 tau_p, b2 = B_pos^2 per particle: the
+ * relative diffusivity is D = b2) placed independently and uniformly,
+ * detected by the Bessel-3 bridge (Mohaupt 2011, ch. 5): the first-contact
+ * kernel is K = 4 pi D d with radius a = d.  N = 600, 300 steps, seed 7,
+ * box edge 10 relative displacement standard deviations; about 4500
+ * counted contacts (the start-up transient makes 2/3 of them); pass: K in
+ * the exact 99.9% Garwood interval of the count.  Without the transient
+ * term the estimate would be ~3 K. */
+START_TEST(test_mc_smoluchowski)
+{
+  const double d = 1e-6, b2 = 1e-12, tau = 1e-6, dt = 1e-3;
+  const size_t N = 600;
+  const double T = 300 * dt, L = 10.0 * sqrt(2.0 * b2 * T);
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = L;
+  p.dt = dt;
+  p.capacity = N;
+  p.seed = 7;
+  p.outcome = SB_OUTCOME_COUNT;
+  sb_engine *e = sb_engine_alloc(&p);
+  sb_engine_species s = {0.5 * d, 1e-15, tau, sqrt(b2) / tau, 0.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+  gsl_rng *g = gsl_rng_alloc(gsl_rng_taus2);
+  gsl_rng_set(g, 7);
+  for (size_t i = 0; i < N; i++) {
+    double x[3], u[3] = {0, 0, 0};
+    for (int k = 0; k < 3; k++)
+      x[k] = L * gsl_rng_uniform(g);
+    ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, x, u), SB_SUCCESS);
+  }
+  gsl_rng_free(g);
+  sb_engine_bridge_params bp;
+  sb_engine_bridge_params_default(&bp);
+  bp.outcome = SB_BRIDGE_OUT_COUNT;
+  sb_engine_bridge *b = sb_engine_bridge_alloc(&bp);
+  ck_assert_int_eq(sb_engine_bridge_set_b2(b, 0, b2, b2), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_bridge_attach(e, b), SB_SUCCESS);
+  sb_engine_firsthit_params fp;
+  sb_engine_firsthit_params_default(&fp);
+  fp.detect = sb_engine_detect_bridge;
+  fp.detect_ctx = b;
+  sb_engine_firsthit *f = sb_engine_firsthit_alloc(&fp);
+  ck_assert_int_eq(
+      sb_engine_firsthit_attach(e, f, sb_engine_bridge_reach(e, b)),
+      SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_run_until(e, T), SB_SUCCESS);
+  sb_engine_firsthit_kernel_result k;
+  ck_assert_int_eq(sb_engine_firsthit_kernel(f, e, 0, 0, d, b2, 0.999, &k),
+                   SB_SUCCESS);
+  const double Kth = 4.0 * PI * b2 * d;
+  ck_assert_uint_gt(k.c.hits, 2000);
+  ck_assert_msg(k.lo <= Kth && Kth <= k.hi,
+                "K = %g [%g, %g] (%llu hits), K_th = %g", k.K, k.lo, k.hi,
+                (unsigned long long)k.c.hits, Kth);
+  sb_engine_firsthit_free(f);
+  sb_engine_bridge_free(b);
+  sb_engine_free(e);
+}
+END_TEST
+
+static Suite *suite(void)
+{
+  Suite *s = suite_create("engine_firsthit");
+  TCase *tc = tcase_create("core");
+  tcase_set_timeout(tc, 60);
+  tcase_add_test(tc, test_pass_through_once);
+  tcase_add_test(tc, test_warmup);
+  tcase_add_test(tc, test_species_and_contact0);
+  tcase_add_test(tc, test_kernel_formula_and_errors);
+  tcase_add_test(tc, test_mc_smoluchowski);
+  suite_add_tcase(s, tc);
+  return s;
+}
+
+int main(void) { return sbt_run_suite(suite()); }
