@@ -324,6 +324,10 @@ static void range_text(const keydef *k, char *buf, size_t len)
 void col_print_keys(FILE *f)
 {
   const char *sec = "";
+  int w = 16;  /* the longest key sets the name column */
+  for (size_t i = 0; i < NKEYS; i++)
+    if ((int)strlen(KEYS[i].key) > w)
+      w = (int)strlen(KEYS[i].key);
   for (size_t i = 0; i < NKEYS; i++) {
     const keydef *k = &KEYS[i];
     if (strcmp(sec, k->sec)) {
@@ -332,8 +336,8 @@ void col_print_keys(FILE *f)
     }
     char r[200];
     range_text(k, r, sizeof r);
-    fprintf(f, "  %-16s %-9s default %s; %s\n  %-16s %-9s valid: %s\n",
-            k->key, k->unit, k->def, k->help, "", "", r);
+    fprintf(f, "  %-*s %-9s default %s; %s\n  %-*s %-9s valid: %s\n", w,
+            k->key, k->unit, k->def, k->help, w, "", "", r);
   }
 }
 
