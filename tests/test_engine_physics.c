@@ -652,6 +652,42 @@ START_TEST(test_checkpoint)
 }
 END_TEST
 
+/* A deterministic Langevin particle (B = 0, tau = 1) dips below the
+ * contact plane inside a step and comes back: from y = 0.3 (plane at
+ * r = 0.1) with u_y = -1 and settling velocity +0.8 its path is
+ * y(t) = 0.3 + 0.8 t - 1.8 (1 - e^{-t}), below 0.1 for t in about
+ * (0.3, 1.4), back at 0.344 at t = dt = 2.  The Langevin wall detector
+ * deposits it; the chord and the Brownian bridge (no noise) do not. */
+START_TEST(test_wall_langevin_dip)
+{
+  static const sb_engine_walldet dets[3] = {
+      SB_WALLDET_LANGEVIN, SB_WALLDET_BALLISTIC, SB_WALLDET_BRIDGE};
+  for (int d = 0; d < 3; d++) {
+    sb_engine *e = eng(10.0, 2.0, 4, 1);
+    sb_engine_species s = {0.1, 1.0, 1.0, 0.0, 0.0};
+    sb_engine_add_species(e, &s, NULL);
+    double g[3] = {0.0, 0.8, 0.0};
+    ck_assert_int_eq(sb_engine_set_gravity(e, g), 0);
+    ck_assert_int_eq(sb_engine_set_walls(e, 1, SB_WALL_ABSORB,
+                                         SB_WALL_ABSORB), 0);
+    ck_assert_int_eq(sb_engine_set_wall_mode(e, dets[d], SB_DEPOSIT_REMOVE),
+                     0);
+    double x[3] = {5.0, 0.3, 5.0}, u[3] = {0.0, -1.0, 0.0};
+    sb_engine_add_particle(e, 0, 0, x, u);
+    ck_assert_int_eq(sb_engine_step(e), 0);
+    ck_assert_uint_eq(sb_engine_deposits(e, 2), d == 0 ? 1 : 0);
+    if (d)
+      ck_assert_rel(sb_engine_positions(e)[1],
+                    0.3 + 1.6 - 1.8 * (1.0 - exp(-2.0)), 1e-12);
+    sb_engine_free(e);
+  }
+  sb_engine *e = eng(10.0, 2.0, 4, 1);
+  ck_assert_int_eq(sb_engine_set_wall_mode(e, (sb_engine_walldet)3,
+                                           SB_DEPOSIT_REMOVE), SB_EINVAL);
+  sb_engine_free(e);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("engine_physics");
@@ -669,6 +705,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_sn_order);
   tcase_add_test(tc, test_wall_bridge_mc);
   tcase_add_test(tc, test_wall_ballistic);
+  tcase_add_test(tc, test_wall_langevin_dip);
   tcase_add_test(tc, test_checkpoint);
   suite_add_tcase(s, tc);
   return s;

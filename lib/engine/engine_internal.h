@@ -245,6 +245,16 @@ static inline double sbi_wrap(double x, double L)
   return x;
 }
 
+/* The velocity particle k relaxes to over the step, component c: the
+ * fluid velocity at its start (zero at rest) plus its species' settling
+ * velocity (the w of the exact step, engine.c transport). */
+static inline double sbi_engine_w(const sb_engine *e, size_t k, int c)
+{
+  const size_t sp = e->species[k];
+  return (e->fluid != SB_FLUID_REST ? e->us[3 * k + c] : 0.0) +
+         ((e->has_grav && sp < e->nvset) ? e->vset[3 * sp + c] : 0.0);
+}
+
 /* Append a candidate pair (grows the array). */
 int sbi_engine_push_pair(sb_engine *e, size_t i, size_t j);
 

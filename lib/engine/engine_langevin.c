@@ -162,7 +162,7 @@ static int state_at(const sb_engine *e, size_t k, double t, const gsl_rng *r,
   x[0] = x[1] = x[2] = u[0] = u[1] = u[2] = 0.0;
   for (int c = 0; c < e->par.dim; c++) {
     const double xa = e->lp_x[3 * k + c], ua = e->lp_u[3 * k + c];
-    const double w = e->us[3 * k + c];
+    const double w = sbi_engine_w(e, k, c);
     if (isinf(sp->tau)) {
       x[c] = xa + ua * s;
       u[c] = ua;
@@ -196,7 +196,7 @@ static void fill_path(const sb_engine *e, size_t k, const double *xa,
   q->mass = e->mass[k];
   for (int c = 0; c < 3; c++) {
     const double v = c == 0 ? du : 0.0;
-    q->us[c] = e->us[3 * k + c] + v;
+    q->us[c] = sbi_engine_w(e, k, c) + v;
     q->x0[c] = xa[c] + sh[c];
     q->u0[c] = ua[c] + v;
     q->x1[c] = e->x[3 * k + c] + sh[c] + v * h;
@@ -334,7 +334,7 @@ int sbi_engine_langevin_continue(sb_engine *e, size_t k, const sbi_event *ev,
     double z2 = gsl_ran_gaussian_ziggurat(e->rng, 1.0);
     if (c >= e->par.dim)
       continue;
-    const double w = e->us[3 * k + c], v = e->u[3 * k + c] - w;
+    const double w = sbi_engine_w(e, k, c), v = e->u[3 * k + c] - w;
     e->x[3 * k + c] += w * cf.dt + v * cf.gain + cf.s_xu * z1 + cf.s_xc * z2;
     e->u[3 * k + c] = w + v * cf.decay + cf.s_u * z1;
   }
