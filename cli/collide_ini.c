@@ -37,7 +37,8 @@ static const char *const WALLS[] = {"periodic", "reflect", "absorb", "open",
                                     NULL};
 static const char *const FACES[] = {"x_lo", "x_hi", "y_lo", "y_hi", "z_lo",
                                     "z_hi", NULL};
-static const char *const WALLDETS[] = {"bridge", "ballistic", NULL};
+static const char *const WALLDETS[] = {"bridge", "ballistic", "langevin",
+                                       NULL};
 static const char *const DEPOSITS[] = {"remove", "reinsert", NULL};
 
 /* Detectors with a context of their own (lib/engine/engine_bridge.c);
@@ -224,7 +225,8 @@ static const keydef KEYS[] = {
     {"walls", "z_hi", K_NAME, C(wall[5]), 16, R_ANY, 0, 0, WALLS, "-",
      "periodic", "face z = L_z (3-D)"},
     {"walls", "detect", K_NAME, C(wall_detect), 16, R_ANY, 0, 0, WALLDETS,
-     "-", "bridge", "wall contact: Brownian bridge or straight chord"},
+     "-", "bridge", "wall contact: Brownian bridge, straight chord or "
+     "Langevin bridge"},
     {"walls", "deposit", K_NAME, C(deposit), 16, R_ANY, 0, 0, DEPOSITS, "-",
      "remove", "deposited particle: removed, or reinserted uniformly"},
     /* ------------------------------------------------ [species NAME] */

@@ -223,9 +223,11 @@ static int setup_physics(col_config *c, col_run *r)
       return col_fail(c, "[walls] %c: %s", "xyz"[k], sb_last_error());
   }
   if (sb_engine_set_wall_mode(r->e,
-                              strcmp(c->wall_detect, "ballistic")
-                                  ? SB_WALLDET_BRIDGE
-                                  : SB_WALLDET_BALLISTIC,
+                              !strcmp(c->wall_detect, "ballistic")
+                                  ? SB_WALLDET_BALLISTIC
+                              : !strcmp(c->wall_detect, "langevin")
+                                  ? SB_WALLDET_LANGEVIN
+                                  : SB_WALLDET_BRIDGE,
                               strcmp(c->deposit, "reinsert")
                                   ? SB_DEPOSIT_REMOVE
                                   : SB_DEPOSIT_REINSERT))

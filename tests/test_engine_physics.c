@@ -20,6 +20,8 @@
 #include <gsl/gsl_rng.h>
 
 #include <smolbridge/engine.h>
+#include <smolbridge/engine_bridge.h>
+#include <smolbridge/langevin_hit.h>
 #include <smolbridge/stats.h>
 
 #include "engine/engine_internal.h"
@@ -248,6 +250,96 @@ START_TEST(test_le_pair_collides)
   sb_engine_get_stats(e, &st);
   ck_assert_uint_eq(st.ncoll, 1);
   sb_engine_free(e);
+}
+END_TEST
+
+/* The same tracer pair seen by the detectors that take the pair's law
+ * between the step ends (count outcome): the Langevin detector (built in,
+ * and through sb_engine_langevin_contact with the contact state) and the
+ * Brownian-bridge detectors (exact 3-D and Bessel-3, position and
+ * diffusive ends).  Nearly noiseless tracers (B tau = 1e-9 m/sqrt(s)):
+ * the first contact is the straight-path one, x separation 1 - 0.25 t
+ * reaching sqrt(0.4^2 - 0.25^2) = 0.3122 at t = 2.7510 s, within a step
+ * (diffusive ends, X + tau U: tau = 2e-4 s earlier; without the image's
+ * velocity jump G L_y = 10 m/s they would be 8e-3 s early); without the
+ * image shift there is no contact at all (the pair is 9.75 apart in y). */
+typedef struct {
+  int kind;  /* 0 Langevin contact, 1 bridge */
+  sb_engine_bridge *b;
+  double first;
+  int nfirst;
+  double gap, vx;
+} le_first;
+
+static int le_first_det(const sb_engine *e, const sb_engine_pair *p,
+                        const gsl_rng *r, void *vc, double *s)
+{
+  le_first *f = vc;
+  int h;
+  if (f->kind == 0) {
+    sb_langevin_contact c;
+    h = sb_engine_langevin_contact(e, p, r, s, &c);
+    if (h == 1 && !f->nfirst) {
+      double d2 = 0.0;
+      for (int k = 0; k < 3; k++)
+        d2 += (c.xi[k] - c.xj[k]) * (c.xi[k] - c.xj[k]);
+      f->gap = sqrt(d2) - p->sigma;
+      f->vx = c.ui[0] - c.uj[0];
+    }
+  } else
+    h = sb_engine_detect_bridge(e, p, r, f->b, s);
+  if (h == 1 && !f->nfirst++)
+    f->first = p->t0 + *s * p->dt;
+  return h == 1 ? 0 : h;
+}
+
+START_TEST(test_le_bridge_detectors)
+{
+  const double L = 10.0, G = 1.0, dt = 0.01, tau = 2e-4;
+  const double tc = (1.0 - sqrt(0.16 - 0.0625)) / 0.25;
+  for (int v = 0; v < 6; v++) {
+    sb_engine *e = eng(L, dt, 4, 3 + v);
+    sb_engine_species s = {0.2, 1.0, tau, 1e-9 / tau, 0.0};
+    sb_engine_add_species(e, &s, NULL);
+    double Gp[3] = {G, 0, 0};
+    sb_engine_set_fluid(e, SB_FLUID_SHEAR, Gp);
+    ck_assert_int_eq(sb_engine_set_lees_edwards(e, 1), 0);
+    double xa[3] = {5.0, 9.9, 5.0}, ua[3] = {4.9, 0, 0};
+    double xb[3] = {4.0, 0.15, 5.0}, ub[3] = {-4.85, 0, 0};
+    sb_engine_add_particle(e, 0, 0, xa, ua);
+    sb_engine_add_particle(e, 0, 0, xb, ub);
+    le_first f = {v == 1 ? 0 : 1, NULL, NAN, 0, NAN, NAN};
+    if (v == 0)
+      ck_assert_int_eq(sb_engine_set_detect(e, SB_DETECT_LANGEVIN), 0);
+    else if (v == 1)
+      ck_assert_int_eq(sb_engine_set_detector(e, le_first_det, &f, 0.01), 0);
+    else {
+      sb_engine_bridge_params bp;
+      sb_engine_bridge_params_default(&bp);
+      bp.mode = v < 4 ? SB_BRIDGE_EXACT : SB_BRIDGE_BESSEL;
+      bp.ends = v % 2 ? SB_BRIDGE_ENDS_DIFFUSIVE : SB_BRIDGE_ENDS_POSITION;
+      bp.outcome = SB_BRIDGE_OUT_COUNT;
+      f.b = sb_engine_bridge_alloc(&bp);
+      ck_assert_ptr_nonnull(f.b);
+      ck_assert_int_eq(sb_engine_set_detector(e, le_first_det, &f, 0.01), 0);
+    }
+    ck_assert_int_eq(sb_engine_run_until(e, 6.0), 0);
+    if (v == 0) {
+      sb_engine_stats st;
+      sb_engine_get_stats(e, &st);
+      ck_assert_uint_eq(st.ncoll, 1);  /* entered once, overlaps after */
+    } else {
+      ck_assert_msg(f.nfirst >= 1, "variant %d: no contact", v);
+      ck_assert_msg(fabs(f.first - tc) < 1e-3, "variant %d: first contact "
+                    "at %.6f, expected %.6f", v, f.first, tc);
+    }
+    if (v == 1) {
+      ck_assert(fabs(f.gap) < 1e-6);
+      ck_assert_rel(f.vx, -0.25, 1e-3);  /* image velocity included */
+    }
+    sb_engine_bridge_free(f.b);
+    sb_engine_free(e);
+  }
 }
 END_TEST
 
@@ -560,6 +652,42 @@ START_TEST(test_checkpoint)
 }
 END_TEST
 
+/* A deterministic Langevin particle (B = 0, tau = 1) dips below the
+ * contact plane inside a step and comes back: from y = 0.3 (plane at
+ * r = 0.1) with u_y = -1 and settling velocity +0.8 its path is
+ * y(t) = 0.3 + 0.8 t - 1.8 (1 - e^{-t}), below 0.1 for t in about
+ * (0.3, 1.4), back at 0.344 at t = dt = 2.  The Langevin wall detector
+ * deposits it; the chord and the Brownian bridge (no noise) do not. */
+START_TEST(test_wall_langevin_dip)
+{
+  static const sb_engine_walldet dets[3] = {
+      SB_WALLDET_LANGEVIN, SB_WALLDET_BALLISTIC, SB_WALLDET_BRIDGE};
+  for (int d = 0; d < 3; d++) {
+    sb_engine *e = eng(10.0, 2.0, 4, 1);
+    sb_engine_species s = {0.1, 1.0, 1.0, 0.0, 0.0};
+    sb_engine_add_species(e, &s, NULL);
+    double g[3] = {0.0, 0.8, 0.0};
+    ck_assert_int_eq(sb_engine_set_gravity(e, g), 0);
+    ck_assert_int_eq(sb_engine_set_walls(e, 1, SB_WALL_ABSORB,
+                                         SB_WALL_ABSORB), 0);
+    ck_assert_int_eq(sb_engine_set_wall_mode(e, dets[d], SB_DEPOSIT_REMOVE),
+                     0);
+    double x[3] = {5.0, 0.3, 5.0}, u[3] = {0.0, -1.0, 0.0};
+    sb_engine_add_particle(e, 0, 0, x, u);
+    ck_assert_int_eq(sb_engine_step(e), 0);
+    ck_assert_uint_eq(sb_engine_deposits(e, 2), d == 0 ? 1 : 0);
+    if (d)
+      ck_assert_rel(sb_engine_positions(e)[1],
+                    0.3 + 1.6 - 1.8 * (1.0 - exp(-2.0)), 1e-12);
+    sb_engine_free(e);
+  }
+  sb_engine *e = eng(10.0, 2.0, 4, 1);
+  ck_assert_int_eq(sb_engine_set_wall_mode(e, (sb_engine_walldet)3,
+                                           SB_DEPOSIT_REMOVE), SB_EINVAL);
+  sb_engine_free(e);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("engine_physics");
@@ -570,12 +698,14 @@ static Suite *suite(void)
   tcase_add_test(tc, test_le_wrap);
   tcase_add_test(tc, test_le_superset);
   tcase_add_test(tc, test_le_pair_collides);
+  tcase_add_test(tc, test_le_bridge_detectors);
   tcase_add_test(tc, test_le_errors);
   tcase_add_test(tc, test_drag_factor);
   tcase_add_test(tc, test_settling);
   tcase_add_test(tc, test_sn_order);
   tcase_add_test(tc, test_wall_bridge_mc);
   tcase_add_test(tc, test_wall_ballistic);
+  tcase_add_test(tc, test_wall_langevin_dip);
   tcase_add_test(tc, test_checkpoint);
   suite_add_tcase(s, tc);
   return s;

@@ -252,9 +252,11 @@ START_TEST(test_forward_long)
 }
 END_TEST
 
-/* Fixed ends: brute force by sequential bridge draws. */
+/* Fixed ends: brute force by sequential bridge draws.  n NULL: the
+ * pair's contact |x_0 - x_1| <= R; else particle 0 alone against the
+ * half-space n.x <= R (n a unit vector; P[1] unused). */
 static int bridge_brute(const gsl_rng *r, const sb_langevin_path *P, int nf,
-                        double dt, double R, double *t)
+                        double dt, double R, const double *n, double *t)
 {
   double x[2][3], u[2][3];
   for (int p = 0; p < 2; p++)
@@ -266,8 +268,8 @@ static int bridge_brute(const gsl_rng *r, const sb_langevin_path *P, int nf,
   for (int s = 0; s < nf; s++) {
     double ra[3], rb[3], rem = dt - s * h;
     for (int k = 0; k < 3; k++)
-      ra[k] = x[0][k] - x[1][k];
-    for (int p = 0; p < 2; p++) {
+      ra[k] = x[0][k] - (n ? 0.0 : x[1][k]);
+    for (int p = 0; p < (n ? 1 : 2); p++) {
       for (int k = 0; k < 3; k++) {
         sb_langevin lp = {P[p].tau, P[p].B, P[p].us[k]};
         double xn = P[p].x1[k], un = P[p].u1[k];
@@ -279,14 +281,40 @@ static int bridge_brute(const gsl_rng *r, const sb_langevin_path *P, int nf,
       }
     }
     for (int k = 0; k < 3; k++)
-      rb[k] = x[0][k] - x[1][k];
+      rb[k] = x[0][k] - (n ? 0.0 : x[1][k]);
     double f = entry(ra, rb, R);
+    if (n) {  /* linear entry into the half-space */
+      double pa = ra[0] * n[0] + ra[1] * n[1] + ra[2] * n[2] - R;
+      double pb = rb[0] * n[0] + rb[1] * n[1] + rb[2] * n[2] - R;
+      f = pa <= 0 ? 0 : (pb <= 0 ? pa / (pa - pb) : -1);
+    }
     if (f >= 0) {
       *t = (s + f) * h;
       return 1;
     }
   }
   return 0;
+}
+
+/* Brute force (hb hits of nb, times tb) and sampler (hs of ns, times
+ * ts) agree: two-sample binomial |z| <= 3.5 on the hit probability (which
+ * must be away from 0 and 1) and KS2 of the hit times (p >= 1e-3); frees
+ * both arrays. */
+static void same_law(int cfg, double *tb, long hb, int nb, double *ts,
+                     long hs, int ns)
+{
+  double pb = (double)hb / nb, ps = (double)hs / ns;
+  double pp = (double)(hb + hs) / (nb + ns);
+  double z = (pb - ps) / sqrt(pp * (1 - pp) * (1.0 / nb + 1.0 / ns));
+  ck_assert_msg(fabs(z) <= 3.5, "config %d: brute %g, sampler %g, z = %g",
+                cfg, pb, ps, z);
+  ck_assert_msg(pb > 0.05 && pb < 0.95, "config %d: p = %g (choose a "
+                "configuration with both outcomes)", cfg, pb);
+  double D, p;
+  ck_assert_int_eq(sb_ks2_test(tb, hb, ts, hs, &D, &p), SB_SUCCESS);
+  ck_assert_msg(p >= 1e-3, "config %d: KS2 D = %g, p = %g", cfg, D, p);
+  free(tb);
+  free(ts);
 }
 
 /* Three end configurations at dt/tau = 1 (R = 1): the chord passing the
@@ -326,7 +354,7 @@ START_TEST(test_fixed_ends)
     double *tb = malloc(nb * sizeof *tb), *ts = malloc(ns * sizeof *ts);
     long hb = 0, hs = 0;
     for (int n = 0; n < nb; n++)
-      hb += bridge_brute(r, P, 256, 1.0, 1.0, &tb[hb]);
+      hb += bridge_brute(r, P, 256, 1.0, 1.0, NULL, &tb[hb]);
     for (int n = 0; n < ns; n++) {
       sb_langevin_contact c;
       int h = sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, 1.0, r, &c);
@@ -334,19 +362,67 @@ START_TEST(test_fixed_ends)
       if (h)
         ts[hs++] = c.t;
     }
-    double pb = (double)hb / nb, ps = (double)hs / ns;
-    double pp = (double)(hb + hs) / (nb + ns);
-    double z = (pb - ps) / sqrt(pp * (1 - pp) * (1.0 / nb + 1.0 / ns));
-    ck_assert_msg(fabs(z) <= 3.5, "config %d: brute %g, sampler %g, z = %g",
-                  cfg, pb, ps, z);
-    ck_assert_msg(pb > 0.05 && pb < 0.95, "config %d: p = %g (choose a "
-                  "configuration with both outcomes)", cfg, pb);
-    double D, p;
-    ck_assert_int_eq(sb_ks2_test(tb, hb, ts, hs, &D, &p), SB_SUCCESS);
-    ck_assert_msg(p >= 1e-3, "config %d: KS2 D = %g, p = %g", cfg, D, p);
-    free(tb);
-    free(ts);
+    same_law(cfg, tb, hb, nb, ts, hs, ns);
   }
+  sb_langevin_hitter_free(w);
+  gsl_rng_free(r);
+}
+END_TEST
+
+/* One particle against a plane (sb_langevin_hitter_sample_plane), fixed
+ * ends at dt/tau = 1, 10 and 0.1 (kT = m = 1, dt = 1): the same
+ * brute force (256 sequential bridge sub-steps, particle 0 only, linear
+ * entry into the half-space), 1000 paths against 6000 sampler draws,
+ * two-sample binomial |z| <= 3.5 and KS2 of the hit times (p >= 1e-3);
+ * every contact lies on the plane.  The normal is passed unnormalised
+ * (2 e_y, level 2 a): the plane is u.x = a. */
+START_TEST(test_plane_fixed_ends)
+{
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  gsl_rng_set(r, 202);
+  sb_langevin_hitter *w = sb_langevin_hitter_alloc(NULL);
+  static const double taus[3] = {1.0, 0.1, 10.0};
+  static const double y0[3] = {0.15, 0.2, 0.1}, y1[3] = {0.15, 0.25, 0.1};
+  static const double v0[3] = {-0.5, 0.0, -0.3}, v1[3] = {0.5, 0.0, 0.3};
+  static const double lev[3] = {0.0, 0.05, 0.0};
+  const double nn[3] = {0.0, 2.0, 0.0}, un[3] = {0.0, 1.0, 0.0};
+  for (int cfg = 0; cfg < 3; cfg++) {
+    sb_langevin_path P[2] = {particle(taus[cfg], 1), particle(1, 1)};
+    P[0].x0[0] = 0.2;
+    P[0].x1[0] = -0.3;
+    P[0].x0[1] = y0[cfg];
+    P[0].x1[1] = y1[cfg];
+    P[0].u0[1] = v0[cfg];
+    P[0].u1[1] = v1[cfg];
+    P[0].us[1] = 0.7;  /* fluid seen: must not matter given the ends */
+    const int nb = 1000, ns = 6000;
+    double *tb = malloc(nb * sizeof *tb), *ts = malloc(ns * sizeof *ts);
+    long hb = 0, hs = 0;
+    for (int n = 0; n < nb; n++)
+      hb += bridge_brute(r, P, 256, 1.0, lev[cfg], un, &tb[hb]);
+    for (int n = 0; n < ns; n++) {
+      sb_langevin_contact c;
+      int h = sb_langevin_hitter_sample_plane(w, &P[0], nn, 2.0 * lev[cfg],
+                                              0.1, 1.0, r, &c);
+      ck_assert_int_ge(h, 0);
+      if (h) {
+        ck_assert(fabs(c.xi[1] - lev[cfg]) < 1e-9);
+        ts[hs++] = c.t;
+      }
+    }
+    same_law(cfg, tb, hb, nb, ts, hs, ns);
+  }
+  /* a start beyond the plane is a contact at t = 0; bad normal */
+  sb_langevin_path q = particle(1, 1);
+  q.x0[1] = -0.1;
+  q.x1[1] = 0.5;
+  sb_langevin_contact c;
+  ck_assert_int_eq(sb_langevin_hitter_sample_plane(w, &q, un, 0.0, 0.1, 1.0,
+                                                   r, &c), 1);
+  ck_assert(c.t == 0.0);
+  const double zero[3] = {0, 0, 0};
+  ck_assert_int_lt(sb_langevin_hitter_sample_plane(w, &q, zero, 0.0, 0.1,
+                                                   1.0, r, &c), 0);
   sb_langevin_hitter_free(w);
   gsl_rng_free(r);
 }
@@ -449,7 +525,7 @@ START_TEST(test_bound)
     long hb = 0;
     double t;
     for (int n = 0; n < nb; n++)
-      hb += bridge_brute(r, P, 256, 1.0, 1.0, &t);
+      hb += bridge_brute(r, P, 256, 1.0, 1.0, NULL, &t);
     double lo, hi;
     sb_binomial_ci((unsigned long)hb, (unsigned long)nb, 0.999, &lo, &hi);
     ck_assert_msg(bound >= lo, "y = %g: bound %g below brute force %g [%g, "
@@ -594,6 +670,7 @@ static Suite *suite(void)
   TCase *tb = tcase_create("fixed");
   tcase_set_timeout(tb, 30);
   tcase_add_test(tb, test_fixed_ends);
+  tcase_add_test(tb, test_plane_fixed_ends);
   suite_add_tcase(s, tb);
   TCase *tf = tcase_create("forward");
   tcase_set_timeout(tf, 60);

@@ -263,10 +263,14 @@ static void pair_ends(const sb_engine *e, const sb_engine_bridge *b,
   if (b->par.ends == SB_BRIDGE_ENDS_DIFFUSIVE) {
     const size_t i = p->i, j = p->j;
     double ti = e->spec[e->species[i]].tau, tj = e->spec[e->species[j]].tau;
+    /* across a Lees-Edwards boundary j's image moves du faster along x */
+    double sh[3], du = 0.0;
+    sbi_engine_image(e, &e->x0[3 * i], &e->x0[3 * j], 0.0, sh, &du);
     if (isfinite(ti) && isfinite(tj))
       for (int k = 0; k < 3; k++) {
-        A[k] += ti * e->u0[3 * i + k] - tj * e->u0[3 * j + k];
-        B[k] += ti * e->u[3 * i + k] - tj * e->u[3 * j + k];
+        const double v = k == 0 ? du : 0.0;
+        A[k] += ti * e->u0[3 * i + k] - tj * (e->u0[3 * j + k] + v);
+        B[k] += ti * e->u[3 * i + k] - tj * (e->u[3 * j + k] + v);
       }
   }
 }

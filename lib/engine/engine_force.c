@@ -238,10 +238,9 @@ int sbi_engine_physics_prepare(sb_engine *e)
         e->wall[0] != SB_WALL_PERIODIC || e->wall[1] != SB_WALL_PERIODIC)
       return sbi_error(SB_EINVAL, fn, "Lees-Edwards boundaries need x and "
                        "y periodic");
-    if (e->par.detect != SB_DETECT_BALLISTIC &&
-        e->par.detect != SB_DETECT_OVERLAP)
-      return sbi_error(SB_EINVAL, fn, "Lees-Edwards boundaries work with "
-                       "the ballistic and overlap detectors only");
+    /* every detector sees image-aware pair records (and the Langevin
+     * detector image-aware states); an outcome that changes a path needs
+     * a re-detection across the boundary, which is not image-aware */
     if (e->par.outcome != SB_OUTCOME_COUNT)
       return sbi_error(SB_EINVAL, fn, "Lees-Edwards boundaries work with "
                        "the count outcome only");

@@ -53,6 +53,7 @@ typedef struct {
    * position in its own unwrapped frame of the step, and x_i - x_j */
   int hasc;
   double cx[2][3], cu[2][3], crel[3];
+  double cdu;  /* x velocity of j's Lees-Edwards image relative to j */
 } sbi_event;
 
 /* The linked-cell grid of the last neighbour search (for re-detection
@@ -244,6 +245,16 @@ static inline double sbi_wrap(double x, double L)
   return x;
 }
 
+/* The velocity particle k relaxes to over the step, component c: the
+ * fluid velocity at its start (zero at rest) plus its species' settling
+ * velocity (the w of the exact step, engine.c transport). */
+static inline double sbi_engine_w(const sb_engine *e, size_t k, int c)
+{
+  const size_t sp = e->species[k];
+  return (e->fluid != SB_FLUID_REST ? e->us[3 * k + c] : 0.0) +
+         ((e->has_grav && sp < e->nvset) ? e->vset[3 * sp + c] : 0.0);
+}
+
 /* Append a candidate pair (grows the array). */
 int sbi_engine_push_pair(sb_engine *e, size_t i, size_t j);
 
@@ -341,6 +352,15 @@ void sbi_engine_shear_correct(sb_engine *e);
  * boundaries, add the pairs across the sliding boundary. */
 int sbi_engine_boundary_pairs(sb_engine *e, const double *x0,
                               const double *disp, double reach, double cut);
+/* The image of particle j next to particle i at step fraction t
+ * (positions xi, xj in the frames of x0_i, x0_j): the shift sh to add to
+ * j's position -- with Lees-Edwards the image index n = +-1 across the
+ * sliding boundary times (delta(t), L_y, 0), delta(t) = delta + G L_y t
+ * dt, then the minimum image in the periodic directions; none across a
+ * wall -- and the image's extra velocity *du = n G L_y along x.  Returns
+ * n (0 without Lees-Edwards). */
+int sbi_engine_image(const sb_engine *e, const double *xi, const double *xj,
+                     double t, double sh[3], double *du);
 /* Pair record geometry with walls / Lees-Edwards: dx0 from the positions
  * xi, xj (start of the record), and dd shifted by the image velocity. */
 void sbi_engine_boundary_fix_pair(const sb_engine *e, const double *xi,

@@ -162,7 +162,7 @@ static int state_at(const sb_engine *e, size_t k, double t, const gsl_rng *r,
   x[0] = x[1] = x[2] = u[0] = u[1] = u[2] = 0.0;
   for (int c = 0; c < e->par.dim; c++) {
     const double xa = e->lp_x[3 * k + c], ua = e->lp_u[3 * k + c];
-    const double w = e->us[3 * k + c];
+    const double w = sbi_engine_w(e, k, c);
     if (isinf(sp->tau)) {
       x[c] = xa + ua * s;
       u[c] = ua;
@@ -182,20 +182,25 @@ static int state_at(const sb_engine *e, size_t k, double t, const gsl_rng *r,
   return SB_SUCCESS;
 }
 
+/* Path of particle k from (xa, ua) to its end, seen in the frame shifted
+ * by sh (position at the piece's start) and moving at du along x relative
+ * to it (a Lees-Edwards image: its fluid velocity and both velocities gain
+ * du, its end position du h more; docs/engine_forces.md §3). */
 static void fill_path(const sb_engine *e, size_t k, const double *xa,
-                      const double *ua, const double *sh,
-                      sb_langevin_path *q)
+                      const double *ua, const double *sh, double du,
+                      double h, sb_langevin_path *q)
 {
   const sb_engine_species *sp = &e->spec[e->species[k]];
   q->tau = sp->tau;
   q->B = isinf(sp->tau) ? 0.0 : sp->B;
   q->mass = e->mass[k];
   for (int c = 0; c < 3; c++) {
-    q->us[c] = e->us[3 * k + c];
+    const double v = c == 0 ? du : 0.0;
+    q->us[c] = sbi_engine_w(e, k, c) + v;
     q->x0[c] = xa[c] + sh[c];
-    q->u0[c] = ua[c];
-    q->x1[c] = e->x[3 * k + c] + sh[c];
-    q->u1[c] = e->u[3 * k + c];
+    q->u0[c] = ua[c] + v;
+    q->x1[c] = e->x[3 * k + c] + sh[c] + v * h;
+    q->u1[c] = e->u[3 * k + c] + v;
   }
 }
 
@@ -205,7 +210,7 @@ int sbi_engine_langevin_detect(const sb_engine *e, const sb_engine_pair *p,
 {
   const size_t i = p->i, j = p->j;
   double xi[3], ui[3], xj[3], uj[3];
-  double shi[3] = {0, 0, 0}, shj[3] = {0, 0, 0};
+  double shi[3] = {0, 0, 0}, shj[3] = {0, 0, 0}, du = 0.0;
   /* Inside the step a partner's state at t is drawn from its own bridge,
    * independently of the other particle, so the draw ignores that the
    * pair has not touched before t; the draw is repeated while the pair
@@ -215,21 +220,22 @@ int sbi_engine_langevin_detect(const sb_engine *e, const sb_engine_pair *p,
   for (int tries = 0;; tries++) {
     if (state_at(e, i, t, r, xi, ui) || state_at(e, j, t, r, xj, uj))
       return -1;
-    /* j in the image next to i at t: shift sh (a multiple of the box) */
+    /* j in the image next to i at t: shift shj (a multiple of the box,
+     * with the Lees-Edwards offset across the sliding boundary) */
+    sbi_engine_image(e, xi, xj, t, shj, &du);
     double d2 = 0.0;
     for (int c = 0; c < e->par.dim; c++) {
-      double d = xi[c] - xj[c];
-      shj[c] = d - sbi_minimg(d, e->par.L[c]);
-      d2 += (d - shj[c]) * (d - shj[c]);
+      double d = xi[c] - xj[c] - shj[c];
+      d2 += d * d;
     }
     if (!drawn || t <= 0.0 || tries >= 1000 ||
         d2 >= p->sigma * p->sigma * (1.0 + SB_ENGINE_TOUCH))
       break;
   }
-  sb_langevin_path pi, pj;
-  fill_path(e, i, xi, ui, shi, &pi);
-  fill_path(e, j, xj, uj, shj, &pj);
   const double dtr = (1.0 - t) * e->par.dt;
+  sb_langevin_path pi, pj;
+  fill_path(e, i, xi, ui, shi, 0.0, dtr, &pi);
+  fill_path(e, j, xj, uj, shj, du, dtr, &pj);
   if (!(dtr > 0.0))
     return 0;
   sb_langevin_contact c;
@@ -241,11 +247,14 @@ int sbi_engine_langevin_detect(const sb_engine *e, const sb_engine_pair *p,
   if (ev) {
     ev->hasc = 1;
     ev->p = *p;
+    ev->cdu = du;
     for (int k = 0; k < 3; k++) {
+      /* j back in its own frame: the image moved du c.t further */
+      const double v = k == 0 ? du : 0.0;
       ev->cx[0][k] = c.xi[k];
       ev->cu[0][k] = c.ui[k];
-      ev->cx[1][k] = c.xj[k] - shj[k];
-      ev->cu[1][k] = c.uj[k];
+      ev->cx[1][k] = c.xj[k] - shj[k] - v * c.t;
+      ev->cu[1][k] = c.uj[k] - v;
       ev->crel[k] = c.xi[k] - c.xj[k];
       /* the record's chord from the Langevin states it was built on */
       ev->p.dx0[k] = pi.x0[k] - pj.x0[k];
@@ -271,7 +280,7 @@ int sb_engine_langevin_contact(const sb_engine *e, const sb_engine_pair *p,
       c->xi[k] = ev.cx[0][k];
       c->ui[k] = ev.cu[0][k];
       c->xj[k] = ev.cx[0][k] - ev.crel[k];
-      c->uj[k] = ev.cu[1][k];
+      c->uj[k] = ev.cu[1][k] + (k == 0 ? ev.cdu : 0.0);
     }
   }
   return h;
@@ -325,7 +334,7 @@ int sbi_engine_langevin_continue(sb_engine *e, size_t k, const sbi_event *ev,
     double z2 = gsl_ran_gaussian_ziggurat(e->rng, 1.0);
     if (c >= e->par.dim)
       continue;
-    const double w = e->us[3 * k + c], v = e->u[3 * k + c] - w;
+    const double w = sbi_engine_w(e, k, c), v = e->u[3 * k + c] - w;
     e->x[3 * k + c] += w * cf.dt + v * cf.gain + cf.s_xu * z1 + cf.s_xc * z2;
     e->u[3 * k + c] = w + v * cf.decay + cf.s_u * z1;
   }
@@ -349,8 +358,8 @@ int sb_engine_contact_state(const sb_engine *e, double xi[3], double ui[3],
       ui[k] = ev->cu[0][k];
     if (xj)
       xj[k] = ev->cx[0][k] - ev->crel[k];
-    if (uj)
-      uj[k] = ev->cu[1][k];
+    if (uj)  /* in i's frame (j's Lees-Edwards image), as xj */
+      uj[k] = ev->cu[1][k] + (k == 0 ? ev->cdu : 0.0);
   }
   return SB_SUCCESS;
 }

@@ -125,6 +125,27 @@ static int le_image(const sb_engine *e, double dy)
   return dy > 0.5 * Ly ? 1 : (dy < -0.5 * Ly ? -1 : 0);
 }
 
+int sbi_engine_image(const sb_engine *e, const double *xi, const double *xj,
+                     double t, double sh[3], double *du)
+{
+  const int dim = e->par.dim;
+  const int n = e->lees ? le_image(e, xi[1] - xj[1]) : 0;
+  const double G = e->fluid_p[0], Ly = e->par.L[1];
+  sh[0] = sh[1] = sh[2] = 0.0;
+  if (n) {
+    sh[0] = n * (e->le_off + G * Ly * t * e->par.dt);
+    sh[1] = n * Ly;
+  }
+  for (int k = 0; k < dim; k++) {
+    if (e->wall[2 * k] != SB_WALL_PERIODIC)
+      continue;  /* no image across a wall */
+    const double d = xi[k] - xj[k] - sh[k];
+    sh[k] += d - sbi_minimg(d, e->par.L[k]);
+  }
+  *du = n * G * Ly;
+  return n;
+}
+
 void sbi_engine_boundary_fix_pair(const sb_engine *e, const double *xi,
                                   const double *xj, sb_engine_pair *p)
 {

@@ -14,7 +14,16 @@
  *    P = exp(-2 (y0 - a)(y1 - a) / (B_pos^2 dt)) (sb_bb_cross_prob).
  *    Exact for Brownian motion, i.e. in the diffusive regime dt >> tau_p
  *    of the Langevin particles (there the position increments are those
- *    of a Brownian motion of diffusivity B_pos^2/2 = k_B T tau_p/m).
+ *    of a Brownian motion of diffusivity B_pos^2/2 = k_B T tau_p/m);
+ *  - Langevin detector: the particle's path between its end states
+ *    (x0, u0) and (x1, u1) is the exact conditional law of the Langevin
+ *    model (each component an integrated OU bridge given both ends, fluid
+ *    velocity plus settling velocity held over the step); its first
+ *    passage through the contact plane is sampled by the pair sampler
+ *    with the half-space in place of the ball
+ *    (sb_langevin_hitter_sample_plane: midpoint refinement, Rice bound,
+ *    chord leaves): exact at every dt/tau_p, the wall counterpart of the
+ *    pair detector SB_DETECT_LANGEVIN.
  * A reflecting face folds the end state (y1 -> 2a - y1, u_y -> -u_y):
  * the dynamics without walls is symmetric under that reflection, so the
  * folded free path is the reflected path (exact in law).  Walls are
@@ -26,6 +35,7 @@
 
 #include <gsl/gsl_rng.h>
 #include <smolbridge/bridge.h>
+#include <smolbridge/langevin_hit.h>
 
 #include "common/internal.h"
 #include "engine_internal.h"
@@ -56,7 +66,7 @@ int sb_engine_set_walls(sb_engine *e, int k, sb_engine_wall lo,
 int sb_engine_set_wall_mode(sb_engine *e, sb_engine_walldet det,
                             sb_engine_deposit dep)
 {
-  if (!e || (unsigned)det > SB_WALLDET_BALLISTIC ||
+  if (!e || (unsigned)det > SB_WALLDET_LANGEVIN ||
       (unsigned)dep > SB_DEPOSIT_REINSERT)
     return sbi_error(SB_EINVAL, __func__, "bad engine, detector or "
                      "deposition outcome");
@@ -97,6 +107,36 @@ static int reinsert(sb_engine *e, size_t i)
   return SB_SUCCESS;
 }
 
+/* The Langevin detector of touches(): the plane n.x = level with n = e_k
+ * (face at 0) or -e_k (face at L), approached from inside.  Status < 0 on
+ * error, else 0 / 1. */
+static int touches_langevin(sb_engine *e, size_t i, int k, int s, double a)
+{
+  const sb_engine_species *sp = &e->spec[e->species[i]];
+  sb_langevin_path q;
+  q.tau = sp->tau;
+  q.B = sp->B;
+  q.mass = e->mass[i];
+  for (int c = 0; c < 3; c++) {
+    q.us[c] = sbi_engine_w(e, i, c);
+    q.x0[c] = e->x0[3 * i + c];
+    q.u0[c] = e->u0[3 * i + c];
+    q.x1[c] = e->x[3 * i + c];
+    q.u1[c] = e->u[3 * i + c];
+  }
+  double n[3] = {0, 0, 0};
+  n[k] = s ? -1.0 : 1.0;
+  const double level = s ? -(e->par.L[k] - a) : a;
+  /* resolution: the particle radius, or the step's spread for a point */
+  const double scale = e->radius[i] > 0.0
+                           ? e->radius[i]
+                           : sqrt(sb_langevin_var_x(sp->tau, sp->B,
+                                                    e->par.dt)) + 1e-300;
+  int h = sb_langevin_hitter_sample_plane(e->lh, &q, n, level, scale,
+                                          e->par.dt, e->rng, NULL);
+  return h < 0 ? h : h == 1;
+}
+
 /* Does particle i reach the plane at distance a from face f (direction
  * k, side s) during the step?  a = r: contact with an absorbing wall;
  * a = 0: the centre leaves through an open face. */
@@ -111,7 +151,11 @@ static int touches(sb_engine *e, size_t i, int k, int s, double a)
   if (e->walldet == SB_WALLDET_BALLISTIC)
     return 0;
   const sb_engine_species *sp = &e->spec[e->species[i]];
-  if (isinf(sp->tau) || sp->B == 0.0)
+  if (isinf(sp->tau))
+    return 0;  /* free flight: the chord is the path */
+  if (e->walldet == SB_WALLDET_LANGEVIN)
+    return touches_langevin(e, i, k, s, a);
+  if (sp->B == 0.0)
     return 0;
   const double bpos = sp->B * sp->tau;
   double P = sb_bb_cross_prob(h0, h1, 0.0, bpos * bpos * e->par.dt);
@@ -132,10 +176,16 @@ static int walls(sb_engine *e)
       const double r = e->radius[i], L = e->par.L[k];
       int dep = -1, out = -1;
       for (int s = 0; s < 2 && dep < 0 && out < 0; s++) {
-        if (e->wall[2 * k + s] == SB_WALL_ABSORB && touches(e, i, k, s, r))
+        const sb_engine_wall wt = e->wall[2 * k + s];
+        if (wt != SB_WALL_ABSORB && wt != SB_WALL_OPEN)
+          continue;
+        int t = touches(e, i, k, s, wt == SB_WALL_ABSORB ? r : 0.0);
+        if (t < 0)
+          return sbi_error(SB_EINVAL, "sb_engine_step", "particle %zu: "
+                           "wall contact failed: %s", i, sb_last_error());
+        if (t && wt == SB_WALL_ABSORB)
           dep = s;
-        else if (e->wall[2 * k + s] == SB_WALL_OPEN &&
-                 touches(e, i, k, s, 0.0))
+        else if (t)
           out = s;
       }
       if (out >= 0) {  /* leaves through an open face (engine_open.c) */

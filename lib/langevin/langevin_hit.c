@@ -127,6 +127,11 @@ typedef struct {
   sbi_lh_slot *sl[2];
   double tau[2], B[2], mass[2], wv[2][3];
   int auditing;
+  /* plane mode (sb_langevin_hitter_sample_plane): j is a fixed point at
+   * the origin and the contact set is the half-space n.r <= R (R the
+   * level, any sign); scale sets the resolution */
+  int plane;
+  double n[3], scale;
   /* result */
   double th;         /* contact time from the start of the step */
   pstate ca, cb;     /* the leaf's end states */
@@ -203,15 +208,16 @@ static void rel(const pstate *S, double r[3])
     r[k] = S->x[0][k] - S->x[1][k];
 }
 
-/* The pruning bound on [a, a + h] (file comment); 1 when it does not
- * apply. */
-static double rice_bound(const walk *W, const nodes *N, const pstate *A,
-                         const pstate *Bs, double h)
+/* The unit normal n of the half-space bound: the plane's (plane mode),
+ * or along the mean path's closest approach (nodes and both ends); 0 if
+ * that approach is inside the ball (no bound). */
+static int bound_normal(const walk *W, const nodes *N, const double *ra,
+                        const double *rb, double n[3])
 {
-  double ra[3], rb[3];
-  rel(A, ra);
-  rel(Bs, rb);
-  /* n along the mean path's closest approach (nodes and both ends) */
+  if (W->plane) {
+    memcpy(n, W->n, 3 * sizeof *n);
+    return 1;
+  }
   const double *best = ra;
   double bd = dot3(ra, ra);
   if (dot3(rb, rb) < bd) {
@@ -226,14 +232,29 @@ static double rice_bound(const walk *W, const nodes *N, const pstate *A,
     }
   }
   if (!(bd > W->R * W->R * (1.0 - TOUCH)))
+    return 0;
+  const double nn = sqrt(bd);
+  for (int k = 0; k < 3; k++)
+    n[k] = best[k] / nn;
+  return 1;
+}
+
+/* The pruning bound on [a, a + h] (file comment); 1 when it does not
+ * apply. */
+static double rice_bound(const walk *W, const nodes *N, const pstate *A,
+                         const pstate *Bs, double h)
+{
+  double ra[3], rb[3], n[3];
+  rel(A, ra);
+  rel(Bs, rb);
+  if (!bound_normal(W, N, ra, rb, n))
     return 1.0;
-  double nn = sqrt(bd), n[3] = {best[0] / nn, best[1] / nn, best[2] / nn};
   /* both ends outside the half-space; a start on its boundary is allowed
    * when the pair separates there (the integrand then vanishes at a) */
   double va[3];
   for (int k = 0; k < 3; k++)
     va[k] = A->u[0][k] - A->u[1][k];
-  const double pa = dot3(n, ra) - W->R, tiny = 0.5 * TOUCH * W->R;
+  const double pa = dot3(n, ra) - W->R, tiny = 0.5 * TOUCH * W->scale;
   if (!(dot3(n, rb) > W->R) ||
       !(pa > 0.0 || (pa > -tiny && dot3(n, va) > 0.0)))
     return 1.0;
@@ -298,6 +319,37 @@ static double chord_entry(const double *ra, const double *rb, double R,
   return s <= 1.0 ? s : -1.0;
 }
 
+/* Plane mode: entry fraction of the chord ra -> rb into the half-space
+ * n.r <= R, or -1; *gap receives the chord's smallest clearance. */
+static double plane_entry(const walk *W, const double *ra, const double *rb,
+                          double *gap)
+{
+  const double pa = dot3(W->n, ra) - W->R, pb = dot3(W->n, rb) - W->R;
+  const double tol = 0.5 * TOUCH * W->scale;
+  *gap = pa < pb ? pa : pb;
+  if (pa < -tol)
+    return 0.0;
+  if (pa <= tol)  /* touching: in now if approaching */
+    return pb < pa ? 0.0 : -1.0;
+  if (pb > 0.0)
+    return -1.0;
+  return pa / (pa - pb);
+}
+
+/* The contact set's entry along the chord (ball or half-space). */
+static double entry(const walk *W, const double *ra, const double *rb,
+                    double *gap)
+{
+  return W->plane ? plane_entry(W, ra, rb, gap)
+                  : chord_entry(ra, rb, W->R, gap);
+}
+
+/* End of a sub-interval inside the contact set. */
+static int inside(const walk *W, const double *r)
+{
+  return W->plane ? dot3(W->n, r) <= W->R : dot3(r, r) <= W->R * W->R;
+}
+
 /* Leaf [a, a + h]: decide on the chord (file comment of the header). */
 static int leaf(walk *W, const pstate *A, const pstate *Bs, double a,
                 double h)
@@ -305,7 +357,7 @@ static int leaf(walk *W, const pstate *A, const pstate *Bs, double a,
   double ra[3], rb[3], gap;
   rel(A, ra);
   rel(Bs, rb);
-  double s = chord_entry(ra, rb, W->R, &gap);
+  double s = entry(W, ra, rb, &gap);
   if (!W->auditing)
     W->w->st.leaves++;
   if (s < 0.0) {
@@ -339,7 +391,7 @@ static double quick_bound(const walk *W, const sbi_lh_level *Li,
 {
   double gap;
   *x0out = 0.0;
-  if (chord_entry(ra, rb, W->R, &gap) >= 0.0)
+  if (entry(W, ra, rb, &gap) >= 0.0)
     return 1.0;
   const sbi_lh_level *L[2] = {Li, Lj};
   double dev = 0.0, vel = 0.0;
@@ -419,7 +471,7 @@ static int examine(walk *W, const pstate *A, const pstate *Bs, double a,
   double ra[3], rb[3];
   rel(A, ra);
   rel(Bs, rb);
-  const int sure = dot3(rb, rb) <= W->R * W->R;
+  const int sure = inside(W, rb);
   double x0 = 0.0;
   if (!sure) {
     double b = quick_bound(W, Li, Lj, A, Bs, ra, rb, h, &x0);
@@ -457,7 +509,7 @@ static int examine(walk *W, const pstate *A, const pstate *Bs, double a,
       /* no noise: the path is its mean, within devmax of the chord
        * (checked at the nodes; at least twice that margin) */
       double gap;
-      chord_entry(ra, rb, W->R, &gap);
+      entry(W, ra, rb, &gap);
       if (gap > 2.0 * N.devmax + W->delta)
         return 0;
     }
@@ -509,15 +561,20 @@ static int check_path(const sb_langevin_path *q, int dim)
 }
 
 /* Set up a walk; returns 0, 1 (overlap at the start) or a negative
- * status. */
+ * status.  plane: NULL (ball |r| <= R, scale = R), or the unit normal of
+ * the half-space n.r <= R (any R; resolution xtol scale). */
 static int setup(walk *W, sb_langevin_hitter *w, const sb_langevin_path *pi,
-                 const sb_langevin_path *pj, double R, double dt,
-                 const gsl_rng *r, pstate *A, pstate *Bs, const char *func)
+                 const sb_langevin_path *pj, double R, const double *plane,
+                 double scale, double dt, const gsl_rng *r, pstate *A,
+                 pstate *Bs, const char *func)
 {
   if (!w || !pi || !pj)
     return -sbi_error(SB_EINVAL, func, "NULL argument");
   const int dim = w->par.dim;
-  if (!(R > 0.0) || !isfinite(R) || !(dt > 0.0) || !isfinite(dt) ||
+  if (!plane)
+    scale = R;
+  if (!(scale > 0.0) || !isfinite(scale) || !isfinite(R) ||
+      !(dt > 0.0) || !isfinite(dt) ||
       !check_path(pi, dim) || !check_path(pj, dim))
     return -sbi_error(SB_EDOM, func,
                       "R = %g, dt = %g, or a particle's tau, B, mass or "
@@ -532,7 +589,12 @@ static int setup(walk *W, sb_langevin_hitter *w, const sb_langevin_path *pi,
   W->R = R;
   W->htop = dt;
   W->eps = w->par.eps;
-  W->delta = w->par.xtol * R;
+  W->delta = w->par.xtol * scale;
+  W->scale = scale;
+  if (plane) {
+    W->plane = 1;
+    memcpy(W->n, plane, sizeof W->n);
+  }
   for (int p = 0; p < 2; p++) {
     const sb_langevin_path *q = P[p];
     int det = isinf(q->tau) || q->B == 0.0;
@@ -565,6 +627,12 @@ static int setup(walk *W, sb_langevin_hitter *w, const sb_langevin_path *pi,
   rel(A, ra);
   for (int k = 0; k < 3; k++)
     va[k] = A->u[0][k] - A->u[1][k];
+  if (plane) {
+    const double pa = dot3(W->n, ra) - R, tol = 0.5 * TOUCH * scale;
+    if (pa < -tol)
+      return 1;
+    return pa <= tol && dot3(W->n, va) < 0.0;
+  }
   double r2 = dot3(ra, ra), R2 = R * R;
   if (r2 < R2 * (1.0 - TOUCH))
     return 1;
@@ -611,7 +679,11 @@ static int contact_states(walk *W, sb_langevin_contact *c)
   double r[3] = {xs[0][0] - xs[1][0], xs[0][1] - xs[1][1],
                  xs[0][2] - xs[1][2]};
   double rn = sqrt(dot3(r, r));
-  if (rn > 0.0) {
+  if (W->plane) {  /* onto the plane along its normal */
+    const double g = W->R - dot3(W->n, r);
+    for (int k = 0; k < W->dim; k++)
+      xs[0][k] += g * W->n[k];
+  } else if (rn > 0.0) {
     double M = W->mass[0] + W->mass[1];
     double fi = M > 0.0 ? W->mass[1] / M : 0.5, fj = 1.0 - fi;
     double g = W->R / rn - 1.0;
@@ -632,17 +704,17 @@ static int contact_states(walk *W, sb_langevin_contact *c)
   return 1;
 }
 
-int sb_langevin_hitter_sample(sb_langevin_hitter *w,
-                              const sb_langevin_path *pi,
-                              const sb_langevin_path *pj, double R,
-                              double dt, const gsl_rng *r,
-                              sb_langevin_contact *c)
+/* The sampler for a ball (plane NULL) or a half-space (setup). */
+static int sample(sb_langevin_hitter *w, const sb_langevin_path *pi,
+                  const sb_langevin_path *pj, double R, const double *plane,
+                  double scale, double dt, const gsl_rng *r,
+                  sb_langevin_contact *c, const char *func)
 {
   if (!r)
-    return -sbi_error(SB_EINVAL, __func__, "r is NULL");
+    return -sbi_error(SB_EINVAL, func, "r is NULL");
   walk W;
   pstate A, Bs;
-  int st = setup(&W, w, pi, pj, R, dt, r, &A, &Bs, __func__);
+  int st = setup(&W, w, pi, pj, R, plane, scale, dt, r, &A, &Bs, func);
   if (st < 0)
     return st;
   w->st.calls++;
@@ -660,17 +732,46 @@ int sb_langevin_hitter_sample(sb_langevin_hitter *w,
     return 1;
   }
   if (!W.sl[0] || !W.sl[1])
-    return -sbi_error(SB_ENOMEM, __func__, "out of memory");
+    return -sbi_error(SB_ENOMEM, func, "out of memory");
   st = examine(&W, &A, &Bs, 0.0, 0);
   if (st < 0)
-    return -sbi_error(-st, __func__, "coefficients failed");
+    return -sbi_error(-st, func, "coefficients failed");
   if (!st)
     return 0;
   w->st.hits++;
   st = contact_states(&W, c);
   if (st < 0)
-    return -sbi_error(-st, __func__, "contact state failed");
+    return -sbi_error(-st, func, "contact state failed");
   return 1;
+}
+
+int sb_langevin_hitter_sample(sb_langevin_hitter *w,
+                              const sb_langevin_path *pi,
+                              const sb_langevin_path *pj, double R,
+                              double dt, const gsl_rng *r,
+                              sb_langevin_contact *c)
+{
+  return sample(w, pi, pj, R, NULL, R, dt, r, c, __func__);
+}
+
+int sb_langevin_hitter_sample_plane(sb_langevin_hitter *w,
+                                    const sb_langevin_path *p,
+                                    const double n[3], double level,
+                                    double scale, double dt,
+                                    const gsl_rng *r,
+                                    sb_langevin_contact *c)
+{
+  if (!n)
+    return -sbi_error(SB_EINVAL, __func__, "n is NULL");
+  const double nn = sqrt(dot3(n, n));
+  if (!(nn > 0.0) || !isfinite(nn))
+    return -sbi_error(SB_EDOM, __func__, "n is not a direction");
+  const double u[3] = {n[0] / nn, n[1] / nn, n[2] / nn};
+  /* the other "particle": a fixed point at the origin */
+  sb_langevin_path o;
+  memset(&o, 0, sizeof o);
+  o.tau = INFINITY;
+  return sample(w, p, &o, level / nn, u, scale, dt, r, c, __func__);
 }
 
 double sb_langevin_hitter_bound(sb_langevin_hitter *w,
@@ -680,7 +781,7 @@ double sb_langevin_hitter_bound(sb_langevin_hitter *w,
 {
   walk W;
   pstate A, Bs;
-  int st = setup(&W, w, pi, pj, R, dt, NULL, &A, &Bs, __func__);
+  int st = setup(&W, w, pi, pj, R, NULL, R, dt, NULL, &A, &Bs, __func__);
   if (st < 0)
     return NAN;
   if (st == 1)

@@ -860,9 +860,15 @@ typedef enum {
                                  distances to the contact plane; Mohaupt
                                  2011, §5.1): exact for Brownian motion,
                                  the diffusive regime dt >> tau_p */
-  SB_WALLDET_BALLISTIC = 1  /**< the straight chord crosses the contact
+  SB_WALLDET_BALLISTIC = 1, /**< the straight chord crosses the contact
                                  plane (exact for straight paths: dt <<
                                  tau_p, free flight, non-Brownian) */
+  SB_WALLDET_LANGEVIN = 2   /**< the exact conditional (bridge) law of the
+                                 Langevin path between the step's end
+                                 states, position and velocity
+                                 (sb_langevin_hitter_sample_plane): exact
+                                 at every dt/tau_p (free flight: the
+                                 chord) */
 } sb_engine_walldet;
 
 /** What a deposited particle does. */

@@ -136,6 +136,28 @@ int sb_langevin_hitter_sample(sb_langevin_hitter *w,
                               double dt, const gsl_rng *r,
                               sb_langevin_contact *c);
 
+/** First contact of one Langevin particle with the plane n.x = level
+ *  (n need not be normalised), approached from the side n.x > level,
+ *  over [0, dt] given its states at both ends: the same sampler, with the
+ *  half-space n.x <= level in place of the ball (the Rice bound is then
+ *  taken along n itself, and a leaf's chord enters the half-space at a
+ *  linear root).  The particle's path is the exact conditional (bridge)
+ *  law of the integrated OU process given both end states, so the
+ *  contact probability and time are exact at every dt/tau up to eps and
+ *  the leaf resolution xtol * scale (scale > 0: a length of the problem,
+ *  e.g. the particle radius).  Used for particle-wall contact
+ *  (SB_WALLDET_LANGEVIN of the engine; Mohaupt 2011, §5.1 for the
+ *  Brownian-bridge version).  Returns 1 (contact: c->t, c->xi on the
+ *  plane, c->ui; c->xj, c->uj zero), 0, or a negative status; a start at
+ *  or beyond the plane (touching and approaching) is a contact at t = 0.
+ *  Domain as sb_langevin_hitter_sample; level finite. */
+int sb_langevin_hitter_sample_plane(sb_langevin_hitter *w,
+                                    const sb_langevin_path *p,
+                                    const double n[3], double level,
+                                    double scale, double dt,
+                                    const gsl_rng *r,
+                                    sb_langevin_contact *c);
+
 /** The top-level pruning bound of the sampler for this configuration
  *  (SAFETY x Rice integral + largest node probability, capped at 1; 1
  *  when the bound does not apply: an end inside the half-space, or

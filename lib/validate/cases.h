@@ -202,5 +202,7 @@ extern const sbv_case sbv_cases_v16[];
 extern const size_t sbv_ncases_v16;
 extern const sbv_case sbv_cases_v16c[];
 extern const size_t sbv_ncases_v16c;
+extern const sbv_case sbv_cases_v16d[];
+extern const size_t sbv_ncases_v16d;
 
 #endif /* SB_VALIDATE_CASES_H */

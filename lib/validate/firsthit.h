@@ -165,6 +165,10 @@ typedef struct {
                               contacts (0: none) */
   double g[3];             /* constant acceleration, m/s^2 (0: none;
                               V16/combined: Brownian + settling) */
+  double G;                /* shear rate, 1/s (0: none; else the fluid
+                              U_x = G (y - L/2) with Lees-Edwards
+                              boundaries, velocities started at it:
+                              V16/combined-shear-diffusive) */
 } lv_run;
 
 typedef struct {

@@ -117,6 +117,7 @@ static int place(const sbv_ctx *ctx, unsigned long stream, sb_engine *e,
         x[k] = q->L * gsl_rng_uniform(r);
         u[k] = gsl_ran_gaussian_ziggurat(r, vsd);
       }
+      u[0] += q->G * (x[1] - 0.5 * q->L);  /* the shear field, if any */
       st = sb_engine_add_particle(e, (size_t)a, 0, x, u);
     }
   }
@@ -218,6 +219,14 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
   /* hook: gravity (settling velocity tau_p g; V16/combined) */
   if (!st && (q->g[0] != 0.0 || q->g[1] != 0.0 || q->g[2] != 0.0))
     st = sb_engine_set_gravity(e, q->g);
+  /* hook: shear with Lees-Edwards images (every detector is image-aware
+   * with the count outcome; V16/combined-shear-diffusive) */
+  if (!st && q->G != 0.0) {
+    const double Gv[3] = {q->G, 0.0, 0.0};
+    st = sb_engine_set_fluid(e, SB_FLUID_SHEAR, Gv);
+    if (!st)
+      st = sb_engine_set_lees_edwards(e, 1);
+  }
   if (!st)
     st = place(ctx, stream, e, q);
   double reach = 0.0;
@@ -230,6 +239,10 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
     st = !f.b ? SB_ENOMEM : sb_engine_bridge_attach(e, f.b);
     if (!st)
       reach = sb_engine_bridge_reach(e, f.b);
+    /* lv_detect never reports a contact: back to the plain count outcome
+     * (which the Lees-Edwards images require) */
+    if (!st)
+      st = sb_engine_set_outcome(e, SB_OUTCOME_COUNT, 1.0);
   } else if (!st && q->det == LV_LANGEVIN)
     reach = sb_engine_langevin_reach(e);
   if (!st && !(reach >= 0.0))

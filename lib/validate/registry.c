@@ -30,6 +30,7 @@ static const struct {
     {sbv_cases_spray, &sbv_ncases_spray},
     {sbv_cases_v16, &sbv_ncases_v16},
     {sbv_cases_v16c, &sbv_ncases_v16c},
+    {sbv_cases_v16d, &sbv_ncases_v16d},
     {sbv_cases_pair, &sbv_ncases_pair},
     {sbv_cases_transport, &sbv_ncases_transport},
 };
