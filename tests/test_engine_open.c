@@ -23,10 +23,11 @@
 
 #include "testutil.h"
 
-/* A 2-D box of edge L with free-flight species of radius r, open in x
- * (and in y when open_y), periodic otherwise, count outcome. */
-static sb_engine *box2(double L, double dt, double r, size_t cap,
-                       int open_y, unsigned long seed)
+/* A 2-D box of edge L with one non-Brownian species of radius r and
+ * relaxation time tau (inf: free flight), open in x (and in y when
+ * open_y), periodic otherwise, count outcome. */
+static sb_engine *box2_tau(double L, double dt, double r, double tau,
+                           size_t cap, int open_y, unsigned long seed)
 {
   sb_engine_params p;
   sb_engine_params_default(&p);
@@ -39,7 +40,7 @@ static sb_engine *box2(double L, double dt, double r, size_t cap,
   sb_engine *e = sb_engine_alloc(&p);
   ck_assert_ptr_nonnull(e);
   const double m = 1e-15;
-  sb_engine_species s = {r, m, INFINITY, 0.0, m * 1e-8 / SB_BOLTZMANN};
+  sb_engine_species s = {r, m, tau, 0.0, m * 1e-8 / SB_BOLTZMANN};
   ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
   ck_assert_int_eq(sb_engine_set_walls(e, 0, SB_WALL_OPEN, SB_WALL_OPEN),
                    SB_SUCCESS);
@@ -50,6 +51,13 @@ static sb_engine *box2(double L, double dt, double r, size_t cap,
                                            SB_DEPOSIT_REMOVE),
                    SB_SUCCESS);
   return e;
+}
+
+/* The same box with free-flight particles. */
+static sb_engine *box2(double L, double dt, double r, size_t cap,
+                       int open_y, unsigned long seed)
+{
+  return box2_tau(L, dt, r, INFINITY, cap, open_y, seed);
 }
 
 /* The number of particles of a stream in the box is Poisson with mean
@@ -226,24 +234,8 @@ END_TEST
  * u in [u0 e^{-dt/tau}, u0].  (A straight flight would keep u = u0.) */
 START_TEST(test_inflow_drag_flight)
 {
-  const double L = 1e-3, dt = 1e-4, tau = 2e-4, u0 = 1.0, m = 1e-15;
-  sb_engine_params p;
-  sb_engine_params_default(&p);
-  p.dim = 2;
-  p.L[0] = p.L[1] = L;
-  p.dt = dt;
-  p.capacity = 256;
-  p.seed = 11;
-  p.outcome = SB_OUTCOME_COUNT;
-  sb_engine *e = sb_engine_alloc(&p);
-  ck_assert_ptr_nonnull(e);
-  sb_engine_species s = {1e-9, m, tau, 0.0, 0.0};
-  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
-  ck_assert_int_eq(sb_engine_set_walls(e, 0, SB_WALL_OPEN, SB_WALL_OPEN),
-                   SB_SUCCESS);
-  ck_assert_int_eq(sb_engine_set_wall_mode(e, SB_WALLDET_BALLISTIC,
-                                           SB_DEPOSIT_REMOVE),
-                   SB_SUCCESS);
+  const double L = 1e-3, dt = 1e-4, tau = 2e-4, u0 = 1.0;
+  sb_engine *e = box2_tau(L, dt, 1e-9, tau, 256, 0, 11);
   sb_engine_inflow in;
   memset(&in, 0, sizeof in);
   in.face = 0;
