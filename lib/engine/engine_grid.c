@@ -4,7 +4,7 @@
  *
  * Cells are cell-centred over [0, L_k): cell i of direction k covers
  * [i h_k, (i + 1) h_k), h_k = L_k / n_k.  Two assignment schemes
- * (Hockney & Eastwood 1988, §5-3):
+ * (Hockney & Eastwood 1988, ch. 5):
  *  - NGP (nearest grid point): a particle's whole mass goes to the cell
  *    that holds its centre;
  *  - CIC (cloud in cell): the particle is a uniform cube of one cell
