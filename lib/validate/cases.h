@@ -88,7 +88,8 @@ int sbv_add_ks(sbv_report *rep, const char *name, size_t n, double d,
  * order-statistic interval at 1 - SBV_ALPHA and the sign test. */
 int sbv_add_median(sbv_report *rep, const char *name, const double *xs,
                    size_t m, double med_ref);
-/* Deterministic comparison: reference inside [lo, hi] (rule band); the
+/* Deterministic comparison: reference inside [lo, hi] (rule band), a
+ * tolerance around est, which must lie in it (else the row fails); the
  * relative form uses est (1 -+ tol). */
 int sbv_add_band(sbv_report *rep, const char *name, double est, double ref,
                  double lo, double hi);

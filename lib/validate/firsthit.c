@@ -94,6 +94,17 @@ double fh_box_for(double K, size_t N, double Teff, double hits, double b2T)
   return L > Lmin ? L : Lmin;
 }
 
+void fh_size_for(fh_run *q, double K, double hits, size_t nmax)
+{
+  const double Teff = fh_teff(q), b2T = q->b2 * q->T;
+  q->L = fh_box_for(K, q->N, Teff, hits, b2T);
+  const double n = ceil(sqrt(2.0 * hits * q->L * q->L * q->L / (K * Teff)));
+  if (n > (double)q->N) {
+    q->N = n < (double)nmax ? (size_t)n : nmax;
+    q->L = fh_box_for(K, q->N, Teff, hits, b2T);
+  }
+}
+
 FILE *fh_ini_open(const sbv_ctx *ctx, unsigned long stream,
                   const sb_engine_params *p, double L, double T, double t1,
                   const char *detect, const char *name)

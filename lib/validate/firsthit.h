@@ -111,6 +111,11 @@ double fh_teff(const fh_run *q);
  * deviations sqrt(2 b2 T). */
 double fh_box_for(double K, size_t N, double Teff, double hits, double b2T);
 
+/* Sets q->L by fh_box_for for about `hits` first contacts of kernel K;
+ * where the box's lower bound binds (long runs, large steps), raises q->N
+ * (up to nmax) instead, the expected count being K N^2 Teff / (2 L^3). */
+void fh_size_for(fh_run *q, double K, double hits, size_t nmax);
+
 /* Default engine parameters for a cubic box of edge L, step dt and room
  * for N particles, the engine seeded from the independent stream. */
 int fh_cube_params(const sbv_ctx *ctx, unsigned long stream, double L,

@@ -121,6 +121,10 @@ int sbv_add_band(sbv_report *rep, const char *name, double est, double ref,
 {
   sb_comparison c;
   int st = sb_compare(&c, name, SB_RULE_BAND, est, ref, lo, hi, NAN, NAN);
+  /* the band is a tolerance around the estimate: one that does not hold
+   * it is a case's mistake (a fixed [0, 0] passes whatever est is) */
+  if (!(lo <= est && est <= hi))
+    c.verdict = SB_FAIL;
   return add(rep, st, &c);
 }
 
