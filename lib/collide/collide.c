@@ -61,26 +61,33 @@ static int input_error(sb_collide *cl)
   return sbi_col_failure(cl, SB_COLLIDE_EINPUT, SB_EINVAL, cl->c.err);
 }
 
-int sb_collide_read_file(sb_collide *cl, const char *path)
+/* Keys are added before the checks only: SB_SUCCESS, or the failure. */
+static int reading(sb_collide *cl, const char *func)
 {
   if (cl->failed)
     return cl->status;
-  if (cl->checked)
-    return sbi_col_failure(cl, SB_COLLIDE_EINPUT, SB_EINVAL,
-                           "sb_collide_read_file: the configuration is "
-                           "already checked");
+  if (!cl->checked)
+    return SB_SUCCESS;
+  char msg[120];
+  snprintf(msg, sizeof msg, "%s: the configuration is already checked",
+           func);
+  return sbi_col_failure(cl, SB_COLLIDE_EINPUT, SB_EINVAL, msg);
+}
+
+int sb_collide_read_file(sb_collide *cl, const char *path)
+{
+  int st = reading(cl, "sb_collide_read_file");
+  if (st)
+    return st;
   return sbi_col_read_file(&cl->c, path) ? input_error(cl) : SB_SUCCESS;
 }
 
 int sb_collide_read_string(sb_collide *cl, const char *text,
                            const char *name)
 {
-  if (cl->failed)
-    return cl->status;
-  if (cl->checked)
-    return sbi_col_failure(cl, SB_COLLIDE_EINPUT, SB_EINVAL,
-                           "sb_collide_read_string: the configuration is "
-                           "already checked");
+  int st = reading(cl, "sb_collide_read_string");
+  if (st)
+    return st;
   return sbi_col_read_string(&cl->c, text ? text : "",
                              name ? name : "string")
              ? input_error(cl)
@@ -89,12 +96,9 @@ int sb_collide_read_string(sb_collide *cl, const char *text,
 
 int sb_collide_set(sb_collide *cl, const char *assignment)
 {
-  if (cl->failed)
-    return cl->status;
-  if (cl->checked)
-    return sbi_col_failure(cl, SB_COLLIDE_EINPUT, SB_EINVAL,
-                           "sb_collide_set: the configuration is already "
-                           "checked");
+  int st = reading(cl, "sb_collide_set");
+  if (st)
+    return st;
   return sbi_col_override(&cl->c, assignment ? assignment : "")
              ? input_error(cl)
              : SB_SUCCESS;
