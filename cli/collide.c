@@ -287,6 +287,5 @@ int col_run_point(const char *ini, const char *const *sets, int nsets,
     print_warnings(c, &shown);  /* those of the run */
   }
   sb_collide_free(c);
-  (void)st;
   return kind == SB_COLLIDE_EWRITE ? 1 : (int)kind;
 }
