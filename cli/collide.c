@@ -1,14 +1,16 @@
 /* collide.c — `smolbridge collide CONFIG.ini [--set SECTION.KEY=VALUE]...`:
- * read the configuration (collide_ini.c), build the engine
- * (collide_setup.c), run it with progress on stderr, write the outputs
- * (collide_out.c).  Exit status: 0 done, 1 run or write error, 2 usage or
- * input error (the configuration, an unwritable output). */
+ * the library's run description (<smolbridge/collide.h>) reads the
+ * configuration, builds the engine, runs it and writes the outputs; the
+ * command prints its progress, warnings and messages on stderr.  Exit
+ * status: 0 done, 1 run or write error, 2 usage or input error (the
+ * configuration, an unwritable output). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
+#include <smolbridge/collide.h>
 #include <smolbridge/engine.h>
 
 #ifdef _OPENMP
@@ -18,6 +20,26 @@
 #include "cli.h"
 #include "collide.h"
 #include "par.h"
+
+/* The library's key table, one section after the other. */
+static void print_keys(FILE *f)
+{
+  const size_t n = sb_collide_nkeys();
+  sb_collide_keyinfo k;
+  int w = 16;  /* the longest key sets the name column */
+  for (size_t i = 0; i < n; i++)
+    if (!sb_collide_key(i, &k) && (int)strlen(k.key) > w)
+      w = (int)strlen(k.key);
+  const char *sec = "";
+  for (size_t i = 0; i < n && !sb_collide_key(i, &k); i++) {
+    if (strcmp(sec, k.section)) {
+      sec = k.section;
+      fprintf(f, "\n[%s%s]\n", sec, strcmp(sec, "species") ? "" : " NAME");
+    }
+    fprintf(f, "  %-*s %-9s default %s; %s\n  %-*s %-9s valid: %s\n", w,
+            k.key, k.unit, k.def, k.help, w, "", "", k.valid);
+  }
+}
 
 static void usage(FILE *f)
 {
@@ -48,47 +70,49 @@ static void usage(FILE *f)
 "Theory and every key: docs/engine.md §9; examples: examples/*.ini.\n"
 "\n"
 "Sections and keys (unit, default, valid values):\n");
-  col_print_keys(f);
+  print_keys(f);
 }
 
-static int progress_step(col_run *r, const col_config *c, double t_stop,
-                         col_pairs *ps, int verbose)
+/* Progress on stderr (verbose), the particle count for a sweep. */
+typedef struct {
+  const sb_collide *c;
+  int verbose;
+  col_point *res;
+} progress_ctx;
+
+static int progress(const sb_collide_progress *p, void *user)
 {
-  sb_engine *e = r->e;
-  const double dt = sb_engine_get_params(e)->dt, t0 = sb_engine_time(e);
-  double last = -1;
-  while (sb_engine_time(e) < t_stop - 0.5 * dt) {
-    int st = sb_engine_step(e);
-    if (st)
-      return st;
-    size_t every = sb_engine_get_params(e)->sample_every;
-    if (every) {
-      sb_engine_stats s0;
-      sb_engine_get_stats(e, &s0);
-      if (s0.steps % every == 0) {
-        if (ps && col_pairs_sample(ps, e))
-          return SB_ENOMEM;
-        if (r->agglo && (st = sb_agglo_sample(r->agglo, e)))
-          return st;
-      }
-    }
-    double frac = (sb_engine_time(e) - t0) / (t_stop - t0);
-    if (verbose && (frac - last >= 0.1 || frac >= 1.0 - 1e-12)) {
-      sb_engine_stats s;
-      sb_engine_get_stats(e, &s);
-      fprintf(stderr, "collide: t = %.4g s (%3.0f%%), %llu collisions\n",
-              sb_engine_time(e), 100 * frac, (unsigned long long)s.ncoll);
-      last = frac;
-    }
-  }
-  (void)c;
-  return SB_SUCCESS;
+  const progress_ctx *pc = user;
+  if (p->event == SB_COLLIDE_BEGIN) {
+    if (pc->verbose)
+      fprintf(stderr, "collide: %zu particles, dt = %g s, t = %g -> %g s, "
+              "seed %lu, output %s/\n", p->particles, p->dt, p->t_begin,
+              p->t_end, sb_engine_get_params(sb_collide_engine(pc->c))->seed,
+              sb_collide_output(pc->c));
+    if (pc->res)
+      pc->res->particles = p->particles;
+  } else if (pc->verbose)
+    fprintf(stderr, "collide: t = %.4g s (%3.0f%%), %llu collisions\n", p->t,
+            100 * p->fraction, p->collisions);
+  return 0;
 }
 
-static void print_warnings(const col_config *c, int *shown)
+static void print_warnings(const sb_collide *c, size_t *shown)
 {
-  for (; *shown < c->nwarn; (*shown)++)
-    fprintf(stderr, "collide: warning: %s\n", c->warn[*shown]);
+  for (; *shown < sb_collide_nwarnings(c); (*shown)++)
+    fprintf(stderr, "collide: warning: %s\n", sb_collide_warning(c, *shown));
+}
+
+/* The message of a failure, one "collide: " line per problem. */
+static void print_error(const sb_collide *c)
+{
+  const char *m = sb_collide_error(c);
+  do {
+    const char *nl = strchr(m, '\n');
+    int n = nl ? (int)(nl - m) : (int)strlen(m);
+    fprintf(stderr, "collide: %.*s\n", n, m);
+    m = nl ? nl + 1 : NULL;
+  } while (m);
 }
 
 int sbc_collide_main(int argc, char **argv)
@@ -168,166 +192,20 @@ int sbc_collide_main(int argc, char **argv)
   return col_run_point(ini, sets, nsets, 1, NULL);
 }
 
-int col_run_point(const char *ini, const char *const *sets, int nsets,
-                  int verbose, col_point *res)
+/* The kernel estimate after a completed run, in *res; the done message
+ * when verbose. */
+static void report_result(const sb_collide *c, int verbose, col_point *res)
 {
-  static col_config c;  /* large: not on the stack */
-  col_defaults(&c);
-  if (res) {
-    memset(res, 0, sizeof *res);
-    res->K = res->lo = res->hi = NAN;
-    snprintf(res->status, sizeof res->status, "input error");
-  }
-  int shown = 0;
-  if (col_read_file(&c, ini)) {
-    fprintf(stderr, "collide: %s\n", c.err);
-    if (res)
-      snprintf(res->why, sizeof res->why, "%s", c.err);
-    return 2;
-  }
-  for (int i = 0; i < nsets; i++)
-    if (col_override(&c, sets[i])) {
-      fprintf(stderr, "collide: %s\n", c.err);
-      if (res)
-        snprintf(res->why, sizeof res->why, "%s", c.err);
-      return 2;
-    }
-  if (col_check(&c)) {
-    print_warnings(&c, &shown);
-    fprintf(stderr, "collide: %s\n", c.err);
-    if (res)
-      snprintf(res->why, sizeof res->why, "%s", c.err);
-    return 2;
-  }
-  col_run r;
-  if (col_setup(&c, &r)) {
-    print_warnings(&c, &shown);
-    fprintf(stderr, "collide: %s\n", c.err);
-    if (res)
-      snprintf(res->why, sizeof res->why, "%s", c.err);
-    col_run_free(&r);
-    return 2;
-  }
-  print_warnings(&c, &shown);
-  sb_engine *e = r.e;
-  const double dt = sb_engine_get_params(e)->dt;
-  const double t0 = sb_engine_time(e);
-  /* t_end is the absolute end time (warm-up inside it); steps counts the
-   * measured steps after the warm-up */
-  r.warm = c.restart[0] ? 0.0 : c.warmup;
-  r.t_end = !isnan(c.t_end) ? c.t_end : t0 + r.warm + (double)c.steps * dt;
-  if (!(r.t_end - t0 - r.warm >= 0.5 * dt)) {
-    fprintf(stderr, "collide: %s: nothing to measure: the warm-up (%g s) "
-            "does not end before t_end (%g s from t = %g s)\n",
-            col_given(&c, "run", "warmup") ? col_where(&c, "run", "warmup")
-                                           : col_where(&c, "run", "t_end"),
-            r.warm, r.t_end - t0, t0);
-    col_run_free(&r);
-    return 2;
-  }
-  if (col_out_prepare(&c)) {
-    fprintf(stderr, "collide: %s\n", c.err);
-    if (res)
-      snprintf(res->why, sizeof res->why, "%s", c.err);
-    col_run_free(&r);
-    return 2;
-  }
-  {
-    long nst = lround((r.t_end - t0) / dt);
-    sb_engine_set_sample_every(e, c.sample_every > 0
-                                      ? (size_t)c.sample_every
-                                      : (size_t)(nst / 200 > 0 ? nst / 200
-                                                               : 1));
-  }
-  col_firsthit_start(&r, t0 + r.warm);
-  if (verbose)
-    fprintf(stderr, "collide: %zu particles, dt = %g s, t = %g -> %g s, "
-            "seed %lu, output %s/\n", sb_engine_count(e), dt, t0, r.t_end,
-            c.restart[0] ? sb_engine_get_params(e)->seed : c.seed,
-            c.output);
-  if (res)
-    res->particles = sb_engine_count(e);
-  /* per-pair columns for 2 to 4 species (clusters: sizes.csv) */
-  col_pairs pser = {c.nsp <= 4 && !r.agglo ? c.nsp : 0, NULL, 0, 0};
-  double cpu0 = (double)clock() / CLOCKS_PER_SEC;
-  int st = SB_SUCCESS;
-  if (r.warm > 0) {
-    st = progress_step(&r, &c, t0 + r.warm, NULL, verbose);
-    sb_engine_reset_counters(e);
-    if (r.bridge)
-      sb_engine_bridge_reset(r.bridge);
-    if (r.agglo)
-      sb_agglo_reset_stats(r.agglo);
-  }
-  char path[1100];
-  long nsnap = 0;
-  while (!st && sb_engine_time(e) < r.t_end - 0.5 * dt) {
-    double t_next = r.t_end;
-    if (c.snapshot_every > 0) {
-      double ts = sb_engine_time(e) + (double)c.snapshot_every * dt;
-      if (ts < t_next)
-        t_next = ts;
-    }
-    st = progress_step(&r, &c, t_next, &pser, verbose);
-    if (!st && c.snapshot_every > 0) {
-      col_snap_path(&c, nsnap, path, sizeof path);
-      st = sb_engine_snapshot_csv(e, path);
-      if (!st)
-        nsnap++;
-    }
-  }
-  double secs = (double)clock() / CLOCKS_PER_SEC - cpu0;
-  if (!st && r.agglo) {  /* the last size row at the end time */
-    size_t nr, nc;
-    const double *rows = sb_agglo_series(r.agglo, &nr, &nc);
-    if (!(nr > 0 && rows[(nr - 1) * nc] == sb_engine_time(e)))
-      st = sb_agglo_sample(r.agglo, e);
-  }
-  if (st) {
-    char why[600];
-    snprintf(why, sizeof why, "step failed at t = %g s: %s",
-             sb_engine_time(e), sb_last_error());
-    fprintf(stderr, "collide: %s\n", why);
-    if (res) {
-      snprintf(res->status, sizeof res->status, "run error");
-      snprintf(res->why, sizeof res->why, "%s", why);
-    }
-    if (col_out_write(&c, &r, &pser, secs, "failed", why, nsnap))
-      fprintf(stderr, "collide: could not write the outputs in %s/\n",
-              c.output);
-    free(pser.rows);
-    col_run_free(&r);
-    return 1;
-  }
-  int rc = 0;
-  if (col_out_write(&c, &r, &pser, secs, "ok", NULL, nsnap)) {
-    fprintf(stderr, "collide: could not write the outputs in %s/\n",
-            c.output);
-    rc = 1;
-  }
-  free(pser.rows);
-  if (c.checkpoint[0] && sb_engine_checkpoint_save(e, c.checkpoint)) {
-    fprintf(stderr, "collide: checkpoint: %s\n", sb_last_error());
-    rc = 1;
-  }
-  if (r.agglo) {
-    sb_agglo_stats as;
-    sb_agglo_get_stats(r.agglo, &as);
-    fprintf(stderr, "collide: %llu merges, %llu rebounds, %zu clusters; "
-            "sizes in %s/sizes.csv\n", (unsigned long long)as.nmerge,
-            (unsigned long long)as.nrebound, sb_engine_count(e), c.output);
-  }
+  const sb_engine *e = sb_collide_engine(c);
   sb_engine_stats fs;
   sb_engine_get_stats(e, &fs);
   if (res) {
     res->ncoll = fs.ncoll;
     res->steps = fs.steps;
-    res->cpu_seconds = secs;
-    snprintf(res->status, sizeof res->status, rc ? "write error" : "ok");
   }
-  if (r.fh) {
+  if (sb_collide_has_firsthit(c)) {
     sb_engine_firsthit_kernel_result o;
-    col_firsthit_result(&r, &c, &o);
+    sb_collide_firsthit(c, &o);
     if (verbose)
       fprintf(stderr, "collide: done; %llu first contacts after t = %g s, "
               "K = %.6g [%.6g, %.6g] (95%%, reference radius %g m)\n",
@@ -339,29 +217,75 @@ int col_run_point(const char *ini, const char *const *sets, int nsets,
       res->ncoll = o.c.hits;
       snprintf(res->kind, sizeof res->kind, "first-hit");
     }
-  } else {
-    double K, lo, hi;
-    if (!sb_engine_kernel(e, 0.95, &K, &lo, &hi)) {
-      if (verbose)
-        fprintf(stderr, "collide: done; K_e = %.6g [%.6g, %.6g] (95%%) over "
-                "[%g, %g] s\n", K, lo, hi, fs.t_reset, fs.t);
-      if (res) {
-        res->K = K;
-        res->lo = lo;
-        res->hi = hi;
-        snprintf(res->kind, sizeof res->kind, "K_e");
-      }
-    } else if (verbose)
-      fprintf(stderr, "collide: done; no kernel: %s\n",
-              sb_engine_count(e) < 2 ? "fewer than 2 particles"
-                                     : sb_last_error());
+    return;
   }
-  if (fs.dropped)
-    fprintf(stderr, "collide: warning: %llu collision events were dropped "
-            "(the custom detector does not re-examine pairs after an "
-            "outcome within a step); the kernel is low by about that many "
-            "collisions of %llu: shorten dt\n",
-            (unsigned long long)fs.dropped, (unsigned long long)fs.ncoll);
-  col_run_free(&r);
-  return rc;
+  double K, lo, hi;
+  if (!sb_engine_kernel(e, 0.95, &K, &lo, &hi)) {
+    if (verbose)
+      fprintf(stderr, "collide: done; K_e = %.6g [%.6g, %.6g] (95%%) over "
+              "[%g, %g] s\n", K, lo, hi, fs.t_reset, fs.t);
+    if (res) {
+      res->K = K;
+      res->lo = lo;
+      res->hi = hi;
+      snprintf(res->kind, sizeof res->kind, "K_e");
+    }
+  } else if (verbose)
+    fprintf(stderr, "collide: done; no kernel: %s\n",
+            sb_engine_count(e) < 2 ? "fewer than 2 particles"
+                                   : sb_last_error());
+}
+
+int col_run_point(const char *ini, const char *const *sets, int nsets,
+                  int verbose, col_point *res)
+{
+  if (res) {
+    memset(res, 0, sizeof *res);
+    res->K = res->lo = res->hi = NAN;
+    snprintf(res->status, sizeof res->status, "input error");
+  }
+  sb_collide *c = sb_collide_alloc();
+  if (!c) {
+    fprintf(stderr, "collide: out of memory\n");
+    return 2;
+  }
+  size_t shown = 0;
+  int st = sb_collide_read_file(c, ini);
+  for (int i = 0; i < nsets && !st; i++)
+    st = sb_collide_set(c, sets[i]);
+  if (!st) {  /* warnings of the checks before their error */
+    st = sb_collide_setup(c);
+    print_warnings(c, &shown);
+  }
+  progress_ctx pc = {c, verbose, res};
+  if (!st)
+    st = sb_collide_run(c, progress, &pc);
+  const sb_collide_failure kind = sb_collide_failed(c);
+  if (kind != SB_COLLIDE_OK) {
+    print_error(c);
+    if (res) {
+      static const char *const status[] = {"ok", "run error", "input error",
+                                           "write error"};
+      snprintf(res->status, sizeof res->status, "%s", status[kind]);
+      snprintf(res->why, sizeof res->why, "%.*s",
+               (int)strcspn(sb_collide_error(c), "\n"), sb_collide_error(c));
+    }
+  }
+  if (kind == SB_COLLIDE_OK || kind == SB_COLLIDE_EWRITE) {
+    const sb_agglo *ag = sb_collide_agglo(c);
+    if (ag) {
+      sb_agglo_stats as;
+      sb_agglo_get_stats(ag, &as);
+      fprintf(stderr, "collide: %llu merges, %llu rebounds, %zu clusters; "
+              "sizes in %s/sizes.csv\n", (unsigned long long)as.nmerge,
+              (unsigned long long)as.nrebound,
+              sb_engine_count(sb_collide_engine(c)), sb_collide_output(c));
+    }
+    report_result(c, verbose, res);
+    if (res)
+      snprintf(res->status, sizeof res->status, kind ? "write error" : "ok");
+    print_warnings(c, &shown);  /* those of the run */
+  }
+  sb_collide_free(c);
+  return kind == SB_COLLIDE_EWRITE ? 1 : (int)kind;
 }

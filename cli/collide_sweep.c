@@ -12,6 +12,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include <smolbridge/collide.h>
+
 #include "collide.h"
 #include "par.h"
 
@@ -93,19 +95,20 @@ static int read_points(const char *file, sw_points *P, char *err,
 static int base_output(const char *ini, const char *const *sets, int nsets,
                        char *out, size_t len, char *err, size_t elen)
 {
-  static col_config c;  /* large */
-  col_defaults(&c);
-  if (col_read_file(&c, ini)) {
-    snprintf(err, elen, "%s", c.err);
+  sb_collide *c = sb_collide_alloc();
+  if (!c) {
+    snprintf(err, elen, "out of memory");
     return -1;
   }
-  for (int i = 0; i < nsets; i++)
-    if (col_override(&c, sets[i])) {
-      snprintf(err, elen, "%s", c.err);
-      return -1;
-    }
-  snprintf(out, len, "%s", c.output);
-  return 0;
+  int st = sb_collide_read_file(c, ini);
+  for (int i = 0; i < nsets && !st; i++)
+    st = sb_collide_set(c, sets[i]);
+  if (st)
+    snprintf(err, elen, "%s", sb_collide_error(c));
+  else
+    snprintf(out, len, "%s", sb_collide_output(c));
+  sb_collide_free(c);
+  return st ? -1 : 0;
 }
 
 /* CSV field with quotes doubled */

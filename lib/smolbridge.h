@@ -19,5 +19,6 @@
 #include <smolbridge/pgd.h>
 #include <smolbridge/spray.h>
 #include <smolbridge/validate.h>
+#include <smolbridge/collide.h>
 
 #endif /* SMOLBRIDGE_H */

@@ -11,7 +11,8 @@
 #   2 simulate                             reference simulators
 #   3 kernel dlvo                          physics
 #   4 pbe engine pgd spray                 solvers
-#   5 validate                             validation cases and reports
+#   5 validate collide                     validation cases and reports;
+#                                          engine runs from INI files
 #   6 cli                                  the smolbridge command
 set -u
 src="${srcdir:-.}"
@@ -22,7 +23,7 @@ layer() {
     simulate) echo 2 ;;
     kernel|dlvo) echo 3 ;;
     pbe|engine|pgd|spray) echo 4 ;;
-    validate) echo 5 ;;
+    validate|collide) echo 5 ;;
     cli) echo 6 ;;
     *) echo -1 ;;
   esac

@@ -18,5 +18,4 @@ if ldd "$lib" 2>/dev/null | grep -q 'libasan'; then
   echo "python: skipped (sanitizer build)"
   exit 77
 fi
-SMOLBRIDGE_LIB="$lib" SMOLBRIDGE_BIN="$top/smolbridge" \
-  PYTHONPATH="$src/python" "$py" "$src/tests/test_python.py"
+SMOLBRIDGE_LIB="$lib" PYTHONPATH="$src/python" "$py" "$src/tests/test_python.py"

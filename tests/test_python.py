@@ -1,9 +1,15 @@
 """Checks of the Python module against independent values: the closed
 forms of the bridge crossing probabilities, the analytic constant-kernel
 population balance, and an engine run whose answer is known (two spheres
-at 45 degrees).  Run by tests/python.sh."""
+at 45 degrees) through the library, with no command or subprocess.  Run
+by tests/python.sh."""
 import math
+import os
+import re
+import subprocess
 import sys
+import tempfile
+import warnings
 
 import numpy as np
 
@@ -58,7 +64,16 @@ try:
 except ValueError as e:
     check("nonsense" in str(e), "pbe error message: %s" % e)
 
-# collide from a dict: the 45-degree case (one collision, known velocities)
+# collide from a dict: the 45-degree case (one collision, known velocities),
+# run by the library itself: no command on PATH, no subprocess
+
+
+def no_subprocess(*args, **kw):
+    raise AssertionError("collide started a subprocess")
+
+
+subprocess.Popen = no_subprocess
+os.environ["PATH"] = ""
 c = 5e-5
 r1 = 1e-6
 s2 = math.sqrt(2.0)
@@ -70,20 +85,69 @@ cfg = {
                                      0.1, 0, 0],
                                     [c, c - s2 * r1, c, 0, 0, 0]]},
 }
-summary, series = sb.collide(cfg)
+events = []
+summary, series = sb.collide(cfg, progress=events.append)
 check(summary["collisions"] == 1, "collide: one collision")
 check(summary["status"] == "ok" and "ncoll" in series, "collide outputs")
 check(abs(series["px"][-1] - 1e-15 * 0.1) < 1e-28, "momentum conserved")
+check([e["event"] for e in events] == ["begin", "step"] and
+      events[-1]["fraction"] == 1.0 and events[0]["particles"] == 2 and
+      events[-1]["collisions"] == 1, "collide progress: %s" % events)
+# an override: recorded, and it sets the step
 summary, _ = sb.collide(cfg, sets=["run.dt=2e-5"])
-check(summary["overrides"] == ["run.dt=2e-5"], "collide sets recorded")
+check(summary["overrides"] == ["run.dt=2e-5"] and summary["dt"] == 2e-5,
+      "collide sets recorded and applied")
+# output=DIR keeps the files
+with tempfile.TemporaryDirectory() as d:
+    out = os.path.join(d, "kept")
+    sb.collide(cfg, output=out)
+    check(os.path.exists(os.path.join(out, "summary.json")),
+          "collide output= keeps summary.json")
+# a key without effect: a CollideWarning naming it
+with warnings.catch_warnings(record=True) as w:
+    warnings.simplefilter("always")
+    sb.collide(dict(cfg, bridge={"tol": 1e-6}))
+check(len(w) == 1 and issubclass(w[0].category, sb.CollideWarning) and
+      "[bridge] ignored" in str(w[0].message),
+      "collide warning: %s" % [str(x.message) for x in w])
+# input errors: status 2, the line of the INI text and the key
 bad = dict(cfg)
 bad["run"] = dict(cfg["run"], detect="brige")
 try:
     sb.collide(bad)
     check(False, "collide accepted detect = brige")
 except sb.CollideError as e:
-    check(e.status == 2 and "valid: ballistic, overlap" in str(e),
+    check(e.status == 2 and
+          re.match(r"config:\d+: \[run\] detect = brige: unknown; valid: "
+                   r"ballistic, overlap", str(e)),
           "CollideError: %s" % e)
+try:
+    sb.collide(cfg, sets=["run.dt=-1"])
+    check(False, "collide accepted run.dt=-1")
+except sb.CollideError as e:
+    check(e.status == 2 and str(e).startswith("--set run.dt=-1: [run] dt"),
+          "CollideError of --set: %s" % e)
+# a run stopped by its progress callback: a run error (status 1); an
+# exception in the callback stops the run and comes back
+long_cfg = dict(cfg, run=dict(cfg["run"], steps=40))
+try:
+    sb.collide(long_cfg, progress=lambda p: p["event"] == "step")
+    check(False, "the progress callback did not stop the run")
+except sb.CollideError as e:
+    check(e.status == 1 and "stopped by the progress callback" in str(e),
+          "stopped run: %s" % e)
+
+
+def interrupt(p):
+    if p["event"] == "step":
+        raise KeyboardInterrupt
+
+
+try:
+    sb.collide(long_cfg, progress=interrupt)
+    check(False, "the callback's exception was lost")
+except KeyboardInterrupt:
+    pass
 
 if fails:
     sys.exit(1)

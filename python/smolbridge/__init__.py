@@ -12,17 +12,18 @@ message; an array call returns NaN where the arguments are bad.
 
 ``pbe(...)`` integrates the Smoluchowski population balance (CVODE) and
 returns numpy arrays; ``collide(config)`` runs the collision engine from a
-dict shaped like the INI file (through the ``smolbridge collide`` command,
-so that the checks and messages are the command's) and returns the summary
-and the time series.  Theory and units: the user guide (docs/), the
-Python chapter docs/python.md.
+dict shaped like the INI file (through the library's run description,
+<smolbridge/collide.h>, so that the checks and messages are those of
+``smolbridge collide``) and returns the summary and the time series.
+Theory and units: the user guide (docs/), the Python chapter
+docs/python.md.
 """
 import ctypes as _ct
 import json as _json
 import os as _os
 import shutil as _shutil
-import subprocess as _sp
 import tempfile as _tempfile
+import warnings as _warnings
 
 import numpy as _np
 
@@ -31,7 +32,8 @@ try:  # written by `make` (installed and build-tree locations)
 except ImportError:  # pragma: no cover
     _paths = None
 
-__all__ = ["pbe", "collide", "CollideError", "library_version"]
+__all__ = ["pbe", "collide", "CollideError", "CollideWarning",
+           "library_version"]
 
 
 def _load():
@@ -270,24 +272,46 @@ def pbe(kernel, n0, times, sizes=100, method="discrete", init="mono", v1=1.0,
 # -------------------------------------------------------------- collide
 
 class CollideError(RuntimeError):
-    """A failed `smolbridge collide` run: .status is its exit status (1 run
-    error, 2 input error), str() the command's message."""
+    """A failed engine run: .status is 2 for an input error (the
+    configuration, the output directory) and 1 for a failed run or outputs
+    that could not be written (the exit status of `smolbridge collide`);
+    str() is the library's message."""
 
     def __init__(self, status, message):
         RuntimeError.__init__(self, message)
         self.status = status
 
 
-def _command():
-    exe = _os.environ.get("SMOLBRIDGE_BIN")
-    if not exe and _paths is not None:
-        exe = _os.path.join(_paths.BINDIR, "smolbridge")
-    if not exe or not _os.path.exists(exe):
-        exe = _shutil.which("smolbridge")
-    if not exe:
-        raise RuntimeError("collide: the smolbridge command was not found; "
-                           "set SMOLBRIDGE_BIN")
-    return exe
+class CollideWarning(UserWarning):
+    """A key without effect, or collision events a run dropped."""
+
+
+class _Progress(_ct.Structure):  # sb_collide_progress
+    _fields_ = [("event", _ct.c_int), ("t", _ct.c_double),
+                ("t_begin", _ct.c_double), ("t_measure", _ct.c_double),
+                ("t_end", _ct.c_double), ("dt", _ct.c_double),
+                ("fraction", _ct.c_double), ("particles", _ct.c_size_t),
+                ("collisions", _ct.c_ulonglong)]
+
+
+_PROGRESSFN = _ct.CFUNCTYPE(_ct.c_int, _ct.POINTER(_Progress), _ct.c_void_p)
+_lib.sb_collide_alloc.restype = _ct.c_void_p
+_lib.sb_collide_alloc.argtypes = []
+_lib.sb_collide_free.argtypes = [_ct.c_void_p]
+_lib.sb_collide_read_string.argtypes = [_ct.c_void_p, _ct.c_char_p,
+                                        _ct.c_char_p]
+_lib.sb_collide_set.argtypes = [_ct.c_void_p, _ct.c_char_p]
+_lib.sb_collide_check.argtypes = [_ct.c_void_p]
+_lib.sb_collide_run.argtypes = [_ct.c_void_p, _PROGRESSFN, _ct.c_void_p]
+_lib.sb_collide_failed.argtypes = [_ct.c_void_p]
+_lib.sb_collide_error.restype = _ct.c_char_p
+_lib.sb_collide_error.argtypes = [_ct.c_void_p]
+_lib.sb_collide_nwarnings.restype = _ct.c_size_t
+_lib.sb_collide_nwarnings.argtypes = [_ct.c_void_p]
+_lib.sb_collide_warning.restype = _ct.c_char_p
+_lib.sb_collide_warning.argtypes = [_ct.c_void_p, _ct.c_size_t]
+_COLLIDE_EWRITE = 3  # sb_collide_failure: exits with 1, as a run error
+_EVENTS = {0: "begin", 1: "step"}
 
 
 def _ini(config):
@@ -309,32 +333,61 @@ def _ini(config):
     return "\n".join(lines)
 
 
-def collide(config, output=None, sets=()):
+def collide(config, output=None, sets=(), progress=None):
     """Run the collision engine from a dict shaped like the INI file:
     ``{"run": {"L": 1e-5, ...}, "species colloid": {"radius": 1e-7, ...}}``
     (values: numbers, strings, lists for vectors; ``particle`` may be a
     list of 6-number lists).  ``sets``: extra "SECTION.KEY=VALUE" overrides.
     The outputs go to ``output`` (default: a temporary directory, removed
-    afterwards).  Returns ``(summary, series)``: the summary.json dict and
-    the series.csv columns as a dict of numpy arrays (pandas.DataFrame(series)
-    makes a table).  Raises CollideError with the command's message."""
+    afterwards).  ``progress`` (optional) is called with a dict (``event``
+    "begin" or "step", ``t``, ``t_begin``, ``t_measure``, ``t_end``,
+    ``dt`` in s, ``fraction`` of the current stretch, ``particles``,
+    ``collisions``) about every tenth of the run; a true return value or
+    an exception stops the run.  Keys without effect give CollideWarning.
+    Returns ``(summary, series)``: the summary.json dict and the series.csv
+    columns as a dict of numpy arrays (pandas.DataFrame(series) makes a
+    table).  Raises CollideError with the library's message ("config:LINE:
+    ..." for the INI text built from the dict, one line per key in the
+    dict's order)."""
     tmp = _tempfile.mkdtemp(prefix="smolbridge-")
+    c = None
+    raised = []
+
+    def relay(p, user):
+        if progress is None:
+            return 0
+        q = p.contents
+        info = {n: getattr(q, n) for n, _ in _Progress._fields_}
+        info["event"] = _EVENTS.get(q.event, q.event)
+        try:
+            return 1 if progress(info) else 0
+        except BaseException as e:  # re-raised after the run
+            raised.append(e)
+            return 1
+
     try:
         cfg = {s: dict(k) for s, k in config.items()}
         out = output or _os.path.join(tmp, "out")
         cfg.setdefault("run", {})["output"] = out
-        path = _os.path.join(tmp, "run.ini")
-        with open(path, "w") as f:
-            f.write(_ini(cfg))
-        cmd = [_command(), "collide", path]
+        c = _lib.sb_collide_alloc()
+        if not c:
+            raise MemoryError("collide: %s" % _message())
+        st = _lib.sb_collide_read_string(c, _ini(cfg).encode(), b"config")
         for s in sets:
-            cmd += ["--set", s]
-        r = _sp.run(cmd, stdout=_sp.PIPE, stderr=_sp.PIPE,
-                    universal_newlines=True)
-        if r.returncode:
-            msg = "\n".join(l for l in r.stderr.splitlines()
-                            if not l.startswith("collide: t = "))
-            raise CollideError(r.returncode, msg)
+            if not st:
+                st = _lib.sb_collide_set(c, s.encode())
+        if not st:
+            st = _lib.sb_collide_run(c, _PROGRESSFN(relay), None)
+        for i in range(_lib.sb_collide_nwarnings(c)):
+            _warnings.warn(_lib.sb_collide_warning(c, i).decode(
+                errors="replace"), CollideWarning, stacklevel=2)
+        if raised:
+            raise raised[0]
+        if st:
+            kind = _lib.sb_collide_failed(c)
+            raise CollideError(1 if kind == _COLLIDE_EWRITE else kind,
+                               _lib.sb_collide_error(c).decode(
+                                   errors="replace"))
         with open(_os.path.join(out, "summary.json")) as f:
             summary = _json.load(f)
         data = _np.genfromtxt(_os.path.join(out, "series.csv"),
@@ -342,4 +395,6 @@ def collide(config, output=None, sets=()):
         series = {n: _np.asarray(data[n]) for n in data.dtype.names}
         return summary, series
     finally:
+        if c:
+            _lib.sb_collide_free(c)
         _shutil.rmtree(tmp, ignore_errors=True)

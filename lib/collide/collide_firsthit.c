@@ -11,9 +11,9 @@
 #include <smolbridge/engine_bridge.h>
 #include <smolbridge/engine_firsthit.h>
 
-#include "collide.h"
+#include "collide_internal.h"
 
-void col_firsthit_start(col_run *r, double t1)
+void sbi_col_firsthit_start(sbi_col_run *r, double t1)
 {
   if (r->fh)
     sb_engine_firsthit_set_warmup(r->fh, t1);
@@ -21,8 +21,8 @@ void col_firsthit_start(col_run *r, double t1)
 
 /* Install the counting observer around the run's detector (the bridge
  * context r->bridge, or the built-in one). */
-int col_firsthit_attach(const col_config *c, col_run *r,
-                        sb_engine_detect builtin, double reach)
+int sbi_col_firsthit_attach(const sbi_col_config *c, sbi_col_run *r,
+                            sb_engine_detect builtin, double reach)
 {
   sb_engine_firsthit_params fp;
   sb_engine_firsthit_params_default(&fp);
@@ -40,7 +40,7 @@ int col_firsthit_attach(const col_config *c, col_run *r,
   return sb_engine_firsthit_attach(r->e, r->fh, reach);
 }
 
-void col_firsthit_free(sb_engine_firsthit *f)
+void sbi_col_firsthit_free(sb_engine_firsthit *f)
 {
   sb_engine_firsthit_free(f);
 }
@@ -48,8 +48,8 @@ void col_firsthit_free(sb_engine_firsthit *f)
 /* The kernel with the reference radius first_hit_radius (default: the
  * contact distance) or the capacitance radius, and D = b2 (NaN for free
  * flight: no estimate). */
-int col_firsthit_result(const col_run *r, const col_config *c,
-                        sb_engine_firsthit_kernel_result *o)
+int sbi_col_firsthit_result(const sbi_col_run *r, const sbi_col_config *c,
+                            sb_engine_firsthit_kernel_result *o)
 {
   memset(o, 0, sizeof *o);
   if (!r->fh)

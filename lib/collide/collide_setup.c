@@ -16,7 +16,7 @@
 #include <smolbridge/langevin.h>
 #include <smolbridge/rng.h>
 
-#include "collide.h"
+#include "collide_internal.h"
 
 #define PI 3.14159265358979323846
 
@@ -24,85 +24,86 @@
  * random sequential addition jams near 0.38 in 3-D. */
 #define RANDOM_PHI_MAX 0.3
 
-void col_run_free(col_run *r)
+void sbi_col_run_free(sbi_col_run *r)
 {
-  col_firsthit_free(r->fh);
+  sbi_col_firsthit_free(r->fh);
   sb_agglo_free(r->agglo);
   sb_engine_bridge_free(r->bridge);
   sb_engine_free(r->e);
   memset(r, 0, sizeof *r);
 }
 
-static double volume_of(const col_config *c)
+static double volume_of(const sbi_col_config *c)
 {
   return c->Lx * c->Ly * (c->dim == 3 ? c->Lz : 1.0);
 }
 
-static double particle_volume(const col_config *c, double r)
+static double particle_volume(const sbi_col_config *c, double r)
 {
   return c->dim == 3 ? 4.0 / 3.0 * PI * r * r * r : PI * r * r;
 }
 
 /* Species k from its keys; messages name the key at fault. */
-static int species_build(col_config *c, int k, sb_engine_species *o)
+static int species_build(sbi_col_config *c, int k, sb_engine_species *o)
 {
-  col_species *s = &c->sp[k];
+  sbi_col_species *s = &c->sp[k];
   const char *n = s->name;
   double Lmin = fmin(c->Lx, c->Ly);
   if (c->dim == 3)
     Lmin = fmin(Lmin, c->Lz);
-  const char *rk = col_given(c, n, "diameter") ? "diameter" : "radius";
+  const char *rk = sbi_col_given(c, n, "diameter") ? "diameter" : "radius";
   if (!(4.0 * s->radius < Lmin))
-    return col_fail(c, "%s: [%s] %s = %g m: the particle does not fit the "
-                    "box (a diameter must stay below half the smallest "
-                    "edge, %g m)", col_where(c, n, rk), n, rk,
-                    col_given(c, n, "diameter") ? s->diameter : s->radius,
-                    0.5 * Lmin);
+    return sbi_col_fail(c, "%s: [%s] %s = %g m: the particle does not fit the "
+                        "box (a diameter must stay below half the smallest "
+                        "edge, %g m)", sbi_col_where(c, n, rk), n, rk,
+                        sbi_col_given(c, n, "diameter") ? s->diameter
+                                                        : s->radius,
+                        0.5 * Lmin);
   double d = 2.0 * s->radius, m = s->mass;
   if (isnan(m)) {
     m = sb_sphere_mass(s->density, d);  /* spheres, also in 2-D */
     if (!(m > 0) || !isfinite(m))
-      return col_fail(c, "%s: [%s] density = %g kg/m^3 with radius %g m "
-                      "gives the mass %g kg: not a finite positive number",
-                      col_where(c, n, "density"), n, s->density, s->radius,
-                      m);
+      return sbi_col_fail(c, "%s: [%s] density = %g kg/m^3 with radius %g m "
+                          "gives the mass %g kg: not a finite positive number",
+                          sbi_col_where(c, n, "density"), n, s->density,
+                          s->radius, m);
   }
   double tau = s->tau;
   if (isnan(tau)) {
     tau = sb_stokes_tau(s->density, d, s->mu, s->cc);
     if (!(tau > 0) || !isfinite(tau))
-      return col_fail(c, "%s: [%s] mu = %g Pa s gives the Stokes tau = %g "
-                      "s: not a finite positive number",
-                      col_where(c, n, "mu"), n, s->mu, tau);
+      return sbi_col_fail(c, "%s: [%s] mu = %g Pa s gives the Stokes tau = %g "
+                          "s: not a finite positive number",
+                          sbi_col_where(c, n, "mu"), n, s->mu, tau);
   }
   double T = isnan(s->T) ? 0.0 : s->T, B = s->B;
   if (isinf(tau)) {
     if (!(T > 0) && s->npart == 0)
-      return col_fail(c, "%s: [%s]: free flight (tau = inf) needs T > 0 "
-                      "(K) for the velocities of the placed particles",
-                      col_given(c, n, "T") ? col_where(c, n, "T")
-                                           : s->where, n);
+      return sbi_col_fail(c, "%s: [%s]: free flight (tau = inf) needs T > 0 "
+                          "(K) for the velocities of the placed particles",
+                          sbi_col_given(c, n, "T") ? sbi_col_where(c, n, "T")
+                                               : s->where, n);
     if (!isnan(s->b2))
-      return col_fail(c, "%s: [%s] b2: a free-flight species (tau = inf) "
-                      "has no diffusion", col_where(c, n, "b2"), n);
+      return sbi_col_fail(c, "%s: [%s] b2: a free-flight species (tau = inf) "
+                          "has no diffusion", sbi_col_where(c, n, "b2"), n);
     B = 0.0;
   } else if (!isnan(s->b2)) {
     B = sqrt(s->b2) / tau;
   } else if (isnan(B)) {
-    if (!col_given(c, n, "T"))
-      return col_fail(c, "%s: [%s]: a Langevin species (finite tau) needs "
-                      "T (K, B = sqrt(2 k_B T/(m tau))), b2 (m^2/s) or B "
-                      "(m s^-3/2)", s->where, n);
+    if (!sbi_col_given(c, n, "T"))
+      return sbi_col_fail(c, "%s: [%s]: a Langevin species (finite tau) needs "
+                          "T (K, B = sqrt(2 k_B T/(m tau))), b2 (m^2/s) or B "
+                          "(m s^-3/2)", s->where, n);
     if (!(T > 0))
-      return col_fail(c, "%s: [%s] T = 0 K gives no Brownian motion (B = "
-                      "sqrt(2 k_B T/(m tau)) = 0); give T > 0, or b2 "
-                      "(m^2/s) or B (m s^-3/2) with T = 0",
-                      col_where(c, n, "T"), n);
+      return sbi_col_fail(c, "%s: [%s] T = 0 K gives no Brownian motion (B = "
+                          "sqrt(2 k_B T/(m tau)) = 0); give T > 0, or b2 "
+                          "(m^2/s) or B (m s^-3/2) with T = 0",
+                          sbi_col_where(c, n, "T"), n);
     B = sb_brownian_B(T, m, tau);
   }
   if (!isfinite(B))
-    return col_fail(c, "%s: [%s]: B = %g m s^-3/2 from these keys is not "
-                    "finite", s->where, n, B);
+    return sbi_col_fail(c, "%s: [%s]: B = %g m s^-3/2 from these keys is not "
+                        "finite", s->where, n, B);
   /* the bridge's position variance rate; with turbulence each particle
    * moves with the virtual diffusion b2_Brown + B_turb^2(d)/2 (Mohaupt
    * 2011, eqs 6.20-6.23, monodisperse form) */
@@ -119,7 +120,7 @@ static int species_build(col_config *c, int k, sb_engine_species *o)
   return 0;
 }
 
-static long species_count(const col_config *c, const col_species *s)
+static long species_count(const sbi_col_config *c, const sbi_col_species *s)
 {
   if (s->count >= 0)
     return s->count + s->npart;
@@ -130,7 +131,7 @@ static long species_count(const col_config *c, const col_species *s)
 }
 
 /* Fluid velocity at x (as the engine's built-in fields). */
-static void fluid_at(const col_config *c, const double x[3], double u[3])
+static void fluid_at(const sbi_col_config *c, const double x[3], double u[3])
 {
   u[0] = u[1] = u[2] = 0.0;
   if (!strcmp(c->fluid, "uniform"))
@@ -141,10 +142,10 @@ static void fluid_at(const col_config *c, const double x[3], double u[3])
 }
 
 /* Standard deviation of a placed particle's velocity components. */
-static double velocity_sd(const col_config *c, int k,
+static double velocity_sd(const sbi_col_config *c, int k,
                           const sb_engine_species *q)
 {
-  const col_species *s = &c->sp[k];
+  const sbi_col_species *s = &c->sp[k];
   if ((!isnan(s->b2) || c->eps > 0) && isfinite(q->tau) && !(q->T > 0))
     return sqrt(0.5 * c->b2_total[k] / q->tau);
   if (q->T > 0)
@@ -153,7 +154,7 @@ static double velocity_sd(const col_config *c, int k,
 }
 
 /* Explicit particles: inside the box, no two overlapping. */
-static int check_explicit(col_config *c)
+static int check_explicit(sbi_col_config *c)
 {
   const double L[3] = {c->Lx, c->Ly, c->Lz};
   for (int a = 0; a < c->nsp; a++)
@@ -161,9 +162,9 @@ static int check_explicit(col_config *c)
       const double *x = c->sp[a].part[p];
       for (int k = 0; k < c->dim; k++)
         if (!(x[k] >= 0.0 && x[k] < L[k]))
-          return col_fail(c, "%s: [%s] particle: %c = %g m is outside "
-                          "the box [0, %g)", c->sp[a].part_where[p],
-                          c->sp[a].name, 'x' + k, x[k], L[k]);
+          return sbi_col_fail(c, "%s: [%s] particle: %c = %g m is outside "
+                              "the box [0, %g)", c->sp[a].part_where[p],
+                              c->sp[a].name, 'x' + k, x[k], L[k]);
       for (int b = a; b < c->nsp; b++)
         for (int q = (b == a ? p + 1 : 0); q < c->sp[b].npart; q++) {
           const double *y = c->sp[b].part[q];
@@ -175,10 +176,10 @@ static int check_explicit(col_config *c)
           }
           double s = c->sp[a].radius + c->sp[b].radius;
           if (d2 < s * s && strcmp(c->placement, "uniform"))
-            return col_fail(c, "%s: [%s] particle overlaps the particle "
-                            "at %s (centres %g m apart, radii sum %g m)",
-                            c->sp[b].part_where[q], c->sp[b].name,
-                            c->sp[a].part_where[p], sqrt(d2), s);
+            return sbi_col_fail(c, "%s: [%s] particle overlaps the particle "
+                                "at %s (centres %g m apart, radii sum %g m)",
+                                c->sp[b].part_where[q], c->sp[b].name,
+                                c->sp[a].part_where[p], sqrt(d2), s);
         }
     }
   return 0;
@@ -187,20 +188,20 @@ static int check_explicit(col_config *c)
 /* Lees-Edwards images, gravity, per-species fluid properties and drag
  * laws, walls (docs/engine_forces.md); before the placement, whose
  * velocities include the settling velocities. */
-static int setup_physics(col_config *c, col_run *r)
+static int setup_physics(sbi_col_config *c, sbi_col_run *r)
 {
   if (!strcmp(c->fluid, "shear") && c->lees &&
       sb_engine_set_lees_edwards(r->e, 1))
-    return col_fail(c, "[fluid] lees_edwards: %s", sb_last_error());
+    return sbi_col_fail(c, "[fluid] lees_edwards: %s", sb_last_error());
   if (c->ng) {
     double g[3] = {0, 0, 0};
     memcpy(g, c->g, (size_t)c->ng * sizeof(double));
     if (sb_engine_set_gravity(r->e, g))
-      return col_fail(c, "%s: [fluid] g: %s", col_where(c, "fluid", "g"),
-                      sb_last_error());
+      return sbi_col_fail(c, "%s: [fluid] g: %s",
+                          sbi_col_where(c, "fluid", "g"), sb_last_error());
   }
   for (int k = 0; k < c->nsp && !c->restart[0]; k++) {
-    const col_species *s = &c->sp[k];
+    const sbi_col_species *s = &c->sp[k];
     sb_engine_species_fluid fl = {SB_DRAG_STOKES, c->rho_f,
                                   isnan(s->mu) ? c->mu_f : s->mu};
     if (!strcmp(s->drag, "schiller-naumann"))
@@ -208,8 +209,8 @@ static int setup_physics(col_config *c, col_run *r)
     if (isnan(fl.mu))
       fl.mu = 0.0;
     if (sb_engine_set_species_fluid(r->e, (size_t)k, &fl))
-      return col_fail(c, "%s: [%s] drag / [fluid] rho, mu: %s", s->where,
-                      s->name, sb_last_error());
+      return sbi_col_fail(c, "%s: [%s] drag / [fluid] rho, mu: %s", s->where,
+                          s->name, sb_last_error());
   }
   for (int k = 0; k < c->dim; k++) {
     sb_engine_wall w[2];
@@ -220,7 +221,7 @@ static int setup_physics(col_config *c, col_run *r)
                                                      : SB_WALL_PERIODIC;
     if ((w[0] != SB_WALL_PERIODIC || w[1] != SB_WALL_PERIODIC) &&
         sb_engine_set_walls(r->e, k, w[0], w[1]))
-      return col_fail(c, "[walls] %c: %s", "xyz"[k], sb_last_error());
+      return sbi_col_fail(c, "[walls] %c: %s", "xyz"[k], sb_last_error());
   }
   if (sb_engine_set_wall_mode(r->e,
                               !strcmp(c->wall_detect, "ballistic")
@@ -231,12 +232,12 @@ static int setup_physics(col_config *c, col_run *r)
                               strcmp(c->deposit, "reinsert")
                                   ? SB_DEPOSIT_REMOVE
                                   : SB_DEPOSIT_REINSERT))
-    return col_fail(c, "[walls]: %s", sb_last_error());
+    return sbi_col_fail(c, "[walls]: %s", sb_last_error());
   /* open boundaries: one inflow per species that has one */
   static const char *const faces[] = {"x_lo", "x_hi", "y_lo", "y_hi",
                                       "z_lo", "z_hi"};
   for (int k = 0; k < c->nsp; k++) {
-    const col_species *s = &c->sp[k];
+    const sbi_col_species *s = &c->sp[k];
     if (!s->inflow[0])
       continue;
     sb_engine_inflow in;
@@ -259,15 +260,15 @@ static int setup_physics(col_config *c, col_run *r)
       in.u[d] = s->inflow_u[d];
     in.no_overlap = (int)s->inflow_no_overlap;
     if (sb_engine_add_inflow(r->e, &in, NULL))
-      return col_fail(c, "%s: [%s] inflow: %s", col_where(c, s->name,
-                                                          "inflow"),
-                      s->name, sb_last_error());
+      return sbi_col_fail(c, "%s: [%s] inflow: %s", sbi_col_where(c, s->name,
+                                                              "inflow"),
+                          s->name, sb_last_error());
   }
   return 0;
 }
 
 /* Region of species s (the whole box by default). */
-static void region_of(const col_config *c, const col_species *s,
+static void region_of(const sbi_col_config *c, const sbi_col_species *s,
                       double lo[3], double hi[3])
 {
   const double L[3] = {c->Lx, c->Ly, c->Lz};
@@ -293,10 +294,10 @@ static void region_of(const col_config *c, const col_species *s,
 /* Independent uniform positions (overlaps allowed) and Gaussian
  * velocities, x and u drawn per component in turn: the placement of the
  * first-hit validation cases. */
-static int place_uniform(col_config *c, col_run *r, size_t sp, size_t n,
-                         gsl_rng *g, const sb_engine_species *q)
+static int place_uniform(sbi_col_config *c, sbi_col_run *r, size_t sp,
+                         size_t n, gsl_rng *g, const sb_engine_species *q)
 {
-  const col_species *s = &c->sp[sp];
+  const sbi_col_species *s = &c->sp[sp];
   double lo[3], hi[3];
   region_of(c, s, lo, hi);
   const double vsd = velocity_sd(c, (int)sp, q);
@@ -312,8 +313,8 @@ static int place_uniform(col_config *c, col_run *r, size_t sp, size_t n,
     for (int k = 0; k < c->dim; k++)
       u[k] += us[k] + vs[k] + (s->ndrift ? s->drift[k] : 0.0);
     if (sb_engine_add_particle(r->e, sp, (int)s->family, x, u))
-      return col_fail(c, "%s: [%s]: %s", s->where, s->name,
-                      sb_last_error());
+      return sbi_col_fail(c, "%s: [%s]: %s", s->where, s->name,
+                          sb_last_error());
   }
   return 0;
 }
@@ -321,7 +322,7 @@ static int place_uniform(col_config *c, col_run *r, size_t sp, size_t n,
 /* Lattice sites for every placed particle (FCC in 3-D, square in 2-D) at
  * a spacing of at least the largest diameter, sites chosen at random:
  * reaches volume fractions where random addition jams. */
-static int place_lattice(col_config *c, col_run *r, const long *nplace,
+static int place_lattice(sbi_col_config *c, sbi_col_run *r, const long *nplace,
                          const sb_engine_species *q)
 {
   double dmax = 0.0;
@@ -331,8 +332,9 @@ static int place_lattice(col_config *c, col_run *r, const long *nplace,
       dmax = 2.0 * c->sp[k].radius;
     total += nplace[k];
     if (c->sp[k].nregion && nplace[k] > 0)
-      return col_fail(c, "%s: [%s] region: not with placement = lattice",
-                      col_where(c, c->sp[k].name, "region"), c->sp[k].name);
+      return sbi_col_fail(c, "%s: [%s] region: not with placement = lattice",
+                          sbi_col_where(c, c->sp[k].name, "region"),
+                          c->sp[k].name);
   }
   const double L[3] = {c->Lx, c->Ly, c->Lz};
   const int nb = c->dim == 3 ? 4 : 1;   /* sites per cell */
@@ -343,14 +345,14 @@ static int place_lattice(col_config *c, col_run *r, const long *nplace,
     nsites *= m[k];
   }
   if (nsites < total)
-    return col_fail(c, "[run] placement = lattice: %ld particles but only "
-                    "%ld lattice sites fit the box (spacing %g m): lower "
-                    "count/phi or enlarge the box", total, nsites, cell);
+    return sbi_col_fail(c, "[run] placement = lattice: %ld particles but only "
+                        "%ld lattice sites fit the box (spacing %g m): lower "
+                        "count/phi or enlarge the box", total, nsites, cell);
   static const double basis[4][3] = {
       {0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
   long *site = malloc((size_t)nsites * sizeof *site);
   if (!site)
-    return col_fail(c, "out of memory");
+    return sbi_col_fail(c, "out of memory");
   for (long i = 0; i < nsites; i++)
     site[i] = i;
   gsl_rng *g = sb_engine_rng(r->e);
@@ -364,7 +366,7 @@ static int place_lattice(col_config *c, col_run *r, const long *nplace,
   long next = 0;
   int st = 0;
   for (int sp = 0; sp < c->nsp && !st; sp++) {
-    const col_species *s = &c->sp[sp];
+    const sbi_col_species *s = &c->sp[sp];
     const double vsd = velocity_sd(c, sp, &q[sp]);
     for (long i = 0; i < nplace[sp] && !st; i++) {
       long id = site[next++], b = id % nb, cidx = id / nb;
@@ -378,43 +380,43 @@ static int place_lattice(col_config *c, col_run *r, const long *nplace,
         u[k] = us[k] + gsl_ran_gaussian_ziggurat(g, vsd) +
                (s->ndrift ? s->drift[k] : 0.0);
       if (sb_engine_add_particle(r->e, (size_t)sp, (int)s->family, x, u))
-        st = col_fail(c, "%s: [%s]: %s", s->where, s->name,
-                      sb_last_error());
+        st = sbi_col_fail(c, "%s: [%s]: %s", s->where, s->name,
+                          sb_last_error());
     }
   }
   free(site);
   return st;
 }
 
-static int place(col_config *c, col_run *r, const sb_engine_species *q)
+static int place(sbi_col_config *c, sbi_col_run *r, const sb_engine_species *q)
 {
   if (check_explicit(c))
     return -1;
   long nplace[COL_MAXSPEC];
   double phi = 0.0;
   for (int k = 0; k < c->nsp; k++) {
-    const col_species *s = &c->sp[k];
+    const sbi_col_species *s = &c->sp[k];
     nplace[k] = species_count(c, s) - s->npart;
     phi += (double)species_count(c, s) * particle_volume(c, s->radius) /
            volume_of(c);
     for (int p = 0; p < s->npart; p++)
       if (sb_engine_add_particle(r->e, (size_t)k, (int)s->family, s->part[p],
                                  s->part[p] + 3))
-        return col_fail(c, "%s: [%s] particle: %s", s->part_where[p],
-                        s->name, sb_last_error());
+        return sbi_col_fail(c, "%s: [%s] particle: %s", s->part_where[p],
+                            s->name, sb_last_error());
   }
   if (!c->placement[0]) {
     strcpy(c->placement, phi > RANDOM_PHI_MAX ? "lattice" : "random");
     if (phi > RANDOM_PHI_MAX)
-      col_warn(c, "total volume fraction %.3g > %g: particles start on a "
-               "lattice (placement = lattice); use warmup to let the "
-               "structure relax", phi, RANDOM_PHI_MAX);
+      sbi_col_warn(c, "total volume fraction %.3g > %g: particles start on a "
+                   "lattice (placement = lattice); use warmup to let the "
+                   "structure relax", phi, RANDOM_PHI_MAX);
   } else if (!strcmp(c->placement, "random") && phi > RANDOM_PHI_MAX)
-    return col_fail(c, "%s: [run] placement = random at a total volume "
-                    "fraction %.3g: random addition jams near 0.38; above "
-                    "%g use placement = lattice (or uniform: overlaps "
-                    "allowed)", col_where(c, "run", "placement"), phi,
-                    RANDOM_PHI_MAX);
+    return sbi_col_fail(c, "%s: [run] placement = random at a total volume "
+                        "fraction %.3g: random addition jams near 0.38; above "
+                        "%g use placement = lattice (or uniform: overlaps "
+                        "allowed)", sbi_col_where(c, "run", "placement"), phi,
+                        RANDOM_PHI_MAX);
   if (!strcmp(c->placement, "lattice"))
     return place_lattice(c, r, nplace, q);
   gsl_rng *g = NULL;
@@ -422,14 +424,14 @@ static int place(col_config *c, col_run *r, const sb_engine_species *q)
     if (c->placement_seed >= 0) {
       g = gsl_rng_alloc(gsl_rng_mt19937);
       if (!g)
-        return col_fail(c, "out of memory");
+        return sbi_col_fail(c, "out of memory");
       gsl_rng_set(g, (unsigned long)c->placement_seed);
     } else
       g = sb_engine_rng(r->e);
   }
   int st = 0;
   for (int k = 0; k < c->nsp && !st; k++) {
-    col_species *s = &c->sp[k];
+    sbi_col_species *s = &c->sp[k];
     if (nplace[k] <= 0)
       continue;
     if (g)
@@ -440,13 +442,13 @@ static int place(col_config *c, col_run *r, const sb_engine_species *q)
       if (sb_engine_fill_box(r->e, (size_t)k, (int)s->family,
                              (size_t)nplace[k], lo, hi,
                              s->ndrift ? s->drift : NULL))
-        st = col_fail(c, "%s: [%s]: %s%s", s->where, s->name,
-                      sb_last_error(),
-                      sb_last_status() == SB_EMAXITER
-                          ? " (the box or region is too full for random "
-                            "placement: placement = lattice reaches higher "
-                            "volume fractions)"
-                          : "");
+        st = sbi_col_fail(c, "%s: [%s]: %s%s", s->where, s->name,
+                          sb_last_error(),
+                          sb_last_status() == SB_EMAXITER
+                              ? " (the box or region is too full for "
+                                "random placement: placement = lattice "
+                                "reaches higher volume fractions)"
+                              : "");
     }
   }
   if (g && g != sb_engine_rng(r->e))
@@ -455,7 +457,7 @@ static int place(col_config *c, col_run *r, const sb_engine_species *q)
 }
 
 /* Bridge detector (bridge | exact) with turbulence and hit records. */
-static int attach_bridge(col_config *c, col_run *r)
+static int attach_bridge(sbi_col_config *c, sbi_col_run *r)
 {
   sb_engine_bridge_params bp;
   sb_engine_bridge_params_default(&bp);
@@ -470,30 +472,32 @@ static int attach_bridge(col_config *c, col_run *r)
   bp.record_cap = (size_t)c->hit_times;
   r->bridge = sb_engine_bridge_alloc(&bp);
   if (!r->bridge)
-    return col_fail(c, "[bridge]: %s", sb_last_error());
+    return sbi_col_fail(c, "[bridge]: %s", sb_last_error());
   for (int k = 0; k < c->nsp && !c->restart[0]; k++) {
     const sb_engine_species *s = sb_engine_get_species(r->e, (size_t)k);
     if (isinf(s->tau))
-      return col_fail(c, "%s: [%s] tau = inf with detect = %s: the bridge "
-                      "detectors need Langevin (finite tau) species",
-                      c->sp[k].where, c->sp[k].name, c->detect);
+      return sbi_col_fail(c, "%s: [%s] tau = inf with detect = %s: the bridge "
+                          "detectors need Langevin (finite tau) species",
+                          c->sp[k].where, c->sp[k].name, c->detect);
     if (!isnan(c->sp[k].b2) || c->eps > 0)
       if (sb_engine_bridge_set_b2(r->bridge, (size_t)k, c->b2_total[k],
                                   c->b2_brown[k]))
-        return col_fail(c, "%s: [%s]: %s", c->sp[k].where, c->sp[k].name,
-                        sb_last_error());
+        return sbi_col_fail(c, "%s: [%s]: %s", c->sp[k].where, c->sp[k].name,
+                            sb_last_error());
   }
   if (sb_engine_bridge_attach(r->e, r->bridge))
-    return col_fail(c, "[run] detect = %s: %s", c->detect, sb_last_error());
+    return sbi_col_fail(c, "[run] detect = %s: %s", c->detect,
+                        sb_last_error());
   return 0;
 }
 
-static int attach_agglo(col_config *c, col_run *r)
+static int attach_agglo(sbi_col_config *c, sbi_col_run *r)
 {
   if (c->nsp > 1)
-    return col_fail(c, "%s: [run] outcome = %s: one primary species (the "
-                    "clusters are species of their own); %d given",
-                    col_where(c, "run", "outcome"), c->outcome, c->nsp);
+    return sbi_col_fail(c, "%s: [run] outcome = %s: one primary species (the "
+                        "clusters are species of their own); %d given",
+                        sbi_col_where(c, "run", "outcome"), c->outcome,
+                        c->nsp);
   sb_agglo_params ap;
   sb_agglo_params_default(&ap);
   ap.rule = strcmp(c->outcome, "dlvo") ? SB_AGGLO_MERGE : SB_AGGLO_DLVO;
@@ -505,43 +509,44 @@ static int attach_agglo(col_config *c, col_run *r)
   ap.kobs = (size_t)c->kobs;
   const sb_engine_species *s0 = sb_engine_get_species(r->e, 0);
   if (!isnan(c->wmax_kT) && !(s0->T > 0))
-    return col_fail(c, "%s: [agglo] wmax_kT: the first species has T = 0; "
-                    "give wmax in J", col_where(c, "agglo", "wmax_kT"));
+    return sbi_col_fail(c, "%s: [agglo] wmax_kT: the first species has T = 0; "
+                        "give wmax in J",
+                        sbi_col_where(c, "agglo", "wmax_kT"));
   ap.wmax = !isnan(c->wmax_kT) ? c->wmax_kT * SB_BOLTZMANN * s0->T : c->wmax;
   r->agglo = sb_agglo_alloc(&ap);
   if (!r->agglo || sb_agglo_attach(r->e, r->agglo))
-    return col_fail(c, "[run] outcome = %s: %s", c->outcome,
-                    sb_last_error());
+    return sbi_col_fail(c, "[run] outcome = %s: %s", c->outcome,
+                        sb_last_error());
   return 0;
 }
 
-int col_setup(col_config *c, col_run *r)
+int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
 {
   memset(r, 0, sizeof *r);
   sb_engine_neigh nm;
   sb_engine_detect dm = SB_DETECT_BALLISTIC;
   sb_engine_outcome om = SB_OUTCOME_ELASTIC;
   sb_engine_neigh_from_name(c->neigh, &nm);
-  if (!col_bridge(c))
+  if (!sbi_col_bridge(c))
     sb_engine_detect_from_name(c->detect, &dm);
-  if (!col_bridge(c) && !col_agglo(c))
+  if (!sbi_col_bridge(c) && !sbi_col_agglo(c))
     sb_engine_outcome_from_name(c->outcome, &om);
-  if (col_bridge(c))
+  if (sbi_col_bridge(c))
     om = SB_OUTCOME_COUNT;  /* replaced by the bridge's outcome */
   sb_engine_species q[COL_MAXSPEC];
   if (c->restart[0]) {
     int st;
     r->e = sb_engine_checkpoint_load(c->restart, &st);
     if (!r->e)
-      return col_fail(c, "%s: [run] restart = %s: %s",
-                      col_where(c, "run", "restart"), c->restart,
-                      sb_last_error());
-    if ((col_given(c, "run", "dt") && sb_engine_set_dt(r->e, c->dt)) ||
+      return sbi_col_fail(c, "%s: [run] restart = %s: %s",
+                          sbi_col_where(c, "run", "restart"), c->restart,
+                          sb_last_error());
+    if ((sbi_col_given(c, "run", "dt") && sb_engine_set_dt(r->e, c->dt)) ||
         sb_engine_set_neigh(r->e, nm) ||
         sb_engine_set_threads(r->e, (int)c->threads) ||
-        (!col_bridge(c) && (sb_engine_set_detect(r->e, dm) ||
-                            sb_engine_set_outcome(r->e, om, c->eta))))
-      return col_fail(c, "[run] restart: %s", sb_last_error());
+        (!sbi_col_bridge(c) && (sb_engine_set_detect(r->e, dm) ||
+                                sb_engine_set_outcome(r->e, om, c->eta))))
+      return sbi_col_fail(c, "[run] restart: %s", sb_last_error());
     c->dim = sb_engine_get_params(r->e)->dim;
   } else {
     sb_engine_params p;
@@ -582,14 +587,14 @@ int col_setup(col_config *c, col_run *r)
     p.capacity = total > 0 ? (size_t)total : 1;
     r->e = sb_engine_alloc(&p);
     if (!r->e)
-      return col_fail(c, "[run]: %s", sb_last_error());
+      return sbi_col_fail(c, "[run]: %s", sb_last_error());
     for (int k = 0; k < c->nsp; k++)
       if (sb_engine_add_species(r->e, &q[k], NULL))
-        return col_fail(c, "%s: [%s]: %s", c->sp[k].where, c->sp[k].name,
-                        sb_last_error());
+        return sbi_col_fail(c, "%s: [%s]: %s", c->sp[k].where, c->sp[k].name,
+                            sb_last_error());
   }
   /* fluid (on restart the saved field is kept unless [fluid] is given) */
-  if (!c->restart[0] || col_given(c, "fluid", "type")) {
+  if (!c->restart[0] || sbi_col_given(c, "fluid", "type")) {
     double fp[3] = {0, 0, 0};
     sb_engine_fluid f = SB_FLUID_REST;
     if (!strcmp(c->fluid, "uniform")) {
@@ -600,7 +605,7 @@ int col_setup(col_config *c, col_run *r)
       fp[0] = c->G;
     }
     if (sb_engine_set_fluid(r->e, f, fp))
-      return col_fail(c, "[fluid]: %s", sb_last_error());
+      return sbi_col_fail(c, "[fluid]: %s", sb_last_error());
   }
   if (setup_physics(c, r))
     return -1;
@@ -608,12 +613,13 @@ int col_setup(col_config *c, col_run *r)
     if (place(c, r, q))
       return -1;
     if (c->thermalize > 0 && sb_engine_thermalize(r->e, c->thermalize))
-      return col_fail(c, "%s: [run] thermalize: %s",
-                      col_where(c, "run", "thermalize"), sb_last_error());
+      return sbi_col_fail(c, "%s: [run] thermalize: %s",
+                          sbi_col_where(c, "run", "thermalize"),
+                          sb_last_error());
   }
-  if (col_bridge(c) && attach_bridge(c, r))
+  if (sbi_col_bridge(c) && attach_bridge(c, r))
     return -1;
-  if (col_agglo(c) && attach_agglo(c, r))
+  if (sbi_col_agglo(c) && attach_agglo(c, r))
     return -1;
   if (!isnan(c->lv_eps) || !isnan(c->lv_xtol) || !isnan(c->lv_tol)) {
     /* not in checkpoints: given again on restart */
@@ -626,14 +632,14 @@ int col_setup(col_config *c, col_run *r)
     if (!isnan(c->lv_tol))
       lp.tol = c->lv_tol;
     if (sb_engine_set_langevin(r->e, &lp))
-      return col_fail(c, "[run] langevin_*: %s", sb_last_error());
+      return sbi_col_fail(c, "[run] langevin_*: %s", sb_last_error());
   }
   if (c->first_hit) {
     double reach = r->bridge ? sb_engine_bridge_reach(r->e, r->bridge)
                    : dm == SB_DETECT_LANGEVIN ? sb_engine_langevin_reach(r->e)
                                               : 0.0;
-    if (col_firsthit_attach(c, r, dm, reach))
-      return col_fail(c, "[observe] first_hit: %s", sb_last_error());
+    if (sbi_col_firsthit_attach(c, r, dm, reach))
+      return sbi_col_fail(c, "[observe] first_hit: %s", sb_last_error());
   }
   return 0;
 }

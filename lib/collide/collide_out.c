@@ -20,7 +20,7 @@
 #include <smolbridge/langevin.h>
 #include <smolbridge/stats.h>
 
-#include "collide.h"
+#include "collide_internal.h"
 
 #define PI 3.14159265358979323846
 
@@ -63,18 +63,18 @@ static int ours(const char *name)
          !strcmp(name + n - 4, ".csv");
 }
 
-int col_out_prepare(col_config *c)
+int sbi_col_out_prepare(sbi_col_config *c)
 {
-  const char *where = col_given(c, "run", "output")
-                          ? col_where(c, "run", "output")
+  const char *where = sbi_col_given(c, "run", "output")
+                          ? sbi_col_where(c, "run", "output")
                           : "[run] output (default)";
   if (mkdir_p(c->output))
-    return col_fail(c, "%s: [run] output = %s: cannot create the "
-                    "directory: %s", where, c->output, strerror(errno));
+    return sbi_col_fail(c, "%s: [run] output = %s: cannot create the "
+                        "directory: %s", where, c->output, strerror(errno));
   DIR *d = opendir(c->output);
   if (!d)
-    return col_fail(c, "%s: [run] output = %s: %s", where, c->output,
-                    strerror(errno));
+    return sbi_col_fail(c, "%s: [run] output = %s: %s", where, c->output,
+                        strerror(errno));
   struct dirent *de;
   char path[1100];
   while ((de = readdir(d)))
@@ -83,9 +83,9 @@ int col_out_prepare(col_config *c)
       if (remove(path) && errno != ENOENT) {
         int e = errno;
         closedir(d);
-        return col_fail(c, "%s: [run] output = %s: cannot remove the "
-                        "previous run's %s: %s", where, c->output,
-                        de->d_name, strerror(e));
+        return sbi_col_fail(c, "%s: [run] output = %s: cannot remove the "
+                            "previous run's %s: %s", where, c->output,
+                            de->d_name, strerror(e));
       }
     }
   closedir(d);
@@ -93,16 +93,16 @@ int col_out_prepare(col_config *c)
   FILE *f = fopen(path, "w");
   if (!f || fputs("# smolbridge collide: run in progress\n", f) < 0 ||
       fclose(f))
-    return col_fail(c, "%s: [run] output = %s: not writable: %s", where,
-                    c->output, strerror(errno));
+    return sbi_col_fail(c, "%s: [run] output = %s: not writable: %s", where,
+                        c->output, strerror(errno));
   if (c->checkpoint[0]) {
     struct stat st;
     int existed = stat(c->checkpoint, &st) == 0;
     FILE *g = fopen(c->checkpoint, "ab");
     if (!g)
-      return col_fail(c, "%s: [run] checkpoint = %s: not writable: %s",
-                      col_where(c, "run", "checkpoint"), c->checkpoint,
-                      strerror(errno));
+      return sbi_col_fail(c, "%s: [run] checkpoint = %s: not writable: %s",
+                          sbi_col_where(c, "run", "checkpoint"), c->checkpoint,
+                          strerror(errno));
     fclose(g);
     if (!existed)
       remove(c->checkpoint);
@@ -110,7 +110,7 @@ int col_out_prepare(col_config *c)
   return 0;
 }
 
-void col_snap_path(const col_config *c, long k, char *buf, size_t len)
+void sbi_col_snap_path(const sbi_col_config *c, long k, char *buf, size_t len)
 {
   snprintf(buf, len, "%s/snap_%06ld.csv", c->output, k);
 }
@@ -119,7 +119,7 @@ void col_snap_path(const col_config *c, long k, char *buf, size_t len)
 
 static int npairs_of(int nsp) { return nsp * (nsp + 1) / 2; }
 
-int col_pairs_sample(col_pairs *ps, const sb_engine *e)
+int sbi_col_pairs_sample(sbi_col_pairs *ps, const sb_engine *e)
 {
   if (ps->nsp <= 1)
     return 0;
@@ -147,7 +147,7 @@ int col_pairs_sample(col_pairs *ps, const sb_engine *e)
 }
 
 static int write_series(const char *path, const sb_engine *e,
-                        const col_config *c, const col_pairs *ps)
+                        const sbi_col_config *c, const sbi_col_pairs *ps)
 {
   FILE *f = fopen(path, "w");
   if (!f)
@@ -158,8 +158,8 @@ static int write_series(const char *path, const sb_engine *e,
   fprintf(f, "t,ncoll,K,K_lo,K_hi,ekin,px,py,pz");
   for (int a = 0; a < ps->nsp && np; a++)
     for (int b = a; b < ps->nsp; b++) {
-      const char *x = col_short_name(c, (size_t)a);
-      const char *y = col_short_name(c, (size_t)b);
+      const char *x = sbi_col_short_name(c, (size_t)a);
+      const char *y = sbi_col_short_name(c, (size_t)b);
       fprintf(f, ",K_%s_%s,K_%s_%s_lo,K_%s_%s_hi", x, y, x, y, x, y);
     }
   fprintf(f, "\n");
@@ -210,7 +210,7 @@ static void jnum(FILE *f, double x)
  * species: the continuum kernel 4 pi (D_a + D_b)(r_a + r_b), D = (B
  * tau)^2/2, and at a common T > 0 the free-molecular kernel and the
  * transition kernel of Gopalakrishnan & Hogan (2011) with its Kn_D. */
-static void json_references(FILE *f, const col_config *c,
+static void json_references(FILE *f, const sbi_col_config *c,
                             const sb_engine_species *sa,
                             const sb_engine_species *sb)
 {
@@ -258,7 +258,7 @@ static double uniform_cdf(double u, void *p)
 }
 
 /* hits.csv and the KS test of the hit times through their CDF (PIT). */
-static int write_hits(FILE *js, const col_config *c, const col_run *r,
+static int write_hits(FILE *js, const sbi_col_config *c, const sbi_col_run *r,
                       const char *path)
 {
   size_t nh;
@@ -289,7 +289,7 @@ static int write_hits(FILE *js, const col_config *c, const col_run *r,
   return fclose(f) ? -1 : 0;
 }
 
-static void json_run(FILE *f, const col_config *c, const sb_engine *e)
+static void json_run(FILE *f, const sbi_col_config *c, const sb_engine *e)
 {
   const sb_engine_params *p = sb_engine_get_params(e);
   fprintf(f, "  \"seed\": %lu,\n", c->restart[0] ? p->seed : c->seed);
@@ -319,7 +319,7 @@ static void json_run(FILE *f, const col_config *c, const sb_engine *e)
   const sb_engine_species *s;
   for (size_t k = 0; (s = sb_engine_get_species(e, k)); k++) {
     fprintf(f, "    {\"name\": ");
-    jstr(f, col_short_name(c, k));
+    jstr(f, sbi_col_short_name(c, k));
     fprintf(f, ", \"radius\": %.17g, \"mass\": %.17g, \"tau\": ", s->radius,
             s->mass);
     if (isinf(s->tau))
@@ -332,7 +332,7 @@ static void json_run(FILE *f, const col_config *c, const sb_engine *e)
   fprintf(f, "  ],\n");
 }
 
-static void json_kernels(FILE *f, const col_config *c, const sb_engine *e)
+static void json_kernels(FILE *f, const sbi_col_config *c, const sb_engine *e)
 {
   sb_engine_stats st;
   sb_engine_get_stats(e, &st);
@@ -386,9 +386,9 @@ static void json_kernels(FILE *f, const col_config *c, const sb_engine *e)
       if (!(ps.exposure > 0.0))
         continue;
       fprintf(f, "%s\n    {\"species\": [", firstp ? "" : ",");
-      jstr(f, col_short_name(c, a));
+      jstr(f, sbi_col_short_name(c, a));
       fprintf(f, ", ");
-      jstr(f, col_short_name(c, b));
+      jstr(f, sbi_col_short_name(c, b));
       fprintf(f, "], \"collisions\": %llu, \"exposure\": %.17g, \"K\": ",
               (unsigned long long)ps.ncoll, ps.exposure);
       jnum(f, ps.K);
@@ -414,7 +414,8 @@ static void json_kernels(FILE *f, const col_config *c, const sb_engine *e)
   fprintf(f, "],\n");
 }
 
-static void json_contexts(FILE *f, const col_config *c, const col_run *r)
+static void json_contexts(FILE *f, const sbi_col_config *c,
+                          const sbi_col_run *r)
 {
   if (r->bridge) {
     sb_engine_bridge_stats bs;
@@ -453,7 +454,7 @@ static void json_contexts(FILE *f, const col_config *c, const col_run *r)
   }
   if (r->fh) {
     sb_engine_firsthit_kernel_result o;
-    col_firsthit_result(r, c, &o);
+    sbi_col_firsthit_result(r, c, &o);
     fprintf(f, "  \"first_hit\": {\"hits\": %llu, \"warmup_hits\": %llu, "
             "\"pairs_apart\": %.17g, \"radius\": ",
             (unsigned long long)o.c.hits, (unsigned long long)o.c.warm,
@@ -475,9 +476,9 @@ static void json_contexts(FILE *f, const col_config *c, const col_run *r)
   }
 }
 
-int col_out_write(const col_config *c, const col_run *r,
-                  const col_pairs *ps, double secs, const char *status,
-                  const char *why, long nsnap)
+int sbi_col_out_write(const sbi_col_config *c, const sbi_col_run *r,
+                      const sbi_col_pairs *ps, double secs, const char *status,
+                      const char *why, long nsnap)
 {
   char path[1100], files[8][32];
   int nf = 0, err = 0;

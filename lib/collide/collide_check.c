@@ -1,0 +1,287 @@
+/* collide_check.c — cross-key checks of a collision-engine
+ * configuration once all keys are in: required keys, conflicting keys,
+ * keys that need other values (errors) and keys without effect
+ * (warnings).  Messages name where each key came from. */
+#include <math.h>
+#include <string.h>
+
+#include "collide_internal.h"
+
+/* ------------------------------------------------------------ checks */
+
+int sbi_col_agglo(const sbi_col_config *c)
+{
+  return !strcmp(c->outcome, "merge") || !strcmp(c->outcome, "dlvo");
+}
+
+/* Two keys that set the same thing. */
+static int seen_index(const sbi_col_config *c, const char *sec,
+                      const char *key)
+{
+  for (int i = c->nseen - 1; i >= 0; i--)
+    if (!strcmp(c->seen[i].sec, sec) && !strcmp(c->seen[i].key, key))
+      return i;
+  return -1;
+}
+
+/* Two keys that set the same thing: the later one is reported. */
+static int conflict(sbi_col_config *c, const char *sec, const char *a,
+                    const char *b, const char *why)
+{
+  int ia = seen_index(c, sec, a), ib = seen_index(c, sec, b);
+  if (ia < 0 || ib < 0)
+    return 0;
+  if (ia > ib) {
+    const char *t = a;
+    a = b;
+    b = t;
+  }
+  return sbi_col_fail(c, "%s: [%s] %s conflicts with %s (at %s): %s",
+                      sbi_col_where(c, sec, b), sec, b, a,
+                      sbi_col_where(c, sec, a), why);
+}
+
+/* A key given where it has no effect. */
+static void unused(sbi_col_config *c, const char *sec, const char *key,
+                   const char *why)
+{
+  if (sbi_col_given(c, sec, key))
+    sbi_col_warn(c, "%s: [%s] %s ignored: %s", sbi_col_where(c, sec, key),
+                 sec, key, why);
+}
+
+static int section_given(const sbi_col_config *c, const char *sec)
+{
+  for (int i = 0; i < c->nseen; i++)
+    if (!strcmp(c->seen[i].sec, sec))
+      return 1;
+  return 0;
+}
+
+static void section_unused(sbi_col_config *c, const char *sec, const char *why)
+{
+  for (int i = 0; i < c->nseen; i++)
+    if (!strcmp(c->seen[i].sec, sec)) {
+      sbi_col_warn(c, "%s: [%s] ignored: %s", c->seen[i].where, sec, why);
+      return;
+    }
+}
+
+int sbi_col_check(sbi_col_config *c)
+{
+  if (c->nerr)
+    return -1;
+  const char *run = "run";
+  if (conflict(c, run, "L", "Lx", "L sets all edges") ||
+      conflict(c, run, "L", "Ly", "L sets all edges") ||
+      conflict(c, run, "L", "Lz", "L sets all edges") ||
+      conflict(c, run, "t_end", "steps",
+               "give the end time or the number of measured steps") ||
+      conflict(c, "agglo", "wmax", "wmax_kT", "two values of the barrier"))
+    return -1;
+  if (!isnan(c->L))
+    c->Lx = c->Ly = c->Lz = c->L;
+  if (c->dim == 2)
+    unused(c, run, "Lz", "dim = 2");
+  /* restart: the state comes from the checkpoint */
+  if (c->restart[0]) {
+    static const char *const kept[] = {"dim", "L", "Lx", "Ly", "Lz",
+                                       "seed", "rng", "placement",
+                                       "placement_seed", "thermalize",
+                                       "warmup", NULL};
+    for (int i = 0; kept[i]; i++)
+      unused(c, run, kept[i], "the state comes from the restart "
+             "checkpoint");
+    for (int k = 0; k < c->nsp; k++)
+      sbi_col_warn(c, "%s: [%s] ignored: the particles come from the restart "
+                   "checkpoint", c->sp[k].where, c->sp[k].name);
+    if (sbi_col_agglo(c))
+      return sbi_col_fail(c, "%s: [run] restart with outcome = %s: the "
+                          "cluster sizes are not in a checkpoint; run merging "
+                          "in one go", sbi_col_where(c, run, "restart"),
+                          c->outcome);
+    if (c->first_hit)
+      return sbi_col_fail(c, "%s: [observe] first_hit with restart: the "
+                          "counted pairs are not in a checkpoint",
+                          sbi_col_where(c, "observe", "first_hit"));
+  } else {
+    if (isnan(c->Lx) || isnan(c->Ly) || (c->dim == 3 && isnan(c->Lz)))
+      return sbi_col_fail(c, "[run] L (or Lx, Ly%s) is required: the box "
+                          "edge in m", c->dim == 3 ? ", Lz" : "");
+    if (c->nsp == 0)
+      return sbi_col_fail(c, "no [species NAME] section: give at least one "
+                          "with radius, mass (or density), tau (or mu) and "
+                          "count, phi or particle");
+  }
+  if (isnan(c->dt) && !c->restart[0])
+    return sbi_col_fail(c, "[run] dt is required: the time step in s");
+  if (isnan(c->t_end) && c->steps < 0)
+    return sbi_col_fail(c, "[run] t_end or steps is required");
+  /* detector and outcome */
+  const int bridge = sbi_col_bridge(c), agglo = sbi_col_agglo(c);
+  if (bridge && c->dim != 3)
+    return sbi_col_fail(c, "%s: [run] detect = %s needs dim = 3",
+                        sbi_col_where(c, run, "detect"), c->detect);
+  if (!strcmp(c->outcome, "correction") && !bridge)
+    return sbi_col_fail(c, "%s: [run] outcome = correction (the correction "
+                        "step of the bridge detectors) needs detect = bridge "
+                        "or exact", sbi_col_where(c, run, "outcome"));
+  if (bridge && !strcmp(c->outcome, "elastic"))
+    return sbi_col_fail(c, "%s: [run] outcome = elastic with detect = %s: the "
+                        "bridge detectors have no contact velocity; valid: "
+                        "reinsert, count, correction, merge, dlvo",
+                        sbi_col_given(c, run, "outcome")
+                            ? sbi_col_where(c, run, "outcome")
+                            : sbi_col_where(c, run, "detect"),
+                        c->detect);
+  if (!bridge)
+    section_unused(c, "bridge", "only detect = bridge or exact use it");
+  if (!bridge && section_given(c, "turbulence"))
+    return sbi_col_fail(c, "%s: [turbulence] needs detect = bridge or exact "
+                        "(turbulent pair diffusion is a bridge model)",
+                        sbi_col_where(c, "turbulence",
+                                      sbi_col_given(c, "turbulence", "eps")
+                                          ? "eps"
+                                          : "nu"));
+  if (sbi_col_given(c, "turbulence", "eps") !=
+      sbi_col_given(c, "turbulence", "nu"))
+    return sbi_col_fail(c, "[turbulence] needs both eps and nu");
+  if (!strcmp(c->detect, "bridge"))
+    unused(c, "bridge", "exact_tol", "detect = bridge (only exact uses it)");
+  if (!agglo)
+    section_unused(c, "agglo", "outcome is not merge or dlvo");
+  else if (strcmp(c->outcome, "dlvo")) {
+    unused(c, "agglo", "wmax", "outcome = merge (no barrier)");
+    unused(c, "agglo", "wmax_kT", "outcome = merge (no barrier)");
+    unused(c, "agglo", "erel", "outcome = merge");
+    unused(c, "agglo", "erel_normal", "outcome = merge");
+  }
+  if (strcmp(c->detect, "langevin")) {
+    unused(c, run, "langevin_eps", "only detect = langevin uses it");
+    unused(c, run, "langevin_xtol", "only detect = langevin uses it");
+    unused(c, run, "langevin_tol", "only detect = langevin uses it");
+  }
+  if (strcmp(c->outcome, "elastic") && strcmp(c->outcome, "dlvo"))
+    unused(c, run, "eta", "only outcome = elastic or dlvo (rebounds) "
+           "use it");
+  /* observers */
+  if (c->hit_times && !bridge)
+    return sbi_col_fail(c, "%s: [observe] hit_times records bridge hits: "
+                        "needs detect = bridge or exact",
+                        sbi_col_where(c, "observe", "hit_times"));
+  if (c->first_hit) {
+    if (strcmp(c->outcome, "count"))
+      return sbi_col_fail(c, "%s: [observe] first_hit needs outcome = count "
+                          "(pairs pass through each other)",
+                          sbi_col_where(c, "observe", "first_hit"));
+    if (c->nsp != 1)
+      return sbi_col_fail(c, "%s: [observe] first_hit needs exactly one "
+                          "species (the reference is one pair type)",
+                          sbi_col_where(c, "observe", "first_hit"));
+    if (c->dim != 3)
+      return sbi_col_fail(c, "%s: [observe] first_hit needs dim = 3 (the "
+                          "reference is the 3-D Smoluchowski transient)",
+                          sbi_col_where(c, "observe", "first_hit"));
+    if (c->first_hit_capacitance &&
+        conflict(c, "observe", "first_hit_capacitance", "first_hit_radius",
+                 "two reference radii"))
+      return -1;
+  } else {
+    unused(c, "observe", "first_hit_radius", "first_hit = no");
+    unused(c, "observe", "first_hit_capacitance", "first_hit = no");
+    unused(c, "observe", "first_hit_skip_seen", "first_hit = no");
+  }
+  /* fluid */
+  if (!strcmp(c->fluid, "rest")) {
+    unused(c, "fluid", "U", "type = rest");
+    unused(c, "fluid", "G", "type = rest");
+  } else if (!strcmp(c->fluid, "uniform")) {
+    unused(c, "fluid", "G", "type = uniform");
+    if (!sbi_col_given(c, "fluid", "U"))
+      return sbi_col_fail(c, "%s: [fluid] type = uniform needs U (m/s)",
+                          sbi_col_where(c, "fluid", "type"));
+  } else if (!strcmp(c->fluid, "shear")) {
+    unused(c, "fluid", "U", "type = shear");
+    if (!sbi_col_given(c, "fluid", "G"))
+      return sbi_col_fail(c, "%s: [fluid] type = shear needs G (1/s)",
+                          sbi_col_where(c, "fluid", "type"));
+  }
+  if (c->nU && c->nU != c->dim)
+    return sbi_col_fail(c, "%s: [fluid] U: %d numbers for dim = %ld",
+                        sbi_col_where(c, "fluid", "U"), c->nU, c->dim);
+  if (strcmp(c->placement, "uniform"))
+    unused(c, run, "placement_seed", "only placement = uniform uses it");
+  /* species */
+  for (int k = 0; k < c->nsp && !c->restart[0]; k++) {
+    sbi_col_species *s = &c->sp[k];
+    const char *n = s->name;
+    if (conflict(c, n, "radius", "diameter", "give one of them") ||
+        conflict(c, n, "mass", "density", "the mass follows from the "
+                 "density; give one of them") ||
+        conflict(c, n, "tau", "mu", "mu gives the Stokes tau; give one of "
+                 "them") ||
+        conflict(c, n, "count", "phi", "both set the number of "
+                 "particles") ||
+        conflict(c, n, "B", "b2", "b2 sets B = sqrt(b2)/tau") ||
+        conflict(c, n, "B", "T", "T sets B = sqrt(2 k_B T/(m tau)); give "
+                 "B with T = 0, or T") ||
+        conflict(c, n, "b2", "T", "b2 sets the noise and the velocities; "
+                 "T those of a thermal species"))
+      return -1;
+    if (!isnan(s->diameter))
+      s->radius = 0.5 * s->diameter;
+    if (isnan(s->radius))
+      return sbi_col_fail(c, "%s: [%s]: radius (or diameter) is required",
+                          s->where, n);
+    if (isnan(s->mass) && isnan(s->density))
+      return sbi_col_fail(c, "%s: [%s]: mass (kg) or density (kg/m^3) is "
+                          "required", s->where, n);
+    if (isnan(s->tau) && isnan(s->mu))
+      return sbi_col_fail(c, "%s: [%s]: tau (s, or inf for free flight) or mu "
+                          "(Pa s, Stokes tau) is required", s->where, n);
+    if (!isnan(s->mu) && isnan(s->density))
+      return sbi_col_fail(c, "%s: [%s] mu: the Stokes tau needs density, not "
+                          "mass", sbi_col_where(c, n, "mu"), n);
+    if (isnan(s->mu))
+      unused(c, n, "cunningham", "no mu (tau is given)");
+    if (s->count < 0 && isnan(s->phi) && s->npart == 0 && !s->inflow[0])
+      return sbi_col_fail(c, "%s: [%s]: count, phi, particle or inflow is "
+                          "required", s->where, n);
+    if (s->inflow[0]) {
+      if (isnan(s->inflow_rate) || s->ninflow_u == 0)
+        return sbi_col_fail(c, "%s: [%s] inflow: inflow_rate (1/s) and "
+                            "inflow_velocity (m/s) are required",
+                            sbi_col_where(c, n, "inflow"), n);
+      if (s->ninflow_u != c->dim)
+        return sbi_col_fail(c, "%s: [%s] inflow_velocity: %d numbers for dim "
+                            "= %ld", sbi_col_where(c, n, "inflow_velocity"), n,
+                            s->ninflow_u, c->dim);
+      if (s->ninflow_region && s->ninflow_region != 2 * (c->dim - 1))
+        return sbi_col_fail(c, "%s: [%s] inflow_region: %d numbers for dim = "
+                            "%ld; valid: %ld",
+                            sbi_col_where(c, n, "inflow_region"), n,
+                            s->ninflow_region, c->dim, 2 * (c->dim - 1));
+    } else {
+      unused(c, n, "inflow_rate", "no inflow face");
+      unused(c, n, "inflow_region", "no inflow face");
+      unused(c, n, "inflow_velocity", "no inflow face");
+      unused(c, n, "inflow_no_overlap", "no inflow face");
+    }
+    if (s->nregion && s->nregion != 2 * c->dim)
+      return sbi_col_fail(c, "%s: [%s] region: %d numbers for dim = %ld; "
+                          "valid: %ld (x0 x1 y0 y1%s)", sbi_col_where(c, n,
+                                                                  "region"),
+                          n, s->nregion, c->dim, 2 * c->dim,
+                          c->dim == 3 ? " z0 z1" : "");
+    if (s->ndrift && s->ndrift != c->dim)
+      return sbi_col_fail(c, "%s: [%s] drift: %d numbers for dim = %ld",
+                          sbi_col_where(c, n, "drift"), n, s->ndrift, c->dim);
+    for (int q = 0; q < s->npart; q++)
+      if (s->part_n[q] != 2 * c->dim)
+        return sbi_col_fail(c, "%s: [%s] particle: %d numbers for dim = %ld; "
+                            "valid: %s", s->part_where[q], n, s->part_n[q],
+                            c->dim, c->dim == 3 ? "6 (x y z ux uy uz)"
+                                                : "4 (x y ux uy)");
+  }
+  return c->nerr ? -1 : 0;
+}

@@ -1,0 +1,263 @@
+/* collide_internal.h — the run configuration of <smolbridge/collide.h>
+ * and the files that fill it (collide_keys.c: the key table;
+ * collide_ini.c: INI reader and --set; collide_check.c: cross-key checks;
+ * collide_setup.c: the engine built from it; collide_out.c: output
+ * files; collide_run.c: the run; collide.c: the public object).  Every
+ * key with its unit and default: docs/engine.md §9. */
+#ifndef SB_COLLIDE_INTERNAL_H
+#define SB_COLLIDE_INTERNAL_H
+
+#include <stddef.h>
+
+#include <smolbridge/collide.h>
+#include <smolbridge/engine.h>
+#include <smolbridge/engine_bridge.h>
+#include <smolbridge/engine_firsthit.h>
+
+#define COL_MAXSPEC 16
+#define COL_MAXPART 64
+#define COL_MAXSEEN 512
+#define COL_MAXWARN 32
+#define COL_WHERE 128     /* "file:line" or "--set run.dt=1e-7" */
+
+/* One [species NAME] section. */
+typedef struct {
+  char name[72];                /* "species colloid" */
+  char where[COL_WHERE];        /* its header */
+  double radius, diameter, density, mass, tau, mu, cc, B, b2, T, phi;
+  long count, family;
+  double region[6];
+  int nregion;
+  double drift[3];
+  int ndrift;
+  char drag[24];                    /* drag law (engine_force.c) */
+  char inflow[16];                  /* open boundaries (engine_open.c): */
+  double inflow_rate;               /* face, particles/s, */
+  double inflow_region[4];          /* inlet, velocity */
+  int ninflow_region;
+  double inflow_u[3];
+  int ninflow_u;
+  long inflow_no_overlap;
+  int npart;                        /* explicit particles */
+  double part[COL_MAXPART][6];      /* x y z ux uy uz (2-D: z = uz = 0) */
+  int part_n[COL_MAXPART];           /* numbers given (4 or 6) */
+  char part_where[COL_MAXPART][COL_WHERE];
+} sbi_col_species;
+
+/* A key seen, with where it came from (duplicates, conflicts, messages). */
+typedef struct {
+  char sec[72], key[32];
+  char where[COL_WHERE];
+  int override;                 /* set by --set */
+} sbi_col_seen;
+
+typedef struct {
+  /* [run] */
+  unsigned long seed;
+  long dim;
+  double L, Lx, Ly, Lz, dt, t_end, warmup, thermalize, eta;
+  double lv_eps, lv_xtol, lv_tol;  /* detect = langevin (NaN: default) */
+  long steps, sample_every, snapshot_every, sort_every, threads;
+  long placement_seed;          /* -1: the engine's generator */
+  char neigh[16], detect[16], outcome[16], rng[16], placement[16];
+  char output[512], checkpoint[512], restart[512];
+  /* [bridge] (detect = bridge | exact) */
+  char ends[16];
+  double tol, exact_tol;
+  /* [turbulence] */
+  double eps, nu;
+  /* [observe] */
+  long hit_times, first_hit;
+  double first_hit_radius;
+  long first_hit_capacitance, first_hit_skip_seen;
+  /* [agglo] (outcome = merge | dlvo) */
+  char growth[16], erel[16];
+  double wmax, wmax_kT;
+  long erel_normal, kobs;
+  /* [fluid] */
+  char fluid[16];
+  double U[3], G;
+  int nU;
+  /* [fluid] forces and Lees-Edwards (docs/engine_forces.md) */
+  long lees;
+  double g[3], rho_f, mu_f;
+  int ng;
+  /* [walls] */
+  char wall[6][16], wall_detect[16], deposit[16];
+  /* species */
+  sbi_col_species sp[COL_MAXSPEC];
+  int nsp;
+  double b2_total[COL_MAXSPEC]; /* bridge b2 (turbulence included) and */
+  double b2_brown[COL_MAXSPEC]; /* its Brownian part (set up by setup) */
+  /* bookkeeping */
+  sbi_col_seen seen[COL_MAXSEEN];
+  int nseen;
+  char sections[COL_MAXSPEC + 8][72];       /* headers seen in the file */
+  char section_where[COL_MAXSPEC + 8][COL_WHERE];
+  int nsections;
+  char overrides[32][160];
+  int noverrides;
+  char warn[COL_MAXWARN][400];
+  int nwarn;
+  char err[1024];               /* first error */
+  int nerr;
+  char where[COL_WHERE];        /* origin of the key being set */
+} sbi_col_config;
+
+/* ------------------------------------------------------ collide_ini.c */
+
+/* Defaults (docs/engine.md §9). */
+void sbi_col_defaults(sbi_col_config *c);
+/* Read an INI file; 0 or -1 with c->err set ("FILE:LINE: ..."). */
+int sbi_col_read_file(sbi_col_config *c, const char *path);
+/* Read an INI text; name stands for the file in the messages. */
+int sbi_col_read_string(sbi_col_config *c, const char *text,
+                        const char *name);
+/* --set SECTION.KEY=VALUE (species.NAME.KEY for [species NAME]). */
+int sbi_col_override(sbi_col_config *c, const char *arg);
+/* Cross-key checks after all keys: conflicts, requirements, keys that do
+ * not apply (warnings in c->warn).  0 or -1 with c->err set. */
+int sbi_col_check(sbi_col_config *c);
+/* Where a key was set ("" if it was not); section "species NAME". */
+const char *sbi_col_where(const sbi_col_config *c, const char *sec,
+                          const char *key);
+int sbi_col_given(const sbi_col_config *c, const char *sec,
+                  const char *key);
+/* "he" for [species he]. */
+const char *sbi_col_short_name(const sbi_col_config *c, size_t k);
+/* Names accepted for detect (the engine's built-ins, then the bridge
+ * detectors), NULL-terminated, in names[0..len-1]; returns names. */
+const char **sbi_col_detect_names(const char **names, size_t len);
+/* The key table (collide_keys.c): each key's section, type, place in
+ * sbi_col_config (or sbi_col_species), range, unit, default and help. */
+typedef enum {
+  K_NUM,      /* double */
+  K_INT,      /* long */
+  K_SEED,     /* unsigned long, 0 .. 2^32-1 */
+  K_NAME,     /* char[16], one of names */
+  K_PATH,     /* char[512] */
+  K_BOOL,     /* long 0/1 from yes/no */
+  K_VEC,      /* double[], count in the int at aux */
+  K_PARTICLE  /* species: repeatable */
+} sbi_col_ktype;
+
+typedef enum { R_ANY, R_POS, R_NONNEG, R_CLOSED, R_POSINF } sbi_col_krange;
+
+typedef struct {
+  const char *sec;    /* "run", ..., "species" */
+  const char *key;
+  sbi_col_ktype type;
+  size_t off;         /* in sbi_col_config, or sbi_col_species for "species" */
+  size_t aux;         /* K_VEC: offset of the count; K_NAME: size */
+  sbi_col_krange range;
+  double lo, hi;      /* R_CLOSED (and K_INT, K_VEC sizes) */
+  const char *const *names;   /* K_NAME; NULL for detect (dynamic) */
+  const char *unit, *def, *help;
+} sbi_col_keydef;
+
+extern const sbi_col_keydef sbi_col_keys[];
+extern const size_t sbi_col_nkeys;
+/* The valid names of a K_NAME or K_BOOL key, in names[0..len-1]. */
+const char *const *sbi_col_names_of(const sbi_col_keydef *k,
+                                    const char **names, size_t len);
+/* "a, b, c" */
+void sbi_col_join(char *buf, size_t len, const char *const *names);
+/* The valid values of key k in words. */
+void sbi_col_range_text(const sbi_col_keydef *k, char *buf, size_t len);
+/* The key of a section ("species" for every [species NAME]), or NULL. */
+const sbi_col_keydef *sbi_col_find_key(const char *sec, const char *key);
+/* The keys of a section, "a, b, c". */
+void sbi_col_keys_of(const char *sec, char *buf, size_t len);
+/* 1 if sec names a species section ("species NAME", "species.NAME",
+ * "species:NAME"), with *name pointing at NAME. */
+int sbi_col_is_species(const char *sec, const char **name);
+/* Set c->err (first error only); returns -1. */
+int sbi_col_fail(sbi_col_config *c, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+void sbi_col_warn(sbi_col_config *c, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* 1 for the outcomes handled by the agglomeration context. */
+int sbi_col_agglo(const sbi_col_config *c);
+/* 1 for the detectors with a bridge context. */
+int sbi_col_bridge(const sbi_col_config *c);
+
+/* ---------------------------------------------------- collide_setup.c */
+
+/* A run being set up or running. */
+typedef struct {
+  sb_engine *e;
+  sb_engine_bridge *bridge;     /* detect = bridge | exact */
+  sb_agglo *agglo;              /* outcome = merge | dlvo */
+  sb_engine_firsthit *fh;       /* [observe] first_hit */
+  double t_end;                 /* absolute end time, s */
+  double warm;                  /* warm-up, s (0 on restart) */
+} sbi_col_run;
+
+/* Build the engine, species, particles and contexts.  0 or -1 with
+ * c->err set (the run is then freed). */
+int sbi_col_setup(sbi_col_config *c, sbi_col_run *r);
+void sbi_col_run_free(sbi_col_run *r);
+/* --------------------------------------------------- collide_firsthit.c */
+
+/* Install first-hit counting around the run's detector (bridge context
+ * r->bridge, or the built-in `builtin`) with the neighbour reach. */
+int sbi_col_firsthit_attach(const sbi_col_config *c, sbi_col_run *r,
+                            sb_engine_detect builtin, double reach);
+/* Start of counting (end of the warm-up), s. */
+void sbi_col_firsthit_start(sbi_col_run *r, double t1);
+void sbi_col_firsthit_free(sb_engine_firsthit *f);
+/* First-hit results (one species): 0, a status (the counts set, the
+ * kernel NaN when it has no estimate), or -1 without the observer. */
+int sbi_col_firsthit_result(const sbi_col_run *r, const sbi_col_config *c,
+                            sb_engine_firsthit_kernel_result *o);
+
+/* ------------------------------------------------------ collide_out.c */
+
+/* Prepare the output directory before the run: create it, remove the
+ * files a previous run wrote there (its manifest.txt), check that it and
+ * the checkpoint path are writable.  0 or -1 with c->err set. */
+int sbi_col_out_prepare(sbi_col_config *c);
+/* Pair-kernel rows sampled with the series (series.csv columns). */
+typedef struct {
+  int nsp;
+  double *rows;
+  size_t nrows, cap;
+} sbi_col_pairs;
+int sbi_col_pairs_sample(sbi_col_pairs *ps, const sb_engine *e);
+/* Write series.csv, summary.json, sizes.csv, hits.csv and manifest.txt;
+ * status "ok" or "failed" (summary.json of a failed run says why). */
+int sbi_col_out_write(const sbi_col_config *c, const sbi_col_run *r,
+                      const sbi_col_pairs *ps, double secs, const char *status,
+                      const char *why, long nsnap);
+/* Snapshot path of number k. */
+void sbi_col_snap_path(const sbi_col_config *c, long k, char *buf, size_t len);
+
+/* ---------------------------------------------- collide.c, collide_run.c */
+
+struct sb_collide {
+  sbi_col_config c;
+  sbi_col_run r;
+  int checked, set_up, ran;
+  sb_collide_failure failed;    /* the first failure */
+  int status;                   /* its status code */
+  char msg[2400];               /* its message, lines joined by '\n' */
+};
+
+/* Record the first failure: kind, status and message (from c.err for
+ * input errors found by the configuration code).  Returns status. */
+int sbi_col_failure(sb_collide *cl, sb_collide_failure kind, int status,
+                    const char *msg);
+/* Append a line to the message of a failed run. */
+void sbi_col_more(sb_collide *cl, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+#endif /* SB_COLLIDE_INTERNAL_H */

@@ -1,0 +1,301 @@
+/* test_collide_lib.c — the run description <smolbridge/collide.h>: a
+ * configuration read from a string with an override, run into a
+ * temporary directory (two spheres at 45 degrees: one collision, Thomine
+ * 2008, §7), progress events, warnings, input errors with the key in the
+ * message, a run stopped by its callback, the key table. */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <smolbridge/collide.h>
+
+#include "testutil.h"
+
+/* A fresh temporary directory for the outputs, in dir. */
+static void tmp_dir(char *dir, size_t len)
+{
+  const char *t = getenv("TMPDIR");
+  snprintf(dir, len, "%s/sbcollideXXXXXX", t && *t ? t : "/tmp");
+  ck_assert_ptr_nonnull(mkdtemp(dir));
+}
+
+/* Remove the files a run wrote (manifest.txt lists them) and dir. */
+static void rm_dir(const char *dir)
+{
+  static const char *const files[] = {"series.csv", "summary.json",
+                                      "sizes.csv", "hits.csv",
+                                      "manifest.txt", NULL};
+  char p[600];
+  for (int i = 0; files[i]; i++) {
+    snprintf(p, sizeof p, "%s/%s", dir, files[i]);
+    remove(p);
+  }
+  rmdir(dir);
+}
+
+/* The whole text of a file ("" if it cannot be read); free it. */
+static char *slurp(const char *path)
+{
+  FILE *f = fopen(path, "r");
+  char *s = calloc(1, 1 << 16);
+  ck_assert_ptr_nonnull(s);
+  if (f) {
+    size_t n = fread(s, 1, (1 << 16) - 1, f);
+    s[n] = 0;
+    fclose(f);
+  }
+  return s;
+}
+
+/* Two free-flight spheres of radius r: the first moves along x at 0.1 m/s
+ * and touches the second, offset by sqrt(2) r in y, half-way through the
+ * first step (a 45-degree collision). */
+static void two_spheres(char *text, size_t len, const char *out,
+                        const char *length, const char *extra)
+{
+  const double c = 5e-5, r = 1e-6, s2 = sqrt(2.0);
+  snprintf(text, len,
+           "[run]\nL = 1e-4\ndt = 1e-5\n%s\nsample_every = 1\n"
+           "output = %s\n%s\n[species sphere]\nradius = 1e-6\n"
+           "mass = 1e-15\ntau = inf\nT = 300\n"
+           "particle = %.17g %.17g %.17g 0.1 0 0\n"
+           "particle = %.17g %.17g %.17g 0 0 0\n",
+           length, out, extra, c - s2 * r - 0.5 * 0.1 * 1e-5, c, c, c,
+           c - s2 * r, c);
+}
+
+typedef struct {
+  int begin, steps;
+  double last_fraction, t_end;
+  size_t particles;
+  int stop_at;  /* stop at this STEP event (0: never) */
+} events;
+
+static int on_progress(const sb_collide_progress *p, void *user)
+{
+  events *ev = user;
+  if (p->event == SB_COLLIDE_BEGIN) {
+    ev->begin++;
+    ev->particles = p->particles;
+    ev->t_end = p->t_end;
+    return 0;
+  }
+  ev->steps++;
+  ev->last_fraction = p->fraction;
+  return ev->stop_at && ev->steps >= ev->stop_at;
+}
+
+START_TEST(test_run_from_string)
+{
+  char dir[512], text[2048], path[600];
+  tmp_dir(dir, sizeof dir);
+  two_spheres(text, sizeof text, dir, "steps = 1", "");
+  sb_collide *c = sb_collide_alloc();
+  ck_assert_ptr_nonnull(c);
+  ck_assert_int_eq(sb_collide_read_string(c, text, "two.ini"), SB_SUCCESS);
+  /* two steps instead of one: the override decides the end time */
+  ck_assert_int_eq(sb_collide_set(c, "run.steps=2"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_check(c), SB_SUCCESS);
+  ck_assert_uint_eq(sb_collide_nwarnings(c), 0);
+  ck_assert_str_eq(sb_collide_output(c), dir);
+  events ev = {0, 0, 0, 0, 0, 0};
+  ck_assert_int_eq(sb_collide_run(c, on_progress, &ev), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_failed(c), SB_COLLIDE_OK);
+  ck_assert_str_eq(sb_collide_error(c), "");
+  ck_assert_int_eq(ev.begin, 1);
+  ck_assert_int_eq(ev.steps, 2);  /* every tenth of 2 steps: each step */
+  ck_assert_double_eq(ev.last_fraction, 1.0);
+  ck_assert_uint_eq(ev.particles, 2);
+  ck_assert_rel(ev.t_end, 2e-5, TOL_TIGHT);
+  const sb_engine *e = sb_collide_engine(c);
+  ck_assert_ptr_nonnull(e);
+  sb_engine_stats st;
+  sb_engine_get_stats(e, &st);
+  ck_assert_uint_eq(st.steps, 2);
+  ck_assert_uint_eq(st.ncoll, 1);
+  ck_assert_ptr_null(sb_collide_agglo(c));
+  ck_assert_int_eq(sb_collide_has_firsthit(c), 0);
+  sb_engine_firsthit_kernel_result o;
+  ck_assert_int_eq(sb_collide_firsthit(c, &o), SB_EINVAL);
+  /* the outputs: summary.json with the override and the collision */
+  snprintf(path, sizeof path, "%s/summary.json", dir);
+  char *js = slurp(path);
+  ck_assert_ptr_nonnull(strstr(js, "\"status\": \"ok\""));
+  ck_assert_ptr_nonnull(strstr(js, "\"overrides\": [\"run.steps=2\"]"));
+  ck_assert_ptr_nonnull(strstr(js, "\"collisions\": 1,"));
+  free(js);
+  snprintf(path, sizeof path, "%s/series.csv", dir);
+  char *csv = slurp(path);
+  ck_assert_ptr_nonnull(strstr(csv, "t,ncoll,K,K_lo,K_hi"));
+  free(csv);
+  /* a configuration runs once */
+  ck_assert_int_eq(sb_collide_run(c, NULL, NULL), SB_EINVAL);
+  ck_assert_int_eq(sb_collide_failed(c), SB_COLLIDE_EINPUT);
+  ck_assert_ptr_nonnull(strstr(sb_collide_error(c), "runs once"));
+  sb_collide_free(c);
+  rm_dir(dir);
+}
+END_TEST
+
+START_TEST(test_input_errors)
+{
+  char text[2048];
+  /* a bad value: the file:line, the key and the valid values */
+  two_spheres(text, sizeof text, "unused-out", "steps = 1",
+              "detect = brige");
+  sb_collide *c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "two.ini"), SB_EINVAL);
+  ck_assert_int_eq(sb_collide_failed(c), SB_COLLIDE_EINPUT);
+  ck_assert_msg(!strncmp(sb_collide_error(c), "two.ini:7: [run] detect = "
+                         "brige: unknown; valid: ballistic", 48),
+                "message: %s", sb_collide_error(c));
+  /* the first error sticks: nothing runs, no output directory */
+  ck_assert_int_eq(sb_collide_set(c, "run.dt=1e-6"), SB_EINVAL);
+  ck_assert_int_eq(sb_collide_run(c, NULL, NULL), SB_EINVAL);
+  ck_assert_ptr_null(sb_collide_engine(c));
+  ck_assert_int_eq(access("unused-out", F_OK), -1);
+  sb_collide_free(c);
+  /* an override out of range */
+  two_spheres(text, sizeof text, "unused-out", "steps = 1", "");
+  c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_set(c, "run.dt=-1"), SB_EINVAL);
+  ck_assert_str_eq(sb_collide_error(c), "--set run.dt=-1: [run] dt = -1: "
+                   "out of range; valid: > 0 s");
+  sb_collide_free(c);
+  /* nothing but comments; the default name */
+  c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, "; nothing\n", NULL), SB_EINVAL);
+  ck_assert_msg(!strncmp(sb_collide_error(c), "string: no keys", 15),
+                "message: %s", sb_collide_error(c));
+  sb_collide_free(c);
+  /* a line longer than the INI reader takes, then a good one */
+  char longer[1200];
+  memset(longer, ' ', sizeof longer);
+  memcpy(longer, "[run]\nL = 1", 11);
+  snprintf(longer + sizeof longer - 12, 12, "0\ndt = 1\n");
+  c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, longer, "long.ini"), SB_EINVAL);
+  ck_assert_msg(strstr(sb_collide_error(c), "long.ini:2: line longer than"),
+                "message: %s", sb_collide_error(c));
+  sb_collide_free(c);
+}
+END_TEST
+
+START_TEST(test_checks_and_warnings)
+{
+  char text[2048];
+  /* a key without effect: a warning naming its line */
+  two_spheres(text, sizeof text, "unused-out", "steps = 1",
+              "[bridge]\ntol = 1e-6");
+  sb_collide *c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "w.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_check(c), SB_SUCCESS);
+  ck_assert_uint_eq(sb_collide_nwarnings(c), 1);
+  ck_assert_str_eq(sb_collide_warning(c, 0), "w.ini:8: [bridge] ignored: "
+                   "only detect = bridge or exact use it");
+  ck_assert_ptr_null(sb_collide_warning(c, 1));
+  /* no keys after the checks */
+  ck_assert_int_eq(sb_collide_set(c, "run.dt=1e-6"), SB_EINVAL);
+  sb_collide_free(c);
+  /* conflicting keys: the later one is reported, an override by its
+   * option */
+  two_spheres(text, sizeof text, "unused-out", "steps = 1", "");
+  c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "c.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_set(c, "run.t_end=1e-5"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_check(c), SB_EINVAL);
+  ck_assert_int_eq(sb_collide_failed(c), SB_COLLIDE_EINPUT);
+  ck_assert_str_eq(sb_collide_error(c), "--set run.t_end=1e-5: [run] t_end "
+                   "conflicts with steps (at c.ini:4): give the end time or "
+                   "the number of measured steps");
+  sb_collide_free(c);
+}
+END_TEST
+
+START_TEST(test_nothing_to_measure)
+{
+  char dir[512], text[2048], path[600];
+  tmp_dir(dir, sizeof dir);
+  two_spheres(text, sizeof text, dir, "t_end = 1e-5", "warmup = 2e-5");
+  sb_collide *c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "m.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_setup(c), SB_SUCCESS);  /* it can be built */
+  ck_assert_ptr_nonnull(sb_collide_engine(c));
+  ck_assert_int_eq(sb_collide_run(c, NULL, NULL), SB_EINVAL);
+  ck_assert_int_eq(sb_collide_failed(c), SB_COLLIDE_EINPUT);
+  ck_assert_str_eq(sb_collide_error(c), "m.ini:7: nothing to measure: the "
+                   "warm-up (2e-05 s) does not end before t_end (1e-05 s "
+                   "from t = 0 s)");
+  snprintf(path, sizeof path, "%s/summary.json", dir);
+  ck_assert_int_eq(access(path, F_OK), -1);  /* no run, no outputs */
+  sb_collide_free(c);
+  rm_dir(dir);
+}
+END_TEST
+
+START_TEST(test_stopped_by_callback)
+{
+  char dir[512], text[2048], path[600];
+  tmp_dir(dir, sizeof dir);
+  two_spheres(text, sizeof text, dir, "steps = 1", "");
+  sb_collide *c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "s.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_set(c, "run.steps=50"), SB_SUCCESS);
+  events ev = {0, 0, 0, 0, 0, 3};
+  ck_assert_int_ne(sb_collide_run(c, on_progress, &ev), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_failed(c), SB_COLLIDE_ERUN);
+  ck_assert_int_eq(ev.steps, 3);
+  ck_assert_msg(!strncmp(sb_collide_error(c), "stopped by the progress "
+                         "callback", 32), "message: %s", sb_collide_error(c));
+  snprintf(path, sizeof path, "%s/summary.json", dir);
+  char *js = slurp(path);
+  ck_assert_ptr_nonnull(strstr(js, "\"status\": \"failed\""));
+  free(js);
+  sb_collide_free(c);
+  rm_dir(dir);
+}
+END_TEST
+
+START_TEST(test_key_table)
+{
+  const size_t n = sb_collide_nkeys();
+  ck_assert_uint_gt(n, 50);
+  sb_collide_keyinfo k;
+  ck_assert_int_eq(sb_collide_key(0, &k), SB_SUCCESS);
+  ck_assert_str_eq(k.section, "run");
+  ck_assert_str_eq(k.key, "seed");
+  ck_assert_str_eq(k.valid, "integer 0 .. 4294967295");
+  int detect = 0;
+  for (size_t i = 0; i < n; i++) {
+    ck_assert_int_eq(sb_collide_key(i, &k), SB_SUCCESS);
+    if (!strcmp(k.section, "run") && !strcmp(k.key, "detect")) {
+      detect = 1;  /* the engine's detectors and the bridge ones */
+      ck_assert_ptr_nonnull(strstr(k.valid, "ballistic"));
+      ck_assert_ptr_nonnull(strstr(k.valid, "exact"));
+    }
+  }
+  ck_assert_int_eq(detect, 1);
+  ck_assert_int_eq(sb_collide_key(n, &k), SB_EINVAL);
+}
+END_TEST
+
+static Suite *suite(void)
+{
+  Suite *s = suite_create("collide_lib");
+  TCase *tc = tcase_create("core");
+  tcase_set_timeout(tc, 30);
+  tcase_add_test(tc, test_run_from_string);
+  tcase_add_test(tc, test_input_errors);
+  tcase_add_test(tc, test_checks_and_warnings);
+  tcase_add_test(tc, test_nothing_to_measure);
+  tcase_add_test(tc, test_stopped_by_callback);
+  tcase_add_test(tc, test_key_table);
+  suite_add_tcase(s, tc);
+  return s;
+}
+
+int main(void) { return sbt_run_suite(suite()); }
