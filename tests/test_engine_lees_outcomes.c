@@ -357,6 +357,71 @@ START_TEST(test_le_reinsert_kernel)
 }
 END_TEST
 
+/* The engine's reinsert outcome in a flow: the reinserted particle flows
+ * on from its new place with its mean velocity (here the shear's) over
+ * the rest of the step; in a fluid at rest it stays there. */
+typedef struct {
+  int checked;
+  double G;
+} reins_ctx;
+
+static int reins_check(sb_engine *e, const sb_engine_pair *p, double s,
+                       void *vc)
+{
+  reins_ctx *c = vc;
+  ck_assert_int_eq(sb_engine_outcome_reinsert(e, p, s), 0);
+  const size_t j = p->j;
+  const double *L = sb_engine_get_params(e)->L;
+  const double tf = (p->t0 + s * p->dt - sb_engine_time(e)) /
+                    sb_engine_get_params(e)->dt;
+  const double rest = (1.0 - tf) * sb_engine_get_params(e)->dt;
+  if (c->G == 0.0) {
+    ck_assert_int_eq(e->ndeclared, 0);
+  } else {
+    ck_assert_int_eq(e->ndeclared, 1);
+    ck_assert(e->declared[0].k == j);
+    const double *x = e->declared[0].x;
+    const double ux = c->G * (x[1] - 0.5 * L[1]);
+    ck_assert_rel(e->u[3 * j], ux, 1e-12);
+    ck_assert_rel(e->x[3 * j], x[0] + rest * ux, 1e-12);
+    ck_assert(e->x[3 * j + 1] == x[1] && e->x[3 * j + 2] == x[2]);
+  }
+  c->checked++;
+  return SB_SUCCESS;
+}
+
+START_TEST(test_reinsert_flows_on)
+{
+  for (int sh = 0; sh < 2; sh++) {
+    reins_ctx c = {0, sh ? 1.0 : 0.0};
+    sb_engine *e = le_engine(LBOX, 0.2, 1.0, 0.0, SB_DETECT_BALLISTIC,
+                             SB_OUTCOME_COUNT, 4, 3);
+    if (!sh) {
+      const double U0[3] = {0.0, 0.0, 0.0};
+      sb_engine_set_lees_edwards(e, 0);
+      sb_engine_set_fluid(e, SB_FLUID_REST, U0);
+    }
+    /* non-Brownian, tau_p = 1e3 s: keeps its approach velocity */
+    const sb_engine_species sp = {0.4, 1.0, 1e3, 0.0, 0.0};
+    sb_engine_add_species(e, &sp, NULL);
+    /* a head-on pair along y in the box's middle (same fluid velocity) */
+    const double xa[3] = {10.0, 9.0, 10.0}, ua[3] = {0.0, 2.0, 0.0};
+    const double xb[3] = {10.0, 10.1, 10.0}, ub[3] = {0.0, 0.0, 0.0};
+    double u1[3], u2[3];
+    memcpy(u1, ua, sizeof u1);
+    memcpy(u2, ub, sizeof u2);
+    u1[0] += c.G * (xa[1] - 0.5 * LBOX);
+    u2[0] += c.G * (xb[1] - 0.5 * LBOX);
+    sb_engine_add_particle(e, 0, 0, xa, u1);
+    sb_engine_add_particle(e, 0, 0, xb, u2);
+    ck_assert_int_eq(sb_engine_set_outcome_fn(e, reins_check, &c), 0);
+    ck_assert_int_eq(sb_engine_step(e), 0);
+    ck_assert_int_eq(c.checked, 1);
+    sb_engine_free(e);
+  }
+}
+END_TEST
+
 int main(void)
 {
   Suite *s = suite_create("engine_lees_outcomes");
@@ -366,6 +431,7 @@ int main(void)
   tcase_add_test(tc, test_le_redetect_chain);
   tcase_add_test(tc, test_le_merge_pair);
   tcase_add_test(tc, test_le_reinsert_kernel);
+  tcase_add_test(tc, test_reinsert_flows_on);
   suite_add_tcase(s, tc);
   return sbt_run_suite(s);
 }
