@@ -352,7 +352,12 @@ START_TEST(test_le_errors)
   ck_assert_int_eq(sb_engine_set_lees_edwards(e, 1), 0);
   ck_assert_int_eq(sb_engine_set_walls(e, 1, SB_WALL_ABSORB, SB_WALL_ABSORB),
                    SB_EINVAL);
+  /* every outcome works (test_engine_lees_outcomes); the field must
+   * stay the built-in shear */
   sb_engine_set_outcome(e, SB_OUTCOME_ELASTIC, 1.0);
+  ck_assert_int_eq(sb_engine_step(e), 0);
+  double U[3] = {1.0, 0, 0};
+  sb_engine_set_fluid(e, SB_FLUID_UNIFORM, U);
   ck_assert_int_eq(sb_engine_step(e), SB_EINVAL);
   sb_engine_free(e);
 }

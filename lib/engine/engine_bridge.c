@@ -360,16 +360,18 @@ int sb_engine_detect_bridge(const sb_engine *e, const sb_engine_pair *p,
 /* ------------------------------------------------------- place, outcomes */
 
 /* Start and end of the barycentre relative to x0_i (positions of j taken
- * as x0_i - dx0 (+ disp_j): the unwrapped pair). */
+ * as x0_i - dx0 (+ disp_j): the unwrapped pair; across a Lees-Edwards
+ * boundary j's image, whose chord is du dt longer along x). */
 static void bary_ends(const sb_engine *e, const sb_engine_pair *p,
                       double b0[3], double b1[3])
 {
   const size_t i = p->i, j = p->j;
   const double mi = e->mass[i], mj = e->mass[j], M = mi + mj;
+  const double du = sbi_engine_pair_du(e, p);
   for (int k = 0; k < 3; k++) {
+    const double dj = e->disp[3 * j + k] + (k == 0 ? du * e->par.dt : 0.0);
     b0[k] = -mj * p->dx0[k] / M;
-    b1[k] = (mi * e->disp[3 * i + k] + mj * (e->disp[3 * j + k] - p->dx0[k])) /
-            M;
+    b1[k] = (mi * e->disp[3 * i + k] + mj * (dj - p->dx0[k])) / M;
   }
 }
 
@@ -445,14 +447,18 @@ static int correct(sb_engine *e, const sb_engine_bridge *b,
   double bi, bbi;
   species_b2(e, b, e->species[i], &bi, &bbi);
   const double sd = sqrt(bi * (1.0 - s) * dt);
+  const double du = sbi_engine_pair_du(e, p);
   for (int k = 0; k < 3; k++) {
     double xi_t = bt[k] + mj * p->sigma * u[k] / M;  /* contact, i */
     double xi_1 = xi_t + gsl_ran_gaussian_ziggurat(e->rng, sd);
     double xj_1 = (M * b1[k] - mi * xi_1) / mj;  /* barycentre kept */
     /* back to absolute unwrapped positions: i relative to x0_i; j's frame
-     * differs from x0_j by the minimum-image shift, x0_j = x0_i - dx0 */
+     * differs from x0_j by the minimum-image shift, x0_j = x0_i - dx0
+     * (across a Lees-Edwards boundary its image has moved du dt further
+     * along x by the end of the step) */
     double xi_abs = e->x0[3 * i + k] + xi_1;
-    double xj_abs = e->x0[3 * j + k] + (xj_1 + p->dx0[k]);
+    double xj_abs = e->x0[3 * j + k] + (xj_1 + p->dx0[k]) -
+                    (k == 0 ? du * dt : 0.0);
     e->disp[3 * i + k] = xi_abs - e->x0[3 * i + k];
     e->disp[3 * j + k] = xj_abs - e->x0[3 * j + k];
     e->x[3 * i + k] = xi_abs;

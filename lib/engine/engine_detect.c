@@ -39,7 +39,7 @@ void sbi_engine_make_pair(const sb_engine *e, size_t i, size_t j,
   p->dt = e->par.dt;
   p->t0 = e->t;
   if (e->lees || e->walled)  /* engine_lees.c */
-    sbi_engine_boundary_fix_pair(e, &e->x0[3 * i], &e->x0[3 * j], p);
+    sbi_engine_boundary_fix_pair(e, &e->x0[3 * i], &e->x0[3 * j], 0.0, p);
 }
 
 static void quad(const sb_engine_pair *p, double *a, double *b, double *c)
@@ -274,8 +274,42 @@ static void make_subpair(const sb_engine *e, size_t a, size_t b, double t,
   p->sigma = e->radius[i] + e->radius[j];
   p->dt = e->par.dt * f;
   p->t0 = e->t + t * e->par.dt;
-  if (e->walled)  /* no image across a wall (engine_lees.c) */
-    sbi_engine_boundary_fix_pair(e, xi, xj, p);
+  /* no image across a wall; across the sliding boundary the image
+   * shifted by delta(t) and its velocity jump over the rest of the step,
+   * as for the first detection (engine_lees.c) */
+  if (e->walled || e->lees)
+    sbi_engine_boundary_fix_pair(e, xi, xj, t, p);
+}
+
+double sbi_engine_pair_du(const sb_engine *e, const sb_engine_pair *p)
+{
+  if (!e->lees)
+    return 0.0;
+  if (e->contact)
+    return e->contact->cdu;
+  double yi, yj;
+  if (e->in_step) {
+    /* the record's pieces are current while its outcome runs */
+    double xi[3], xj[3];
+    path_at(e, p->i, e->in_outcome_t, xi);
+    path_at(e, p->j, e->in_outcome_t, xj);
+    yi = xi[1];
+    yj = xj[1];
+  } else {
+    yi = e->x[3 * p->i + 1];
+    yj = e->x[3 * p->j + 1];
+  }
+  return sbi_lees_n(e, yi - yj) * e->fluid_p[0] * e->par.L[1];
+}
+
+double sb_engine_pair_image_velocity(const sb_engine *e,
+                                     const sb_engine_pair *p)
+{
+  if (!e || !p || p->i >= e->n || p->j >= e->n) {
+    sbi_error(SB_EINVAL, __func__, "bad engine or pair");
+    return NAN;
+  }
+  return sbi_engine_pair_du(e, p);
 }
 
 typedef struct {
@@ -324,11 +358,22 @@ static double new_piece(sb_engine *e, size_t k, double t,
 {
   const double f = 1.0 - t;
   double len2 = 0.0, r0 = 0.0, r1 = 0.0;
+  double pt[3], pe[3];  /* the piece's start and end */
+  if (e->lees) {
+    /* across the sliding boundary the nearest image is shifted along x
+     * by delta at the time of the point: the start (at t) next to x0_k,
+     * the end (at 1) next to the start (engine_lees.c) */
+    sbi_engine_lees_near(e, &e->x0[3 * k], from, t, pt);
+    sbi_engine_lees_near(e, pt, &e->x[3 * k], 1.0, pe);
+  }
   for (int c = 0; c < 3; c++) {
     /* positions in the frame of x0_k (outcomes keep the end unwrapped; a
      * reinsertion or a declared position may be anywhere in the box) */
     double xe = e->x0[3 * k + c], xt = e->x0[3 * k + c];
-    if (c < e->par.dim) {
+    if (e->lees) {
+      xt = pt[c];
+      xe = pe[c];
+    } else if (c < e->par.dim) {
       xe += sbi_minimg(e->x[3 * k + c] - e->x0[3 * k + c], e->par.L[c]);
       xt += sbi_minimg(from[c] - e->x0[3 * k + c], e->par.L[c]);
     }
@@ -521,7 +566,7 @@ int sbi_engine_detect_and_process(sb_engine *e)
         continue;
       redetect_ctx rc = {ev.s, (q == 1 && ch[0]) ? who[0] : (size_t)-1};
       st = sbi_engine_partners(e, who[q], &e->sub_p[3 * who[q]], ext[q],
-                               redetect_one, &rc);
+                               ev.s, redetect_one, &rc);
       if (st) {
         e->in_step = 0;
         return st;

@@ -239,11 +239,9 @@ int sbi_engine_physics_prepare(sb_engine *e)
       return sbi_error(SB_EINVAL, fn, "Lees-Edwards boundaries need x and "
                        "y periodic");
     /* every detector sees image-aware pair records (and the Langevin
-     * detector image-aware states); an outcome that changes a path needs
-     * a re-detection across the boundary, which is not image-aware */
-    if (e->par.outcome != SB_OUTCOME_COUNT)
-      return sbi_error(SB_EINVAL, fn, "Lees-Edwards boundaries work with "
-                       "the count outcome only");
+     * detector image-aware states), the first detection and the
+     * re-detection after an outcome alike, and the outcomes take j's
+     * image velocity (engine_lees.c): every outcome works */
   }
   if (e->has_grav)
     for (size_t k = 0; k < e->nspec; k++)

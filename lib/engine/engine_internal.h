@@ -245,6 +245,23 @@ static inline double sbi_wrap(double x, double L)
   return x;
 }
 
+/* Lees-Edwards image index n of a particle at height y_j seen from one at
+ * y_i, dy = y_i - y_j (positions may be unwrapped by a step's flight):
+ * 1 when j's nearest image is the one above the box (y_j + L_y), -1
+ * below, 0 in the box (docs/engine_forces.md §3). */
+static inline int sbi_lees_n(const sb_engine *e, double dy)
+{
+  const double Ly = e->par.L[1];
+  return dy > 0.5 * Ly ? 1 : (dy < -0.5 * Ly ? -1 : 0);
+}
+
+/* The Lees-Edwards image shift delta(t) at step fraction t: delta at the
+ * step's start plus G L_y t dt (not reduced modulo L_x). */
+static inline double sbi_lees_delta(const sb_engine *e, double t)
+{
+  return e->le_off + e->fluid_p[0] * e->par.L[1] * t * e->par.dt;
+}
+
 /* The velocity particle k relaxes to over the step, component c: the
  * fluid velocity at its start (zero at rest) plus its species' settling
  * velocity (the w of the exact step, engine.c transport). */
@@ -267,9 +284,10 @@ int sbi_engine_sweep(sb_engine *e, const double *x0, const double *disp,
                      double reach);
 /* Partners of particle a for re-detection after a collision inside the
  * step (engine_neigh.c): fn(e, a, k, ctx) for every k whose path can come
- * within reach of a's new path piece, which stays within ext_a of c. */
+ * within reach of a's new path piece, which starts at step fraction t and
+ * stays within ext_a of c (with Lees-Edwards: of the images of k). */
 int sbi_engine_partners(sb_engine *e, size_t a, const double c[3],
-                        double ext_a,
+                        double ext_a, double t,
                         int (*fn)(sb_engine *, size_t, size_t, void *),
                         void *ctx);
 /* Largest |disp_i| (Euclidean, over the active dimensions). */
@@ -362,9 +380,24 @@ int sbi_engine_boundary_pairs(sb_engine *e, const double *x0,
 int sbi_engine_image(const sb_engine *e, const double *xi, const double *xj,
                      double t, double sh[3], double *du);
 /* Pair record geometry with walls / Lees-Edwards: dx0 from the positions
- * xi, xj (start of the record), and dd shifted by the image velocity. */
+ * xi, xj at the record's start (step fraction t: the image shift is
+ * delta(t)), and dd shifted by the image velocity over the record. */
 void sbi_engine_boundary_fix_pair(const sb_engine *e, const double *xi,
-                                  const double *xj, sb_engine_pair *p);
+                                  const double *xj, double t,
+                                  sb_engine_pair *p);
+/* Lees-Edwards: out = the image of point x (at step fraction t) nearest
+ * to ref -- shifted by -n (delta(t), L_y) with n = sbi_lees_n(x_y -
+ * ref_y), then the minimum image of every component. */
+void sbi_engine_lees_near(const sb_engine *e, const double *ref,
+                          const double *x, double t, double out[3]);
+/* Lees-Edwards: squared distance from p to the image of q nearest to it
+ * at step fraction t; *n receives the image index (sbi_lees_n). */
+double sbi_engine_lees_dist2(const sb_engine *e, const double *p,
+                             const double *q, double t, int *n);
+/* Inside an outcome (or between steps): the x velocity of j's image next
+ * to i relative to j, n G L_y (0 without Lees-Edwards); the Langevin
+ * contact's, else from the positions at the contact. */
+double sbi_engine_pair_du(const sb_engine *e, const sb_engine_pair *p);
 /* End of the step, after the time advanced: particles of the inflows
  * (engine_open.c). */
 int sbi_engine_inject(sb_engine *e);

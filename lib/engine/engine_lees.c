@@ -118,22 +118,15 @@ void sbi_engine_shear_correct(sb_engine *e)
   }
 }
 
-/* Image index n of j seen from i along y (walls: 0), with LE. */
-static int le_image(const sb_engine *e, double dy)
-{
-  const double Ly = e->par.L[1];
-  return dy > 0.5 * Ly ? 1 : (dy < -0.5 * Ly ? -1 : 0);
-}
-
 int sbi_engine_image(const sb_engine *e, const double *xi, const double *xj,
                      double t, double sh[3], double *du)
 {
   const int dim = e->par.dim;
-  const int n = e->lees ? le_image(e, xi[1] - xj[1]) : 0;
+  const int n = e->lees ? sbi_lees_n(e, xi[1] - xj[1]) : 0;
   const double G = e->fluid_p[0], Ly = e->par.L[1];
   sh[0] = sh[1] = sh[2] = 0.0;
   if (n) {
-    sh[0] = n * (e->le_off + G * Ly * t * e->par.dt);
+    sh[0] = n * sbi_lees_delta(e, t);
     sh[1] = n * Ly;
   }
   for (int k = 0; k < dim; k++) {
@@ -147,12 +140,13 @@ int sbi_engine_image(const sb_engine *e, const double *xi, const double *xj,
 }
 
 void sbi_engine_boundary_fix_pair(const sb_engine *e, const double *xi,
-                                  const double *xj, sb_engine_pair *p)
+                                  const double *xj, double t,
+                                  sb_engine_pair *p)
 {
   const int dim = e->par.dim;
   int n = 0;
   if (e->lees)
-    n = le_image(e, xi[1] - xj[1]);
+    n = sbi_lees_n(e, xi[1] - xj[1]);
   for (int k = 0; k < dim; k++) {
     double d = xi[k] - xj[k];
     if (e->wall[2 * k] != SB_WALL_PERIODIC) {
@@ -160,13 +154,48 @@ void sbi_engine_boundary_fix_pair(const sb_engine *e, const double *xi,
       continue;
     }
     if (k == 0)
-      d -= n * e->le_off;
+      d -= n * sbi_lees_delta(e, t);
     else if (k == 1)
       d -= n * e->par.L[1];
     p->dx0[k] = sbi_minimg(d, e->par.L[k]);
   }
   if (n)
     p->dd[0] -= n * e->fluid_p[0] * e->par.L[1] * p->dt;
+}
+
+void sbi_engine_lees_near(const sb_engine *e, const double *ref,
+                          const double *x, double t, double out[3])
+{
+  const int n = sbi_lees_n(e, x[1] - ref[1]);
+  for (int c = 0; c < 3; c++) {
+    if (c >= e->par.dim) {
+      out[c] = ref[c];
+      continue;
+    }
+    double d = x[c] - ref[c];
+    if (c == 0)
+      d -= n * sbi_lees_delta(e, t);
+    else if (c == 1)
+      d -= n * e->par.L[1];
+    out[c] = ref[c] + sbi_minimg(d, e->par.L[c]);
+  }
+}
+
+double sbi_engine_lees_dist2(const sb_engine *e, const double *p,
+                             const double *q, double t, int *n)
+{
+  *n = sbi_lees_n(e, p[1] - q[1]);
+  double d2 = 0.0;
+  for (int c = 0; c < e->par.dim; c++) {
+    double d = p[c] - q[c];
+    if (c == 0)
+      d -= *n * sbi_lees_delta(e, t);
+    else if (c == 1)
+      d -= *n * e->par.L[1];
+    d = sbi_minimg(d, e->par.L[c]);
+    d2 += d * d;
+  }
+  return d2;
 }
 
 typedef struct {

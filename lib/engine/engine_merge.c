@@ -9,7 +9,10 @@
  *   u   = (m_i u_i + m_j u_j)/M                 (momentum conserved)
  *   x   = (m_i x_i + m_j x_j)/M                 (mass barycentre)
  * where x_i, x_j are the end-of-step positions (x_j taken as the minimum
- * image next to x_i: x_i - x_j = dx0 + dd).  The chords are straight
+ * image next to x_i: x_i - x_j = dx0 + dd).  Across a Lees-Edwards
+ * boundary that image moves n G L_y faster along x than j: u_j there is
+ * the image's velocity, so that momentum is conserved in the frame of i,
+ * where the cluster stays (docs/engine_forces.md §3).  The chords are straight
  * lines, so the barycentre at the end is the barycentre at contact moved
  * by the centre-of-mass chord velocity over the rest of the step: taking
  * it at the end of the step is the same as merging at contact and moving
@@ -327,6 +330,7 @@ int sb_agglo_merge(sb_engine *e, sb_agglo *a, const sb_engine_pair *p,
     return st;
   const double mi = e->mass[i], mj = e->mass[j], M = mi + mj;
   const double fi = mi / M, fj = mj / M;
+  const double du = sbi_engine_pair_du(e, p);  /* j's image, along x */
   /* the cluster is at the barycentre of the contact positions at the
    * contact time (x_j = x_i - (dx0 + s dd) there), so the engine can
    * examine its pairs over the rest of the step from that place */
@@ -342,7 +346,8 @@ int sb_agglo_merge(sb_engine *e, sb_agglo *a, const sb_engine_pair *p,
      * cluster by a fresh Langevin step over the rest of the step) */
     double rel = e->contact ? e->contact->crel[k] : p->dx0[k] + p->dd[k];
     double xb = e->x[3 * i + k] - fj * rel;
-    e->u[3 * i + k] = fi * e->u[3 * i + k] + fj * e->u[3 * j + k];
+    e->u[3 * i + k] =
+        fi * e->u[3 * i + k] + fj * (e->u[3 * j + k] + (k == 0 ? du : 0.0));
     e->disp[3 * i + k] += xb - e->x[3 * i + k];
     e->x[3 * i + k] = xb;
   }
@@ -385,7 +390,8 @@ double sb_agglo_erel_of(const sb_engine *e, const sb_agglo *a,
     const sbi_event *c = e->contact;
     double w[3], w2 = 0.0, cn = 0.0, cc = 0.0;
     for (int k = 0; k < 3; k++) {
-      w[k] = c->cu[0][k] - c->cu[1][k];
+      /* to j's image across a Lees-Edwards boundary */
+      w[k] = c->cu[0][k] - c->cu[1][k] - (k == 0 ? c->cdu : 0.0);
       w2 += w[k] * w[k];
       cn += w[k] * c->crel[k];
       cc += c->crel[k] * c->crel[k];

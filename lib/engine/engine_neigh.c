@@ -427,16 +427,21 @@ int sb_engine_pair_can_meet(const sb_engine *e, const double *disp,
   return m2 <= lim * lim;
 }
 
-/* Partners of particle a for re-detection, whose new path piece stays
- * within ext_a (its radius included) of the point c (same frame as x0):
- * every k != a whose path can come within reach of it.  Particles that
- * kept a piece near their start (within the r + |disp| the search was
- * built for, e->dn updated) are found from the cells of this step's
- * search around c when they cover ext_a (else by a scan of all); the few
- * whose piece left that region (reinsertions, long bounces) are in
- * e->far and are checked against their current piece.  Calls
- * fn(e, a, k, ctx) for each candidate (possibly twice); stops on a
- * non-zero return. */
+/* Partners of particle a for re-detection, whose new path piece starts
+ * at step fraction t and stays within ext_a (its radius included) of the
+ * point c (same frame as x0): every k != a whose path can come within
+ * reach of it.  Particles that kept a piece near their start (within the
+ * r + |disp| the search was built for, e->dn updated) are found from the
+ * cells of this step's search around c when they cover ext_a (else by a
+ * scan of all); the few whose piece left that region (reinsertions, long
+ * bounces) are in e->far and are checked against their current piece.
+ * With Lees-Edwards k is taken in its image nearest to c (shifted by
+ * delta(t) across the sliding boundary), and the bound widens by the
+ * image's extra flight |G| L_y dt (1 - t) over the rest of the step; the
+ * partners across the boundary come from the cells around c's image in
+ * the box (c - n (delta(t), L_y, 0)), scanned as wide as that bound.
+ * Calls fn(e, a, k, ctx) for each candidate once; stops on a non-zero
+ * return. */
 static double dist2_min(const sb_engine *e, const double *p, const double *q)
 {
   double d2 = 0.0;
@@ -447,8 +452,84 @@ static double dist2_min(const sb_engine *e, const double *p, const double *q)
   return d2;
 }
 
+/* Squared distance from p (at step fraction t) to the image of q nearest
+ * to it; *n its Lees-Edwards image index (0 without). */
+static double pdist2(const sb_engine *e, const double *p, const double *q,
+                     double t, int *n)
+{
+  if (e->lees)
+    return sbi_engine_lees_dist2(e, p, q, t, n);
+  *n = 0;
+  return dist2_min(e, p, q);
+}
+
+typedef struct {
+  size_t a;
+  const double *c;  /* a's piece start (frame of x0_a) */
+  double ext_a, t, reach;
+  double extra;     /* Lees-Edwards: |G| L_y dt (1 - t) */
+  int (*fn)(sb_engine *, size_t, size_t, void *);
+  void *ctx;
+} partner_q;
+
+/* The cells within m[k] cells of the one holding point pt (wrapped):
+ * candidates k of image index `want` (Lees-Edwards; 0 otherwise). */
+static int cell_pass(sb_engine *e, const partner_q *Q, const double *pt,
+                     const int m[3], int want)
+{
+  const int dim = e->par.dim;
+  const sbi_grid *g = &e->grid;
+  const double *x0 = e->x0;
+  double cw[3] = {0, 0, 0};
+  int ca[3] = {0, 0, 0};
+  for (int k = 0; k < dim; k++) {
+    cw[k] = sbi_wrap(pt[k], e->par.L[k]);
+    int v = (int)(cw[k] * g->inv[k]);
+    ca[k] = v >= g->nc[k] ? g->nc[k] - 1 : (v < 0 ? 0 : v);
+  }
+  int lo[3], hi[3];
+  for (int k = 0; k < 3; k++) {
+    lo[k] = hi[k] = 0;
+    if (k < dim && 2 * m[k] + 1 >= g->nc[k])
+      hi[k] = g->nc[k] - 1;  /* every cell, once */
+    else if (k < dim)
+      lo[k] = -m[k], hi[k] = m[k];
+  }
+  for (int q2 = lo[2]; q2 <= hi[2]; q2++)
+    for (int q1 = lo[1]; q1 <= hi[1]; q1++)
+      for (int q0 = lo[0]; q0 <= hi[0]; q0++) {
+        const int q[3] = {q0, q1, q2};
+        size_t c2 = 0;
+        for (int k = 0; k < dim; k++) {
+          int v = ca[k] + q[k];
+          v = ((v % g->nc[k]) + g->nc[k]) % g->nc[k];
+          c2 += (size_t)v * g->stride[k];
+        }
+        for (size_t b = e->cell_start[c2]; b < e->cell_start[c2 + 1]; b++) {
+          size_t k = e->cell_list[b];
+          if (k == Q->a || e->isfar[k])
+            continue;
+          double lim = Q->ext_a + e->radius[k] + e->dn[k] + Q->reach;
+          double d2;
+          if (e->lees) {
+            int n;
+            d2 = sbi_engine_lees_dist2(e, Q->c, &x0[3 * k], Q->t, &n);
+            if (n != want)
+              continue;  /* the other pass has it */
+            if (n)
+              lim += Q->extra;
+          } else
+            d2 = dist2_min(e, cw, &x0[3 * k]);
+          int st;
+          if (d2 <= lim * lim && (st = Q->fn(e, Q->a, k, Q->ctx)))
+            return st;
+        }
+      }
+  return SB_SUCCESS;
+}
+
 int sbi_engine_partners(sb_engine *e, size_t a, const double c[3],
-                        double ext_a,
+                        double ext_a, double t,
                         int (*fn)(sb_engine *, size_t, size_t, void *),
                         void *ctx)
 {
@@ -456,7 +537,10 @@ int sbi_engine_partners(sb_engine *e, size_t a, const double c[3],
   const double *x0 = e->x0;
   const double reach = e->grid.valid ? e->grid.reach : e->detect_reach;
   const sbi_grid *g = &e->grid;
-  int st;
+  const double extra =
+      e->lees ? fabs(e->fluid_p[0]) * e->par.L[1] * e->par.dt * (1.0 - t)
+              : 0.0;
+  int st, n;
   /* the far list first: their pieces, not their starts */
   for (size_t q = 0; q < e->nfar; q++) {
     size_t k = e->far[q];
@@ -466,55 +550,36 @@ int sbi_engine_partners(sb_engine *e, size_t a, const double c[3],
     for (int d = 0; d < dim; d++)
       len2 += e->sub_v[3 * k + d] * e->sub_v[3 * k + d];
     double ext_k = e->radius[k] + sqrt(len2) * (1.0 - e->sub_t[k]);
-    double lim = ext_a + ext_k + reach;
-    if (dist2_min(e, c, &e->sub_p[3 * k]) <= lim * lim &&
-        (st = fn(e, a, k, ctx)))
+    double d2 = pdist2(e, c, &e->sub_p[3 * k], t, &n);
+    double lim = ext_a + ext_k + reach + (n ? extra : 0.0);
+    if (d2 <= lim * lim && (st = fn(e, a, k, ctx)))
       return st;
   }
   if (g->valid && ext_a <= g->ext_max) {
-    double cw[3] = {0, 0, 0};
-    int ca[3] = {0, 0, 0};
-    for (int k = 0; k < dim; k++) {
-      cw[k] = sbi_wrap(c[k], e->par.L[k]);
-      int v = (int)(cw[k] * g->inv[k]);
-      ca[k] = v >= g->nc[k] ? g->nc[k] - 1 : (v < 0 ? 0 : v);
-    }
-    int lo[3], hi[3];
-    for (int k = 0; k < 3; k++) {
-      lo[k] = hi[k] = 0;
-      if (k < dim && g->nc[k] >= 3)
-        lo[k] = -1, hi[k] = 1;
-      else if (k < dim && g->nc[k] == 2)
-        hi[k] = 1;  /* the other cell, once */
-    }
-    for (int q2 = lo[2]; q2 <= hi[2]; q2++)
-      for (int q1 = lo[1]; q1 <= hi[1]; q1++)
-        for (int q0 = lo[0]; q0 <= hi[0]; q0++) {
-          const int q[3] = {q0, q1, q2};
-          size_t c2 = 0;
-          for (int k = 0; k < dim; k++) {
-            int v = ca[k] + q[k];
-            v = ((v % g->nc[k]) + g->nc[k]) % g->nc[k];
-            c2 += (size_t)v * g->stride[k];
-          }
-          for (size_t b = e->cell_start[c2]; b < e->cell_start[c2 + 1];
-               b++) {
-            size_t k = e->cell_list[b];
-            if (k == a || e->isfar[k])
-              continue;
-            double lim = ext_a + e->radius[k] + e->dn[k] + reach;
-            if (dist2_min(e, cw, &x0[3 * k]) <= lim * lim &&
-                (st = fn(e, a, k, ctx)))
-              return st;
-          }
-        }
-    return SB_SUCCESS;
+    const partner_q Q = {a, c, ext_a, t, reach, extra, fn, ctx};
+    const int m1[3] = {1, 1, 1};
+    st = cell_pass(e, &Q, c, m1, 0);
+    if (st || !e->lees)
+      return st;
+    /* across the sliding boundary: around c's image in the box, as wide
+     * as the largest bound (non-far k have r_k + dn_k <= ext_max) */
+    const double Ly = e->par.L[1];
+    const int nc = c[1] > 0.5 * Ly ? 1 : -1;
+    const double lmax = ext_a + g->ext_max + reach + extra;
+    if (nc > 0 ? c[1] < Ly - lmax : c[1] > lmax)
+      return SB_SUCCESS;  /* too far from the face */
+    double ci[3] = {c[0] - nc * sbi_lees_delta(e, t), c[1] - nc * Ly, c[2]};
+    int m[3] = {0, 0, 0};
+    for (int k = 0; k < dim; k++)
+      m[k] = (int)ceil(lmax * g->inv[k]);
+    return cell_pass(e, &Q, ci, m, nc);
   }
   for (size_t k = 0; k < e->n; k++) {
     if (k == a || e->isfar[k])
       continue;
-    double lim = ext_a + e->radius[k] + e->dn[k] + reach;
-    if (dist2_min(e, c, &x0[3 * k]) <= lim * lim && (st = fn(e, a, k, ctx)))
+    double d2 = pdist2(e, c, &x0[3 * k], t, &n);
+    double lim = ext_a + e->radius[k] + e->dn[k] + reach + (n ? extra : 0.0);
+    if (d2 <= lim * lim && (st = fn(e, a, k, ctx)))
       return st;
   }
   return SB_SUCCESS;

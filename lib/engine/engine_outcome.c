@@ -34,7 +34,9 @@
 /* Elastic collision at a Langevin contact: the same impulse rule on the
  * velocities at contact (e->u holds them), normal from the contact
  * separation; positions stay (the engine continues both partners from
- * their new states by a fresh Langevin step). */
+ * their new states by a fresh Langevin step).  Across a Lees-Edwards
+ * boundary j's image moves c->cdu faster along x: the relative velocity
+ * is taken to it (the impulse itself is the same in every frame). */
 static int elastic_contact(sb_engine *e, const sb_engine_pair *p)
 {
   const sbi_event *c = e->contact;
@@ -49,7 +51,8 @@ static int elastic_contact(sb_engine *e, const sb_engine_pair *p)
     return SB_SUCCESS;
   for (int k = 0; k < 3; k++) {
     nv[k] /= nn;
-    wn += (e->u[3 * i + k] - e->u[3 * j + k]) * nv[k];
+    wn += (e->u[3 * i + k] - e->u[3 * j + k] - (k == 0 ? c->cdu : 0.0)) *
+          nv[k];
   }
   if (!(wn < 0.0))
     return SB_SUCCESS;
@@ -137,7 +140,6 @@ int sbi_engine_random_free_position(sb_engine *e, size_t k, double x[3],
 int sb_engine_outcome_reinsert(sb_engine *e, const sb_engine_pair *p,
                                double s)
 {
-  (void)s;
   if (!e || !p || p->j >= e->n)
     return sbi_error(SB_EINVAL, __func__, "bad argument");
   const size_t j = p->j;
@@ -153,6 +155,25 @@ int sb_engine_outcome_reinsert(sb_engine *e, const sb_engine_pair *p,
     e->u[3 * j + k] = u[k];
     e->disp[3 * j + k] = 0.0;
   }
+  if (!e->in_step || e->contact || (e->fluid == SB_FLUID_REST &&
+                                    !e->has_grav))
+    return SB_SUCCESS;  /* (Langevin: continued by a fresh exact step) */
+  /* In a flow (or settling) j moves on over the rest of the step with its
+   * mean velocity w at the new place, the fluid's plus the settling
+   * velocity (the mean of the exact step from an equilibrium velocity),
+   * as the particles around it do: standing still it would meet those
+   * streaming past (in a shear, at a relative velocity up to G L_y/2). */
+  double w[3] = {0.0, 0.0, 0.0};
+  if (e->fluid != SB_FLUID_REST && (st = sbi_engine_fluid_eval(e, 1, x, w)))
+    return st;
+  const double *vs = sbi_engine_settling(e, e->species[j]);
+  double tc = (p->t0 + s * p->dt - e->t) / e->par.dt;
+  tc = tc < 0.0 ? 0.0 : (tc > 1.0 ? 1.0 : tc);
+  const double rest = (1.0 - tc) * e->par.dt;
+  if ((st = sb_engine_outcome_path(e, j, x)))
+    return st;
+  for (int k = 0; k < e->par.dim; k++)
+    e->x[3 * j + k] += rest * (w[k] + (vs ? vs[k] : 0.0));
   return SB_SUCCESS;
 }
 

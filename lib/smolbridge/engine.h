@@ -828,13 +828,25 @@ int sb_engine_settling_velocity(const sb_engine *e, size_t sp, double v[3]);
  *  velocity is continuous across the y boundary.  A particle leaving
  *  through y = L_y (y = 0) re-enters at y - L_y (y + L_y) with x -= delta
  *  (+= delta) and u_x -= G L_y (+= G L_y); pair separations and relative
- *  chords across the boundary use the shifted image.  on = 1 requires
- *  SB_FLUID_SHEAR, y periodic, and a ballistic or overlap detector with
- *  the count outcome (other combinations return SB_EINVAL at the step).
- *  Off by default. */
+ *  chords across the boundary use the shifted image, for the first
+ *  detection of a step and for the re-detection after an outcome alike,
+ *  with every detector and every outcome: an elastic collision takes the
+ *  relative velocity to j's image, a merge conserves momentum in the
+ *  frame of i (where the cluster stays).  on = 1 requires SB_FLUID_SHEAR
+ *  and x and y periodic (otherwise SB_EINVAL here or at the step).  Off
+ *  by default. */
 int sb_engine_set_lees_edwards(sb_engine *e, int on);
 /** Current image shift delta in [0, L_x) (m); 0 when off. */
 double sb_engine_lees_edwards_offset(const sb_engine *e);
+/** Inside an outcome callback: the x velocity (m/s) of the image of p->j
+ *  that collides with p->i, relative to p->j itself: n G L_y with n = 1
+ *  (-1) when that image lies above (below) the box, 0 in the box or
+ *  without Lees-Edwards.  A custom outcome that uses both velocities
+ *  (sb_engine_velocities, each in its particle's own frame) takes j's as
+ *  u_j + du e_x.  Outside a step, from the current positions.  NaN and
+ *  SB_EINVAL for a bad argument. */
+double sb_engine_pair_image_velocity(const sb_engine *e,
+                                     const sb_engine_pair *p);
 
 /** Boundary of one face of the box. */
 typedef enum {
