@@ -200,7 +200,8 @@ static double mixture(const hit_par *h, const hit_time *T, int sf,
 
 #define NX_KMAX 15     /* highest (odd) order of the expansion */
 #define NX_NPAN 4      /* at most this many panels */
-#define NX_TOL (2.0 * EPS) /* truncation bound accepted (relative) */
+#define NX_TOL (2.0 * EPS)  /* truncation bound accepted (relative) */
+#define NX_RTOL (8.0 * EPS) /* rounding bound of the corrections accepted */
 
 /* G(L1) - rho G(L2), the numerator of (1), for a short range of L: on
  * panels of the range, a Taylor expansion about the panel's middle with a
@@ -279,7 +280,7 @@ static int nx_order(double r, double km, double lo, double dl, double *tail)
 
 /* One panel: ex(Lc) [Ft(-dl) - Ft(dl)] at the point pc (L = Lc) to order
  * K; *err its absolute error bound (the truncation bound `tail` relative
- * included).  Returns 0 if rounding could exceed NX_TOL relative. */
+ * included).  Returns 0 if rounding could exceed NX_RTOL relative. */
 static int nx_panel(const hit_par *h, const hit_time *T, const sbi_igpt *pc,
                     double dl, int K, double tail, int sf, double *val,
                     double *err)
@@ -297,67 +298,71 @@ static int nx_panel(const hit_par *h, const hit_time *T, const sbi_igpt *pc,
   double rA = sf ? rd : 5.0 * EPS, rB = sf ? 5.0 * EPS : rd;
   double tA = (T->w.hi / u) * km * SA, tB = z * SB, g0 = tA + tB;
   /* Taylor coefficients of g = P Q, Q = (r-1) kap SA + z SB, scaled by
-   * dl^k: P_k; s_i = j_i dl^i / i! at lo and b, so that the coefficients
-   * of M(lo -+ tau) and M(b + tau) are (+-1)^i s1_i and (-1)^i s2_i; each
-   * with its majorant (the same recurrences on |.|) */
+   * dl^k: P_k; s_i = j_i dl^i / i! at lo (a_i) and b (b_i), so that the
+   * coefficients of M(lo -+ tau) and M(b + tau) are (+-1)^i a_i and
+   * (-1)^i b_i.  Rounding: the same recurrences on |.| (with x = max(|lo|,
+   * b) for both points) give majorants of the coefficients; the error of
+   * the g_k (k >= 2) is below (6K + 16) EPS times the majorant of their
+   * sum, at most sum(Pm) sum(Qm) less the parts of order 0 and 1. */
   double rm1 = T->w.hi / u, ad = r * km * dl, rd2 = r * dl * dl;
-  double d2 = dl * dl;
-  double P[NX_KMAX], Pm[NX_KMAX], Q[NX_KMAX], Qm[NX_KMAX], SAp = 0.0;
-  double s1[NX_KMAX], s2[NX_KMAX], S1[NX_KMAX], S2[NX_KMAX];
-  double corr = 0.0, ecorr = 0.0;
-  for (int k = 0; k < K; k++) {
-    if (k == 0) {
-      P[0] = Pm[0] = 1.0;
-      s1[0] = S1[0] = mlo;
-      s2[0] = S2[0] = mb;
-    } else if (k == 1) {
-      P[1] = -ad;
-      Pm[1] = ad;
-      s1[1] = dl * (INV_RT2PI - lo * mlo);
-      S1[1] = dl * (INV_RT2PI + fabs(lo) * mlo);
-      s2[1] = dl * (INV_RT2PI - b * mb);
-      S2[1] = dl * (INV_RT2PI + b * mb);
-    } else {
+  double d2 = dl * dl, xm = fmax(fabs(lo), b);
+  double P[NX_KMAX], Q[NX_KMAX];
+  P[0] = 1.0;
+  P[1] = -ad;
+  double pm0 = 1.0, pm1 = ad, psum = 1.0 + ad;
+  for (int k = 2; k < K; k++) {
+    double pmk = (ad * pm1 + rd2 * pm0) / k;
+    P[k] = (-ad * P[k - 1] - rd2 * P[k - 2]) / k;
+    psum += pmk;
+    pm0 = pm1;
+    pm1 = pmk;
+  }
+  /* CDF: SA = M(lo - tau) + M(b + tau), SB = M(lo - tau) - M(b + tau);
+   * SF: SA = M(lo + tau) - M(b + tau), SB = M(lo + tau) + M(b + tau) */
+  double a0 = mlo, a1 = dl * (INV_RT2PI - lo * mlo);
+  double b0 = mb, b1 = dl * (INV_RT2PI - b * mb);
+  double m0 = sum, m1 = dl * (2.0 * INV_RT2PI + xm * sum);
+  double cq = rm1 * km + z, qm0 = cq * m0, qm1 = cq * m1 + rm1 * dl * m0;
+  double qsum = qm0 + qm1, SAp = SA;
+  Q[0] = g0;
+  for (int k = 1; k < K; k++) {
+    if (k >= 2) {
       double ik = 1.0 / k;
-      P[k] = (-ad * P[k - 1] - rd2 * P[k - 2]) * ik;
-      Pm[k] = (ad * Pm[k - 1] + rd2 * Pm[k - 2]) * ik;
-      s1[k] = (d2 * s1[k - 2] - lo * dl * s1[k - 1]) * ik;
-      S1[k] = (d2 * S1[k - 2] + fabs(lo) * dl * S1[k - 1]) * ik;
-      s2[k] = (d2 * s2[k - 2] - b * dl * s2[k - 1]) * ik;
-      S2[k] = (d2 * S2[k - 2] + b * dl * S2[k - 1]) * ik;
+      double a2 = (d2 * a0 - lo * dl * a1) * ik;
+      double b2 = (d2 * b0 - b * dl * b1) * ik;
+      double m2 = (d2 * m0 + xm * dl * m1) * ik;
+      qsum += cq * m2 + rm1 * dl * m1;
+      a0 = a1;
+      a1 = a2;
+      b0 = b1;
+      b1 = b2;
+      m0 = m1;
+      m1 = m2;
     }
-    /* CDF: SA = M(lo - tau) + M(b + tau), SB = M(lo - tau) - M(b + tau);
-     * SF: SA = M(lo + tau) - M(b + tau), SB = M(lo + tau) + M(b + tau) */
     double sg = (k & 1) ? -1.0 : 1.0, SAk, SBk;
     if (sf) {
-      SAk = sg * (s1[k] - s2[k]);
-      SBk = sg * (s1[k] + s2[k]);
+      SAk = sg * (a1 - b1);
+      SBk = sg * (a1 + b1);
     } else {
-      SAk = s1[k] + sg * s2[k];
-      SBk = s1[k] - sg * s2[k];
+      SAk = a1 + sg * b1;
+      SBk = a1 - sg * b1;
     }
-    if (k == 0) {
-      SAk = SA;
-      SBk = SB;
-    }
-    double Sm = S1[k] + S2[k];
     Q[k] = rm1 * (km * SAk + dl * SAp) + z * SBk;
-    Qm[k] = rm1 * (km * Sm + (k ? dl * (S1[k - 1] + S2[k - 1]) : 0.0)) +
-            z * Sm;
     SAp = SAk;
-    if (k == 0 || (k & 1))
-      continue;
-    /* the integral of tau^k over [-dl, dl]: 2 dl^(k+1)/(k+1) */
-    double gk = 0.0, gm = 0.0;
-    for (int i = 0; i <= k; i++) {
-      gk += P[k - i] * Q[i];
-      gm += Pm[k - i] * Qm[i];
-    }
-    corr += 2.0 * dl * gk / (k + 1);
-    ecorr += 2.0 * dl * (6.0 * k + 16.0) * EPS * gm / (k + 1);
   }
+  /* the integral of tau^k over [-dl, dl] is 2 dl^(k+1)/(k+1) */
+  double corr = 0.0;
+  for (int k = 2; k < K; k += 2) {
+    double gk = 0.0;
+    for (int i = 0; i <= k; i++)
+      gk += P[k - i] * Q[i];
+    corr += 2.0 * dl * gk / (k + 1);
+  }
+  double ecorr = K < 3 ? 0.0
+                       : 2.0 * dl * (6.0 * K + 16.0) * EPS *
+                             (psum * qsum - qm0 - qm1 - ad * qm0);
   double tot = 2.0 * dl * g0 + corr;
-  if (!(tot > 0.0) || ecorr > NX_TOL * tot)
+  if (!(tot > 0.0) || ecorr > NX_RTOL * tot)
     return 0;
   *val = pc->ex * tot;
   *err = pc->ex * (2.0 * dl * (tA * (rA + 3.0 * EPS) + tB * (rB + 3.0 * EPS) +
@@ -476,7 +481,24 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
     r.esf = (L * f * rel1 + al * g * rel2) / w + 4.0 * EPS * r.sf;
     return r;
   }
-  sbi_igpt p1 = point(h, T, h->L1);
+  /* rho G2/G1 >= rho (docs/bridge.md), so for rho > 0.95 (1) cancels:
+   * straight to the expansion of (2) about its mid L, which also tells
+   * which tail is the smaller one (c at the mid L: about the median); the
+   * point at L1 (for the density and its derivatives, which only steer the
+   * quantile) then follows from the mid one: kap and c smaller by dl */
+  int nx = h->rho > 0.95;
+  sbi_igpt p1, pm = {0.0, 0.0, 0.0, 0.0}, p2 = pm;
+  if (nx) {
+    pm = point(h, T, sbi_dd_add(h->L1, (sbi_dd){h->mn, 0.0}));
+    double dl = h->mn * T->u / T->q;
+    p1 = pm;
+    p1.kap -= dl;
+    p1.c -= dl;
+    p1.ex = exp(-0.5 * p1.c * p1.c);
+  } else {
+    p1 = point(h, T, h->L1);
+    p2 = point(h, T, h->L2);
+  }
   /* density: the BB one times hw / (1 - rho), hw = 1 - exp(-k/w),
    * k = 2ay/sigma2; d log(hw)/dy = (1 - hw)(k/w)(u/t)/hw as dw/dy = -wu/t */
   double kw = 2.0 * h->a * h->y / (h->sigma2 * T->w.hi);
@@ -487,15 +509,6 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
   double z1 = kw * (T->u / h->t), ph = (1.0 - hw) / hw;
   r.sfl = -0.5 - 0.5 * p1.c * (p1.kap + p1.eps) + ph * z1;
   r.sfl2 = ig_sfl2(&p1) + ph * z1 * (1.0 - z1 / hw);
-  /* rho G2/G1 >= rho (docs/bridge.md), so for rho > 0.95 (1) cancels:
-   * straight to the expansion of (2) about its mid L, which also tells
-   * which tail is the smaller one (c at the mid L: about the median) */
-  int nx = h->rho > 0.95;
-  sbi_igpt pm = {0.0, 0.0, 0.0, 0.0}, p2 = pm;
-  if (nx)
-    pm = point(h, T, sbi_dd_add(h->L1, (sbi_dd){h->mn, 0.0}));
-  else
-    p2 = point(h, T, h->L2);
   int first = nx ? pm.c > 0.0 : want == W_SF;
   /* the requested (or likely smaller) tail first; if it is the larger one
    * (> 1/2) the other is computed directly and this one is its
@@ -511,6 +524,7 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
     } else {
       if (nx) {
         nx = 0;
+        p1 = point(h, T, h->L1);
         p2 = point(h, T, h->L2);
       }
       double g1 = sf ? sbi_ig_sf(&p1, &rel1) : sbi_ig_cdf(&p1, &rel1);
@@ -525,7 +539,12 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
         err = (g1 * rel1 + g2 * rel2 + 2.0 * EPS * (g1 + g2)) / h->omr +
               2.0 * EPS * val;
       } else {
-        val = mixture(h, T, sf, &err);
+        /* (1) cancels although rho <= 0.95: the expansion if its bounds
+         * hold (on up to NX_NPAN panels), else the quadrature */
+        if (!(pm.kap > 0.0)) /* not yet computed */
+          pm = point(h, T, sbi_dd_add(h->L1, (sbi_dd){h->mn, 0.0}));
+        if (!narrow(h, T, &pm, sf, &val, &err))
+          val = mixture(h, T, sf, &err);
       }
     }
     if (sf) {
