@@ -16,7 +16,9 @@
  *               (alpha+L1)^2)/(2v)) P_L(u) dL / (1 - rho),          (2)
  *   P_L(u) = [L F_IG(u; L) + alpha F_sb(u; L)] / (alpha + L), the law of T
  *   given the bridge minimum m (L = a + y - 2m).  (1) is used unless it
- *   cancels (rho F2 / F1 > 0.95, error amplification > 39), then (2) by
+ *   cancels (rho F2 / F1 > 0.95, error amplification > 39; always when
+ *   rho > 0.95), then (2) by a Taylor expansion about the mid L with a
+ *   rigorous remainder bound (narrow), or where that bound fails by
  *   Gauss-Legendre quadrature (Gauss-Kronrod if needed).
  */
 #include <float.h>
@@ -678,8 +680,9 @@ typedef struct {
  *   g' = D1,  g'' = D1 (sfl -+ D1),  g''' = g'' (sfl -+ 2 D1) + D1 sfl2.
  * B3B: (1) is used while kprev (the solver's last dimensionless step) is
  * large, even where it cancels moderately (rho G2/G1 <= 1 - 1e-6: relative
- * noise <= ~1e-9, ample to steer); near the root the accurate form
- * (quadrature where (1) cancels) gives the final value. */
+ * noise <= ~1e-9, ample to steer); near the root the accurate form gives
+ * the final value.  For rho > 0.95 every value is the accurate expansion
+ * of (2) (about as cheap as (1)), unless its bounds fail. */
 static double hit_qfun(double y, double kprev, void *vc, double d[4])
 {
   hit_qctx *c = vc;
