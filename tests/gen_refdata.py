@@ -3,7 +3,8 @@
 
 Run with Debian's python3-mpmath:  /usr/bin/python3 tests/gen_refdata.py
 Writes tests/data/{mills,mdiff,passage_bm,passage_bes3,passage_quantile,
-bridge_cross,bridge_hit,bridge_quantile}.csv (see tests/data/README.md).
+bridge_cross,bridge_hit,bridge_quantile,bridge_narrow,
+bridge_narrow_quantile}.csv (see tests/data/README.md).
 
 Every value is computed in arbitrary precision (mp.dps = 60 unless said
 otherwise) from the closed forms written independently of the C code: the
@@ -354,6 +355,48 @@ def gen_bridge_quantile():
           ["kind", "p", "x", "y", "a", "sigma2", "t", "q"], rows)
 
 
+# Bessel-3 bridges whose mixture range is short (1 - rho small), where
+# bridge_hit.c expands (2) about its mid L: 1 - rho ~ 1e-2, 1e-4, 1e-6,
+# 1e-9 (a = (1 - rho)/(2(x + y)) with v = 1), both sides of the switch from
+# (1) at rho = 0.95 (rho = 0.95005, 0.94995), the benchmark's regime
+# (a = 0.01, v = 2), y < a, x -> a, a flat law (sigma2 = 1e3); u up to
+# 1 - 1e-4 of t, where the expansion needs panels or the quadrature.
+HIT_NARROW = [(1.5, 1.3, 1.7857142857142857e-3, 1.0, 1.0),
+              (1.5, 1.3, 1.7857142857142857e-5, 1.0, 1.0),
+              (1.5, 1.3, 1.7857142857142857e-7, 1.0, 1.0),
+              (1.5, 1.3, 1.7857142857142857e-10, 1.0, 1.0),
+              (1.5, 1.3, 9.18e-3, 1.0, 1.0),
+              (1.5, 1.3, 9.20e-3, 1.0, 1.0),
+              (1.4, 2.1, 0.01, 2.0, 1.0),
+              (1.2, 0.5e-4, 1e-4, 0.8, 1.0),
+              (1e-6 + 1e-9, 0.7, 1e-6, 1.0, 1.0),
+              (3.0, 2.0, 1e-3, 1e3, 0.5)]
+UNARROW = [1e-3, 0.05, 0.2, 0.4, 0.5, 0.6, 0.8, 0.9, 0.99, 0.999, 1 - 1e-4]
+PNARROW = [1e-9, 0.01, 0.3, 0.5, 0.7, 0.99, 1 - 1e-9]
+
+
+def gen_bridge_narrow():
+    rows = []
+    for (x, y, a, s2, t) in HIT_NARROW:
+        for f in UNARROW:
+            u = t * f
+            pdf, cdf, sf = hit_ref(1, u, x, y, a, s2, t)
+            rows.append((1, u, x, y, a, s2, t, pdf if pdf > TINY else -1,
+                         cdf if cdf > TINY else -1,
+                         sf if sf > TINY else -1))
+    write("bridge_narrow.csv",
+          ["kind", "u", "x", "y", "a", "sigma2", "t", "pdf", "cdf", "sf"],
+          rows)
+    rows = []
+    with mp.workdps(40):
+        for (x, y, a, s2, t) in HIT_NARROW:
+            for p in PNARROW:
+                rows.append((1, p, x, y, a, s2, t,
+                             hit_quantile(1, p, x, y, a, s2, t)))
+    write("bridge_narrow_quantile.csv",
+          ["kind", "p", "x", "y", "a", "sigma2", "t", "q"], rows)
+
+
 def check_closed_forms():
     """Closed forms vs mp.quad of the densities (aborts on mismatch)."""
     mp.mp.dps = 30
@@ -383,7 +426,8 @@ if __name__ == "__main__":
     os.makedirs(DATA, exist_ok=True)
     check_closed_forms()
     which = sys.argv[1:] or ["mills", "passage", "passage_quantile",
-                             "bridge_cross", "bridge_hit", "bridge_quantile"]
+                             "bridge_cross", "bridge_hit", "bridge_quantile",
+                             "bridge_narrow"]
     if "mills" in which:
         gen_mills()
     if "passage" in which:
@@ -396,3 +440,5 @@ if __name__ == "__main__":
         gen_bridge_hit()
     if "bridge_quantile" in which:
         gen_bridge_quantile()
+    if "bridge_narrow" in which:
+        gen_bridge_narrow()

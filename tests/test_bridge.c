@@ -187,10 +187,12 @@ END_TEST
 
 /* ------------------------------------------------ hitting times: values */
 
-START_TEST(test_hit_reference)
+/* pdf, cdf and sf of both bridges against a table of mpmath values
+ * (gen_refdata.py): relative error <= TOL_REF, err covering it */
+static void hit_table(const char *file)
 {
   sbt_table t;
-  sbt_table_load("bridge_hit.csv", &t);
+  sbt_table_load(file, &t);
   hit_e fn[2][3] = {{sb_bb_hit_pdf_e, sb_bb_hit_cdf_e, sb_bb_hit_sf_e},
                     {sb_bes3b_hit_pdf_e, sb_bes3b_hit_cdf_e,
                      sb_bes3b_hit_sf_e}};
@@ -215,10 +217,15 @@ START_TEST(test_hit_reference)
       n++;
     }
   }
-  printf("hitting times vs mpmath (%d values): bb pdf %.2g cdf %.2g sf %.2g;"
-         " bes3b pdf %.2g cdf %.2g sf %.2g\n", n, worst[0][0], worst[0][1],
-         worst[0][2], worst[1][0], worst[1][1], worst[1][2]);
+  printf("hitting times vs mpmath, %s (%d values): bb pdf %.2g cdf %.2g "
+         "sf %.2g; bes3b pdf %.2g cdf %.2g sf %.2g\n", file, n, worst[0][0],
+         worst[0][1], worst[0][2], worst[1][0], worst[1][1], worst[1][2]);
   sbt_table_free(&t);
+}
+
+START_TEST(test_hit_reference)
+{
+  hit_table("bridge_hit.csv");
 }
 END_TEST
 
@@ -377,11 +384,26 @@ END_TEST
 
 /* ----------------------------------------------------------- quantiles */
 
-START_TEST(test_quantile_reference)
+/* g(u) = cdf(u) - p (or its complement form) for the best-double check */
+static double hit_gap(int b3, double u, double p, const double *a6)
+{
+  double x = a6[0], y = a6[1], a = a6[2], s2 = a6[3], t = a6[4];
+  if (p <= 0.5)
+    return (b3 ? sb_bes3b_hit_cdf(u, x, y, a, s2, t)
+               : sb_bb_hit_cdf(u, x, y, a, s2, t)) - p;
+  return (1.0 - p) - (b3 ? sb_bes3b_hit_sf(u, x, y, a, s2, t)
+                         : sb_bb_hit_sf(u, x, y, a, s2, t));
+}
+
+/* quantiles against a table of mpmath roots: full double precision (a
+ * few ulp) and err covering it; with `roundtrip`, also |cdf(q) - p| <=
+ * 1e-13 (cdf(q) as 1 - sf(q) for p > 1/2) */
+static void quantile_table(const char *file, int roundtrip)
 {
   sbt_table t;
-  sbt_table_load("bridge_quantile.csv", &t);
-  double worst[2] = {0, 0};
+  sbt_table_load(file, &t);
+  double worst[2] = {0, 0}, gap = 0.0;
+  int nbest = 0;
   for (int i = 0; i < t.nrow; i++) {
     int k = (int)sbt_at(&t, i, 0);
     double p = sbt_at(&t, i, 1), x = sbt_at(&t, i, 2), y = sbt_at(&t, i, 3),
@@ -399,10 +421,41 @@ START_TEST(test_quantile_reference)
                   "%s = %.17g want %.17g", what, r.val, q);
     ck_assert_result(r, q, TOL_REF, what);
     worst[k] = fmax(worst[k], sbt_reldiff(r.val, q));
+    if (roundtrip) {
+      /* where one ulp of q moves the cdf by more than 1e-13 (a law
+       * concentrated near t), q must be the best double instead */
+      const double a6[5] = {x, y, a, s2, tt};
+      double g = fabs(hit_gap(k, r.val, p, a6));
+      if (g > 1e-13) {
+        double gl = fabs(hit_gap(k, nextafter(r.val, 0.0), p, a6));
+        double gh = fabs(hit_gap(k, nextafter(r.val, INFINITY), p, a6));
+        ck_assert_msg(g <= gl && g <= gh, "%s: |cdf(q) - p| = %.3g, at the "
+                      "neighbours %.3g %.3g", what, g, gl, gh);
+        nbest++;
+      } else
+        gap = fmax(gap, g);
+    }
   }
-  printf("hit quantiles vs mpmath: max rel error bb %.2g bes3b %.2g\n",
-         worst[0], worst[1]);
+  printf("hit quantiles vs mpmath, %s: max rel error bb %.2g bes3b %.2g",
+         file, worst[0], worst[1]);
+  if (roundtrip)
+    printf("; max |cdf(q) - p| = %.2g (%d best doubles instead)", gap, nbest);
+  printf("\n");
   sbt_table_free(&t);
+}
+
+START_TEST(test_quantile_reference)
+{
+  quantile_table("bridge_quantile.csv", 0);
+}
+END_TEST
+
+/* Short mixture ranges (1 - rho from 5e-2 to 1e-9, u up to t(1 - 1e-4)),
+ * where bridge_hit.c expands the mixture (2) about its mid L */
+START_TEST(test_narrow_reference)
+{
+  hit_table("bridge_narrow.csv");
+  quantile_table("bridge_narrow_quantile.csv", 1);
 }
 END_TEST
 
@@ -448,17 +501,6 @@ START_TEST(test_quantile_roundtrip)
   printf("hit quantile round trip: max |cdf(q) - p| = %.2g\n", worst);
 }
 END_TEST
-
-/* g(u) = cdf(u) - p (or its complement form) for the best-double check */
-static double hit_gap(int b3, double u, double p, const double *a6)
-{
-  double x = a6[0], y = a6[1], a = a6[2], s2 = a6[3], t = a6[4];
-  if (p <= 0.5)
-    return (b3 ? sb_bes3b_hit_cdf(u, x, y, a, s2, t)
-               : sb_bb_hit_cdf(u, x, y, a, s2, t)) - p;
-  return (1.0 - p) - (b3 ? sb_bes3b_hit_sf(u, x, y, a, s2, t)
-                         : sb_bb_hit_sf(u, x, y, a, s2, t));
-}
 
 START_TEST(test_quantile_best_double)
 {
@@ -641,6 +683,7 @@ static Suite *bridge_suite(void)
   tcase_add_test(tc, test_hit_vs_quadrature);
   tcase_add_test(tc, test_thesis_versions);
   tcase_add_test(tc, test_quantile_reference);
+  tcase_add_test(tc, test_narrow_reference);
   tcase_add_test(tc, test_quantile_roundtrip);
   tcase_add_test(tc, test_quantile_best_double);
   tcase_add_test(tc, test_hit_special);

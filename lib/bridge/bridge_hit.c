@@ -16,7 +16,9 @@
  *               (alpha+L1)^2)/(2v)) P_L(u) dL / (1 - rho),          (2)
  *   P_L(u) = [L F_IG(u; L) + alpha F_sb(u; L)] / (alpha + L), the law of T
  *   given the bridge minimum m (L = a + y - 2m).  (1) is used unless it
- *   cancels (rho F2 / F1 > 0.95, error amplification > 39), then (2) by
+ *   cancels (rho F2 / F1 > 0.95, error amplification > 39; always when
+ *   rho > 0.95), then (2) by a Taylor expansion about the mid L with a
+ *   rigorous remainder bound (narrow), or where that bound fails by
  *   Gauss-Legendre quadrature (Gauss-Kronrod if needed).
  */
 #include <float.h>
@@ -46,6 +48,7 @@ typedef struct {
   double rho, omr; /* B3B: rho and 1 - rho */
   double rmax;     /* B3B: use (1) while rho G2 <= rmax G1 (0.95) */
   double mn;       /* B3B: min(a, y); 0 means the single law P_a */
+  double om1;      /* B3B: exp(-mn (2(alpha + L1) + mn)/(2v)), see narrow */
 } hit_par;
 
 /* One evaluation time u in (0, t), with w = t - u. */
@@ -104,6 +107,7 @@ static int hit_setup(const char *fn, int b3, double x, double y, double a,
       h->mn = 0.0; /* min(a, y) negligible (k underflows): the y -> 0 law */
     h->rho = exp(-k);
     h->omr = -expm1(-k);
+    h->om1 = exp(-h->mn * (2.0 * (h->al.hi + h->L1.hi) + h->mn) / (2.0 * h->v));
   }
   return SB_SUCCESS;
 }
@@ -194,6 +198,219 @@ static double mixture(const hit_par *h, const hit_time *T, int sf,
   return tot / h->omr;
 }
 
+/* ------------------------------- B3B: (2) expanded about its midpoint */
+
+#define NX_KMAX 15     /* highest (odd) order of the expansion */
+#define NX_NPAN 4      /* at most this many panels */
+#define NX_TOL (2.0 * EPS)  /* truncation bound accepted (relative) */
+#define NX_RTOL (8.0 * EPS) /* rounding bound of the corrections accepted */
+
+/* G(L1) - rho G(L2), the numerator of (1), for a short range of L: on
+ * panels of the range, a Taylor expansion about the panel's middle with a
+ * rigorous bound of its truncation error (the caller falls back to the
+ * quadrature when no order up to NX_KMAX on up to NX_NPAN panels meets
+ * NX_TOL).
+ *
+ * In kap = L u/q (z = eps = alpha w/q, r = t/u) the IG laws are
+ *   F(u; L) = ex(L) H(kap),  H = M(z - kap) + M(z + kap)      (CDF),
+ *   SF(u; L) = ex(L) H(kap), H = M(kap - z) - M(kap + z)      (SF),
+ * and exp(-(alpha+L)^2/(2v)) ex(L) = exp(-alpha^2/(2 sigma2 u)) exp(-r
+ * kap^2/2) (the exponents add up to alpha^2/(2 sigma2 u) + L^2/(2 sigma2
+ * w)).  So the panel l = L - L1 in [lc - hw, lc + hw], with kap = km + tau,
+ * km at Lc = L1 + lc, tau in [-dl, dl], dl = hw u/q, contributes
+ *   ex(Lc) om [Ft(-dl) - Ft(dl)],  om = exp(-lc (2(alpha + L1) + lc)/(2v)),
+ *   Ft(tau) = P(tau) H(km + tau),  P(tau) = exp(-r km tau - r tau^2/2).
+ * As M' = xM - 1/sqrt(2 pi), g = -Ft' = P(tau) [(r-1) kap SA + z SB] with
+ * SA = M(z-kap) + M(z+kap), SB = M(z-kap) - M(z+kap) for the CDF (for the
+ * SF the two swapped, of M(kap-z), M(kap+z)): g(0) > 0 is the integrand of
+ * (2) at Lc.  Ft(-dl) - Ft(dl) = 2 dl g(0) - 2 sum_{k odd >= 3} f_k dl^k,
+ * f_k = sum_i p_{k-i} h_i (Leibniz), p_j the Taylor coefficients of P
+ * ((j+1) p_{j+1} = -r km p_j - r p_{j-1}) and h_i those of H, from
+ * M^(i)(x) = (-1)^i j_i(x), j_0 = M, j_1 = 1/sqrt(2 pi) - x M,
+ * j_{k+1} = k j_{k-1} - x j_k (by parts in j_k = int_0^inf s^k phi(s)
+ * e^{-xs} ds).  The leading term takes SB (resp. SA) from sbi_mills_diff:
+ * no cancellation.  The corrections are small (relative size about
+ * (r km dl)^2 ~ (hw L/(sigma2 w))^2); their rounding errors are bounded by
+ * running the recurrences on absolute values (the forward recurrence
+ * loses accuracy for x > 0, but only relative to that majorant).
+ *
+ * Truncation (Cauchy's estimate; Ft is entire): on |tau| = R,
+ * |P| <= exp(r R (km + R/2)); from M(x) = int_0^inf phi(s) e^{-xs} ds,
+ * |M(x + iy)| <= M(x), |cosh(ks)| <= e^{|Re k| s}, |sinh(ks)| <= sinh(|k|
+ * s) and sinh(a + b) <= (1 + b/a) e^b sinh(a), so |(r-1) kap SA + z SB| <=
+ * 2 (1 + R/km) E[e^{R S}] g(0), S with a density proportional to
+ * exp(-(s + lo)^2/2) times sinh(.) or 1 on s > 0 (lo = -c for the CDF, c
+ * for the SF).  Both are strongly log-concave (V'' >= 1), hence E[e^{R S}]
+ * <= exp(R E[S] + R^2/2) (Bakry & Emery 1985; Ledoux 2001, ch. 5), and by
+ * likelihood ratios E[S] <= the mean of s exp(-(s + lo)^2/2), at most its
+ * mode (sqrt(lo^2 + 4) - lo)/2 plus sqrt 3 (a unimodal law with variance
+ * <= 1: Johnson & Rogers 1951; Brascamp & Lieb 1976).  So the Taylor
+ * coefficients of g satisfy |g_k| <= Mg/R^k, Mg = 2 (1 + R/km) e^{E(R)}
+ * g(0), E(R) = r R (km + R/2) + R mbar + R^2/2, and the terms left out
+ * after order K sum to at most 2 dl g(0) C eta^(K+1)/(K+2), eta = dl/R,
+ * C = 2 (1 + R/km) e^{E(R)}/(1 - eta^2). */
+
+/* The order K (odd, <= NX_KMAX) that makes the truncation bound of a panel
+ * <= NX_TOL relative (*tail: the bound), or 0 if none does.  R minimises
+ * the bound for K = 9 (all K then follow from one exponential). */
+static int nx_order(double r, double km, double lo, double dl, double *tail)
+{
+  double mbar = 0.5 * (sqrt(lo * lo + 4.0) - lo) + 1.7320508075688772935;
+  double A2 = 2.0 * (r + 1.0), B = r * km + mbar;
+  double R = (-B + sqrt(B * B + 20.0 * A2)) / A2, eta = dl / R;
+  if (!(eta < 0.5) || !(km > 0.0))
+    return 0;
+  double E = r * R * (km + 0.5 * R) + R * mbar + 0.5 * R * R;
+  double lc = log(2.0 * (1.0 + R / km) / (1.0 - eta * eta)) + E;
+  double le = log(eta), p = eta;
+  /* smallest odd K with lc + (K+1) le - log(K+2) <= log NX_TOL: start from
+   * the estimate without the 1/(K+2), then step down while it holds */
+  int K = (int)ceil((log(NX_TOL) - lc) / le) - 1;
+  K = K < 1 ? 1 : K | 1;
+  if (K > NX_KMAX + 2)
+    return 0;
+  for (int i = 0; i < K; i++)
+    p *= eta;
+  double cst = 2.0 * (1.0 + R / km) * exp(E) / (1.0 - eta * eta);
+  while (K >= 3 && cst * p / (K * eta * eta) <= NX_TOL) {
+    K -= 2;
+    p /= eta * eta;
+  }
+  *tail = cst * p / (K + 2);
+  return *tail <= NX_TOL && K <= NX_KMAX ? K : 0;
+}
+
+/* One panel: ex(Lc) [Ft(-dl) - Ft(dl)] at the point pc (L = Lc) to order
+ * K; *err its absolute error bound (the truncation bound `tail` relative
+ * included).  Returns 0 if rounding could exceed NX_RTOL relative. */
+static int nx_panel(const hit_par *h, const hit_time *T, const sbi_igpt *pc,
+                    double dl, int K, double tail, int sf, double *val,
+                    double *err)
+{
+  double u = T->u, z = pc->eps, km = pc->kap, c = pc->c;
+  double lo = sf ? c : -c, b = km + z;
+  double mlo = sbi_mills(lo), mb = sbi_mills(b);
+  if (!isfinite(mlo) || !(pc->ex > 0.0))
+    return 0;
+  double rd;
+  double dif = sbi_mills_diff_m(sf ? km : z, sf ? z : km, mlo, mb, &rd);
+  double sum = mlo + mb;
+  double r = h->t / u;
+  double SA = sf ? dif : sum, SB = sf ? sum : dif;
+  double rA = sf ? rd : 5.0 * EPS, rB = sf ? 5.0 * EPS : rd;
+  double tA = (T->w.hi / u) * km * SA, tB = z * SB, g0 = tA + tB;
+  /* Taylor coefficients of g = P Q, Q = (r-1) kap SA + z SB, scaled by
+   * dl^k: P_k; s_i = j_i dl^i / i! at lo (a_i) and b (b_i), so that the
+   * coefficients of M(lo -+ tau) and M(b + tau) are (+-1)^i a_i and
+   * (-1)^i b_i.  Rounding: the same recurrences on |.| (with x = max(|lo|,
+   * b) for both points) give majorants of the coefficients; the error of
+   * the g_k (k >= 2) is below (6K + 16) EPS times the majorant of their
+   * sum, at most sum(Pm) sum(Qm) less the parts of order 0 and 1. */
+  double rm1 = T->w.hi / u, ad = r * km * dl, rd2 = r * dl * dl;
+  double d2 = dl * dl, xm = fmax(fabs(lo), b);
+  double P[NX_KMAX], Q[NX_KMAX];
+  P[0] = 1.0;
+  P[1] = -ad;
+  double pm0 = 1.0, pm1 = ad, psum = 1.0 + ad;
+  for (int k = 2; k < K; k++) {
+    double pmk = (ad * pm1 + rd2 * pm0) / k;
+    P[k] = (-ad * P[k - 1] - rd2 * P[k - 2]) / k;
+    psum += pmk;
+    pm0 = pm1;
+    pm1 = pmk;
+  }
+  /* CDF: SA = M(lo - tau) + M(b + tau), SB = M(lo - tau) - M(b + tau);
+   * SF: SA = M(lo + tau) - M(b + tau), SB = M(lo + tau) + M(b + tau) */
+  double a0 = mlo, a1 = dl * (INV_RT2PI - lo * mlo);
+  double b0 = mb, b1 = dl * (INV_RT2PI - b * mb);
+  double m0 = sum, m1 = dl * (2.0 * INV_RT2PI + xm * sum);
+  double cq = rm1 * km + z, qm0 = cq * m0, qm1 = cq * m1 + rm1 * dl * m0;
+  double qsum = qm0 + qm1, SAp = SA;
+  Q[0] = g0;
+  for (int k = 1; k < K; k++) {
+    if (k >= 2) {
+      double ik = 1.0 / k;
+      double a2 = (d2 * a0 - lo * dl * a1) * ik;
+      double b2 = (d2 * b0 - b * dl * b1) * ik;
+      double m2 = (d2 * m0 + xm * dl * m1) * ik;
+      qsum += cq * m2 + rm1 * dl * m1;
+      a0 = a1;
+      a1 = a2;
+      b0 = b1;
+      b1 = b2;
+      m0 = m1;
+      m1 = m2;
+    }
+    double sg = (k & 1) ? -1.0 : 1.0, SAk, SBk;
+    if (sf) {
+      SAk = sg * (a1 - b1);
+      SBk = sg * (a1 + b1);
+    } else {
+      SAk = a1 + sg * b1;
+      SBk = a1 - sg * b1;
+    }
+    Q[k] = rm1 * (km * SAk + dl * SAp) + z * SBk;
+    SAp = SAk;
+  }
+  /* the integral of tau^k over [-dl, dl] is 2 dl^(k+1)/(k+1) */
+  double corr = 0.0;
+  for (int k = 2; k < K; k += 2) {
+    double gk = 0.0;
+    for (int i = 0; i <= k; i++)
+      gk += P[k - i] * Q[i];
+    corr += 2.0 * dl * gk / (k + 1);
+  }
+  double ecorr = K < 3 ? 0.0
+                       : 2.0 * dl * (6.0 * K + 16.0) * EPS *
+                             (psum * qsum - qm0 - qm1 - ad * qm0);
+  double tot = 2.0 * dl * g0 + corr;
+  if (!(tot > 0.0) || ecorr > NX_RTOL * tot)
+    return 0;
+  *val = pc->ex * tot;
+  *err = pc->ex * (2.0 * dl * (tA * (rA + 3.0 * EPS) + tB * (rB + 3.0 * EPS) +
+                               tail * g0) + ecorr) + 4.0 * EPS * *val;
+  return 1;
+}
+
+/* (2) by the expansion: 1 and the probability in *val (*err: its absolute
+ * error bound), or 0 if the bounds do not hold.  pm: the point at the mid
+ * L (one panel). */
+static int narrow(const hit_par *h, const hit_time *T, const sbi_igpt *pm,
+                  int sf, double *val, double *err)
+{
+  double r = h->t / T->u, uq = T->u / T->q, A = h->al.hi + h->L1.hi;
+  for (int n = 1; n <= NX_NPAN; n *= 2) {
+    double hw = h->mn / n, dl = hw * uq;
+    sbi_igpt pc[NX_NPAN];
+    int K[NX_NPAN];
+    double tail[NX_NPAN];
+    int ok = 1;
+    for (int j = 0; j < n && ok; j++) {
+      pc[j] = n == 1 ? *pm
+                     : point(h, T, sbi_dd_add(h->L1, (sbi_dd){(2 * j + 1) *
+                                                                  hw, 0.0}));
+      K[j] = nx_order(r, pc[j].kap, sf ? pc[j].c : -pc[j].c, dl, &tail[j]);
+      ok = K[j] > 0;
+    }
+    if (!ok)
+      continue;
+    double tot = 0.0, e = 0.0;
+    for (int j = 0; j < n && ok; j++) {
+      double vj = 0.0, ej = 0.0, lc = (2 * j + 1) * hw;
+      ok = nx_panel(h, T, &pc[j], dl, K[j], tail[j], sf, &vj, &ej);
+      double om = n == 1 ? h->om1 : exp(-lc * (2.0 * A + lc) / (2.0 * h->v));
+      tot += om * vj;
+      e += om * ej;
+    }
+    if (!ok)
+      return 0; /* rounding, not truncation: more panels would not help */
+    *val = tot / h->omr;
+    *err = (e + 4.0 * EPS * tot) / h->omr;
+    return 1;
+  }
+  return 0;
+}
+
 /* ---------------------------------------------------- core evaluation */
 
 /* cdf and sf of the conditioned law at T (0 < u < t), both computed
@@ -266,7 +483,24 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
     r.esf = (L * f * rel1 + al * g * rel2) / w + 4.0 * EPS * r.sf;
     return r;
   }
-  sbi_igpt p1 = point(h, T, h->L1), p2 = point(h, T, h->L2);
+  /* rho G2/G1 >= rho (docs/bridge.md), so for rho > 0.95 (1) cancels:
+   * straight to the expansion of (2) about its mid L, which also tells
+   * which tail is the smaller one (c at the mid L: about the median); the
+   * point at L1 (for the density and its derivatives, which only steer the
+   * quantile) then follows from the mid one: kap and c smaller by dl */
+  int nx = h->rho > 0.95;
+  sbi_igpt p1, pm = {0.0, 0.0, 0.0, 0.0}, p2 = pm;
+  if (nx) {
+    pm = point(h, T, sbi_dd_add(h->L1, (sbi_dd){h->mn, 0.0}));
+    double dl = h->mn * T->u / T->q;
+    p1 = pm;
+    p1.kap -= dl;
+    p1.c -= dl;
+    p1.ex = exp(-0.5 * p1.c * p1.c);
+  } else {
+    p1 = point(h, T, h->L1);
+    p2 = point(h, T, h->L2);
+  }
   /* density: the BB one times hw / (1 - rho), hw = 1 - exp(-k/w),
    * k = 2ay/sigma2; d log(hw)/dy = (1 - hw)(k/w)(u/t)/hw as dw/dy = -wu/t */
   double kw = 2.0 * h->a * h->y / (h->sigma2 * T->w.hi);
@@ -277,24 +511,43 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
   double z1 = kw * (T->u / h->t), ph = (1.0 - hw) / hw;
   r.sfl = -0.5 - 0.5 * p1.c * (p1.kap + p1.eps) + ph * z1;
   r.sfl2 = ig_sfl2(&p1) + ph * z1 * (1.0 - z1 / hw);
-  /* the requested tail first; if it is the larger one (> 1/2) the other is
-   * computed directly and this one is its complement */
+  int first = nx ? pm.c > 0.0 : want == W_SF;
+  /* the requested (or likely smaller) tail first; if it is the larger one
+   * (> 1/2) the other is computed directly and this one is its
+   * complement */
   for (int pass = 0; pass < 2; pass++) {
-    int sf = (want == W_SF) != (pass == 1);
-    double g1 = sf ? sbi_ig_sf(&p1, &rel1) : sbi_ig_cdf(&p1, &rel1);
-    double g2 = sf ? sbi_ig_sf(&p2, &rel2) : sbi_ig_cdf(&p2, &rel2);
-    g2 *= h->rho;
-    double num = g1 - g2;
-    if (pass == 0 && num > 0.5 * h->omr)
-      continue; /* the larger tail: compute the other one */
+    int sf = first != (pass == 1);
     double val, err;
-    r.rused = g1 > 0.0 ? g2 / g1 : 0.0;
-    if (g2 <= h->rmax * g1) {
-      val = num / h->omr;
-      err = (g1 * rel1 + g2 * rel2 + 2.0 * EPS * (g1 + g2)) / h->omr +
-            2.0 * EPS * val;
+    int got = nx && narrow(h, T, &pm, sf, &val, &err);
+    if (got) {
+      r.rused = 0.0; /* accurate: not (1) */
+      if (pass == 0 && val > 0.5)
+        continue;
     } else {
-      val = mixture(h, T, sf, &err);
+      if (nx) {
+        nx = 0;
+        p1 = point(h, T, h->L1);
+        p2 = point(h, T, h->L2);
+      }
+      double g1 = sf ? sbi_ig_sf(&p1, &rel1) : sbi_ig_cdf(&p1, &rel1);
+      double g2 = sf ? sbi_ig_sf(&p2, &rel2) : sbi_ig_cdf(&p2, &rel2);
+      g2 *= h->rho;
+      double num = g1 - g2;
+      if (pass == 0 && num > 0.5 * h->omr)
+        continue; /* the larger tail: compute the other one */
+      r.rused = g1 > 0.0 ? g2 / g1 : 0.0;
+      if (g2 <= h->rmax * g1) {
+        val = num / h->omr;
+        err = (g1 * rel1 + g2 * rel2 + 2.0 * EPS * (g1 + g2)) / h->omr +
+              2.0 * EPS * val;
+      } else {
+        /* (1) cancels although rho <= 0.95: the expansion if its bounds
+         * hold (on up to NX_NPAN panels), else the quadrature */
+        if (!(pm.kap > 0.0)) /* not yet computed */
+          pm = point(h, T, sbi_dd_add(h->L1, (sbi_dd){h->mn, 0.0}));
+        if (!narrow(h, T, &pm, sf, &val, &err))
+          val = mixture(h, T, sf, &err);
+      }
     }
     if (sf) {
       r.sf = val;
@@ -427,8 +680,9 @@ typedef struct {
  *   g' = D1,  g'' = D1 (sfl -+ D1),  g''' = g'' (sfl -+ 2 D1) + D1 sfl2.
  * B3B: (1) is used while kprev (the solver's last dimensionless step) is
  * large, even where it cancels moderately (rho G2/G1 <= 1 - 1e-6: relative
- * noise <= ~1e-9, ample to steer); near the root the accurate form
- * (quadrature where (1) cancels) gives the final value. */
+ * noise <= ~1e-9, ample to steer); near the root the accurate form gives
+ * the final value.  For rho > 0.95 every value is the accurate expansion
+ * of (2) (about as cheap as (1)), unless its bounds fail. */
 static double hit_qfun(double y, double kprev, void *vc, double d[4])
 {
   hit_qctx *c = vc;

@@ -72,7 +72,17 @@ double sbi_mills_diff(double z, double h, double lo, double *rel_err)
       *rel_err = 0.0;
     return 0.0;
   }
-  double mlo = sbi_mills(lo), mhi = sbi_mills(z + h);
+  return sbi_mills_diff_m(z, h, sbi_mills(lo), sbi_mills(z + h), rel_err);
+}
+
+double sbi_mills_diff_m(double z, double h, double mlo, double mhi,
+                        double *rel_err)
+{
+  if (h <= 0.0) {
+    if (rel_err)
+      *rel_err = 0.0;
+    return 0.0;
+  }
   if (mhi <= 0.8 * mlo) {
     /* no serious cancellation: each M is within 4 ulp */
     if (rel_err)
@@ -273,7 +283,7 @@ double sbi_ig_mix(const sbi_igpt *p, double wl, double wa, int upper,
   } else {
     /* M(lo) - M(b) with midpoint z and half-width h */
     double z = upper ? p->kap : p->eps, h = upper ? p->eps : p->kap;
-    dif = sbi_mills_diff(z, h, lo, &rd);
+    dif = sbi_mills_diff_m(z, h, mlo, mb, &rd);
   }
   double sum = mlo + mb;
   /* upper: wl (M(c) - Mb) + wa (M(c) + Mb); lower: wl sum + wa dif */

@@ -130,6 +130,10 @@ double sbi_mills(double z);
  * Relative error <= ~20 ulp in both branches.  *rel_err (if not NULL)
  * receives a bound on the relative error. */
 double sbi_mills_diff(double z, double h, double lo, double *rel_err);
+/* The same with mlo = sbi_mills(z - h) and mhi = sbi_mills(z + h) already
+ * computed by the caller (they are its first step). */
+double sbi_mills_diff_m(double z, double h, double mlo, double mhi,
+                        double *rel_err);
 
 /* --------------------------------------------- inverse-Gaussian kernel */
 
