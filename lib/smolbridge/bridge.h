@@ -54,7 +54,9 @@
  * a = 0 gives T_a = t.  cdf(u) is 0 for u < 0 and 1 for u > t (not an error).
  * Accuracy: pdf, cdf, sf relative error <= 1e-12 (tested against mpmath;
  * typically a few 1e-15), quantile to full double precision with
- * |cdf(q) - p| <= 1e-13; samplers exact in distribution:
+ * |cdf(q) - p| <= 1e-13, or, where one ulp of q moves the cdf by more
+ * than that (a law concentrated near t), q the best double; samplers
+ * exact in distribution:
  *   BB:  Michael-Schucany-Haas inverse-Gaussian draw of S, then T = St/(t+S);
  *   B3B: draw the bridge minimum m from its law restricted to (0, a]
  *        (closed-form inversion), then S from the mixture
