@@ -46,8 +46,10 @@
  *        difference cancels (rho G(u; y+a) > 0.95 G(u; |beta|), i.e.
  *        1 - rho small:
  *        a (x+y) << v) the CDF is computed from the equivalent positive
- *        mixture over the bridge minimum by 3- and 4-point Gauss-Legendre
- *        quadrature (slower: about 1 us per CDF).
+ *        mixture over the bridge minimum, by a Taylor expansion about its
+ *        middle with a proven truncation and rounding bound, or by 3- and
+ *        4-point Gauss-Legendre quadrature where the bound fails
+ *        (docs/bridge.md §3).
  * Special cases: x <= a: T_a = 0 (cdf = 1 for u >= 0, pdf 0, quantile 0,
  * sample 0).  y <= a < x: the bridge surely hits, same formulas.  For B3B
  * a = 0 with x, y > 0 is SB_EDOM (the bridge never hits 0); y = 0 < x with
