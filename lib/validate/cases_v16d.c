@@ -123,7 +123,7 @@ static int case_shear_diffusive(const sbv_ctx *ctx, sbv_report *rep)
   const double Dp = SB_BOLTZMANN * T * tau / mass;
   const double R = d, D = 2.0 * Dp, tD = R * R / D;
   const size_t N = ctx->full ? 12000 : 3000;
-  const double hits = ctx->full ? 20000.0 : 2000.0;
+  const double hits = ctx->full ? 40000.0 : 2000.0;
   sbv_note(rep, "Brownian + simple shear, diffusive regime: d = 1 um "
            "spheres (rho_p = 1000 kg/m^3, water, 293.15 K; relative D = "
            "%.4g m^2/s, R = d, t_D = R^2/D = %.3g s), %zu particles, dt = "
