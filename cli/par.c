@@ -1,6 +1,7 @@
 /* par.c — MPI for the smolbridge command (par.h); without SB_HAVE_MPI (set
  * by Makefile.am for ./configure --with-mpi) a single process, and a clear
  * error when it was started as several. */
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -107,6 +108,79 @@ int sbc_par_max_int(int v)
   }
 #endif
   return v;
+}
+
+double sbc_par_min_double(double v)
+{
+#ifdef SB_HAVE_MPI
+  if (g_mpi && g_size > 1) {
+    double m = v;
+    MPI_Allreduce(&v, &m, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+    return m;
+  }
+#endif
+  return v;
+}
+
+int sbc_par_exchange(double *const *send, const size_t *nsend,
+                     double **recv, size_t *nrecv)
+{
+  for (int q = 0; q < g_size; q++) {
+    recv[q] = NULL;
+    nrecv[q] = 0;
+  }
+  if (g_size == 1 || !g_mpi)
+    return 0;
+#ifdef SB_HAVE_MPI
+  /* counts first (64-bit), then the messages point to point; a failed
+   * allocation is agreed on before anything is sent, so that no rank
+   * waits for a message that cannot be received */
+  const int P = g_size;
+  unsigned long long *sc = malloc(2 * (size_t)P * sizeof *sc);
+  MPI_Request *rq = malloc(2 * (size_t)P * sizeof *rq);
+  int ok = -sbc_par_max_int(-(sc && rq)); /* every rank can take part */
+  ok = ok && sc && rq;
+  if (ok) {
+    unsigned long long *rc = sc + P;
+    for (int q = 0; q < P; q++)
+      sc[q] = q == g_rank ? 0 : (unsigned long long)nsend[q];
+    MPI_Alltoall(sc, 1, MPI_UNSIGNED_LONG_LONG, rc, 1,
+                 MPI_UNSIGNED_LONG_LONG, MPI_COMM_WORLD);
+    for (int q = 0; q < P; q++) {
+      if (sc[q] > INT_MAX || rc[q] > INT_MAX)
+        ok = 0;
+      if (ok && rc[q] && !(recv[q] = malloc((size_t)rc[q] * sizeof(double))))
+        ok = 0;
+      nrecv[q] = (size_t)rc[q];
+    }
+  }
+  ok = -sbc_par_max_int(-ok);  /* the smallest: 0 if any rank failed */
+  if (ok) {
+    int n = 0;
+    for (int q = 0; q < P; q++)
+      if (nrecv[q])
+        MPI_Irecv(recv[q], (int)nrecv[q], MPI_DOUBLE, q, 11, MPI_COMM_WORLD,
+                  &rq[n++]);
+    for (int q = 0; q < P; q++)
+      if (sc[q])
+        MPI_Isend(send[q], (int)sc[q], MPI_DOUBLE, q, 11, MPI_COMM_WORLD,
+                  &rq[n++]);
+    MPI_Waitall(n, rq, MPI_STATUSES_IGNORE);
+  } else {
+    for (int q = 0; q < P; q++) {
+      free(recv[q]);
+      recv[q] = NULL;
+      nrecv[q] = 0;
+    }
+  }
+  free(sc);
+  free(rq);
+  return ok ? 0 : -1;
+#else
+  (void)send;
+  (void)nsend;
+  return -1;
+#endif
 }
 
 int sbc_par_gather(const void *buf, size_t len, unsigned char **all,

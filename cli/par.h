@@ -31,4 +31,16 @@ int sbc_par_gather(const void *buf, size_t len, unsigned char **all,
 /* The largest v over the ranks, on every rank. */
 int sbc_par_max_int(int v);
 
+/* The smallest v over the ranks, on every rank. */
+double sbc_par_min_double(double v);
+
+/* Every rank sends send[q] (nsend[q] doubles; q = its own rank is
+ * ignored) to every rank q and receives from each rank q recv[q]
+ * (malloc'd, NULL when empty; free them) of nrecv[q] doubles.  A
+ * collective call: 0 on success, -1 on failure (an allocation on some
+ * rank, or a message above INT_MAX values), seen by every rank; then
+ * nothing was sent and recv is all NULL. */
+int sbc_par_exchange(double *const *send, const size_t *nsend,
+                     double **recv, size_t *nrecv);
+
 #endif /* SB_CLI_PAR_H */

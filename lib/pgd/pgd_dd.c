@@ -600,9 +600,10 @@ int sb_pgd_dd_begin(sb_pgd_dd *d, double dt, double t_end)
   if (st)
     return st;
   double lim = sb_pgd_dd_dt(d);
-  if (!(dt > 0) || !isfinite(dt) || dt > lim * (1 + 1e-12))
+  if (!(dt > 0) || dt > lim * (1 + 1e-12) || (isinf(dt) && isinf(t_end)))
     return sbi_error(SB_EINVAL, __func__, "dt = %g: must be in (0, %g] "
-                     "(the smallest sb_pgd_dd_dt of the parts)", dt, lim);
+                     "(the smallest sb_pgd_dd_dt of the parts; infinite "
+                     "only with a finite t_end)", dt, lim);
   if (!(t_end > d->t))
     return sbi_error(SB_EINVAL, __func__, "t_end = %g: must be after t = "
                      "%g", t_end, d->t);

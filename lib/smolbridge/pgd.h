@@ -420,9 +420,10 @@ sb_pgd_dd *sb_pgd_dd_alloc_part(const sb_pgd_params *p, size_t px,
 int sb_pgd_dd_split(size_t nblocks, int nparts, int *owner);
 
 /** The phases of a step (see above).  begin: dt must not exceed this
- *  part's sb_pgd_dd_dt (the caller passes the smallest over the parts);
- *  the step is shortened to end exactly at t_end (> current time;
- *  INFINITY for none) when dt reaches it, as sb_pgd_dd_advance does.
+ *  part's sb_pgd_dd_dt (the caller passes the smallest over the parts;
+ *  INFINITY when nothing moves); the step is shortened to end exactly at
+ *  t_end (> current time; INFINITY for none, then dt must be finite)
+ *  when dt reaches it, as sb_pgd_dd_advance does.
  *  SB_EINVAL when called out of order; SB_ENOMEM. */
 int sb_pgd_dd_begin(sb_pgd_dd *d, double dt, double t_end);
 /** Runge-Kutta stages per step: 1 (upwind) or 2 (muscl). */
