@@ -3,8 +3,9 @@
  * file moves the messages (sbc_par_exchange) in the order of
  * <smolbridge/pgd.h>: a minimum over the ranks for dt, ghost cells before
  * every stage, migrating particles and budget events after the moves.  A
- * rank that fails keeps taking part in the exchanges (with empty
- * messages) until the next minimum, which carries the failure to all. */
+ * rank whose library call fails keeps taking part in the exchanges (with
+ * empty messages) until the next minimum, which carries the failure to
+ * all; out of memory inside an exchange stops the job (sbc_par_abort). */
 #include <math.h>
 #include <stdlib.h>
 
@@ -38,15 +39,10 @@ static void exchange(sb_pgd_dd *d, sb_pgd_dd_msg m, int only_to, int *st)
   const int P = sbc_par_size(), me = sbc_par_rank();
   double **send = calloc(2 * (size_t)P, sizeof *send);
   size_t *n = calloc(2 * (size_t)P, sizeof *n);
-  if (!send || !n) {
-    *st = SB_ENOMEM;
-    free(send);
-    free(n);
-    send = NULL;
-    n = NULL;
-  }
-  double **recv = send ? send + P : NULL;
-  size_t *nr = n ? n + P : NULL;
+  if (!send || !n) /* the others would wait for this rank */
+    sbc_par_abort("pgd: out of memory for the message lists");
+  double **recv = send + P;
+  size_t *nr = n + P;
   for (int q = 0; !*st && q < P; q++) {
     if (q == me || (only_to >= 0 && q != only_to))
       continue;
@@ -56,18 +52,15 @@ static void exchange(sb_pgd_dd *d, sb_pgd_dd_msg m, int only_to, int *st)
     if (!*st)
       *st = sb_pgd_dd_pack(d, m, q, send[q], n[q], &n[q]);
   }
-  if (*st && n)
+  if (*st)
     for (int q = 0; q < P; q++)
       n[q] = 0;
-  /* everyone must take part, failed or not; a rank that cannot
-   * allocate its scratch arrays cannot, and the others will wait: this
-   * is the one failure that is not recovered */
-  if (send && sbc_par_exchange(send, n, recv, nr) && !*st)
-    *st = SB_ENOMEM;
+  /* everyone takes part, failed or not */
+  sbc_par_exchange(send, n, recv, nr);
   for (int q = 0; !*st && q < P; q++)
     if (q != me)
       *st = sb_pgd_dd_unpack(d, m, q, recv[q], nr[q]);
-  for (int q = 0; send && q < 2 * P; q++)
+  for (int q = 0; q < 2 * P; q++)
     free(send[q]);
   free(send);
   free(n);
