@@ -593,12 +593,15 @@ int sbc_pgd_main(int argc, char **argv)
   /* ---- run */
   const size_t nn = p->nx * p->ny;
   double *f = malloc(3 * nn * sizeof *f);
+  int nomem = f == NULL;
+  if (par) /* a rank leaving the loop alone would leave the others waiting */
+    nomem = sbc_par_max_int(nomem);
   char path[1100];
   clock_t c0 = clock();
   double t = 0, next = c.output_every > 0 ? c.output_every : INFINITY;
   size_t nsteps = 0;
   int snap = 0;
-  while (!st && f && t < c.t_end) {
+  while (!st && !nomem && t < c.t_end) {
     double stop = fmin(c.t_end, next);
     size_t k = 0;
     st = g ? sb_pgd_advance(g, stop, &k)
@@ -625,7 +628,7 @@ int sbc_pgd_main(int argc, char **argv)
     }
   }
   double secs = (double)(clock() - c0) / CLOCKS_PER_SEC;
-  if (!f)
+  if (nomem)
     st = SB_ENOMEM;
   if (!st && d)
     st = sbc_pgd_dd_gather(d);

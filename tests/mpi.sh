@@ -197,6 +197,16 @@ rc=$?
 [ $rc -ne 0 ] || fail "pgd with 3 ranks for 2 blocks: exit 0"
 [ "$(grep -c 'at most one rank per block' "$out/pgd_small.err")" = 1 ] ||
   fail "pgd with 3 ranks for 2 blocks: $(cat "$out/pgd_small.err")"
+# an output directory that rank 0 cannot create: every rank stops with
+# status 1 (none is left waiting for the others)
+sed -e 's|^output = .*|output = /dev/null/x|' "$out/serial/pgd_mixed.ini" \
+  > "$out/pgd_bad.ini"
+to=""; command -v timeout > /dev/null 2>&1 && to="timeout 300"
+$to "$mpirun" -n 2 --oversubscribe "$sb" pgd "$out/pgd_bad.ini" > /dev/null 2> "$out/pgd_bad.err"
+rc=$?
+[ $rc -eq 1 ] || fail "pgd with a bad output directory under mpirun -n 2: exit $rc, want 1"
+grep -q 'cannot create directory' "$out/pgd_bad.err" ||
+  fail "pgd with a bad output directory: $(cat "$out/pgd_bad.err")"
 # another method runs on rank 0, with a note
 sed -e 's/^method = .*/method = euler/' -e 's/^output = .*/output = pgd_e/' \
   "$out/serial/pgd_alle.ini" > "$out/pgd_e.ini"
