@@ -350,6 +350,8 @@ sb_pgd_dd *sb_pgd_dd_alloc(const sb_pgd_params *p, size_t px, size_t py,
                            const char *kinds);
 void sb_pgd_dd_free(sb_pgd_dd *d);
 
+/** Largest stable step (the CFL rule over cells, particles and inflow
+ *  states); on a part (below), over its own blocks only. */
 double sb_pgd_dd_dt(const sb_pgd_dd *d);
 int sb_pgd_dd_step(sb_pgd_dd *d, double dt);
 int sb_pgd_dd_advance(sb_pgd_dd *d, double t_end, size_t *nsteps);
