@@ -44,8 +44,9 @@ int sbi_dbuf_push(sbi_dbuf *b, const double *x, size_t k)
   return SB_SUCCESS;
 }
 
-/* A budget event; nothing to record when it adds zeros (adding +-0 to a
- * sum that started at +0 never changes it). */
+/* A budget event; nothing to record when it adds zeros: a sum that
+ * starts at +0 is never -0 (round to nearest), and x + (+-0) = x for any
+ * other x, so the replayed budget is the same bit for bit. */
 static int event(sbi_dbuf *ev, int side, int out, double m, double px,
                  double py)
 {
