@@ -34,15 +34,17 @@ static void usage(FILE *out)
 
 static int dispatch(int argc, char **argv);
 
-/* Under mpirun/srun (an MPI build): validate and collide --sweep share
- * the work between the ranks; every other command runs on rank 0 only. */
+/* Under mpirun/srun (an MPI build): validate, collide --sweep and pgd
+ * with method = decomposition share the work between the ranks; every
+ * other command runs on rank 0 only. */
 int main(int argc, char **argv)
 {
   int st = sbc_par_init(&argc, &argv);
   if (st)
     return st;
   int distributed = argc >= 2 && (!strcmp(argv[1], "validate") ||
-                                  !strcmp(argv[1], "collide"));
+                                  !strcmp(argv[1], "collide") ||
+                                  !strcmp(argv[1], "pgd"));
   int rc = 0;
   /* one voice: the other ranks' stderr (the same messages, or progress)
    * is dropped unless SB_MPI_VERBOSE is set; rank 0 reports their
@@ -53,7 +55,7 @@ int main(int argc, char **argv)
   if (distributed || sbc_par_rank() == 0) {
     if (!distributed && sbc_par_size() > 1)
       fprintf(stderr, "smolbridge: '%s' runs on rank 0 only (%d ranks); "
-              "validate and collide --sweep use them all\n",
+              "validate, collide --sweep and pgd (decomposition) use them all\n",
               argc >= 2 ? argv[1] : "", sbc_par_size());
     rc = dispatch(argc, argv);
   }

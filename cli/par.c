@@ -1,6 +1,7 @@
 /* par.c — MPI for the smolbridge command (par.h); without SB_HAVE_MPI (set
  * by Makefile.am for ./configure --with-mpi) a single process, and a clear
  * error when it was started as several. */
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -97,16 +98,92 @@ void sbc_par_describe(char *d, size_t len)
 #endif
 }
 
+_Noreturn void sbc_par_abort(const char *why)
+{
+  fprintf(stderr, "smolbridge%s: %s: stopping the MPI job\n", g_tag, why);
+#ifdef SB_HAVE_MPI
+  if (g_mpi)
+    MPI_Abort(MPI_COMM_WORLD, 1);
+#endif
+  exit(1);
+}
+
+#ifdef SB_HAVE_MPI
+
+/* *v <- op of *v over the ranks, on every rank */
+static void reduce(void *v, MPI_Datatype type, MPI_Op op)
+{
+  if (g_mpi && g_size > 1)
+    MPI_Allreduce(MPI_IN_PLACE, v, 1, type, op, MPI_COMM_WORLD);
+}
+#endif
+
 int sbc_par_max_int(int v)
 {
 #ifdef SB_HAVE_MPI
-  if (g_mpi && g_size > 1) {
-    int m = v;
-    MPI_Allreduce(&v, &m, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-    return m;
-  }
+  reduce(&v, MPI_INT, MPI_MAX);
 #endif
   return v;
+}
+
+double sbc_par_min_double(double v)
+{
+#ifdef SB_HAVE_MPI
+  reduce(&v, MPI_DOUBLE, MPI_MIN);
+#endif
+  return v;
+}
+
+int sbc_par_exchange(double *const *send, const size_t *nsend,
+                     double **recv, size_t *nrecv)
+{
+  for (int q = 0; q < g_size; q++) {
+    recv[q] = NULL;
+    nrecv[q] = 0;
+  }
+  if (g_size == 1 || !g_mpi)
+    return 0;
+#ifdef SB_HAVE_MPI
+  /* counts first (64-bit), then the messages point to point.  Running out
+   * of memory here cannot be agreed on without a collective per call (the
+   * cost of a step on a busy machine is its number of collectives), and a
+   * rank that cannot receive would leave its senders waiting: the job
+   * stops instead. */
+  const int P = g_size;
+  unsigned long long *sc = calloc(2 * (size_t)P, sizeof *sc);
+  MPI_Request *rq = malloc(2 * (size_t)P * sizeof *rq);
+  if (!sc || !rq)
+    sbc_par_abort("out of memory for the message counts");
+  unsigned long long *rc = sc + P;
+  for (int q = 0; q < P; q++)
+    sc[q] = q == g_rank ? 0 : (unsigned long long)nsend[q];
+  MPI_Alltoall(sc, 1, MPI_UNSIGNED_LONG_LONG, rc, 1, MPI_UNSIGNED_LONG_LONG,
+               MPI_COMM_WORLD);
+  int n = 0;
+  for (int q = 0; q < P; q++) {
+    if (sc[q] > INT_MAX || rc[q] > INT_MAX)
+      sbc_par_abort("a message of more than INT_MAX values");
+    if (!rc[q])
+      continue;
+    nrecv[q] = (size_t)rc[q];
+    if (!(recv[q] = malloc(nrecv[q] * sizeof(double))))
+      sbc_par_abort("out of memory for a message");
+    MPI_Irecv(recv[q], (int)rc[q], MPI_DOUBLE, q, 11, MPI_COMM_WORLD,
+              &rq[n++]);
+  }
+  for (int q = 0; q < P; q++)
+    if (sc[q])
+      MPI_Isend(send[q], (int)sc[q], MPI_DOUBLE, q, 11, MPI_COMM_WORLD,
+                &rq[n++]);
+  MPI_Waitall(n, rq, MPI_STATUSES_IGNORE);
+  free(sc);
+  free(rq);
+  return 0;
+#else
+  (void)send;
+  (void)nsend;
+  return -1;
+#endif
 }
 
 int sbc_par_gather(const void *buf, size_t len, unsigned char **all,

@@ -31,4 +31,23 @@ int sbc_par_gather(const void *buf, size_t len, unsigned char **all,
 /* The largest v over the ranks, on every rank. */
 int sbc_par_max_int(int v);
 
+/* Stop the whole job (MPI_Abort; exit in one process) after printing
+ * why on this rank's stderr (rank 0's, or every rank's with
+ * SB_MPI_VERBOSE=1): for failures that cannot be agreed on without a
+ * collective, such as running out of memory in the middle of a message
+ * exchange. */
+_Noreturn void sbc_par_abort(const char *why);
+
+/* The smallest v over the ranks, on every rank. */
+double sbc_par_min_double(double v);
+
+/* Every rank sends send[q] (nsend[q] doubles; q = its own rank is
+ * ignored) to every rank q and receives from each rank q recv[q]
+ * (malloc'd, NULL when empty; free them) of nrecv[q] doubles.  A
+ * collective call (one MPI_Alltoall of the counts, then point to point);
+ * 0, or -1 in a build without MPI.  Out of memory, or a message above
+ * INT_MAX values, stops the job (MPI_Abort) with a message. */
+int sbc_par_exchange(double *const *send, const size_t *nsend,
+                     double **recv, size_t *nrecv);
+
 #endif /* SB_CLI_PAR_H */

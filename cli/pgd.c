@@ -19,6 +19,8 @@
 #include <smolbridge/pgd.h>
 
 #include "cli.h"
+#include "par.h"
+#include "pgd_par.h"
 
 typedef struct {
   sb_pgd_params p;
@@ -416,6 +418,9 @@ static void usage(FILE *f)
 "  [particles]      inject_time, inject_face (per inflow face and step)\n"
 "  [decomposition]  blocks = px py, kinds (E/L per block from the south-\n"
 "                   west, row by row)\n"
+"Under mpirun/srun (a build with --with-mpi), method = decomposition\n"
+"shares the blocks between the ranks (at most one rank per block) and\n"
+"writes the files of the one-process run; other methods run on rank 0.\n"
 "Writes OUTPUT/fields.csv (x,rho,u in 1-D; x,y,rho,ux,uy in 2-D),\n"
 "fields.vtk (2-D), exact.csv (Riemann problems), summary.json, and\n"
 "fields_NNNNN.csv every output_every.  Keys, units, defaults:\n"
@@ -425,10 +430,23 @@ static void usage(FILE *f)
 
 /* ------------------------------------------------------------ main */
 
+/* Rank 0's message for a failed run (the others' stderr is dropped). */
+static const char *why(int st)
+{
+  return st == SBC_PGD_OTHER_RANK ? "another rank failed (SB_MPI_VERBOSE=1 "
+                                    "shows its message)"
+                                  : sb_last_error();
+}
+
+/* Every rank runs this (main.c): all parse the file and agree on input
+ * errors; a decomposition steps its blocks on every rank, anything else
+ * runs on rank 0 alone. */
 int sbc_pgd_main(int argc, char **argv)
 {
+  const int rank = sbc_par_rank(), nranks = sbc_par_size();
   if (argc < 2 || !strcmp(argv[1], "-h") || !strcmp(argv[1], "--help")) {
-    usage(argc < 2 ? stderr : stdout);
+    if (rank == 0)
+      usage(argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;
   }
   if (argc > 2) {
@@ -515,15 +533,26 @@ int sbc_pgd_main(int argc, char **argv)
     if (strlen(c.kinds) != c.bx * c.by)
       INPUT_ERROR("[decomposition] kinds: %zu letters for %zu x %zu "
                   "blocks", strlen(c.kinds), c.bx, c.by);
+    if ((size_t)nranks > c.bx * c.by)
+      INPUT_ERROR("%d MPI ranks for %zu blocks: use at most one rank per "
+                  "block", nranks, c.bx * c.by);
   }
 #undef INPUT_ERROR
+  /* ranks > 1 take part in a decomposition only */
+  const int par = dd && nranks > 1;
+  if (!dd && nranks > 1) {
+    if (rank != 0)
+      return 0;
+    fprintf(stderr, "pgd: method = %s runs on rank 0 only (%d ranks); "
+            "method = decomposition uses them all\n", c.method, nranks);
+  }
 
   /* ---- build */
   sb_pgd *g = NULL;
   sb_pgd_lag *l = NULL;
   sb_pgd_dd *d = NULL;
   if (dd)
-    d = sb_pgd_dd_alloc(p, c.bx, c.by, c.kinds);
+    d = sbc_pgd_dd_alloc(p, c.bx, c.by, c.kinds);
   else if (lag)
     l = sb_pgd_lag_alloc(p);
   else
@@ -542,57 +571,73 @@ int sbc_pgd_main(int argc, char **argv)
     sb_pgd_free(g);
     return 2;
   }
-  if (mkdir_p(c.output)) {
+  int bad_dir = rank == 0 && mkdir_p(c.output);
+  if (bad_dir)
     fprintf(stderr, "pgd: cannot create directory '%s': %s\n", c.output,
             strerror(errno));
+  if (par ? sbc_par_max_int(bad_dir) : bad_dir) {
     sb_pgd_free(g);
     sb_pgd_lag_free(l);
     sb_pgd_dd_free(d);
     return 1;
   }
-  clean_outputs(c.output);
-  fprintf(stderr, "pgd: %d-D, %zu x %zu cells, %s, %s, t_end = %g -> %s/\n",
+  if (rank == 0)
+    clean_outputs(c.output);
+  fprintf(stderr, "pgd: %d-D, %zu x %zu cells, %s, %s, t_end = %g -> %s/",
           p->dim, p->nx, p->ny, c.method, sb_pgd_scheme_name(p->scheme),
           c.t_end, c.output);
+  if (par)
+    fprintf(stderr, " (%d ranks)", nranks);
+  fputc('\n', stderr);
 
   /* ---- run */
   const size_t nn = p->nx * p->ny;
   double *f = malloc(3 * nn * sizeof *f);
+  int nomem = f == NULL;
+  if (par) /* a rank leaving the loop alone would leave the others waiting */
+    nomem = sbc_par_max_int(nomem);
   char path[1100];
   clock_t c0 = clock();
   double t = 0, next = c.output_every > 0 ? c.output_every : INFINITY;
   size_t nsteps = 0;
   int snap = 0;
-  while (!st && f && t < c.t_end) {
+  while (!st && !nomem && t < c.t_end) {
     double stop = fmin(c.t_end, next);
     size_t k = 0;
     st = g ? sb_pgd_advance(g, stop, &k)
            : l ? sb_pgd_lag_advance(l, stop, &k)
-               : sb_pgd_dd_advance(d, stop, &k);
+               : sbc_pgd_dd_advance(d, stop, &k);
     nsteps += k;
     t = stop;
     if (!st && t == next && t < c.t_end) {
       snprintf(path, sizeof path, "%s/fields_%05d.csv", c.output, snap++);
       if (g)
         st = sb_pgd_write_csv(g, path);
-      else {
+      else if (l || !(st = sbc_pgd_dd_gather(d))) {
         if (l)
           sb_pgd_lag_deposit(l, f, f + nn, f + 2 * nn);
         else
           sb_pgd_dd_fields(d, f, f + nn, f + 2 * nn);
-        st = write_fields(p, f, f + nn, f + 2 * nn, path) ? SB_EIO : 0;
+        if (rank == 0)
+          st = write_fields(p, f, f + nn, f + 2 * nn, path) ? SB_EIO : 0;
       }
+      if (par && sbc_par_max_int(st != 0) && !st)
+        st = SBC_PGD_OTHER_RANK; /* rank 0 could not write */
       next += c.output_every;
       fprintf(stderr, "pgd: t = %g (%.0f%%)\n", t, 100 * t / c.t_end);
     }
   }
   double secs = (double)(clock() - c0) / CLOCKS_PER_SEC;
-  if (!f)
+  if (nomem)
     st = SB_ENOMEM;
+  if (!st && d)
+    st = sbc_pgd_dd_gather(d);
   if (st) {
-    fprintf(stderr, "pgd: run failed at t = %g: %s\n", t, sb_last_error());
+    fprintf(stderr, "pgd: run failed at t = %g: %s\n", t, why(st));
     goto done;
   }
+  if (rank != 0) /* rank 0 has every block now, and writes */
+    goto done;
 
   /* ---- outputs */
   snprintf(path, sizeof path, "%s/fields.csv", c.output);

@@ -1,10 +1,13 @@
 #!/bin/sh
-# Ensembles over processes (docs/parallel.md).  Every build: `validate
-# --seeds` and `collide --sweep` in one process, and a build without MPI
-# started as several processes refuses with a message.  A build with
-# --with-mpi (SB_TEST_MPI=yes): `mpirun -n 2` and `mpirun -n 3
+# Work shared between processes (docs/parallel.md).  Every build:
+# `validate --seeds`, `collide --sweep` and three `pgd` decompositions
+# (all-Eulerian, all-Lagrangian, mixed) in one process, and a build
+# without MPI started as several processes refuses with a message.  A
+# build with --with-mpi (SB_TEST_MPI=yes): `mpirun -n 2` and `mpirun -n 3
 # --oversubscribe` give the files of the single-process run byte for byte
-# (wall-clock times masked), and the other ranks stay silent.
+# (wall-clock and CPU times masked), and the other ranks stay silent; the
+# decompositions also under `mpirun -n 1`, and with more ranks than
+# blocks they stop with a message.
 set -u
 sb="${top_builddir:-.}/smolbridge"
 sb="$(cd "$(dirname "$sb")" && pwd)/$(basename "$sb")"
@@ -59,7 +62,80 @@ masked() {
    done)
 }
 
+# pgd decompositions of the exercise's crossing jets (27 x 27 cells, 3 x 3
+# blocks, drag towards a gas crossing the jets, so that particles cross
+# block boundaries both ways): NAME:KINDS:SCHEME
+cat > "$out/jets.ini" <<'EOF'
+[run]
+dim = 2
+nx = 27
+t_end = 1.6
+output_every = 0.7
+method = decomposition
+[drag]
+tau = 3
+U = 0.2 -0.3
+[boundary]
+west = outflow
+east = outflow
+south = outflow
+north = outflow
+[inflow west]
+side = west
+first = 11
+count = 5
+rho = 1
+u = 1 0
+[inflow south]
+side = south
+first = 11
+count = 5
+rho = 1
+u = 0 1
+[decomposition]
+blocks = 3 3
+EOF
+PGD_RUNS="alle:EEEEEEEEE:muscl alll:LLLLLLLLL:upwind mixed:ELLLELLLE:muscl"
+# pgd_all DIR LAUNCHER...: the three runs in DIR/pgd_NAME
+pgd_all() {
+  d=$1; shift
+  mkdir -p "$out/$d"
+  for r in $PGD_RUNS; do
+    name=${r%%:*}; rest=${r#*:}; kinds=${rest%%:*}; scheme=${rest#*:}
+    { cat "$out/jets.ini"; printf 'kinds = %s\n' "$kinds"
+      printf '[run]\nscheme = %s\noutput = pgd_%s\n' "$scheme" "$name"
+    } > "$out/$d/pgd_$name.ini"
+    (cd "$out/$d" && "$@" "$sb" pgd "pgd_$name.ini" > "pgd_$name.out" \
+       2> "pgd_$name.err"; echo $? > "pgd_$name.rc")
+  done
+}
+# their files, CPU times masked
+pgd_masked() {
+  (cd "$out/$1" &&
+   for r in $PGD_RUNS; do
+     name=${r%%:*}
+     for f in pgd_$name.rc pgd_$name.out pgd_$name/fields.csv \
+              pgd_$name/fields_00000.csv pgd_$name/fields_00001.csv \
+              pgd_$name/summary.json; do
+       echo "== $f"
+       [ -f "$f" ] || { echo "(missing)"; continue; }
+       sed -e 's/"cpu_seconds": .*/"cpu_seconds": T/' "$f"
+     done
+   done)
+}
+
 run_all serial
+pgd_all serial
+for r in $PGD_RUNS; do
+  name=${r%%:*}
+  [ "$(cat "$out/serial/pgd_$name.rc")" = 0 ] || fail "pgd $name: exit $(cat "$out/serial/pgd_$name.rc"): $(cat "$out/serial/pgd_$name.err")"
+  [ "$(wc -l < "$out/serial/pgd_$name/fields.csv")" = 730 ] || fail "pgd $name: fields.csv rows"
+  [ -s "$out/serial/pgd_$name/fields_00001.csv" ] || fail "pgd $name: snapshots"
+done
+grep -q '"particles": 0$' "$out/serial/pgd_alle/summary.json" || fail "pgd all-E: particles"
+for name in alll mixed; do
+  grep -q '"particles": [1-9]' "$out/serial/pgd_$name/summary.json" || fail "pgd $name: no particles"
+done
 for f in cal/all_seeds.csv cal/calibration.csv one/validate.csv sw/sweep.csv \
          sw/point_001/summary.json; do
   [ -s "$out/serial/$f" ] || fail "serial: no $f"
@@ -102,6 +178,42 @@ if ! "$mpirun" -n 1 "$sb" --version > "$out/probe.out" 2>&1; then
   exit 1
 fi
 masked serial > "$out/serial.txt"
+pgd_masked serial > "$out/pgd_serial.txt"
+for n in 1 2 3; do
+  pgd_all "pgd_np$n" "$mpirun" -n $n --oversubscribe
+  pgd_masked "pgd_np$n" > "$out/pgd_np$n.txt"
+  if ! cmp -s "$out/pgd_serial.txt" "$out/pgd_np$n.txt"; then
+    fail "pgd: mpirun -n $n differs from the single process:"
+    diff "$out/pgd_serial.txt" "$out/pgd_np$n.txt" | head -n 20
+  fi
+  [ $n = 1 ] || grep -q "($n ranks)" "$out/pgd_np$n/pgd_mixed.err" ||
+    fail "pgd -n $n: no rank count in the progress line"
+done
+# more ranks than blocks: an input error, said once
+sed -e 's/^blocks = .*/blocks = 1 2/' -e 's/^kinds = .*/kinds = EL/' \
+  "$out/serial/pgd_mixed.ini" > "$out/pgd_small.ini"
+"$mpirun" -n 3 --oversubscribe "$sb" pgd "$out/pgd_small.ini" > /dev/null 2> "$out/pgd_small.err"
+rc=$?
+[ $rc -ne 0 ] || fail "pgd with 3 ranks for 2 blocks: exit 0"
+[ "$(grep -c 'at most one rank per block' "$out/pgd_small.err")" = 1 ] ||
+  fail "pgd with 3 ranks for 2 blocks: $(cat "$out/pgd_small.err")"
+# an output directory that rank 0 cannot create: every rank stops with
+# status 1 (none is left waiting for the others)
+sed -e 's|^output = .*|output = /dev/null/x|' "$out/serial/pgd_mixed.ini" \
+  > "$out/pgd_bad.ini"
+to=""; command -v timeout > /dev/null 2>&1 && to="timeout 300"
+$to "$mpirun" -n 2 --oversubscribe "$sb" pgd "$out/pgd_bad.ini" > /dev/null 2> "$out/pgd_bad.err"
+rc=$?
+[ $rc -eq 1 ] || fail "pgd with a bad output directory under mpirun -n 2: exit $rc, want 1"
+grep -q 'cannot create directory' "$out/pgd_bad.err" ||
+  fail "pgd with a bad output directory: $(cat "$out/pgd_bad.err")"
+# another method runs on rank 0, with a note
+sed -e 's/^method = .*/method = euler/' -e 's/^output = .*/output = pgd_e/' \
+  "$out/serial/pgd_alle.ini" > "$out/pgd_e.ini"
+(cd "$out" && "$mpirun" -n 2 --oversubscribe "$sb" pgd pgd_e.ini > /dev/null 2> pgd_e.err) ||
+  fail "pgd method = euler under mpirun -n 2"
+grep -q 'rank 0 only' "$out/pgd_e.err" || fail "pgd euler under mpirun: no note"
+[ -s "$out/pgd_e/fields.vtk" ] || fail "pgd euler under mpirun: no fields.vtk"
 for n in 2 3; do
   run_all "np$n" "$mpirun" -n $n --oversubscribe
   masked "np$n" > "$out/np$n.txt"
@@ -119,4 +231,4 @@ o=$("$mpirun" -n 2 --oversubscribe "$sb" eval bb_cross_prob x=1 y=1 a=0 v=1 2>"$
 grep -q 'rank 0 only' "$out/eval.err" || fail "eval under mpirun: no note"
 [ $fails -eq 0 ] || exit 1
 rm -rf "$out"
-echo "mpi: mpirun -n 2 and -n 3 reproduce the single-process files"
+echo "mpi: mpirun -n 2 and -n 3 reproduce the single-process files (pgd also -n 1)"

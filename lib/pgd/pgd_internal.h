@@ -100,7 +100,7 @@ void sbi_pgd_drag(struct sb_pgd *g, double h, int track);
 /* Transport: number of stages of the scheme (1 upwind, 2 MUSCL/RK2);
  * begin() saves the state and clears the step's boundary fluxes; stage(s)
  * advances stage s with the ghost cells as they are. */
-int sbi_pgd_nstages(const struct sb_pgd *g);
+int sbi_pgd_nstages(sb_pgd_scheme s);
 void sbi_pgd_transport_begin(struct sb_pgd *g);
 void sbi_pgd_stage(struct sb_pgd *g, double dt, int stage);
 

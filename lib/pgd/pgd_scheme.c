@@ -88,9 +88,9 @@ static void kflux(size_t count, const double *rH, const double *nH,
   }
 }
 
-int sbi_pgd_nstages(const struct sb_pgd *g)
+int sbi_pgd_nstages(sb_pgd_scheme s)
 {
-  return g->p.scheme == SB_PGD_MUSCL ? 2 : 1;
+  return s == SB_PGD_MUSCL ? 2 : 1;
 }
 
 void sbi_pgd_transport_begin(struct sb_pgd *g)
@@ -288,7 +288,7 @@ void sbi_pgd_stage(struct sb_pgd *g, double dt, int stage)
   sweep_x(g, dt, bw);
   if (g->p.dim == 2)
     sweep_y(g, dt, bw);
-  const int last = stage == sbi_pgd_nstages(g) - 1;
+  const int last = stage == sbi_pgd_nstages(g->p.scheme) - 1;
   const int drag = !isinf(g->p.tau);
   const double fl = g->p.rho_floor, ix = 1.0 / g->dx;
   const double iy = g->p.dim == 2 ? 1.0 / g->dy : 0.0;
@@ -380,7 +380,7 @@ static void step(sb_pgd *g, double dt)
 {
   sbi_pgd_drag(g, 0.5 * dt, 0);
   sbi_pgd_transport_begin(g);
-  for (int s = 0; s < sbi_pgd_nstages(g); s++) {
+  for (int s = 0; s < sbi_pgd_nstages(g->p.scheme); s++) {
     sbi_pgd_fill_ghosts(g);
     sbi_pgd_stage(g, dt, s);
   }

@@ -350,6 +350,8 @@ sb_pgd_dd *sb_pgd_dd_alloc(const sb_pgd_params *p, size_t px, size_t py,
                            const char *kinds);
 void sb_pgd_dd_free(sb_pgd_dd *d);
 
+/** Largest stable step (the CFL rule over cells, particles and inflow
+ *  states); on a part (below), over its own blocks only. */
 double sb_pgd_dd_dt(const sb_pgd_dd *d);
 int sb_pgd_dd_step(sb_pgd_dd *d, double dt);
 int sb_pgd_dd_advance(sb_pgd_dd *d, double t_end, size_t *nsteps);
@@ -365,6 +367,91 @@ void sb_pgd_dd_boundary_totals(const sb_pgd_dd *d, double in[3],
 void sb_pgd_dd_side_totals(const sb_pgd_dd *d, sb_pgd_side s, double in[3],
                            double out[3]);
 size_t sb_pgd_dd_particles(const sb_pgd_dd *d);
+
+/* ---- the blocks shared between processes (parts)
+ *
+ * For several processes (MPI ranks in the command), each process holds one
+ * *part*: the same decomposition, of which it owns and steps some blocks.
+ * The library does no communication; the caller moves opaque messages
+ * (arrays of doubles) between the parts at three points of each step:
+ *
+ *   dt = min over the parts of sb_pgd_dd_dt(d)     (an all-reduce)
+ *   sb_pgd_dd_begin(d, dt, t_end)
+ *   repeat sb_pgd_dd_nstages(d) times:
+ *     exchange(SB_PGD_DD_HALO)        ghost cells of Eulerian neighbours
+ *     sb_pgd_dd_stage(d)
+ *   sb_pgd_dd_move(d)
+ *   exchange(SB_PGD_DD_MIGRATE)       particles changing part, budget
+ *   sb_pgd_dd_end(d)
+ *
+ * exchange(m): every part p calls sb_pgd_dd_pack(d, m, q, ...) for every
+ * other part q and hands the message to q, which calls
+ * sb_pgd_dd_unpack(d, m, p, ...) with it (in any order of p).  Messages
+ * may be empty (length 0: nothing to say, but still allowed to be sent).
+ * Particles are delivered, and their mass summed into Eulerian cells, in
+ * a fixed global order (particles that left a block, then injected ones;
+ * by source block), and the boundary budget is summed by part 0 in the
+ * order of a one-part run, so the fields, totals and budget do not depend
+ * on the number of parts or on the owner map: a run on P parts gives the
+ * one-part run's numbers bit for bit.  Between steps,
+ * exchange(SB_PGD_DD_STATE) towards one part (the others send it their
+ * blocks) lets it hold copies of every block, so that its
+ * sb_pgd_dd_fields, _totals and _particles describe the whole domain.
+ *
+ * Results per part: sb_pgd_dd_fields, _totals and _particles cover the
+ * blocks the part holds (owned, or copied by the last STATE message);
+ * fields of other blocks are 0.  sb_pgd_dd_boundary_totals and
+ * _side_totals are kept by part 0 only (zero on the others).
+ * sb_pgd_dd_step and sb_pgd_dd_advance are for one part (SB_EINVAL
+ * otherwise). */
+
+/** Part `part` of `nparts`: block k (numbered as kinds) is stepped by
+ *  part owner[k] in [0, nparts); owner may be NULL when nparts = 1 (then
+ *  this is sb_pgd_dd_alloc).  Every part must be allocated with the same
+ *  arguments but `part`.  A part may own no block (it then only takes
+ *  part in the exchanges).  NULL on error (message recorded). */
+sb_pgd_dd *sb_pgd_dd_alloc_part(const sb_pgd_params *p, size_t px,
+                                size_t py, const char *kinds,
+                                const int *owner, int nparts, int part);
+
+/** A balanced owner map of contiguous runs of blocks (in the order of
+ *  kinds, row by row from the south-west): owner[k] = floor(k nparts /
+ *  nblocks), so that every part has at least one block and neighbouring
+ *  blocks of a row tend to share a part.  SB_EINVAL unless
+ *  1 <= nparts <= nblocks. */
+int sb_pgd_dd_split(size_t nblocks, int nparts, int *owner);
+
+/** The phases of a step (see above).  begin: dt must not exceed this
+ *  part's sb_pgd_dd_dt (the caller passes the smallest over the parts;
+ *  INFINITY when nothing moves); the step is shortened to end exactly at
+ *  t_end (> current time; INFINITY for none, then dt must be finite)
+ *  when dt reaches it, as sb_pgd_dd_advance does.
+ *  SB_EINVAL when called out of order; SB_ENOMEM. */
+int sb_pgd_dd_begin(sb_pgd_dd *d, double dt, double t_end);
+/** Runge-Kutta stages per step: 1 (upwind) or 2 (muscl). */
+int sb_pgd_dd_nstages(const sb_pgd_dd *d);
+int sb_pgd_dd_stage(sb_pgd_dd *d);
+int sb_pgd_dd_move(sb_pgd_dd *d);
+int sb_pgd_dd_end(sb_pgd_dd *d);
+
+typedef enum {
+  SB_PGD_DD_HALO = 0,     /**< before each stage: ghost cells */
+  SB_PGD_DD_MIGRATE = 1,  /**< between move and end: particles, budget */
+  SB_PGD_DD_STATE = 2     /**< between steps: blocks, for output */
+} sb_pgd_dd_msg;
+
+/** Pack message m for part `to` into buf[0..cap-1], its length in *n;
+ *  with buf = NULL only *n is set.  A message to oneself is empty.
+ *  SB_EINVAL for a message out of its phase, a bad part or cap < *n. */
+int sb_pgd_dd_pack(const sb_pgd_dd *d, sb_pgd_dd_msg m, int to,
+                   double *buf, size_t cap, size_t *n);
+
+/** Unpack message m of n values that part `from` packed for this part.
+ *  SB_EFORMAT for a message that does not fit this part (wrong length,
+ *  blocks of a part other than `from`, particles outside their block),
+ *  SB_EINVAL out of phase, SB_ENOMEM. */
+int sb_pgd_dd_unpack(sb_pgd_dd *d, sb_pgd_dd_msg m, int from,
+                     const double *buf, size_t n);
 
 /* ================================================== comparison */
 
