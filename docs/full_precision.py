@@ -5,8 +5,10 @@ usage: full_precision.py DIR...
 
 Each DIR holds the validate.csv of one `smolbridge validate --full` run
 of one case, and is named after it with the first '/' written '_'
-(V1_kinetic-gases for V1/kinetic-gases).  For every row whose verdict is interval
-coverage (rule `cover`) the relative half-width of its interval is
+(V1_kinetic-gases for V1/kinetic-gases); records of the other cases the
+name selects as a prefix (V16/combined-shear under V16_combined) are
+listed under their own case.  For every row whose verdict is interval
+coverage (rule `cover`) of a ratio (reference not 0) the relative half-width of its interval is
 rescaled from the row's level to 95 % with the normal quantiles
 (z_95 / z_level: the Poisson and mean intervals are normal at these
 sample sizes) and divided by the estimate.  Prints a Markdown table: per
@@ -36,11 +38,17 @@ def main(dirs):
                     continue
                 est, lo, hi = (float(r[k]) for k in
                                ("estimate", "ci_low", "ci_high"))
-                if not est or hi != hi or lo != lo:
+                # differences (reference 0) have no relative width
+                if not est or not float(r["reference"]) or hi != hi or lo != lo:
                     continue
                 level = float(r["level"])
                 w = (hi - lo) / 2 / abs(est) * z(0.95) / z(level)
                 key = os.path.basename(os.path.normpath(d)).replace("_", "/", 1)
+                # --case is a prefix: V16/combined also runs
+                # V16/combined-shear, whose records carry their own name
+                rec = "/".join(r["case"].split("/")[:2])
+                if rec != key and rec.startswith(key + "-"):
+                    key = rec
                 cases.setdefault(key, []).append((w, r["case"]))
     print("| case | rows | median ±95 % | largest ±95 % | row with the largest |")
     print("|---|---|---|---|---|")
