@@ -84,8 +84,9 @@ static void usage(FILE *out)
 "                  bias in standard errors, fraction of p < 0.05, KS test\n"
 "                  of the p-values); writes calibration.csv, calibration.md,\n"
 "                  all_seeds.csv and the p-value QQ plot calibration_qq\n"
-"  --case PREFIX   run only cases whose name starts with PREFIX (e.g. V11);\n"
-"                  may be repeated\n"
+"  --case PREFIX   run only cases whose name starts with PREFIX (e.g. V11;\n"
+"                  V16/combined also selects V16/combined-shear); NAME$\n"
+"                  selects that one case only; may be repeated\n"
 "  --list          list the cases and exit\n"
 "  --write-ini DIR write the engine runs of the selected cases as\n"
 "                  smolbridge collide configurations (same mode and seed:\n"
@@ -128,13 +129,19 @@ static int validate_selection(sb_validate_options *vo, const size_t *sel,
                               const char *ini_dir, char **prefixes,
                               int nprefixes);
 
+/* A selector is a name prefix (V16/combined also selects
+ * V16/combined-shear), or with a trailing '$' one exact name. */
 static int selected(const char *name, char **prefixes, int nprefixes)
 {
   if (nprefixes == 0)
     return 1;
-  for (int i = 0; i < nprefixes; i++)
-    if (strncmp(name, prefixes[i], strlen(prefixes[i])) == 0)
+  for (int i = 0; i < nprefixes; i++) {
+    size_t n = strlen(prefixes[i]);
+    int exact = n > 0 && prefixes[i][n - 1] == '$';
+    if (exact ? strlen(name) == n - 1 && strncmp(name, prefixes[i], n - 1) == 0
+              : strncmp(name, prefixes[i], n) == 0)
       return 1;
+  }
   return 0;
 }
 

@@ -84,6 +84,12 @@ done | grep FAIL && fails=$((fails + 1))
 # --- validate: listing, filtering, report files and CSV header
 expect_rc 0 "$sb" validate --list
 expect_rc 2 "$sb" validate --case NoSuchCase
+# --case is a prefix; NAME$ selects one name exactly
+n=$("$sb" validate --list --case V16/combined | wc -l)
+[ "$n" -ge 2 ] || fail "--case V16/combined should select its longer names too"
+n=$("$sb" validate --list --case 'V16/combined$' | wc -l)
+[ "$n" -eq 1 ] || fail "--case 'V16/combined\$' should select one case, got $n"
+expect_rc 2 "$sb" validate --case 'V16/comb$'
 expect_rc 2 "$sb" validate --seed -3
 rm -rf "$out"
 first=$("$sb" validate --list | awk 'NR == 1 {print $1}')
