@@ -7,6 +7,9 @@
  *     linked cells, contact-time detection, reinsert outcome.  Goals:
  *     per-particle cost flat within +-30% from 1e4 to 1e6, and >= 1e7
  *     particle-steps/s (<= 100 ns) at N = 1e6, single core.
+ * 1b. At the largest N, interleaved: the cells rebuilt at every step
+ *     (params.verlet_off), the Verlet list (the default), and the list
+ *     with the keyed streams (smolbridge collide's default generator).
  *  3. Threads (OpenMP build): the same suspension at N = 1e6 on the keyed
  *     per-particle streams (params.streams) with 1, 2 and 3 threads, and
  *     taus2 on one thread; the ratio of the rates (goal >= 1.8x at 2
@@ -31,14 +34,14 @@
 #define PI 3.14159265358979323846
 
 static sb_engine *brownian_x(size_t n, double phi, unsigned long seed,
-                             int streams, int threads);
+                             int streams, int threads, int verlet_off);
 static sb_engine *brownian(size_t n, double phi, unsigned long seed)
 {
-  return brownian_x(n, phi, seed, 0, 0);
+  return brownian_x(n, phi, seed, 0, 0, 0);
 }
 
 static sb_engine *brownian_x(size_t n, double phi, unsigned long seed,
-                             int streams, int threads)
+                             int streams, int threads, int verlet_off)
 {
   const double T = 296.15, mu = 1.83245e-5, rho = 1000.0, d = 1e-6;
   double tau = sb_stokes_tau(rho, d, mu, 1.0), m = sb_sphere_mass(rho, d);
@@ -54,6 +57,7 @@ static sb_engine *brownian_x(size_t n, double phi, unsigned long seed,
   p.rng_type = gsl_rng_taus2;  /* faster Gaussian draws than MT19937 */
   p.streams = streams;
   p.threads = threads;
+  p.verlet_off = verlet_off;
   sb_engine *e = sb_engine_alloc(&p);
   if (!e)
     return NULL;
@@ -159,6 +163,45 @@ int main(int argc, char **argv)
          "the largest N\n",
          (double)Ns[nN - 1], hi / lo, 1e9 / per[nN - 1]);
 
+  /* 1b. the same suspension at the largest N, side by side (A B A B):
+   * the Verlet list off (cells at every step) and on, and the keyed
+   * streams of smolbridge collide's default (rng = philox) */
+  {
+    const size_t nb = Ns[nN - 1];
+    printf("\n# 1b. N = %zu: cells at every step / Verlet list (the "
+           "default) / list + keyed streams (collide's default); "
+           "interleaved\n", nb);
+    sbb_table_header(stdout);
+    sb_engine *v[3] = {brownian_x(nb, 1e-4, 5, 0, 1, 1),
+                       brownian_x(nb, 1e-4, 5, 0, 1, 0),
+                       brownian_x(nb, 1e-4, 5, 1, 1, 0)};
+    if (!v[0] || !v[1] || !v[2])
+      return 1;
+    const char *lab[3] = {"cells every step, taus2", "Verlet list, taus2",
+                          "Verlet list, keyed streams"};
+    double acc[3][16];
+    const int rb = reps < 16 ? reps : 16;
+    int steps = (int)(2e6 / (double)nb);
+    steps = steps < 2 ? 2 : steps;
+    for (int r = 0; r < rb; r++)
+      for (int c = 0; c < 3; c++) {
+        sbb_timing t = time_steps(v[c], steps, 1);
+        acc[c][r] = t.median;
+      }
+    double med[3];
+    for (int c = 0; c < 3; c++) {
+      sbb_timing t = {NAN, NAN, NAN, nb * (size_t)steps, rb};
+      t.median = med[c] = sbb_median(acc[c], (size_t)rb);
+      t.min = acc[c][0];
+      t.max = acc[c][rb - 1];
+      sbb_table_row(stdout, lab[c], &t, NAN);
+      sb_engine_free(v[c]);
+    }
+    printf("# list speed-up %.2fx; with keyed streams %.2fx (%.3g "
+           "particle-steps/s; goal 2e7)\n", med[0] / med[1],
+           med[0] / med[2], 1e9 / med[2]);
+  }
+
   printf("\n# 2. neighbour search alone, N = %d (ns per particle)\n",
          quick ? 20000 : 100000);
   sbb_table_header(stdout);
@@ -212,7 +255,7 @@ int main(int argc, char **argv)
   double t1 = NAN;
   for (int th = 0; th <= 3; th++) {
     /* th = 0: the sequential generator (taus2), one thread */
-    sb_engine *e = brownian_x(nt, 1e-4, 11, th > 0, th > 0 ? th : 1);
+    sb_engine *e = brownian_x(nt, 1e-4, 11, th > 0, th > 0 ? th : 1, 0);
     if (!e)
       return 1;
     sbb_timing t = time_steps(e, quick ? 5 : 4, reps);

@@ -70,7 +70,7 @@ void sbi_col_defaults(sbi_col_config *c)
   strcpy(c->neigh, "cells");
   strcpy(c->detect, "ballistic");
   strcpy(c->outcome, "elastic");
-  strcpy(c->rng, "mt19937");
+  strcpy(c->rng, "philox");
   strcpy(c->output, "collide-out");
   strcpy(c->ends, "position");
   c->tol = 1e-9;

@@ -111,7 +111,7 @@ const sbi_col_keydef sbi_col_keys[] = {
      NULL, "steps", "0 (off)", "snapshot period"},
     {"run", "sort_every", K_INT, C(sort_every), 0, R_CLOSED, 0, 2e9, NULL,
      "steps", "0 (off)", "reorder particles in memory (speed)"},
-    {"run", "rng", K_NAME, C(rng), 16, R_ANY, 0, 0, RNGS, "-", "mt19937",
+    {"run", "rng", K_NAME, C(rng), 16, R_ANY, 0, 0, RNGS, "-", "philox",
      "generator type; philox: per-particle counter-based streams for "
      "transport (parallel; results independent of the thread count and "
      "of the particle order)"},

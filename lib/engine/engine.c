@@ -100,6 +100,11 @@ sb_engine *sb_engine_alloc(const sb_engine_params *p)
   e->hit = calloc(c, 1);
   e->dn = calloc(c, sizeof(double));
   e->xs = calloc(4 * c, sizeof(double));
+  e->vl.xb = calloc(3 * c, sizeof(double));
+  e->vl.rb = calloc(c, sizeof(double));
+  e->vl.idb = calloc(c, sizeof(uint64_t));
+  e->vl.isfloat = calloc(c, 1);
+  e->vl.floats = calloc(c, sizeof(size_t));
   e->cell_of = calloc(c, sizeof(size_t));
   e->cell_list = calloc(c, sizeof(size_t));
   e->order = calloc(c, sizeof(size_t));
@@ -116,7 +121,8 @@ sb_engine *sb_engine_alloc(const sb_engine_params *p)
   e->rng = gsl_rng_alloc(p->rng_type ? p->rng_type : gsl_rng_mt19937);
   if (!e->x || !e->u || !e->x0 || !e->u0 || !e->disp || !e->us ||
       !e->radius || !e->mass || !e->species || !e->family || !e->id ||
-      !e->hit || !e->dn || !e->xs || !e->cell_of || !e->cell_list || !e->order ||
+      !e->hit || !e->dn || !e->xs || !e->vl.xb || !e->vl.rb || !e->vl.idb ||
+      !e->vl.isfloat || !e->vl.floats || !e->cell_of || !e->cell_list || !e->order ||
       !e->key || !e->sub_p || !e->sub_v || !e->sub_t || !e->ver ||
       !e->far || !e->isfar || !e->lp_x || !e->lp_u || !e->lp_t ||
       !e->rng || sbi_engine_langevin_init(e)) {
@@ -163,6 +169,12 @@ void sb_engine_free(sb_engine *e)
   free(e->cell_list);
   free(e->dn);
   free(e->xs);
+  free(e->vl.xb);
+  free(e->vl.rb);
+  free(e->vl.idb);
+  free(e->vl.pairs);
+  free(e->vl.isfloat);
+  free(e->vl.floats);
   free(e->order);
   free(e->key);
   free(e->sub_p);
@@ -867,7 +879,7 @@ int sb_engine_step(sb_engine *e)
       return sbi_error(SB_EINVAL, __func__, "no Langevin reach: %s",
                        sb_last_error());
   }
-  st = sbi_engine_find_pairs(e, e->par.neigh, e->x0, e->disp, reach);
+  st = sbi_engine_find_step_pairs(e, reach);
   if (st)
     return st;
   st = sbi_engine_detect_and_process(e);

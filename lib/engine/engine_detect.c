@@ -429,12 +429,10 @@ int sbi_engine_detect_and_process(sb_engine *e)
   for (size_t q = 0; q < e->nfar; q++)
     e->isfar[e->far[q]] = 0;
   e->nfar = 0;
-  for (size_t k = 0; k < n; k++) {
-    memcpy(&e->sub_p[3 * k], &e->x0[3 * k], 3 * sizeof(double));
-    memcpy(&e->sub_v[3 * k], &e->disp[3 * k], 3 * sizeof(double));
-    e->sub_t[k] = 0.0;
-    e->ver[k] = 0;
-  }
+  memcpy(e->sub_p, e->x0, 3 * n * sizeof *e->sub_p);
+  memcpy(e->sub_v, e->disp, 3 * n * sizeof *e->sub_v);
+  memset(e->sub_t, 0, n * sizeof *e->sub_t);  /* all-zero bits: 0.0 */
+  memset(e->ver, 0, n * sizeof *e->ver);
   if (e->par.detect == SB_DETECT_LANGEVIN || e->par.detect == SB_DETECT_CUSTOM)
     sbi_engine_langevin_begin(e);  /* a custom detector may call it */
   const size_t np = e->npairs;

@@ -74,6 +74,27 @@ typedef struct {
   double ext_max;    /* largest r + |disp| it covers, m */
 } sbi_grid;
 
+/* A Verlet list (Verlet 1967, Phys. Rev. 159:98; Allen & Tildesley 1987,
+ * §5.3.1) for deterministic detectors: every pair whose start positions
+ * xb were within r_i + r_j + reach + skin when it was built.  It holds for
+ * a later step while 2 (max|disp| + |x0 - xb|) <= skin and the
+ * particles, their radii, the box, r_max and the reach are those it was
+ * built for (engine_neigh.c); a few particles that moved further (a
+ * reinsertion) are searched one by one as floaters.  The cells of that
+ * build stay valid for re-detection: their edge covers the same skin. */
+typedef struct {
+  int valid;
+  size_t n, npairs, cappairs;
+  size_t *pairs;             /* 2 cappairs: i < j, in cell order */
+  double *xb, *rb;           /* 3 cap, cap: x0 and radius at the build */
+  uint64_t *idb;             /* cap: particle ids at the build */
+  unsigned char *isfloat;    /* cap: moved too far from xb: a floater */
+  size_t *floats, nfloat;    /* cap: the floaters, in index order */
+  double skin, reach, rmax, L[3];
+  uint64_t builds, uses;     /* counters (tests, benchmarks): builds, */
+  uint64_t floated;          /* steps through it, steps with floaters */
+} sbi_verlet;
+
 struct sb_engine {
   sb_engine_params par;
   size_t n;                  /* particles in use (<= par.capacity) */
@@ -166,6 +187,7 @@ struct sb_engine {
   double *dn;                /* cap: |disp_i| (cells, brute) */
   double *xs;                /* 4 cap: cells: x0 and r + |disp| in cell
                                 order (contiguous inner loop) */
+  sbi_verlet vl;             /* cells: pairs kept over several steps */
   size_t *order;             /* sweep: particle order along x */
   double *key;               /* sweep: sorted x */
   size_t norder;             /* particles in order[] (0: rebuild) */
@@ -225,6 +247,13 @@ static inline double sbi_cell_edge_min(double vol, size_t n, int dim)
   return pow(vol * SBI_CELL_PPC / ((double)n + 8.0), 1.0 / dim);
 }
 
+/* Verlet list: skin in units of r_max, and the fewest steps a rebuild
+ * must be expected to last (displacement per step <= skin / this). */
+#define SBI_VERLET_SKIN 1.0
+#define SBI_VERLET_STEPS 20.0
+/* Most floaters (particles searched one by one) before a rebuild. */
+#define SBI_VERLET_FLOATERS(n) (64 + (n) / 4096)
+
 /* Box helpers. */
 static inline double sbi_minimg(double d, double L)
 {
@@ -282,6 +311,9 @@ int sbi_engine_find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
                           const double *disp, double reach);
 int sbi_engine_sweep(sb_engine *e, const double *x0, const double *disp,
                      double reach);
+/* The search of a step (sb_engine_step): x0, disp of the engine; with the
+ * cells method and a deterministic detector through the Verlet list. */
+int sbi_engine_find_step_pairs(sb_engine *e, double reach);
 /* Partners of particle a for re-detection after a collision inside the
  * step (engine_neigh.c): fn(e, a, k, ctx) for every k whose path can come
  * within reach of a's new path piece, which starts at step fraction t and

@@ -53,7 +53,7 @@ double sbi_engine_max_disp(const sb_engine *e, const double *disp)
 /* |disp_i| into e->dn; returns the cut-off 2 rmax + 2 max|disp| + reach
  * and checks it against half the box. */
 static int cutoff(sb_engine *e, const double *disp, double reach,
-                  double *cut, const char *func)
+                  double *cut, double *dmax, const char *func)
 {
   double m = 0.0;
   for (size_t i = 0; i < e->n; i++) {
@@ -70,6 +70,7 @@ static int cutoff(sb_engine *e, const double *disp, double reach,
       m = v;
   }
   *cut = 2.0 * e->rmax + 2.0 * m + reach;
+  *dmax = m;
   for (int k = 0; k < e->par.dim; k++)
     if (!(*cut < 0.5 * e->par.L[k]))
       return sbi_error(SB_EINVAL, func,
@@ -77,6 +78,15 @@ static int cutoff(sb_engine *e, const double *disp, double reach,
                        "max|disp| + extra = %g m is not below L[%d]/2 = %g m",
                        *cut, k, 0.5 * e->par.L[k]);
   return SB_SUCCESS;
+}
+
+/* Forget the floaters (their flags must be clear whenever the cells are
+ * not the list's). */
+static void float_clear(sbi_verlet *v)
+{
+  for (size_t q = 0; q < v->nfloat; q++)
+    v->isfloat[v->floats[q]] = 0;
+  v->nfloat = 0;
 }
 
 /* Criterion (*) for one pair. */
@@ -224,9 +234,13 @@ static int scan_cell(const cell_scan *K, size_t c, sbi_pairbuf *out)
  *    from its first member in cell order.
  * Cell edge >= cut, about SBI_CELL_PPC particles per cell (larger cells
  * are still correct, only slower per cell).  Directions with 1 or 2 cells use the
- * minimum image. */
-static int cells(sb_engine *e, const double *x0, double cut, double reach)
+ * minimum image.  for_list: the pairs within r_i + r_j + reach of a
+ * Verlet list (no displacements). */
+static int cells(sb_engine *e, const double *x0, double cut, double reach,
+                 int for_list)
 {
+  e->vl.valid = 0;  /* its cells are overwritten (a list build sets it) */
+  float_clear(&e->vl);
   const int dim = e->par.dim;
   const size_t n = e->n;
   const double *L = e->par.L;
@@ -277,7 +291,7 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach)
     xs[4 * a] = x0[3 * i];
     xs[4 * a + 1] = x0[3 * i + 1];
     xs[4 * a + 2] = x0[3 * i + 2];
-    xs[4 * a + 3] = e->radius[i] + e->dn[i];
+    xs[4 * a + 3] = e->radius[i] + (for_list ? 0.0 : e->dn[i]);
   }
   for (size_t c = ncell; c > 0; c--)
     start[c] = start[c - 1];
@@ -359,21 +373,201 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach)
   return SB_SUCCESS;
 }
 
-int sbi_engine_find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
-                          const double *disp, double reach)
+/* Does the Verlet list still cover this step (D = max|disp|)?  A particle
+ * that moved more than skin/2 - D from where the list saw it (a
+ * reinsertion, a fast one) becomes a floater: its pairs are searched
+ * afresh at every step (float_pairs) until the next build, which comes
+ * when there are more than SBI_VERLET_FLOATERS of them. */
+static int list_holds(sb_engine *e, const double *x0, double D, double reach)
+{
+  sbi_verlet *v = &e->vl;
+  const int dim = e->par.dim;
+  float_clear(v);
+  if (!v->valid || v->n != e->n || reach > v->reach || e->rmax != v->rmax)
+    return 0;
+  for (int k = 0; k < dim; k++)
+    if (v->L[k] != e->par.L[k])
+      return 0;
+  if (memcmp(v->idb, e->id, e->n * sizeof *e->id) ||
+      memcmp(v->rb, e->radius, e->n * sizeof *e->radius))
+    return 0;  /* particles added, removed, merged or reordered */
+  const double lim = 0.5 * v->skin - D;
+  if (!(lim > 0.0))
+    return 0;
+  const size_t maxf = SBI_VERLET_FLOATERS(e->n);
+  for (size_t i = 0; i < e->n; i++) {
+    double d2 = 0.0;
+    for (int k = 0; k < dim; k++) {
+      double d = sbi_minimg(x0[3 * i + k] - v->xb[3 * i + k], e->par.L[k]);
+      d2 += d * d;
+    }
+    if (d2 > lim * lim) {
+      if (v->nfloat == maxf) {
+        float_clear(v);
+        return 0;
+      }
+      v->isfloat[i] = 1;
+      v->floats[v->nfloat++] = i;
+    }
+  }
+  return 1;
+}
+
+/* The candidate pairs of the floaters: with every listed particle in the
+ * 27 cells of the build around the floater's start (a listed particle is
+ * within skin/2 - D of where it was binned, and 2 (r_max + D) + reach +
+ * skin/2 - D <= the cell edge), and with each other. */
+static int float_pairs(sb_engine *e, const double *x0, double reach,
+                       sbi_pairbuf *pb)
+{
+  const sbi_verlet *v = &e->vl;
+  const sbi_grid *g = &e->grid;
+  const int dim = e->par.dim;
+  for (size_t q = 0; q < v->nfloat; q++) {
+    const size_t f = v->floats[q];
+    int ca[3] = {0, 0, 0}, lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (int k = 0; k < dim; k++) {
+      int c = (int)(sbi_wrap(x0[3 * f + k], e->par.L[k]) * g->inv[k]);
+      ca[k] = c >= g->nc[k] ? g->nc[k] - 1 : (c < 0 ? 0 : c);
+      if (g->nc[k] <= 3)
+        hi[k] = g->nc[k] - 1;  /* every cell, once */
+      else
+        lo[k] = -1, hi[k] = 1;
+    }
+    for (int q2 = lo[2]; q2 <= hi[2]; q2++)
+      for (int q1 = lo[1]; q1 <= hi[1]; q1++)
+        for (int q0 = lo[0]; q0 <= hi[0]; q0++) {
+          const int o[3] = {q0, q1, q2};
+          size_t c2 = 0;
+          for (int k = 0; k < dim; k++) {
+            int w = ca[k] + o[k];
+            w = ((w % g->nc[k]) + g->nc[k]) % g->nc[k];
+            c2 += (size_t)w * g->stride[k];
+          }
+          for (size_t b = e->cell_start[c2]; b < e->cell_start[c2 + 1];
+               b++) {
+            const size_t k = e->cell_list[b];
+            if (!v->isfloat[k] && near(e, x0, f, k, reach) &&
+                pb_push(pb, f, k))
+              return -1;
+          }
+        }
+    for (size_t r = q + 1; r < v->nfloat; r++)
+      if (near(e, x0, f, v->floats[r], reach) &&
+          pb_push(pb, f, v->floats[r]))
+        return -1;
+  }
+  return 0;
+}
+
+/* Rebuild the list around x0: pairs within r_i + r_j + reach + skin.
+ * SB_SUCCESS with v->valid = 0 when a list does not pay (displacements
+ * above skin / SBI_VERLET_STEPS) or does not fit the box. */
+static int list_build(sb_engine *e, const double *x0, double D, double reach)
+{
+  sbi_verlet *v = &e->vl;
+  const int dim = e->par.dim;
+  v->valid = 0;
+  const double skin = SBI_VERLET_SKIN * e->rmax,
+               cut = 2.0 * e->rmax + reach + skin;
+  if (!(D <= skin / SBI_VERLET_STEPS))
+    return SB_SUCCESS;
+  for (int k = 0; k < dim; k++)
+    if (!(cut < 0.5 * e->par.L[k]))
+      return SB_SUCCESS;
+  int st = cells(e, x0, cut, reach + skin, 1);
+  if (st)
+    return st;
+  if (e->npairs > v->cappairs) {
+    size_t *p = realloc(v->pairs, 2 * e->npairs * sizeof *p);
+    if (!p)
+      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+                       "(%zu listed pairs)", e->npairs);
+    v->pairs = p;
+    v->cappairs = e->npairs;
+  }
+  memcpy(v->pairs, e->pairs, 2 * e->npairs * sizeof *v->pairs);
+  v->npairs = e->npairs;
+  e->npairs = 0;
+  memcpy(v->xb, x0, 3 * e->n * sizeof *x0);
+  memcpy(v->rb, e->radius, e->n * sizeof *e->radius);
+  memcpy(v->idb, e->id, e->n * sizeof *e->id);
+  v->n = e->n;
+  v->skin = skin;
+  v->reach = reach;
+  v->rmax = e->rmax;
+  for (int k = 0; k < 3; k++)
+    v->L[k] = e->par.L[k];
+  v->valid = 1;
+  v->builds++;
+  return SB_SUCCESS;
+}
+
+/* Cells through a Verlet list: the listed pairs of listed particles that
+ * meet criterion (*) now, and the floaters' pairs — exactly the pairs
+ * cells() would return, in another order (the detectors that use it
+ * order their events by (s, i, j)).  Between rebuilds the cells of the
+ * last build serve re-detection: their edge is >= 2 r_max + reach +
+ * skin, and a listed particle is within skin/2 - max|disp| of where it
+ * was binned, so the 27 cells around a point still hold every listed
+ * start position within 2 (r_max + max|disp|) + reach of it; the
+ * floaters are checked one by one (sbi_engine_partners). */
+static int listed(sb_engine *e, const double *x0, double cut, double D,
+                  double reach)
+{
+  sbi_verlet *v = &e->vl;
+  if (list_holds(e, x0, D, reach)) {
+    v->uses++;
+    v->floated += v->nfloat > 0;
+  }
+  else {
+    int st = list_build(e, x0, D, reach);
+    if (st)
+      return st;
+    if (!v->valid)
+      return cells(e, x0, cut, reach, 0);
+  }
+  const unsigned char *fl = v->isfloat;
+  sbi_pairbuf pb = {e->pairs, 0, e->cappairs};
+  int bad = 0;
+  for (size_t q = 0; q < v->npairs && !bad; q++) {
+    const size_t i = v->pairs[2 * q], j = v->pairs[2 * q + 1];
+    if (!fl[i] && !fl[j] && near(e, x0, i, j, reach))
+      bad = pb_push(&pb, i, j);
+  }
+  if (!bad)
+    bad = float_pairs(e, x0, reach, &pb);
+  e->pairs = pb.p;
+  e->npairs = pb.n;
+  e->cappairs = pb.cap;
+  if (bad)
+    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+                     "(%zu candidate pairs)", pb.n);
+  e->grid.valid = 1;  /* the cells of the build */
+  e->grid.cut = cut;
+  e->grid.reach = reach;
+  return SB_SUCCESS;
+}
+
+/* The search of sbi_engine_find_pairs; with_list: linked cells may go
+ * through the Verlet list (a step's search with a deterministic
+ * detector). */
+static int find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
+                      const double *disp, double reach, int with_list)
 {
   e->npairs = 0;
   e->grid.valid = 0;
   if (e->n < 2)
     return SB_SUCCESS;
-  double cut = 0.0;
-  int st = cutoff(e, disp, reach, &cut, "sb_engine_step");
+  double cut = 0.0, D = 0.0;
+  int st = cutoff(e, disp, reach, &cut, &D, "sb_engine_step");
   if (st)
     return st;
   e->grid.ext_max = 0.5 * (cut - reach);  /* r_max + max |disp| */
   switch (m) {
   case SB_NEIGH_CELLS:
-    st = cells(e, x0, cut, reach);
+    st = with_list ? listed(e, x0, cut, D, reach)
+                   : cells(e, x0, cut, reach, 0);
     break;
   case SB_NEIGH_SWEEP:
     st = sbi_engine_sweep(e, x0, disp, reach);
@@ -389,6 +583,26 @@ int sbi_engine_find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
   if (!st)
     st = sbi_engine_boundary_pairs(e, x0, disp, reach, cut);
   return st;
+}
+
+int sbi_engine_find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
+                          const double *disp, double reach)
+{
+  return find_pairs(e, m, x0, disp, reach, 0);
+}
+
+int sbi_engine_find_step_pairs(sb_engine *e, double reach)
+{
+  /* the list's pairs come in another order than the cells': only for the
+   * detectors whose result does not depend on it, and only in a fully
+   * periodic box (walls, open faces and Lees-Edwards images add pairs of
+   * their own each step) */
+  const int with_list = (e->par.detect == SB_DETECT_BALLISTIC ||
+                         e->par.detect == SB_DETECT_OVERLAP) &&
+                        !e->walled && !e->lees && !e->par.verlet_off;
+  if (!with_list)
+    e->vl.valid = 0;
+  return find_pairs(e, e->par.neigh, e->x0, e->disp, reach, with_list);
 }
 
 int sb_engine_neighbours(sb_engine *e, sb_engine_neigh m, const double *disp,
@@ -507,8 +721,8 @@ static int cell_pass(sb_engine *e, const partner_q *Q, const double *pt,
         }
         for (size_t b = e->cell_start[c2]; b < e->cell_start[c2 + 1]; b++) {
           size_t k = e->cell_list[b];
-          if (k == Q->a || e->isfar[k])
-            continue;
+          if (k == Q->a || e->isfar[k] || e->vl.isfloat[k])
+            continue;  /* far, floaters: checked one by one */
           double lim = Q->ext_a + e->radius[k] + e->dn[k] + Q->reach;
           double d2;
           if (e->lees) {
@@ -556,6 +770,17 @@ int sbi_engine_partners(sb_engine *e, size_t a, const double c[3],
       return st;
   }
   if (g->valid && ext_a <= g->ext_max) {
+    /* the floaters of a Verlet list: not where the cells have them */
+    for (size_t q = 0; q < e->vl.nfloat; q++) {
+      size_t k = e->vl.floats[q];
+      if (k == a || e->isfar[k])
+        continue;
+      double d2 = pdist2(e, c, &x0[3 * k], t, &n);
+      double lim = ext_a + e->radius[k] + e->dn[k] + reach +
+                   (n ? extra : 0.0);
+      if (d2 <= lim * lim && (st = fn(e, a, k, ctx)))
+        return st;
+    }
     const partner_q Q = {a, c, ext_a, t, reach, extra, fn, ctx};
     const int m1[3] = {1, 1, 1};
     st = cell_pass(e, &Q, c, m1, 0);

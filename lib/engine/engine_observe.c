@@ -113,9 +113,16 @@ int sb_engine_kernel(const sb_engine *e, double level, double *K,
 void sbi_engine_pair_counts(const sb_engine *e, double *out)
 {
   double nsp[SB_ENGINE_PAIR_SPECIES] = {0};
-  for (size_t i = 0; i < e->n; i++)
-    if (e->species[i] < SB_ENGINE_PAIR_SPECIES && e->hit[i] != 2)
-      nsp[e->species[i]] += 1.0;
+  if (e->nspec == 1 && !e->nremove)
+    nsp[0] = (double)e->n;  /* one species, nothing marked for removal */
+  else {
+    size_t cnt[SB_ENGINE_PAIR_SPECIES] = {0};
+    for (size_t i = 0; i < e->n; i++)
+      if (e->species[i] < SB_ENGINE_PAIR_SPECIES && e->hit[i] != 2)
+        cnt[e->species[i]]++;
+    for (size_t a = 0; a < SB_ENGINE_PAIR_SPECIES; a++)
+      nsp[a] = (double)cnt[a];
+  }
   for (size_t a = 0; a < SB_ENGINE_PAIR_SPECIES; a++)
     for (size_t b = a; b < SB_ENGINE_PAIR_SPECIES; b++)
       out[sbi_pair_index(a, b)] =

@@ -156,6 +156,18 @@ typedef struct {
                                   default): the OpenMP default
                                   (OMP_NUM_THREADS).  The results are
                                   bit-identical for any value. */
+  int verlet_off;            /**< 0 (the default): with the cells search
+                                  and a deterministic detector (ballistic,
+                                  overlap) in a fully periodic box, the
+                                  candidate pairs come from a Verlet list
+                                  kept over several steps (skin = r_max,
+                                  rebuilt when a particle has moved half
+                                  of it; used when a step moves particles
+                                  less than r_max/20).  The candidates and
+                                  the results are the same as without it,
+                                  bit for bit (docs/engine.md, "Neighbour
+                                  search").  1: rebuild the cells at every
+                                  step. */
 } sb_engine_params;
 
 /** A species: shared physical properties of a class of particles. */

@@ -608,7 +608,8 @@ static int case_dlvo(const sbv_ctx *ctx, sbv_report *rep)
                             "gas");
     if (!f)
       return SB_EIO;
-    fprintf(f, "seed = %lu\nL = %.17g\ndt = %.17g\nt_end = %.17g\n"
+    fprintf(f, "seed = %lu\nrng = mt19937\n"
+            "L = %.17g\ndt = %.17g\nt_end = %.17g\n"
             "detect = ballistic\noutcome = dlvo\n\n[agglo]\n"
             "growth = constant\nwmax_kT = %.17g\nerel = contact\n\n"
             "[species grain]\nradius = %.17g\nmass = %.17g\ntau = inf\n"

@@ -111,7 +111,8 @@ static int case_gases(const sbv_ctx *ctx, sbv_report *rep)
         st = SB_EIO;
         break;
       }
-      fprintf(f, "seed = %lu\nL = %.17g\ndt = %.17g\nt_end = %.17g\n"
+      fprintf(f, "seed = %lu\nrng = mt19937\n"
+            "L = %.17g\ndt = %.17g\nt_end = %.17g\n"
               "thermalize = %.17g\ndetect = ballistic\noutcome = elastic\n"
               "\n[species %s]\nradius = %.17g\nmass = %.17g\ntau = inf\n"
               "T = %.17g\ncount = %zu\n", ctx->seed * 1000 + 100 +
@@ -204,7 +205,8 @@ static int case_dense(const sbv_ctx *ctx, sbv_report *rep)
                             "V1: dense helium, long steps");
     if (!f)
       return SB_EIO;
-    fprintf(f, "seed = %lu\nL = %.17g\ndt = %.17g\nwarmup = %.17g\n"
+    fprintf(f, "seed = %lu\nrng = mt19937\n"
+            "L = %.17g\ndt = %.17g\nwarmup = %.17g\n"
             "t_end = %.17g\nthermalize = %.17g\ndetect = ballistic\n"
             "outcome = elastic\n\n[species He]\nradius = %.17g\n"
             "mass = %.17g\ntau = inf\nT = %.17g\ncount = %zu\n",
@@ -327,7 +329,8 @@ static int case_mixture(const sbv_ctx *ctx, sbv_report *rep)
                             "V1: binary He + Xe gas");
     if (!f)
       return SB_EIO;
-    fprintf(f, "seed = %lu\nL = %.17g\ndt = %.17g\nwarmup = %.17g\n"
+    fprintf(f, "seed = %lu\nrng = mt19937\n"
+            "L = %.17g\ndt = %.17g\nwarmup = %.17g\n"
             "t_end = %.17g\nthermalize = %.17g\ndetect = ballistic\n"
             "outcome = elastic\n", ctx->seed * 1000 + 150, L, dt,
             0.1 * t_end, 1.1 * t_end, T);
@@ -502,7 +505,8 @@ static int run_jets(const sbv_ctx *ctx, int collide, size_t *crossed,
                             "V9: crossing jets in 2-D");
     if (!f)
       return SB_EIO;
-    fprintf(f, "seed = %lu\ndim = 2\nL = %.17g\ndt = %.17g\n"
+    fprintf(f, "seed = %lu\nrng = mt19937\n"
+            "dim = 2\nL = %.17g\ndt = %.17g\n"
             "t_end = %.17g\nsnapshot_every = %ld\noutcome = %s\n",
             p.seed, L, p.dt, t_end, nst, collide ? "elastic" : "count");
     for (int k = 0; k < 2; k++) {

@@ -214,7 +214,8 @@ static int write_v16(const sbv_ctx *ctx, sbv_report *rep,
   FILE *f = sbv_ini_begin(ctx, rep, name, what);
   if (!f)
     return SB_EIO;
-  fprintf(f, "seed = %lu\nLx = %.17g\nLy = %.17g\nLz = %.17g\n"
+  fprintf(f, "seed = %lu\nrng = mt19937\n"
+            "Lx = %.17g\nLy = %.17g\nLz = %.17g\n"
           "dt = %.17g\nsteps = %zu\ndetect = ballistic\noutcome = count\n"
           "placement = uniform\nplacement_seed = %lu\n\n[fluid]\n",
           s->seed, s->L[0], s->L[1], s->L[2], s->dt, s->steps,

@@ -1,0 +1,216 @@
+/* test_engine_verlet.c — the Verlet list of the cells search
+ * (lib/engine/engine_neigh.c: list_holds, list_build, listed).
+ *
+ * Independent check: the same runs with the list switched off
+ * (sb_engine_params.verlet_off, cells rebuilt at every step) and with the
+ * O(N^2) brute-force search.  The list must give the same candidate pairs
+ * and therefore the same run, bit for bit: positions, velocities,
+ * counters (candidates included) and the time series — through elastic
+ * bounces (re-detection inside a step with the cells of an older build),
+ * reinsertions (jumps: the list must be rebuilt), merges (particles
+ * removed, radii changed), overlap detection, 2-D boxes, memory reordering
+ * (sort_every) and a foreign search between steps (sb_engine_neighbours
+ * overwrites the cells).  Each run also checks that the list was used and
+ * rebuilt, so that the comparison is not vacuous.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <smolbridge/engine.h>
+
+#include "engine/engine_internal.h"
+#include "testutil.h"
+
+typedef struct {
+  int dim;
+  sb_engine_outcome outcome;
+  sb_engine_detect detect;
+  size_t sort_every;
+  int foreign;  /* call sb_engine_neighbours every 50 steps */
+  int merge;    /* agglomeration: every contact merges (sb_agglo) */
+} setup;
+
+/* 400 Brownian spheres (r = 0.5, velocity variance 1) in a 30 x 25 x 20
+ * box (phi ~ 1.4%): |disp| ~ 0.01 per step, below r/20, so the list
+ * applies; 3000 steps give a few hundred contacts. */
+static sb_engine *make(const setup *s, sb_engine_neigh m, int verlet_off)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.dim = s->dim;
+  p.L[0] = 30.0;
+  p.L[1] = 25.0;
+  p.L[2] = 20.0;
+  p.dt = 0.005;
+  p.capacity = 400;
+  p.seed = 7;
+  p.neigh = m;
+  p.detect = s->detect;
+  p.outcome = s->outcome;
+  p.sample_every = 100;
+  p.sort_every = s->sort_every;
+  p.verlet_off = verlet_off;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  sb_engine_species sp = {0.5, 1.0, 1.0, sqrt(2.0), 0.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &sp, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, s->dim == 2 ? 150 : 400),
+                   SB_SUCCESS);
+  return e;
+}
+
+/* Every contact merges the pair (sizes grow, particles go). */
+static sb_agglo *merging(sb_engine *e)
+{
+  sb_agglo_params ap;
+  sb_agglo_params_default(&ap);
+  sb_agglo *a = sb_agglo_alloc(&ap);
+  ck_assert_ptr_nonnull(a);
+  ck_assert_int_eq(sb_agglo_attach(e, a), SB_SUCCESS);
+  return a;
+}
+
+/* strict: also the re-detection count, which depends on how the
+ * partners are searched (cells, or a scan of all with brute force) */
+static void assert_same(const sb_engine *a, const sb_engine *b, int strict)
+{
+  size_t n = sb_engine_count(a);
+  ck_assert_uint_eq(n, sb_engine_count(b));
+  ck_assert(!memcmp(sb_engine_positions(a), sb_engine_positions(b),
+                    3 * n * sizeof(double)));
+  ck_assert(!memcmp(sb_engine_velocities(a), sb_engine_velocities(b),
+                    3 * n * sizeof(double)));
+  sb_engine_stats sa, sb;
+  sb_engine_get_stats(a, &sa);
+  sb_engine_get_stats(b, &sb);
+  ck_assert_uint_eq(sa.ncoll, sb.ncoll);
+  ck_assert_uint_eq(sa.ncand, sb.ncand);
+  ck_assert_uint_eq(sa.dropped, sb.dropped);
+  if (strict)
+    ck_assert_uint_eq(sa.redetected, sb.redetected);
+  size_t na, nb;
+  const sb_engine_sample *ta = sb_engine_series(a, &na);
+  const sb_engine_sample *tb = sb_engine_series(b, &nb);
+  ck_assert_uint_eq(na, nb);
+  for (size_t k = 0; k < na; k++) {
+    ck_assert_uint_eq(ta[k].ncoll, tb[k].ncoll);
+    ck_assert(ta[k].ekin == tb[k].ekin);
+  }
+}
+
+/* Run the three searches side by side; returns the list engine's
+ * collisions. */
+static uint64_t run_three(const setup *s)
+{
+  sb_engine *a = make(s, SB_NEIGH_CELLS, 0);
+  sb_engine *b = make(s, SB_NEIGH_CELLS, 1);
+  sb_engine *c = make(s, SB_NEIGH_BRUTE, 0);
+  sb_agglo *ga = s->merge ? merging(a) : NULL,
+           *gb = s->merge ? merging(b) : NULL,
+           *gc = s->merge ? merging(c) : NULL;
+  for (int k = 0; k < 3000; k++) {
+    ck_assert_int_eq(sb_engine_step(a), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_step(b), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_step(c), SB_SUCCESS);
+    if (s->foreign && k % 50 == 49) {
+      size_t np;
+      const size_t *pp;
+      ck_assert_int_eq(sb_engine_neighbours(a, SB_NEIGH_CELLS, NULL, 0.3,
+                                            &np, &pp), SB_SUCCESS);
+    }
+  }
+  assert_same(a, b, 1);
+  assert_same(a, c, 0);
+  /* the list was used, and rebuilt as particles moved or changed */
+  ck_assert_uint_ge(a->vl.builds, 2);
+  ck_assert_uint_gt(a->vl.uses, 500);
+  ck_assert_uint_eq(b->vl.uses, 0);
+  /* a reinsertion is a jump: the list goes on with a floater */
+  if (s->outcome == SB_OUTCOME_REINSERT)
+    ck_assert_uint_gt(a->vl.floated, 100);
+  sb_engine_stats st;
+  sb_engine_get_stats(a, &st);
+  sb_engine_free(a);
+  sb_engine_free(b);
+  sb_engine_free(c);
+  sb_agglo_free(ga);
+  sb_agglo_free(gb);
+  sb_agglo_free(gc);
+  return st.ncoll;
+}
+
+START_TEST(test_elastic)
+{
+  setup s = {3, SB_OUTCOME_ELASTIC, SB_DETECT_BALLISTIC, 0, 0, 0};
+  ck_assert_uint_gt(run_three(&s), 50);
+}
+END_TEST
+
+START_TEST(test_reinsert)
+{
+  setup s = {3, SB_OUTCOME_REINSERT, SB_DETECT_BALLISTIC, 0, 0, 0};
+  ck_assert_uint_gt(run_three(&s), 50);
+}
+END_TEST
+
+START_TEST(test_merge)
+{
+  setup s = {3, SB_OUTCOME_ELASTIC, SB_DETECT_BALLISTIC, 0, 0, 1};
+  ck_assert_uint_gt(run_three(&s), 50);
+}
+END_TEST
+
+START_TEST(test_overlap_2d)
+{
+  setup s = {2, SB_OUTCOME_ELASTIC, SB_DETECT_OVERLAP, 0, 0, 0};
+  ck_assert_uint_gt(run_three(&s), 50);
+  setup t = {2, SB_OUTCOME_REINSERT, SB_DETECT_BALLISTIC, 0, 0, 0};
+  ck_assert_uint_gt(run_three(&t), 50);
+}
+END_TEST
+
+START_TEST(test_sort_and_foreign_search)
+{
+  setup s = {3, SB_OUTCOME_ELASTIC, SB_DETECT_BALLISTIC, 37, 0, 0};
+  ck_assert_uint_gt(run_three(&s), 50);
+  setup t = {3, SB_OUTCOME_REINSERT, SB_DETECT_BALLISTIC, 0, 1, 0};
+  ck_assert_uint_gt(run_three(&t), 50);
+}
+END_TEST
+
+/* Large steps (|disp| > r/20): the list does not pay and is not used. */
+START_TEST(test_not_used_for_long_steps)
+{
+  setup s = {3, SB_OUTCOME_ELASTIC, SB_DETECT_BALLISTIC, 0, 0, 0};
+  sb_engine *a = make(&s, SB_NEIGH_CELLS, 0);
+  sb_engine_params p = *sb_engine_get_params(a);
+  sb_engine_free(a);
+  p.dt = 0.1;
+  a = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(a);
+  sb_engine_species sp = {0.5, 1.0, 1.0, sqrt(2.0), 0.0};
+  ck_assert_int_eq(sb_engine_add_species(a, &sp, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(a, 0, 0, 400), SB_SUCCESS);
+  for (int k = 0; k < 20; k++)
+    ck_assert_int_eq(sb_engine_step(a), SB_SUCCESS);
+  ck_assert_uint_eq(a->vl.uses, 0);
+  ck_assert_uint_eq(a->vl.builds, 0);
+  sb_engine_free(a);
+}
+END_TEST
+
+int main(void)
+{
+  Suite *s = suite_create("engine_verlet");
+  TCase *t = tcase_create("same run");
+  tcase_set_timeout(t, 300);
+  tcase_add_test(t, test_elastic);
+  tcase_add_test(t, test_reinsert);
+  tcase_add_test(t, test_merge);
+  tcase_add_test(t, test_overlap_2d);
+  tcase_add_test(t, test_sort_and_foreign_search);
+  tcase_add_test(t, test_not_used_for_long_steps);
+  suite_add_tcase(s, t);
+  return sbt_run_suite(s);
+}
