@@ -13,8 +13,10 @@
  *      <x^2> = 2 D t (1 + G^2 t^2/3) (Foister & van de Ven 1980, J. Fluid
  *      Mech. 96:105, eq 4.9) with the inertial corrections of the exact
  *      model, <xy> = D G t^2, <y^2> = 2 D t, over 50 steps of 20 tau.
- * Dropping the cross term (x rows independent of the y normals) fails
- * (b) and (c); so does the uniform-flow noise of the old step. */
+ * Broken on purpose: dropping the cross term (x rows independent of the
+ * y normals) fails (b) (p(cov) = 0 at h = 10 tau, G h = 0.4) and (c)
+ * (<x^2> at z = -7.9, <xy> at -5.3); so does the uniform-flow noise of
+ * the old step (same numbers). */
 #include <check.h>
 #include <math.h>
 #include <stdio.h>
@@ -265,16 +267,20 @@ START_TEST(test_mc_steps)
 }
 END_TEST
 
-/* (c) Long-time dispersion: 20 000 particles, 250 steps of h = 4 tau
- * (t = 1000 tau), G tau = 0.1, tau = B = 1 (D = B^2 tau^2/2 = 1/2).
- * From rest the exact model gives, in units of tau and B (x = t/tau,
- * g = G tau; from the kernel K_x of engine_lees.c, exponentially small
- * terms dropped)
+/* (c) Long-time dispersion: 50 000 particles, 20 steps of h = 4.5 tau
+ * (t = 90 tau; G h = 0.45, the engine needs G h < 1/2), G tau = 0.1,
+ * tau = B = 1 (D = B^2 tau^2/2 = 1/2).  From rest the exact model gives,
+ * in units of tau and B (x = t/tau, g = G tau; from the kernel K_x of
+ * engine_lees.c, terms O(e^-x) dropped)
  *   <x^2> = x - 3/2 + g^2 (x^3/3 - 2 x^2 + 4 x - 3/4),
  * whose leading term is Foister & van de Ven's 2 D G^2 t^3/3 and whose
  * x^2 term is the inertial lag (relative -6 tau/t); <y^2> = x - 3/2,
- * <xy> = g (x^2/2 - ...) -> D G t^2.  z-scores of the sample second
- * moments (standard errors from the sample fourth moments), |z| <= 4. */
+ * <xy> = g int K_x k_y -> D G t^2.  The closed form is checked against
+ * sbi_shear_noise_cov (1e-12), then z-scores of the sample second moments
+ * (standard errors from the sample fourth moments), |z| <= 4.  Twenty
+ * steps, not hundreds: the error of the uniform-flow noise in <x^2> and
+ * <xy> is relative O(h/t) (the within-step shear correlation, once per
+ * step); here it is -7.9 and -5.3 standard errors. */
 START_TEST(test_long_time)
 {
   const size_t N = 50000;
@@ -298,6 +304,10 @@ START_TEST(test_long_time)
     const double wxx = t - 1.5 + g * g * (t * t * t / 3 - 2 * t * t +
                                           4 * t - 0.75);
     const double wyy = t - 1.5;
+    double Sx[4][4];
+    sbi_shear_noise_cov(t, g, Sx);
+    ck_assert_rel(Sx[3][3], wxx, 1e-12);
+    ck_assert_rel(Sx[1][1], wyy, 1e-12);
     /* <xy> = g int K_x k_y dr: (x^2/2 - 3x + ...) -> use the reference
      * integral at this x (checked in (a)) */
     double f[7];
@@ -354,6 +364,107 @@ START_TEST(test_threads_identical)
 }
 END_TEST
 
+
+/* ------------------------------------ rest of a step after an outcome */
+
+typedef struct {
+  int n;
+  double s, x[3], u[3];
+} reins_rec;
+
+static int reinsert_and_record(sb_engine *e, const sb_engine_pair *p,
+                               double s, void *ctx)
+{
+  reins_rec *r = ctx;
+  int st = sb_engine_outcome_reinsert(e, p, s);
+  if (st)
+    return st;
+  r->n++;
+  r->s = p->t0 + s * p->dt;  /* time of the collision (step starts at 0) */
+  memcpy(r->x, sb_engine_positions(e) + 3 * p->j, sizeof r->x);
+  memcpy(r->u, sb_engine_velocities(e) + 3 * p->j, sizeof r->u);
+  return 0;
+}
+
+static void rhs(const double *s, double tau, double G, double wy,
+                double *d)
+{
+  d[0] = s[1];
+  d[1] = (G * s[2] - s[1]) / tau;
+  d[2] = s[3];
+  d[3] = (wy - s[3]) / tau;
+}
+
+static void rk4(double *s, double tau, double G, double wy, double T,
+                long n)
+{
+  double h = T / (double)n, k1[4], k2[4], k3[4], k4[4], t[4];
+  for (long q = 0; q < n; q++) {
+    rhs(s, tau, G, wy, k1);
+    for (int c = 0; c < 4; c++)
+      t[c] = s[c] + 0.5 * h * k1[c];
+    rhs(t, tau, G, wy, k2);
+    for (int c = 0; c < 4; c++)
+      t[c] = s[c] + 0.5 * h * k2[c];
+    rhs(t, tau, G, wy, k3);
+    for (int c = 0; c < 4; c++)
+      t[c] = s[c] + h * k3[c];
+    rhs(t, tau, G, wy, k4);
+    for (int c = 0; c < 4; c++)
+      s[c] += h / 6.0 * (k1[c] + 2 * k2[c] + 2 * k3[c] + k4[c]);
+  }
+}
+
+/* With the Langevin detector a particle changed by an outcome continues by
+ * a fresh step over the rest of the step: in the shear, the exact step of
+ * the linear field (mean correction from the piece's start).  A pair
+ * meets in the first step, j is reinserted; B = 1e-9 (noise ~1e-9), G =
+ * 0.3, settling w_y = -0.1 along y, tau = 0.5, dt = 0.5: j's end state
+ * against RK4 (1e5 steps) from its reinsertion state over the rest of the
+ * step, 1e-7.  (With the frozen field at the new place, as before, the
+ * x error is G tau^2 (A V_r + D w_y) ~ 1e-3.) */
+START_TEST(test_rest_of_step)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 10.0;
+  p.dt = 0.5;
+  p.capacity = 4;
+  p.seed = 9;
+  p.detect = SB_DETECT_LANGEVIN;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  const double tau = 0.5, G = 0.3, gy = -0.2, wy = gy * tau;
+  sb_engine_species sp = {0.1, 1.0, tau, 1e-9, 0.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &sp, NULL), 0);
+  double Gp[3] = {G, 0, 0}, g[3] = {0.0, gy, 0.0};
+  ck_assert_int_eq(sb_engine_set_fluid(e, SB_FLUID_SHEAR, Gp), 0);
+  ck_assert_int_eq(sb_engine_set_lees_edwards(e, 1), 0);
+  ck_assert_int_eq(sb_engine_set_gravity(e, g), 0);
+  reins_rec r = {0, 0, {0}, {0}};
+  ck_assert_int_eq(sb_engine_set_outcome_fn(e, reinsert_and_record, &r), 0);
+  double xa[3] = {5.0, 5.0, 5.0}, ua[3] = {2.0, wy, 0.0};
+  double xb[3] = {5.6, 5.0, 5.0}, ub[3] = {0.0, wy, 0.0};
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xa, ua), 0);
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xb, ub), 0);
+  ck_assert_msg(sb_engine_step(e) == 0, "%s", sb_last_error());
+  ck_assert_int_eq(r.n, 1);
+  /* the fluid is G (y - L/2) */
+  double st[4] = {r.x[0], r.u[0], r.x[1] - 5.0, r.u[1]};
+  rk4(st, tau, G, wy, p.dt - r.s, 100000);
+  const double *x = sb_engine_positions(e), *u = sb_engine_velocities(e);
+  double X = x[3], Y = x[4] - 5.0;
+  X += 10.0 * nearbyint((st[0] - X) / 10.0);  /* wrapped into the box */
+  ck_assert_msg(fabs(Y - st[2]) <= 1e-7 && fabs(u[4] - st[3]) <= 1e-7,
+                "y %.12g vs %.12g", Y, st[2]);
+  ck_assert_msg(fabs(X - st[0]) <= 1e-7, "x %.12g vs %.12g (t %g)", X,
+                st[0], r.s);
+  ck_assert_msg(fabs(u[3] - st[1]) <= 1e-7, "u %.12g vs %.12g", u[3],
+                st[1]);
+  sb_engine_free(e);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("engine_shear_noise");
@@ -361,6 +472,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_cov_reference);
   tcase_add_test(tc, test_chol_reference);
   tcase_add_test(tc, test_ints_branches);
+  tcase_add_test(tc, test_rest_of_step);
   suite_add_tcase(s, tc);
   TCase *mc = tcase_create("monte_carlo");
   tcase_set_timeout(mc, 300);

@@ -722,14 +722,18 @@ int sb_engine_set_dt(sb_engine *e, double dt)
  * (GSL ziggurat, in the documented order: particle, component, z1 then z2,
  * so a run does not depend on the block size) and the arithmetic loop
  * then runs without calls.  In 2-D the third component is stepped too
- * (keeping the draw order independent of dim) and reset. */
+ * (keeping the draw order independent of dim) and reset.  With the
+ * Lees-Edwards shear (G != 0) the x component of a Stokes species takes
+ * the exact shear noise from the same normals: its rows of the Cholesky
+ * factor of the (u_y, y, u_x, x) covariance (engine_lees.c). */
 #define SBI_TRANSPORT_BLOCK 256
 
 /* Transport on the counter-based streams (par.streams): particle i takes
  * the first six normals of the stream (seed, id_i, step) through
  * sb_langevin_step3_stream (the same update and draw order as above), so
  * blocks of particles are independent and run on all threads with
- * bit-identical results. */
+ * bit-identical results.  With the shear noise the same normals go
+ * through shear_step_z instead. */
 #define SBI_STREAM_BLOCK 1024
 /* The sheared step of one particle from its six normals z (the order of
  * sb_langevin_step3_stream): y and z as step3_z, the x component with the

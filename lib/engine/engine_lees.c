@@ -31,11 +31,18 @@
  *   D = x^2/2 - x + (1-e)
  * (integrals of the OU response kernel e^{-(h-t)/tau}; tested against a
  * fine Runge-Kutta integration).  This makes the step exact for non-
- * Brownian particles at every dt/tau_p.  The noise is that of the exact
- * OU step with a uniform flow: the part of the y noise that the shear
- * carries into x over one step (relative variance O((G h)^2)) is left
- * out, so for Brownian particles the shear dispersion converges at first
- * order in G h.
+ * Brownian particles at every dt/tau_p.
+ *
+ * Noise.  The noise is exact too: the covariance of (u_y, y, u_x, x) over
+ * the step, Sigma(h) = int_0^h Phi Q Phi^T ds, has the OU y block, and x
+ * blocks from the response of u_x and x to dW_y through G y (kernels K_u,
+ * K_x below, the integrands of Bv and A).  The transports (engine.c) draw
+ * the same six normals per particle; the x component takes the x rows of
+ * the lower Cholesky factor of Sigma in the order (u_y, y, u_x, x)
+ * against (z1_y, z2_y, z1_x, z2_x), computed once per species, dt and G
+ * (sbi_engine_shear_noise).  Tested in tests/test_engine_shear_noise.c
+ * against Van Loan's (1978) matrix exponential at 80 digits and by Monte
+ * Carlo (docs/engine_forces.md section 3).
  */
 #include <math.h>
 #include <stdlib.h>
