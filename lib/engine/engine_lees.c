@@ -278,8 +278,10 @@ int sbi_engine_shear_noise(sb_engine *e, const sbi_shear_noise **tab)
     sbi_shear_noise *t = realloc(e->shn, e->nspec * sizeof *t);
     if (!t)
       return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
-    for (size_t k = e->nshn; k < e->nspec; k++)
+    for (size_t k = e->nshn; k < e->nspec; k++) {
+      memset(&t[k], 0, sizeof t[k]);
       t[k].dt = NAN;  /* no key yet */
+    }
     e->shn = t;
     e->nshn = e->nspec;
   }
