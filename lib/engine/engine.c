@@ -188,6 +188,7 @@ void sb_engine_free(sb_engine *e)
   free(e->lp_t);
   free(e->sfl);   /* engine_force.c */
   free(e->vset);
+  free(e->shn);   /* engine_lees.c */
   sb_langevin_hitter_free(e->lh);
   if (e->rng)
     gsl_rng_free(e->rng);
@@ -733,15 +734,60 @@ int sb_engine_set_dt(sb_engine *e, double dt)
  * (GSL ziggurat, in the documented order: particle, component, z1 then z2,
  * so a run does not depend on the block size) and the arithmetic loop
  * then runs without calls.  In 2-D the third component is stepped too
- * (keeping the draw order independent of dim) and reset. */
+ * (keeping the draw order independent of dim) and reset.  With the
+ * Lees-Edwards shear (G != 0) the x component of a Stokes species takes
+ * the exact shear noise from the same normals: its rows of the Cholesky
+ * factor of the (u_y, y, u_x, x) covariance (engine_lees.c). */
 #define SBI_TRANSPORT_BLOCK 256
 
 /* Transport on the counter-based streams (par.streams): particle i takes
  * the first six normals of the stream (seed, id_i, step) through
  * sb_langevin_step3_stream (the same update and draw order as above), so
  * blocks of particles are independent and run on all threads with
- * bit-identical results. */
+ * bit-identical results.  With the shear noise the same normals go
+ * through shear_step_z instead. */
 #define SBI_STREAM_BLOCK 1024
+/* The sheared step of one particle from its six normals z (the order of
+ * sb_langevin_step3_stream): y and z as step3_z, the x component with the
+ * exact shear noise (engine_lees.c) when sh is on. */
+static inline void shear_step_z(const sb_langevin_coef *c,
+                                const sbi_shear_noise *sh, const double *w,
+                                const double *z, double *x, double *u)
+{
+  for (int k = 0; k < 3; k++) {
+    const double wk = w ? w[k] : 0.0, v = u[k] - wk;
+    if (k == 0 && sh->on) {
+      const double *L = sh->L;
+      x[0] += wk * c->dt + v * c->gain + L[5] * z[0] + L[6] * z[1] +
+              L[3] * z[2] + L[4] * z[3];
+      u[0] = wk + v * c->decay + (L[2] * z[0] + L[0] * z[2] + L[1] * z[3]);
+      continue;
+    }
+    x[k] += wk * c->dt + v * c->gain + c->s_xu * z[2 * k] +
+            c->s_xc * z[2 * k + 1];
+    u[k] = wk + v * c->decay + c->s_u * z[2 * k];
+  }
+}
+
+/* m particles from i0 on the keyed streams with the shear noise: the same
+ * normals as sb_langevin_step3_stream (keys checked by the caller). */
+static void shear_stream_block(sb_engine *e, const sbi_shear_noise *shn,
+                               size_t m, size_t i0, const double *wb,
+                               uint64_t seed, uint64_t step)
+{
+  enum { CH = 128 };
+  double z[6 * CH];
+  for (size_t j0 = 0; j0 < m; j0 += CH) {
+    const size_t mc = m - j0 < CH ? m - j0 : CH;
+    sb_stream_gaussian_keyed(seed, step, mc, e->id + i0 + j0, 0, 6, z);
+    for (size_t j = 0; j < mc; j++) {
+      const size_t i = i0 + j0 + j, sp = e->species[i];
+      shear_step_z(&e->coef[sp], &shn[sp], wb ? wb + 3 * (j0 + j) : NULL,
+                   z + 6 * j, e->x + 3 * i, e->u + 3 * i);
+    }
+  }
+}
+
 static int transport_streams(sb_engine *e, const double *us)
 {
   const size_t n = e->n, nb = (n + SBI_STREAM_BLOCK - 1) / SBI_STREAM_BLOCK;
@@ -764,6 +810,10 @@ static int transport_streams(sb_engine *e, const double *us)
       return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
     ws = e->wst;
   }
+  const sbi_shear_noise *shn;
+  int st = sbi_engine_shear_noise(e, &shn);
+  if (st)
+    return st;
   int bad = 0;
   const int nt = sbi_engine_threads(&e->par);
   (void)nt;
@@ -784,9 +834,11 @@ static int transport_streams(sb_engine *e, const double *us)
                           vset[3 * e->species[i] + k];
       wb = ws + 3 * i0;
     }
-    if (sb_langevin_step3_stream(m, e->coef, e->species + i0, wb,
-                                 x + 3 * i0,
-                                 u + 3 * i0, seed, step, e->id + i0, 0))
+    if (shn)
+      shear_stream_block(e, shn, m, i0, wb, seed, step);
+    else if (sb_langevin_step3_stream(m, e->coef, e->species + i0, wb,
+                                      x + 3 * i0, u + 3 * i0, seed, step,
+                                      e->id + i0, 0))
       bad |= 1;
     for (size_t q = 3 * i0; q < 3 * (i0 + m); q++)
       dp[q] = x[q] - x0[q];
@@ -824,6 +876,11 @@ static int transport(sb_engine *e)
   const size_t *sp = e->species;
   /* gravity: each species' settling velocity adds to U_s (engine_force.c) */
   const double *vset = e->has_grav ? e->vset : NULL;
+  /* Lees-Edwards shear: the x rows of the exact noise (engine_lees.c) */
+  const sbi_shear_noise *shn;
+  int st = sbi_engine_shear_noise(e, &shn);
+  if (st)
+    return st;
   for (size_t i0 = 0; i0 < n; i0 += SBI_TRANSPORT_BLOCK) {
     const size_t m = n - i0 < SBI_TRANSPORT_BLOCK ? n - i0
                                                    : SBI_TRANSPORT_BLOCK;
@@ -839,12 +896,21 @@ static int transport(sb_engine *e)
                      z1 = z[6 * a + 2 * k],
                      z2 = z[6 * a + 2 * k + 1];
         const double xo = x[q], uo = u[q], v = uo - w;
-        const double xn = xo + (w * c->dt + v * c->gain + c->s_xu * z1 +
-                                c->s_xc * z2);
+        double xn, un;
+        if (k == 0 && shn && shn[sp[i]].on) {
+          const double *L = shn[sp[i]].L, z3 = z[6 * a + 2],
+                       z4 = z[6 * a + 3];
+          xn = xo + (w * c->dt + v * c->gain + L[5] * z1 + L[6] * z2 +
+                     L[3] * z3 + L[4] * z4);
+          un = w + v * c->decay + (L[2] * z1 + L[0] * z3 + L[1] * z4);
+        } else {
+          xn = xo + (w * c->dt + v * c->gain + c->s_xu * z1 + c->s_xc * z2);
+          un = w + v * c->decay + c->s_u * z1;
+        }
         x0[q] = xo;
         u0[q] = uo;
         x[q] = xn;
-        u[q] = w + v * c->decay + c->s_u * z1;
+        u[q] = un;
         dp[q] = xn - xo;
       }
     }

@@ -220,6 +220,9 @@ struct sb_engine {
   size_t nvset;              /* species it was computed for (0: stale) */
   int nonlin;                /* some species has a nonlinear drag law */
   int lees;                  /* Lees-Edwards images on */
+  struct sbi_shear_noise *shn;  /* per species: factor of the exact shear
+                                   noise (engine_lees.c), nshn entries */
+  size_t nshn;
   double le_off;             /* image shift delta in [0, L_x), m */
   int walled;                /* some direction has walls */
   sb_engine_wall wall[6];    /* face 2k (lo), 2k + 1 (hi) */
@@ -395,6 +398,29 @@ int sbi_engine_after_transport(sb_engine *e);
  * x = h/tau, A = x(1+e^-x) - 2(1-e^-x), Bv = 1 - e^-x (1+x),
  * C = x - (1-e^-x), D = x^2/2 - x + (1-e^-x), by series below x = 1. */
 void sbi_shear_coefs(double x, double c[4]);
+/* Exact noise of the step in the linear shear (engine_lees.c), units
+ * tau = B = 1, x = h/tau, g = G tau.  The seven integrals over r in
+ * [0, x] of (K_u k_u, K_u k_y, K_x k_u, K_x k_y, K_u^2, K_u K_x, K_x^2),
+ * k_u = e^-r, k_y = 1 - e^-r, K_u = 1 - e^-r (1 + r),
+ * K_x = r - 2 + e^-r (2 + r): */
+void sbi_shear_noise_ints(double x, double f[7]);
+/* the covariance of (u_y, y, u_x, x) over the step: */
+void sbi_shear_noise_cov(double x, double g, double S[4][4]);
+/* and the x rows of its lower Cholesky factor against the normals
+ * (z1_y, z2_y, z1_x, z2_x), whose y rows are the OU step's (s_u 0; s_xu
+ * s_xc): L = (L31, L32, L33, L41, L42, L43, L44). */
+void sbi_shear_noise_chol(double x, double g, double L[7]);
+/* Cached dimensional factor per species: L[0..2] the u_x row, L[3..6]
+ * the x row; on = 0 for species that keep the OU noise (free flight,
+ * nonlinear drag). */
+typedef struct sbi_shear_noise {
+  double G, dt, tau, B;  /* key */
+  int on;
+  double L[7];
+} sbi_shear_noise;
+/* The table for this step (*tab = NULL when the images are off or
+ * G = 0); SB_ENOMEM. */
+int sbi_engine_shear_noise(sb_engine *e, const sbi_shear_noise **tab);
 /* Exact-mean correction of the Stokes species' x components in the
  * linear shear field (Lees-Edwards on). */
 void sbi_engine_shear_correct(sb_engine *e);

@@ -11,7 +11,9 @@
  * outcome leaves unchanged continues on the bridge from its contact state
  * to its end (exact by the Markov property), a changed one (bounce,
  * merge, reinsertion) continues by a fresh exact Langevin step from its
- * new state.  A record that starts inside the step (re-detection after a
+ * new state (in the Lees-Edwards shear the exact step of the linear field
+ * from the piece's start: mean correction and shear noise, engine_lees.c).
+ * A record that starts inside the step (re-detection after a
  * collision) needs both states at its start: a partner that is not at the
  * start of its piece is drawn from its piece's bridge at that time.  Each
  * pair's interior path is drawn independently of the other pairs' (as for
@@ -329,12 +331,46 @@ int sbi_engine_langevin_continue(sb_engine *e, size_t k, const sbi_event *ev,
     cf = (sb_langevin_coef){h, 1.0, h, 0.0, 0.0, 0.0};
   else if (sb_langevin_coef_init(&cf, sp->tau, sp->B, h))
     return sbi_error(SB_EINVAL, "sb_engine_step", "no Langevin step");
+  double z[6];
+  for (int c = 0; c < 6; c++)
+    z[c] = gsl_ran_gaussian_ziggurat(e->rng, 1.0);
+  /* Lees-Edwards shear, Stokes species: the exact step in the linear
+   * field over h (engine_lees.c: mean correction and shear noise, the
+   * x rows of the Cholesky factor against the same normals) */
+  const double G = e->fluid_p[0];
+  const int shear = e->lees && e->fluid == SB_FLUID_SHEAR && G != 0.0 &&
+                    !isinf(sp->tau) && h > 0.0 &&
+                    !(e->species[k] < e->nsfl &&
+                      e->sfl[e->species[k]].drag != SB_DRAG_STOKES);
+  double dux = 0.0, dxx = 0.0, L[7];
+  if (shear) {
+    const double tau = sp->tau, bt = sp->B * sqrt(tau);
+    const double wy = sbi_engine_w(e, k, 1);
+    double cs[4];
+    sbi_shear_coefs(h / tau, cs);
+    const double vr = e->u[3 * k + 1] - wy;
+    dux = G * tau * (cs[1] * vr + cs[2] * wy);
+    dxx = G * tau * tau * (cs[0] * vr + cs[3] * wy);
+    sbi_shear_noise_chol(h / tau, G * tau, L);
+    for (int q = 0; q < 7; q++)
+      L[q] *= q < 3 ? bt : bt * tau;
+  }
   for (int c = 0; c < 3; c++) {
-    double z1 = gsl_ran_gaussian_ziggurat(e->rng, 1.0);
-    double z2 = gsl_ran_gaussian_ziggurat(e->rng, 1.0);
+    const double z1 = z[2 * c], z2 = z[2 * c + 1];
     if (c >= e->par.dim)
       continue;
-    const double w = sbi_engine_w(e, k, c), v = e->u[3 * k + c] - w;
+    double w = sbi_engine_w(e, k, c);
+    if (c == 0 && shear)  /* the field at the piece's start (the linear
+                             continuation in the particle's frame) */
+      w += G * (e->x[3 * k + 1] - 0.5 * e->par.L[1]) - e->us[3 * k];
+    const double v = e->u[3 * k + c] - w;
+    if (c == 0 && shear) {
+      e->x[3 * k] += w * cf.dt + v * cf.gain + L[5] * z1 + L[6] * z2 +
+                     L[3] * z[2] + L[4] * z[3] + dxx;
+      e->u[3 * k] = w + v * cf.decay + (L[2] * z1 + L[0] * z[2] +
+                                        L[1] * z[3]) + dux;
+      continue;
+    }
     e->x[3 * k + c] += w * cf.dt + v * cf.gain + cf.s_xu * z1 + cf.s_xc * z2;
     e->u[3 * k + c] = w + v * cf.decay + cf.s_u * z1;
   }

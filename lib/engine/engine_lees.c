@@ -31,11 +31,18 @@
  *   D = x^2/2 - x + (1-e)
  * (integrals of the OU response kernel e^{-(h-t)/tau}; tested against a
  * fine Runge-Kutta integration).  This makes the step exact for non-
- * Brownian particles at every dt/tau_p.  The noise is that of the exact
- * OU step with a uniform flow: the part of the y noise that the shear
- * carries into x over one step (relative variance O((G h)^2)) is left
- * out, so for Brownian particles the shear dispersion converges at first
- * order in G h.
+ * Brownian particles at every dt/tau_p.
+ *
+ * Noise.  The noise is exact too: the covariance of (u_y, y, u_x, x) over
+ * the step, Sigma(h) = int_0^h Phi Q Phi^T ds, has the OU y block, and x
+ * blocks from the response of u_x and x to dW_y through G y (kernels K_u,
+ * K_x below, the integrands of Bv and A).  The transports (engine.c) draw
+ * the same six normals per particle; the x component takes the x rows of
+ * the lower Cholesky factor of Sigma in the order (u_y, y, u_x, x)
+ * against (z1_y, z2_y, z1_x, z2_x), computed once per species, dt and G
+ * (sbi_engine_shear_noise).  Tested in tests/test_engine_shear_noise.c
+ * against Van Loan's (1978) matrix exponential at 80 digits and by Monte
+ * Carlo (docs/engine_forces.md section 3).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -93,6 +100,214 @@ void sbi_shear_coefs(double x, double c[4])
   c[1] = ome - x * e;
   c[2] = x - ome;
   c[3] = 0.5 * x * x - x + ome;
+}
+
+/* ---------------------------------------------- exact shear noise */
+
+/* The kernels of the noise in units tau = B = 1 (r = h - s the age of the
+ * increment dW_y(s)): u_y and y respond with k_u = e^-r, k_y = 1 - e^-r;
+ * the x velocity and position respond through G y with
+ *   K_u = 1 - e^-r - r e^-r,   K_x = r - 2 + 2 e^-r + r e^-r
+ * (per unit g = G tau).  Each as terms c r^a e^{-k r}, a, k in {0, 1}:
+ * kt[kernel][a][k]; order k_u, k_y, K_u, K_x. */
+static const double shn_kt[4][2][2] = {
+    {{0, 1}, {0, 0}},
+    {{1, -1}, {0, 0}},
+    {{1, -1}, {0, -1}},
+    {{-2, 2}, {1, 1}},
+};
+/* the seven integrals over [0, x]: (K_u k_u, K_u k_y, K_x k_u, K_x k_y,
+ * K_u K_u, K_u K_x, K_x K_x) as pairs of kernels */
+static const int shn_pair[7][2] = {{2, 0}, {2, 1}, {3, 0}, {3, 1},
+                                   {2, 2}, {2, 3}, {3, 3}};
+
+/* Taylor coefficient of r^n of a kernel, written so that the vanishing
+ * low orders are exact zeros. */
+static double shn_taylor(int kern, int n, double fact_n)
+{
+  const double sg = (n & 1) ? -1.0 : 1.0;  /* (-1)^n */
+  switch (kern) {
+  case 0:
+    return sg / fact_n;
+  case 1:
+    return n == 0 ? 0.0 : -sg / fact_n;
+  case 2:
+    return n <= 1 ? 0.0 : sg * (n - 1) / fact_n;
+  default:
+    return n <= 2 ? 0.0 : sg * (2 - n) / fact_n;
+  }
+}
+
+#define SHN_SERIES_X 1.5
+#define SHN_NT 64
+
+void sbi_shear_noise_ints(double x, double f[7])
+{
+  if (x < SHN_SERIES_X) {
+    /* product of the Taylor series, integrated term by term (Horner from
+     * the highest degree; the terms fall as (2x)^n/n!, below 1e-17 of the
+     * leading one by n = 60 at x = 1.5) */
+    double t[4][SHN_NT], fact = 1.0;
+    for (int n = 0; n < SHN_NT; n++) {
+      if (n > 0)
+        fact *= n;
+      for (int q = 0; q < 4; q++)
+        t[q][n] = shn_taylor(q, n, fact);
+    }
+    for (int m = 0; m < 7; m++) {
+      const double *p = t[shn_pair[m][0]], *q = t[shn_pair[m][1]];
+      double acc = 0.0;
+      for (int n = SHN_NT - 1; n >= 0; n--) {
+        double c = 0.0;
+        for (int j = 0; j <= n; j++)
+          c += p[j] * q[n - j];
+        acc = acc * x + c / (n + 1);
+      }
+      f[m] = acc * x;
+    }
+    return;
+  }
+  /* closed form: int_0^x r^a e^{-k r} dr = x^{a+1}/(a+1) (k = 0),
+   * a!/k^{a+1} (1 - e^{-kx} sum_{j<=a} (kx)^j/j!) (k > 0) */
+  double J[3][3];
+  for (int a = 0; a <= 2; a++) {
+    J[a][0] = pow(x, a + 1) / (a + 1);
+    for (int k = 1; k <= 2; k++) {
+      const double y = k * x;
+      double s = 0.0, term = 1.0, fa = 1.0;
+      for (int j = 0; j <= a; j++) {
+        if (j > 0) {
+          term *= y / j;
+          fa *= j;
+        }
+        s += term;
+      }
+      J[a][k] = fa / pow((double)k, a + 1) * (1.0 - exp(-y) * s);
+    }
+  }
+  for (int m = 0; m < 7; m++) {
+    const int p = shn_pair[m][0], q = shn_pair[m][1];
+    double acc = 0.0;
+    for (int a1 = 0; a1 < 2; a1++)
+      for (int k1 = 0; k1 < 2; k1++)
+        for (int a2 = 0; a2 < 2; a2++)
+          for (int k2 = 0; k2 < 2; k2++)
+            acc += shn_kt[p][a1][k1] * shn_kt[q][a2][k2] *
+                   J[a1 + a2][k1 + k2];
+    f[m] = acc;
+  }
+}
+
+void sbi_shear_noise_cov(double x, double g, double S[4][4])
+{
+  sb_langevin_coef c;
+  double f[7];
+  sb_langevin_coef_init(&c, 1.0, 1.0, x);
+  sbi_shear_noise_ints(x, f);
+  const double a = c.s_u, b = c.s_xu, cc = c.s_xc;
+  memset(S, 0, 16 * sizeof(double));
+  S[0][0] = a * a;
+  S[1][0] = a * b;
+  S[1][1] = b * b + cc * cc;
+  S[2][2] = a * a + g * g * f[4];
+  S[3][2] = a * b + g * g * f[5];
+  S[3][3] = b * b + cc * cc + g * g * f[6];
+  S[2][0] = g * f[0];
+  S[2][1] = g * f[1];
+  S[3][0] = g * f[2];
+  S[3][1] = g * f[3];
+  for (int i = 0; i < 4; i++)
+    for (int j = i + 1; j < 4; j++)
+      S[i][j] = S[j][i];
+}
+
+void sbi_shear_noise_chol(double x, double g, double L[7])
+{
+  sb_langevin_coef c;
+  double f[7];
+  sb_langevin_coef_init(&c, 1.0, 1.0, x);
+  sbi_shear_noise_ints(x, f);
+  /* y rows: the OU factor (a 0; b cc) of the step; x rows: M = C L_y^-T
+   * against the y normals, then the Cholesky factor of the Schur
+   * complement S = Sigma_OU + R, R = g^2 S2 - M M^T the covariance of the
+   * shear part given the y noise (long double: R and its determinant
+   * cancel by up to 5 digits at small x) */
+  const long double a = c.s_u, b = c.s_xu, cc = c.s_xc, gg = g;
+  if (!(a > 0) || !(cc > 0)) {  /* x = 0: no noise */
+    for (int k = 0; k < 7; k++)
+      L[k] = 0.0;
+    return;
+  }
+  const long double M00 = gg * f[0] / a, M10 = gg * f[2] / a;
+  const long double M01 = (gg * f[1] - b * M00) / cc;
+  const long double M11 = (gg * f[3] - b * M10) / cc;
+  long double R00 = gg * gg * f[4] - M00 * M00 - M01 * M01;
+  const long double R01 = gg * gg * f[5] - M00 * M10 - M01 * M11;
+  long double R11 = gg * gg * f[6] - M10 * M10 - M11 * M11;
+  if (R00 < 0)
+    R00 = 0;
+  if (R11 < 0)
+    R11 = 0;
+  long double detR = R00 * R11 - R01 * R01;
+  if (detR < 0)
+    detR = 0;
+  long double q = b * b * R00 - 2 * a * b * R01 + a * a * R11;
+  if (q < 0)
+    q = 0;
+  const long double S00 = a * a + R00, S10 = a * b + R01;
+  const long double L33 = sqrtl(S00);
+  L[0] = (double)M00;
+  L[1] = (double)M01;
+  L[2] = (double)L33;
+  L[3] = (double)M10;
+  L[4] = (double)M11;
+  L[5] = (double)(S10 / L33);
+  /* L44^2 = S11 - L43^2 = cc^2 + (q + det R)/S00, q = (b, -a) R (b, -a)^T
+   * (the conditional variance of the x noise given the other three,
+   * without the difference of the two large terms) */
+  L[6] = (double)sqrtl(cc * cc + (q + detR) / S00);
+}
+
+int sbi_engine_shear_noise(sb_engine *e, const sbi_shear_noise **tab)
+{
+  *tab = NULL;
+  const double G = e->fluid_p[0], h = e->par.dt;
+  if (!e->lees || e->fluid != SB_FLUID_SHEAR || G == 0.0)
+    return SB_SUCCESS;
+  if (e->nshn < e->nspec) {
+    sbi_shear_noise *t = realloc(e->shn, e->nspec * sizeof *t);
+    if (!t)
+      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+    for (size_t k = e->nshn; k < e->nspec; k++) {
+      memset(&t[k], 0, sizeof t[k]);
+      t[k].dt = NAN;  /* no key yet */
+    }
+    e->shn = t;
+    e->nshn = e->nspec;
+  }
+  for (size_t sp = 0; sp < e->nspec; sp++) {
+    sbi_shear_noise *t = &e->shn[sp];
+    const double tau = e->spec[sp].tau, B = e->spec[sp].B;
+    const int on = !isinf(tau) &&
+                   !(sp < e->nsfl && e->sfl[sp].drag != SB_DRAG_STOKES);
+    if (t->G == G && t->dt == h && t->tau == tau && t->B == B &&
+        t->on == on)
+      continue;  /* cached */
+    t->G = G;
+    t->dt = h;
+    t->tau = tau;
+    t->B = B;
+    t->on = on;
+    if (!on)
+      continue;
+    double Lh[7];
+    sbi_shear_noise_chol(h / tau, G * tau, Lh);
+    const double bt = B * sqrt(tau);
+    for (int k = 0; k < 7; k++)
+      t->L[k] = Lh[k] * (k < 3 ? bt : bt * tau);
+  }
+  *tab = e->shn;
+  return SB_SUCCESS;
 }
 
 void sbi_engine_shear_correct(sb_engine *e)

@@ -844,9 +844,13 @@ int sb_engine_settling_velocity(const sb_engine *e, size_t sp, double v[3]);
  *  detection of a step and for the re-detection after an outcome alike,
  *  with every detector and every outcome: an elastic collision takes the
  *  relative velocity to j's image, a merge conserves momentum in the
- *  frame of i (where the cluster stays).  on = 1 requires SB_FLUID_SHEAR
- *  and x and y periodic (otherwise SB_EINVAL here or at the step).  Off
- *  by default. */
+ *  frame of i (where the cluster stays).  With the images on, the
+ *  Langevin step of a Stokes species is the exact transition in the
+ *  linear field, mean and noise (the y noise the shear carries into x
+ *  within a step, drawn from the same six normals; docs/engine_forces.md
+ *  section 3); nonlinear-drag species keep the field frozen over a step.
+ *  on = 1 requires SB_FLUID_SHEAR and x and y periodic (otherwise
+ *  SB_EINVAL here or at the step).  Off by default. */
 int sb_engine_set_lees_edwards(sb_engine *e, int on);
 /** Current image shift delta in [0, L_x) (m); 0 when off. */
 double sb_engine_lees_edwards_offset(const sb_engine *e);
