@@ -112,9 +112,10 @@ const sbi_col_keydef sbi_col_keys[] = {
     {"run", "sort_every", K_INT, C(sort_every), 0, R_CLOSED, 0, 2e9, NULL,
      "steps", "0 (off)", "reorder particles in memory (speed)"},
     {"run", "rng", K_NAME, C(rng), 16, R_ANY, 0, 0, RNGS, "-", "philox",
-     "generator type; philox: per-particle counter-based streams for "
-     "transport (parallel; results independent of the thread count and "
-     "of the particle order)"},
+     "generator type; philox (the default, fastest): per-particle "
+     "counter-based streams for transport (parallel; results independent "
+     "of the thread count and of the particle order); mt19937, taus2: "
+     "GSL generators in particle order (the validation cases)"},
     {"run", "threads", K_INT, C(threads), 0, R_CLOSED, 0, 4096, NULL, "-",
      "0 (OMP_NUM_THREADS)",
      "threads of the engine's parallel parts (results do not depend on "
