@@ -206,7 +206,8 @@ static void fill_path(const sb_engine *e, size_t k, const double *xa,
 
 /* 1 if the pair's record at the start of the step is not examined: its
  * relative chord (the engine pair's, both particles on their first piece)
- * stays more than sigma + rho away, rho the current neighbour reach
+ * stays more than sigma + rho away, rho the cached neighbour reach (valid
+ * for this dt, these species and at most lreach_n particles)
  * (docs/engine_langevin.md §4: the expected number of contacts such pairs
  * hold is <= tol per particle and step).  The neighbour search returns a
  * superset of these pairs (its criterion bounds the chords by the
@@ -219,8 +220,8 @@ static int beyond_reach(const sb_engine *e, const sb_engine_pair *p)
 {
   const double rho = e->lreach;
   if (!(rho >= 0.0) || e->lreach_dt != e->par.dt ||
-      e->lreach_nspec != e->nspec || e->lees || e->walled ||
-      e->lp_t[p->i] > 0.0 || e->lp_t[p->j] > 0.0)
+      e->lreach_nspec != e->nspec || e->n > e->lreach_n || e->lees ||
+      e->walled || e->lp_t[p->i] > 0.0 || e->lp_t[p->j] > 0.0)
     return 0;
   const sb_engine_species *si = &e->spec[e->species[p->i]],
                           *sj = &e->spec[e->species[p->j]];
