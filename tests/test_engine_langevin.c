@@ -74,10 +74,11 @@ END_TEST
  * own chord test at rho(1e-30), beyond the three reaches tested) by a
  * wrapper that records every contact and the closest distance of the
  * pair's chords; contacts whose chords stay beyond sigma + rho(tol) are
- * the ones a search with reach rho(tol) would miss.  Their number must stay below
- * the bound N steps tol (expected misses per particle and step <= tol;
- * each contact is seen from one pair), checked at tol = 1e-2 and 1e-4
- * where it is informative, and at the default 1e-9 (zero expected).
+ * the ones a search with reach rho(tol) would miss.  Their number must
+ * stay below the bound N steps tol (expected misses per particle and
+ * step <= tol; each contact is seen from one pair), checked at tol =
+ * 1e-2 and 1e-4 where it is informative, and at the default 1e-9 (zero
+ * expected).
  * 400 particles, Kn_D = 0.5, dt/tau = 1 and 10, 150 steps each. */
 typedef struct {
   double rho[3];
