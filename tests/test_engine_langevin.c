@@ -70,13 +70,15 @@ START_TEST(test_names_params)
 }
 END_TEST
 
-/* Reach.  All pairs are examined (a reach of 15, cells) by a wrapper
- * that records every contact and the closest distance of the pair's
- * chords; contacts whose chords stay beyond sigma + rho(tol) are the ones
- * a search with reach rho(tol) would miss.  Their number must stay below
- * the bound N steps tol (expected misses per particle and step <= tol;
- * each contact is seen from one pair), checked at tol = 1e-2 and 1e-4
- * where it is informative, and at the default 1e-9 (zero expected).
+/* Reach.  All pairs are examined (a reach of 15, cells; the detector's
+ * own chord test at rho(1e-30), beyond the three reaches tested) by a
+ * wrapper that records every contact and the closest distance of the
+ * pair's chords; contacts whose chords stay beyond sigma + rho(tol) are
+ * the ones a search with reach rho(tol) would miss.  Their number must
+ * stay below the bound N steps tol (expected misses per particle and
+ * step <= tol; each contact is seen from one pair), checked at tol =
+ * 1e-2 and 1e-4 where it is informative, and at the default 1e-9 (zero
+ * expected).
  * 400 particles, Kn_D = 0.5, dt/tau = 1 and 10, 150 steps each. */
 typedef struct {
   double rho[3];
@@ -131,6 +133,12 @@ START_TEST(test_reach_complete)
                     rr.rho[q]);
     }
     ck_assert(rr.rho[0] <= rr.rho[1] && rr.rho[1] < rr.rho[2]);
+    /* the detector skips the chords beyond its reach: make it examine
+     * everything that can matter here */
+    lp.tol = 1e-30;
+    ck_assert_int_eq(sb_engine_set_langevin(e, &lp), SB_SUCCESS);
+    const double rall = sb_engine_langevin_reach(e);
+    ck_assert_msg(rall > 1.2 * rr.rho[2], "rho %g %g", rr.rho[2], rall);
     ck_assert_int_eq(sb_engine_set_detector(e, record_all, &rr, 15.0),
                      SB_SUCCESS);
     const int steps = 150;
@@ -147,6 +155,74 @@ START_TEST(test_reach_complete)
     ck_assert_uint_eq(rr.beyond[2], 0);
     sb_engine_free(e);
   }
+}
+END_TEST
+
+/* The detector's chord test (engine_langevin.c, beyond_reach): a record
+ * at the start of the step whose relative chord stays beyond sigma + rho
+ * (rho the engine's reach at the default tol) is decided without calling
+ * the sampler, every other one calls it.  All pairs within 15 are
+ * candidates (custom detector around sb_engine_detect_langevin); the
+ * sampler's call counter shows which were examined.  400 particles,
+ * Kn_D = 0.5, dt/tau = 10, 20 steps; every candidate must agree, and both
+ * kinds must occur.  (That the skipped pairs hold at most tol contacts
+ * per particle and step is test_reach_complete.) */
+typedef struct {
+  double rho;
+  unsigned long skipped, examined, wrong;
+} skip_rec;
+
+static int check_skip(const sb_engine *e, const sb_engine_pair *p,
+                      const gsl_rng *r, void *ctx, double *s)
+{
+  skip_rec *sr = ctx;
+  sb_langevin_hit_stats a, b;
+  ck_assert_int_eq(sb_engine_langevin_stats(e, &a), SB_SUCCESS);
+  int h = sb_engine_detect_langevin(e, p, r, NULL, s);
+  ck_assert_int_eq(sb_engine_langevin_stats(e, &b), SB_SUCCESS);
+  const int examined = b.calls > a.calls;
+  double dd = 0, xd = 0;
+  for (int k = 0; k < 3; k++) {
+    dd += p->dd[k] * p->dd[k];
+    xd += p->dx0[k] * p->dd[k];
+  }
+  double lam = dd > 0 ? -xd / dd : 0;
+  lam = lam < 0 ? 0 : (lam > 1 ? 1 : lam);
+  double m2 = 0;
+  for (int k = 0; k < 3; k++) {
+    double v = p->dx0[k] + lam * p->dd[k];
+    m2 += v * v;
+  }
+  const int within = sqrt(m2) <= p->sigma + sr->rho;
+  sr->examined += examined;
+  sr->skipped += !examined;
+  sr->wrong += examined != within;
+  if (!examined)
+    ck_assert_int_eq(h, 0);
+  return h < 0 ? h : 0;
+}
+
+START_TEST(test_reach_skip)
+{
+  const double tau = 0.5 / sqrt(2.0), dt = 10.0 * tau;
+  const size_t N = 400;
+  sb_engine *e = box(3, 70.0, dt, N, 21);
+  add_species(e, tau);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, N), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_set_outcome(e, SB_OUTCOME_COUNT, 1.0),
+                   SB_SUCCESS);
+  skip_rec sr;
+  memset(&sr, 0, sizeof sr);
+  sr.rho = sb_engine_langevin_reach(e);
+  ck_assert_msg(sr.rho > 0.0 && sr.rho < 15.0, "rho %g", sr.rho);
+  ck_assert_int_eq(sb_engine_set_detector(e, check_skip, &sr, 15.0),
+                   SB_SUCCESS);
+  for (int k = 0; k < 20; k++)
+    ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  ck_assert_msg(sr.wrong == 0 && sr.skipped > 1000 && sr.examined > 100,
+                "rho %g: %lu skipped, %lu examined, %lu wrong", sr.rho,
+                sr.skipped, sr.examined, sr.wrong);
+  sb_engine_free(e);
 }
 END_TEST
 
@@ -467,6 +543,7 @@ static Suite *suite(void)
   TCase *tm = tcase_create("mc");
   tcase_set_timeout(tm, 60);
   tcase_add_test(tm, test_reach_complete);
+  tcase_add_test(tm, test_reach_skip);
   tcase_add_test(tm, test_dense_runs);
   tcase_add_test(tm, test_kernel_gh);
   tcase_add_test(tm, test_units);

@@ -206,11 +206,50 @@ static void fill_path(const sb_engine *e, size_t k, const double *xa,
   }
 }
 
+/* 1 if the pair's record at the start of the step is not examined: its
+ * relative chord (the engine pair's, both particles on their first piece)
+ * stays more than sigma + rho away, rho the cached neighbour reach (valid
+ * for this dt, these species and at most lreach_n particles)
+ * (docs/engine_langevin.md §4: the expected number of contacts such pairs
+ * hold is <= tol per particle and step).  The neighbour search returns a
+ * superset of these pairs (its criterion bounds the chords by the
+ * displacements' lengths); this exact chord test drops the rest before any
+ * state is drawn.  Only for particles with noise (the reach bounds the
+ * noise's deviation from the chord; a deterministic curved path is not
+ * covered) and plain periodic or open boxes (the engine pair's image is
+ * the one the sampler uses). */
+static int beyond_reach(const sb_engine *e, const sb_engine_pair *p)
+{
+  const double rho = e->lreach;
+  if (!(rho >= 0.0) || e->lreach_dt != e->par.dt ||
+      e->lreach_nspec != e->nspec || e->n > e->lreach_n || e->lees ||
+      e->walled || e->lp_t[p->i] > 0.0 || e->lp_t[p->j] > 0.0)
+    return 0;
+  const sb_engine_species *si = &e->spec[e->species[p->i]],
+                          *sj = &e->spec[e->species[p->j]];
+  if (isinf(si->tau) || isinf(sj->tau) || !(si->B > 0.0) || !(sj->B > 0.0))
+    return 0;
+  const double *x = p->dx0, *d = p->dd;
+  const double a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  const double b = x[0] * d[0] + x[1] * d[1] + x[2] * d[2];
+  double s = a > 0.0 ? -b / a : 0.0;
+  s = s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
+  double m2 = 0.0;
+  for (int k = 0; k < 3; k++) {
+    const double c = x[k] + s * d[k];
+    m2 += c * c;
+  }
+  const double lim = p->sigma + rho;
+  return m2 > lim * lim;
+}
+
 int sbi_engine_langevin_detect(const sb_engine *e, const sb_engine_pair *p,
                                double t, const gsl_rng *r, double *s,
                                sbi_event *ev)
 {
   const size_t i = p->i, j = p->j;
+  if (t <= 0.0 && beyond_reach(e, p))
+    return 0;
   double xi[3], ui[3], xj[3], uj[3];
   double shi[3] = {0, 0, 0}, shj[3] = {0, 0, 0}, du = 0.0;
   /* Inside the step a partner's state at t is drawn from its own bridge,

@@ -424,7 +424,12 @@ double sb_engine_langevin_reach(sb_engine *e);
  *  states, or, for a record that starts inside the step, the particles'
  *  states on their current Langevin path pieces (drawn from their
  *  bridges).  3-D or 2-D, every species (free flight and B = 0 are
- *  deterministic paths).  Returns 1/0/-1 as sb_engine_detect_fn. */
+ *  deterministic paths).  Once the reach is known (sb_engine_langevin_reach
+ *  called for the current dt and species, as the engine does every step),
+ *  a record at the step's start whose relative chord stays beyond
+ *  r_i + r_j + reach returns 0 without a draw (both particles with noise,
+ *  periodic or open box): such pairs hold at most `tol` contacts per
+ *  particle and step.  Returns 1/0/-1 as sb_engine_detect_fn. */
 int sb_engine_detect_langevin(const sb_engine *e, const sb_engine_pair *p,
                               const gsl_rng *r, void *ctx, double *s);
 
