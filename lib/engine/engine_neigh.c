@@ -89,6 +89,42 @@ static void float_clear(sbi_verlet *v)
   v->nfloat = 0;
 }
 
+/* The block of the grid's cells within m[k] cells of the one holding
+ * point pt (wrapped into the box: cw): that cell ca and the offsets
+ * lo[k]..hi[k] (every cell once where the block would wrap onto itself).
+ */
+static void cell_block(const sb_engine *e, const double *pt, const int m[3],
+                       double cw[3], int ca[3], int lo[3], int hi[3])
+{
+  const sbi_grid *g = &e->grid;
+  for (int k = 0; k < 3; k++) {
+    cw[k] = 0.0;
+    ca[k] = lo[k] = hi[k] = 0;
+    if (k >= e->par.dim)
+      continue;
+    cw[k] = sbi_wrap(pt[k], e->par.L[k]);
+    int v = (int)(cw[k] * g->inv[k]);
+    ca[k] = v >= g->nc[k] ? g->nc[k] - 1 : (v < 0 ? 0 : v);
+    if (2 * m[k] + 1 >= g->nc[k])
+      hi[k] = g->nc[k] - 1;
+    else
+      lo[k] = -m[k], hi[k] = m[k];
+  }
+}
+
+/* Index of the cell ca + q (periodic). */
+static size_t cell_at(const sbi_grid *g, int dim, const int ca[3],
+                      const int q[3])
+{
+  size_t c2 = 0;
+  for (int k = 0; k < dim; k++) {
+    int v = ca[k] + q[k];
+    v = ((v % g->nc[k]) + g->nc[k]) % g->nc[k];
+    c2 += (size_t)v * g->stride[k];
+  }
+  return c2;
+}
+
 /* Criterion (*) for one pair. */
 static inline int near(const sb_engine *e, const double *x0, size_t i,
                        size_t j, double reach)
@@ -423,27 +459,17 @@ static int float_pairs(sb_engine *e, const double *x0, double reach,
   const sbi_verlet *v = &e->vl;
   const sbi_grid *g = &e->grid;
   const int dim = e->par.dim;
+  const int m1[3] = {1, 1, 1};
   for (size_t q = 0; q < v->nfloat; q++) {
     const size_t f = v->floats[q];
-    int ca[3] = {0, 0, 0}, lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-    for (int k = 0; k < dim; k++) {
-      int c = (int)(sbi_wrap(x0[3 * f + k], e->par.L[k]) * g->inv[k]);
-      ca[k] = c >= g->nc[k] ? g->nc[k] - 1 : (c < 0 ? 0 : c);
-      if (g->nc[k] <= 3)
-        hi[k] = g->nc[k] - 1;  /* every cell, once */
-      else
-        lo[k] = -1, hi[k] = 1;
-    }
+    double cw[3];
+    int ca[3], lo[3], hi[3];
+    cell_block(e, &x0[3 * f], m1, cw, ca, lo, hi);
     for (int q2 = lo[2]; q2 <= hi[2]; q2++)
       for (int q1 = lo[1]; q1 <= hi[1]; q1++)
         for (int q0 = lo[0]; q0 <= hi[0]; q0++) {
           const int o[3] = {q0, q1, q2};
-          size_t c2 = 0;
-          for (int k = 0; k < dim; k++) {
-            int w = ca[k] + o[k];
-            w = ((w % g->nc[k]) + g->nc[k]) % g->nc[k];
-            c2 += (size_t)w * g->stride[k];
-          }
+          const size_t c2 = cell_at(g, dim, ca, o);
           for (size_t b = e->cell_start[c2]; b < e->cell_start[c2 + 1];
                b++) {
             const size_t k = e->cell_list[b];
@@ -694,31 +720,14 @@ static int cell_pass(sb_engine *e, const partner_q *Q, const double *pt,
   const int dim = e->par.dim;
   const sbi_grid *g = &e->grid;
   const double *x0 = e->x0;
-  double cw[3] = {0, 0, 0};
-  int ca[3] = {0, 0, 0};
-  for (int k = 0; k < dim; k++) {
-    cw[k] = sbi_wrap(pt[k], e->par.L[k]);
-    int v = (int)(cw[k] * g->inv[k]);
-    ca[k] = v >= g->nc[k] ? g->nc[k] - 1 : (v < 0 ? 0 : v);
-  }
-  int lo[3], hi[3];
-  for (int k = 0; k < 3; k++) {
-    lo[k] = hi[k] = 0;
-    if (k < dim && 2 * m[k] + 1 >= g->nc[k])
-      hi[k] = g->nc[k] - 1;  /* every cell, once */
-    else if (k < dim)
-      lo[k] = -m[k], hi[k] = m[k];
-  }
+  double cw[3];
+  int ca[3], lo[3], hi[3];
+  cell_block(e, pt, m, cw, ca, lo, hi);
   for (int q2 = lo[2]; q2 <= hi[2]; q2++)
     for (int q1 = lo[1]; q1 <= hi[1]; q1++)
       for (int q0 = lo[0]; q0 <= hi[0]; q0++) {
         const int q[3] = {q0, q1, q2};
-        size_t c2 = 0;
-        for (int k = 0; k < dim; k++) {
-          int v = ca[k] + q[k];
-          v = ((v % g->nc[k]) + g->nc[k]) % g->nc[k];
-          c2 += (size_t)v * g->stride[k];
-        }
+        const size_t c2 = cell_at(g, dim, ca, q);
         for (size_t b = e->cell_start[c2]; b < e->cell_start[c2 + 1]; b++) {
           size_t k = e->cell_list[b];
           if (k == Q->a || e->isfar[k] || e->vl.isfloat[k])
