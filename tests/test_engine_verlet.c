@@ -179,6 +179,51 @@ START_TEST(test_sort_and_foreign_search)
 }
 END_TEST
 
+/* Threads: 6000 particles in a 30^3 box (phi ~ 12%, ~6000 listed
+ * pairs), so that the displacement check and the filter of the list run
+ * on 3 threads; the same run as one thread and as the cells at every
+ * step. */
+static sb_engine *big(int threads, int verlet_off)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 30.0;
+  p.dt = 0.005;
+  p.capacity = 6000;
+  p.seed = 11;
+  p.outcome = SB_OUTCOME_REINSERT;
+  p.threads = threads;
+  p.verlet_off = verlet_off;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  sb_engine_species sp = {0.5, 1.0, 1.0, sqrt(2.0), 0.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &sp, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 6000), SB_SUCCESS);
+  return e;
+}
+
+START_TEST(test_threads)
+{
+  sb_engine *a = big(3, 0), *b = big(1, 0), *c = big(1, 1);
+  for (int k = 0; k < 300; k++) {
+    ck_assert_int_eq(sb_engine_step(a), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_step(b), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_step(c), SB_SUCCESS);
+  }
+  assert_same(a, b, 1);
+  assert_same(a, c, 1);
+  ck_assert_uint_gt(a->vl.npairs, 4096);
+  ck_assert_uint_gt(a->vl.uses, 100);
+  ck_assert_uint_gt(a->vl.floated, 10);
+  sb_engine_stats st;
+  sb_engine_get_stats(a, &st);
+  ck_assert_uint_gt(st.ncoll, 100);
+  sb_engine_free(a);
+  sb_engine_free(b);
+  sb_engine_free(c);
+}
+END_TEST
+
 /* Large steps (|disp| > r/20): the list does not pay and is not used. */
 START_TEST(test_not_used_for_long_steps)
 {
@@ -211,6 +256,7 @@ int main(void)
   tcase_add_test(t, test_overlap_2d);
   tcase_add_test(t, test_sort_and_foreign_search);
   tcase_add_test(t, test_not_used_for_long_steps);
+  tcase_add_test(t, test_threads);
   suite_add_tcase(s, t);
   return sbt_run_suite(s);
 }

@@ -178,6 +178,29 @@ static int pb_push(sbi_pairbuf *b, size_t i, size_t j)
   return 0;
 }
 
+/* Append the per-thread buffers tb[0..nt-1], in thread order, to
+ * e->pairs; 0, or 1 out of memory. */
+static int join_buffers(sb_engine *e, const sbi_pairbuf *tb, int nt)
+{
+  size_t total = e->npairs;
+  for (int t = 0; t < nt; t++)
+    total += tb[t].n;
+  if (total > e->cappairs) {
+    size_t *np = realloc(e->pairs, 2 * total * sizeof *np);
+    if (!np)
+      return 1;
+    e->pairs = np;
+    e->cappairs = total;
+  }
+  for (int t = 0; t < nt; t++) {
+    if (!tb[t].n)
+      continue;  /* (its list may be NULL) */
+    memcpy(e->pairs + 2 * e->npairs, tb[t].p, 2 * tb[t].n * sizeof *tb[t].p);
+    e->npairs += tb[t].n;
+  }
+  return 0;
+}
+
 /* The candidate pairs whose first member (in cell order) lies in cell c,
  * in the order of the serial scan; 0, or -1 out of memory. */
 static int scan_cell(const cell_scan *K, size_t c, sbi_pairbuf *out)
@@ -386,26 +409,11 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach,
     for (size_t c = c0; c < c1 && !bad; c++)
       bad |= scan_cell(&K, c, &tb[t]);
   }
-  size_t total = 0;
-  for (int t = 0; t < nt; t++)
-    total += tb[t].n;
-  if (!bad && total > e->cappairs) {
-    size_t *np = realloc(e->pairs, 2 * total * sizeof *np);
-    if (np) {
-      e->pairs = np;
-      e->cappairs = total;
-    } else
-      bad = 1;
-  }
+  if (!bad)
+    bad = join_buffers(e, tb, nt);
   if (bad)
     return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
                      "(candidate pairs)");
-  for (int t = 0; t < nt; t++) {
-    if (!tb[t].n)
-      continue;  /* (its list may be NULL) */
-    memcpy(e->pairs + 2 * e->npairs, tb[t].p, 2 * tb[t].n * sizeof *tb[t].p);
-    e->npairs += tb[t].n;
-  }
   return SB_SUCCESS;
 }
 
@@ -430,22 +438,37 @@ static int list_holds(sb_engine *e, const double *x0, double D, double reach)
   const double lim = 0.5 * v->skin - D;
   if (!(lim > 0.0))
     return 0;
-  const size_t maxf = SBI_VERLET_FLOATERS(e->n);
-  for (size_t i = 0; i < e->n; i++) {
+  const size_t n = e->n, maxf = SBI_VERLET_FLOATERS(n);
+  const double *xb = v->xb, *L = e->par.L;
+  unsigned char *fl = v->isfloat;
+  size_t nf = 0;
+  const int nt = n >= 4096 ? sbi_engine_threads(&e->par) : 1;
+  (void)nt;
+  /* mark the floaters (any thread order: each flag is its own), then
+   * collect them in index order */
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(nt) reduction(+ : nf)
+#endif
+  for (size_t i = 0; i < n; i++) {
     double d2 = 0.0;
     for (int k = 0; k < dim; k++) {
-      double d = sbi_minimg(x0[3 * i + k] - v->xb[3 * i + k], e->par.L[k]);
+      double d = sbi_minimg(x0[3 * i + k] - xb[3 * i + k], L[k]);
       d2 += d * d;
     }
     if (d2 > lim * lim) {
-      if (v->nfloat == maxf) {
-        float_clear(v);
-        return 0;
-      }
-      v->isfloat[i] = 1;
-      v->floats[v->nfloat++] = i;
+      fl[i] = 1;
+      nf++;
     }
   }
+  if (nf > maxf) {
+    memset(fl, 0, n);
+    return 0;
+  }
+  for (size_t i = 0; nf && i < n; i++)
+    if (fl[i]) {
+      v->floats[v->nfloat++] = i;
+      nf--;
+    }
   return 1;
 }
 
@@ -554,21 +577,60 @@ static int listed(sb_engine *e, const double *x0, double cut, double D,
       return cells(e, x0, cut, reach, 0);
   }
   const unsigned char *fl = v->isfloat;
-  sbi_pairbuf pb = {e->pairs, 0, e->cappairs};
+  const size_t np = v->npairs;
+  const int nt = np >= 4096 ? sbi_engine_threads(&e->par) : 1;
   int bad = 0;
-  for (size_t q = 0; q < v->npairs && !bad; q++) {
-    const size_t i = v->pairs[2 * q], j = v->pairs[2 * q + 1];
-    if (!fl[i] && !fl[j] && near(e, x0, i, j, reach))
-      bad = pb_push(&pb, i, j);
+  e->npairs = 0;
+  if (nt <= 1) {
+    sbi_pairbuf pb = {e->pairs, 0, e->cappairs};
+    for (size_t q = 0; q < np && !bad; q++) {
+      const size_t i = v->pairs[2 * q], j = v->pairs[2 * q + 1];
+      if (!fl[i] && !fl[j] && near(e, x0, i, j, reach))
+        bad = pb_push(&pb, i, j);
+    }
+    e->pairs = pb.p;
+    e->npairs = pb.n;
+    e->cappairs = pb.cap;
+  } else {
+    /* thread t filters the t-th of nt contiguous ranges of the list into
+     * its own buffer; joined in thread order they are the serial list */
+    if (nt > e->ntb) {
+      sbi_pairbuf *tb = realloc(e->tb, (size_t)nt * sizeof *tb);
+      if (!tb)
+        return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+      for (int t = e->ntb; t < nt; t++)
+        tb[t] = (sbi_pairbuf){NULL, 0, 0};
+      e->tb = tb;
+      e->ntb = nt;
+    }
+    sbi_pairbuf *tb = e->tb;
+    const sb_engine *ce = e;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static, 1) num_threads(nt) reduction(| : bad)
+#endif
+    for (int t = 0; t < nt; t++) {
+      const size_t q0 = np * (size_t)t / (size_t)nt,
+                   q1 = np * (size_t)(t + 1) / (size_t)nt;
+      tb[t].n = 0;
+      for (size_t q = q0; q < q1 && !bad; q++) {
+        const size_t i = v->pairs[2 * q], j = v->pairs[2 * q + 1];
+        if (!fl[i] && !fl[j] && near(ce, x0, i, j, reach))
+          bad |= pb_push(&tb[t], i, j);
+      }
+    }
+    if (!bad)
+      bad = join_buffers(e, tb, nt);
   }
-  if (!bad)
+  if (!bad) {
+    sbi_pairbuf pb = {e->pairs, e->npairs, e->cappairs};
     bad = float_pairs(e, x0, reach, &pb);
-  e->pairs = pb.p;
-  e->npairs = pb.n;
-  e->cappairs = pb.cap;
+    e->pairs = pb.p;
+    e->npairs = pb.n;
+    e->cappairs = pb.cap;
+  }
   if (bad)
     return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
-                     "(%zu candidate pairs)", pb.n);
+                     "(candidate pairs)");
   e->grid.valid = 1;  /* the cells of the build */
   e->grid.cut = cut;
   e->grid.reach = reach;
