@@ -16,6 +16,7 @@
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
 #include <smolbridge/engine_firsthit.h>
+#include <smolbridge/engine_field.h>
 #include <smolbridge/pgd.h>
 #include <smolbridge/spray.h>
 #include <smolbridge/validate.h>

@@ -83,6 +83,11 @@ void sbi_col_defaults(sbi_col_config *c)
   c->kobs = 10;
   strcpy(c->fluid, "rest");
   c->lees = 1;
+  c->ou_u2 = c->ou_TL = c->kr_eps_nu = NAN;
+  c->kr_omega = 0.0;
+  c->kr_shell = 2;
+  c->field_seed = -1;
+  c->ou_stationary = 1;
   c->mu_f = NAN;
   for (int f = 0; f < 6; f++)
     strcpy(c->wall[f], "periodic");
