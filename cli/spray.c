@@ -432,20 +432,6 @@ static void usage(FILE *f)
 "Every key with its unit and default: docs/spray.md.\n");
 }
 
-static int mkdir_p(const char *path)
-{
-  char buf[512];
-  snprintf(buf, sizeof buf, "%s", path);
-  for (char *p = buf + 1; *p; p++)
-    if (*p == '/') {
-      *p = 0;
-      if (mkdir(buf, 0777) && errno != EEXIST)
-        return -1;
-      *p = '/';
-    }
-  return mkdir(buf, 0777) && errno != EEXIST ? -1 : 0;
-}
-
 /* Build the spray from the configuration; NULL (message printed) on
  * error, *rc set to the exit status. */
 static sb_spray *build(const config *c, gsl_rng *rng, const char *file,
@@ -621,7 +607,7 @@ int sbc_spray_main(int argc, char **argv)
     return 2;
   }
   char path[600];
-  if (mkdir_p(c.output)) {
+  if (sb_mkdir_p(c.output)) {
     fprintf(stderr, "spray: cannot create '%s': %s\n", c.output,
             strerror(errno));
     sb_spray_free(s);

@@ -7,11 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <gsl/gsl_integration.h>
 #include <gsl/gsl_randist.h>
 
 #include <smolbridge/engine_field.h>
 #include "common/internal.h"
+#include "common/numutil.h"
 
 #define PI 3.14159265358979323846
 
@@ -304,28 +304,22 @@ static double kr_var_wn(const sb_field_kraichnan *f, double R,
   return v;
 }
 
+typedef struct {
+  const sb_field_kraichnan *f;
+  double R;
+} kr_flux_ctx;
+
+static double kr_sd_wn(const double n[3], void *ctx)
+{
+  const kr_flux_ctx *k = ctx;
+  return sqrt(kr_var_wn(k->f, k->R, n));
+}
+
 double sb_field_kraichnan_flux_kernel(const sb_field_kraichnan *f, double R)
 {
   /* K = R^2 int dOmega E[(w.n)^-] = R^2/sqrt(2 pi) int dOmega sd(n):
-   * Gauss-Legendre (64) in cos(theta), 128-point trapezoid in phi
-   * (periodic: spectral) */
-  gsl_integration_glfixed_table *tb = gsl_integration_glfixed_table_alloc(64);
-  if (!tb)
-    return NAN;
-  double sum = 0.0;
-  const int nphi = 128;
-  for (size_t i = 0; i < 64; i++) {
-    double mu, wmu;
-    gsl_integration_glfixed_point(-1.0, 1.0, i, &mu, &wmu, tb);
-    const double st = sqrt(1.0 - mu * mu);
-    double sp = 0.0;
-    for (int j = 0; j < nphi; j++) {
-      const double ph = 2.0 * PI * j / nphi;
-      const double n3[3] = {st * cos(ph), st * sin(ph), mu};
-      sp += sqrt(kr_var_wn(f, R, n3));
-    }
-    sum += wmu * sp * 2.0 * PI / nphi;
-  }
-  gsl_integration_glfixed_table_free(tb);
-  return R * R * sum / sqrt(2.0 * PI);
+   * 64 Gauss-Legendre nodes in cos(theta), 128 trapezoid points in phi */
+  kr_flux_ctx k = {f, R};
+  return R * R * sbi_sphere_integral(kr_sd_wn, &k, 64, 128, 0.0) /
+         sqrt(2.0 * PI);
 }

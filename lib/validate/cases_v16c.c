@@ -31,6 +31,7 @@
 #include <smolbridge/langevin.h>
 #include <smolbridge/stats.h>
 
+#include "common/numutil.h"
 #include "cases.h"
 #include "firsthit.h"
 #include "v16.h"
@@ -175,11 +176,8 @@ static int abr_write(const sbv_ctx *ctx, sbv_report *rep,
                             "variance (Abrahamson's kernel)");
   if (!f)
     return SB_EIO;
-  fprintf(f, "seed = %lu\nLx = %.17g\nLy = %.17g\nLz = %.17g\n"
-          "dt = %.17g\nsteps = %zu\ndetect = ballistic\noutcome = count\n"
-          "placement = uniform\nplacement_seed = %lu\n",
-          s->seed, s->L[0], s->L[1], s->L[2], s->dt, s->steps,
-          sbv_rng_seed(ctx, ABR_PLACE_STREAM + (unsigned long)run));
+  v16_ini_run(f, s->seed, s->L, s->dt, s->steps,
+              sbv_rng_seed(ctx, ABR_PLACE_STREAM + (unsigned long)run));
   if (s->field)
     fprintf(f, "\n[fluid]\ntype = ou-field\nu2 = %.17g\nT_L = %.17g\n"
             "seed = %lu\nstationary_start = yes\n", s->u2, s->TL,
@@ -358,13 +356,13 @@ static int st_write(const sbv_ctx *ctx, sbv_report *rep, size_t run,
                           "(Saffman & Turner's kernel)");
   if (!f)
     return SB_EIO;
-  fprintf(f, "seed = %lu\nL = %.17g\ndt = %.17g\nsteps = %zu\n"
-          "detect = ballistic\noutcome = count\nplacement = uniform\n"
-          "placement_seed = %lu\n\n[fluid]\ntype = kraichnan\nshell = %d\n"
+  const double Ls[3] = {L, L, L};
+  v16_ini_run(f, seed, Ls, dt, steps,
+              sbv_rng_seed(ctx, ST_PLACE_STREAM(run, q)));
+  fprintf(f, "\n[fluid]\ntype = kraichnan\nshell = %d\n"
           "eps_nu = %.17g\nomega = %.17g\nseed = %lu\n\n[species tracer]\n"
           "radius = %.17g\nmass = %.17g\ntau = %.17g\nB = 0\ncount = %zu\n",
-          seed, L, dt, steps, sbv_rng_seed(ctx, ST_PLACE_STREAM(run, q)), M,
-          eps_nu, omega, sbv_rng_seed(ctx, ST_FIELD_STREAM(run, q)), rad,
+          M, eps_nu, omega, sbv_rng_seed(ctx, ST_FIELD_STREAM(run, q)), rad,
           1000.0 * 4.0 / 3.0 * PI * rad * rad * rad, 1e-3 * dt, n);
   int st = sbv_ini_end(rep, f, NULL);
   snprintf(rec, sizeof rec, "V16/saffman-turner/%s/Rk=%.2g/K_e/K_ex", kind,
@@ -726,32 +724,27 @@ static int case_combined(const sbv_ctx *ctx, sbv_report *rep)
  * [-G tau/2, 1, 0], [0, 0, 1]] the stationary covariance of the relative
  * peculiar velocity (dc_x = -c_x/tau dt - G c_y dt + B dW_x).  Limits:
  * v2 -> 0, (4/3) G R^3; G -> 0, sqrt(8 pi) R^2 sqrt(2 v2). */
+typedef struct {
+  double R, G, v2, gt;
+} shear_flux_ctx;
+
+/* E[(w.n)^-] for w.n ~ N(m, var) */
+static double shear_flux_at(const double n[3], void *ctx)
+{
+  const shear_flux_ctx *k = ctx;
+  const double nx = n[0], ny = n[1], nz = n[2], gt = k->gt;
+  const double m = k->G * k->R * nx * ny;
+  const double var = 2.0 * k->v2 * ((1.0 + 0.5 * gt * gt) * nx * nx -
+                                    gt * nx * ny + ny * ny + nz * nz);
+  const double sd = sqrt(var), z = m / sd;
+  return sd * exp(-0.5 * z * z) / sqrt(2.0 * PI) - m * gsl_cdf_ugaussian_P(-z);
+}
+
 static double shear_kinetic_flux(double R, double G, double v2, double tau)
 {
-  gsl_integration_glfixed_table *tb = gsl_integration_glfixed_table_alloc(96);
-  if (!tb)
-    return NAN;
-  const double gt = G * tau;
-  double sum = 0.0;
-  const int nphi = 192;
-  for (size_t i = 0; i < 96; i++) {
-    double mu, wmu;
-    gsl_integration_glfixed_point(-1.0, 1.0, i, &mu, &wmu, tb);
-    const double st = sqrt(1.0 - mu * mu);
-    double sp = 0.0;
-    for (int j = 0; j < nphi; j++) {
-      const double ph = 2.0 * PI * (j + 0.5) / nphi;
-      const double nx = st * cos(ph), ny = st * sin(ph), nz = mu;
-      const double m = G * R * nx * ny;
-      const double var = 2.0 * v2 * ((1.0 + 0.5 * gt * gt) * nx * nx -
-                                     gt * nx * ny + ny * ny + nz * nz);
-      const double sd = sqrt(var), z = m / sd;
-      sp += sd * exp(-0.5 * z * z) / sqrt(2.0 * PI) - m * gsl_cdf_ugaussian_P(-z);
-    }
-    sum += wmu * sp * 2.0 * PI / nphi;
-  }
-  gsl_integration_glfixed_table_free(tb);
-  return R * R * sum;
+  /* 96 Gauss-Legendre nodes in cos(theta), 192 midpoints in phi */
+  shear_flux_ctx k = {R, G, v2, G * tau};
+  return R * R * sbi_sphere_integral(shear_flux_at, &k, 96, 192, 0.5);
 }
 
 static int case_shear_kinetic(const sbv_ctx *ctx, sbv_report *rep)
