@@ -17,8 +17,8 @@
 
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
-#include <ini.h>
 
+#include <smolbridge/ini.h>
 #include <smolbridge/spray.h>
 
 #include "cli.h"
@@ -52,6 +52,7 @@ typedef struct {
   int npop;
   char err[512];
   int nerr;
+  char err_where[600];  /* FILE:LINE of the first error */
 } config;
 
 static void cfg_default(config *c)
@@ -394,6 +395,19 @@ static int handler(void *user, const char *sec, const char *key,
               "reitz, check, droplets NAME)", sec);
 }
 
+/* sb_ini_key_fn: the handler, with the place of the first error. */
+static int key_fn(void *user, const char *sec, const char *key,
+                  const char *v, const char *where)
+{
+  config *c = user;
+  const int had = c->nerr;
+  if (handler(c, sec, key, v))
+    return 0;
+  if (!had)
+    snprintf(c->err_where, sizeof c->err_where, "%s", where);
+  return 1;
+}
+
 static sb_spray_children children_of(const char *w)
 {
   return !strcmp(w, "parcel")      ? SB_SPRAY_CHILDREN_PARCEL
@@ -562,14 +576,14 @@ int sbc_spray_main(int argc, char **argv)
   static config c;
   cfg_default(&c);
   const char *file = argv[1];
-  int line = ini_parse(file, handler, &c);
-  if (line < 0) {
-    fprintf(stderr, "spray: cannot read '%s'\n", file);
+  char err[1024];
+  int rst = sb_ini_read(file, NULL, key_fn, NULL, &c, err, sizeof err);
+  if (c.nerr) {
+    fprintf(stderr, "spray: %s: %s\n", c.err_where, c.err);
     return 2;
   }
-  if (line > 0 || c.nerr) {
-    fprintf(stderr, "spray: %s:%d: %s\n", file, line,
-            c.nerr ? c.err : "syntax error");
+  if (rst) {
+    fprintf(stderr, "spray: %s\n", err);
     return 2;
   }
   if (c.npop == 0) {

@@ -3,6 +3,7 @@
 #define SMOLBRIDGE_H
 
 #include <smolbridge/common.h>
+#include <smolbridge/ini.h>
 #include <smolbridge/rng.h>
 #include <smolbridge/stats.h>
 #include <smolbridge/passage.h>

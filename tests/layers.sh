@@ -33,7 +33,7 @@ header_module() {
   case "$1" in
     engine_bridge|engine_firsthit|engine_field) echo engine ;;
     langevin_hit) echo langevin ;;
-    version) echo common ;;
+    version|ini) echo common ;;
     *) echo "$1" ;;
   esac
 }
