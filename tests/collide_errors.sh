@@ -52,42 +52,31 @@ check "fluid type" 2 't.ini:13: [fluid] type = shaer: unknown; valid: rest, unif
 [fluid]\
 type = shaer'
 # the random fields: required keys and the runs they cannot serve
+ou='$a\
+[fluid]\
+type = ou-field\
+u2 = 1e-4\
+T_L = 1e-6'
 check "ou-field keys" 2 't.ini:13: [fluid] type = ou-field needs u2 (m^2/s^2) and T_L (s)' '$a\
 [fluid]\
 type = ou-field\
 u2 = 1e-4'
-check "ou-field placement" 2 't.ini:13: [run] placement = random (the default) with [fluid] type = ou-field' '$a\
-[fluid]\
-type = ou-field\
-u2 = 1e-4\
-T_L = 1e-6'
-check "ou-field outcome" 2 't.ini:5: [run] outcome = reinsert with [fluid] type = ou-field' '4a\
-outcome = reinsert\
+check "ou-field placement" 2 't.ini:13: [run] placement = random (the default) with [fluid] type = ou-field' "$ou"
+check "ou-field outcome" 2 't.ini:5: [run] outcome = reinsert with [fluid] type = ou-field' "4a\\
+outcome = reinsert\\
 placement = uniform
-$a\
-[fluid]\
-type = ou-field\
-u2 = 1e-4\
-T_L = 1e-6'
-check "ou-field walls" 2 't.ini:18: [walls] x_lo = absorb with [fluid] type = ou-field' '4a\
+$ou"
+check "ou-field walls" 2 't.ini:18: [walls] x_lo = absorb with [fluid] type = ou-field' "4a\\
 placement = uniform
-$a\
-[fluid]\
-type = ou-field\
-u2 = 1e-4\
-T_L = 1e-6\
-[walls]\
-x_lo = absorb\
-x_hi = absorb'
-check "ou-field runs" 0 '' '4a\
-placement = uniform\
+$ou\\
+[walls]\\
+x_lo = absorb\\
+x_hi = absorb"
+check "ou-field runs" 0 '' "4a\\
+placement = uniform\\
 outcome = count
-$a\
-[fluid]\
-type = ou-field\
-u2 = 1e-4\
-T_L = 1e-6\
-seed = 7'
+$ou\\
+seed = 7"
 check "kraichnan keys" 2 't.ini:13: [fluid] type = kraichnan needs eps_nu (1/s^2)' '$a\
 [fluid]\
 type = kraichnan'
