@@ -22,11 +22,11 @@ struct sb_field_ou {
   double *U;     /* 3 n, the velocities handed out at the next step */
   double u2, TL, dt;
   double b, q;   /* exp(-dt/TL), sd of the update noise */
-  gsl_rng *r;    /* generator (owned by the caller) */
+  const gsl_rng *r;  /* generator (owned by the caller) */
 };
 
 sb_field_ou *sb_field_ou_alloc(size_t n, double u2, double TL, double dt,
-                               gsl_rng *r)
+                               const gsl_rng *r)
 {
   if (!(u2 >= 0.0 && isfinite(u2) && TL > 0.0 && dt > 0.0) || n == 0 ||
       !r) {
@@ -141,7 +141,8 @@ struct sb_field_kraichnan {
 };
 
 sb_field_kraichnan *sb_field_kraichnan_alloc(double L, int M, double eps_nu,
-                                             double omega, gsl_rng *r)
+                                             double omega,
+                                             const gsl_rng *r)
 {
   if (!(L > 0.0 && isfinite(L) && eps_nu > 0.0 && isfinite(eps_nu) &&
         omega >= 0.0 && isfinite(omega)) || M < 1 || M > MAXM || !r) {

@@ -54,7 +54,7 @@ typedef struct sb_field_ou sb_field_ou;
  *  N(0, u2) from r (in index order, components in turn).  NULL on a bad
  *  argument (SB_EINVAL) or allocation failure (SB_ENOMEM). */
 sb_field_ou *sb_field_ou_alloc(size_t n, double u2, double TL, double dt,
-                               gsl_rng *r);
+                               const gsl_rng *r);
 void sb_field_ou_free(sb_field_ou *f);
 
 /** The seen velocities the next step hands out, 3 n (m/s). */
@@ -109,7 +109,8 @@ typedef struct sb_field_kraichnan sb_field_kraichnan;
  *  r, mode by mode in lattice order: zeta (3), xi (3), then w if
  *  omega > 0.  NULL on a bad argument (SB_EINVAL) or SB_ENOMEM. */
 sb_field_kraichnan *sb_field_kraichnan_alloc(double L, int M, double eps_nu,
-                                             double omega, gsl_rng *r);
+                                             double omega,
+                                             const gsl_rng *r);
 void sb_field_kraichnan_free(sb_field_kraichnan *f);
 
 /** Number of modes N. */
