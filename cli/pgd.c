@@ -323,23 +323,6 @@ static int handler(void *user, const char *sec, const char *key,
 
 /* ------------------------------------------------------------ helpers */
 
-static int mkdir_p(const char *path)
-{
-  char buf[1024];
-  snprintf(buf, sizeof buf, "%s", path);
-  for (char *p = buf + 1; *p; p++)
-    if (*p == '/') {
-      *p = 0;
-      if (mkdir(buf, 0777) && errno != EEXIST)
-        return -1;
-      *p = '/';
-    }
-  if (mkdir(buf, 0777) && errno != EEXIST)
-    return -1;
-  struct stat st;
-  return stat(buf, &st) == 0 && S_ISDIR(st.st_mode) ? 0 : -1;
-}
-
 /* Remove the files a previous run may have left (ours only). */
 static void clean_outputs(const char *dir)
 {
@@ -571,7 +554,7 @@ int sbc_pgd_main(int argc, char **argv)
     sb_pgd_free(g);
     return 2;
   }
-  int bad_dir = rank == 0 && mkdir_p(c.output);
+  int bad_dir = rank == 0 && sb_mkdir_p(c.output);
   if (bad_dir)
     fprintf(stderr, "pgd: cannot create directory '%s': %s\n", c.output,
             strerror(errno));

@@ -17,8 +17,8 @@
 
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
-#include <ini.h>
 
+#include <smolbridge/ini.h>
 #include <smolbridge/spray.h>
 
 #include "cli.h"
@@ -52,6 +52,7 @@ typedef struct {
   int npop;
   char err[512];
   int nerr;
+  char err_where[600];  /* FILE:LINE of the first error */
 } config;
 
 static void cfg_default(config *c)
@@ -394,6 +395,19 @@ static int handler(void *user, const char *sec, const char *key,
               "reitz, check, droplets NAME)", sec);
 }
 
+/* sb_ini_key_fn: the handler, with the place of the first error. */
+static int key_fn(void *user, const char *sec, const char *key,
+                  const char *v, const char *where)
+{
+  config *c = user;
+  const int had = c->nerr;
+  if (handler(c, sec, key, v))
+    return 0;
+  if (!had)
+    snprintf(c->err_where, sizeof c->err_where, "%s", where);
+  return 1;
+}
+
 static sb_spray_children children_of(const char *w)
 {
   return !strcmp(w, "parcel")      ? SB_SPRAY_CHILDREN_PARCEL
@@ -430,20 +444,6 @@ static void usage(FILE *f)
 "Writes OUTPUT/series.csv, OUTPUT/final.csv, OUTPUT/summary.json.\n"
 "Exit status: 0 success, 1 failed run or check, 2 bad usage or input.\n"
 "Every key with its unit and default: docs/spray.md.\n");
-}
-
-static int mkdir_p(const char *path)
-{
-  char buf[512];
-  snprintf(buf, sizeof buf, "%s", path);
-  for (char *p = buf + 1; *p; p++)
-    if (*p == '/') {
-      *p = 0;
-      if (mkdir(buf, 0777) && errno != EEXIST)
-        return -1;
-      *p = '/';
-    }
-  return mkdir(buf, 0777) && errno != EEXIST ? -1 : 0;
 }
 
 /* Build the spray from the configuration; NULL (message printed) on
@@ -576,14 +576,14 @@ int sbc_spray_main(int argc, char **argv)
   static config c;
   cfg_default(&c);
   const char *file = argv[1];
-  int line = ini_parse(file, handler, &c);
-  if (line < 0) {
-    fprintf(stderr, "spray: cannot read '%s'\n", file);
+  char err[1024];
+  int rst = sb_ini_read(file, NULL, key_fn, NULL, &c, err, sizeof err);
+  if (c.nerr) {
+    fprintf(stderr, "spray: %s: %s\n", c.err_where, c.err);
     return 2;
   }
-  if (line > 0 || c.nerr) {
-    fprintf(stderr, "spray: %s:%d: %s\n", file, line,
-            c.nerr ? c.err : "syntax error");
+  if (rst) {
+    fprintf(stderr, "spray: %s\n", err);
     return 2;
   }
   if (c.npop == 0) {
@@ -621,7 +621,7 @@ int sbc_spray_main(int argc, char **argv)
     return 2;
   }
   char path[600];
-  if (mkdir_p(c.output)) {
+  if (sb_mkdir_p(c.output)) {
     fprintf(stderr, "spray: cannot create '%s': %s\n", c.output,
             strerror(errno));
     sb_spray_free(s);

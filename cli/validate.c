@@ -104,27 +104,6 @@ static void usage(FILE *out)
 "on a usage or output error.\n");
 }
 
-/* mkdir -p */
-static int make_dirs(const char *path)
-{
-  char buf[1024];
-  size_t n = strlen(path);
-  if (n == 0 || n >= sizeof buf)
-    return -1;
-  memcpy(buf, path, n + 1);
-  for (char *p = buf + 1; *p; p++) {
-    if (*p == '/') {
-      *p = '\0';
-      if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-        return -1;
-      *p = '/';
-    }
-  }
-  if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-    return -1;
-  return 0;
-}
-
 static int validate_selection(sb_validate_options *vo, const size_t *sel,
                               size_t nsel, unsigned long nseeds, int list,
                               const char *ini_dir, char **prefixes,
@@ -223,7 +202,7 @@ static int write_calibration_md(const sb_validate_calibration *cal,
 static int write_ini(const sb_validate_options *vo, const char *dir,
                      char **prefixes, int nprefixes)
 {
-  if (make_dirs(dir) != 0) {
+  if (sb_mkdir_p(dir) != 0) {
     fprintf(stderr, "smolbridge validate: cannot create '%s': %s\n", dir,
             strerror(errno));
     return 2;
@@ -624,7 +603,7 @@ static int validate_selection(sb_validate_options *vo_, const size_t *sel,
   }
   if (ini_dir)  /* quick: rank 0 writes them */
     return root ? write_ini(&vo, ini_dir, prefixes, nprefixes) : 0;
-  if (make_dirs(vo.outdir) != 0) {
+  if (sb_mkdir_p(vo.outdir) != 0) {
     fprintf(stderr, "smolbridge validate: cannot create '%s': %s\n",
             vo.outdir, strerror(errno));
     return 2;

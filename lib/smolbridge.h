@@ -3,6 +3,7 @@
 #define SMOLBRIDGE_H
 
 #include <smolbridge/common.h>
+#include <smolbridge/ini.h>
 #include <smolbridge/rng.h>
 #include <smolbridge/stats.h>
 #include <smolbridge/passage.h>
@@ -16,6 +17,7 @@
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
 #include <smolbridge/engine_firsthit.h>
+#include <smolbridge/engine_field.h>
 #include <smolbridge/pgd.h>
 #include <smolbridge/spray.h>
 #include <smolbridge/validate.h>

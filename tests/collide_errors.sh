@@ -48,9 +48,49 @@ check "neigh" 2 '[run] neigh = cell: unknown; valid: cells, sweep, brute' '4a\
 neigh = cell'
 check "outcome" 2 '[run] outcome = stick: unknown; valid: elastic, reinsert, count, correction, merge, dlvo' '4a\
 outcome = stick'
-check "fluid type" 2 't.ini:13: [fluid] type = shaer: unknown; valid: rest, uniform, shear' '$a\
+check "fluid type" 2 't.ini:13: [fluid] type = shaer: unknown; valid: rest, uniform, shear, ou-field, kraichnan' '$a\
 [fluid]\
 type = shaer'
+# the random fields: required keys and the runs they cannot serve
+ou='$a\
+[fluid]\
+type = ou-field\
+u2 = 1e-4\
+T_L = 1e-6'
+check "ou-field keys" 2 't.ini:13: [fluid] type = ou-field needs u2 (m^2/s^2) and T_L (s)' '$a\
+[fluid]\
+type = ou-field\
+u2 = 1e-4'
+check "ou-field placement" 2 't.ini:13: [run] placement = random (the default) with [fluid] type = ou-field' "$ou"
+check "ou-field outcome" 2 't.ini:5: [run] outcome = reinsert with [fluid] type = ou-field' "4a\\
+outcome = reinsert\\
+placement = uniform
+$ou"
+check "ou-field walls" 2 't.ini:18: [walls] x_lo = absorb with [fluid] type = ou-field' "4a\\
+placement = uniform
+$ou\\
+[walls]\\
+x_lo = absorb\\
+x_hi = absorb"
+check "ou-field runs" 0 '' "4a\\
+placement = uniform\\
+outcome = count
+$ou\\
+seed = 7"
+check "kraichnan keys" 2 't.ini:13: [fluid] type = kraichnan needs eps_nu (1/s^2)' '$a\
+[fluid]\
+type = kraichnan'
+check "kraichnan box" 2 '[fluid] type = kraichnan is periodic in a cube' 's/^L = 1e-5/Lx = 1e-5\
+Ly = 1e-5\
+Lz = 2e-5/
+$a\
+[fluid]\
+type = kraichnan\
+eps_nu = 1e4'
+check "field seed unused" 0 't.ini:14: [fluid] seed ignored: only the random fields' '$a\
+[fluid]\
+type = rest\
+seed = 3'
 check "growth" 2 '[agglo] growth = fractal: unknown; valid: stokes, constant' '$a\
 [agglo]\
 growth = fractal'

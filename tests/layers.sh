@@ -31,9 +31,9 @@ layer() {
 # module owning a public header: smolbridge/engine_bridge.h -> engine
 header_module() {
   case "$1" in
-    engine_bridge|engine_firsthit) echo engine ;;
+    engine_bridge|engine_firsthit|engine_field) echo engine ;;
     langevin_hit) echo langevin ;;
-    version) echo common ;;
+    version|ini) echo common ;;
     *) echo "$1" ;;
   esac
 }

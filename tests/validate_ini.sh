@@ -9,7 +9,10 @@
 # the Langevin, chord and exact-bridge detectors (V12, Kn_D = 0.05: the
 # short runs; the H(Kn_D) record comes from its own expect line) and
 # laminar shear with Lees-Edwards images and the case's own placement
-# stream (V16/shear, G = 10 and 100).
+# stream (V16/shear, G = 10 and 100), the per-particle OU seen velocity
+# with the stationary start (V16/abrahamson: both runs, every pair kernel)
+# and the Kraichnan field (V16/saffman-turner, R k = 2: its records are
+# means over 32 realization files, "; expect-mean" lines).
 set -u
 sb="${top_builddir:-.}/smolbridge"
 sb="$(cd "$(dirname "$sb")" && pwd)/$(basename "$sb")"  # runs cd below
@@ -18,7 +21,7 @@ rm -rf "$dir"
 mkdir -p "$dir"
 fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-cases="--case V1/dense-long-steps --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V12/ --case V16/shear"
+cases="--case V1/dense-long-steps --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V12/ --case V16/shear --case V16/abrahamson --case V16/saffman-turner"
 # shellcheck disable=SC2086
 "$sb" validate $cases --write-ini "$dir/ini" 2>"$dir/w.err" \
   || { fail "write-ini failed"; cat "$dir/w.err"; }
@@ -30,9 +33,12 @@ grep -q 'V12/mixture: two species' "$dir/ini/NOT-WRITTEN.txt" \
 "$sb" validate $cases --out "$dir/v" >/dev/null 2>&1
 [ -s "$dir/v/validate.csv" ] || { fail "validate run failed"; exit 1; }
 
-# value of a summary.json field: kernel.K, first_hit.K, agglo.X
+# value of a summary.json field: kernel.K, first_hit.K, agglo.X,
+# pair_kernels[a,b].K
 field() {  # field SUMMARY NAME
   case "$2" in
+    pair_kernels*) ab=${2#pair_kernels[}; ab=${ab%%]*}; a=${ab%%,*}; b=${ab#*,}
+      sed -n "s/.*\"species\": \[\"$a\", \"$b\"\], \"collisions\": [0-9]*, \"exposure\": [^,]*, \"K\": \([^,]*\),.*/\1/p" "$1" ;;
     kernel.K) sed -n 's/.*"kernel": {"K": \([^,]*\),.*/\1/p' "$1" ;;
     first_hit.K) sed -n 's/.*"first_hit": {.*"K": \([^,]*\),.*/\1/p' "$1" ;;
     agglo.*) k=${2#agglo.}
@@ -42,14 +48,18 @@ field() {  # field SUMMARY NAME
 ncmp=0
 for run in V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 V8_dlvo_x0.5 \
     V12_Kn0.05_dt1_langevin V12_Kn0.05_dt1_contact-time \
-    V12_Kn0.05_dt1_exact-bb3 V16_shear_G100 V16_shear_G10; do
+    V12_Kn0.05_dt1_exact-bb3 V16_shear_G100 V16_shear_G10 \
+    V16_abrahamson_ou-field V16_abrahamson_langevin-species \
+    $(cd "$dir/ini" && ls V16_saffman_turner_frozen_Rk2_r*.ini | sed 's/\.ini$//'); do
   ini="$dir/ini/$run.ini"
   [ -f "$ini" ] || { fail "$run.ini not written"; continue; }
   (cd "$dir/ini" && "$sb" collide "$run.ini" >/dev/null 2>&1) \
     || { fail "collide $run.ini failed"; continue; }
   out="$dir/ini/$run-out"
-  grep '^; expect ' "$ini" | sed 's/^; expect //' > "$dir/expect.txt"
+  grep '^; expect' "$ini" | sed 's/^; //' > "$dir/expect.txt"
   while IFS= read -r line; do
+    kind=${line%% *}
+    line=${line#* }
     rec=${line%% = *}
     rhs=${line#* = }
     fld=${rhs%% \* *}
@@ -61,6 +71,11 @@ for run in V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 V8_dlvo_x0.5 \
           NR > 1 && $1 == id { print $col[c] }' "$out/$1") ;;
       *) val=$(field "$out/summary.json" "$fld") ;;
     esac
+    [ -n "$val" ] || { fail "$run: no $fld in summary.json"; continue; }
+    if [ "$kind" = expect-mean ]; then  # a term of a mean over files
+      echo "$rec,$val,$fac" >> "$dir/means.txt"
+      continue
+    fi
     want=$(awk -F, -v r="$rec" '$1 == r { print $2 }' "$dir/v/validate.csv")
     [ -n "$want" ] || { fail "$run: no record $rec in validate.csv"; continue; }
     awk -v v="$val" -v f="$fac" -v w="$want" 'BEGIN { g = v * f; d = g - w;
@@ -70,7 +85,20 @@ for run in V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 V8_dlvo_x0.5 \
     ncmp=$((ncmp + 1))
   done < "$dir/expect.txt"
 done
-[ "$ncmp" -ge 13 ] || fail "only $ncmp records compared"
+# the records that are means over files
+if [ -f "$dir/means.txt" ]; then
+  for rec in $(cut -d, -f1 "$dir/means.txt" | sort -u); do
+    want=$(awk -F, -v r="$rec" '$1 == r { print $2 }' "$dir/v/validate.csv")
+    [ -n "$want" ] || { fail "no record $rec in validate.csv"; continue; }
+    awk -F, -v r="$rec" -v w="$want" '$1 == r { s += $2 * $3; n++ }
+      END { g = s / n; d = g - w; if (d < 0) d = -d; m = w < 0 ? -w : w;
+        if (n != 32 || d > 1e-12 * m) {
+          printf "mean of %d files %.17g\n", n, g; exit 1 } }' \
+      "$dir/means.txt" || fail "$rec = $want, not the mean of its files"
+    ncmp=$((ncmp + 1))
+  done
+fi
+[ "$ncmp" -ge 21 ] || fail "only $ncmp records compared"
 [ "$fails" -eq 0 ] && echo "validate_ini: $ncmp records reproduced by collide from the written files"
 [ "$fails" -eq 0 ] && rm -rf "$dir"
 exit $((fails > 0))

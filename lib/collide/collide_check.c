@@ -67,6 +67,93 @@ static void section_unused(sbi_col_config *c, const char *sec, const char *why)
     }
 }
 
+/* [fluid] type = ou-field | kraichnan: their keys, and the runs they
+ * cannot serve.  The OU field follows each particle by its index and the
+ * engine's fluid callback passes positions only: every particle stays in
+ * its slot for the whole run, no particle is added, removed or re-placed
+ * (which would ask the field for one velocity at one place). */
+static int check_field(sbi_col_config *c)
+{
+  static const char *const ou_keys[] = {"u2", "T_L", "stationary_start",
+                                        NULL};
+  static const char *const kr_keys[] = {"shell", "eps_nu", "omega", NULL};
+  static const char *const faces[] = {"x_lo", "x_hi", "y_lo", "y_hi",
+                                      "z_lo", "z_hi"};
+  const int ou = !strcmp(c->fluid, "ou-field"),
+            kr = !strcmp(c->fluid, "kraichnan");
+  const char *type = sbi_col_where(c, "fluid", "type");
+  for (int i = 0; ou_keys[i] && !ou; i++)
+    unused(c, "fluid", ou_keys[i], "only type = ou-field uses it");
+  for (int i = 0; kr_keys[i] && !kr; i++)
+    unused(c, "fluid", kr_keys[i], "only type = kraichnan uses it");
+  if (!ou && !kr) {
+    unused(c, "fluid", "seed", "only the random fields (ou-field, "
+           "kraichnan) use it");
+    return 0;
+  }
+  unused(c, "fluid", "U", ou ? "type = ou-field" : "type = kraichnan");
+  unused(c, "fluid", "G", ou ? "type = ou-field" : "type = kraichnan");
+  if (c->restart[0])
+    return sbi_col_fail(c, "%s: [fluid] type = %s with restart: the field's "
+                        "state is not in a checkpoint; run it in one go",
+                        type, c->fluid);
+  if (kr) {
+    if (isnan(c->kr_eps_nu))
+      return sbi_col_fail(c, "%s: [fluid] type = kraichnan needs eps_nu "
+                          "(1/s^2)", type);
+    if (c->dim != 3)
+      return sbi_col_fail(c, "%s: [fluid] type = kraichnan is a 3-D field "
+                          "(dim = %ld)", type, c->dim);
+    if (!(c->Lx == c->Ly && c->Ly == c->Lz))
+      return sbi_col_fail(c, "%s: [fluid] type = kraichnan is periodic in a "
+                          "cube: give [run] L (here Lx, Ly, Lz = %g, %g, %g "
+                          "m)", type, c->Lx, c->Ly, c->Lz);
+    return 0;
+  }
+  if (isnan(c->ou_u2) || isnan(c->ou_TL))
+    return sbi_col_fail(c, "%s: [fluid] type = ou-field needs u2 (m^2/s^2) "
+                        "and T_L (s)", type);
+  if (strcmp(c->outcome, "count") && strcmp(c->outcome, "elastic"))
+    return sbi_col_fail(c, "%s: [run] outcome = %s with [fluid] type = "
+                        "ou-field (%s): the field follows the particles by "
+                        "index; an outcome that re-places, merges or "
+                        "removes particles cannot keep it (valid: count, "
+                        "elastic)", sbi_col_given(c, "run", "outcome")
+                        ? sbi_col_where(c, "run", "outcome") : type,
+                        c->outcome, type);
+  if (c->sort_every > 0)
+    return sbi_col_fail(c, "%s: [run] sort_every with [fluid] type = "
+                        "ou-field: reordering the particles would hand them "
+                        "other particles' seen velocities",
+                        sbi_col_where(c, "run", "sort_every"));
+  for (int f = 0; f < 6; f++)
+    if (strcmp(c->wall[f], "periodic") && strcmp(c->wall[f], "reflect"))
+      return sbi_col_fail(c, "%s: [walls] %s = %s with [fluid] type = "
+                          "ou-field: a particle that leaves or deposits "
+                          "changes the particles the field follows (valid: "
+                          "periodic, reflect)",
+                          sbi_col_where(c, "walls", faces[f]), faces[f],
+                          c->wall[f]);
+  for (int k = 0; k < c->nsp; k++)
+    if (c->sp[k].inflow[0])
+      return sbi_col_fail(c, "%s: [%s] inflow with [fluid] type = ou-field: "
+                          "entering particles change the particles the "
+                          "field follows", sbi_col_where(c, c->sp[k].name,
+                          "inflow"), c->sp[k].name);
+  if (!strcmp(c->placement, "random") || !c->placement[0])
+    for (int k = 0; k < c->nsp; k++)
+      if (c->sp[k].count > 0 || !isnan(c->sp[k].phi))
+        return sbi_col_fail(c, "%s: [run] placement = random%s with [fluid] "
+                            "type = ou-field: the engine's random placement "
+                            "draws the velocities without the field; give "
+                            "placement = uniform or lattice",
+                            c->placement[0] ? sbi_col_where(c, "run",
+                                                            "placement")
+                                            : type,
+                            c->placement[0] ? "" : " (the default)");
+  return 0;
+}
+
 int sbi_col_check(sbi_col_config *c)
 {
   if (c->nerr)
@@ -206,6 +293,8 @@ int sbi_col_check(sbi_col_config *c)
       return sbi_col_fail(c, "%s: [fluid] type = shear needs G (1/s)",
                           sbi_col_where(c, "fluid", "type"));
   }
+  if (check_field(c))
+    return -1;
   if (c->nU && c->nU != c->dim)
     return sbi_col_fail(c, "%s: [fluid] U: %d numbers for dim = %ld",
                         sbi_col_where(c, "fluid", "U"), c->nU, c->dim);

@@ -13,9 +13,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include <ini.h>
-
 #include <smolbridge/engine.h>
+#include <smolbridge/ini.h>
 
 #include "collide_internal.h"
 
@@ -83,6 +82,11 @@ void sbi_col_defaults(sbi_col_config *c)
   c->kobs = 10;
   strcpy(c->fluid, "rest");
   c->lees = 1;
+  c->ou_u2 = c->ou_TL = c->kr_eps_nu = NAN;
+  c->kr_omega = 0.0;
+  c->kr_shell = 2;
+  c->field_seed = -1;
+  c->ou_stationary = 1;
   c->mu_f = NAN;
   for (int f = 0; f < 6; f++)
     strcpy(c->wall[f], "periodic");
@@ -353,29 +357,13 @@ store:;
 
 /* ------------------------------------------------------------ INI file */
 
-typedef struct {
-  FILE *f;             /* the file, or */
-  const char *s;       /* the rest of the string */
-  sbi_col_config *c;
-  const char *path;
-  int line;
-  int indented;        /* the current line starts with a blank */
-  int stop;
-} reader;
-
-/* Record a section header the reader sees (inih does not report
- * them): a repeated header would silently merge two sections. */
-static void header(reader *r, const char *s)
+/* Record a section header the reader sees: a repeated header would
+ * silently merge two sections. */
+static int header(void *user, const char *sec, const char *where)
 {
-  const char *e = strchr(s, ']');
-  if (!e)
-    return;
+  sbi_col_config *c = user;
   char name[72];
-  size_t n = (size_t)(e - s - 1);
-  if (n >= sizeof name)
-    n = sizeof name - 1;
-  memcpy(name, s + 1, n);
-  name[n] = 0;
+  copy(name, sizeof name, sec);
   /* normalise "species.x" / "species:x" like the keys */
   const char *sn;
   if (sbi_col_is_species(name, &sn)) {
@@ -383,96 +371,40 @@ static void header(reader *r, const char *s)
     snprintf(tmp, sizeof tmp, "species %s", sn);
     copy(name, sizeof name, tmp);
   }
-  sbi_col_config *c = r->c;
   for (int i = 0; i < c->nsections; i++)
-    if (!strcmp(c->sections[i], name)) {
-      sbi_col_fail(c, "%s:%d: section [%s] repeated (first at %s); put its "
-                   "keys in one section", r->path, r->line, name,
-                   c->section_where[i]);
-      return;
-    }
+    if (!strcmp(c->sections[i], name))
+      return sbi_col_fail(c, "%s: section [%s] repeated (first at %s); put "
+                          "its keys in one section", where, name,
+                          c->section_where[i]);
   if (c->nsections < COL_MAXSPEC + 8) {
     copy(c->sections[c->nsections], sizeof c->sections[0], name);
-    snprintf(c->section_where[c->nsections], COL_WHERE, "%s:%d", r->path,
-             r->line);
+    snprintf(c->section_where[c->nsections], COL_WHERE, "%s", where);
     c->nsections++;
   }
-}
-
-/* fgets on the file or the string; *end: nothing follows. */
-static char *get_line(reader *r, char *str, int num, int *end)
-{
-  if (r->f) {
-    char *got = fgets(str, num, r->f);
-    *end = feof(r->f);
-    return got;
-  }
-  if (!*r->s)
-    return NULL;
-  size_t n = 0;
-  while (n + 1 < (size_t)num && r->s[n] && (n == 0 || r->s[n - 1] != '\n')) {
-    str[n] = r->s[n];
-    n++;
-  }
-  str[n] = 0;
-  r->s += n;
-  *end = !*r->s;
-  return str;
-}
-
-static char *read_line(char *str, int num, void *stream)
-{
-  reader *r = stream;
-  int end;
-  if (r->stop || !get_line(r, str, num, &end))
-    return NULL;
-  r->line++;
-  size_t n = strlen(str);
-  if (n == (size_t)num - 1 && str[n - 1] != '\n' && !end) {
-    sbi_col_fail(r->c, "%s:%d: line longer than %d characters (the limit of "
-                 "the INI reader, libinih); shorten it", r->path, r->line,
-                 num - 2);
-    r->stop = 1;
-    return NULL;
-  }
-  const char *s = str;
-  r->indented = (*s == ' ' || *s == '\t');
-  while (*s == ' ' || *s == '\t')
-    s++;
-  if (*s == '[')
-    header(r, s);
-  return str;
+  return 0;
 }
 
 static int handler(void *user, const char *sec, const char *key,
-                   const char *value)
+                   const char *value, const char *where)
 {
-  reader *r = user;
-  sbi_col_config *c = r->c;
-  snprintf(c->where, sizeof c->where, "%s:%d", r->path, r->line);
-  if (r->indented) {
-    sbi_col_fail(c, "%s: the line starts with a blank: the INI reader takes "
-                 "an indented line as the continuation of the previous value "
-                 "([%s] %s); write keys at the start of the line", c->where,
-                 sec, key);
-    return 0;
-  }
-  if (!sec[0]) {
-    sbi_col_fail(c, "%s: %s = %s before any section; put it under [run], "
-                 "[fluid], ... or [species NAME]", c->where, key, value);
-    return 0;
-  }
-  return set_key(c, sec, key, value, 0) == 0;
+  sbi_col_config *c = user;
+  snprintf(c->where, sizeof c->where, "%s", where);
+  if (!sec[0])
+    return sbi_col_fail(c, "%s: %s = %s before any section; put it under "
+                        "[run], [fluid], ... or [species NAME]", c->where,
+                        key, value);
+  return set_key(c, sec, key, value, 0);
 }
 
-/* After the reader: a line inih could not parse, no keys at all. */
-static int read_end(sbi_col_config *c, const char *path, int line)
+/* The reader's result: the first error (a key's, or the reader's), no
+ * keys at all. */
+static int read_end(sbi_col_config *c, const char *path, int st,
+                    const char *err)
 {
   if (c->nerr)
     return -1;
-  if (line > 0)
-    return sbi_col_fail(c, "%s:%d: not 'key = value', '[section]' or a "
-                        "comment", path, line);
+  if (st)
+    return sbi_col_fail(c, "%s", err);
   if (c->nseen == 0)
     return sbi_col_fail(c, "%s: no keys (empty file?); a configuration "
                         "needs at least [run] L, dt, t_end or steps, and a "
@@ -482,29 +414,18 @@ static int read_end(sbi_col_config *c, const char *path, int line)
 
 int sbi_col_read_file(sbi_col_config *c, const char *path)
 {
-  struct stat st;
-  if (stat(path, &st))
-    return sbi_col_fail(c, "%s: cannot read: %s", path, strerror(errno));
-  if (S_ISDIR(st.st_mode))
-    return sbi_col_fail(c, "%s: is a directory, not a configuration file",
-                        path);
-  reader r = {fopen(path, "r"), NULL, c, path, 0, 0, 0};
-  if (!r.f)
-    return sbi_col_fail(c, "%s: cannot read: %s", path, strerror(errno));
-  /* handler and reader share the reader struct */
-  int line = ini_parse_stream(read_line, &r, handler, &r);
-  int err = ferror(r.f);
-  fclose(r.f);
-  if (err)
-    return sbi_col_fail(c, "%s: read error", path);
-  return read_end(c, path, line);
+  char err[1024];
+  int st = sb_ini_read(path, NULL, handler, header, c, err, sizeof err);
+  return read_end(c, path, st, err);
 }
 
 int sbi_col_read_string(sbi_col_config *c, const char *text,
                         const char *name)
 {
-  reader r = {NULL, text, c, name, 0, 0, 0};
-  return read_end(c, name, ini_parse_stream(read_line, &r, handler, &r));
+  char err[1024];
+  int st = sb_ini_read(name, text ? text : "", handler, header, c, err,
+                       sizeof err);
+  return read_end(c, name, st, err);
 }
 
 int sbi_col_override(sbi_col_config *c, const char *arg)

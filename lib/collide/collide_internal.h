@@ -13,6 +13,7 @@
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
 #include <smolbridge/engine_firsthit.h>
+#include <smolbridge/engine_field.h>
 
 #define COL_MAXSPEC 16
 #define COL_MAXPART 64
@@ -78,6 +79,9 @@ typedef struct {
   char fluid[16];
   double U[3], G;
   int nU;
+  /* [fluid] random fields (<smolbridge/engine_field.h>) */
+  double ou_u2, ou_TL, kr_eps_nu, kr_omega;
+  long kr_shell, field_seed, ou_stationary;
   /* [fluid] forces and Lees-Edwards (docs/engine_forces.md) */
   long lees;
   double g[3], rho_f, mu_f;
@@ -195,6 +199,9 @@ typedef struct {
   sb_engine_bridge *bridge;     /* detect = bridge | exact */
   sb_agglo *agglo;              /* outcome = merge | dlvo */
   sb_engine_firsthit *fh;       /* [observe] first_hit */
+  sb_field_ou *ou;              /* [fluid] type = ou-field */
+  sb_field_kraichnan *kr;       /* [fluid] type = kraichnan */
+  gsl_rng *field_rng;           /* [fluid] seed (owned), or NULL */
   double t_end;                 /* absolute end time, s */
   double warm;                  /* warm-up, s (0 on restart) */
 } sbi_col_run;

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include <smolbridge/engine.h>
+#include <smolbridge/engine_field.h>
 #include "common/internal.h"
 
 #include "collide_internal.h"
@@ -20,7 +21,8 @@ static const char *const NEIGHS[] = {"cells", "sweep", "brute", NULL};
 static const char *const RNGS[] = {"mt19937", "taus2", "philox", NULL};
 static const char *const PLACEMENTS[] = {"random", "lattice", "uniform",
                                          NULL};
-static const char *const FLUIDS[] = {"rest", "uniform", "shear", NULL};
+static const char *const FLUIDS[] = {"rest", "uniform", "shear",
+                                     "ou-field", "kraichnan", NULL};
 static const char *const GROWTHS[] = {"stokes", "constant", NULL};
 static const char *const ERELS[] = {"contact", "stationary", NULL};
 static const char *const ENDS[] = {"position", "diffusive", NULL};
@@ -178,6 +180,28 @@ const sbi_col_keydef sbi_col_keys[] = {
      "velocity of type = uniform"},
     {"fluid", "G", K_NUM, C(G), 0, R_ANY, 0, 0, NULL, "1/s",
      "required with shear", "shear rate: U_x = G (y - L_y/2)"},
+    {"fluid", "u2", K_NUM, C(ou_u2), 0, R_NONNEG, 0, 0, NULL, "m^2/s^2",
+     "required with ou-field",
+     "type = ou-field: per-component variance u'^2 of the seen velocity"},
+    {"fluid", "T_L", K_NUM, C(ou_TL), 0, R_POS, 0, 0, NULL, "s",
+     "required with ou-field",
+     "type = ou-field: Lagrangian correlation time of the seen velocity"},
+    {"fluid", "stationary_start", K_BOOL, C(ou_stationary), 0, R_ANY, 0, 0,
+     BOOLS, "-", "yes",
+     "type = ou-field: placed particles start from the stationary joint "
+     "law of (u, U) of the engine's step"},
+    {"fluid", "shell", K_INT, C(kr_shell), 0, R_CLOSED, 1,
+     SB_FIELD_KRAICHNAN_MAXM, NULL, "-", "2",
+     "type = kraichnan: wave vectors 2 pi m/L with M - 1/2 < |m| < M + 1/2 "
+     "(M = 1, 2, 3: 9, 31, 49 modes)"},
+    {"fluid", "eps_nu", K_NUM, C(kr_eps_nu), 0, R_POS, 0, 0, NULL, "1/s^2",
+     "required with kraichnan",
+     "type = kraichnan: velocity-gradient variance <A_ij A_ij> = eps/nu"},
+    {"fluid", "omega", K_NUM, C(kr_omega), 0, R_NONNEG, 0, 0, NULL, "1/s",
+     "0 (frozen)", "type = kraichnan: sd of the mode frequencies"},
+    {"fluid", "seed", K_INT, C(field_seed), 0, R_CLOSED, 0, 4294967295.0,
+     NULL, "-", "- (engine generator)",
+     "ou-field, kraichnan: separate MT19937 generator of the field"},
     {"fluid", "lees_edwards", K_BOOL, C(lees), 0, R_ANY, 0, 0, BOOLS, "-",
      "yes", "type = shear: Lees-Edwards sliding boundaries in y"},
     {"fluid", "g", K_VEC, C(g), C(ng), R_ANY, 2, 3, NULL, "m/s^2", "0 0 0",

@@ -24,30 +24,6 @@
 
 #define PI 3.14159265358979323846
 
-static int mkdir_p(const char *path)
-{
-  char buf[1024];
-  if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf) {
-    errno = ENAMETOOLONG;
-    return -1;
-  }
-  for (char *p = buf + 1; *p; p++)
-    if (*p == '/') {
-      *p = 0;
-      if (mkdir(buf, 0777) && errno != EEXIST)
-        return -1;
-      *p = '/';
-    }
-  if (mkdir(buf, 0777) && errno != EEXIST)
-    return -1;
-  struct stat st;
-  if (stat(buf, &st) || !S_ISDIR(st.st_mode)) {
-    errno = ENOTDIR;
-    return -1;
-  }
-  return 0;
-}
-
 /* Files a run writes (also those of earlier versions without a
  * manifest). */
 static int ours(const char *name)
@@ -68,7 +44,7 @@ int sbi_col_out_prepare(sbi_col_config *c)
   const char *where = sbi_col_given(c, "run", "output")
                           ? sbi_col_where(c, "run", "output")
                           : "[run] output (default)";
-  if (mkdir_p(c->output))
+  if (sb_mkdir_p(c->output))
     return sbi_col_fail(c, "%s: [run] output = %s: cannot create the "
                         "directory: %s", where, c->output, strerror(errno));
   DIR *d = opendir(c->output);

@@ -12,6 +12,7 @@
 
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
+#include <smolbridge/engine_field.h>
 #include <smolbridge/kernel.h>
 #include <smolbridge/langevin.h>
 #include <smolbridge/rng.h>
@@ -30,6 +31,10 @@ void sbi_col_run_free(sbi_col_run *r)
   sb_agglo_free(r->agglo);
   sb_engine_bridge_free(r->bridge);
   sb_engine_free(r->e);
+  sb_field_ou_free(r->ou);
+  sb_field_kraichnan_free(r->kr);
+  if (r->field_rng)
+    gsl_rng_free(r->field_rng);
   memset(r, 0, sizeof *r);
 }
 
@@ -130,11 +135,15 @@ static long species_count(const sbi_col_config *c, const sbi_col_species *s)
   return s->npart;
 }
 
-/* Fluid velocity at x (as the engine's built-in fields). */
-static void fluid_at(const sbi_col_config *c, const double x[3], double u[3])
+/* Fluid velocity at x (as the engine's built-in fields; the Kraichnan
+ * field at the engine's time; 0 for the OU field, see start_law). */
+static void fluid_at(const sbi_col_config *c, const sbi_col_run *r,
+                     const double x[3], double u[3])
 {
   u[0] = u[1] = u[2] = 0.0;
-  if (!strcmp(c->fluid, "uniform"))
+  if (r->kr)
+    sb_field_kraichnan_eval(r->kr, sb_engine_time(r->e), 1, x, u);
+  else if (!strcmp(c->fluid, "uniform"))
     for (int k = 0; k < c->nU; k++)
       u[k] = c->U[k];
   else if (!strcmp(c->fluid, "shear"))
@@ -151,6 +160,26 @@ static double velocity_sd(const sbi_col_config *c, int k,
   if (q->T > 0)
     return sqrt(SB_BOLTZMANN * q->T / q->mass);
   return sqrt(q->B * q->B * q->tau / 2.0);
+}
+
+/* Start law of the next placed particle (engine index sb_engine_count):
+ * velocity sd per component *sd from the species' vsd, and with the OU
+ * field and stationary_start the stationary joint law with its seen
+ * velocity, mean[] + N(0, vsd^2 + var) (sb_field_ou_start). */
+static int start_law(sbi_col_config *c, sbi_col_run *r,
+                     const sbi_col_species *s, const sb_engine_species *q,
+                     double vsd, double mean[3], double *sd)
+{
+  mean[0] = mean[1] = mean[2] = 0.0;
+  *sd = vsd;
+  if (!r->ou || !c->ou_stationary)
+    return 0;
+  double var;
+  if (sb_field_ou_start(r->ou, sb_engine_count(r->e), q->tau, mean, &var))
+    return sbi_col_fail(c, "%s: [%s] with [fluid] type = ou-field: %s",
+                        s->where, s->name, sb_last_error());
+  *sd = sqrt(vsd * vsd + var);
+  return 0;
 }
 
 /* Explicit particles: inside the box, no two overlapping. */
@@ -302,12 +331,16 @@ static int place_uniform(sbi_col_config *c, sbi_col_run *r, size_t sp,
   region_of(c, s, lo, hi);
   const double vsd = velocity_sd(c, (int)sp, q);
   for (size_t i = 0; i < n; i++) {
-    double x[3] = {0, 0, 0}, u[3] = {0, 0, 0}, us[3];
+    double x[3] = {0, 0, 0}, u[3] = {0, 0, 0}, us[3], m[3], sd;
+    if (start_law(c, r, s, q, vsd, m, &sd))
+      return -1;
     for (int k = 0; k < c->dim; k++) {
       x[k] = lo[k] + (hi[k] - lo[k]) * gsl_rng_uniform(g);
-      u[k] = gsl_ran_gaussian_ziggurat(g, vsd);
+      u[k] = gsl_ran_gaussian_ziggurat(g, sd);
     }
-    fluid_at(c, x, us);
+    fluid_at(c, r, x, us);
+    for (int k = 0; k < 3; k++)
+      us[k] += m[k];
     double vs[3] = {0, 0, 0};  /* settling velocity under [fluid] g */
     sb_engine_settling_velocity(r->e, sp, vs);
     for (int k = 0; k < c->dim; k++)
@@ -375,9 +408,14 @@ static int place_lattice(sbi_col_config *c, sbi_col_run *r, const long *nplace,
                     cidx / (m[0] * m[1])};
       for (int k = 0; k < c->dim; k++)
         x[k] = (ix[k] + basis[b][k] + 0.25) * (L[k] / (double)m[k]);
-      fluid_at(c, x, us);
+      double m[3], sd;
+      if (start_law(c, r, s, &q[sp], vsd, m, &sd)) {
+        st = -1;
+        break;
+      }
+      fluid_at(c, r, x, us);
       for (int k = 0; k < c->dim; k++)
-        u[k] = us[k] + gsl_ran_gaussian_ziggurat(g, vsd) +
+        u[k] = us[k] + m[k] + gsl_ran_gaussian_ziggurat(g, sd) +
                (s->ndrift ? s->drift[k] : 0.0);
       if (sb_engine_add_particle(r->e, (size_t)sp, (int)s->family, x, u))
         st = sbi_col_fail(c, "%s: [%s]: %s", s->where, s->name,
@@ -520,6 +558,41 @@ static int attach_agglo(sbi_col_config *c, sbi_col_run *r)
   return 0;
 }
 
+/* [fluid] type = ou-field | kraichnan: the field, drawn from its own
+ * generator ([fluid] seed) or the engine's.  The Kraichnan field is
+ * attached at once (placement reads it at time 0); the OU field after
+ * the placement (it serves the engine's per-step call for all the
+ * particles, and the placement starts them from its seen velocities). */
+static int setup_field(sbi_col_config *c, sbi_col_run *r)
+{
+  const int ou = !strcmp(c->fluid, "ou-field");
+  if (!ou && strcmp(c->fluid, "kraichnan"))
+    return 0;
+  const char *type = sbi_col_where(c, "fluid", "type");
+  gsl_rng *g = sb_engine_rng(r->e);
+  if (c->field_seed >= 0) {
+    if (!(r->field_rng = gsl_rng_alloc(gsl_rng_mt19937)))
+      return sbi_col_fail(c, "out of memory");
+    gsl_rng_set(r->field_rng, (unsigned long)c->field_seed);
+    g = r->field_rng;
+  }
+  if (ou) {
+    long n = 0;
+    for (int k = 0; k < c->nsp; k++)
+      n += species_count(c, &c->sp[k]);
+    if (!(r->ou = sb_field_ou_alloc((size_t)n, c->ou_u2, c->ou_TL, c->dt, g)))
+      return sbi_col_fail(c, "%s: [fluid] type = ou-field: %s", type,
+                          sb_last_error());
+    return 0;
+  }
+  if (!(r->kr = sb_field_kraichnan_alloc(c->Lx, (int)c->kr_shell,
+                                         c->kr_eps_nu, c->kr_omega, g)) ||
+      sb_field_kraichnan_attach(r->e, r->kr))
+    return sbi_col_fail(c, "%s: [fluid] type = kraichnan: %s", type,
+                        sb_last_error());
+  return 0;
+}
+
 int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
 {
   memset(r, 0, sizeof *r);
@@ -607,11 +680,16 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
     if (sb_engine_set_fluid(r->e, f, fp))
       return sbi_col_fail(c, "[fluid]: %s", sb_last_error());
   }
+  if (!c->restart[0] && setup_field(c, r))
+    return -1;
   if (setup_physics(c, r))
     return -1;
   if (!c->restart[0]) {
     if (place(c, r, q))
       return -1;
+    if (r->ou && sb_field_ou_attach(r->e, r->ou))
+      return sbi_col_fail(c, "%s: [fluid] type = ou-field: %s",
+                          sbi_col_where(c, "fluid", "type"), sb_last_error());
     if (c->thermalize > 0 && sb_engine_thermalize(r->e, c->thermalize))
       return sbi_col_fail(c, "%s: [run] thermalize: %s",
                           sbi_col_where(c, "run", "thermalize"),

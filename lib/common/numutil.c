@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include <gsl/gsl_cdf.h>
+#include <gsl/gsl_integration.h>
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_roots.h>
 
@@ -566,4 +567,29 @@ int sbi_reach_root(gsl_function *f, double hi0, double hi_max, double xtol,
   gsl_root_fsolver_free(s);
   *root = up;
   return SB_SUCCESS;
+}
+
+double sbi_sphere_integral(double (*fn)(const double n[3], void *ctx),
+                           void *ctx, size_t nmu, int nphi, double phase)
+{
+  gsl_integration_glfixed_table *tb =
+      gsl_integration_glfixed_table_alloc(nmu);
+  if (!tb)
+    return NAN;
+  const double pi = 3.14159265358979323846;
+  double sum = 0.0;
+  for (size_t i = 0; i < nmu; i++) {
+    double mu, wmu;
+    gsl_integration_glfixed_point(-1.0, 1.0, i, &mu, &wmu, tb);
+    const double st = sqrt(1.0 - mu * mu);
+    double sp = 0.0;
+    for (int j = 0; j < nphi; j++) {
+      const double ph = 2.0 * pi * (j + phase) / nphi;
+      const double n[3] = {st * cos(ph), st * sin(ph), mu};
+      sp += fn(n, ctx);
+    }
+    sum += wmu * sp * 2.0 * pi / nphi;
+  }
+  gsl_integration_glfixed_table_free(tb);
+  return sum;
 }

@@ -248,4 +248,11 @@ int sbi_solve_increasing4(sbi_fdf4 g, void *ctx, double y0, double step,
 int sbi_reach_root(gsl_function *f, double hi0, double hi_max, double xtol,
                    double *root);
 
+/* Integral of fn(n) over the unit sphere (dOmega): nmu Gauss-Legendre
+ * nodes in cos(theta) times nphi trapezoid points in phi at
+ * 2 pi (j + phase)/nphi (periodic: spectral for smooth fn).  NaN if the
+ * node table cannot be allocated. */
+double sbi_sphere_integral(double (*fn)(const double n[3], void *ctx),
+                           void *ctx, size_t nmu, int nphi, double phase);
+
 #endif /* SB_NUMUTIL_H */

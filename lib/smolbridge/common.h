@@ -61,6 +61,12 @@ int sb_last_status(void);
 /** Forget the calling thread's last error. */
 void sb_clear_error(void);
 
+/** Create the directory `path` and its missing parents (as mkdir -p);
+ *  an existing directory is fine.  SB_SUCCESS, SB_EINVAL (empty path) or
+ *  SB_EIO with the reason in sb_last_error() (errno kept: ENOTDIR when
+ *  the path names a file). */
+int sb_mkdir_p(const char *path);
+
 /** Version of the library actually linked (compare with SB_VERSION_STRING,
  *  the version of the headers compiled against). */
 const char *sb_version(void);

@@ -146,6 +146,11 @@ int sbv_ini_end(sbv_report *rep, FILE *f, const char *field);
 void sbv_ini_no_expect(sbv_report *rep);
 void sbv_ini_expect(sbv_report *rep, const char *record, const char *field,
                     double factor);
+/* Append "; expect-mean RECORD = FIELD * FACTOR": the record is the mean
+ * of FIELD * FACTOR over every file of the case with this line (a record
+ * that is a mean over independent runs, e.g. field realizations). */
+void sbv_ini_expect_mean(sbv_report *rep, const char *record,
+                         const char *field, double factor);
 /* A run left out, and why (printf-style). */
 void sbv_ini_skip(sbv_report *rep, const char *fmt, ...)
 #if defined(__GNUC__)

@@ -197,6 +197,16 @@ static void box_for(double phi, size_t n, double r, int ax, double stretch,
 
 /* ====================================================== V16/shear */
 
+void v16_ini_run(FILE *f, unsigned long seed, const double L[3], double dt,
+                 size_t steps, unsigned long placement_seed)
+{
+  fprintf(f, "seed = %lu\nrng = mt19937\nLx = %.17g\nLy = %.17g\n"
+          "Lz = %.17g\n"
+          "dt = %.17g\nsteps = %zu\ndetect = ballistic\noutcome = count\n"
+          "placement = uniform\nplacement_seed = %lu\n", seed, L[0], L[1],
+          L[2], dt, steps, placement_seed);
+}
+
 /* Write mode: a v16_run without walls as a collide configuration (the
  * placement drawn from stream `stream` as v16_run draws it: a collide
  * file's placement_seed); out gets unit values (pk.K = 1 from one
@@ -214,12 +224,8 @@ static int write_v16(const sbv_ctx *ctx, sbv_report *rep,
   FILE *f = sbv_ini_begin(ctx, rep, name, what);
   if (!f)
     return SB_EIO;
-  fprintf(f, "seed = %lu\nrng = mt19937\n"
-            "Lx = %.17g\nLy = %.17g\nLz = %.17g\n"
-          "dt = %.17g\nsteps = %zu\ndetect = ballistic\noutcome = count\n"
-          "placement = uniform\nplacement_seed = %lu\n\n[fluid]\n",
-          s->seed, s->L[0], s->L[1], s->L[2], s->dt, s->steps,
-          sbv_rng_seed(ctx, stream));
+  v16_ini_run(f, s->seed, s->L, s->dt, s->steps, sbv_rng_seed(ctx, stream));
+  fprintf(f, "\n[fluid]\n");
   if (s->G != 0.0)
     fprintf(f, "type = shear\nG = %.17g\nlees_edwards = %s\n", s->G,
             s->lees ? "yes" : "no");

@@ -26,14 +26,15 @@
 #include <gsl/gsl_rng.h>
 
 #include <smolbridge/engine.h>
+#include <smolbridge/engine_field.h>
 #include <smolbridge/kernel.h>
 #include <smolbridge/langevin.h>
 #include <smolbridge/stats.h>
 
+#include "common/numutil.h"
 #include "cases.h"
 #include "firsthit.h"
 #include "v16.h"
-#include "v16c.h"
 
 #define PI 3.14159265358979323846
 
@@ -73,20 +74,30 @@ static sb_engine *mk_engine(const double L[3], double dt, unsigned long seed,
 
 /* ================================================= V16/abrahamson */
 
-/* Two species (radii r[0], r[1], relaxation times tau[0], tau[1], B = 0)
+/* Two species (radii r[0], r[1], relaxation times tau[0], tau[1], B[a])
  * in the per-particle OU field (u2, TL) -- or, field = 0, Langevin
- * species with B^2 tau/2 = v2 in a fluid at rest.  Velocities start
- * stationary. */
+ * species with B^2 tau/2 = v2 in a fluid at rest.  The draws are those of
+ * `smolbridge collide` ([fluid] type = ou-field with its own seed,
+ * placement = uniform with placement_seed), so that the run written as a
+ * collide file (write mode) is the run made here: the field's stationary
+ * start from its stream, then per particle and component the position
+ * (uniform) and the velocity (Gaussian) from the placement stream, the
+ * velocity centred on the stationary law given the seen velocity. */
 typedef struct {
-  double r[2], tau[2], v2[2];
+  double r[2], tau[2], v2[2], B[2];
   size_t n[2];
   double L[3], dt, u2, TL;
-  size_t warm, steps;
+  size_t steps;
   int field;
   unsigned long seed;
 } abr_setup;
 
-static int abr_run(const abr_setup *s, gsl_rng *r,
+#define ABR_FIELD_STREAM 16200UL
+#define ABR_PLACE_STREAM 16210UL  /* + run */
+
+static double abr_mass(double r) { return 1000.0 * 4.0 / 3.0 * PI * pow(r, 3); }
+
+static int abr_run(const abr_setup *s, gsl_rng *fr, gsl_rng *g,
                    sb_engine_pair_stats pk[2][2], double *uvar[2])
 {
   const size_t N = s->n[0] + s->n[1];
@@ -95,45 +106,37 @@ static int abr_run(const abr_setup *s, gsl_rng *r,
     return SB_ENOMEM;
   int st = SB_SUCCESS;
   for (int a = 0; a < 2 && !st; a++) {
-    const double m = 1000.0 * 4.0 / 3.0 * PI * pow(s->r[a], 3);
-    const double B = s->field ? 0.0 : sqrt(2.0 * s->v2[a] / s->tau[a]);
-    sb_engine_species sp = {s->r[a], m, s->tau[a], B, 0.0};
+    sb_engine_species sp = {s->r[a], abr_mass(s->r[a]), s->tau[a], s->B[a],
+                            0.0};
     st = sb_engine_add_species(e, &sp, NULL);
   }
   /* the field first: each particle starts from the stationary joint law
-   * of (u, U) of the engine's scheme, u = (c/u'^2) U + sqrt(v - c^2/u'^2) Z
-   * (v, c the scheme's stationary variance and covariance,
-   * v16_ou_particle_var/_cov), so that no warm-up is needed: a wrong step
-   * drifts away from it during the run */
-  v16_ou_field f = {0, NULL, 0.0, 0.0, NULL};
-  if (!st && s->field)
-    st = v16_ou_init(&f, N, s->u2, s->TL, s->dt, r);
+   * of (u, U) of the engine's scheme (sb_field_ou_start), so that no
+   * warm-up is needed: a wrong step drifts away from it during the run */
+  sb_field_ou *f = NULL;
+  if (!st && s->field && !(f = sb_field_ou_alloc(N, s->u2, s->TL, s->dt, fr)))
+    st = sb_last_status();
   size_t i = 0;
   for (int a = 0; a < 2 && !st; a++) {
-    const double v = s->v2[a];
-    const double cv = s->field ? v16_ou_particle_cov(s->u2, s->TL,
-                                                     s->tau[a], s->dt)
-                               : 0.0;
-    const double sdz = s->field ? sqrt(fmax(0.0, v - cv * cv / s->u2)) : 0.0;
+    /* as collide's velocity_sd (the same rounding) */
+    const double vsd = sqrt(s->B[a] * s->B[a] * s->tau[a] / 2.0);
     for (size_t k = 0; k < s->n[a] && !st; k++, i++) {
-      double x[3], u[3];
+      double x[3], u[3], mean[3] = {0.0, 0.0, 0.0}, var = 0.0;
+      if (f)
+        st = sb_field_ou_start(f, i, s->tau[a], mean, &var);
+      const double sd = f ? sqrt(vsd * vsd + var) : vsd;
       for (int c = 0; c < 3; c++) {
-        x[c] = s->L[c] * gsl_rng_uniform(r);
-        if (s->field)
-          u[c] = cv / s->u2 * f.U[3 * i + c] +
-                 gsl_ran_gaussian_ziggurat(r, sdz);
-        else  /* stationary Langevin start */
-          u[c] = gsl_ran_gaussian_ziggurat(r, sqrt(v));
+        x[c] = s->L[c] * gsl_rng_uniform(g);
+        u[c] = gsl_ran_gaussian_ziggurat(g, sd);
       }
-      st = sb_engine_add_particle(e, (size_t)a, 0, x, u);
+      for (int c = 0; c < 3; c++)
+        u[c] += mean[c];
+      if (!st)
+        st = sb_engine_add_particle(e, (size_t)a, 0, x, u);
     }
   }
-  if (!st && s->field)
-    st = sb_engine_set_fluid_fn(e, v16_ou_fluid, &f);
-  for (size_t k = 0; k < s->warm && !st; k++)
-    st = sb_engine_step(e);
-  if (!st)
-    sb_engine_reset_counters(e);
+  if (!st && f)
+    st = sb_field_ou_attach(e, f);
   for (size_t k = 0; k < s->steps && !st; k++)
     st = sb_engine_step(e);
   for (int a = 0; a < 2 && !st; a++)
@@ -150,23 +153,57 @@ static int abr_run(const abr_setup *s, gsl_rng *r,
                          u[3 * i + 2] * u[3 * i + 2]) / 3.0;
     }
   }
-  v16_ou_free(&f);
+  sb_field_ou_free(f);
   sb_engine_free(e);
+  return st;
+}
+
+static const char *const ABR_PAIRS[2][2] = {{"10um-10um", "10um-5um"},
+                                           {"", "5um-5um"}};
+
+/* Write mode: run `run` of the case as a collide file, with the expect
+ * lines of its kernel rows. */
+static int abr_write(const sbv_ctx *ctx, sbv_report *rep,
+                     const abr_setup *s, int run)
+{
+  const char *what = run == 0 ? "ou-field" : "langevin-species";
+  char fn[64];
+  snprintf(fn, sizeof fn, "V16_abrahamson_%s", what);
+  FILE *f = sbv_ini_begin(ctx, rep, fn, run == 0
+                          ? "V16: Stokes spheres in a per-particle OU "
+                            "seen velocity (Abrahamson's kernel)"
+                          : "V16: Langevin spheres of the same velocity "
+                            "variance (Abrahamson's kernel)");
+  if (!f)
+    return SB_EIO;
+  v16_ini_run(f, s->seed, s->L, s->dt, s->steps,
+              sbv_rng_seed(ctx, ABR_PLACE_STREAM + (unsigned long)run));
+  if (s->field)
+    fprintf(f, "\n[fluid]\ntype = ou-field\nu2 = %.17g\nT_L = %.17g\n"
+            "seed = %lu\nstationary_start = yes\n", s->u2, s->TL,
+            sbv_rng_seed(ctx, ABR_FIELD_STREAM));
+  for (int a = 0; a < 2; a++)
+    fprintf(f, "\n[species %c]\nradius = %.17g\nmass = %.17g\n"
+            "tau = %.17g\nB = %.17g\ncount = %zu\n", 'a' + a, s->r[a],
+            abr_mass(s->r[a]), s->tau[a], s->B[a], s->n[a]);
+  int st = sbv_ini_end(rep, f, NULL);
+  for (int a = 0; a < 2 && !st; a++)
+    for (int b = a; b < 2; b++) {
+      char name[128], fld[48];
+      snprintf(name, sizeof name, "V16/abrahamson/%s/%s/K_e/K_th", what,
+               ABR_PAIRS[a][b]);
+      snprintf(fld, sizeof fld, "pair_kernels[%c,%c].K", 'a' + a, 'a' + b);
+      sbv_ini_expect(rep, name, fld,
+                     1.0 / sb_kernel_abrahamson(s->r[a], s->r[b], s->v2[a],
+                                                s->v2[b]));
+    }
   return st;
 }
 
 static int case_abrahamson(const sbv_ctx *ctx, sbv_report *rep)
 {
-  if (sbv_writing(ctx)) {
-    sbv_ini_skip(rep, "V16/abrahamson: the random field is a callback "
-                 "(not expressible in INI)");
-    return SB_SUCCESS;
-  }
-  gsl_rng *r = sbv_rng_alloc(ctx, 1620);
-  if (!r)
-    return SB_ENOMEM;
   /* 10 and 5 um spheres, tau_p = 1 ms and 0.25 ms; seen-velocity
-   * variance u'^2 = 1e-2 m^2/s^2, T_L = tau_1/20; dt = T_L/20 */
+   * variance u'^2 = 1e-2 m^2/s^2, T_L = tau_1/20; dt = T_L/10 */
   abr_setup s;
   memset(&s, 0, sizeof s);
   s.r[0] = 5e-6;
@@ -181,47 +218,55 @@ static int case_abrahamson(const sbv_ctx *ctx, sbv_report *rep)
   /* volume: ~2500 contacts of the smallest kernel (5-5 um) in `steps`
    * (quick), 16x in the full run (+-1% at 95%) */
   s.steps = (size_t)ceil(5.0 * s.tau[0] / s.dt);
-  s.warm = 0;
   double v2c[2], v2d[2];
   for (int a = 0; a < 2; a++) {
     v2c[a] = s.u2 * s.TL / (s.TL + s.tau[a]);
-    v2d[a] = v16_ou_particle_var(s.u2, s.TL, s.tau[a], s.dt);
+    v2d[a] = sb_field_ou_particle_var(s.u2, s.TL, s.tau[a], s.dt);
     s.v2[a] = v2d[a];
   }
   const double K22 = sb_kernel_abrahamson(s.r[1], s.r[1], v2d[1], v2d[1]);
   const double want = ctx->full ? 40000.0 : 2500.0;
   const double V = K22 * 0.5 * (double)n * (double)n * s.steps * s.dt / want;
   s.L[0] = s.L[1] = s.L[2] = cbrt(V);
-  sbv_note(rep, "Per-particle OU fluid velocity seen (u'^2 = %.3g m^2/s^2 "
-           "per component, T_L = %.3g s), Stokes spheres d = 10 and 5 um "
-           "(tau_p = %.3g, %.3g s, B = 0, %zu of each), dt = T_L/10, "
-           "started in the stationary joint law of (u, U) (warm-up %zu), %zu "
+  sbv_note(rep, "Per-particle OU fluid velocity seen (sb_field_ou: u'^2 = "
+           "%.3g m^2/s^2 per component, T_L = %.3g s), Stokes spheres d = "
+           "10 and 5 um (tau_p = %.3g, %.3g s, B = 0, %zu of each), dt = "
+           "T_L/10, started in the stationary joint law of (u, U), %zu "
            "steps (5 tau_1); "
            "outcome count, contact-time detection; exact Poisson test at "
            "1e-4 against K = sqrt(8 pi) (r_i + r_j)^2 sqrt(v_i'^2 + "
            "v_j'^2) (Abrahamson 1975) with v'^2 = u'^2 T_L/(T_L + tau_p) "
            "(here %.4g and %.4g m^2/s^2; the engine's scheme -- U held "
            "over each step -- gives %.4g and %.4g, used as reference: "
-           "relative difference %.2g, %.2g).", s.u2, s.TL, s.tau[0],
-           s.tau[1], n, s.warm, s.steps, v2c[0], v2c[1], v2d[0], v2d[1],
+           "relative difference %.2g, %.2g).  Each run draws as `smolbridge "
+           "collide` does (--write-ini writes it).", s.u2, s.TL, s.tau[0],
+           s.tau[1], n, s.steps, v2c[0], v2c[1], v2d[0], v2d[1],
            v2d[0] / v2c[0] - 1.0, v2d[1] / v2c[1] - 1.0);
   int st = SB_SUCCESS;
   double *uv[2] = {malloc(n * sizeof(double)), malloc(n * sizeof(double))};
   if (!uv[0] || !uv[1])
     st = SB_ENOMEM;
-  static const char *pn[2][2] = {{"10um-10um", "10um-5um"},
-                                 {"", "5um-5um"}};
   for (int run = 0; run < 2 && !st; run++) {
     s.field = run == 0;
     s.seed = ctx->seed * 1000 + 1620 + (unsigned long)run;
+    for (int a = 0; a < 2; a++)
+      s.B[a] = s.field ? 0.0 : sqrt(2.0 * s.v2[a] / s.tau[a]);
+    if (sbv_writing(ctx)) {
+      st = abr_write(ctx, rep, &s, run);
+      continue;
+    }
+    gsl_rng *fr = sbv_rng_alloc(ctx, ABR_FIELD_STREAM),
+            *g = sbv_rng_alloc(ctx, ABR_PLACE_STREAM + (unsigned long)run);
     sb_engine_pair_stats pk[2][2];
     memset(pk, 0, sizeof pk);
-    st = abr_run(&s, r, pk, uv);
+    st = fr && g ? abr_run(&s, fr, g, pk, uv) : SB_ENOMEM;
+    gsl_rng_free(fr);
+    gsl_rng_free(g);
     for (int a = 0; a < 2 && !st; a++)
       for (int b = a; b < 2 && !st; b++) {
         char name[128];
         snprintf(name, sizeof name, "V16/abrahamson/%s/%s/K_e/K_th",
-                 run == 0 ? "ou-field" : "langevin-species", pn[a][b]);
+                 run == 0 ? "ou-field" : "langevin-species", ABR_PAIRS[a][b]);
         st = pair_row(rep, name, &pk[a][b],
                       sb_kernel_abrahamson(s.r[a], s.r[b], s.v2[a],
                                            s.v2[b]), 0);
@@ -236,7 +281,6 @@ static int case_abrahamson(const sbv_ctx *ctx, sbv_report *rep)
   }
   free(uv[0]);
   free(uv[1]);
-  gsl_rng_free(r);
   return st;
 }
 
@@ -249,13 +293,91 @@ typedef struct {
   int info;         /* K_e vs K_ST informational */
 } st_run;
 
+/* Streams of realization q of kernel run `run`: the field's and the
+ * placement's (collide's [fluid] seed and placement_seed). */
+#define ST_FIELD_STREAM(run, q) (1631000UL + 1000UL * (run) + (q))
+#define ST_PLACE_STREAM(run, q) (1632000UL + 1000UL * (run) + (q))
+
+/* One realization of a kernel run: n tracers of radius rad placed
+ * uniformly at the field velocity (the draws of collide's placement =
+ * uniform: x and a zero-variance Gaussian per component), `steps` steps.
+ * *f gets the field (freed by the caller). */
+static int st_realization(double L, int M, double eps_nu, double omega,
+                          double dt, double rad, size_t n, size_t steps,
+                          unsigned long seed, gsl_rng *fr, gsl_rng *g,
+                          sb_field_kraichnan **f, sb_engine_pair_stats *ps)
+{
+  const double Ls[3] = {L, L, L};
+  sb_engine *e = mk_engine(Ls, dt, seed, n, SB_NEIGH_CELLS);
+  if (!e)
+    return SB_ENOMEM;
+  const double tau = 1e-3 * dt, B = 0.0;
+  sb_engine_species sp = {rad, 1000.0 * 4.0 / 3.0 * PI * rad * rad * rad,
+                          tau, B, 0.0};
+  int st = sb_engine_add_species(e, &sp, NULL);
+  if (!st && !(*f = sb_field_kraichnan_alloc(L, M, eps_nu, omega, fr)))
+    st = sb_last_status();
+  if (!st)
+    st = sb_field_kraichnan_attach(e, *f);
+  const double vsd = sqrt(B * B * tau / 2.0);  /* as collide: 0 */
+  for (size_t k = 0; k < n && !st; k++) {
+    double x[3], u[3], us[3];
+    for (int c = 0; c < 3; c++) {
+      x[c] = L * gsl_rng_uniform(g);
+      u[c] = gsl_ran_gaussian_ziggurat(g, vsd);
+    }
+    sb_field_kraichnan_eval(*f, sb_engine_time(e), 1, x, us);
+    for (int c = 0; c < 3; c++)
+      u[c] += us[c];
+    st = sb_engine_add_particle(e, 0, 0, x, u);
+  }
+  for (size_t k = 0; k < steps && !st; k++)
+    st = sb_engine_step(e);
+  if (!st)
+    st = sb_engine_pair_kernel(e, 0, 0, 0.95, ps);
+  sb_engine_free(e);
+  return st;
+}
+
+/* Write mode: realization q of a kernel run as a collide file; the
+ * records are means over the realizations ("; expect-mean"). */
+static int st_write(const sbv_ctx *ctx, sbv_report *rep, size_t run,
+                    size_t q, const st_run *R0, double L, int M,
+                    double eps_nu, double omega, double dt, double rad,
+                    size_t n, size_t steps, unsigned long seed, double Kex,
+                    double Kst)
+{
+  char fn[80], rec[160];
+  const char *kind = R0->w0 > 0.0 ? "unsteady" : "frozen";
+  snprintf(fn, sizeof fn, "V16_saffman_turner_%s_Rk%.2g_r%03zu", kind,
+           R0->Rk, q);
+  FILE *f = sbv_ini_begin(ctx, rep, fn, "V16: tracers in one realization "
+                          "of a Kraichnan random Fourier field "
+                          "(Saffman & Turner's kernel)");
+  if (!f)
+    return SB_EIO;
+  const double Ls[3] = {L, L, L};
+  v16_ini_run(f, seed, Ls, dt, steps,
+              sbv_rng_seed(ctx, ST_PLACE_STREAM(run, q)));
+  fprintf(f, "\n[fluid]\ntype = kraichnan\nshell = %d\n"
+          "eps_nu = %.17g\nomega = %.17g\nseed = %lu\n\n[species tracer]\n"
+          "radius = %.17g\nmass = %.17g\ntau = %.17g\nB = 0\ncount = %zu\n",
+          M, eps_nu, omega, sbv_rng_seed(ctx, ST_FIELD_STREAM(run, q)), rad,
+          1000.0 * 4.0 / 3.0 * PI * rad * rad * rad, 1e-3 * dt, n);
+  int st = sbv_ini_end(rep, f, NULL);
+  snprintf(rec, sizeof rec, "V16/saffman-turner/%s/Rk=%.2g/K_e/K_ex", kind,
+           R0->Rk);
+  sbv_ini_expect_mean(rep, rec, "kernel.K", 1.0 / Kex);
+  if (R0->info) {
+    snprintf(rec, sizeof rec, "V16/saffman-turner/frozen/Rk=%.2g/K_e/K_ST",
+             R0->Rk);
+    sbv_ini_expect_mean(rep, rec, "kernel.K", 1.0 / Kst);
+  }
+  return st;
+}
+
 static int case_saffman_turner(const sbv_ctx *ctx, sbv_report *rep)
 {
-  if (sbv_writing(ctx)) {
-    sbv_ini_skip(rep, "V16/saffman-turner: the Kraichnan field is a "
-                 "callback (not expressible in INI)");
-    return SB_SUCCESS;
-  }
   gsl_rng *r = sbv_rng_alloc(ctx, 1630);
   if (!r)
     return SB_ENOMEM;
@@ -266,46 +388,56 @@ static int case_saffman_turner(const sbv_ctx *ctx, sbv_report *rep)
   const double kw = 2.0 * PI * M / L;
   const size_t nreal = ctx->full ? 512 : 32;  /* full: +-1% kernels */
   const size_t npts = ctx->full ? 4000 : 1000;
+  const int writing = sbv_writing(ctx);
   int st = SB_SUCCESS;
-  sbv_note(rep, "Kraichnan (1970) random Fourier field: the %d-shell of "
+  sbv_note(rep, "Kraichnan (1970) random Fourier field (sb_field_kraichnan): "
+           "the %d-shell of "
            "lattice wave vectors of a cube of edge L = %.3g m (k = 2 pi "
            "%d/L, field periodic), Gaussian amplitudes, eps/nu = <A_ij "
            "A_ij> = %.3g s^-2 (tau_eta = %.3g s).  Tracers: tau_p = "
            "1e-3 dt, B = 0, dt = tau_eta/20.  %zu independent field "
            "realizations per run (the estimate of one realization has a "
            "realization-to-realization spread: rows are t tests at 1e-4 of "
-           "the mean over realizations).  Reference of the testing rows: "
+           "the mean over realizations), each drawn as `smolbridge collide` "
+           "draws it (--write-ini writes one file per realization).  "
+           "Reference of the testing rows: "
            "the exact pass-through rate of this field, K_ex = R^2/sqrt(2 "
            "pi) int sd(w.n) dOmega (quadrature); K_ST = sqrt(8 pi/15) R^3 "
            "sqrt(eps/nu) (Saffman & Turner 1956; sb_kernel_saffman_turner).",
            M, L, M, eps_nu, teta, nreal);
   /* field statistics: velocity variance and velocity-gradient variance
-   * (central differences of the velocity the particles see) */
+   * (central differences of the velocity the particles see); no engine
+   * run, not written */
   double *xu = malloc(nreal * sizeof(double)),
          *xa = malloc(nreal * sizeof(double)),
          *xe = malloc(nreal * sizeof(double)),
          *xk = malloc(nreal * sizeof(double));
   if (!xu || !xa || !xe || !xk)
     st = SB_ENOMEM;
-  v16_kr_field f;
   double u2ref = 0.0, a11ref = 0.0;
-  for (size_t q = 0; q < nreal && !st; q++) {
-    st = v16_kr_init(&f, L, M, eps_nu, 0.0, dt, 0, r);
-    u2ref = v16_kr_u2(&f);
-    a11ref = v16_kr_a11(&f);
+  size_t nmodes = 0;
+  for (size_t q = 0; q < nreal && !st && !writing; q++) {
+    sb_field_kraichnan *f = sb_field_kraichnan_alloc(L, M, eps_nu, 0.0, r);
+    if (!f) {
+      st = sb_last_status();
+      break;
+    }
+    u2ref = sb_field_kraichnan_u2(f);
+    a11ref = sb_field_kraichnan_a11(f);
+    nmodes = sb_field_kraichnan_modes(f);
     double su = 0.0, sa = 0.0, se = 0.0;
     const double h = 1e-5 * L;
-    for (size_t p = 0; p < npts && !st; p++) {
+    for (size_t p = 0; p < npts; p++) {
       double x[3], u[3], xp[6][3], up[6][3];
       for (int c = 0; c < 3; c++)
         x[c] = L * gsl_rng_uniform(r);
-      v16_kr_eval(&f, 0.0, 1, x, u);
+      sb_field_kraichnan_eval(f, 0.0, 1, x, u);
       su += (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) / 3.0;
       for (int c = 0; c < 6; c++) {
         memcpy(xp[c], x, sizeof x);
         xp[c][c / 2] += c % 2 ? -h : h;
       }
-      v16_kr_eval(&f, 0.0, 6, &xp[0][0], &up[0][0]);
+      sb_field_kraichnan_eval(f, 0.0, 6, &xp[0][0], &up[0][0]);
       double aij = 0.0;
       for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {
@@ -316,27 +448,29 @@ static int case_saffman_turner(const sbv_ctx *ctx, sbv_report *rep)
         }
       se += aij;
     }
+    sb_field_kraichnan_free(f);
     xu[q] = su / (double)npts;
     xa[q] = sa / (double)npts;
     xe[q] = se / (double)npts;
   }
-  if (!st)
+  if (!st && !writing) {
     st = sbv_add_mean(rep, "V16/saffman-turner/field/u'^2", xu, nreal,
                       u2ref);
-  if (!st)
-    st = sbv_add_mean(rep, "V16/saffman-turner/field/<A_ij A_ij>", xe,
-                      nreal, eps_nu);
-  if (!st)
-    st = sbv_add_mean(rep, "V16/saffman-turner/field/<(dU_x/dx)^2>", xa,
-                      nreal, a11ref);
-  if (!st)
-    st = sbv_add_info(rep, "V16/saffman-turner/field/15<(dU_x/dx)^2>/"
-                      "(eps/nu)", 15.0 * a11ref / eps_nu, 1.0, NAN, NAN,
-                      0.95);
-  sbv_note(rep, "- field: u'^2 = %.4g m^2/s^2 (%zu modes), <(dU_x/dx)^2> "
-           "= %.5g s^-2 = %.4f (eps/nu)/15 (the lattice shell is cubic, "
-           "not exactly isotropic)", u2ref, f.nm, a11ref,
-           15.0 * a11ref / eps_nu);
+    if (!st)
+      st = sbv_add_mean(rep, "V16/saffman-turner/field/<A_ij A_ij>", xe,
+                        nreal, eps_nu);
+    if (!st)
+      st = sbv_add_mean(rep, "V16/saffman-turner/field/<(dU_x/dx)^2>", xa,
+                        nreal, a11ref);
+    if (!st)
+      st = sbv_add_info(rep, "V16/saffman-turner/field/15<(dU_x/dx)^2>/"
+                        "(eps/nu)", 15.0 * a11ref / eps_nu, 1.0, NAN, NAN,
+                        0.95);
+    sbv_note(rep, "- field: u'^2 = %.4g m^2/s^2 (%zu modes), <(dU_x/dx)^2> "
+             "= %.5g s^-2 = %.4f (eps/nu)/15 (the lattice shell is cubic, "
+             "not exactly isotropic)", u2ref, nmodes, a11ref,
+             15.0 * a11ref / eps_nu);
+  }
   /* kernel runs (the linked cells are sized by the contact distance:
    * R k >= 0.2 keeps their number near the particle number) */
   static const st_run runs[] = {
@@ -349,52 +483,49 @@ static int case_saffman_turner(const sbv_ctx *ctx, sbv_report *rep)
     const st_run *R0 = &runs[run];
     const double R = R0->Rk / kw, rad = 0.5 * R;
     const double Kst = sb_kernel_saffman_turner(rad, rad, eps_nu, 1.0);
-    double Kex = 0.0;
+    const double omega = R0->w0 / teta;
+    double Kex = NAN;
     unsigned long long ntot = 0;
     double sumK = 0.0;
     const size_t n = ctx->full ? 2 * R0->n : R0->n;
-    const double Ls[3] = {L, L, L};
     /* ~150 contacts per realization */
     const double rate = Kst * 0.5 * (double)n * (double)n / (L * L * L);
     const size_t steps = (size_t)ceil(150.0 / (rate * dt));
-    for (size_t q = 0; q < nreal && !st; q++) {
-      sb_engine *e = mk_engine(Ls, dt,
-                               ctx->seed * 100000 + 16300 + run * 1000 + q,
-                               n, SB_NEIGH_CELLS);
-      if (!e) {
-        st = SB_ENOMEM;
+    {
+      /* K_ex depends on the modes and s2 only: any realization */
+      sb_field_kraichnan *f0 = sb_field_kraichnan_alloc(L, M, eps_nu, 0.0, r);
+      if (!f0) {
+        st = sb_last_status();
         break;
       }
-      sb_engine_species sp = {rad, 1000.0 * 4.0 / 3.0 * PI * rad * rad * rad,
-                              1e-3 * dt, 0.0, 0.0};
-      st = sb_engine_add_species(e, &sp, NULL);
-      if (!st)
-        st = v16_kr_init(&f, L, M, eps_nu, R0->w0 / teta, dt, n, r);
-      if (!st && q == 0)
-        Kex = v16_kr_flux_kernel(&f, R);
-      for (size_t k = 0; k < n && !st; k++) {
-        double x[3], u[3];
-        for (int c = 0; c < 3; c++)
-          x[c] = L * gsl_rng_uniform(r);
-        v16_kr_eval(&f, 0.0, 1, x, u);
-        st = sb_engine_add_particle(e, 0, 0, x, u);
+      Kex = sb_field_kraichnan_flux_kernel(f0, R);
+      sb_field_kraichnan_free(f0);
+    }
+    for (size_t q = 0; q < nreal && !st; q++) {
+      const unsigned long seed = ctx->seed * 100000 + 16300 + run * 1000 + q;
+      if (writing) {
+        st = st_write(ctx, rep, run, q, R0, L, M, eps_nu, omega, dt, rad, n,
+                      steps, seed, Kex, Kst);
+        continue;
       }
-      if (!st)
-        st = sb_engine_set_fluid_fn(e, v16_kr_fluid, &f);
-      for (size_t k = 0; k < steps && !st; k++)
-        st = sb_engine_step(e);
+      gsl_rng *fr = sbv_rng_alloc(ctx, ST_FIELD_STREAM(run, q)),
+              *g = sbv_rng_alloc(ctx, ST_PLACE_STREAM(run, q));
+      sb_field_kraichnan *f = NULL;
       sb_engine_pair_stats ps;
-      if (!st)
-        st = sb_engine_pair_kernel(e, 0, 0, 0.95, &ps);
+      st = fr && g ? st_realization(L, M, eps_nu, omega, dt, rad, n, steps,
+                                    seed, fr, g, &f, &ps)
+                   : SB_ENOMEM;
+      sb_field_kraichnan_free(f);
+      gsl_rng_free(fr);
+      gsl_rng_free(g);
       if (!st) {
         xk[q] = ps.K / Kex;
         ntot += ps.ncoll;
         sumK += ps.K;
       }
-      sb_engine_free(e);
     }
-    if (st)
-      break;
+    if (st || writing)
+      continue;
     char name[160];
     snprintf(name, sizeof name, "V16/saffman-turner/%s/Rk=%.2g/K_e/K_ex",
              R0->w0 > 0.0 ? "unsteady" : "frozen", R0->Rk);
@@ -426,8 +557,6 @@ static int case_saffman_turner(const sbv_ctx *ctx, sbv_report *rep)
   gsl_rng_free(r);
   return st;
 }
-
-
 /* ==================================================== V16/combined */
 
 /* Steady rate of absorption of point particles that diffuse (D) and
@@ -595,32 +724,27 @@ static int case_combined(const sbv_ctx *ctx, sbv_report *rep)
  * [-G tau/2, 1, 0], [0, 0, 1]] the stationary covariance of the relative
  * peculiar velocity (dc_x = -c_x/tau dt - G c_y dt + B dW_x).  Limits:
  * v2 -> 0, (4/3) G R^3; G -> 0, sqrt(8 pi) R^2 sqrt(2 v2). */
+typedef struct {
+  double R, G, v2, gt;
+} shear_flux_ctx;
+
+/* E[(w.n)^-] for w.n ~ N(m, var) */
+static double shear_flux_at(const double n[3], void *ctx)
+{
+  const shear_flux_ctx *k = ctx;
+  const double nx = n[0], ny = n[1], nz = n[2], gt = k->gt;
+  const double m = k->G * k->R * nx * ny;
+  const double var = 2.0 * k->v2 * ((1.0 + 0.5 * gt * gt) * nx * nx -
+                                    gt * nx * ny + ny * ny + nz * nz);
+  const double sd = sqrt(var), z = m / sd;
+  return sd * exp(-0.5 * z * z) / sqrt(2.0 * PI) - m * gsl_cdf_ugaussian_P(-z);
+}
+
 static double shear_kinetic_flux(double R, double G, double v2, double tau)
 {
-  gsl_integration_glfixed_table *tb = gsl_integration_glfixed_table_alloc(96);
-  if (!tb)
-    return NAN;
-  const double gt = G * tau;
-  double sum = 0.0;
-  const int nphi = 192;
-  for (size_t i = 0; i < 96; i++) {
-    double mu, wmu;
-    gsl_integration_glfixed_point(-1.0, 1.0, i, &mu, &wmu, tb);
-    const double st = sqrt(1.0 - mu * mu);
-    double sp = 0.0;
-    for (int j = 0; j < nphi; j++) {
-      const double ph = 2.0 * PI * (j + 0.5) / nphi;
-      const double nx = st * cos(ph), ny = st * sin(ph), nz = mu;
-      const double m = G * R * nx * ny;
-      const double var = 2.0 * v2 * ((1.0 + 0.5 * gt * gt) * nx * nx -
-                                     gt * nx * ny + ny * ny + nz * nz);
-      const double sd = sqrt(var), z = m / sd;
-      sp += sd * exp(-0.5 * z * z) / sqrt(2.0 * PI) - m * gsl_cdf_ugaussian_P(-z);
-    }
-    sum += wmu * sp * 2.0 * PI / nphi;
-  }
-  gsl_integration_glfixed_table_free(tb);
-  return R * R * sum;
+  /* 96 Gauss-Legendre nodes in cos(theta), 192 midpoints in phi */
+  shear_flux_ctx k = {R, G, v2, G * tau};
+  return R * R * sbi_sphere_integral(shear_flux_at, &k, 96, 192, 0.5);
 }
 
 static int case_shear_kinetic(const sbv_ctx *ctx, sbv_report *rep)

@@ -55,8 +55,8 @@ int sbv_ini_end(sbv_report *rep, FILE *f, const char *field)
 
 void sbv_ini_no_expect(sbv_report *rep) { rep->ini_field[0] = 0; }
 
-void sbv_ini_expect(sbv_report *rep, const char *record, const char *field,
-                    double factor)
+static void expect_line(sbv_report *rep, const char *kind,
+                        const char *record, const char *field, double factor)
 {
   if (!rep->ini_path[0])
     return;
@@ -64,10 +64,22 @@ void sbv_ini_expect(sbv_report *rep, const char *record, const char *field,
   if (!f)
     return;
   if (factor == 1.0)
-    fprintf(f, "; expect %s = %s\n", record, field);
+    fprintf(f, "; %s %s = %s\n", kind, record, field);
   else
-    fprintf(f, "; expect %s = %s * %.17g\n", record, field, factor);
+    fprintf(f, "; %s %s = %s * %.17g\n", kind, record, field, factor);
   fclose(f);
+}
+
+void sbv_ini_expect(sbv_report *rep, const char *record, const char *field,
+                    double factor)
+{
+  expect_line(rep, "expect", record, field, factor);
+}
+
+void sbv_ini_expect_mean(sbv_report *rep, const char *record,
+                         const char *field, double factor)
+{
+  expect_line(rep, "expect-mean", record, field, factor);
 }
 
 void sbv_ini_skip(sbv_report *rep, const char *fmt, ...)

@@ -163,7 +163,7 @@ static const char *const INI_CASES[] = {
     "V4/bridge-brownian", "V5/constant-B", "V7/brownian-turb",
     "V3/diffusive-fail", "V6/correction-step", "VX/exact-detection",
     "V8/agglo-dlvo", "V12/langevin-detector", "V16/shear", "V16/settling",
-    NULL};
+    "V16/abrahamson", "V16/saffman-turner", NULL};
 
 int sb_validate_write_ini(size_t index, const sb_validate_options *opt,
                           const char *dir, size_t *nfiles)
@@ -181,7 +181,8 @@ int sb_validate_write_ini(size_t index, const sb_validate_options *opt,
     return sbi_error(SB_EINVAL, __func__, "case %s has no engine run that "
                      "smolbridge collide reproduces (cases with files: "
                      "V1, V2, V3 (chord, overlap), V4, V5, V6, V7, V9, VX, "
-                     "V8/agglo-dlvo, V12 (single-run records), V16/shear, V16/settling)",
+                     "V8/agglo-dlvo, V12 (single-run records), V16/shear, V16/settling, "
+                     "V16/abrahamson, V16/saffman-turner)",
                      c->name);
   sb_validate_report *rep = sb_validate_report_alloc();
   if (!rep)

@@ -5,6 +5,7 @@
 #define SB_VALIDATE_V16_H
 
 #include <stddef.h>
+#include <stdio.h>
 #include <gsl/gsl_rng.h>
 #include <smolbridge/engine.h>
 
@@ -65,5 +66,11 @@ double v16_terminal_sn(double r, double rho_p, double rho_f, double mu,
 double v16_slab_absorbed(double D, double t, double W);
 
 int v16_case_deposition(const sbv_ctx *ctx, sbv_report *rep);
+
+/* Write mode: the [run] keys (after sbv_ini_begin) of a V16 count run
+ * with contact-time detection and uniform placement from placement_seed,
+ * as v16_run and the random-field cases draw it. */
+void v16_ini_run(FILE *f, unsigned long seed, const double L[3], double dt,
+                 size_t steps, unsigned long placement_seed);
 
 #endif /* SB_VALIDATE_V16_H */
