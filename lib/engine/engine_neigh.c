@@ -157,6 +157,7 @@ typedef struct {
   size_t stride[3];
   double edge[3], L[3];
   double cut, reach;
+  double ext;  /* largest r + |disp| of the scan: (cut - reach)/2 */
   const size_t *start, *list;
   const double *xs;
 } cell_scan;
@@ -208,7 +209,7 @@ static int scan_cell(const cell_scan *K, size_t c, sbi_pairbuf *out)
   const int dim = K->dim;
   const double *L = K->L, *xs = K->xs;
   const size_t *start = K->start, *list = K->list;
-  const double reach = K->reach, cut = K->cut;
+  const double reach = K->reach;
   int ci[3] = {0, 0, 0};
   for (int k = 0; k < dim; k++)
     ci[k] = (int)((c / K->stride[k]) % (size_t)K->nc[k]);
@@ -229,7 +230,13 @@ static int scan_cell(const cell_scan *K, size_t c, sbi_pairbuf *out)
       if (d0 * d0 + d1 * d1 + d2 * d2 <= lim * lim && pb_push(out, i, list[b]))
         return -1;
     }
-    /* neighbouring cells within the cut-off of a */
+    /* neighbouring cells within a's own reach of it: a partner b across
+     * a face is within r_a + |disp_a| + reach + r_b + |disp_b| <= wa of
+     * a, so a lies within wa of that face (and of both faces of a
+     * corner); wa <= cut spares the particles with small displacements
+     * the visits the largest one needs.  The candidates and their order
+     * are those of the whole cut-off. */
+    const double wa = (ra + K->ext) * (1.0 + 1e-12);
     int off[3][3], noff[3], any = 0;
     for (int k = 0; k < 3; k++) {
       noff[k] = 1;
@@ -242,9 +249,9 @@ static int scan_cell(const cell_scan *K, size_t c, sbi_pairbuf *out)
         continue;
       }
       double lo = xa[k] - ci[k] * K->edge[k];
-      if (lo < cut)
+      if (lo < wa)
         off[k][noff[k]++] = -1;
-      if (K->edge[k] - lo < cut)
+      if (K->edge[k] - lo < wa)
         off[k][noff[k]++] = 1;
       any |= noff[k] > 1;
     }
@@ -372,7 +379,7 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach,
   const cell_scan K = {dim, own_wrap, {nc[0], nc[1], nc[2]},
                        {stride[0], stride[1], stride[2]},
                        {edge[0], edge[1], edge[2]}, {L[0], L[1], L[2]},
-                       cut, reach, start, list, xs};
+                       cut, reach, 0.5 * (cut - reach), start, list, xs};
   const int nt = sbi_engine_threads(&e->par);
   if (nt <= 1 || n < 4096 || ncell < (size_t)(4 * nt)) {
     sbi_pairbuf pb = {e->pairs, e->npairs, e->cappairs};
