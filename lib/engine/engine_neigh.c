@@ -157,7 +157,8 @@ typedef struct {
   size_t stride[3];
   double edge[3], L[3];
   double cut, reach;
-  double ext;  /* largest r + |disp| of the scan: (cut - reach)/2 */
+  double ext;  /* reach + the largest r + |disp| of the scan,
+                  (cut + reach)/2, plus 1e-12 cut against rounding */
   const size_t *start, *list;
   const double *xs;
 } cell_scan;
@@ -236,7 +237,7 @@ static int scan_cell(const cell_scan *K, size_t c, sbi_pairbuf *out)
      * corner); wa <= cut spares the particles with small displacements
      * the visits the largest one needs.  The candidates and their order
      * are those of the whole cut-off. */
-    const double wa = (ra + K->ext) * (1.0 + 1e-12);
+    const double wa = xa[3] + K->ext;
     int off[3][3], noff[3], any = 0;
     for (int k = 0; k < 3; k++) {
       noff[k] = 1;
@@ -379,7 +380,8 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach,
   const cell_scan K = {dim, own_wrap, {nc[0], nc[1], nc[2]},
                        {stride[0], stride[1], stride[2]},
                        {edge[0], edge[1], edge[2]}, {L[0], L[1], L[2]},
-                       cut, reach, 0.5 * (cut - reach), start, list, xs};
+                       cut, reach, 0.5 * (cut + reach) + 1e-12 * cut, start,
+                       list, xs};
   const int nt = sbi_engine_threads(&e->par);
   if (nt <= 1 || n < 4096 || ncell < (size_t)(4 * nt)) {
     sbi_pairbuf pb = {e->pairs, e->npairs, e->cappairs};
