@@ -429,10 +429,22 @@ int sbi_engine_detect_and_process(sb_engine *e)
   for (size_t q = 0; q < e->nfar; q++)
     e->isfar[e->far[q]] = 0;
   e->nfar = 0;
-  memcpy(e->sub_p, e->x0, 3 * n * sizeof *e->sub_p);
-  memcpy(e->sub_v, e->disp, 3 * n * sizeof *e->sub_v);
-  memset(e->sub_t, 0, n * sizeof *e->sub_t);  /* all-zero bits: 0.0 */
-  memset(e->ver, 0, n * sizeof *e->ver);
+  {
+    /* every path piece starts as the whole step: contiguous blocks, one
+     * per thread */
+    const int nb = n >= 4096 ? sbi_engine_threads(&e->par) : 1;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static, 1) num_threads(nb)
+#endif
+    for (int b = 0; b < nb; b++) {
+      const size_t k0 = n * (size_t)b / (size_t)nb,
+                   k1 = n * (size_t)(b + 1) / (size_t)nb, m = k1 - k0;
+      memcpy(e->sub_p + 3 * k0, e->x0 + 3 * k0, 3 * m * sizeof *e->sub_p);
+      memcpy(e->sub_v + 3 * k0, e->disp + 3 * k0, 3 * m * sizeof *e->sub_v);
+      memset(e->sub_t + k0, 0, m * sizeof *e->sub_t);  /* zero bits: 0.0 */
+      memset(e->ver + k0, 0, m * sizeof *e->ver);
+    }
+  }
   if (e->par.detect == SB_DETECT_LANGEVIN || e->par.detect == SB_DETECT_CUSTOM)
     sbi_engine_langevin_begin(e);  /* a custom detector may call it */
   const size_t np = e->npairs;

@@ -55,20 +55,32 @@ double sbi_engine_max_disp(const sb_engine *e, const double *disp)
 static int cutoff(sb_engine *e, const double *disp, double reach,
                   double *cut, double *dmax, const char *func)
 {
+  const size_t n = e->n;
+  const int nt = n >= 4096 ? sbi_engine_threads(&e->par) : 1;
+  (void)nt;
   double m = 0.0;
-  for (size_t i = 0; i < e->n; i++) {
+  int bad = 0;
+  double *dn = e->dn;
+  /* a maximum: the same for any split between threads */
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(nt) \
+    reduction(max : m) reduction(| : bad)
+#endif
+  for (size_t i = 0; i < n; i++) {
     double v = 0.0;
     if (disp) {
       const double *d = &disp[3 * i];
       v = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     }
-    if (!isfinite(v))
-      return sbi_error(SB_EINVAL, func, "particle %zu: non-finite "
-                       "displacement", i);
-    e->dn[i] = v;
-    if (v > m)
-      m = v;
+    bad |= !isfinite(v);
+    dn[i] = v;
+    m = v > m ? v : m;
   }
+  if (bad)
+    for (size_t i = 0; i < n; i++)
+      if (!isfinite(dn[i]))
+        return sbi_error(SB_EINVAL, func, "particle %zu: non-finite "
+                         "displacement", i);
   *cut = 2.0 * e->rmax + 2.0 * m + reach;
   *dmax = m;
   for (int k = 0; k < e->par.dim; k++)
