@@ -120,9 +120,14 @@ int sbi_engine_random_free_position(sb_engine *e, size_t k, double x[3],
         continue;
       double d2 = 0.0;
       for (int c = 0; c < dim; c++) {
-        /* positions may be unwrapped during a step: full reduction */
+        /* positions may be unwrapped during a step (by less than L/2:
+         * one shift); a full reduction only beyond */
         double d = x[c] - e->x[3 * j + c];
-        d -= L[c] * floor(d / L[c] + 0.5);
+        if (d > 0.5 * L[c] || d < -0.5 * L[c]) {
+          d += d > 0.0 ? -L[c] : L[c];
+          if (d > 0.5 * L[c] || d < -0.5 * L[c])
+            d -= L[c] * floor(d / L[c] + 0.5);
+        }
         d2 += d * d;
       }
       double sg = rk + e->radius[j];
