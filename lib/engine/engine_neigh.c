@@ -556,7 +556,8 @@ static int list_build(sb_engine *e, const double *x0, double D, double reach)
     v->pairs = p;
     v->cappairs = e->npairs;
   }
-  memcpy(v->pairs, e->pairs, 2 * e->npairs * sizeof *v->pairs);
+  if (e->npairs)  /* (both lists may still be NULL) */
+    memcpy(v->pairs, e->pairs, 2 * e->npairs * sizeof *v->pairs);
   v->npairs = e->npairs;
   e->npairs = 0;
   memcpy(v->xb, x0, 3 * e->n * sizeof *x0);
