@@ -192,6 +192,22 @@ static int pb_push(sbi_pairbuf *b, size_t i, size_t j)
   return 0;
 }
 
+/* The engine's per-thread candidate buffers, at least nt of them; NULL
+ * out of memory. */
+static sbi_pairbuf *thread_buffers(sb_engine *e, int nt)
+{
+  if (nt > e->ntb) {
+    sbi_pairbuf *tb = realloc(e->tb, (size_t)nt * sizeof *tb);
+    if (!tb)
+      return NULL;
+    for (int t = e->ntb; t < nt; t++)
+      tb[t] = (sbi_pairbuf){NULL, 0, 0};
+    e->tb = tb;
+    e->ntb = nt;
+  }
+  return e->tb;
+}
+
 /* Append the per-thread buffers tb[0..nt-1], in thread order, to
  * e->pairs; 0, or 1 out of memory. */
 static int join_buffers(sb_engine *e, const sbi_pairbuf *tb, int nt)
@@ -409,16 +425,9 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach,
   /* in parallel: thread t scans the t-th of nt contiguous ranges of cells
    * into its own buffer; the buffers concatenated in thread order are the
    * serial list, pair for pair */
-  if (nt > e->ntb) {
-    sbi_pairbuf *tb = realloc(e->tb, (size_t)nt * sizeof *tb);
-    if (!tb)
-      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
-    for (int t = e->ntb; t < nt; t++)
-      tb[t] = (sbi_pairbuf){NULL, 0, 0};
-    e->tb = tb;
-    e->ntb = nt;
-  }
-  sbi_pairbuf *tb = e->tb;
+  sbi_pairbuf *tb = thread_buffers(e, nt);
+  if (!tb)
+    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
   int bad = 0;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static, 1) num_threads(nt) reduction(| : bad)
@@ -616,16 +625,9 @@ static int listed(sb_engine *e, const double *x0, double cut, double D,
   } else {
     /* thread t filters the t-th of nt contiguous ranges of the list into
      * its own buffer; joined in thread order they are the serial list */
-    if (nt > e->ntb) {
-      sbi_pairbuf *tb = realloc(e->tb, (size_t)nt * sizeof *tb);
-      if (!tb)
-        return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
-      for (int t = e->ntb; t < nt; t++)
-        tb[t] = (sbi_pairbuf){NULL, 0, 0};
-      e->tb = tb;
-      e->ntb = nt;
-    }
-    sbi_pairbuf *tb = e->tb;
+    sbi_pairbuf *tb = thread_buffers(e, nt);
+    if (!tb)
+      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
     const sb_engine *ce = e;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static, 1) num_threads(nt) reduction(| : bad)
