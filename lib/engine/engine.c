@@ -113,6 +113,7 @@ sb_engine *sb_engine_alloc(const sb_engine_params *p)
   e->sub_v = calloc(3 * c, sizeof(double));
   e->sub_t = calloc(c, sizeof(double));
   e->ver = calloc(c, sizeof(uint32_t));
+  e->piece_at = calloc(c, sizeof(uint64_t));
   e->far = calloc(c, sizeof(size_t));
   e->isfar = calloc(c, 1);
   e->lp_x = calloc(3 * c, sizeof(double));
@@ -124,6 +125,7 @@ sb_engine *sb_engine_alloc(const sb_engine_params *p)
       !e->hit || !e->dn || !e->xs || !e->vl.xb || !e->vl.rb || !e->vl.idb ||
       !e->vl.isfloat || !e->vl.floats || !e->cell_of || !e->cell_list || !e->order ||
       !e->key || !e->sub_p || !e->sub_v || !e->sub_t || !e->ver ||
+      !e->piece_at ||
       !e->far || !e->isfar || !e->lp_x || !e->lp_u || !e->lp_t ||
       !e->rng || sbi_engine_langevin_init(e)) {
     sb_engine_free(e);
@@ -181,6 +183,7 @@ void sb_engine_free(sb_engine *e)
   free(e->sub_v);
   free(e->sub_t);
   free(e->ver);
+  free(e->piece_at);
   free(e->far);
   free(e->isfar);
   free(e->lp_x);

@@ -232,12 +232,45 @@ static int push_hit(sb_engine *e, const sb_engine_pair *p, double t,
   return heap_push(e, ev);
 }
 
+/* Particle k's current path piece: start point, velocity (per step
+ * fraction) and start fraction; until an outcome stores one, the whole
+ * step from x0 (the same numbers the stored piece would hold). */
+static inline int piece_stored(const sb_engine *e, size_t k)
+{
+  return e->piece_at[k] == e->epoch;
+}
+static inline const double *piece_p(const sb_engine *e, size_t k)
+{
+  return piece_stored(e, k) ? &e->sub_p[3 * k] : &e->x0[3 * k];
+}
+static inline const double *piece_v(const sb_engine *e, size_t k)
+{
+  return piece_stored(e, k) ? &e->sub_v[3 * k] : &e->disp[3 * k];
+}
+static inline double piece_t(const sb_engine *e, size_t k)
+{
+  return piece_stored(e, k) ? e->sub_t[k] : 0.0;
+}
+
+/* Store k's piece before an outcome may change what the lazy piece reads
+ * (the elastic outcome updates disp in place). */
+static void keep_piece(sb_engine *e, size_t k)
+{
+  if (piece_stored(e, k))
+    return;
+  memcpy(&e->sub_p[3 * k], &e->x0[3 * k], 3 * sizeof(double));
+  memcpy(&e->sub_v[3 * k], &e->disp[3 * k], 3 * sizeof(double));
+  e->sub_t[k] = 0.0;
+  e->piece_at[k] = e->epoch;
+}
+
 /* Position of particle k at step fraction s on its current path piece
  * (unwrapped, in the frame of x0_k). */
 static void path_at(const sb_engine *e, size_t k, double s, double x[3])
 {
+  const double *p = piece_p(e, k), *v = piece_v(e, k), t = piece_t(e, k);
   for (int c = 0; c < 3; c++)
-    x[c] = e->sub_p[3 * k + c] + (s - e->sub_t[k]) * e->sub_v[3 * k + c];
+    x[c] = p[c] + (s - t) * v[c];
 }
 
 int sb_engine_position_at(const sb_engine *e, size_t k, double t,
@@ -246,7 +279,7 @@ int sb_engine_position_at(const sb_engine *e, size_t k, double t,
   if (!e || !x || k >= e->n)
     return sbi_error(SB_EINVAL, __func__, "bad engine, particle or NULL");
   double f = (t - e->t) / e->par.dt;
-  if (!e->in_step || !(f >= e->sub_t[k] - 1e-12 && f <= 1.0 + 1e-12))
+  if (!e->in_step || !(f >= piece_t(e, k) - 1e-12 && f <= 1.0 + 1e-12))
     return sbi_error(SB_EINVAL, __func__,
                      "t = %g is not in the current piece of particle %zu's "
                      "step", t, k);
@@ -266,10 +299,11 @@ static void make_subpair(const sb_engine *e, size_t a, size_t b, double t,
   const double f = 1.0 - t;
   p->i = i;
   p->j = j;
+  const double *vi = piece_v(e, i), *vj = piece_v(e, j);
   for (int k = 0; k < 3; k++) {
     p->dx0[k] = k < e->par.dim ? sbi_minimg(xi[k] - xj[k], e->par.L[k])
                                : 0.0;
-    p->dd[k] = (e->sub_v[3 * i + k] - e->sub_v[3 * j + k]) * f;
+    p->dd[k] = (vi[k] - vj[k]) * f;
   }
   p->sigma = e->radius[i] + e->radius[j];
   p->dt = e->par.dt * f;
@@ -384,6 +418,7 @@ static double new_piece(sb_engine *e, size_t k, double t,
     r1 += (xe - e->x0[3 * k + c]) * (xe - e->x0[3 * k + c]);
   }
   e->sub_t[k] = t;
+  e->piece_at[k] = e->epoch;
   e->ver[k]++;
   /* still inside the region the search covered around x0_k?  then widen
    * its reach (others' searches see it from the cells); else it goes to
@@ -429,22 +464,7 @@ int sbi_engine_detect_and_process(sb_engine *e)
   for (size_t q = 0; q < e->nfar; q++)
     e->isfar[e->far[q]] = 0;
   e->nfar = 0;
-  {
-    /* every path piece starts as the whole step: contiguous blocks, one
-     * per thread */
-    const int nb = n >= 4096 ? sbi_engine_threads(&e->par) : 1;
-#ifdef _OPENMP
-#pragma omp parallel for schedule(static, 1) num_threads(nb)
-#endif
-    for (int b = 0; b < nb; b++) {
-      const size_t k0 = n * (size_t)b / (size_t)nb,
-                   k1 = n * (size_t)(b + 1) / (size_t)nb, m = k1 - k0;
-      memcpy(e->sub_p + 3 * k0, e->x0 + 3 * k0, 3 * m * sizeof *e->sub_p);
-      memcpy(e->sub_v + 3 * k0, e->disp + 3 * k0, 3 * m * sizeof *e->sub_v);
-      memset(e->sub_t + k0, 0, m * sizeof *e->sub_t);  /* zero bits: 0.0 */
-      memset(e->ver + k0, 0, m * sizeof *e->ver);
-    }
-  }
+  e->epoch++;  /* every path piece is the whole step (none stored) */
   if (e->par.detect == SB_DETECT_LANGEVIN || e->par.detect == SB_DETECT_CUSTOM)
     sbi_engine_langevin_begin(e);  /* a custom detector may call it */
   const size_t np = e->npairs;
@@ -526,6 +546,8 @@ int sbi_engine_detect_and_process(sb_engine *e)
     pstate si, sj;
     snap(e, i, &si);
     snap(e, j, &sj);
+    keep_piece(e, i);
+    keep_piece(e, j);
     e->ndeclared = 0;
     e->in_outcome_t = ev.s;
     e->hit[i] = e->hit[i] ? e->hit[i] : 1;

@@ -115,9 +115,14 @@ struct sb_engine {
   /* paths inside the step: particle k is at sub_p + (s - sub_t) sub_v for
    * s >= sub_t (s the fraction of the step); an outcome that changes a
    * particle's end starts a new straight piece at the contact and bumps
-   * its version */
+   * its version.  The piece is stored only once an outcome changed it
+   * (piece_at[k] == epoch, the step's number); before that it is the
+   * whole step, x0 + s disp (engine_detect.c: piece_p, piece_v), so a step
+   * without collisions writes no pieces. */
   double *sub_p, *sub_v, *sub_t; /* 3 cap, 3 cap, cap */
-  uint32_t *ver;             /* cap */
+  uint64_t *piece_at;        /* cap */
+  uint64_t epoch;            /* bumped by every detection pass */
+  uint32_t *ver;             /* cap; compared within one step only */
   size_t *far;               /* cap: particles whose new piece left the
                                 region of the search (engine_neigh.c) */
   size_t nfar;
@@ -338,9 +343,11 @@ void sbi_engine_make_pair(const sb_engine *e, size_t i, size_t j,
 int sbi_engine_apply_outcome(sb_engine *e, const sb_engine_pair *p,
                              double s);
 /* Random non-overlapping position for particle k (excluded from the
- * check), uniform in the box; SB_EMAXITER after `tries` attempts. */
-int sbi_engine_random_free_position(sb_engine *e, size_t k, double x[3],
-                                    size_t tries);
+ * check), uniform in the box; SB_EMAXITER after `tries` attempts.  Inside
+ * a step, `partner` is k's collision partner (tested by itself: it may sit
+ * at a contact point off its path's bound), or (size_t)-1. */
+int sbi_engine_random_free_position(sb_engine *e, size_t k, size_t partner,
+                                    double x[3], size_t tries);
 /* Equilibrium velocity for species sp at position x into u. */
 int sbi_engine_equilibrium_velocity(sb_engine *e, size_t sp,
                                     const double x[3], double u[3]);

@@ -105,35 +105,73 @@ int sb_engine_outcome_elastic(sb_engine *e, const sb_engine_pair *p,
   return SB_SUCCESS;
 }
 
-int sbi_engine_random_free_position(sb_engine *e, size_t k, double x[3],
-                                    size_t tries)
+/* Squared distance from x to particle j's current position (positions may
+ * be unwrapped during a step by less than L/2: one shift; a full
+ * reduction only beyond). */
+static double free_d2(const sb_engine *e, const double x[3], size_t j)
+{
+  const double *L = e->par.L;
+  double d2 = 0.0;
+  for (int c = 0; c < e->par.dim; c++) {
+    double d = x[c] - e->x[3 * j + c];
+    if (d > 0.5 * L[c] || d < -0.5 * L[c]) {
+      d += d > 0.0 ? -L[c] : L[c];
+      if (d > 0.5 * L[c] || d < -0.5 * L[c])
+        d -= L[c] * floor(d / L[c] + 0.5);
+    }
+    d2 += d * d;
+  }
+  return d2;
+}
+
+typedef struct {
+  const double *x;
+  double r;
+} free_q;
+
+/* 1 (stop the search) when k overlaps the trial position */
+static int overlaps(sb_engine *e, size_t a, size_t k, void *ctx)
+{
+  (void)a;
+  const free_q *q = ctx;
+  const double sg = q->r + e->radius[k];
+  return free_d2(e, q->x, k) < sg * sg;
+}
+
+/* Is the trial position x free for particle k?  Inside a step's event loop
+ * (reinsertion outcome, no Lees-Edwards) only the particles the step's
+ * search puts near x can overlap it: each one's current position lies on
+ * its path, within r_j + dn_j of x0_j, or on its far piece
+ * (sbi_engine_partners); the partner of the collision may sit at a
+ * Langevin contact point off its chord and is tested by itself.  The
+ * answer is the same as the scan of all particles, which serves every
+ * other case. */
+static int position_free(sb_engine *e, size_t k, size_t partner,
+                         const double x[3])
+{
+  const double rk = e->radius[k];
+  free_q q = {x, rk};
+  if (e->in_step && !e->lees && e->par.outcome == SB_OUTCOME_REINSERT) {
+    if (partner < e->n && partner != k && overlaps(e, k, partner, &q))
+      return 0;
+    return !sbi_engine_partners(e, k, x, rk, e->in_outcome_t, overlaps, &q);
+  }
+  for (size_t j = 0; j < e->n; j++)
+    if (j != k && overlaps(e, k, j, &q))
+      return 0;
+  return 1;
+}
+
+int sbi_engine_random_free_position(sb_engine *e, size_t k, size_t partner,
+                                    double x[3], size_t tries)
 {
   const int dim = e->par.dim;
-  const double *L = e->par.L, rk = e->radius[k];
+  const double *L = e->par.L;
   for (size_t t = 0; t < tries; t++) {
     x[0] = x[1] = x[2] = 0.0;
     for (int c = 0; c < dim; c++)
       x[c] = L[c] * gsl_rng_uniform(e->rng);
-    int ok = 1;
-    for (size_t j = 0; j < e->n && ok; j++) {
-      if (j == k)
-        continue;
-      double d2 = 0.0;
-      for (int c = 0; c < dim; c++) {
-        /* positions may be unwrapped during a step (by less than L/2:
-         * one shift); a full reduction only beyond */
-        double d = x[c] - e->x[3 * j + c];
-        if (d > 0.5 * L[c] || d < -0.5 * L[c]) {
-          d += d > 0.0 ? -L[c] : L[c];
-          if (d > 0.5 * L[c] || d < -0.5 * L[c])
-            d -= L[c] * floor(d / L[c] + 0.5);
-        }
-        d2 += d * d;
-      }
-      double sg = rk + e->radius[j];
-      ok = d2 >= sg * sg;
-    }
-    if (ok)
+    if (position_free(e, k, partner, x))
       return SB_SUCCESS;
   }
   return sbi_error(SB_EMAXITER, "sb_engine_step",
@@ -149,7 +187,7 @@ int sb_engine_outcome_reinsert(sb_engine *e, const sb_engine_pair *p,
     return sbi_error(SB_EINVAL, __func__, "bad argument");
   const size_t j = p->j;
   double x[3], u[3];
-  int st = sbi_engine_random_free_position(e, j, x, 10000);
+  int st = sbi_engine_random_free_position(e, j, p->i, x, 10000);
   if (st)
     return st;
   st = sbi_engine_equilibrium_velocity(e, e->species[j], x, u);
