@@ -462,24 +462,26 @@ static int list_holds(sb_engine *e, const double *x0, double D, double reach)
   for (int k = 0; k < dim; k++)
     if (v->L[k] != e->par.L[k])
       return 0;
-  if (memcmp(v->idb, e->id, e->n * sizeof *e->id) ||
-      memcmp(v->rb, e->radius, e->n * sizeof *e->radius))
-    return 0;  /* particles added, removed, merged or reordered */
   const double lim = 0.5 * v->skin - D;
   if (!(lim > 0.0))
     return 0;
   const size_t n = e->n, maxf = SBI_VERLET_FLOATERS(n);
-  const double *xb = v->xb, *L = e->par.L;
+  const double *xb = v->xb, *L = e->par.L, *rb = v->rb, *r = e->radius;
+  const uint64_t *idb = v->idb, *id = e->id;
   unsigned char *fl = v->isfloat;
   size_t nf = 0;
+  int other = 0;
   const int nt = n >= 4096 ? sbi_engine_threads(&e->par) : 1;
   (void)nt;
-  /* mark the floaters (any thread order: each flag is its own), then
-   * collect them in index order */
+  /* the same particles (ids and radii bit for bit: nothing added,
+   * removed, merged or reordered)?  Mark the floaters (any thread order:
+   * each flag is its own), then collect them in index order */
 #ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(nt) reduction(+ : nf)
+#pragma omp parallel for schedule(static) num_threads(nt) \
+    reduction(+ : nf) reduction(| : other)
 #endif
   for (size_t i = 0; i < n; i++) {
+    other |= idb[i] != id[i] || memcmp(&rb[i], &r[i], sizeof r[i]) != 0;
     double d2 = 0.0;
     for (int k = 0; k < dim; k++) {
       double d = sbi_minimg(x0[3 * i + k] - xb[3 * i + k], L[k]);
@@ -490,7 +492,7 @@ static int list_holds(sb_engine *e, const double *x0, double D, double reach)
       nf++;
     }
   }
-  if (nf > maxf) {
+  if (other || nf > maxf) {
     memset(fl, 0, n);
     return 0;
   }

@@ -249,10 +249,24 @@ int sbi_engine_boundaries(sb_engine *e)
       }
     }
   }
-  for (size_t i = 0; i < e->n; i++)
-    for (int k = 0; k < dim; k++)
-      if (e->wall[2 * k] == SB_WALL_PERIODIC)
-        e->x[3 * i + k] = sbi_wrap(e->x[3 * i + k], L[k]);
+  /* periodic faces: wrap, writing only the coordinates that left the box
+   * (most do not move out in a step: their cache lines stay clean) */
+  int per[3] = {0, 0, 0};
+  for (int k = 0; k < dim; k++)
+    per[k] = e->wall[2 * k] == SB_WALL_PERIODIC;
+  const size_t n = e->n;
+  double *x = e->x;
+  const int nt = n >= 4096 ? sbi_engine_threads(&e->par) : 1;
+  (void)nt;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(nt)
+#endif
+  for (size_t i = 0; i < n; i++)
+    for (int k = 0; k < dim; k++) {
+      const double v = x[3 * i + k];
+      if (per[k] && (v >= L[k] || v < 0.0))
+        x[3 * i + k] = sbi_wrap(v, L[k]);
+    }
   return SB_SUCCESS;
 }
 
