@@ -552,6 +552,58 @@ static double *by_id(const sb_engine *e)
   return v;
 }
 
+/* The transport on the keyed streams is sb_langevin_step3_stream: two
+ * species (tau_p = 1 and 0.3), 5000 particles (blocks and threads), one
+ * step with the count outcome (particles pass through each other), the
+ * same positions and velocities bit for bit as the library stepper on the
+ * start state with (seed, ids, step 0). */
+START_TEST(test_streams_transport_is_step3_stream)
+{
+  const size_t n = 5000;
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 60.0;
+  p.dt = 0.05;
+  p.capacity = n;
+  p.seed = 4242;
+  p.streams = 1;
+  p.threads = 2;
+  p.outcome = SB_OUTCOME_COUNT;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  sb_engine_species sp[2] = {{0.5, 1.0, 1.0, sqrt(2.0), 0.0},
+                             {0.3, 0.2, 0.3, 2.0, 0.0}};
+  ck_assert_int_eq(sb_engine_add_species(e, &sp[0], NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_add_species(e, &sp[1], NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, n / 2), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, 1, 0, n - n / 2), SB_SUCCESS);
+  double *x = malloc(3 * n * sizeof *x), *u = malloc(3 * n * sizeof *u);
+  size_t *cidx = malloc(n * sizeof *cidx);
+  memcpy(x, sb_engine_positions(e), 3 * n * sizeof *x);
+  memcpy(u, sb_engine_velocities(e), 3 * n * sizeof *u);
+  sb_langevin_coef c[2];
+  for (int k = 0; k < 2; k++)
+    ck_assert_int_eq(sb_langevin_coef_init(&c[k], sp[k].tau, sp[k].B, p.dt),
+                     SB_SUCCESS);
+  memcpy(cidx, sb_engine_species_of(e), n * sizeof *cidx);
+  ck_assert_int_eq(sb_langevin_step3_stream(n, c, cidx, NULL, x, u, p.seed,
+                                            0, sb_engine_ids(e), 0),
+                   SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  const double *xe = sb_engine_positions(e), *ue = sb_engine_velocities(e);
+  for (size_t q = 0; q < 3 * n; q++) {
+    /* the engine wraps into the box after the step */
+    const double L = p.L[q % 3], w = x[q] - L * floor(x[q] / L);
+    ck_assert(xe[q] == x[q] || xe[q] == w);
+    ck_assert(ue[q] == u[q]);
+  }
+  free(x);
+  free(u);
+  free(cidx);
+  sb_engine_free(e);
+}
+END_TEST
+
 START_TEST(test_streams_threads_and_order)
 {
   sb_engine *a = stream_engine(1, 1, 0), *b = stream_engine(1, 2, 0),
@@ -901,6 +953,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_checkpoint_roundtrip);
   tcase_add_test(tc, test_sort_permutes);
   tcase_add_test(tc, test_streams_threads_and_order);
+  tcase_add_test(tc, test_streams_transport_is_step3_stream);
   tcase_add_test(tc, test_fluid_fields);
   tcase_add_test(tc, test_fluid_callback_2d);
   tcase_add_test(tc, test_detectors);

@@ -759,7 +759,7 @@ static inline void shear_step_z(const sb_langevin_coef *c,
 {
   for (int k = 0; k < 3; k++) {
     const double wk = w ? w[k] : 0.0, v = u[k] - wk;
-    if (k == 0 && sh->on) {
+    if (k == 0 && sh && sh->on) {
       const double *L = sh->L;
       x[0] += wk * c->dt + v * c->gain + L[5] * z[0] + L[6] * z[1] +
               L[3] * z[2] + L[4] * z[3];
@@ -769,25 +769,6 @@ static inline void shear_step_z(const sb_langevin_coef *c,
     x[k] += wk * c->dt + v * c->gain + c->s_xu * z[2 * k] +
             c->s_xc * z[2 * k + 1];
     u[k] = wk + v * c->decay + c->s_u * z[2 * k];
-  }
-}
-
-/* m particles from i0 on the keyed streams with the shear noise: the same
- * normals as sb_langevin_step3_stream (keys checked by the caller). */
-static void shear_stream_block(sb_engine *e, const sbi_shear_noise *shn,
-                               size_t m, size_t i0, const double *wb,
-                               uint64_t seed, uint64_t step)
-{
-  enum { CH = 128 };
-  double z[6 * CH];
-  for (size_t j0 = 0; j0 < m; j0 += CH) {
-    const size_t mc = m - j0 < CH ? m - j0 : CH;
-    sb_stream_gaussian_keyed(seed, step, mc, e->id + i0 + j0, 0, 6, z);
-    for (size_t j = 0; j < mc; j++) {
-      const size_t i = i0 + j0 + j, sp = e->species[i];
-      shear_step_z(&e->coef[sp], &shn[sp], wb ? wb + 3 * (j0 + j) : NULL,
-                   z + 6 * j, e->x + 3 * i, e->u + 3 * i);
-    }
   }
 }
 
@@ -818,17 +799,23 @@ static int transport_streams(sb_engine *e, const double *us)
   if (st)
     return st;
   int bad = 0;
+  double dmax = 0.0;
+  double *restrict dn = e->dn;
   const int nt = sbi_engine_threads(&e->par);
   (void)nt;
+  /* one pass over the particle data: the start state is kept, the step
+   * taken (the update and normals of sb_langevin_step3_stream, or with
+   * the shear noise), the displacement and its length (for the search's
+   * cut-off) written while the particle is in cache */
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static) num_threads(nt) if (nb > 1) \
-    reduction(| : bad)
+    reduction(| : bad) reduction(max : dmax)
 #endif
   for (size_t b = 0; b < nb; b++) {
+    enum { CH = 128 };
+    double z[6 * CH];
     const size_t i0 = b * SBI_STREAM_BLOCK;
     const size_t m = n - i0 < SBI_STREAM_BLOCK ? n - i0 : SBI_STREAM_BLOCK;
-    memcpy(x0 + 3 * i0, x + 3 * i0, 3 * m * sizeof *x);
-    memcpy(u0 + 3 * i0, u + 3 * i0, 3 * m * sizeof *u);
     const double *wb = us ? us + 3 * i0 : NULL;
     if (ws) {
       for (size_t i = i0; i < i0 + m; i++)
@@ -837,24 +824,44 @@ static int transport_streams(sb_engine *e, const double *us)
                           vset[3 * e->species[i] + k];
       wb = ws + 3 * i0;
     }
-    if (shn)
-      shear_stream_block(e, shn, m, i0, wb, seed, step);
-    else if (sb_langevin_step3_stream(m, e->coef, e->species + i0, wb,
-                                      x + 3 * i0, u + 3 * i0, seed, step,
-                                      e->id + i0, 0))
-      bad |= 1;
-    for (size_t q = 3 * i0; q < 3 * (i0 + m); q++)
-      dp[q] = x[q] - x0[q];
+    for (size_t j0 = 0; j0 < m; j0 += CH) {
+      const size_t mc = m - j0 < CH ? m - j0 : CH;
+      if (sb_stream_gaussian_keyed(seed, step, mc, e->id + i0 + j0, 0, 6,
+                                   z)) {
+        bad |= 1;
+        break;
+      }
+      for (size_t j = 0; j < mc; j++) {
+        const size_t i = i0 + j0 + j, sp = e->species[i];
+        double *xi = x + 3 * i, *ui = u + 3 * i, *d = dp + 3 * i;
+        const double xo[3] = {xi[0], xi[1], xi[2]};
+        memcpy(x0 + 3 * i, xo, sizeof xo);
+        memcpy(u0 + 3 * i, ui, 3 * sizeof *ui);
+        shear_step_z(&e->coef[sp], shn ? &shn[sp] : NULL,
+                     wb ? wb + 3 * (j0 + j) : NULL, z + 6 * j, xi, ui);
+        for (int k = 0; k < 3; k++)
+          d[k] = xi[k] - xo[k];
+        /* as the search's cut-off computes it (engine_neigh.c) */
+        const double v = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        dn[i] = v;
+        bad |= 2 * !isfinite(v);
+        dmax = v > dmax ? v : dmax;
+      }
+    }
   }
-  if (bad)
+  if (bad & 1)
     return sbi_error(SB_EDOM, "sb_engine_step",
                      "streams: a particle id or the step is out of range");
+  e->dn_ready = 1;
+  e->dn_bad = (bad & 2) != 0;
+  e->dn_max = dmax;
   return SB_SUCCESS;
 }
 
 static int transport(sb_engine *e)
 {
   const size_t n = e->n;
+  e->dn_ready = 0;
   const double *us = NULL;
   if (e->fluid != SB_FLUID_REST) {
     /* x is the start position x0 here */
@@ -867,9 +874,11 @@ static int transport(sb_engine *e)
     int st = transport_streams(e, us);
     if (st)
       return st;
-    if (e->par.dim == 2)
+    if (e->par.dim == 2) {
+      e->dn_ready = 0;  /* |disp| had the third component */
       for (size_t i = 0; i < n; i++)
         e->x[3 * i + 2] = e->u[3 * i + 2] = e->disp[3 * i + 2] = 0.0;
+    }
     return SB_SUCCESS;
   }
   double z[6 * SBI_TRANSPORT_BLOCK];

@@ -325,9 +325,13 @@ static void drag_step(sb_engine *e)
 
 int sbi_engine_after_transport(sb_engine *e)
 {
-  if (e->nonlin)
+  if (e->nonlin) {
     drag_step(e);
-  if (e->lees && e->fluid == SB_FLUID_SHEAR)
+    e->dn_ready = 0;  /* new displacements */
+  }
+  if (e->lees && e->fluid == SB_FLUID_SHEAR) {
     sbi_engine_shear_correct(e);
+    e->dn_ready = 0;
+  }
   return SB_SUCCESS;
 }

@@ -190,6 +190,9 @@ struct sb_engine {
   size_t capcells;
   sbi_grid grid;             /* the cells of this step's search */
   double *dn;                /* cap: |disp_i| (cells, brute) */
+  int dn_ready;              /* transport left dn = |disp| and its max */
+  int dn_bad;                /* ... and whether one was not finite */
+  double dn_max;
   double *xs;                /* 4 cap: cells: x0 and r + |disp| in cell
                                 order (contiguous inner loop) */
   sbi_verlet vl;             /* cells: pairs kept over several steps */

@@ -61,21 +61,28 @@ static int cutoff(sb_engine *e, const double *disp, double reach,
   double m = 0.0;
   int bad = 0;
   double *dn = e->dn;
-  /* a maximum: the same for any split between threads */
+  if (disp == e->disp && e->dn_ready) {
+    /* the step's own displacements: the transport measured them */
+    m = e->dn_max;
+    bad = e->dn_bad;
+  } else {
+    /* a maximum: the same for any split between threads */
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static) num_threads(nt) \
     reduction(max : m) reduction(| : bad)
 #endif
-  for (size_t i = 0; i < n; i++) {
-    double v = 0.0;
-    if (disp) {
-      const double *d = &disp[3 * i];
-      v = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (size_t i = 0; i < n; i++) {
+      double v = 0.0;
+      if (disp) {
+        const double *d = &disp[3 * i];
+        v = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      }
+      bad |= !isfinite(v);
+      dn[i] = v;
+      m = v > m ? v : m;
     }
-    bad |= !isfinite(v);
-    dn[i] = v;
-    m = v > m ? v : m;
   }
+  e->dn_ready = 0;  /* dn is overwritten by later searches and outcomes */
   if (bad)
     for (size_t i = 0; i < n; i++)
       if (!isfinite(dn[i]))

@@ -141,6 +141,79 @@ static void philox_lanes(uint32_t *restrict x0, uint32_t *restrict x1,
   }
 }
 
+#if defined(__GNUC__) && defined(__x86_64__)
+#include <immintrin.h>
+/* The same rounds on 8 lanes per AVX2 register, 4 registers at once (a
+ * round is a chain of dependent multiplications: several chains hide
+ * their latency); chosen at run time where the processor has AVX2.
+ * Integer arithmetic: the words are those of philox_lanes, bit for bit
+ * (the suite compares keyed batches with single streams). */
+__attribute__((target("avx2"))) static inline void
+mulhilo8(__m256i a, __m256i m, __m256i *hi, __m256i *lo)
+{
+  const __m256i pe = _mm256_mul_epu32(a, m);  /* lanes 0, 2, 4, 6 */
+  const __m256i po = _mm256_mul_epu32(_mm256_srli_epi64(a, 32), m);
+  *lo = _mm256_blend_epi32(pe, _mm256_slli_epi64(po, 32), 0xAA);
+  *hi = _mm256_blend_epi32(_mm256_srli_epi64(pe, 32), po, 0xAA);
+}
+
+__attribute__((target("avx2"))) static void
+philox_lanes_avx2(uint32_t *restrict x0, uint32_t *restrict x1,
+                  uint32_t *restrict x2, uint32_t *restrict x3, uint32_t k0,
+                  uint32_t k1)
+{
+  enum { VW = 4 };
+  const __m256i m0 = _mm256_set1_epi64x(0xD2511F53), m1 =
+      _mm256_set1_epi64x(0xCD9E8D57);
+  for (int l = 0; l < LANES; l += 8 * VW) {
+    __m256i a0[VW], a1[VW], a2[VW], a3[VW];
+    for (int v = 0; v < VW; v++) {
+      a0[v] = _mm256_loadu_si256((const __m256i *)(x0 + l + 8 * v));
+      a1[v] = _mm256_loadu_si256((const __m256i *)(x1 + l + 8 * v));
+      a2[v] = _mm256_loadu_si256((const __m256i *)(x2 + l + 8 * v));
+      a3[v] = _mm256_loadu_si256((const __m256i *)(x3 + l + 8 * v));
+    }
+    uint32_t q0 = k0, q1 = k1;
+    for (int r = 0; r < 10; r++) {
+      const __m256i c0 = _mm256_set1_epi32((int)q0),
+                    c1 = _mm256_set1_epi32((int)q1);
+      for (int v = 0; v < VW; v++) {
+        __m256i h0, l0, h1, l1;
+        mulhilo8(a0[v], m0, &h0, &l0);
+        mulhilo8(a2[v], m1, &h1, &l1);
+        a0[v] = _mm256_xor_si256(_mm256_xor_si256(h1, a1[v]), c0);
+        a2[v] = _mm256_xor_si256(_mm256_xor_si256(h0, a3[v]), c1);
+        a1[v] = l1;
+        a3[v] = l0;
+      }
+      q0 += UINT32_C(0x9E3779B9);
+      q1 += UINT32_C(0xBB67AE85);
+    }
+    for (int v = 0; v < VW; v++) {
+      _mm256_storeu_si256((__m256i *)(x0 + l + 8 * v), a0[v]);
+      _mm256_storeu_si256((__m256i *)(x1 + l + 8 * v), a1[v]);
+      _mm256_storeu_si256((__m256i *)(x2 + l + 8 * v), a2[v]);
+      _mm256_storeu_si256((__m256i *)(x3 + l + 8 * v), a3[v]);
+    }
+  }
+}
+#define SBI_HAVE_AVX2_PATH 1
+#endif
+
+/* philox_lanes, on AVX2 where the processor has it */
+static void philox_batch(uint32_t *restrict x0, uint32_t *restrict x1,
+                         uint32_t *restrict x2, uint32_t *restrict x3,
+                         uint32_t k0, uint32_t k1)
+{
+#ifdef SBI_HAVE_AVX2_PATH
+  if (__builtin_cpu_supports("avx2")) {
+    philox_lanes_avx2(x0, x1, x2, x3, k0, k1);
+    return;
+  }
+#endif
+  philox_lanes(x0, x1, x2, x3, k0, k1);
+}
+
 int sb_stream_uniform_fill(sb_stream *s, size_t n, double *u)
 {
   if (n > 0 && (!s || !u))
@@ -197,7 +270,7 @@ int sb_stream_gaussian_keyed(uint64_t seed, uint64_t step, size_t n,
       x3[l] = (uint32_t)((step >> 32) & 0xffffu) |
               (uint32_t)(((id >> 32) & 0x7fffu) << 16);
     }
-    philox_lanes(x0, x1, x2, x3, key0, key1);
+    philox_batch(x0, x1, x2, x3, key0, key1);
     for (uint32_t l = 0; l < LANES; l++) {
       words[4 * l] = x0[l];
       words[4 * l + 1] = x1[l];
