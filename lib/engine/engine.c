@@ -808,7 +808,7 @@ static int transport_streams(sb_engine *e, const double *us)
    * the shear noise), the displacement and its length (for the search's
    * cut-off) written while the particle is in cache */
 #ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(nt) if (nb > 1) \
+#pragma omp parallel for schedule(dynamic) num_threads(nt) if (nb > 1) \
     reduction(| : bad) reduction(max : dmax)
 #endif
   for (size_t b = 0; b < nb; b++) {
@@ -995,14 +995,31 @@ int sb_engine_step(sb_engine *e)
 }
 
 /* Permute a per-particle array of `w` elements of `size` bytes by perm
- * (new[k] = old[perm[k]]) through the scratch buffer tmp. */
+ * (new[k] = old[perm[k]]) through the scratch buffer tmp, on nt threads
+ * (each k is written once: any split gives the same array).  The common
+ * element sizes get a fixed-size copy the compiler inlines. */
 static void permute(void *a, size_t w, size_t size, const size_t *perm,
-                    size_t n, void *tmp)
+                    size_t n, void *tmp, int nt)
 {
   char *src = a, *dst = tmp;
-  for (size_t k = 0; k < n; k++)
-    memcpy(dst + k * w * size, src + perm[k] * w * size, w * size);
-  memcpy(a, tmp, n * w * size);
+  const size_t b = w * size;
+  (void)nt;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(nt)
+#endif
+  for (size_t k = 0; k < n; k++) {
+    char *d = dst + k * b;
+    const char *s = src + perm[k] * b;
+    if (b == 24)
+      memcpy(d, s, 24);
+    else if (b == 8)
+      memcpy(d, s, 8);
+    else if (b == 4)
+      memcpy(d, s, 4);
+    else
+      memcpy(d, s, b);
+  }
+  memcpy(a, tmp, n * b);
 }
 
 int sb_engine_sort(sb_engine *e)
@@ -1052,13 +1069,14 @@ int sb_engine_sort(sb_engine *e)
   /* scratch: x0 (3 cap doubles) holds any array of <= 24 bytes per
    * particle */
   void *tmp = e->x0;
-  permute(e->x, 3, sizeof(double), perm, n, tmp);
-  permute(e->u, 3, sizeof(double), perm, n, tmp);
-  permute(e->radius, 1, sizeof(double), perm, n, tmp);
-  permute(e->mass, 1, sizeof(double), perm, n, tmp);
-  permute(e->species, 1, sizeof(size_t), perm, n, tmp);
-  permute(e->family, 1, sizeof(int), perm, n, tmp);
-  permute(e->id, 1, sizeof(uint64_t), perm, n, tmp);
+  const int nt = n >= 4096 ? sbi_engine_threads(&e->par) : 1;
+  permute(e->x, 3, sizeof(double), perm, n, tmp, nt);
+  permute(e->u, 3, sizeof(double), perm, n, tmp, nt);
+  permute(e->radius, 1, sizeof(double), perm, n, tmp, nt);
+  permute(e->mass, 1, sizeof(double), perm, n, tmp, nt);
+  permute(e->species, 1, sizeof(size_t), perm, n, tmp, nt);
+  permute(e->family, 1, sizeof(int), perm, n, tmp, nt);
+  permute(e->id, 1, sizeof(uint64_t), perm, n, tmp, nt);
   free(perm);
   e->norder = 0;
   return SB_SUCCESS;

@@ -484,7 +484,7 @@ static int list_holds(sb_engine *e, const double *x0, double D, double reach)
    * removed, merged or reordered)?  Mark the floaters (any thread order:
    * each flag is its own), then collect them in index order */
 #ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(nt) \
+#pragma omp parallel for schedule(dynamic, 4096) num_threads(nt) \
     reduction(+ : nf) reduction(| : other)
 #endif
   for (size_t i = 0; i < n; i++) {

@@ -259,7 +259,7 @@ int sbi_engine_boundaries(sb_engine *e)
   const int nt = n >= 4096 ? sbi_engine_threads(&e->par) : 1;
   (void)nt;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(nt)
+#pragma omp parallel for schedule(dynamic, 4096) num_threads(nt)
 #endif
   for (size_t i = 0; i < n; i++)
     for (int k = 0; k < dim; k++) {
