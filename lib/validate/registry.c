@@ -162,7 +162,8 @@ static const char *const INI_CASES[] = {
     "V9/two-spheres-45", "V9/crossing-jets", "V2/brownian-ballistic",
     "V4/bridge-brownian", "V5/constant-B", "V7/brownian-turb",
     "V3/diffusive-fail", "V6/correction-step", "VX/exact-detection",
-    "V8/agglo-dlvo", "V12/langevin-detector", "V16/shear", "V16/settling",
+    "V8/agglo-dlvo", "V8/agglo-constant", "V8/agglo-brownian",
+    "V12/langevin-detector", "V16/shear", "V16/settling",
     "V16/abrahamson", "V16/saffman-turner", NULL};
 
 int sb_validate_write_ini(size_t index, const sb_validate_options *opt,
