@@ -15,8 +15,10 @@
 # means over 32 realization files, "; expect-mean" lines); merging with
 # bridge detection whose reach is recomputed at every output time
 # (V8/agglo-constant: [run] stop_every, records read from sizes.csv rows,
-# means over the 10 runs).  Engine cases without files must say why in
-# NOT-WRITTEN.txt.
+# means over the 10 runs) and first-hit counting in shear with
+# Lees-Edwards images and a fixed reference radius
+# (V16/combined-shear-diffusive, Pe = 0.1).  Engine cases without files
+# must say why in NOT-WRITTEN.txt.
 set -u
 sb="${top_builddir:-.}/smolbridge"
 sb="$(cd "$(dirname "$sb")" && pwd)/$(basename "$sb")"  # runs cd below
@@ -25,7 +27,7 @@ rm -rf "$dir"
 mkdir -p "$dir"
 fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-cases="--case V1/dense-long-steps --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V8/agglo-constant --case V12/ --case V16/shear --case V16/abrahamson --case V16/saffman-turner"
+cases="--case V1/dense-long-steps --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V8/agglo-constant --case V12/ --case V16/shear --case V16/abrahamson --case V16/saffman-turner --case V16/combined-shear-diffusive"
 # shellcheck disable=SC2086
 "$sb" validate $cases --write-ini "$dir/ini" 2>"$dir/w.err" \
   || { fail "write-ini failed"; cat "$dir/w.err"; }
@@ -39,7 +41,7 @@ grep -q 'V12/mixture: two species' "$dir/ini/NOT-WRITTEN.txt" \
   --case V18/ --write-ini "$dir/none" 2>/dev/null
 for c in V13/spray-vs-engine V15/engine-jets V15/dense-jets V16/deposition \
     V16/deposition-langevin V16/combined V16/combined-shear \
-    V16/combined-shear-diffusive V18/self-diffusion V18/maxwell-relaxation; do
+    V18/self-diffusion V18/maxwell-relaxation; do
   grep -q "^$c: no file: ." "$dir/none/NOT-WRITTEN.txt" \
     || fail "NOT-WRITTEN.txt does not say why $c has no file"
 done
@@ -64,6 +66,7 @@ for run in V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 V8_dlvo_x0.5 \
     V12_Kn0.05_dt1_langevin V12_Kn0.05_dt1_contact-time \
     V12_Kn0.05_dt1_exact-bb3 V16_shear_G100 V16_shear_G10 \
     V16_abrahamson_ou-field V16_abrahamson_langevin-species \
+    V16_combined_shear_diffusive_Pe0.1 \
     $(cd "$dir/ini" && ls V16_saffman_turner_frozen_Rk2_r*.ini \
       V8_agglo-constant_run*.ini | sed 's/\.ini$//'); do
   ini="$dir/ini/$run.ini"
@@ -118,7 +121,7 @@ if [ -f "$dir/means.txt" ]; then
     ncmp=$((ncmp + 1))
   done
 fi
-[ "$ncmp" -ge 65 ] || fail "only $ncmp records compared"
+[ "$ncmp" -ge 67 ] || fail "only $ncmp records compared"
 [ "$fails" -eq 0 ] && echo "validate_ini: $ncmp records reproduced by collide from the written files"
 [ "$fails" -eq 0 ] && rm -rf "$dir"
 exit $((fails > 0))

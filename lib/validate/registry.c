@@ -164,7 +164,8 @@ static const char *const INI_CASES[] = {
     "V3/diffusive-fail", "V6/correction-step", "VX/exact-detection",
     "V8/agglo-dlvo", "V8/agglo-constant", "V8/agglo-brownian",
     "V12/langevin-detector", "V16/shear", "V16/settling",
-    "V16/abrahamson", "V16/saffman-turner", NULL};
+    "V16/abrahamson", "V16/saffman-turner", "V16/combined-shear-diffusive",
+    NULL};
 
 /* Cases whose engine runs `smolbridge collide` does not reproduce, and
  * why: written to NOT-WRITTEN.txt, so that no engine run goes unlisted. */
@@ -192,11 +193,6 @@ static const struct {
     {"V16/combined-shear",
      "its records are means over 16 time blocks of one run (the "
      "pass-through count read at each block's end), not a summary field"},
-    {"V16/combined-shear-diffusive",
-     "its records are first-hit counts over the pairs apart at the start "
-     "of counting times the reference (first_hit.hits / "
-     "first_hit.pairs_apart: a ratio of two summary fields), with shear "
-     "and Lees-Edwards images added to the Langevin first-hit run"},
     {"V15/engine-jets",
      "open boundaries with inflows through part of a face, and its records "
      "are the particles deposited on a 45 x 45 grid at 10 times and compared "
