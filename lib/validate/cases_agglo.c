@@ -688,14 +688,18 @@ static int case_dlvo(const sbv_ctx *ctx, sbv_report *rep)
            "int n(n-1) dt with the Garwood 99.9%% interval vs psi K_kin "
            "g_CS.", TEMP, N, phi, tend);
   for (int q = 0; q < 4 && sbv_writing(ctx); q++) {
-    if (q == 3) {
-      sbv_ini_skip(rep, "  V8/agglo-dlvo/pair-3mM-10mV: the barrier of a "
-                   "DLVO pair (sb_dlvo_barrier per radius pair) is not a "
-                   "collide key; set [agglo] wmax to its W_max");
-      break;
+    /* the DLVO pair (q = 3): CONSTANT growth keeps every radius d/2, so
+     * the barrier callback returns one W_max, [agglo] wmax in J */
+    char fn[64], rec[96], tag[32], wline[64];
+    if (q < 3) {
+      snprintf(fn, sizeof fn, "V8_dlvo_x%g", xs[q]);
+      snprintf(tag, sizeof tag, "x=%g", xs[q]);
+      snprintf(wline, sizeof wline, "wmax_kT = %.17g", xs[q]);
+    } else {
+      snprintf(fn, sizeof fn, "V8_dlvo_pair_3mM_10mV");
+      snprintf(tag, sizeof tag, "pair-3mM-10mV");
+      snprintf(wline, sizeof wline, "wmax = %.17g", wc.w);
     }
-    char fn[64], rec[96];
-    snprintf(fn, sizeof fn, "V8_dlvo_x%g", xs[q]);
     FILE *f = sbv_ini_begin(ctx, rep, fn, "V8: DLVO sticking, ballistic "
                             "gas");
     if (!f)
@@ -703,16 +707,16 @@ static int case_dlvo(const sbv_ctx *ctx, sbv_report *rep)
     fprintf(f, "seed = %lu\nrng = mt19937\n"
             "L = %.17g\ndt = %.17g\nt_end = %.17g\n"
             "detect = ballistic\noutcome = dlvo\n\n[agglo]\n"
-            "growth = constant\nwmax_kT = %.17g\nerel = contact\n\n"
+            "growth = constant\n%s\nerel = contact\n\n"
             "[species grain]\nradius = %.17g\nmass = %.17g\ntau = inf\n"
             "T = %.17g\ncount = %zu\n", ctx->seed * 31UL +
-            (unsigned long)q + 7UL, L, dt, tend, xs[q], 0.5 * d, m, TEMP, N);
+            (unsigned long)q + 7UL, L, dt, tend, wline, 0.5 * d, m, TEMP, N);
     int st = sbv_ini_end(rep, f, NULL);
     if (st)
       return st;
-    snprintf(rec, sizeof rec, "V8/agglo-dlvo/x=%g/psi", xs[q]);
+    snprintf(rec, sizeof rec, "V8/agglo-dlvo/%s/psi", tag);
     sbv_ini_expect(rep, rec, "agglo.sticking_fraction", 1.0);
-    snprintf(rec, sizeof rec, "V8/agglo-dlvo/x=%g/psiK/(K_kin g)", xs[q]);
+    snprintf(rec, sizeof rec, "V8/agglo-dlvo/%s/psiK/(K_kin g)", tag);
     sbv_ini_expect(rep, rec, "agglo.merge_kernel", 1.0 / (Kkin * g));
   }
   for (int q = 0; q < 4 && !sbv_writing(ctx); q++) {
