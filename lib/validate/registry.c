@@ -183,9 +183,9 @@ static const struct {
     {"V16/deposition-langevin",
      "its records are counts in the windows (0, 1], ..., (8, 16] steps "
      "(collide gives the deposits at the end), the three detector runs "
-     "draw their placements from one generator in turn (not fresh "
-     "placement_seeds), and particle-particle detection is off (a "
-     "never-detecting callback)"},
+     "draw their placements in turn from the generator of the case's "
+     "reference Monte Carlo (not fresh placement_seeds), and "
+     "particle-particle detection is off (a never-detecting callback)"},
     {"V16/combined",
      "two species (collide's first_hit counts one pair type) settling "
      "under gravity (collide's uniform placement adds the settling "
@@ -195,8 +195,9 @@ static const struct {
      "pass-through count read at each block's end), not a summary field"},
     {"V15/engine-jets",
      "open boundaries with inflows through part of a face, and its records "
-     "are the particles deposited on a 45 x 45 grid at 10 times and compared "
-     "with the Eulerian solution (not a collide output)"},
+     "are the particles' density and momentum deposited on the 45 x 45 "
+     "grid (sb_engine_grid_fields) at 20 times and compared with the "
+     "Eulerian solution run beside it (not a collide output)"},
     {"V15/dense-jets",
      "open boundaries with an outflow callback that records each exit "
      "(side, place, momentum) in batches, and squares sampled every 10 "
@@ -212,9 +213,9 @@ static const struct {
      "during the run: not a summary field"},
     {"V18/maxwell-relaxation",
      "the gas starts with equal speeds in antipodal pairs (not a collide "
-     "placement), and its records (Boltzmann's H, KS and chi-square of the "
-     "speeds at 6 times over replicas) are computed from the particle "
-     "states: not summary fields"},
+     "placement), and its records (Boltzmann's H over 13 times, KS and "
+     "chi-square of the final speeds pooled over replicas, the energy "
+     "change) are computed from the particle states: not summary fields"},
 };
 
 int sb_validate_write_ini(size_t index, const sb_validate_options *opt,
