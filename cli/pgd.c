@@ -1,5 +1,5 @@
 /* pgd.c — `smolbridge pgd CONFIG.ini`: pressureless gas dynamics from an
- * INI file (libinih): a 1-D Riemann problem or a 2-D run with inflows,
+ * INI file (<smolbridge/ini.h>): a 1-D Riemann problem or a 2-D run with inflows,
  * Eulerian, Lagrangian or domain-decomposed.  Writes fields.csv (and for
  * 2-D fields.vtk), exact.csv for Riemann problems, and summary.json to
  * the output directory.  Keys, units and defaults: docs/pgd.md. */
@@ -14,8 +14,7 @@
 #include <sys/stat.h>
 #include <sys/types.h>
 
-#include <ini.h>
-
+#include <smolbridge/ini.h>
 #include <smolbridge/pgd.h>
 
 #include "cli.h"
@@ -38,6 +37,7 @@ typedef struct {
   } in[SB_PGD_MAXINFLOW];
   int nin;
   char err[512];
+  char err_where[256];  /* "FILE:LINE" of the first error */
 } config;
 
 static int fail(config *c, const char *fmt, ...)
@@ -48,7 +48,7 @@ static int fail(config *c, const char *fmt, ...)
     vsnprintf(c->err, sizeof c->err, fmt, ap);
     va_end(ap);
   }
-  return 0; /* inih: error on this line */
+  return 0; /* handler: error on this line (key_fn) */
 }
 
 static int num(config *c, const char *sec, const char *key, const char *v,
@@ -321,6 +321,19 @@ static int handler(void *user, const char *sec, const char *key,
               "boundary, inflow NAME, particles, decomposition)", sec);
 }
 
+/* sb_ini_key_fn: the handler, with the place of the first error. */
+static int key_fn(void *user, const char *sec, const char *key,
+                  const char *v, const char *where)
+{
+  config *c = user;
+  const int had = c->err[0] != 0;
+  if (handler(c, sec, key, v))
+    return 0;
+  if (!had)
+    snprintf(c->err_where, sizeof c->err_where, "%s", where);
+  return 1;
+}
+
 /* ------------------------------------------------------------ helpers */
 
 /* Remove the files a previous run may have left (ours only). */
@@ -447,15 +460,15 @@ int sbc_pgd_main(int argc, char **argv)
   snprintf(c.output, sizeof c.output, "pgd-out");
   c.bx = c.by = 3;
   c.p.nx = 0;
-  int line = ini_parse(file, handler, &c);
-  if (line < 0) {
-    fprintf(stderr, "pgd: cannot read '%s'\n", file);
+  char err[1024] = "";
+  int rst = sb_ini_read(file, NULL, key_fn, NULL, &c, err, sizeof err);
+  if (c.err[0] || (rst && !err[0])) {
+    fprintf(stderr, "pgd: %s: %s\n", c.err_where, c.err[0] ? c.err :
+            "invalid line");
     return 2;
   }
-  if (line > 0) {
-    fprintf(stderr, "pgd: %s:%d: %s\n", file, line,
-            c.err[0] ? c.err : "syntax error (expected key = value or "
-                               "[section])");
+  if (rst) {  /* cannot read, or not key = value / [section] (file:line) */
+    fprintf(stderr, "pgd: %s\n", err);
     return 2;
   }
   sb_pgd_params *p = &c.p;

@@ -144,6 +144,13 @@ growth = constant'
 check "U with rest" 0 '[fluid] U ignored: type = rest' '$a\
 [fluid]\
 U = 1 0 0'
+check "stop_every sign" 2 't.ini:5: [run] stop_every = -1' '4a\
+stop_every = -1'
+check "stop_every below dt" 2 't.ini:5: [run] stop_every = 1e-08 s: shorter than the step (dt = 1e-07 s); valid: >= dt' '4a\
+stop_every = 1e-8\
+outcome = merge'
+check "stop_every unused" 0 't.ini:5: [run] stop_every ignored: it samples sizes.csv' '4a\
+stop_every = 5e-7'
 check "G with uniform" 0 '[fluid] G ignored: type = uniform' '$a\
 [fluid]\
 type = uniform\

@@ -106,6 +106,9 @@ bad "cfl = 0.8: must be in (0, 0.5]" \
 bad "bad.ini:4: [inflow a] side = 'up'" \
   "[run]" "dim = 2" "[inflow a]" "side = up"
 bad "bad.ini:2: unknown section [foo]" "[foo]" "a = 1"
+# the checks of <smolbridge/ini.h> (sb_ini_read), as collide and spray
+bad "bad.ini:3: the line starts with a blank" "[run]" "nx = 10" "  t_end = 1"
+bad "bad.ini:2: not 'key = value', '[section]' or a comment" "[run]" "nx 10"
 "$sb" pgd "$out/no-such.ini" >/dev/null 2>&1; [ $? -eq 2 ] || fail "missing file"
 "$sb" pgd >/dev/null 2>&1; [ $? -eq 2 ] || fail "no argument"
 "$sb" pgd --help >/dev/null 2>&1 || fail "--help"

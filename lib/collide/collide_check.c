@@ -243,6 +243,10 @@ int sbi_col_check(sbi_col_config *c)
     unused(c, "agglo", "erel", "outcome = merge");
     unused(c, "agglo", "erel_normal", "outcome = merge");
   }
+  if (!agglo && !(bridge && !c->first_hit))
+    unused(c, run, "stop_every", "it samples sizes.csv (outcome = merge or dlvo) "
+           "and recomputes the bridge reach (detect = bridge or exact, "
+           "without first_hit)");
   if (strcmp(c->detect, "langevin")) {
     unused(c, run, "langevin_eps", "only detect = langevin uses it");
     unused(c, run, "langevin_xtol", "only detect = langevin uses it");

@@ -60,6 +60,7 @@ typedef struct {
   double lv_eps, lv_xtol, lv_tol;  /* detect = langevin (NaN: default) */
   long steps, sample_every, snapshot_every, sort_every, threads;
   long placement_seed;          /* -1: the engine's generator */
+  double stop_every;            /* [run] stop_every (s; 0: none) */
   char neigh[16], detect[16], outcome[16], rng[16], placement[16];
   char output[512], checkpoint[512], restart[512];
   /* [bridge] (detect = bridge | exact) */

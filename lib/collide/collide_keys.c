@@ -109,6 +109,11 @@ const sbi_col_keydef sbi_col_keys[] = {
      "particle per step"},
     {"run", "sample_every", K_INT, C(sample_every), 0, R_CLOSED, 1, 2e9,
      NULL, "steps", "run/200", "time-series period"},
+    {"run", "stop_every", K_NUM, C(stop_every), 0, R_POS, 0, 0, NULL, "s",
+     "- (none)",
+     "the run stops every this long after the warm-up: a row of sizes.csv "
+     "(merging), and the bridge reach recomputed for the particle count "
+     "and largest radius of that time"},
     {"run", "snapshot_every", K_INT, C(snapshot_every), 0, R_CLOSED, 0, 2e9,
      NULL, "steps", "0 (off)", "snapshot period"},
     {"run", "sort_every", K_INT, C(sort_every), 0, R_CLOSED, 0, 2e9, NULL,

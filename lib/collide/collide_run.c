@@ -72,6 +72,29 @@ static int progress_step(sbi_col_run *r, double t_stop, sbi_col_pairs *ps,
   return SB_SUCCESS;
 }
 
+/* At a stop ([run] stop_every): a row of sizes.csv, and the bridge reach of
+ * the current particle count and largest radius (merging lowers the one
+ * and raises the other; sb_engine_bridge_attach sets the reach once). */
+static int at_stop(sbi_col_run *r)
+{
+  sb_engine *e = r->e;
+  int st = SB_SUCCESS;
+  if (r->bridge && !r->fh) {  /* first-hit counting wraps the detector */
+    double reach = sb_engine_bridge_reach(e, r->bridge);
+    if (!(reach >= 0.0))
+      return sb_last_status();
+    st = sb_engine_set_detector(e, sb_engine_detect_bridge, r->bridge,
+                                reach);
+  }
+  if (!st && r->agglo) {
+    size_t nr, nc;
+    const double *rows = sb_agglo_series(r->agglo, &nr, &nc);
+    if (!(nr > 0 && rows[(nr - 1) * nc] == sb_engine_time(e)))
+      st = sb_agglo_sample(r->agglo, e);
+  }
+  return st;
+}
+
 /* The warm-up, then the measurement cut at the snapshots.  The status of
  * the first failing step. */
 static int run_steps(sbi_col_config *c, sbi_col_run *r, sbi_col_pairs *ps,
@@ -90,6 +113,9 @@ static int run_steps(sbi_col_config *c, sbi_col_run *r, sbi_col_pairs *ps,
       sb_agglo_reset_stats(r->agglo);
   }
   char path[1100];
+  /* [run] stop_every: stop k at t_meas + k stop_every */
+  const double t_meas = t0 + r->warm;
+  long istop = 1;
   while (!st && sb_engine_time(e) < r->t_end - 0.5 * dt) {
     double t_next = r->t_end;
     if (c->snapshot_every > 0) {
@@ -97,7 +123,16 @@ static int run_steps(sbi_col_config *c, sbi_col_run *r, sbi_col_pairs *ps,
       if (ts < t_next)
         t_next = ts;
     }
+    const double t_stop = t_meas + (double)istop * c->stop_every;
+    if (c->stop_every > 0 && t_stop < t_next)
+      t_next = t_stop;
     st = progress_step(r, t_next, ps, rp, stopped);
+    /* a stop is reached as sb_engine_run_until reaches its end time */
+    if (!st && c->stop_every > 0 && t_stop < r->t_end + 0.5 * dt &&
+        !(sb_engine_time(e) < t_stop - 0.5 * dt)) {
+      st = at_stop(r);
+      istop++;
+    }
     if (!st && c->snapshot_every > 0) {
       sbi_col_snap_path(c, *nsnap, path, sizeof path);
       st = sb_engine_snapshot_csv(e, path);
@@ -135,6 +170,12 @@ static int plan(sb_collide *cl)
                      ? sbi_col_where(c, "run", "warmup")
                      : sbi_col_where(c, "run", "t_end"),
                  r->warm, r->t_end - t0, t0);
+    return SB_EINVAL;
+  }
+  if (c->stop_every > 0 && !(c->stop_every >= dt)) {
+    sbi_col_fail(c, "%s: [run] stop_every = %g s: shorter than the step "
+                 "(dt = %g s); valid: >= dt",
+                 sbi_col_where(c, "run", "stop_every"), c->stop_every, dt);
     return SB_EINVAL;
   }
   long nst = lround((r->t_end - t0) / dt);

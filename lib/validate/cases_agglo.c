@@ -90,15 +90,96 @@ static double b2_primary(void)
 /* K11 = 4 pi (D1 + D1) d = 4 pi b2 d (m^3/s). */
 static double k11(void) { return 4.0 * PI * b2_primary() * D_P; }
 
+/* Number density, box edge and step of run q. */
+static void run_geometry(const run_t *q, double *n0, double *L, double *dt)
+{
+  const double b2 = b2_primary(), d = D_P;
+  *n0 = q->phi * 6.0 / (PI * d * d * d);
+  *L = cbrt((double)q->N0 / *n0);
+  const double thalf = 2.0 / (k11() * *n0);
+  *dt = q->c * q->c * d * d / (2.0 * b2);
+  if (*dt > thalf / (double)q->min_steps)
+    *dt = thalf / (double)q->min_steps;
+}
+
+/* Write mode: run q as a collide file (the same engine, placement, bridge
+ * and merging; [run] stop_every recomputes the bridge reach and samples
+ * sizes.csv where run_engine re-attaches and counts: its output times are
+ * multiples of one period).  Each compared record of the case is the mean
+ * over the runs of a sizes.csv entry / N0 (expect-mean lines). */
+static int write_run(const sbv_ctx *ctx, sbv_report *rep, const char *tag,
+                     const run_t *q, size_t r, const double *thalves,
+                     size_t kcmp, int plots, const char *rec_prefix)
+{
+  double n0, L, dt;
+  run_geometry(q, &n0, &L, &dt);
+  const double d = D_P, b2 = b2_primary(), tau = dt / 1000.0;
+  /* the output times are taus[it] = (it + 1) taus[0] (grid) */
+  const double period = q->taus[0] / (k11() * n0);
+  for (size_t it = 0; it < q->nt; it++) {
+    /* the same step ends a stretch: the steps lie >= 0.1 dt from each
+     * output time +- dt/2 (no rounding can move one across) */
+    double tk = q->taus[it] / (k11() * n0), tc = (double)(it + 1) * period;
+    double f = tk / dt + 0.5 - floor(tk / dt + 0.5);
+    if (fabs(tk - tc) > 1e-9 * dt || f < 0.1 || f > 0.9) {
+      sbv_ini_skip(rep, "  V8/%s run %zu (phi = %g): output time %zu lies "
+                   "within 0.1 dt of a step's stopping point (stop_every "
+                   "could end that stretch a step apart)", tag, r + 1,
+                   q->phi, it + 1);
+      return SB_SUCCESS;
+    }
+  }
+  char fn[96];
+  if (q->phi == V8_PHI)
+    snprintf(fn, sizeof fn, "V8_%s_run%zu", tag, r + 1);
+  else
+    snprintf(fn, sizeof fn, "V8_%s_phi%g_run%zu", tag, q->phi, r + 1);
+  FILE *f = sbv_ini_begin(ctx, rep, fn, "V8: Brownian primaries merging "
+                          "(bridge detection, re-attached at each output "
+                          "time)");
+  if (!f)
+    return SB_EIO;
+  fprintf(f, "seed = %lu\nrng = mt19937\nL = %.17g\ndt = %.17g\n"
+          "t_end = %.17g\nstop_every = %.17g\nsample_every = 2000000000\n"
+          "detect = bridge\noutcome = merge\nplacement = random\n\n"
+          "[bridge]\nends = diffusive\n\n[agglo]\ngrowth = %s\nkobs = %d\n\n"
+          "[species primary]\nradius = %.17g\nmass = %.17g\ntau = %.17g\n"
+          "B = %.17g\ncount = %zu\n", q->seed, L, dt,
+          q->taus[q->nt - 1] / (k11() * n0), period,
+          q->growth == SB_AGGLO_CONSTANT ? "constant" : "stokes", KOBS,
+          0.5 * d, RHO_P * PI * d * d * d / 6.0, tau, sqrt(b2) / tau, q->N0);
+  int st = sbv_ini_end(rep, f, NULL);
+  if (st || !rec_prefix)
+    return st;
+  /* sizes.csv: one row per output time (t, M0, M1, M2, n1, ...) */
+  for (size_t it = 0; it < q->nt; it++) {
+    if (!(thalves[it] > 0.0))
+      continue;
+    for (size_t col = 0; col <= kcmp; col++) {
+      if (!(plots || col == 0))
+        continue;
+      char name[96], fld[64];
+      if (col == 0) {
+        snprintf(name, sizeof name, "%s/t=%gt_half/M0/N0", rec_prefix,
+                 thalves[it]);
+        snprintf(fld, sizeof fld, "sizes.csv %zu M0", it + 1);
+      } else {
+        snprintf(name, sizeof name, "%s/t=%gt_half/n_%zu/N0", rec_prefix,
+                 thalves[it], col);
+        snprintf(fld, sizeof fld, "sizes.csv %zu n%zu", it + 1, col);
+      }
+      sbv_ini_expect_mean(rep, name, fld, 1.0 / (double)q->N0);
+    }
+  }
+  return SB_SUCCESS;
+}
+
 static int run_engine(run_t *q)
 {
   const double b2 = b2_primary(), d = D_P;
-  const double n0 = q->phi * 6.0 / (PI * d * d * d);
-  const double L = cbrt((double)q->N0 / n0);
+  double n0, L, dt;
+  run_geometry(q, &n0, &L, &dt);
   const double thalf = 2.0 / (k11() * n0);
-  double dt = q->c * q->c * d * d / (2.0 * b2);
-  if (dt > thalf / (double)q->min_steps)
-    dt = thalf / (double)q->min_steps;
   q->steps_per_half = thalf / dt;
   sb_engine_params p;
   sb_engine_params_default(&p);
@@ -308,11 +389,17 @@ static int compare(const sbv_ctx *ctx, sbv_report *rep, const char *tag,
     st = sbv_add(rep, &c);
   }
   double sph = 0.0;
+  char prefix[64];
+  snprintf(prefix, sizeof prefix, "V8/%s", tag);
   for (size_t r = 0; r < R && !st; r++) {
     run_t q = {phi, N0, brownian ? SB_AGGLO_STOKES : SB_AGGLO_CONSTANT,
                rms_step(phi), 500,
                ctx->seed * 7919UL + stream * 104729UL + r + 1, nt, taus,
                &runs[r * nt * NCOL], 0.0, 0.0};
+    if (sbv_writing(ctx)) {  /* the records: expect-mean lines */
+      st = write_run(ctx, rep, tag, &q, r, thalves, kcmp, plots, prefix);
+      continue;
+    }
     st = run_engine(&q);
     sph = q.steps_per_half;
     sbv_progress(ctx, "  V8 %s phi=%g run %zu/%zu done", tag, phi,
@@ -489,6 +576,11 @@ static int case_brownian(const sbv_ctx *ctx, sbv_report *rep)
       run_t rr = {phis[q], Nd, SB_AGGLO_STOKES, 3.0, 500,
                   ctx->seed * 7919UL + (10 + q) * 104729UL + r + 1, NT,
                   gr.taus, &runs[r * NT * NCOL], 0.0, 0.0};
+      if (sbv_writing(ctx)) {  /* notes only: files without expect lines */
+        st = write_run(ctx, rep, "agglo-brownian", &rr, r, gr.th, 0, 0,
+                       NULL);
+        continue;
+      }
       st = run_engine(&rr);
       ovl += rr.overlap_frac / (double)Rd;
       sph = rr.steps_per_half;
@@ -596,14 +688,18 @@ static int case_dlvo(const sbv_ctx *ctx, sbv_report *rep)
            "int n(n-1) dt with the Garwood 99.9%% interval vs psi K_kin "
            "g_CS.", TEMP, N, phi, tend);
   for (int q = 0; q < 4 && sbv_writing(ctx); q++) {
-    if (q == 3) {
-      sbv_ini_skip(rep, "  V8/agglo-dlvo/pair-3mM-10mV: the barrier of a "
-                   "DLVO pair (sb_dlvo_barrier per radius pair) is not a "
-                   "collide key; set [agglo] wmax to its W_max");
-      break;
+    /* the DLVO pair (q = 3): CONSTANT growth keeps every radius d/2, so
+     * the barrier callback returns one W_max, [agglo] wmax in J */
+    char fn[64], rec[96], tag[32], wline[64];
+    if (q < 3) {
+      snprintf(fn, sizeof fn, "V8_dlvo_x%g", xs[q]);
+      snprintf(tag, sizeof tag, "x=%g", xs[q]);
+      snprintf(wline, sizeof wline, "wmax_kT = %.17g", xs[q]);
+    } else {
+      snprintf(fn, sizeof fn, "V8_dlvo_pair_3mM_10mV");
+      snprintf(tag, sizeof tag, "pair-3mM-10mV");
+      snprintf(wline, sizeof wline, "wmax = %.17g", wc.w);
     }
-    char fn[64], rec[96];
-    snprintf(fn, sizeof fn, "V8_dlvo_x%g", xs[q]);
     FILE *f = sbv_ini_begin(ctx, rep, fn, "V8: DLVO sticking, ballistic "
                             "gas");
     if (!f)
@@ -611,16 +707,16 @@ static int case_dlvo(const sbv_ctx *ctx, sbv_report *rep)
     fprintf(f, "seed = %lu\nrng = mt19937\n"
             "L = %.17g\ndt = %.17g\nt_end = %.17g\n"
             "detect = ballistic\noutcome = dlvo\n\n[agglo]\n"
-            "growth = constant\nwmax_kT = %.17g\nerel = contact\n\n"
+            "growth = constant\n%s\nerel = contact\n\n"
             "[species grain]\nradius = %.17g\nmass = %.17g\ntau = inf\n"
             "T = %.17g\ncount = %zu\n", ctx->seed * 31UL +
-            (unsigned long)q + 7UL, L, dt, tend, xs[q], 0.5 * d, m, TEMP, N);
+            (unsigned long)q + 7UL, L, dt, tend, wline, 0.5 * d, m, TEMP, N);
     int st = sbv_ini_end(rep, f, NULL);
     if (st)
       return st;
-    snprintf(rec, sizeof rec, "V8/agglo-dlvo/x=%g/psi", xs[q]);
+    snprintf(rec, sizeof rec, "V8/agglo-dlvo/%s/psi", tag);
     sbv_ini_expect(rep, rec, "agglo.sticking_fraction", 1.0);
-    snprintf(rec, sizeof rec, "V8/agglo-dlvo/x=%g/psiK/(K_kin g)", xs[q]);
+    snprintf(rec, sizeof rec, "V8/agglo-dlvo/%s/psiK/(K_kin g)", tag);
     sbv_ini_expect(rep, rec, "agglo.merge_kernel", 1.0 / (Kkin * g));
   }
   for (int q = 0; q < 4 && !sbv_writing(ctx); q++) {

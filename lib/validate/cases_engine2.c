@@ -299,18 +299,30 @@ static int case_v7(const sbv_ctx *ctx, sbv_report *rep)
    * (reinsert), same particles and box */
   sb_engine_bridge_stats bs;
   memset(&bs, 0, sizeof bs);
-  if (sbv_writing(ctx)) {
-    sbv_ini_skip(rep, "  V7 collision-split run (reinsert): no record; "
-                 "run V7_brownian_turb.ini with outcome = reinsert and "
-                 "read bridge.brownian_share");
-    return st;
-  }
   /* the first-hit box lets particles overlap; this run places them apart,
    * so it takes at most a volume fraction of 0.12 (the full mode's
    * first-hit box holds 0.39, beyond random packing; the split per
    * collision does not depend on the density) */
   const double vmax = 0.12 * q.L * q.L * q.L / (PI * d * d * d / 6.0);
   const size_t Ns = (double)N < vmax ? N : (size_t)vmax;
+  if (sbv_writing(ctx)) {  /* notes only: a file without expect lines */
+    sb_engine_params p;
+    if (fh_cube_params(ctx, 301, q.L, q.dt, Ns, &p))
+      return SB_ENOMEM;
+    FILE *f = sbv_ini_begin(ctx, rep, "V7_brownian_turb_split", "V7: the "
+                            "collision split (bridge.brownian_share; the "
+                            "case's notes, no record)");
+    if (!f)
+      return SB_EIO;
+    fprintf(f, "seed = %lu\nrng = taus2\nL = %.17g\ndt = %.17g\n"
+            "t_end = %.17g\ndetect = bridge\noutcome = reinsert\n"
+            "placement = random\n\n[turbulence]\neps = %.17g\nnu = %.17g\n\n"
+            "[species p]\nradius = %.17g\nmass = %.17g\ntau = %.17g\n"
+            "b2 = %.17g\ncount = %zu\n", p.seed, q.L, q.dt, q.T, q.eps,
+            q.nu, 0.5 * d, q.mass, q.tau, q.b2brown, Ns);
+    int wst = sbv_ini_end(rep, f, NULL);
+    return wst ? wst : st;
+  }
   {
     sb_engine_params p;
     if (fh_cube_params(ctx, 301, q.L, q.dt, Ns, &p))

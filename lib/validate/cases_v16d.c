@@ -102,11 +102,6 @@ static double shear_J_integral(double a, double b)
 
 static int case_shear_diffusive(const sbv_ctx *ctx, sbv_report *rep)
 {
-  if (sbv_writing(ctx)) {
-    sbv_ini_skip(rep, "V16/combined-shear-diffusive: first-hit counting is "
-                 "run by the case");
-    return SB_SUCCESS;
-  }
   const double Jinf = shear_J(INFINITY);
   const double Jbeta = pow(12.0, -0.25) * gsl_sf_beta(0.75, 0.75);
   const double beta = Jinf / sqrt(4.0 * PI);
@@ -159,10 +154,36 @@ static int case_shear_diffusive(const sbv_ctx *ctx, sbv_report *rep)
                       shear_J_integral(G * q.t1, G * q.T) / G;
     const double V = KB * (bd + bs) * 0.5 * (double)N * (double)N / hits;
     q.L = cbrt(V);
+    q.fh_radius = R;
     lv_out o;
+    char fn[64];
+    snprintf(fn, sizeof fn, "V16_combined_shear_diffusive_Pe%g", Pe);
+    if (sbv_writing(ctx))
+      fh_set_name(rep, fn);
     st = lv_firsthit(ctx, 1660 + k, &q, &o);
     if (st)
       break;
+    if (sbv_writing(ctx)) {
+      /* collide's first_hit.K with first_hit_radius = R is hits veff /
+       * (pairs apart teff), teff = (t - t1) + 2 R (sqrt t - sqrt t1) /
+       * sqrt(pi D) at its end time t: the records are hits veff / (pairs
+       * apart K_B (bd [+ bs])), so each is K times teff / (K_B (bd
+       * [+ bs])); t is the sum of the steps, as the engine adds them */
+      double t = 0.0;
+      while (t < q.T - 0.5 * q.dt)
+        t += q.dt;
+      const double teff = (t - q.t1) + 2.0 * R * (sqrt(t) - sqrt(q.t1)) /
+                                           sqrt(PI * D);
+      char name[160];
+      sbv_ini_no_expect(rep);
+      snprintf(name, sizeof name, "V16/combined-shear-diffusive/Pe=%g/"
+               "K_e/K_ref", Pe);
+      sbv_ini_expect(rep, name, "first_hit.K", teff / (KB * (bd + bs)));
+      snprintf(name, sizeof name, "V16/combined-shear-diffusive/Pe=%g/"
+               "K_e/K_B(no shear)", Pe);
+      sbv_ini_expect(rep, name, "first_hit.K", teff / (KB * bd));
+      continue;  /* the records need the run */
+    }
     const double c = o.npairs[0] / o.veff[0];
     const double Eref = c * KB * (bd + bs), Ediff = c * KB * bd;
     char name[160];

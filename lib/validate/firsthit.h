@@ -174,6 +174,8 @@ typedef struct {
                               U_x = G (y - L/2) with Lees-Edwards
                               boundaries, velocities started at it:
                               V16/combined-shear-diffusive) */
+  double fh_radius;        /* write mode: first_hit_radius of the file
+                              (0: first_hit_capacitance, the V12 records) */
 } lv_run;
 
 typedef struct {

@@ -178,9 +178,17 @@ static int write_lv(const sbv_ctx *ctx, unsigned long stream,
   if (!f)
     return SB_EIO;
   /* T gives B = sqrt(2 k_B T / (m tau)) and the Maxwellian velocities
-   * sqrt(k_B T / m), as the run */
-  fprintf(f, "\n[observe]\nfirst_hit = yes\nfirst_hit_capacitance = yes\n"
-          "first_hit_skip_seen = yes\n");
+   * sqrt(k_B T / m), as the run; shear: collide's placement adds the
+   * fluid velocity G (y - L/2) to u_x, as place() */
+  if (q->G != 0.0)
+    fprintf(f, "\n[fluid]\ntype = shear\nG = %.17g\nlees_edwards = yes\n",
+            q->G);
+  if (q->fh_radius > 0.0)
+    fprintf(f, "\n[observe]\nfirst_hit = yes\nfirst_hit_radius = %.17g\n"
+            "first_hit_skip_seen = yes\n", q->fh_radius);
+  else
+    fprintf(f, "\n[observe]\nfirst_hit = yes\nfirst_hit_capacitance = "
+            "yes\nfirst_hit_skip_seen = yes\n");
   fprintf(f, "\n[species p]\nradius = %.17g\nmass = %.17g\ntau = %.17g\n"
           "T = %.17g\ncount = %zu\n", 0.5 * q->d[0], q->mass[0], q->tau[0],
           q->temp, q->N[0]);
