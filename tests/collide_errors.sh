@@ -193,6 +193,32 @@ $a\
 first_hit = yes\
 first_hit_radius = 2e-7\
 first_hit_capacitance = yes'
+check "first_hit_radius in a mixture" 2 't.ini:21: [observe] first_hit_radius with 2 species: one reference radius serves one pair type; leave it out' '4a\
+outcome = count
+$a\
+[species b]\
+radius = 1e-7\
+density = 1000\
+mu = 1e-3\
+T = 300\
+count = 5\
+[observe]\
+first_hit = yes\
+first_hit_radius = 2e-7'
+check "first_hit in a mixture runs" 0 '' '4a\
+outcome = count
+$a\
+[species b]\
+radius = 2e-7\
+density = 1000\
+mu = 1e-3\
+T = 300\
+count = 5\
+[observe]\
+first_hit = yes\
+first_hit_capacitance = yes'
+grep -q '{"species": \["a", "b"\], "hits": ' "$dir/out/summary.json" \
+  || fail "first_hit in a mixture: no a-b entry in first_hit.pairs"
 check "hit_times without bridge" 2 '[observe] hit_times records bridge hits' '$a\
 [observe]\
 hit_times = 10'

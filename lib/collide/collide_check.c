@@ -265,10 +265,14 @@ int sbi_col_check(sbi_col_config *c)
       return sbi_col_fail(c, "%s: [observe] first_hit needs outcome = count "
                           "(pairs pass through each other)",
                           sbi_col_where(c, "observe", "first_hit"));
-    if (c->nsp != 1)
-      return sbi_col_fail(c, "%s: [observe] first_hit needs exactly one "
-                          "species (the reference is one pair type)",
-                          sbi_col_where(c, "observe", "first_hit"));
+    if (c->nsp > 1 && sbi_col_given(c, "observe", "first_hit_radius"))
+      return sbi_col_fail(c, "%s: [observe] first_hit_radius with %d "
+                          "species: one reference radius serves one pair "
+                          "type; leave it out (each species pair (i, j) "
+                          "then uses its contact distance r_i + r_j) or "
+                          "give first_hit_capacitance = yes",
+                          sbi_col_where(c, "observe", "first_hit_radius"),
+                          c->nsp);
     if (c->dim != 3)
       return sbi_col_fail(c, "%s: [observe] first_hit needs dim = 3 (the "
                           "reference is the 3-D Smoluchowski transient)",
