@@ -151,6 +151,16 @@ stop_every = 1e-8\
 outcome = merge'
 check "stop_every unused" 0 't.ini:5: [run] stop_every ignored: it samples sizes.csv' '4a\
 stop_every = 5e-7'
+check "merging bridge without stop_every" 0 't.ini:5: [run] detect = bridge with outcome = merge and no [run] stop_every: the bridge reach' '4a\
+detect = bridge\
+outcome = merge'
+sed '4a\
+detect = bridge\
+outcome = merge\
+stop_every = 5e-7' "$dir/base.ini" > "$dir/t.ini"
+msg=$("$sb" collide "$dir/t.ini" 2>&1 >/dev/null) \
+  || fail "merging bridge with stop_every: exit $?: $msg"
+case "$msg" in *"bridge reach"*) fail "merging bridge with stop_every warned: $msg" ;; esac
 check "G with uniform" 0 '[fluid] G ignored: type = uniform' '$a\
 [fluid]\
 type = uniform\
