@@ -206,10 +206,25 @@ static void report_result(const sb_collide *c, int verbose, col_point *res)
   if (sb_collide_has_firsthit(c)) {
     sb_engine_firsthit_kernel_result o;
     sb_collide_firsthit(c, &o);
-    if (verbose)
+    const int mix = sb_engine_get_species(e, 1) != NULL;
+    if (verbose && !mix)
       fprintf(stderr, "collide: done; %llu first contacts after t = %g s, "
               "K = %.6g [%.6g, %.6g] (95%%, reference radius %g m)\n",
               (unsigned long long)o.c.hits, o.t1, o.K, o.lo, o.hi, o.a);
+    else if (verbose)
+      fprintf(stderr, "collide: done; %llu first contacts after t = %g s; "
+              "per species pair (95%%):\n", (unsigned long long)o.c.hits,
+              o.t1);
+    /* a mixture: one kernel per species pair (summary.json
+     * first_hit.pairs) */
+    for (size_t a = 0; verbose && mix && sb_engine_get_species(e, a); a++)
+      for (size_t b = a; sb_engine_get_species(e, b); b++) {
+        sb_engine_firsthit_kernel_result p;
+        sb_collide_firsthit_pair(c, a, b, &p);
+        fprintf(stderr, "collide:   species %zu-%zu: %llu first contacts, "
+                "K = %.6g [%.6g, %.6g] (reference radius %g m)\n", a, b,
+                (unsigned long long)p.c.hits, p.K, p.lo, p.hi, p.a);
+      }
     if (res) {
       res->K = o.K;
       res->lo = o.lo;

@@ -151,6 +151,16 @@ stop_every = 1e-8\
 outcome = merge'
 check "stop_every unused" 0 't.ini:5: [run] stop_every ignored: it samples sizes.csv' '4a\
 stop_every = 5e-7'
+check "merging bridge without stop_every" 0 't.ini:5: [run] detect = bridge with outcome = merge and no [run] stop_every: the bridge reach' '4a\
+detect = bridge\
+outcome = merge'
+sed '4a\
+detect = bridge\
+outcome = merge\
+stop_every = 5e-7' "$dir/base.ini" > "$dir/t.ini"
+msg=$("$sb" collide "$dir/t.ini" 2>&1 >/dev/null) \
+  || fail "merging bridge with stop_every: exit $?: $msg"
+case "$msg" in *"bridge reach"*) fail "merging bridge with stop_every warned: $msg" ;; esac
 check "G with uniform" 0 '[fluid] G ignored: type = uniform' '$a\
 [fluid]\
 type = uniform\
@@ -193,6 +203,32 @@ $a\
 first_hit = yes\
 first_hit_radius = 2e-7\
 first_hit_capacitance = yes'
+check "first_hit_radius in a mixture" 2 't.ini:21: [observe] first_hit_radius with 2 species: one reference radius serves one pair type; leave it out' '4a\
+outcome = count
+$a\
+[species b]\
+radius = 1e-7\
+density = 1000\
+mu = 1e-3\
+T = 300\
+count = 5\
+[observe]\
+first_hit = yes\
+first_hit_radius = 2e-7'
+check "first_hit in a mixture runs" 0 '' '4a\
+outcome = count
+$a\
+[species b]\
+radius = 2e-7\
+density = 1000\
+mu = 1e-3\
+T = 300\
+count = 5\
+[observe]\
+first_hit = yes\
+first_hit_capacitance = yes'
+grep -q '{"species": \["a", "b"\], "hits": ' "$dir/out/summary.json" \
+  || fail "first_hit in a mixture: no a-b entry in first_hit.pairs"
 check "hit_times without bridge" 2 '[observe] hit_times records bridge hits' '$a\
 [observe]\
 hit_times = 10'

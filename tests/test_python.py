@@ -149,6 +149,31 @@ try:
 except KeyboardInterrupt:
     pass
 
+# first-contact counting of a mixture: the summary dict carries one
+# kernel per species pair (first_hit.pairs), whose counts add up to the
+# totals, each K = hits / expected_per_K
+mix = {
+    "run": {"L": 2e-6, "dt": 1e-7, "steps": 100, "detect": "exact",
+            "outcome": "count", "placement": "uniform", "seed": 3},
+    "observe": {"first_hit": True},
+    "species a": {"radius": 5e-8, "mass": 1e-18, "tau": 1e-9, "b2": 2e-10,
+                  "count": 60},
+    "species b": {"radius": 1e-7, "mass": 1e-18, "tau": 1e-9, "b2": 2e-11,
+                  "count": 40},
+}
+summary, _ = sb.collide(mix)
+fh = summary["first_hit"]
+pairs = fh["pairs"]
+check([p["species"] for p in pairs] == [["a", "a"], ["a", "b"], ["b", "b"]]
+      and fh["K"] is None and sum(p["hits"] for p in pairs) == fh["hits"]
+      and fh["hits"] > 0 and
+      sum(p["pairs_apart"] for p in pairs) == fh["pairs_apart"] and
+      all(abs(p["K"] - p["hits"] / p["expected_per_K"]) <= 1e-12 * p["K"]
+          for p in pairs) and
+      abs(pairs[1]["radius"] - 1.5e-7) < 1e-20 and
+      abs(pairs[1]["D"] - 1.1e-10) < 1e-22,
+      "collide first_hit pairs: %s" % fh)
+
 if fails:
     sys.exit(1)
 print("python: all checks passed (%s)" % sb.library_version())

@@ -18,8 +18,11 @@
 # (V8/agglo-constant: [run] stop_every, records read from sizes.csv rows,
 # means over the 10 runs) and first-hit counting in shear with
 # Lees-Edwards images and a fixed reference radius
-# (V16/combined-shear-diffusive, Pe = 0.1).  Engine cases without files
-# must say why in NOT-WRITTEN.txt.
+# (V16/combined-shear-diffusive, Pe = 0.1); first-hit counting of two
+# species, one kernel per species pair (first_hit.pairs): with gravity and
+# the settling velocity taken out of the placement by a drift
+# (V16/combined, Pe = 1) and with the capacitance radius (V12/mixture).
+# Engine cases without files must say why in NOT-WRITTEN.txt.
 set -u
 sb="${top_builddir:-.}/smolbridge"
 sb="$(cd "$(dirname "$sb")" && pwd)/$(basename "$sb")"  # runs cd below
@@ -28,18 +31,19 @@ rm -rf "$dir"
 mkdir -p "$dir"
 fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-cases="--case V1/dense-long-steps --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V8/agglo-constant --case V12/ --case V16/shear --case V16/abrahamson --case V16/saffman-turner --case V16/combined-shear-diffusive"
+cases="--case V1/dense-long-steps --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V8/agglo-constant --case V12/ --case V16/shear --case V16/abrahamson --case V16/saffman-turner --case V16/combined-shear-diffusive --case V16/combined\$"
 # shellcheck disable=SC2086
 "$sb" validate $cases --write-ini "$dir/ini" 2>"$dir/w.err" \
   || { fail "write-ini failed"; cat "$dir/w.err"; }
-grep -q 'V12/mixture: two species' "$dir/ini/NOT-WRITTEN.txt" \
-  || fail "NOT-WRITTEN.txt lacks the V12 mixture"
+[ -f "$dir/ini/V12_mixture.ini" ] || fail "V12_mixture.ini not written"
+grep -q 'V12/mixture' "$dir/ini/NOT-WRITTEN.txt" \
+  && fail "NOT-WRITTEN.txt lists the V12 mixture, which has its file"
 # engine cases without any file are listed with a reason (no run needed)
 "$sb" validate --case V13/spray-vs-engine --case V15/engine-jets \
   --case V15/dense-jets --case V16/deposition --case V16/combined \
   --case V18/ --write-ini "$dir/none" 2>/dev/null
 for c in V13/spray-vs-engine V15/engine-jets V15/dense-jets V16/deposition \
-    V16/deposition-langevin V16/combined V16/combined-shear \
+    V16/deposition-langevin V16/combined-shear \
     V18/self-diffusion V18/maxwell-relaxation; do
   grep -q "^$c: no file: ." "$dir/none/NOT-WRITTEN.txt" \
     || fail "NOT-WRITTEN.txt does not say why $c has no file"
@@ -49,12 +53,14 @@ done
 [ -s "$dir/v/validate.csv" ] || { fail "validate run failed"; exit 1; }
 
 # value of a summary.json field: kernel.K, first_hit.K, agglo.X,
-# pair_kernels[a,b].K
+# pair_kernels[a,b].K, first_hit.pairs[a,b].K
 field() {  # field SUMMARY NAME
   case "$2" in
     pair_kernels*) ab=${2#pair_kernels[}; ab=${ab%%]*}; a=${ab%%,*}; b=${ab#*,}
       sed -n "s/.*\"species\": \[\"$a\", \"$b\"\], \"collisions\": [0-9]*, \"exposure\": [^,]*, \"K\": \([^,]*\),.*/\1/p" "$1" ;;
     kernel.K) sed -n 's/.*"kernel": {"K": \([^,]*\),.*/\1/p' "$1" ;;
+    first_hit.pairs*) ab=${2#first_hit.pairs[}; ab=${ab%%]*}; a=${ab%%,*}; b=${ab#*,}
+      sed -n "s/.*{\"species\": \[\"$a\", \"$b\"\], \"hits\": .*\"K\": \([^,]*\),.*/\1/p" "$1" ;;
     first_hit.K) sed -n 's/.*"first_hit": {.*"K": \([^,]*\),.*/\1/p' "$1" ;;
     agglo.*) k=${2#agglo.}
       sed -n "s/.*\"agglo\": {.*\"$k\": \\([^,]*\\),.*/\\1/p" "$1" ;;
@@ -66,7 +72,7 @@ for run in V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 V8_dlvo_x0.5 \
     V12_Kn0.05_dt1_langevin V12_Kn0.05_dt1_contact-time \
     V12_Kn0.05_dt1_exact-bb3 V16_shear_G100 V16_shear_G10 \
     V16_abrahamson_ou-field V16_abrahamson_langevin-species \
-    V16_combined_shear_diffusive_Pe0.1 \
+    V16_combined_shear_diffusive_Pe0.1 V16_combined_Pe1 V12_mixture \
     $(cd "$dir/ini" && ls V16_saffman_turner_frozen_Rk2_r*.ini \
       V8_agglo-constant_run*.ini | sed 's/\.ini$//'); do
   ini="$dir/ini/$run.ini"
@@ -121,7 +127,7 @@ if [ -f "$dir/means.txt" ]; then
     ncmp=$((ncmp + 1))
   done
 fi
-[ "$ncmp" -ge 69 ] || fail "only $ncmp records compared"
+[ "$ncmp" -ge 76 ] || fail "only $ncmp records compared"
 [ "$fails" -eq 0 ] && echo "validate_ini: $ncmp records reproduced by collide from the written files"
 [ "$fails" -eq 0 ] && rm -rf "$dir"
 exit $((fails > 0))

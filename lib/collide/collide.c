@@ -166,5 +166,25 @@ int sb_collide_firsthit(const sb_collide *cl,
     return sbi_error(SB_EINVAL, "sb_collide_firsthit", "no first-hit "
                      "observer: [observe] first_hit = yes and "
                      "sb_collide_setup are needed");
+  if (st == SB_EDOM && cl->c.nsp > 1)
+    return sbi_error(SB_EDOM, "sb_collide_firsthit", "%d species: one kernel "
+                     "per species pair (sb_collide_firsthit_pair); the "
+                     "counts are those of all pairs", cl->c.nsp);
   return st;
+}
+
+int sb_collide_firsthit_pair(const sb_collide *cl, size_t a, size_t b,
+                             sb_engine_firsthit_kernel_result *o)
+{
+  if (!cl || !o)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  if (!cl->r.fh)
+    return sbi_error(SB_EINVAL, __func__, "no first-hit observer: [observe] "
+                     "first_hit = yes and sb_collide_setup are needed");
+  if (a >= (size_t)cl->c.nsp || b >= (size_t)cl->c.nsp)
+    return sbi_error(SB_EINVAL, __func__, "species pair (%zu, %zu): the run "
+                     "has %d species (0 .. %d, in the order of their "
+                     "sections)", a, b, cl->c.nsp, cl->c.nsp - 1);
+  return sbi_col_firsthit_pair(&cl->r, &cl->c, a < b ? a : b, a < b ? b : a,
+                               o);
 }

@@ -247,6 +247,16 @@ int sbi_col_check(sbi_col_config *c)
     unused(c, run, "stop_every", "it samples sizes.csv (outcome = merge or dlvo) "
            "and recomputes the bridge reach (detect = bridge or exact, "
            "without first_hit)");
+  /* the bridge reach is set at attach (sb_engine_bridge_attach) for the
+   * particle number and largest radius of that time; merging raises the
+   * radius, and the tail bound [bridge] tol then no longer holds */
+  if (agglo && bridge && !(c->stop_every > 0))
+    sbi_col_warn(c, "%s: [run] detect = %s with outcome = %s and no [run] "
+                 "stop_every: the bridge reach is computed once, from the "
+                 "initial radii; growing clusters can outgrow it (contacts "
+                 "missed beyond [bridge] tol): give stop_every (s, e.g. a "
+                 "tenth of the run) to recompute it at every stop",
+                 sbi_col_where(c, run, "detect"), c->detect, c->outcome);
   if (strcmp(c->detect, "langevin")) {
     unused(c, run, "langevin_eps", "only detect = langevin uses it");
     unused(c, run, "langevin_xtol", "only detect = langevin uses it");
@@ -265,10 +275,14 @@ int sbi_col_check(sbi_col_config *c)
       return sbi_col_fail(c, "%s: [observe] first_hit needs outcome = count "
                           "(pairs pass through each other)",
                           sbi_col_where(c, "observe", "first_hit"));
-    if (c->nsp != 1)
-      return sbi_col_fail(c, "%s: [observe] first_hit needs exactly one "
-                          "species (the reference is one pair type)",
-                          sbi_col_where(c, "observe", "first_hit"));
+    if (c->nsp > 1 && sbi_col_given(c, "observe", "first_hit_radius"))
+      return sbi_col_fail(c, "%s: [observe] first_hit_radius with %d "
+                          "species: one reference radius serves one pair "
+                          "type; leave it out (each species pair (i, j) "
+                          "then uses its contact distance r_i + r_j) or "
+                          "give first_hit_capacitance = yes",
+                          sbi_col_where(c, "observe", "first_hit_radius"),
+                          c->nsp);
     if (c->dim != 3)
       return sbi_col_fail(c, "%s: [observe] first_hit needs dim = 3 (the "
                           "reference is the 3-D Smoluchowski transient)",

@@ -13,6 +13,10 @@
 
 #include "collide_internal.h"
 
+/* every species pair of a run has its counts in the observer */
+_Static_assert(COL_MAXSPEC <= SB_ENGINE_PAIR_SPECIES,
+               "more collide species than the observer's pair table");
+
 void sbi_col_firsthit_start(sbi_col_run *r, double t1)
 {
   if (r->fh)
@@ -45,19 +49,48 @@ void sbi_col_firsthit_free(sb_engine_firsthit *f)
   sb_engine_firsthit_free(f);
 }
 
-/* The kernel with the reference radius first_hit_radius (default: the
- * contact distance) or the capacitance radius, and D = b2 (NaN for free
- * flight: no estimate). */
+/* The kernel of species pair (a, b) with the reference radius
+ * first_hit_radius (one species only), the contact distance r_a + r_b
+ * (default) or the capacitance radius, and the relative diffusivity
+ * D_ab = D_a + D_b = (b2_a + b2_b) / 2, b2 the per-particle position
+ * variance rate 2 D (NaN with a species in free flight: no estimate). */
+int sbi_col_firsthit_pair(const sbi_col_run *r, const sbi_col_config *c,
+                          size_t a, size_t b,
+                          sb_engine_firsthit_kernel_result *o)
+{
+  memset(o, 0, sizeof *o);
+  o->K = o->lo = o->hi = o->a = o->D = NAN;
+  if (!r->fh)
+    return -1;
+  const sb_engine_species *sa = sb_engine_get_species(r->e, a);
+  const sb_engine_species *sb = sb_engine_get_species(r->e, b);
+  if (!sa || !sb)
+    return SB_EINVAL;
+  double D = NAN;
+  if (isfinite(sa->tau) && isfinite(sb->tau))
+    D = a == b ? c->b2_total[a] : 0.5 * (c->b2_total[a] + c->b2_total[b]);
+  double rad = c->first_hit_capacitance > 0 ? SB_ENGINE_FIRSTHIT_CAPACITANCE
+               : c->first_hit_radius > 0    ? c->first_hit_radius
+                                            : sa->radius + sb->radius;
+  return sb_engine_firsthit_kernel(r->fh, r->e, a, b, rad, D, 0.95, o);
+}
+
+/* One species: the kernel of its pair.  Several: the counts over all
+ * pairs (K, its interval, radius and D NaN: one kernel per pair type,
+ * sbi_col_firsthit_pair), SB_EDOM. */
 int sbi_col_firsthit_result(const sbi_col_run *r, const sbi_col_config *c,
                             sb_engine_firsthit_kernel_result *o)
 {
   memset(o, 0, sizeof *o);
   if (!r->fh)
     return -1;
-  const sb_engine_species *s = sb_engine_get_species(r->e, 0);
-  double b2 = isfinite(s->tau) ? c->b2_total[0] : NAN;
-  double a = c->first_hit_capacitance > 0 ? SB_ENGINE_FIRSTHIT_CAPACITANCE
-             : c->first_hit_radius > 0    ? c->first_hit_radius
-                                          : 2.0 * s->radius;
-  return sb_engine_firsthit_kernel(r->fh, r->e, 0, 0, a, b2, 0.95, o);
+  if (c->nsp == 1)
+    return sbi_col_firsthit_pair(r, c, 0, 0, o);
+  o->K = o->lo = o->hi = o->a = o->D = o->expected_per_K = NAN;
+  o->radius = NAN;
+  o->t1 = sb_engine_firsthit_warmup(r->fh);
+  o->t = sb_engine_time(r->e);
+  int st = sb_engine_firsthit_get(r->fh, SB_ENGINE_FIRSTHIT_ALL,
+                                  SB_ENGINE_FIRSTHIT_ALL, &o->c);
+  return st ? st : SB_EDOM;
 }

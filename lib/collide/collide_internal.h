@@ -220,8 +220,14 @@ int sbi_col_firsthit_attach(const sbi_col_config *c, sbi_col_run *r,
 /* Start of counting (end of the warm-up), s. */
 void sbi_col_firsthit_start(sbi_col_run *r, double t1);
 void sbi_col_firsthit_free(sb_engine_firsthit *f);
-/* First-hit results (one species): 0, a status (the counts set, the
- * kernel NaN when it has no estimate), or -1 without the observer. */
+/* First-hit results of species pair (a, b) (a, b < nsp): 0, a status
+ * (the counts set, the kernel NaN when it has no estimate), or -1
+ * without the observer. */
+int sbi_col_firsthit_pair(const sbi_col_run *r, const sbi_col_config *c,
+                          size_t a, size_t b,
+                          sb_engine_firsthit_kernel_result *o);
+/* One species: sbi_col_firsthit_pair(0, 0).  Several: the counts of all
+ * pairs, the kernel NaN, SB_EDOM.  -1 without the observer. */
 int sbi_col_firsthit_result(const sbi_col_run *r, const sbi_col_config *c,
                             sb_engine_firsthit_kernel_result *o);
 

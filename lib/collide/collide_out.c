@@ -390,6 +390,60 @@ static void json_kernels(FILE *f, const sbi_col_config *c, const sb_engine *e)
   fprintf(f, "],\n");
 }
 
+/* [observe] first_hit: the kernel of the one species pair (or, for a
+ * mixture, the counts over all pairs and a null kernel), then one entry
+ * per species pair (a <= b) with its own count, reference and kernel. */
+static void json_firsthit(FILE *f, const sbi_col_config *c,
+                          const sbi_col_run *r)
+{
+  sb_engine_firsthit_kernel_result o;
+  sbi_col_firsthit_result(r, c, &o);
+  fprintf(f, "  \"first_hit\": {\"hits\": %llu, \"warmup_hits\": %llu, "
+          "\"pairs_apart\": %.17g, \"radius\": ",
+          (unsigned long long)o.c.hits, (unsigned long long)o.c.warm,
+          o.c.pairs_apart);
+  jnum(f, o.a);
+  fprintf(f, ", \"capacitance\": %s, \"D\": ",
+          c->first_hit_capacitance > 0 ? "true" : "false");
+  jnum(f, o.D);
+  fprintf(f, ", \"t1\": %.17g, \"t\": %.17g, \"expected_per_K\": ", o.t1,
+          o.t);
+  jnum(f, o.expected_per_K);
+  fprintf(f, ", \"K\": ");
+  jnum(f, o.K);
+  fprintf(f, ", \"ci95\": [");
+  jnum(f, o.lo);
+  fprintf(f, ", ");
+  jnum(f, o.hi);
+  fprintf(f, "], \"pairs\": [");
+  for (int a = 0; a < c->nsp; a++)
+    for (int b = a; b < c->nsp; b++) {
+      sbi_col_firsthit_pair(r, c, (size_t)a, (size_t)b, &o);
+      fprintf(f, "%s\n    {\"species\": [", a + b ? "," : "");
+      jstr(f, sbi_col_short_name(c, (size_t)a));
+      fprintf(f, ", ");
+      jstr(f, sbi_col_short_name(c, (size_t)b));
+      fprintf(f, "], \"hits\": %llu, \"warmup_hits\": %llu, "
+              "\"contact_at_start\": %llu, \"pairs_apart\": %.17g, "
+              "\"radius\": ", (unsigned long long)o.c.hits,
+              (unsigned long long)o.c.warm, (unsigned long long)o.c.contact0,
+              o.c.pairs_apart);
+      jnum(f, o.a);
+      fprintf(f, ", \"D\": ");
+      jnum(f, o.D);
+      fprintf(f, ", \"expected_per_K\": ");
+      jnum(f, o.expected_per_K);
+      fprintf(f, ", \"K\": ");
+      jnum(f, o.K);
+      fprintf(f, ", \"ci95\": [");
+      jnum(f, o.lo);
+      fprintf(f, ", ");
+      jnum(f, o.hi);
+      fprintf(f, "]}");
+    }
+  fprintf(f, "\n  ]},\n");
+}
+
 static void json_contexts(FILE *f, const sbi_col_config *c,
                           const sbi_col_run *r)
 {
@@ -428,28 +482,8 @@ static void json_contexts(FILE *f, const sbi_col_config *c,
     fprintf(f, ", \"M0\": %.17g, \"M1\": %.17g, \"M2\": %.17g, \"file\": "
             "\"sizes.csv\"},\n", m[0], m[1], m[2]);
   }
-  if (r->fh) {
-    sb_engine_firsthit_kernel_result o;
-    sbi_col_firsthit_result(r, c, &o);
-    fprintf(f, "  \"first_hit\": {\"hits\": %llu, \"warmup_hits\": %llu, "
-            "\"pairs_apart\": %.17g, \"radius\": ",
-            (unsigned long long)o.c.hits, (unsigned long long)o.c.warm,
-            o.c.pairs_apart);
-    jnum(f, o.a);
-    fprintf(f, ", \"capacitance\": %s, \"D\": ",
-            c->first_hit_capacitance > 0 ? "true" : "false");
-    jnum(f, o.D);
-    fprintf(f, ", \"t1\": %.17g, \"t\": %.17g, \"expected_per_K\": ", o.t1,
-            o.t);
-    jnum(f, o.expected_per_K);
-    fprintf(f, ", \"K\": ");
-    jnum(f, o.K);
-    fprintf(f, ", \"ci95\": [");
-    jnum(f, o.lo);
-    fprintf(f, ", ");
-    jnum(f, o.hi);
-    fprintf(f, "]},\n");
-  }
+  if (r->fh)
+    json_firsthit(f, c, r);
 }
 
 int sbi_col_out_write(const sbi_col_config *c, const sbi_col_run *r,

@@ -164,9 +164,23 @@ int sb_collide_has_firsthit(const sb_collide *c);
  *  the reference radius of the configuration) in *o: the status of
  *  sb_engine_firsthit_kernel (the counts are set even when it fails; K
  *  is NaN when there is no estimate, as in free flight); SB_EINVAL
- *  without that observer. */
+ *  without that observer.  With several species there is one kernel per
+ *  species pair (sb_collide_firsthit_pair): *o then has the counts over
+ *  all pairs, K, its interval, radius and D NaN, and the status is
+ *  SB_EDOM. */
 int sb_collide_firsthit(const sb_collide *c,
                         sb_engine_firsthit_kernel_result *o);
+
+/** First-contact kernel of species pair (a, b) (indices in the order of
+ *  the [species NAME] sections, either order): reference radius the
+ *  contact distance r_a + r_b (or first_hit_radius with one species, or
+ *  the capacitance radius with first_hit_capacitance), relative
+ *  diffusivity D_a + D_b = (b2_a + b2_b)/2, 95% interval.  Status as
+ *  sb_collide_firsthit; SB_EINVAL for a species index out of range or
+ *  without the observer.  Pair (0, 0) of one species is
+ *  sb_collide_firsthit. */
+int sb_collide_firsthit_pair(const sb_collide *c, size_t a, size_t b,
+                             sb_engine_firsthit_kernel_result *o);
 
 /** One key of the configuration, for help texts. */
 typedef struct {

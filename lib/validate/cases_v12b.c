@@ -123,12 +123,6 @@ static int bary_slope(const sbv_ctx *ctx, const mix_sp *s, const mix_sp *b,
 
 int v12_mixture(const sbv_ctx *ctx, sbv_report *rep)
 {
-  if (sbv_writing(ctx)) {
-    sbv_ini_skip(rep, "  V12/mixture: two species (collide's first_hit "
-                 "counts one pair type) and a barycentre Monte Carlo "
-                 "without an engine");
-    return SB_SUCCESS;
-  }
   const int full = ctx->full;
   mix_sp s, b;
   mix_species(20e-9, &s);
@@ -167,6 +161,25 @@ int v12_mixture(const sbv_ctx *ctx, sbv_report *rep)
   q.N[0] = q.N[1] = (size_t)N;
   sbv_progress(ctx, "  V12 mixture");
   lv_out o;
+  static const char *const tn[3] = {"20-20", "20-200", "200-200"};
+  if (sbv_writing(ctx)) {
+    /* one file; each record is its pair's first_hit.pairs[i,j].K (the
+     * capacitance radius, as lv_kernel) over K_GH.  The barycentre
+     * slope below is a Monte Carlo of pairs without an engine. */
+    static const char *const pn[3] = {"d20nm,d20nm", "d20nm,d200nm",
+                                      "d200nm,d200nm"};
+    snprintf(q.names[0], sizeof q.names[0], "d20nm");
+    snprintf(q.names[1], sizeof q.names[1], "d200nm");
+    fh_set_name(rep, "V12_mixture");
+    int st = lv_firsthit(ctx, 1400, &q, &o);
+    for (int t = 0; t < 3 && !st; t++) {
+      char name[96], field[64];
+      snprintf(name, sizeof name, "V12/mixture/%s/K_e/K_GH", tn[t]);
+      snprintf(field, sizeof field, "first_hit.pairs[%s].K", pn[t]);
+      sbv_ini_expect(rep, name, field, 1.0 / Kgh[t]);
+    }
+    return st;
+  }
   int st = lv_firsthit(ctx, 1400, &q, &o);
   if (st)
     return st;
@@ -176,7 +189,6 @@ int v12_mixture(const sbv_ctx *ctx, sbv_report *rep)
            "L = %.3g m, %.3g steps, %.1f s.", V12_RHO, V12_TEMP,
            LAMBDA_AIR * 1e9, s.tau, b.tau, q.dt / b.tau, q.N[0], q.N[1],
            q.L, o.steps, o.cpu);
-  static const char *const tn[3] = {"20-20", "20-200", "200-200"};
   double plot[3 * 5];
   for (int t = 0; t < 3 && !st; t++) {
     double K = NAN, lo = NAN, hi = NAN;

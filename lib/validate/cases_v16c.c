@@ -590,13 +590,58 @@ static double conv_diff_ratio(double Pe)
   return -rho * sum;
 }
 
+/* Write mode: the expect lines of the records of the run just written
+ * (Pe, the run q; Kcd, KB + KG; Ks the same-species K_B; capacitance:
+ * the file of the Pe = 16 run with first_hit_capacitance).  collide's
+ * first_hit.pairs[i,j].K with the contact distance R_ij as reference
+ * radius is hits veff / (pairs apart teff), teff = (t - t1) + 2 R_ij
+ * (sqrt t - sqrt t1) / sqrt(pi D_ij) at its end time t (the sum of the
+ * steps, as the engine adds them).  Cross pair: the records are hits
+ * veff / (pairs apart (t - t1)) over Kcd or KB + KG, so K times teff /
+ * ((t - t1) Kcd) etc.; same species: hits over the forward map at K_s =
+ * 4 pi D d, which is (pairs apart / veff) K_s teff (a = K_s/(4 pi D) = d),
+ * so K / K_s; the informational same-species rows at Pe = 16 are the
+ * capacitance estimates over K_s. */
+static void combined_expect(sbv_report *rep, double Pe, const lv_run *q,
+                            double D12, double Kcd, double KBG,
+                            const double Ks[2], int capacitance)
+{
+  static const char *const pair[3] = {"d1um,d1um", "d1um,d500nm",
+                                      "d500nm,d500nm"};
+  char name[160], field[64];
+  sbv_ini_no_expect(rep);
+  if (capacitance) {
+    for (int a = 0; a < 2; a++) {
+      snprintf(field, sizeof field, "first_hit.pairs[%s].K", pair[2 * a]);
+      snprintf(name, sizeof name, "V16/combined/brownian+settling/Pe=%g/"
+               "%s-same-species/K_e/K_B", Pe, a ? "0.5um" : "1um");
+      sbv_ini_expect(rep, name, field, 1.0 / Ks[a]);
+    }
+    return;
+  }
+  double t = 0.0;
+  while (t < q->T - 0.5 * q->dt)
+    t += q->dt;
+  const double R = 0.5 * (q->d[0] + q->d[1]);
+  const double teff = (t - q->t1) + 2.0 * R * (sqrt(t) - sqrt(q->t1)) /
+                                        sqrt(PI * D12);
+  snprintf(field, sizeof field, "first_hit.pairs[%s].K", pair[1]);
+  snprintf(name, sizeof name, "V16/combined/brownian+settling/Pe=%g/"
+           "K_e/K_cd", Pe);
+  sbv_ini_expect(rep, name, field, teff / ((t - q->t1) * Kcd));
+  snprintf(name, sizeof name, "V16/combined/brownian+settling/Pe=%g/"
+           "K_e/(K_B+K_G)", Pe);
+  sbv_ini_expect(rep, name, field, teff / ((t - q->t1) * KBG));
+  for (int a = 0; a < 2 && !(Pe > 8.0); a++) {  /* else: the other file */
+    snprintf(field, sizeof field, "first_hit.pairs[%s].K", pair[2 * a]);
+    snprintf(name, sizeof name, "V16/combined/brownian+settling/Pe=%g/"
+             "%s-same-species/K_e/K_B", Pe, a ? "0.5um" : "1um");
+    sbv_ini_expect(rep, name, field, 1.0 / Ks[a]);
+  }
+}
+
 static int case_combined(const sbv_ctx *ctx, sbv_report *rep)
 {
-  if (sbv_writing(ctx)) {
-    sbv_ini_skip(rep, "V16/combined: first-hit counting is run by the "
-                 "case");
-    return SB_SUCCESS;
-  }
   /* 1 and 0.5 um spheres (rho_p = 1000) in water at 293.15 K, diffusive
    * regime (dt >> tau_p), exact 3-D Brownian-bridge detector; the
    * acceleration (buoyancy not modelled: g is the effective one) is
@@ -662,6 +707,25 @@ static int case_combined(const sbv_ctx *ctx, sbv_report *rep)
     const double V = Kcd * (double)N * (double)N * (q.T - q.t1) / hits;
     q.L = cbrt(V);
     lv_out o;
+    if (sbv_writing(ctx)) {
+      /* the contact distance as reference radius; the Pe = 16 run also
+       * as a file with the capacitance radius (its same-species rows) */
+      const double Ks[2] = {4.0 * PI * 2.0 * Dp[0] * d[0],
+                            4.0 * PI * 2.0 * Dp[1] * d[1]};
+      snprintf(q.names[0], sizeof q.names[0], "d1um");
+      snprintf(q.names[1], sizeof q.names[1], "d500nm");
+      for (int cap = 0; cap < (Pe > 8.0 ? 2 : 1) && !st; cap++) {
+        char fn[64];
+        snprintf(fn, sizeof fn, "V16_combined_Pe%g%s", Pe,
+                 cap ? "_capacitance" : "");
+        fh_set_name(rep, fn);
+        q.fh_contact = !cap;
+        st = lv_firsthit(ctx, 1640 + k, &q, &o);
+        if (!st)
+          combined_expect(rep, Pe, &q, D12, Kcd, KB + KG, Ks, cap);
+      }
+      continue;  /* the records need the run */
+    }
     st = lv_firsthit(ctx, 1640 + k, &q, &o);
     if (st)
       break;

@@ -176,6 +176,10 @@ typedef struct {
                               V16/combined-shear-diffusive) */
   double fh_radius;        /* write mode: first_hit_radius of the file
                               (0: first_hit_capacitance, the V12 records) */
+  int fh_contact;          /* write mode: 1: no reference radius key (each
+                              pair's contact distance r_i + r_j) */
+  char names[2][16];       /* write mode: species section names ("": p,
+                              or p0 and p1) */
 } lv_run;
 
 typedef struct {
@@ -197,8 +201,9 @@ typedef struct {
 
 /* Run (engine seeded from `stream`); o->vn is allocated when vcap > 0.
  * Write mode (sbv_writing): the run is written as a collide configuration
- * instead (named by fh_set_name; runs of two species or with gravity are
- * listed as not written) and o gets unit values (o->unit). */
+ * instead (named by fh_set_name) and o gets unit values (o->unit); one
+ * species: the next record's expect line reads first_hit.K; two: the
+ * case writes its expect lines (first_hit.pairs[a,b].K). */
 int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
                 lv_out *o);
 

@@ -150,10 +150,43 @@ static int fill_out(const lv_run *q, const sb_engine_firsthit *fh,
   return SB_SUCCESS;
 }
 
-/* The run as a collide configuration (write mode): one species without
- * gravity (collide's first_hit counts one pair type, and its placement
- * adds the settling velocity); o gets unit values (lv_kernel: K = 1), so
- * the next record's estimate is the factor of its expect line. */
+/* Section name of species a of the run in its collide file. */
+static const char *lv_name(const lv_run *q, int a)
+{
+  static const char *const dflt[2][2] = {{"p", ""}, {"p0", "p1"}};
+  return q->names[a][0] ? q->names[a] : dflt[q->nsp > 1][a];
+}
+
+/* The settling velocities that collide's placement adds (the engine's
+ * sb_engine_settling_velocity of the same species under the same g), in
+ * vs[a][k]; the file gives each species the opposite as its drift, so
+ * that the placed velocities are the Maxwellian ones of place(). */
+static int lv_settling(const lv_run *q, const sb_engine_params *p,
+                       double vs[2][3])
+{
+  sb_engine_params pp = *p;
+  pp.capacity = 1;
+  sb_engine *e = sb_engine_alloc(&pp);
+  int st = e ? SB_SUCCESS : SB_ENOMEM;
+  for (int a = 0; a < q->nsp && !st; a++) {
+    double B = sqrt(2.0 * SB_BOLTZMANN * q->temp / (q->mass[a] * q->tau[a]));
+    sb_engine_species s = {0.5 * q->d[a], q->mass[a], q->tau[a], B, q->temp};
+    st = sb_engine_add_species(e, &s, NULL);
+  }
+  if (!st)
+    st = sb_engine_set_gravity(e, q->g);
+  for (int a = 0; a < q->nsp && !st; a++)
+    st = sb_engine_settling_velocity(e, (size_t)a, vs[a]);
+  sb_engine_free(e);
+  return st;
+}
+
+/* The run as a collide configuration (write mode): one or two species
+ * (collide's first_hit counts every species pair), gravity with the
+ * settling velocity taken out of the placement, shear; o gets unit
+ * values (lv_kernel: K = 1), so the next record's estimate is the factor
+ * of its expect line (one species; the two-species cases write their
+ * expect lines, first_hit.pairs[a,b].K). */
 static int write_lv(const sbv_ctx *ctx, unsigned long stream,
                     const lv_run *q, const sb_engine_params *p, lv_out *o)
 {
@@ -163,13 +196,12 @@ static int write_lv(const sbv_ctx *ctx, unsigned long stream,
     o->npairs[t] = 1.0;
   char name[128];
   fh_ini_name(rep, name, sizeof name, "firsthit_lv");
-  if (q->nsp != 1 || q->g[0] != 0.0 || q->g[1] != 0.0 || q->g[2] != 0.0) {
-    sbv_ini_skip(rep, "  %s: %s", name, q->nsp != 1
-                     ? "two species (collide's first_hit counts one pair "
-                       "type)"
-                     : "settling under gravity (collide's uniform "
-                       "placement adds the settling velocity)");
-    return SB_SUCCESS;
+  const int grav = q->g[0] != 0.0 || q->g[1] != 0.0 || q->g[2] != 0.0;
+  double vs[2][3] = {{0, 0, 0}, {0, 0, 0}};
+  if (grav) {
+    int st = lv_settling(q, p, vs);
+    if (st)
+      return st;
   }
   static const char *const det[] = {"langevin", "ballistic", "overlap",
                                     "bridge", "exact"};
@@ -180,19 +212,30 @@ static int write_lv(const sbv_ctx *ctx, unsigned long stream,
   /* T gives B = sqrt(2 k_B T / (m tau)) and the Maxwellian velocities
    * sqrt(k_B T / m), as the run; shear: collide's placement adds the
    * fluid velocity G (y - L/2) to u_x, as place() */
+  if (q->G != 0.0 || grav)
+    fprintf(f, "\n[fluid]\n");
   if (q->G != 0.0)
-    fprintf(f, "\n[fluid]\ntype = shear\nG = %.17g\nlees_edwards = yes\n",
-            q->G);
-  if (q->fh_radius > 0.0)
-    fprintf(f, "\n[observe]\nfirst_hit = yes\nfirst_hit_radius = %.17g\n"
-            "first_hit_skip_seen = yes\n", q->fh_radius);
-  else
-    fprintf(f, "\n[observe]\nfirst_hit = yes\nfirst_hit_capacitance = "
-            "yes\nfirst_hit_skip_seen = yes\n");
-  fprintf(f, "\n[species p]\nradius = %.17g\nmass = %.17g\ntau = %.17g\n"
-          "T = %.17g\ncount = %zu\n", 0.5 * q->d[0], q->mass[0], q->tau[0],
-          q->temp, q->N[0]);
-  return sbv_ini_end(rep, f, "first_hit.K");
+    fprintf(f, "type = shear\nG = %.17g\nlees_edwards = yes\n", q->G);
+  if (grav)
+    fprintf(f, "g = %.17g %.17g %.17g\n", q->g[0], q->g[1], q->g[2]);
+  fprintf(f, "\n[observe]\nfirst_hit = yes\n");
+  /* fh_contact: no key, collide's default (each pair's r_i + r_j) */
+  if (!q->fh_contact && q->fh_radius > 0.0)
+    fprintf(f, "first_hit_radius = %.17g\n", q->fh_radius);
+  else if (!q->fh_contact)
+    fprintf(f, "first_hit_capacitance = yes\n");
+  fprintf(f, "first_hit_skip_seen = yes\n");
+  for (int a = 0; a < q->nsp; a++) {
+    fprintf(f, "\n[species %s]\nradius = %.17g\nmass = %.17g\ntau = %.17g\n"
+            "T = %.17g\ncount = %zu\n", lv_name(q, a), 0.5 * q->d[a],
+            q->mass[a], q->tau[a], q->temp, q->N[a]);
+    if (grav)  /* u + (v_s + drift) = u + 0 exactly */
+      fprintf(f, "; the case starts at the Maxwellian velocities: the "
+              "opposite of the\n; settling velocity that the placement "
+              "adds\ndrift = %.17g %.17g %.17g\n", -vs[a][0], -vs[a][1],
+              -vs[a][2]);
+  }
+  return sbv_ini_end(rep, f, q->nsp == 1 ? "first_hit.K" : NULL);
 }
 
 int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,

@@ -164,8 +164,8 @@ static const char *const INI_CASES[] = {
     "V3/diffusive-fail", "V6/correction-step", "VX/exact-detection",
     "V8/agglo-dlvo", "V8/agglo-constant", "V8/agglo-brownian",
     "V12/langevin-detector", "V16/shear", "V16/settling",
-    "V16/abrahamson", "V16/saffman-turner", "V16/combined-shear-diffusive",
-    NULL};
+    "V16/abrahamson", "V16/saffman-turner", "V16/combined",
+    "V16/combined-shear-diffusive", NULL};
 
 /* Cases whose engine runs `smolbridge collide` does not reproduce, and
  * why: written to NOT-WRITTEN.txt, so that no engine run goes unlisted. */
@@ -186,10 +186,6 @@ static const struct {
      "draw their placements in turn from the generator of the case's "
      "reference Monte Carlo (not fresh placement_seeds), and "
      "particle-particle detection is off (a never-detecting callback)"},
-    {"V16/combined",
-     "two species (collide's first_hit counts one pair type) settling "
-     "under gravity (collide's uniform placement adds the settling "
-     "velocity)"},
     {"V16/combined-shear",
      "its records are means over 16 time blocks of one run (the "
      "pass-through count read at each block's end), not a summary field"},
