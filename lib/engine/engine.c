@@ -186,6 +186,13 @@ void sb_engine_free(sb_engine *e)
   free(e->piece_at);
   free(e->far);
   free(e->isfar);
+  free(e->lxm);   /* engine_neigh.c: the Langevin search */
+  free(e->lfx);
+  free(e->lfl);
+  free(e->lcnt);
+  free(e->lfs);
+  free(e->lpr);
+  free(e->lpr2);
   free(e->lp_x);
   free(e->lp_u);
   free(e->lp_t);

@@ -168,6 +168,17 @@ typedef struct {
                                   bit for bit (docs/engine.md, "Neighbour
                                   search").  1: rebuild the cells at every
                                   step. */
+  int lsearch_off;           /**< 0 (the default): with the cells search
+                                  and the `langevin` detector in a fully
+                                  periodic box, the candidates come from a
+                                  search over the chord midpoints that
+                                  drops most pairs the detector's chord
+                                  test would skip; the detector examines
+                                  the same pairs in the same order and the
+                                  results are the same bit for bit, only
+                                  the candidate count (ncand) is smaller
+                                  (docs/engine.md, "Neighbour search").
+                                  1: every pair of the linked cells. */
 } sb_engine_params;
 
 /** A species: shared physical properties of a class of particles. */
