@@ -180,6 +180,18 @@ START_TEST(test_2d)
 }
 END_TEST
 
+/* Dense (phi ~ 10% and 6%): a particle has several partners within
+ * reach, in several neighbouring cells, so the order of the cells
+ * matters. */
+START_TEST(test_dense)
+{
+  setup s = {3, 0.1, 20.0, 1500, 0, SB_OUTCOME_COUNT, 1, 0};
+  ck_assert_uint_gt(run_pair(&s, 20, 1), 100);
+  setup t = {3, 0.3, 40.0, 1500, 1, SB_OUTCOME_COUNT, 1, 0};
+  ck_assert_uint_gt(run_pair(&t, 20, 1), 100);
+}
+END_TEST
+
 /* Bounces: the particles leave their chords inside the step and are
  * re-detected through the cells of the search. */
 START_TEST(test_elastic)
@@ -226,6 +238,7 @@ int main(void)
   tcase_add_test(t, test_dt30);
   tcase_add_test(t, test_bidisperse);
   tcase_add_test(t, test_2d);
+  tcase_add_test(t, test_dense);
   tcase_add_test(t, test_elastic);
   tcase_add_test(t, test_threads);
   tcase_add_test(t, test_walls_fall_back);
