@@ -158,6 +158,7 @@ struct sb_engine {
   sb_engine_detect_fn detect_fn;
   void *detect_ctx;
   double detect_reach;
+  int detect_chord;          /* custom detector: sb_engine_set_detector_chord */
   sb_engine_outcome_fn outcome_fn;
   void *outcome_ctx;
   sb_engine_fluid fluid;

@@ -1045,7 +1045,8 @@ int sbi_engine_find_step_pairs(sb_engine *e, double reach)
   /* the Langevin search: only where the detector's chord test drops
    * every pair it leaves out (fully periodic box, noise on every
    * species, this step's reach) */
-  const int lang = e->par.detect == SB_DETECT_LANGEVIN &&
+  const int lang = (e->par.detect == SB_DETECT_LANGEVIN ||
+                    (e->par.detect == SB_DETECT_CUSTOM && e->detect_chord)) &&
                    !e->par.lsearch_off && !e->walled && !e->lees &&
                    !e->ninflow && sbi_engine_langevin_chord_gate(e, reach);
   return find_pairs(e, e->par.neigh, e->x0, e->disp, reach, with_list,

@@ -290,6 +290,16 @@ int sb_engine_set_detect(sb_engine *e, sb_engine_detect d);
  *  pairs whose chords stay apart). */
 int sb_engine_set_detector(sb_engine *e, sb_engine_detect_fn fn, void *ctx,
                            double reach);
+/** Declare (on = 1) that the custom detector set last leaves every record
+ *  at the start of a step whose chord stays beyond sigma + rho
+ *  (rho = sb_engine_langevin_reach) alone: it returns 0 without drawing
+ *  or changing anything, as sb_engine_detect_langevin and
+ *  sb_engine_langevin_contact do (wrappers around them, e.g. the
+ *  first-contact observer with the `langevin` built-in).  The
+ *  Langevin search of the cells (sb_engine_params.lsearch_off) then
+ *  serves it as it serves `langevin`: the same run, fewer candidates.
+ *  Off again whenever a detector is set. */
+int sb_engine_set_detector_chord(sb_engine *e, int on);
 /** Whether a custom detector is called again, on the rest of the step,
  *  for the pairs of a particle whose path an outcome changed (on = 1).
  *  Off by default: allow it when the detector decides from the pair
