@@ -488,7 +488,11 @@ int sb_engine_contact_state(const sb_engine *e, double xi[3], double ui[3],
 typedef struct {
   uint64_t steps;      /**< steps taken in total */
   uint64_t ncoll;      /**< collisions since the counter reset */
-  uint64_t ncand;      /**< candidate pairs examined since the reset */
+  uint64_t ncand;      /**< candidate pairs examined since the reset
+                            (fewer with the Langevin search of the
+                            cells, sb_engine_params.lsearch_off: the
+                            pairs it leaves out are those the detector
+                            would skip) */
   uint64_t dropped;    /**< events dropped since the reset: a custom
                             detector without re-detection saw a partner's
                             path change earlier in the step (0 with the
