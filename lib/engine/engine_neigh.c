@@ -556,8 +556,9 @@ static int cells_sees(const cell_scan *K, size_t lo, size_t hi, size_t ca,
   return d2 <= lim * lim;
 }
 
-/* Particles per cell of the midpoint grid, at least (memory: 2 cells per
- * particle at most). */
+/* Particles per cell of the midpoint grid, at least (memory: one cell
+ * per 2 particles at most; 0.5 per cell was no faster within the noise
+ * of bench_engine_langevin). */
 #define SBI_LSEARCH_PPC 2.0
 
 static int lsearch_grow(sb_engine *e, size_t n)
