@@ -224,7 +224,8 @@ END_TEST
 
 /* A custom detector declared to leave the pairs beyond the chord test
  * alone (sb_engine_set_detector_chord): the first-contact observer around
- * the `langevin` built-in, as in V12; the same counts and run. */
+ * the `langevin` built-in (which declares it itself), as in V12 and
+ * `collide` with first_hit; the same counts and run. */
 START_TEST(test_firsthit)
 {
   setup s = {3, 1.0, 60.0, 3000, 1, SB_OUTCOME_COUNT, 1, 0};
@@ -242,6 +243,7 @@ START_TEST(test_firsthit)
     ck_assert(rho > 0.0);
     ck_assert_int_eq(sb_engine_firsthit_attach(e[q], f[q], rho),
                      SB_SUCCESS);
+    ck_assert_int_eq(e[q]->detect_chord, 1);  /* declared by the observer */
     ck_assert_int_eq(sb_engine_set_detector_chord(e[q], 1), SB_SUCCESS);
   }
   for (int k = 0; k < 30; k++)

@@ -294,8 +294,9 @@ int sb_engine_set_detector(sb_engine *e, sb_engine_detect_fn fn, void *ctx,
  *  at the start of a step whose chord stays beyond sigma + rho
  *  (rho = sb_engine_langevin_reach) alone: it returns 0 without drawing
  *  or changing anything, as sb_engine_detect_langevin and
- *  sb_engine_langevin_contact do (wrappers around them, e.g. the
- *  first-contact observer with the `langevin` built-in).  The
+ *  sb_engine_langevin_contact do (wrappers around them; the
+ *  first-contact observer with the `langevin` built-in declares it
+ *  itself).  The
  *  Langevin search of the cells (sb_engine_params.lsearch_off) then
  *  serves it as it serves `langevin`: the same run, fewer candidates.
  *  Off again whenever a detector is set. */
