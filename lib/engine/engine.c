@@ -186,6 +186,13 @@ void sb_engine_free(sb_engine *e)
   free(e->piece_at);
   free(e->far);
   free(e->isfar);
+  free(e->lxm);   /* engine_neigh.c: the Langevin search */
+  free(e->lfx);
+  free(e->lfl);
+  free(e->lcnt);
+  free(e->lfs);
+  free(e->lpr);
+  free(e->lpr2);
   free(e->lp_x);
   free(e->lp_u);
   free(e->lp_t);
@@ -613,6 +620,15 @@ int sb_engine_set_detect(sb_engine *e, sb_engine_detect d)
   e->par.detect = d;
   e->detect_fn = NULL;
   e->detect_reach = 0.0;
+  e->detect_chord = 0;
+  return SB_SUCCESS;
+}
+
+int sb_engine_set_detector_chord(sb_engine *e, int on)
+{
+  if (!e || e->par.detect != SB_DETECT_CUSTOM)
+    return sbi_error(SB_EINVAL, __func__, "no custom detector");
+  e->detect_chord = on != 0;
   return SB_SUCCESS;
 }
 
@@ -631,6 +647,7 @@ int sb_engine_set_detector(sb_engine *e, sb_engine_detect_fn fn, void *ctx,
     return sbi_error(SB_EINVAL, __func__, "bad engine, callback or reach");
   e->par.detect = SB_DETECT_CUSTOM;
   e->detect_fn = fn;
+  e->detect_chord = 0;
   e->detect_ctx = ctx;
   e->detect_reach = reach;
   return SB_SUCCESS;

@@ -221,6 +221,11 @@ int sb_engine_firsthit_attach(sb_engine *e, sb_engine_firsthit *f,
   f->contact0_all = (uint64_t)novall;
   f->pairs_apart_all = 0.5 * N * (N - 1.0) - novall;
   st = sb_engine_set_detector(e, detect, f, reach);
+  /* around the `langevin` built-in the observer leaves the pairs beyond
+   * its chord test alone (set_has and the built-in draw nothing for
+   * them): the Langevin search of the cells serves it */
+  if (!st && !f->par.detect && f->par.builtin == SB_DETECT_LANGEVIN)
+    st = sb_engine_set_detector_chord(e, 1);
   if (!st)
     f->attached = 1;
   return st;

@@ -64,6 +64,14 @@ typedef struct {
   size_t n, cap;
 } sbi_pairbuf;
 
+/* A candidate of the Langevin search (engine_neigh.c, lsearch): slots
+ * a < b of the cell order and the rank of b's cell offset in the order
+ * cells() visits the neighbouring cells. */
+typedef struct {
+  size_t a, b;
+  unsigned g;
+} sbi_lpair;
+
 typedef struct {
   int valid;
   int nc[3];
@@ -150,6 +158,7 @@ struct sb_engine {
   sb_engine_detect_fn detect_fn;
   void *detect_ctx;
   double detect_reach;
+  int detect_chord;          /* custom detector: sb_engine_set_detector_chord */
   sb_engine_outcome_fn outcome_fn;
   void *outcome_ctx;
   sb_engine_fluid fluid;
@@ -196,6 +205,14 @@ struct sb_engine {
   double *xs;                /* 4 cap: cells: x0 and r + |disp| in cell
                                 order (contiguous inner loop) */
   sbi_verlet vl;             /* cells: pairs kept over several steps */
+  /* Langevin search (engine_neigh.c, lsearch): chord midpoints and
+   * extents in cell order (4 lcapn), the slots in midpoint-cell order
+   * (lcapn), per-slot counts (lcapn + 1), the midpoint cells' starts
+   * (lcapc) and the candidates (lcappr) */
+  double *lxm, *lfx;
+  size_t *lfl, *lcnt, *lfs;
+  sbi_lpair *lpr, *lpr2;
+  size_t lcapn, lcapc, lcappr;
   size_t *order;             /* sweep: particle order along x */
   double *key;               /* sweep: sorted x */
   size_t norder;             /* particles in order[] (0: rebuild) */
@@ -377,6 +394,10 @@ int sbi_engine_langevin_init(sb_engine *e);
  * returns 1 with *s (fraction of the record) and fills ev's contact
  * states and its record (rewritten from the Langevin states); 0; or < 0
  * on error. */
+/* 1 if the chord test of sbi_engine_langevin_detect (beyond_reach)
+ * applies to every record at the start of this step with neighbour reach
+ * `reach`: a pair it rejects draws nothing (engine_langevin.c). */
+int sbi_engine_langevin_chord_gate(const sb_engine *e, double reach);
 int sbi_engine_langevin_detect(const sb_engine *e, const sb_engine_pair *p,
                                double t, const gsl_rng *r, double *s,
                                sbi_event *ev);

@@ -243,6 +243,21 @@ static int beyond_reach(const sb_engine *e, const sb_engine_pair *p)
   return m2 > lim * lim;
 }
 
+int sbi_engine_langevin_chord_gate(const sb_engine *e, double reach)
+{
+  /* beyond_reach's conditions that do not depend on the pair (at the
+   * start of a step every particle is on its first piece) */
+  const double rho = e->lreach;
+  if (!(rho >= 0.0) || reach != rho || e->lreach_dt != e->par.dt ||
+      e->lreach_nspec != e->nspec || e->n > e->lreach_n || e->lees ||
+      e->walled)
+    return 0;
+  for (size_t sp = 0; sp < e->nspec; sp++)
+    if (isinf(e->spec[sp].tau) || !(e->spec[sp].B > 0.0))
+      return 0;
+  return 1;
+}
+
 int sbi_engine_langevin_detect(const sb_engine *e, const sb_engine_pair *p,
                                double t, const gsl_rng *r, double *s,
                                sbi_event *ev)

@@ -12,6 +12,7 @@
  * long as cut < L/2 in every direction (checked; otherwise SB_EINVAL,
  * "step too large for the box").
  */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -338,8 +339,8 @@ static int scan_cell(const cell_scan *K, size_t c, sbi_pairbuf *out)
  * are still correct, only slower per cell).  Directions with 1 or 2 cells use the
  * minimum image.  for_list: the pairs within r_i + r_j + reach of a
  * Verlet list (no displacements). */
-static int cells(sb_engine *e, const double *x0, double cut, double reach,
-                 int for_list)
+static int cell_sort(sb_engine *e, const double *x0, double cut,
+                     double reach, int for_list, cell_scan *K)
 {
   e->vl.valid = 0;  /* its cells are overwritten (a list build sets it) */
   float_clear(&e->vl);
@@ -412,11 +413,22 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach,
   int own_wrap = 0;  /* a direction with a single cell: minimum image */
   for (int k = 0; k < dim; k++)
     own_wrap |= nc[k] == 1;
-  const cell_scan K = {dim, own_wrap, {nc[0], nc[1], nc[2]},
-                       {stride[0], stride[1], stride[2]},
-                       {edge[0], edge[1], edge[2]}, {L[0], L[1], L[2]},
-                       cut, reach, 0.5 * (cut + reach) + 1e-12 * cut, start,
-                       list, xs};
+  *K = (cell_scan){dim, own_wrap, {nc[0], nc[1], nc[2]},
+                   {stride[0], stride[1], stride[2]},
+                   {edge[0], edge[1], edge[2]}, {L[0], L[1], L[2]},
+                   cut, reach, 0.5 * (cut + reach) + 1e-12 * cut, start,
+                   list, xs};
+  return SB_SUCCESS;
+}
+
+static int cells(sb_engine *e, const double *x0, double cut, double reach,
+                 int for_list)
+{
+  cell_scan K;
+  int st0 = cell_sort(e, x0, cut, reach, for_list, &K);
+  if (st0)
+    return st0;
+  const size_t n = e->n, ncell = (size_t)K.nc[0] * K.nc[1] * K.nc[2];
   const int nt = sbi_engine_threads(&e->par);
   if (nt <= 1 || n < 4096 || ncell < (size_t)(4 * nt)) {
     sbi_pairbuf pb = {e->pairs, e->npairs, e->cappairs};
@@ -452,6 +464,328 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach,
     return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
                      "(candidate pairs)");
   return SB_SUCCESS;
+}
+
+/* ------------------------------------------------ the Langevin search
+ *
+ * With the `langevin` detector the first pass over the candidates skips,
+ * before drawing anything, every pair whose relative chord
+ * dx0 + s dd, s in [0, 1], stays beyond sigma + rho (rho = the neighbour
+ * reach; engine_langevin.c, beyond_reach), and draws its random numbers
+ * in candidate order.  A search that returns
+ *  (a) every pair of cells() that passes the chord test,
+ *  (b) perhaps some that do not,
+ *  (c) no pair cells() does not return,
+ *  (d) in cells()' relative order
+ * therefore gives the same run bit for bit (only the candidate count
+ * differs).  lsearch() keeps cells()' counting sort (its grid serves
+ * re-detection) and finds the pairs through the chord midpoints
+ * m_k = x0_k + disp_k / 2 with extents f_k = r_k + |disp_k| / 2:
+ *  (a) |dx0 + s dd - (dx0 + dd/2)| = |s - 1/2| |dd| <= (|d_i| + |d_j|)/2,
+ *      so a pair within sigma + rho of its chord has
+ *      |m_i - m_j| <= f_i + f_j + rho (minimum image: no larger).  The
+ *      test is taken with a relative margin of 1e-8 and an absolute one
+ *      of 64 L eps, far above the rounding of either side (a few eps of
+ *      the lengths involved, a few ulp(L) for positions).  Each pair is
+ *      looked for from its member of larger extent (ties: the lower
+ *      slot), in the cells of a grid over the midpoints within
+ *      2 f + rho (+ the margins, which also cover a cell index rounded
+ *      across a face) of it: every pair passing the test is found once.
+ *  (c) a pair found is kept only if scan_cell() would report it: the same
+ *      first member (lower slot), the same face-zone decision and
+ *      criterion (*) with the same operands and operations
+ *      (cells_sees).
+ *  (d) scan_cell() reports the pairs by the slot a of their first
+ *      member, then its own cell (b > a), then the neighbouring cells in
+ *      the loop order q2, q1, q0 over offsets listed as {0, -1, +1}
+ *      ({0, +1} with two cells), then the slot b ascending; the kept
+ *      pairs are sorted by (a, rank of b's cell offset in that loop, b).
+ */
+
+/* Would scan_cell() report the slots lo < hi (cells ca, cb)?  Sets the
+ * rank of cb's offset from ca in scan_cell's loop over the neighbouring
+ * cells (0: own cell). */
+static int cells_sees(const cell_scan *K, size_t lo, size_t hi, size_t ca,
+                      size_t cb, unsigned *g)
+{
+  const double *xa = &K->xs[4 * lo], *xb = &K->xs[4 * hi];
+  const double *L = K->L;
+  const double ra = xa[3] + K->reach, lim = ra + xb[3];
+  if (ca == cb) {
+    double d0 = xa[0] - xb[0], d1 = xa[1] - xb[1], d2 = xa[2] - xb[2];
+    if (K->own_wrap) {
+      d0 = sbi_minimg(d0, L[0]);
+      d1 = sbi_minimg(d1, L[1]);
+      d2 = K->dim == 3 ? sbi_minimg(d2, L[2]) : 0.0;
+    }
+    *g = 0;
+    return d0 * d0 + d1 * d1 + d2 * d2 <= lim * lim;
+  }
+  const double wa = xa[3] + K->ext;
+  unsigned r = 0, w = 1;
+  for (int k = 0; k < K->dim; k++, w *= 3) {
+    const int nck = K->nc[k];
+    const int ia = (int)((ca / K->stride[k]) % (size_t)nck),
+              ib = (int)((cb / K->stride[k]) % (size_t)nck);
+    int v = ib - ia;
+    v = v < 0 ? v + nck : v;
+    if (v == 0)
+      continue;
+    if (nck == 2) {  /* scan_cell: {0, +1}, always visited */
+      r += 2 * w;
+      continue;
+    }
+    const double dlo = xa[k] - ia * K->edge[k];
+    if (v == nck - 1) {  /* -1 */
+      if (!(dlo < wa))
+        return 0;
+      r += w;
+    } else if (v == 1) {  /* +1 */
+      if (!(K->edge[k] - dlo < wa))
+        return 0;
+      r += 2 * w;
+    } else
+      return 0;  /* not a neighbouring cell */
+  }
+  *g = r;
+  double d2 = 0.0;
+  for (int k = 0; k < K->dim; k++) {
+    double d = sbi_minimg(xa[k] - xb[k], L[k]);
+    d2 += d * d;
+  }
+  return d2 <= lim * lim;
+}
+
+/* Particles per cell of the midpoint grid, at least (memory: one cell
+ * per 2 particles at most; 0.5 per cell was no faster within the noise
+ * of bench_engine_langevin). */
+#define SBI_LSEARCH_PPC 2.0
+
+static int lsearch_grow(sb_engine *e, size_t n)
+{
+  if (n > e->lcapn) {
+    double *xm = realloc(e->lxm, 4 * n * sizeof *xm);
+    if (xm)
+      e->lxm = xm;
+    double *fx = realloc(e->lfx, 4 * n * sizeof *fx);
+    if (fx)
+      e->lfx = fx;
+    size_t *fl = realloc(e->lfl, n * sizeof *fl);
+    if (fl)
+      e->lfl = fl;
+    size_t *cn = realloc(e->lcnt, (n + 1) * sizeof *cn);
+    if (cn)
+      e->lcnt = cn;
+    if (!xm || !fx || !fl || !cn)
+      return -1;
+    e->lcapn = n;
+  }
+  return 0;
+}
+
+static int lpair_push(sb_engine *e, size_t *np, size_t a, size_t b,
+                      unsigned g)
+{
+  if (*np == e->lcappr) {
+    size_t nc = e->lcappr ? 2 * e->lcappr : 1024;
+    sbi_lpair *p = realloc(e->lpr, nc * sizeof *p);
+    if (p)
+      e->lpr = p;
+    sbi_lpair *q = realloc(e->lpr2, nc * sizeof *q);
+    if (q)
+      e->lpr2 = q;
+    if (!p || !q)
+      return -1;
+    e->lcappr = nc;
+  }
+  e->lpr[(*np)++] = (sbi_lpair){a, b, g};
+  return 0;
+}
+
+static int lsearch(sb_engine *e, const double *x0, const double *disp,
+                   double cut, double reach)
+{
+  cell_scan K;
+  int st = cell_sort(e, x0, cut, reach, 0, &K);
+  if (st)
+    return st;
+  const size_t n = e->n;
+  const int dim = K.dim;
+  if (lsearch_grow(e, n))
+    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+  double Lmax = 0.0, vol = 1.0;
+  for (int k = 0; k < dim; k++) {
+    Lmax = K.L[k] > Lmax ? K.L[k] : Lmax;
+    vol *= K.L[k];
+  }
+  const double tol = 1e-8, eabs = 64.0 * Lmax * DBL_EPSILON;
+  /* midpoints (in the box) and extents, in cell order */
+  double *xm = e->lxm;
+  double fsum = 0.0;
+  for (size_t a = 0; a < n; a++) {
+    const size_t i = K.list[a];
+    for (int k = 0; k < 3; k++)
+      xm[4 * a + k] =
+          k < dim ? sbi_wrap(x0[3 * i + k] + 0.5 * disp[3 * i + k], K.L[k])
+                  : 0.0;
+    xm[4 * a + 3] = e->radius[i] + 0.5 * e->dn[i];
+    fsum += xm[4 * a + 3];
+  }
+  /* their grid: cells of at least the mean query 2 f + rho (most
+   * particles then look at most one cell away, and only near a face) */
+  double h = pow(vol * SBI_LSEARCH_PPC / ((double)n + 8.0), 1.0 / dim);
+  const double wmean = 2.0 * fsum / (double)n + reach;
+  if (h < wmean)
+    h = wmean;
+  int nf[3] = {1, 1, 1};
+  double inv[3] = {0, 0, 0}, hk[3] = {1e300, 1e300, 1e300};
+  size_t fst[3] = {1, 1, 1}, nfc = 1;
+  for (int k = 0; k < dim; k++) {
+    double m = floor(K.L[k] / h);
+    nf[k] = m < 1 ? 1 : (m > 1e6 ? 1000000 : (int)m);
+    inv[k] = nf[k] / K.L[k];
+    hk[k] = K.L[k] / nf[k];
+    fst[k] = nfc;
+    nfc *= (size_t)nf[k];
+  }
+  if (nfc + 1 > e->lcapc) {
+    size_t *p = realloc(e->lfs, (nfc + 1) * sizeof *p);
+    if (!p)
+      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+    e->lfs = p;
+    e->lcapc = nfc + 1;
+  }
+  size_t *fs = e->lfs, *fl = e->lfl, *cnt = e->lcnt;
+  double *fx = e->lfx;
+  memset(fs, 0, (nfc + 1) * sizeof *fs);
+  for (size_t a = 0; a < n; a++) {  /* cnt: the midpoint's cell */
+    size_t c = 0;
+    for (int k = 0; k < dim; k++) {
+      int v = (int)(xm[4 * a + k] * inv[k]);
+      v = v >= nf[k] ? nf[k] - 1 : (v < 0 ? 0 : v);
+      c += (size_t)v * fst[k];
+    }
+    cnt[a] = c;
+    fs[c + 1]++;
+  }
+  for (size_t c = 0; c < nfc; c++)
+    fs[c + 1] += fs[c];
+  for (size_t a = 0; a < n; a++) {
+    size_t p = fs[cnt[a]]++;
+    fl[p] = a;
+    memcpy(&fx[4 * p], &xm[4 * a], 4 * sizeof *fx);
+  }
+  for (size_t c = nfc; c > 0; c--)
+    fs[c] = fs[c - 1];
+  fs[0] = 0;
+  /* every pair from its member of larger extent */
+  const size_t *cof = e->cell_of, *list = K.list;
+  size_t np = 0;
+  int ci[3] = {0, 0, 0};
+  for (size_t c = 0; c < nfc; c++) {
+    if (c) {  /* the coordinates of cell c (no divisions) */
+      for (int k = 0; k < 3 && ++ci[k] == nf[k]; k++)
+        ci[k] = 0;
+    }
+    for (size_t p = fs[c]; p < fs[c + 1]; p++) {
+      const double *ma = &fx[4 * p];
+      const size_t a = fl[p];
+      const double fa = ma[3];
+      const double W = (2.0 * fa + reach) * (1.0 + tol) + 2.0 * eabs;
+      int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+      for (int k = 0; k < dim; k++) {
+        const double t = W * inv[k];
+        const int m = t <= 1.0 ? 1 : (int)ceil(t);
+        if (2 * m + 1 >= nf[k])
+          hi[k] = nf[k] - 1;  /* every cell once */
+        else if (m == 1) {
+          const double dlo = ma[k] - ci[k] * hk[k];
+          lo[k] = dlo < W ? -1 : 0;
+          hi[k] = hk[k] - dlo < W ? 1 : 0;
+        } else
+          lo[k] = -m, hi[k] = m;
+      }
+      for (int q2 = lo[2]; q2 <= hi[2]; q2++)
+        for (int q1 = lo[1]; q1 <= hi[1]; q1++)
+          for (int q0 = lo[0]; q0 <= hi[0]; q0++) {
+            const int q[3] = {q0, q1, q2};
+            size_t c2 = 0;
+            for (int k = 0; k < dim; k++) {  /* |q| < nf: one wrap */
+              int v = ci[k] + q[k];
+              v = v < 0 ? v + nf[k] : (v >= nf[k] ? v - nf[k] : v);
+              c2 += (size_t)v * fst[k];
+            }
+            for (size_t pb = fs[c2]; pb < fs[c2 + 1]; pb++) {
+              const double *mb = &fx[4 * pb];
+              const size_t b = fl[pb];
+              const double fb = mb[3];
+              if (!(fb < fa || (fb == fa && a < b)))
+                continue;  /* looked for from b */
+              double d2 = 0.0;
+              for (int k = 0; k < dim; k++) {
+                double d = sbi_minimg(ma[k] - mb[k], K.L[k]);
+                d2 += d * d;
+              }
+              const double B = (fa + fb + reach) * (1.0 + tol) + eabs;
+              if (d2 > B * B)
+                continue;
+              const size_t s0 = a < b ? a : b, s1 = a < b ? b : a;
+              unsigned g;
+              if (cells_sees(&K, s0, s1, cof[list[s0]], cof[list[s1]], &g) &&
+                  lpair_push(e, &np, s0, s1, g))
+                return sbi_error(SB_ENOMEM, "sb_engine_step", "out of "
+                                 "memory (%zu candidate pairs)", np);
+            }
+          }
+    }
+  }
+  /* cells()' order: by first slot (counting sort), then (rank, b) */
+  memset(cnt, 0, (n + 1) * sizeof *cnt);
+  for (size_t q = 0; q < np; q++)
+    cnt[e->lpr[q].a + 1]++;
+  for (size_t a = 0; a < n; a++)
+    cnt[a + 1] += cnt[a];
+  sbi_lpair *sp = e->lpr2;
+  for (size_t q = 0; q < np; q++)
+    sp[cnt[e->lpr[q].a]++] = e->lpr[q];
+  sbi_pairbuf pb = {e->pairs, e->npairs, e->cappairs};
+  int bad = 0;
+  for (size_t q0 = 0; q0 < np && !bad;) {
+    size_t q1 = q0 + 1;
+    while (q1 < np && sp[q1].a == sp[q0].a)
+      q1++;
+    for (size_t q = q0 + 1; q < q1; q++) {  /* insertion sort: few */
+      sbi_lpair t = sp[q];
+      size_t r = q;
+      while (r > q0 && (sp[r - 1].g > t.g ||
+                        (sp[r - 1].g == t.g && sp[r - 1].b > t.b))) {
+        sp[r] = sp[r - 1];
+        r--;
+      }
+      sp[r] = t;
+    }
+    for (size_t q = q0; q < q1 && !bad; q++)
+      bad = pb_push(&pb, list[sp[q].a], list[sp[q].b]);
+    q0 = q1;
+  }
+  e->pairs = pb.p;
+  e->npairs = pb.n;
+  e->cappairs = pb.cap;
+  return bad ? sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+                         "(%zu candidate pairs)", pb.n) : SB_SUCCESS;
+}
+
+/* Where the cells are sized by the density (cut-off below the smallest
+ * edge) cells() returns few candidates (Kn_D = 0.5, Delta t = tau_p in
+ * bench_engine_langevin: 0.01 per particle) and its scan is cheaper than
+ * the midpoint grid (2.2 against 3.3 ms per step there); where the
+ * cut-off sets the edge, most of its candidates fail the chord test. */
+static int lsearch_pays(const sb_engine *e, double cut)
+{
+  double vol = 1.0;
+  for (int k = 0; k < e->par.dim; k++)
+    vol *= e->par.L[k];
+  return cut > sbi_cell_edge_min(vol, e->n, e->par.dim);
 }
 
 /* Does the Verlet list still cover this step (D = max|disp|)?  A particle
@@ -674,7 +1008,8 @@ static int listed(sb_engine *e, const double *x0, double cut, double D,
  * through the Verlet list (a step's search with a deterministic
  * detector). */
 static int find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
-                      const double *disp, double reach, int with_list)
+                      const double *disp, double reach, int with_list,
+                      int lang)
 {
   e->npairs = 0;
   e->grid.valid = 0;
@@ -687,7 +1022,8 @@ static int find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
   e->grid.ext_max = 0.5 * (cut - reach);  /* r_max + max |disp| */
   switch (m) {
   case SB_NEIGH_CELLS:
-    st = with_list ? listed(e, x0, cut, D, reach)
+    st = with_list                  ? listed(e, x0, cut, D, reach)
+         : lang && lsearch_pays(e, cut) ? lsearch(e, x0, disp, cut, reach)
                    : cells(e, x0, cut, reach, 0);
     break;
   case SB_NEIGH_SWEEP:
@@ -709,7 +1045,7 @@ static int find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
 int sbi_engine_find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
                           const double *disp, double reach)
 {
-  return find_pairs(e, m, x0, disp, reach, 0);
+  return find_pairs(e, m, x0, disp, reach, 0, 0);
 }
 
 int sbi_engine_find_step_pairs(sb_engine *e, double reach)
@@ -723,7 +1059,15 @@ int sbi_engine_find_step_pairs(sb_engine *e, double reach)
                         !e->walled && !e->lees && !e->par.verlet_off;
   if (!with_list)
     e->vl.valid = 0;
-  return find_pairs(e, e->par.neigh, e->x0, e->disp, reach, with_list);
+  /* the Langevin search: only where the detector's chord test drops
+   * every pair it leaves out (fully periodic box, noise on every
+   * species, this step's reach) */
+  const int lang = (e->par.detect == SB_DETECT_LANGEVIN ||
+                    (e->par.detect == SB_DETECT_CUSTOM && e->detect_chord)) &&
+                   !e->par.lsearch_off && !e->walled && !e->lees &&
+                   !e->ninflow && sbi_engine_langevin_chord_gate(e, reach);
+  return find_pairs(e, e->par.neigh, e->x0, e->disp, reach, with_list,
+                    lang);
 }
 
 int sb_engine_neighbours(sb_engine *e, sb_engine_neigh m, const double *disp,

@@ -168,6 +168,17 @@ typedef struct {
                                   bit for bit (docs/engine.md, "Neighbour
                                   search").  1: rebuild the cells at every
                                   step. */
+  int lsearch_off;           /**< 0 (the default): with the cells search
+                                  and the `langevin` detector in a fully
+                                  periodic box, the candidates come from a
+                                  search over the chord midpoints that
+                                  drops most pairs the detector's chord
+                                  test would skip; the detector examines
+                                  the same pairs in the same order and the
+                                  results are the same bit for bit, only
+                                  the candidate count (ncand) is smaller
+                                  (docs/engine.md, "Neighbour search").
+                                  1: every pair of the linked cells. */
 } sb_engine_params;
 
 /** A species: shared physical properties of a class of particles. */
@@ -279,6 +290,17 @@ int sb_engine_set_detect(sb_engine *e, sb_engine_detect d);
  *  pairs whose chords stay apart). */
 int sb_engine_set_detector(sb_engine *e, sb_engine_detect_fn fn, void *ctx,
                            double reach);
+/** Declare (on = 1) that the custom detector set last leaves every record
+ *  at the start of a step whose chord stays beyond sigma + rho
+ *  (rho = sb_engine_langevin_reach) alone: it returns 0 without drawing
+ *  or changing anything, as sb_engine_detect_langevin and
+ *  sb_engine_langevin_contact do (wrappers around them; the
+ *  first-contact observer with the `langevin` built-in declares it
+ *  itself).  The
+ *  Langevin search of the cells (sb_engine_params.lsearch_off) then
+ *  serves it as it serves `langevin`: the same run, fewer candidates.
+ *  Off again whenever a detector is set. */
+int sb_engine_set_detector_chord(sb_engine *e, int on);
 /** Whether a custom detector is called again, on the rest of the step,
  *  for the pairs of a particle whose path an outcome changed (on = 1).
  *  Off by default: allow it when the detector decides from the pair
@@ -467,7 +489,11 @@ int sb_engine_contact_state(const sb_engine *e, double xi[3], double ui[3],
 typedef struct {
   uint64_t steps;      /**< steps taken in total */
   uint64_t ncoll;      /**< collisions since the counter reset */
-  uint64_t ncand;      /**< candidate pairs examined since the reset */
+  uint64_t ncand;      /**< candidate pairs examined since the reset
+                            (fewer with the Langevin search of the
+                            cells, sb_engine_params.lsearch_off: the
+                            pairs it leaves out are those the detector
+                            would skip) */
   uint64_t dropped;    /**< events dropped since the reset: a custom
                             detector without re-detection saw a partner's
                             path change earlier in the step (0 with the

@@ -302,6 +302,10 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
     st = sb_engine_firsthit_set_warmup(fh, q->t1);
   if (!st)
     st = sb_engine_firsthit_attach(e, fh, reach);
+  /* lv_detect around sb_engine_langevin_contact leaves the pairs beyond
+   * its chord test alone: the Langevin search serves it (the same run) */
+  if (!st && q->det == LV_LANGEVIN)
+    st = sb_engine_set_detector_chord(e, 1);
   clock_t c0 = clock();
   if (!st)
     st = sb_engine_run_until(e, q->T);
