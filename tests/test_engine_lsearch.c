@@ -75,18 +75,8 @@ static int chord_in(const sb_engine *e, size_t i, size_t j)
 {
   sb_engine_pair p;
   sbi_engine_make_pair(e, i, j, &p);
-  const double *x = p.dx0, *d = p.dd;
-  const double a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-  const double b = x[0] * d[0] + x[1] * d[1] + x[2] * d[2];
-  double s = a > 0.0 ? -b / a : 0.0;
-  s = s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
-  double m2 = 0.0;
-  for (int k = 0; k < 3; k++) {
-    const double c = x[k] + s * d[k];
-    m2 += c * c;
-  }
   const double lim = p.sigma + e->lreach;
-  return m2 <= lim * lim;
+  return sbi_pair_chord_min2(&p) <= lim * lim;
 }
 
 /* The candidates of the last search that pass the chord test, and how

@@ -390,6 +390,21 @@ static void json_kernels(FILE *f, const sbi_col_config *c, const sb_engine *e)
   fprintf(f, "],\n");
 }
 
+/* `"expected_per_K": .., "K": .., "ci95": [lo, hi]` of a first-contact
+ * result */
+static void jfirsthit_kernel(FILE *f, const sb_engine_firsthit_kernel_result *o)
+{
+  fprintf(f, "\"expected_per_K\": ");
+  jnum(f, o->expected_per_K);
+  fprintf(f, ", \"K\": ");
+  jnum(f, o->K);
+  fprintf(f, ", \"ci95\": [");
+  jnum(f, o->lo);
+  fprintf(f, ", ");
+  jnum(f, o->hi);
+  fprintf(f, "]");
+}
+
 /* [observe] first_hit: the kernel of the one species pair (or, for a
  * mixture, the counts over all pairs and a null kernel), then one entry
  * per species pair (a <= b) with its own count, reference and kernel. */
@@ -406,16 +421,9 @@ static void json_firsthit(FILE *f, const sbi_col_config *c,
   fprintf(f, ", \"capacitance\": %s, \"D\": ",
           c->first_hit_capacitance > 0 ? "true" : "false");
   jnum(f, o.D);
-  fprintf(f, ", \"t1\": %.17g, \"t\": %.17g, \"expected_per_K\": ", o.t1,
-          o.t);
-  jnum(f, o.expected_per_K);
-  fprintf(f, ", \"K\": ");
-  jnum(f, o.K);
-  fprintf(f, ", \"ci95\": [");
-  jnum(f, o.lo);
-  fprintf(f, ", ");
-  jnum(f, o.hi);
-  fprintf(f, "], \"pairs\": [");
+  fprintf(f, ", \"t1\": %.17g, \"t\": %.17g, ", o.t1, o.t);
+  jfirsthit_kernel(f, &o);
+  fprintf(f, ", \"pairs\": [");
   for (int a = 0; a < c->nsp; a++)
     for (int b = a; b < c->nsp; b++) {
       sbi_col_firsthit_pair(r, c, (size_t)a, (size_t)b, &o);
@@ -431,15 +439,9 @@ static void json_firsthit(FILE *f, const sbi_col_config *c,
       jnum(f, o.a);
       fprintf(f, ", \"D\": ");
       jnum(f, o.D);
-      fprintf(f, ", \"expected_per_K\": ");
-      jnum(f, o.expected_per_K);
-      fprintf(f, ", \"K\": ");
-      jnum(f, o.K);
-      fprintf(f, ", \"ci95\": [");
-      jnum(f, o.lo);
       fprintf(f, ", ");
-      jnum(f, o.hi);
-      fprintf(f, "]}");
+      jfirsthit_kernel(f, &o);
+      fprintf(f, "}");
     }
   fprintf(f, "\n  ]},\n");
 }

@@ -394,6 +394,9 @@ int sbi_engine_langevin_init(sb_engine *e);
  * returns 1 with *s (fraction of the record) and fills ev's contact
  * states and its record (rewritten from the Langevin states); 0; or < 0
  * on error. */
+/* Squared minimum over the record of |dx0 + s dd|, s in [0, 1]: how close
+ * the pair's relative chord comes (the Langevin detector's chord test). */
+double sbi_pair_chord_min2(const sb_engine_pair *p);
 /* 1 if the chord test of sbi_engine_langevin_detect (beyond_reach)
  * applies to every record at the start of this step with neighbour reach
  * `reach`: a pair it rejects draws nothing (engine_langevin.c). */

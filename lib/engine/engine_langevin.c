@@ -206,6 +206,21 @@ static void fill_path(const sb_engine *e, size_t k, const double *xa,
   }
 }
 
+double sbi_pair_chord_min2(const sb_engine_pair *p)
+{
+  const double *x = p->dx0, *d = p->dd;
+  const double a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  const double b = x[0] * d[0] + x[1] * d[1] + x[2] * d[2];
+  double s = a > 0.0 ? -b / a : 0.0;
+  s = s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
+  double m2 = 0.0;
+  for (int k = 0; k < 3; k++) {
+    const double c = x[k] + s * d[k];
+    m2 += c * c;
+  }
+  return m2;
+}
+
 /* 1 if the pair's record at the start of the step is not examined: its
  * relative chord (the engine pair's, both particles on their first piece)
  * stays more than sigma + rho away, rho the cached neighbour reach (valid
@@ -229,18 +244,8 @@ static int beyond_reach(const sb_engine *e, const sb_engine_pair *p)
                           *sj = &e->spec[e->species[p->j]];
   if (isinf(si->tau) || isinf(sj->tau) || !(si->B > 0.0) || !(sj->B > 0.0))
     return 0;
-  const double *x = p->dx0, *d = p->dd;
-  const double a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-  const double b = x[0] * d[0] + x[1] * d[1] + x[2] * d[2];
-  double s = a > 0.0 ? -b / a : 0.0;
-  s = s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
-  double m2 = 0.0;
-  for (int k = 0; k < 3; k++) {
-    const double c = x[k] + s * d[k];
-    m2 += c * c;
-  }
   const double lim = p->sigma + rho;
-  return m2 > lim * lim;
+  return sbi_pair_chord_min2(p) > lim * lim;
 }
 
 int sbi_engine_langevin_chord_gate(const sb_engine *e, double reach)
