@@ -16,6 +16,7 @@ the C tests with GSL QAGS.  Inputs are exact binary doubles: each input is
 written with repr() and read back as the same double, and mpmath sees the
 exact value of that double.
 """
+import math
 import os
 import sys
 
@@ -75,6 +76,13 @@ def gen_mills():
     zs = [-37, -20, -5, -2, -1.5, -1, -0.5, -1e-3, 0, 1e-10, 1e-3, 0.25,
           0.5, 1, 1.5, 1.9999, 2, 2.0001, 3, 4, 5, 7.5, 10, 15, 20, 24.99,
           25, 25.01, 30, 37.5, 40, 100, 1e3, 1e5, 1e8, 1e12, 1e100]
+    # the branch ends of Cody's erfcx approximations (z/sqrt 2 = 0.46875,
+    # 4, 6.71e7) and their neighbours, and a grid of both signs
+    for e in (0.46875, 4.0, 6.71e7):
+        z = float(e * mp.sqrt(2))
+        zs += [math.nextafter(z, -math.inf), z, math.nextafter(z, math.inf)]
+    zs += [s * 10 ** (k / 8.0) for k in range(-24, 13) for s in (1, -1)
+           if 10 ** (k / 8.0) <= 37]
     rows = [(z, M(mp.mpf(z))) for z in zs]
     write("mills.csv", ["z", "M"], rows)
     # D(z, h) = M(z - h) - M(z + h), z >= 0, z - h >= -2: both branches of

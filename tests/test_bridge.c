@@ -504,9 +504,13 @@ END_TEST
 
 START_TEST(test_quantile_best_double)
 {
-  /* Very concentrated laws (found by fuzzing): one ulp of u moves the CDF
-   * by 2e-12 .. 2e-8, so |cdf(q) - p| <= 1e-13 is not attainable; the
-   * quantile must then be the best double: no neighbour is closer. */
+  /* Very concentrated laws (found by fuzzing): where one ulp of u moves
+   * the CDF by more than 1e-13 (here 2e-12 .. 2e-8), |cdf(q) - p| <= 1e-13
+   * is not attainable and the quantile must be the best double: no
+   * neighbour is closer.  Elsewhere (the Brownian bridge of the third set:
+   * one ulp of u moves the CDF by about one ulp of the CDF) the contract is
+   * |cdf(q) - p| <= 1e-13 (smolbridge/bridge.h). */
+  int nconc = 0;
   const double sets[][6] = {
       /* p, x, y, a, sigma2, t */
       {0.29334219312295318, 0.3648306275883072, 0.31773942453417769,
@@ -526,10 +530,18 @@ START_TEST(test_quantile_best_double)
       double g = fabs(hit_gap(b3, q, p, a6));
       double gl = fabs(hit_gap(b3, nextafter(q, 0.0), p, a6));
       double gh = fabs(hit_gap(b3, nextafter(q, INFINITY), p, a6));
-      ck_assert_msg(g <= gl && g <= gh,
-                    "set %d %s: |gap| %.3g at q, %.3g and %.3g at the "
-                    "neighbours", k, b3 ? "bes3b" : "bb", g, gl, gh);
+      printf("best double, set %d %s: |gap| %.3g at q, %.3g and %.3g at "
+             "the neighbours\n", k, b3 ? "bes3b" : "bb", g, gl, gh);
+      if (gl > 1e-13 || gh > 1e-13) {
+        ck_assert_msg(g <= gl && g <= gh,
+                      "set %d %s: |gap| %.3g at q, %.3g and %.3g at the "
+                      "neighbours", k, b3 ? "bes3b" : "bb", g, gl, gh);
+        nconc++;
+      } else
+        ck_assert_msg(g <= 1e-13, "set %d %s: |gap| %.3g", k,
+                      b3 ? "bes3b" : "bb", g);
     }
+  ck_assert_int_ge(nconc, 5); /* the sets do exercise the best double */
 }
 END_TEST
 

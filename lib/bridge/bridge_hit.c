@@ -47,6 +47,7 @@ typedef struct {
   sbi_dd L1, L2;   /* |y - a|, y + a (L2 for B3B only) */
   double rho, omr; /* B3B: rho and 1 - rho */
   double rmax;     /* B3B: use (1) while rho G2 <= rmax G1 (0.95) */
+  double rnx;      /* B3B: the expansion of (2) straight away if rho > rnx */
   double mn;       /* B3B: min(a, y); 0 means the single law P_a */
   double om1;      /* B3B: exp(-mn (2(alpha + L1) + mn)/(2v)), see narrow */
 } hit_par;
@@ -83,6 +84,7 @@ static int hit_setup(const char *fn, int b3, double x, double y, double a,
   h->y = y;
   h->trivial = T_NONE;
   h->rmax = 0.95;
+  h->rnx = 0.95;
   if (x <= a) {
     h->trivial = T_ZERO; /* starts on or below the level */
     return SB_SUCCESS;
@@ -261,23 +263,19 @@ static int nx_order(double r, double km, double lo, double dl, double *tail)
   if (!(eta < 0.5) || !(km > 0.0))
     return 0;
   double E = r * R * (km + 0.5 * R) + R * mbar + 0.5 * R * R;
-  double lc = log(2.0 * (1.0 + R / km) / (1.0 - eta * eta)) + E;
-  double le = log(eta), p = eta;
-  /* smallest odd K with lc + (K+1) le - log(K+2) <= log NX_TOL: start from
-   * the estimate without the 1/(K+2), then step down while it holds */
-  int K = (int)ceil((log(NX_TOL) - lc) / le) - 1;
-  K = K < 1 ? 1 : K | 1;
-  if (K > NX_KMAX + 2)
-    return 0;
-  for (int i = 0; i < K; i++)
-    p *= eta;
   double cst = 2.0 * (1.0 + R / km) * exp(E) / (1.0 - eta * eta);
-  while (K >= 3 && cst * p / (K * eta * eta) <= NX_TOL) {
-    K -= 2;
-    p /= eta * eta;
+  /* the smallest odd K with cst eta^(K+1)/(K+2) <= NX_TOL (no logs: at
+   * most NX_KMAX/2 + 1 products) */
+  double e2 = eta * eta, p = e2;
+  int K = 1;
+  while (!(cst * p <= NX_TOL * (K + 2))) {
+    K += 2;
+    p *= e2;
+    if (K > NX_KMAX)
+      return 0;
   }
   *tail = cst * p / (K + 2);
-  return *tail <= NX_TOL && K <= NX_KMAX ? K : 0;
+  return K;
 }
 
 /* One panel: ex(Lc) [Ft(-dl) - Ft(dl)] at the point pc (L = Lc) to order
@@ -488,7 +486,7 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
    * which tail is the smaller one (c at the mid L: about the median); the
    * point at L1 (for the density and its derivatives, which only steer the
    * quantile) then follows from the mid one: kap and c smaller by dl */
-  int nx = h->rho > 0.95;
+  int nx = h->rho > h->rnx;
   sbi_igpt p1, pm = {0.0, 0.0, 0.0, 0.0}, p2 = pm;
   if (nx) {
     pm = point(h, T, sbi_dd_add(h->L1, (sbi_dd){h->mn, 0.0}));
@@ -512,6 +510,7 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
   r.sfl = -0.5 - 0.5 * p1.c * (p1.kap + p1.eps) + ph * z1;
   r.sfl2 = ig_sfl2(&p1) + ph * z1 * (1.0 - z1 / hw);
   int first = nx ? pm.c > 0.0 : want == W_SF;
+  int failed = 0; /* bit sf: the expansion's bounds failed for that tail */
   /* the requested (or likely smaller) tail first; if it is the larger one
    * (> 1/2) the other is computed directly and this one is its
    * complement */
@@ -526,6 +525,7 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
     } else {
       if (nx) {
         nx = 0;
+        failed = 1 << sf;
         p1 = point(h, T, h->L1);
         p2 = point(h, T, h->L2);
       }
@@ -545,7 +545,7 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
          * hold (on up to NX_NPAN panels), else the quadrature */
         if (!(pm.kap > 0.0)) /* not yet computed */
           pm = point(h, T, sbi_dd_add(h->L1, (sbi_dd){h->mn, 0.0}));
-        if (!narrow(h, T, &pm, sf, &val, &err))
+        if ((failed & (1 << sf)) || !narrow(h, T, &pm, sf, &val, &err))
           val = mixture(h, T, sf, &err);
       }
     }
@@ -681,8 +681,12 @@ typedef struct {
  * B3B: (1) is used while kprev (the solver's last dimensionless step) is
  * large, even where it cancels moderately (rho G2/G1 <= 1 - 1e-6: relative
  * noise <= ~1e-9, ample to steer); near the root the accurate form gives
- * the final value.  For rho > 0.95 every value is the accurate expansion
- * of (2) (about as cheap as (1)), unless its bounds fail. */
+ * the final value.  For rho > 0.95 the values are the accurate expansion of
+ * (2), except the first one (at the starting guess, which the solver
+ * almost never takes as final) while rho <= RNX_FIRST: (1), noise <=
+ * ~1e-11 relative, costs about a third of the expansion. */
+#define RNX_FIRST (1.0 - 1e-5)
+
 static double hit_qfun(double y, double kprev, void *vc, double d[4])
 {
   hit_qctx *c = vc;
@@ -702,8 +706,10 @@ static double hit_qfun(double y, double kprev, void *vc, double d[4])
    * likely the last one */
   int cheap = kprev >= 0.05;
   h->rmax = cheap ? 1.0 - 1e-6 : 0.95;
+  h->rnx = isinf(kprev) ? RNX_FIRST : 0.95;
   hit_prob p = prob_at(h, &T, c->upper ? W_SF : W_CDF);
   h->rmax = 0.95;
+  h->rnx = 0.95;
   /* (1) was accurate anyway unless it entered the cancelling range */
   if (cheap && p.rused > 0.95 && p.rused <= 1.0 - 1e-6)
     d[3] = 0.0;

@@ -41,25 +41,72 @@ double sbi_log1mexp(double x)
 
 /* ----------------------------------------------------- Mills function */
 
+/* Rational approximations of erfcx(y) = exp(y^2) erfc(y): Cody (1969),
+ * Math. Comp. 23, 631-638, with the coefficients of his CALERF (SPECFUN,
+ * 1990).  erf(y) = y A(y^2)/B(y^2) for y <= 0.46875; erfcx(y) = C(y)/D(y)
+ * on [0.46875, 4]; erfcx(y) = (1/sqrt(pi) - P(1/y^2)/(y^2 Q(1/y^2)))/y
+ * beyond.  The last two need no exponential at all. */
+static const double CODY_A[5] = {
+    3.16112374387056560e0, 1.13864154151050156e2, 3.77485237685302021e2,
+    3.20937758913846947e3, 1.85777706184603153e-1};
+static const double CODY_B[4] = {
+    2.36012909523441209e1, 2.44024637934444173e2, 1.28261652607737228e3,
+    2.84423683343917062e3};
+static const double CODY_C[9] = {
+    5.64188496988670089e-1, 8.88314979438837594e0, 6.61191906371416295e1,
+    2.98635138197400131e2, 8.81952221241769090e2, 1.71204761263407058e3,
+    2.05107837782607147e3, 1.23033935479799725e3, 2.15311535474403846e-8};
+static const double CODY_D[8] = {
+    1.57449261107098347e1, 1.17693950891312499e2, 5.37181101862009858e2,
+    1.62138957456669019e3, 3.29079923573345963e3, 4.36261909014324716e3,
+    3.43936767414372164e3, 1.23033935480374942e3};
+static const double CODY_P[6] = {
+    3.05326634961232344e-1, 3.60344899949804439e-1, 1.25781726111229246e-1,
+    1.60837851487422766e-2, 6.58749161529837803e-4, 1.63153871373020978e-2};
+static const double CODY_Q[5] = {
+    2.56852019228982242e0, 1.87295284992346047e0, 5.27905102951428412e-1,
+    6.05183413124413191e-2, 2.33520497626869185e-3};
+#define INV_SQRTPI 0.56418958354775628694807945156077259 /* 1/sqrt(pi) */
+
+/* erfcx(y) for y >= 0 */
+static double erfcx_pos(double y)
+{
+  if (y <= 0.46875) {
+    double q = y * y, num = CODY_A[4] * q, den = q;
+    for (int i = 0; i < 3; i++) {
+      num = (num + CODY_A[i]) * q;
+      den = (den + CODY_B[i]) * q;
+    }
+    return exp(q) * (1.0 - y * (num + CODY_A[3]) / (den + CODY_B[3]));
+  }
+  if (y <= 4.0) {
+    double num = CODY_C[8] * y, den = y;
+    for (int i = 0; i < 7; i++) {
+      num = (num + CODY_C[i]) * y;
+      den = (den + CODY_D[i]) * y;
+    }
+    return (num + CODY_C[7]) / (den + CODY_D[7]);
+  }
+  if (y >= 6.71e7) /* the correction is below half an ulp */
+    return INV_SQRTPI / y;
+  double q = 1.0 / (y * y), num = CODY_P[5] * q, den = q;
+  for (int i = 0; i < 4; i++) {
+    num = (num + CODY_P[i]) * q;
+    den = (den + CODY_Q[i]) * q;
+  }
+  return (INV_SQRTPI - q * (num + CODY_P[4]) / (den + CODY_Q[4])) / y;
+}
+
 double sbi_mills(double z)
 {
-  if (z < 25.0) {
-    /* Q(z) is accurate to ~1 ulp (GSL, Cody's algorithm) until it
-     * underflows near z = 37.5; exp(z^2/2) is split so that the rounding of
-     * z*z does not enter: z^2 = h + l exactly. */
-    sbi_dd z2 = sbi_dd_prod(z, z);
-    return gsl_cdf_ugaussian_Q(z) * exp(0.5 * z2.hi) * (1.0 + 0.5 * z2.lo);
-  }
-  /* Asymptotic series M(z) = phi(0)/z sum_n (-1)^n (2n-1)!! z^-2n; for
-   * z >= 25 the terms fall by (2n-1)/625 each, so 13 terms reach 1e-19. */
-  double iz2 = 1.0 / (z * z), term = 1.0, sum = 1.0;
-  for (int n = 1; n < 14; n++) {
-    term *= -(2 * n - 1) * iz2;
-    sum += term;
-    if (fabs(term) < 1e-19)
-      break;
-  }
-  return sum / (z * RT2PI);
+  /* M(z) = erfcx(z/sqrt 2)/2; for z < 0, M(z) = exp(z^2/2) - M(-z) (as
+   * Q(z) = 1 - Q(-z)), with exp(z^2/2) split so that the rounding of z*z
+   * does not enter: z^2 = h + l exactly (overflow below z ~ -37.6). */
+  double m = 0.5 * erfcx_pos(fabs(z) * 0.70710678118654752440084436210484904);
+  if (z >= 0.0)
+    return m;
+  sbi_dd z2 = sbi_dd_prod(z, z);
+  return exp(0.5 * z2.hi) * (1.0 + 0.5 * z2.lo) - m;
 }
 
 /* ------------------------------------------ difference of Mills values */
