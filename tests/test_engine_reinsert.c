@@ -12,6 +12,11 @@
  * that misses a neighbour changes the run at once.  Detectors: contact
  * time (3-D, the Verlet list's cells), overlap (2-D) and the Langevin
  * bridge at dt = tau_p (the partner sits at its sampled contact point).
+ *
+ * With Lees-Edwards images or walls the trial position is tested against
+ * the nearest image as the detectors see it: the sliding image across y,
+ * and none across a wall (whose direction is drawn within the accessible
+ * volume, centres a radius from the walls).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -111,6 +116,108 @@ START_TEST(test_langevin)
 }
 END_TEST
 
+/* A box of side 1 with a big sphere (radius 0.3) near the top face and a
+ * small one (radius 0.05) reinserted 3000 times by the outcome, outside a
+ * step: the small one lands at least 0.35 from every image of the big one
+ * the engine knows, and where the plain periodic image would be (below
+ * the bottom face, unshifted) the new rule differs from the old one. */
+static sb_engine *pair_box(int lees, int walls)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 1.0;
+  p.dt = 1e-3;
+  p.capacity = 2;
+  p.seed = 5;
+  p.outcome = SB_OUTCOME_REINSERT;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  if (lees) {
+    const double G[3] = {0.5, 0.0, 0.0};
+    ck_assert_int_eq(sb_engine_set_fluid(e, SB_FLUID_SHEAR, G), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_set_lees_edwards(e, 1), SB_SUCCESS);
+  }
+  if (walls)
+    ck_assert_int_eq(sb_engine_set_walls(e, 1, SB_WALL_REFLECT,
+                                         SB_WALL_REFLECT), SB_SUCCESS);
+  sb_engine_species big = {0.3, 1.0, 1.0, 0.0, 0.0};
+  sb_engine_species small = {0.05, 1.0, 1.0, 0.0, 0.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &big, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_add_species(e, &small, NULL), SB_SUCCESS);
+  /* the big sphere's excluded ball (radius 0.35) crosses the top face
+   * with the images on; with walls it stays a radius from them */
+  const double xb[3] = {0.5, walls ? 0.65 : 0.85, 0.5};
+  const double xs[3] = {0.1, 0.3, 0.1};
+  const double u0[3] = {0.0, 0.0, 0.0};
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xb, u0), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_add_particle(e, 1, 0, xs, u0), SB_SUCCESS);
+  if (lees)
+    e->le_off = 0.37;  /* the image above/below slid by 0.37 along x */
+  return e;
+}
+
+/* the distance from the small sphere (1) to the big one (0): the sliding
+ * image (Lees-Edwards) or no image (walls) across y, periodic otherwise;
+ * *plain: the same with plain periodic images */
+static double image_dist(const sb_engine *e, int lees, int walls,
+                         double *plain)
+{
+  double d[3], q[3];
+  for (int c = 0; c < 3; c++)
+    d[c] = q[c] = e->x[3 + c] - e->x[c];
+  int n = d[1] > 0.5 ? 1 : (d[1] < -0.5 ? -1 : 0);
+  if (walls)
+    n = 0;
+  if (lees)
+    d[0] -= n * e->le_off;
+  if (!walls)
+    d[1] -= n;
+  for (int c = 0; c < 3; c++) {
+    if (c != 1)
+      d[c] -= floor(d[c] + 0.5);
+    q[c] -= floor(q[c] + 0.5);
+  }
+  *plain = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
+static void reinsert_images(int lees, int walls)
+{
+  sb_engine *e = pair_box(lees, walls);
+  sb_engine_pair pr = {0};
+  pr.i = 0;
+  pr.j = 1;
+  int differ = 0;
+  for (int k = 0; k < 3000; k++) {
+    ck_assert_int_eq(sb_engine_outcome_reinsert(e, &pr, 0.0), SB_SUCCESS);
+    double plain, d = image_dist(e, lees, walls, &plain);
+    ck_assert_msg(d >= 0.35, "reinserted at %g from the big sphere's image "
+                  "(x = %g %g %g)", d, e->x[3], e->x[4], e->x[5]);
+    if (walls)
+      ck_assert(e->x[4] >= 0.05 && e->x[4] <= 0.95);
+    differ += plain < 0.35;
+  }
+  /* Lees-Edwards: the plain periodic image (unshifted) would have
+   * rejected these, the shadow of the big sphere below the bottom face (a
+   * cap of ~0.02 of the box); walls: no image can reach a centre placed a
+   * radius from them, so only the accessible volume matters */
+  if (lees)
+    ck_assert_int_gt(differ, 20);
+  sb_engine_free(e);
+}
+
+START_TEST(test_images_lees_edwards)
+{
+  reinsert_images(1, 0);
+}
+END_TEST
+
+START_TEST(test_images_walls)
+{
+  reinsert_images(0, 1);
+}
+END_TEST
+
 int main(void)
 {
   Suite *s = suite_create("engine_reinsert");
@@ -119,6 +226,8 @@ int main(void)
   tcase_add_test(t, test_ballistic_3d);
   tcase_add_test(t, test_overlap_2d);
   tcase_add_test(t, test_langevin);
+  tcase_add_test(t, test_images_lees_edwards);
+  tcase_add_test(t, test_images_walls);
   suite_add_tcase(s, t);
   return sbt_run_suite(s);
 }

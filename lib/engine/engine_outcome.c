@@ -107,11 +107,23 @@ int sb_engine_outcome_elastic(sb_engine *e, const sb_engine_pair *p,
 
 /* Squared distance from x to particle j's current position (positions may
  * be unwrapped during a step by less than L/2: one shift; a full
- * reduction only beyond). */
+ * reduction only beyond).  With walls or Lees-Edwards images the nearest
+ * image is sbi_engine_image's: none across a wall, the sliding image
+ * across y shifted by its offset at the positions' time (the step's end
+ * inside a step, as every current position is an end of a path piece). */
 static double free_d2(const sb_engine *e, const double x[3], size_t j)
 {
   const double *L = e->par.L;
   double d2 = 0.0;
+  if (e->lees || e->walled) {
+    double sh[3], du;
+    sbi_engine_image(e, x, &e->x[3 * j], e->in_step ? 1.0 : 0.0, sh, &du);
+    for (int c = 0; c < e->par.dim; c++) {
+      const double d = x[c] - e->x[3 * j + c] - sh[c];
+      d2 += d * d;
+    }
+    return d2;
+  }
   for (int c = 0; c < e->par.dim; c++) {
     double d = x[c] - e->x[3 * j + c];
     if (d > 0.5 * L[c] || d < -0.5 * L[c]) {
@@ -167,10 +179,17 @@ int sbi_engine_random_free_position(sb_engine *e, size_t k, size_t partner,
 {
   const int dim = e->par.dim;
   const double *L = e->par.L;
+  const double r = e->radius[k];
   for (size_t t = 0; t < tries; t++) {
     x[0] = x[1] = x[2] = 0.0;
-    for (int c = 0; c < dim; c++)
-      x[c] = L[c] * gsl_rng_uniform(e->rng);
+    for (int c = 0; c < dim; c++) {
+      /* a walled direction: the accessible volume, centres >= r from the
+       * walls (as the placements and the deposit source) */
+      if (e->wall[2 * c] != SB_WALL_PERIODIC)
+        x[c] = r + (L[c] - 2.0 * r) * gsl_rng_uniform(e->rng);
+      else
+        x[c] = L[c] * gsl_rng_uniform(e->rng);
+    }
     if (position_free(e, k, partner, x))
       return SB_SUCCESS;
   }
