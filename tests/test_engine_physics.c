@@ -25,6 +25,7 @@
 #include <smolbridge/stats.h>
 
 #include "engine/engine_internal.h"
+#include "shear_rk4.h"
 #include "testutil.h"
 
 #define PI_ 3.14159265358979323846
@@ -44,36 +45,6 @@ static sb_engine *eng(double L, double dt, size_t cap, unsigned long seed)
 }
 
 /* ------------------------------------------------ exact shear step */
-
-/* d/dt (X, U, Y, V) with U_x fluid G Y + wx, settling drift (wx, wy). */
-static void rhs(const double *s, double tau, double G, double wy,
-                double *d)
-{
-  d[0] = s[1];
-  d[1] = (G * s[2] - s[1]) / tau;
-  d[2] = s[3];
-  d[3] = (wy - s[3]) / tau;
-}
-
-static void rk4(double *s, double tau, double G, double wy, double T,
-                long n)
-{
-  double h = T / (double)n, k1[4], k2[4], k3[4], k4[4], t[4];
-  for (long q = 0; q < n; q++) {
-    rhs(s, tau, G, wy, k1);
-    for (int c = 0; c < 4; c++)
-      t[c] = s[c] + 0.5 * h * k1[c];
-    rhs(t, tau, G, wy, k2);
-    for (int c = 0; c < 4; c++)
-      t[c] = s[c] + 0.5 * h * k2[c];
-    rhs(t, tau, G, wy, k3);
-    for (int c = 0; c < 4; c++)
-      t[c] = s[c] + h * k3[c];
-    rhs(t, tau, G, wy, k4);
-    for (int c = 0; c < 4; c++)
-      s[c] += h / 6.0 * (k1[c] + 2 * k2[c] + 2 * k3[c] + k4[c]);
-  }
-}
 
 /* One non-Brownian particle, shear with Lees-Edwards, gravity along y: the
  * step matches RK4 (2e5 sub-steps) at dt/tau = 0.003, 0.7, 1.3, 40. */
@@ -96,7 +67,7 @@ START_TEST(test_shear_exact_step)
     const double wy = -0.2 * tau;
     double st[4] = {x[0], u[0], x[1] - 0.5 * L, u[1]};
     /* in coordinates with Y = y - L/2 the fluid is G Y */
-    rk4(st, tau, G, wy, dt, 200000);
+    sbt_shear_rk4(st, tau, G, wy, dt, 200000);
     const double *xe = sb_engine_positions(e), *ue = sb_engine_velocities(e);
     double X = xe[0], Y = xe[1] - 0.5 * L;
     if (X < 1.0)

@@ -29,6 +29,7 @@
 
 #include "engine/engine_internal.h"
 #include "refdata.h"
+#include "shear_rk4.h"
 #include "testutil.h"
 
 /* ------------------------------------------------------- (a) Sigma */
@@ -386,35 +387,6 @@ static int reinsert_and_record(sb_engine *e, const sb_engine_pair *p,
   return 0;
 }
 
-static void rhs(const double *s, double tau, double G, double wy,
-                double *d)
-{
-  d[0] = s[1];
-  d[1] = (G * s[2] - s[1]) / tau;
-  d[2] = s[3];
-  d[3] = (wy - s[3]) / tau;
-}
-
-static void rk4(double *s, double tau, double G, double wy, double T,
-                long n)
-{
-  double h = T / (double)n, k1[4], k2[4], k3[4], k4[4], t[4];
-  for (long q = 0; q < n; q++) {
-    rhs(s, tau, G, wy, k1);
-    for (int c = 0; c < 4; c++)
-      t[c] = s[c] + 0.5 * h * k1[c];
-    rhs(t, tau, G, wy, k2);
-    for (int c = 0; c < 4; c++)
-      t[c] = s[c] + 0.5 * h * k2[c];
-    rhs(t, tau, G, wy, k3);
-    for (int c = 0; c < 4; c++)
-      t[c] = s[c] + h * k3[c];
-    rhs(t, tau, G, wy, k4);
-    for (int c = 0; c < 4; c++)
-      s[c] += h / 6.0 * (k1[c] + 2 * k2[c] + 2 * k3[c] + k4[c]);
-  }
-}
-
 /* With the Langevin detector a particle changed by an outcome continues by
  * a fresh step over the rest of the step: in the shear, the exact step of
  * the linear field (mean correction from the piece's start).  A pair
@@ -451,7 +423,7 @@ START_TEST(test_rest_of_step)
   ck_assert_int_eq(r.n, 1);
   /* the fluid is G (y - L/2) */
   double st[4] = {r.x[0], r.u[0], r.x[1] - 5.0, r.u[1]};
-  rk4(st, tau, G, wy, p.dt - r.s, 100000);
+  sbt_shear_rk4(st, tau, G, wy, p.dt - r.s, 100000);
   const double *x = sb_engine_positions(e), *u = sb_engine_velocities(e);
   double X = x[3], Y = x[4] - 5.0;
   X += 10.0 * nearbyint((st[0] - X) / 10.0);  /* wrapped into the box */
