@@ -22,6 +22,12 @@
  *    exact rate of the protocol is N / (dt sum_{j>=0} S(j dt)).  The count is a superposition of renewal
  *    processes (not Poisson: the variance is ~1.4 times the mean), so the
  *    row is the Student mean of independent replicas.
+ *
+ * Each run draws its placement from a stream of its own, as `smolbridge
+ * collide` draws placement = uniform from placement_seed: write mode
+ * (--write-ini) writes every run as a collide file (detect = none, the
+ * deposits per step in series.csv, profile = parabolic for the steady
+ * source; docs/validation.md).
  */
 #include <math.h>
 #include <stdio.h>
