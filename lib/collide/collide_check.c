@@ -267,7 +267,8 @@ int sbi_col_check(sbi_col_config *c)
            "use it");
   if (sbi_col_detect_none(c)) {
     unused(c, run, "outcome", "detect = none (no contact to act on)");
-    unused(c, run, "eta", "detect = none (no contact)");
+    if (!strcmp(c->outcome, "elastic") || !strcmp(c->outcome, "dlvo"))
+      unused(c, run, "eta", "detect = none (no contact)");
     if (c->first_hit)
       return sbi_col_fail(c, "%s: [observe] first_hit with detect = none: "
                           "no contact is detected; give a detector (%s)",

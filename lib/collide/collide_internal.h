@@ -245,10 +245,11 @@ int sbi_col_walls_absorb(const sbi_col_config *c);
 /* Append the deposits per face at the engine's time to r->dep. */
 int sbi_col_walls_sample(sbi_col_run *r);
 /* series.csv: the deposit columns' names, and the row sampled at time t
- * (nan where none was: the warm-up). */
+ * (nan where none was: the warm-up); *next (0 before the first row)
+ * follows the rows, whose times increase. */
 void sbi_col_walls_header(FILE *f, const sbi_col_config *c);
 void sbi_col_walls_row(FILE *f, const sbi_col_config *c,
-                       const sbi_col_run *r, double t);
+                       const sbi_col_run *r, double t, size_t *next);
 /* Coordinate k of a uniform placement in [lo, hi): the species' profile
  * along walled directions, uniform otherwise. */
 double sbi_col_place_coord(const sbi_col_config *c,

@@ -141,7 +141,7 @@ static int write_series(const char *path, const sbi_col_run *run,
     }
   sbi_col_walls_header(f, c);
   fprintf(f, "\n");
-  size_t w = 1 + 3 * (size_t)np;
+  size_t w = 1 + 3 * (size_t)np, next = 0;
   for (size_t k = 0; k < n; k++) {
     fprintf(f, "%.17g,%llu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g",
             s[k].t, (unsigned long long)s[k].ncoll, s[k].K, s[k].K_lo,
@@ -152,7 +152,7 @@ static int write_series(const char *path, const sbi_col_run *run,
         r = ps->rows + q * w;
     for (int q = 0; q < 3 * np; q++)
       fprintf(f, ",%.17g", r ? r[1 + q] : NAN);
-    sbi_col_walls_row(f, c, run, s[k].t);
+    sbi_col_walls_row(f, c, run, s[k].t, &next);
     fprintf(f, "\n");
   }
   return fclose(f) ? -1 : 0;

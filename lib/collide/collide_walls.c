@@ -51,14 +51,17 @@ void sbi_col_walls_header(FILE *f, const sbi_col_config *c)
 }
 
 void sbi_col_walls_row(FILE *f, const sbi_col_config *c,
-                       const sbi_col_run *r, double t)
+                       const sbi_col_run *r, double t, size_t *next)
 {
   if (!sbi_col_walls_absorb(c))
     return;
-  const double *row = NULL;  /* sampled at the same time (measured part) */
-  for (size_t k = 0; k < r->ndep && !row; k++)
-    if (r->dep[7 * k] == t)
-      row = r->dep + 7 * k;
+  /* the row sampled at the same time (the measured part); both series
+   * are in time order */
+  while (*next < r->ndep && r->dep[7 * *next] < t)
+    (*next)++;
+  const double *row = *next < r->ndep && r->dep[7 * *next] == t
+                          ? r->dep + 7 * *next
+                          : NULL;
   double tot = 0.0;
   for (int q = 0; q < 6 && row; q++)
     tot += row[1 + q];
