@@ -38,6 +38,7 @@
 
 #include <smolbridge/engine.h>
 
+#include "common/internal.h"
 #include "cases.h"
 #include "v16.h"
 
@@ -104,7 +105,8 @@ int v16_write_walls(const sbv_ctx *ctx, sbv_report *rep, const v16_setup *s,
       {"x_lo", "x_hi"}, {"y_lo", "y_hi"}, {"z_lo", "z_hi"}};
   if (s->warmup || s->G != 0.0 || s->g[0] != 0.0 || s->g[1] != 0.0 ||
       s->g[2] != 0.0)
-    return SB_EINVAL;  /* not needed by the wall cases */
+    return sbi_error(SB_EINVAL, __func__, "a warm-up, shear or gravity: "
+                     "not written by this function");
   FILE *f = sbv_ini_begin(ctx, rep, name, what);
   if (!f)
     return SB_EIO;
