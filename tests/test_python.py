@@ -174,6 +174,25 @@ check([p["species"] for p in pairs] == [["a", "a"], ["a", "b"], ["b", "b"]]
       abs(pairs[1]["D"] - 1.1e-10) < 1e-22,
       "collide first_hit pairs: %s" % fh)
 
+# deposition on absorbing walls without particle-particle detection: the
+# series carries the cumulative deposits (total and per absorbing face),
+# the last row the summary's per-face counts
+dep = {
+    "run": {"Lx": 4e-4, "Ly": 2e-5, "Lz": 4e-4, "dt": 0.0225, "steps": 8,
+            "sample_every": 1, "detect": "none", "placement": "uniform",
+            "seed": 5},
+    "walls": {"y_lo": "absorb", "y_hi": "absorb"},
+    "species a": {"radius": 5e-8, "mass": 5e-19, "tau": 1e-9,
+                  "b2": 8.8e-12, "count": 2000, "profile": "parabolic"},
+}
+summary, series = sb.collide(dep)
+d = summary["deposits"]
+check(summary["detect"] == "none" and len(series["deposits"]) == 8 and
+      series["deposits"][-1] == d[2] + d[3] > 0 and
+      series["deposits_y_lo"][-1] == d[2] and
+      all(series["deposits"][1:] >= series["deposits"][:-1]),
+      "collide deposits series: %s, %s" % (d, series.get("deposits")))
+
 if fails:
     sys.exit(1)
 print("python: all checks passed (%s)" % sb.library_version())

@@ -21,7 +21,14 @@
 # (V16/combined-shear-diffusive, Pe = 0.1); first-hit counting of two
 # species, one kernel per species pair (first_hit.pairs): with gravity and
 # the settling velocity taken out of the placement by a drift
-# (V16/combined, Pe = 1) and with the capacitance radius (V12/mixture).
+# (V16/combined, Pe = 1) and with the capacitance radius (V12/mixture);
+# deposition on absorbing walls without particle-particle detection
+# (detect = none), its window counts read from the deposits columns of
+# series.csv ("series.csv ROW-ROW0 deposits": V16/deposition transient,
+# bridge and chord; V16/deposition-langevin, chord) and the steady source
+# started from the parabolic profile (profile = parabolic, the mean over
+# the 4 replicas); Langevin spheres in shear, pass-through counting with
+# a warm-up (V16/combined-shear, Pe_k = 0.3).
 # Engine cases without files must say why in NOT-WRITTEN.txt.
 set -u
 sb="${top_builddir:-.}/smolbridge"
@@ -31,7 +38,7 @@ rm -rf "$dir"
 mkdir -p "$dir"
 fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-cases="--case V1/dense-long-steps --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V8/agglo-constant --case V12/ --case V16/shear --case V16/abrahamson --case V16/saffman-turner --case V16/combined-shear-diffusive --case V16/combined\$"
+cases="--case V1/dense-long-steps --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V8/agglo-constant --case V12/ --case V16/shear --case V16/abrahamson --case V16/saffman-turner --case V16/combined-shear-diffusive --case V16/combined\$ --case V16/deposition --case V16/combined-shear\$"
 # shellcheck disable=SC2086
 "$sb" validate $cases --write-ini "$dir/ini" 2>"$dir/w.err" \
   || { fail "write-ini failed"; cat "$dir/w.err"; }
@@ -40,10 +47,9 @@ grep -q 'V12/mixture' "$dir/ini/NOT-WRITTEN.txt" \
   && fail "NOT-WRITTEN.txt lists the V12 mixture, which has its file"
 # engine cases without any file are listed with a reason (no run needed)
 "$sb" validate --case V13/spray-vs-engine --case V15/engine-jets \
-  --case V15/dense-jets --case V16/deposition --case V16/combined \
+  --case V15/dense-jets \
   --case V18/ --write-ini "$dir/none" 2>/dev/null
-for c in V13/spray-vs-engine V15/engine-jets V15/dense-jets V16/deposition \
-    V16/deposition-langevin V16/combined-shear \
+for c in V13/spray-vs-engine V15/engine-jets V15/dense-jets \
     V18/self-diffusion V18/maxwell-relaxation; do
   grep -q "^$c: no file: ." "$dir/none/NOT-WRITTEN.txt" \
     || fail "NOT-WRITTEN.txt does not say why $c has no file"
@@ -73,8 +79,11 @@ for run in V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 V8_dlvo_x0.5 \
     V12_Kn0.05_dt1_exact-bb3 V16_shear_G100 V16_shear_G10 \
     V16_abrahamson_ou-field V16_abrahamson_langevin-species \
     V16_combined_shear_diffusive_Pe0.1 V16_combined_Pe1 V12_mixture \
+    V16_deposition_transient_bridge V16_deposition_transient_chord \
+    V16_deposition_langevin_chord V16_combined_shear_Pek0.3 \
     $(cd "$dir/ini" && ls V16_saffman_turner_frozen_Rk2_r*.ini \
-      V8_agglo-constant_run*.ini | sed 's/\.ini$//'); do
+      V8_agglo-constant_run*.ini V16_deposition_steady_r*.ini \
+      | sed 's/\.ini$//'); do
   ini="$dir/ini/$run.ini"
   [ -f "$ini" ] || { fail "$run.ini not written"; continue; }
   (cd "$dir/ini" && "$sb" collide "$run.ini" >/dev/null 2>&1) \
@@ -90,9 +99,13 @@ for run in V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 V8_dlvo_x0.5 \
     fac=1
     case "$rhs" in *" * "*) fac=${rhs##* \* } ;; esac
     case "$fld" in
-      sizes.csv*) set -- $fld  # sizes.csv ROW COLUMN
-        val=$(awk -F, -v r="$2" -v c="$3" 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i }
-          NR == r + 1 { print $col[c] }' "$out/sizes.csv") ;;
+      sizes.csv*|series.csv*) set -- $fld  # FILE ROW[-ROW0] COLUMN
+        # data row ROW (from 1), or its difference with row ROW0
+        val=$(awk -F, -v r="$2" -v c="$3" 'BEGIN { n = split(r, q, "-") }
+          NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i }
+          NR == q[1] + 1 { a = $col[c] } n == 2 && NR == q[2] + 1 { b = $col[c] }
+          END { if (a == "" || (n == 2 && b == "")) exit
+            if (n == 2) printf "%.17g\n", a - b; else print a }' "$out/$1") ;;
       snap_*) set -- $fld
         val=$(awk -F, -v id="$3" -v c="$4" 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i }
           NR > 1 && $1 == id { print $col[c] }' "$out/$1") ;;
@@ -127,7 +140,7 @@ if [ -f "$dir/means.txt" ]; then
     ncmp=$((ncmp + 1))
   done
 fi
-[ "$ncmp" -ge 76 ] || fail "only $ncmp records compared"
+[ "$ncmp" -ge 91 ] || fail "only $ncmp records compared"
 [ "$fails" -eq 0 ] && echo "validate_ini: $ncmp records reproduced by collide from the written files"
 [ "$fails" -eq 0 ] && rm -rf "$dir"
 exit $((fails > 0))

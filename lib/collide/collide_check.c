@@ -265,6 +265,16 @@ int sbi_col_check(sbi_col_config *c)
   if (strcmp(c->outcome, "elastic") && strcmp(c->outcome, "dlvo"))
     unused(c, run, "eta", "only outcome = elastic or dlvo (rebounds) "
            "use it");
+  if (sbi_col_detect_none(c)) {
+    unused(c, run, "outcome", "detect = none (no contact to act on)");
+    if (!strcmp(c->outcome, "elastic") || !strcmp(c->outcome, "dlvo"))
+      unused(c, run, "eta", "detect = none (no contact)");
+    if (c->first_hit)
+      return sbi_col_fail(c, "%s: [observe] first_hit with detect = none: "
+                          "no contact is detected; give a detector (%s)",
+                          sbi_col_where(c, "observe", "first_hit"),
+                          sbi_col_where(c, run, "detect"));
+  }
   /* observers */
   if (c->hit_times && !bridge)
     return sbi_col_fail(c, "%s: [observe] hit_times records bridge hits: "
@@ -380,6 +390,22 @@ int sbi_col_check(sbi_col_config *c)
                                                                   "region"),
                           n, s->nregion, c->dim, 2 * c->dim,
                           c->dim == 3 ? " z0 z1" : "");
+    if (strcmp(s->profile, "uniform")) {
+      int walled = 0;
+      for (int k = 0; k < c->dim; k++)
+        walled |= strcmp(c->wall[2 * k], "periodic") != 0;
+      if (strcmp(c->placement, "uniform"))
+        return sbi_col_fail(c, "%s: [%s] profile = %s needs [run] placement "
+                            "= uniform (the other placements are uniform "
+                            "in the box)", sbi_col_where(c, n, "profile"), n,
+                            s->profile);
+      if (!walled)
+        return sbi_col_fail(c, "%s: [%s] profile = %s: no direction has "
+                            "walls ([walls]); the profile is across the gap "
+                            "between two walls", sbi_col_where(c, n,
+                                                               "profile"),
+                            n, s->profile);
+    }
     if (s->ndrift && s->ndrift != c->dim)
       return sbi_col_fail(c, "%s: [%s] drift: %d numbers for dim = %ld",
                           sbi_col_where(c, n, "drift"), n, s->ndrift, c->dim);

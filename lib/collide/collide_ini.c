@@ -102,6 +102,7 @@ static void species_defaults(sbi_col_species *s)
   s->cc = 1.0;
   s->count = -1;
   strcpy(s->drag, "stokes");
+  strcpy(s->profile, "uniform");
 }
 
 /* ------------------------------------------------------------ values */

@@ -8,6 +8,9 @@
 #define SB_COLLIDE_INTERNAL_H
 
 #include <stddef.h>
+#include <stdio.h>
+
+#include <gsl/gsl_rng.h>
 
 #include <smolbridge/collide.h>
 #include <smolbridge/engine.h>
@@ -31,6 +34,7 @@ typedef struct {
   int nregion;
   double drift[3];
   int ndrift;
+  char profile[16];                 /* placement density across walls */
   char drag[24];                    /* drag law (engine_force.c) */
   char inflow[16];                  /* open boundaries (engine_open.c): */
   double inflow_rate;               /* face, particles/s, */
@@ -205,6 +209,9 @@ typedef struct {
   gsl_rng *field_rng;           /* [fluid] seed (owned), or NULL */
   double t_end;                 /* absolute end time, s */
   double warm;                  /* warm-up, s (0 on restart) */
+  double *dep;                  /* deposits sampled with the series: rows */
+  size_t ndep, capdep;          /* t, per face x_lo .. z_hi (walls.c) */
+  int dep_on;                   /* a face absorbs */
 } sbi_col_run;
 
 /* Build the engine, species, particles and contexts.  0 or -1 with
@@ -230,6 +237,27 @@ int sbi_col_firsthit_pair(const sbi_col_run *r, const sbi_col_config *c,
  * pairs, the kernel NaN, SB_EDOM.  -1 without the observer. */
 int sbi_col_firsthit_result(const sbi_col_run *r, const sbi_col_config *c,
                             sb_engine_firsthit_kernel_result *o);
+
+/* ---------------------------------------------------- collide_walls.c */
+
+/* 1 if a face absorbs (series.csv then has deposit columns). */
+int sbi_col_walls_absorb(const sbi_col_config *c);
+/* Append the deposits per face at the engine's time to r->dep. */
+int sbi_col_walls_sample(sbi_col_run *r);
+/* series.csv: the deposit columns' names, and the row sampled at time t
+ * (nan where none was: the warm-up); *next (0 before the first row)
+ * follows the rows, whose times increase. */
+void sbi_col_walls_header(FILE *f, const sbi_col_config *c);
+void sbi_col_walls_row(FILE *f, const sbi_col_config *c,
+                       const sbi_col_run *r, double t, size_t *next);
+/* Coordinate k of a uniform placement in [lo, hi): the species' profile
+ * along walled directions, uniform otherwise. */
+double sbi_col_place_coord(const sbi_col_config *c,
+                           const sbi_col_species *s, int k, double lo,
+                           double hi, gsl_rng *g);
+/* [run] detect = none, and its detector (no contact ever). */
+int sbi_col_detect_none(const sbi_col_config *c);
+int sbi_col_none_attach(sbi_col_run *r);
 
 /* ------------------------------------------------------ collide_out.c */
 

@@ -39,6 +39,7 @@ static const char *const DEPOSITS[] = {"remove", "reinsert", NULL};
 /* Detectors with a context of their own (lib/engine/engine_bridge.c);
  * a new one is a name here and a branch in collide_setup.c. */
 static const char *const CONTEXT_DETECTORS[] = {"bridge", "exact", NULL};
+static const char *const PROFILES[] = {"uniform", "parabolic", NULL};
 
 /* Built at each call (no static state: the library is thread-safe). */
 const char **sbi_col_detect_names(const char **names, size_t len)
@@ -49,6 +50,8 @@ const char **sbi_col_detect_names(const char **names, size_t len)
     names[n++] = b[k];
   for (int k = 0; CONTEXT_DETECTORS[k] && n + 1 < len; k++)
     names[n++] = CONTEXT_DETECTORS[k];
+  if (n + 1 < len)  /* no particle-particle detection (collide_walls.c) */
+    names[n++] = "none";
   names[n] = NULL;
   return names;
 }
@@ -91,7 +94,8 @@ const sbi_col_keydef sbi_col_keys[] = {
     {"run", "neigh", K_NAME, C(neigh), 16, R_ANY, 0, 0, NEIGHS, "-",
      "cells", "neighbour search"},
     {"run", "detect", K_NAME, C(detect), 16, R_ANY, 0, 0, NULL, "-",
-     "ballistic", "collision detector"},
+     "ballistic", "collision detector; none: no particle-particle "
+     "contacts (walls still detect)"},
     {"run", "outcome", K_NAME, C(outcome), 16, R_ANY, 0, 0, OUTCOMES, "-",
      "elastic", "what a collision does"},
     {"run", "eta", K_NUM, C(eta), 0, R_CLOSED, 0, 1, NULL, "-", "1",
@@ -266,6 +270,11 @@ const sbi_col_keydef sbi_col_keys[] = {
      SB_ENGINE_MAXFAM - 1, NULL, "-", "0", "family tag"},
     {"species", "region", K_VEC, S(region), S(nregion), R_ANY, 4, 6, NULL,
      "m", "whole box", "x0 x1 y0 y1 [z0 z1] of the placement"},
+    {"species", "profile", K_NAME, S(profile), 16, R_ANY, 0, 0, PROFILES,
+     "-", "uniform",
+     "placement = uniform: density across walled directions; parabolic: "
+     "(x - lo)(hi - x) between the contact planes (steady profile of a "
+     "uniform source between absorbing walls)"},
     {"species", "drift", K_VEC, S(drift), S(ndrift), R_ANY, 2, 3, NULL,
      "m/s", "0", "added to the placed particles' velocities"},
     {"species", "inflow", K_NAME, S(inflow), 16, R_ANY, 0, 0, FACES, "-",

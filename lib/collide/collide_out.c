@@ -122,9 +122,10 @@ int sbi_col_pairs_sample(sbi_col_pairs *ps, const sb_engine *e)
   return 0;
 }
 
-static int write_series(const char *path, const sb_engine *e,
+static int write_series(const char *path, const sbi_col_run *run,
                         const sbi_col_config *c, const sbi_col_pairs *ps)
 {
+  const sb_engine *e = run->e;
   FILE *f = fopen(path, "w");
   if (!f)
     return -1;
@@ -138,8 +139,9 @@ static int write_series(const char *path, const sb_engine *e,
       const char *y = sbi_col_short_name(c, (size_t)b);
       fprintf(f, ",K_%s_%s,K_%s_%s_lo,K_%s_%s_hi", x, y, x, y, x, y);
     }
+  sbi_col_walls_header(f, c);
   fprintf(f, "\n");
-  size_t w = 1 + 3 * (size_t)np;
+  size_t w = 1 + 3 * (size_t)np, next = 0;
   for (size_t k = 0; k < n; k++) {
     fprintf(f, "%.17g,%llu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g",
             s[k].t, (unsigned long long)s[k].ncoll, s[k].K, s[k].K_lo,
@@ -150,6 +152,7 @@ static int write_series(const char *path, const sb_engine *e,
         r = ps->rows + q * w;
     for (int q = 0; q < 3 * np; q++)
       fprintf(f, ",%.17g", r ? r[1 + q] : NAN);
+    sbi_col_walls_row(f, c, run, s[k].t, &next);
     fprintf(f, "\n");
   }
   return fclose(f) ? -1 : 0;
@@ -496,7 +499,7 @@ int sbi_col_out_write(const sbi_col_config *c, const sbi_col_run *r,
   int nf = 0, err = 0;
   if (r->e) {
     snprintf(path, sizeof path, "%s/series.csv", c->output);
-    err |= write_series(path, r->e, c, ps);
+    err |= write_series(path, r, c, ps);
     snprintf(files[nf++], 32, "series.csv");
   }
   if (r->agglo) {

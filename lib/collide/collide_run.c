@@ -56,6 +56,10 @@ static int progress_step(sbi_col_run *r, double t_stop, sbi_col_pairs *ps,
       if (s0.steps % every == 0) {
         if (ps && sbi_col_pairs_sample(ps, e))
           return SB_ENOMEM;
+        /* deposits: the measured part only (counters reset after the
+         * warm-up) */
+        if (ps && r->dep_on && (st = sbi_col_walls_sample(r)))
+          return st;
         if (r->agglo && (st = sb_agglo_sample(r->agglo, e)))
           return st;
       }

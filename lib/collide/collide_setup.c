@@ -35,6 +35,7 @@ void sbi_col_run_free(sbi_col_run *r)
   sb_field_kraichnan_free(r->kr);
   if (r->field_rng)
     gsl_rng_free(r->field_rng);
+  free(r->dep);
   memset(r, 0, sizeof *r);
 }
 
@@ -335,7 +336,7 @@ static int place_uniform(sbi_col_config *c, sbi_col_run *r, size_t sp,
     if (start_law(c, r, s, q, vsd, m, &sd))
       return -1;
     for (int k = 0; k < c->dim; k++) {
-      x[k] = lo[k] + (hi[k] - lo[k]) * gsl_rng_uniform(g);
+      x[k] = sbi_col_place_coord(c, s, k, lo[k], hi[k], g);
       u[k] = gsl_ran_gaussian_ziggurat(g, sd);
     }
     fluid_at(c, r, x, us);
@@ -600,12 +601,13 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
   sb_engine_detect dm = SB_DETECT_BALLISTIC;
   sb_engine_outcome om = SB_OUTCOME_ELASTIC;
   sb_engine_neigh_from_name(c->neigh, &nm);
-  if (!sbi_col_bridge(c))
+  if (!sbi_col_bridge(c) && !sbi_col_detect_none(c))
     sb_engine_detect_from_name(c->detect, &dm);
   if (!sbi_col_bridge(c) && !sbi_col_agglo(c))
     sb_engine_outcome_from_name(c->outcome, &om);
-  if (sbi_col_bridge(c))
-    om = SB_OUTCOME_COUNT;  /* replaced by the bridge's outcome */
+  if (sbi_col_bridge(c) || sbi_col_detect_none(c))
+    om = SB_OUTCOME_COUNT;  /* replaced by the bridge's outcome; none:
+                               never called */
   sb_engine_species q[COL_MAXSPEC];
   if (c->restart[0]) {
     int st;
@@ -712,6 +714,9 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
     if (sb_engine_set_langevin(r->e, &lp))
       return sbi_col_fail(c, "[run] langevin_*: %s", sb_last_error());
   }
+  r->dep_on = sbi_col_walls_absorb(c);
+  if (sbi_col_detect_none(c) && sbi_col_none_attach(r))
+    return sbi_col_fail(c, "[run] detect = none: %s", sb_last_error());
   if (c->first_hit) {
     double reach = r->bridge ? sb_engine_bridge_reach(r->e, r->bridge)
                    : dm == SB_DETECT_LANGEVIN ? sb_engine_langevin_reach(r->e)

@@ -92,13 +92,16 @@ int v16_run(const v16_setup *s, gsl_rng *r, v16_result *out)
       double x[3], u[3];
       for (int c = 0; c < 3; c++) {
         double lo = 0.0, w = s->L[c];
-        if (s->walls[c]) {
+        if (s->walls[c]) {  /* between the contact planes, rounded as
+                               collide's placement */
           lo = q->r;
-          w -= 2.0 * q->r;
+          w = (s->L[c] - q->r) - lo;
         }
-        x[c] = lo + w * gsl_rng_uniform(r);
-        if (s->walls[c] && s->parabolic) /* density y (W - y): Beta(2, 2) */
-          x[c] = lo + w * gsl_ran_beta(r, 2.0, 2.0);
+        /* density y (W - y) across walls: Beta(2, 2), as collide's
+         * [species] profile = parabolic */
+        x[c] = lo + w * (s->walls[c] && s->parabolic
+                             ? gsl_ran_beta(r, 2.0, 2.0)
+                             : gsl_rng_uniform(r));
         u[c] = gsl_ran_gaussian_ziggurat(r, sd);
       }
       const double us[3] = {s->G * (x[1] - 0.5 * s->L[1]), 0.0, 0.0};

@@ -22,6 +22,12 @@
  *    exact rate of the protocol is N / (dt sum_{j>=0} S(j dt)).  The count is a superposition of renewal
  *    processes (not Poisson: the variance is ~1.4 times the mean), so the
  *    row is the Student mean of independent replicas.
+ *
+ * Each run draws its placement from a stream of its own, as `smolbridge
+ * collide` draws placement = uniform from placement_seed: write mode
+ * (--write-ini) writes every run as a collide file (detect = none, the
+ * deposits per step in series.csv, profile = parabolic for the steady
+ * source; docs/validation.md).
  */
 #include <math.h>
 #include <stdio.h>
@@ -32,6 +38,7 @@
 
 #include <smolbridge/engine.h>
 
+#include "common/internal.h"
 #include "cases.h"
 #include "v16.h"
 
@@ -84,7 +91,102 @@ static void setup_slab(const brown *b, double Ly, double Lxz, size_t n,
   s->nodetect = 1;
 }
 
-static int transient(const sbv_ctx *ctx, sbv_report *rep, gsl_rng *r)
+/* Placement streams: each run its own generator (a collide file's
+ * placement_seed); the bridge run keeps the case's first stream. */
+#define DEP_BRIDGE_STREAM 1603UL
+#define DEP_CHORD_STREAM 1604UL
+#define DEP_STEADY_STREAM 16030UL  /* + replica */
+
+int v16_write_walls(const sbv_ctx *ctx, sbv_report *rep, const v16_setup *s,
+                    unsigned long placement_seed, size_t sample_every,
+                    const char *name, const char *what)
+{
+  static const char *const face[3][2] = {
+      {"x_lo", "x_hi"}, {"y_lo", "y_hi"}, {"z_lo", "z_hi"}};
+  if (s->warmup || s->G != 0.0 || s->g[0] != 0.0 || s->g[1] != 0.0 ||
+      s->g[2] != 0.0)
+    return sbi_error(SB_EINVAL, __func__, "a warm-up, shear or gravity: "
+                     "not written by this function");
+  FILE *f = sbv_ini_begin(ctx, rep, name, what);
+  if (!f)
+    return SB_EIO;
+  fprintf(f, "seed = %lu\nrng = mt19937\nLx = %.17g\nLy = %.17g\n"
+          "Lz = %.17g\ndt = %.17g\nsteps = %zu\nsample_every = %zu\n",
+          s->seed, s->L[0], s->L[1], s->L[2], s->dt, s->steps, sample_every);
+  if (s->nodetect)
+    fprintf(f, "detect = none\n");
+  else
+    fprintf(f, "detect = ballistic\noutcome = count\n");
+  fprintf(f, "placement = uniform\nplacement_seed = %lu\n\n[walls]\n",
+          placement_seed);
+  for (int c = 0; c < 3; c++)
+    if (s->walls[c])
+      fprintf(f, "%s = %s\n%s = %s\n", face[c][0],
+              s->walls[c] == SB_WALL_ABSORB ? "absorb" : "reflect",
+              face[c][1],
+              s->walls[c] == SB_WALL_ABSORB ? "absorb" : "reflect");
+  fprintf(f, "detect = %s\ndeposit = %s\n",
+          s->walldet == SB_WALLDET_BALLISTIC  ? "ballistic"
+          : s->walldet == SB_WALLDET_LANGEVIN ? "langevin"
+                                              : "bridge",
+          s->deposit == SB_DEPOSIT_REINSERT ? "reinsert" : "remove");
+  for (size_t a = 0; a < s->nsp; a++) {
+    const v16_species *q = &s->sp[a];
+    fprintf(f, "\n[species %c]\nradius = %.17g\nmass = %.17g\n"
+            "tau = %.17g\nB = %.17g\ncount = %zu\n", (char)('a' + a), q->r,
+            q->rho_p * 4.0 / 3.0 * PI * q->r * q->r * q->r, q->tau, q->B,
+            q->count);
+    if (s->parabolic)
+      fprintf(f, "profile = parabolic\n");
+  }
+  return sbv_ini_end(rep, f, NULL);
+}
+
+void v16_expect_window(sbv_report *rep, const char *record, size_t k0,
+                       size_t k, double factor)
+{
+  char fld[64];
+  if (k0)
+    snprintf(fld, sizeof fld, "series.csv %zu-%zu deposits", k, k0);
+  else
+    snprintf(fld, sizeof fld, "series.csv %zu deposits", k);
+  sbv_ini_expect(rep, record, fld, factor);
+}
+
+/* The transient runs (bridge, chord) written as collide files: the
+ * window counts are differences of series.csv rows (one per step). */
+static int transient_write(const sbv_ctx *ctx, sbv_report *rep,
+                           v16_setup *s, size_t N)
+{
+  int st = SB_SUCCESS;
+  for (int det = 0; det < 2 && !st; det++) {
+    s->walldet = det ? SB_WALLDET_BALLISTIC : SB_WALLDET_BRIDGE;
+    s->seed = ctx->seed * 1000 + 1620 + (unsigned long)det;
+    st = v16_write_walls(ctx, rep, s,
+                         sbv_rng_seed(ctx, det ? DEP_CHORD_STREAM
+                                               : DEP_BRIDGE_STREAM),
+                         1, det ? "V16_deposition_transient_chord"
+                                : "V16_deposition_transient_bridge",
+                         det ? "V16/deposition: transient, chord-only wall "
+                               "detection"
+                             : "V16/deposition: transient, Brownian-bridge "
+                               "wall detection");
+    for (size_t k = 0; k < s->nmark && !st && !det; k++) {
+      char name[128];
+      snprintf(name, sizeof name,
+               "V16/deposition/transient/bridge/t=%zudt/window-count",
+               s->mark[k]);
+      v16_expect_window(rep, name, k ? s->mark[k - 1] : 0, s->mark[k],
+                        1.0 / (double)N);
+    }
+    if (!st && det)
+      v16_expect_window(rep, "V16/deposition/transient/chord-only/t=32dt/"
+                        "absorbed<ref", 0, s->mark[5], 1.0 / (double)N);
+  }
+  return st;
+}
+
+static int transient(const sbv_ctx *ctx, sbv_report *rep)
 {
   brown b;
   brown_init(&b);
@@ -97,12 +199,17 @@ static int transient(const sbv_ctx *ctx, sbv_report *rep, gsl_rng *r)
   s.nmark = 6;
   for (size_t k = 0; k < 6; k++)
     s.mark[k] = (size_t)1 << k;
+  if (sbv_writing(ctx))
+    return transient_write(ctx, rep, &s, N);
   int st = SB_SUCCESS;
   v16_result res[2];
   for (int det = 0; det < 2 && !st; det++) {
     s.walldet = det ? SB_WALLDET_BALLISTIC : SB_WALLDET_BRIDGE;
     s.seed = ctx->seed * 1000 + 1620 + (unsigned long)det;
-    st = v16_run(&s, r, &res[det]);
+    gsl_rng *r = sbv_rng_alloc(ctx, det ? DEP_CHORD_STREAM
+                                        : DEP_BRIDGE_STREAM);
+    st = r ? v16_run(&s, r, &res[det]) : SB_ENOMEM;
+    gsl_rng_free(r);
   }
   if (st)
     return st;
@@ -164,7 +271,7 @@ static int transient(const sbv_ctx *ctx, sbv_report *rep, gsl_rng *r)
   return st;
 }
 
-static int steady(const sbv_ctx *ctx, sbv_report *rep, gsl_rng *r)
+static int steady(const sbv_ctx *ctx, sbv_report *rep)
 {
   brown b;
   brown_init(&b);
@@ -197,8 +304,25 @@ static int steady(const sbv_ctx *ctx, sbv_report *rep, gsl_rng *r)
   unsigned long long tot = 0;
   for (size_t q = 0; q < R && !st; q++) {
     s.seed = ctx->seed * 1000 + 1630 + (unsigned long)q;
+    if (sbv_writing(ctx)) {
+      /* one file per replica, the deposits of the run in series.csv's
+       * one row; the record is their mean */
+      char fn[64];
+      snprintf(fn, sizeof fn, "V16_deposition_steady_r%zu", q);
+      st = v16_write_walls(ctx, rep, &s,
+                           sbv_rng_seed(ctx, DEP_STEADY_STREAM + q),
+                           s.steps, fn, "V16/deposition: steady source "
+                           "(reinsertion), one replica");
+      if (!st)
+        sbv_ini_expect_mean(rep, "V16/deposition/steady-source/rate/ref",
+                            "series.csv 1 deposits",
+                            1.0 / ((double)s.steps * s.dt) / ref);
+      continue;
+    }
+    gsl_rng *r = sbv_rng_alloc(ctx, DEP_STEADY_STREAM + q);
     v16_result res;
-    st = v16_run(&s, r, &res);
+    st = r ? v16_run(&s, r, &res) : SB_ENOMEM;
+    gsl_rng_free(r);
     if (st)
       break;
     ratio[q] = (double)res.ndep / ((double)s.steps * s.dt) / ref;
@@ -206,6 +330,8 @@ static int steady(const sbv_ctx *ctx, sbv_report *rep, gsl_rng *r)
     if (res.n_end != N)
       st = SB_EINVAL;
   }
+  if (sbv_writing(ctx))
+    return st;
   if (!st)
     st = sbv_add_mean(rep, "V16/deposition/steady-source/rate/ref",
                       ratio, R, 1.0);
@@ -221,16 +347,8 @@ static int steady(const sbv_ctx *ctx, sbv_report *rep, gsl_rng *r)
 
 int v16_case_deposition(const sbv_ctx *ctx, sbv_report *rep)
 {
-  if (sbv_writing(ctx)) {
-    sbv_ini_skip(rep, "V16/deposition: run by the case");
-    return SB_SUCCESS;
-  }
-  gsl_rng *r = sbv_rng_alloc(ctx, 1603);
-  if (!r)
-    return SB_ENOMEM;
-  int st = transient(ctx, rep, r);
+  int st = transient(ctx, rep);
   if (!st)
-    st = steady(ctx, rep, r);
-  gsl_rng_free(r);
+    st = steady(ctx, rep);
   return st;
 }

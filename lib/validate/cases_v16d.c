@@ -286,13 +286,14 @@ static int dl_reference(gsl_rng *r, size_t npath, double em[DL_NW],
   return SB_SUCCESS;
 }
 
+/* Each detector run's placement from its own stream (a collide file's
+ * placement_seed); the reference Monte Carlo draws from DL_REF_STREAM. */
+#define DL_REF_STREAM 1670UL
+#define DL_PLACE_STREAM 1671UL  /* + detector */
+
 static int case_deposition_langevin(const sbv_ctx *ctx, sbv_report *rep)
 {
-  if (sbv_writing(ctx)) {
-    sbv_ini_skip(rep, "V16/deposition-langevin: run by the case");
-    return SB_SUCCESS;
-  }
-  gsl_rng *r = sbv_rng_alloc(ctx, 1670);
+  gsl_rng *r = sbv_rng_alloc(ctx, DL_REF_STREAM);
   if (!r)
     return SB_ENOMEM;
   /* 50 nm spheres (rho_p = 1000) in air at 300 K, Stokes drag as
@@ -334,7 +335,36 @@ static int case_deposition_langevin(const sbv_ctx *ctx, sbv_report *rep)
   for (int d = 0; d < 3 && !st; d++) {
     s.walldet = dets[d];
     s.seed = ctx->seed * 1000 + 1670 + (unsigned long)d;
-    st = v16_run(&s, r, &res[d]);
+    if (sbv_writing(ctx)) {
+      /* the records: window counts (rows of series.csv, one per step)
+       * over N times the reference fraction of the window */
+      char fn[64], what[96];
+      snprintf(fn, sizeof fn, "V16_deposition_langevin_%s", dname[d]);
+      snprintf(what, sizeof what, "V16/deposition-langevin: dt = tau_p, "
+               "%s wall detection", dname[d]);
+      st = v16_write_walls(ctx, rep, &s,
+                           sbv_rng_seed(ctx, DL_PLACE_STREAM +
+                                                 (unsigned long)d),
+                           1, fn, what);
+      double eprev = 0.0;
+      for (int k = 0; k < DL_NW && !st; k++) {
+        const double P = 2.0 * (em[k] - eprev) * lam / W;
+        char name[128];
+        snprintf(name, sizeof name, "V16/deposition-langevin/dt=tau_p/%s/"
+                 "t=%ddt/window-count", dname[d], 1 << k);
+        v16_expect_window(rep, name, k ? (size_t)1 << (k - 1) : 0,
+                          (size_t)1 << k, 1.0 / ((double)N * P));
+        eprev = em[k];
+      }
+      continue;
+    }
+    gsl_rng *g = sbv_rng_alloc(ctx, DL_PLACE_STREAM + (unsigned long)d);
+    st = g ? v16_run(&s, g, &res[d]) : SB_ENOMEM;
+    gsl_rng_free(g);
+  }
+  if (sbv_writing(ctx)) {
+    gsl_rng_free(r);
+    return st;
   }
   sbv_note(rep, "Langevin deposition: %zu spheres (d = 50 nm, rho_p = 1000 "
            "kg/m^3, air, 300 K: tau_p = %.3g s, sqrt(kT/m) tau_p = %.3g m, "

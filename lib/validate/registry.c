@@ -165,30 +165,14 @@ static const char *const INI_CASES[] = {
     "V8/agglo-dlvo", "V8/agglo-constant", "V8/agglo-brownian",
     "V12/langevin-detector", "V16/shear", "V16/settling",
     "V16/abrahamson", "V16/saffman-turner", "V16/combined",
-    "V16/combined-shear-diffusive", NULL};
+    "V16/combined-shear-diffusive", "V16/deposition",
+    "V16/deposition-langevin", "V16/combined-shear", NULL};
 
 /* Cases whose engine runs `smolbridge collide` does not reproduce, and
  * why: written to NOT-WRITTEN.txt, so that no engine run goes unlisted. */
 static const struct {
   const char *name, *why;
 } NO_FILES[] = {
-    {"V16/deposition",
-     "the transient records are counts in the windows (0, 1], (1, 2], ..., "
-     "(16, 32] steps (collide gives the deposits at the end), the "
-     "chord-only run's placement continues the bridge run's generator (not "
-     "a fresh placement_seed), particle-particle detection is off (a "
-     "never-detecting callback); the steady-source runs start from the "
-     "parabolic profile y (W - y) (not a collide placement) and their "
-     "record is a mean over 4 replicas of a deposit rate"},
-    {"V16/deposition-langevin",
-     "its records are counts in the windows (0, 1], ..., (8, 16] steps "
-     "(collide gives the deposits at the end), the three detector runs "
-     "draw their placements in turn from the generator of the case's "
-     "reference Monte Carlo (not fresh placement_seeds), and "
-     "particle-particle detection is off (a never-detecting callback)"},
-    {"V16/combined-shear",
-     "its records are means over 16 time blocks of one run (the "
-     "pass-through count read at each block's end), not a summary field"},
     {"V15/engine-jets",
      "open boundaries with inflows through part of a face, and its records "
      "are the particles' density and momentum deposited on the 45 x 45 "

@@ -73,4 +73,18 @@ int v16_case_deposition(const sbv_ctx *ctx, sbv_report *rep);
 void v16_ini_run(FILE *f, unsigned long seed, const double L[3], double dt,
                  size_t steps, unsigned long placement_seed);
 
+/* Write mode: v16_run of a setup with walls (no warm-up, one fluid at
+ * rest) as the collide file `name` (sbv_ini_begin): placement = uniform
+ * from placement_seed ([species] profile = parabolic for s->parabolic),
+ * detect = none for s->nodetect, and the deposits in series.csv every
+ * sample_every steps.  The caller then adds the expect lines. */
+int v16_write_walls(const sbv_ctx *ctx, sbv_report *rep, const v16_setup *s,
+                    unsigned long placement_seed, size_t sample_every,
+                    const char *name, const char *what);
+/* Write mode: the expect line of a record that is the deposits of the
+ * window (step k0, step k] of a run written with sample_every = 1 (row k
+ * of series.csv is step k; k0 = 0: the run's start) times factor. */
+void v16_expect_window(sbv_report *rep, const char *record, size_t k0,
+                       size_t k, double factor);
+
 #endif /* SB_VALIDATE_V16_H */
