@@ -76,6 +76,16 @@ START_TEST(test_detect_none)
     ck_assert_uint_eq(st.ncoll, none ? 0 : 1);
     ck_assert_uint_eq(sb_collide_nwarnings(c), 0);
     sb_collide_free(c);
+    /* the summary says what ran: no outcome without contacts */
+    char path[600], js[8192];
+    snprintf(path, sizeof path, "%s/summary.json", dir);
+    FILE *f = fopen(path, "r");
+    ck_assert_ptr_nonnull(f);
+    size_t nr = fread(js, 1, sizeof js - 1, f);
+    js[nr] = 0;
+    fclose(f);
+    ck_assert_ptr_nonnull(strstr(js, none ? "\"outcome\": \"none\""
+                                          : "\"outcome\": \"elastic\""));
     rm_dir(dir);
   }
   /* an outcome has nothing to act on (warned); first_hit nothing to

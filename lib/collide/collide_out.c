@@ -276,7 +276,8 @@ static void json_run(FILE *f, const sbi_col_config *c, const sb_engine *e)
           p->L[0], p->L[1], p->dim == 3 ? p->L[2] : 0.0);
   fprintf(f, "  \"dt\": %.17g,\n  \"neigh\": \"%s\",\n  \"detect\": "
           "\"%s\",\n  \"outcome\": \"%s\",\n  \"eta\": %.17g,\n",
-          p->dt, c->neigh, c->detect, c->outcome, p->eta);
+          p->dt, c->neigh, c->detect,
+          sbi_col_detect_none(c) ? "none" : c->outcome, p->eta);
   fprintf(f, "  \"fluid\": \"%s\",\n", c->fluid);
   fprintf(f, "  \"rng\": \"%s\",\n",
           p->rng_type ? p->rng_type->name : gsl_rng_mt19937->name);
