@@ -694,16 +694,17 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
       const double W = (2.0 * fa + reach) * (1.0 + tol) + 2.0 * eabs;
       int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
       for (int k = 0; k < dim; k++) {
-        const double t = W * inv[k];
-        const int m = t <= 1.0 ? 1 : (int)ceil(t);
-        if (2 * m + 1 >= nf[k])
+        /* the cells that [m - W, m + W] meets: ceil((W - dlo)/h) below,
+         * ceil((W - (h - dlo))/h) above (the margins in W cover a cell
+         * index rounded across a face) */
+        const double dlo = ma[k] - ci[k] * hk[k], dhi = hk[k] - dlo;
+        const int m = (int)ceil(W * inv[k]);
+        if (2 * m + 1 >= nf[k]) {
           hi[k] = nf[k] - 1;  /* every cell once */
-        else if (m == 1) {
-          const double dlo = ma[k] - ci[k] * hk[k];
-          lo[k] = dlo < W ? -1 : 0;
-          hi[k] = hk[k] - dlo < W ? 1 : 0;
-        } else
-          lo[k] = -m, hi[k] = m;
+          continue;
+        }
+        lo[k] = dlo < W ? -(int)ceil((W - dlo) * inv[k]) : 0;
+        hi[k] = dhi < W ? (int)ceil((W - dhi) * inv[k]) : 0;
       }
       for (int q2 = lo[2]; q2 <= hi[2]; q2++)
         for (int q1 = lo[1]; q1 <= hi[1]; q1++)
