@@ -32,6 +32,11 @@ typedef struct {
   int valid;
   double h;
   sbi_lh_coef q[SBI_LH_NQ];  /* at the quadrature nodes */
+  /* the same by coefficient (node index last: the node loops vectorise);
+   * axr = ax - xi, the deviation of E[x] from the chord */
+  double axr[SBI_LH_NQ], bx[SBI_LH_NQ], cx[SBI_LH_NQ], wx[SBI_LH_NQ];
+  double au[SBI_LH_NQ], bu[SBI_LH_NQ], cu[SBI_LH_NQ], wu[SBI_LH_NQ];
+  double vx[SBI_LH_NQ], vu[SBI_LH_NQ], cxu[SBI_LH_NQ];
   sbi_lh_coef mid;           /* at the midpoint */
   double l11, l21, l22;      /* Cholesky factor of the midpoint covariance */
   /* bounds over the nodes: |E[x] - chord| <= ka |x_b - x_a| + kb |u_a| +

@@ -137,6 +137,17 @@ const sbi_lh_level *sbi_lh_level_get(sb_langevin_hitter *w, sbi_lh_slot *s,
   L->kau = L->kbu = L->kcu = L->kwu = L->vumax = 0.0;
   for (int k = 0; k < SBI_LH_NQ; k++) {
     const sbi_lh_coef *q = &L->q[k];
+    L->axr[k] = q->ax - w->xi[k];
+    L->bx[k] = q->bx;
+    L->cx[k] = q->cx;
+    L->wx[k] = q->wx;
+    L->au[k] = q->au;
+    L->bu[k] = q->bu;
+    L->cu[k] = q->cu;
+    L->wu[k] = q->wu;
+    L->vx[k] = q->vx;
+    L->vu[k] = q->vu;
+    L->cxu[k] = q->cxu;
     L->ka = fmax(L->ka, fabs(q->ax - w->xi[k]));
     L->kb = fmax(L->kb, fabs(q->bx));
     L->kc = fmax(L->kc, fabs(q->cx));
