@@ -220,6 +220,53 @@ if "$sb" collide "$out/two.ini" --set run.dt=2e-5 --set species.sphere.T=301 \
 else
   fail "collide --set failed"
 fi
+# --sweep with a mixture: a first-contact run has one kernel per species
+# pair (no single K: the K columns are empty), listed in the pairs column
+# as in summary.json first_hit.pairs
+cat > "$out/mix.ini" <<EOF
+[run]
+seed = 4
+L = 2e-5
+dt = 1e-6
+steps = 100
+detect = ballistic
+outcome = count
+placement = uniform
+output = $out/mix
+[observe]
+first_hit = yes
+[species a]
+diameter = 1e-6
+density = 1000
+tau = 1e-7
+T = 300
+count = 200
+[species b]
+diameter = 2e-6
+density = 1000
+tau = 4e-7
+T = 300
+count = 100
+EOF
+printf 'run.seed=4\nspecies.b.count=50\n' > "$out/mix.txt"
+if "$sb" collide "$out/mix.ini" --sweep "$out/mix.txt" >/dev/null 2>&1; then
+  head -n 1 "$out/mix/sweep.csv" | grep -q ',K,K_lo,K_hi,pairs,overrides,' \
+    || fail "sweep.csv header: $(head -n 1 "$out/mix/sweep.csv")"
+  for k in 0 1; do
+    row=$(grep "^$k,ok,.*,first-hit,,,,\"a-a " "$out/mix/sweep.csv") \
+      || { fail "sweep mixture row $k: $(sed -n "$((k + 2))p" "$out/mix/sweep.csv")"; continue; }
+    # each pair's K as summary.json gives it (%.6g)
+    for ab in a-a a-b b-b; do
+      a=${ab%-*} b=${ab#*-}
+      want=$(sed -n "s/.*{\"species\": \[\"$a\", \"$b\"\], \"hits\": .*\"K\": \([^,]*\),.*/\1/p" \
+        "$out/mix/point_00$k/summary.json" | awk '{ printf "%.6g", $1 }')
+      case "$row" in *"$ab $want ["*) ;;
+        *) fail "sweep row $k: pair $ab, want K = $want: $row" ;; esac
+    done
+  done
+else
+  fail "collide --sweep of a mixture failed"
+fi
 rm -rf "$out"
 
 [ "$fails" -eq 0 ] && echo "cli: all checks passed"
