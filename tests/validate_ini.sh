@@ -21,7 +21,8 @@
 # (V16/combined-shear-diffusive, Pe = 0.1); first-hit counting of two
 # species, one kernel per species pair (first_hit.pairs): with gravity and
 # the settling velocity taken out of the placement by a drift
-# (V16/combined, Pe = 1) and with the capacitance radius (V12/mixture).
+# (V16/combined, Pe = 1) and with the capacitance radius (V12/mixture);
+# the MD-type detector of V3 (detect = md, dt = 100 tau_p).
 # Engine cases without files must say why in NOT-WRITTEN.txt.
 set -u
 sb="${top_builddir:-.}/smolbridge"
@@ -31,7 +32,7 @@ rm -rf "$dir"
 mkdir -p "$dir"
 fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-cases="--case V1/dense-long-steps --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V8/agglo-constant --case V12/ --case V16/shear --case V16/abrahamson --case V16/saffman-turner --case V16/combined-shear-diffusive --case V16/combined\$"
+cases="--case V1/dense-long-steps --case V3/diffusive-fail --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V8/agglo-constant --case V12/ --case V16/shear --case V16/abrahamson --case V16/saffman-turner --case V16/combined-shear-diffusive --case V16/combined\$"
 # shellcheck disable=SC2086
 "$sb" validate $cases --write-ini "$dir/ini" 2>"$dir/w.err" \
   || { fail "write-ini failed"; cat "$dir/w.err"; }
@@ -67,7 +68,7 @@ field() {  # field SUMMARY NAME
   esac
 }
 ncmp=0
-for run in V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 V8_dlvo_x0.5 \
+for run in V1_dense_He_phi0.05 V3_MD_d1um_dt100tau VX_dt100tau V9_two_spheres_45 V8_dlvo_x0.5 \
     V8_dlvo_pair_3mM_10mV \
     V12_Kn0.05_dt1_langevin V12_Kn0.05_dt1_contact-time \
     V12_Kn0.05_dt1_exact-bb3 V16_shear_G100 V16_shear_G10 \

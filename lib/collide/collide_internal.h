@@ -191,6 +191,9 @@ void sbi_col_warn(sbi_col_config *c, const char *fmt, ...)
 int sbi_col_agglo(const sbi_col_config *c);
 /* 1 for the detectors with a bridge context. */
 int sbi_col_bridge(const sbi_col_config *c);
+/* detect = md (sb_engine_detect_md) and its neighbour reach (m). */
+int sbi_col_md(const sbi_col_config *c);
+double sbi_col_md_reach(const sbi_col_config *c, const sb_engine *e);
 
 /* ---------------------------------------------------- collide_setup.c */
 

@@ -49,6 +49,8 @@ const char **sbi_col_detect_names(const char **names, size_t len)
     names[n++] = b[k];
   for (int k = 0; CONTEXT_DETECTORS[k] && n + 1 < len; k++)
     names[n++] = CONTEXT_DETECTORS[k];
+  if (n + 1 < len)  /* a custom detector of the engine (collide_setup.c) */
+    names[n++] = "md";
   names[n] = NULL;
   return names;
 }
