@@ -13,7 +13,8 @@
 # stream (V16/shear, G = 10 and 100), the per-particle OU seen velocity
 # with the stationary start (V16/abrahamson: both runs, every pair kernel)
 # and the Kraichnan field (V16/saffman-turner, R k = 2: its records are
-# means over 32 realization files, "; expect-mean" lines); merging with
+# means over the 32 realizations of one file run with --sweep,
+# "; expect-sweep-mean" lines); merging with
 # bridge detection whose reach is recomputed at every output time
 # (V8/agglo-constant: [run] stop_every, records read from sizes.csv rows,
 # means over the 10 runs) and first-hit counting in shear with
@@ -74,12 +75,15 @@ for run in V1_dense_He_phi0.05 V3_MD_d1um_dt100tau VX_dt100tau V9_two_spheres_45
     V12_Kn0.05_dt1_exact-bb3 V16_shear_G100 V16_shear_G10 \
     V16_abrahamson_ou-field V16_abrahamson_langevin-species \
     V16_combined_shear_diffusive_Pe0.1 V16_combined_Pe1 V12_mixture \
-    $(cd "$dir/ini" && ls V16_saffman_turner_frozen_Rk2_r*.ini \
-      V8_agglo-constant_run*.ini | sed 's/\.ini$//'); do
+    V16_saffman_turner_frozen_Rk2 \
+    $(cd "$dir/ini" && ls V8_agglo-constant_run*.ini | sed 's/\.ini$//'); do
   ini="$dir/ini/$run.ini"
   [ -f "$ini" ] || { fail "$run.ini not written"; continue; }
-  (cd "$dir/ini" && "$sb" collide "$run.ini" >/dev/null 2>&1) \
-    || { fail "collide $run.ini failed"; continue; }
+  sweep=
+  [ -f "$dir/ini/$run.sweep.txt" ] && sweep="--sweep $run.sweep.txt"
+  # shellcheck disable=SC2086
+  (cd "$dir/ini" && "$sb" collide "$run.ini" $sweep >/dev/null 2>&1) \
+    || { fail "collide $run.ini $sweep failed"; continue; }
   out="$dir/ini/$run-out"
   grep '^; expect' "$ini" | sed 's/^; //' > "$dir/expect.txt"
   while IFS= read -r line; do
@@ -90,6 +94,20 @@ for run in V1_dense_He_phi0.05 V3_MD_d1um_dt100tau VX_dt100tau V9_two_spheres_45
     fld=${rhs%% \* *}
     fac=1
     case "$rhs" in *" * "*) fac=${rhs##* \* } ;; esac
+    if [ "$kind" = expect-sweep-mean ]; then  # the mean over the points
+      [ -n "$sweep" ] || { fail "$run: $kind without a sweep file"; continue; }
+      np=$(grep -c '^[^#]' "$dir/ini/$run.sweep.txt")
+      vals=$(for p in "$out"/point_*/summary.json; do field "$p" "$fld"; done)
+      want=$(awk -F, -v r="$rec" '$1 == r { print $2 }' "$dir/v/validate.csv")
+      [ -n "$want" ] || { fail "$run: no record $rec in validate.csv"; continue; }
+      echo "$vals" | awk -v f="$fac" -v w="$want" -v np="$np" \
+        '{ s += $1 * f; n++ } END { g = s / n; d = g - w; if (d < 0) d = -d;
+          m = w < 0 ? -w : w; if (m < 1e-300) m = 1;
+          exit !(n == np && n >= 2 && d <= 1e-12 * m) }' \
+        || fail "$run: $rec = $want, not the mean over the $np points"
+      ncmp=$((ncmp + 1))
+      continue
+    fi
     case "$fld" in
       sizes.csv*) set -- $fld  # sizes.csv ROW COLUMN
         val=$(awk -F, -v r="$2" -v c="$3" 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i }
