@@ -25,14 +25,28 @@
 # (V16/combined, Pe = 1) and with the capacitance radius (V12/mixture);
 # the MD-type detector of V3 (detect = md, dt = 100 tau_p).
 # Engine cases without files must say why in NOT-WRITTEN.txt.
+# VALIDATE_INI_SET=grid (tests/validate_ini_grid.sh, run beside this one
+# to keep each under ~90 s): the grid deposit of V15/engine-jets at
+# tau = 200 ("; expect-grid" lines: statistics of grid.csv's counts
+# against the exact means in RUN_cells.csv).
 set -u
 sb="${top_builddir:-.}/smolbridge"
 sb="$(cd "$(dirname "$sb")" && pwd)/$(basename "$sb")"  # runs cd below
+set_=${VALIDATE_INI_SET:-main}
 dir="${top_builddir:-.}/tests/validate-ini-out"
+[ "$set_" = main ] || dir="$dir-$set_"
 rm -rf "$dir"
 mkdir -p "$dir"
 fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+if [ "$set_" = grid ]; then
+  cases="--case V15/engine-jets"
+  runs=V15_engine_jets_tau200
+  nmin=3
+  # shellcheck disable=SC2086
+  "$sb" validate $cases --write-ini "$dir/ini" 2>"$dir/w.err" \
+    || { fail "write-ini failed"; cat "$dir/w.err"; }
+else
 cases="--case V1/dense-long-steps --case V3/diffusive-fail --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V8/agglo-constant --case V12/ --case V16/shear --case V16/abrahamson --case V16/saffman-turner --case V16/combined-shear-diffusive --case V16/combined\$"
 # shellcheck disable=SC2086
 "$sb" validate $cases --write-ini "$dir/ini" 2>"$dir/w.err" \
@@ -41,15 +55,25 @@ cases="--case V1/dense-long-steps --case V3/diffusive-fail --case VX/exact-detec
 grep -q 'V12/mixture' "$dir/ini/NOT-WRITTEN.txt" \
   && fail "NOT-WRITTEN.txt lists the V12 mixture, which has its file"
 # engine cases without any file are listed with a reason (no run needed)
-"$sb" validate --case V13/spray-vs-engine --case V15/engine-jets \
+"$sb" validate --case V13/spray-vs-engine \
   --case V15/dense-jets --case V16/deposition --case V16/combined \
   --case V18/ --write-ini "$dir/none" 2>/dev/null
-for c in V13/spray-vs-engine V15/engine-jets V15/dense-jets V16/deposition \
+for c in V13/spray-vs-engine V15/dense-jets V16/deposition \
     V16/deposition-langevin V16/combined-shear \
     V18/self-diffusion V18/maxwell-relaxation; do
   grep -q "^$c: no file: ." "$dir/none/NOT-WRITTEN.txt" \
     || fail "NOT-WRITTEN.txt does not say why $c has no file"
 done
+runs="V1_dense_He_phi0.05 V3_MD_d1um_dt100tau VX_dt100tau V9_two_spheres_45 \
+    V8_dlvo_x0.5 V8_dlvo_pair_3mM_10mV \
+    V12_Kn0.05_dt1_langevin V12_Kn0.05_dt1_contact-time \
+    V12_Kn0.05_dt1_exact-bb3 V16_shear_G100 V16_shear_G10 \
+    V16_abrahamson_ou-field V16_abrahamson_langevin-species \
+    V16_combined_shear_diffusive_Pe0.1 V16_combined_Pe1 V12_mixture \
+    V16_saffman_turner_frozen_Rk2 \
+    $(cd "$dir/ini" && ls V8_agglo-constant_run*.ini | sed 's/\.ini$//')"
+nmin=76
+fi
 # shellcheck disable=SC2086
 "$sb" validate $cases --out "$dir/v" >/dev/null 2>&1
 [ -s "$dir/v/validate.csv" ] || { fail "validate run failed"; exit 1; }
@@ -69,14 +93,7 @@ field() {  # field SUMMARY NAME
   esac
 }
 ncmp=0
-for run in V1_dense_He_phi0.05 V3_MD_d1um_dt100tau VX_dt100tau V9_two_spheres_45 V8_dlvo_x0.5 \
-    V8_dlvo_pair_3mM_10mV \
-    V12_Kn0.05_dt1_langevin V12_Kn0.05_dt1_contact-time \
-    V12_Kn0.05_dt1_exact-bb3 V16_shear_G100 V16_shear_G10 \
-    V16_abrahamson_ou-field V16_abrahamson_langevin-species \
-    V16_combined_shear_diffusive_Pe0.1 V16_combined_Pe1 V12_mixture \
-    V16_saffman_turner_frozen_Rk2 \
-    $(cd "$dir/ini" && ls V8_agglo-constant_run*.ini | sed 's/\.ini$//'); do
+for run in $runs; do
   ini="$dir/ini/$run.ini"
   [ -f "$ini" ] || { fail "$run.ini not written"; continue; }
   sweep=
@@ -112,6 +129,18 @@ for run in V1_dense_He_phi0.05 V3_MD_d1um_dt100tau VX_dt100tau V9_two_spheres_45
       sizes.csv*) set -- $fld  # sizes.csv ROW COLUMN
         val=$(awk -F, -v r="$2" -v c="$3" 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i }
           NR == r + 1 { print $col[c] }' "$out/sizes.csv") ;;
+      grid.csv*) set -- $fld  # grid.csv STAT FRAME REF (RUN_cells.csv)
+        val=$(awk -F, -v stat="$2" -v frame="$3" -v f="$fac" '
+          FNR == 1 { next }
+          NR == FNR { n++; lam[n] = $3; out[n] = $4; next }
+          { row++; if (int((row - 1) / n) + 1 != frame) next
+            q = row - (frame - 1) * n; k = int($5 * f + 0.5)
+            if (out[q] == 1) so += k
+            if (lam[q] > 0) { c2 += (k - lam[q]) * (k - lam[q]) / lam[q]; sk += k; sl += lam[q] } }
+          END { if (row != 0 && frame * n <= row)
+            printf "%.17g", stat == "chi2" ? c2 : stat == "ratio" ? (1 / sl) * sk : so }' \
+          "$dir/ini/$4" "$out/grid.csv")
+        fac=1 ;;  # the factor makes the counts
       snap_*) set -- $fld
         val=$(awk -F, -v id="$3" -v c="$4" 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i }
           NR > 1 && $1 == id { print $col[c] }' "$out/$1") ;;
@@ -146,7 +175,7 @@ if [ -f "$dir/means.txt" ]; then
     ncmp=$((ncmp + 1))
   done
 fi
-[ "$ncmp" -ge 76 ] || fail "only $ncmp records compared"
+[ "$ncmp" -ge "$nmin" ] || fail "only $ncmp records compared"
 [ "$fails" -eq 0 ] && echo "validate_ini: $ncmp records reproduced by collide from the written files"
 [ "$fails" -eq 0 ] && rm -rf "$dir"
 exit $((fails > 0))

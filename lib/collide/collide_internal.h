@@ -72,6 +72,9 @@ typedef struct {
   long hit_times, first_hit;
   double first_hit_radius;
   long first_hit_capacitance, first_hit_skip_seen;
+  double grid[3];               /* [observe] grid: cells per axis */
+  int ngrid;
+  char grid_scheme[8];
   /* [agglo] (outcome = merge | dlvo) */
   char growth[16], erel[16];
   double wmax, wmax_kT;
@@ -208,7 +211,20 @@ typedef struct {
   gsl_rng *field_rng;           /* [fluid] seed (owned), or NULL */
   double t_end;                 /* absolute end time, s */
   double warm;                  /* warm-up, s (0 on restart) */
+  double *grid_rows;            /* [observe] grid frames (collide_grid.c) */
+  size_t grid_n, grid_cap;      /* rows, room */
 } sbi_col_run;
+
+/* ----------------------------------------------------- collide_grid.c */
+
+/* [observe] grid: a frame of the mass and momentum densities now (once
+ * per time), grid.csv, its summary.json entry. */
+int sbi_col_grid_on(const sbi_col_config *c);
+int sbi_col_grid_sample(const sbi_col_config *c, sbi_col_run *r);
+int sbi_col_grid_csv(const sbi_col_config *c, const sbi_col_run *r,
+                     const char *path);
+void sbi_col_grid_json(FILE *f, const sbi_col_config *c,
+                       const sbi_col_run *r);
 
 /* Build the engine, species, particles and contexts.  0 or -1 with
  * c->err set (the run is then freed). */

@@ -27,6 +27,7 @@ static const char *const GROWTHS[] = {"stokes", "constant", NULL};
 static const char *const ERELS[] = {"contact", "stationary", NULL};
 static const char *const ENDS[] = {"position", "diffusive", NULL};
 static const char *const BOOLS[] = {"yes", "no", NULL};
+static const char *const GRIDSCHEMES[] = {"ngp", "cic", NULL};
 static const char *const DRAGS[] = {"stokes", "schiller-naumann", NULL};
 static const char *const WALLS[] = {"periodic", "reflect", "absorb", "open",
                                     NULL};
@@ -164,6 +165,11 @@ const sbi_col_keydef sbi_col_keys[] = {
     {"observe", "first_hit_capacitance", K_BOOL, C(first_hit_capacitance), 0,
      R_ANY, 0, 0, BOOLS, "-", "no", "reference radius K/(4 pi D) of the "
      "measured kernel (Langevin spheres, any Kn_D)"},
+    {"observe", "grid", K_VEC, C(grid), C(ngrid), R_ANY, 2, 3, NULL,
+     "cells", "- (off)", "nx ny [nz]: deposit the mass and momentum "
+     "densities on this grid at every stop_every and at the end (grid.csv)"},
+    {"observe", "grid_scheme", K_NAME, C(grid_scheme), 8, R_ANY, 0, 0,
+     GRIDSCHEMES, "-", "ngp", "deposit: nearest grid point or cloud in cell"},
     {"observe", "first_hit_skip_seen", K_BOOL, C(first_hit_skip_seen), 0,
      R_ANY, 0, 0, BOOLS, "-", "no", "do not pass pairs whose first contact "
      "is known to the detector (fewer draws)"},

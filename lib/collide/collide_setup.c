@@ -35,6 +35,7 @@ void sbi_col_run_free(sbi_col_run *r)
   sb_field_kraichnan_free(r->kr);
   if (r->field_rng)
     gsl_rng_free(r->field_rng);
+  free(r->grid_rows);
   memset(r, 0, sizeof *r);
 }
 

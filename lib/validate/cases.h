@@ -164,6 +164,16 @@ int sbv_ini_sweep_point(sbv_report *rep, size_t k, const char *fmt, ...)
     ;
 void sbv_ini_expect_sweep_mean(sbv_report *rep, const char *record,
                                const char *field, double factor);
+/* Append "; expect-grid RECORD = grid.csv STAT FRAME REF * FACTOR": the
+ * record is a statistic of the counts k = nearbyint(rho * FACTOR) of grid
+ * frame FRAME (from 1; collide's [observe] grid) against REF (a CSV
+ * beside the file, "i,j,lambda,outside", one row per cell in grid.csv's
+ * order): STAT chi2 = sum over lambda > 0 of (k - lambda)^2 / lambda,
+ * ratio = (1 / sum lambda) * sum k over lambda > 0, outside = sum k over
+ * the cells with outside = 1 (docs/validation.md). */
+void sbv_ini_expect_grid(sbv_report *rep, const char *record,
+                         const char *stat, int frame, const char *ref,
+                         double factor);
 /* A run left out, and why (printf-style). */
 void sbv_ini_skip(sbv_report *rep, const char *fmt, ...)
 #if defined(__GNUC__)

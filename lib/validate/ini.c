@@ -82,6 +82,15 @@ void sbv_ini_expect_mean(sbv_report *rep, const char *record,
   expect_line(rep, "expect-mean", record, field, factor);
 }
 
+void sbv_ini_expect_grid(sbv_report *rep, const char *record,
+                         const char *stat, int frame, const char *ref,
+                         double factor)
+{
+  char field[400];
+  snprintf(field, sizeof field, "grid.csv %s %d %s", stat, frame, ref);
+  expect_line(rep, "expect-grid", record, field, factor);
+}
+
 void sbv_ini_expect_sweep_mean(sbv_report *rep, const char *record,
                                const char *field, double factor)
 {

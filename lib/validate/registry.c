@@ -165,7 +165,7 @@ static const char *const INI_CASES[] = {
     "V8/agglo-dlvo", "V8/agglo-constant", "V8/agglo-brownian",
     "V12/langevin-detector", "V16/shear", "V16/settling",
     "V16/abrahamson", "V16/saffman-turner", "V16/combined",
-    "V16/combined-shear-diffusive", NULL};
+    "V16/combined-shear-diffusive", "V15/engine-jets", NULL};
 
 /* Cases whose engine runs `smolbridge collide` does not reproduce, and
  * why: written to NOT-WRITTEN.txt, so that no engine run goes unlisted. */
@@ -189,11 +189,6 @@ static const struct {
     {"V16/combined-shear",
      "its records are means over 16 time blocks of one run (the "
      "pass-through count read at each block's end), not a summary field"},
-    {"V15/engine-jets",
-     "open boundaries with inflows through part of a face, and its records "
-     "are the particles' density and momentum deposited on the 45 x 45 "
-     "grid (sb_engine_grid_fields) at 20 times and compared with the "
-     "Eulerian solution run beside it (not a collide output)"},
     {"V15/dense-jets",
      "open boundaries with an outflow callback that records each exit "
      "(side, place, momentum) in batches, and squares sampled every 10 "
