@@ -42,7 +42,7 @@ fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
 if [ "$set_" = grid ]; then
   cases="--case V15/engine-jets"
   runs=V15_engine_jets_tau200
-  nmin=3
+  nmin=5
   # shellcheck disable=SC2086
   "$sb" validate $cases --write-ini "$dir/ini" 2>"$dir/w.err" \
     || { fail "write-ini failed"; cat "$dir/w.err"; }
@@ -96,6 +96,11 @@ ncmp=0
 for run in $runs; do
   ini="$dir/ini/$run.ini"
   [ -f "$ini" ] || { fail "$run.ini not written"; continue; }
+  # an Eulerian companion (smolbridge pgd) that expect-grid l1 lines read
+  if [ -f "$dir/ini/${run}_euler.ini" ]; then
+    (cd "$dir/ini" && "$sb" pgd "${run}_euler.ini" >/dev/null 2>&1) \
+      || { fail "pgd ${run}_euler.ini failed"; continue; }
+  fi
   sweep=
   [ -f "$dir/ini/$run.sweep.txt" ] && sweep="--sweep $run.sweep.txt"
   # shellcheck disable=SC2086
@@ -129,6 +134,18 @@ for run in $runs; do
       sizes.csv*) set -- $fld  # sizes.csv ROW COLUMN
         val=$(awk -F, -v r="$2" -v c="$3" 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i }
           NR == r + 1 { print $col[c] }' "$out/sizes.csv") ;;
+      grid.csv\ l1-*) set -- $fld  # grid.csv l1-rho|l1-q FRAME PGD/fields.csv
+        val=$(awk -F, -v stat="$2" -v frame="$3" '
+          FNR == 1 { next }
+          NR == FNR { n++; re[n] = $3; qxe[n] = $3 * $4; qye[n] = $3 * $5; next }
+          { row++; if (int((row - 1) / n) + 1 != frame) next
+            q = row - (frame - 1) * n; m += $5 / n
+            sr += ($5 > re[q] ? $5 - re[q] : re[q] - $5)
+            sq += ($6 > qxe[q] ? $6 - qxe[q] : qxe[q] - $6)
+            sq += ($7 > qye[q] ? $7 - qye[q] : qye[q] - $7) }
+          END { h = 1 / sqrt(n); if (row != 0 && frame * n <= row && m > 0)
+            printf "%.17g", (stat == "l1-rho" ? sr : sq) * h * h / m }' \
+          "$dir/ini/$4" "$out/grid.csv") ;;
       grid.csv*) set -- $fld  # grid.csv STAT FRAME REF (RUN_cells.csv)
         val=$(awk -F, -v stat="$2" -v frame="$3" -v f="$fac" '
           FNR == 1 { next }
