@@ -190,10 +190,24 @@ fi
 jets="${srcdir:-.}/examples/open_crossing_jets.ini"
 sed -e "s|^output = .*|output = $out/jets|" -e "s|^t_end = .*|t_end = 2e-3|" \
   "$jets" > "$out/jets.ini"
-if "$sb" collide "$out/jets.ini" --set run.outcome=count 2>/dev/null; then
+if "$sb" collide "$out/jets.ini" --set run.outcome=count \
+     --set observe.exits=yes 2>/dev/null; then
   grep -q '"outflows": \[0, [1-9][0-9]*, 0, [1-9][0-9]*, 0, 0\]' \
     "$out/jets/summary.json" ||
     fail "collide open boundaries: $(grep outflows "$out/jets/summary.json")"
+  # exits.csv: one row per outflow; in free flight a west drop leaves the
+  # east face (x = L) at its inlet height with u = (1, 0), a south drop
+  # the north face (y = L) at its inlet abscissa with u = (0, 1)
+  nout=$(sed -n 's/.*"outflows": \[0, \([0-9]*\), 0, \([0-9]*\),.*/\1 \2/p' \
+    "$out/jets/summary.json")
+  awk -F, -v n="$nout" 'NR > 1 { c[$2]++
+      d6 = $6 - 1e-3; d7 = $7 - 1e-3  # the exit point on the face
+      e = $2 == "x_hi" ? $4 == 0 && d6 * d6 < 1e-30 && $7 >= 4.4444444e-4 && $7 <= 5.5555556e-4 && $9 == 1 && $10 == 0 \
+        : $2 == "y_hi" && $4 == 1 && d7 * d7 < 1e-30 && $6 >= 4.4444444e-4 && $6 <= 5.5555556e-4 && $9 == 0 && $10 == 1
+      if (!e || $1 < 0 || $1 > 2e-3) { print "bad exit row " NR ": " $0; bad = 1 } }
+    END { split(n, m, " "); if (c["x_hi"] != m[1] || c["y_hi"] != m[2]) {
+        print "exits.csv rows " c["x_hi"] " " c["y_hi"] ", outflows " n; bad = 1 }
+      exit bad }' "$out/jets/exits.csv" || fail "collide exits.csv"
 else
   fail "smolbridge collide $jets failed"
 fi

@@ -281,6 +281,11 @@ int sbi_col_check(sbi_col_config *c)
                         "nx ny nz", sbi_col_where(c, "observe", "grid"));
   if (!c->ngrid)
     unused(c, "observe", "grid_scheme", "no [observe] grid");
+  int open = 0;
+  for (int f = 0; f < 6; f++)
+    open |= !strcmp(c->wall[f], "open");
+  if (c->exits > 0 && !open)
+    unused(c, "observe", "exits", "no [walls] face is open");
   if (c->hit_times && !bridge)
     return sbi_col_fail(c, "%s: [observe] hit_times records bridge hits: "
                         "needs detect = bridge or exact",

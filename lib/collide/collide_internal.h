@@ -75,6 +75,7 @@ typedef struct {
   double grid[3];               /* [observe] grid: cells per axis */
   int ngrid;
   char grid_scheme[8];
+  long exits;                   /* [observe] exits (exits.csv) */
   /* [agglo] (outcome = merge | dlvo) */
   char growth[16], erel[16];
   double wmax, wmax_kT;
@@ -213,7 +214,18 @@ typedef struct {
   double warm;                  /* warm-up, s (0 on restart) */
   double *grid_rows;            /* [observe] grid frames (collide_grid.c) */
   size_t grid_n, grid_cap;      /* rows, room */
+  double *exit_rows;            /* [observe] exits (collide_exits.c) */
+  size_t exit_n, exit_cap;
 } sbi_col_run;
+
+/* ---------------------------------------------------- collide_exits.c */
+
+/* [observe] exits: the outflow callback that records each exit, the
+ * reset at the end of the warm-up, exits.csv. */
+int sbi_col_exits_attach(const sbi_col_config *c, sbi_col_run *r);
+void sbi_col_exits_reset(sbi_col_run *r);
+int sbi_col_exits_csv(const sbi_col_config *c, const sbi_col_run *r,
+                      const char *path);
 
 /* ----------------------------------------------------- collide_grid.c */
 

@@ -165,6 +165,8 @@ const sbi_col_keydef sbi_col_keys[] = {
     {"observe", "first_hit_capacitance", K_BOOL, C(first_hit_capacitance), 0,
      R_ANY, 0, 0, BOOLS, "-", "no", "reference radius K/(4 pi D) of the "
      "measured kernel (Langevin spheres, any Kn_D)"},
+    {"observe", "exits", K_BOOL, C(exits), 0, R_ANY, 0, 0, BOOLS, "-", "no",
+     "record every exit through an open face after the warm-up (exits.csv)"},
     {"observe", "grid", K_VEC, C(grid), C(ngrid), R_ANY, 2, 3, NULL,
      "cells", "- (off)", "nx ny [nz]: deposit the mass and momentum "
      "densities on this grid at every stop_every and at the end (grid.csv)"},

@@ -29,7 +29,7 @@
 static int ours(const char *name)
 {
   static const char *const fixed[] = {"series.csv", "summary.json",
-                                      "sizes.csv", "hits.csv", "grid.csv",
+                                      "sizes.csv", "hits.csv", "grid.csv", "exits.csv",
                                       "manifest.txt", NULL};
   for (int i = 0; fixed[i]; i++)
     if (!strcmp(name, fixed[i]))
@@ -498,6 +498,11 @@ int sbi_col_out_write(const sbi_col_config *c, const sbi_col_run *r,
     snprintf(path, sizeof path, "%s/series.csv", c->output);
     err |= write_series(path, r->e, c, ps);
     snprintf(files[nf++], 32, "series.csv");
+  }
+  if (r->e && c->exits > 0) {
+    snprintf(path, sizeof path, "%s/exits.csv", c->output);
+    err |= sbi_col_exits_csv(c, r, path);
+    snprintf(files[nf++], 32, "exits.csv");
   }
   if (r->e && sbi_col_grid_on(c)) {
     snprintf(path, sizeof path, "%s/grid.csv", c->output);

@@ -36,6 +36,7 @@ void sbi_col_run_free(sbi_col_run *r)
   if (r->field_rng)
     gsl_rng_free(r->field_rng);
   free(r->grid_rows);
+  free(r->exit_rows);
   memset(r, 0, sizeof *r);
 }
 
@@ -748,6 +749,8 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
     if (sb_engine_set_langevin(r->e, &lp))
       return sbi_col_fail(c, "[run] langevin_*: %s", sb_last_error());
   }
+  if (sbi_col_exits_attach(c, r))
+    return sbi_col_fail(c, "[observe] exits: %s", sb_last_error());
   if (sbi_col_md(c) && !c->first_hit &&
       sb_engine_set_detector(r->e, sb_engine_detect_md, NULL,
                              sbi_col_md_reach(c, r->e)))
