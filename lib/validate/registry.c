@@ -190,9 +190,13 @@ static const struct {
      "its records are means over 16 time blocks of one run (the "
      "pass-through count read at each block's end), not a summary field"},
     {"V15/dense-jets",
-     "open boundaries with an outflow callback that records each exit "
-     "(side, place, momentum) in batches, and squares sampled every 10 "
-     "steps: not a summary field"},
+     "its records are t intervals over batch means (6 batches of 500 "
+     "steps after a warm-up): each batch's exits by side and family, exit "
+     "place and momentum (collide's [observe] exits gives these rows in "
+     "exits.csv), the mass in the crossing and upstream squares sampled "
+     "every 10 steps, and the collisions per injected drop of the batch "
+     "(injections per batch are no collide output); no expect line "
+     "computes such batch statistics"},
     {"V13/spray-vs-engine",
      "the engine replicas start from thermalized velocities rescaled per "
      "axis (an anisotropic start, not a collide placement), and the "
