@@ -22,13 +22,14 @@
 # (V16/combined-shear-diffusive, Pe = 0.1); first-hit counting of two
 # species, one kernel per species pair (first_hit.pairs): with gravity and
 # the settling velocity taken out of the placement by a drift
-# (V16/combined, Pe = 1) and with the capacitance radius (V12/mixture);
-# the MD-type detector of V3 (detect = md, dt = 100 tau_p).
+# (V16/combined, Pe = 1) and with the capacitance radius (V12/mixture).
 # Engine cases without files must say why in NOT-WRITTEN.txt.
-# VALIDATE_INI_SET=grid (tests/validate_ini_grid.sh, run beside this one
-# to keep each under ~90 s): the grid deposit of V15/engine-jets at
-# tau = 200 ("; expect-grid" lines: statistics of grid.csv's counts
-# against the exact means in RUN_cells.csv).
+# VALIDATE_INI_SET=more (tests/validate_ini_more.sh, run beside this one
+# to keep each under ~90 s): the MD-type detector of V3 (detect = md,
+# dt = 100 tau_p) and the grid deposit of V15/engine-jets at tau = 200
+# ("; expect-grid" lines: statistics of grid.csv's counts against the
+# exact means in RUN_cells.csv, and L1 distances to the fields.csv of
+# `smolbridge pgd RUN_euler.ini`).
 set -u
 sb="${top_builddir:-.}/smolbridge"
 sb="$(cd "$(dirname "$sb")" && pwd)/$(basename "$sb")"  # runs cd below
@@ -39,15 +40,15 @@ rm -rf "$dir"
 mkdir -p "$dir"
 fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-if [ "$set_" = grid ]; then
-  cases="--case V15/engine-jets"
-  runs=V15_engine_jets_tau200
-  nmin=5
+if [ "$set_" = more ]; then
+  cases="--case V3/diffusive-fail --case V15/engine-jets"
+  runs="V3_MD_d1um_dt100tau V15_engine_jets_tau200"
+  nmin=6
   # shellcheck disable=SC2086
   "$sb" validate $cases --write-ini "$dir/ini" 2>"$dir/w.err" \
     || { fail "write-ini failed"; cat "$dir/w.err"; }
 else
-cases="--case V1/dense-long-steps --case V3/diffusive-fail --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V8/agglo-constant --case V12/ --case V16/shear --case V16/abrahamson --case V16/saffman-turner --case V16/combined-shear-diffusive --case V16/combined\$"
+cases="--case V1/dense-long-steps --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V8/agglo-constant --case V12/ --case V16/shear --case V16/abrahamson --case V16/saffman-turner --case V16/combined-shear-diffusive --case V16/combined\$"
 # shellcheck disable=SC2086
 "$sb" validate $cases --write-ini "$dir/ini" 2>"$dir/w.err" \
   || { fail "write-ini failed"; cat "$dir/w.err"; }
@@ -64,7 +65,7 @@ for c in V13/spray-vs-engine V15/dense-jets V16/deposition \
   grep -q "^$c: no file: ." "$dir/none/NOT-WRITTEN.txt" \
     || fail "NOT-WRITTEN.txt does not say why $c has no file"
 done
-runs="V1_dense_He_phi0.05 V3_MD_d1um_dt100tau VX_dt100tau V9_two_spheres_45 \
+runs="V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 \
     V8_dlvo_x0.5 V8_dlvo_pair_3mM_10mV \
     V12_Kn0.05_dt1_langevin V12_Kn0.05_dt1_contact-time \
     V12_Kn0.05_dt1_exact-bb3 V16_shear_G100 V16_shear_G10 \
