@@ -192,6 +192,38 @@ int sbc_collide_main(int argc, char **argv)
   return col_run_point(ini, sets, nsets, 1, NULL);
 }
 
+/* A mixture's kernels, one per species pair ("a-b K [lo, hi]; ..."): the
+ * first-contact kernels (summary.json first_hit.pairs), or the collision
+ * kernels of the pairs with exposure (summary.json pair_kernels). */
+static void pair_kernels(const sb_collide *c, char *buf, size_t len)
+{
+  const sb_engine *e = sb_collide_engine(c);
+  const int fh = sb_collide_has_firsthit(c);
+  size_t n = 0;
+  buf[0] = '\0';
+  for (size_t a = 0; sb_engine_get_species(e, a); a++)
+    for (size_t b = a; sb_engine_get_species(e, b); b++) {
+      double K, lo, hi;
+      if (fh) {
+        sb_engine_firsthit_kernel_result p;
+        sb_collide_firsthit_pair(c, a, b, &p);
+        K = p.K, lo = p.lo, hi = p.hi;
+      } else {
+        sb_engine_pair_stats ps;
+        if (a >= SB_ENGINE_PAIR_SPECIES || b >= SB_ENGINE_PAIR_SPECIES ||
+            sb_engine_pair_kernel(e, a, b, 0.95, &ps) || !(ps.exposure > 0))
+          continue;
+        K = ps.K, lo = ps.lo, hi = ps.hi;
+      }
+      int w = snprintf(buf + n, len - n, "%s%s-%s %.6g [%.6g, %.6g]",
+                       n ? "; " : "", sb_collide_species_name(c, a),
+                       sb_collide_species_name(c, b), K, lo, hi);
+      if (w < 0 || (size_t)w >= len - n)
+        return;  /* truncated: the rest is in summary.json */
+      n += (size_t)w;
+    }
+}
+
 /* The kernel estimate after a completed run, in *res; the done message
  * when verbose. */
 static void report_result(const sb_collide *c, int verbose, col_point *res)
@@ -202,6 +234,9 @@ static void report_result(const sb_collide *c, int verbose, col_point *res)
   if (res) {
     res->ncoll = fs.ncoll;
     res->steps = fs.steps;
+    res->mixture = sb_engine_get_species(e, 1) != NULL;
+    if (res->mixture)
+      pair_kernels(c, res->pairs, sizeof res->pairs);
   }
   if (sb_collide_has_firsthit(c)) {
     sb_engine_firsthit_kernel_result o;

@@ -14,6 +14,9 @@ typedef struct {
   size_t particles;
   unsigned long long ncoll, steps;
   double K, lo, hi;     /* m^3/s and its 95% interval, NaN if none */
+  int mixture;          /* several species: K is no single kernel */
+  char pairs[1536];     /* then one kernel per species pair:
+                           "a-b K [lo, hi]; ..." (col_pair_kernels) */
 } col_point;
 
 /* One run of CONFIG.ini with the overrides; progress on stderr when

@@ -128,7 +128,17 @@ static void csv_quoted(char *dst, size_t len, const char *s)
 }
 
 #define SWEEP_HEADER "point,status,particles,steps,collisions,kind,K,K_lo," \
-                     "K_hi,overrides,message"
+                     "K_hi,pairs,overrides,message"
+
+/* K, K_lo, K_hi of a row: empty for a first-contact mixture, which has
+ * one kernel per species pair (the pairs column) and no single one. */
+static void kernel_cells(const col_point *res, char *buf, size_t len)
+{
+  if (res->mixture && !strcmp(res->kind, "first-hit"))
+    snprintf(buf, len, ",,");
+  else
+    snprintf(buf, len, "%.10g,%.10g,%.10g", res->K, res->lo, res->hi);
+}
 
 /* One point: run it and format its summary row. */
 static int run_point(const char *ini, const char *const *sets, int nsets,
@@ -162,13 +172,14 @@ static int run_point(const char *ini, const char *const *sets, int nsets,
   } else
     rc = col_run_point(ini, all, n, 0, res);
   free(words);
-  char ov[2400], why[2300];
+  char ov[2400], why[2300], pairs[1600], kc[80];
   csv_quoted(ov, sizeof ov, line);
   csv_quoted(why, sizeof why, strcmp(res->status, "ok") ? res->why : "");
-  snprintf(row, rlen, "%zu,%s,%zu,%llu,%llu,%s,%.10g,%.10g,%.10g,%s,%s", k,
+  csv_quoted(pairs, sizeof pairs, res->mixture ? res->pairs : "");
+  kernel_cells(res, kc, sizeof kc);
+  snprintf(row, rlen, "%zu,%s,%zu,%llu,%llu,%s,%s,%s,%s,%s", k,
            res->status, res->particles, res->steps, res->ncoll,
-           res->kind[0] ? res->kind : "none", res->K, res->lo, res->hi, ov,
-           why);
+           res->kind[0] ? res->kind : "none", kc, pairs, ov, why);
   return rc;
 }
 
@@ -200,7 +211,7 @@ int col_sweep(const char *ini, const char *const *sets, int nsets,
   size_t nmine = 0, cap = 0;
   int bad = 0, worst = 0;
   for (size_t k = (size_t)rank; k < pts.n && !bad; k += (size_t)P) {
-    char row[6144];
+    char row[8192];
     col_point res;
     int rc = run_point(ini, sets, nsets, base, k, pts.line[k], row,
                        sizeof row, &res);
@@ -210,10 +221,15 @@ int col_sweep(const char *ini, const char *const *sets, int nsets,
     }
     if (rc > worst)
       worst = rc;
-    if (rank == 0)
-      fprintf(stderr, "[point %zu/%zu] %s: %s, K = %.6g [%.6g, %.6g]%s\n",
-              k + 1, pts.n, pts.line[k], res.status, res.K, res.lo, res.hi,
+    if (rank == 0 && res.mixture && !strcmp(res.kind, "first-hit"))
+      fprintf(stderr, "[point %zu/%zu] %s: %s, per species pair K = %s%s\n",
+              k + 1, pts.n, pts.line[k], res.status, res.pairs,
               sbc_par_tag());
+    else if (rank == 0)
+      fprintf(stderr, "[point %zu/%zu] %s: %s, K = %.6g [%.6g, %.6g]%s%s%s\n",
+              k + 1, pts.n, pts.line[k], res.status, res.K, res.lo, res.hi,
+              res.mixture ? "; per species pair " : "",
+              res.mixture ? res.pairs : "", sbc_par_tag());
     uint64_t hdr[2] = {k, strlen(row)};
     size_t need = nmine + sizeof hdr + hdr[1];
     if (need > cap) {

@@ -190,10 +190,24 @@ fi
 jets="${srcdir:-.}/examples/open_crossing_jets.ini"
 sed -e "s|^output = .*|output = $out/jets|" -e "s|^t_end = .*|t_end = 2e-3|" \
   "$jets" > "$out/jets.ini"
-if "$sb" collide "$out/jets.ini" --set run.outcome=count 2>/dev/null; then
+if "$sb" collide "$out/jets.ini" --set run.outcome=count \
+     --set observe.exits=yes 2>/dev/null; then
   grep -q '"outflows": \[0, [1-9][0-9]*, 0, [1-9][0-9]*, 0, 0\]' \
     "$out/jets/summary.json" ||
     fail "collide open boundaries: $(grep outflows "$out/jets/summary.json")"
+  # exits.csv: one row per outflow; in free flight a west drop leaves the
+  # east face (x = L) at its inlet height with u = (1, 0), a south drop
+  # the north face (y = L) at its inlet abscissa with u = (0, 1)
+  nout=$(sed -n 's/.*"outflows": \[0, \([0-9]*\), 0, \([0-9]*\),.*/\1 \2/p' \
+    "$out/jets/summary.json")
+  awk -F, -v n="$nout" 'NR > 1 { c[$2]++
+      d6 = $6 - 1e-3; d7 = $7 - 1e-3  # the exit point on the face
+      e = $2 == "x_hi" ? $4 == 0 && d6 * d6 < 1e-30 && $7 >= 4.4444444e-4 && $7 <= 5.5555556e-4 && $9 == 1 && $10 == 0 \
+        : $2 == "y_hi" && $4 == 1 && d7 * d7 < 1e-30 && $6 >= 4.4444444e-4 && $6 <= 5.5555556e-4 && $9 == 0 && $10 == 1
+      if (!e || $1 < 0 || $1 > 2e-3) { print "bad exit row " NR ": " $0; bad = 1 } }
+    END { split(n, m, " "); if (c["x_hi"] != m[1] || c["y_hi"] != m[2]) {
+        print "exits.csv rows " c["x_hi"] " " c["y_hi"] ", outflows " n; bad = 1 }
+      exit bad }' "$out/jets/exits.csv" || fail "collide exits.csv"
 else
   fail "smolbridge collide $jets failed"
 fi
@@ -219,6 +233,53 @@ if "$sb" collide "$out/two.ini" --set run.dt=2e-5 --set species.sphere.T=301 \
     "$out/collide/summary.json" || fail "--set not recorded in summary.json"
 else
   fail "collide --set failed"
+fi
+# --sweep with a mixture: a first-contact run has one kernel per species
+# pair (no single K: the K columns are empty), listed in the pairs column
+# as in summary.json first_hit.pairs
+cat > "$out/mix.ini" <<EOF
+[run]
+seed = 4
+L = 2e-5
+dt = 1e-6
+steps = 100
+detect = ballistic
+outcome = count
+placement = uniform
+output = $out/mix
+[observe]
+first_hit = yes
+[species a]
+diameter = 1e-6
+density = 1000
+tau = 1e-7
+T = 300
+count = 200
+[species b]
+diameter = 2e-6
+density = 1000
+tau = 4e-7
+T = 300
+count = 100
+EOF
+printf 'run.seed=4\nspecies.b.count=50\n' > "$out/mix.txt"
+if "$sb" collide "$out/mix.ini" --sweep "$out/mix.txt" >/dev/null 2>&1; then
+  head -n 1 "$out/mix/sweep.csv" | grep -q ',K,K_lo,K_hi,pairs,overrides,' \
+    || fail "sweep.csv header: $(head -n 1 "$out/mix/sweep.csv")"
+  for k in 0 1; do
+    row=$(grep "^$k,ok,.*,first-hit,,,,\"a-a " "$out/mix/sweep.csv") \
+      || { fail "sweep mixture row $k: $(sed -n "$((k + 2))p" "$out/mix/sweep.csv")"; continue; }
+    # each pair's K as summary.json gives it (%.6g)
+    for ab in a-a a-b b-b; do
+      a=${ab%-*} b=${ab#*-}
+      want=$(sed -n "s/.*{\"species\": \[\"$a\", \"$b\"\], \"hits\": .*\"K\": \([^,]*\),.*/\1/p" \
+        "$out/mix/point_00$k/summary.json" | awk '{ printf "%.6g", $1 }')
+      case "$row" in *"$ab $want ["*) ;;
+        *) fail "sweep row $k: pair $ab, want K = $want: $row" ;; esac
+    done
+  done
+else
+  fail "collide --sweep of a mixture failed"
 fi
 rm -rf "$out"
 

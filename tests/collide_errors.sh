@@ -42,7 +42,7 @@ check() {
 A='/^T = 300/a\'   # append after the species' T line (sed a\ form)
 
 # unknown names: file:line, key, value, valid values
-check "detect" 2 't.ini:5: [run] detect = brige: unknown; valid: ballistic, overlap, langevin, bridge, exact, none' '4a\
+check "detect" 2 't.ini:5: [run] detect = brige: unknown; valid: ballistic, overlap, langevin, bridge, exact, none, md' '4a\
 detect = brige'
 check "neigh" 2 '[run] neigh = cell: unknown; valid: cells, sweep, brute' '4a\
 neigh = cell'

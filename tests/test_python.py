@@ -103,6 +103,22 @@ with tempfile.TemporaryDirectory() as d:
     sb.collide(cfg, output=out)
     check(os.path.exists(os.path.join(out, "summary.json")),
           "collide output= keeps summary.json")
+# [observe] grid: its summary entry comes through, and grid.csv's frame
+# holds the two spheres' mass and momentum (sum of rho h^3)
+with tempfile.TemporaryDirectory() as d:
+    out = os.path.join(d, "grid")
+    summary, _ = sb.collide(dict(cfg, observe={"grid": [4, 2, 2]}),
+                            output=out)
+    g = summary.get("grid", {})
+    check(g.get("n") == [4, 2, 2] and g.get("frames") == 1 and
+          g.get("scheme") == "ngp", "collide grid summary: %s" % g)
+    rows = np.genfromtxt(os.path.join(out, "grid.csv"), delimiter=",",
+                            names=True)
+    hv = (1e-4 / 4) * (1e-4 / 2) * (1e-4 / 2)
+    check(len(rows) == 16 and
+          abs(rows["rho"].sum() * hv - 2e-15) < 1e-27 and
+          abs(rows["rho_ux"].sum() * hv - 1e-15 * 0.1) < 1e-28,
+          "collide grid.csv mass and momentum")
 # a key without effect: a CollideWarning naming it
 with warnings.catch_warnings(record=True) as w:
     warnings.simplefilter("always")

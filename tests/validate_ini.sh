@@ -13,7 +13,8 @@
 # stream (V16/shear, G = 10 and 100), the per-particle OU seen velocity
 # with the stationary start (V16/abrahamson: both runs, every pair kernel)
 # and the Kraichnan field (V16/saffman-turner, R k = 2: its records are
-# means over 32 realization files, "; expect-mean" lines); merging with
+# means over the 32 realizations of one file run with --sweep,
+# "; expect-sweep-mean" lines); merging with
 # bridge detection whose reach is recomputed at every output time
 # (V8/agglo-constant: [run] stop_every, records read from sizes.csv rows,
 # means over the 10 runs) and first-hit counting in shear with
@@ -30,14 +31,30 @@
 # the 4 replicas); Langevin spheres in shear, pass-through counting with
 # a warm-up (V16/combined-shear, Pe_k = 0.3).
 # Engine cases without files must say why in NOT-WRITTEN.txt.
+# VALIDATE_INI_SET=more (tests/validate_ini_more.sh, run beside this one
+# to keep each under ~90 s): the MD-type detector of V3 (detect = md,
+# dt = 100 tau_p) and the grid deposit of V15/engine-jets at tau = 200
+# ("; expect-grid" lines: statistics of grid.csv's counts against the
+# exact means in RUN_cells.csv, and L1 distances to the fields.csv of
+# `smolbridge pgd RUN_euler.ini`).
 set -u
 sb="${top_builddir:-.}/smolbridge"
 sb="$(cd "$(dirname "$sb")" && pwd)/$(basename "$sb")"  # runs cd below
+set_=${VALIDATE_INI_SET:-main}
 dir="${top_builddir:-.}/tests/validate-ini-out"
+[ "$set_" = main ] || dir="$dir-$set_"
 rm -rf "$dir"
 mkdir -p "$dir"
 fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+if [ "$set_" = more ]; then
+  cases="--case V3/diffusive-fail --case V15/engine-jets"
+  runs="V3_MD_d1um_dt100tau V15_engine_jets_tau200"
+  nmin=6
+  # shellcheck disable=SC2086
+  "$sb" validate $cases --write-ini "$dir/ini" 2>"$dir/w.err" \
+    || { fail "write-ini failed"; cat "$dir/w.err"; }
+else
 cases="--case V1/dense-long-steps --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V8/agglo-constant --case V12/ --case V16/shear --case V16/abrahamson --case V16/saffman-turner --case V16/combined-shear-diffusive --case V16/combined\$ --case V16/deposition --case V16/combined-shear\$"
 # shellcheck disable=SC2086
 "$sb" validate $cases --write-ini "$dir/ini" 2>"$dir/w.err" \
@@ -46,14 +63,27 @@ cases="--case V1/dense-long-steps --case VX/exact-detection --case V9/two-sphere
 grep -q 'V12/mixture' "$dir/ini/NOT-WRITTEN.txt" \
   && fail "NOT-WRITTEN.txt lists the V12 mixture, which has its file"
 # engine cases without any file are listed with a reason (no run needed)
-"$sb" validate --case V13/spray-vs-engine --case V15/engine-jets \
+"$sb" validate --case V13/spray-vs-engine \
   --case V15/dense-jets \
   --case V18/ --write-ini "$dir/none" 2>/dev/null
-for c in V13/spray-vs-engine V15/engine-jets V15/dense-jets \
+for c in V13/spray-vs-engine V15/dense-jets \
     V18/self-diffusion V18/maxwell-relaxation; do
   grep -q "^$c: no file: ." "$dir/none/NOT-WRITTEN.txt" \
     || fail "NOT-WRITTEN.txt does not say why $c has no file"
 done
+runs="V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 \
+    V8_dlvo_x0.5 V8_dlvo_pair_3mM_10mV \
+    V12_Kn0.05_dt1_langevin V12_Kn0.05_dt1_contact-time \
+    V12_Kn0.05_dt1_exact-bb3 V16_shear_G100 V16_shear_G10 \
+    V16_abrahamson_ou-field V16_abrahamson_langevin-species \
+    V16_combined_shear_diffusive_Pe0.1 V16_combined_Pe1 V12_mixture \
+    V16_saffman_turner_frozen_Rk2 \
+    V16_deposition_transient_bridge V16_deposition_transient_chord \
+    V16_deposition_langevin_chord V16_combined_shear_Pek0.3 \
+    $(cd "$dir/ini" && ls V8_agglo-constant_run*.ini \
+      V16_deposition_steady_r*.ini | sed 's/\.ini$//')"
+nmin=91
+fi
 # shellcheck disable=SC2086
 "$sb" validate $cases --out "$dir/v" >/dev/null 2>&1
 [ -s "$dir/v/validate.csv" ] || { fail "validate run failed"; exit 1; }
@@ -73,21 +103,19 @@ field() {  # field SUMMARY NAME
   esac
 }
 ncmp=0
-for run in V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 V8_dlvo_x0.5 \
-    V8_dlvo_pair_3mM_10mV \
-    V12_Kn0.05_dt1_langevin V12_Kn0.05_dt1_contact-time \
-    V12_Kn0.05_dt1_exact-bb3 V16_shear_G100 V16_shear_G10 \
-    V16_abrahamson_ou-field V16_abrahamson_langevin-species \
-    V16_combined_shear_diffusive_Pe0.1 V16_combined_Pe1 V12_mixture \
-    V16_deposition_transient_bridge V16_deposition_transient_chord \
-    V16_deposition_langevin_chord V16_combined_shear_Pek0.3 \
-    $(cd "$dir/ini" && ls V16_saffman_turner_frozen_Rk2_r*.ini \
-      V8_agglo-constant_run*.ini V16_deposition_steady_r*.ini \
-      | sed 's/\.ini$//'); do
+for run in $runs; do
   ini="$dir/ini/$run.ini"
   [ -f "$ini" ] || { fail "$run.ini not written"; continue; }
-  (cd "$dir/ini" && "$sb" collide "$run.ini" >/dev/null 2>&1) \
-    || { fail "collide $run.ini failed"; continue; }
+  # an Eulerian companion (smolbridge pgd) that expect-grid l1 lines read
+  if [ -f "$dir/ini/${run}_euler.ini" ]; then
+    (cd "$dir/ini" && "$sb" pgd "${run}_euler.ini" >/dev/null 2>&1) \
+      || { fail "pgd ${run}_euler.ini failed"; continue; }
+  fi
+  sweep=
+  [ -f "$dir/ini/$run.sweep.txt" ] && sweep="--sweep $run.sweep.txt"
+  # shellcheck disable=SC2086
+  (cd "$dir/ini" && "$sb" collide "$run.ini" $sweep >/dev/null 2>&1) \
+    || { fail "collide $run.ini $sweep failed"; continue; }
   out="$dir/ini/$run-out"
   grep '^; expect' "$ini" | sed 's/^; //' > "$dir/expect.txt"
   while IFS= read -r line; do
@@ -98,6 +126,20 @@ for run in V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 V8_dlvo_x0.5 \
     fld=${rhs%% \* *}
     fac=1
     case "$rhs" in *" * "*) fac=${rhs##* \* } ;; esac
+    if [ "$kind" = expect-sweep-mean ]; then  # the mean over the points
+      [ -n "$sweep" ] || { fail "$run: $kind without a sweep file"; continue; }
+      np=$(grep -c '^[^#]' "$dir/ini/$run.sweep.txt")
+      vals=$(for p in "$out"/point_*/summary.json; do field "$p" "$fld"; done)
+      want=$(awk -F, -v r="$rec" '$1 == r { print $2 }' "$dir/v/validate.csv")
+      [ -n "$want" ] || { fail "$run: no record $rec in validate.csv"; continue; }
+      echo "$vals" | awk -v f="$fac" -v w="$want" -v np="$np" \
+        '{ s += $1 * f; n++ } END { g = s / n; d = g - w; if (d < 0) d = -d;
+          m = w < 0 ? -w : w; if (m < 1e-300) m = 1;
+          exit !(n == np && n >= 2 && d <= 1e-12 * m) }' \
+        || fail "$run: $rec = $want, not the mean over the $np points"
+      ncmp=$((ncmp + 1))
+      continue
+    fi
     case "$fld" in
       sizes.csv*|series.csv*) set -- $fld  # FILE ROW[-ROW0] COLUMN
         # data row ROW (from 1), or its difference with row ROW0
@@ -106,6 +148,30 @@ for run in V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 V8_dlvo_x0.5 \
           NR == q[1] + 1 { a = $col[c] } n == 2 && NR == q[2] + 1 { b = $col[c] }
           END { if (a == "" || (n == 2 && b == "")) exit
             if (n == 2) printf "%.17g\n", a - b; else print a }' "$out/$1") ;;
+      grid.csv\ l1-*) set -- $fld  # grid.csv l1-rho|l1-q FRAME PGD/fields.csv
+        val=$(awk -F, -v stat="$2" -v frame="$3" '
+          FNR == 1 { next }
+          NR == FNR { n++; re[n] = $3; qxe[n] = $3 * $4; qye[n] = $3 * $5; next }
+          { row++; if (int((row - 1) / n) + 1 != frame) next
+            q = row - (frame - 1) * n; m += $5 / n
+            sr += ($5 > re[q] ? $5 - re[q] : re[q] - $5)
+            sq += ($6 > qxe[q] ? $6 - qxe[q] : qxe[q] - $6)
+            sq += ($7 > qye[q] ? $7 - qye[q] : qye[q] - $7) }
+          END { h = 1 / sqrt(n); if (row != 0 && frame * n <= row && m > 0)
+            printf "%.17g", (stat == "l1-rho" ? sr : sq) * h * h / m }' \
+          "$dir/ini/$4" "$out/grid.csv") ;;
+      grid.csv*) set -- $fld  # grid.csv STAT FRAME REF (RUN_cells.csv)
+        val=$(awk -F, -v stat="$2" -v frame="$3" -v f="$fac" '
+          FNR == 1 { next }
+          NR == FNR { n++; lam[n] = $3; out[n] = $4; next }
+          { row++; if (int((row - 1) / n) + 1 != frame) next
+            q = row - (frame - 1) * n; k = int($5 * f + 0.5)
+            if (out[q] == 1) so += k
+            if (lam[q] > 0) { c2 += (k - lam[q]) * (k - lam[q]) / lam[q]; sk += k; sl += lam[q] } }
+          END { if (row != 0 && frame * n <= row)
+            printf "%.17g", stat == "chi2" ? c2 : stat == "ratio" ? (1 / sl) * sk : so }' \
+          "$dir/ini/$4" "$out/grid.csv")
+        fac=1 ;;  # the factor makes the counts
       snap_*) set -- $fld
         val=$(awk -F, -v id="$3" -v c="$4" 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i }
           NR > 1 && $1 == id { print $col[c] }' "$out/$1") ;;
@@ -140,7 +206,7 @@ if [ -f "$dir/means.txt" ]; then
     ncmp=$((ncmp + 1))
   done
 fi
-[ "$ncmp" -ge 91 ] || fail "only $ncmp records compared"
+[ "$ncmp" -ge "$nmin" ] || fail "only $ncmp records compared"
 [ "$fails" -eq 0 ] && echo "validate_ini: $ncmp records reproduced by collide from the written files"
 [ "$fails" -eq 0 ] && rm -rf "$dir"
 exit $((fails > 0))

@@ -158,6 +158,11 @@ const sb_agglo *sb_collide_agglo(const sb_collide *cl)
 
 int sb_collide_has_firsthit(const sb_collide *cl) { return cl->r.fh != NULL; }
 
+const char *sb_collide_species_name(const sb_collide *cl, size_t k)
+{
+  return cl && (int)k < cl->c.nsp ? sbi_col_short_name(&cl->c, k) : NULL;
+}
+
 int sb_collide_firsthit(const sb_collide *cl,
                         sb_engine_firsthit_kernel_result *o)
 {

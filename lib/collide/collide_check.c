@@ -243,10 +243,10 @@ int sbi_col_check(sbi_col_config *c)
     unused(c, "agglo", "erel", "outcome = merge");
     unused(c, "agglo", "erel_normal", "outcome = merge");
   }
-  if (!agglo && !(bridge && !c->first_hit))
-    unused(c, run, "stop_every", "it samples sizes.csv (outcome = merge or dlvo) "
-           "and recomputes the bridge reach (detect = bridge or exact, "
-           "without first_hit)");
+  if (!agglo && !(bridge && !c->first_hit) && !c->ngrid)
+    unused(c, run, "stop_every", "it samples sizes.csv (outcome = merge or dlvo), "
+           "recomputes the bridge reach (detect = bridge or exact, "
+           "without first_hit) and deposits the [observe] grid");
   /* the bridge reach is set at attach (sb_engine_bridge_attach) for the
    * particle number and largest radius of that time; merging raises the
    * radius, and the tail bound [bridge] tol then no longer holds */
@@ -276,6 +276,26 @@ int sbi_col_check(sbi_col_config *c)
                           sbi_col_where(c, run, "detect"));
   }
   /* observers */
+  for (int k = 0; k < c->ngrid; k++)
+    if (!(c->grid[k] >= 1 && c->grid[k] <= 16777216.0 &&
+          c->grid[k] == floor(c->grid[k])))
+      return sbi_col_fail(c, "%s: [observe] grid: %g cells along axis %d; "
+                          "valid: whole numbers 1 to 16777216, one per axis "
+                          "(nx ny, or nx ny nz in 3-D)",
+                          sbi_col_where(c, "observe", "grid"), c->grid[k], k);
+  if (c->ngrid == 3 && c->dim == 2)
+    return sbi_col_fail(c, "%s: [observe] grid has 3 values in 2-D; valid: "
+                        "nx ny", sbi_col_where(c, "observe", "grid"));
+  if (c->ngrid == 2 && c->dim == 3)
+    return sbi_col_fail(c, "%s: [observe] grid has 2 values in 3-D; valid: "
+                        "nx ny nz", sbi_col_where(c, "observe", "grid"));
+  if (!c->ngrid)
+    unused(c, "observe", "grid_scheme", "no [observe] grid");
+  int open = 0;
+  for (int f = 0; f < 6; f++)
+    open |= !strcmp(c->wall[f], "open");
+  if (c->exits > 0 && !open)
+    unused(c, "observe", "exits", "no [walls] face is open");
   if (c->hit_times && !bridge)
     return sbi_col_fail(c, "%s: [observe] hit_times records bridge hits: "
                         "needs detect = bridge or exact",

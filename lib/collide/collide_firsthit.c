@@ -33,7 +33,9 @@ int sbi_col_firsthit_attach(const sbi_col_config *c, sbi_col_run *r,
   if (r->bridge) {
     fp.detect = sb_engine_detect_bridge;
     fp.detect_ctx = r->bridge;
-  } else
+  } else if (sbi_col_md(c))
+    fp.detect = sb_engine_detect_md;
+  else
     fp.builtin = builtin == SB_DETECT_OVERLAP || builtin == SB_DETECT_LANGEVIN
                      ? builtin
                      : SB_DETECT_BALLISTIC;

@@ -92,6 +92,7 @@ void sbi_col_defaults(sbi_col_config *c)
     strcpy(c->wall[f], "periodic");
   strcpy(c->wall_detect, "bridge");
   strcpy(c->deposit, "remove");
+  strcpy(c->grid_scheme, "ngp");
 }
 
 static void species_defaults(sbi_col_species *s)

@@ -76,6 +76,10 @@ typedef struct {
   long hit_times, first_hit;
   double first_hit_radius;
   long first_hit_capacitance, first_hit_skip_seen;
+  double grid[3];               /* [observe] grid: cells per axis */
+  int ngrid;
+  char grid_scheme[8];
+  long exits;                   /* [observe] exits (exits.csv) */
   /* [agglo] (outcome = merge | dlvo) */
   char growth[16], erel[16];
   double wmax, wmax_kT;
@@ -195,6 +199,9 @@ void sbi_col_warn(sbi_col_config *c, const char *fmt, ...)
 int sbi_col_agglo(const sbi_col_config *c);
 /* 1 for the detectors with a bridge context. */
 int sbi_col_bridge(const sbi_col_config *c);
+/* detect = md (sb_engine_detect_md) and its neighbour reach (m). */
+int sbi_col_md(const sbi_col_config *c);
+double sbi_col_md_reach(const sbi_col_config *c, const sb_engine *e);
 
 /* ---------------------------------------------------- collide_setup.c */
 
@@ -212,7 +219,31 @@ typedef struct {
   double *dep;                  /* deposits sampled with the series: rows */
   size_t ndep, capdep;          /* t, per face x_lo .. z_hi (walls.c) */
   int dep_on;                   /* a face absorbs */
+  double *grid_rows;            /* [observe] grid frames (collide_grid.c) */
+  size_t grid_n, grid_cap;      /* rows, room */
+  double *exit_rows;            /* [observe] exits (collide_exits.c) */
+  size_t exit_n, exit_cap;
 } sbi_col_run;
+
+/* ---------------------------------------------------- collide_exits.c */
+
+/* [observe] exits: the outflow callback that records each exit, the
+ * reset at the end of the warm-up, exits.csv. */
+int sbi_col_exits_attach(const sbi_col_config *c, sbi_col_run *r);
+void sbi_col_exits_reset(sbi_col_run *r);
+int sbi_col_exits_csv(const sbi_col_config *c, const sbi_col_run *r,
+                      const char *path);
+
+/* ----------------------------------------------------- collide_grid.c */
+
+/* [observe] grid: a frame of the mass and momentum densities now (once
+ * per time), grid.csv, its summary.json entry. */
+int sbi_col_grid_on(const sbi_col_config *c);
+int sbi_col_grid_sample(const sbi_col_config *c, sbi_col_run *r);
+int sbi_col_grid_csv(const sbi_col_config *c, const sbi_col_run *r,
+                     const char *path);
+void sbi_col_grid_json(FILE *f, const sbi_col_config *c,
+                       const sbi_col_run *r);
 
 /* Build the engine, species, particles and contexts.  0 or -1 with
  * c->err set (the run is then freed). */

@@ -27,6 +27,7 @@ static const char *const GROWTHS[] = {"stokes", "constant", NULL};
 static const char *const ERELS[] = {"contact", "stationary", NULL};
 static const char *const ENDS[] = {"position", "diffusive", NULL};
 static const char *const BOOLS[] = {"yes", "no", NULL};
+static const char *const GRIDSCHEMES[] = {"ngp", "cic", NULL};
 static const char *const DRAGS[] = {"stokes", "schiller-naumann", NULL};
 static const char *const WALLS[] = {"periodic", "reflect", "absorb", "open",
                                     NULL};
@@ -52,6 +53,8 @@ const char **sbi_col_detect_names(const char **names, size_t len)
     names[n++] = CONTEXT_DETECTORS[k];
   if (n + 1 < len)  /* no particle-particle detection (collide_walls.c) */
     names[n++] = "none";
+  if (n + 1 < len)  /* a custom detector of the engine (collide_setup.c) */
+    names[n++] = "md";
   names[n] = NULL;
   return names;
 }
@@ -166,6 +169,13 @@ const sbi_col_keydef sbi_col_keys[] = {
     {"observe", "first_hit_capacitance", K_BOOL, C(first_hit_capacitance), 0,
      R_ANY, 0, 0, BOOLS, "-", "no", "reference radius K/(4 pi D) of the "
      "measured kernel (Langevin spheres, any Kn_D)"},
+    {"observe", "exits", K_BOOL, C(exits), 0, R_ANY, 0, 0, BOOLS, "-", "no",
+     "record every exit through an open face after the warm-up (exits.csv)"},
+    {"observe", "grid", K_VEC, C(grid), C(ngrid), R_ANY, 2, 3, NULL,
+     "cells", "- (off)", "nx ny [nz]: deposit the mass and momentum "
+     "densities on this grid at every stop_every and at the end (grid.csv)"},
+    {"observe", "grid_scheme", K_NAME, C(grid_scheme), 8, R_ANY, 0, 0,
+     GRIDSCHEMES, "-", "ngp", "deposit: nearest grid point or cloud in cell"},
     {"observe", "first_hit_skip_seen", K_BOOL, C(first_hit_skip_seen), 0,
      R_ANY, 0, 0, BOOLS, "-", "no", "do not pass pairs whose first contact "
      "is known to the detector (fewer draws)"},

@@ -29,7 +29,7 @@
 static int ours(const char *name)
 {
   static const char *const fixed[] = {"series.csv", "summary.json",
-                                      "sizes.csv", "hits.csv",
+                                      "sizes.csv", "hits.csv", "grid.csv", "exits.csv",
                                       "manifest.txt", NULL};
   for (int i = 0; fixed[i]; i++)
     if (!strcmp(name, fixed[i]))
@@ -496,12 +496,22 @@ int sbi_col_out_write(const sbi_col_config *c, const sbi_col_run *r,
                       const sbi_col_pairs *ps, double secs, const char *status,
                       const char *why, long nsnap)
 {
-  char path[1100], files[8][32];
+  char path[1100], files[10][32];
   int nf = 0, err = 0;
   if (r->e) {
     snprintf(path, sizeof path, "%s/series.csv", c->output);
     err |= write_series(path, r, c, ps);
     snprintf(files[nf++], 32, "series.csv");
+  }
+  if (r->e && c->exits > 0) {
+    snprintf(path, sizeof path, "%s/exits.csv", c->output);
+    err |= sbi_col_exits_csv(c, r, path);
+    snprintf(files[nf++], 32, "exits.csv");
+  }
+  if (r->e && sbi_col_grid_on(c)) {
+    snprintf(path, sizeof path, "%s/grid.csv", c->output);
+    err |= sbi_col_grid_csv(c, r, path);
+    snprintf(files[nf++], 32, "grid.csv");
   }
   if (r->agglo) {
     snprintf(path, sizeof path, "%s/sizes.csv", c->output);
@@ -525,6 +535,8 @@ int sbi_col_out_write(const sbi_col_config *c, const sbi_col_run *r,
     json_run(f, c, r->e);
     json_kernels(f, c, r->e);
     json_contexts(f, c, r);
+    if (sbi_col_grid_on(c))
+      sbi_col_grid_json(f, c, r);
     if (r->bridge && c->hit_times > 0) {
       snprintf(path, sizeof path, "%s/hits.csv", c->output);
       err |= write_hits(f, c, r, path);

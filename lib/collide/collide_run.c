@@ -79,11 +79,11 @@ static int progress_step(sbi_col_run *r, double t_stop, sbi_col_pairs *ps,
 /* At a stop ([run] stop_every): a row of sizes.csv, and the bridge reach of
  * the current particle count and largest radius (merging lowers the one
  * and raises the other; sb_engine_bridge_attach sets the reach once). */
-static int at_stop(sbi_col_run *r)
+static int at_stop(const sbi_col_config *c, sbi_col_run *r)
 {
   sb_engine *e = r->e;
-  int st = SB_SUCCESS;
-  if (r->bridge && !r->fh) {  /* first-hit counting wraps the detector */
+  int st = sbi_col_grid_sample(c, r);
+  if (!st && r->bridge && !r->fh) {  /* first-hit wraps the detector */
     double reach = sb_engine_bridge_reach(e, r->bridge);
     if (!(reach >= 0.0))
       return sb_last_status();
@@ -111,6 +111,7 @@ static int run_steps(sbi_col_config *c, sbi_col_run *r, sbi_col_pairs *ps,
   if (r->warm > 0) {
     st = progress_step(r, t0 + r->warm, NULL, rp, stopped);
     sb_engine_reset_counters(e);
+    sbi_col_exits_reset(r);  /* as the outflow counters */
     if (r->bridge)
       sb_engine_bridge_reset(r->bridge);
     if (r->agglo)
@@ -134,7 +135,7 @@ static int run_steps(sbi_col_config *c, sbi_col_run *r, sbi_col_pairs *ps,
     /* a stop is reached as sb_engine_run_until reaches its end time */
     if (!st && c->stop_every > 0 && t_stop < r->t_end + 0.5 * dt &&
         !(sb_engine_time(e) < t_stop - 0.5 * dt)) {
-      st = at_stop(r);
+      st = at_stop(c, r);
       istop++;
     }
     if (!st && c->snapshot_every > 0) {
@@ -144,6 +145,8 @@ static int run_steps(sbi_col_config *c, sbi_col_run *r, sbi_col_pairs *ps,
         (*nsnap)++;
     }
   }
+  if (!st)  /* the last grid frame at the end time */
+    st = sbi_col_grid_sample(c, r);
   if (!st && r->agglo) {  /* the last size row at the end time */
     size_t nr, nc;
     const double *rows = sb_agglo_series(r->agglo, &nr, &nc);

@@ -36,6 +36,8 @@ void sbi_col_run_free(sbi_col_run *r)
   if (r->field_rng)
     gsl_rng_free(r->field_rng);
   free(r->dep);
+  free(r->grid_rows);
+  free(r->exit_rows);
   memset(r, 0, sizeof *r);
 }
 
@@ -161,6 +163,41 @@ static double velocity_sd(const sbi_col_config *c, int k,
   if (q->T > 0)
     return sqrt(SB_BOLTZMANN * q->T / q->mass);
   return sqrt(q->B * q->B * q->tau / 2.0);
+}
+
+int sbi_col_md(const sbi_col_config *c) { return !strcmp(c->detect, "md"); }
+
+/* Reach of detect = md: the pairs whose start velocities bring them
+ * together within the step, |u_i - u_j| dt, beyond the chords: 7 sd of
+ * the relative thermal velocity (sqrt(2) vsd of the widest species; as
+ * V3/diffusive-fail, which sizes its box by it) plus twice the largest
+ * mean speed (drifts, explicit particles, inflows, settling tau g). */
+double sbi_col_md_reach(const sbi_col_config *c, const sb_engine *e)
+{
+  double vsd = 0.0, umax = 0.0;
+  const double g = sqrt(c->g[0] * c->g[0] + c->g[1] * c->g[1] +
+                        c->g[2] * c->g[2]);
+  for (int k = 0; k < c->nsp; k++) {
+    const sb_engine_species *q = sb_engine_get_species(e, (size_t)k);
+    const sbi_col_species *s = &c->sp[k];
+    if (!q)
+      continue;
+    vsd = fmax(vsd, velocity_sd(c, k, q));
+    umax = fmax(umax, sqrt(s->drift[0] * s->drift[0] +
+                           s->drift[1] * s->drift[1] +
+                           s->drift[2] * s->drift[2]));
+    umax = fmax(umax, sqrt(s->inflow_u[0] * s->inflow_u[0] +
+                           s->inflow_u[1] * s->inflow_u[1] +
+                           s->inflow_u[2] * s->inflow_u[2]));
+    for (int i = 0; i < s->npart; i++)
+      umax = fmax(umax, sqrt(s->part[i][3] * s->part[i][3] +
+                             s->part[i][4] * s->part[i][4] +
+                             s->part[i][5] * s->part[i][5]));
+    if (isfinite(q->tau))
+      umax = fmax(umax, q->tau * g);
+  }
+  const double dt = sb_engine_get_params(e)->dt;
+  return 7.0 * sqrt(2.0) * vsd * dt + 2.0 * umax * dt;
 }
 
 /* Start law of the next placed particle (engine index sb_engine_count):
@@ -717,9 +754,16 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
   r->dep_on = sbi_col_walls_absorb(c);
   if (sbi_col_detect_none(c) && sbi_col_none_attach(r))
     return sbi_col_fail(c, "[run] detect = none: %s", sb_last_error());
+  if (sbi_col_exits_attach(c, r))
+    return sbi_col_fail(c, "[observe] exits: %s", sb_last_error());
+  if (sbi_col_md(c) && !c->first_hit &&
+      sb_engine_set_detector(r->e, sb_engine_detect_md, NULL,
+                             sbi_col_md_reach(c, r->e)))
+    return sbi_col_fail(c, "[run] detect = md: %s", sb_last_error());
   if (c->first_hit) {
     double reach = r->bridge ? sb_engine_bridge_reach(r->e, r->bridge)
                    : dm == SB_DETECT_LANGEVIN ? sb_engine_langevin_reach(r->e)
+                   : sbi_col_md(c)            ? sbi_col_md_reach(c, r->e)
                                               : 0.0;
     if (sbi_col_firsthit_attach(c, r, dm, reach))
       return sbi_col_fail(c, "[observe] first_hit: %s", sb_last_error());

@@ -160,6 +160,10 @@ const sb_agglo *sb_collide_agglo(const sb_collide *c);
  *  after sb_collide_setup), else 0. */
 int sb_collide_has_firsthit(const sb_collide *c);
 
+/** Name of species k (NAME of its [species NAME] section, in the order
+ *  of the sections), NULL for k out of range; valid while c lives. */
+const char *sb_collide_species_name(const sb_collide *c, size_t k);
+
 /** First-contact kernel of `[observe] first_hit = yes` (95% interval,
  *  the reference radius of the configuration) in *o: the status of
  *  sb_engine_firsthit_kernel (the counts are set even when it fails; K

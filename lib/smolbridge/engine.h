@@ -406,6 +406,18 @@ int sb_engine_pair_can_meet(const sb_engine *e, const double *disp,
  *  sb_engine_detect_fn. */
 int sb_engine_detect_ballistic(const sb_engine_pair *p, double *s);
 
+/** MD-type detector (Mohaupt 2011, §3.1.2, App. F), a custom detector
+ *  (sb_engine_set_detector, or the first-contact observer's detect): the
+ *  ballistic contact time of the straight motion x + u dt with the
+ *  velocities at the start of the step (sb_engine_start_velocities)
+ *  instead of the displacement chords.  Right when dt << tau_p; in the
+ *  diffusive regime it overestimates the kernel (the thesis' finding,
+ *  validation case V3/diffusive-fail).  Its neighbour reach must cover
+ *  |u_i - u_j| dt (the chords do not).  ctx unused; -1 without start
+ *  velocities. */
+int sb_engine_detect_md(const sb_engine *e, const sb_engine_pair *p,
+                        const gsl_rng *r, void *ctx, double *s);
+
 /** Overlap detector: collision iff |dx0 + dd| < sigma; *s is then the
  *  entry root of the chords (0 if they overlapped at the start). */
 int sb_engine_detect_overlap(const sb_engine_pair *p, double *s);

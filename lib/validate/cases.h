@@ -151,6 +151,29 @@ void sbv_ini_expect(sbv_report *rep, const char *record, const char *field,
  * that is a mean over independent runs, e.g. field realizations). */
 void sbv_ini_expect_mean(sbv_report *rep, const char *record,
                          const char *field, double factor);
+/* An ensemble of runs of one file (realizations that differ only in
+ * their seeds): point k's overrides ("run.seed=... fluid.seed=...",
+ * printf-style) as line k of DIR/RUN.sweep.txt, run with `smolbridge
+ * collide RUN.ini --sweep RUN.sweep.txt` (point k in
+ * OUTPUT/point_NNN/); "; expect-sweep-mean RECORD = FIELD * FACTOR":
+ * the record is the mean of FIELD * FACTOR over the points. */
+int sbv_ini_sweep_point(sbv_report *rep, size_t k, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+void sbv_ini_expect_sweep_mean(sbv_report *rep, const char *record,
+                               const char *field, double factor);
+/* Append "; expect-grid RECORD = grid.csv STAT FRAME REF * FACTOR": the
+ * record is a statistic of the counts k = nearbyint(rho * FACTOR) of grid
+ * frame FRAME (from 1; collide's [observe] grid) against REF (a CSV
+ * beside the file, "i,j,lambda,outside", one row per cell in grid.csv's
+ * order): STAT chi2 = sum over lambda > 0 of (k - lambda)^2 / lambda,
+ * ratio = (1 / sum lambda) * sum k over lambda > 0, outside = sum k over
+ * the cells with outside = 1 (docs/validation.md). */
+void sbv_ini_expect_grid(sbv_report *rep, const char *record,
+                         const char *stat, int frame, const char *ref,
+                         double factor);
 /* A run left out, and why (printf-style). */
 void sbv_ini_skip(sbv_report *rep, const char *fmt, ...)
 #if defined(__GNUC__)

@@ -39,6 +39,7 @@
  * distance (informational) is the upwind smearing of the diagonal bands
  * and the engine's Poisson noise. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -47,6 +48,7 @@
 #include <smolbridge/stats.h>
 
 #include "cases.h"
+#include "report.h"
 
 #define NG 45          /* the exercise's grid */
 #define NC (NG * NG)
@@ -210,6 +212,23 @@ static int run_jets(const sbv_ctx *ctx, const ejet_cfg *c, double n0,
   return st;
 }
 
+/* Mean count of cell (i, j) if it is compared (whole extent reached by
+ * the time xs along the jets, touched over an area), else 0; *out = 1 for
+ * a cell no band ever touches. */
+static double cell_mean(const ejet_cfg *c, double n0, double xs, size_t i,
+                        size_t j, int *out)
+{
+  const double h = 1.0 / NG, x0 = (double)i * h, y0 = (double)j * h;
+  const int tw = jet_touches(c, x0, x0 + h, y0, y0 + h);
+  const int ts = jet_touches(c, y0, y0 + h, x0, x0 + h);
+  *out = !tw && !ts;
+  if (*out || (tw && x0 + h > xs) || (ts && y0 + h > xs))
+    return 0.0;  /* outside, or not steady yet */
+  const double lam = lambda_jet(c, n0, x0, x0 + h, y0, y0 + h) +
+                     lambda_jet(c, n0, y0, y0 + h, x0, x0 + h);
+  return lam > 0.0 ? lam : 0.0;  /* 0: touched at a point only */
+}
+
 /* Counts against the exact steady means (chi-square, total, outside the
  * bands); rel_e: relative L1 of the Eulerian rho against the exact mean
  * density over the compared cells. */
@@ -225,19 +244,14 @@ static int check_counts(sbv_report *rep, const ejet_cfg *c, double n0,
   for (size_t j = 0; j < NG; j++)
     for (size_t i = 0; i < NG; i++) {
       const double k = nearbyint(f->rho[i + NG * j] * h * h / m);
-      const double x0 = (double)i * h, y0 = (double)j * h;
-      const int tw = jet_touches(c, x0, x0 + h, y0, y0 + h);
-      const int ts = jet_touches(c, y0, y0 + h, x0, x0 + h);
-      if (!tw && !ts) {
+      int out;
+      const double lam = cell_mean(c, n0, xs, i, j, &out);
+      if (out) {
         outside += k;
         continue;
       }
-      if ((tw && x0 + h > xs) || (ts && y0 + h > xs))
-        continue;  /* not steady yet */
-      const double lam = lambda_jet(c, n0, x0, x0 + h, y0, y0 + h) +
-                         lambda_jet(c, n0, y0, y0 + h, x0, x0 + h);
       if (!(lam > 0.0))
-        continue;  /* touched at a point only */
+        continue;  /* not steady yet, or touched at a point only */
       chi2 += (k - lam) * (k - lam) / lam;
       ksum += k;
       lsum += lam;
@@ -265,6 +279,116 @@ static int check_counts(sbv_report *rep, const ejet_cfg *c, double n0,
            "exact mean density on those cells: relative L1 %.3f",
            c->label, c->dt, c->t_end, ncell, chi2, ncell, ksum, lsum,
            ksum / lsum, outside, *rel_e);
+  return st;
+}
+
+/* Write mode: the Eulerian side as a `smolbridge pgd` file RUN_euler.ini
+ * (sbv_pgd_jets_params; stopped every t_end/NSER as the case advances it),
+ * and the expect-grid lines of the L1 records at t_end: the distances of
+ * grid.csv's last frame to its fields.csv over the engine's mass.  path:
+ * a buffer holding "DIR/RUN", len its length. */
+static int write_euler(const sbv_ctx *ctx, sbv_report *rep,
+                       const ejet_cfg *c, char *path, size_t len)
+{
+  (void)ctx;
+  char out[1200], name[128], field[1300];
+  snprintf(path + len, 1200 - len, "_euler.ini");
+  const char *base = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
+  snprintf(out, sizeof out, "%.*s-out", (int)(strlen(base) - 4), base);
+  FILE *f = fopen(path, "w");
+  if (!f)
+    return SB_EIO;
+  const size_t w = 5 * NG / 45;
+  fprintf(f, "; V15/engine-jets: the Eulerian solution beside the engine "
+          "(upwind)\n; run: smolbridge pgd %s (before the collide file's "
+          "expect-grid l1 lines)\n[run]\ndim = 2\nnx = %d\nny = %d\n"
+          "L = 1\nt_end = %.17g\nscheme = upwind\nmethod = euler\n"
+          "output_every = %.17g\noutput = %s\n\n[drag]\ntau = %.17g\n"
+          "U = %.17g %.17g\n\n[boundary]\nwest = outflow\neast = outflow\n"
+          "south = outflow\nnorth = outflow\n", base, NG, NG, c->t_end,
+          c->t_end / NSER, out, c->tau, c->U, c->U);
+  for (int j = 0; j < 2; j++)
+    fprintf(f, "\n[inflow %s]\nside = %s\nfirst = %zu\ncount = %zu\n"
+            "rho = 1\nu = %d %d\n", j ? "south" : "west",
+            j ? "south" : "west", (size_t)(NG - w) / 2, w, j ? 0 : 1, j);
+  if (fclose(f))
+    return SB_EIO;
+  snprintf(field, sizeof field, "%s/fields.csv", out);
+  static const char *const what[2] = {"rho", "q"};
+  for (int k = 0; k < (c == &ECFG[0] ? 2 : 1); k++) {  /* as the case */
+    if (c->U == 0.0)
+      snprintf(name, sizeof name, "V15/engine-jets/%s/vs-euler/rel-L1-%s"
+               ">=0.5", c->label, what[k]);
+    else
+      snprintf(name, sizeof name, "V15/engine-jets/%s/vs-euler/rel-L1-rho",
+               c->label);
+    char stat[16];
+    snprintf(stat, sizeof stat, "l1-%s", what[k]);
+    sbv_ini_expect_grid(rep, name, stat, NSER, field, 1.0);
+  }
+  return SB_SUCCESS;
+}
+
+/* Write mode: the run as a collide file (open faces, the two inflows as
+ * two species of families 0 and 1, [observe] grid at every 0.1) and
+ * RUN_cells.csv, the exact means of the compared cells; the count records
+ * are statistics of the last grid frame against it ("; expect-grid"). */
+static int write_jets(const sbv_ctx *ctx, sbv_report *rep, const ejet_cfg *c,
+                      double n0, unsigned long stream)
+{
+  const double h = 1.0 / NG, w = (double)(B1 - B0) / NG;
+  char fn[64], ref[1200], name[96];
+  snprintf(fn, sizeof fn, "V15_engine_jets_tau%g%s", c->tau,
+           c->U != 0.0 ? "_gas" : "");
+  FILE *f = sbv_ini_begin(ctx, rep, fn, "V15: the exercise's crossing jets "
+                          "through open boundaries, deposited on the 45 x "
+                          "45 grid");
+  if (!f)
+    return SB_EIO;
+  fprintf(f, "seed = %lu\nrng = mt19937\ndim = 2\nL = 1\ndt = %.17g\n"
+          "t_end = %.17g\nstop_every = %.17g\ndetect = overlap\n"
+          "outcome = count\n\n[walls]\nx_lo = open\nx_hi = open\n"
+          "y_lo = open\ny_hi = open\ndetect = ballistic\n"
+          "deposit = remove\n", ctx->seed * 1000 + 970 + stream, c->dt,
+          c->t_end, c->t_end / NSER);
+  if (c->U != 0.0)
+    fprintf(f, "\n[fluid]\ntype = uniform\nU = %.17g %.17g\n", c->U, c->U);
+  fprintf(f, "\n[observe]\ngrid = %d %d\ngrid_scheme = ngp\n", NG, NG);
+  for (int j = 0; j < 2; j++)
+    fprintf(f, "\n[species %s]\nradius = 1e-9\nmass = %.17g\ntau = %.17g\n"
+            "B = 0\nfamily = %d\ninflow = %s\ninflow_rate = %.17g\n"
+            "inflow_region = %.17g %.17g\ninflow_velocity = %d %d\n",
+            j ? "south" : "west", 1.0 / n0, c->tau, j, j ? "y_lo" : "x_lo",
+            n0 * 1.0 * w, (double)B0 / NG, (double)B1 / NG, j ? 0 : 1, j);
+  int st = sbv_ini_end(rep, f, NULL);
+  /* the reference beside the file: RUN_cells.csv */
+  size_t n = strlen(rep->ini_path);
+  snprintf(ref, sizeof ref, "%.*s_cells.csv", (int)(n - 4), rep->ini_path);
+  const char *base = strrchr(ref, '/') ? strrchr(ref, '/') + 1 : ref;
+  FILE *g = st ? NULL : fopen(ref, "w");
+  if (!st && !g)
+    st = SB_EIO;
+  if (g) {
+    const double xs = jet_front(c, c->t_end - 0.25);
+    fprintf(g, "i,j,lambda,outside\n");
+    for (size_t jj = 0; jj < NG; jj++)
+      for (size_t i = 0; i < NG; i++) {
+        int out;
+        const double lam = cell_mean(c, n0, xs, i, jj, &out);
+        fprintf(g, "%zu,%zu,%.17g,%d\n", i, jj, lam, out);
+      }
+    if (fclose(g))
+      st = SB_EIO;
+  }
+  static const char *const stat[3] = {"chi2", "ratio", "outside"};
+  static const char *const rec[3] = {"cell-counts-chi2", "total-count",
+                                     "outside-bands"};
+  for (int k = 0; k < 3 && !st; k++) {
+    snprintf(name, sizeof name, "V15/engine-jets/%s/%s", c->label, rec[k]);
+    sbv_ini_expect_grid(rep, name, stat[k], NSER, base, h * h * n0);
+  }
+  if (!st)
+    st = write_euler(ctx, rep, c, ref, n - 4);
   return st;
 }
 
@@ -324,6 +448,13 @@ static int case_engine_jets(const sbv_ctx *ctx, sbv_report *rep)
            "exact Poisson test of the total; no particle in a cell the "
            "bands never touch); rho and rho u against the Eulerian "
            "solution (upwind, same grid) every 0.1.", per_cell);
+  for (int q = 0; q < 3 && !st && sbv_writing(ctx); q++)
+    st = write_jets(ctx, rep, &ECFG[q], n0, (unsigned long)q);
+  if (sbv_writing(ctx)) {
+    free(f);
+    free(map);
+    return st;
+  }
   for (int q = 0; q < 3 && !st; q++) {
     const ejet_cfg *c = &ECFG[q];
     sbv_progress(ctx, "V15 engine jets: %s", c->label);

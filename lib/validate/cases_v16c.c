@@ -349,31 +349,36 @@ static int st_write(const sbv_ctx *ctx, sbv_report *rep, size_t run,
 {
   char fn[80], rec[160];
   const char *kind = R0->w0 > 0.0 ? "unsteady" : "frozen";
-  snprintf(fn, sizeof fn, "V16_saffman_turner_%s_Rk%.2g_r%03zu", kind,
-           R0->Rk, q);
-  FILE *f = sbv_ini_begin(ctx, rep, fn, "V16: tracers in one realization "
+  const unsigned long pseed = sbv_rng_seed(ctx, ST_PLACE_STREAM(run, q)),
+                      fseed = sbv_rng_seed(ctx, ST_FIELD_STREAM(run, q));
+  if (q > 0)  /* one file, one sweep point per realization */
+    return sbv_ini_sweep_point(rep, q, "run.seed=%lu run.placement_seed=%lu "
+                               "fluid.seed=%lu", seed, pseed, fseed);
+  snprintf(fn, sizeof fn, "V16_saffman_turner_%s_Rk%.2g", kind, R0->Rk);
+  FILE *f = sbv_ini_begin(ctx, rep, fn, "V16: tracers in realizations "
                           "of a Kraichnan random Fourier field "
                           "(Saffman & Turner's kernel)");
   if (!f)
     return SB_EIO;
   const double Ls[3] = {L, L, L};
-  v16_ini_run(f, seed, Ls, dt, steps,
-              sbv_rng_seed(ctx, ST_PLACE_STREAM(run, q)));
+  v16_ini_run(f, seed, Ls, dt, steps, pseed);
   fprintf(f, "\n[fluid]\ntype = kraichnan\nshell = %d\n"
           "eps_nu = %.17g\nomega = %.17g\nseed = %lu\n\n[species tracer]\n"
           "radius = %.17g\nmass = %.17g\ntau = %.17g\nB = 0\ncount = %zu\n",
-          M, eps_nu, omega, sbv_rng_seed(ctx, ST_FIELD_STREAM(run, q)), rad,
+          M, eps_nu, omega, fseed, rad,
           1000.0 * 4.0 / 3.0 * PI * rad * rad * rad, 1e-3 * dt, n);
   int st = sbv_ini_end(rep, f, NULL);
   snprintf(rec, sizeof rec, "V16/saffman-turner/%s/Rk=%.2g/K_e/K_ex", kind,
            R0->Rk);
-  sbv_ini_expect_mean(rep, rec, "kernel.K", 1.0 / Kex);
+  sbv_ini_expect_sweep_mean(rep, rec, "kernel.K", 1.0 / Kex);
   if (R0->info) {
     snprintf(rec, sizeof rec, "V16/saffman-turner/frozen/Rk=%.2g/K_e/K_ST",
              R0->Rk);
-    sbv_ini_expect_mean(rep, rec, "kernel.K", 1.0 / Kst);
+    sbv_ini_expect_sweep_mean(rep, rec, "kernel.K", 1.0 / Kst);
   }
-  return st;
+  return st ? st : sbv_ini_sweep_point(rep, 0, "run.seed=%lu "
+                                       "run.placement_seed=%lu "
+                                       "fluid.seed=%lu", seed, pseed, fseed);
 }
 
 static int case_saffman_turner(const sbv_ctx *ctx, sbv_report *rep)
@@ -399,7 +404,7 @@ static int case_saffman_turner(const sbv_ctx *ctx, sbv_report *rep)
            "realizations per run (the estimate of one realization has a "
            "realization-to-realization spread: rows are t tests at 1e-4 of "
            "the mean over realizations), each drawn as `smolbridge collide` "
-           "draws it (--write-ini writes one file per realization).  "
+           "draws it (--write-ini writes one file per kernel run, with one --sweep point per realization).  "
            "Reference of the testing rows: "
            "the exact pass-through rate of this field, K_ex = R^2/sqrt(2 "
            "pi) int sd(w.n) dOmega (quadrature); K_ST = sqrt(8 pi/15) R^3 "

@@ -18,21 +18,6 @@
 
 #define PI 3.14159265358979323846
 
-/* MD-type detection (Mohaupt 2011, §3.2, App. F): the contact time of
- * the straight motion x + u dt with the velocities at the start of the
- * step. */
-static int md_detect(const sb_engine *e, const sb_engine_pair *p,
-                     const gsl_rng *r, void *ctx, double *s)
-{
-  (void)r;
-  (void)ctx;
-  const double *u0 = sb_engine_start_velocities(e);
-  sb_engine_pair q = *p;
-  for (int k = 0; k < 3; k++)
-    q.dd[k] = (u0[3 * p->i + k] - u0[3 * p->j + k]) * p->dt;
-  return sb_engine_detect_ballistic(&q, s);
-}
-
 /* Independent uniform positions (overlaps allowed), velocities N(0, vsd);
  * the observer enters the pairs overlapping at the start as seen, so
  * every counted pair starts uniform outside the contact ball. */
@@ -143,12 +128,7 @@ static int write_firsthit(const sbv_ctx *ctx, unsigned long stream,
   o->expected_per_K = o->K = o->lo = o->hi = 1.0;
   char name[128];
   fh_ini_name(rep, name, sizeof name, "firsthit");
-  if (q->builtin == FH_MD) {
-    sbv_ini_skip(rep, "  %s: MD-type detection (x + u dt with the start "
-                 "velocities) is not a collide detector", name);
-    return SB_SUCCESS;
-  }
-  static const char *const det[] = {"bridge", "ballistic", "overlap"};
+  static const char *const det[] = {"bridge", "ballistic", "overlap", "md"};
   FILE *f = fh_ini_open(ctx, stream, p, q->L, q->T, q->t1,
                         q->builtin != FH_BRIDGE      ? det[q->builtin]
                         : q->mode == SB_BRIDGE_EXACT ? "exact"
@@ -202,7 +182,7 @@ int run_firsthit(const sbv_ctx *ctx, unsigned long stream, const fh_run *q,
     fp.detect = sb_engine_detect_bridge;
     fp.detect_ctx = b;
   } else if (q->builtin == FH_MD)
-    fp.detect = md_detect;
+    fp.detect = sb_engine_detect_md;  /* Mohaupt 2011, §3.2, App. F */
   else
     fp.builtin = q->builtin == FH_OVERLAP ? SB_DETECT_OVERLAP
                                           : SB_DETECT_BALLISTIC;

@@ -82,6 +82,64 @@ void sbv_ini_expect_mean(sbv_report *rep, const char *record,
   expect_line(rep, "expect-mean", record, field, factor);
 }
 
+void sbv_ini_expect_grid(sbv_report *rep, const char *record,
+                         const char *stat, int frame, const char *ref,
+                         double factor)
+{
+  char field[400];
+  snprintf(field, sizeof field, "grid.csv %s %d %s", stat, frame, ref);
+  expect_line(rep, "expect-grid", record, field, factor);
+}
+
+void sbv_ini_expect_sweep_mean(sbv_report *rep, const char *record,
+                               const char *field, double factor)
+{
+  expect_line(rep, "expect-sweep-mean", record, field, factor);
+}
+
+/* Point k of the ensemble of the file begun last: a line of overrides in
+ * NAME.sweep.txt (created at k = 0, with a line in NAME.ini saying how to
+ * run it). */
+int sbv_ini_sweep_point(sbv_report *rep, size_t k, const char *fmt, ...)
+{
+  char path[1100];
+  size_t n = strlen(rep->ini_path);
+  if (n < 4 || strcmp(rep->ini_path + n - 4, ".ini"))
+    return sbi_error(SB_EINVAL, "sb_validate_write_ini", "no file begun");
+  snprintf(path, sizeof path, "%.*s.sweep.txt", (int)(n - 4), rep->ini_path);
+  const char *base = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
+  if (k == 0) {
+    FILE *g = fopen(rep->ini_path, "a");
+    int bad = !g || fprintf(g, "; an ensemble: smolbridge collide %.*s.ini "
+                            "--sweep %s (one run per line);\n; "
+                            "'expect-sweep-mean': the record is the mean "
+                            "over the runs (OUTPUT/point_NNN/summary.json)"
+                            "\n", (int)(strlen(base) - 10), base,
+                            base) < 0;
+    if (g)
+      bad |= fclose(g) != 0;
+    if (bad)
+      return sbi_error(SB_EIO, "sb_validate_write_ini", "cannot write '%s'",
+                       rep->ini_path);
+  }
+  FILE *f = fopen(path, k == 0 ? "w" : "a");
+  if (!f)
+    return sbi_error(SB_EIO, "sb_validate_write_ini", "cannot write '%s'",
+                     path);
+  int bad = k == 0 && fprintf(f, "# overrides of the runs of %.*s.ini, "
+                              "one run per line\n",
+                              (int)(strlen(base) - 10), base) < 0;
+  va_list ap;
+  va_start(ap, fmt);
+  bad |= vfprintf(f, fmt, ap) < 0;
+  va_end(ap);
+  bad |= fputc('\n', f) == EOF;
+  bad |= fclose(f) != 0;
+  return bad ? sbi_error(SB_EIO, "sb_validate_write_ini", "write error on "
+                         "'%s'", path)
+             : SB_SUCCESS;
+}
+
 void sbv_ini_skip(sbv_report *rep, const char *fmt, ...)
 {
   char line[400];

@@ -166,22 +166,22 @@ static const char *const INI_CASES[] = {
     "V12/langevin-detector", "V16/shear", "V16/settling",
     "V16/abrahamson", "V16/saffman-turner", "V16/combined",
     "V16/combined-shear-diffusive", "V16/deposition",
-    "V16/deposition-langevin", "V16/combined-shear", NULL};
+    "V16/deposition-langevin", "V16/combined-shear", "V15/engine-jets",
+    NULL};
 
 /* Cases whose engine runs `smolbridge collide` does not reproduce, and
  * why: written to NOT-WRITTEN.txt, so that no engine run goes unlisted. */
 static const struct {
   const char *name, *why;
 } NO_FILES[] = {
-    {"V15/engine-jets",
-     "open boundaries with inflows through part of a face, and its records "
-     "are the particles' density and momentum deposited on the 45 x 45 "
-     "grid (sb_engine_grid_fields) at 20 times and compared with the "
-     "Eulerian solution run beside it (not a collide output)"},
     {"V15/dense-jets",
-     "open boundaries with an outflow callback that records each exit "
-     "(side, place, momentum) in batches, and squares sampled every 10 "
-     "steps: not a summary field"},
+     "its records are t intervals over batch means (6 batches of 500 "
+     "steps after a warm-up): each batch's exits by side and family, exit "
+     "place and momentum (collide's [observe] exits gives these rows in "
+     "exits.csv), the mass in the crossing and upstream squares sampled "
+     "every 10 steps, and the collisions per injected drop of the batch "
+     "(injections per batch are no collide output); no expect line "
+     "computes such batch statistics"},
     {"V13/spray-vs-engine",
      "the engine replicas start from thermalized velocities rescaled per "
      "axis (an anisotropic start, not a collide placement), and the "
