@@ -3,7 +3,8 @@
  * temporary directory (two spheres at 45 degrees: one collision, Thomine
  * 2008, §7), progress events, warnings, input errors with the key in the
  * message, a run stopped by its callback, the key table, first-contact
- * kernels per species pair of a mixture. */
+ * kernels per species pair of a mixture, the mean-square displacement
+ * of free flights through the periodic boundaries. */
 #define _POSIX_C_SOURCE 200809L /* mkdtemp */
 #include <math.h>
 #include <stdio.h>
@@ -29,7 +30,7 @@ static void tmp_dir(char *dir, size_t len)
 static void rm_dir(const char *dir)
 {
   static const char *const files[] = {"series.csv", "summary.json",
-                                      "sizes.csv", "hits.csv",
+                                      "sizes.csv", "hits.csv", "msd.csv",
                                       "manifest.txt", NULL};
   char p[600];
   for (int i = 0; files[i]; i++) {
@@ -366,6 +367,82 @@ START_TEST(test_firsthit_mixture)
 }
 END_TEST
 
+/* [observe] msd_every: particles that pass through each other (outcome
+ * count) fly straight, so the unwrapped displacement over a lag t is u t
+ * exactly and MSD(t) = <|u|^2> t^2, whatever the origin; the particles
+ * cross the box ~40 times (unwrapping through the boundaries).  The
+ * slope between lags k1, k2 then gives D = <|u|^2> (k1 + k2) ts / 6. */
+START_TEST(test_msd_free_flight)
+{
+  char dir[512], text[2048], path[600];
+  tmp_dir(dir, sizeof dir);
+  snprintf(text, sizeof text,
+           "[run]\nL = 1e-6\ndt = 1e-8\nsteps = 2000\nseed = 3\n"
+           "outcome = count\noutput = %s\n[observe]\nmsd_every = 100\n"
+           "msd_fit = 4 12\n[species p]\nradius = 1e-8\nmass = 1e-21\n"
+           "tau = inf\nT = 300\ncount = 50\n", dir);
+  sb_collide *c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "msd.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_run(c, NULL, NULL), SB_SUCCESS);
+  const sb_engine *e = sb_collide_engine(c);
+  const double *u = sb_engine_velocities(e);
+  double u2 = 0.0, umax = 0.0;
+  for (size_t i = 0; i < 50; i++) {
+    double v2 = u[3 * i] * u[3 * i] + u[3 * i + 1] * u[3 * i + 1] +
+                u[3 * i + 2] * u[3 * i + 2];
+    u2 += v2 / 50.0;
+    umax = fmax(umax, sqrt(v2));
+  }
+  const double ts = 100 * 1e-8;
+  ck_assert(umax * 2000 * 1e-8 > 10 * 1e-6);  /* many box crossings */
+  snprintf(path, sizeof path, "%s/msd.csv", dir);
+  FILE *f = fopen(path, "r");
+  ck_assert_ptr_nonnull(f);
+  char head[64];
+  ck_assert_ptr_nonnull(fgets(head, sizeof head, f));
+  ck_assert_str_eq(head, "lag,t,msd,origins\n");
+  size_t k, no, nrow = 0;
+  double t, m;
+  while (fscanf(f, "%zu,%lf,%lf,%zu", &k, &t, &m, &no) == 4) {
+    ck_assert_uint_eq(k, nrow);
+    ck_assert_uint_eq(no, 21 - k);
+    ck_assert_rel(t, (double)k * ts, 1e-12);
+    if (k)
+      ck_assert_rel(m, u2 * t * t, 1e-9);
+    else
+      ck_assert_double_eq(m, 0.0);
+    nrow++;
+  }
+  fclose(f);
+  ck_assert_uint_eq(nrow, 21);  /* samples at 0, 100, ..., 2000 steps */
+  snprintf(path, sizeof path, "%s/summary.json", dir);
+  char *js = slurp(path);
+  const char *q = strstr(js, "\"msd\": {\"every\": 100, ");
+  ck_assert_ptr_nonnull(q);
+  q = strstr(q, "\"fit\": [4, 12], \"D\": ");
+  ck_assert_ptr_nonnull(q);
+  double D = strtod(q + strlen("\"fit\": [4, 12], \"D\": "), NULL);
+  ck_assert_rel(D, u2 * 16.0 * ts / 6.0, 1e-9);
+  free(js);
+  sb_collide_free(c);
+  rm_dir(dir);
+  /* errors that name the key: a lag beyond the run, sorting */
+  c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "msd.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_set(c, "observe.msd_fit=4 21"), SB_SUCCESS);
+  ck_assert_int_ne(sb_collide_run(c, NULL, NULL), SB_SUCCESS);
+  ck_assert_ptr_nonnull(strstr(sb_collide_error(c), "msd_fit"));
+  sb_collide_free(c);
+  rm_dir(dir);
+  c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "msd.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_set(c, "run.sort_every=10"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_check(c), SB_EINVAL);
+  ck_assert_ptr_nonnull(strstr(sb_collide_error(c), "sort_every"));
+  sb_collide_free(c);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("collide_lib");
@@ -377,6 +454,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_nothing_to_measure);
   tcase_add_test(tc, test_stopped_by_callback);
   tcase_add_test(tc, test_key_table);
+  tcase_add_test(tc, test_msd_free_flight);
   suite_add_tcase(s, tc);
   TCase *tm = tcase_create("firsthit");
   tcase_set_timeout(tm, 300);  /* ~2 s; sanitizer builds are slower */

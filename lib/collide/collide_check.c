@@ -296,6 +296,8 @@ int sbi_col_check(sbi_col_config *c)
     unused(c, "observe", "first_hit_capacitance", "first_hit = no");
     unused(c, "observe", "first_hit_skip_seen", "first_hit = no");
   }
+  if (sbi_col_msd_check(c))
+    return -1;
   /* fluid */
   if (!strcmp(c->fluid, "rest")) {
     unused(c, "fluid", "U", "type = rest");

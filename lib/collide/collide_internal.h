@@ -8,6 +8,7 @@
 #define SB_COLLIDE_INTERNAL_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include <smolbridge/collide.h>
 #include <smolbridge/engine.h>
@@ -72,6 +73,9 @@ typedef struct {
   long hit_times, first_hit;
   double first_hit_radius;
   long first_hit_capacitance, first_hit_skip_seen;
+  long msd_every;               /* steps between MSD samples (0: off) */
+  double msd_fit[2];            /* fit lags, samples */
+  int nmsd_fit;
   /* [agglo] (outcome = merge | dlvo) */
   char growth[16], erel[16];
   double wmax, wmax_kT;
@@ -195,6 +199,8 @@ int sbi_col_bridge(const sbi_col_config *c);
 /* ---------------------------------------------------- collide_setup.c */
 
 /* A run being set up or running. */
+typedef struct sbi_col_msd sbi_col_msd;  /* collide_msd.c */
+
 typedef struct {
   sb_engine *e;
   sb_engine_bridge *bridge;     /* detect = bridge | exact */
@@ -203,6 +209,8 @@ typedef struct {
   sb_field_ou *ou;              /* [fluid] type = ou-field */
   sb_field_kraichnan *kr;       /* [fluid] type = kraichnan */
   gsl_rng *field_rng;           /* [fluid] seed (owned), or NULL */
+  sbi_col_msd *msd;             /* [observe] msd_every, or NULL */
+  int measuring;                /* after the warm-up */
   double t_end;                 /* absolute end time, s */
   double warm;                  /* warm-up, s (0 on restart) */
 } sbi_col_run;
@@ -230,6 +238,19 @@ int sbi_col_firsthit_pair(const sbi_col_run *r, const sbi_col_config *c,
  * pairs, the kernel NaN, SB_EDOM.  -1 without the observer. */
 int sbi_col_firsthit_result(const sbi_col_run *r, const sbi_col_config *c,
                             sb_engine_firsthit_kernel_result *o);
+
+/* ------------------------------------------------------ collide_msd.c */
+
+/* [observe] msd_every: start at the end of the warm-up (r->t_end set),
+ * a step of the measurement, msd.csv and the summary's "msd" entry
+ * (nothing without the key). */
+/* Cross-key checks of msd_every and msd_fit (0 or -1 with c->err). */
+int sbi_col_msd_check(sbi_col_config *c);
+int sbi_col_msd_start(const sbi_col_config *c, sbi_col_run *r);
+int sbi_col_msd_step(sbi_col_run *r);
+int sbi_col_msd_write(FILE *js, const sbi_col_config *c,
+                      const sbi_col_run *r, const char *path);
+void sbi_col_msd_free(sbi_col_msd *m);
 
 /* ------------------------------------------------------ collide_out.c */
 

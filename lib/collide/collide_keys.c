@@ -165,6 +165,12 @@ const sbi_col_keydef sbi_col_keys[] = {
     {"observe", "first_hit_skip_seen", K_BOOL, C(first_hit_skip_seen), 0,
      R_ANY, 0, 0, BOOLS, "-", "no", "do not pass pairs whose first contact "
      "is known to the detector (fewer draws)"},
+    {"observe", "msd_every", K_INT, C(msd_every), 0, R_CLOSED, 0, 2e9, NULL,
+     "steps", "0", "sample the unwrapped positions every this many steps: "
+     "mean-square displacement (msd.csv) and self-diffusion coefficient"},
+    {"observe", "msd_fit", K_VEC, C(msd_fit), C(nmsd_fit), R_NONNEG, 2, 2,
+     NULL, "samples", "kmax/4 kmax/2", "lags k1 < k2 of the slope that "
+     "gives D"},
     /* -------------------------------------------------------- [agglo] */
     {"agglo", "growth", K_NAME, C(growth), 16, R_ANY, 0, 0, GROWTHS, "-",
      "stokes", "species of a cluster of k primaries"},

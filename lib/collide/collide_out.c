@@ -29,7 +29,7 @@
 static int ours(const char *name)
 {
   static const char *const fixed[] = {"series.csv", "summary.json",
-                                      "sizes.csv", "hits.csv",
+                                      "sizes.csv", "hits.csv", "msd.csv",
                                       "manifest.txt", NULL};
   for (int i = 0; fixed[i]; i++)
     if (!strcmp(name, fixed[i]))
@@ -521,6 +521,11 @@ int sbi_col_out_write(const sbi_col_config *c, const sbi_col_run *r,
     json_run(f, c, r->e);
     json_kernels(f, c, r->e);
     json_contexts(f, c, r);
+    if (r->msd) {
+      snprintf(path, sizeof path, "%s/msd.csv", c->output);
+      err |= sbi_col_msd_write(f, c, r, path);
+      snprintf(files[nf++], 32, "msd.csv");
+    }
     if (r->bridge && c->hit_times > 0) {
       snprintf(path, sizeof path, "%s/hits.csv", c->output);
       err |= write_hits(f, c, r, path);

@@ -47,6 +47,8 @@ static int progress_step(sbi_col_run *r, double t_stop, sbi_col_pairs *ps,
   double last = -1;
   while (sb_engine_time(e) < t_stop - 0.5 * dt) {
     int st = sb_engine_step(e);
+    if (!st && r->measuring)
+      st = sbi_col_msd_step(r);
     if (st)
       return st;
     size_t every = sb_engine_get_params(e)->sample_every;
@@ -112,6 +114,9 @@ static int run_steps(sbi_col_config *c, sbi_col_run *r, sbi_col_pairs *ps,
     if (r->agglo)
       sb_agglo_reset_stats(r->agglo);
   }
+  r->measuring = 1;
+  if (!st)
+    st = sbi_col_msd_start(c, r);
   char path[1100];
   /* [run] stop_every: stop k at t_meas + k stop_every */
   const double t_meas = t0 + r->warm;

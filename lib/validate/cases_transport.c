@@ -121,6 +121,51 @@ static void unwrap(const sb_engine *e, size_t n, double L, double *xw,
 
 /* ================================================== V18 self-diffusion */
 
+/* The box, step, reference and sampling interval (steps) of a replica. */
+static void diffusion_plan(size_t n, double phi, double *nu, double *L,
+                           double *Dref, double *tauD, size_t *every)
+{
+  const double d = 2.0 * HE_RADIUS;
+  double V = (double)n * M_PI * d * d * d / 6.0 / phi;
+  *L = cbrt(V);
+  double K = sb_kernel_kinetic(d, d, HE_MASS, HE_MASS, TEMP) * g_cs(phi);
+  *nu = (double)n / V * K;  /* as he_gas */
+  double nd = (double)n / (*L * *L * *L);
+  *Dref = d_enskog(nd, d, phi, HE_MASS, TEMP);
+  *tauD = HE_MASS * *Dref / (SB_BOLTZMANN * TEMP);
+  /* sampling interval: a whole number of steps close to tau_D */
+  *every = (size_t)fmax(1.0, nearbyint(*tauD / (DT_FRAC / *nu)));
+}
+
+/* Write mode: the replica as a collide file ([observe] msd_every gives
+ * the same slope: msd.D = D_e (N - 1)/N). */
+static int diffusion_write(const sbv_ctx *ctx, sbv_report *rep,
+                           unsigned long seed, size_t n, double phi,
+                           size_t nsamp, size_t k1, size_t k2,
+                           const char *fn, const char *record)
+{
+  double nu, L, Dref, tauD;
+  size_t every;
+  diffusion_plan(n, phi, &nu, &L, &Dref, &tauD, &every);
+  FILE *f = sbv_ini_begin(ctx, rep, fn, "V18: self-diffusion of an MD "
+                          "hard-sphere gas (mean-square displacement)");
+  if (!f)
+    return SB_EIO;
+  fprintf(f, "seed = %lu\nrng = mt19937\nL = %.17g\ndt = %.17g\n"
+          "warmup = %.17g\nsteps = %zu\nthermalize = %.17g\n"
+          "detect = ballistic\noutcome = elastic\n\n[observe]\n"
+          "msd_every = %zu\nmsd_fit = %zu %zu\n\n[species He]\n"
+          "radius = %.17g\nmass = %.17g\ntau = inf\nT = %.17g\n"
+          "count = %zu\n", seed, L, DT_FRAC / nu, 20.0 / nu,
+          (nsamp - 1) * every, TEMP, every, k1, k2, HE_RADIUS, HE_MASS, TEMP,
+          n);
+  int st = sbv_ini_end(rep, f, NULL);
+  /* D_e/D_ref = msd.D x N/(N - 1) / D_ref (one replica: a term) */
+  sbv_ini_expect_mean(rep, record, "msd.D",
+                      (double)n / (double)(n - 1) / Dref);
+  return st;
+}
+
 /* One replica: D_e / D_ref from the MSD slope between lags k1 and k2
  * sampling intervals (every tau_D) over nsamp samples. */
 static int diffusion_replica(const sbv_ctx *ctx, unsigned long seed,
@@ -132,13 +177,10 @@ static int diffusion_replica(const sbv_ctx *ctx, unsigned long seed,
   sb_engine *e = he_gas(seed, n, phi, DT_FRAC, &nu, &L, &st);
   if (!e)
     return st;
-  const double d = 2.0 * HE_RADIUS;
-  double nd = (double)n / (L * L * L);
-  double Dref = d_enskog(nd, d, phi, HE_MASS, TEMP);
-  double tauD = HE_MASS * Dref / (SB_BOLTZMANN * TEMP);
+  double Dref, tauD, nu2, L2;
+  size_t every;
+  diffusion_plan(n, phi, &nu2, &L2, &Dref, &tauD, &every);
   double dt = DT_FRAC / nu;
-  /* sampling interval: a whole number of steps close to tau_D */
-  size_t every = (size_t)fmax(1.0, nearbyint(tauD / dt));
   double ts = (double)every * dt;
   double *xw = malloc(3 * n * sizeof *xw);
   double *xu = calloc(3 * n, sizeof *xu);
@@ -219,6 +261,21 @@ static int case_diffusion(const sbv_ctx *ctx, sbv_report *rep)
            "1 - 1e-4.");
   int st = SB_SUCCESS;
   double plot[30 * 3];
+  for (int r = 0; r < 2 && !st && sbv_writing(ctx); r++) {
+    size_t reps = runs[r].reps * (ctx->full ? 5 : 1);
+    char rec[96];
+    snprintf(rec, sizeof rec, "V18/self-diffusion/He/phi=%g/D_e/D_Enskog",
+             runs[r].phi);
+    for (size_t i = 0; i < reps && !st; i++) {
+      char fn[64];
+      snprintf(fn, sizeof fn, "V18_self_diffusion_phi%g_r%zu", runs[r].phi,
+               i + 1);
+      st = diffusion_write(ctx, rep, ctx->seed * 1000 + 1800 + 50 * r + i,
+                           n, runs[r].phi, nsamp, k1, k2, fn, rec);
+    }
+  }
+  if (sbv_writing(ctx))
+    return st;
   for (int r = 0; r < 2 && !st; r++) {
     size_t reps = runs[r].reps * (ctx->full ? 5 : 1);
     double *x = malloc(reps * sizeof *x);
