@@ -33,6 +33,7 @@ typedef struct {
   double drift[3];
   int ndrift;
   char drag[24];                    /* drag law (engine_force.c) */
+  char velocities[16];              /* placed | antipodal (collide_start.c) */
   char inflow[16];                  /* open boundaries (engine_open.c): */
   double inflow_rate;               /* face, particles/s, */
   double inflow_region[4];          /* inlet, velocity */
@@ -61,6 +62,9 @@ typedef struct {
   double lv_eps, lv_xtol, lv_tol;  /* detect = langevin (NaN: default) */
   long steps, sample_every, snapshot_every, sort_every, threads;
   long placement_seed;          /* -1: the engine's generator */
+  long velocity_seed;           /* velocities = antipodal; -1: the engine's */
+  double snap_steps[64];        /* [run] snapshot_steps (whole numbers) */
+  int nsnap_steps;
   double stop_every;            /* [run] stop_every (s; 0: none) */
   char neigh[16], detect[16], outcome[16], rng[16], placement[16];
   char output[512], checkpoint[512], restart[512];
@@ -73,6 +77,7 @@ typedef struct {
   long hit_times, first_hit;
   double first_hit_radius;
   long first_hit_capacitance, first_hit_skip_seen;
+  long first_hit_vn;            /* contacts.csv rows (0: off) */
   long msd_every;               /* steps between MSD samples (0: off) */
   double msd_fit[2];            /* fit lags, samples */
   int nmsd_fit;
@@ -200,6 +205,7 @@ int sbi_col_bridge(const sbi_col_config *c);
 
 /* A run being set up or running. */
 typedef struct sbi_col_msd sbi_col_msd;  /* collide_msd.c */
+typedef struct sbi_col_contacts sbi_col_contacts;  /* collide_contacts.c */
 
 typedef struct {
   sb_engine *e;
@@ -210,7 +216,9 @@ typedef struct {
   sb_field_kraichnan *kr;       /* [fluid] type = kraichnan */
   gsl_rng *field_rng;           /* [fluid] seed (owned), or NULL */
   sbi_col_msd *msd;             /* [observe] msd_every, or NULL */
+  sbi_col_contacts *contacts;   /* [observe] first_hit_velocities */
   int measuring;                /* after the warm-up */
+  double ekin0;                 /* kinetic energy at the measurement start */
   double t_end;                 /* absolute end time, s */
   double warm;                  /* warm-up, s (0 on restart) */
 } sbi_col_run;
@@ -238,6 +246,25 @@ int sbi_col_firsthit_pair(const sbi_col_run *r, const sbi_col_config *c,
  * pairs, the kernel NaN, SB_EDOM.  -1 without the observer. */
 int sbi_col_firsthit_result(const sbi_col_run *r, const sbi_col_config *c,
                             sb_engine_firsthit_kernel_result *o);
+
+/* ------------------------------------------------- collide_contacts.c */
+
+/* [observe] first_hit_velocities: set the observer's detector and hit
+ * callback in fp (built-in langevin or ballistic), contacts.csv and the
+ * summary's "contacts" entry (nothing without the key). */
+int sbi_col_contacts_setup(const sbi_col_config *c, sbi_col_run *r,
+                           sb_engine_detect builtin,
+                           sb_engine_firsthit_params *fp);
+int sbi_col_contacts_write(FILE *js, const sbi_col_config *c,
+                           const sbi_col_run *r, const char *path);
+void sbi_col_contacts_free(sbi_col_contacts *k);
+
+/* ---------------------------------------------------- collide_start.c */
+
+/* [species NAME] velocities = antipodal: checks, and the velocities set
+ * after the placement and thermalize (0 or -1 with c->err). */
+int sbi_col_start_check(sbi_col_config *c);
+int sbi_col_start_velocities(sbi_col_config *c, sbi_col_run *r);
 
 /* ------------------------------------------------------ collide_msd.c */
 

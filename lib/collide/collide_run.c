@@ -115,14 +115,31 @@ static int run_steps(sbi_col_config *c, sbi_col_run *r, sbi_col_pairs *ps,
       sb_agglo_reset_stats(r->agglo);
   }
   r->measuring = 1;
+  r->ekin0 = sb_engine_kinetic_energy(e, NULL);
   if (!st)
     st = sbi_col_msd_start(c, r);
   char path[1100];
+  int isnap = 0;  /* [run] snapshot_steps: the next one */
   /* [run] stop_every: stop k at t_meas + k stop_every */
   const double t_meas = t0 + r->warm;
   long istop = 1;
   while (!st && sb_engine_time(e) < r->t_end - 0.5 * dt) {
+    /* snapshot_steps reached */
+    while (!st && isnap < c->nsnap_steps &&
+           !(sb_engine_time(e) <
+             t_meas + (c->snap_steps[isnap] - 0.5) * dt)) {
+      sbi_col_snap_path(c, *nsnap, path, sizeof path);
+      st = sb_engine_snapshot_csv(e, path);
+      isnap++;
+      if (!st)
+        (*nsnap)++;
+    }
+    if (st)
+      break;
     double t_next = r->t_end;
+    if (isnap < c->nsnap_steps &&
+        t_meas + c->snap_steps[isnap] * dt < t_next)
+      t_next = t_meas + c->snap_steps[isnap] * dt;
     if (c->snapshot_every > 0) {
       double ts = sb_engine_time(e) + (double)c->snapshot_every * dt;
       if (ts < t_next)
@@ -144,6 +161,15 @@ static int run_steps(sbi_col_config *c, sbi_col_run *r, sbi_col_pairs *ps,
       if (!st)
         (*nsnap)++;
     }
+  }
+  /* snapshot_steps reached by the last step */
+  while (!st && isnap < c->nsnap_steps &&
+         !(sb_engine_time(e) < t_meas + (c->snap_steps[isnap] - 0.5) * dt)) {
+    sbi_col_snap_path(c, *nsnap, path, sizeof path);
+    st = sb_engine_snapshot_csv(e, path);
+    isnap++;
+    if (!st)
+      (*nsnap)++;
   }
   if (!st && r->agglo) {  /* the last size row at the end time */
     size_t nr, nc;

@@ -151,6 +151,12 @@ void sbv_ini_expect(sbv_report *rep, const char *record, const char *field,
  * that is a mean over independent runs, e.g. field realizations). */
 void sbv_ini_expect_mean(sbv_report *rep, const char *record,
                          const char *field, double factor);
+/* Append "; KIND RECORD = SPEC": a record recomputed from collide's
+ * output tables, pooled over every file of the case with this line
+ * (docs/validation.md lists the kinds: expect-ks, expect-chi2,
+ * expect-max, expect-h-rises). */
+void sbv_ini_expect_stat(sbv_report *rep, const char *kind,
+                         const char *record, const char *spec);
 /* A run left out, and why (printf-style). */
 void sbv_ini_skip(sbv_report *rep, const char *fmt, ...)
 #if defined(__GNUC__)

@@ -82,6 +82,12 @@ void sbv_ini_expect_mean(sbv_report *rep, const char *record,
   expect_line(rep, "expect-mean", record, field, factor);
 }
 
+void sbv_ini_expect_stat(sbv_report *rep, const char *kind,
+                         const char *record, const char *spec)
+{
+  expect_line(rep, kind, record, spec, 1.0);
+}
+
 void sbv_ini_skip(sbv_report *rep, const char *fmt, ...)
 {
   char line[400];
