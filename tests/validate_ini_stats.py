@@ -16,6 +16,10 @@ their runs.  Output: RECORD,VALUE per record (17 digits).
       the last one open, against LAW (as sb_chi2_test)
   expect-max FIELD
       the largest summary.json FIELD (a.b: key b of object a)
+  expect-diff-mean OFFSET FIELD FACTOR
+      OFFSET - the mean of FIELD x FACTOR over the runs; FIELD is a
+      summary.json field or anisotropy:FILE, (T_x - (T_y + T_z)/2)/T of
+      a snapshot's velocities (T_k the variance of component k)
   expect-h-rises SCALE NBIN VMAX COLUMN NSNAP
       the times (the snapshots snap_000000.csv ... snap_NSNAP-1) at which the binned relative entropy
       H of x = SCALE COLUMN against Maxwell's speed law does not fall
@@ -54,6 +58,33 @@ def column(path, col, every=1):
         else:
             out.append(abs(float(r[col])))
     return out
+
+
+def anisotropy(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    u = [[float(r[c]) for c in ("ux", "uy", "uz")] for r in rows]
+    n = len(u)
+    m = [0.0, 0.0, 0.0]
+    for v in u:
+        for k in range(3):
+            m[k] += v[k] / n
+    s = [0.0, 0.0, 0.0]
+    for v in u:
+        for k in range(3):
+            s[k] += (v[k] - m[k]) * (v[k] - m[k])
+    tot = (s[0] + s[1] + s[2]) / 3.0
+    return (s[0] - 0.5 * (s[1] + s[2])) / tot
+
+
+def field(out, name):
+    if name.startswith("anisotropy:"):
+        return anisotropy(os.path.join(out, name[11:]))
+    with open(os.path.join(out, "summary.json")) as f:
+        o = json.load(f)
+    for k in name.split("."):
+        o = o[k]
+    return float(o)
 
 
 def ks(x, F):
@@ -127,13 +158,11 @@ def main():
             s = runs[0][1]
             val = chi2(x, law(s[2]), float(s[4]), int(s[5]))
         elif kind == "expect-max":
-            val = -math.inf
-            for out, s in runs:
-                with open(os.path.join(out, "summary.json")) as f:
-                    o = json.load(f)
-                for k in s[0].split("."):
-                    o = o[k]
-                val = max(val, float(o))
+            val = max(field(out, s[0]) for out, s in runs)
+        elif kind == "expect-diff-mean":
+            s = runs[0][1]
+            val = float(s[0]) - sum(field(out, t[1]) * float(t[2])
+                                    for out, t in runs) / len(runs)
         elif kind == "expect-h-rises":
             s = runs[0][1]
             scale, nbin, vmax, col = float(s[0]), int(s[1]), float(s[2]), s[3]

@@ -34,6 +34,8 @@ typedef struct {
   int ndrift;
   char drag[24];                    /* drag law (engine_force.c) */
   char velocities[16];              /* placed | antipodal (collide_start.c) */
+  double vscale[3];                 /* velocity_scale per axis */
+  int nvscale;
   char inflow[16];                  /* open boundaries (engine_open.c): */
   double inflow_rate;               /* face, particles/s, */
   double inflow_region[4];          /* inlet, velocity */

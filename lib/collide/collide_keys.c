@@ -290,6 +290,9 @@ const sbi_col_keydef sbi_col_keys[] = {
     {"species", "velocities", K_NAME, S(velocities), 16, R_ANY, 0, 0, STARTS,
      "-", "placed", "antipodal: every speed sqrt(3 k_B T/m), directions "
      "uniform in antipodal pairs (zero momentum)"},
+    {"species", "velocity_scale", K_VEC, S(vscale), S(nvscale), R_NONNEG, 2,
+     3, NULL, "-", "1 1 1", "multiply the placed particles' velocity "
+     "components (after thermalize): per-axis temperatures s_k^2 T"},
     {"species", "inflow", K_NAME, S(inflow), 16, R_ANY, 0, 0, FACES, "-",
      "- (none)", "face through which a stream of this species enters"},
     {"species", "inflow_rate", K_NUM, S(inflow_rate), 0, R_POS, 0, 0, NULL,

@@ -7,7 +7,10 @@
  * species, in placement order), so that the species' momentum is exactly
  * zero.  The directions come from an MT19937 generator seeded with
  * [run] velocity_seed (default: the engine's generator), drawn after the
- * placement and thermalize. */
+ * placement and thermalize.  [species NAME] velocity_scale = s_x s_y s_z
+ * then multiplies each velocity component of the placed particles: an
+ * anisotropic start with per-axis temperatures s_k^2 T (from a
+ * thermalized gas; the relaxation of the anisotropy, Bird 1994, §1.5). */
 #include <math.h>
 #include <string.h>
 
@@ -24,6 +27,11 @@ int sbi_col_start_check(sbi_col_config *c)
   int any = 0;
   for (int k = 0; k < c->nsp; k++) {
     const sbi_col_species *s = &c->sp[k];
+    if (s->nvscale && s->nvscale != c->dim)
+      return sbi_col_fail(c, "%s: [%s] velocity_scale: %d numbers; valid: "
+                          "dim = %ld (one factor per axis)",
+                          sbi_col_where(c, s->name, "velocity_scale"),
+                          s->name, s->nvscale, c->dim);
     if (strcmp(s->velocities, "antipodal"))
       continue;
     any = 1;
@@ -46,15 +54,40 @@ int sbi_col_start_check(sbi_col_config *c)
   return 0;
 }
 
+/* velocity_scale: the components of the placed particles multiplied */
+static int scale_velocities(sbi_col_config *c, sbi_col_run *r, int nexplicit)
+{
+  const size_t n = sb_engine_count(r->e);
+  const size_t *sp = sb_engine_species_of(r->e);
+  const double *x = sb_engine_positions(r->e);
+  const double *u = sb_engine_velocities(r->e);
+  for (size_t i = (size_t)nexplicit; i < n; i++) {
+    const sbi_col_species *s = &c->sp[sp[i]];
+    if (!s->nvscale)
+      continue;
+    double xi[3], ui[3];
+    for (int a = 0; a < 3; a++) {
+      xi[a] = x[3 * i + a];
+      ui[a] = a < s->nvscale ? s->vscale[a] * u[3 * i + a] : u[3 * i + a];
+    }
+    if (sb_engine_set_particle(r->e, i, xi, ui))
+      return sbi_col_fail(c, "%s: [%s] velocity_scale: %s",
+                          sbi_col_where(c, s->name, "velocity_scale"),
+                          s->name, sb_last_error());
+  }
+  return 0;
+}
+
 int sbi_col_start_velocities(sbi_col_config *c, sbi_col_run *r)
 {
-  int nexplicit = 0, any = 0;  /* explicit particles are added first */
+  int nexplicit = 0, any = 0, scale = 0;  /* explicit particles first */
   for (int k = 0; k < c->nsp; k++) {
     nexplicit += c->sp[k].npart;
     any |= !strcmp(c->sp[k].velocities, "antipodal");
+    scale |= c->sp[k].nvscale > 0;
   }
   if (!any)
-    return 0;
+    return scale ? scale_velocities(c, r, nexplicit) : 0;
   gsl_rng *g = sb_engine_rng(r->e);
   if (c->velocity_seed >= 0) {
     g = gsl_rng_alloc(gsl_rng_mt19937);
@@ -106,5 +139,7 @@ int sbi_col_start_velocities(sbi_col_config *c, sbi_col_run *r)
   }
   if (g != sb_engine_rng(r->e))
     gsl_rng_free(g);
+  if (!st && scale)
+    st = scale_velocities(c, r, nexplicit);
   return st;
 }
