@@ -511,6 +511,13 @@ START_TEST(test_antipodal_snapshots)
   free(js);
   sb_collide_free(c);
   rm_dir(dir);
+  /* a snapshot after the end of the run */
+  c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "a.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_set(c, "run.snapshot_steps=0 11"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_run(c, NULL, NULL), SB_EINVAL);
+  ck_assert_ptr_nonnull(strstr(sb_collide_error(c), "snapshot_steps"));
+  sb_collide_free(c);
   /* an odd count has no antipodal pairing */
   c = sb_collide_alloc();
   ck_assert_int_eq(sb_collide_read_string(c, text, "a.ini"), SB_SUCCESS);

@@ -203,6 +203,17 @@ static int plan(sb_collide *cl)
                  r->warm, r->t_end - t0, t0);
     return SB_EINVAL;
   }
+  if (c->nsnap_steps > 0) {
+    const double last = c->snap_steps[c->nsnap_steps - 1];
+    const double nmeas = (r->t_end - t0 - r->warm) / dt;
+    if (last > nmeas + 0.5) {
+      sbi_col_fail(c, "%s: [run] snapshot_steps = ... %.0f: the run "
+                   "measures %.0f steps; valid: at most that",
+                   sbi_col_where(c, "run", "snapshot_steps"), last,
+                   floor(nmeas + 0.5));
+      return SB_EINVAL;
+    }
+  }
   if (c->stop_every > 0 && !(c->stop_every >= dt)) {
     sbi_col_fail(c, "%s: [run] stop_every = %g s: shorter than the step "
                  "(dt = %g s); valid: >= dt",
