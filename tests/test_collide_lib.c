@@ -3,7 +3,10 @@
  * temporary directory (two spheres at 45 degrees: one collision, Thomine
  * 2008, §7), progress events, warnings, input errors with the key in the
  * message, a run stopped by its callback, the key table, first-contact
- * kernels per species pair of a mixture. */
+ * kernels per species pair of a mixture, the mean-square displacement
+ * of free flights through the periodic boundaries, the antipodal start
+ * and snapshots at given steps, the normal velocities at first contact
+ * against the flux-weighted Maxwellian. */
 #define _POSIX_C_SOURCE 200809L /* mkdtemp */
 #include <math.h>
 #include <stdio.h>
@@ -12,6 +15,7 @@
 #include <unistd.h>
 
 #include <smolbridge/collide.h>
+#include <smolbridge/stats.h>
 
 #include "testutil.h"
 
@@ -29,7 +33,9 @@ static void tmp_dir(char *dir, size_t len)
 static void rm_dir(const char *dir)
 {
   static const char *const files[] = {"series.csv", "summary.json",
-                                      "sizes.csv", "hits.csv",
+                                      "sizes.csv", "hits.csv", "msd.csv",
+                                      "contacts.csv", "snap_000000.csv",
+                                      "snap_000001.csv", "snap_000002.csv",
                                       "manifest.txt", NULL};
   char p[600];
   for (int i = 0; files[i]; i++) {
@@ -366,6 +372,235 @@ START_TEST(test_firsthit_mixture)
 }
 END_TEST
 
+/* [observe] msd_every: particles that pass through each other (outcome
+ * count) fly straight, so the unwrapped displacement over a lag t is u t
+ * exactly and MSD(t) = <|u|^2> t^2, whatever the origin; the particles
+ * cross the box ~40 times (unwrapping through the boundaries).  The
+ * slope between lags k1, k2 then gives D = <|u|^2> (k1 + k2) ts / 6. */
+START_TEST(test_msd_free_flight)
+{
+  char dir[512], text[2048], path[600];
+  tmp_dir(dir, sizeof dir);
+  snprintf(text, sizeof text,
+           "[run]\nL = 1e-6\ndt = 1e-8\nsteps = 2000\nseed = 3\n"
+           "outcome = count\noutput = %s\n[observe]\nmsd_every = 100\n"
+           "msd_fit = 4 12\n[species p]\nradius = 1e-8\nmass = 1e-21\n"
+           "tau = inf\nT = 300\ncount = 50\n", dir);
+  sb_collide *c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "msd.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_run(c, NULL, NULL), SB_SUCCESS);
+  const sb_engine *e = sb_collide_engine(c);
+  const double *u = sb_engine_velocities(e);
+  double u2 = 0.0, umax = 0.0;
+  for (size_t i = 0; i < 50; i++) {
+    double v2 = u[3 * i] * u[3 * i] + u[3 * i + 1] * u[3 * i + 1] +
+                u[3 * i + 2] * u[3 * i + 2];
+    u2 += v2 / 50.0;
+    umax = fmax(umax, sqrt(v2));
+  }
+  const double ts = 100 * 1e-8;
+  ck_assert(umax * 2000 * 1e-8 > 10 * 1e-6);  /* many box crossings */
+  snprintf(path, sizeof path, "%s/msd.csv", dir);
+  FILE *f = fopen(path, "r");
+  ck_assert_ptr_nonnull(f);
+  char head[64];
+  ck_assert_ptr_nonnull(fgets(head, sizeof head, f));
+  ck_assert_str_eq(head, "lag,t,msd,origins\n");
+  size_t k, no, nrow = 0;
+  double t, m;
+  while (fscanf(f, "%zu,%lf,%lf,%zu", &k, &t, &m, &no) == 4) {
+    ck_assert_uint_eq(k, nrow);
+    ck_assert_uint_eq(no, 21 - k);
+    ck_assert_rel(t, (double)k * ts, 1e-12);
+    if (k)
+      ck_assert_rel(m, u2 * t * t, 1e-9);
+    else
+      ck_assert_double_eq(m, 0.0);
+    nrow++;
+  }
+  fclose(f);
+  ck_assert_uint_eq(nrow, 21);  /* samples at 0, 100, ..., 2000 steps */
+  snprintf(path, sizeof path, "%s/summary.json", dir);
+  char *js = slurp(path);
+  const char *q = strstr(js, "\"msd\": {\"every\": 100, ");
+  ck_assert_ptr_nonnull(q);
+  q = strstr(q, "\"fit\": [4, 12], \"D\": ");
+  ck_assert_ptr_nonnull(q);
+  double D = strtod(q + strlen("\"fit\": [4, 12], \"D\": "), NULL);
+  ck_assert_rel(D, u2 * 16.0 * ts / 6.0, 1e-9);
+  free(js);
+  sb_collide_free(c);
+  rm_dir(dir);
+  /* errors that name the key: a lag beyond the run, sorting */
+  c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "msd.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_set(c, "observe.msd_fit=4 21"), SB_SUCCESS);
+  ck_assert_int_ne(sb_collide_run(c, NULL, NULL), SB_SUCCESS);
+  ck_assert_ptr_nonnull(strstr(sb_collide_error(c), "msd_fit"));
+  sb_collide_free(c);
+  rm_dir(dir);
+  c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "msd.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_set(c, "run.sort_every=10"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_check(c), SB_EINVAL);
+  ck_assert_ptr_nonnull(strstr(sb_collide_error(c), "sort_every"));
+  sb_collide_free(c);
+}
+END_TEST
+
+/* Speed, direction and momentum of velocities = antipodal, read back
+ * from the snapshots that snapshot_steps = 0 3 10 takes (at the steps
+ * the engine's stats count); energy conserved by the elastic gas. */
+START_TEST(test_antipodal_snapshots)
+{
+  char dir[512], text[2048], path[600];
+  tmp_dir(dir, sizeof dir);
+  const double m = 6.6e-27, T = 300.0, kB = 1.380649e-23;
+  snprintf(text, sizeof text,
+           "[run]\nL = 2e-8\ndt = 2e-13\nsteps = 10\nseed = 5\n"
+           "velocity_seed = 77\nsnapshot_steps = 0 3 10\noutput = %s\n"
+           "[species he]\nradius = 1.4e-10\nmass = %g\ntau = inf\n"
+           "T = %g\ncount = 400\nvelocities = antipodal\n", dir, m, T);
+  sb_collide *c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "a.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_run(c, NULL, NULL), SB_SUCCESS);
+  const double v = sqrt(3.0 * kB * T / m);
+  double p[3] = {0, 0, 0}, mx[3] = {0, 0, 0};
+  snprintf(path, sizeof path, "%s/snap_000000.csv", dir);
+  FILE *f = fopen(path, "r");
+  ck_assert_ptr_nonnull(f);
+  char line[512];
+  ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
+  double prev[3] = {0, 0, 0};
+  for (int i = 0; i < 400; i++) {
+    double x[3], u[3];
+    unsigned long id, sp;
+    int fam;
+    ck_assert_int_eq(fscanf(f, "%lu,%lu,%d,%lf,%lf,%lf,%lf,%lf,%lf", &id, &sp,
+                            &fam, &x[0], &x[1], &x[2], &u[0], &u[1], &u[2]),
+                     9);
+    ck_assert_rel(sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]), v, 1e-12);
+    for (int k = 0; k < 3; k++) {
+      p[k] += u[k];
+      mx[k] = fmax(mx[k], fabs(u[k]));
+      if (i % 2)  /* the partner of the particle before */
+        ck_assert_double_eq(u[k], -prev[k]);
+      prev[k] = u[k];
+    }
+  }
+  fclose(f);
+  for (int k = 0; k < 3; k++) {
+    ck_assert(fabs(p[k]) <= 1e-9 * v);
+    ck_assert(mx[k] > 0.9 * v);  /* directions spread over the sphere */
+  }
+  /* three snapshots: steps 0, 3, 10 */
+  snprintf(path, sizeof path, "%s/snap_000002.csv", dir);
+  f = fopen(path, "r");
+  ck_assert_ptr_nonnull(f);
+  fclose(f);
+  snprintf(path, sizeof path, "%s/manifest.txt", dir);
+  char *man = slurp(path);
+  ck_assert_ptr_nonnull(strstr(man, "snap_000002.csv"));
+  ck_assert_ptr_null(strstr(man, "snap_000003.csv"));
+  free(man);
+  snprintf(path, sizeof path, "%s/summary.json", dir);
+  char *js = slurp(path);
+  const char *q = strstr(js, "\"rel_change\": ");
+  ck_assert_ptr_nonnull(q);
+  ck_assert(strtod(q + 14, NULL) < 1e-12);
+  free(js);
+  sb_collide_free(c);
+  rm_dir(dir);
+  /* a snapshot after the end of the run */
+  c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "a.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_set(c, "run.snapshot_steps=0 11"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_run(c, NULL, NULL), SB_EINVAL);
+  ck_assert_ptr_nonnull(strstr(sb_collide_error(c), "snapshot_steps"));
+  sb_collide_free(c);
+  /* an odd count has no antipodal pairing */
+  c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "a.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_set(c, "species.he.count=401"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_setup(c), SB_EINVAL);
+  ck_assert_ptr_nonnull(strstr(sb_collide_error(c), "even number"));
+  sb_collide_free(c);
+  rmdir(dir);
+}
+END_TEST
+
+static double flux_cdf(double x, void *p)
+{
+  double s = *(double *)p;
+  return x <= 0.0 ? 0.0 : -expm1(-0.5 * x * x / (s * s));
+}
+
+/* contacts.csv: free flights from a uniform start, pairs passing through
+ * each other (outcome count), chord detection over one step: the first
+ * contacts are straight-line flux across the contact sphere, so |v_n|
+ * follows the flux-weighted Maxwellian 1 - exp(-v^2/(2 s^2)) of the
+ * relative velocity, s^2 = k_B T/m_red (Mohaupt 2011, §7.2.1).  KS
+ * over all the contacts (seed 11: about 4500; 50000 particles, so that
+ * each takes part in ~0.2 of them and the contacts are nearly
+ * independent), p > 1e-4, and a z-test of their mean (a 5% error in
+ * v_n: z ~ 7); every v_n < 0 (approach). */
+START_TEST(test_contact_velocities)
+{
+  char dir[512], text[2048], path[600];
+  tmp_dir(dir, sizeof dir);
+  const double m = 1e-21, T = 300.0, kB = 1.380649e-23;
+  snprintf(text, sizeof text,
+           "[run]\nL = 4e-6\ndt = 4e-8\nsteps = 1\nseed = 11\n"
+           "detect = ballistic\noutcome = count\nplacement = uniform\n"
+           "output = %s\n[observe]\nfirst_hit = yes\n"
+           "first_hit_velocities = 20000\n[species p]\nradius = 1e-8\n"
+           "mass = %g\ntau = inf\nT = %g\ncount = 50000\n", dir, m, T);
+  sb_collide *c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "c.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_run(c, NULL, NULL), SB_SUCCESS);
+  sb_engine_firsthit_kernel_result o;
+  sb_collide_firsthit(c, &o);
+  ck_assert(o.c.hits > 4000 && o.c.hits < 20000);
+  snprintf(path, sizeof path, "%s/contacts.csv", dir);
+  FILE *f = fopen(path, "r");
+  ck_assert_ptr_nonnull(f);
+  char line[256];
+  ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
+  ck_assert_str_eq(line, "t,a,b,vn\n");
+  double *v = malloc(20000 * sizeof *v), t;
+  size_t n = 0;
+  char a[8], b[8];
+  while (n < 20000 && fscanf(f, "%lf,%7[^,],%7[^,],%lf", &t, a, b, &v[n]) == 4) {
+    ck_assert(v[n] < 0.0);
+    ck_assert(t >= 0.0 && t <= 4e-8);
+    v[n] = fabs(v[n]);
+    n++;
+  }
+  fclose(f);
+  ck_assert_uint_eq(n, o.c.hits);  /* all recorded */
+  double s = sqrt(kB * T / (0.5 * m)), D, p, mean = 0.0;
+  for (size_t i = 0; i < n; i++)
+    mean += v[i] / (double)n;
+  ck_assert_int_eq(sb_ks_test(v, n, flux_cdf, &s, &D, &p), SB_SUCCESS);
+  ck_assert_msg(p > 1e-4, "KS of |v_n|: D = %g, p = %g", D, p);
+  /* and the mean, E|v_n| = s sqrt(pi/2), sd s sqrt(2 - pi/2): |z| < 4
+   * (a 5% error in the velocities gives z ~ 7) */
+  const double z = (mean - s * sqrt(0.5 * PI)) /
+                   (s * sqrt(2.0 - 0.5 * PI) / sqrt((double)n));
+  ck_assert_msg(fabs(z) < 4.0, "mean |v_n| = %g s, z = %.2f", mean / s, z);
+  free(v);
+  sb_collide_free(c);
+  rm_dir(dir);
+  /* a detector without contact velocities: an error naming the key */
+  c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "c.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_set(c, "run.detect=overlap"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_check(c), SB_EINVAL);
+  ck_assert_ptr_nonnull(strstr(sb_collide_error(c), "first_hit_velocities"));
+  sb_collide_free(c);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("collide_lib");
@@ -377,6 +612,9 @@ static Suite *suite(void)
   tcase_add_test(tc, test_nothing_to_measure);
   tcase_add_test(tc, test_stopped_by_callback);
   tcase_add_test(tc, test_key_table);
+  tcase_add_test(tc, test_msd_free_flight);
+  tcase_add_test(tc, test_antipodal_snapshots);
+  tcase_add_test(tc, test_contact_velocities);
   suite_add_tcase(s, tc);
   TCase *tm = tcase_create("firsthit");
   tcase_set_timeout(tm, 300);  /* ~2 s; sanitizer builds are slower */

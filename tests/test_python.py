@@ -93,6 +93,15 @@ check(abs(series["px"][-1] - 1e-15 * 0.1) < 1e-28, "momentum conserved")
 check([e["event"] for e in events] == ["begin", "step"] and
       events[-1]["fraction"] == 1.0 and events[0]["particles"] == 2 and
       events[-1]["collisions"] == 1, "collide progress: %s" % events)
+# the elastic collision keeps the kinetic energy (summary kinetic_energy)
+ke = summary["kinetic_energy"]
+check(abs(ke["start"] / (0.5 * 1e-15 * 0.01) - 1) < 1e-12 and
+      ke["rel_change"] < 1e-12,
+      "collide kinetic_energy: %s" % ke)
+# the mean-square displacement observer's entry comes through
+summary, _ = sb.collide(dict(cfg, observe={"msd_every": 1}))
+check(summary["msd"]["samples"] == 2 and summary["msd"]["particles"] == 2,
+      "collide msd: %s" % summary.get("msd"))
 # an override: recorded, and it sets the step
 summary, _ = sb.collide(cfg, sets=["run.dt=2e-5"])
 check(summary["overrides"] == ["run.dt=2e-5"] and summary["dt"] == 2e-5,

@@ -23,20 +23,32 @@
 # species, one kernel per species pair (first_hit.pairs): with gravity and
 # the settling velocity taken out of the placement by a drift
 # (V16/combined, Pe = 1) and with the capacitance radius (V12/mixture);
-# deposition on absorbing walls without particle-particle detection
-# (detect = none), its window counts read from the deposits columns of
-# series.csv ("series.csv ROW-ROW0 deposits": V16/deposition transient,
-# bridge and chord; V16/deposition-langevin, chord) and the steady source
-# started from the parabolic profile (profile = parabolic, the mean over
-# the 4 replicas); Langevin spheres in shear, pass-through counting with
-# a warm-up (V16/combined-shear, Pe_k = 0.3).
+# the mean-square displacement observer ([observe] msd_every, msd.D) of
+# V18/self-diffusion (phi = 0.1: a mean over its 2 replica files); the
+# normal velocities at first contact ([observe] first_hit_velocities,
+# contacts.csv) of V12's free-molecular run, whose KS distance is
+# recomputed from the table ("; expect-ks", tests/validate_ini_stats.py);
+# V18/maxwell-relaxation ([species] velocities = antipodal with [run]
+# velocity_seed, [run] snapshot_steps): Boltzmann's H, KS and chi-square
+# of the speeds pooled over the snapshots of its 4 replica files, and the
+# largest kinetic_energy.rel_change; V13/spray-vs-engine ([species]
+# velocity_scale: the anisotropic start): mean(stochastic) - mean(engine)
+# with the stochastic means as offsets ("; expect-diff-mean"), the engine
+# side the anisotropy of the snapshots and kernel.K of its 6 files.
 # Engine cases without files must say why in NOT-WRITTEN.txt.
 # VALIDATE_INI_SET=more (tests/validate_ini_more.sh, run beside this one
 # to keep each under ~90 s): the MD-type detector of V3 (detect = md,
 # dt = 100 tau_p) and the grid deposit of V15/engine-jets at tau = 200
 # ("; expect-grid" lines: statistics of grid.csv's counts against the
 # exact means in RUN_cells.csv, and L1 distances to the fields.csv of
-# `smolbridge pgd RUN_euler.ini`).
+# `smolbridge pgd RUN_euler.ini`); deposition on absorbing walls without
+# particle-particle detection (detect = none), its window counts read from
+# the deposits columns of series.csv ("series.csv ROW-ROW0 deposits":
+# V16/deposition transient, bridge and chord; V16/deposition-langevin,
+# chord) and the steady source started from the parabolic profile
+# (profile = parabolic, the mean over the 4 replicas); Langevin spheres in
+# shear, pass-through counting with a warm-up (V16/combined-shear,
+# Pe_k = 0.3).
 set -u
 sb="${top_builddir:-.}/smolbridge"
 sb="$(cd "$(dirname "$sb")" && pwd)/$(basename "$sb")"  # runs cd below
@@ -48,26 +60,26 @@ mkdir -p "$dir"
 fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
 if [ "$set_" = more ]; then
-  cases="--case V3/diffusive-fail --case V15/engine-jets"
-  runs="V3_MD_d1um_dt100tau V15_engine_jets_tau200"
-  nmin=6
+  cases="--case V3/diffusive-fail --case V15/engine-jets --case V16/deposition --case V16/combined-shear\$"
+  runs="V3_MD_d1um_dt100tau V15_engine_jets_tau200 \
+    V16_deposition_transient_bridge V16_deposition_transient_chord \
+    V16_deposition_langevin_chord V16_combined_shear_Pek0.3"
+  nmin=21
   # shellcheck disable=SC2086
   "$sb" validate $cases --write-ini "$dir/ini" 2>"$dir/w.err" \
     || { fail "write-ini failed"; cat "$dir/w.err"; }
+  runs="$runs $(cd "$dir/ini" && ls V16_deposition_steady_r*.ini | sed 's/\.ini$//')"
 else
-cases="--case V1/dense-long-steps --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V8/agglo-constant --case V12/ --case V16/shear --case V16/abrahamson --case V16/saffman-turner --case V16/combined-shear-diffusive --case V16/combined\$ --case V16/deposition --case V16/combined-shear\$"
+cases="--case V1/dense-long-steps --case VX/exact-detection --case V9/two-spheres-45 --case V8/agglo-dlvo --case V8/agglo-constant --case V12/ --case V16/shear --case V16/abrahamson --case V16/saffman-turner --case V16/combined-shear-diffusive --case V16/combined\$ --case V18/ --case V13/spray-vs-engine"
 # shellcheck disable=SC2086
 "$sb" validate $cases --write-ini "$dir/ini" 2>"$dir/w.err" \
   || { fail "write-ini failed"; cat "$dir/w.err"; }
 [ -f "$dir/ini/V12_mixture.ini" ] || fail "V12_mixture.ini not written"
-grep -q 'V12/mixture' "$dir/ini/NOT-WRITTEN.txt" \
+grep -q 'V12/mixture' "$dir/ini/NOT-WRITTEN.txt" 2>/dev/null \
   && fail "NOT-WRITTEN.txt lists the V12 mixture, which has its file"
 # engine cases without any file are listed with a reason (no run needed)
-"$sb" validate --case V13/spray-vs-engine \
-  --case V15/dense-jets \
-  --case V18/ --write-ini "$dir/none" 2>/dev/null
-for c in V13/spray-vs-engine V15/dense-jets \
-    V18/self-diffusion V18/maxwell-relaxation; do
+"$sb" validate --case V15/dense-jets --write-ini "$dir/none" 2>/dev/null
+for c in V15/dense-jets; do
   grep -q "^$c: no file: ." "$dir/none/NOT-WRITTEN.txt" \
     || fail "NOT-WRITTEN.txt does not say why $c has no file"
 done
@@ -78,11 +90,12 @@ runs="V1_dense_He_phi0.05 VX_dt100tau V9_two_spheres_45 \
     V16_abrahamson_ou-field V16_abrahamson_langevin-species \
     V16_combined_shear_diffusive_Pe0.1 V16_combined_Pe1 V12_mixture \
     V16_saffman_turner_frozen_Rk2 \
-    V16_deposition_transient_bridge V16_deposition_transient_chord \
-    V16_deposition_langevin_chord V16_combined_shear_Pek0.3 \
+    V18_self_diffusion_phi0.1_r1 V18_self_diffusion_phi0.1_r2 \
+    V12_vn_free_molecular \
     $(cd "$dir/ini" && ls V8_agglo-constant_run*.ini \
-      V16_deposition_steady_r*.ini | sed 's/\.ini$//')"
-nmin=91
+      V18_maxwell_relaxation_r*.ini V13_spray_vs_engine_r*.ini |
+      sed 's/\.ini$//')"
+nmin=90
 fi
 # shellcheck disable=SC2086
 "$sb" validate $cases --out "$dir/v" >/dev/null 2>&1
@@ -98,6 +111,7 @@ field() {  # field SUMMARY NAME
     first_hit.pairs*) ab=${2#first_hit.pairs[}; ab=${ab%%]*}; a=${ab%%,*}; b=${ab#*,}
       sed -n "s/.*{\"species\": \[\"$a\", \"$b\"\], \"hits\": .*\"K\": \([^,]*\),.*/\1/p" "$1" ;;
     first_hit.K) sed -n 's/.*"first_hit": {.*"K": \([^,]*\),.*/\1/p' "$1" ;;
+    msd.D) sed -n 's/.*"msd": {.*"D": \([^,]*\),.*/\1/p' "$1" ;;
     agglo.*) k=${2#agglo.}
       sed -n "s/.*\"agglo\": {.*\"$k\": \\([^,]*\\),.*/\\1/p" "$1" ;;
   esac
@@ -123,6 +137,12 @@ for run in $runs; do
     line=${line#* }
     rec=${line%% = *}
     rhs=${line#* = }
+    case "$kind" in  # recomputed from output tables, pooled over runs
+      expect-ks|expect-chi2|expect-max|expect-h-rises|expect-diff-mean)
+        printf '%s\t%s\t%s\t%s\n' "$kind" "$rec" "$out" "$rhs" \
+          >> "$dir/stats.txt"
+        continue ;;
+    esac
     fld=${rhs%% \* *}
     fac=1
     case "$rhs" in *" * "*) fac=${rhs##* \* } ;; esac
@@ -203,6 +223,25 @@ if [ -f "$dir/means.txt" ]; then
         if (m < 1e-300) m = 1; if (n != nf || n < 2 || d > 1e-12 * m) {
           printf "mean of %d files %.17g\n", n, g; exit 1 } }' \
       "$dir/means.txt" || fail "$rec = $want, not the mean of its files"
+    ncmp=$((ncmp + 1))
+  done
+fi
+# the records recomputed from output tables (tests/validate_ini_stats.py)
+if [ -f "$dir/stats.txt" ]; then
+  python3 "$(dirname "$0")/validate_ini_stats.py" "$dir/stats.txt" \
+    > "$dir/stats.csv" || fail "validate_ini_stats.py failed"
+  for rec in $(cut -f2 "$dir/stats.txt" | sort -u); do
+    # pooled over every file that carries the record's line
+    kind=$(awk -F'\t' -v r="$rec" '$2 == r { print $1; exit }' "$dir/stats.txt")
+    nf=$(grep -l -F "; $kind $rec = " "$dir"/ini/*.ini | wc -l)
+    nr=$(awk -F'\t' -v r="$rec" '$2 == r' "$dir/stats.txt" | wc -l)
+    [ "$nf" -eq "$nr" ] || fail "$rec: $nr of its $nf files were run"
+    want=$(awk -F, -v r="$rec" '$1 == r { print $2 }' "$dir/v/validate.csv")
+    got=$(awk -F, -v r="$rec" '$1 == r { print $2 }' "$dir/stats.csv")
+    [ -n "$want" ] && [ -n "$got" ] || { fail "no value for $rec"; continue; }
+    awk -v g="$got" -v w="$want" 'BEGIN { d = g - w; if (d < 0) d = -d;
+      m = w < 0 ? -w : w; if (m < 1e-300) m = 1; exit !(d <= 1e-12 * m) }' \
+      || fail "$rec = $want, recomputed from collide's tables: $got"
     ncmp=$((ncmp + 1))
   done
 fi

@@ -175,6 +175,7 @@ int sbi_col_check(sbi_col_config *c)
     static const char *const kept[] = {"dim", "L", "Lx", "Ly", "Lz",
                                        "seed", "rng", "placement",
                                        "placement_seed", "thermalize",
+                                       "velocity_seed",
                                        "warmup", NULL};
     for (int i = 0; kept[i]; i++)
       unused(c, run, kept[i], "the state comes from the restart "
@@ -321,11 +322,35 @@ int sbi_col_check(sbi_col_config *c)
         conflict(c, "observe", "first_hit_capacitance", "first_hit_radius",
                  "two reference radii"))
       return -1;
+    if (c->first_hit_vn > 0 && strcmp(c->detect, "langevin") &&
+        strcmp(c->detect, "ballistic"))
+      return sbi_col_fail(c, "%s: [observe] first_hit_velocities with "
+                          "detect = %s: this detector gives no velocity at "
+                          "the contact; valid: detect = langevin or "
+                          "ballistic",
+                          sbi_col_where(c, "observe", "first_hit_velocities"),
+                          c->detect);
   } else {
     unused(c, "observe", "first_hit_radius", "first_hit = no");
     unused(c, "observe", "first_hit_capacitance", "first_hit = no");
     unused(c, "observe", "first_hit_skip_seen", "first_hit = no");
+    unused(c, "observe", "first_hit_velocities", "first_hit = no");
   }
+  if (sbi_col_msd_check(c) || sbi_col_start_check(c))
+    return -1;
+  for (int i = 0; i < c->nsnap_steps; i++)
+    if (!(c->snap_steps[i] == floor(c->snap_steps[i]) &&
+          c->snap_steps[i] <= 2e9 &&
+          (i == 0 || c->snap_steps[i] > c->snap_steps[i - 1])))
+      return sbi_col_fail(c, "%s: [run] snapshot_steps: %g%s; valid: "
+                          "increasing whole numbers of steps (0 .. 2e9)",
+                          sbi_col_where(c, "run", "snapshot_steps"),
+                          c->snap_steps[i], i ? " after a larger or equal "
+                          "one" : "");
+  if (c->nsnap_steps && c->snapshot_every > 0 &&
+      conflict(c, "run", "snapshot_steps", "snapshot_every",
+               "two snapshot schedules"))
+    return -1;
   /* fluid */
   if (!strcmp(c->fluid, "rest")) {
     unused(c, "fluid", "U", "type = rest");

@@ -40,10 +40,18 @@ int sbi_col_firsthit_attach(const sbi_col_config *c, sbi_col_run *r,
                      ? builtin
                      : SB_DETECT_BALLISTIC;
   fp.skip_seen = c->first_hit_skip_seen > 0;
+  /* [observe] first_hit_velocities: the built-in with the velocities */
+  if (!r->bridge && sbi_col_contacts_setup(c, r, fp.builtin, &fp))
+    return SB_ENOMEM;
   r->fh = sb_engine_firsthit_alloc(&fp);
   if (!r->fh)
     return SB_ENOMEM;
-  return sb_engine_firsthit_attach(r->e, r->fh, reach);
+  int st = sb_engine_firsthit_attach(r->e, r->fh, reach);
+  /* as the observer does around the built-in: the Langevin search of the
+   * cells serves the chord test */
+  if (!st && r->contacts && fp.builtin == SB_DETECT_LANGEVIN)
+    st = sb_engine_set_detector_chord(r->e, 1);
+  return st;
 }
 
 void sbi_col_firsthit_free(sb_engine_firsthit *f)

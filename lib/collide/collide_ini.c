@@ -66,6 +66,7 @@ void sbi_col_defaults(sbi_col_config *c)
   c->lv_eps = c->lv_xtol = c->lv_tol = NAN;
   c->sample_every = -1;
   c->placement_seed = -1;
+  c->velocity_seed = -1;
   strcpy(c->neigh, "cells");
   strcpy(c->detect, "ballistic");
   strcpy(c->outcome, "elastic");
@@ -104,6 +105,7 @@ static void species_defaults(sbi_col_species *s)
   s->count = -1;
   strcpy(s->drag, "stokes");
   strcpy(s->profile, "uniform");
+  strcpy(s->velocities, "placed");
 }
 
 /* ------------------------------------------------------------ values */

@@ -36,6 +36,9 @@ typedef struct {
   int ndrift;
   char profile[16];                 /* placement density across walls */
   char drag[24];                    /* drag law (engine_force.c) */
+  char velocities[16];              /* placed | antipodal (collide_start.c) */
+  double vscale[3];                 /* velocity_scale per axis */
+  int nvscale;
   char inflow[16];                  /* open boundaries (engine_open.c): */
   double inflow_rate;               /* face, particles/s, */
   double inflow_region[4];          /* inlet, velocity */
@@ -64,6 +67,9 @@ typedef struct {
   double lv_eps, lv_xtol, lv_tol;  /* detect = langevin (NaN: default) */
   long steps, sample_every, snapshot_every, sort_every, threads;
   long placement_seed;          /* -1: the engine's generator */
+  long velocity_seed;           /* velocities = antipodal; -1: the engine's */
+  double snap_steps[64];        /* [run] snapshot_steps (whole numbers) */
+  int nsnap_steps;
   double stop_every;            /* [run] stop_every (s; 0: none) */
   char neigh[16], detect[16], outcome[16], rng[16], placement[16];
   char output[512], checkpoint[512], restart[512];
@@ -80,6 +86,10 @@ typedef struct {
   int ngrid;
   char grid_scheme[8];
   long exits;                   /* [observe] exits (exits.csv) */
+  long first_hit_vn;            /* contacts.csv rows (0: off) */
+  long msd_every;               /* steps between MSD samples (0: off) */
+  double msd_fit[2];            /* fit lags, samples */
+  int nmsd_fit;
   /* [agglo] (outcome = merge | dlvo) */
   char growth[16], erel[16];
   double wmax, wmax_kT;
@@ -206,6 +216,9 @@ double sbi_col_md_reach(const sbi_col_config *c, const sb_engine *e);
 /* ---------------------------------------------------- collide_setup.c */
 
 /* A run being set up or running. */
+typedef struct sbi_col_msd sbi_col_msd;  /* collide_msd.c */
+typedef struct sbi_col_contacts sbi_col_contacts;  /* collide_contacts.c */
+
 typedef struct {
   sb_engine *e;
   sb_engine_bridge *bridge;     /* detect = bridge | exact */
@@ -214,6 +227,10 @@ typedef struct {
   sb_field_ou *ou;              /* [fluid] type = ou-field */
   sb_field_kraichnan *kr;       /* [fluid] type = kraichnan */
   gsl_rng *field_rng;           /* [fluid] seed (owned), or NULL */
+  sbi_col_msd *msd;             /* [observe] msd_every, or NULL */
+  sbi_col_contacts *contacts;   /* [observe] first_hit_velocities */
+  int measuring;                /* after the warm-up */
+  double ekin0;                 /* kinetic energy at the measurement start */
   double t_end;                 /* absolute end time, s */
   double warm;                  /* warm-up, s (0 on restart) */
   double *dep;                  /* deposits sampled with the series: rows */
@@ -289,6 +306,37 @@ double sbi_col_place_coord(const sbi_col_config *c,
 /* [run] detect = none, and its detector (no contact ever). */
 int sbi_col_detect_none(const sbi_col_config *c);
 int sbi_col_none_attach(sbi_col_run *r);
+/* ------------------------------------------------- collide_contacts.c */
+
+/* [observe] first_hit_velocities: set the observer's detector and hit
+ * callback in fp (built-in langevin or ballistic), contacts.csv and the
+ * summary's "contacts" entry (nothing without the key). */
+int sbi_col_contacts_setup(const sbi_col_config *c, sbi_col_run *r,
+                           sb_engine_detect builtin,
+                           sb_engine_firsthit_params *fp);
+int sbi_col_contacts_write(FILE *js, const sbi_col_config *c,
+                           const sbi_col_run *r, const char *path);
+void sbi_col_contacts_free(sbi_col_contacts *k);
+
+/* ---------------------------------------------------- collide_start.c */
+
+/* [species NAME] velocities = antipodal: checks, and the velocities set
+ * after the placement and thermalize (0 or -1 with c->err). */
+int sbi_col_start_check(sbi_col_config *c);
+int sbi_col_start_velocities(sbi_col_config *c, sbi_col_run *r);
+
+/* ------------------------------------------------------ collide_msd.c */
+
+/* [observe] msd_every: start at the end of the warm-up (r->t_end set),
+ * a step of the measurement, msd.csv and the summary's "msd" entry
+ * (nothing without the key). */
+/* Cross-key checks of msd_every and msd_fit (0 or -1 with c->err). */
+int sbi_col_msd_check(sbi_col_config *c);
+int sbi_col_msd_start(const sbi_col_config *c, sbi_col_run *r);
+int sbi_col_msd_step(sbi_col_run *r);
+int sbi_col_msd_write(FILE *js, const sbi_col_config *c,
+                      const sbi_col_run *r, const char *path);
+void sbi_col_msd_free(sbi_col_msd *m);
 
 /* ------------------------------------------------------ collide_out.c */
 

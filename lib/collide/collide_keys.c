@@ -36,6 +36,7 @@ static const char *const FACES[] = {"x_lo", "x_hi", "y_lo", "y_hi", "z_lo",
 static const char *const WALLDETS[] = {"bridge", "ballistic", "langevin",
                                        NULL};
 static const char *const DEPOSITS[] = {"remove", "reinsert", NULL};
+static const char *const STARTS[] = {"placed", "antipodal", NULL};
 
 /* Detectors with a context of their own (lib/engine/engine_bridge.c);
  * a new one is a name here and a branch in collide_setup.c. */
@@ -141,6 +142,14 @@ const sbi_col_keydef sbi_col_keys[] = {
     {"run", "placement_seed", K_INT, C(placement_seed), 0, R_CLOSED, 0,
      4294967295.0, NULL, "-", "- (engine generator)",
      "separate MT19937 generator for placement = uniform"},
+    {"run", "velocity_seed", K_INT, C(velocity_seed), 0, R_CLOSED, 0,
+     4294967295.0, NULL, "-", "- (engine generator)",
+     "separate MT19937 generator for the directions of velocities = "
+     "antipodal"},
+    {"run", "snapshot_steps", K_VEC, C(snap_steps), C(nsnap_steps),
+     R_NONNEG, 1, 64, NULL, "steps", "- (none)",
+     "snapshots after these numbers of measured steps (increasing whole "
+     "numbers; 0: the start of the measurement)"},
     {"run", "output", K_PATH, C(output), 0, R_ANY, 0, 0, NULL, "path",
      "collide-out", "output directory"},
     {"run", "checkpoint", K_PATH, C(checkpoint), 0, R_ANY, 0, 0, NULL,
@@ -179,6 +188,16 @@ const sbi_col_keydef sbi_col_keys[] = {
     {"observe", "first_hit_skip_seen", K_BOOL, C(first_hit_skip_seen), 0,
      R_ANY, 0, 0, BOOLS, "-", "no", "do not pass pairs whose first contact "
      "is known to the detector (fewer draws)"},
+    {"observe", "first_hit_velocities", K_INT, C(first_hit_vn), 0, R_CLOSED,
+     0, 1e8, NULL, "-", "0", "record the normal relative velocity of up to "
+     "this many first contacts (contacts.csv; detect = langevin or "
+     "ballistic)"},
+    {"observe", "msd_every", K_INT, C(msd_every), 0, R_CLOSED, 0, 2e9, NULL,
+     "steps", "0", "sample the unwrapped positions every this many steps: "
+     "mean-square displacement (msd.csv) and self-diffusion coefficient"},
+    {"observe", "msd_fit", K_VEC, C(msd_fit), C(nmsd_fit), R_NONNEG, 2, 2,
+     NULL, "samples", "kmax/4 kmax/2", "lags k1 < k2 of the slope that "
+     "gives D"},
     /* -------------------------------------------------------- [agglo] */
     {"agglo", "growth", K_NAME, C(growth), 16, R_ANY, 0, 0, GROWTHS, "-",
      "stokes", "species of a cluster of k primaries"},
@@ -287,6 +306,12 @@ const sbi_col_keydef sbi_col_keys[] = {
      "uniform source between absorbing walls)"},
     {"species", "drift", K_VEC, S(drift), S(ndrift), R_ANY, 2, 3, NULL,
      "m/s", "0", "added to the placed particles' velocities"},
+    {"species", "velocities", K_NAME, S(velocities), 16, R_ANY, 0, 0, STARTS,
+     "-", "placed", "antipodal: every speed sqrt(3 k_B T/m), directions "
+     "uniform in antipodal pairs (zero momentum)"},
+    {"species", "velocity_scale", K_VEC, S(vscale), S(nvscale), R_NONNEG, 2,
+     3, NULL, "-", "1 1 1", "multiply the placed particles' velocity "
+     "components (after thermalize): per-axis temperatures s_k^2 T"},
     {"species", "inflow", K_NAME, S(inflow), 16, R_ANY, 0, 0, FACES, "-",
      "- (none)", "face through which a stream of this species enters"},
     {"species", "inflow_rate", K_NUM, S(inflow_rate), 0, R_POS, 0, 0, NULL,

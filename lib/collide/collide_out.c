@@ -29,7 +29,8 @@
 static int ours(const char *name)
 {
   static const char *const fixed[] = {"series.csv", "summary.json",
-                                      "sizes.csv", "hits.csv", "grid.csv", "exits.csv",
+                                      "sizes.csv", "hits.csv", "grid.csv",
+                                      "exits.csv", "msd.csv", "contacts.csv",
                                       "manifest.txt", NULL};
   for (int i = 0; fixed[i]; i++)
     if (!strcmp(name, fixed[i]))
@@ -496,7 +497,7 @@ int sbi_col_out_write(const sbi_col_config *c, const sbi_col_run *r,
                       const sbi_col_pairs *ps, double secs, const char *status,
                       const char *why, long nsnap)
 {
-  char path[1100], files[10][32];
+  char path[1100], files[16][32];
   int nf = 0, err = 0;
   if (r->e) {
     snprintf(path, sizeof path, "%s/series.csv", c->output);
@@ -537,6 +538,23 @@ int sbi_col_out_write(const sbi_col_config *c, const sbi_col_run *r,
     json_contexts(f, c, r);
     if (sbi_col_grid_on(c))
       sbi_col_grid_json(f, c, r);
+    if (r->measuring) {  /* energy conservation over the measurement */
+      double e1 = sb_engine_kinetic_energy(r->e, NULL);
+      fprintf(f, "  \"kinetic_energy\": {\"start\": %.17g, \"end\": "
+              "%.17g, \"rel_change\": ", r->ekin0, e1);
+      jnum(f, fabs(e1 / r->ekin0 - 1.0));
+      fprintf(f, "},\n");
+    }
+    if (r->contacts) {
+      snprintf(path, sizeof path, "%s/contacts.csv", c->output);
+      err |= sbi_col_contacts_write(f, c, r, path);
+      snprintf(files[nf++], 32, "contacts.csv");
+    }
+    if (r->msd) {
+      snprintf(path, sizeof path, "%s/msd.csv", c->output);
+      err |= sbi_col_msd_write(f, c, r, path);
+      snprintf(files[nf++], 32, "msd.csv");
+    }
     if (r->bridge && c->hit_times > 0) {
       snprintf(path, sizeof path, "%s/hits.csv", c->output);
       err |= write_hits(f, c, r, path);

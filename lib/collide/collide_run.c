@@ -47,6 +47,8 @@ static int progress_step(sbi_col_run *r, double t_stop, sbi_col_pairs *ps,
   double last = -1;
   while (sb_engine_time(e) < t_stop - 0.5 * dt) {
     int st = sb_engine_step(e);
+    if (!st && r->measuring)
+      st = sbi_col_msd_step(r);
     if (st)
       return st;
     size_t every = sb_engine_get_params(e)->sample_every;
@@ -117,12 +119,32 @@ static int run_steps(sbi_col_config *c, sbi_col_run *r, sbi_col_pairs *ps,
     if (r->agglo)
       sb_agglo_reset_stats(r->agglo);
   }
+  r->measuring = 1;
+  r->ekin0 = sb_engine_kinetic_energy(e, NULL);
+  if (!st)
+    st = sbi_col_msd_start(c, r);
   char path[1100];
+  int isnap = 0;  /* [run] snapshot_steps: the next one */
   /* [run] stop_every: stop k at t_meas + k stop_every */
   const double t_meas = t0 + r->warm;
   long istop = 1;
   while (!st && sb_engine_time(e) < r->t_end - 0.5 * dt) {
+    /* snapshot_steps reached */
+    while (!st && isnap < c->nsnap_steps &&
+           !(sb_engine_time(e) <
+             t_meas + (c->snap_steps[isnap] - 0.5) * dt)) {
+      sbi_col_snap_path(c, *nsnap, path, sizeof path);
+      st = sb_engine_snapshot_csv(e, path);
+      isnap++;
+      if (!st)
+        (*nsnap)++;
+    }
+    if (st)
+      break;
     double t_next = r->t_end;
+    if (isnap < c->nsnap_steps &&
+        t_meas + c->snap_steps[isnap] * dt < t_next)
+      t_next = t_meas + c->snap_steps[isnap] * dt;
     if (c->snapshot_every > 0) {
       double ts = sb_engine_time(e) + (double)c->snapshot_every * dt;
       if (ts < t_next)
@@ -144,6 +166,15 @@ static int run_steps(sbi_col_config *c, sbi_col_run *r, sbi_col_pairs *ps,
       if (!st)
         (*nsnap)++;
     }
+  }
+  /* snapshot_steps reached by the last step */
+  while (!st && isnap < c->nsnap_steps &&
+         !(sb_engine_time(e) < t_meas + (c->snap_steps[isnap] - 0.5) * dt)) {
+    sbi_col_snap_path(c, *nsnap, path, sizeof path);
+    st = sb_engine_snapshot_csv(e, path);
+    isnap++;
+    if (!st)
+      (*nsnap)++;
   }
   if (!st)  /* the last grid frame at the end time */
     st = sbi_col_grid_sample(c, r);
@@ -178,6 +209,17 @@ static int plan(sb_collide *cl)
                      : sbi_col_where(c, "run", "t_end"),
                  r->warm, r->t_end - t0, t0);
     return SB_EINVAL;
+  }
+  if (c->nsnap_steps > 0) {
+    const double last = c->snap_steps[c->nsnap_steps - 1];
+    const double nmeas = (r->t_end - t0 - r->warm) / dt;
+    if (last > nmeas + 0.5) {
+      sbi_col_fail(c, "%s: [run] snapshot_steps = ... %.0f: the run "
+                   "measures %.0f steps; valid: at most that",
+                   sbi_col_where(c, "run", "snapshot_steps"), last,
+                   floor(nmeas + 0.5));
+      return SB_EINVAL;
+    }
   }
   if (c->stop_every > 0 && !(c->stop_every >= dt)) {
     sbi_col_fail(c, "%s: [run] stop_every = %g s: shorter than the step "

@@ -28,6 +28,8 @@
 void sbi_col_run_free(sbi_col_run *r)
 {
   sbi_col_firsthit_free(r->fh);
+  sbi_col_msd_free(r->msd);
+  sbi_col_contacts_free(r->contacts);
   sb_agglo_free(r->agglo);
   sb_engine_bridge_free(r->bridge);
   sb_engine_free(r->e);
@@ -733,6 +735,8 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
       return sbi_col_fail(c, "%s: [run] thermalize: %s",
                           sbi_col_where(c, "run", "thermalize"),
                           sb_last_error());
+    if (sbi_col_start_velocities(c, r))
+      return -1;
   }
   if (sbi_col_bridge(c) && attach_bridge(c, r))
     return -1;

@@ -174,6 +174,12 @@ void sbv_ini_expect_sweep_mean(sbv_report *rep, const char *record,
 void sbv_ini_expect_grid(sbv_report *rep, const char *record,
                          const char *stat, int frame, const char *ref,
                          double factor);
+/* Append "; KIND RECORD = SPEC": a record recomputed from collide's
+ * output tables, pooled over every file of the case with this line
+ * (docs/validation.md lists the kinds: expect-ks, expect-chi2,
+ * expect-max, expect-h-rises). */
+void sbv_ini_expect_stat(sbv_report *rep, const char *kind,
+                         const char *record, const char *spec);
 /* A run left out, and why (printf-style). */
 void sbv_ini_skip(sbv_report *rep, const char *fmt, ...)
 #if defined(__GNUC__)

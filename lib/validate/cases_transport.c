@@ -121,6 +121,54 @@ static void unwrap(const sb_engine *e, size_t n, double L, double *xw,
 
 /* ================================================== V18 self-diffusion */
 
+/* The reference and sampling interval (steps) of a replica of he_gas
+ * (box edge L, collision frequency nu). */
+static void diffusion_plan(size_t n, double phi, double nu, double L,
+                           double *Dref, double *tauD, size_t *every)
+{
+  const double d = 2.0 * HE_RADIUS;
+  double nd = (double)n / (L * L * L);
+  *Dref = d_enskog(nd, d, phi, HE_MASS, TEMP);
+  *tauD = HE_MASS * *Dref / (SB_BOLTZMANN * TEMP);
+  /* sampling interval: a whole number of steps close to tau_D */
+  *every = (size_t)fmax(1.0, nearbyint(*tauD / (DT_FRAC / nu)));
+}
+
+/* Write mode: the replica as a collide file ([observe] msd_every gives
+ * the same slope: msd.D = D_e (N - 1)/N). */
+static int diffusion_write(const sbv_ctx *ctx, sbv_report *rep,
+                           unsigned long seed, size_t n, double phi,
+                           size_t nsamp, size_t k1, size_t k2,
+                           const char *fn, const char *record)
+{
+  double nu, L, Dref, tauD;
+  size_t every;
+  int st;
+  /* the box and step of the run itself (he_gas: the same rounding) */
+  sb_engine *e = he_gas(seed, n, phi, DT_FRAC, &nu, &L, &st);
+  if (!e)
+    return st;
+  sb_engine_free(e);
+  diffusion_plan(n, phi, nu, L, &Dref, &tauD, &every);
+  FILE *f = sbv_ini_begin(ctx, rep, fn, "V18: self-diffusion of an MD "
+                          "hard-sphere gas (mean-square displacement)");
+  if (!f)
+    return SB_EIO;
+  fprintf(f, "seed = %lu\nrng = mt19937\nL = %.17g\ndt = %.17g\n"
+          "warmup = %.17g\nsteps = %zu\nthermalize = %.17g\n"
+          "detect = ballistic\noutcome = elastic\n\n[observe]\n"
+          "msd_every = %zu\nmsd_fit = %zu %zu\n\n[species He]\n"
+          "radius = %.17g\nmass = %.17g\ntau = inf\nT = %.17g\n"
+          "count = %zu\n", seed, L, DT_FRAC / nu, 20.0 / nu,
+          (nsamp - 1) * every, TEMP, every, k1, k2, HE_RADIUS, HE_MASS, TEMP,
+          n);
+  st = sbv_ini_end(rep, f, NULL);
+  /* D_e/D_ref = msd.D x N/(N - 1) / D_ref (one replica: a term) */
+  sbv_ini_expect_mean(rep, record, "msd.D",
+                      (double)n / (double)(n - 1) / Dref);
+  return st;
+}
+
 /* One replica: D_e / D_ref from the MSD slope between lags k1 and k2
  * sampling intervals (every tau_D) over nsamp samples. */
 static int diffusion_replica(const sbv_ctx *ctx, unsigned long seed,
@@ -132,13 +180,10 @@ static int diffusion_replica(const sbv_ctx *ctx, unsigned long seed,
   sb_engine *e = he_gas(seed, n, phi, DT_FRAC, &nu, &L, &st);
   if (!e)
     return st;
-  const double d = 2.0 * HE_RADIUS;
-  double nd = (double)n / (L * L * L);
-  double Dref = d_enskog(nd, d, phi, HE_MASS, TEMP);
-  double tauD = HE_MASS * Dref / (SB_BOLTZMANN * TEMP);
+  double Dref, tauD;
+  size_t every;
+  diffusion_plan(n, phi, nu, L, &Dref, &tauD, &every);
   double dt = DT_FRAC / nu;
-  /* sampling interval: a whole number of steps close to tau_D */
-  size_t every = (size_t)fmax(1.0, nearbyint(tauD / dt));
   double ts = (double)every * dt;
   double *xw = malloc(3 * n * sizeof *xw);
   double *xu = calloc(3 * n, sizeof *xu);
@@ -219,6 +264,21 @@ static int case_diffusion(const sbv_ctx *ctx, sbv_report *rep)
            "1 - 1e-4.");
   int st = SB_SUCCESS;
   double plot[30 * 3];
+  for (int r = 0; r < 2 && !st && sbv_writing(ctx); r++) {
+    size_t reps = runs[r].reps * (ctx->full ? 5 : 1);
+    char rec[96];
+    snprintf(rec, sizeof rec, "V18/self-diffusion/He/phi=%g/D_e/D_Enskog",
+             runs[r].phi);
+    for (size_t i = 0; i < reps && !st; i++) {
+      char fn[64];
+      snprintf(fn, sizeof fn, "V18_self_diffusion_phi%g_r%zu", runs[r].phi,
+               i + 1);
+      st = diffusion_write(ctx, rep, ctx->seed * 1000 + 1800 + 50 * r + i,
+                           n, runs[r].phi, nsamp, k1, k2, fn, rec);
+    }
+  }
+  if (sbv_writing(ctx))
+    return st;
   for (int r = 0; r < 2 && !st; r++) {
     size_t reps = runs[r].reps * (ctx->full ? 5 : 1);
     double *x = malloc(reps * sizeof *x);
@@ -318,6 +378,69 @@ static void speeds(const sb_engine *e, size_t n, double *v)
                     u[3 * i + 2] * u[3 * i + 2]);
 }
 
+/* Write mode: replica r as a collide file ([species] velocities =
+ * antipodal with the case's direction generator as velocity_seed,
+ * snapshots at the sample times); the records are recomputed from the
+ * snapshots and summaries pooled over the replicas (expect-h-rises,
+ * expect-ks, expect-chi2, expect-max: tests/validate_ini_stats.py). */
+static int relax_write(const sbv_ctx *ctx, sbv_report *rep, size_t r,
+                       size_t n, double phi, const double *tt, int nt)
+{
+  /* the box and step of the run itself (he_gas: the same rounding) */
+  double nu, L;
+  int st;
+  sb_engine *e = he_gas(ctx->seed * 1000 + 1900 + r, n, phi, DT_FRAC, &nu,
+                        &L, &st);
+  if (!e)
+    return st;
+  sb_engine_free(e);
+  char fn[64];
+  snprintf(fn, sizeof fn, "V18_maxwell_relaxation_r%zu", r + 1);
+  FILE *f = sbv_ini_begin(ctx, rep, fn, "V18: MD hard-sphere gas started "
+                          "with equal speeds (Maxwell relaxation)");
+  if (!f)
+    return SB_EIO;
+  fprintf(f, "seed = %lu\nrng = mt19937\nL = %.17g\ndt = %.17g\n"
+          "t_end = %.17g\nthermalize = %.17g\nvelocity_seed = %lu\n"
+          "detect = ballistic\noutcome = elastic\nsnapshot_steps =",
+          ctx->seed * 1000 + 1900 + r, L, DT_FRAC / nu, tt[nt - 1] / nu,
+          TEMP, sbv_rng_seed(ctx, 1900 + r));
+  /* the steps at which sb_engine_run_until(tt[k]/nu) stops: the engine
+   * adds dt to its time at every step */
+  double t = 0.0, dt = DT_FRAC / nu;
+  long steps = 0;
+  for (int k = 0; k < nt; k++) {
+    while (t < tt[k] / nu - 0.5 * dt) {
+      t += dt;
+      steps++;
+    }
+    fprintf(f, " %ld", steps);
+  }
+  fprintf(f, "\n\n[species He]\nradius = %.17g\nmass = %.17g\ntau = inf\n"
+          "T = %.17g\ncount = %zu\nvelocities = antipodal\n", HE_RADIUS,
+          HE_MASS, TEMP, n);
+  st = sbv_ini_end(rep, f, NULL);
+  const double s = sqrt(HE_MASS / (SB_BOLTZMANN * TEMP));
+  char spec[160];  /* the snapshots snap_000000.csv ... at the nt times */
+  snprintf(spec, sizeof spec, "%.17g %d %.17g speed %d", s, NBIN, VMAX, nt);
+  sbv_ini_expect_stat(rep, "expect-h-rises",
+                      "V18/maxwell-relaxation/H-rises-above-floor", spec);
+  /* every tenth molecule of the pool: rows 0, 10, ... of each replica
+   * (n is a multiple of 10) */
+  snprintf(spec, sizeof spec, "snap_%06d.csv speed maxwell-speed %.17g "
+           "every=10", nt - 1, s);
+  sbv_ini_expect_stat(rep, "expect-ks",
+                      "V18/maxwell-relaxation/t=15t_free/speeds/KS", spec);
+  snprintf(spec, sizeof spec, "snap_%06d.csv speed maxwell-speed %.17g "
+           "0.2 20", nt - 1, s);
+  sbv_ini_expect_stat(rep, "expect-chi2",
+                      "V18/maxwell-relaxation/t=15t_free/speeds/chi2", spec);
+  sbv_ini_expect_stat(rep, "expect-max",
+                      "V18/maxwell-relaxation/energy/rel-change",
+                      "kinetic_energy.rel_change");
+  return st;
+}
+
 static int case_relax(const sbv_ctx *ctx, sbv_report *rep)
 {
   const size_t n = 2000;
@@ -326,6 +449,12 @@ static int case_relax(const sbv_ctx *ctx, sbv_report *rep)
   /* sample times in mean free times */
   const double tt[] = {0, 0.25, 0.5, 0.75, 1, 1.5, 2, 3, 4, 6, 8, 10, 15};
   enum { NT = sizeof tt / sizeof tt[0] };
+  if (sbv_writing(ctx)) {
+    int st = SB_SUCCESS;
+    for (size_t r = 0; r < reps && !st; r++)
+      st = relax_write(ctx, rep, r, n, phi, tt, NT);
+    return st;
+  }
   double *vfin = malloc(n * reps * sizeof *vfin);
   double *vt = malloc(n * reps * NT * sizeof *vt);
   if (!vfin || !vt) {

@@ -225,6 +225,9 @@ static int write_lv(const sbv_ctx *ctx, unsigned long stream,
   else if (!q->fh_contact)
     fprintf(f, "first_hit_capacitance = yes\n");
   fprintf(f, "first_hit_skip_seen = yes\n");
+  /* the normal velocities at the first vcap contacts (contacts.csv) */
+  if (q->vcap && (q->det == LV_LANGEVIN || q->det == LV_CHORD))
+    fprintf(f, "first_hit_velocities = %zu\n", q->vcap);
   for (int a = 0; a < q->nsp; a++) {
     fprintf(f, "\n[species %s]\nradius = %.17g\nmass = %.17g\ntau = %.17g\n"
             "T = %.17g\ncount = %zu\n", lv_name(q, a), 0.5 * q->d[a],

@@ -140,6 +140,12 @@ int sbv_ini_sweep_point(sbv_report *rep, size_t k, const char *fmt, ...)
              : SB_SUCCESS;
 }
 
+void sbv_ini_expect_stat(sbv_report *rep, const char *kind,
+                         const char *record, const char *spec)
+{
+  expect_line(rep, kind, record, spec, 1.0);
+}
+
 void sbv_ini_skip(sbv_report *rep, const char *fmt, ...)
 {
   char line[400];

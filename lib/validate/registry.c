@@ -167,6 +167,7 @@ static const char *const INI_CASES[] = {
     "V16/abrahamson", "V16/saffman-turner", "V16/combined",
     "V16/combined-shear-diffusive", "V16/deposition",
     "V16/deposition-langevin", "V16/combined-shear", "V15/engine-jets",
+    "V18/self-diffusion", "V18/maxwell-relaxation", "V13/spray-vs-engine",
     NULL};
 
 /* Cases whose engine runs `smolbridge collide` does not reproduce, and
@@ -182,20 +183,6 @@ static const struct {
      "every 10 steps, and the collisions per injected drop of the batch "
      "(injections per batch are no collide output); no expect line "
      "computes such batch statistics"},
-    {"V13/spray-vs-engine",
-     "the engine replicas start from thermalized velocities rescaled per "
-     "axis (an anisotropic start, not a collide placement), and the "
-     "records compare the replicas' mean anisotropy and kernel with Bird "
-     "and Nanbu's (Welch), not one run's summary field"},
-    {"V18/self-diffusion",
-     "its record is the mean-square displacement of unwrapped positions "
-     "over time origins and molecules, computed from the particle states "
-     "during the run: not a summary field"},
-    {"V18/maxwell-relaxation",
-     "the gas starts with equal speeds in antipodal pairs (not a collide "
-     "placement), and its records (Boltzmann's H over 13 times, KS and "
-     "chi-square of the final speeds pooled over replicas, the energy "
-     "change) are computed from the particle states: not summary fields"},
 };
 
 int sb_validate_write_ini(size_t index, const sb_validate_options *opt,
