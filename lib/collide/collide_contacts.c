@@ -37,25 +37,6 @@ void sbi_col_contacts_free(sbi_col_contacts *k)
   free(k);
 }
 
-/* Chord contact at fraction s: velocities interpolated over the step. */
-static double chord_vn(const sb_engine *e, const sb_engine_pair *p, double s)
-{
-  const double *u0 = sb_engine_start_velocities(e);
-  const double *u1 = sb_engine_velocities(e);
-  double n[3], nn = 0.0, vn = 0.0;
-  for (int k = 0; k < 3; k++) {
-    n[k] = p->dx0[k] + s * p->dd[k];
-    nn += n[k] * n[k];
-  }
-  nn = sqrt(nn);
-  for (int k = 0; k < 3; k++) {
-    double ui = u0[3 * p->i + k] + s * (u1[3 * p->i + k] - u0[3 * p->i + k]);
-    double uj = u0[3 * p->j + k] + s * (u1[3 * p->j + k] - u0[3 * p->j + k]);
-    vn += (ui - uj) * n[k] / nn;
-  }
-  return vn;
-}
-
 /* The detector the observer wraps: the built-in, with the velocity. */
 static int detect(const sb_engine *e, const sb_engine_pair *p,
                   const gsl_rng *r, void *ctx, double *s)
@@ -75,7 +56,7 @@ static int detect(const sb_engine *e, const sb_engine_pair *p,
   } else {
     h = sb_engine_detect_ballistic(p, s);
     if (h == 1)
-      k->vn = chord_vn(e, p, *s);
+      k->vn = sb_engine_chord_vn(e, p, *s);
   }
   return h;
 }

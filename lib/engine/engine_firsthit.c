@@ -401,3 +401,22 @@ int sb_engine_firsthit_estimate(sb_engine_firsthit_kernel_result *k,
   k->expected_per_K = c1 + c2 * k->K;
   return SB_SUCCESS;
 }
+
+double sb_engine_chord_vn(const sb_engine *e, const sb_engine_pair *p,
+                          double s)
+{
+  const double *u0 = sb_engine_start_velocities(e);
+  const double *u1 = sb_engine_velocities(e);
+  double n[3], nn = 0.0, vn = 0.0;
+  for (int k = 0; k < 3; k++) {
+    n[k] = p->dx0[k] + s * p->dd[k];
+    nn += n[k] * n[k];
+  }
+  nn = sqrt(nn);
+  for (int k = 0; k < 3; k++) {
+    double ui = u0[3 * p->i + k] + s * (u1[3 * p->i + k] - u0[3 * p->i + k]);
+    double uj = u0[3 * p->j + k] + s * (u1[3 * p->j + k] - u0[3 * p->j + k]);
+    vn += (ui - uj) * n[k] / nn;
+  }
+  return vn;
+}

@@ -181,6 +181,16 @@ int sb_engine_firsthit_estimate(sb_engine_firsthit_kernel_result *k,
 int sb_engine_firsthit_coefs(const sb_engine_firsthit_kernel_result *k,
                              double *c1, double *c2);
 
+/** Normal relative velocity (m/s; < 0: approach) of pair p at a contact
+ *  on its straight chord at fraction s of the record's interval: the
+ *  direction dx0 + s dd, the velocities interpolated linearly between the
+ *  step's start and end (sb_engine_start_velocities, sb_engine_velocities;
+ *  right where dt << tau_p).  For a detector's hit callback (contact-time
+ *  detection); the `langevin` detector's contact velocities come from
+ *  sb_engine_langevin_contact. */
+double sb_engine_chord_vn(const sb_engine *e, const sb_engine_pair *p,
+                          double s);
+
 #ifdef __cplusplus
 }
 #endif

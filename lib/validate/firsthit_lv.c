@@ -31,26 +31,6 @@ typedef struct {
   double vn;
 } lvctx;
 
-/* Normal relative velocity at a chord contact at fraction s: velocities
- * interpolated linearly over the step (dt << tau_p for the reference). */
-static double chord_vn(const sb_engine *e, const sb_engine_pair *p, double s)
-{
-  const double *u0 = sb_engine_start_velocities(e);
-  const double *u1 = sb_engine_velocities(e);
-  double n[3], nn = 0.0, vn = 0.0;
-  for (int k = 0; k < 3; k++) {
-    n[k] = p->dx0[k] + s * p->dd[k];
-    nn += n[k] * n[k];
-  }
-  nn = sqrt(nn);
-  for (int k = 0; k < 3; k++) {
-    double ui = u0[3 * p->i + k] + s * (u1[3 * p->i + k] - u0[3 * p->i + k]);
-    double uj = u0[3 * p->j + k] + s * (u1[3 * p->j + k] - u0[3 * p->j + k]);
-    vn += (ui - uj) * n[k] / nn;
-  }
-  return vn;
-}
-
 /* The run's detector, wrapped by the first-contact observer (which skips
  * the pairs whose first contact is known); keeps the normal relative
  * velocity of the contact for lv_hit. */
@@ -75,7 +55,7 @@ static int lv_detect(const sb_engine *e, const sb_engine_pair *p,
   case LV_CHORD:
     h = sb_engine_detect_ballistic(p, s);
     if (h == 1)
-      f->vn = chord_vn(e, p, *s);
+      f->vn = sb_engine_chord_vn(e, p, *s);
     break;
   case LV_OVERLAP:
     h = sb_engine_detect_overlap(p, s);
