@@ -17,47 +17,10 @@
 #include <smolbridge/collide.h>
 #include <smolbridge/stats.h>
 
+#include "outdir.h"
 #include "testutil.h"
 
 #define PI 3.14159265358979323846
-
-/* A fresh temporary directory for the outputs, in dir. */
-static void tmp_dir(char *dir, size_t len)
-{
-  const char *t = getenv("TMPDIR");
-  snprintf(dir, len, "%s/sbcollideXXXXXX", t && *t ? t : "/tmp");
-  ck_assert_ptr_nonnull(mkdtemp(dir));
-}
-
-/* Remove the files a run wrote (manifest.txt lists them) and dir. */
-static void rm_dir(const char *dir)
-{
-  static const char *const files[] = {"series.csv", "summary.json",
-                                      "sizes.csv", "hits.csv", "msd.csv",
-                                      "contacts.csv", "snap_000000.csv",
-                                      "snap_000001.csv", "snap_000002.csv",
-                                      "manifest.txt", NULL};
-  char p[600];
-  for (int i = 0; files[i]; i++) {
-    snprintf(p, sizeof p, "%s/%s", dir, files[i]);
-    remove(p);
-  }
-  rmdir(dir);
-}
-
-/* The whole text of a file ("" if it cannot be read); free it. */
-static char *slurp(const char *path)
-{
-  FILE *f = fopen(path, "r");
-  char *s = calloc(1, 1 << 16);
-  ck_assert_ptr_nonnull(s);
-  if (f) {
-    size_t n = fread(s, 1, (1 << 16) - 1, f);
-    s[n] = 0;
-    fclose(f);
-  }
-  return s;
-}
 
 /* Two free-flight spheres of radius r: the first moves along x at 0.1 m/s
  * and touches the second, offset by sqrt(2) r in y, half-way through the
@@ -100,7 +63,7 @@ static int on_progress(const sb_collide_progress *p, void *user)
 START_TEST(test_run_from_string)
 {
   char dir[512], text[2048], path[600];
-  tmp_dir(dir, sizeof dir);
+  sbt_tmp_dir(dir, sizeof dir, "sbcollide");
   two_spheres(text, sizeof text, dir, "steps = 1", "");
   sb_collide *c = sb_collide_alloc();
   ck_assert_ptr_nonnull(c);
@@ -131,13 +94,13 @@ START_TEST(test_run_from_string)
   ck_assert_int_eq(sb_collide_firsthit(c, &o), SB_EINVAL);
   /* the outputs: summary.json with the override and the collision */
   snprintf(path, sizeof path, "%s/summary.json", dir);
-  char *js = slurp(path);
+  char *js = sbt_slurp(path);
   ck_assert_ptr_nonnull(strstr(js, "\"status\": \"ok\""));
   ck_assert_ptr_nonnull(strstr(js, "\"overrides\": [\"run.steps=2\"]"));
   ck_assert_ptr_nonnull(strstr(js, "\"collisions\": 1,"));
   free(js);
   snprintf(path, sizeof path, "%s/series.csv", dir);
-  char *csv = slurp(path);
+  char *csv = sbt_slurp(path);
   ck_assert_ptr_nonnull(strstr(csv, "t,ncoll,K,K_lo,K_hi"));
   free(csv);
   /* a configuration runs once */
@@ -145,7 +108,7 @@ START_TEST(test_run_from_string)
   ck_assert_int_eq(sb_collide_failed(c), SB_COLLIDE_EINPUT);
   ck_assert_ptr_nonnull(strstr(sb_collide_error(c), "runs once"));
   sb_collide_free(c);
-  rm_dir(dir);
+  sbt_rm_dir(dir);
 }
 END_TEST
 
@@ -228,7 +191,7 @@ END_TEST
 START_TEST(test_nothing_to_measure)
 {
   char dir[512], text[2048], path[600];
-  tmp_dir(dir, sizeof dir);
+  sbt_tmp_dir(dir, sizeof dir, "sbcollide");
   two_spheres(text, sizeof text, dir, "t_end = 1e-5", "warmup = 2e-5");
   sb_collide *c = sb_collide_alloc();
   ck_assert_int_eq(sb_collide_read_string(c, text, "m.ini"), SB_SUCCESS);
@@ -242,14 +205,14 @@ START_TEST(test_nothing_to_measure)
   snprintf(path, sizeof path, "%s/summary.json", dir);
   ck_assert_int_eq(access(path, F_OK), -1);  /* no run, no outputs */
   sb_collide_free(c);
-  rm_dir(dir);
+  sbt_rm_dir(dir);
 }
 END_TEST
 
 START_TEST(test_stopped_by_callback)
 {
   char dir[512], text[2048], path[600];
-  tmp_dir(dir, sizeof dir);
+  sbt_tmp_dir(dir, sizeof dir, "sbcollide");
   two_spheres(text, sizeof text, dir, "steps = 1", "");
   sb_collide *c = sb_collide_alloc();
   ck_assert_int_eq(sb_collide_read_string(c, text, "s.ini"), SB_SUCCESS);
@@ -261,11 +224,11 @@ START_TEST(test_stopped_by_callback)
   ck_assert_msg(!strncmp(sb_collide_error(c), "stopped by the progress "
                          "callback", 32), "message: %s", sb_collide_error(c));
   snprintf(path, sizeof path, "%s/summary.json", dir);
-  char *js = slurp(path);
+  char *js = sbt_slurp(path);
   ck_assert_ptr_nonnull(strstr(js, "\"status\": \"failed\""));
   free(js);
   sb_collide_free(c);
-  rm_dir(dir);
+  sbt_rm_dir(dir);
 }
 END_TEST
 
@@ -306,7 +269,7 @@ START_TEST(test_firsthit_mixture)
   const double r[2] = {1e-7, 2e-7}, b2[2] = {2e-10, 2e-11};
   const double n[2] = {1500, 1000}, L = 1e-5, t1 = 1e-5;
   char dir[512], text[2048], path[600];
-  tmp_dir(dir, sizeof dir);
+  sbt_tmp_dir(dir, sizeof dir, "sbcollide");
   snprintf(text, sizeof text,
            "[run]\nL = %g\ndt = 1e-6\nt_end = 2e-3\nwarmup = %g\nseed = 8\n"
            "detect = exact\noutcome = count\nplacement = uniform\n"
@@ -358,7 +321,7 @@ START_TEST(test_firsthit_mixture)
   ck_assert_int_eq(sb_collide_firsthit_pair(c, 0, 2, &o), SB_EINVAL);
   /* summary.json: one entry per pair, by name, after the totals */
   snprintf(path, sizeof path, "%s/summary.json", dir);
-  char *js = slurp(path);
+  char *js = sbt_slurp(path);
   char *fh = strstr(js, "\"first_hit\": {\"hits\": ");
   ck_assert_ptr_nonnull(fh);
   ck_assert_ptr_nonnull(strstr(fh, "\"K\": null, \"ci95\": [null, null], "
@@ -368,7 +331,7 @@ START_TEST(test_firsthit_mixture)
   ck_assert_ptr_nonnull(strstr(fh, "{\"species\": [\"b\", \"b\"], \"hits\": "));
   free(js);
   sb_collide_free(c);
-  rm_dir(dir);
+  sbt_rm_dir(dir);
 }
 END_TEST
 
@@ -380,7 +343,7 @@ END_TEST
 START_TEST(test_msd_free_flight)
 {
   char dir[512], text[2048], path[600];
-  tmp_dir(dir, sizeof dir);
+  sbt_tmp_dir(dir, sizeof dir, "sbcollide");
   snprintf(text, sizeof text,
            "[run]\nL = 1e-6\ndt = 1e-8\nsteps = 2000\nseed = 3\n"
            "outcome = count\noutput = %s\n[observe]\nmsd_every = 100\n"
@@ -421,7 +384,7 @@ START_TEST(test_msd_free_flight)
   fclose(f);
   ck_assert_uint_eq(nrow, 21);  /* samples at 0, 100, ..., 2000 steps */
   snprintf(path, sizeof path, "%s/summary.json", dir);
-  char *js = slurp(path);
+  char *js = sbt_slurp(path);
   const char *q = strstr(js, "\"msd\": {\"every\": 100, ");
   ck_assert_ptr_nonnull(q);
   q = strstr(q, "\"fit\": [4, 12], \"D\": ");
@@ -430,7 +393,7 @@ START_TEST(test_msd_free_flight)
   ck_assert_rel(D, u2 * 16.0 * ts / 6.0, 1e-9);
   free(js);
   sb_collide_free(c);
-  rm_dir(dir);
+  sbt_rm_dir(dir);
   /* errors that name the key: a lag beyond the run, sorting */
   c = sb_collide_alloc();
   ck_assert_int_eq(sb_collide_read_string(c, text, "msd.ini"), SB_SUCCESS);
@@ -438,7 +401,7 @@ START_TEST(test_msd_free_flight)
   ck_assert_int_ne(sb_collide_run(c, NULL, NULL), SB_SUCCESS);
   ck_assert_ptr_nonnull(strstr(sb_collide_error(c), "msd_fit"));
   sb_collide_free(c);
-  rm_dir(dir);
+  sbt_rm_dir(dir);
   c = sb_collide_alloc();
   ck_assert_int_eq(sb_collide_read_string(c, text, "msd.ini"), SB_SUCCESS);
   ck_assert_int_eq(sb_collide_set(c, "run.sort_every=10"), SB_SUCCESS);
@@ -454,7 +417,7 @@ END_TEST
 START_TEST(test_antipodal_snapshots)
 {
   char dir[512], text[2048], path[600];
-  tmp_dir(dir, sizeof dir);
+  sbt_tmp_dir(dir, sizeof dir, "sbcollide");
   const double m = 6.6e-27, T = 300.0, kB = 1.380649e-23;
   snprintf(text, sizeof text,
            "[run]\nL = 2e-8\ndt = 2e-13\nsteps = 10\nseed = 5\n"
@@ -499,18 +462,18 @@ START_TEST(test_antipodal_snapshots)
   ck_assert_ptr_nonnull(f);
   fclose(f);
   snprintf(path, sizeof path, "%s/manifest.txt", dir);
-  char *man = slurp(path);
+  char *man = sbt_slurp(path);
   ck_assert_ptr_nonnull(strstr(man, "snap_000002.csv"));
   ck_assert_ptr_null(strstr(man, "snap_000003.csv"));
   free(man);
   snprintf(path, sizeof path, "%s/summary.json", dir);
-  char *js = slurp(path);
+  char *js = sbt_slurp(path);
   const char *q = strstr(js, "\"rel_change\": ");
   ck_assert_ptr_nonnull(q);
   ck_assert(strtod(q + 14, NULL) < 1e-12);
   free(js);
   sb_collide_free(c);
-  rm_dir(dir);
+  sbt_rm_dir(dir);
   /* a snapshot after the end of the run */
   c = sb_collide_alloc();
   ck_assert_int_eq(sb_collide_read_string(c, text, "a.ini"), SB_SUCCESS);
@@ -547,7 +510,7 @@ static double flux_cdf(double x, void *p)
 START_TEST(test_contact_velocities)
 {
   char dir[512], text[2048], path[600];
-  tmp_dir(dir, sizeof dir);
+  sbt_tmp_dir(dir, sizeof dir, "sbcollide");
   const double m = 1e-21, T = 300.0, kB = 1.380649e-23;
   snprintf(text, sizeof text,
            "[run]\nL = 4e-6\ndt = 4e-8\nsteps = 1\nseed = 11\n"
@@ -590,7 +553,7 @@ START_TEST(test_contact_velocities)
   ck_assert_msg(fabs(z) < 4.0, "mean |v_n| = %g s, z = %.2f", mean / s, z);
   free(v);
   sb_collide_free(c);
-  rm_dir(dir);
+  sbt_rm_dir(dir);
   /* a detector without contact velocities: an error naming the key */
   c = sb_collide_alloc();
   ck_assert_int_eq(sb_collide_read_string(c, text, "c.ini"), SB_SUCCESS);

@@ -16,28 +16,10 @@
 #include <smolbridge/collide.h>
 #include <smolbridge/stats.h>
 
+#include "outdir.h"
 #include "testutil.h"
 
 #define PI 3.14159265358979323846
-
-static void tmp_dir(char *dir, size_t len)
-{
-  const char *t = getenv("TMPDIR");
-  snprintf(dir, len, "%s/sbwallsXXXXXX", t && *t ? t : "/tmp");
-  ck_assert_ptr_nonnull(mkdtemp(dir));
-}
-
-static void rm_dir(const char *dir)
-{
-  static const char *const files[] = {"series.csv", "summary.json",
-                                      "manifest.txt", NULL};
-  char p[600];
-  for (int i = 0; files[i]; i++) {
-    snprintf(p, sizeof p, "%s/%s", dir, files[i]);
-    remove(p);
-  }
-  rmdir(dir);
-}
 
 /* Run a configuration; returns the run (free it) after asserting its
  * status. */
@@ -61,7 +43,7 @@ START_TEST(test_detect_none)
   char dir[512], text[2048];
   const double c0 = 5e-5, r = 1e-6, s2 = sqrt(2.0);
   for (int none = 0; none < 2; none++) {
-    tmp_dir(dir, sizeof dir);
+    sbt_tmp_dir(dir, sizeof dir, "sbwalls");
     snprintf(text, sizeof text,
              "[run]\nL = 1e-4\ndt = 1e-5\nsteps = 2\ndetect = %s\n"
              "output = %s\n[species sphere]\nradius = 1e-6\nmass = 1e-15\n"
@@ -77,16 +59,13 @@ START_TEST(test_detect_none)
     ck_assert_uint_eq(sb_collide_nwarnings(c), 0);
     sb_collide_free(c);
     /* the summary says what ran: no outcome without contacts */
-    char path[600], js[8192];
+    char path[600];
     snprintf(path, sizeof path, "%s/summary.json", dir);
-    FILE *f = fopen(path, "r");
-    ck_assert_ptr_nonnull(f);
-    size_t nr = fread(js, 1, sizeof js - 1, f);
-    js[nr] = 0;
-    fclose(f);
+    char *js = sbt_slurp(path);
     ck_assert_ptr_nonnull(strstr(js, none ? "\"outcome\": \"none\""
                                           : "\"outcome\": \"elastic\""));
-    rm_dir(dir);
+    free(js);
+    sbt_rm_dir(dir);
   }
   /* an outcome has nothing to act on (warned); first_hit nothing to
    * count (an error naming both keys) */
@@ -259,7 +238,7 @@ START_TEST(test_deposit_series)
   const double r = 5e-8, Ly = 2e-5, W = Ly - 2.0 * r, D = 4.4e-12;
   const double dt = 2.5e-4 * W * W / D;
   char dir[512], text[1024];
-  tmp_dir(dir, sizeof dir);
+  sbt_tmp_dir(dir, sizeof dir, "sbwalls");
   snprintf(text, sizeof text,
            "[run]\nLx = %.17g\nLy = %.17g\nLz = %.17g\ndt = %.17g\n"
            "steps = %zu\nsample_every = 1\nseed = 3\ndetect = none\n"
@@ -286,9 +265,9 @@ START_TEST(test_deposit_series)
                   "(z = %.2f)", k, dep[k - 1][0], N * P, z);
   }
   sb_collide_free(c);
-  rm_dir(dir);
+  sbt_rm_dir(dir);
   /* a warm-up: its rows have no deposit values */
-  tmp_dir(dir, sizeof dir);
+  sbt_tmp_dir(dir, sizeof dir, "sbwalls");
   snprintf(text, sizeof text,
            "[run]\nLx = %.17g\nLy = %.17g\nLz = %.17g\ndt = %.17g\n"
            "steps = 4\nwarmup = %.17g\nsample_every = 1\ndetect = none\n"
@@ -305,7 +284,7 @@ START_TEST(test_deposit_series)
                                      sb_collide_engine(c), 2) +
                                  sb_engine_deposits(sb_collide_engine(c), 3)));
   sb_collide_free(c);
-  rm_dir(dir);
+  sbt_rm_dir(dir);
 }
 END_TEST
 
