@@ -10,7 +10,7 @@
  *                 every step: expm1, exp, tanh, 3 sqrt)
  *   step (x3)   — three scalar sb_langevin_step calls
  *   6 gaussians — 6 gsl_ran_gaussian_ziggurat draws alone: the floor
- * each with GSL's MT19937 (the library's usual generator), taus2 (a
+ * each with GSL's MT19937 (the generator of the validation cases), taus2 (a
  * faster uniform generator) and sb_rng_philox (Philox4x32-10 behind the
  * gsl_rng interface); then the counter-based per-particle streams
  * (smolbridge/rng.h), whose result does not depend on the order or the

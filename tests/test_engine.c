@@ -14,6 +14,7 @@
 
 #include <smolbridge/engine.h>
 #include <smolbridge/langevin.h>
+#include <smolbridge/rng.h>
 
 #include "engine_same.h"
 #include "testutil.h"
@@ -659,6 +660,11 @@ START_TEST(test_streams_threads_and_order)
   p.streams = 0;
   p.threads = -1;
   ck_assert_ptr_null(sb_engine_alloc(&p));
+  /* the library's default is the fast exact choice: keyed streams for
+   * the transport, Philox behind gsl_rng for the rest */
+  sb_engine_params_default(&p);
+  ck_assert_int_eq(p.streams, 1);
+  ck_assert_ptr_eq(p.rng_type, sb_rng_philox);
 }
 END_TEST
 

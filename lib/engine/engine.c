@@ -24,6 +24,10 @@ void sb_engine_params_default(sb_engine_params *p)
   p->L[0] = p->L[1] = p->L[2] = 1e-4;
   p->dt = 1e-6;
   p->seed = 1;
+  /* the fast exact choice (docs/rng.md): keyed Philox streams for the
+   * transport, Philox behind the gsl_rng interface for the rest */
+  p->rng_type = sb_rng_philox;
+  p->streams = 1;
   p->capacity = 1024;
   p->neigh = SB_NEIGH_CELLS;
   p->detect = SB_DETECT_BALLISTIC;

@@ -43,7 +43,9 @@
  *     and counted in sb_engine_stats.dropped;
  *  6. positions are wrapped into the box, time advances by dt.
  * Given the seed and the same calls, a run is bit-identical (the engine
- * owns its generator, MT19937 by default; a checkpoint stores its state).
+ * owns its generator, Philox4x32-10 by default, and the transport draws
+ * from counter-based streams keyed by (seed, particle id, step); a
+ * checkpoint stores the generator's state).
  *
  * Thread safety: an engine object must not be used by two threads at once;
  * distinct engines are independent (no global state).
@@ -119,9 +121,12 @@ typedef struct {
                                   2-D); default 1e-4 */
   double dt;                 /**< time step, s, > 0 (default 1e-6) */
   unsigned long seed;        /**< generator seed (default 1) */
-  const gsl_rng_type *rng_type; /**< generator type; NULL (the default):
-                                  gsl_rng_mt19937.  gsl_rng_taus2 is ~30%
-                                  faster for Gaussian draws */
+  const gsl_rng_type *rng_type; /**< generator type (default
+                                  sb_rng_philox, smolbridge/rng.h; NULL
+                                  means gsl_rng_mt19937, the generator of
+                                  the validation cases).  Any gsl_rng type
+                                  works; the choice changes the draws, not
+                                  the law */
   size_t capacity;           /**< maximum number of particles (default
                                   1024) */
   sb_engine_neigh neigh;     /**< default SB_NEIGH_CELLS */
@@ -144,9 +149,11 @@ typedef struct {
                                   of the engine's generator: a particle's
                                   motion then depends on (seed, id, step)
                                   alone, not on the particle order, and
-                                  transport runs on all threads.  0 (the
-                                  default): from the generator, in particle
-                                  order.  Everything else (placement,
+                                  transport runs on all threads (the
+                                  default: 28 ns per 3-D particle-step
+                                  against 62 ns with MT19937 draws,
+                                  bench_langevin).  0: from the
+                                  generator, in particle order.  Everything else (placement,
                                   outcomes, random detectors) uses the
                                   engine's generator in a fixed order. */
   int threads;               /**< threads of the parallel parts of a step

@@ -21,6 +21,7 @@
 
 #include <stdio.h>
 #include <gsl/gsl_rng.h>
+#include <smolbridge/engine.h>
 #include <smolbridge/stats.h>
 #include <smolbridge/pgd.h>
 #include <smolbridge/validate.h>
@@ -114,6 +115,12 @@ gsl_rng *sbv_rng_alloc(const sbv_ctx *ctx, unsigned long stream);
 /* Its seed (MT19937 seeds modulo 2^32): a collide file's placement_seed
  * for a placement drawn from sbv_rng_alloc(ctx, stream). */
 unsigned long sbv_rng_seed(const sbv_ctx *ctx, unsigned long stream);
+
+/* sb_engine_params_default with the engine's generator pinned to MT19937
+ * and the transport drawing from it (streams = 0): the set-up the cases
+ * were calibrated with (docs/validation.md), whatever the library's
+ * default generator.  A case's collide file says `rng = mt19937`. */
+void sbv_engine_params(sb_engine_params *p);
 
 /* A plot: columns of `data` (nrows x ncols, row-major) are written to
  * OUTDIR/NAME.dat with `header` as a comment; `gnuplot_body` is the plot

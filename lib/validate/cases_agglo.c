@@ -182,7 +182,7 @@ static int run_engine(run_t *q)
   const double thalf = 2.0 / (k11() * n0);
   q->steps_per_half = thalf / dt;
   sb_engine_params p;
-  sb_engine_params_default(&p);
+  sbv_engine_params(&p);
   p.L[0] = p.L[1] = p.L[2] = L;
   p.dt = dt;
   p.capacity = q->N0;
@@ -721,7 +721,7 @@ static int case_dlvo(const sbv_ctx *ctx, sbv_report *rep)
   }
   for (int q = 0; q < 4 && !sbv_writing(ctx); q++) {
     sb_engine_params p;
-    sb_engine_params_default(&p);
+    sbv_engine_params(&p);
     p.L[0] = p.L[1] = p.L[2] = L;
     p.dt = dt;
     p.capacity = N;

@@ -122,7 +122,7 @@ static int case_gases(const sbv_ctx *ctx, sbv_report *rep)
       continue;
     }
     sb_engine_params p;
-    sb_engine_params_default(&p);
+    sbv_engine_params(&p);
     p.L[0] = p.L[1] = p.L[2] = L;
     p.dt = dt;
     p.capacity = n;
@@ -218,7 +218,7 @@ static int case_dense(const sbv_ctx *ctx, sbv_report *rep)
     return st;
   }
   sb_engine_params p;
-  sb_engine_params_default(&p);
+  sbv_engine_params(&p);
   p.L[0] = p.L[1] = p.L[2] = L;
   p.dt = dt;
   p.capacity = n;
@@ -299,7 +299,7 @@ static int case_mixture(const sbv_ctx *ctx, sbv_report *rep)
     nd[k] = (double)nsp[k] / (L * L * L);
   }
   sb_engine_params p;
-  sb_engine_params_default(&p);
+  sbv_engine_params(&p);
   p.L[0] = p.L[1] = p.L[2] = L;
   p.dt = dt;
   p.capacity = nsp[0] + nsp[1];
@@ -395,7 +395,7 @@ static int case_45(const sbv_ctx *ctx, sbv_report *rep)
   (void)ctx;
   const double r = 1e-6, v = 0.1, dt = 1e-5, s2 = sqrt(2.0);
   sb_engine_params p;
-  sb_engine_params_default(&p);
+  sbv_engine_params(&p);
   p.L[0] = p.L[1] = p.L[2] = 1e-4;
   p.dt = dt;
   p.capacity = 2;
@@ -476,7 +476,7 @@ static int run_jets(const sbv_ctx *ctx, int collide, size_t *crossed,
   const double m = 1e-12, vth = 0.02 * U;
   const size_t nb = 400;
   sb_engine_params p;
-  sb_engine_params_default(&p);
+  sbv_engine_params(&p);
   p.dim = 2;
   p.L[0] = p.L[1] = L;
   p.dt = 1e-6;

@@ -165,7 +165,7 @@ static int run_dense(const sbv_ctx *ctx, unsigned long stream,
   const double dt = 1e-6, t_warm = 2.0 * DJ_L / DJ_U;
   o->m_expected = w * w * (n[0] * drop_mass(r[0]) + n[1] * drop_mass(r[1]));
   sb_engine_params p;
-  sb_engine_params_default(&p);
+  sbv_engine_params(&p);
   p.dim = 2;
   p.L[0] = p.L[1] = DJ_L;
   p.dt = dt;

@@ -143,7 +143,7 @@ static sb_engine *engine_jets(const sbv_ctx *ctx, const ejet_cfg *c,
   const double npart =
       2.0 * n0 * w * (c->U == 0.0 ? c->tau * -log1p(-xr / c->tau) : xr);
   sb_engine_params p;
-  sb_engine_params_default(&p);
+  sbv_engine_params(&p);
   p.dim = 2;
   p.L[0] = p.L[1] = L;
   p.dt = c->dt;

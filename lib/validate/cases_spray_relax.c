@@ -552,7 +552,7 @@ int sbv_spray_case_engine(const sbv_ctx *ctx, sbv_report *rep)
   /* MD engine replicas (write mode: after the stochastic ones) */
   for (size_t rr = 0; rr < Re && !st && !sbv_writing(ctx); rr++) {
     sb_engine_params p;
-    sb_engine_params_default(&p);
+    sbv_engine_params(&p);
     p.L[0] = p.L[1] = p.L[2] = L;
     p.dt = 1e-14;
     p.capacity = ne;

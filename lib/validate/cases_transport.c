@@ -82,7 +82,7 @@ static sb_engine *he_gas(unsigned long seed, size_t n, double phi,
   double K = sb_kernel_kinetic(d, d, HE_MASS, HE_MASS, TEMP) * g_cs(phi);
   *nu = (double)n / V * K;
   sb_engine_params p;
-  sb_engine_params_default(&p);
+  sbv_engine_params(&p);
   p.L[0] = p.L[1] = p.L[2] = *L;
   p.dt = dt_frac / *nu;
   p.capacity = n;

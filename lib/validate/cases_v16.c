@@ -45,7 +45,7 @@
 int v16_run(const v16_setup *s, gsl_rng *r, v16_result *out)
 {
   sb_engine_params p;
-  sb_engine_params_default(&p);
+  sbv_engine_params(&p);
   p.dim = 3;
   memcpy(p.L, s->L, sizeof p.L);
   p.dt = s->dt;

@@ -60,7 +60,7 @@ static sb_engine *mk_engine(const double L[3], double dt, unsigned long seed,
                             size_t cap, sb_engine_neigh nb)
 {
   sb_engine_params p;
-  sb_engine_params_default(&p);
+  sbv_engine_params(&p);
   p.dim = 3;
   memcpy(p.L, L, sizeof p.L);
   p.dt = dt;

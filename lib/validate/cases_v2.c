@@ -235,7 +235,7 @@ static int thesis(const sbv_ctx *ctx, sbv_report *rep)
     double V = L * L * L, P = 0.5 * (double)n * (double)(n - 1);
     double t_end = target * V / (ph.KL * (1.0 + sqrt(24.0 * phi)) * P);
     sb_engine_params p;
-    sb_engine_params_default(&p);
+    sbv_engine_params(&p);
     p.L[0] = p.L[1] = p.L[2] = L;
     p.dt = 0.1 * ph.tau;
     p.capacity = n;

@@ -52,7 +52,7 @@ void fh_run_init(fh_run *q)
 int fh_cube_params(const sbv_ctx *ctx, unsigned long stream, double L,
                    double dt, size_t N, sb_engine_params *p)
 {
-  sb_engine_params_default(p);
+  sbv_engine_params(p);
   p->L[0] = p->L[1] = p->L[2] = L;
   p->dt = dt;
   p->capacity = N;

@@ -114,6 +114,13 @@ gsl_rng *sbv_rng_alloc(const sbv_ctx *ctx, unsigned long stream)
   return r;
 }
 
+void sbv_engine_params(sb_engine_params *p)
+{
+  sb_engine_params_default(p);
+  p->rng_type = gsl_rng_mt19937;
+  p->streams = 0;
+}
+
 void sbv_progress(const sbv_ctx *ctx, const char *fmt, ...)
 {
   const sb_validate_options *o = ctx->opt;
