@@ -88,18 +88,6 @@ double sbi_col_place_coord(const sbi_col_config *c,
   return lo + (hi - lo) * gsl_rng_uniform(g);
 }
 
-/* The detector of detect = none. */
-static int detect_none(const sb_engine *e, const sb_engine_pair *p,
-                       const gsl_rng *r, void *ctx, double *s)
-{
-  (void)e;
-  (void)p;
-  (void)r;
-  (void)ctx;
-  (void)s;
-  return 0;
-}
-
 int sbi_col_detect_none(const sbi_col_config *c)
 {
   return !strcmp(c->detect, "none");
@@ -108,5 +96,5 @@ int sbi_col_detect_none(const sbi_col_config *c)
 int sbi_col_none_attach(sbi_col_run *r)
 {
   /* no extra reach: the neighbour search keeps its contact distance */
-  return sb_engine_set_detector(r->e, detect_none, NULL, 0.0);
+  return sb_engine_set_detector(r->e, sb_engine_detect_none, NULL, 0.0);
 }

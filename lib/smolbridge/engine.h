@@ -425,6 +425,13 @@ int sb_engine_detect_ballistic(const sb_engine_pair *p, double *s);
 int sb_engine_detect_md(const sb_engine *e, const sb_engine_pair *p,
                         const gsl_rng *r, void *ctx, double *s);
 
+/** A custom detector that never reports a contact (returns 0): particles
+ *  pass through each other while the walls still act (deposition without
+ *  particle-particle detection; `smolbridge collide` [run] detect =
+ *  none).  Set it with reach 0. */
+int sb_engine_detect_none(const sb_engine *e, const sb_engine_pair *p,
+                          const gsl_rng *r, void *ctx, double *s);
+
 /** Overlap detector: collision iff |dx0 + dd| < sigma; *s is then the
  *  entry root of the chords (0 if they overlapped at the start). */
 int sb_engine_detect_overlap(const sb_engine_pair *p, double *s);

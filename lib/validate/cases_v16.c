@@ -116,7 +116,7 @@ int v16_run(const v16_setup *s, gsl_rng *r, v16_result *out)
   if (!st)
     st = sb_engine_set_wall_mode(e, s->walldet, s->deposit);
   if (!st && s->nodetect)
-    st = sb_engine_set_detector(e, v16_never, NULL, 0.0);
+    st = sb_engine_set_detector(e, sb_engine_detect_none, NULL, 0.0);
   if (!st && s->warmup > 0) {
     for (size_t k = 0; k < s->warmup && !st; k++)
       st = sb_engine_step(e);
@@ -161,16 +161,6 @@ int v16_run(const v16_setup *s, gsl_rng *r, v16_result *out)
   return st;
 }
 
-int v16_never(const sb_engine *e, const sb_engine_pair *p, const gsl_rng *r,
-              void *ctx, double *s)
-{
-  (void)e;
-  (void)p;
-  (void)r;
-  (void)ctx;
-  (void)s;
-  return 0;
-}
 
 /* Pair-kernel row: K_e/K_th with the exact Poisson test. */
 static int add_pair(sbv_report *rep, const char *name,

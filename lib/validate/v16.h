@@ -54,9 +54,6 @@ typedef struct {
  * from r in the order of smolbridge collide's placement = uniform (x and
  * u per component in turn, species in order), run. */
 int v16_run(const v16_setup *s, gsl_rng *r, v16_result *out);
-/* Detector that never detects (deposition runs). */
-int v16_never(const sb_engine *e, const sb_engine_pair *p, const gsl_rng *r,
-              void *ctx, double *s);
 /* Schiller-Naumann terminal speed by bisection, m/s. */
 double v16_terminal_sn(double r, double rho_p, double rho_f, double mu,
                        double g);
