@@ -48,8 +48,20 @@ static const char *const FACE[6] = {"x_lo", "x_hi", "y_lo",
 
 int sbi_col_batches_check(sbi_col_config *c)
 {
-  if (c->batch_steps > 0)
+  if (c->batch_steps > 0 && c->nregions > 0 &&
+      c->batch_steps % c->region_every)
+    return sbi_col_fail(c, "%s: [observe] region_every = %ld does not "
+                        "divide batch_steps = %ld: the batches would hold "
+                        "unequal numbers of samples; valid: a divisor of "
+                        "%ld", sbi_col_where(c, "observe", "region_every"),
+                        c->region_every, c->batch_steps, c->batch_steps);
+  if (c->batch_steps > 0) {
+    if (!c->nregions && sbi_col_given(c, "observe", "region_every"))
+      sbi_col_warn(c, "%s: [observe] region_every: no [observe] region to "
+                   "sample; ignored",
+                   sbi_col_where(c, "observe", "region_every"));
     return 0;
+  }
   if (c->nregions > 0)
     return sbi_col_fail(c, "%s: [observe] region: its mass is reported per "
                         "batch; give [observe] batch_steps (steps per "
