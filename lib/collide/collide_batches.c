@@ -4,7 +4,7 @@
  * summary.json.  Batch means are the standard estimator of the mean of a
  * time-correlated output and of its error: batches much longer than the
  * correlation time have nearly independent means (Law & Kelton 2000,
- * §9.5.3; Flyvbjerg & Petersen 1989, J. Chem. Phys. 91, 461, §III).
+ * §9.5.3; Flyvbjerg & Petersen 1989, J. Chem. Phys. 91, 461).
  *
  * A row: the batch's start and end time, the particles at its start and
  * end, the drops injected by the inflows and leaving through open faces,
