@@ -232,6 +232,44 @@ grep -q '{"species": \["a", "b"\], "hits": ' "$dir/out/summary.json" \
 check "hit_times without bridge" 2 '[observe] hit_times records bridge hits' '$a\
 [observe]\
 hit_times = 10'
+# [observe] batch_steps and region
+check "region without batch_steps" 2 't.ini:13: [observe] region: its mass is reported per batch; give [observe] batch_steps' '$a\
+[observe]\
+region = 0 1e-6 0 1e-6 0 1e-6'
+check "region_every without region" 2 't.ini:13: [observe] region_every without a region and batch_steps' '$a\
+[observe]\
+region_every = 5'
+check "batch_steps not a divisor" 2 't.ini:13: [observe] batch_steps = 3: the run measures 10 steps, not a whole number of batches; valid: a divisor of 10' '$a\
+[observe]\
+batch_steps = 3'
+check "region outside the box" 2 't.ini:14: [observe] region: y0 = 0, y1 = 2e-05 m; valid: 0 <= y0 < y1 <= 1e-05 (the box)' '$a\
+[observe]\
+batch_steps = 5\
+region = 0 1e-6 0 2e-5 0 1e-6'
+check "region of 2-D in 3-D" 2 't.ini:14: [observe] region has 4 numbers in 3-D; valid: x0 x1 y0 y1 z0 z1' '$a\
+[observe]\
+batch_steps = 5\
+region = 0 1e-6 0 1e-6'
+check "region of 5 numbers" 2 't.ini:14: [observe] region = 0 1 0 1 0: 5 numbers; valid: 4 (2-D: x0 x1 y0 y1) or 6' '$a\
+[observe]\
+batch_steps = 5\
+region = 0 1 0 1 0'
+check "region_every not a divisor" 2 't.ini:14: [observe] region_every = 2 does not divide batch_steps = 5' '$a\
+[observe]\
+batch_steps = 5\
+region_every = 2\
+region = 0 1e-5 0 1e-5 0 1e-5'
+check "batches" 0 '' '$a\
+[observe]\
+batch_steps = 5\
+region_every = 5\
+region = 0 1e-5 0 1e-5 0 1e-5'
+# two batches; the region is the box: its mass is every particle's
+awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+  { n++; if ($c["region_samples"] != 1 || $c["n_start"] != 10 ||
+             $c["region1"] <= 0) bad = 1 }
+  END { exit !(n == 2 && !bad) }' "$dir/out/batches.csv" \
+  || fail "batches: batches.csv rows"
 # values
 check "not a number" 2 't.ini:3: [run] dt = abc: not a number; valid: > 0 s' 's/^dt = .*/dt = abc/'
 check "negative dt" 2 '[run] dt = -1: out of range; valid: > 0 s' 's/^dt = .*/dt = -1/'

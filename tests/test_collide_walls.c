@@ -5,7 +5,9 @@
  * Beta(2, 2) law), and the deposit columns of series.csv (cumulative
  * deposits per absorbing face at each sample, against the exact slab
  * law 1 - S(t) of Brownian particles between two absorbing planes,
- * Smoluchowski 1917 / Carslaw & Jaeger 1959 §3.3). */
+ * Smoluchowski 1917 / Carslaw & Jaeger 1959 §3.3), and the batches of
+ * [observe] batch_steps and region (collide_batches.c) against the exact
+ * exits and region masses of particles in free flight. */
 #define _POSIX_C_SOURCE 200809L /* mkdtemp */
 #include <math.h>
 #include <stdio.h>
@@ -288,6 +290,165 @@ START_TEST(test_deposit_series)
 }
 END_TEST
 
+/* batches.csv: the header names into names[][32] and the rows into
+ * v[row][col]; returns the number of rows. */
+static size_t read_batches(const char *dir, char names[][32], int *ncol,
+                           double v[][64], size_t max)
+{
+  char path[600], line[8192];
+  snprintf(path, sizeof path, "%s/batches.csv", dir);
+  FILE *f = fopen(path, "r");
+  ck_assert_ptr_nonnull(f);
+  ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
+  *ncol = 0;
+  for (char *s = strtok(line, ",\n"); s && *ncol < 64;
+       s = strtok(NULL, ",\n"))
+    snprintf(names[(*ncol)++], 32, "%s", s);
+  size_t n = 0;
+  while (n < max && fgets(line, sizeof line, f)) {
+    int k = 0;
+    for (char *s = strtok(line, ",\n"); s && k < 64; s = strtok(NULL, ",\n"))
+      v[n][k++] = strtod(s, NULL);
+    ck_assert_int_eq(k, *ncol);
+    n++;
+  }
+  fclose(f);
+  return n;
+}
+
+static int col_of(char names[][32], int ncol, const char *name)
+{
+  for (int k = 0; k < ncol; k++)
+    if (!strcmp(names[k], name))
+      return k;
+  ck_abort_msg("batches.csv has no column %s", name);
+  return -1;
+}
+
+/* Free flight in the unit square, every face open, dt = 0.01 s, three
+ * batches of 100 steps, regions sampled every 10 steps.  Exact answers:
+ * b (mass 3, family 1) from (0.25, 0.8) at (0, -1) leaves through y_lo
+ * at t = 0.8 (batch 0) at x = 0.25; a (mass 2, family 0) from (0.5, 0.5)
+ * at (0, 0.3) leaves through y_hi at t = 5/3 (batch 1) at x = 0.5; a
+ * resting a in region 1 (mass 2 at every sample); a b from (0.55, 0.25)
+ * at (0.1, 0) enters region 2 (x >= 0.6049) at step 55: 5 of the 10
+ * samples of batch 0 (mean 1.5), all later ones (3).  An inflow of
+ * family 2 on x_lo (y in [0.4, 0.45], leaving through x_hi) adds exits
+ * that every row must balance: injected - left = n_end - n_start, m_left
+ * = the sum of the exit-mass columns; its x_hi exits are summed from
+ * exits.csv (the same exits, written row by row) per batch. */
+START_TEST(test_batches)
+{
+  char dir[512], text[2048];
+  sbt_tmp_dir(dir, sizeof dir, "sbbatch");
+  snprintf(text, sizeof text,
+           "[run]\ndim = 2\nL = 1\ndt = 0.01\nsteps = 300\nseed = 5\n"
+           "detect = none\noutput = %s\n"
+           "[walls]\nx_lo = open\nx_hi = open\ny_lo = open\ny_hi = open\n"
+           "detect = ballistic\n"
+           "[observe]\nbatch_steps = 100\nregion_every = 10\nexits = yes\n"
+           "region = 0 0.2 0 0.2\nregion = 0.6049 0.95 0.2 0.3\n"
+           "[species a]\nradius = 0.01\nmass = 2\ntau = inf\nT = 1\n"
+           "family = 0\n"
+           "particle = 0.5 0.5 0 0.3\nparticle = 0.1 0.1 0 0\n"
+           "[species b]\nradius = 0.01\nmass = 3\ntau = inf\nT = 1\n"
+           "family = 1\n"
+           "particle = 0.25 0.8 0 -1\nparticle = 0.55 0.25 0.1 0\n"
+           "[species c]\nradius = 0.005\nmass = 1\ntau = inf\nT = 1\n"
+           "family = 2\ninflow = x_lo\ninflow_rate = 20\n"
+           "inflow_region = 0.4 0.45\ninflow_velocity = 2 0\n", dir);
+  sb_collide *c = run_text(text, 0);
+  static char names[64][32];
+  static double v[8][64];
+  int nc;
+  ck_assert_uint_eq(read_batches(dir, names, &nc, v, 8), 3);
+  const int my = col_of(names, nc, "m_y_lo_f1"), py = col_of(names, nc,
+                                                             "py_y_lo");
+  const int mxl = col_of(names, nc, "mx_y_lo"), ma = col_of(names, nc,
+                                                            "m_y_hi_f0");
+  const int pa = col_of(names, nc, "py_y_hi"), xa = col_of(names, nc,
+                                                           "mx_y_hi");
+  const int r1 = col_of(names, nc, "region1"), r2 = col_of(names, nc,
+                                                           "region2");
+  const int ns = col_of(names, nc, "region_samples");
+  const double want_r2[3] = {1.5, 3.0, 3.0};
+  for (int q = 0; q < 3; q++) {
+    ck_assert_double_eq(v[q][col_of(names, nc, "batch")], q);
+    ck_assert_double_eq_tol(v[q][col_of(names, nc, "t_start")], q * 1.0,
+                            1e-9);
+    ck_assert_double_eq_tol(v[q][col_of(names, nc, "t_end")], q + 1.0,
+                            1e-9);
+    ck_assert_double_eq(v[q][my], q == 0 ? 3.0 : 0.0);
+    ck_assert_double_eq(v[q][py], q == 0 ? -3.0 : 0.0);
+    ck_assert_double_eq(v[q][mxl], q == 0 ? 0.75 : 0.0);
+    ck_assert_double_eq(v[q][ma], q == 1 ? 2.0 : 0.0);
+    ck_assert_double_eq_tol(v[q][pa], q == 1 ? 0.6 : 0.0, 1e-15);
+    ck_assert_double_eq_tol(v[q][xa], q == 1 ? 1.0 : 0.0, 1e-12);
+    ck_assert_double_eq(v[q][ns], 10.0);
+    ck_assert_double_eq(v[q][r1], 2.0);
+    ck_assert_double_eq(v[q][r2], want_r2[q]);
+    /* the balance of drops and of exiting mass */
+    ck_assert_double_eq(v[q][col_of(names, nc, "injected")] -
+                            v[q][col_of(names, nc, "left")],
+                        v[q][col_of(names, nc, "n_end")] -
+                            v[q][col_of(names, nc, "n_start")]);
+    double msum = 0.0;
+    for (int k = 0; k < nc; k++)
+      if (!strncmp(names[k], "m_", 2) && strcmp(names[k], "m_left"))
+        msum += v[q][k];
+    ck_assert_double_eq_tol(msum, v[q][col_of(names, nc, "m_left")],
+                            1e-12 * msum);
+    ck_assert(v[q][col_of(names, nc, "injected")] > 5);
+    if (q)
+      ck_assert_double_eq(v[q][col_of(names, nc, "n_start")],
+                          v[q - 1][col_of(names, nc, "n_end")]);
+  }
+  /* the inflow's exits through x_hi per batch, from exits.csv */
+  double mc[3] = {0}, yc[3] = {0}, pc[3] = {0};
+  char path[600], line[1024];
+  snprintf(path, sizeof path, "%s/exits.csv", dir);
+  FILE *f = fopen(path, "r");
+  ck_assert_ptr_nonnull(f);
+  ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
+  int nx = 0;
+  while (fgets(line, sizeof line, f)) {
+    double t, m, x, y, z, ux;
+    char face[8], sp[16];
+    ck_assert_int_eq(sscanf(line, "%lf,%7[^,],%15[^,],%*d,%lf,%lf,%lf,%lf,"
+                            "%lf", &t, face, sp, &m, &x, &y, &z, &ux), 8);
+    if (strcmp(face, "x_hi"))
+      continue;
+    const int q = (int)floor(t);  /* the batch: crossed within its steps */
+    ck_assert(q >= 0 && q < 3);
+    mc[q] += m;
+    yc[q] += m * y;
+    pc[q] += m * ux;
+    nx++;
+  }
+  fclose(f);
+  ck_assert(nx > 20);
+  for (int q = 0; q < 3; q++) {
+    ck_assert_double_eq_tol(v[q][col_of(names, nc, "m_x_hi_f2")], mc[q],
+                            1e-12 * mc[q]);
+    ck_assert_double_eq_tol(v[q][col_of(names, nc, "my_x_hi")], yc[q],
+                            1e-12 * yc[q]);
+    ck_assert_double_eq_tol(v[q][col_of(names, nc, "px_x_hi")], pc[q],
+                            1e-12 * pc[q]);
+  }
+  /* summary.json: the batch means (region 2: 2.5 over the 3 batches) */
+  snprintf(path, sizeof path, "%s/summary.json", dir);
+  char *js = sbt_slurp(path);
+  ck_assert_ptr_nonnull(strstr(js, "\"batches\": {\"file\": \"batches.csv\", "
+                                   "\"steps\": 100, \"n\": 3"));
+  ck_assert_ptr_nonnull(strstr(js, "\"region2\": {\"mean\": 2.5, "));
+  ck_assert_ptr_nonnull(strstr(js, "\"region1\": {\"mean\": 2, \"ci95\": "
+                                   "[2, 2]}"));
+  free(js);
+  sb_collide_free(c);
+  sbt_rm_dir(dir);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("collide_walls");
@@ -296,6 +457,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_detect_none);
   tcase_add_test(tc, test_profile_parabolic);
   tcase_add_test(tc, test_deposit_series);
+  tcase_add_test(tc, test_batches);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -102,6 +102,15 @@ check(abs(ke["start"] / (0.5 * 1e-15 * 0.01) - 1) < 1e-12 and
 summary, _ = sb.collide(dict(cfg, observe={"msd_every": 1}))
 check(summary["msd"]["samples"] == 2 and summary["msd"]["particles"] == 2,
       "collide msd: %s" % summary.get("msd"))
+# the batch observer's entry comes through; two region lines from a list
+# of lists (both the whole box: the two spheres' mass)
+summary, _ = sb.collide(dict(cfg, observe={
+    "batch_steps": 1, "region": [[0, 1e-4, 0, 1e-4, 0, 1e-4]] * 2}))
+b = summary.get("batches", {})
+check(b.get("n") == 1 and len(b.get("regions", [])) == 2 and
+      abs(b["means"]["region2"]["mean"] - 2e-15) < 1e-27 and
+      b["means"]["collisions"]["mean"] == 1,
+      "collide batches: %s" % b)
 # an override: recorded, and it sets the step
 summary, _ = sb.collide(cfg, sets=["run.dt=2e-5"])
 check(summary["overrides"] == ["run.dt=2e-5"] and summary["dt"] == 2e-5,

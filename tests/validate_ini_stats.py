@@ -25,9 +25,15 @@ their runs.  Output: RECORD,VALUE per record (17 digits).
       H of x = SCALE COLUMN against Maxwell's speed law does not fall
       below its value at the time before, while that is above the
       sampling floor 10 (NBIN - 1)/(2 n)
+  expect-batches STAT EXPR
+      STAT (mean, min or max) over the rows of batches.csv (pooled over
+      the runs, in order) of EXPR, an arithmetic expression of the
+      row's columns (+ - * /, unary -, parentheses, numbers, pi, abs,
+      sqrt, atan2); a division by zero gives nan
 COLUMN `speed` is |(ux, uy, uz)| of a snapshot; LAW `flux-maxwell` is
 1 - exp(-x^2/2), `maxwell-speed` erf(x/sqrt 2) - sqrt(2/pi) x exp(-x^2/2).
 """
+import ast
 import csv
 import json
 import math
@@ -85,6 +91,51 @@ def field(out, name):
     for k in name.split("."):
         o = o[k]
     return float(o)
+
+
+BATCH_FUNCS = {"abs": abs, "sqrt": math.sqrt, "atan2": math.atan2}
+BATCH_OPS = {ast.Add: lambda a, b: a + b, ast.Sub: lambda a, b: a - b,
+             ast.Mult: lambda a, b: a * b}
+
+
+def batch_eval(node, row):
+    """EXPR of expect-batches on one row: only the documented forms."""
+    if isinstance(node, ast.Expression):
+        return batch_eval(node.body, row)
+    if isinstance(node, ast.Constant) and isinstance(node.value,
+                                                     (int, float)):
+        return float(node.value)
+    if isinstance(node, ast.Name):
+        if node.id == "pi":
+            return math.pi
+        return float(row[node.id])
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+        return -batch_eval(node.operand, row)
+    if isinstance(node, ast.BinOp):
+        a, b = batch_eval(node.left, row), batch_eval(node.right, row)
+        if isinstance(node.op, ast.Div):
+            return a / b if b != 0 else math.nan
+        if type(node.op) in BATCH_OPS:
+            return BATCH_OPS[type(node.op)](a, b)
+    if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name)
+            and node.func.id in BATCH_FUNCS and not node.keywords):
+        return BATCH_FUNCS[node.func.id](*[batch_eval(a, row)
+                                           for a in node.args])
+    raise SystemExit("expect-batches: not allowed: " + ast.dump(node))
+
+
+def batches(runs):
+    s = runs[0][1]
+    stat, expr = s[0], ast.parse(" ".join(s[1:]), mode="eval")
+    x = []
+    for out, _ in runs:
+        with open(os.path.join(out, "batches.csv")) as f:
+            x += [batch_eval(expr, r) for r in csv.DictReader(f)]
+    if stat == "mean":
+        return sum(x) / len(x)
+    if stat in ("min", "max"):
+        return (min if stat == "min" else max)(x)
+    raise SystemExit("expect-batches: unknown statistic " + stat)
 
 
 def ks(x, F):
@@ -178,6 +229,8 @@ def main():
                 floor_h = 10.0 * (nbin - 1) / (2.0 * len(v))
             val = sum(1 for k in range(1, len(h))
                       if h[k - 1] > floor_h and h[k] >= h[k - 1])
+        elif kind == "expect-batches":
+            val = batches(runs)
         else:
             raise SystemExit("unknown kind " + kind)
         print("%s,%.17g" % (rec, val))

@@ -336,7 +336,8 @@ int sbi_col_check(sbi_col_config *c)
     unused(c, "observe", "first_hit_skip_seen", "first_hit = no");
     unused(c, "observe", "first_hit_velocities", "first_hit = no");
   }
-  if (sbi_col_msd_check(c) || sbi_col_start_check(c))
+  if (sbi_col_msd_check(c) || sbi_col_start_check(c) ||
+      sbi_col_batches_check(c))
     return -1;
   for (int i = 0; i < c->nsnap_steps; i++)
     if (!(c->snap_steps[i] == floor(c->snap_steps[i]) &&

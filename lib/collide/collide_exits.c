@@ -2,7 +2,9 @@
  * open face during the measurement (the engine's outflow callback,
  * engine_open.c) as a row of exits.csv: when and where its straight chord
  * crossed the face, its face, species, family, mass and velocity (the
- * outflow profiles and momentum fluxes of Thomine 2008, §9). */
+ * outflow profiles and momentum fluxes of Thomine 2008, §9); the same
+ * callback adds each exit to its batch ([observe] batch_steps,
+ * collide_batches.c). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,6 +23,18 @@ static int on_exit(const sb_engine *e, size_t i, int face, double t_exit,
                    void *vr)
 {
   sbi_col_run *r = vr;
+  const double *p = &sb_engine_positions(e)[3 * i];
+  const double *u = &sb_engine_velocities(e)[3 * i];
+  const double back = sb_engine_time(e) + sb_engine_get_params(e)->dt -
+                      t_exit;
+  double x[3];
+  for (int k = 0; k < 3; k++)
+    x[k] = p[k] - u[k] * back;
+  const int fam = sb_engine_families(e)[i];
+  const double m = sb_engine_masses(e)[i];
+  sbi_col_batches_exit(r, face, fam, m, x, u);  /* [observe] batch_steps */
+  if (!r->record_exits)
+    return SB_SUCCESS;
   if (r->exit_n + 1 > r->exit_cap) {
     size_t cap = r->exit_cap ? 2 * r->exit_cap : 1024;
     double *q = realloc(r->exit_rows, cap * EXIT_COLS * sizeof *q);
@@ -29,18 +43,14 @@ static int on_exit(const sb_engine *e, size_t i, int face, double t_exit,
     r->exit_rows = q;
     r->exit_cap = cap;
   }
-  const double *p = &sb_engine_positions(e)[3 * i];
-  const double *u = &sb_engine_velocities(e)[3 * i];
-  const double back = sb_engine_time(e) + sb_engine_get_params(e)->dt -
-                      t_exit;
   double *row = r->exit_rows + r->exit_n * EXIT_COLS;
   row[0] = t_exit;
   row[1] = face;
   row[2] = (double)sb_engine_species_of(e)[i];
-  row[3] = sb_engine_families(e)[i];
-  row[4] = sb_engine_masses(e)[i];
+  row[3] = fam;
+  row[4] = m;
   for (int k = 0; k < 3; k++) {
-    row[5 + k] = p[k] - u[k] * back;
+    row[5 + k] = x[k];
     row[8 + k] = u[k];
   }
   r->exit_n++;
@@ -49,8 +59,10 @@ static int on_exit(const sb_engine *e, size_t i, int face, double t_exit,
 
 int sbi_col_exits_attach(const sbi_col_config *c, sbi_col_run *r)
 {
-  return c->exits > 0 ? sb_engine_set_outflow_fn(r->e, on_exit, r)
-                      : SB_SUCCESS;
+  r->record_exits = c->exits > 0;
+  return c->exits > 0 || c->batch_steps > 0
+             ? sb_engine_set_outflow_fn(r->e, on_exit, r)
+             : SB_SUCCESS;
 }
 
 void sbi_col_exits_reset(sbi_col_run *r) { r->exit_n = 0; }

@@ -94,6 +94,7 @@ void sbi_col_defaults(sbi_col_config *c)
   strcpy(c->wall_detect, "bridge");
   strcpy(c->deposit, "remove");
   strcpy(c->grid_scheme, "ngp");
+  c->region_every = 1;
 }
 
 static void species_defaults(sbi_col_species *s)
@@ -257,7 +258,7 @@ static int set_key(sbi_col_config *c, const char *section, const char *key,
     return sbi_col_fail(c, "%s: [%s] %s: unknown key; valid: %s", c->where,
                         sec, key, valid);
   }
-  if (k->type != K_PARTICLE) {
+  if (k->type != K_PARTICLE && k->type != K_REGION) {
     for (int i = 0; i < c->nseen; i++)
       if (!strcmp(c->seen[i].sec, sec) && !strcmp(c->seen[i].key, key)) {
         if (override) {
@@ -353,6 +354,21 @@ store:;
       memcpy(o, q, sizeof q);
     copy(sp->part_where[sp->npart], COL_WHERE, c->where);
     sp->part_n[sp->npart++] = n;
+    return 0;
+  }
+  case K_REGION: {
+    if (c->nregions == COL_MAXREGION)
+      return sbi_col_fail(c, "%s: [%s] region: more than %d", c->where, sec,
+                          COL_MAXREGION);
+    double *o = c->regions[c->nregions];
+    if (parse_list(c, sec, k, value, o, &n))
+      return -1;
+    if (n != 4 && n != 6)
+      return sbi_col_fail(c, "%s: [%s] region = %s: %d numbers; valid: 4 "
+                          "(2-D: x0 x1 y0 y1) or 6 (3-D: x0 x1 y0 y1 z0 z1)",
+                          c->where, sec, value, n);
+    copy(c->region_where[c->nregions], COL_WHERE, c->where);
+    c->nregion_n[c->nregions++] = n;
     return 0;
   }
   }

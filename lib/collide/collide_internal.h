@@ -23,6 +23,7 @@
 #define COL_MAXSEEN 512
 #define COL_MAXWARN 32
 #define COL_WHERE 128     /* "file:line" or "--set run.dt=1e-7" */
+#define COL_MAXREGION 8   /* [observe] region lines */
 
 /* One [species NAME] section. */
 typedef struct {
@@ -87,6 +88,12 @@ typedef struct {
   char grid_scheme[8];
   long exits;                   /* [observe] exits (exits.csv) */
   long first_hit_vn;            /* contacts.csv rows (0: off) */
+  long batch_steps;             /* [observe] batch_steps (0: off) */
+  double regions[COL_MAXREGION][6]; /* [observe] region: lo hi per axis */
+  int nregion_n[COL_MAXREGION];     /* numbers given (4 or 6) */
+  char region_where[COL_MAXREGION][COL_WHERE];
+  int nregions;
+  long region_every;            /* steps between region samples */
   long msd_every;               /* steps between MSD samples (0: off) */
   double msd_fit[2];            /* fit lags, samples */
   int nmsd_fit;
@@ -161,7 +168,8 @@ typedef enum {
   K_PATH,     /* char[512] */
   K_BOOL,     /* long 0/1 from yes/no */
   K_VEC,      /* double[], count in the int at aux */
-  K_PARTICLE  /* species: repeatable */
+  K_PARTICLE, /* species: repeatable */
+  K_REGION    /* [observe] region: repeatable */
 } sbi_col_ktype;
 
 typedef enum { R_ANY, R_POS, R_NONNEG, R_CLOSED, R_POSINF } sbi_col_krange;
@@ -218,6 +226,7 @@ double sbi_col_md_reach(const sbi_col_config *c, const sb_engine *e);
 /* A run being set up or running. */
 typedef struct sbi_col_msd sbi_col_msd;  /* collide_msd.c */
 typedef struct sbi_col_contacts sbi_col_contacts;  /* collide_contacts.c */
+typedef struct sbi_col_batches sbi_col_batches;    /* collide_batches.c */
 
 typedef struct {
   sb_engine *e;
@@ -229,6 +238,7 @@ typedef struct {
   gsl_rng *field_rng;           /* [fluid] seed (owned), or NULL */
   sbi_col_msd *msd;             /* [observe] msd_every, or NULL */
   sbi_col_contacts *contacts;   /* [observe] first_hit_velocities */
+  sbi_col_batches *batches;     /* [observe] batch_steps, or NULL */
   int measuring;                /* after the warm-up */
   double ekin0;                 /* kinetic energy at the measurement start */
   double t_end;                 /* absolute end time, s */
@@ -240,16 +250,39 @@ typedef struct {
   size_t grid_n, grid_cap;      /* rows, room */
   double *exit_rows;            /* [observe] exits (collide_exits.c) */
   size_t exit_n, exit_cap;
+  int record_exits;             /* [observe] exits: rows of exits.csv */
 } sbi_col_run;
 
 /* ---------------------------------------------------- collide_exits.c */
 
-/* [observe] exits: the outflow callback that records each exit, the
- * reset at the end of the warm-up, exits.csv. */
+/* [observe] exits (and batch_steps): the outflow callback that records
+ * each exit, the reset at the end of the warm-up, exits.csv. */
 int sbi_col_exits_attach(const sbi_col_config *c, sbi_col_run *r);
 void sbi_col_exits_reset(sbi_col_run *r);
 int sbi_col_exits_csv(const sbi_col_config *c, const sbi_col_run *r,
                       const char *path);
+
+/* --------------------------------------------------- collide_batches.c */
+
+/* [observe] batch_steps and region: the measurement cut into batches of
+ * batch_steps steps, one row of batches.csv per batch (drops injected and
+ * leaving, collisions, exiting mass per open face and family, exiting
+ * momentum and mass-weighted exit coordinates per open face, mean mass in
+ * each region), and the batch means with t intervals in summary.json. */
+/* Cross-key checks (0 or -1 with c->err). */
+int sbi_col_batches_check(sbi_col_config *c);
+/* Allocate for nsteps measured steps (0 or -1 with c->err). */
+int sbi_col_batches_setup(sbi_col_config *c, sbi_col_run *r, long nsteps);
+/* The start of the measurement; a measured step done. */
+void sbi_col_batches_start(sbi_col_run *r);
+void sbi_col_batches_step(sbi_col_run *r);
+/* An exit through an open face (from the outflow callback): mass m,
+ * family, the crossing point x and the velocity u. */
+void sbi_col_batches_exit(sbi_col_run *r, int face, int family, double m,
+                          const double x[3], const double u[3]);
+int sbi_col_batches_write(FILE *js, const sbi_col_config *c,
+                          const sbi_col_run *r, const char *path);
+void sbi_col_batches_free(sbi_col_batches *b);
 
 /* ----------------------------------------------------- collide_grid.c */
 

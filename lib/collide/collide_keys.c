@@ -192,6 +192,18 @@ const sbi_col_keydef sbi_col_keys[] = {
      0, 1e8, NULL, "-", "0", "record the normal relative velocity of up to "
      "this many first contacts (contacts.csv; detect = langevin or "
      "ballistic)"},
+    {"observe", "batch_steps", K_INT, C(batch_steps), 0, R_CLOSED, 0, 2e9,
+     NULL, "steps", "0 (off)", "cut the measurement into batches of this "
+     "many steps: one row per batch of drops injected and leaving, "
+     "collisions, exiting mass, momentum and mass-weighted exit "
+     "coordinates per open face, mean mass in each region (batches.csv); "
+     "batch means with t intervals"},
+    {"observe", "region", K_REGION, 0, 0, R_ANY, 4, 6, NULL, "m",
+     "- (none)", "x0 x1 y0 y1 [z0 z1]: a box whose mass is sampled every "
+     "region_every steps, its batch mean a column of batches.csv "
+     "(repeatable, up to 8)"},
+    {"observe", "region_every", K_INT, C(region_every), 0, R_CLOSED, 1, 2e9,
+     NULL, "steps", "1", "steps between the samples of the regions"},
     {"observe", "msd_every", K_INT, C(msd_every), 0, R_CLOSED, 0, 2e9, NULL,
      "steps", "0", "sample the unwrapped positions every this many steps: "
      "mean-square displacement (msd.csv) and self-diffusion coefficient"},
@@ -364,7 +376,7 @@ void sbi_col_range_text(const sbi_col_keydef *k, char *buf, size_t len)
       snprintf(buf, len, "%g .. %g", k->lo, k->hi);
     break;
   default:
-    if (k->type == K_VEC || k->type == K_PARTICLE)
+    if (k->type == K_VEC || k->type == K_PARTICLE || k->type == K_REGION)
       snprintf(buf, len, "%.0f to %.0f numbers", k->lo, k->hi);
     else if (k->type == K_PATH)
       snprintf(buf, len, "a path");

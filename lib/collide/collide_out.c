@@ -31,6 +31,7 @@ static int ours(const char *name)
   static const char *const fixed[] = {"series.csv", "summary.json",
                                       "sizes.csv", "hits.csv", "grid.csv",
                                       "exits.csv", "msd.csv", "contacts.csv",
+                                      "batches.csv",
                                       "manifest.txt", NULL};
   for (int i = 0; fixed[i]; i++)
     if (!strcmp(name, fixed[i]))
@@ -549,6 +550,11 @@ int sbi_col_out_write(const sbi_col_config *c, const sbi_col_run *r,
       snprintf(path, sizeof path, "%s/contacts.csv", c->output);
       err |= sbi_col_contacts_write(f, c, r, path);
       snprintf(files[nf++], 32, "contacts.csv");
+    }
+    if (r->batches) {
+      snprintf(path, sizeof path, "%s/batches.csv", c->output);
+      err |= sbi_col_batches_write(f, c, r, path);
+      snprintf(files[nf++], 32, "batches.csv");
     }
     if (r->msd) {
       snprintf(path, sizeof path, "%s/msd.csv", c->output);

@@ -47,8 +47,10 @@ static int progress_step(sbi_col_run *r, double t_stop, sbi_col_pairs *ps,
   double last = -1;
   while (sb_engine_time(e) < t_stop - 0.5 * dt) {
     int st = sb_engine_step(e);
-    if (!st && r->measuring)
+    if (!st && r->measuring) {
       st = sbi_col_msd_step(r);
+      sbi_col_batches_step(r);
+    }
     if (st)
       return st;
     size_t every = sb_engine_get_params(e)->sample_every;
@@ -120,6 +122,7 @@ static int run_steps(sbi_col_config *c, sbi_col_run *r, sbi_col_pairs *ps,
       sb_agglo_reset_stats(r->agglo);
   }
   r->measuring = 1;
+  sbi_col_batches_start(r);
   r->ekin0 = sb_engine_kinetic_energy(e, NULL);
   if (!st)
     st = sbi_col_msd_start(c, r);
@@ -227,6 +230,8 @@ static int plan(sb_collide *cl)
                  sbi_col_where(c, "run", "stop_every"), c->stop_every, dt);
     return SB_EINVAL;
   }
+  if (sbi_col_batches_setup(c, r, lround((r->t_end - t0 - r->warm) / dt)))
+    return SB_EINVAL;
   long nst = lround((r->t_end - t0) / dt);
   sb_engine_set_sample_every(e, c->sample_every > 0
                                     ? (size_t)c->sample_every

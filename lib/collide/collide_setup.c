@@ -30,6 +30,7 @@ void sbi_col_run_free(sbi_col_run *r)
   sbi_col_firsthit_free(r->fh);
   sbi_col_msd_free(r->msd);
   sbi_col_contacts_free(r->contacts);
+  sbi_col_batches_free(r->batches);
   sb_agglo_free(r->agglo);
   sb_engine_bridge_free(r->bridge);
   sb_engine_free(r->e);

@@ -2,8 +2,8 @@
  * as `smolbridge collide` runs it: read the configuration (a file or a
  * string), override keys, check it, build the engine, run it and write
  * the outputs (series.csv, summary.json, snapshots, sizes.csv, hits.csv,
- * contacts.csv, msd.csv, manifest.txt) into the directory `[run]
- * output`.  Every key with its
+ * grid.csv, exits.csv, batches.csv, contacts.csv, msd.csv, manifest.txt)
+ * into the directory `[run] output`.  Every key with its
  * unit and default: docs/engine.md §9; this API: docs/engine.md §9,
  * "From C".
  *

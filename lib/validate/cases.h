@@ -184,7 +184,7 @@ void sbv_ini_expect_grid(sbv_report *rep, const char *record,
 /* Append "; KIND RECORD = SPEC": a record recomputed from collide's
  * output tables, pooled over every file of the case with this line
  * (docs/validation.md lists the kinds: expect-ks, expect-chi2,
- * expect-max, expect-h-rises). */
+ * expect-max, expect-h-rises, expect-diff-mean, expect-batches). */
 void sbv_ini_expect_stat(sbv_report *rep, const char *kind,
                          const char *record, const char *spec);
 /* A run left out, and why (printf-style). */

@@ -27,8 +27,8 @@
  * the east side (tolerance band, exact) and the mass in the crossing
  * square holds the two jets' expected masses, 2 n w^2 <m> (Thomine's "mass
  * density about doubles at the crossing": the mean excess over batches vs
- * 0, t test); the drop balance on every run (injected =
- * removed + inside, exactly).  With collisions, the family mixing at the
+ * 0, t test); the drop balance of every batch (injected = removed +
+ * the change inside, exactly).  With collisions, the family mixing at the
  * east exit, the share of each family leaving through its own side, the
  * back-scattered share, the mean exit position and direction and the
  * collisions per drop
@@ -41,6 +41,7 @@
 #include <string.h>
 
 #include <gsl/gsl_cdf.h>
+#include <gsl/gsl_rng.h>
 
 #include <smolbridge/engine.h>
 #include <smolbridge/langevin.h>
@@ -69,12 +70,15 @@ static const dj_cfg DJ_CFGS[3] = {
 /* Exits and samples of one batch of the measurement time. */
 typedef struct {
   double m_side[2][NSIDE];      /* exiting mass per family and side */
+  double m_out;                 /* exiting mass, in the order of exits */
   double q_east[2];             /* momentum leaving through the east side */
-  double my_east;               /* mass-weighted exit y (east), units L */
-  double cross, upstream, nsamp; /* mass in the crossing square and in
-                                    the two upstream squares, samples */
+  double my_east;               /* mass-weighted exit y (east), m */
+  double cross, up[2], nsamp;   /* mass in the crossing square and in
+                                   the upstream squares of the west and
+                                   south jets, samples */
   double coll0, coll1;          /* collision counter at start and end */
-  double inj;                   /* drops injected */
+  double inj, out;              /* drops injected, leaving */
+  double n0, n1;                /* drops inside at start and end */
 } dj_batch;
 
 #define MAXB 64
@@ -113,12 +117,14 @@ static int on_exit(const sb_engine *e, size_t i, int face, double t_exit,
   /* back along the chord to the face: the state is at the step's end */
   const double back = sb_engine_time(e) + sb_engine_get_params(e)->dt - t_exit;
   x->bt->m_side[f][s] += m;
+  x->bt->m_out += m;
   double along = NAN;  /* exit point along the side, units L */
   if (s == 0) {
-    along = (p[1] - u[1] * back) / DJ_L;
+    const double y = p[1] - u[1] * back;
+    along = y / DJ_L;
     x->bt->q_east[0] += m * u[0];
     x->bt->q_east[1] += m * u[1];
-    x->bt->my_east += m * along;
+    x->bt->my_east += m * y;
   } else if (s == 1) {
     along = (p[0] - u[0] * back) / DJ_L;
   }
@@ -132,22 +138,48 @@ static int on_exit(const sb_engine *e, size_t i, int face, double t_exit,
   return 0;
 }
 
-/* Mass inside the crossing square and in the two upstream squares of the
- * jets (side L/9, the upstream ones centred 2.5 widths before it). */
-static void sample_squares(const sb_engine *e, dj_batch *o)
+/* The crossing square and the two upstream squares of the jets (side
+ * L/9, the upstream ones centred 2.5 widths before it), x0 x1 y0 y1:
+ * collide's [observe] region lines of the written files. */
+static void squares(double sq[3][4])
 {
   const double w = DJ_L / 9.0;
+  const double c[3][2] = {{4.0, 4.0}, {1.5, 4.0}, {4.0, 1.5}};
+  for (int q = 0; q < 3; q++) {
+    sq[q][0] = c[q][0] * w;
+    sq[q][1] = (c[q][0] + 1.0) * w;
+    sq[q][2] = c[q][1] * w;
+    sq[q][3] = (c[q][1] + 1.0) * w;
+  }
+}
+
+/* Mass inside the crossing square and the two upstream squares. */
+static void sample_squares(const sb_engine *e, dj_batch *o)
+{
+  double sq[3][4];
+  squares(sq);
   const double *x = sb_engine_positions(e), *m = sb_engine_masses(e);
-  for (size_t i = 0; i < sb_engine_count(e); i++) {
-    double px = x[3 * i] / w, py = x[3 * i + 1] / w;
-    int cx = px >= 4.0 && px < 5.0, cy = py >= 4.0 && py < 5.0;
-    int ux = px >= 1.5 && px < 2.5, uy = py >= 1.5 && py < 2.5;
-    if (cx && cy)
-      o->cross += m[i];
-    if ((ux && cy) || (cx && uy))
-      o->upstream += m[i];
+  for (int q = 0; q < 3; q++) {
+    double s = q ? o->up[q - 1] : o->cross;
+    for (size_t i = 0; i < sb_engine_count(e); i++) {
+      const double px = x[3 * i], py = x[3 * i + 1];
+      if (px >= sq[q][0] && px < sq[q][1] && py >= sq[q][2] && py < sq[q][3])
+        s += m[i];
+    }
+    if (q)
+      o->up[q - 1] = s;
+    else
+      o->cross = s;
   }
   o->nsamp += 1.0;
+}
+
+static double count_out(const sb_engine *e)
+{
+  double s = 0.0;
+  for (int f = 0; f < 4; f++)
+    s += (double)sb_engine_outflows(e, f);
+  return s;
 }
 
 /* One run: the square is the engine's box with open faces (detected on
@@ -165,7 +197,7 @@ static int run_dense(const sbv_ctx *ctx, unsigned long stream,
   const double dt = 1e-6, t_warm = 2.0 * DJ_L / DJ_U;
   o->m_expected = w * w * (n[0] * drop_mass(r[0]) + n[1] * drop_mass(r[1]));
   sb_engine_params p;
-  sbv_engine_params(&p);
+  sbv_engine_params(&p);  /* MT19937, as the written file's rng = mt19937 */
   p.dim = 2;
   p.L[0] = p.L[1] = DJ_L;
   p.dt = dt;
@@ -208,6 +240,8 @@ static int run_dense(const sbv_ctx *ctx, unsigned long stream,
       bt->coll0 = (double)es.ncoll;
       for (size_t q = 0; q < 4; q++)
         bt->inj -= (double)sb_engine_inflow_injected(e, q);
+      bt->out = -count_out(e);
+      bt->n0 = (double)sb_engine_count(e);
     }
     ex.bt = bt;
     st = sb_engine_step(e);
@@ -218,6 +252,8 @@ static int run_dense(const sbv_ctx *ctx, unsigned long stream,
       bt->coll1 = (double)es.ncoll;
       for (size_t q = 0; q < 4; q++)
         bt->inj += (double)sb_engine_inflow_injected(e, q);
+      bt->out += count_out(e);
+      bt->n1 = (double)sb_engine_count(e);
     }
   }
   if (!st) {
@@ -284,6 +320,106 @@ static int euler_jets(double *prof, double *y_mean, double *angle)
   return st;
 }
 
+/* The file of run k of configuration ci: the same run in `smolbridge
+ * collide` (four species, one inflow each in the engine's inflow order;
+ * [observe] batch_steps and region give the batches), its records as
+ * statistics over the rows of batches.csv ("; expect-batches"). */
+static int write_dense(const sbv_ctx *ctx, sbv_report *rep, int ci, int k,
+                       int nbatch, double t_batch)
+{
+  static const char *const file[3] = {"nocoll_phi0.2", "coll_phi0.02",
+                                      "coll_phi0.2"};
+  const dj_cfg *c = &DJ_CFGS[ci];
+  const double w = DJ_L / 9.0, r[2] = {DJ_A0, 2.0 * DJ_A0};
+  const double n1 = c->phi / (PI * DJ_A0 * DJ_A0 * 12.0), n[2] = {8.0 * n1,
+                                                                  n1};
+  const double dt = 1e-6, t_warm = 2.0 * DJ_L / DJ_U;
+  const double m_expected =
+      w * w * (n[0] * drop_mass(r[0]) + n[1] * drop_mass(r[1]));
+  const long per = lround(t_batch / dt);
+  char fn[64], name[160], spec[400];
+  snprintf(fn, sizeof fn, "V15_dense_jets_%s_r%d", file[ci], k + 1);
+  FILE *f = sbv_ini_begin(ctx, rep, fn, "V15: dense crossing jets (Thomine "
+                          "2008, §9), batch means of the exits and of the "
+                          "mass in three squares");
+  if (!f)
+    return SB_EIO;
+  fprintf(f, "seed = %lu\nrng = mt19937\ndim = 2\nL = %.17g\ndt = %.17g\n"
+          "warmup = %.17g\nsteps = %ld\nneigh = cells\ndetect = ballistic\n"
+          "outcome = %s\n\n[walls]\nx_lo = open\nx_hi = open\ny_lo = open\n"
+          "y_hi = open\ndetect = ballistic\ndeposit = remove\n\n[observe]\n"
+          "batch_steps = %ld\nregion_every = 10\n",
+          ctx->seed * 1000 + 950 + (unsigned long)(10 * ci + k), DJ_L, dt,
+          t_warm, per * nbatch, c->collide ? "elastic" : "count", per);
+  double sq[3][4];
+  squares(sq);
+  fprintf(f, "; the crossing square, the upstream squares of the west and "
+          "south jets\n");
+  for (int q = 0; q < 3; q++)
+    fprintf(f, "region = %.17g %.17g %.17g %.17g\n", sq[q][0], sq[q][1],
+            sq[q][2], sq[q][3]);
+  for (int jet = 0; jet < 2; jet++)
+    for (int sp = 0; sp < 2; sp++) {
+      const double T =
+          drop_mass(r[sp]) * 1e-8 * DJ_U * DJ_U / SB_BOLTZMANN;
+      fprintf(f, "\n[species %s_%s]\nradius = %.17g\nmass = %.17g\n"
+              "tau = inf\nT = %.17g\nfamily = %d\ninflow = %s\n"
+              "inflow_rate = %.17g\ninflow_region = %.17g %.17g\n"
+              "inflow_velocity = %.17g %.17g\ninflow_no_overlap = %s\n",
+              jet ? "south" : "west", sp ? "large" : "small", r[sp],
+              drop_mass(r[sp]), T, jet, jet ? "y_lo" : "x_lo",
+              n[sp] * DJ_U * w, 4.0 * w, 5.0 * w, jet ? 0.0 : DJ_U,
+              jet ? DJ_U : 0.0, c->collide ? "yes" : "no");
+    }
+  int st = sbv_ini_end(rep, f, NULL);
+  /* the records: E, N, W, S = x_hi, y_hi, x_lo, y_lo; family 0 the west
+   * jet, 1 the south jet */
+  struct {
+    const char *what;
+    char spec[400];
+  } rows[10];
+  int nr = 0;
+  rows[nr].what = "drop-balance";
+  snprintf(rows[nr++].spec, 400, "max abs(injected - left - (n_end - "
+           "n_start))");
+  if (!c->collide) {
+    rows[nr].what = "west-jet-share-east";
+    snprintf(rows[nr++].spec, 400, "min m_x_hi_f0 / (m_x_hi_f0 + "
+             "m_x_hi_f1)");
+    rows[nr].what = "crossing-excess";
+    snprintf(rows[nr++].spec, 400, "mean region1 / %.17g - 2.0",
+             m_expected);
+  }
+  rows[nr].what = "crossing/one-jet";
+  snprintf(rows[nr++].spec, 400, "mean 2.0 * region1 / (region2 + "
+           "region3)");
+  rows[nr].what = "east-exit-west-jet-share";
+  snprintf(rows[nr++].spec, 400, "mean m_x_hi_f0 / (m_x_hi_f0 + "
+           "m_x_hi_f1)");
+  rows[nr].what = "own-side-share";
+  snprintf(rows[nr++].spec, 400, "mean (m_x_hi_f0 + m_y_hi_f1) / m_left");
+  rows[nr].what = "back-scattered-share";
+  snprintf(rows[nr++].spec, 400, "mean (m_x_lo_f0 + m_y_lo_f0 + m_x_lo_f1 "
+           "+ m_y_lo_f1) / m_left");
+  rows[nr].what = "east-exit-y/L";
+  snprintf(rows[nr++].spec, 400, "mean my_x_hi / (m_x_hi_f0 + m_x_hi_f1) "
+           "/ %.17g", DJ_L);
+  rows[nr].what = "east-exit-angle-deg";
+  snprintf(rows[nr++].spec, 400, "mean atan2(py_x_hi, px_x_hi) * 180.0 / "
+           "pi");
+  if (c->collide) {
+    rows[nr].what = "collisions-per-drop";
+    snprintf(rows[nr++].spec, 400, "mean 2.0 * collisions / injected");
+  }
+  for (int q = 0; q < nr && !st; q++) {
+    snprintf(name, sizeof name, "V15/dense-jets/%s/%s", c->label,
+             rows[q].what);
+    snprintf(spec, sizeof spec, "%s", rows[q].spec);
+    sbv_ini_expect_stat(rep, "expect-batches", name, spec);
+  }
+  return st;
+}
+
 static int add_info_mean(sbv_report *rep, const char *name, const double *x,
                          size_t n, double ref)
 {
@@ -305,6 +441,13 @@ static int case_dense(const sbv_ctx *ctx, sbv_report *rep)
   const int R = ctx->full ? 4 : 1, NB = ctx->full ? 20 : 6;
   const double t_batch = 0.5 * DJ_L / DJ_U;
   enum { NMAX = 4 * 20 };
+  if (sbv_writing(ctx)) {  /* the runs as collide files */
+    int st = SB_SUCCESS;
+    for (int ci = 0; ci < 3 && !st; ci++)
+      for (int k = 0; k < R && !st; k++)
+        st = write_dense(ctx, rep, ci, k, NB, t_batch);
+    return st;
+  }
   double eprof[NBIN], ey, eang;
   int st = euler_jets(eprof, &ey, &eang);
   if (st)
@@ -330,6 +473,7 @@ static int case_dense(const sbv_ctx *ctx, sbv_report *rep)
     const dj_cfg *c = &DJ_CFGS[ci];
     double mix[NMAX], own[NMAX], back[NMAX], yE[NMAX], ang[NMAX];
     double col[NMAX], exc[NMAX], ratio[NMAX], bal = 0.0, fam0E = 1.0;
+    double unacc = 0.0;
     double prof[2][NBIN] = {{0}}, mtot = 0.0, rej = 0.0, inj = 0.0;
     size_t n = 0;
     for (int k = 0; k < R && !st; k++) {
@@ -347,13 +491,14 @@ static int case_dense(const sbv_ctx *ctx, sbv_report *rep)
         for (int sd = 0; sd < NSIDE; sd++)
           m0 += bt->m_side[0][sd], m1 += bt->m_side[1][sd];
         mix[n] = mE > 0 ? bt->m_side[0][0] / mE : NAN;
-        own[n] = (bt->m_side[0][0] + bt->m_side[1][1]) / (m0 + m1);
+        own[n] = (bt->m_side[0][0] + bt->m_side[1][1]) / bt->m_out;
         back[n] = (bt->m_side[0][2] + bt->m_side[0][3] + bt->m_side[1][2] +
-                   bt->m_side[1][3]) / (m0 + m1);
-        yE[n] = mE > 0 ? bt->my_east / mE : NAN;
+                   bt->m_side[1][3]) / bt->m_out;
+        yE[n] = mE > 0 ? bt->my_east / mE / DJ_L : NAN;
         ang[n] = atan2(bt->q_east[1], bt->q_east[0]) * 180.0 / PI;
         col[n] = bt->inj > 0 ? 2.0 * (bt->coll1 - bt->coll0) / bt->inj : 0;
-        double cross = bt->cross / bt->nsamp, up = bt->upstream / bt->nsamp;
+        double cross = bt->cross / bt->nsamp;
+        double up = bt->up[0] / bt->nsamp + bt->up[1] / bt->nsamp;
         /* the jets are Poisson processes of known density: the crossing
          * square holds 2 m_expected on average (the upstream squares hold
          * the same drops a little earlier, so their difference has
@@ -362,9 +507,12 @@ static int case_dense(const sbv_ctx *ctx, sbv_report *rep)
         ratio[n] = 2.0 * cross / up;  /* crossing / one upstream jet */
         fam0E = fmin(fam0E, mix[n]);
         mtot += m0 + m1;
+        /* drops of the batch: injected - left - the change inside */
+        double b = fabs(bt->inj - bt->out - (bt->n1 - bt->n0));
+        bal = b > bal ? b : bal;
       }
-      double b = fabs(o->n_in - o->n_out - o->n_inside);
-      bal = b > bal ? b : bal;
+      /* the whole run, warm-up included (the note) */
+      unacc = fmax(unacc, fabs(o->n_in - o->n_out - o->n_inside));
       for (int f = 0; f < 2; f++)
         for (int q = 0; q < NBIN; q++)
           prof[f][q] += o->prof[f][q];
@@ -410,10 +558,11 @@ static int case_dense(const sbv_ctx *ctx, sbv_report *rep)
     }
     sbv_note(rep, "- %s: %.0f drops injected, %.0f arrivals skipped (no "
              "position free of overlap in 100 draws), %.0f drops "
-             "unaccounted for; the reference column of the informational "
+             "unaccounted for over the run (warm-up included); the "
+             "reference column of the informational "
              "rows is the pressureless answer (mixing 0.5 and own side 0.5 "
              "for one merged jet; the crossing holds twice one jet's mass).",
-             c->label, inj, rej, bal);
+             c->label, inj, rej, unacc);
     for (int b = 0; b < NBIN; b++)
       for (int f = 0; f < 2; f++)
         data[8 * b + 1 + 2 * ci + f] =

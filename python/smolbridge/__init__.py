@@ -319,8 +319,11 @@ def _ini(config):
     for sec, keys in config.items():
         lines.append("[%s]" % sec)
         for k, v in keys.items():
-            vals = v if (isinstance(v, (list, tuple)) and k == "particle") \
-                else [v]
+            # repeatable keys: a list of lists gives one line each
+            rep = k in ("particle", "region") and \
+                isinstance(v, (list, tuple)) and len(v) > 0 and \
+                isinstance(v[0], (list, tuple, _np.ndarray))
+            vals = v if rep else [v]
             for x in vals:
                 if isinstance(x, (list, tuple, _np.ndarray)):
                     x = " ".join(repr(float(y)) for y in x)
@@ -336,8 +339,8 @@ def _ini(config):
 def collide(config, output=None, sets=(), progress=None):
     """Run the collision engine from a dict shaped like the INI file:
     ``{"run": {"L": 1e-5, ...}, "species colloid": {"radius": 1e-7, ...}}``
-    (values: numbers, strings, lists for vectors; ``particle`` may be a
-    list of 6-number lists).  ``sets``: extra "SECTION.KEY=VALUE" overrides.
+    (values: numbers, strings, lists for vectors; ``particle`` and
+    ``[observe] region`` may be lists of lists: one line each).  ``sets``: extra "SECTION.KEY=VALUE" overrides.
     The outputs go to ``output`` (default: a temporary directory, removed
     afterwards).  ``progress`` (optional) is called with a dict (``event``
     "begin" or "step", ``t``, ``t_begin``, ``t_measure``, ``t_end``,
