@@ -66,6 +66,13 @@ const char *v12_det_name(int det)
 void v12_size(const v12_phys *ph, int det, double dtt, double hits,
               double t1, double T, size_t vcap, lv_run *q)
 {
+  v12_size_cap(ph, det, dtt, hits, t1, T, vcap, V12_BUDGET, V12_NMAX, q);
+}
+
+void v12_size_cap(const v12_phys *ph, int det, double dtt, double hits,
+                  double t1, double T, size_t vcap, double budget,
+                  double nmax_particles, lv_run *q)
+{
   memset(q, 0, sizeof *q);
   const double tau = ph->tau, dt = dtt * tau;
   q->nsp = 1;
@@ -98,7 +105,7 @@ void v12_size(const v12_phys *ph, int det, double dtt, double hits,
   /* particles for ~hits counted contacts, hits = N^2 K (T - t1) / (2 V),
    * in the smallest box allowed; denser than V12_PHIMAX (overlapping
    * particles cost neighbour-search work), the box grows at that density
-   * instead; at most V12_BUDGET particle-steps (then fewer contacts: at
+   * instead; at most `budget` particle-steps (then fewer contacts: at
    * the capped density the box shrinks with N, hits ~ N) */
   const double vp = PI * pow(ph->d, 3) / 6.0, nmax = V12_PHIMAX / vp;
   const double KM = ph->Kgh * (T - q->t1);
@@ -110,7 +117,7 @@ void v12_size(const v12_phys *ph, int det, double dtt, double hits,
     N = nmax * V;
     L = cbrt(V);
   }
-  const double nb = fmin(V12_BUDGET / (T / dt), V12_NMAX);
+  const double nb = fmin(budget / (T / dt), nmax_particles);
   if (N > nb) {
     N = nb;
     if (capped)
@@ -126,8 +133,17 @@ int v12_run(const sbv_ctx *ctx, unsigned long stream, const v12_phys *ph,
             int det, double dtt, double hits, double meas, size_t vcap,
             lv_run *q, lv_out *o)
 {
-  v12_size(ph, det, dtt, hits, V12_WARM * ph->tau,
-           (V12_WARM + meas) * ph->tau, vcap, q);
+  return v12_run_cap(ctx, stream, ph, det, dtt, hits, meas, vcap,
+                     V12_BUDGET, V12_NMAX, q, o);
+}
+
+int v12_run_cap(const sbv_ctx *ctx, unsigned long stream,
+                const v12_phys *ph, int det, double dtt, double hits,
+                double meas, size_t vcap, double budget, double nmax,
+                lv_run *q, lv_out *o)
+{
+  v12_size_cap(ph, det, dtt, hits, V12_WARM * ph->tau,
+               (V12_WARM + meas) * ph->tau, vcap, budget, nmax, q);
   if (sbv_writing(ctx)) {
     char name[96];
     snprintf(name, sizeof name, "V12_Kn%g_dt%g_%s", ph->kn, dtt,
@@ -186,15 +202,23 @@ static int flat(const sbv_ctx *ctx, sbv_report *rep, double *Hrow,
   const double *kns = full ? kn_full : kn_quick;
   const int nkn = full ? 6 : 3;
   const double hits = full ? 40000.0 : 250.0, meas = full ? 300.0 : 150.0;
+  /* --full: the verdict rows' runs (reference, `langevin`) for +-1% */
+  const double hits_ref = full ? V12_HITS_REF : hits;
+  const double hits_lv = full ? V12_HITS_LV : hits;
+  const double budget = full ? V12_BUDGET_FULL : V12_BUDGET;
+  const double nmax = full ? V12_NMAX_FULL : V12_NMAX;
   const size_t vcap = full ? 20000 : 2000;
   *nvel = full ? 2 : 1;
   vel[0].kn = full ? 0.05 : 0.5;
   vel[1].kn = 0.5;
   sbv_note(rep, "Flat: first-hit counting (firsthit.h), warm-up %.0f "
            "tau_p, measured over %.0f tau_p (or 5 steps), box 10 relative "
-           "displacement sd, ~%.0f contacts per run; reference: contact "
+           "displacement sd, ~%.0f contacts per run (--full: %.0f for "
+           "`langevin`, %.0f for the reference, within %.2g particle-steps "
+           "and %.0f particles per run); reference: contact "
            "time of the chords at dt/tau_p = 0.01 with the same protocol.  "
-           "%s", V12_WARM, meas, hits, full ? "" : "Quick mode: Kn_D = "
+           "%s", V12_WARM, meas, hits, V12_HITS_LV, V12_HITS_REF,
+           V12_BUDGET_FULL, V12_NMAX_FULL, full ? "" : "Quick mode: Kn_D = "
            "0.05, 0.5, 3; the reference at Kn_D = 0.5 only; `langevin` at "
            "dt/tau_p = 1 and 100 (1 and 10 at Kn_D = 3) is tested against "
            "the reference where it exists and against itself elsewhere; "
@@ -214,8 +238,8 @@ static int flat(const sbv_ctx *ctx, sbv_report *rep, double *Hrow,
     memset(&orf, 0, sizeof orf);
     if (have_ref) {
       sbv_progress(ctx, "  V12 flat Kn_D=%g: reference", kns[k]);
-      st = v12_run(ctx, 1200 + 10 * k, &ph, LV_CHORD, 0.01, hits, meas,
-                   vcap, &qr, &orf);
+      st = v12_run_cap(ctx, 1200 + 10 * k, &ph, LV_CHORD, 0.01, hits_ref,
+                       meas, vcap, budget, nmax, &qr, &orf);
       if (st)
         break;
       keep_vn(vel, nvel, kns[k], -1, &orf);
@@ -245,8 +269,12 @@ static int flat(const sbv_ctx *ctx, sbv_report *rep, double *Hrow,
         sbv_progress(ctx, "  V12 flat Kn_D=%g %s dt/tau=%g", kns[k],
                      v12_det_name(det), dtt);
         const int keep = det == LV_LANGEVIN && (dtt == 1.0 || dtt == 10.0);
-        st = v12_run(ctx, 1200 + 10 * k, &ph, det, dtt, hits, meas,
-                     keep ? vcap : 0, &q, &o);
+        if (det == LV_LANGEVIN)
+          st = v12_run_cap(ctx, 1200 + 10 * k, &ph, det, dtt, hits_lv, meas,
+                           keep ? vcap : 0, budget, nmax, &q, &o);
+        else
+          st = v12_run(ctx, 1200 + 10 * k, &ph, det, dtt, hits, meas,
+                       keep ? vcap : 0, &q, &o);
         if (st)
           break;
         if (keep)

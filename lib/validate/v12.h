@@ -14,6 +14,13 @@
 #define V12_NMAX 60000.0   /* largest particle number of a run */
 #define V12_PHIMAX 0.2     /* largest volume fraction (overlaps allowed) */
 #define V12_BUDGET 6e8     /* largest particle-steps of a run */
+/* --full: the runs of the verdict rows (the reference and `langevin`)
+ * are sized for a ratio within +-1% (95%): V12_HITS_REF and V12_HITS_LV
+ * contacts (1/60000 + 1/150000 -> +-0.95%), within these caps */
+#define V12_HITS_REF 150000.0
+#define V12_HITS_LV 60000.0
+#define V12_BUDGET_FULL 1.2e10
+#define V12_NMAX_FULL 2e6
 
 /* One monodisperse species at diffusive Knudsen number kn. */
 typedef struct {
@@ -31,11 +38,21 @@ const char *v12_det_name(int det);
  * step boundary), box and particle number for ~hits contacts. */
 void v12_size(const v12_phys *ph, int det, double dtt, double hits,
               double t1, double T, size_t vcap, lv_run *q);
+/* The same within a budget of particle-steps and a particle number of
+ * one's own (v12_size: V12_BUDGET, V12_NMAX). */
+void v12_size_cap(const v12_phys *ph, int det, double dtt, double hits,
+                  double t1, double T, size_t vcap, double budget,
+                  double nmax_particles, lv_run *q);
 /* A first-hit run sized for ~hits counted contacts over meas tau_p after
  * the warm-up (cases_v12.c: box, particle number, end time). */
 int v12_run(const sbv_ctx *ctx, unsigned long stream, const v12_phys *ph,
             int det, double dtt, double hits, double meas, size_t vcap,
             lv_run *q, lv_out *o);
+/* v12_run with the caps of v12_size_cap. */
+int v12_run_cap(const sbv_ctx *ctx, unsigned long stream,
+                const v12_phys *ph, int det, double dtt, double hits,
+                double meas, size_t vcap, double budget, double nmax,
+                lv_run *q, lv_out *o);
 
 /* Normal relative velocities at first contacts kept from the flat runs:
  * the reference (contact time, dt = 0.01 tau_p) and `langevin` at dt = 1
