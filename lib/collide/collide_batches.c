@@ -8,10 +8,11 @@
  *
  * A row: the batch's start and end time, the particles at its start and
  * end, the drops injected by the inflows and leaving through open faces,
- * the mass leaving, the collisions; per open face the exiting mass of each family, the
- * exiting momentum per axis and the mass-weighted coordinates of the exit
- * points along the face (sums: their ratios are the means); per region
- * the mean mass inside over the samples of the batch. */
+ * the mass leaving, the collisions; per open face the exiting mass of
+ * each family, the exiting momentum per axis and the mass-weighted
+ * coordinates of the exit points along the face (sums: their ratios are
+ * the means); per region the mean mass inside over the samples of the
+ * batch. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -293,14 +294,6 @@ void sbi_col_batches_exit(sbi_col_run *r, int face, int family, double m,
       row[b->c_x + q * (b->dim - 1) + j++] += m * x[k];
 }
 
-static void jnum(FILE *f, double x)
-{
-  if (isfinite(x))
-    fprintf(f, "%.17g", x);
-  else
-    fprintf(f, "null");
-}
-
 int sbi_col_batches_write(FILE *js, const sbi_col_config *c,
                           const sbi_col_run *r, const char *path)
 {
@@ -348,11 +341,11 @@ int sbi_col_batches_write(FILE *js, const sbi_col_config *c,
                              : NAN;
     fprintf(js, "%s\n      \"%s\": {\"mean\": ", k > C_N0 ? "," : "",
             b->names[k]);
-    jnum(js, mean);
+    sbi_col_jnum(js, mean);
     fprintf(js, ", \"ci95\": [");
-    jnum(js, mean - tq * se);
+    sbi_col_jnum(js, mean - tq * se);
     fprintf(js, ", ");
-    jnum(js, mean + tq * se);
+    sbi_col_jnum(js, mean + tq * se);
     fprintf(js, "]}");
   }
   fprintf(js, "}},\n");

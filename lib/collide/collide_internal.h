@@ -391,6 +391,8 @@ int sbi_col_out_write(const sbi_col_config *c, const sbi_col_run *r,
                       const char *why, long nsnap);
 /* Snapshot path of number k. */
 void sbi_col_snap_path(const sbi_col_config *c, long k, char *buf, size_t len);
+/* A JSON number: x to 17 digits, or null for NaN/inf (not JSON). */
+void sbi_col_jnum(FILE *f, double x);
 
 /* ---------------------------------------------- collide.c, collide_run.c */
 

@@ -179,14 +179,6 @@ static void fit_lags(const sbi_col_config *c, const sbi_col_msd *m,
   }
 }
 
-static void jnum(FILE *f, double x)
-{
-  if (isfinite(x))
-    fprintf(f, "%.17g", x);
-  else
-    fprintf(f, "null");
-}
-
 int sbi_col_msd_write(FILE *js, const sbi_col_config *c,
                       const sbi_col_run *r, const char *path)
 {
@@ -216,7 +208,7 @@ int sbi_col_msd_write(FILE *js, const sbi_col_config *c,
   fprintf(js, "  \"msd\": {\"every\": %zu, \"interval\": %.17g, "
           "\"samples\": %zu, \"particles\": %zu, \"fit\": [%zu, %zu], "
           "\"D\": ", m->every, ts, m->nsamp, m->n, k1, k2);
-  jnum(js, D);
+  sbi_col_jnum(js, D);
   fprintf(js, ", \"file\": \"msd.csv\"},\n");
   return fclose(f) ? -1 : 0;
 }

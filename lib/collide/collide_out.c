@@ -177,8 +177,7 @@ static void jstr(FILE *f, const char *s)
   fputc('"', f);
 }
 
-/* A number, or null for NaN/inf (not JSON). */
-static void jnum(FILE *f, double x)
+void sbi_col_jnum(FILE *f, double x)
 {
   if (isfinite(x))
     fprintf(f, "%.17g", x);
@@ -200,23 +199,25 @@ static void json_references(FILE *f, const sbi_col_config *c,
   int same_T = sa->T > 0 && sa->T == sb->T;
   if (rest && isinf(sa->tau) && isinf(sb->tau) && same_T) {
     fprintf(f, "\"kinetic\": ");
-    jnum(f, sb_kernel_kinetic(2 * sa->radius, 2 * sb->radius, sa->mass,
-                              sb->mass, sa->T));
+    sbi_col_jnum(f, sb_kernel_kinetic(2 * sa->radius, 2 * sb->radius, sa->mass,
+                                      sb->mass, sa->T));
   } else if (rest && isfinite(sa->tau) && isfinite(sb->tau)) {
     double ba = sa->B * sa->tau, bb = sb->B * sb->tau;
     fprintf(f, "\"continuum\": ");
-    jnum(f, sb_kernel_diffusion(sa->radius, sb->radius, ba * ba, bb * bb));
+    sbi_col_jnum(f,
+                 sb_kernel_diffusion(sa->radius, sb->radius, ba * ba, bb * bb));
     if (same_T) {
       double R = sa->radius + sb->radius;
       double mr = sa->mass * sb->mass / (sa->mass + sb->mass);
       fprintf(f, ", \"free_molecular\": ");
-      jnum(f, PI * R * R * sqrt(8 * SB_BOLTZMANN * sa->T / (PI * mr)));
+      sbi_col_jnum(f, PI * R * R * sqrt(8 * SB_BOLTZMANN * sa->T / (PI * mr)));
       fprintf(f, ", \"transition_gh\": ");
-      jnum(f, sb_kernel_brownian_gh(sa->radius, sb->radius, sa->mass,
-                                    sb->mass, sa->tau, sb->tau, sa->T));
+      sbi_col_jnum(f, sb_kernel_brownian_gh(sa->radius, sb->radius, sa->mass,
+                                            sb->mass, sa->tau, sb->tau, sa->T));
       fprintf(f, ", \"Kn_D\": ");
-      jnum(f, sb_kernel_brownian_gh_kn(sa->radius, sb->radius, sa->mass,
-                                       sb->mass, sa->tau, sb->tau, sa->T));
+      sbi_col_jnum(f,
+                   sb_kernel_brownian_gh_kn(sa->radius, sb->radius, sa->mass,
+                                            sb->mass, sa->tau, sb->tau, sa->T));
     }
   }
   fprintf(f, "}");
@@ -263,9 +264,9 @@ static int write_hits(FILE *js, const sbi_col_config *c, const sbi_col_run *r,
   free(u);
   fprintf(js, "  \"hit_times\": {\"recorded\": %zu, \"cap\": %ld, "
           "\"file\": \"hits.csv\", \"ks_D\": ", nh, c->hit_times);
-  jnum(js, D);
+  sbi_col_jnum(js, D);
   fprintf(js, ", \"ks_p\": ");
-  jnum(js, p);
+  sbi_col_jnum(js, p);
   fprintf(js, "},\n");
   return fclose(f) ? -1 : 0;
 }
@@ -373,11 +374,11 @@ static void json_kernels(FILE *f, const sbi_col_config *c, const sb_engine *e)
       jstr(f, sbi_col_short_name(c, b));
       fprintf(f, "], \"collisions\": %llu, \"exposure\": %.17g, \"K\": ",
               (unsigned long long)ps.ncoll, ps.exposure);
-      jnum(f, ps.K);
+      sbi_col_jnum(f, ps.K);
       fprintf(f, ", \"ci95\": [");
-      jnum(f, ps.lo);
+      sbi_col_jnum(f, ps.lo);
       fprintf(f, ", ");
-      jnum(f, ps.hi);
+      sbi_col_jnum(f, ps.hi);
       fprintf(f, "], ");
       json_references(f, c, sa, sb);
       fprintf(f, "}");
@@ -401,13 +402,13 @@ static void json_kernels(FILE *f, const sbi_col_config *c, const sb_engine *e)
 static void jfirsthit_kernel(FILE *f, const sb_engine_firsthit_kernel_result *o)
 {
   fprintf(f, "\"expected_per_K\": ");
-  jnum(f, o->expected_per_K);
+  sbi_col_jnum(f, o->expected_per_K);
   fprintf(f, ", \"K\": ");
-  jnum(f, o->K);
+  sbi_col_jnum(f, o->K);
   fprintf(f, ", \"ci95\": [");
-  jnum(f, o->lo);
+  sbi_col_jnum(f, o->lo);
   fprintf(f, ", ");
-  jnum(f, o->hi);
+  sbi_col_jnum(f, o->hi);
   fprintf(f, "]");
 }
 
@@ -423,10 +424,10 @@ static void json_firsthit(FILE *f, const sbi_col_config *c,
           "\"pairs_apart\": %.17g, \"radius\": ",
           (unsigned long long)o.c.hits, (unsigned long long)o.c.warm,
           o.c.pairs_apart);
-  jnum(f, o.a);
+  sbi_col_jnum(f, o.a);
   fprintf(f, ", \"capacitance\": %s, \"D\": ",
           c->first_hit_capacitance > 0 ? "true" : "false");
-  jnum(f, o.D);
+  sbi_col_jnum(f, o.D);
   fprintf(f, ", \"t1\": %.17g, \"t\": %.17g, ", o.t1, o.t);
   jfirsthit_kernel(f, &o);
   fprintf(f, ", \"pairs\": [");
@@ -442,9 +443,9 @@ static void json_firsthit(FILE *f, const sbi_col_config *c,
               "\"radius\": ", (unsigned long long)o.c.hits,
               (unsigned long long)o.c.warm, (unsigned long long)o.c.contact0,
               o.c.pairs_apart);
-      jnum(f, o.a);
+      sbi_col_jnum(f, o.a);
       fprintf(f, ", \"D\": ");
-      jnum(f, o.D);
+      sbi_col_jnum(f, o.D);
       fprintf(f, ", ");
       jfirsthit_kernel(f, &o);
       fprintf(f, "}");
@@ -459,14 +460,14 @@ static void json_contexts(FILE *f, const sbi_col_config *c,
     sb_engine_bridge_stats bs;
     sb_engine_bridge_get_stats(r->bridge, &bs);
     fprintf(f, "  \"bridge\": {\"reach\": ");
-    jnum(f, sb_engine_bridge_reach(r->e, r->bridge));
+    sbi_col_jnum(f, sb_engine_bridge_reach(r->e, r->bridge));
     fprintf(f, ", \"detections\": %llu, \"collisions\": %llu, "
             "\"overlapping_at_start\": %llu, \"brownian_share\": ",
             (unsigned long long)bs.ndetect, (unsigned long long)bs.ncoll,
             (unsigned long long)bs.noverlap);
-    jnum(f, bs.ncoll ? bs.coll_brown / (double)bs.ncoll : NAN);
+    sbi_col_jnum(f, bs.ncoll ? bs.coll_brown / (double)bs.ncoll : NAN);
     fprintf(f, ", \"turbulent_share\": ");
-    jnum(f, bs.ncoll ? bs.coll_turb / (double)bs.ncoll : NAN);
+    sbi_col_jnum(f, bs.ncoll ? bs.coll_turb / (double)bs.ncoll : NAN);
     fprintf(f, "},\n");
   }
   if (r->agglo) {
@@ -482,11 +483,12 @@ static void json_contexts(FILE *f, const sbi_col_config *c,
     fprintf(f, "  \"agglo\": {\"merges\": %llu, \"rebounds\": %llu, "
             "\"sticking_fraction\": ", (unsigned long long)as.nmerge,
             (unsigned long long)as.nrebound);
-    jnum(f, nd ? (double)as.nmerge / (double)nd : NAN);
+    sbi_col_jnum(f, nd ? (double)as.nmerge / (double)nd : NAN);
     fprintf(f, ", \"merge_kernel\": ");
-    jnum(f, st.exposure > 0 ? (double)as.nmerge * V / st.exposure : NAN);
+    sbi_col_jnum(f,
+                 st.exposure > 0 ? (double)as.nmerge * V / st.exposure : NAN);
     fprintf(f, ", \"mean_Erel_J\": ");
-    jnum(f, nd ? as.erel_sum / (double)nd : NAN);
+    sbi_col_jnum(f, nd ? as.erel_sum / (double)nd : NAN);
     fprintf(f, ", \"M0\": %.17g, \"M1\": %.17g, \"M2\": %.17g, \"file\": "
             "\"sizes.csv\"},\n", m[0], m[1], m[2]);
   }
@@ -543,7 +545,7 @@ int sbi_col_out_write(const sbi_col_config *c, const sbi_col_run *r,
       double e1 = sb_engine_kinetic_energy(r->e, NULL);
       fprintf(f, "  \"kinetic_energy\": {\"start\": %.17g, \"end\": "
               "%.17g, \"rel_change\": ", r->ekin0, e1);
-      jnum(f, fabs(e1 / r->ekin0 - 1.0));
+      sbi_col_jnum(f, fabs(e1 / r->ekin0 - 1.0));
       fprintf(f, "},\n");
     }
     if (r->contacts) {
