@@ -776,17 +776,22 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
                          "(%zu candidate pairs)", pb.n) : SB_SUCCESS;
 }
 
-/* Where the cells are sized by the density (cut-off below the smallest
- * edge) cells() returns few candidates (Kn_D = 0.5, Delta t = tau_p in
+/* Where the cut-off is well below the density's cell edge, cells()
+ * returns few candidates (Kn_D = 0.5, Delta t = tau_p in
  * bench_engine_langevin: 0.01 per particle) and its scan is cheaper than
- * the midpoint grid (2.2 against 3.3 ms per step there); where the
- * cut-off sets the edge, most of its candidates fail the chord test. */
+ * the midpoint grid; as the cut-off grows towards the edge, its face
+ * zones cover most of each cell and most of its candidates fail the chord
+ * test.  V12's first-hit runs at Kn_D = 0.5 (the same run either way),
+ * step time with the midpoint grid / the cells: cut/edge = 0.42 (dt =
+ * tau_p) 1.10-1.13, 0.69 (2 tau_p) 0.94-0.96, 0.93 (3 tau_p) 0.85-0.88:
+ * the grid from SBI_LSEARCH_CUT on. */
+#define SBI_LSEARCH_CUT 0.6
 static int lsearch_pays(const sb_engine *e, double cut)
 {
   double vol = 1.0;
   for (int k = 0; k < e->par.dim; k++)
     vol *= e->par.L[k];
-  return cut > sbi_cell_edge_min(vol, e->n, e->par.dim);
+  return cut > SBI_LSEARCH_CUT * sbi_cell_edge_min(vol, e->n, e->par.dim);
 }
 
 /* Does the Verlet list still cover this step (D = max|disp|)?  A particle
