@@ -783,7 +783,7 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
  * zones cover most of each cell and most of its candidates fail the chord
  * test.  V12's first-hit runs at Kn_D = 0.5 (the same run either way),
  * step time with the midpoint grid / the cells: cut/edge = 0.42 (dt =
- * tau_p) 1.10-1.13, 0.69 (2 tau_p) 0.94-0.96, 0.93 (3 tau_p) 0.85-0.88:
+ * tau_p) 1.09-1.13, 0.69 (2 tau_p) 0.94-0.96, 0.93 (3 tau_p) 0.85-0.88:
  * the grid from SBI_LSEARCH_CUT on. */
 #define SBI_LSEARCH_CUT 0.6
 static int lsearch_pays(const sb_engine *e, double cut)
