@@ -63,9 +63,9 @@ static int render_with_gnuplot(const char *dir, const char *script,
 static void usage(FILE *out)
 {
   fprintf(out,
-"Usage: smolbridge validate [--quick|--full] [--out DIR] [--seed N]\n"
-"                           [--seeds N] [--case PREFIX]... [--list]\n"
-"                           [--write-ini DIR]\n"
+"Usage: smolbridge validate [--quick|--full] [--out DIR] [--resume]\n"
+"                           [--seed N] [--seeds N] [--case PREFIX]...\n"
+"                           [--list] [--write-ini DIR]\n"
 "\n"
 "Run the validation cases: each compares a Monte Carlo (or numerical)\n"
 "estimate with its theoretical reference and gives a verdict by a rule\n"
@@ -78,6 +78,14 @@ static void usage(FILE *out)
 "                  run time of each case is in docs/validation.md)\n"
 "  --out DIR       output directory (default: validate-out); receives\n"
 "                  validate.csv, report.md and one .dat/.gp/.png per plot\n"
+"                  (--full: also DIR/runs/, one file per finished engine\n"
+"                  run, for --resume)\n"
+"  --resume        read back the engine runs saved in DIR/runs/ by an\n"
+"                  earlier invocation with the same options, instead of\n"
+"                  running them again (same records, bit for bit); runs\n"
+"                  not found are made and saved.  Empty DIR/runs/ after\n"
+"                  changing the library: the saved runs know its version,\n"
+"                  not its code\n"
 "  --seed N        base random seed (default 12345); same seed, same output\n"
 "  --seeds N       calibration: run the selected cases with the N seeds\n"
 "                  SEED, SEED+1, ..., SEED+N-1 and pool each record over\n"
@@ -511,6 +519,7 @@ int sbc_validate_main(int argc, char **argv)
       {"case", required_argument, NULL, 'c'},
       {"list", no_argument, NULL, 'l'}, {"help", no_argument, NULL, 'h'},
       {"write-ini", required_argument, NULL, 'w'},
+      {"resume", no_argument, NULL, 'r'},
       {NULL, 0, NULL, 0}};
   const char *ini_dir = NULL;
   sb_validate_options vo;
@@ -557,6 +566,7 @@ int sbc_validate_main(int argc, char **argv)
       prefixes[nprefixes++] = optarg;
       break;
     case 'l': list = 1; break;
+    case 'r': vo.resume = 1; break;
     case 'w': ini_dir = optarg; break;
     case 'h': usage(stdout); return 0;
     default: usage(stderr); return 2;
@@ -608,6 +618,18 @@ static int validate_selection(sb_validate_options *vo_, const size_t *sel,
     fprintf(stderr, "smolbridge validate: cannot create '%s': %s\n",
             vo.outdir, strerror(errno));
     return 2;
+  }
+
+  /* --full (hours) saves every finished engine run; --resume reads them */
+  char runs[1100];
+  if (vo.full || vo.resume) {
+    snprintf(runs, sizeof runs, "%s/runs", vo.outdir);
+    if (sb_mkdir_p(runs) != 0) {
+      fprintf(stderr, "smolbridge validate: cannot create '%s': %s\n", runs,
+              strerror(errno));
+      return 2;
+    }
+    vo.run_dir = runs;
   }
 
   int have_gnuplot = on_path("gnuplot");

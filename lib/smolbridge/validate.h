@@ -63,9 +63,21 @@ typedef struct {
   void *progress_data;
   sb_validate_render_fn render;     /**< NULL: plots are not rendered */
   void *render_data;
+  const char *run_dir;     /**< directory where each finished engine run
+                                of a case is saved (one small text file
+                                per run; created if missing); NULL: runs
+                                are not saved */
+  int resume;              /**< 1: a run saved in run_dir with exactly the
+                                same inputs (seed, stream, every parameter,
+                                library version) is read back instead of
+                                run again, bit for bit: a long --full run
+                                that was stopped resumes where it was.  The
+                                inputs do not include the code: empty
+                                run_dir after changing the library */
 } sb_validate_options;
 
-/** Defaults: quick mode, seed 12345, no outdir, no callbacks. */
+/** Defaults: quick mode, seed 12345, no outdir, no callbacks, runs not
+ *  saved. */
 void sb_validate_options_init(sb_validate_options *opt);
 
 /* ------------------------------------------------------------- registry */

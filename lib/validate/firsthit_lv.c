@@ -19,6 +19,7 @@
 #include <smolbridge/stats.h>
 
 #include "firsthit.h"
+#include "runsave.h"
 
 #define PI 3.14159265358979323846
 
@@ -221,6 +222,55 @@ static int write_lv(const sbv_ctx *ctx, unsigned long stream,
   return sbv_ini_end(rep, f, q->nsp == 1 ? "first_hit.K" : NULL);
 }
 
+/* The saved-run key of q (runsave.h): every input of the run. */
+static void lv_key(const sbv_ctx *ctx, unsigned long stream,
+                   const lv_run *q, sbv_runkey *k)
+{
+  sbv_runkey_init(k, ctx, "firsthit-lv", stream);
+  sbv_runkey_num(k, "nsp", q->nsp);
+  for (int a = 0; a < q->nsp; a++) {
+    sbv_runkey_num(k, "d", q->d[a]);
+    sbv_runkey_num(k, "tau", q->tau[a]);
+    sbv_runkey_num(k, "m", q->mass[a]);
+    sbv_runkey_num(k, "N", (double)q->N[a]);
+  }
+  const double in[] = {q->temp, q->dt, q->L, q->t1, q->T, q->det,
+                       (double)q->vcap, q->g[0], q->g[1], q->g[2], q->G};
+  static const char *const nm[] = {"temp", "dt", "L", "t1", "T", "det",
+                                   "vcap", "gx", "gy", "gz", "G"};
+  for (size_t i = 0; i < sizeof in / sizeof in[0]; i++)
+    sbv_runkey_num(k, nm[i], in[i]);
+}
+
+/* lv_out's numbers (not vn) to and from a flat array. */
+#define LV_NSAVE 18
+static void lv_to_array(const lv_out *o, double *v)
+{
+  for (int t = 0; t < 3; t++) {
+    v[t] = (double)o->hits[t];
+    v[3 + t] = o->npairs[t];
+    v[6 + t] = o->veff[t];
+    v[9 + t] = o->D[t];
+  }
+  v[12] = o->T, v[13] = (double)o->nvn, v[14] = o->cpu;
+  v[15] = o->steps, v[16] = o->ncand, v[17] = o->pruned_mass;
+}
+
+static void lv_from_array(const double *v, lv_out *o)
+{
+  for (int t = 0; t < 3; t++) {
+    o->hits[t] = (unsigned long)v[t];
+    o->npairs[t] = v[3 + t];
+    o->veff[t] = v[6 + t];
+    o->D[t] = v[9 + t];
+  }
+  o->T = v[12], o->nvn = (size_t)v[13], o->cpu = v[14];
+  o->steps = v[15], o->ncand = v[16], o->pruned_mass = v[17];
+}
+
+static int lv_engine_run(const sbv_ctx *ctx, unsigned long stream,
+                         const lv_run *q, sb_engine_params *p, lv_out *o);
+
 int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
                 lv_out *o)
 {
@@ -231,6 +281,38 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
     return SB_ENOMEM;
   if (sbv_writing(ctx))
     return write_lv(ctx, stream, q, &p, o);
+  sbv_runkey k;
+  lv_key(ctx, stream, q, &k);
+  double v[LV_NSAVE], *vn;
+  size_t nvn;
+  int got = sbv_run_load(ctx, &k, v, LV_NSAVE, &vn, &nvn);
+  if (got < 0)
+    return got;
+  if (got) {
+    lv_from_array(v, o);
+    if (nvn != o->nvn || nvn > q->vcap ||
+        (q->vcap && !vn && !(vn = malloc(sizeof *vn)))) {
+      free(vn);  /* inconsistent file (or out of memory): run it */
+      memset(o, 0, sizeof *o);
+    } else {
+      o->vn = vn;
+      sbv_progress(ctx, "  (read back from the saved runs)");
+      return SB_SUCCESS;
+    }
+  }
+  int st = lv_engine_run(ctx, stream, q, &p, o);
+  if (!st) {
+    lv_to_array(o, v);
+    sbv_run_save(ctx, &k, v, LV_NSAVE, o->vn, o->nvn);
+  }
+  return st;
+}
+
+/* The run itself (lv_firsthit without the saved runs). */
+static int lv_engine_run(const sbv_ctx *ctx, unsigned long stream,
+                         const lv_run *q, sb_engine_params *pp, lv_out *o)
+{
+  sb_engine_params p = *pp;
   p.outcome = SB_OUTCOME_COUNT;
   sb_engine *e = sb_engine_alloc(&p);
   lvctx f = {q, NULL, o, NAN};
