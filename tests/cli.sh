@@ -106,6 +106,20 @@ else
 fi
 rm -f "$out.txt"
 
+# --- validate --resume: the runs are saved in OUT/runs and read back; the
+# second invocation gives the same CSV and says it read them
+rm -rf "$out-r"
+if "$sb" validate --resume --case 'V16/combined$' --out "$out-r" >/dev/null 2>&1 &&
+   cp "$out-r/validate.csv" "$out-r.csv" &&
+   "$sb" validate --resume --case 'V16/combined$' --out "$out-r" >/dev/null 2>"$out-r.err"; then
+  [ "$(ls "$out-r/runs" | grep -c '\.run$')" -gt 0 ] || fail "--resume saved no run"
+  cmp -s "$out-r.csv" "$out-r/validate.csv" || fail "--resume changed the records"
+  grep -q "read back from the saved runs" "$out-r.err" || fail "--resume read no run"
+else
+  fail "validate --resume failed"
+fi
+rm -rf "$out-r" "$out-r.csv" "$out-r.err"
+
 # --- pbe: constant kernel, monodisperse start: M0 = N0 / (1 + tau/2),
 # tau = K N0 t (analytic), file headers as documented
 expect_rc 0 "$sb" pbe --help

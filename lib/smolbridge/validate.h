@@ -65,8 +65,10 @@ typedef struct {
   void *render_data;
   const char *run_dir;     /**< directory where each finished engine run
                                 of a case is saved (one small text file
-                                per run; created if missing); NULL: runs
-                                are not saved */
+                                per run; created if missing; today the
+                                first-hit kernel runs of V2-V5, V7, V12
+                                and V16's Langevin cases); NULL: runs are
+                                not saved */
   int resume;              /**< 1: a run saved in run_dir with exactly the
                                 same inputs (seed, stream, every parameter,
                                 library version) is read back instead of
