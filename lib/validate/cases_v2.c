@@ -47,6 +47,7 @@
 
 #include "cases.h"
 #include "firsthit.h"
+#include "runsave.h"
 
 #define PI 3.14159265358979323846
 #define TEMP 296.15
@@ -211,6 +212,22 @@ static double thesis_kref(const v2_ages *a, const v2_phys *ph, double t)
                              (sqrt(PI * ph->D12) * P * t));
 }
 
+/* The record and note of a thesis run: res = collisions, K_ref (m^3/s),
+ * K_e (m^3/s), time reached (s), steps. */
+static int thesis_record(sbv_report *rep, const v2_phys *ph, size_t n,
+                         const double *res)
+{
+  const double nc = res[0], Kref = res[1], K = res[2];
+  char name[96];
+  snprintf(name, sizeof name, "V2/thesis/dp=%.2fum/K_e/K_ref", ph->d * 1e6);
+  double scale = nc > 0.0 ? K / nc / Kref : 1.0;
+  int st = sbv_add_poisson(rep, name, (unsigned long)nc, scale, 1.0);
+  sbv_note(rep, "- d_p = %.2f um: n = %zu, %.3g steps, %.0f collisions in "
+           "%.3g s; K_ref/K_L = %.4f (transient), K_e/K_co = %.3f",
+           ph->d * 1e6, n, res[4], nc, res[3], Kref / ph->KL, K / ph->Kco);
+  return st;
+}
+
 static int thesis(const sbv_ctx *ctx, sbv_report *rep)
 {
   static const double dps[3] = {0.75e-6, 1e-6, 2e-6};
@@ -234,6 +251,26 @@ static int thesis(const sbv_ctx *ctx, sbv_report *rep)
     size_t n = (size_t)floor(phi * L * L * L / vp + 0.5);
     double V = L * L * L, P = 0.5 * (double)n * (double)(n - 1);
     double t_end = target * V / (ph.KL * (1.0 + sqrt(24.0 * phi)) * P);
+    /* the run's results, saved (runsave.h): collisions, K_ref, K, t,
+     * steps */
+    sbv_runkey key;
+    sbv_runkey_init(&key, ctx, "v2-thesis", 210 + (unsigned long)id);
+    sbv_runkey_num(&key, "d", ph.d);
+    sbv_runkey_num(&key, "n", (double)n);
+    sbv_runkey_num(&key, "L", L);
+    sbv_runkey_num(&key, "t_end", t_end);
+    double res[5], *extra;
+    size_t nextra;
+    int got = sbv_run_load(ctx, &key, res, 5, &extra, &nextra);
+    free(extra);
+    if (got < 0)
+      return got;
+    if (got) {
+      sbv_progress(ctx, "  V2 thesis d=%.2fum: read back from the saved "
+                   "runs", ph.d * 1e6);
+      st = thesis_record(rep, &ph, n, res);
+      continue;
+    }
     sb_engine_params p;
     sbv_engine_params(&p);
     p.L[0] = p.L[1] = p.L[2] = L;
@@ -261,21 +298,16 @@ static int thesis(const sbv_ctx *ctx, sbv_report *rep)
       sbv_progress(ctx, "  V2 thesis d=%.2fum: %d%%", ph.d * 1e6, 5 * k);
     }
     if (!st) {
-      double t = sb_engine_time(e);
-      double Kref = thesis_kref(&ag, &ph, t);
       sb_engine_stats es;
       sb_engine_get_stats(e, &es);
-      double K;
-      sb_engine_kernel(e, 0.95, &K, NULL, NULL);
-      char name[96];
-      snprintf(name, sizeof name, "V2/thesis/dp=%.2fum/K_e/K_ref",
-               ph.d * 1e6);
-      double scale = es.ncoll ? K / (double)es.ncoll / Kref : 1.0;
-      st = sbv_add_poisson(rep, name, (unsigned long)es.ncoll, scale, 1.0);
-      sbv_note(rep, "- d_p = %.2f um: n = %zu, %.3g steps, %llu "
-               "collisions in %.3g s; K_ref/K_L = %.4f (transient), "
-               "K_e/K_co = %.3f", ph.d * 1e6, n, (double)es.steps,
-               (unsigned long long)es.ncoll, t, Kref / ph.KL, K / ph.Kco);
+      double t = sb_engine_time(e);
+      res[0] = (double)es.ncoll;
+      res[1] = thesis_kref(&ag, &ph, t);
+      sb_engine_kernel(e, 0.95, &res[2], NULL, NULL);
+      res[3] = t;
+      res[4] = (double)es.steps;
+      sbv_run_save(ctx, &key, res, 5, NULL, 0);
+      st = thesis_record(rep, &ph, n, res);
     }
     sb_engine_free(e);
     free(ag.r);
