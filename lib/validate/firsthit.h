@@ -34,6 +34,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
 #include "cases.h"
 
@@ -102,6 +103,12 @@ FILE *fh_ini_open(const sbv_ctx *ctx, unsigned long stream,
 /* The file name set by fh_set_name (then cleared), or dflt, in buf. */
 const char *fh_ini_name(sbv_report *rep, char *buf, size_t n,
                         const char *dflt);
+
+/* Run engine e to time T (sb_engine_run_until); a long run, more than
+ * FH_LONG_RUN particle-steps (minutes), in 20 parts with a progress line
+ * after each (the same steps: the run is unchanged). */
+#define FH_LONG_RUN 1e9
+int fh_run_until(const sbv_ctx *ctx, sb_engine *e, double T);
 
 /* (T - t1) + 2 a_eff (sqrt(T) - sqrt(t1)) / sqrt(pi D), D = b2. */
 double fh_teff(const fh_run *q);

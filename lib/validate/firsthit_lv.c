@@ -373,7 +373,7 @@ static int lv_engine_run(const sbv_ctx *ctx, unsigned long stream,
     st = sb_engine_set_detector_chord(e, 1);
   clock_t c0 = clock();
   if (!st)
-    st = sb_engine_run_until(e, q->T);
+    st = fh_run_until(ctx, e, q->T);
   o->cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
   if (!st) {
     sb_engine_stats es;
