@@ -187,6 +187,10 @@ typedef struct {
                               pair's contact distance r_i + r_j) */
   char names[2][16];       /* write mode: species section names ("": p,
                               or p0 and p1) */
+  int default_rng;         /* 1: the engine's default generator (Philox
+                              streams, sb_engine_params_default) instead
+                              of the cases' pinned one; bench/, not in
+                              write mode) */
 } lv_run;
 
 typedef struct {

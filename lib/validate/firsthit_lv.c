@@ -240,6 +240,8 @@ static void lv_key(const sbv_ctx *ctx, unsigned long stream,
                                    "vcap", "gx", "gy", "gz", "G"};
   for (size_t i = 0; i < sizeof in / sizeof in[0]; i++)
     sbv_runkey_num(k, nm[i], in[i]);
+  if (q->default_rng)
+    sbv_runkey_num(k, "default_rng", 1.0);
 }
 
 /* lv_out's numbers (not vn) to and from a flat array. */
@@ -279,6 +281,12 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
   size_t ntot = q->N[0] + (q->nsp > 1 ? q->N[1] : 0);
   if (fh_cube_params(ctx, stream, q->L, q->dt, ntot, &p))
     return SB_ENOMEM;
+  if (q->default_rng) {
+    sb_engine_params d;
+    sb_engine_params_default(&d);
+    p.rng_type = d.rng_type;
+    p.streams = d.streams;
+  }
   if (sbv_writing(ctx))
     return write_lv(ctx, stream, q, &p, o);
   sbv_runkey k;
