@@ -15,10 +15,28 @@
 #include "common/internal.h"
 #include "collide_internal.h"
 
-#define EXIT_COLS 11  /* t, face, species, family, mass, x, y, z, ux, uy, uz */
+static const char *const faces[6] = {"x_lo", "x_hi", "y_lo",
+                                     "y_hi", "z_lo", "z_hi"};
+
+/* exits.csv (again) with its header; SB_EIO with the path. */
+static int exits_open(const sbi_col_config *c, sbi_col_run *r)
+{
+  char path[1100];
+  snprintf(path, sizeof path, "%s/exits.csv", c->output);
+  if (r->exits_f)
+    fclose(r->exits_f);
+  r->exits_f = fopen(path, "w");
+  if (!r->exits_f)
+    return sbi_error(SB_EIO, "[observe] exits", "cannot write %s", path);
+  fprintf(r->exits_f, "t,face,species,family,mass,x,y,z,ux,uy,uz\n");
+  return SB_SUCCESS;
+}
 
 /* sb_engine_outflow_fn: the state is the step's end, outside the box by
- * at most one step's flight; back along the chord to the face. */
+ * at most one step's flight; back along the chord to the face.  The row
+ * goes straight to exits.csv: a long run with open faces sees millions
+ * of exits, none is kept in memory, and a run that stops keeps the rows
+ * written. */
 static int on_exit(const sb_engine *e, size_t i, int face, double t_exit,
                    void *vr)
 {
@@ -35,56 +53,43 @@ static int on_exit(const sb_engine *e, size_t i, int face, double t_exit,
   sbi_col_batches_exit(r, face, fam, m, x, u);  /* [observe] batch_steps */
   if (!r->record_exits)
     return SB_SUCCESS;
-  if (r->exit_n + 1 > r->exit_cap) {
-    size_t cap = r->exit_cap ? 2 * r->exit_cap : 1024;
-    double *q = realloc(r->exit_rows, cap * EXIT_COLS * sizeof *q);
-    if (!q)
-      return SB_ENOMEM;
-    r->exit_rows = q;
-    r->exit_cap = cap;
-  }
-  double *row = r->exit_rows + r->exit_n * EXIT_COLS;
-  row[0] = t_exit;
-  row[1] = face;
-  row[2] = (double)sb_engine_species_of(e)[i];
-  row[3] = fam;
-  row[4] = m;
-  for (int k = 0; k < 3; k++) {
-    row[5 + k] = x[k];
-    row[8 + k] = u[k];
-  }
-  r->exit_n++;
-  return SB_SUCCESS;
+  const sbi_col_config *c = r->exits_c;
+  if (!r->exits_f && exits_open(c, r))
+    return SB_EIO;
+  FILE *f = r->exits_f;
+  fprintf(f, "%.17g,%s,%s,%d,%.17g", t_exit,
+          face >= 0 && face < 6 ? faces[face] : "?",
+          sbi_col_short_name(c, sb_engine_species_of(e)[i]), fam, m);
+  for (int k = 0; k < 3; k++)
+    fprintf(f, ",%.17g", x[k]);
+  for (int k = 0; k < 3; k++)
+    fprintf(f, ",%.17g", u[k]);
+  return fputc('\n', f) == EOF
+             ? sbi_error(SB_EIO, "[observe] exits", "cannot write exits.csv")
+             : SB_SUCCESS;
 }
 
 int sbi_col_exits_attach(const sbi_col_config *c, sbi_col_run *r)
 {
   r->record_exits = c->exits > 0;
+  r->exits_c = c;
   return c->exits > 0 || c->batch_steps > 0
              ? sb_engine_set_outflow_fn(r->e, on_exit, r)
              : SB_SUCCESS;
 }
 
-void sbi_col_exits_reset(sbi_col_run *r) { r->exit_n = 0; }
-
-int sbi_col_exits_csv(const sbi_col_config *c, const sbi_col_run *r,
-                      const char *path)
+int sbi_col_exits_reset(sbi_col_run *r)
 {
-  static const char *const faces[6] = {"x_lo", "x_hi", "y_lo",
-                                       "y_hi", "z_lo", "z_hi"};
-  FILE *f = fopen(path, "w");
-  if (!f)
+  /* the warm-up's rows go: the file starts again */
+  return r->exits_f ? exits_open(r->exits_c, r) : SB_SUCCESS;
+}
+
+int sbi_col_exits_close(const sbi_col_config *c, sbi_col_run *r)
+{
+  if (!r->exits_f && exits_open(c, r))  /* no exit: the header alone */
     return -1;
-  fprintf(f, "t,face,species,family,mass,x,y,z,ux,uy,uz\n");
-  for (size_t q = 0; q < r->exit_n; q++) {
-    const double *row = r->exit_rows + q * EXIT_COLS;
-    const int face = (int)row[1];
-    fprintf(f, "%.17g,%s,%s,%.0f", row[0],
-            face >= 0 && face < 6 ? faces[face] : "?",
-            sbi_col_short_name(c, (size_t)row[2]), row[3]);
-    for (int k = 4; k < EXIT_COLS; k++)
-      fprintf(f, ",%.17g", row[k]);
-    fputc('\n', f);
-  }
-  return fclose(f) ? -1 : 0;
+  int bad = ferror(r->exits_f);
+  bad |= fclose(r->exits_f) != 0;
+  r->exits_f = NULL;
+  return bad ? -1 : 0;
 }

@@ -14,8 +14,6 @@
 #include "common/internal.h"
 #include "collide_internal.h"
 
-#define GRID_COLS 8  /* t, i, j, k, rho, rho_ux, rho_uy, rho_uz */
-
 int sbi_col_grid_on(const sbi_col_config *c) { return c->ngrid > 0; }
 
 /* Cells along each axis (n[2] = 1 in 2-D). */
@@ -25,62 +23,62 @@ static void grid_cells(const sbi_col_config *c, size_t n[3])
     n[k] = k < c->ngrid && (k < 2 || c->dim == 3) ? (size_t)c->grid[k] : 1;
 }
 
+/* grid.csv with its header; SB_EIO with the path. */
+static int grid_open(const sbi_col_config *c, sbi_col_run *r)
+{
+  char path[1100];
+  snprintf(path, sizeof path, "%s/grid.csv", c->output);
+  r->grid_f = fopen(path, "w");
+  if (!r->grid_f)
+    return sbi_error(SB_EIO, "[observe] grid", "cannot write %s", path);
+  fprintf(r->grid_f, "t,i,j,k,rho,rho_ux,rho_uy,rho_uz\n");
+  return SB_SUCCESS;
+}
+
+/* Each frame goes straight to grid.csv (a long run has many frames of
+ * many cells: none is kept in memory, and a run that stops keeps the
+ * frames written). */
 int sbi_col_grid_sample(const sbi_col_config *c, sbi_col_run *r)
 {
   if (!sbi_col_grid_on(c))
     return SB_SUCCESS;
   const double t = sb_engine_time(r->e);
-  if (r->grid_n && r->grid_rows[(r->grid_n - 1) * GRID_COLS] == t)
+  if (r->grid_frames && r->grid_last_t == t)
     return SB_SUCCESS;  /* this time has its frame */
+  if (!r->grid_f && grid_open(c, r))
+    return SB_EIO;
   size_t n[3];
   grid_cells(c, n);
   const size_t nc = n[0] * n[1] * n[2];
-  if (r->grid_n + nc > r->grid_cap) {
-    size_t cap = r->grid_cap ? 2 * r->grid_cap : nc;
-    while (cap < r->grid_n + nc)
-      cap *= 2;
-    double *q = realloc(r->grid_rows, cap * GRID_COLS * sizeof *q);
-    if (!q)
-      return sbi_error(SB_ENOMEM, "[observe] grid", "out of memory");
-    r->grid_rows = q;
-    r->grid_cap = cap;
-  }
   double *rho = malloc(nc * sizeof *rho), *mom = malloc(3 * nc * sizeof *mom);
   int st = rho && mom ? SB_SUCCESS : SB_ENOMEM;
   if (!st)
     st = sb_engine_grid_fields(r->e, n, !strcmp(c->grid_scheme, "cic")
                                             ? SB_GRID_CIC
                                             : SB_GRID_NGP, -1, rho, mom);
-  for (size_t q = 0; q < nc && !st; q++) {
-    double *row = r->grid_rows + (r->grid_n + q) * GRID_COLS;
-    row[0] = t;
-    row[1] = (double)(q % n[0]);
-    row[2] = (double)(q / n[0] % n[1]);
-    row[3] = (double)(q / (n[0] * n[1]));
-    row[4] = rho[q];
-    memcpy(row + 5, mom + 3 * q, 3 * sizeof *row);
+  for (size_t q = 0; q < nc && !st; q++)
+    fprintf(r->grid_f, "%.17g,%zu,%zu,%zu,%.17g,%.17g,%.17g,%.17g\n", t,
+            q % n[0], q / n[0] % n[1], q / (n[0] * n[1]), rho[q],
+            mom[3 * q], mom[3 * q + 1], mom[3 * q + 2]);
+  if (!st && ferror(r->grid_f))
+    st = sbi_error(SB_EIO, "[observe] grid", "cannot write grid.csv");
+  if (!st) {
+    r->grid_frames++;
+    r->grid_last_t = t;
   }
-  if (!st)
-    r->grid_n += nc;
   free(rho);
   free(mom);
   return st;
 }
 
-int sbi_col_grid_csv(const sbi_col_config *c, const sbi_col_run *r,
-                     const char *path)
+int sbi_col_grid_close(const sbi_col_config *c, sbi_col_run *r)
 {
-  FILE *f = fopen(path, "w");
-  if (!f)
+  if (!r->grid_f && grid_open(c, r))  /* no frame: the header alone */
     return -1;
-  fprintf(f, "t,i,j,k,rho,rho_ux,rho_uy,rho_uz\n");
-  for (size_t q = 0; q < r->grid_n; q++) {
-    const double *row = r->grid_rows + q * GRID_COLS;
-    fprintf(f, "%.17g,%.0f,%.0f,%.0f,%.17g,%.17g,%.17g,%.17g\n", row[0],
-            row[1], row[2], row[3], row[4], row[5], row[6], row[7]);
-  }
-  (void)c;
-  return fclose(f) ? -1 : 0;
+  int bad = ferror(r->grid_f);
+  bad |= fclose(r->grid_f) != 0;
+  r->grid_f = NULL;
+  return bad ? -1 : 0;
 }
 
 void sbi_col_grid_json(FILE *f, const sbi_col_config *c,
@@ -91,5 +89,5 @@ void sbi_col_grid_json(FILE *f, const sbi_col_config *c,
   const size_t nc = n[0] * n[1] * n[2];
   fprintf(f, "  \"grid\": {\"n\": [%zu, %zu, %zu], \"scheme\": \"%s\", "
           "\"frames\": %zu, \"file\": \"grid.csv\"},\n", n[0], n[1], n[2],
-          c->grid_scheme, nc ? r->grid_n / nc : 0);
+          c->grid_scheme, nc ? r->grid_frames : 0);
 }

@@ -246,21 +246,25 @@ typedef struct {
   double *dep;                  /* deposits sampled with the series: rows */
   size_t ndep, capdep;          /* t, per face x_lo .. z_hi (walls.c) */
   int dep_on;                   /* a face absorbs */
-  double *grid_rows;            /* [observe] grid frames (collide_grid.c) */
-  size_t grid_n, grid_cap;      /* rows, room */
-  double *exit_rows;            /* [observe] exits (collide_exits.c) */
-  size_t exit_n, exit_cap;
+  FILE *grid_f;                 /* [observe] grid: grid.csv, written as
+                                   the frames come (collide_grid.c) */
+  size_t grid_frames;           /* frames written */
+  double grid_last_t;           /* time of the last frame, s */
+  FILE *exits_f;                /* [observe] exits: exits.csv, written as
+                                   the particles leave (collide_exits.c) */
+  const sbi_col_config *exits_c;/* for the species names of its rows */
   int record_exits;             /* [observe] exits: rows of exits.csv */
 } sbi_col_run;
 
 /* ---------------------------------------------------- collide_exits.c */
 
-/* [observe] exits (and batch_steps): the outflow callback that records
- * each exit, the reset at the end of the warm-up, exits.csv. */
+/* [observe] exits (and batch_steps): the outflow callback that writes
+ * each exit to exits.csv as it happens, the reset at the end of the
+ * warm-up (the file starts again; SB_EIO), and the close at the end (the
+ * header alone if no particle left; 0 or -1 on a write error). */
 int sbi_col_exits_attach(const sbi_col_config *c, sbi_col_run *r);
-void sbi_col_exits_reset(sbi_col_run *r);
-int sbi_col_exits_csv(const sbi_col_config *c, const sbi_col_run *r,
-                      const char *path);
+int sbi_col_exits_reset(sbi_col_run *r);
+int sbi_col_exits_close(const sbi_col_config *c, sbi_col_run *r);
 
 /* --------------------------------------------------- collide_batches.c */
 
@@ -290,8 +294,9 @@ void sbi_col_batches_free(sbi_col_batches *b);
  * per time), grid.csv, its summary.json entry. */
 int sbi_col_grid_on(const sbi_col_config *c);
 int sbi_col_grid_sample(const sbi_col_config *c, sbi_col_run *r);
-int sbi_col_grid_csv(const sbi_col_config *c, const sbi_col_run *r,
-                     const char *path);
+/* Close grid.csv (written frame by frame; the header alone if no frame);
+ * 0 or -1 on a write error. */
+int sbi_col_grid_close(const sbi_col_config *c, sbi_col_run *r);
 void sbi_col_grid_json(FILE *f, const sbi_col_config *c,
                        const sbi_col_run *r);
 
@@ -386,7 +391,7 @@ typedef struct {
 int sbi_col_pairs_sample(sbi_col_pairs *ps, const sb_engine *e);
 /* Write series.csv, summary.json, sizes.csv, hits.csv and manifest.txt;
  * status "ok" or "failed" (summary.json of a failed run says why). */
-int sbi_col_out_write(const sbi_col_config *c, const sbi_col_run *r,
+int sbi_col_out_write(const sbi_col_config *c, sbi_col_run *r,
                       const sbi_col_pairs *ps, double secs, const char *status,
                       const char *why, long nsnap);
 /* Snapshot path of number k. */

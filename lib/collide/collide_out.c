@@ -496,7 +496,7 @@ static void json_contexts(FILE *f, const sbi_col_config *c,
     json_firsthit(f, c, r);
 }
 
-int sbi_col_out_write(const sbi_col_config *c, const sbi_col_run *r,
+int sbi_col_out_write(const sbi_col_config *c, sbi_col_run *r,
                       const sbi_col_pairs *ps, double secs, const char *status,
                       const char *why, long nsnap)
 {
@@ -507,14 +507,12 @@ int sbi_col_out_write(const sbi_col_config *c, const sbi_col_run *r,
     err |= write_series(path, r, c, ps);
     snprintf(files[nf++], 32, "series.csv");
   }
-  if (r->e && c->exits > 0) {
-    snprintf(path, sizeof path, "%s/exits.csv", c->output);
-    err |= sbi_col_exits_csv(c, r, path);
+  if (r->e && c->exits > 0) {  /* written as the run went */
+    err |= sbi_col_exits_close(c, r);
     snprintf(files[nf++], 32, "exits.csv");
   }
   if (r->e && sbi_col_grid_on(c)) {
-    snprintf(path, sizeof path, "%s/grid.csv", c->output);
-    err |= sbi_col_grid_csv(c, r, path);
+    err |= sbi_col_grid_close(c, r);
     snprintf(files[nf++], 32, "grid.csv");
   }
   if (r->agglo) {

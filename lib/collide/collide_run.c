@@ -115,7 +115,8 @@ static int run_steps(sbi_col_config *c, sbi_col_run *r, sbi_col_pairs *ps,
   if (r->warm > 0) {
     st = progress_step(r, t0 + r->warm, NULL, rp, stopped);
     sb_engine_reset_counters(e);
-    sbi_col_exits_reset(r);  /* as the outflow counters */
+    if (!st)
+      st = sbi_col_exits_reset(r);  /* as the outflow counters */
     if (r->bridge)
       sb_engine_bridge_reset(r->bridge);
     if (r->agglo)

@@ -39,8 +39,10 @@ void sbi_col_run_free(sbi_col_run *r)
   if (r->field_rng)
     gsl_rng_free(r->field_rng);
   free(r->dep);
-  free(r->grid_rows);
-  free(r->exit_rows);
+  if (r->grid_f)  /* a run that did not reach its outputs */
+    fclose(r->grid_f);
+  if (r->exits_f)
+    fclose(r->exits_f);
   memset(r, 0, sizeof *r);
 }
 
