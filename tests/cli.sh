@@ -120,6 +120,18 @@ else
 fi
 rm -rf "$out-r" "$out-r.csv" "$out-r.err"
 
+# --- V12 runs its flat sweep's engine runs concurrently on the OpenMP
+# threads: the records must not depend on how many there are
+rm -rf "$out-t1" "$out-t2"
+if OMP_NUM_THREADS=1 "$sb" validate --case 'V12/langevin-detector$' --out "$out-t1" >/dev/null 2>&1 &&
+   OMP_NUM_THREADS=2 "$sb" validate --case 'V12/langevin-detector$' --out "$out-t2" >/dev/null 2>&1; then
+  cmp -s "$out-t1/validate.csv" "$out-t2/validate.csv" ||
+    fail "V12 records differ between 1 and 2 OpenMP threads"
+else
+  fail "validate --case V12/langevin-detector failed"
+fi
+rm -rf "$out-t1" "$out-t2"
+
 # --- pbe: constant kernel, monodisperse start: M0 = N0 / (1 + tau/2),
 # tau = K N0 t (analytic), file headers as documented
 expect_rc 0 "$sb" pbe --help

@@ -192,22 +192,126 @@ static void keep_vn(v12_vel *vel, int *nvel, double kn, int which,
     }
 }
 
-static int flat(const sbv_ctx *ctx, sbv_report *rep, double *Hrow,
-                size_t *nH, v12_vel *vel, int *nvel)
+/* One engine run of the flat sweep: its place in the sweep, its sizing
+ * (v12_run_cap's arguments) and its outcome. */
+typedef struct {
+  int k, det;          /* Kn_D index, LV_* */
+  double dtt, hits, meas, budget, nmax;
+  size_t vcap;
+  lv_run q;
+  lv_out o;
+  int st;
+} v12_task;
+
+/* The runs of the flat sweep in row order: per Kn_D the reference (if
+ * any), then every detector and dt/tau_p the mode asks for.  Returns the
+ * count (at most 6 + 6 * 30). */
+static size_t flat_tasks(int full, const double *kns, int nkn,
+                         v12_task *tk)
 {
-  static const double kn_full[] = {0.01, 0.05, 0.2, 0.5, 1.0, 3.0};
-  static const double kn_quick[] = {0.05, 0.5, 3.0};
   static const double dts[] = {0.01, 0.1, 1.0, 10.0, 100.0, 1000.0};
-  const int full = ctx->full;
-  const double *kns = full ? kn_full : kn_quick;
-  const int nkn = full ? 6 : 3;
-  const double hits = full ? 40000.0 : 250.0, meas = full ? 300.0 : 150.0;
   /* --full: the verdict rows' runs (reference, `langevin`) for +-1% */
+  const double hits = full ? 40000.0 : 250.0, meas = full ? 300.0 : 150.0;
   const double hits_ref = full ? V12_HITS_REF : hits;
   const double hits_lv = full ? V12_HITS_LV : hits;
   const double budget = full ? V12_BUDGET_FULL : V12_BUDGET;
   const double nmax = full ? V12_NMAX_FULL : V12_NMAX;
   const size_t vcap = full ? 20000 : 2000;
+  size_t n = 0;
+  for (int k = 0; k < nkn; k++) {
+    if (full || fabs(kns[k] - 0.5) < 1e-9)
+      tk[n++] = (v12_task){.k = k, .det = LV_CHORD, .dtt = 0.01,
+                           .hits = hits_ref, .meas = meas, .budget = budget,
+                           .nmax = nmax, .vcap = vcap};
+    for (int det = LV_LANGEVIN; det <= LV_EXACT; det++)
+      for (int t = 0; t < 6; t++) {
+        const double dtt = dts[t];
+        if (det == LV_CHORD && dtt == 0.01)
+          continue;  /* the reference */
+        const double dt2 = kns[k] > 1.0 ? 10.0 : 100.0;
+        if (!full && (det == LV_LANGEVIN ? (dtt != 1.0 && dtt != dt2)
+                                         : dtt != 1.0))
+          continue;
+        if (full && det != LV_LANGEVIN && det != LV_CHORD && dtt == 0.01)
+          continue;
+        const int keep = det == LV_LANGEVIN && (dtt == 1.0 || dtt == 10.0);
+        const int lv = det == LV_LANGEVIN;
+        tk[n++] = (v12_task){.k = k, .det = det, .dtt = dtt,
+                             .hits = lv ? hits_lv : hits, .meas = meas,
+                             .budget = lv ? budget : V12_BUDGET,
+                             .nmax = lv ? nmax : V12_NMAX,
+                             .vcap = keep ? vcap : 0};
+      }
+  }
+  return n;
+}
+
+static int by_cost(const void *a, const void *b)
+{
+  const double x = ((const double *)a)[0], y = ((const double *)b)[0];
+  return (x < y) - (x > y);  /* descending */
+}
+
+/* Make run t (one engine thread and its own CPU clock when par). */
+static void task_run(const sbv_ctx *ctx, const double *kns, v12_task *t,
+                     int par)
+{
+  v12_phys ph;
+  v12_physics(kns[t->k], &ph);
+  if (t->det == LV_CHORD && t->dtt == 0.01)
+    sbv_progress(ctx, "  V12 flat Kn_D=%g: reference", kns[t->k]);
+  else
+    sbv_progress(ctx, "  V12 flat Kn_D=%g %s dt/tau=%g", kns[t->k],
+                 v12_det_name(t->det), t->dtt);
+  t->q.threads = par ? 1 : 0;
+  t->st = v12_run_cap(ctx, 1200 + 10 * (unsigned long)t->k, &ph, t->det,
+                      t->dtt, t->hits, t->meas, t->vcap, t->budget, t->nmax,
+                      &t->q, &t->o);
+}
+
+/* Make the runs before the rows.  Each is seeded from its own stream, so
+ * their order and concurrency change nothing: they run on the OpenMP
+ * threads at once, one engine thread each, the largest first.  (Write
+ * mode runs each in row order as its rows are made: a file is named
+ * and paired with the record that follows it.) */
+static int flat_run(const sbv_ctx *ctx, const double *kns, v12_task *tk,
+                    size_t n)
+{
+  double *order = malloc(2 * n * sizeof *order);
+  if (!order)
+    return SB_ENOMEM;
+  for (size_t r = 0; r < n; r++) {  /* particle-steps of each run */
+    v12_phys ph;
+    v12_physics(kns[tk[r].k], &ph);
+    lv_run q;
+    v12_size_cap(&ph, tk[r].det, tk[r].dtt, tk[r].hits, V12_WARM * ph.tau,
+                 (V12_WARM + tk[r].meas) * ph.tau, 0, tk[r].budget,
+                 tk[r].nmax, &q);
+    order[2 * r] = (double)q.N[0] * q.T / q.dt;
+    order[2 * r + 1] = (double)r;
+  }
+  qsort(order, n, 2 * sizeof *order, by_cost);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1)
+#endif
+  for (size_t m = 0; m < n; m++)
+    task_run(ctx, kns, &tk[(size_t)order[2 * m + 1]], 1);
+  free(order);
+  for (size_t r = 0; r < n; r++)
+    if (tk[r].st)
+      return tk[r].st;
+  return SB_SUCCESS;
+}
+
+static int flat(const sbv_ctx *ctx, sbv_report *rep, double *Hrow,
+                size_t *nH, v12_vel *vel, int *nvel)
+{
+  static const double kn_full[] = {0.01, 0.05, 0.2, 0.5, 1.0, 3.0};
+  static const double kn_quick[] = {0.05, 0.5, 3.0};
+  const int full = ctx->full;
+  const double *kns = full ? kn_full : kn_quick;
+  const int nkn = full ? 6 : 3;
+  const double hits = full ? 40000.0 : 250.0, meas = full ? 300.0 : 150.0;
   *nvel = full ? 2 : 1;
   vel[0].kn = full ? 0.05 : 0.5;
   vel[1].kn = 0.5;
@@ -223,27 +327,38 @@ static int flat(const sbv_ctx *ctx, sbv_report *rep, double *Hrow,
            "dt/tau_p = 1 and 100 (1 and 10 at Kn_D = 3) is tested against "
            "the reference where it exists and against itself elsewhere; "
            "the other detectors at dt/tau_p = 1.");
-  int st = SB_SUCCESS;
+  v12_task *tk = calloc(6 + 6 * 30, sizeof *tk);
   double *plot = malloc(nkn * 30 * 6 * sizeof *plot);
-  if (!plot)
+  if (!tk || !plot) {
+    free(tk);
+    free(plot);
     return SB_ENOMEM;
+  }
+  const size_t ntask = flat_tasks(full, kns, nkn, tk);
+  const int writing = sbv_writing(ctx);
+  int st = writing ? SB_SUCCESS : flat_run(ctx, kns, tk, ntask);
   size_t np = 0;
   *nH = 0;
+  /* the rows, in order */
+  size_t r = 0;
   for (int k = 0; k < nkn && !st; k++) {
     v12_phys ph;
     v12_physics(kns[k], &ph);
-    const int have_ref = full || fabs(kns[k] - 0.5) < 1e-9;
-    lv_run qr, ql1 = {0}, q;
-    lv_out orf, ol1 = {0}, o;
+    lv_run qr, ql1 = {0};
+    lv_out orf, ol1 = {0};
+    memset(&qr, 0, sizeof qr);
     memset(&orf, 0, sizeof orf);
-    if (have_ref) {
-      sbv_progress(ctx, "  V12 flat Kn_D=%g: reference", kns[k]);
-      st = v12_run_cap(ctx, 1200 + 10 * k, &ph, LV_CHORD, 0.01, hits_ref,
-                       meas, vcap, budget, nmax, &qr, &orf);
-      if (st)
-        break;
+    const int have_ref = r < ntask && tk[r].k == k && tk[r].det == LV_CHORD &&
+                         tk[r].dtt == 0.01;
+    if (have_ref && writing && (task_run(ctx, kns, &tk[r], 0), tk[r].st))
+      st = tk[r].st;
+    if (have_ref && !st) {
+      qr = tk[r].q;
+      orf = tk[r].o;
+      tk[r++].o.vn = NULL;
       keep_vn(vel, nvel, kns[k], -1, &orf);
       free(orf.vn);
+      orf.vn = NULL;
     }
     double Kref = ph.Kgh, Kl, Kh;
     if (have_ref && !lv_kernel(&qr, &orf, 0, &Kref, &Kl, &Kh)) {
@@ -251,74 +366,67 @@ static int flat(const sbv_ctx *ctx, sbv_report *rep, double *Hrow,
                "reference K/K_GH = %.4f [%.4f, %.4f] (%lu contacts, %.1f s)",
                kns[k], ph.tau, qr.N[0], qr.L, Kref / ph.Kgh, Kl / ph.Kgh,
                Kh / ph.Kgh, orf.hits[0], orf.cpu);
-      double *r = plot + 6 * np++;
-      r[0] = kns[k], r[1] = 0.01, r[2] = LV_CHORD, r[3] = 1.0;
-      r[4] = Kl / Kref, r[5] = Kh / Kref;
+      double *row = plot + 6 * np++;
+      row[0] = kns[k], row[1] = 0.01, row[2] = LV_CHORD, row[3] = 1.0;
+      row[4] = Kl / Kref, row[5] = Kh / Kref;
     }
-    for (int det = LV_LANGEVIN; det <= LV_EXACT && !st; det++)
-      for (int t = 0; t < 6 && !st; t++) {
-        const double dtt = dts[t];
-        if (det == LV_CHORD && dtt == 0.01)
-          continue;  /* the reference */
-        const double dt2 = kns[k] > 1.0 ? 10.0 : 100.0;
-        if (!full && (det == LV_LANGEVIN ? (dtt != 1.0 && dtt != dt2)
-                                         : dtt != 1.0))
-          continue;
-        if (full && det != LV_LANGEVIN && det != LV_CHORD && dtt == 0.01)
-          continue;
-        sbv_progress(ctx, "  V12 flat Kn_D=%g %s dt/tau=%g", kns[k],
-                     v12_det_name(det), dtt);
-        const int keep = det == LV_LANGEVIN && (dtt == 1.0 || dtt == 10.0);
-        if (det == LV_LANGEVIN)
-          st = v12_run_cap(ctx, 1200 + 10 * k, &ph, det, dtt, hits_lv, meas,
-                           keep ? vcap : 0, budget, nmax, &q, &o);
-        else
-          st = v12_run(ctx, 1200 + 10 * k, &ph, det, dtt, hits, meas,
-                       keep ? vcap : 0, &q, &o);
-        if (st)
-          break;
-        if (keep)
-          keep_vn(vel, nvel, kns[k], dtt == 1.0 ? 0 : 1, &o);
-        free(o.vn);
-        double K, lo, hi;
-        lv_kernel(&q, &o, 0, &K, &lo, &hi);
-        char name[96];
-        snprintf(name, sizeof name, "V12/flat/Kn=%g/dt=%g/%s/K_e/K_ref",
-                 kns[k], dtt, v12_det_name(det));
-        if (det == LV_LANGEVIN && have_ref)
-          st = lv_add_compare(rep, name, &q, &o, &qr, &orf, 0);
-        else if (det == LV_LANGEVIN && dtt == 1.0) {
-          ql1 = q;  /* the self-consistency pair below */
-          ol1 = o;
-        } else if (det == LV_LANGEVIN) {
-          snprintf(name, sizeof name, "V12/flat/Kn=%g/dt=%g/langevin/"
-                   "K_e/K_e(dt=1)", kns[k], dtt);
-          st = lv_add_compare(rep, name, &q, &o, &ql1, &ol1, 0);
-        } else {
-          if (have_ref)  /* K_ref from the reference run */
-            sbv_ini_no_expect(rep);
-          st = sbv_add_info(rep, name, K / Kref, 1.0, lo / Kref, hi / Kref,
-                            0.95);
-        }
-        if (np < (size_t)nkn * 30) {
-          double *r = plot + 6 * np++;
-          r[0] = kns[k], r[1] = dtt, r[2] = det, r[3] = K / Kref;
-          r[4] = lo / Kref, r[5] = hi / Kref;
-        }
-        if (det == LV_LANGEVIN && dtt == (full ? 10.0 : 1.0) &&
-            *nH < 16) {  /* the long-time kernel H at this Kn_D */
-          double *h = Hrow + 8 * (*nH)++;
-          double c = ph.tau / pow(ph.d, 3);  /* H = K m_red/(f_red R^3) */
-          h[0] = kns[k], h[1] = K * c, h[2] = lo * c, h[3] = hi * c;
-          h_expect(ctx, rep, kns[k], c);
-        }
-        sbv_note(rep, "  - %s dt/tau_p = %g: K/K_ref = %.4f [%.4f, %.4f], "
-                 "%lu contacts, N = %zu, %.3g steps, %.2f candidates per "
-                 "particle and step, %.2f s", v12_det_name(det), dtt,
-                 K / Kref, lo / Kref, hi / Kref, o.hits[0], q.N[0], o.steps,
-                 o.ncand / (o.steps * (double)q.N[0]), o.cpu);
+    for (; r < ntask && tk[r].k == k && !st; r++) {
+      if (writing && (task_run(ctx, kns, &tk[r], 0), tk[r].st)) {
+        st = tk[r].st;
+        break;
       }
+      const int det = tk[r].det;
+      const double dtt = tk[r].dtt;
+      lv_run q = tk[r].q;
+      lv_out o = tk[r].o;
+      tk[r].o.vn = NULL;
+      const int keep = tk[r].vcap > 0;
+      if (keep)
+        keep_vn(vel, nvel, kns[k], dtt == 1.0 ? 0 : 1, &o);
+      free(o.vn);
+      o.vn = NULL;
+      double K, lo, hi;
+      lv_kernel(&q, &o, 0, &K, &lo, &hi);
+      char name[96];
+      snprintf(name, sizeof name, "V12/flat/Kn=%g/dt=%g/%s/K_e/K_ref",
+               kns[k], dtt, v12_det_name(det));
+      if (det == LV_LANGEVIN && have_ref)
+        st = lv_add_compare(rep, name, &q, &o, &qr, &orf, 0);
+      else if (det == LV_LANGEVIN && dtt == 1.0) {
+        ql1 = q;  /* the self-consistency pair below */
+        ol1 = o;
+      } else if (det == LV_LANGEVIN) {
+        snprintf(name, sizeof name, "V12/flat/Kn=%g/dt=%g/langevin/"
+                 "K_e/K_e(dt=1)", kns[k], dtt);
+        st = lv_add_compare(rep, name, &q, &o, &ql1, &ol1, 0);
+      } else {
+        if (have_ref)  /* K_ref from the reference run */
+          sbv_ini_no_expect(rep);
+        st = sbv_add_info(rep, name, K / Kref, 1.0, lo / Kref, hi / Kref,
+                          0.95);
+      }
+      if (np < (size_t)nkn * 30) {
+        double *row = plot + 6 * np++;
+        row[0] = kns[k], row[1] = dtt, row[2] = det, row[3] = K / Kref;
+        row[4] = lo / Kref, row[5] = hi / Kref;
+      }
+      if (det == LV_LANGEVIN && dtt == (full ? 10.0 : 1.0) &&
+          *nH < 16) {  /* the long-time kernel H at this Kn_D */
+        double *h = Hrow + 8 * (*nH)++;
+        double c = ph.tau / pow(ph.d, 3);  /* H = K m_red/(f_red R^3) */
+        h[0] = kns[k], h[1] = K * c, h[2] = lo * c, h[3] = hi * c;
+        h_expect(ctx, rep, kns[k], c);
+      }
+      sbv_note(rep, "  - %s dt/tau_p = %g: K/K_ref = %.4f [%.4f, %.4f], "
+               "%lu contacts, N = %zu, %.3g steps, %.2f candidates per "
+               "particle and step, %.2f s", v12_det_name(det), dtt,
+               K / Kref, lo / Kref, hi / Kref, o.hits[0], q.N[0], o.steps,
+               o.ncand / (o.steps * (double)q.N[0]), o.cpu);
+    }
   }
+  for (size_t t = 0; t < ntask; t++)
+    free(tk[t].o.vn);
+  free(tk);
   if (!st) {
     for (int k = 0; k < nkn; k++) {
       char nm[64], title[128];

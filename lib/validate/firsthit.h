@@ -187,6 +187,10 @@ typedef struct {
                               pair's contact distance r_i + r_j) */
   char names[2][16];       /* write mode: species section names ("": p,
                               or p0 and p1) */
+  int threads;             /* engine threads (0: the engine's default);
+                              1 for a run inside a parallel loop over
+                              runs, whose cpu is then its thread's time.
+                              Results do not depend on it */
   int default_rng;         /* 1: the engine's default generator (Philox
                               streams, sb_engine_params_default) instead
                               of the cases' pinned one; bench/, not in

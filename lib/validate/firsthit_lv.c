@@ -1,3 +1,4 @@
+#define _POSIX_C_SOURCE 200809L /* clock_gettime */
 /* firsthit_lv.c — first-hit counting of Langevin spheres in the transition
  * regime, one or two species, any detector (estimator and protocol:
  * firsthit.h). */
@@ -316,12 +317,25 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
   return st;
 }
 
+/* CPU seconds of the process, or of the calling thread (a run that is
+ * one of several running at once). */
+static double cpu_seconds(int thread)
+{
+  struct timespec ts;
+  if (clock_gettime(thread ? CLOCK_THREAD_CPUTIME_ID
+                           : CLOCK_PROCESS_CPUTIME_ID, &ts))
+    return NAN;
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 /* The run itself (lv_firsthit without the saved runs). */
 static int lv_engine_run(const sbv_ctx *ctx, unsigned long stream,
                          const lv_run *q, sb_engine_params *pp, lv_out *o)
 {
   sb_engine_params p = *pp;
   p.outcome = SB_OUTCOME_COUNT;
+  if (q->threads > 0)
+    p.threads = q->threads;
   sb_engine *e = sb_engine_alloc(&p);
   lvctx f = {q, NULL, o, NAN};
   sb_engine_firsthit_params fp;
@@ -379,10 +393,10 @@ static int lv_engine_run(const sbv_ctx *ctx, unsigned long stream,
    * its chord test alone: the Langevin search serves it (the same run) */
   if (!st && q->det == LV_LANGEVIN)
     st = sb_engine_set_detector_chord(e, 1);
-  clock_t c0 = clock();
+  const double c0 = cpu_seconds(q->threads == 1);
   if (!st)
     st = fh_run_until(ctx, e, q->T);
-  o->cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
+  o->cpu = cpu_seconds(q->threads == 1) - c0;
   if (!st) {
     sb_engine_stats es;
     sb_engine_get_stats(e, &es);
