@@ -259,15 +259,11 @@ static int thesis(const sbv_ctx *ctx, sbv_report *rep)
     sbv_runkey_num(&key, "n", (double)n);
     sbv_runkey_num(&key, "L", L);
     sbv_runkey_num(&key, "t_end", t_end);
-    double res[5], *extra;
-    size_t nextra;
-    int got = sbv_run_load(ctx, &key, res, 5, &extra, &nextra);
-    free(extra);
+    double res[5];
+    int got = sbv_run_load_vals(ctx, &key, res, 5);
     if (got < 0)
       return got;
     if (got) {
-      sbv_progress(ctx, "  V2 thesis d=%.2fum: read back from the saved "
-                   "runs", ph.d * 1e6);
       st = thesis_record(rep, &ph, n, res);
       continue;
     }

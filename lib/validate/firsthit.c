@@ -194,17 +194,14 @@ int run_firsthit(const sbv_ctx *ctx, unsigned long stream, const fh_run *q,
                                    "eps", "nu", "builtin", "mode", "ends"};
   for (size_t i = 0; i < sizeof in / sizeof in[0]; i++)
     sbv_runkey_num(&k, nm[i], in[i]);
-  double v[7], *extra;
-  size_t nextra;
-  int got = sbv_run_load(ctx, &k, v, 7, &extra, &nextra);
-  free(extra);
+  double v[7];
+  int got = sbv_run_load_vals(ctx, &k, v, 7);
   if (got < 0)
     return got;
   if (got) {
     o->hits = (unsigned long)v[0];
     o->expected_per_K = v[1], o->K = v[2], o->lo = v[3], o->hi = v[4];
     o->cpu = v[5], o->steps = v[6];
-    sbv_progress(ctx, "  (read back from the saved runs)");
     return SB_SUCCESS;
   }
   int st = fh_engine_run(ctx, stream, q, &p, o);

@@ -305,7 +305,6 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
       memset(o, 0, sizeof *o);
     } else {
       o->vn = vn;
-      sbv_progress(ctx, "  (read back from the saved runs)");
       return SB_SUCCESS;
     }
   }

@@ -140,7 +140,18 @@ int sbv_run_load(const sbv_ctx *ctx, const sbv_runkey *k, double *vals,
   }
   *extra = x;
   *nextra = ne;
+  sbv_progress(ctx, "  (read back from the saved runs)");
   return 1;
+}
+
+int sbv_run_load_vals(const sbv_ctx *ctx, const sbv_runkey *k,
+                      double *vals, size_t nvals)
+{
+  double *extra;
+  size_t nextra;
+  int got = sbv_run_load(ctx, k, vals, nvals, &extra, &nextra);
+  free(extra);
+  return got;
 }
 
 void sbv_run_save(const sbv_ctx *ctx, const sbv_runkey *k,

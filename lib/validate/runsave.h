@@ -44,9 +44,14 @@ void sbv_runkey_num(sbv_runkey *k, const char *name, double v);
 /* Read the results of the run with key k: 1 when found (vals[0..nvals)
  * filled; *extra a malloc'd array of *nextra values, NULL when none: the
  * caller frees it), 0 when the run must be made (no run_dir, no .resume,
- * no file with this key, or an unreadable one), SB_ENOMEM. */
+ * no file with this key, or an unreadable one), SB_ENOMEM.  A run read
+ * back says so on the progress line. */
 int sbv_run_load(const sbv_ctx *ctx, const sbv_runkey *k, double *vals,
                  size_t nvals, double **extra, size_t *nextra);
+
+/* sbv_run_load for a run saved without extra values (any are dropped). */
+int sbv_run_load_vals(const sbv_ctx *ctx, const sbv_runkey *k,
+                      double *vals, size_t nvals);
 
 /* Save the results of the run with key k (no-op without run_dir).  A
  * failure to save does not stop the case: it is reported on the progress
