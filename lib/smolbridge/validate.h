@@ -66,10 +66,9 @@ typedef struct {
   const char *run_dir;     /**< directory where each finished engine run
                                 of a case is saved (one small text file
                                 per run; created if missing; today the
-                                first-hit kernel runs of V2-V5, V7, V12
-                                and V16's Langevin cases, V2's thesis
-                                runs); NULL: runs are
-                                not saved */
+                                first-hit kernel runs of V2-V5, V7, VX,
+                                V12 and V16's Langevin cases, V2's thesis
+                                runs); NULL: runs are not saved */
   int resume;              /**< 1: a run saved in run_dir with exactly the
                                 same inputs (seed, stream, every parameter,
                                 library version) is read back instead of
