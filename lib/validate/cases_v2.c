@@ -228,10 +228,77 @@ static int thesis_record(sbv_report *rep, const v2_phys *ph, size_t n,
   return st;
 }
 
+#define THESIS_PHI 1e-4     /* volume fraction */
+#define THESIS_L 1e-4       /* box edge, m */
+#define THESIS_TARGET 500.0 /* expected collisions (the thesis' N_c^th) */
+
+/* One thesis-protocol run at diameter d (stream 210 + id; threads: the
+ * engine's, 0 its default): res as thesis_record reads it, *n the
+ * particles.  Saved, and read back with --resume (runsave.h). */
+static int thesis_run(const sbv_ctx *ctx, int id, double d, int threads,
+                      double *res, size_t *n_out)
+{
+  const double phi = THESIS_PHI, L = THESIS_L;
+  v2_phys ph;
+  v2_physics(d, &ph);
+  double vp = PI * pow(ph.d, 3) / 6.0;
+  size_t n = (size_t)floor(phi * L * L * L / vp + 0.5);
+  *n_out = n;
+  double V = L * L * L, P = 0.5 * (double)n * (double)(n - 1);
+  double t_end = THESIS_TARGET * V / (ph.KL * (1.0 + sqrt(24.0 * phi)) * P);
+  /* the results: collisions, K_ref, K, t, steps */
+  sbv_runkey key;
+  sbv_runkey_init(&key, ctx, "v2-thesis", 210 + (unsigned long)id);
+  sbv_runkey_num(&key, "d", ph.d);
+  sbv_runkey_num(&key, "n", (double)n);
+  sbv_runkey_num(&key, "L", L);
+  sbv_runkey_num(&key, "t_end", t_end);
+  int got = sbv_run_load_vals(ctx, &key, res, 5);
+  if (got)
+    return got < 0 ? got : SB_SUCCESS;
+  sb_engine_params p;
+  sbv_engine_params(&p);
+  p.L[0] = p.L[1] = p.L[2] = L;
+  p.dt = 0.1 * ph.tau;
+  p.capacity = n;
+  p.rng_type = gsl_rng_taus2;
+  p.seed = ctx->seed * 1000 + 210 + (unsigned long)id;
+  p.threads = threads;
+  sb_engine *e = sb_engine_alloc(&p);
+  v2_ages ag = {n, calloc(n, sizeof(double)), calloc(n, sizeof(double)),
+                0.0};
+  int st = !e || !ag.r || !ag.tmp ? SB_ENOMEM : SB_SUCCESS;
+  sb_engine_species s = {0.5 * ph.d, ph.m, ph.tau, ph.B, TEMP};
+  if (!st)
+    st = sb_engine_add_species(e, &s, NULL);
+  if (!st)
+    st = sb_engine_fill_random(e, 0, 0, n);
+  if (!st)
+    st = sb_engine_set_outcome_fn(e, thesis_outcome, &ag);
+  for (int k = 1; k <= 20 && !st; k++) {
+    st = sb_engine_run_until(e, t_end * k / 20.0);
+    sbv_progress(ctx, "  V2 thesis d=%.2fum: %d%%", ph.d * 1e6, 5 * k);
+  }
+  if (!st) {
+    sb_engine_stats es;
+    sb_engine_get_stats(e, &es);
+    double t = sb_engine_time(e);
+    res[0] = (double)es.ncoll;
+    res[1] = thesis_kref(&ag, &ph, t);
+    sb_engine_kernel(e, 0.95, &res[2], NULL, NULL);
+    res[3] = t;
+    res[4] = (double)es.steps;
+    sbv_run_save(ctx, &key, res, 5, NULL, 0);
+  }
+  sb_engine_free(e);
+  free(ag.r);
+  free(ag.tmp);
+  return st;
+}
+
 static int thesis(const sbv_ctx *ctx, sbv_report *rep)
 {
   static const double dps[3] = {0.75e-6, 1e-6, 2e-6};
-  const double phi = 1e-4, L = 1e-4, target = 500.0;
   if (sbv_writing(ctx)) {
     sbv_ini_skip(rep, "  V2/thesis (--full): its reference needs the time "
                  "since each pair's last reinsertion (the ages, kept by an "
@@ -242,72 +309,23 @@ static int thesis(const sbv_ctx *ctx, sbv_report *rep)
            "non-overlapping random start, reinsert outcome, run to ~%.0f "
            "expected collisions (the thesis' N_c^th); reference K_L plus "
            "the transient of every pair since its last (re)insertion.",
-           target);
+           THESIS_TARGET);
+  /* the three runs at once on the OpenMP threads (one engine thread
+   * each), the costliest (largest d: fewest particles, but longest
+   * time) first; each has its own seed, so nothing depends on it */
+  double res[3][5];
+  size_t n[3];
+  int sts[3];
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1)
+#endif
+  for (int m = 0; m < 3; m++)
+    sts[2 - m] = thesis_run(ctx, 2 - m, dps[2 - m], 1, res[2 - m], &n[2 - m]);
   int st = SB_SUCCESS;
   for (int id = 0; id < 3 && !st; id++) {
     v2_phys ph;
     v2_physics(dps[id], &ph);
-    double vp = PI * pow(ph.d, 3) / 6.0;
-    size_t n = (size_t)floor(phi * L * L * L / vp + 0.5);
-    double V = L * L * L, P = 0.5 * (double)n * (double)(n - 1);
-    double t_end = target * V / (ph.KL * (1.0 + sqrt(24.0 * phi)) * P);
-    /* the run's results, saved (runsave.h): collisions, K_ref, K, t,
-     * steps */
-    sbv_runkey key;
-    sbv_runkey_init(&key, ctx, "v2-thesis", 210 + (unsigned long)id);
-    sbv_runkey_num(&key, "d", ph.d);
-    sbv_runkey_num(&key, "n", (double)n);
-    sbv_runkey_num(&key, "L", L);
-    sbv_runkey_num(&key, "t_end", t_end);
-    double res[5];
-    int got = sbv_run_load_vals(ctx, &key, res, 5);
-    if (got < 0)
-      return got;
-    if (got) {
-      st = thesis_record(rep, &ph, n, res);
-      continue;
-    }
-    sb_engine_params p;
-    sbv_engine_params(&p);
-    p.L[0] = p.L[1] = p.L[2] = L;
-    p.dt = 0.1 * ph.tau;
-    p.capacity = n;
-    p.rng_type = gsl_rng_taus2;
-    p.seed = ctx->seed * 1000 + 210 + (unsigned long)id;
-    sb_engine *e = sb_engine_alloc(&p);
-    v2_ages ag = {n, calloc(n, sizeof(double)), calloc(n, sizeof(double)),
-                  0.0};
-    if (!e || !ag.r || !ag.tmp) {
-      sb_engine_free(e);
-      free(ag.r);
-      free(ag.tmp);
-      return SB_ENOMEM;
-    }
-    sb_engine_species s = {0.5 * ph.d, ph.m, ph.tau, ph.B, TEMP};
-    st = sb_engine_add_species(e, &s, NULL);
-    if (!st)
-      st = sb_engine_fill_random(e, 0, 0, n);
-    if (!st)
-      st = sb_engine_set_outcome_fn(e, thesis_outcome, &ag);
-    for (int k = 1; k <= 20 && !st; k++) {
-      st = sb_engine_run_until(e, t_end * k / 20.0);
-      sbv_progress(ctx, "  V2 thesis d=%.2fum: %d%%", ph.d * 1e6, 5 * k);
-    }
-    if (!st) {
-      sb_engine_stats es;
-      sb_engine_get_stats(e, &es);
-      double t = sb_engine_time(e);
-      res[0] = (double)es.ncoll;
-      res[1] = thesis_kref(&ag, &ph, t);
-      sb_engine_kernel(e, 0.95, &res[2], NULL, NULL);
-      res[3] = t;
-      res[4] = (double)es.steps;
-      sbv_run_save(ctx, &key, res, 5, NULL, 0);
-      st = thesis_record(rep, &ph, n, res);
-    }
-    sb_engine_free(e);
-    free(ag.r);
-    free(ag.tmp);
+    st = sts[id] ? sts[id] : thesis_record(rep, &ph, n[id], res[id]);
   }
   return st;
 }
