@@ -8,11 +8,13 @@
  * Smoluchowski 1917 / Carslaw & Jaeger 1959 §3.3), and the batches of
  * [observe] batch_steps and region (collide_batches.c) against the exact
  * exits and region masses of particles in free flight. */
-#define _POSIX_C_SOURCE 200809L /* mkdtemp */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp, fork, waitpid */
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <smolbridge/collide.h>
@@ -337,6 +339,92 @@ static int col_of(char names[][32], int ncol, const char *name)
  * that every row must balance: injected - left = n_end - n_start, m_left
  * = the sum of the exit-mass columns; its x_hi exits are summed from
  * exits.csv (the same exits, written row by row) per batch. */
+/* A run killed half-way keeps the exits.csv rows and grid.csv frames
+ * written up to its last progress point (they go to the files as the run
+ * goes, flushed at every progress point): an inflow on x_lo at speed 2
+ * crosses the unit box in 0.5, so by t = 1.5, where the child process
+ * kills itself from the progress callback, about 20 drops have left
+ * through x_hi; grid frames every 0.25.  A run stopped by the callback
+ * (status failed) keeps them too. */
+static int stop_at(const sb_collide_progress *p, void *user)
+{
+  const double *t = user;
+  if (p->event == SB_COLLIDE_STEP && p->t >= t[0]) {
+    if (t[1] > 0.0)
+      raise(SIGKILL);
+    return 1;
+  }
+  return 0;
+}
+
+static void check_kept_rows(const char *dir, double t_stop)
+{
+  char path[600], line[1024];
+  snprintf(path, sizeof path, "%s/exits.csv", dir);
+  FILE *f = fopen(path, "r");
+  ck_assert_ptr_nonnull(f);
+  ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
+  ck_assert_str_eq(line, "t,face,species,family,mass,x,y,z,ux,uy,uz\n");
+  int nx = 0;
+  while (fgets(line, sizeof line, f)) {
+    double t;
+    char face[8];
+    ck_assert_int_eq(sscanf(line, "%lf,%7[^,]", &t, face), 2);
+    ck_assert_str_eq(face, "x_hi");
+    ck_assert(t > 0.5 && t < t_stop + 0.1);
+    nx++;
+  }
+  fclose(f);
+  ck_assert_int_gt(nx, 5);  /* ~20 expected */
+  snprintf(path, sizeof path, "%s/grid.csv", dir);
+  f = fopen(path, "r");
+  ck_assert_ptr_nonnull(f);
+  int nrow = 0;
+  while (fgets(line, sizeof line, f))
+    nrow++;
+  fclose(f);
+  ck_assert_int_ge(nrow, 1 + 5 * 16);  /* frames at 0.25 .. 1.25 */
+  ck_assert_int_eq((nrow - 1) % 16, 0);
+}
+
+START_TEST(test_stopped_run_keeps_rows)
+{
+  for (int kill = 1; kill >= 0; kill--) {
+    char dir[512], text[2048];
+    sbt_tmp_dir(dir, sizeof dir, "sbstop");
+    snprintf(text, sizeof text,
+             "[run]\ndim = 2\nL = 1\ndt = 0.01\nsteps = 300\nseed = 5\n"
+             "detect = none\noutput = %s\nstop_every = 0.25\n"
+             "[walls]\nx_lo = open\nx_hi = open\ny_lo = open\n"
+             "y_hi = open\n[observe]\nexits = yes\ngrid = 4 4\n"
+             "[species c]\nradius = 0.005\nmass = 1\ntau = inf\nT = 1\n"
+             "inflow = x_lo\ninflow_rate = 20\ninflow_region = 0.4 0.45\n"
+             "inflow_velocity = 2 0\n", dir);
+    double stop[2] = {1.5, kill};
+    if (kill) {
+      fflush(NULL);
+      pid_t pid = fork();
+      ck_assert_int_ge(pid, 0);
+      if (pid == 0) {  /* the run, killed from its callback */
+        sb_collide *c = sb_collide_alloc();
+        if (c && !sb_collide_read_string(c, text, "stop.ini"))
+          sb_collide_run(c, stop_at, stop);
+        _exit(3);  /* not reached */
+      }
+      int ws = 0;
+      ck_assert_int_eq(waitpid(pid, &ws, 0), pid);
+      ck_assert(WIFSIGNALED(ws) && WTERMSIG(ws) == SIGKILL);
+    } else {
+      sb_collide *c = sb_collide_alloc();
+      ck_assert_int_eq(sb_collide_read_string(c, text, "stop.ini"), 0);
+      ck_assert_int_ne(sb_collide_run(c, stop_at, stop), 0);
+      sb_collide_free(c);
+    }
+    check_kept_rows(dir, stop[0]);
+  }
+}
+END_TEST
+
 START_TEST(test_batches)
 {
   char dir[512], text[2048];
@@ -458,6 +546,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_profile_parabolic);
   tcase_add_test(tc, test_deposit_series);
   tcase_add_test(tc, test_batches);
+  tcase_add_test(tc, test_stopped_run_keeps_rows);
   suite_add_tcase(s, tc);
   return s;
 }

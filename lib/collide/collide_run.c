@@ -70,6 +70,12 @@ static int progress_step(sbi_col_run *r, double t_stop, sbi_col_pairs *ps,
     }
     double frac = (sb_engine_time(e) - t0) / (t_stop - t0);
     if (frac - last >= 0.1 || frac >= 1.0 - 1e-12) {
+      /* the rows written so far reach the disk at every progress point:
+       * a killed run keeps them */
+      if (r->exits_f)
+        fflush(r->exits_f);
+      if (r->grid_f)
+        fflush(r->grid_f);
       if (report(rp, e, SB_COLLIDE_STEP, frac)) {
         *stopped = 1;
         return SB_EINVAL;
