@@ -170,7 +170,8 @@ int fh_run_until(const sbv_ctx *ctx, sb_engine *e, double T)
     int st = sb_engine_run_until(e, k == 20 ? T : t0 + (T - t0) * k / 20.0);
     if (st)
       return st;
-    sbv_progress(ctx, "    %3d%% of %.3g particle-steps", 5 * k, work);
+    sbv_progress(ctx, "    %3d%% of %.3g particle-steps (N = %zu, dt = %.3g s)",
+                 5 * k, work, sb_engine_count(e), dt);
   }
   return SB_SUCCESS;
 }
