@@ -102,13 +102,20 @@ void v12_size_cap(const v12_phys *ph, int det, double dtt, double hits,
   if (L < 2.5 * (ph->d + 20.0 * sd_step))
     L = 2.5 * (ph->d + 20.0 * sd_step);
   q->L = L;
-  /* particles for ~hits counted contacts, hits = N^2 K (T - t1) / (2 V),
+  /* particles for ~hits counted contacts, hits = N^2 K T_eff / (2 V),
    * in the smallest box allowed; denser than V12_PHIMAX (overlapping
    * particles cost neighbour-search work), the box grows at that density
    * instead; at most `budget` particle-steps (then fewer contacts: at
-   * the capped density the box shrinks with N, hits ~ N) */
+   * the capped density the box shrinks with N, hits ~ N).  T_eff is the
+   * estimator's exposure (firsthit.h): the long-time part T - t1 and the
+   * start-up transient 2 a (sqrt T - sqrt t1) / sqrt(pi D) of the
+   * capacitance radius a = K / (4 pi D), which at small Kn_D is most of
+   * the count (5x the long-time part at Kn_D = 0.01 over 350 tau_p) */
   const double vp = PI * pow(ph->d, 3) / 6.0, nmax = V12_PHIMAX / vp;
-  const double KM = ph->Kgh * (T - q->t1);
+  const double a = ph->Kgh / (4.0 * PI * ph->D);
+  const double KM =
+      ph->Kgh * ((T - q->t1) +
+                 2.0 * a * (sqrt(T) - sqrt(q->t1)) / sqrt(PI * ph->D));
   double N = sqrt(2.0 * hits * L * L * L / KM);
   int capped = 0;
   if (N > nmax * L * L * L) {
