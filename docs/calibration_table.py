@@ -4,6 +4,11 @@
 
 usage: calibration_table.py CALIBRATION.csv VALIDATION.md NSEEDS
 (the per-case KS p-value is read from calibration.md beside the csv)
+
+       calibration_table.py --splice NEW.csv SUITE.csv VALIDATION.md NSEEDS
+replaces the records of the cases in NEW.csv (a calibration of a few
+cases, `--case X --seeds N`) in SUITE.csv (docs/calibration-quick.csv)
+and their lines in the table, keeping every other case's line as it is.
 """
 import os
 import csv
@@ -11,8 +16,55 @@ import math
 import sys
 
 
+def splice(new, suite, md, nseeds):
+    """Replace the cases of NEW.csv in SUITE.csv and in the table."""
+    with open(new, newline="") as f:
+        rd = csv.DictReader(f)
+        fields = rd.fieldnames
+        fresh = list(rd)
+    cases = {r["case"] for r in fresh}
+    with open(suite, newline="") as f:
+        old = list(csv.DictReader(f))
+    out, done = [], False
+    for r in old:  # the new records where the case's old ones were
+        if r["case"] in cases:
+            if not done:
+                out.extend(fresh)
+                done = True
+        else:
+            out.append(r)
+    if not done:
+        out.extend(fresh)
+    with open(suite, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=fields)
+        w.writeheader()
+        w.writerows(out)
+    lines = table_lines(new, nseeds)
+    text = open(md).read()
+    for c in cases:
+        line = [x for x in lines if x.startswith(f"| {c} |")][0]
+        a = text.index(f"| {c} |")
+        b = text.index("\n", a)
+        text = text[:a] + line + text[b:]
+    open(md, "w").write(text)
+
+
 def main():
+    if sys.argv[1] == "--splice":
+        splice(sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5]))
+        return
     cal, md, nseeds = sys.argv[1], sys.argv[2], int(sys.argv[3])
+    lines = table_lines(cal, nseeds)
+    text = open(md).read()
+    a = text.index("<!-- calibration:begin -->")
+    b = text.index("<!-- calibration:end -->")
+    text = (text[:a] + "<!-- calibration:begin -->\n" + "\n".join(lines)
+            + "\n" + text[b:])
+    open(md, "w").write(text)
+
+
+def table_lines(cal, nseeds):
+    """The table's lines (header and one per case) for CALIBRATION.csv."""
     ks = {}
     calmd = os.path.join(os.path.dirname(cal), "calibration.md")
     if os.path.exists(calmd):
@@ -82,12 +134,7 @@ def main():
             f"{(num / den if den else float('nan')):.3f} | "
             f"{ks.get(c, '-')} | {nfail} | "
             f"{'fail' if nfail else 'pass'} |")
-    text = open(md).read()
-    a = text.index("<!-- calibration:begin -->")
-    b = text.index("<!-- calibration:end -->")
-    text = (text[:a] + "<!-- calibration:begin -->\n" + "\n".join(lines)
-            + "\n" + text[b:])
-    open(md, "w").write(text)
+    return lines
 
 
 if __name__ == "__main__":
