@@ -23,8 +23,12 @@
  *   sb_validate_report_free(rep);
  *
  * Determinism: a case draws only from generators seeded by the base seed
- * and a stream number of its own, so the same options give bit-identical
- * records whatever the order or selection of cases.  Cases are thread-safe
+ * and stream numbers fixed in the case, so the same options give
+ * bit-identical records whatever the order or selection of cases.  The
+ * stream numbers are distinct within a case, not across cases (V2 and
+ * first-hit runs, V5's and V13's spray runs all start at 200): two cases
+ * of one run are not independent samples of each other, while each
+ * case's verdicts, and their calibration over seeds, are unaffected.  Cases are thread-safe
  * as long as two threads do not share a report; plot files of two
  * concurrent runs must go to different directories.
  *

@@ -110,7 +110,11 @@ double sbv_brent(double (*f)(double, void *), void *par, double lo,
                  double hi, double rtol);
 
 /* A fresh Mersenne-Twister generator seeded from (ctx->seed, stream):
- * give every case (and every independent part of a case) its own stream. */
+ * give every independent part of a case its own stream.  Streams are not
+ * unique across cases (several cases use 100+, 200+ or 300+); a new case
+ * should take a range no case uses, so that it is independent of the
+ * others (changing an existing case's streams changes its records and
+ * needs its calibration again). */
 gsl_rng *sbv_rng_alloc(const sbv_ctx *ctx, unsigned long stream);
 /* Its seed (MT19937 seeds modulo 2^32): a collide file's placement_seed
  * for a placement drawn from sbv_rng_alloc(ctx, stream). */
