@@ -25,11 +25,12 @@
  * Determinism: a case draws only from generators seeded by the base seed
  * and stream numbers fixed in the case, so the same options give
  * bit-identical records whatever the order or selection of cases.  The
- * stream numbers are distinct within a case, not across cases (V2 and
- * first-hit runs, V5's and V13's spray runs all start at 200): two cases
- * of one run are not independent samples of each other, while each
- * case's verdicts, and their calibration over seeds, are unaffected.  Cases are thread-safe
- * as long as two threads do not share a report; plot files of two
+ * stream numbers are distinct within a case, not across cases (V2's and
+ * V5's engine runs and a V13 spray case all use streams from 200 on): two
+ * cases of one run are not independent samples of each other, while each
+ * case's verdicts, and their calibration over seeds, are unaffected.
+ * Cases are thread-safe as long as two threads do not share a report;
+ * plot files of two
  * concurrent runs must go to different directories.
  *
  * The library never prints.  Progress lines go to the optional progress
