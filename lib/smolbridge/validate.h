@@ -30,8 +30,7 @@
  * cases of one run are not independent samples of each other, while each
  * case's verdicts, and their calibration over seeds, are unaffected.
  * Cases are thread-safe as long as two threads do not share a report;
- * plot files of two
- * concurrent runs must go to different directories.
+ * plot files of two concurrent runs must go to different directories.
  *
  * The library never prints.  Progress lines go to the optional progress
  * callback; plots are written as data (.dat) and gnuplot scripts (.gp) into
