@@ -109,6 +109,12 @@ int sbv_add_info(sbv_report *rep, const char *name, double est, double ref,
 double sbv_brent(double (*f)(double, void *), void *par, double lo,
                  double hi, double rtol);
 
+/* The engine of V2's thesis-protocol run id (0, 1, 2: d_p = 0.75, 1,
+ * 2 um; base seed 12345, one thread, reinsert outcome) at its start, its
+ * particles *n and the steps of the whole run *nsteps (cases_v2.c), for
+ * bench/bench_v2_thesis's cost per step.  Free with sb_engine_free. */
+int sbv_v2_thesis_engine(int id, size_t *n, double *nsteps, sb_engine **e);
+
 /* A fresh Mersenne-Twister generator seeded from (ctx->seed, stream):
  * give every independent part of a case its own stream.  Streams are not
  * unique across cases (several cases use 100+, 200+ or 300+); a new case

@@ -232,47 +232,73 @@ static int thesis_record(sbv_report *rep, const v2_phys *ph, size_t n,
 #define THESIS_L 1e-4       /* box edge, m */
 #define THESIS_TARGET 500.0 /* expected collisions (the thesis' N_c^th) */
 
+/* The particles and end time of the thesis run at diameter d. */
+static void thesis_size(const v2_phys *ph, size_t *n, double *t_end)
+{
+  const double L = THESIS_L;
+  const double vp = PI * pow(ph->d, 3) / 6.0;
+  *n = (size_t)floor(THESIS_PHI * L * L * L / vp + 0.5);
+  const double V = L * L * L, P = 0.5 * (double)*n * (double)(*n - 1);
+  *t_end = THESIS_TARGET * V / (ph->KL * (1.0 + sqrt(24.0 * THESIS_PHI)) * P);
+}
+
+/* The engine of the thesis run at diameter d (stream 210 + id) in *out:
+ * n particles at a random non-overlapping start; the caller sets the
+ * outcome. */
+static int thesis_engine(unsigned long seed, int id, const v2_phys *ph,
+                         size_t n, int threads, sb_engine **out)
+{
+  sb_engine_params p;
+  sbv_engine_params(&p);
+  p.L[0] = p.L[1] = p.L[2] = THESIS_L;
+  p.dt = 0.1 * ph->tau;
+  p.capacity = n;
+  p.rng_type = gsl_rng_taus2;
+  p.seed = seed * 1000 + 210 + (unsigned long)id;
+  p.threads = threads;
+  sb_engine *e = sb_engine_alloc(&p);
+  sb_engine_species s = {0.5 * ph->d, ph->m, ph->tau, ph->B, TEMP};
+  int st = e ? SB_SUCCESS : SB_ENOMEM;
+  if (!st)
+    st = sb_engine_add_species(e, &s, NULL);
+  if (!st)
+    st = sb_engine_fill_random(e, 0, 0, n);
+  if (st) {
+    sb_engine_free(e);
+    e = NULL;
+  }
+  *out = e;
+  return st;
+}
+
 /* One thesis-protocol run at diameter d (stream 210 + id; threads: the
  * engine's, 0 its default): res as thesis_record reads it, *n the
  * particles.  Saved, and read back with --resume (runsave.h). */
 static int thesis_run(const sbv_ctx *ctx, int id, double d, int threads,
                       double *res, size_t *n_out)
 {
-  const double phi = THESIS_PHI, L = THESIS_L;
   v2_phys ph;
   v2_physics(d, &ph);
-  double vp = PI * pow(ph.d, 3) / 6.0;
-  size_t n = (size_t)floor(phi * L * L * L / vp + 0.5);
+  size_t n;
+  double t_end;
+  thesis_size(&ph, &n, &t_end);
   *n_out = n;
-  double V = L * L * L, P = 0.5 * (double)n * (double)(n - 1);
-  double t_end = THESIS_TARGET * V / (ph.KL * (1.0 + sqrt(24.0 * phi)) * P);
   /* the results: collisions, K_ref, K, t, steps */
   sbv_runkey key;
   sbv_runkey_init(&key, ctx, "v2-thesis", 210 + (unsigned long)id);
   sbv_runkey_num(&key, "d", ph.d);
   sbv_runkey_num(&key, "n", (double)n);
-  sbv_runkey_num(&key, "L", L);
+  sbv_runkey_num(&key, "L", THESIS_L);
   sbv_runkey_num(&key, "t_end", t_end);
   int got = sbv_run_load_vals(ctx, &key, res, 5);
   if (got)
     return got < 0 ? got : SB_SUCCESS;
-  sb_engine_params p;
-  sbv_engine_params(&p);
-  p.L[0] = p.L[1] = p.L[2] = L;
-  p.dt = 0.1 * ph.tau;
-  p.capacity = n;
-  p.rng_type = gsl_rng_taus2;
-  p.seed = ctx->seed * 1000 + 210 + (unsigned long)id;
-  p.threads = threads;
-  sb_engine *e = sb_engine_alloc(&p);
+  sb_engine *e;
+  int st = thesis_engine(ctx->seed, id, &ph, n, threads, &e);
   v2_ages ag = {n, calloc(n, sizeof(double)), calloc(n, sizeof(double)),
                 0.0};
-  int st = !e || !ag.r || !ag.tmp ? SB_ENOMEM : SB_SUCCESS;
-  sb_engine_species s = {0.5 * ph.d, ph.m, ph.tau, ph.B, TEMP};
-  if (!st)
-    st = sb_engine_add_species(e, &s, NULL);
-  if (!st)
-    st = sb_engine_fill_random(e, 0, 0, n);
+  if (!st && (!ag.r || !ag.tmp))
+    st = SB_ENOMEM;
   if (!st)
     st = sb_engine_set_outcome_fn(e, thesis_outcome, &ag);
   for (int k = 1; k <= 20 && !st; k++) {
@@ -293,6 +319,33 @@ static int thesis_run(const sbv_ctx *ctx, int id, double d, int threads,
   sb_engine_free(e);
   free(ag.r);
   free(ag.tmp);
+  return st;
+}
+
+static int reinsert_only(sb_engine *e, const sb_engine_pair *p, double s,
+                         void *ctx)
+{
+  (void)ctx;
+  return sb_engine_outcome_reinsert(e, p, s);
+}
+
+int sbv_v2_thesis_engine(int id, size_t *n, double *nsteps,
+                         sb_engine **e)
+{
+  static const double dps[3] = {0.75e-6, 1e-6, 2e-6};
+  *e = NULL;
+  if (id < 0 || id > 2)
+    return SB_EINVAL;
+  v2_phys ph;
+  v2_physics(dps[id], &ph);
+  double t_end;
+  thesis_size(&ph, n, &t_end);
+  *nsteps = t_end / (0.1 * ph.tau);
+  int st = thesis_engine(12345, id, &ph, *n, 1, e);
+  if (!st && (st = sb_engine_set_outcome_fn(*e, reinsert_only, NULL))) {
+    sb_engine_free(*e);
+    *e = NULL;
+  }
   return st;
 }
 
