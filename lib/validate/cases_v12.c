@@ -141,16 +141,17 @@ int v12_run(const sbv_ctx *ctx, unsigned long stream, const v12_phys *ph,
             lv_run *q, lv_out *o)
 {
   return v12_run_cap(ctx, stream, ph, det, dtt, hits, meas, vcap,
-                     V12_BUDGET, V12_NMAX, q, o);
+                     V12_BUDGET, V12_NMAX, 0, q, o);
 }
 
 int v12_run_cap(const sbv_ctx *ctx, unsigned long stream,
                 const v12_phys *ph, int det, double dtt, double hits,
                 double meas, size_t vcap, double budget, double nmax,
-                lv_run *q, lv_out *o)
+                int threads, lv_run *q, lv_out *o)
 {
   v12_size_cap(ph, det, dtt, hits, V12_WARM * ph->tau,
                (V12_WARM + meas) * ph->tau, vcap, budget, nmax, q);
+  q->threads = threads;
   if (sbv_writing(ctx)) {
     char name[96];
     snprintf(name, sizeof name, "V12_Kn%g_dt%g_%s", ph->kn, dtt,
@@ -253,12 +254,6 @@ static size_t flat_tasks(int full, const double *kns, int nkn,
   return n;
 }
 
-static int by_cost(const void *a, const void *b)
-{
-  const double x = ((const double *)a)[0], y = ((const double *)b)[0];
-  return (x < y) - (x > y);  /* descending */
-}
-
 /* Make run t (one engine thread and its own CPU clock when par). */
 static void task_run(const sbv_ctx *ctx, const double *kns, v12_task *t,
                      int par)
@@ -270,23 +265,56 @@ static void task_run(const sbv_ctx *ctx, const double *kns, v12_task *t,
   else
     sbv_progress(ctx, "  V12 flat Kn_D=%g %s dt/tau=%g", kns[t->k],
                  v12_det_name(t->det), t->dtt);
-  t->q.threads = par ? 1 : 0;
   t->st = v12_run_cap(ctx, 1200 + 10 * (unsigned long)t->k, &ph, t->det,
                       t->dtt, t->hits, t->meas, t->vcap, t->budget, t->nmax,
-                      &t->q, &t->o);
+                      par ? 1 : 0, &t->q, &t->o);
+}
+
+/* Candidate pairs per step that a run's search holds at once, expected:
+ * N^2/(2V) (4 pi/3) (d + 2 E|disp|)^3, E|disp| = 2 sqrt(2/pi) s with s
+ * the per-axis sd of a step's displacement.  Memory goes with it (the
+ * pair lists: ~120 bytes per expected pair, measured on V12's run at
+ * Kn_D = 3, dt = 1000 tau_p: 1e8 pairs, 12 GB). */
+static double pairs_per_step(const lv_run *q)
+{
+  const double s = sqrt(sb_langevin_var_x(
+      q->tau[0], sqrt(2.0 * SB_BOLTZMANN * q->temp / (q->mass[0] * q->tau[0])),
+      q->dt));
+  const double c = q->d[0] + 4.0 * sqrt(2.0 / PI) * s;
+  const double N = (double)q->N[0];
+  return N * N / (2.0 * pow(q->L, 3)) * (4.0 * PI / 3.0) * c * c * c;
+}
+
+/* Runs of more expected candidate pairs per step than this (~1.2 GB)
+ * go alone, one after the other: at once, two of them can exhaust the
+ * memory (`--full`: the `langevin` runs at Kn_D = 1 and 3 and dt = 100
+ * and 1000 tau_p, a few to 12 GB each). */
+#define V12_PAIRS_ALONE 1e7
+
+/* Entries {alone, particle-steps, run}: the runs alone first, then by
+ * particle-steps, descending. */
+static int by_cost(const void *a, const void *b)
+{
+  const double *x = a, *y = b;
+  if (x[0] != y[0])
+    return (x[0] < y[0]) - (x[0] > y[0]);
+  return (x[1] < y[1]) - (x[1] > y[1]);
 }
 
 /* Make the runs before the rows.  Each is seeded from its own stream, so
- * their order and concurrency change nothing: they run on the OpenMP
- * threads at once, one engine thread each, the largest first.  (Write
- * mode runs each in row order as its rows are made: a file is named
- * and paired with the record that follows it.) */
+ * their order and concurrency change nothing: the runs with many
+ * candidate pairs per step go first, alone (on the engine's threads),
+ * then the others at once on the OpenMP threads, one engine thread
+ * each, the largest first.  (Write mode runs each in row order as its
+ * rows are made: a file is named and paired with the record that
+ * follows it.) */
 static int flat_run(const sbv_ctx *ctx, const double *kns, v12_task *tk,
                     size_t n)
 {
-  double *order = malloc(2 * n * sizeof *order);
+  double *order = malloc(3 * n * sizeof *order);
   if (!order)
     return SB_ENOMEM;
+  size_t nalone = 0;
   for (size_t r = 0; r < n; r++) {  /* particle-steps of each run */
     v12_phys ph;
     v12_physics(kns[tk[r].k], &ph);
@@ -294,15 +322,20 @@ static int flat_run(const sbv_ctx *ctx, const double *kns, v12_task *tk,
     v12_size_cap(&ph, tk[r].det, tk[r].dtt, tk[r].hits, V12_WARM * ph.tau,
                  (V12_WARM + tk[r].meas) * ph.tau, 0, tk[r].budget,
                  tk[r].nmax, &q);
-    order[2 * r] = (double)q.N[0] * q.T / q.dt;
-    order[2 * r + 1] = (double)r;
+    const int alone = pairs_per_step(&q) > V12_PAIRS_ALONE;
+    nalone += alone;
+    order[3 * r] = alone;
+    order[3 * r + 1] = (double)q.N[0] * q.T / q.dt;
+    order[3 * r + 2] = (double)r;
   }
-  qsort(order, n, 2 * sizeof *order, by_cost);
+  qsort(order, n, 3 * sizeof *order, by_cost);
+  for (size_t m = 0; m < nalone; m++)
+    task_run(ctx, kns, &tk[(size_t)order[3 * m + 2]], 0);
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1)
 #endif
-  for (size_t m = 0; m < n; m++)
-    task_run(ctx, kns, &tk[(size_t)order[2 * m + 1]], 1);
+  for (size_t m = nalone; m < n; m++)
+    task_run(ctx, kns, &tk[(size_t)order[3 * m + 2]], 1);
   free(order);
   for (size_t r = 0; r < n; r++)
     if (tk[r].st)

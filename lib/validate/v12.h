@@ -48,11 +48,13 @@ void v12_size_cap(const v12_phys *ph, int det, double dtt, double hits,
 int v12_run(const sbv_ctx *ctx, unsigned long stream, const v12_phys *ph,
             int det, double dtt, double hits, double meas, size_t vcap,
             lv_run *q, lv_out *o);
-/* v12_run with the caps of v12_size_cap. */
+/* v12_run with the caps of v12_size_cap and the engine threads of
+ * lv_run.threads (0: the engine's default; 1 inside a parallel loop over
+ * runs, whose CPU time is then its thread's). */
 int v12_run_cap(const sbv_ctx *ctx, unsigned long stream,
                 const v12_phys *ph, int det, double dtt, double hits,
                 double meas, size_t vcap, double budget, double nmax,
-                lv_run *q, lv_out *o);
+                int threads, lv_run *q, lv_out *o);
 
 /* Normal relative velocities at first contacts kept from the flat runs:
  * the reference (contact time, dt = 0.01 tau_p) and `langevin` at dt = 1
