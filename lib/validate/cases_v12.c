@@ -63,6 +63,21 @@ const char *v12_det_name(int det)
   return det >= 0 && det <= LV_EXACT ? n[det] : "?";
 }
 
+/* Candidate pairs per step that a run's search holds at once, expected:
+ * N^2/(2V) (4 pi/3) (d + 2 E|disp|)^3, E|disp| = 2 sqrt(2/pi) s with s
+ * the per-axis sd of a step's displacement.  Memory goes with it: the
+ * `langevin` run at Kn_D = 3, dt = 1000 tau_p (1e8 expected pairs)
+ * needed more than 24 GB. */
+static double pairs_per_step(const lv_run *q)
+{
+  const double s = sqrt(sb_langevin_var_x(
+      q->tau[0], sqrt(2.0 * SB_BOLTZMANN * q->temp / (q->mass[0] * q->tau[0])),
+      q->dt));
+  const double c = q->d[0] + 4.0 * sqrt(2.0 / PI) * s;
+  const double N = (double)q->N[0];
+  return N * N / (2.0 * pow(q->L, 3)) * (4.0 * PI / 3.0) * c * c * c;
+}
+
 void v12_size(const v12_phys *ph, int det, double dtt, double hits,
               double t1, double T, size_t vcap, lv_run *q)
 {
@@ -134,6 +149,11 @@ void v12_size_cap(const v12_phys *ph, int det, double dtt, double hits,
     N = 100.0;
   q->L = L;
   q->N[0] = (size_t)N;
+  /* at most V12_PAIRS_MAX candidate pairs per step (memory; pairs ~ N^2:
+   * then fewer contacts) */
+  const double P = pairs_per_step(q);
+  if (P > V12_PAIRS_MAX && N * sqrt(V12_PAIRS_MAX / P) >= 100.0)
+    q->N[0] = (size_t)(N * sqrt(V12_PAIRS_MAX / P));
 }
 
 int v12_run(const sbv_ctx *ctx, unsigned long stream, const v12_phys *ph,
@@ -270,26 +290,9 @@ static void task_run(const sbv_ctx *ctx, const double *kns, v12_task *t,
                       par ? 1 : 0, &t->q, &t->o);
 }
 
-/* Candidate pairs per step that a run's search holds at once, expected:
- * N^2/(2V) (4 pi/3) (d + 2 E|disp|)^3, E|disp| = 2 sqrt(2/pi) s with s
- * the per-axis sd of a step's displacement.  Memory goes with it (the
- * pair lists: ~120 bytes per expected pair, measured on V12's run at
- * Kn_D = 3, dt = 1000 tau_p: 1e8 pairs, 12 GB). */
-static double pairs_per_step(const lv_run *q)
-{
-  const double s = sqrt(sb_langevin_var_x(
-      q->tau[0], sqrt(2.0 * SB_BOLTZMANN * q->temp / (q->mass[0] * q->tau[0])),
-      q->dt));
-  const double c = q->d[0] + 4.0 * sqrt(2.0 / PI) * s;
-  const double N = (double)q->N[0];
-  return N * N / (2.0 * pow(q->L, 3)) * (4.0 * PI / 3.0) * c * c * c;
-}
-
-/* Runs of more expected candidate pairs per step than this (~1.2 GB)
- * go alone, one after the other: at once, two of them can exhaust the
- * memory (`--full`: the `langevin` runs at Kn_D = 1 and 3 and dt = 100
- * and 1000 tau_p, a few to 12 GB each). */
-#define V12_PAIRS_ALONE 1e7
+/* Runs of more expected candidate pairs per step than this go alone, one
+ * after the other: at once, two of them could exhaust the memory. */
+#define V12_PAIRS_ALONE 5e6
 
 /* Entries {alone, particle-steps, run}: the runs alone first, then by
  * particle-steps, descending. */
