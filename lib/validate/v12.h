@@ -21,8 +21,10 @@
 #define V12_HITS_LV 60000.0
 #define V12_BUDGET_FULL 1.2e10
 #define V12_NMAX_FULL 2e6
-/* largest expected candidate pairs per step of a run (memory: ~200 bytes
- * each; cases_v12.c, pairs_per_step) */
+/* largest expected candidate pairs per step of a run (cases_v12.c,
+ * pairs_per_step, which leaves out the detector's reach: measured ~550
+ * bytes each, 11 GB at the cap for `langevin` at Kn_D = 3, dt = 1000
+ * tau_p) */
 #define V12_PAIRS_MAX 2e7
 
 /* One monodisperse species at diffusive Knudsen number kn. */
