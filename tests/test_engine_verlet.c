@@ -219,6 +219,47 @@ START_TEST(test_not_used_for_long_steps)
 }
 END_TEST
 
+/* A small system (24 particles, fewer than SBI_VERLET_FLOATERS): every
+ * particle in turn moves beyond the skin.  The list must be rebuilt once
+ * the floater searches outnumber the particles, so the floaters stay few
+ * (before, it was never rebuilt and all 24 ended as floaters, each
+ * searched at every step); the run is the same as with the list off. */
+START_TEST(test_small_system_rebuilds)
+{
+  setup s = {3, SB_OUTCOME_REINSERT, SB_DETECT_BALLISTIC, 0, 0, 0};
+  sb_engine *a = make(&s, SB_NEIGH_CELLS, 0);
+  sb_engine_params p = *sb_engine_get_params(a);
+  sb_engine_free(a);
+  p.L[0] = p.L[1] = p.L[2] = 8.0;  /* phi ~ 2.5% */
+  p.capacity = 24;
+  sb_engine *e[2];
+  for (int v = 0; v < 2; v++) {
+    p.verlet_off = v;
+    e[v] = sb_engine_alloc(&p);
+    ck_assert_ptr_nonnull(e[v]);
+    sb_engine_species sp = {0.5, 1.0, 1.0, sqrt(2.0), 0.0};
+    ck_assert_int_eq(sb_engine_add_species(e[v], &sp, NULL), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_fill_random(e[v], 0, 0, 24), SB_SUCCESS);
+  }
+  double floaters = 0.0;
+  const int steps = 6000;
+  for (int k = 0; k < steps; k++) {
+    ck_assert_int_eq(sb_engine_step(e[0]), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_step(e[1]), SB_SUCCESS);
+    floaters += (double)e[0]->vl.nfloat;
+  }
+  sbt_assert_same_run(e[0], e[1], SBT_SAME_CANDIDATES | SBT_SAME_REDETECTED);
+  sb_engine_stats st;
+  sb_engine_get_stats(e[0], &st);
+  ck_assert_uint_gt(st.ncoll, 50);
+  ck_assert_uint_gt(e[0]->vl.uses, 3000);
+  ck_assert_uint_ge(e[0]->vl.builds, 10);
+  ck_assert_double_lt(floaters / steps, 2.0);
+  sb_engine_free(e[0]);
+  sb_engine_free(e[1]);
+}
+END_TEST
+
 int main(void)
 {
   Suite *s = suite_create("engine_verlet");
@@ -231,6 +272,7 @@ int main(void)
   tcase_add_test(t, test_sort_and_foreign_search);
   tcase_add_test(t, test_not_used_for_long_steps);
   tcase_add_test(t, test_threads);
+  tcase_add_test(t, test_small_system_rebuilds);
   suite_add_tcase(s, t);
   return sbt_run_suite(s);
 }

@@ -98,6 +98,7 @@ typedef struct {
   uint64_t *idb;             /* cap: particle ids at the build */
   unsigned char *isfloat;    /* cap: moved too far from xb: a floater */
   size_t *floats, nfloat;    /* cap: the floaters, in index order */
+  size_t fsum;               /* floater searches since the build */
   double skin, reach, rmax, L[3];
   uint64_t builds, uses;     /* counters (tests, benchmarks): builds, */
   uint64_t floated;          /* steps through it, steps with floaters */
@@ -279,7 +280,11 @@ static inline double sbi_cell_edge_min(double vol, size_t n, int dim)
  * must be expected to last (displacement per step <= skin / this). */
 #define SBI_VERLET_SKIN 1.0
 #define SBI_VERLET_STEPS 20.0
-/* Most floaters (particles searched one by one) before a rebuild. */
+/* Most floaters (particles searched one by one) before a rebuild; a
+ * rebuild also comes once the floater searches since the last one number
+ * more than the particles (a build costs about one search per particle:
+ * without this a small system, n < 64, never rebuilt and ended with
+ * every particle a floater). */
 #define SBI_VERLET_FLOATERS(n) (64 + (n) / 4096)
 
 /* Box helpers. */

@@ -51,6 +51,15 @@ double sbi_engine_max_disp(const sb_engine *e, const double *disp)
   return sqrt(m);
 }
 
+/* |disp_i| (0 without displacements). */
+static inline double disp_len(const double *disp, size_t i)
+{
+  if (!disp)
+    return 0.0;
+  const double *d = &disp[3 * i];
+  return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
 /* |disp_i| into e->dn; returns the cut-off 2 rmax + 2 max|disp| + reach
  * and checks it against half the box. */
 static int cutoff(sb_engine *e, const double *disp, double reach,
@@ -58,7 +67,6 @@ static int cutoff(sb_engine *e, const double *disp, double reach,
 {
   const size_t n = e->n;
   const int nt = n >= 4096 ? sbi_engine_threads(&e->par) : 1;
-  (void)nt;
   double m = 0.0;
   int bad = 0;
   double *dn = e->dn;
@@ -66,18 +74,21 @@ static int cutoff(sb_engine *e, const double *disp, double reach,
     /* the step's own displacements: the transport measured them */
     m = e->dn_max;
     bad = e->dn_bad;
-  } else {
+  } else if (nt > 1) {
     /* a maximum: the same for any split between threads */
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static) num_threads(nt) \
     reduction(max : m) reduction(| : bad)
 #endif
     for (size_t i = 0; i < n; i++) {
-      double v = 0.0;
-      if (disp) {
-        const double *d = &disp[3 * i];
-        v = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      }
+      const double v = disp_len(disp, i);
+      bad |= !isfinite(v);
+      dn[i] = v;
+      m = v > m ? v : m;
+    }
+  } else {  /* no parallel region: entering one costs ~0.3 us */
+    for (size_t i = 0; i < n; i++) {
+      const double v = disp_len(disp, i);
       bad |= !isfinite(v);
       dn[i] = v;
       m = v > m ? v : m;
@@ -138,8 +149,8 @@ static size_t cell_at(const sbi_grid *g, int dim, const int ca[3],
 {
   size_t c2 = 0;
   for (int k = 0; k < dim; k++) {
-    int v = ca[k] + q[k];
-    v = ((v % g->nc[k]) + g->nc[k]) % g->nc[k];
+    int v = ca[k] + q[k];  /* |q[k]| < nc (cell_block): one wrap */
+    v = v < 0 ? v + g->nc[k] : (v >= g->nc[k] ? v - g->nc[k] : v);
     c2 += (size_t)v * g->stride[k];
   }
   return c2;
@@ -794,11 +805,26 @@ static int lsearch_pays(const sb_engine *e, double cut)
   return cut > SBI_LSEARCH_CUT * sbi_cell_edge_min(vol, e->n, e->par.dim);
 }
 
+/* 1 if x moved more than lim (minimum image) from where the list saw it
+ * (xb). */
+static inline unsigned char moved_beyond(const double *x, const double *xb,
+                                         const double *L, int dim,
+                                         double lim)
+{
+  double d2 = 0.0;
+  for (int k = 0; k < dim; k++) {
+    double d = sbi_minimg(x[k] - xb[k], L[k]);
+    d2 += d * d;
+  }
+  return d2 > lim * lim;
+}
+
 /* Does the Verlet list still cover this step (D = max|disp|)?  A particle
  * that moved more than skin/2 - D from where the list saw it (a
  * reinsertion, a fast one) becomes a floater: its pairs are searched
  * afresh at every step (float_pairs) until the next build, which comes
- * when there are more than SBI_VERLET_FLOATERS of them. */
+ * when there are more than SBI_VERLET_FLOATERS of them, or when the
+ * floater searches since the build outnumber the particles. */
 static int list_holds(sb_engine *e, const double *x0, double D, double reach)
 {
   sbi_verlet *v = &e->vl;
@@ -819,30 +845,29 @@ static int list_holds(sb_engine *e, const double *x0, double D, double reach)
   size_t nf = 0;
   int other = 0;
   const int nt = n >= 4096 ? sbi_engine_threads(&e->par) : 1;
-  (void)nt;
   /* the same particles (ids and radii bit for bit: nothing added,
    * removed, merged or reordered)?  Mark the floaters (any thread order:
    * each flag is its own), then collect them in index order */
+  if (nt > 1) {
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 4096) num_threads(nt) \
     reduction(+ : nf) reduction(| : other)
 #endif
-  for (size_t i = 0; i < n; i++) {
-    other |= idb[i] != id[i] || memcmp(&rb[i], &r[i], sizeof r[i]) != 0;
-    double d2 = 0.0;
-    for (int k = 0; k < dim; k++) {
-      double d = sbi_minimg(x0[3 * i + k] - xb[3 * i + k], L[k]);
-      d2 += d * d;
+    for (size_t i = 0; i < n; i++) {
+      other |= idb[i] != id[i] || memcmp(&rb[i], &r[i], sizeof r[i]) != 0;
+      nf += fl[i] = moved_beyond(&x0[3 * i], &xb[3 * i], L, dim, lim);
     }
-    if (d2 > lim * lim) {
-      fl[i] = 1;
-      nf++;
+  } else {  /* no parallel region: entering one costs ~0.3 us */
+    for (size_t i = 0; i < n; i++) {
+      other |= idb[i] != id[i] || memcmp(&rb[i], &r[i], sizeof r[i]) != 0;
+      nf += fl[i] = moved_beyond(&x0[3 * i], &xb[3 * i], L, dim, lim);
     }
   }
-  if (other || nf > maxf) {
+  if (other || nf > maxf || v->fsum + nf > n) {
     memset(fl, 0, n);
     return 0;
   }
+  v->fsum += nf;
   for (size_t i = 0; nf && i < n; i++)
     if (fl[i]) {
       v->floats[v->nfloat++] = i;
@@ -928,6 +953,7 @@ static int list_build(sb_engine *e, const double *x0, double D, double reach)
   for (int k = 0; k < 3; k++)
     v->L[k] = e->par.L[k];
   v->valid = 1;
+  v->fsum = 0;
   v->builds++;
   return SB_SUCCESS;
 }

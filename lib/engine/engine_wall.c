@@ -224,6 +224,17 @@ static int walls(sb_engine *e)
   return e->nremove ? sbi_engine_purge(e) : SB_SUCCESS;
 }
 
+/* Wrap the periodic coordinates of one position that left the box
+ * (writing only those: most do not move out in a step, and their cache
+ * lines stay clean). */
+static inline void wrap_periodic(double *x, const double *L, const int *per,
+                                 int dim)
+{
+  for (int k = 0; k < dim; k++)
+    if (per[k] && (x[k] >= L[k] || x[k] < 0.0))
+      x[k] = sbi_wrap(x[k], L[k]);
+}
+
 int sbi_engine_boundaries(sb_engine *e)
 {
   if (e->walled) {
@@ -249,24 +260,23 @@ int sbi_engine_boundaries(sb_engine *e)
       }
     }
   }
-  /* periodic faces: wrap, writing only the coordinates that left the box
-   * (most do not move out in a step: their cache lines stay clean) */
+  /* periodic faces */
   int per[3] = {0, 0, 0};
   for (int k = 0; k < dim; k++)
     per[k] = e->wall[2 * k] == SB_WALL_PERIODIC;
   const size_t n = e->n;
   double *x = e->x;
   const int nt = n >= 4096 ? sbi_engine_threads(&e->par) : 1;
-  (void)nt;
+  if (nt > 1) {
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 4096) num_threads(nt)
 #endif
-  for (size_t i = 0; i < n; i++)
-    for (int k = 0; k < dim; k++) {
-      const double v = x[3 * i + k];
-      if (per[k] && (v >= L[k] || v < 0.0))
-        x[3 * i + k] = sbi_wrap(v, L[k]);
-    }
+    for (size_t i = 0; i < n; i++)
+      wrap_periodic(&x[3 * i], L, per, dim);
+  } else {  /* no parallel region: entering one costs ~0.3 us */
+    for (size_t i = 0; i < n; i++)
+      wrap_periodic(&x[3 * i], L, per, dim);
+  }
   return SB_SUCCESS;
 }
 
