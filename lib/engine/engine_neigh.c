@@ -689,7 +689,10 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
   for (size_t c = nfc; c > 0; c--)
     fs[c] = fs[c - 1];
   fs[0] = 0;
-  /* every pair from its member of larger extent */
+  /* every pair from its member of larger extent (a 2-D box has third
+   * coordinates 0: their image is 0 for any L2 >= 0) */
+  const double L0 = K.L[0], L1 = dim > 1 ? K.L[1] : 0.0,
+               L2 = dim > 2 ? K.L[2] : 0.0;
   const size_t *cof = e->cell_of, *list = K.list;
   size_t np = 0;
   int ci[3] = {0, 0, 0};
@@ -727,20 +730,20 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
               v = v < 0 ? v + nf[k] : (v >= nf[k] ? v - nf[k] : v);
               c2 += (size_t)v * fst[k];
             }
-            for (size_t pb = fs[c2]; pb < fs[c2 + 1]; pb++) {
+            const size_t pe = fs[c2 + 1];
+            for (size_t pb = fs[c2]; pb < pe; pb++) {
+              /* most members fail: one branch-free test (which member
+               * looks for the pair, and the distance), rarely taken */
               const double *mb = &fx[4 * pb];
-              const size_t b = fl[pb];
               const double fb = mb[3];
-              if (!(fb < fa || (fb == fa && a < b)))
-                continue;  /* looked for from b */
-              double d2 = 0.0;
-              for (int k = 0; k < dim; k++) {
-                double d = sbi_minimg(ma[k] - mb[k], K.L[k]);
-                d2 += d * d;
-              }
+              const double d0 = sbi_minimg(ma[0] - mb[0], L0),
+                           d1 = sbi_minimg(ma[1] - mb[1], L1),
+                           d2 = sbi_minimg(ma[2] - mb[2], L2);
               const double B = (fa + fb + reach) * (1.0 + tol) + eabs;
-              if (d2 > B * B)
-                continue;
+              const int mine = (fb < fa) | ((fb == fa) & (a < fl[pb]));
+              if (!(mine & (d0 * d0 + d1 * d1 + d2 * d2 <= B * B)))
+                continue;  /* too far, or looked for from b */
+              const size_t b = fl[pb];
               const size_t s0 = a < b ? a : b, s1 = a < b ? b : a;
               unsigned g;
               if (cells_sees(&K, s0, s1, cof[list[s0]], cof[list[s1]], &g) &&
