@@ -501,7 +501,11 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach,
  *      looked for from its member of larger extent (ties: the lower
  *      slot), in the cells of a grid over the midpoints within
  *      2 f + rho (+ the margins, which also cover a cell index rounded
- *      across a face) of it: every pair passing the test is found once.
+ *      across a face) of it: every pair passing the test is found once.  A
+ *      window of at most one cell on either side on each axis of a grid
+ *      of >= 4 cells sees each member through its cell's wrap, which is
+ *      its nearest image (within 2 h <= L/2); wider windows take the
+ *      minimum image member by member.
  *  (c) a pair found is kept only if scan_cell() would report it: the same
  *      first member (lower slot), the same face-zone decision and
  *      criterion (*) with the same operands and operations
@@ -613,6 +617,82 @@ static int lpair_push(sb_engine *e, size_t *np, size_t a, size_t b,
   return 0;
 }
 
+/* What a query of the midpoint grid keeps fixed: the grid (fx: midpoint
+ * and extent, fl: slot, in grid order), the querying midpoint ma of slot
+ * a and extent fa, its part of the bound, (fa + rho)(1 + tol) + eabs, and
+ * 1 + tol. */
+typedef struct {
+  const double *fx;
+  const size_t *fl;
+  const double *ma;
+  size_t a;
+  double fa, Ba, tol1;
+} lprobe;
+
+/* The members pb0..pb1-1 of one grid cell, seen through the periodic
+ * image that shifts them by sh: push the pairs with slot a that a looks
+ * for (b of smaller extent; ties: the lower slot) within
+ * f_a + f_b + rho (with the margins) and that scan_cell() would report.
+ * The test only has to keep every pair scan_cell() reports (cells_sees
+ * decides), and its margins (1e-8 relative) dwarf the rounding of the
+ * shifted differences.  -1 out of memory. */
+static inline int lprobe_cell(sb_engine *e, const cell_scan *K,
+                              const lprobe *P, const double sh[3],
+                              size_t pb0, size_t pb1, size_t *np)
+{
+  const double *ma = P->ma, fa = P->fa, Ba = P->Ba, tol1 = P->tol1;
+  const double m0 = ma[0] - sh[0], m1 = ma[1] - sh[1], m2 = ma[2] - sh[2];
+  const size_t a = P->a;
+  for (size_t pb = pb0; pb < pb1; pb++) {
+    /* most members fail: one branch-free test (which member looks for
+     * the pair, and the distance), rarely taken */
+    const double *mb = &P->fx[4 * pb];
+    const double fb = mb[3];
+    const double d0 = m0 - mb[0], d1 = m1 - mb[1], d2 = m2 - mb[2];
+    const double B = Ba + fb * tol1;
+    const int mine = (fb < fa) | ((fb == fa) & (a < P->fl[pb]));
+    if (!(mine & (d0 * d0 + d1 * d1 + d2 * d2 <= B * B)))
+      continue;  /* too far, or looked for from b */
+    const size_t b = P->fl[pb];
+    const size_t s0 = a < b ? a : b, s1 = a < b ? b : a;
+    unsigned g;
+    if (cells_sees(K, s0, s1, e->cell_of[K->list[s0]],
+                   e->cell_of[K->list[s1]], &g) &&
+        lpair_push(e, np, s0, s1, g))
+      return -1;
+  }
+  return 0;
+}
+
+/* lprobe_cell with each member's nearest image (minimum image per axis;
+ * a 2-D box has third coordinates 0, whose image is 0 for any L2 >= 0). */
+static int lprobe_wide(sb_engine *e, const cell_scan *K, const lprobe *P,
+                       double L0, double L1, double L2, size_t pb0,
+                       size_t pb1, size_t *np)
+{
+  const double *ma = P->ma;
+  const size_t a = P->a;
+  for (size_t pb = pb0; pb < pb1; pb++) {
+    const double *mb = &P->fx[4 * pb];
+    const double fb = mb[3];
+    const double d0 = sbi_minimg(ma[0] - mb[0], L0),
+                 d1 = sbi_minimg(ma[1] - mb[1], L1),
+                 d2 = sbi_minimg(ma[2] - mb[2], L2);
+    const double B = P->Ba + fb * P->tol1;
+    const size_t b = P->fl[pb];
+    if (!(fb < P->fa || (fb == P->fa && a < b)) ||
+        d0 * d0 + d1 * d1 + d2 * d2 > B * B)
+      continue;
+    const size_t s0 = a < b ? a : b, s1 = a < b ? b : a;
+    unsigned g;
+    if (cells_sees(K, s0, s1, e->cell_of[K->list[s0]],
+                   e->cell_of[K->list[s1]], &g) &&
+        lpair_push(e, np, s0, s1, g))
+      return -1;
+  }
+  return 0;
+}
+
 static int lsearch(sb_engine *e, const double *x0, const double *disp,
                    double cut, double reach)
 {
@@ -689,11 +769,10 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
   for (size_t c = nfc; c > 0; c--)
     fs[c] = fs[c - 1];
   fs[0] = 0;
-  /* every pair from its member of larger extent (a 2-D box has third
-   * coordinates 0: their image is 0 for any L2 >= 0) */
+  /* every pair from its member of larger extent */
   const double L0 = K.L[0], L1 = dim > 1 ? K.L[1] : 0.0,
                L2 = dim > 2 ? K.L[2] : 0.0;
-  const size_t *cof = e->cell_of, *list = K.list;
+  const size_t *list = K.list;
   size_t np = 0;
   int ci[3] = {0, 0, 0};
   for (size_t c = 0; c < nfc; c++) {
@@ -706,23 +785,61 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
       const size_t a = fl[p];
       const double fa = ma[3];
       const double W = (2.0 * fa + reach) * (1.0 + tol) + 2.0 * eabs;
-      int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+      int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, wide = 0;
       for (int k = 0; k < dim; k++) {
         /* the cells that [m - W, m + W] meets: ceil((W - dlo)/h) below,
          * ceil((W - (h - dlo))/h) above (the margins in W cover a cell
-         * index rounded across a face) */
+         * index rounded across a face); ceil(t) = 1 for t in (0, 1]
+         * needs no call (most windows are narrower than a cell) */
         const double dlo = ma[k] - ci[k] * hk[k], dhi = hk[k] - dlo;
-        const int m = (int)ceil(W * inv[k]);
+        const double tm = W * inv[k];
+        const int m = tm <= 1.0 ? 1 : (int)ceil(tm);
         if (2 * m + 1 >= nf[k]) {
           hi[k] = nf[k] - 1;  /* every cell once */
+          wide = 1;
           continue;
         }
-        lo[k] = dlo < W ? -(int)ceil((W - dlo) * inv[k]) : 0;
-        hi[k] = dhi < W ? (int)ceil((W - dhi) * inv[k]) : 0;
+        const double tl = (W - dlo) * inv[k], th = (W - dhi) * inv[k];
+        lo[k] = dlo < W ? (tl <= 1.0 ? -1 : -(int)ceil(tl)) : 0;
+        hi[k] = dhi < W ? (th <= 1.0 ? 1 : (int)ceil(th)) : 0;
+        wide |= lo[k] < -1 || hi[k] > 1;
+      }
+      const lprobe P = {fx, fl, ma, a, fa,
+                        (fa + reach) * (1.0 + tol) + eabs, 1.0 + tol};
+      if (!wide) {
+        /* at most the cells -1, 0, +1 on each axis of a grid of >= 4:
+         * each member is within 2 h <= L/2 of ma on every axis through
+         * the image of its cell's wrap, its nearest image.  Each axis'
+         * cell index contribution and shift once. */
+        size_t off[3][3] = {{0}, {0}, {0}};
+        double shf[3][3] = {{0}, {0}, {0}};
+        for (int k = 0; k < dim; k++)
+          for (int q = lo[k]; q <= hi[k]; q++) {
+            int v = ci[k] + q;
+            double w = 0.0;
+            if (v < 0)
+              v += nf[k], w = -K.L[k];
+            else if (v >= nf[k])
+              v -= nf[k], w = K.L[k];
+            off[k][q - lo[k]] = (size_t)v * fst[k];
+            shf[k][q - lo[k]] = w;
+          }
+        for (int q2 = 0; q2 <= hi[2] - lo[2]; q2++)
+          for (int q1 = 0; q1 <= hi[1] - lo[1]; q1++)
+            for (int q0 = 0; q0 <= hi[0] - lo[0]; q0++) {
+              const size_t c2 = off[0][q0] + off[1][q1] + off[2][q2];
+              const double sh[3] = {shf[0][q0], shf[1][q1], shf[2][q2]};
+              if (lprobe_cell(e, &K, &P, sh, fs[c2], fs[c2 + 1], &np))
+                return sbi_error(SB_ENOMEM, "sb_engine_step", "out of "
+                                 "memory (%zu candidate pairs)", np);
+            }
+        continue;
       }
       for (int q2 = lo[2]; q2 <= hi[2]; q2++)
         for (int q1 = lo[1]; q1 <= hi[1]; q1++)
           for (int q0 = lo[0]; q0 <= hi[0]; q0++) {
+            /* a wide window (large extents, or few cells) may meet a
+             * cell through two images: each member's nearest image */
             const int q[3] = {q0, q1, q2};
             size_t c2 = 0;
             for (int k = 0; k < dim; k++) {  /* |q| < nf: one wrap */
@@ -730,27 +847,9 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
               v = v < 0 ? v + nf[k] : (v >= nf[k] ? v - nf[k] : v);
               c2 += (size_t)v * fst[k];
             }
-            const size_t pe = fs[c2 + 1];
-            for (size_t pb = fs[c2]; pb < pe; pb++) {
-              /* most members fail: one branch-free test (which member
-               * looks for the pair, and the distance), rarely taken */
-              const double *mb = &fx[4 * pb];
-              const double fb = mb[3];
-              const double d0 = sbi_minimg(ma[0] - mb[0], L0),
-                           d1 = sbi_minimg(ma[1] - mb[1], L1),
-                           d2 = sbi_minimg(ma[2] - mb[2], L2);
-              const double B = (fa + fb + reach) * (1.0 + tol) + eabs;
-              const int mine = (fb < fa) | ((fb == fa) & (a < fl[pb]));
-              if (!(mine & (d0 * d0 + d1 * d1 + d2 * d2 <= B * B)))
-                continue;  /* too far, or looked for from b */
-              const size_t b = fl[pb];
-              const size_t s0 = a < b ? a : b, s1 = a < b ? b : a;
-              unsigned g;
-              if (cells_sees(&K, s0, s1, cof[list[s0]], cof[list[s1]], &g) &&
-                  lpair_push(e, &np, s0, s1, g))
-                return sbi_error(SB_ENOMEM, "sb_engine_step", "out of "
-                                 "memory (%zu candidate pairs)", np);
-            }
+            if (lprobe_wide(e, &K, &P, L0, L1, L2, fs[c2], fs[c2 + 1], &np))
+              return sbi_error(SB_ENOMEM, "sb_engine_step", "out of "
+                               "memory (%zu candidate pairs)", np);
           }
     }
   }
