@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_rng.h>
 #include <smolbridge/engine.h>
 
 #include "engine/engine_internal.h"
@@ -260,6 +261,97 @@ START_TEST(test_small_system_rebuilds)
 }
 END_TEST
 
+/* A detector whose answer depends on the draws' order: the contact time
+ * of the chords, kept with probability 1/2 (one uniform per candidate
+ * pair, in candidate order). */
+static int coin_detect(const sb_engine *e, const sb_engine_pair *p,
+                       const gsl_rng *r, void *ctx, double *s)
+{
+  (void)e;
+  (void)ctx;
+  const double u = gsl_rng_uniform(r);
+  const int h = sb_engine_detect_ballistic(p, s);
+  return h == 1 && u < 0.5 ? 0 : h;
+}
+
+/* The detectors that draw in candidate order (langevin, a custom one)
+ * get the list in the cells' order: the same run as with the list off,
+ * candidates and re-detections included, through bounces, reinsertions
+ * (floaters) and in 2-D; the list is used and rebuilt. */
+static void run_ordered(int dim, sb_engine_detect det,
+                        sb_engine_outcome outcome, double shrink,
+                        double reach, size_t min_pairs)
+{
+  setup s = {dim, outcome, det == SB_DETECT_CUSTOM ? SB_DETECT_BALLISTIC : det,
+             0, 0, 0};
+  sb_engine *e[2];
+  for (int v = 0; v < 2; v++) {
+    e[v] = make(&s, SB_NEIGH_CELLS, v);
+    if (shrink != 1.0) {  /* the same particles in a smaller box */
+      sb_engine_params p = *sb_engine_get_params(e[v]);
+      sb_engine_free(e[v]);
+      for (int k = 0; k < 3; k++)
+        p.L[k] *= shrink;
+      e[v] = sb_engine_alloc(&p);
+      ck_assert_ptr_nonnull(e[v]);
+      sb_engine_species sp = {0.5, 1.0, 1.0, sqrt(2.0), 0.0};
+      ck_assert_int_eq(sb_engine_add_species(e[v], &sp, NULL), SB_SUCCESS);
+      ck_assert_int_eq(sb_engine_fill_random(e[v], 0, 0, dim == 2 ? 150 : 400),
+                       SB_SUCCESS);
+    }
+    if (det == SB_DETECT_CUSTOM)
+      ck_assert_int_eq(sb_engine_set_detector(e[v], coin_detect, NULL,
+                                              reach), SB_SUCCESS);
+  }
+  uint64_t floated = 0;
+  size_t kept = 0;
+  for (int k = 0; k < 1500; k++) {
+    for (int v = 0; v < 2; v++) {
+      const int st = sb_engine_step(e[v]);
+      ck_assert_msg(st == SB_SUCCESS, "%s", sb_last_error());
+    }
+    /* the step's candidates, pair for pair and in order */
+    ck_assert_uint_eq(e[0]->npairs, e[1]->npairs);
+    ck_assert(!e[0]->npairs ||
+              !memcmp(e[0]->pairs, e[1]->pairs,
+                      2 * e[0]->npairs * sizeof *e[0]->pairs));
+    kept += e[0]->npairs;
+  }
+  ck_assert_uint_gt(kept, min_pairs);  /* not vacuous */
+  floated = e[0]->vl.floated;
+  sbt_assert_same_run(e[0], e[1], SBT_SAME_CANDIDATES | SBT_SAME_REDETECTED);
+  sb_engine_stats st;
+  sb_engine_get_stats(e[0], &st);
+  ck_assert_uint_gt(st.ncoll, 20);
+  ck_assert_uint_gt(e[0]->vl.uses, 1000);
+  ck_assert_uint_ge(e[0]->vl.builds, 2);
+  ck_assert_uint_eq(e[1]->vl.uses, 0);
+  if (outcome == SB_OUTCOME_REINSERT)
+    ck_assert_uint_gt(floated, 20);
+  sb_engine_free(e[0]);
+  sb_engine_free(e[1]);
+}
+
+START_TEST(test_ordered_langevin)
+{
+  run_ordered(3, SB_DETECT_LANGEVIN, SB_OUTCOME_ELASTIC, 1.0, 0.0, 500);
+  run_ordered(3, SB_DETECT_LANGEVIN, SB_OUTCOME_REINSERT, 1.0, 0.0, 500);
+  run_ordered(2, SB_DETECT_LANGEVIN, SB_OUTCOME_ELASTIC, 0.6, 0.0, 500);
+}
+END_TEST
+
+/* With a reach of 1.5 (3 radii) at phi ~ 11% a particle has ~14
+ * candidates, in several neighbouring cells: the order of the cells
+ * matters (the test fails when the rank of the cell is left out). */
+START_TEST(test_ordered_custom)
+{
+  run_ordered(3, SB_DETECT_CUSTOM, SB_OUTCOME_ELASTIC, 1.0, 0.0, 1000);
+  run_ordered(3, SB_DETECT_CUSTOM, SB_OUTCOME_REINSERT, 0.5, 1.5, 1000000);
+  run_ordered(3, SB_DETECT_CUSTOM, SB_OUTCOME_ELASTIC, 0.5, 1.5, 1000000);
+  run_ordered(2, SB_DETECT_CUSTOM, SB_OUTCOME_REINSERT, 0.6, 1.5, 100000);
+}
+END_TEST
+
 int main(void)
 {
   Suite *s = suite_create("engine_verlet");
@@ -273,6 +365,8 @@ int main(void)
   tcase_add_test(t, test_not_used_for_long_steps);
   tcase_add_test(t, test_threads);
   tcase_add_test(t, test_small_system_rebuilds);
+  tcase_add_test(t, test_ordered_langevin);
+  tcase_add_test(t, test_ordered_custom);
   suite_add_tcase(s, t);
   return sbt_run_suite(s);
 }

@@ -194,6 +194,7 @@ void sb_engine_free(sb_engine *e)
   free(e->lfx);
   free(e->lfl);
   free(e->lcnt);
+  free(e->lcc);
   free(e->lfs);
   free(e->lpr);
   free(e->lpr2);

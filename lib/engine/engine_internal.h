@@ -212,6 +212,8 @@ struct sb_engine {
    * (lcapc) and the candidates (lcappr) */
   double *lxm, *lfx;
   size_t *lfl, *lcnt, *lfs;
+  int *lcc;                  /* the ordered Verlet list: cell coordinates
+                                per slot (3 lcapn) */
   sbi_lpair *lpr, *lpr2;
   size_t lcapn, lcapc, lcappr;
   size_t *order;             /* sweep: particle order along x */

@@ -349,12 +349,15 @@ static int scan_cell(const cell_scan *K, size_t c, sbi_pairbuf *out)
  * Cell edge >= cut, about SBI_CELL_PPC particles per cell (larger cells
  * are still correct, only slower per cell).  Directions with 1 or 2 cells use the
  * minimum image.  for_list: the pairs within r_i + r_j + reach of a
- * Verlet list (no displacements). */
+ * Verlet list (no displacements).  keep_list: the Verlet list stays valid
+ * (its pairs and floaters are its own; only its cells are gone). */
 static int cell_sort(sb_engine *e, const double *x0, double cut,
-                     double reach, int for_list, cell_scan *K)
+                     double reach, int for_list, int keep_list, cell_scan *K)
 {
-  e->vl.valid = 0;  /* its cells are overwritten (a list build sets it) */
-  float_clear(&e->vl);
+  if (!keep_list) {  /* its cells are overwritten (a list build sets it) */
+    e->vl.valid = 0;
+    float_clear(&e->vl);
+  }
   const int dim = e->par.dim;
   const size_t n = e->n;
   const double *L = e->par.L;
@@ -436,7 +439,7 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach,
                  int for_list)
 {
   cell_scan K;
-  int st0 = cell_sort(e, x0, cut, reach, for_list, &K);
+  int st0 = cell_sort(e, x0, cut, reach, for_list, 0, &K);
   if (st0)
     return st0;
   const size_t n = e->n, ncell = (size_t)K.nc[0] * K.nc[1] * K.nc[2];
@@ -517,16 +520,20 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach,
  *      pairs are sorted by (a, rank of b's cell offset in that loop, b).
  */
 
-/* Would scan_cell() report the slots lo < hi (cells ca, cb)?  Sets the
- * rank of cb's offset from ca in scan_cell's loop over the neighbouring
- * cells (0: own cell). */
-static int cells_sees(const cell_scan *K, size_t lo, size_t hi, size_t ca,
-                      size_t cb, unsigned *g)
+/* Would scan_cell() report the slots lo < hi, whose cells have the
+ * coordinates ia, ib?  Sets the rank of b's cell offset from a's in
+ * scan_cell's loop over the neighbouring cells (0: own cell). */
+static int cells_sees_at(const cell_scan *K, size_t lo, size_t hi,
+                         const int ia[3], const int ib[3], unsigned *g)
 {
   const double *xa = &K->xs[4 * lo], *xb = &K->xs[4 * hi];
   const double *L = K->L;
   const double ra = xa[3] + K->reach, lim = ra + xb[3];
-  if (ca == cb) {
+  /* the distance first (most pairs of a Verlet list fail it), with
+   * scan_cell's operations: plain differences within a cell (the minimum
+   * image where a direction has one cell), the minimum image across */
+  const int own = ia[0] == ib[0] && ia[1] == ib[1] && ia[2] == ib[2];
+  if (own) {
     double d0 = xa[0] - xb[0], d1 = xa[1] - xb[1], d2 = xa[2] - xb[2];
     if (K->own_wrap) {
       d0 = sbi_minimg(d0, L[0]);
@@ -536,13 +543,19 @@ static int cells_sees(const cell_scan *K, size_t lo, size_t hi, size_t ca,
     *g = 0;
     return d0 * d0 + d1 * d1 + d2 * d2 <= lim * lim;
   }
+  double d2 = 0.0;
+  for (int k = 0; k < K->dim; k++) {
+    double d = sbi_minimg(xa[k] - xb[k], L[k]);
+    d2 += d * d;
+  }
+  if (!(d2 <= lim * lim))
+    return 0;
+  /* then whether a's scan looks into b's cell (its face zones) */
   const double wa = xa[3] + K->ext;
   unsigned r = 0, w = 1;
   for (int k = 0; k < K->dim; k++, w *= 3) {
     const int nck = K->nc[k];
-    const int ia = (int)((ca / K->stride[k]) % (size_t)nck),
-              ib = (int)((cb / K->stride[k]) % (size_t)nck);
-    int v = ib - ia;
+    int v = ib[k] - ia[k];
     v = v < 0 ? v + nck : v;
     if (v == 0)
       continue;
@@ -550,7 +563,7 @@ static int cells_sees(const cell_scan *K, size_t lo, size_t hi, size_t ca,
       r += 2 * w;
       continue;
     }
-    const double dlo = xa[k] - ia * K->edge[k];
+    const double dlo = xa[k] - ia[k] * K->edge[k];
     if (v == nck - 1) {  /* -1 */
       if (!(dlo < wa))
         return 0;
@@ -563,12 +576,25 @@ static int cells_sees(const cell_scan *K, size_t lo, size_t hi, size_t ca,
       return 0;  /* not a neighbouring cell */
   }
   *g = r;
-  double d2 = 0.0;
-  for (int k = 0; k < K->dim; k++) {
-    double d = sbi_minimg(xa[k] - xb[k], L[k]);
-    d2 += d * d;
-  }
-  return d2 <= lim * lim;
+  return 1;
+}
+
+/* The coordinates of cell c of K. */
+static void cell_coords(const cell_scan *K, size_t c, int ci[3])
+{
+  ci[0] = ci[1] = ci[2] = 0;
+  for (int k = 0; k < K->dim; k++)
+    ci[k] = (int)((c / K->stride[k]) % (size_t)K->nc[k]);
+}
+
+/* cells_sees_at for the slots lo < hi in the cells ca, cb. */
+static int cells_sees(const cell_scan *K, size_t lo, size_t hi, size_t ca,
+                      size_t cb, unsigned *g)
+{
+  int ia[3], ib[3];
+  cell_coords(K, ca, ia);
+  cell_coords(K, cb, ib);
+  return cells_sees_at(K, lo, hi, ia, ib, g);
 }
 
 /* Particles per cell of the midpoint grid, at least (memory: one cell
@@ -591,7 +617,10 @@ static int lsearch_grow(sb_engine *e, size_t n)
     size_t *cn = realloc(e->lcnt, (n + 1) * sizeof *cn);
     if (cn)
       e->lcnt = cn;
-    if (!xm || !fx || !fl || !cn)
+    int *cc = realloc(e->lcc, 3 * n * sizeof *cc);
+    if (cc)
+      e->lcc = cc;
+    if (!xm || !fx || !fl || !cn || !cc)
       return -1;
     e->lcapn = n;
   }
@@ -615,6 +644,48 @@ static int lpair_push(sb_engine *e, size_t *np, size_t a, size_t b,
   }
   e->lpr[(*np)++] = (sbi_lpair){a, b, g};
   return 0;
+}
+
+/* Append the np pairs of e->lpr (slots a < b, rank g of b's cell) to
+ * the candidates in cells()' order: by first slot (counting sort), then
+ * (rank, b); the candidates are the particles list[a], list[b]. */
+static int emit_in_cell_order(sb_engine *e, size_t np, const size_t *list)
+{
+  const size_t n = e->n;
+  size_t *cnt = e->lcnt;
+  memset(cnt, 0, (n + 1) * sizeof *cnt);
+  for (size_t q = 0; q < np; q++)
+    cnt[e->lpr[q].a + 1]++;
+  for (size_t a = 0; a < n; a++)
+    cnt[a + 1] += cnt[a];
+  sbi_lpair *sp = e->lpr2;
+  for (size_t q = 0; q < np; q++)
+    sp[cnt[e->lpr[q].a]++] = e->lpr[q];
+  sbi_pairbuf pb = {e->pairs, e->npairs, e->cappairs};
+  int bad = 0;
+  for (size_t q0 = 0; q0 < np && !bad;) {
+    size_t q1 = q0 + 1;
+    while (q1 < np && sp[q1].a == sp[q0].a)
+      q1++;
+    for (size_t q = q0 + 1; q < q1; q++) {  /* insertion sort: few */
+      sbi_lpair t = sp[q];
+      size_t r = q;
+      while (r > q0 && (sp[r - 1].g > t.g ||
+                        (sp[r - 1].g == t.g && sp[r - 1].b > t.b))) {
+        sp[r] = sp[r - 1];
+        r--;
+      }
+      sp[r] = t;
+    }
+    for (size_t q = q0; q < q1 && !bad; q++)
+      bad = pb_push(&pb, list[sp[q].a], list[sp[q].b]);
+    q0 = q1;
+  }
+  e->pairs = pb.p;
+  e->npairs = pb.n;
+  e->cappairs = pb.cap;
+  return bad ? sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+                         "(%zu candidate pairs)", pb.n) : SB_SUCCESS;
 }
 
 /* What a query of the midpoint grid keeps fixed: the grid (fx: midpoint
@@ -697,7 +768,7 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
                    double cut, double reach)
 {
   cell_scan K;
-  int st = cell_sort(e, x0, cut, reach, 0, &K);
+  int st = cell_sort(e, x0, cut, reach, 0, 0, &K);
   if (st)
     return st;
   const size_t n = e->n;
@@ -853,40 +924,7 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
           }
     }
   }
-  /* cells()' order: by first slot (counting sort), then (rank, b) */
-  memset(cnt, 0, (n + 1) * sizeof *cnt);
-  for (size_t q = 0; q < np; q++)
-    cnt[e->lpr[q].a + 1]++;
-  for (size_t a = 0; a < n; a++)
-    cnt[a + 1] += cnt[a];
-  sbi_lpair *sp = e->lpr2;
-  for (size_t q = 0; q < np; q++)
-    sp[cnt[e->lpr[q].a]++] = e->lpr[q];
-  sbi_pairbuf pb = {e->pairs, e->npairs, e->cappairs};
-  int bad = 0;
-  for (size_t q0 = 0; q0 < np && !bad;) {
-    size_t q1 = q0 + 1;
-    while (q1 < np && sp[q1].a == sp[q0].a)
-      q1++;
-    for (size_t q = q0 + 1; q < q1; q++) {  /* insertion sort: few */
-      sbi_lpair t = sp[q];
-      size_t r = q;
-      while (r > q0 && (sp[r - 1].g > t.g ||
-                        (sp[r - 1].g == t.g && sp[r - 1].b > t.b))) {
-        sp[r] = sp[r - 1];
-        r--;
-      }
-      sp[r] = t;
-    }
-    for (size_t q = q0; q < q1 && !bad; q++)
-      bad = pb_push(&pb, list[sp[q].a], list[sp[q].b]);
-    q0 = q1;
-  }
-  e->pairs = pb.p;
-  e->npairs = pb.n;
-  e->cappairs = pb.cap;
-  return bad ? sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
-                         "(%zu candidate pairs)", pb.n) : SB_SUCCESS;
+  return emit_in_cell_order(e, np, list);
 }
 
 /* Where the cut-off is well below the density's cell edge, cells()
@@ -1138,12 +1176,115 @@ static int listed(sb_engine *e, const double *x0, double cut, double D,
   return SB_SUCCESS;
 }
 
+/* Keep the pair of slots sa, sb (any order; cc: each slot's cell
+ * coordinates) if scan_cell() would report it: push it with its rank in
+ * scan_cell's loop (cells_sees_at).  0, or -1 out of memory. */
+static int keep_if_seen(sb_engine *e, const cell_scan *K, const int *cc,
+                        size_t sa, size_t sb, size_t *np)
+{
+  const size_t s0 = sa < sb ? sa : sb, s1 = sa < sb ? sb : sa;
+  unsigned g;
+  if (!cells_sees_at(K, s0, s1, &cc[3 * s0], &cc[3 * s1], &g))
+    return 0;
+  return lpair_push(e, np, s0, s1, g);
+}
+
+/* The Verlet list in the cells' order, for the detectors whose draws
+ * follow the candidate order (langevin, bridges, custom ones): the
+ * candidates of the listed path (listed pairs of listed particles, and
+ * each floater with every particle of the 27 cells around it), kept when
+ * scan_cell() would report them and sorted as it does (cells_sees and
+ * emit_in_cell_order, as lsearch): exactly cells()' list, pair for pair
+ * and in order, so the run is the same bit for bit with the list on or
+ * off.  The cells of this step (this step's cut) are sorted as cells()
+ * sorts them and serve the ranks and re-detection, as with cells(); the
+ * floaters are then forgotten (re-detection finds them in those cells).
+ * Without a list that holds or pays: *used = 0, nothing done. */
+static int listed_ordered(sb_engine *e, const double *x0, double cut,
+                          double D, double reach, int *used)
+{
+  sbi_verlet *v = &e->vl;
+  *used = 0;
+  if (list_holds(e, x0, D, reach)) {
+    v->uses++;
+    v->floated += v->nfloat > 0;
+  } else {
+    int st = list_build(e, x0, D, reach);
+    if (st || !v->valid)
+      return st;
+  }
+  *used = 1;
+  const size_t n = e->n;
+  if (lsearch_grow(e, n))
+    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+  cell_scan K;
+  int st = cell_sort(e, x0, cut, reach, 0, 1, &K);
+  if (st)
+    return st;
+  size_t *slot = e->lfl;  /* particle -> its slot in cell order */
+  for (size_t a = 0; a < n; a++)
+    slot[K.list[a]] = a;
+  int *cc = e->lcc;  /* each slot's cell coordinates (no divisions) */
+  {
+    int ci[3] = {0, 0, 0};
+    const size_t ncell = (size_t)K.nc[0] * K.nc[1] * K.nc[2];
+    for (size_t c = 0; c < ncell; c++) {
+      if (c)
+        for (int k = 0; k < 3 && ++ci[k] == K.nc[k]; k++)
+          ci[k] = 0;
+      for (size_t a = K.start[c]; a < K.start[c + 1]; a++)
+        memcpy(&cc[3 * a], ci, sizeof ci);
+    }
+  }
+  const unsigned char *fl = v->isfloat;
+  size_t np = 0;
+  int bad = 0;
+  for (size_t q = 0; q < v->npairs && !bad; q++) {
+    const size_t i = v->pairs[2 * q], j = v->pairs[2 * q + 1];
+    if (!fl[i] && !fl[j])
+      bad = keep_if_seen(e, &K, cc, slot[i], slot[j], &np);
+  }
+  /* a floater's partners: in its own or a neighbouring cell (scan_cell
+   * looks no further), each neighbouring cell once; two floaters from
+   * the lower index */
+  for (size_t q = 0; q < v->nfloat && !bad; q++) {
+    const size_t f = v->floats[q], sf = slot[f];
+    const int *ca = &cc[3 * sf];
+    int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (int k = 0; k < K.dim; k++) {
+      lo[k] = K.nc[k] >= 3 ? -1 : 0;
+      hi[k] = K.nc[k] >= 2 ? 1 : 0;
+    }
+    for (int q2 = lo[2]; q2 <= hi[2] && !bad; q2++)
+      for (int q1 = lo[1]; q1 <= hi[1] && !bad; q1++)
+        for (int q0 = lo[0]; q0 <= hi[0] && !bad; q0++) {
+          const int o[3] = {q0, q1, q2};
+          size_t c2 = 0;
+          for (int k = 0; k < K.dim; k++) {
+            int w = ca[k] + o[k];
+            w = w < 0 ? w + K.nc[k] : (w >= K.nc[k] ? w - K.nc[k] : w);
+            c2 += (size_t)w * K.stride[k];
+          }
+          for (size_t b = K.start[c2]; b < K.start[c2 + 1] && !bad; b++) {
+            const size_t k = K.list[b];
+            if (k != f && !(fl[k] && k < f))
+              bad = keep_if_seen(e, &K, cc, sf, b, &np);
+          }
+        }
+  }
+  float_clear(v);
+  if (bad)
+    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+                     "(%zu candidate pairs)", np);
+  return emit_in_cell_order(e, np, K.list);
+}
+
 /* The search of sbi_engine_find_pairs; with_list: linked cells may go
  * through the Verlet list (a step's search with a deterministic
  * detector). */
 static int find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
                       const double *disp, double reach, int with_list,
-                      int lang)
+                      int ordered, int lang)
 {
   e->npairs = 0;
   e->grid.valid = 0;
@@ -1155,11 +1296,17 @@ static int find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
     return st;
   e->grid.ext_max = 0.5 * (cut - reach);  /* r_max + max |disp| */
   switch (m) {
-  case SB_NEIGH_CELLS:
-    st = with_list                  ? listed(e, x0, cut, D, reach)
-         : lang && lsearch_pays(e, cut) ? lsearch(e, x0, disp, cut, reach)
-                   : cells(e, x0, cut, reach, 0);
+  case SB_NEIGH_CELLS: {
+    int used = 0;
+    if (with_list)
+      st = listed(e, x0, cut, D, reach);
+    else if (ordered)
+      st = listed_ordered(e, x0, cut, D, reach, &used);
+    if (!with_list && !st && !used)
+      st = lang && lsearch_pays(e, cut) ? lsearch(e, x0, disp, cut, reach)
+                                        : cells(e, x0, cut, reach, 0);
     break;
+  }
   case SB_NEIGH_SWEEP:
     st = sbi_engine_sweep(e, x0, disp, reach);
     break;
@@ -1179,7 +1326,7 @@ static int find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
 int sbi_engine_find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
                           const double *disp, double reach)
 {
-  return find_pairs(e, m, x0, disp, reach, 0, 0);
+  return find_pairs(e, m, x0, disp, reach, 0, 0, 0);
 }
 
 int sbi_engine_find_step_pairs(sb_engine *e, double reach)
@@ -1188,10 +1335,15 @@ int sbi_engine_find_step_pairs(sb_engine *e, double reach)
    * detectors whose result does not depend on it, and only in a fully
    * periodic box (walls, open faces and Lees-Edwards images add pairs of
    * their own each step) */
+  const int periodic_list = !e->walled && !e->lees && !e->ninflow &&
+                            !e->par.verlet_off;
   const int with_list = (e->par.detect == SB_DETECT_BALLISTIC ||
                          e->par.detect == SB_DETECT_OVERLAP) &&
                         !e->walled && !e->lees && !e->par.verlet_off;
-  if (!with_list)
+  /* the other detectors may draw in candidate order: the list in the
+   * cells' order (listed_ordered) */
+  const int ordered = !with_list && periodic_list;
+  if (!with_list && !ordered)
     e->vl.valid = 0;
   /* the Langevin search: only where the detector's chord test drops
    * every pair it leaves out (fully periodic box, noise on every
@@ -1201,7 +1353,7 @@ int sbi_engine_find_step_pairs(sb_engine *e, double reach)
                    !e->par.lsearch_off && !e->walled && !e->lees &&
                    !e->ninflow && sbi_engine_langevin_chord_gate(e, reach);
   return find_pairs(e, e->par.neigh, e->x0, e->disp, reach, with_list,
-                    lang);
+                    ordered, lang);
 }
 
 int sb_engine_neighbours(sb_engine *e, sb_engine_neigh m, const double *disp,

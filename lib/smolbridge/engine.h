@@ -164,17 +164,18 @@ typedef struct {
                                   (OMP_NUM_THREADS).  The results are
                                   bit-identical for any value. */
   int verlet_off;            /**< 0 (the default): with the cells search
-                                  and a deterministic detector (ballistic,
-                                  overlap) in a fully periodic box, the
-                                  candidate pairs come from a Verlet list
-                                  kept over several steps (skin = r_max,
-                                  rebuilt when a particle has moved half
-                                  of it; used when a step moves particles
-                                  less than r_max/20).  The candidates and
-                                  the results are the same as without it,
-                                  bit for bit (docs/engine.md, "Neighbour
-                                  search").  1: rebuild the cells at every
-                                  step. */
+                                  in a fully periodic box, the candidate
+                                  pairs come from a Verlet list kept over
+                                  several steps (skin = r_max, rebuilt
+                                  when a particle has moved half of it;
+                                  used when a step moves particles less
+                                  than r_max/20); for the detectors that
+                                  may draw in candidate order (langevin,
+                                  bridges, custom) in the cell scan's
+                                  order.  The candidates and the results
+                                  are the same as without it, bit for bit
+                                  (docs/engine.md, "Neighbour search").
+                                  1: rebuild the cells at every step. */
   int lsearch_off;           /**< 0 (the default): with the cells search
                                   and the `langevin` detector in a fully
                                   periodic box, the candidates come from a
