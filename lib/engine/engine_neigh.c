@@ -700,6 +700,20 @@ typedef struct {
   double fa, Ba, tol1;
 } lprobe;
 
+/* Push the pair of slots a, b (either order) when scan_cell() would
+ * report it, with the rank of the later slot's cell.  -1 out of memory. */
+static inline int lprobe_emit(sb_engine *e, const cell_scan *K, size_t a,
+                              size_t b, size_t *np)
+{
+  const size_t s0 = a < b ? a : b, s1 = a < b ? b : a;
+  unsigned g;
+  if (cells_sees(K, s0, s1, e->cell_of[K->list[s0]],
+                 e->cell_of[K->list[s1]], &g) &&
+      lpair_push(e, np, s0, s1, g))
+    return -1;
+  return 0;
+}
+
 /* The members pb0..pb1-1 of one grid cell, seen through the periodic
  * image that shifts them by sh: push the pairs with slot a that a looks
  * for (b of smaller extent; ties: the lower slot) within
@@ -724,12 +738,7 @@ static inline int lprobe_cell(sb_engine *e, const cell_scan *K,
     const int mine = (fb < fa) | ((fb == fa) & (a < P->fl[pb]));
     if (!(mine & (d0 * d0 + d1 * d1 + d2 * d2 <= B * B)))
       continue;  /* too far, or looked for from b */
-    const size_t b = P->fl[pb];
-    const size_t s0 = a < b ? a : b, s1 = a < b ? b : a;
-    unsigned g;
-    if (cells_sees(K, s0, s1, e->cell_of[K->list[s0]],
-                   e->cell_of[K->list[s1]], &g) &&
-        lpair_push(e, np, s0, s1, g))
+    if (lprobe_emit(e, K, a, P->fl[pb], np))
       return -1;
   }
   return 0;
@@ -754,11 +763,7 @@ static int lprobe_wide(sb_engine *e, const cell_scan *K, const lprobe *P,
     if (!(fb < P->fa || (fb == P->fa && a < b)) ||
         d0 * d0 + d1 * d1 + d2 * d2 > B * B)
       continue;
-    const size_t s0 = a < b ? a : b, s1 = a < b ? b : a;
-    unsigned g;
-    if (cells_sees(K, s0, s1, e->cell_of[K->list[s0]],
-                   e->cell_of[K->list[s1]], &g) &&
-        lpair_push(e, np, s0, s1, g))
+    if (lprobe_emit(e, K, a, b, np))
       return -1;
   }
   return 0;
