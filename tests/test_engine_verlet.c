@@ -220,6 +220,20 @@ START_TEST(test_not_used_for_long_steps)
 }
 END_TEST
 
+/* e[0] (list on) and e[1] (list off) made the same run, e[0] collided
+ * more than ncoll times, and its list served more than uses steps with
+ * at least builds builds. */
+static void assert_list_served(sb_engine *const e[2], uint64_t ncoll,
+                               uint64_t uses, uint64_t builds)
+{
+  sbt_assert_same_run(e[0], e[1], SBT_SAME_CANDIDATES | SBT_SAME_REDETECTED);
+  sb_engine_stats st;
+  sb_engine_get_stats(e[0], &st);
+  ck_assert_uint_gt(st.ncoll, ncoll);
+  ck_assert_uint_gt(e[0]->vl.uses, uses);
+  ck_assert_uint_ge(e[0]->vl.builds, builds);
+}
+
 /* A small system (24 particles, fewer than SBI_VERLET_FLOATERS): every
  * particle in turn moves beyond the skin.  The list must be rebuilt once
  * the floater searches outnumber the particles, so the floaters stay few
@@ -249,12 +263,7 @@ START_TEST(test_small_system_rebuilds)
     ck_assert_int_eq(sb_engine_step(e[1]), SB_SUCCESS);
     floaters += (double)e[0]->vl.nfloat;
   }
-  sbt_assert_same_run(e[0], e[1], SBT_SAME_CANDIDATES | SBT_SAME_REDETECTED);
-  sb_engine_stats st;
-  sb_engine_get_stats(e[0], &st);
-  ck_assert_uint_gt(st.ncoll, 50);
-  ck_assert_uint_gt(e[0]->vl.uses, 3000);
-  ck_assert_uint_ge(e[0]->vl.builds, 10);
+  assert_list_served(e, 50, 3000, 10);
   ck_assert_double_lt(floaters / steps, 2.0);
   sb_engine_free(e[0]);
   sb_engine_free(e[1]);
@@ -319,12 +328,7 @@ static void run_ordered(int dim, sb_engine_detect det,
   }
   ck_assert_uint_gt(kept, min_pairs);  /* not vacuous */
   floated = e[0]->vl.floated;
-  sbt_assert_same_run(e[0], e[1], SBT_SAME_CANDIDATES | SBT_SAME_REDETECTED);
-  sb_engine_stats st;
-  sb_engine_get_stats(e[0], &st);
-  ck_assert_uint_gt(st.ncoll, 20);
-  ck_assert_uint_gt(e[0]->vl.uses, 1000);
-  ck_assert_uint_ge(e[0]->vl.builds, 2);
+  assert_list_served(e, 20, 1000, 2);
   ck_assert_uint_eq(e[1]->vl.uses, 0);
   if (outcome == SB_OUTCOME_REINSERT)
     ck_assert_uint_gt(floated, 20);
