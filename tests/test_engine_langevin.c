@@ -529,6 +529,71 @@ START_TEST(test_kernel_gh)
 }
 END_TEST
 
+/* Pooling independent repeats of a first-hit run (lv_pool, the --full
+ * V12 runs the candidate-pair cap holds below their contacts): counts,
+ * pairs and work add up, the velocities are appended up to the cap, the
+ * pooled kernel lies between the two runs' and its interval is narrower
+ * than either; runs of another end time do not pool. */
+START_TEST(test_pool_repeats)
+{
+  sb_validate_options opt;
+  sb_validate_options_init(&opt);
+  sbv_ctx ctx = {0, 78, NULL, &opt, NULL, NULL};
+  const double T = 296.15, d = 1e-7, m = sb_sphere_mass(1000.0, d);
+  const double tau = 0.5 * d / sqrt(2.0 * SB_BOLTZMANN * T / m);
+  lv_run q;
+  memset(&q, 0, sizeof q);
+  q.nsp = 1;
+  q.d[0] = d;
+  q.tau[0] = tau;
+  q.mass[0] = m;
+  q.N[0] = 3000;
+  q.temp = T;
+  q.dt = tau;
+  q.det = LV_LANGEVIN;
+  q.t1 = 20 * tau;
+  q.T = 120 * tau;
+  q.vcap = 100000;  /* every contact's velocity */
+  const double D = 2 * SB_BOLTZMANN * T * tau / m;
+  q.L = 10.0 * sqrt(2 * D * q.T);
+  lv_out o1, o2;
+  ck_assert_int_eq(lv_firsthit(&ctx, 1, &q, &o1), SB_SUCCESS);
+  ck_assert_int_eq(lv_firsthit(&ctx, 2, &q, &o2), SB_SUCCESS);
+  ck_assert_msg(o1.hits[0] > 100 && o2.hits[0] > 100, "%lu, %lu contacts",
+                o1.hits[0], o2.hits[0]);
+  ck_assert(o1.nvn == o1.hits[0] && o2.nvn == o2.hits[0]);
+  const size_t cap = o1.nvn + o2.nvn / 2;  /* the pool's cap */
+  double K1, l1, h1, K2, l2, h2, K, lo, hi;
+  ck_assert_int_eq(lv_kernel(&q, &o1, 0, &K1, &l1, &h1), SB_SUCCESS);
+  ck_assert_int_eq(lv_kernel(&q, &o2, 0, &K2, &l2, &h2), SB_SUCCESS);
+  ck_assert(K1 != K2);  /* other streams, other runs */
+  const unsigned long hits = o1.hits[0] + o2.hits[0];
+  const double pairs = o1.npairs[0] + o2.npairs[0], cpu = o1.cpu + o2.cpu;
+  const double v0 = o2.vn[0];
+  const size_t n1 = o1.nvn;
+  lv_out acc = o1;
+  ck_assert_int_eq(lv_pool(&acc, &o2, cap), SB_SUCCESS);
+  ck_assert_ptr_null(o2.vn);
+  ck_assert_uint_eq(acc.hits[0], hits);
+  ck_assert(acc.npairs[0] == pairs && acc.cpu == cpu);
+  ck_assert_uint_eq(acc.nvn, cap);
+  ck_assert(acc.vn[n1] == v0);
+  ck_assert_int_eq(lv_kernel(&q, &acc, 0, &K, &lo, &hi), SB_SUCCESS);
+  ck_assert_msg(K > fmin(K1, K2) && K < fmax(K1, K2), "%g not in (%g, %g)",
+                K, K1, K2);
+  ck_assert(hi - lo < fmin(h1 - l1, h2 - l2));
+  /* another end time: not the same run */
+  lv_run q3 = q;
+  q3.T = 100 * tau;
+  q3.vcap = 0;
+  lv_out o3;
+  ck_assert_int_eq(lv_firsthit(&ctx, 3, &q3, &o3), SB_SUCCESS);
+  ck_assert_int_eq(lv_pool(&acc, &o3, cap), SB_EINVAL);
+  ck_assert_uint_eq(acc.hits[0], hits);
+  free(acc.vn);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("engine_langevin");
@@ -546,6 +611,7 @@ static Suite *suite(void)
   tcase_add_test(tm, test_reach_skip);
   tcase_add_test(tm, test_dense_runs);
   tcase_add_test(tm, test_kernel_gh);
+  tcase_add_test(tm, test_pool_repeats);
   tcase_add_test(tm, test_units);
   suite_add_tcase(s, tm);
   return s;

@@ -222,6 +222,12 @@ typedef struct {
 int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
                 lv_out *o);
 
+/* Pool run `add` into `acc`: independent repeats of one run (the same
+ * lv_run, other streams) count as one run of their summed pairs, the
+ * box and the end time being the same (SB_EINVAL otherwise).  Hits,
+ * pairs, CPU time, steps and candidates add up; the normal velocities
+ * are appended up to vcap.  add->vn is freed in any case. */
+int lv_pool(lv_out *acc, lv_out *add, size_t vcap);
 /* Long-time kernel of pair type `type` from a run (estimator above) with
  * its 95% interval; SB_EDOM if the type had no pairs. */
 int lv_kernel(const lv_run *q, const lv_out *o, int type, double *K,

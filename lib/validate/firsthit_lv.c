@@ -316,6 +316,44 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
   return st;
 }
 
+int lv_pool(lv_out *acc, lv_out *add, size_t vcap)
+{
+  int st = SB_SUCCESS;
+  /* the estimator pools runs of one box and one end time only */
+  if (acc->T != add->T || acc->unit != add->unit)
+    st = SB_EINVAL;
+  for (int t = 0; t < 3 && !st; t++)
+    if (acc->veff[t] != add->veff[t] || acc->D[t] != add->D[t])
+      st = SB_EINVAL;
+  size_t n = acc->nvn + add->nvn;
+  if (n > vcap)
+    n = vcap;
+  if (!st && n > acc->nvn) {
+    double *v = realloc(acc->vn, n * sizeof *v);
+    if (!v)
+      st = SB_ENOMEM;
+    else {
+      memcpy(v + acc->nvn, add->vn, (n - acc->nvn) * sizeof *v);
+      acc->vn = v;
+      acc->nvn = n;
+    }
+  }
+  if (!st) {
+    for (int t = 0; t < 3; t++) {
+      acc->hits[t] += add->hits[t];
+      acc->npairs[t] += add->npairs[t];
+    }
+    acc->cpu += add->cpu;
+    acc->steps += add->steps;
+    acc->ncand += add->ncand;
+    acc->pruned_mass += add->pruned_mass;
+  }
+  free(add->vn);
+  add->vn = NULL;
+  add->nvn = 0;
+  return st;
+}
+
 /* CPU seconds of the process, or of the calling thread (a run that is
  * one of several running at once). */
 static double cpu_seconds(int thread)

@@ -26,6 +26,10 @@
  * bytes each, 11 GB at the cap for `langevin` at Kn_D = 3, dt = 1000
  * tau_p) */
 #define V12_PAIRS_MAX 2e7
+/* --full: a verdict run that this cap holds below its contacts is
+ * repeated on the next streams and pooled (cases_v12.c, v12_repeats), at
+ * most this many times (streams 1200 + 10 k + r stay apart per Kn_D) */
+#define V12_REPS_MAX 9
 
 /* One monodisperse species at diffusive Knudsen number kn. */
 typedef struct {
