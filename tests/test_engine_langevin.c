@@ -23,6 +23,7 @@
 #include "testutil.h"
 #include "validate/cases.h"
 #include "validate/firsthit.h"
+#include "validate/report.h"
 
 static sb_engine *box(int dim, double L, double dt, size_t cap,
                       unsigned long seed)
@@ -529,12 +530,13 @@ START_TEST(test_kernel_gh)
 }
 END_TEST
 
-/* Pooling independent repeats of a first-hit run (lv_pool, the --full
- * V12 runs the candidate-pair cap holds below their contacts): counts,
+/* Two first-hit runs compared (lv_add_compare) and pooled (lv_pool, the
+ * --full V12 runs the candidate-pair cap holds below their contacts).
+ * The row's ratio is the runs' own estimates'.  Pooling: counts,
  * pairs and work add up, the velocities are appended up to the cap, the
  * pooled kernel lies between the two runs' and its interval is narrower
  * than either; runs of another end time do not pool. */
-START_TEST(test_pool_repeats)
+START_TEST(test_compare_pool)
 {
   sb_validate_options opt;
   sb_validate_options_init(&opt);
@@ -567,6 +569,21 @@ START_TEST(test_pool_repeats)
   ck_assert_int_eq(lv_kernel(&q, &o1, 0, &K1, &l1, &h1), SB_SUCCESS);
   ck_assert_int_eq(lv_kernel(&q, &o2, 0, &K2, &l2, &h2), SB_SUCCESS);
   ck_assert(K1 != K2);  /* other streams, other runs */
+  /* the two-run row: its estimate is K1/K2 of the runs' own estimates
+   * (not the count ratio at a common K, off by the transient's share),
+   * its interval holds it and covers 1 exactly when p >= alpha */
+  sbv_report *rep = sb_validate_report_alloc();
+  ck_assert_ptr_nonnull(rep);
+  ck_assert_int_eq(lv_add_compare(rep, "two runs", &q, &o1, &q, &o2, 0),
+                   SB_SUCCESS);
+  ck_assert_uint_eq(rep->nrecs, 1);
+  const sb_comparison *c = &rep->recs[0];
+  ck_assert_msg(fabs(c->estimate / (K1 / K2) - 1.0) < 1e-12, "%.15g vs %.15g",
+                c->estimate, K1 / K2);
+  ck_assert(c->ci_low < c->estimate && c->estimate < c->ci_high);
+  ck_assert_int_eq(c->ci_low <= 1.0 && 1.0 <= c->ci_high,
+                   c->p_value >= SBV_ALPHA);
+  sb_validate_report_free(rep);
   const unsigned long hits = o1.hits[0] + o2.hits[0];
   const double pairs = o1.npairs[0] + o2.npairs[0], cpu = o1.cpu + o2.cpu;
   const double v0 = o2.vn[0];
@@ -611,7 +628,7 @@ static Suite *suite(void)
   tcase_add_test(tm, test_reach_skip);
   tcase_add_test(tm, test_dense_runs);
   tcase_add_test(tm, test_kernel_gh);
-  tcase_add_test(tm, test_pool_repeats);
+  tcase_add_test(tm, test_compare_pool);
   tcase_add_test(tm, test_units);
   suite_add_tcase(s, tm);
   return s;

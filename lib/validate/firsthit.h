@@ -240,10 +240,13 @@ double lv_expected(const lv_run *q, const lv_out *o, int type, double K);
  * reference) are equal.  Conditional test: given n = h1 + h2, h1 is
  * binomial with p = f1(K)/(f1(K) + f2(K)) under H0 (f the runs' forward
  * maps lv_expected), the common K taken at its estimate from n
- * (f1 + f2 = n; a plug-in for the small transient term, so the test is
+ * (f1 + f2 = n; a plug-in for the transient term, so the test is
  * approximately exact); exact binomial p-value and Clopper-Pearson
- * interval at 1 - SBV_ALPHA, mapped to the ratio K1/K2 through the
- * runs' secant exposures f(K)/K.  Rule cover, reference 1. */
+ * interval at 1 - SBV_ALPHA.  A share q of the n contacts maps to the
+ * ratio f1^-1(n q) / f2^-1(n (1 - q)): the estimate (q = h1/n) is the
+ * ratio of the runs' own estimates (lv_kernel), the interval is the map
+ * of the binomial one, and it covers 1 exactly when the binomial interval
+ * covers p.  Rule cover, reference 1. */
 int lv_add_compare(sbv_report *rep, const char *name, const lv_run *q1,
                    const lv_out *o1, const lv_run *q2, const lv_out *o2,
                    int type);
