@@ -495,30 +495,47 @@ START_TEST(test_units)
 }
 END_TEST
 
+/* A quick-mode validation context of base seed `seed` (options opt). */
+static void quick_ctx(unsigned long seed, sb_validate_options *opt,
+                      sbv_ctx *ctx)
+{
+  sb_validate_options_init(opt);
+  *ctx = (sbv_ctx){0, seed, NULL, opt, NULL, NULL};
+}
+
+/* A first-hit run of N Kn_D = 0.5 spheres (d = 100 nm, 1000 kg/m^3,
+ * 296.15 K) with `langevin` at dt = tau_p, warm-up w tau_p, end e tau_p,
+ * in a box of 10 relative displacement sd over the run. */
+static void kn05_run(size_t N, double w, double e, lv_run *q)
+{
+  const double T = 296.15, d = 1e-7, m = sb_sphere_mass(1000.0, d);
+  const double tau = 0.5 * d / sqrt(2.0 * SB_BOLTZMANN * T / m);
+  memset(q, 0, sizeof *q);
+  q->nsp = 1;
+  q->d[0] = d;
+  q->tau[0] = tau;
+  q->mass[0] = m;
+  q->N[0] = N;
+  q->temp = T;
+  q->dt = tau;
+  q->det = LV_LANGEVIN;
+  q->t1 = w * tau;
+  q->T = e * tau;
+  const double D = 2 * SB_BOLTZMANN * T * tau / m;
+  q->L = 10.0 * sqrt(2 * D * q->T);
+}
+
 /* The long-time kernel by first-hit counting (lib/validate/firsthit_lv.c)
  * at Kn_D = 0.5, dt = tau_p: ~1500 contacts, against the GH fit within
  * 10% (3.5 standard errors of the count plus the fit's few %). */
 START_TEST(test_kernel_gh)
 {
   sb_validate_options opt;
-  sb_validate_options_init(&opt);
-  sbv_ctx ctx = {0, 77, NULL, &opt, NULL, NULL};
-  const double T = 296.15, d = 1e-7, m = sb_sphere_mass(1000.0, d);
-  const double tau = 0.5 * d / sqrt(2.0 * SB_BOLTZMANN * T / m);
+  sbv_ctx ctx;
+  quick_ctx(77, &opt, &ctx);
   lv_run q;
-  memset(&q, 0, sizeof q);
-  q.nsp = 1;
-  q.d[0] = d;
-  q.tau[0] = tau;
-  q.mass[0] = m;
-  q.N[0] = 5000;
-  q.temp = T;
-  q.dt = tau;
-  q.det = LV_LANGEVIN;
-  q.t1 = 50 * tau;
-  q.T = 250 * tau;
-  const double D = 2 * SB_BOLTZMANN * T * tau / m;
-  q.L = 10.0 * sqrt(2 * D * q.T);
+  kn05_run(5000, 50.0, 250.0, &q);
+  const double T = q.temp, d = q.d[0], m = q.mass[0], tau = q.tau[0];
   lv_out o;
   ck_assert_int_eq(lv_firsthit(&ctx, 1, &q, &o), SB_SUCCESS);
   double K, lo, hi;
@@ -539,25 +556,12 @@ END_TEST
 START_TEST(test_compare_pool)
 {
   sb_validate_options opt;
-  sb_validate_options_init(&opt);
-  sbv_ctx ctx = {0, 78, NULL, &opt, NULL, NULL};
-  const double T = 296.15, d = 1e-7, m = sb_sphere_mass(1000.0, d);
-  const double tau = 0.5 * d / sqrt(2.0 * SB_BOLTZMANN * T / m);
+  sbv_ctx ctx;
+  quick_ctx(78, &opt, &ctx);
   lv_run q;
-  memset(&q, 0, sizeof q);
-  q.nsp = 1;
-  q.d[0] = d;
-  q.tau[0] = tau;
-  q.mass[0] = m;
-  q.N[0] = 3000;
-  q.temp = T;
-  q.dt = tau;
-  q.det = LV_LANGEVIN;
-  q.t1 = 20 * tau;
-  q.T = 120 * tau;
+  kn05_run(3000, 20.0, 120.0, &q);
   q.vcap = 100000;  /* every contact's velocity */
-  const double D = 2 * SB_BOLTZMANN * T * tau / m;
-  q.L = 10.0 * sqrt(2 * D * q.T);
+  const double tau = q.tau[0];
   lv_out o1, o2;
   ck_assert_int_eq(lv_firsthit(&ctx, 1, &q, &o1), SB_SUCCESS);
   ck_assert_int_eq(lv_firsthit(&ctx, 2, &q, &o2), SB_SUCCESS);
