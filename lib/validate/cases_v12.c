@@ -78,6 +78,14 @@ static double pairs_per_step(const lv_run *q)
   return N * N / (2.0 * pow(q->L, 3)) * (4.0 * PI / 3.0) * c * c * c;
 }
 
+/* The estimator's exposure over (t1, T] at the GH kernel (firsthit.h):
+ * (T - t1) + 2 a (sqrt T - sqrt t1) / sqrt(pi D), a = K_GH / (4 pi D). */
+static double v12_teff(const v12_phys *ph, double t1, double T)
+{
+  const double a = ph->Kgh / (4.0 * PI * ph->D);
+  return (T - t1) + 2.0 * a * (sqrt(T) - sqrt(t1)) / sqrt(PI * ph->D);
+}
+
 void v12_size(const v12_phys *ph, int det, double dtt, double hits,
               double t1, double T, size_t vcap, lv_run *q)
 {
@@ -127,10 +135,7 @@ void v12_size_cap(const v12_phys *ph, int det, double dtt, double hits,
    * capacitance radius a = K / (4 pi D), which at small Kn_D is most of
    * the count (5x the long-time part at Kn_D = 0.01 over 350 tau_p) */
   const double vp = PI * pow(ph->d, 3) / 6.0, nmax = V12_PHIMAX / vp;
-  const double a = ph->Kgh / (4.0 * PI * ph->D);
-  const double KM =
-      ph->Kgh * ((T - q->t1) +
-                 2.0 * a * (sqrt(T) - sqrt(q->t1)) / sqrt(PI * ph->D));
+  const double KM = ph->Kgh * v12_teff(ph, q->t1, T);
   double N = sqrt(2.0 * hits * L * L * L / KM);
   int capped = 0;
   if (N > nmax * L * L * L) {
@@ -244,11 +249,9 @@ static int v12_repeats(const v12_phys *ph, const lv_run *q, double hits)
 {
   if (pairs_per_step(q) < 0.99 * V12_PAIRS_MAX)
     return 1;
-  const double a = ph->Kgh / (4.0 * PI * ph->D);
-  const double Teff =
-      (q->T - q->t1) + 2.0 * a * (sqrt(q->T) - sqrt(q->t1)) / sqrt(PI * ph->D);
   const double N = (double)q->N[0];
-  const double E = N * N * ph->Kgh * Teff / (2.0 * q->L * q->L * q->L);
+  const double E =
+      N * N * ph->Kgh * v12_teff(ph, q->t1, q->T) / (2.0 * q->L * q->L * q->L);
   const double r = ceil(0.95 * hits / E);
   return r < 1.0 ? 1 : r > V12_REPS_MAX ? V12_REPS_MAX : (int)r;
 }
