@@ -10,6 +10,12 @@
  * differs, and must be smaller (the search is used) — at dt/tau_p = 1
  * and 30, for a bidisperse mixture, in 2-D, with elastic bounces
  * (re-detection through the cells of the search) and on 3 threads.
+ * The search has two queries of its midpoint grid: the stencil
+ * (lib/engine/engine_lstencil.c) and the cell-by-cell walk, used where the
+ * stencil does not apply (fewer than three cells of the widest window on
+ * an axis: the thin box).  A third run of every set-up takes the walk
+ * and the stencil without AVX2 on alternate steps (engine->lstencil_off)
+ * and must agree with the other two as well.
  * Direct check at every step of the pass-through runs: the candidate
  * list with the search, after the chord test, equals the list of the
  * cells after the same test, pair for pair and in order (the test is
@@ -36,6 +42,9 @@ typedef struct {
   sb_engine_outcome outcome;
   int threads;
   int walls;        /* walls in z: the search must not be used */
+  double Lz;        /* box edge in z, if not 0 (a thin box) */
+  int walk;         /* the search walks cell by cell (few cells on an
+                       axis), not the stencil */
 } setup;
 
 /* Spheres r = 0.5, m = 1, tau = 1, B = sqrt 2 (velocity variance 1). */
@@ -45,6 +54,8 @@ static sb_engine *make(const setup *s, int off)
   sb_engine_params_default(&p);
   p.dim = s->dim;
   p.L[0] = p.L[1] = p.L[2] = s->L;
+  if (s->Lz > 0.0)
+    p.L[2] = s->Lz;
   p.dt = s->dt;
   p.capacity = s->n;
   p.seed = 13;
@@ -58,7 +69,9 @@ static sb_engine *make(const setup *s, int off)
   sb_engine_species a = {0.5, 1.0, 1.0, sqrt(2.0), 0.0};
   sb_engine_species b = {1.5, 27.0, 4.0, 0.5, 0.0};
   ck_assert_int_eq(sb_engine_add_species(e, &a, NULL), SB_SUCCESS);
-  ck_assert_int_eq(sb_engine_add_species(e, &b, NULL), SB_SUCCESS);
+  if (!(s->Lz > 0.0))  /* the thin box: one species (r_max = 1.5 would
+                         set a cut-off beyond half its height) */
+    ck_assert_int_eq(sb_engine_add_species(e, &b, NULL), SB_SUCCESS);
   if (s->walls)
     ck_assert_int_eq(sb_engine_set_walls(e, 2, SB_WALL_REFLECT,
                                          SB_WALL_REFLECT), SB_SUCCESS);
@@ -101,12 +114,15 @@ static size_t chord_list(const sb_engine *e, size_t *out)
  * are those the search saw). */
 static uint64_t run_pair(const setup *s, int steps, int check_lists)
 {
-  sb_engine *a = make(s, 0), *b = make(s, 1);
+  sb_engine *a = make(s, 0), *b = make(s, 1), *w = make(s, 0);
   size_t *la = NULL, *lb = NULL, cap = 0, kept = 0;
   for (int k = 0; k < steps; k++) {
     int st = sb_engine_step(a);
     ck_assert_msg(st == SB_SUCCESS, "%s", sb_last_error());
     st = sb_engine_step(b);
+    ck_assert_msg(st == SB_SUCCESS, "%s", sb_last_error());
+    w->lstencil_off = 1 + (k % 2 && !s->walk);  /* walk, scalar stencil */
+    st = sb_engine_step(w);
     ck_assert_msg(st == SB_SUCCESS, "%s", sb_last_error());
     if (!check_lists)
       continue;
@@ -120,6 +136,9 @@ static uint64_t run_pair(const setup *s, int steps, int check_lists)
     const size_t ma = chord_list(a, la), mb = chord_list(b, lb);
     ck_assert_uint_eq(ma, mb);
     ck_assert(!mb || !memcmp(la, lb, 2 * mb * sizeof *la));
+    const size_t mw = chord_list(w, la);
+    ck_assert_uint_eq(mw, mb);
+    ck_assert(!mb || !memcmp(la, lb, 2 * mb * sizeof *la));
     kept += mb;
   }
   if (check_lists)
@@ -127,6 +146,19 @@ static uint64_t run_pair(const setup *s, int steps, int check_lists)
   free(la);
   free(lb);
   sbt_assert_same_run(a, b, SBT_SAME_REDETECTED);
+  sbt_assert_same_run(w, b, SBT_SAME_REDETECTED);
+  /* the query used: the stencil, or the walk where it does not apply;
+   * w took the other one, or the stencil without AVX2, every other step */
+  if (!s->walls) {
+    ck_assert_uint_gt(s->walk ? a->lsearch_walk_n : a->lsearch_stencil_n,
+                      0);
+    ck_assert_uint_eq(s->walk ? a->lsearch_stencil_n : a->lsearch_walk_n,
+                      0);
+    ck_assert_uint_eq(w->lsearch_walk_n + w->lsearch_stencil_n,
+                      a->lsearch_walk_n + a->lsearch_stencil_n);
+    if (!s->walk)
+      ck_assert(w->lsearch_walk_n > 0 && w->lsearch_stencil_n > 0);
+  }
   sb_engine_stats sa, sb;
   sb_engine_get_stats(a, &sa);
   sb_engine_get_stats(b, &sb);
@@ -136,37 +168,38 @@ static uint64_t run_pair(const setup *s, int steps, int check_lists)
     ck_assert_uint_lt(sa.ncand, sb.ncand);
   sb_engine_free(a);
   sb_engine_free(b);
+  sb_engine_free(w);
   return sa.ncoll;
 }
 
 START_TEST(test_dt1)
 {
-  setup s = {3, 1.0, 60.0, 3000, 0, SB_OUTCOME_COUNT, 1, 0};
+  setup s = {3, 1.0, 60.0, 3000, 0, SB_OUTCOME_COUNT, 1, 0, 0.0, 0};
   ck_assert_uint_gt(run_pair(&s, 30, 1), 100);
 }
 END_TEST
 
 START_TEST(test_dt30)
 {
-  setup s = {3, 30.0, 280.0, 4000, 0, SB_OUTCOME_COUNT, 1, 0};
+  setup s = {3, 30.0, 280.0, 4000, 0, SB_OUTCOME_COUNT, 1, 0, 0.0, 0};
   ck_assert_uint_gt(run_pair(&s, 6, 1), 100);
 }
 END_TEST
 
 START_TEST(test_bidisperse)
 {
-  setup s = {3, 1.0, 60.0, 3000, 1, SB_OUTCOME_COUNT, 1, 0};
+  setup s = {3, 1.0, 60.0, 3000, 1, SB_OUTCOME_COUNT, 1, 0, 0.0, 0};
   ck_assert_uint_gt(run_pair(&s, 30, 1), 100);
-  setup t = {3, 10.0, 150.0, 3000, 1, SB_OUTCOME_COUNT, 1, 0};
+  setup t = {3, 10.0, 150.0, 3000, 1, SB_OUTCOME_COUNT, 1, 0, 0.0, 0};
   ck_assert_uint_gt(run_pair(&t, 10, 1), 100);
 }
 END_TEST
 
 START_TEST(test_2d)
 {
-  setup s = {2, 1.0, 120.0, 2000, 0, SB_OUTCOME_COUNT, 1, 0};
+  setup s = {2, 1.0, 120.0, 2000, 0, SB_OUTCOME_COUNT, 1, 0, 0.0, 0};
   ck_assert_uint_gt(run_pair(&s, 30, 1), 100);
-  setup t = {2, 30.0, 300.0, 2000, 1, SB_OUTCOME_COUNT, 1, 0};
+  setup t = {2, 30.0, 300.0, 2000, 1, SB_OUTCOME_COUNT, 1, 0, 0.0, 0};
   ck_assert_uint_gt(run_pair(&t, 10, 1), 100);
 }
 END_TEST
@@ -176,9 +209,9 @@ END_TEST
  * matters. */
 START_TEST(test_dense)
 {
-  setup s = {3, 0.1, 20.0, 1500, 0, SB_OUTCOME_COUNT, 1, 0};
+  setup s = {3, 0.1, 20.0, 1500, 0, SB_OUTCOME_COUNT, 1, 0, 0.0, 0};
   ck_assert_uint_gt(run_pair(&s, 20, 1), 100);
-  setup t = {3, 0.3, 40.0, 1500, 1, SB_OUTCOME_COUNT, 1, 0};
+  setup t = {3, 0.3, 40.0, 1500, 1, SB_OUTCOME_COUNT, 1, 0, 0.0, 0};
   ck_assert_uint_gt(run_pair(&t, 20, 1), 100);
 }
 END_TEST
@@ -187,9 +220,9 @@ END_TEST
  * re-detected through the cells of the search. */
 START_TEST(test_elastic)
 {
-  setup s = {3, 1.0, 40.0, 3000, 0, SB_OUTCOME_ELASTIC, 1, 0};
+  setup s = {3, 1.0, 40.0, 3000, 0, SB_OUTCOME_ELASTIC, 1, 0, 0.0, 0};
   ck_assert_uint_gt(run_pair(&s, 40, 0), 100);
-  setup t = {3, 10.0, 150.0, 3000, 1, SB_OUTCOME_ELASTIC, 1, 0};
+  setup t = {3, 10.0, 150.0, 3000, 1, SB_OUTCOME_ELASTIC, 1, 0, 0.0, 0};
   ck_assert_uint_gt(run_pair(&t, 10, 0), 100);
 }
 END_TEST
@@ -197,7 +230,7 @@ END_TEST
 /* 6000 particles: the cells scan in parallel without the search. */
 START_TEST(test_threads)
 {
-  setup s = {3, 1.0, 70.0, 6000, 1, SB_OUTCOME_COUNT, 3, 0};
+  setup s = {3, 1.0, 70.0, 6000, 1, SB_OUTCOME_COUNT, 3, 0, 0.0, 0};
   ck_assert_uint_gt(run_pair(&s, 15, 1), 100);
   setup t = s;
   t.threads = 1;
@@ -218,7 +251,7 @@ END_TEST
  * `collide` with first_hit; the same counts and run. */
 START_TEST(test_firsthit)
 {
-  setup s = {3, 1.0, 60.0, 3000, 1, SB_OUTCOME_COUNT, 1, 0};
+  setup s = {3, 1.0, 60.0, 3000, 1, SB_OUTCOME_COUNT, 1, 0, 0.0, 0};
   sb_engine *e[2];
   sb_engine_firsthit *f[2];
   for (int q = 0; q < 2; q++) {
@@ -265,10 +298,19 @@ START_TEST(test_firsthit)
 }
 END_TEST
 
+/* A thin box (16 radii high, dt = 0.3 tau_p): under three of the widest
+ * windows fit in its height, so the search walks cell by cell. */
+START_TEST(test_thin_box)
+{
+  setup s = {3, 0.3, 40.0, 1000, 0, SB_OUTCOME_COUNT, 1, 0, 8.0, 1};
+  ck_assert_uint_gt(run_pair(&s, 10, 1), 100);
+}
+END_TEST
+
 /* Walls: the chord test does not apply; every pair of the cells. */
 START_TEST(test_walls_fall_back)
 {
-  setup s = {3, 1.0, 60.0, 3000, 0, SB_OUTCOME_COUNT, 1, 1};
+  setup s = {3, 1.0, 60.0, 3000, 0, SB_OUTCOME_COUNT, 1, 1, 0.0, 0};
   ck_assert_uint_gt(run_pair(&s, 10, 0), 10);
 }
 END_TEST
@@ -286,6 +328,7 @@ int main(void)
   tcase_add_test(t, test_elastic);
   tcase_add_test(t, test_threads);
   tcase_add_test(t, test_firsthit);
+  tcase_add_test(t, test_thin_box);
   tcase_add_test(t, test_walls_fall_back);
   suite_add_tcase(s, t);
   return sbt_run_suite(s);

@@ -198,6 +198,7 @@ void sb_engine_free(sb_engine *e)
   free(e->lfs);
   free(e->lpr);
   free(e->lpr2);
+  free(e->lgx);
   free(e->lp_x);
   free(e->lp_u);
   free(e->lp_t);

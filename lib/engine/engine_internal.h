@@ -216,6 +216,14 @@ struct sb_engine {
                                 per slot (3 lcapn) */
   sbi_lpair *lpr, *lpr2;
   size_t lcapn, lcapc, lcappr;
+  double *lgx;               /* the stencil query: one cell's block of
+                                neighbours (x, y, z, f; lgcap of them) */
+  size_t lgcap;
+  int lstencil_off;          /* tests: 1 the Langevin search walks cell
+                                by cell even where the stencil applies,
+                                2 the stencil counts without AVX2 */
+  size_t lsearch_stencil_n,  /* searches by the stencil, by the walk */
+      lsearch_walk_n;
   size_t *order;             /* sweep: particle order along x */
   double *key;               /* sweep: sorted x */
   size_t norder;             /* particles in order[] (0: rebuild) */
@@ -344,6 +352,30 @@ int sbi_engine_push_pair(sb_engine *e, size_t i, size_t j);
  * live in engine_neigh.c (cells, brute) and engine_sweep.c (sweep). */
 int sbi_engine_find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
                           const double *disp, double reach);
+/* The Langevin search's midpoint grid (engine_neigh.c, lsearch): dim
+ * axes of nf cells (strides fst, box edges L), the cells' starts fs, and in
+ * cell order each member's slot fl and midpoint and extent fx (x, y, z, f;
+ * 4 doubles each); a pair is wanted when
+ * |m_a - m_b| <= (f_a + f_b + reach)(1 + tol) + eabs. */
+typedef struct {
+  int dim;
+  int nf[3];
+  size_t fst[3];
+  double L[3];
+  const size_t *fs, *fl;
+  const double *fx;
+  double reach, tol, eabs;
+} sbi_mgrid;
+
+/* Called with the slots a, b of a pair found; nonzero stops the search. */
+typedef int (*sbi_lpair_fn)(sb_engine *e, void *ctx, size_t a, size_t b);
+
+/* Every wanted pair of M once, to emit (engine_lstencil.c).  Only for a
+ * grid with >= 3 cells on each axis whose cell edges all exceed the
+ * widest bound, (2 f_max + reach)(1 + tol) + 4 eabs.  0, or -1 (out of
+ * memory, or emit's nonzero). */
+int sbi_lsearch_stencil(sb_engine *e, const sbi_mgrid *M, sbi_lpair_fn emit,
+                        void *ctx);
 int sbi_engine_sweep(sb_engine *e, const double *x0, const double *disp,
                      double reach);
 /* The search of a step (sb_engine_step): x0, disp of the engine; with the

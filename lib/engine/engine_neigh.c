@@ -500,7 +500,10 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach,
  *      |m_i - m_j| <= f_i + f_j + rho (minimum image: no larger).  The
  *      test is taken with a relative margin of 1e-8 and an absolute one
  *      of 64 L eps, far above the rounding of either side (a few eps of
- *      the lengths involved, a few ulp(L) for positions).  Each pair is
+ *      the lengths involved, a few ulp(L) for positions).  The stencil
+ *      query (engine_lstencil.c) tests every pair of the same or
+ *      neighbouring cells once, where the cells are at least the widest
+ *      bound and three or more per axis.  Elsewhere the walk: each pair is
  *      looked for from its member of larger extent (ties: the lower
  *      slot), in the cells of a grid over the midpoints within
  *      2 f + rho (+ the margins, which also cover a cell index rounded
@@ -598,8 +601,8 @@ static int cells_sees(const cell_scan *K, size_t lo, size_t hi, size_t ca,
 }
 
 /* Particles per cell of the midpoint grid, at least (memory: one cell
- * per 2 particles at most; 0.5 per cell was no faster within the noise
- * of bench_engine_langevin). */
+ * per 2 particles at most; with the walk 0.5 per cell was no faster, with
+ * the stencil 1, 3 and 5 were not, in V12's Kn_D = 0.5 runs). */
 #define SBI_LSEARCH_PPC 2.0
 
 static int lsearch_grow(sb_engine *e, size_t n)
@@ -769,6 +772,19 @@ static int lprobe_wide(sb_engine *e, const cell_scan *K, const lprobe *P,
   return 0;
 }
 
+
+/* sbi_lsearch_stencil's report of a pair: lprobe_emit. */
+typedef struct {
+  const cell_scan *K;
+  size_t *np;
+} lstencil_ctx;
+
+static int lstencil_emit(sb_engine *e, void *vctx, size_t a, size_t b)
+{
+  const lstencil_ctx *c = vctx;
+  return lprobe_emit(e, c->K, a, b, c->np);
+}
+
 static int lsearch(sb_engine *e, const double *x0, const double *disp,
                    double cut, double reach)
 {
@@ -788,7 +804,7 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
   const double tol = 1e-8, eabs = 64.0 * Lmax * DBL_EPSILON;
   /* midpoints (in the box) and extents, in cell order */
   double *xm = e->lxm;
-  double fsum = 0.0;
+  double fsum = 0.0, fmax = 0.0;
   for (size_t a = 0; a < n; a++) {
     const size_t i = K.list[a];
     for (int k = 0; k < 3; k++)
@@ -797,13 +813,22 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
                   : 0.0;
     xm[4 * a + 3] = e->radius[i] + 0.5 * e->dn[i];
     fsum += xm[4 * a + 3];
+    fmax = xm[4 * a + 3] > fmax ? xm[4 * a + 3] : fmax;
   }
-  /* their grid: cells of at least the mean query 2 f + rho (most
-   * particles then look at most one cell away, and only near a face) */
-  double h = pow(vol * SBI_LSEARCH_PPC / ((double)n + 8.0), 1.0 / dim);
+  /* their grid: for the stencil query (engine_lstencil.c) cells of at
+   * least the widest bound 2 f_max + rho with the margins, three or more
+   * on each axis; else, for the walk, cells of at least the mean query
+   * 2 f + rho (most particles then look at most one cell away, and only
+   * near a face) */
+  const double h0 = pow(vol * SBI_LSEARCH_PPC / ((double)n + 8.0), 1.0 / dim);
   const double wmean = 2.0 * fsum / (double)n + reach;
-  if (h < wmean)
-    h = wmean;
+  const double wmax = (2.0 * fmax + reach) * (1.0 + tol) + 4.0 * eabs;
+  double h = h0 < wmax ? wmax : h0;
+  int stencil = e->lstencil_off != 1;
+  for (int k = 0; k < dim; k++)
+    stencil &= floor(K.L[k] / h) >= 3.0;
+  if (!stencil)
+    h = h0 < wmean ? wmean : h0;
   int nf[3] = {1, 1, 1};
   double inv[3] = {0, 0, 0}, hk[3] = {1e300, 1e300, 1e300};
   size_t fst[3] = {1, 1, 1}, nfc = 1;
@@ -845,7 +870,20 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
   for (size_t c = nfc; c > 0; c--)
     fs[c] = fs[c - 1];
   fs[0] = 0;
+  if (stencil) {  /* every pair once, then in the cells' order */
+    size_t np = 0;
+    const sbi_mgrid M = {dim, {nf[0], nf[1], nf[2]}, {fst[0], fst[1], fst[2]},
+                         {K.L[0], K.L[1], K.L[2]}, fs, fl, fx, reach, tol,
+                         eabs};
+    lstencil_ctx lc = {&K, &np};
+    e->lsearch_stencil_n++;
+    if (sbi_lsearch_stencil(e, &M, lstencil_emit, &lc))
+      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+                       "(%zu candidate pairs)", np);
+    return emit_in_cell_order(e, np, K.list);
+  }
   /* every pair from its member of larger extent */
+  e->lsearch_walk_n++;
   const double L0 = K.L[0], L1 = dim > 1 ? K.L[1] : 0.0,
                L2 = dim > 2 ? K.L[2] : 0.0;
   const size_t *list = K.list;
@@ -932,16 +970,16 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
   return emit_in_cell_order(e, np, list);
 }
 
-/* Where the cut-off is well below the density's cell edge, cells()
- * returns few candidates (Kn_D = 0.5, Delta t = tau_p in
- * bench_engine_langevin: 0.01 per particle) and its scan is cheaper than
- * the midpoint grid; as the cut-off grows towards the edge, its face
- * zones cover most of each cell and most of its candidates fail the chord
- * test.  V12's first-hit runs at Kn_D = 0.5 (the same run either way),
- * step time with the midpoint grid / the cells: cut/edge = 0.42 (dt =
- * tau_p) 1.09-1.13, 0.69 (2 tau_p) 0.94-0.96, 0.93 (3 tau_p) 0.85-0.88:
- * the grid from SBI_LSEARCH_CUT on. */
-#define SBI_LSEARCH_CUT 0.6
+/* Where the cut-off is well below the density's cell edge (dt << tau_p),
+ * cells() returns few candidates and its scan is cheaper than building
+ * the midpoint grid; as the cut-off grows, its face zones cover most of
+ * each cell and most of its candidates fail the chord test.  V12's
+ * first-hit runs at Kn_D = 0.5 (the same run either way), CPU time with
+ * the stencil query / the cells: cut/edge ~0.2 (dt = 0.3 tau_p)
+ * 1.02-1.06, ~0.3 (0.5 tau_p) 0.88-0.93, 0.42 (tau_p) 0.72-0.74: the grid
+ * from SBI_LSEARCH_CUT on (it was 0.6 with the walk alone, which cost
+ * 1.09-1.13 at tau_p). */
+#define SBI_LSEARCH_CUT 0.25
 static int lsearch_pays(const sb_engine *e, double cut)
 {
   double vol = 1.0;
