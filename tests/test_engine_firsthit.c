@@ -1,17 +1,22 @@
 /* test_engine_firsthit.c — the first-contact observer
  * (smolbridge/engine_firsthit.h): each pair counted once, pairs in contact
  * at the start excluded, warm-up, per species pair counts, skip_seen, the
- * callback, the estimator against its formula, bad arguments, and a Monte
+ * callback, the estimator against its formula, bad arguments, a Monte
  * Carlo run of diffusive spheres against the Smoluchowski (1917)
- * absorbing-sphere count with its start-up transient. */
+ * absorbing-sphere count with its start-up transient, and the variance of
+ * the counts (hits_var) by hand and against the spread over 200 runs. */
 #include <math.h>
+#include <string.h>
 #include <stdlib.h>
 
+#include <gsl/gsl_cdf.h>
+#include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
 
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
 #include <smolbridge/engine_firsthit.h>
+#include <smolbridge/stats.h>
 
 #include "testutil.h"
 
@@ -334,6 +339,139 @@ START_TEST(test_mc_smoluchowski)
 }
 END_TEST
 
+
+/* One free-flight first-contact run (ballistic detector) of N molecules
+ * of radius r with Maxwellian velocities (unit variance), in a cube of
+ * edge L for `steps` steps of dt; its counts. */
+static sb_engine_firsthit_counts flight_run(size_t N, double L, double r,
+                                            double dt, int steps,
+                                            unsigned long seed)
+{
+  sb_engine *e = flight_engine(L, dt, r);
+  gsl_rng *g = gsl_rng_alloc(gsl_rng_taus2);
+  gsl_rng_set(g, seed);
+  for (size_t i = 0; i < N; i++) {
+    double x[3], u[3];
+    for (int k = 0; k < 3; k++) {
+      x[k] = L * gsl_rng_uniform(g);
+      u[k] = gsl_ran_gaussian_ziggurat(g, 1.0);
+    }
+    ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, x, u), SB_SUCCESS);
+  }
+  gsl_rng_free(g);
+  sb_engine_firsthit_params fp;
+  sb_engine_firsthit_params_default(&fp);
+  sb_engine_firsthit *f = sb_engine_firsthit_alloc(&fp);
+  ck_assert_int_eq(sb_engine_firsthit_attach(e, f, 0.0), SB_SUCCESS);
+  for (int k = 0; k < steps; k++)
+    ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  sb_engine_firsthit_counts c;
+  ck_assert_int_eq(sb_engine_firsthit_get(f, 0, 0, &c), SB_SUCCESS);
+  sb_engine_firsthit_free(f);
+  sb_engine_free(e);
+  return c;
+}
+
+/* hits_var by hand: molecule A (species 0) runs along x through three
+ * resting molecules of species 1; molecule C (species 0) and a fourth of
+ * species 1 rest off the line.  Species pair (0, 1): 3 hits; counts 3 and
+ * 0 on one side, 1, 1, 1, 0 on the other; 8 pairs:
+ * (9 - 9/2) + (3 - 9/4) - 3 + 9/8 = 3.375. */
+START_TEST(test_variance_by_hand)
+{
+  const double L = 1e-4, r = 1e-6, v = 1e-2;
+  sb_engine *e = flight_engine(L, 1e-5, r);
+  const double y = 0.5 * L, z = 0.5 * L;
+  double xa[3] = {0.1 * L, y, z}, ua[3] = {v, 0, 0}, u0[3] = {0, 0, 0};
+  double xc[3] = {0.5 * L, 0.1 * L, z};
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xa, ua), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xc, u0), SB_SUCCESS);
+  for (int k = 0; k < 4; k++) {
+    double xb[3] = {(0.3 + 0.2 * k) * L, k < 3 ? y : 0.8 * L, z};
+    ck_assert_int_eq(sb_engine_add_particle(e, 1, 0, xb, u0), SB_SUCCESS);
+  }
+  sb_engine_firsthit_params fp;
+  sb_engine_firsthit_params_default(&fp);
+  sb_engine_firsthit *f = sb_engine_firsthit_alloc(&fp);
+  ck_assert_int_eq(sb_engine_firsthit_attach(e, f, 0.0), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_run_until(e, 0.7 * L / v), SB_SUCCESS);
+  sb_engine_firsthit_counts c;
+  ck_assert_int_eq(sb_engine_firsthit_get(f, 1, 0, &c), SB_SUCCESS);
+  ck_assert_uint_eq(c.hits, 3);
+  ck_assert_rel(c.hits_var, 3.375, 1e-14);
+  ck_assert_int_eq(sb_engine_firsthit_get(f, 0, 0, &c), SB_SUCCESS);
+  ck_assert_uint_eq(c.hits, 0);
+  ck_assert_rel(c.hits_var, 0.0, 0.0);
+  /* two species pooled: not one population of pairs */
+  ck_assert_int_eq(sb_engine_firsthit_get(f, SB_ENGINE_FIRSTHIT_ALL,
+                                          SB_ENGINE_FIRSTHIT_ALL, &c),
+                   SB_SUCCESS);
+  ck_assert(isnan(c.hits_var));
+  /* the estimator: the Garwood interval widened by sqrt(3.375 / 3) */
+  sb_engine_firsthit_kernel_result k;
+  ck_assert_int_eq(sb_engine_firsthit_kernel(f, e, 0, 1, 2 * r, 1e-9, 0.95,
+                                             &k), SB_SUCCESS);
+  ck_assert_rel(k.dispersion, 1.125, 1e-14);
+  double lo, hi;
+  ck_assert_int_eq(sb_poisson_ci(3, 0.95, &lo, &hi), SB_SUCCESS);
+  const double w = sqrt(1.125);
+  ck_assert_rel(k.lo * k.expected_per_K, 3.0 - w * (3.0 - lo), 1e-14);
+  ck_assert_rel(k.hi * k.expected_per_K, 3.0 + w * (hi - 3.0), 1e-14);
+  sb_engine_firsthit_free(f);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* hits_var against the spread of hits over 200 independent free-flight
+ * runs (200 Maxwellian molecules, ~2100 first contacts, ~21 per
+ * molecule): a fast molecule meets more partners, so var(hits) is ~2.4
+ * times the mean.  Criterion: (R - 1) s^2 / v, with v the mean of the
+ * runs' hits_var (its own spread is small: 200 runs), inside the central
+ * 99.9% of chi^2 with R - 1 degrees of freedom; and the Poisson value (the
+ * mean) outside it, so the test sees the difference (it fails with
+ * hits_var = hits).  Then the estimator's interval: its half-width is
+ * sqrt(dispersion) times the Garwood one. */
+START_TEST(test_mc_variance)
+{
+  const int R = 200;
+  double sh = 0.0, sh2 = 0.0, sv = 0.0;
+  for (int r = 0; r < R; r++) {
+    sb_engine_firsthit_counts c =
+        flight_run(200, 1e-4, 2e-6, 1e-6, 1000, 1000 + (unsigned long)r);
+    const double h = (double)c.hits;
+    sh += h;
+    sh2 += h * h;
+    sv += c.hits_var;
+  }
+  const double mean = sh / R, s2 = (sh2 - R * mean * mean) / (R - 1),
+               v = sv / R;
+  const double qlo = gsl_cdf_chisq_Pinv(0.0005, R - 1),
+               qhi = gsl_cdf_chisq_Qinv(0.0005, R - 1);
+  const double x = (R - 1) * s2 / v, xp = (R - 1) * s2 / mean;
+  ck_assert_msg(qlo <= x && x <= qhi, "var %g, estimate %g (mean %g)", s2,
+                v, mean);
+  ck_assert_msg(xp > qhi, "var %g: not above the Poisson value %g", s2,
+                mean);
+  /* one run's interval */
+  sb_engine_firsthit_counts c = flight_run(200, 1e-4, 2e-6, 1e-6, 1000, 7);
+  sb_engine_firsthit_kernel_result k;
+  memset(&k, 0, sizeof k);
+  k.c = c;
+  k.radius = 4e-6;
+  k.D = 1e-6;
+  k.t1 = 0.0;
+  k.t = 1e-3;
+  k.veff = 1e-12;
+  ck_assert_int_eq(sb_engine_firsthit_estimate(&k, 0.95), SB_SUCCESS);
+  ck_assert(k.dispersion > 1.5);
+  double lo, hi;
+  ck_assert_int_eq(sb_poisson_ci(c.hits, 0.95, &lo, &hi), SB_SUCCESS);
+  const double H = (double)c.hits, w = sqrt(k.dispersion);
+  ck_assert_rel(k.lo * k.expected_per_K, H - w * (H - lo), 1e-12);
+  ck_assert_rel(k.hi * k.expected_per_K, H + w * (hi - H), 1e-12);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("engine_firsthit");
@@ -344,6 +482,8 @@ static Suite *suite(void)
   tcase_add_test(tc, test_species_and_contact0);
   tcase_add_test(tc, test_kernel_formula_and_errors);
   tcase_add_test(tc, test_mc_smoluchowski);
+  tcase_add_test(tc, test_variance_by_hand);
+  tcase_add_test(tc, test_mc_variance);
   suite_add_tcase(s, tc);
   return s;
 }

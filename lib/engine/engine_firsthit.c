@@ -1,8 +1,9 @@
 /* engine_firsthit.c — first-contact observer (smolbridge/engine_firsthit.h):
  * a set of pair ids (open addressing with linear probing, multiplicative
  * hashing, Knuth 1998, TAOCP vol. 3, §6.4) around a detector, counts per
- * species pair, and the Smoluchowski (1917) first-contact estimator of the
- * kernel with its Garwood interval. */
+ * species pair, each particle's counted contacts (a map of the same kind)
+ * for the variance of the counts, and the Smoluchowski (1917)
+ * first-contact estimator of the kernel with its Garwood interval. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -27,6 +28,15 @@ struct sb_engine_firsthit {
   double pairs_apart[NPT];
   uint64_t hits_all, warm_all, contact0_all;
   double pairs_apart_all;
+  /* each particle's counted contacts with each partner species (slot
+   * SB_ENGINE_PAIR_SPECIES: with any), key (id << 5 | slot) + 1, and
+   * per species pair the sums of their squares over the first species'
+   * side [0] and the second's [1] (one side for a species with itself) */
+  uint64_t *pkey;
+  uint32_t *pcnt;
+  size_t pcap, pn;
+  double sq[NPT][2], sq_all;
+  double ns[SB_ENGINE_PAIR_SPECIES], n_all;  /* particles at attachment */
 };
 
 static size_t slot(uint64_t key, size_t cap)
@@ -74,6 +84,71 @@ static int set_has(const sb_engine_firsthit *f, uint64_t key)
     if (!f->set[h])
       return 0;
   }
+}
+
+/* Add one to the count under key (never 0); returns the count before,
+ * or -1 out of memory. */
+static long count_add(sb_engine_firsthit *f, uint64_t key)
+{
+  if (2 * (f->pn + 1) > f->pcap) {
+    size_t nc = f->pcap ? 2 * f->pcap : 1024;
+    uint64_t *nk = calloc(nc, sizeof *nk);
+    uint32_t *nv = calloc(nc, sizeof *nv);
+    if (!nk || !nv) {
+      free(nk);
+      free(nv);
+      return -1;
+    }
+    for (size_t i = 0; i < f->pcap; i++)
+      if (f->pkey[i]) {
+        size_t h = slot(f->pkey[i], nc);
+        while (nk[h])
+          h = (h + 1) & (nc - 1);
+        nk[h] = f->pkey[i];
+        nv[h] = f->pcnt[i];
+      }
+    free(f->pkey);
+    free(f->pcnt);
+    f->pkey = nk;
+    f->pcnt = nv;
+    f->pcap = nc;
+  }
+  for (size_t h = slot(key, f->pcap);; h = (h + 1) & (f->pcap - 1)) {
+    if (f->pkey[h] == key)
+      return (long)f->pcnt[h]++;
+    if (!f->pkey[h]) {
+      f->pkey[h] = key;
+      f->pcnt[h] = 1;
+      f->pn++;
+      return 0;
+    }
+  }
+}
+
+/* A counted first contact of particles i, j: their counts and the sums of
+ * squares ((h + 1)^2 - h^2 = 2 h + 1).  -1 out of memory. */
+static int tally(sb_engine_firsthit *f, const sb_engine *e, size_t i,
+                 size_t j, long t)
+{
+  const size_t si = e->species[i], sj = e->species[j];
+  const uint64_t S = SB_ENGINE_PAIR_SPECIES;
+  const size_t q[2] = {i, j};
+  for (int side = 0; side < 2; side++) {
+    const uint64_t id = e->id[q[side]] << 5;
+    const size_t other = side ? si : sj, own = side ? sj : si;
+    const long h = count_add(f, (id | S) + 1);
+    if (h < 0)
+      return -1;
+    f->sq_all += 2.0 * (double)h + 1.0;
+    if (t < 0)
+      continue;
+    const long g = count_add(f, (id | other) + 1);
+    if (g < 0)
+      return -1;
+    /* the side of the species pair (a, b), a <= b, the particle is on */
+    f->sq[t][own > other] += 2.0 * (double)g + 1.0;
+  }
+  return 0;
 }
 
 /* Key of the unordered pair of particle ids (never 0). */
@@ -125,6 +200,8 @@ static int detect(const sb_engine *e, const sb_engine_pair *p,
   f->hits_all++;
   if (t >= 0)
     f->hits[t]++;
+  if (tally(f, e, p->i, p->j, t))
+    return -1;
   if (f->par.on_hit && f->par.on_hit(e, p, *s, f->par.hit_ctx) < 0)
     return -1;
   return 0;
@@ -161,8 +238,11 @@ sb_engine_firsthit *sb_engine_firsthit_alloc(
 
 void sb_engine_firsthit_free(sb_engine_firsthit *f)
 {
-  if (f)
+  if (f) {
     free(f->set);
+    free(f->pkey);
+    free(f->pcnt);
+  }
   free(f);
 }
 
@@ -218,6 +298,8 @@ int sb_engine_firsthit_attach(sb_engine *e, sb_engine_firsthit *f,
       f->pairs_apart[t] = tot - nov[t];
     }
   const double N = (double)e->n;
+  memcpy(f->ns, ns, sizeof ns);
+  f->n_all = N;
   f->contact0_all = (uint64_t)novall;
   f->pairs_apart_all = 0.5 * N * (N - 1.0) - novall;
   st = sb_engine_set_detector(e, detect, f, reach);
@@ -245,6 +327,26 @@ double sb_engine_firsthit_warmup(const sb_engine_firsthit *f)
   return f ? f->t1 : NAN;
 }
 
+/* The U-statistic estimate of var(hits) (engine_firsthit.h, hits_var)
+ * from the sums of squared per-particle counts: one side (a species with
+ * itself: sq over its na particles, whose counts add up to 2 hits) or two
+ * (sq over na, sq2 over nb, each side's counts adding up to hits); P the
+ * pairs (apart at attachment) for p = hits / P.  Not below 0. */
+static double hits_variance(uint64_t hits, double sq, double na, double sq2,
+                            double nb, double P)
+{
+  const double H = (double)hits;
+  if (!(na > 0.0) || !(P > 0.0))
+    return hits ? NAN : 0.0;
+  double v;
+  if (!(nb > 0.0))  /* sum_i (h_i - 2H/n)^2 */
+    v = sq - 4.0 * H * H / na;
+  else
+    v = (sq - H * H / na) + (sq2 - H * H / nb);
+  v += -H + H * H / P;
+  return v > 0.0 ? v : 0.0;
+}
+
 int sb_engine_firsthit_get(const sb_engine_firsthit *f, size_t a, size_t b,
                            sb_engine_firsthit_counts *c)
 {
@@ -257,6 +359,14 @@ int sb_engine_firsthit_get(const sb_engine_firsthit *f, size_t a, size_t b,
     c->warm = f->warm_all;
     c->contact0 = f->contact0_all;
     c->pairs_apart = f->pairs_apart_all;
+    /* one population of exchangeable pairs only: one species (all of
+     * them within the table) */
+    int one = 0;
+    for (size_t q = 0; q < SB_ENGINE_PAIR_SPECIES; q++)
+      one += f->ns[q] == f->n_all;
+    c->hits_var = one ? hits_variance(c->hits, f->sq_all, f->n_all, 0.0,
+                                      0.0, c->pairs_apart)
+                      : NAN;
     return SB_SUCCESS;
   }
   if (a >= SB_ENGINE_PAIR_SPECIES || b >= SB_ENGINE_PAIR_SPECIES)
@@ -268,6 +378,12 @@ int sb_engine_firsthit_get(const sb_engine_firsthit *f, size_t a, size_t b,
   c->warm = f->warm[t];
   c->contact0 = f->contact0[t];
   c->pairs_apart = f->pairs_apart[t];
+  const size_t lo = a < b ? a : b, hi = a < b ? b : a;
+  c->hits_var = lo == hi ? hits_variance(c->hits, f->sq[t][0], f->ns[lo],
+                                         0.0, 0.0, c->pairs_apart)
+                         : hits_variance(c->hits, f->sq[t][0], f->ns[lo],
+                                         f->sq[t][1], f->ns[hi],
+                                         c->pairs_apart);
   return SB_SUCCESS;
 }
 
@@ -279,7 +395,7 @@ int sb_engine_firsthit_kernel(const sb_engine_firsthit *f,
   if (!k)
     return sbi_error(SB_EINVAL, __func__, "result is NULL");
   memset(k, 0, sizeof *k);
-  k->K = k->lo = k->hi = NAN;
+  k->K = k->lo = k->hi = k->dispersion = NAN;
   if (!e)
     return sbi_error(SB_EINVAL, __func__, "engine is NULL");
   if (a >= SB_ENGINE_PAIR_SPECIES || b >= SB_ENGINE_PAIR_SPECIES ||
@@ -367,7 +483,7 @@ int sb_engine_firsthit_estimate(sb_engine_firsthit_kernel_result *k,
 {
   if (!k)
     return sbi_error(SB_EINVAL, __func__, "result is NULL");
-  k->K = k->lo = k->hi = k->a = k->expected_per_K = NAN;
+  k->K = k->lo = k->hi = k->a = k->expected_per_K = k->dispersion = NAN;
   int st = check_inputs(k, __func__);
   if (st)
     return st;
@@ -382,18 +498,30 @@ int sb_engine_firsthit_estimate(sb_engine_firsthit_kernel_result *k,
                      "counting from t1 = %g s to t = %g s)",
                      k->c.pairs_apart, k->t1, k->t);
   }
-  if (k->radius > 0.0) {
-    /* linear: the interval is the Garwood interval times the scale */
-    k->a = k->radius;
-    k->expected_per_K = c1;
-    const double scale = 1.0 / c1;
-    k->K = scale * (double)k->c.hits;
-    return sb_poisson_rate_ci(k->c.hits, scale, level, &k->lo, &k->hi);
-  }
+  /* the count's Garwood interval, widened about it by sqrt(var / mean)
+   * where the per-particle counts show more variance than Poisson */
+  const double H = (double)k->c.hits, v = k->c.hits_var;
+  k->dispersion = H > 0.0 && v > 0.0 && isfinite(v) ? v / H : NAN;
   double l, u;
   st = sb_poisson_ci(k->c.hits, level, &l, &u);
   if (st)
     return st;
+  if (k->dispersion > 1.0) {
+    const double w = sqrt(k->dispersion);
+    l = H - w * (H - l);
+    u = H + w * (u - H);
+    l = l > 0.0 ? l : 0.0;
+  }
+  if (k->radius > 0.0) {
+    /* linear: the interval is the count's interval times the scale */
+    k->a = k->radius;
+    k->expected_per_K = c1;
+    const double scale = 1.0 / c1;
+    k->K = scale * H;
+    k->lo = l * scale;
+    k->hi = u * scale;
+    return SB_SUCCESS;
+  }
   k->K = kernel_of(c1, c2, (double)k->c.hits);
   k->lo = kernel_of(c1, c2, l);
   k->hi = kernel_of(c1, c2, u);

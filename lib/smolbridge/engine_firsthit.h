@@ -22,8 +22,15 @@
  * torus is infinite space for every pair):
  *   E[hits] = P / (V - 4 pi R^3 / 3) K [(t - t1)
  *             + 2 a (sqrt t - sqrt t1) / sqrt(pi D)].
- * The count is Poisson to the order 1/P, so K = hits / (E[hits] / K) has
- * the exact (Garwood) interval of the count times the same scale.  For
+ * K = hits / (E[hits] / K) then has the interval of the count times the
+ * same scale.  The count is a sum of rare events over pairs, nearly
+ * Poisson when each particle makes few contacts; but the pairs that share
+ * a particle share its path, so when each makes many (tens, in a run sized
+ * for 10^4 contacts with a box that cannot shrink) the variance exceeds
+ * the mean: by 1.42-1.43 (three seeds) for 3670 micron spheres with ~22
+ * contacts each.  The observer estimates the variance from each
+ * particle's count (counts.hits_var) and widens the Garwood interval by
+ * sqrt(var / mean) where it exceeds 1.  For
  * Langevin particles a is the radius that the outer diffusion field sees
  * (R minus the Milne extrapolation length of the Klein-Kramers equation,
  * Burschka & Titulaer 1981, J. Stat. Phys. 25:569; docs/engine_bridge.md
@@ -93,6 +100,19 @@ typedef struct {
   uint64_t warm;        /**< first contacts before the warm-up end */
   uint64_t contact0;    /**< pairs in contact at attachment */
   double pairs_apart;   /**< pairs not in contact at attachment */
+  /** Estimated variance of `hits` (m^0), from each particle's number of
+   *  counted first contacts: hits is a sum over pairs, and two pairs that
+   *  share a particle are correlated through its path (a particle that
+   *  wanders far meets more partners), so var(hits) exceeds the Poisson
+   *  value hits when particles make many contacts each.  The unbiased
+   *  U-statistic estimate (Hoeffding 1948) for pairs of one species pair:
+   *  sum over both sides of sum_i (h_i - mean h)^2 - hits (1 - p), with
+   *  h_i particle i's contacts with the other side and p = hits / pairs
+   *  (independent particles: disjoint pairs are independent).  Variances of
+   *  independent runs add.  NaN where unknown (several species pooled in
+   *  SB_ENGINE_FIRSTHIT_ALL); 0 in counts assembled by hand: the
+   *  estimator then takes the Poisson value. */
+  double hits_var;
 } sb_engine_firsthit_counts;
 
 /** Reference radius for the capacitance radius K / (4 pi D) of the
@@ -111,7 +131,13 @@ typedef struct {
   double veff;            /**< V - 4 pi R^3 / 3, m^3 */
   double expected_per_K;  /**< E[hits] / K at the estimate, s/m^3 */
   double K;               /**< hits / expected_per_K, m^3/s */
-  double lo, hi;          /**< exact (Garwood) interval at `level` */
+  double dispersion;      /**< c.hits_var / c.hits (1: Poisson), or NaN
+                               where unknown (no hits, hits_var 0 or NaN) */
+  double lo, hi;          /**< interval at `level`: the exact (Garwood)
+                               interval of the count, widened about it by
+                               sqrt(dispersion) where dispersion > 1 (then
+                               approximate: quasi-Poisson), mapped through
+                               the estimator */
 } sb_engine_firsthit_kernel_result;
 
 typedef struct sb_engine_firsthit sb_engine_firsthit;
@@ -168,9 +194,10 @@ int sb_engine_firsthit_kernel(const sb_engine_firsthit *f,
                               double radius, double D, double level,
                               sb_engine_firsthit_kernel_result *k);
 
-/** The estimator alone, from the inputs in *k (c.hits, c.pairs_apart,
- *  radius, D, t1, t, veff; e.g. the counts of a run kept after its engine
- *  is freed): sets a, expected_per_K, K, lo, hi.  Status as
+/** The estimator alone, from the inputs in *k (c.hits, c.hits_var,
+ *  c.pairs_apart, radius, D, t1, t, veff; e.g. the counts of a run kept
+ *  after its engine is freed, or of independent runs added up): sets a,
+ *  expected_per_K, K, dispersion, lo, hi.  Status as
  *  sb_engine_firsthit_kernel. */
 int sb_engine_firsthit_estimate(sb_engine_firsthit_kernel_result *k,
                                 double level);

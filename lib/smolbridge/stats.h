@@ -254,6 +254,20 @@ int sb_compare(sb_comparison *c, const char *name, sb_rule rule,
 int sb_compare_poisson(sb_comparison *c, const char *name, unsigned long k,
                        double scale, double reference, double alpha);
 
+/** sb_compare_poisson for a count whose variance is `dispersion` times
+ *  its mean (> 1: a sum of correlated rare events, e.g. first contacts of
+ *  pairs that share particles, sb_engine_firsthit_counts.hits_var / hits):
+ *  the Garwood interval widened about k by sqrt(dispersion), and the exact
+ *  test at the mean k + (reference/scale - k) / sqrt(dispersion), so that
+ *  again PASS iff p >= alpha iff the reference lies in the interval (the
+ *  lower end clipped at 0).  Approximate (quasi-Poisson: right to first
+ *  order in the spread, as the normal approximation); dispersion <= 1 or
+ *  NaN gives sb_compare_poisson exactly. */
+int sb_compare_poisson_dispersed(sb_comparison *c, const char *name,
+                                 unsigned long k, double dispersion,
+                                 double scale, double reference,
+                                 double alpha);
+
 /** Proportion k/n against the probability `reference`: Clopper-Pearson
  *  interval at 1 - alpha, exact two-sided binomial test
  *  (sb_binomial_pvalue); rule SB_RULE_COVER, verdict as above. */

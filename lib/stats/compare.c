@@ -115,6 +115,35 @@ int sb_compare_poisson(sb_comparison *c, const char *name, unsigned long k,
                     lo, hi, 1.0 - alpha, p);
 }
 
+int sb_compare_poisson_dispersed(sb_comparison *c, const char *name,
+                                 unsigned long k, double dispersion,
+                                 double scale, double reference,
+                                 double alpha)
+{
+  if (!(dispersion > 1.0) || !isfinite(dispersion))
+    return sb_compare_poisson(c, name, k, scale, reference, alpha);
+  int st = sb_compare_poisson(c, name, k, scale, reference, alpha);
+  if (st != SB_SUCCESS && st != SB_ELOSS)
+    return st;
+  /* the Garwood interval of k widened about k by w; the p-value of the
+   * exact test at the reference brought back towards k by the same factor,
+   * so that p >= alpha <=> the reference lies in the widened interval */
+  const double w = sqrt(dispersion), K = (double)k;
+  double l, u;
+  st = sb_poisson_ci(k, 1.0 - alpha, &l, &u);
+  if (st)
+    return st;
+  double lo = K - w * (K - l), mu = K + (reference / scale - K) / w;
+  if (lo < 0.0) {  /* clipped: every rate down to 0 is inside */
+    lo = 0.0;
+    mu = mu < l ? l : mu;
+  }
+  const double p = sb_poisson_pvalue(k, mu);
+  return sb_compare(c, name, SB_RULE_COVER, scale * K, reference,
+                    scale * lo, scale * (K + w * (u - K)), 1.0 - alpha,
+                    isnan(p) ? NAN : p);
+}
+
 int sb_compare_binomial(sb_comparison *c, const char *name, unsigned long k,
                         unsigned long n, double reference, double alpha)
 {

@@ -73,6 +73,12 @@ int sbv_add_freq(sbv_report *rep, const char *name, unsigned long k,
  * interval (rule cover). */
 int sbv_add_poisson(sbv_report *rep, const char *name, unsigned long k,
                     double scale, double reference);
+/* The same for a count whose variance is `dispersion` times its mean
+ * (first contacts: fh_out.dispersion): the Garwood interval widened by
+ * sqrt(dispersion) above 1, approximate (sb_compare_poisson_dispersed). */
+int sbv_add_poisson_dispersed(sbv_report *rep, const char *name,
+                              unsigned long k, double dispersion,
+                              double scale, double reference);
 /* Mean of n >= 2 independent replicas vs reference: t interval and test. */
 int sbv_add_mean(sbv_report *rep, const char *name, const double *x,
                  size_t n, double reference);

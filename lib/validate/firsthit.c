@@ -195,21 +195,21 @@ int run_firsthit(const sbv_ctx *ctx, unsigned long stream, const fh_run *q,
                                    "eps", "nu", "builtin", "mode", "ends"};
   for (size_t i = 0; i < sizeof in / sizeof in[0]; i++)
     sbv_runkey_num(&k, nm[i], in[i]);
-  double v[7];
-  int got = sbv_run_load_vals(ctx, &k, v, 7);
+  double v[8];
+  int got = sbv_run_load_vals(ctx, &k, v, 8);
   if (got < 0)
     return got;
   if (got) {
     o->hits = (unsigned long)v[0];
     o->expected_per_K = v[1], o->K = v[2], o->lo = v[3], o->hi = v[4];
-    o->cpu = v[5], o->steps = v[6];
+    o->cpu = v[5], o->steps = v[6], o->dispersion = v[7];
     return SB_SUCCESS;
   }
   int st = fh_engine_run(ctx, stream, q, &p, o);
   if (!st) {
     const double out[] = {(double)o->hits, o->expected_per_K, o->K, o->lo,
-                          o->hi, o->cpu, o->steps};
-    sbv_run_save(ctx, &k, out, 7, NULL, 0);
+                          o->hi, o->cpu, o->steps, o->dispersion};
+    sbv_run_save(ctx, &k, out, 8, NULL, 0);
   }
   return st;
 }
@@ -281,6 +281,7 @@ static int fh_engine_run(const sbv_ctx *ctx, unsigned long stream,
     o->K = k.K;
     o->lo = k.lo;
     o->hi = k.hi;
+    o->dispersion = k.dispersion;
     sb_engine_stats es;
     sb_engine_get_stats(e, &es);
     o->steps = (double)es.steps;

@@ -75,7 +75,11 @@ typedef struct {
   double expected_per_K;/* E[hits] / K: hits = K expected_per_K on
                            average, s/m^3 */
   double K;             /* kernel estimate hits / expected_per_K, m^3/s */
-  double lo, hi;        /* its 95% Garwood interval */
+  double dispersion;    /* var(hits) / hits estimated from each particle's
+                           contacts (the observer's hits_var; > 1: pairs
+                           sharing a particle correlated), NaN if unknown */
+  double lo, hi;        /* its 95% interval: the Garwood interval of the
+                           count, widened by sqrt(dispersion) above 1 */
   double cpu;           /* s */
   double steps;
 } fh_out;

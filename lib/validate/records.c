@@ -37,6 +37,18 @@ int sbv_add_poisson(sbv_report *rep, const char *name, unsigned long k,
   return add(rep, st, &c);
 }
 
+int sbv_add_poisson_dispersed(sbv_report *rep, const char *name,
+                              unsigned long k, double dispersion,
+                              double scale, double reference)
+{
+  sb_comparison c;
+  if (!(scale > 0.0 && isfinite(scale)))
+    scale = 1.0;
+  int st = sb_compare_poisson_dispersed(&c, name, k, dispersion, scale,
+                                        reference, SBV_ALPHA);
+  return add(rep, st, &c);
+}
+
 int sbv_add_mean(sbv_report *rep, const char *name, const double *x,
                  size_t n, double reference)
 {
