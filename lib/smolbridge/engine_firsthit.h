@@ -27,8 +27,8 @@
  * Poisson when each particle makes few contacts; but the pairs that share
  * a particle share its path, so when each makes many (tens, in a run sized
  * for 10^4 contacts with a box that cannot shrink) the variance exceeds
- * the mean: by 1.42-1.43 (three seeds) for 3670 micron spheres with ~22
- * contacts each.  The observer estimates the variance from each
+ * the mean: by 1.21-1.68 (mean 1.42 over seven seeds) for 3670 spheres of
+ * 2 um with ~22 contacts each (V2 in --full).  The observer estimates the variance from each
  * particle's count (counts.hits_var) and widens the Garwood interval by
  * sqrt(var / mean) where it exceeds 1.  For
  * Langevin particles a is the radius that the outer diffusion field sees
