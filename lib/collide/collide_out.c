@@ -397,11 +397,13 @@ static void json_kernels(FILE *f, const sbi_col_config *c, const sb_engine *e)
   fprintf(f, "],\n");
 }
 
-/* `"expected_per_K": .., "K": .., "ci95": [lo, hi]` of a first-contact
- * result */
+/* `"dispersion": .., "expected_per_K": .., "K": .., "ci95": [lo, hi]` of a
+ * first-contact result */
 static void jfirsthit_kernel(FILE *f, const sb_engine_firsthit_kernel_result *o)
 {
-  fprintf(f, "\"expected_per_K\": ");
+  fprintf(f, "\"dispersion\": ");
+  sbi_col_jnum(f, o->dispersion);
+  fprintf(f, ", \"expected_per_K\": ");
   sbi_col_jnum(f, o->expected_per_K);
   fprintf(f, ", \"K\": ");
   sbi_col_jnum(f, o->K);
