@@ -148,9 +148,10 @@ static int case_v4(const sbv_ctx *ctx, sbv_report *rep)
       row[3] = o.lo / Kth;
       row[4] = o.hi / Kth;
       sbv_note(rep, "d = %.2g um, dt/tau = %g: N = %zu, %lu first contacts "
-               "in %.0f steps, K_e/K_th = %.4f [%.4f, %.4f], %.2f s CPU",
-               q.d * 1e6, ratios[k], q.N, o.hits, o.steps, o.K / Kth,
-               o.lo / Kth, o.hi / Kth, o.cpu);
+               "in %.0f steps (variance %.2f x Poisson), K_e/K_th = %.4f "
+               "[%.4f, %.4f], %.2f s CPU", q.d * 1e6, ratios[k], q.N,
+               o.hits, o.steps, o.dispersion, o.K / Kth, o.lo / Kth,
+               o.hi / Kth, o.cpu);
     }
   /* the same detector in a crowded box: phi = 0.05 at dt = 300 tau_p,
    * where a particle has one contact every ~2 steps (first-hit counting
@@ -235,9 +236,10 @@ static int case_v5(const sbv_ctx *ctx, sbv_report *rep)
       st = add_ratio(rep, name, o.K / Kth, &o);
       logK[series][k] = log(o.K);
       logd[k] = log(q.d);
-      sbv_note(rep, "%s, d = %g d_ref: N = %zu, %lu contacts, K_e/K_th = "
-               "%.4f [%.4f, %.4f]", series ? "B_pos = 1e-3 d/d_ref" :
-               "B_pos = 1e-3", mult[k], q.N, o.hits, o.K / Kth, o.lo / Kth,
+      sbv_note(rep, "%s, d = %g d_ref: N = %zu, %lu contacts (variance "
+               "%.2f x Poisson), K_e/K_th = %.4f [%.4f, %.4f]",
+               series ? "B_pos = 1e-3 d/d_ref" : "B_pos = 1e-3", mult[k],
+               q.N, o.hits, o.dispersion, o.K / Kth, o.lo / Kth,
                o.hi / Kth);
     }
   if (!st) {
@@ -296,10 +298,10 @@ static int case_v7(const sbv_ctx *ctx, sbv_report *rep)
   if (st)
     return st;
   st = add_ratio(rep, "V7/brownian+turb/K_e/(K_co+K_ST)", o.K / Kth, &o);
-  sbv_note(rep, "First-hit counting, N = %zu, box sized for the count, %lu contacts: "
-           "K_e/(K_co + K_ST) = %.4f [%.4f, %.4f]; K_co = %.4g, K_ST = "
-           "%.4g m^3/s.", N, o.hits, o.K / Kth, o.lo / Kth, o.hi / Kth,
-           Kco, Kst);
+  sbv_note(rep, "First-hit counting, N = %zu, box sized for the count, %lu "
+           "contacts (variance %.2f x Poisson): K_e/(K_co + K_ST) = %.4f "
+           "[%.4f, %.4f]; K_co = %.4g, K_ST = %.4g m^3/s.", N, o.hits,
+           o.dispersion, o.K / Kth, o.lo / Kth, o.hi / Kth, Kco, Kst);
   /* the split as recorded by the engine: a run with the bridge outcome
    * (reinsert), same particles and box */
   sb_engine_bridge_stats bs;
@@ -666,9 +668,10 @@ static int case_exact(const sbv_ctx *ctx, sbv_report *rep)
     snprintf(name, sizeof name, "VX/exact/d=1um/dt=%gtau/K_e/K_th",
              ratios[k]);
     st = add_ratio(rep, name, o.K / Kth, &o);
-    sbv_note(rep, "dt/tau = %g: N = %zu, %lu contacts, K_e/K_th = %.4f "
-             "[%.4f, %.4f], %.2f s CPU", ratios[k], q.N, o.hits, o.K / Kth,
-             o.lo / Kth, o.hi / Kth, o.cpu);
+    sbv_note(rep, "dt/tau = %g: N = %zu, %lu contacts (variance %.2f x "
+             "Poisson), K_e/K_th = %.4f [%.4f, %.4f], %.2f s CPU", ratios[k],
+             q.N, o.hits, o.dispersion, o.K / Kth, o.lo / Kth, o.hi / Kth,
+             o.cpu);
   }
   return st;
 }
