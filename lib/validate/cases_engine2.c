@@ -111,7 +111,7 @@ static int case_v4(const sbv_ctx *ctx, sbv_report *rep)
   const double dps[3] = {0.75e-6, 1e-6, 2e-6};
   const double ratios[3] = {10.0, 100.0, 1000.0};
   const size_t N = ctx->full ? 8000 : 4000;
-  const double hits = ctx->full ? 40000 : 1500;
+  const double hits = ctx->full ? FH_FULL_HITS : 1500;
   const size_t nsteps = ctx->full ? 2000 : 300;
   const double Kth = 8.0 * SB_BOLTZMANN * TEMP / (3.0 * MU_AIR);
   sbv_note(rep, "First-hit counting (see the file comment), N = %zu "
@@ -199,7 +199,7 @@ static int case_v5(const sbv_ctx *ctx, sbv_report *rep)
   const double dref = 0.1e-6, Bref = 1e-3;
   const double mult[3] = {1.0, 2.0, 4.0};
   const size_t N = ctx->full ? 8000 : 4000;
-  const double hits = ctx->full ? 40000 : 1500;
+  const double hits = ctx->full ? FH_FULL_HITS : 1500;
   const size_t nsteps = 20;
   double logK[2][3], logd[3];
   int st = SB_SUCCESS;
@@ -272,7 +272,7 @@ static int case_v7(const sbv_ctx *ctx, sbv_report *rep)
    * B_turb,ij^2(d) (eq 6.17). */
   const double d = 1e-6, rho = 2700.0, nu = 1e-6, mu = 1e-3, eps = 1e-4;
   const size_t N = ctx->full ? 6000 : 3000;
-  const double hits = ctx->full ? 40000 : 1500;
+  const double hits = ctx->full ? FH_FULL_HITS : 1500;
   fh_run q;
   fh_run_init(&q);
   q.d = d;
@@ -640,7 +640,7 @@ static int case_exact(const sbv_ctx *ctx, sbv_report *rep)
 {
   const double ratios[2] = {100.0, 1000.0};
   const size_t N = ctx->full ? 8000 : 4000;
-  const double hits = ctx->full ? 40000 : 1500;
+  const double hits = ctx->full ? FH_FULL_HITS : 1500;
   const double Kth = 8.0 * SB_BOLTZMANN * TEMP / (3.0 * MU_AIR);
   int st = SB_SUCCESS;
   sbv_note(rep, "Exact endpoint-conditioned 3-D bridge detection "

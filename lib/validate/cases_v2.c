@@ -80,7 +80,7 @@ static void v2_physics(double d, v2_phys *p)
 static int first_hit(const sbv_ctx *ctx, sbv_report *rep, double *plot)
 {
   static const double dps[3] = {0.75e-6, 1e-6, 2e-6};
-  const double hits = ctx->full ? 40000.0 : 800.0;
+  const double hits = ctx->full ? FH_FULL_HITS_V2 : 800.0;
   const size_t N = ctx->full ? 2000 : 400;
   const double warm = 1000.0, meas = ctx->full ? 20000.0 : 3000.0; /* tau */
   sbv_note(rep, "First-hit protocol: N = %zu independent Langevin spheres "

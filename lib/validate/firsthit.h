@@ -136,6 +136,14 @@ int fh_cube_params(const sbv_ctx *ctx, unsigned long stream, double L,
  * equation in units of sqrt(k_B T / m) tau. */
 #define FH_MILNE 1.4603545088095868
 
+/* Contacts a --full first-contact run is sized for: +-1% (95%) needs
+ * (1.96 / 0.01)^2 = 38 400 Poisson contacts times the count's variance
+ * over its mean (fh_out.dispersion), which grows with the contacts per
+ * particle: measured 1.00-1.20 for V4, V5, V7 and VX (4-10 per particle)
+ * and 1.21-1.68 for V2's first-hit rows (15-22 per particle). */
+#define FH_FULL_HITS 50000.0
+#define FH_FULL_HITS_V2 64000.0
+
 /* ------------------------------------------------------------------
  * First-hit counting of Langevin spheres in the transition regime
  * (firsthit_lv.c): one or two species (per pair type counts), any
