@@ -18,11 +18,18 @@
 #define PI 3.14159265358979323846
 #define NPT (SB_ENGINE_PAIR_SPECIES * (SB_ENGINE_PAIR_SPECIES + 1) / 2)
 
+/* A set of particle or pair keys (never 0), with a count per key when
+ * `val` is kept: open addressing, grown at half load. */
+typedef struct {
+  uint64_t *key;
+  uint32_t *val;  /* NULL: a plain set */
+  size_t cap, n;
+} idmap;
+
 struct sb_engine_firsthit {
   sb_engine_firsthit_params par;
   int attached;
-  uint64_t *set;   /* pair keys, 0 = empty; grows at half load */
-  size_t cap, n;
+  idmap set;       /* pair keys of the pairs seen */
   double t1;       /* end of the warm-up, s */
   uint64_t hits[NPT], warm[NPT], contact0[NPT];
   double pairs_apart[NPT];
@@ -32,9 +39,7 @@ struct sb_engine_firsthit {
    * SB_ENGINE_PAIR_SPECIES: with any), key (id << 5 | slot) + 1, and
    * per species pair the sums of their squares over the first species'
    * side [0] and the second's [1] (one side for a species with itself) */
-  uint64_t *pkey;
-  uint32_t *pcnt;
-  size_t pcap, pn;
+  idmap counts;
   double sq[NPT][2], sq_all;
   double ns[SB_ENGINE_PAIR_SPECIES], n_all;  /* particles at attachment */
 };
@@ -44,85 +49,87 @@ static size_t slot(uint64_t key, size_t cap)
   return (size_t)((key * 0x9E3779B97F4A7C15ULL) >> 17) & (cap - 1);
 }
 
+/* Double m's table (1024 at first); -1 out of memory. */
+static int map_grow(idmap *m, int counted)
+{
+  const size_t nc = m->cap ? 2 * m->cap : 1024;
+  uint64_t *nk = calloc(nc, sizeof *nk);
+  uint32_t *nv = counted ? calloc(nc, sizeof *nv) : NULL;
+  if (!nk || (counted && !nv)) {
+    free(nk);
+    free(nv);
+    return -1;
+  }
+  for (size_t i = 0; i < m->cap; i++)
+    if (m->key[i]) {
+      size_t h = slot(m->key[i], nc);
+      while (nk[h])
+        h = (h + 1) & (nc - 1);
+      nk[h] = m->key[i];
+      if (counted)
+        nv[h] = m->val[i];
+    }
+  free(m->key);
+  free(m->val);
+  m->key = nk;
+  m->val = nv;
+  m->cap = nc;
+  return 0;
+}
+
+/* Enter key (never 0), adding one to its count in a counted map; returns
+ * the count before (a plain set: 1 if present), 0 if new, -1 out of
+ * memory. */
+static long map_add(idmap *m, uint64_t key, int counted)
+{
+  if (2 * (m->n + 1) > m->cap && map_grow(m, counted))
+    return -1;
+  for (size_t h = slot(key, m->cap);; h = (h + 1) & (m->cap - 1)) {
+    if (m->key[h] == key) {
+      if (!counted)
+        return 1;
+      const uint32_t c = m->val[h];
+      m->val[h] += c < UINT32_MAX;
+      return (long)c;
+    }
+    if (!m->key[h]) {
+      m->key[h] = key;
+      if (counted)
+        m->val[h] = 1;
+      m->n++;
+      return 0;
+    }
+  }
+}
+
+static int map_has(const idmap *m, uint64_t key)
+{
+  if (!m->cap)
+    return 0;
+  for (size_t h = slot(key, m->cap);; h = (h + 1) & (m->cap - 1)) {
+    if (m->key[h] == key)
+      return 1;
+    if (!m->key[h])
+      return 0;
+  }
+}
+
 /* 1 if new, 0 if present, -1 out of memory. */
 static int set_insert(sb_engine_firsthit *f, uint64_t key)
 {
-  if (2 * (f->n + 1) > f->cap) {
-    size_t nc = f->cap ? 2 * f->cap : 1024;
-    uint64_t *ns = calloc(nc, sizeof *ns);
-    if (!ns)
-      return -1;
-    for (size_t i = 0; i < f->cap; i++)
-      if (f->set[i]) {
-        size_t h = slot(f->set[i], nc);
-        while (ns[h])
-          h = (h + 1) & (nc - 1);
-        ns[h] = f->set[i];
-      }
-    free(f->set);
-    f->set = ns;
-    f->cap = nc;
-  }
-  for (size_t h = slot(key, f->cap);; h = (h + 1) & (f->cap - 1)) {
-    if (f->set[h] == key)
-      return 0;
-    if (!f->set[h]) {
-      f->set[h] = key;
-      f->n++;
-      return 1;
-    }
-  }
+  const long h = map_add(&f->set, key, 0);
+  return h < 0 ? -1 : h == 0;
 }
 
 static int set_has(const sb_engine_firsthit *f, uint64_t key)
 {
-  if (!f->cap)
-    return 0;
-  for (size_t h = slot(key, f->cap);; h = (h + 1) & (f->cap - 1)) {
-    if (f->set[h] == key)
-      return 1;
-    if (!f->set[h])
-      return 0;
-  }
+  return map_has(&f->set, key);
 }
 
-/* Add one to the count under key (never 0); returns the count before,
- * or -1 out of memory. */
+/* Add one to a particle's count under key; the count before, or -1. */
 static long count_add(sb_engine_firsthit *f, uint64_t key)
 {
-  if (2 * (f->pn + 1) > f->pcap) {
-    size_t nc = f->pcap ? 2 * f->pcap : 1024;
-    uint64_t *nk = calloc(nc, sizeof *nk);
-    uint32_t *nv = calloc(nc, sizeof *nv);
-    if (!nk || !nv) {
-      free(nk);
-      free(nv);
-      return -1;
-    }
-    for (size_t i = 0; i < f->pcap; i++)
-      if (f->pkey[i]) {
-        size_t h = slot(f->pkey[i], nc);
-        while (nk[h])
-          h = (h + 1) & (nc - 1);
-        nk[h] = f->pkey[i];
-        nv[h] = f->pcnt[i];
-      }
-    free(f->pkey);
-    free(f->pcnt);
-    f->pkey = nk;
-    f->pcnt = nv;
-    f->pcap = nc;
-  }
-  for (size_t h = slot(key, f->pcap);; h = (h + 1) & (f->pcap - 1)) {
-    if (f->pkey[h] == key)
-      return (long)f->pcnt[h]++;
-    if (!f->pkey[h]) {
-      f->pkey[h] = key;
-      f->pcnt[h] = 1;
-      f->pn++;
-      return 0;
-    }
-  }
+  return map_add(&f->counts, key, 1);
 }
 
 /* A counted first contact of particles i, j: their counts and the sums of
@@ -239,9 +246,9 @@ sb_engine_firsthit *sb_engine_firsthit_alloc(
 void sb_engine_firsthit_free(sb_engine_firsthit *f)
 {
   if (f) {
-    free(f->set);
-    free(f->pkey);
-    free(f->pcnt);
+    free(f->set.key);
+    free(f->counts.key);
+    free(f->counts.val);
   }
   free(f);
 }
