@@ -30,6 +30,7 @@
 #include <smolbridge/langevin_hit.h>
 #include <smolbridge/stats.h>
 
+#include "langevin/langevin_hit_internal.h"
 #include "testutil.h"
 
 /* Chord entry fraction of ra -> rb into |r| <= R, or -1. */
@@ -54,6 +55,8 @@ static double entry(const double *ra, const double *rb, double R)
 typedef struct {
   int hit;
   double t, vn;  /* contact time, normal relative velocity (< 0 in) */
+  double ui, xc; /* at contact: particle i's velocity along the line of
+                    centres, the barycentre's x */
 } bres;
 
 static void forward(const gsl_rng *r, sb_langevin_path *P, int dim, int nf,
@@ -73,6 +76,7 @@ static void forward(const gsl_rng *r, sb_langevin_path *P, int dim, int nf,
     double ra[3], rb[3];
     for (int k = 0; k < 3; k++)
       ra[k] = x[0][k] - x[1][k];
+    const double xprev = 0.5 * (x[0][0] + x[1][0]);
     for (int p = 0; p < 2; p++)
       for (int k = 0; k < dim; k++) {
         double z1 = gsl_ran_gaussian_ziggurat(r, 1.0);
@@ -88,10 +92,17 @@ static void forward(const gsl_rng *r, sb_langevin_path *P, int dim, int nf,
     if (!o->hit && (f = entry(ra, rb, R)) >= 0) {
       o->hit = 1;
       o->t = (s + f) * dt / nf;
-      double vn = 0;
-      for (int k = 0; k < 3; k++)
-        vn += (u[0][k] - u[1][k]) * (ra[k] + f * (rb[k] - ra[k])) / R;
+      double vn = 0, ui = 0;
+      for (int k = 0; k < 3; k++) {
+        const double nk = (ra[k] + f * (rb[k] - ra[k])) / R;
+        vn += (u[0][k] - u[1][k]) * nk;
+        ui += u[0][k] * nk;
+      }
       o->vn = vn;
+      o->ui = ui;
+      /* the barycentre along the sub-step's chord (x0 before it) */
+      const double xb = 0.5 * (x[0][0] + x[1][0]);
+      o->xc = xb - (1.0 - f) * (xb - xprev);
     }
   }
   for (int p = 0; p < 2; p++)
@@ -107,6 +118,15 @@ static double contact_vn(const sb_langevin_contact *c, double R)
   for (int k = 0; k < 3; k++)
     vn += (c->ui[k] - c->uj[k]) * (c->xi[k] - c->xj[k]) / R;
   return vn;
+}
+
+/* Particle i's velocity along the line of centres at contact. */
+static double contact_ui(const sb_langevin_contact *c, double R)
+{
+  double v = 0;
+  for (int k = 0; k < 3; k++)
+    v += c->ui[k] * (c->xi[k] - c->xj[k]) / R;
+  return v;
 }
 
 /* Particle with equilibrium velocity variance 1/m per component (k_B T
@@ -157,6 +177,10 @@ static void run_forward(const fcase *fc, unsigned long seed, int check_vn)
                                                             sizeof *ts);
   double *vb = malloc(fc->npath * sizeof *vb), *vs = malloc(fc->npath *
                                                             sizeof *vs);
+  double *ub = malloc(fc->npath * sizeof *ub), *us = malloc(fc->npath *
+                                                            sizeof *us);
+  double *xb = malloc(fc->npath * sizeof *xb), *xs = malloc(fc->npath *
+                                                            sizeof *xs);
   long nb = 0, ns = 0, n10 = 0, n01 = 0;
   for (int n = 0; n < fc->npath; n++) {
     sb_langevin_path P[2] = {particle(fc->tau_i, fc->m_i),
@@ -180,10 +204,14 @@ static void run_forward(const fcase *fc, unsigned long seed, int check_vn)
         d2 += (c.xi[k] - c.xj[k]) * (c.xi[k] - c.xj[k]);
       ck_assert_rel(sqrt(d2), 1.0, 1e-12);
       ts[ns] = c.t;
+      us[ns] = contact_ui(&c, 1.0);
+      xs[ns] = 0.5 * (c.xi[0] + c.xj[0]);
       vs[ns++] = contact_vn(&c, 1.0);
     }
     if (b.hit) {
       tb[nb] = b.t;
+      ub[nb] = b.ui;
+      xb[nb] = b.xc;
       vb[nb++] = b.vn;
     }
     n10 += b.hit && !h;
@@ -208,8 +236,21 @@ static void run_forward(const fcase *fc, unsigned long seed, int check_vn)
   ck_assert(st.pruned_mass / st.calls <= hp.eps);
   free(tb);
   free(ts);
+  /* the states of the particles themselves, not only the relative ones
+   * (the barycentre is drawn apart from the relative path for equal
+   * particles) */
+  ck_assert_int_eq(sb_ks2_test(ub, nb, us, ns, &D, &pks), SB_SUCCESS);
+  ck_assert_msg(pks >= 1e-3, "%s: u_i along the normal KS2 D = %g, p = %g",
+                fc->name, D, pks);
+  ck_assert_int_eq(sb_ks2_test(xb, nb, xs, ns, &D, &pks), SB_SUCCESS);
+  ck_assert_msg(pks >= 1e-3, "%s: barycentre x KS2 D = %g, p = %g",
+                fc->name, D, pks);
   free(vb);
   free(vs);
+  free(ub);
+  free(us);
+  free(xb);
+  free(xs);
   sb_langevin_hitter_free(w);
   gsl_rng_free(r);
 }
@@ -252,11 +293,75 @@ START_TEST(test_forward_long)
 }
 END_TEST
 
+/* Contact states that involve each particle, not only the relative
+ * motion: particle 0's velocity along the line of centres and the
+ * barycentre's x (for equal particles the sampler draws the barycentre
+ * apart from the relative path). */
+static void cs_of(const double x[2][3], const double u[2][3], double R,
+                  double cs[2])
+{
+  cs[0] = 0.0;
+  for (int k = 0; k < 3; k++)
+    cs[0] += u[0][k] * (x[0][k] - x[1][k]) / R;
+  cs[1] = 0.5 * (x[0][0] + x[1][0]);
+}
+
+/* The sampler's one-pass bridge coefficients (sbi_lh_bridge_coef)
+ * against sb_langevin_bridge_moments at unit end states (the definition
+ * of each coefficient), over h/tau = 1e-9 to 1e4 and s/h = 0.001 to 0.999,
+ * for three tau: agreement to 1e-14 of each coefficient's scale (x
+ * coefficients min(h, tau), velocity ones 1, covariances their own), and
+ * 1e-11 for the fluid velocity's wx, which cancels (s - ax h - bx - cx) as
+ * it does in the moments.  Both wx and wu vanish: a constant fluid
+ * velocity acts on the bridge through its end states only. */
+START_TEST(test_bridge_coef)
+{
+  const double taus[3] = {1.0, 3e-7, 2.5e3};
+  for (int it = 0; it < 3; it++)
+    for (double lh = -9.0; lh <= 4.01; lh += 0.5)
+      for (double f = 0.001; f < 1.0; f *= 1.7) {
+        const double tau = taus[it], B = 0.37 / sqrt(tau);
+        const double h = tau * pow(10.0, lh), s = f * h;
+        sb_langevin p = {tau, B, 0.0};
+        sb_langevin_mom m;
+        double o[11];
+        ck_assert_int_eq(sb_langevin_bridge_moments(&p, h, s, 0, 0, 1, 0, &m),
+                         SB_SUCCESS);
+        o[0] = m.mean_x, o[4] = m.mean_u;
+        o[8] = m.var_x, o[9] = m.var_u, o[10] = m.cov_xu;
+        sb_langevin_bridge_moments(&p, h, s, 0, 1, 0, 0, &m);
+        o[1] = m.mean_x, o[5] = m.mean_u;
+        sb_langevin_bridge_moments(&p, h, s, 0, 0, 0, 1, &m);
+        o[2] = m.mean_x, o[6] = m.mean_u;
+        p.us = 1.0;
+        sb_langevin_bridge_moments(&p, h, s, 0, 0, 0, 0, &m);
+        o[3] = m.mean_x, o[7] = m.mean_u;
+        sbi_lh_coef c;
+        ck_assert_int_eq(sbi_lh_bridge_coef(tau, B, h, s, &c), SB_SUCCESS);
+        const double n[11] = {c.ax, c.bx, c.cx, c.wx, c.au, c.bu,
+                              c.cu, c.wu, c.vx, c.vu, c.cxu};
+        const double mh = fmin(h, tau);
+        const double sc[11] = {1, mh, mh, mh, 1 / mh, 1, 1, 1, o[8], o[9],
+                               sqrt(o[8] * o[9])};
+        for (int k = 0; k < 11; k++)
+          ck_assert_msg(fabs(n[k] - o[k]) <= (k == 3 ? 1e-11 : 1e-14) * sc[k],
+                        "coefficient %d at tau %g, h/tau %g, s/h %g: %.17g "
+                        "against %.17g", k, tau, h / tau, f, n[k], o[k]);
+        ck_assert(fabs(c.wx) <= 1e-11 * mh && fabs(c.wu) <= 1e-14);
+      }
+  sbi_lh_coef c;
+  ck_assert_int_eq(sbi_lh_bridge_coef(1.0, 1.0, 1.0, 0.0, &c), SB_EDOM);
+  ck_assert_int_eq(sbi_lh_bridge_coef(1.0, 0.0, 1.0, 0.5, &c), SB_EDOM);
+  ck_assert_int_eq(sbi_lh_bridge_coef(INFINITY, 1.0, 1.0, 0.5, &c), SB_EDOM);
+}
+END_TEST
+
 /* Fixed ends: brute force by sequential bridge draws.  n NULL: the
  * pair's contact |x_0 - x_1| <= R; else particle 0 alone against the
  * half-space n.x <= R (n a unit vector; P[1] unused). */
 static int bridge_brute(const gsl_rng *r, const sb_langevin_path *P, int nf,
-                        double dt, double R, const double *n, double *t)
+                        double dt, double R, const double *n, double *t,
+                        double *cs)
 {
   double x[2][3], u[2][3];
   for (int p = 0; p < 2; p++)
@@ -266,7 +371,9 @@ static int bridge_brute(const gsl_rng *r, const sb_langevin_path *P, int nf,
     }
   const double h = dt / nf;
   for (int s = 0; s < nf; s++) {
-    double ra[3], rb[3], rem = dt - s * h;
+    double ra[3], rb[3], rem = dt - s * h, xp[2][3], up[2][3];
+    memcpy(xp, x, sizeof xp);
+    memcpy(up, u, sizeof up);
     for (int k = 0; k < 3; k++)
       ra[k] = x[0][k] - (n ? 0.0 : x[1][k]);
     for (int p = 0; p < (n ? 1 : 2); p++) {
@@ -290,6 +397,15 @@ static int bridge_brute(const gsl_rng *r, const sb_langevin_path *P, int nf,
     }
     if (f >= 0) {
       *t = (s + f) * h;
+      if (cs) {  /* cs_of at the entry, interpolated along the sub-step */
+        double xa[2][3], ua[2][3];
+        for (int p = 0; p < 2; p++)
+          for (int k = 0; k < 3; k++) {
+            xa[p][k] = xp[p][k] + f * (x[p][k] - xp[p][k]);
+            ua[p][k] = up[p][k] + f * (u[p][k] - up[p][k]);
+          }
+        cs_of(xa, ua, R, cs);
+      }
       return 1;
     }
   }
@@ -352,16 +468,39 @@ START_TEST(test_fixed_ends)
     }
     const int nb = 1000, ns = 6000;
     double *tb = malloc(nb * sizeof *tb), *ts = malloc(ns * sizeof *ts);
+    double (*cb)[2] = malloc(nb * sizeof *cb), (*cv)[2] = malloc(ns *
+                                                               sizeof *cv);
     long hb = 0, hs = 0;
     for (int n = 0; n < nb; n++)
-      hb += bridge_brute(r, P, 256, 1.0, 1.0, NULL, &tb[hb]);
+      hb += bridge_brute(r, P, 256, 1.0, 1.0, NULL, &tb[hb], cb[hb]);
     for (int n = 0; n < ns; n++) {
       sb_langevin_contact c;
       int h = sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, 1.0, r, &c);
       ck_assert_int_ge(h, 0);
-      if (h)
+      if (h) {
+        const double x[2][3] = {{c.xi[0], c.xi[1], c.xi[2]},
+                                {c.xj[0], c.xj[1], c.xj[2]}};
+        const double u[2][3] = {{c.ui[0], c.ui[1], c.ui[2]},
+                                {c.uj[0], c.uj[1], c.uj[2]}};
+        cs_of(x, u, 1.0, cv[hs]);
         ts[hs++] = c.t;
+      }
     }
+    /* the contact states, one quantity at a time: KS2 p >= 1e-3 */
+    for (int q = 0; q < 2; q++) {
+      double *a = malloc(hb * sizeof *a), *b = malloc(hs * sizeof *b), D, p;
+      for (long k = 0; k < hb; k++)
+        a[k] = cb[k][q];
+      for (long k = 0; k < hs; k++)
+        b[k] = cv[k][q];
+      ck_assert_int_eq(sb_ks2_test(a, hb, b, hs, &D, &p), SB_SUCCESS);
+      ck_assert_msg(p >= 1e-3, "config %d: %s at contact KS2 D = %g, p = %g",
+                    cfg, q ? "barycentre x" : "u_i along the normal", D, p);
+      free(a);
+      free(b);
+    }
+    free(cb);
+    free(cv);
     same_law(cfg, tb, hb, nb, ts, hs, ns);
   }
   sb_langevin_hitter_free(w);
@@ -399,7 +538,7 @@ START_TEST(test_plane_fixed_ends)
     double *tb = malloc(nb * sizeof *tb), *ts = malloc(ns * sizeof *ts);
     long hb = 0, hs = 0;
     for (int n = 0; n < nb; n++)
-      hb += bridge_brute(r, P, 256, 1.0, lev[cfg], un, &tb[hb]);
+      hb += bridge_brute(r, P, 256, 1.0, lev[cfg], un, &tb[hb], NULL);
     for (int n = 0; n < ns; n++) {
       sb_langevin_contact c;
       int h = sb_langevin_hitter_sample_plane(w, &P[0], nn, 2.0 * lev[cfg],
@@ -525,7 +664,7 @@ START_TEST(test_bound)
     long hb = 0;
     double t;
     for (int n = 0; n < nb; n++)
-      hb += bridge_brute(r, P, 256, 1.0, 1.0, NULL, &t);
+      hb += bridge_brute(r, P, 256, 1.0, 1.0, NULL, &t, NULL);
     double lo, hi;
     sb_binomial_ci((unsigned long)hb, (unsigned long)nb, 0.999, &lo, &hi);
     ck_assert_msg(bound >= lo, "y = %g: bound %g below brute force %g [%g, "
@@ -661,6 +800,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_deterministic);
   tcase_add_test(tc, test_reach);
   tcase_add_test(tc, test_fluid_free);
+  tcase_add_test(tc, test_bridge_coef);
   suite_add_tcase(s, tc);
   TCase *ta = tcase_create("budget");
   tcase_set_timeout(ta, 30);

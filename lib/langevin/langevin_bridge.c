@@ -33,6 +33,7 @@
 #include <smolbridge/langevin.h>
 
 #include "common/internal.h"
+#include "langevin_hit_internal.h"
 
 /* Smallest s/tau or (dt-s)/tau accepted: det P ~ (tau/s)^4 must not
  * overflow (1e-60 leaves a margin of ~10^60). */
@@ -58,6 +59,44 @@ static void lag_init(lag *L, double h)
   L->m11 = 1.0 / vxc;
   L->m12 = -(cxu / vu) / vxc;
   L->m22 = (vx / vu) / vxc;
+}
+
+/* The scaled bridge at hs = s/tau into a lag h = dt/tau (hr = h - hs):
+ * its posterior precision P (det), the gain K = Sigma_s Phi_r^T
+ * Sigma_dt^{-1} and the prior transitions (a, e) over hs and h. */
+typedef struct {
+  double as, es, ah, eh;
+  double k11, k12, k21, k22;
+  double p11, p12, p22, det;
+} gain;
+
+static void gain_init(gain *g, double hs, double hr, double h)
+{
+  lag Ls, Lr, Lt;
+  lag_init(&Ls, hs);
+  lag_init(&Lr, hr);
+  lag_init(&Lt, h);
+  g->as = Ls.a, g->es = Ls.e, g->ah = Lt.a, g->eh = Lt.e;
+  /* Posterior precision P = M_s + Phi_r^T M_r Phi_r, with
+   * G = Phi_r^T M_r = [[m11, m12], [a m11 + e m12, a m12 + e m22]]. */
+  double g11 = Lr.m11, g12 = Lr.m12;
+  double g21 = Lr.a * Lr.m11 + Lr.e * Lr.m12;
+  double g22 = Lr.a * Lr.m12 + Lr.e * Lr.m22;
+  g->p11 = Ls.m11 + g11;
+  g->p12 = Ls.m12 + g11 * Lr.a + g12 * Lr.e;
+  g->p22 = Ls.m22 + g21 * Lr.a + g22 * Lr.e;
+  g->det = g->p11 * g->p22 - g->p12 * g->p12;
+  /* the gain (see the top of the file); C = Sigma_s Phi_r^T has
+   * non-negative entries */
+  double vx = sb_langevin_var_x(1.0, 1.0, hs);
+  double vu = sb_langevin_var_u(1.0, 1.0, hs);
+  double cxu = sb_langevin_cov_xu(1.0, 1.0, hs);
+  double c11 = vx + Lr.a * cxu, c12 = Lr.e * cxu;
+  double c21 = cxu + Lr.a * vu, c22 = Lr.e * vu;
+  g->k11 = c11 * Lt.m11 + c12 * Lt.m12;
+  g->k12 = c11 * Lt.m12 + c12 * Lt.m22;
+  g->k21 = c21 * Lt.m11 + c22 * Lt.m12;
+  g->k22 = c21 * Lt.m12 + c22 * Lt.m22;
 }
 
 typedef struct {
@@ -105,36 +144,14 @@ static int bridge_core(const char *func, const sb_langevin *p, double dt,
   double U0 = (u0 - us) / su;
   double X1 = ((x1 - x0) - us * dt) / sx, U1 = (u1 - us) / su;
 
-  lag Ls, Lr;
-  lag_init(&Ls, hs);
-  lag_init(&Lr, hr);
+  gain g;
+  gain_init(&g, hs, hr, h);
+  q->p11 = g.p11, q->p12 = g.p12, q->p22 = g.p22, q->det = g.det;
   /* prior mean at s and innovation at dt (unconditioned mean Phi_dt Z0) */
-  double msx = U0 * Ls.a, msu = U0 * Ls.e;
-  double dx = X1 - U0 * (-expm1(-h)), du = U1 - U0 * exp(-h);
-
-  /* Posterior precision P = M_s + Phi_r^T M_r Phi_r, with
-   * G = Phi_r^T M_r = [[m11, m12], [a m11 + e m12, a m12 + e m22]]. */
-  double g11 = Lr.m11, g12 = Lr.m12;
-  double g21 = Lr.a * Lr.m11 + Lr.e * Lr.m12;
-  double g22 = Lr.a * Lr.m12 + Lr.e * Lr.m22;
-  q->p11 = Ls.m11 + g11;
-  q->p12 = Ls.m12 + g11 * Lr.a + g12 * Lr.e;
-  q->p22 = Ls.m22 + g21 * Lr.a + g22 * Lr.e;
-  q->det = q->p11 * q->p22 - q->p12 * q->p12;
-
-  /* Mean through the gain K = Sigma_s Phi_r^T Sigma_dt^{-1} (see the top
-   * of the file); C = Sigma_s Phi_r^T has non-negative entries. */
-  double vx = sb_langevin_var_x(1.0, 1.0, hs);
-  double vu = sb_langevin_var_u(1.0, 1.0, hs);
-  double cxu = sb_langevin_cov_xu(1.0, 1.0, hs);
-  double c11 = vx + Lr.a * cxu, c12 = Lr.e * cxu;
-  double c21 = cxu + Lr.a * vu, c22 = Lr.e * vu;
-  lag Lt;
-  lag_init(&Lt, h);
-  double k11 = c11 * Lt.m11 + c12 * Lt.m12, k12 = c11 * Lt.m12 + c12 * Lt.m22;
-  double k21 = c21 * Lt.m11 + c22 * Lt.m12, k22 = c21 * Lt.m12 + c22 * Lt.m22;
-  q->mx = msx + k11 * dx + k12 * du;
-  q->mu = msu + k21 * dx + k22 * du;
+  double msx = U0 * g.as, msu = U0 * g.es;
+  double dx = X1 - U0 * g.ah, du = U1 - U0 * g.eh;
+  q->mx = msx + g.k11 * dx + g.k12 * du;
+  q->mu = msu + g.k21 * dx + g.k22 * du;
   return SB_SUCCESS;
 }
 
@@ -201,5 +218,37 @@ int sb_langevin_bridge_sample(const sb_langevin *p, double dt, double s,
   double sx = p->B * tau * sqrt(tau), su = p->B * sqrt(tau);
   *xs = x0 + p->us * s + sx * (q.mx + l11 * z1);
   *us = p->us + su * (q.mu + l21 * z1 + l22 * z2);
+  return SB_SUCCESS;
+}
+
+/* The mean's coefficients and the covariance in one pass (one gain, three
+ * lags, where sb_langevin_bridge_moments at unit end states takes four).
+ * From bridge_core's mean, with sx/su = tau:
+ *   ax = k11, bx = tau (a_s - k11 a_h - k12 e_h), cx = tau k12,
+ *   au = k21/tau, bu = e_s - k21 a_h - k22 e_h, cu = k22,
+ * and the fluid velocity's from translation in time-independent drift
+ * (x_s = x_0 + w s and u_s = w when the ends are the drift's):
+ *   wx = s - ax dt - bx - cx, wu = 1 - au dt - bu - cu. */
+int sbi_lh_bridge_coef(double tau, double B, double dt, double s,
+                       sbi_lh_coef *c)
+{
+  const double hs = s / tau, hr = (dt - s) / tau, h = dt / tau;
+  if (!(tau > 0.0) || !isfinite(tau) || !(B > 0.0) || !isfinite(B) ||
+      !(hs >= HMIN) || !(hr >= HMIN) || !isfinite(h))
+    return SB_EDOM;
+  gain g;
+  gain_init(&g, hs, hr, h);
+  c->ax = g.k11;
+  c->bx = tau * (g.as - g.k11 * g.ah - g.k12 * g.eh);
+  c->cx = tau * g.k12;
+  c->wx = s - c->ax * dt - c->bx - c->cx;
+  c->au = g.k21 / tau;
+  c->bu = g.es - g.k21 * g.ah - g.k22 * g.eh;
+  c->cu = g.k22;
+  c->wu = 1.0 - c->au * dt - c->bu - c->cu;
+  const double B2 = B * B;
+  c->vx = B2 * tau * tau * tau * (g.p22 / g.det);
+  c->vu = B2 * tau * (g.p11 / g.det);
+  c->cxu = B2 * tau * tau * (-g.p12 / g.det);
   return SB_SUCCESS;
 }

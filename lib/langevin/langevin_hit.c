@@ -40,6 +40,7 @@
 #define TOUCH 1e-9
 #define INV_SQRT_2PI 0.39894228040143267794
 #define INV_SQRT_2 0.70710678118654752440
+#define SQRT_2 1.41421356237309504880
 
 void sb_langevin_hit_params_default(sb_langevin_hit_params *p)
 {
@@ -127,6 +128,11 @@ typedef struct {
   sbi_lh_slot *sl[2];
   double tau[2], B[2], mass[2], wv[2][3];
   int auditing;
+  /* relative mode (relative_walk): the pair's relative state in slot 0
+   * (slot 1 zero) and the barycentre's ends kept for the contact */
+  int relm;
+  pstate bary0, bary1;
+  double wbar[3];
   /* plane mode (sb_langevin_hitter_sample_plane): j is a fixed point at
    * the origin and the contact set is the half-space n.r <= R (R the
    * level, any sign); scale sets the resolution */
@@ -556,21 +562,23 @@ static int examine(walk *W, const pstate *A, const pstate *Bs, double a,
       w->st.deep++;
     return leaf(W, A, Bs, a, h);
   }
-  /* exact midpoint states, particle i then j, component by component,
-   * z1 then z2 */
+  /* exact midpoint states, particle i then j (relative mode: the
+   * relative state), component by component, z1 then z2 */
 subdivide:;
   pstate M;
   const sbi_lh_level *L[2] = {Li, Lj};
   memset(&M, 0, sizeof M);
-  for (int p = 0; p < 2; p++)
+  /* relative mode: one process whose covariance is twice a particle's */
+  const double sc = W->relm ? SQRT_2 : 1.0;
+  for (int p = 0; p < (W->relm ? 1 : 2); p++)
     for (int k = 0; k < W->dim; k++) {
       double mx, mu;
       one_mean(&L[p]->mid, A, Bs, p, k, W->wv[p][k], &mx, &mu);
       if (L[p]->l11 > 0.0) {
         double z1 = gsl_ran_gaussian_ziggurat(W->r, 1.0);
         double z2 = gsl_ran_gaussian_ziggurat(W->r, 1.0);
-        mx += L[p]->l11 * z1;
-        mu += L[p]->l21 * z1 + L[p]->l22 * z2;
+        mx += sc * L[p]->l11 * z1;
+        mu += sc * (L[p]->l21 * z1 + L[p]->l22 * z2);
       }
       M.x[p][k] = mx;
       M.u[p][k] = mu;
@@ -674,43 +682,71 @@ static int setup(walk *W, sb_langevin_hitter *w, const sb_langevin_path *pi,
   return r2 <= R2 * (1.0 + TOUCH) && dot3(ra, va) < 0.0;
 }
 
+/* State of process p (a particle, or in relative mode the relative
+ * state or the barycentre) at time s into [0, h] between end states A and
+ * Bs, drawn from its bridge with the covariance scaled by sc^2. */
+static int bridge_draw(const walk *W, int p, const pstate *A,
+                       const pstate *Bs, double h, double s, double sc,
+                       const double *wv, double x[3], double v[3])
+{
+  sbi_lh_coef q;
+  if (!isinf(W->tau[p]) && W->B[p] > 0.0) {
+    /* the bridge needs s and h - s >= 1e-60 tau, or exactly an end */
+    if (s < 1e-50 * W->tau[p])
+      s = 0.0;
+    else if (h - s < 1e-50 * W->tau[p])
+      s = h;
+  }
+  int st = sbi_lh_coef_at(W->tau[p], W->B[p], h, s, &q);
+  if (st)
+    return st;
+  double l11 = 0.0, l21 = 0.0, l22 = 0.0;
+  if (q.vx > 0.0) {
+    l11 = sqrt(q.vx);
+    l21 = q.cxu / l11;
+    double sch = q.vu - l21 * l21;
+    l22 = sch > 0.0 ? sqrt(sch) : 0.0;
+  }
+  for (int k = 0; k < W->dim; k++) {
+    one_mean(&q, A, Bs, p, k, wv[k], &x[k], &v[k]);
+    if (l11 > 0.0) {
+      double z1 = gsl_ran_gaussian_ziggurat(W->r, 1.0);
+      double z2 = gsl_ran_gaussian_ziggurat(W->r, 1.0);
+      x[k] += sc * l11 * z1;
+      v[k] += sc * (l21 * z1 + l22 * z2);
+    }
+  }
+  return SB_SUCCESS;
+}
+
 /* Both particles' states at the contact time inside the leaf, drawn from
- * their bridges, then moved along the line of centres to touch. */
+ * their bridges, then moved along the line of centres to touch.  In
+ * relative mode the relative state comes from the leaf's bridge and the
+ * barycentre, independent of the relative path, from its own over the
+ * whole step. */
 static int contact_states(walk *W, sb_langevin_contact *c)
 {
   const double s = W->th - W->ta, h = W->hl;
   double xs[2][3] = {{0}}, vs[2][3] = {{0}};
-  for (int p = 0; p < 2; p++) {
-    sbi_lh_coef q;
-    double sp = s;
-    if (!isinf(W->tau[p]) && W->B[p] > 0.0) {
-      /* the bridge needs s and h - s >= 1e-60 tau, or exactly an end */
-      if (sp < 1e-50 * W->tau[p])
-        sp = 0.0;
-      else if (h - sp < 1e-50 * W->tau[p])
-        sp = h;
-    }
-    int st = sbi_lh_coef_at(W->tau[p], W->B[p], h, sp, &q);
-    if (st)
+  int st;
+  if (W->relm) {
+    double r[3] = {0}, v[3] = {0}, xc[3] = {0}, vc[3] = {0};
+    if ((st = bridge_draw(W, 0, &W->ca, &W->cb, h, s, SQRT_2, W->wv[0], r,
+                          v)) ||
+        (st = bridge_draw(W, 0, &W->bary0, &W->bary1, W->htop, W->th,
+                          INV_SQRT_2, W->wbar, xc, vc)))
       return -st;
-    double l11 = 0.0, l21 = 0.0, l22 = 0.0;
-    if (q.vx > 0.0) {
-      l11 = sqrt(q.vx);
-      l21 = q.cxu / l11;
-      double sch = q.vu - l21 * l21;
-      l22 = sch > 0.0 ? sqrt(sch) : 0.0;
-    }
     for (int k = 0; k < W->dim; k++) {
-      one_mean(&q, &W->ca, &W->cb, p, k, W->wv[p][k], &xs[p][k],
-               &vs[p][k]);
-      if (l11 > 0.0) {
-        double z1 = gsl_ran_gaussian_ziggurat(W->r, 1.0);
-        double z2 = gsl_ran_gaussian_ziggurat(W->r, 1.0);
-        xs[p][k] += l11 * z1;
-        vs[p][k] += l21 * z1 + l22 * z2;
-      }
+      xs[0][k] = xc[k] + 0.5 * r[k];
+      xs[1][k] = xc[k] - 0.5 * r[k];
+      vs[0][k] = vc[k] + 0.5 * v[k];
+      vs[1][k] = vc[k] - 0.5 * v[k];
     }
-  }
+  } else
+    for (int p = 0; p < 2; p++)
+      if ((st = bridge_draw(W, p, &W->ca, &W->cb, h, s, 1.0, W->wv[p],
+                            xs[p], vs[p])))
+        return -st;
   double r[3] = {xs[0][0] - xs[1][0], xs[0][1] - xs[1][1],
                  xs[0][2] - xs[1][2]};
   double rn = sqrt(dot3(r, r));
@@ -739,7 +775,40 @@ static int contact_states(walk *W, sb_langevin_contact *c)
   return 1;
 }
 
+/* Relative mode, for two particles with the same noisy slot (tau, B and
+ * dt): their bridges are independent with the same covariance, so the
+ * relative state r = x_i - x_j and the barycentre (x_i + x_j)/2 are
+ * independent bridges with twice and half that covariance, and the
+ * contact depends on r alone.  The walk then draws r's midpoints only
+ * (half the draws of the two particles'); the barycentre is drawn once,
+ * at the contact (contact_states).  The relative state takes slot 0 and
+ * slot 1 is zero: the nodes' moments (variances add: Li == Lj), the
+ * bounds and the chords are unchanged. */
+static void relative_walk(walk *W, pstate *A, pstate *Bs)
+{
+  if (W->plane || W->sl[0] != W->sl[1] || W->sl[0]->det)
+    return;
+  W->relm = 1;
+  pstate *S[2] = {A, Bs}, *C[2] = {&W->bary0, &W->bary1};
+  memset(C[0], 0, sizeof *C[0]);
+  memset(C[1], 0, sizeof *C[1]);
+  for (int e = 0; e < 2; e++)
+    for (int k = 0; k < 3; k++) {
+      C[e]->x[0][k] = 0.5 * (S[e]->x[0][k] + S[e]->x[1][k]);
+      C[e]->u[0][k] = 0.5 * (S[e]->u[0][k] + S[e]->u[1][k]);
+      S[e]->x[0][k] -= S[e]->x[1][k];
+      S[e]->u[0][k] -= S[e]->u[1][k];
+      S[e]->x[1][k] = S[e]->u[1][k] = 0.0;
+    }
+  for (int k = 0; k < 3; k++) {
+    W->wbar[k] = 0.5 * (W->wv[0][k] + W->wv[1][k]);
+    W->wv[0][k] -= W->wv[1][k];
+    W->wv[1][k] = 0.0;
+  }
+}
+
 /* The sampler for a ball (plane NULL) or a half-space (setup). */
+
 static int sample(sb_langevin_hitter *w, const sb_langevin_path *pi,
                   const sb_langevin_path *pj, double R, const double *plane,
                   double scale, double dt, const gsl_rng *r,
@@ -768,6 +837,7 @@ static int sample(sb_langevin_hitter *w, const sb_langevin_path *pi,
   }
   if (!W.sl[0] || !W.sl[1])
     return -sbi_error(SB_ENOMEM, func, "out of memory");
+  relative_walk(&W, &A, &Bs);
   st = examine(&W, &A, &Bs, 0.0, 0);
   if (st < 0)
     return -sbi_error(-st, func, "coefficients failed");

@@ -72,6 +72,11 @@ const sbi_lh_level *sbi_lh_level_get(sb_langevin_hitter *w, sbi_lh_slot *s,
 /* Coefficients at time s into a sub-interval of length h (0 <= s <= h) of
  * a particle (tau, B); for the contact states at a leaf.  Status. */
 int sbi_lh_coef_at(double tau, double B, double h, double s, sbi_lh_coef *c);
+/* The same at an interior time (0 < s < h, s and h - s >= 1e-60 tau) of
+ * a noisy particle (tau, B > 0 finite), in one pass (langevin_bridge.c);
+ * SB_EDOM outside that domain. */
+int sbi_lh_bridge_coef(double tau, double B, double h, double s,
+                       sbi_lh_coef *c);
 /* Release the cached levels. */
 void sbi_lh_slots_free(sb_langevin_hitter *w);
 

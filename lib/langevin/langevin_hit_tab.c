@@ -5,8 +5,8 @@
  * and the fluid velocity, with coefficients that depend on (tau, h, s)
  * only (the gain K = Sigma_s Phi^T Sigma_h^{-1} does not depend on B);
  * the conditional covariance depends on (tau, B, h, s).  Both come from
- * the tested sb_langevin_bridge_moments: its mean at unit end states is a
- * coefficient.  A sub-interval at depth d of a step dt has length
+ * the gain of sb_langevin_bridge_moments, in one pass (sbi_lh_bridge_coef:
+ * its coefficients are that function's mean at unit end states).  A sub-interval at depth d of a step dt has length
  * dt / 2^d wherever it lies (time-homogeneous Markov process), so one
  * table per level serves every sub-interval of that level.
  *
@@ -45,8 +45,6 @@ int sbi_lh_coef_at(double tau, double B, double h, double s, sbi_lh_coef *c)
 {
   if (isinf(tau) || B == 0.0)
     return det_coef(tau, s, c);
-  sb_langevin p = {tau, B, 0.0};
-  sb_langevin_mom m;
   memset(c, 0, sizeof *c);
   if (s <= 0.0 || s >= h) {  /* an end: its state, no spread */
     if (s >= h) {
@@ -56,28 +54,7 @@ int sbi_lh_coef_at(double tau, double B, double h, double s, sbi_lh_coef *c)
       c->bu = 1.0;
     return SB_SUCCESS;
   }
-  int st = sb_langevin_bridge_moments(&p, h, s, 0, 0, 1, 0, &m);
-  if (st)
-    return st;
-  c->ax = m.mean_x;
-  c->au = m.mean_u;
-  c->vx = m.var_x;
-  c->vu = m.var_u;
-  c->cxu = m.cov_xu;
-  if ((st = sb_langevin_bridge_moments(&p, h, s, 0, 1, 0, 0, &m)))
-    return st;
-  c->bx = m.mean_x;
-  c->bu = m.mean_u;
-  if ((st = sb_langevin_bridge_moments(&p, h, s, 0, 0, 0, 1, &m)))
-    return st;
-  c->cx = m.mean_x;
-  c->cu = m.mean_u;
-  p.us = 1.0;
-  if ((st = sb_langevin_bridge_moments(&p, h, s, 0, 0, 0, 0, &m)))
-    return st;
-  c->wx = m.mean_x;
-  c->wu = m.mean_u;
-  return SB_SUCCESS;
+  return sbi_lh_bridge_coef(tau, B, h, s, c);
 }
 
 sbi_lh_slot *sbi_lh_slot_get(sb_langevin_hitter *w, double tau, double B,

@@ -17,7 +17,11 @@
  *  - recursive midpoint refinement in time order: on a sub-interval
  *    [a, b] with both particles' states known at a and b, the midpoint
  *    states are drawn exactly (Markov property of (X, U)), then [a, m] is
- *    examined before [m, b];
+ *    examined before [m, b].  Two particles with the same tau and B (one
+ *    species) walk their relative state alone: their bridges have the same
+ *    covariance, so r and the barycentre are independent bridges (twice
+ *    and half that covariance) and the barycentre is drawn once, at the
+ *    contact;
  *  - pruning by Rice's formula (Rice 1944, 1945): for a unit vector n the
  *    ball |r| <= R lies in the half-space n.r <= R, so the probability of
  *    a contact in (a, b) is at most the expected number of down-crossings
