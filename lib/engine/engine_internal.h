@@ -433,8 +433,22 @@ int sbi_engine_langevin_init(sb_engine *e);
  * returns 1 with *s (fraction of the record) and fills ev's contact
  * states and its record (rewritten from the Langevin states); 0; or < 0
  * on error. */
-/* Squared minimum over the record of |dx0 + s dd|, s in [0, 1]: how close
- * the pair's relative chord comes (the Langevin detector's chord test). */
+/* Squared minimum over s in [0, 1] of |x + s d|: how close a relative
+ * chord comes (the Langevin detector's chord test). */
+static inline double sbi_chord_min2(const double x[3], const double d[3])
+{
+  const double a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  const double b = x[0] * d[0] + x[1] * d[1] + x[2] * d[2];
+  double s = a > 0.0 ? -b / a : 0.0;
+  s = s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
+  double m2 = 0.0;
+  for (int k = 0; k < 3; k++) {
+    const double c = x[k] + s * d[k];
+    m2 += c * c;
+  }
+  return m2;
+}
+/* sbi_chord_min2 of the record's chord dx0 + s dd. */
 double sbi_pair_chord_min2(const sb_engine_pair *p);
 /* 1 if the chord test of sbi_engine_langevin_detect (beyond_reach)
  * applies to every record at the start of this step with neighbour reach

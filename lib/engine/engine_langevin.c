@@ -208,17 +208,7 @@ static void fill_path(const sb_engine *e, size_t k, const double *xa,
 
 double sbi_pair_chord_min2(const sb_engine_pair *p)
 {
-  const double *x = p->dx0, *d = p->dd;
-  const double a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-  const double b = x[0] * d[0] + x[1] * d[1] + x[2] * d[2];
-  double s = a > 0.0 ? -b / a : 0.0;
-  s = s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
-  double m2 = 0.0;
-  for (int k = 0; k < 3; k++) {
-    const double c = x[k] + s * d[k];
-    m2 += c * c;
-  }
-  return m2;
+  return sbi_chord_min2(p->dx0, p->dd);
 }
 
 /* 1 if the pair's record at the start of the step is not examined: its

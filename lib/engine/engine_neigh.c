@@ -707,20 +707,26 @@ typedef struct {
  * report it and the detector's chord test would examine it, with the rank
  * of the later slot's cell.  The chord test (engine_langevin.c,
  * beyond_reach: the relative chord stays beyond sigma + rho) is the
- * detector's own, on the pair the step would make, so a pair dropped here
- * is one the detector skips at the step's start (lsearch runs only where
- * that test applies to every pair: sbi_engine_langevin_chord_gate); two
- * thirds of the midpoint grid's pairs in V12's Kn_D = 0.5 runs.  -1 out
- * of memory. */
+ * detector's own, with the operations of the pair the step makes
+ * (sbi_engine_make_pair, sbi_pair_chord_min2), so a pair dropped here is
+ * one the detector skips at the step's start (lsearch runs only where
+ * that test applies to every pair: sbi_engine_langevin_chord_gate); half
+ * of the midpoint grid's pairs in V12's Kn_D = 0.5 runs at dt = 2 tau_p.
+ * -1 out of memory. */
 static inline int lprobe_emit(sb_engine *e, const cell_scan *K, size_t a,
                               size_t b, size_t *np)
 {
   const size_t s0 = a < b ? a : b, s1 = a < b ? b : a;
   const size_t i = K->list[s0], j = K->list[s1];
-  sb_engine_pair p;
-  sbi_engine_make_pair(e, i, j, &p);
-  const double lim = p.sigma + e->lreach;
-  if (sbi_pair_chord_min2(&p) > lim * lim)
+  double dx0[3], dd[3];  /* sbi_engine_make_pair's chord (periodic box) */
+  for (int k = 0; k < 3; k++) {
+    dx0[k] = k < e->par.dim ? sbi_minimg(e->x0[3 * i + k] - e->x0[3 * j + k],
+                                         e->par.L[k])
+                            : 0.0;
+    dd[k] = e->disp[3 * i + k] - e->disp[3 * j + k];
+  }
+  const double lim = (e->radius[i] + e->radius[j]) + e->lreach;
+  if (sbi_chord_min2(dx0, dd) > lim * lim)
     return 0;
   unsigned g;
   if (cells_sees(K, s0, s1, e->cell_of[i], e->cell_of[j], &g) &&
