@@ -212,6 +212,9 @@ typedef struct {
 typedef struct {
   unsigned long hits[3];   /* first contacts after the warm-up, per pair
                               type (species 0-0, 0-1, 1-1) */
+  double hits_var[3];      /* estimated variance of each count, from each
+                              particle's contacts
+                              (sb_engine_firsthit_counts.hits_var) */
   double npairs[3];        /* pairs apart at the start, per type */
   double veff[3];          /* V minus the contact ball, m^3 */
   double D[3];             /* relative diffusivities, m^2/s */

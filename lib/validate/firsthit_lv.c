@@ -120,6 +120,7 @@ static int fill_out(const lv_run *q, const sb_engine_firsthit *fh,
     if (st)
       return st;
     o->hits[t] = (unsigned long)c.hits;
+    o->hits_var[t] = c.hits_var;
     o->npairs[t] = c.pairs_apart;
     int a = (int)sa, b = (int)sb;
     if (b >= q->nsp)
@@ -246,7 +247,7 @@ static void lv_key(const sbv_ctx *ctx, unsigned long stream,
 }
 
 /* lv_out's numbers (not vn) to and from a flat array. */
-#define LV_NSAVE 18
+#define LV_NSAVE 21
 static void lv_to_array(const lv_out *o, double *v)
 {
   for (int t = 0; t < 3; t++) {
@@ -254,6 +255,7 @@ static void lv_to_array(const lv_out *o, double *v)
     v[3 + t] = o->npairs[t];
     v[6 + t] = o->veff[t];
     v[9 + t] = o->D[t];
+    v[18 + t] = o->hits_var[t];
   }
   v[12] = o->T, v[13] = (double)o->nvn, v[14] = o->cpu;
   v[15] = o->steps, v[16] = o->ncand, v[17] = o->pruned_mass;
@@ -266,6 +268,7 @@ static void lv_from_array(const double *v, lv_out *o)
     o->npairs[t] = v[3 + t];
     o->veff[t] = v[6 + t];
     o->D[t] = v[9 + t];
+    o->hits_var[t] = v[18 + t];
   }
   o->T = v[12], o->nvn = (size_t)v[13], o->cpu = v[14];
   o->steps = v[15], o->ncand = v[16], o->pruned_mass = v[17];
@@ -341,6 +344,7 @@ int lv_pool(lv_out *acc, lv_out *add, size_t vcap)
   if (!st) {
     for (int t = 0; t < 3; t++) {
       acc->hits[t] += add->hits[t];
+      acc->hits_var[t] += add->hits_var[t];  /* independent runs */
       acc->npairs[t] += add->npairs[t];
     }
     acc->cpu += add->cpu;
@@ -461,6 +465,7 @@ static void lv_inputs(const lv_run *q, const lv_out *o, int type,
 {
   memset(k, 0, sizeof *k);
   k->c.hits = o->hits[type];
+  k->c.hits_var = o->hits_var[type];
   k->c.pairs_apart = o->npairs[type];
   k->radius = SB_ENGINE_FIRSTHIT_CAPACITANCE;
   k->D = o->D[type];
