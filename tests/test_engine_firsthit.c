@@ -376,7 +376,8 @@ static sb_engine_firsthit_counts flight_run(size_t N, double L, double r,
  * resting molecules of species 1; molecule C (species 0) and a fourth of
  * species 1 rest off the line.  Species pair (0, 1): 3 hits; counts 3 and
  * 0 on one side, 1, 1, 1, 0 on the other; 8 pairs:
- * (9 - 9/2) + (3 - 9/4) - 3 + 9/8 = 3.375. */
+ * [(9 - 9/2) + (3 - 9/4) - 3 + 9/8] / (1 - 1/2 - 1/4 + 1/8)
+ * = 3.375 / 0.375 = 9 (sb_pair_count_variance). */
 START_TEST(test_variance_by_hand)
 {
   const double L = 1e-4, r = 1e-6, v = 1e-2;
@@ -398,7 +399,7 @@ START_TEST(test_variance_by_hand)
   sb_engine_firsthit_counts c;
   ck_assert_int_eq(sb_engine_firsthit_get(f, 1, 0, &c), SB_SUCCESS);
   ck_assert_uint_eq(c.hits, 3);
-  ck_assert_rel(c.hits_var, 3.375, 1e-14);
+  ck_assert_rel(c.hits_var, 9.0, 1e-14);
   ck_assert_int_eq(sb_engine_firsthit_get(f, 0, 0, &c), SB_SUCCESS);
   ck_assert_uint_eq(c.hits, 0);
   ck_assert_rel(c.hits_var, 0.0, 0.0);
@@ -407,15 +408,16 @@ START_TEST(test_variance_by_hand)
                                           SB_ENGINE_FIRSTHIT_ALL, &c),
                    SB_SUCCESS);
   ck_assert(isnan(c.hits_var));
-  /* the estimator: the Garwood interval widened by sqrt(3.375 / 3) */
+  /* the estimator: the Garwood interval widened by sqrt(9 / 3) */
   sb_engine_firsthit_kernel_result k;
   ck_assert_int_eq(sb_engine_firsthit_kernel(f, e, 0, 1, 2 * r, 1e-9, 0.95,
                                              &k), SB_SUCCESS);
-  ck_assert_rel(k.dispersion, 1.125, 1e-14);
+  ck_assert_rel(k.dispersion, 3.0, 1e-14);
   double lo, hi;
   ck_assert_int_eq(sb_poisson_ci(3, 0.95, &lo, &hi), SB_SUCCESS);
-  const double w = sqrt(1.125);
-  ck_assert_rel(k.lo * k.expected_per_K, 3.0 - w * (3.0 - lo), 1e-14);
+  const double w = sqrt(3.0);
+  /* (3 - w (3 - lo) < 0: the lower end clipped at 0) */
+  ck_assert(3.0 - w * (3.0 - lo) < 0.0 && k.lo == 0.0);
   ck_assert_rel(k.hi * k.expected_per_K, 3.0 + w * (hi - 3.0), 1e-14);
   sb_engine_firsthit_free(f);
   sb_engine_free(e);

@@ -1059,6 +1059,94 @@ static double binom_tail_direct(unsigned long k, unsigned long n, double p,
   return sum;
 }
 
+/* sb_pair_count_variance against the spread of H over replicas of a
+ * model with persistent particle heterogeneity and repeated pair events:
+ * latent rates lambda_i ~ Gamma(k, 1/k) (mean 1), redrawn each replica;
+ * pair counts X_ij ~ Poisson(0.4 lambda_i lambda_j).  One population
+ * (n = 60) and two (40 x 50); k = 2 (strong heterogeneity: var(H) several
+ * times its mean) and k = 50 (weak heterogeneity: the repeated pair
+ * events, S2 - H, are a large part of it).  Criterion: the mean estimate
+ * within 6% of the replicas' variance (whose own standard error is ~1.8%
+ * over 6000 replicas); for k = 2 var(H) > 3 H, and for k = 50 the
+ * estimate with S2 = H (repeats ignored) is > 15% off, so the test sees
+ * both terms. */
+START_TEST(test_pair_count_variance)
+{
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  gsl_rng_set(r, 17);
+  for (int sc = 0; sc < 4; sc++) {
+    const int two = sc & 1, weak = sc >> 1;
+    const int na = two ? 40 : 60, nb = two ? 50 : 0, R = 6000;
+    const double c = 0.4, shape = weak ? 50.0 : 2.0;
+    double lam[110], h[110];
+    double sumH = 0.0, sumH2 = 0.0, sumV = 0.0, sumV1 = 0.0;
+    for (int rep = 0; rep < R; rep++) {
+      for (int i = 0; i < na + nb; i++) {
+        lam[i] = gsl_ran_gamma(r, shape, 1.0 / shape);
+        h[i] = 0.0;
+      }
+      double H = 0.0, S2 = 0.0;
+      for (int i = 0; i < na; i++)
+        for (int j = two ? na : i + 1; j < (two ? na + nb : na); j++) {
+          const double x = gsl_ran_poisson(r, c * lam[i] * lam[j]);
+          H += x;
+          S2 += x * x;
+          h[i] += x;
+          h[j] += x;
+        }
+      double sqa = 0.0, sqb = 0.0;
+      for (int i = 0; i < na; i++)
+        sqa += h[i] * h[i];
+      for (int i = na; i < na + nb; i++)
+        sqb += h[i] * h[i];
+      const double P = two ? (double)na * nb : 0.5 * na * (na - 1.0);
+      const double v = sb_pair_count_variance(H, S2, sqa, na, sqb, nb, P);
+      const double v1 = sb_pair_count_variance(H, H, sqa, na, sqb, nb, P);
+      ck_assert(v >= 0.0 && isfinite(v));
+      sumH += H;
+      sumH2 += H * H;
+      sumV += v;
+      sumV1 += v1;
+    }
+    const double mH = sumH / R, varH = (sumH2 - R * mH * mH) / (R - 1);
+    const double mV = sumV / R, mV1 = sumV1 / R;
+    ck_assert_msg(fabs(mV / varH - 1.0) < 0.06, "case %d: mean estimate "
+                  "%g, replicas' variance %g", sc, mV, varH);
+    if (weak)
+      ck_assert_msg(fabs(mV1 / varH - 1.0) > 0.15, "case %d: S2 = H gives "
+                    "%g against %g", sc, mV1, varH);
+    else
+      ck_assert_msg(varH > 3.0 * mH, "case %d: var %g, mean %g", sc, varH,
+                    mH);
+  }
+  /* limits: no events, no pairs, a population without particles */
+  ck_assert(sb_pair_count_variance(0.0, 0.0, 0.0, 5.0, 0.0, 0.0, 10.0) ==
+            0.0);
+  ck_assert(isnan(sb_pair_count_variance(3.0, 3.0, 9.0, 0.0, 0.0, 0.0,
+                                         10.0)));
+  ck_assert(isnan(sb_pair_count_variance(3.0, 3.0, 9.0, 5.0, 0.0, 0.0,
+                                         0.0)));
+  ck_assert(sb_pair_count_variance(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0) ==
+            0.0);
+  /* the widened interval: exactly sb_poisson_ci at dispersion <= 1 or
+   * NaN, widened about k by sqrt(dispersion) above 1, clipped at 0 */
+  double l0, u0, l, u;
+  sb_poisson_ci(100, 0.95, &l0, &u0);
+  const double dd[3] = {1.0, 0.5, NAN};
+  for (int q = 0; q < 3; q++) {
+    ck_assert_int_eq(sb_poisson_ci_dispersed(100, dd[q], 0.95, &l, &u),
+                     SB_SUCCESS);
+    ck_assert(l == l0 && u == u0);
+  }
+  sb_poisson_ci_dispersed(100, 2.25, 0.95, &l, &u);
+  ck_assert_rel(l, 100.0 - 1.5 * (100.0 - l0), 1e-15);
+  ck_assert_rel(u, 100.0 + 1.5 * (u0 - 100.0), 1e-15);
+  sb_poisson_ci_dispersed(2, 25.0, 0.95, &l, &u);
+  ck_assert(l == 0.0 && u > 2.0);
+  gsl_rng_free(r);
+}
+END_TEST
+
 START_TEST(test_binomial_pvalue)
 {
   const unsigned long ns[] = {1, 2, 7, 50, 400, 3000};
@@ -1137,6 +1225,7 @@ static Suite *stats_suite(void)
   tcase_add_test(tc, test_poisson_pvalue);
   tcase_add_test(tc, test_compare_poisson);
   tcase_add_test(tc, test_compare_poisson_dispersed);
+  tcase_add_test(tc, test_pair_count_variance);
   tcase_add_test(tc, test_binomial_pvalue);
   tcase_add_test(tc, test_compare_mean);
   tcase_add_test(tc, test_poisson_reference);

@@ -162,6 +162,7 @@ void sb_engine_free(sb_engine *e)
   free(e->coef);
   free(e->vsd);
   free(e->series);
+  free(e->clog);
   free(e->pairs);
   free(e->ev);
   for (int t = 0; t < e->ntb; t++)

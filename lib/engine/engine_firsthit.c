@@ -334,24 +334,13 @@ double sb_engine_firsthit_warmup(const sb_engine_firsthit *f)
   return f ? f->t1 : NAN;
 }
 
-/* The U-statistic estimate of var(hits) (engine_firsthit.h, hits_var)
- * from the sums of squared per-particle counts: one side (a species with
- * itself: sq over its na particles, whose counts add up to 2 hits) or two
- * (sq over na, sq2 over nb, each side's counts adding up to hits); P the
- * pairs (apart at attachment) for p = hits / P.  Not below 0. */
+/* The U-statistic estimate of var(hits) (engine_firsthit.h, hits_var):
+ * sb_pair_count_variance with one first contact per pair (S2 = hits). */
 static double hits_variance(uint64_t hits, double sq, double na, double sq2,
                             double nb, double P)
 {
   const double H = (double)hits;
-  if (!(na > 0.0) || !(P > 0.0))
-    return hits ? NAN : 0.0;
-  double v;
-  if (!(nb > 0.0))  /* sum_i (h_i - 2H/n)^2 */
-    v = sq - 4.0 * H * H / na;
-  else
-    v = (sq - H * H / na) + (sq2 - H * H / nb);
-  v += -H + H * H / P;
-  return v > 0.0 ? v : 0.0;
+  return sb_pair_count_variance(H, H, sq, na, sq2, nb, P);
 }
 
 int sb_engine_firsthit_get(const sb_engine_firsthit *f, size_t a, size_t b,
@@ -510,15 +499,9 @@ int sb_engine_firsthit_estimate(sb_engine_firsthit_kernel_result *k,
   const double H = (double)k->c.hits, v = k->c.hits_var;
   k->dispersion = H > 0.0 && v > 0.0 && isfinite(v) ? v / H : NAN;
   double l, u;
-  st = sb_poisson_ci(k->c.hits, level, &l, &u);
+  st = sb_poisson_ci_dispersed(k->c.hits, k->dispersion, level, &l, &u);
   if (st)
     return st;
-  if (k->dispersion > 1.0) {
-    const double w = sqrt(k->dispersion);
-    l = H - w * (H - l);
-    u = H + w * (u - H);
-    l = l > 0.0 ? l : 0.0;
-  }
   if (k->radius > 0.0) {
     /* linear: the interval is the count's interval times the scale */
     k->a = k->radius;

@@ -104,6 +104,12 @@ typedef struct {
   uint64_t floated;          /* steps through it, steps with floaters */
 } sbi_verlet;
 
+/* One logged collision (sb_engine_set_count_variance). */
+typedef struct {
+  uint64_t id[2];
+  uint32_t sp[2];
+} sbi_collision;
+
 struct sb_engine {
   sb_engine_params par;
   size_t n;                  /* particles in use (<= par.capacity) */
@@ -179,6 +185,11 @@ struct sb_engine {
   double expo;
   double pexpo[SBI_NPAIRSP];
   uint64_t pcoll[SBI_NPAIRSP];
+  /* the collisions since the reset, for the counts' variance
+   * (sb_engine_set_count_variance): both ids and species of each */
+  int clog_on, clog_lost;    /* logging; an entry lost (out of memory) */
+  sbi_collision *clog;
+  size_t nclog, capclog;
   double pairs0[SBI_NPAIRSP + 1]; /* scratch: pair counts at step start */
   uint64_t fam[SB_ENGINE_MAXFAM][SB_ENGINE_MAXFAM];
   sb_engine_sample *series;

@@ -559,8 +559,28 @@ typedef struct {
   double exposure;  /**< int P_ab dt, s; P_ab = n_a n_b (a != b) or
                          n_a (n_a - 1)/2 (a = b) */
   double K;         /**< N_ab V / exposure, m^3/s (3-D) */
-  double lo, hi;    /**< exact Poisson (Garwood) interval at `level` */
+  double lo, hi;    /**< exact Poisson (Garwood) interval at `level`,
+                         widened by sqrt(dispersion) where that is above 1
+                         (sb_poisson_ci_dispersed) */
+  double ncoll_var; /**< estimated variance of ncoll from the collisions'
+                         log (sb_engine_set_count_variance; NaN without
+                         it): sb_pair_count_variance of each particle's and
+                         each pair's collisions since the reset */
+  double dispersion;/**< ncoll_var / ncoll (NaN without the log) */
 } sb_engine_pair_stats;
+
+/** Log every collision since the counter reset (on = 1; both particles'
+ *  ids and species, 24 bytes each) so that sb_engine_pair_kernel can
+ *  estimate the variance of its count: collisions are not independent
+ *  events when particles differ persistently (a light molecule keeps its
+ *  speed over many collisions with heavy ones: He-Xe in V1 measures
+ *  var/mean ~1.5) or when pairs collide again.  Turn it on before the
+ *  reset that starts the measurement (or before the first step): the log
+ *  holds the collisions since then, and a count it does not hold whole
+ *  (logging started later, out of memory) gives NaN.  The estimate
+ *  assumes a fixed population (no merging, reinsertion or removal).
+ *  on = 0 frees the log. */
+int sb_engine_set_count_variance(sb_engine *e, int on);
 
 /** The kernel of species pair (a, b), a and b < SB_ENGINE_PAIR_SPECIES
  *  (SB_EINVAL otherwise); SB_EDOM (ncoll and exposure still set) if the

@@ -108,7 +108,9 @@ typedef struct {
    *  U-statistic estimate (Hoeffding 1948) for pairs of one species pair:
    *  sum over both sides of sum_i (h_i - mean h)^2 - hits (1 - p), with
    *  h_i particle i's contacts with the other side and p = hits / pairs
-   *  (independent particles: disjoint pairs are independent).  Variances of
+   *  (independent particles: disjoint pairs are independent), divided by
+   *  the factor that removes its bias (sb_pair_count_variance, with one
+   *  contact per pair).  Variances of
    *  independent runs add.  NaN where unknown (several species pooled in
    *  SB_ENGINE_FIRSTHIT_ALL); 0 in counts assembled by hand: the
    *  estimator then takes the Poisson value. */

@@ -57,6 +57,35 @@ int sb_binomial_ci(unsigned long k, unsigned long n, double level,
 int sb_poisson_rate_ci(unsigned long k, double scale, double level,
                        double *lo, double *hi);
 
+/** The Garwood interval of k (sb_poisson_ci) for a count whose variance
+ *  is `dispersion` times its mean: widened about k by sqrt(dispersion)
+ *  where that is above 1 (the lower end clipped at 0); dispersion <= 1 or
+ *  NaN gives sb_poisson_ci exactly.  Approximate (quasi-Poisson), as
+ *  sb_compare_poisson_dispersed, whose interval it is. */
+int sb_poisson_ci_dispersed(unsigned long k, double dispersion, double level,
+                            double *lo, double *hi);
+
+/** Estimated variance of a count H of events between pairs of particles
+ *  (collisions, first contacts) from how the events share particles: a
+ *  U-statistic (Hoeffding 1948), unbiased when the pairs are exchangeable
+ *  and their counts correlate only through a shared particle.  One population
+ *  (nb = 0): sqa = sum over its na particles of the squared number of
+ *  events each took part in (those add up to 2H); two populations (the
+ *  events between them): sqa over the na particles of one side and sqb
+ *  over the nb of the other (each side adds up to H).  S2 = sum over the
+ *  pairs of their squared event counts (= H when no pair has more than one
+ *  event, as for first contacts); P the pairs.
+ *    var(H) ~ [sqa - 4 H^2/na - S2 + H^2/P] / (1 - 4/na + 1/P)   (one)
+ *    var(H) ~ [(sqa - H^2/na) + (sqb - H^2/nb) - S2 + H^2/P]
+ *             / (1 - 1/na - 1/nb + 1/P)                        (two);
+ *  the divisor removes the bias of the H^2 terms (whose mean holds
+ *  var(H) too).  For Poisson pair counts it is ~H; particles that take
+ *  part in more events than others (a persistent speed, a longer
+ *  exposure) raise it.  Not below 0; NaN if na or P is not positive or
+ *  the divisor is not (fewer than ~5 particles; 0 if H = 0). */
+double sb_pair_count_variance(double H, double S2, double sqa, double na,
+                              double sqb, double nb, double P);
+
 /** Ratio of two Poisson rates R = lambda1 / lambda2 from counts k1 over
  *  exposure t1 and k2 over exposure t2 (t1, t2 > 0): conditional method
  *  (given k1 + k2 = N, k1 is binomial with p = R t1 / (R t1 + t2)), with the

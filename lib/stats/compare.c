@@ -129,19 +129,18 @@ int sb_compare_poisson_dispersed(sb_comparison *c, const char *name,
    * exact test at the reference brought back towards k by the same factor,
    * so that p >= alpha <=> the reference lies in the widened interval */
   const double w = sqrt(dispersion), K = (double)k;
-  double l, u;
+  double l, u, lo, hi;
   st = sb_poisson_ci(k, 1.0 - alpha, &l, &u);
+  if (!st)
+    st = sb_poisson_ci_dispersed(k, dispersion, 1.0 - alpha, &lo, &hi);
   if (st)
     return st;
-  double lo = K - w * (K - l), mu = K + (reference / scale - K) / w;
-  if (lo < 0.0) {  /* clipped: every rate down to 0 is inside */
-    lo = 0.0;
-    mu = mu < l ? l : mu;
-  }
+  double mu = K + (reference / scale - K) / w;
+  if (lo == 0.0 && mu < l)  /* clipped: every rate down to 0 is inside */
+    mu = l;
   const double p = sb_poisson_pvalue(k, mu);
   return sb_compare(c, name, SB_RULE_COVER, scale * K, reference,
-                    scale * lo, scale * (K + w * (u - K)), 1.0 - alpha,
-                    isnan(p) ? NAN : p);
+                    scale * lo, scale * hi, 1.0 - alpha, isnan(p) ? NAN : p);
 }
 
 int sb_compare_binomial(sb_comparison *c, const char *name, unsigned long k,

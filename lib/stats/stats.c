@@ -353,6 +353,40 @@ int sb_poisson_rate_ci(unsigned long k, double scale, double level,
   return st;
 }
 
+int sb_poisson_ci_dispersed(unsigned long k, double dispersion, double level,
+                            double *lo, double *hi)
+{
+  int st = sb_poisson_ci(k, level, lo, hi);
+  if (st || !(dispersion > 1.0) || !isfinite(dispersion))
+    return st;
+  const double w = sqrt(dispersion), K = (double)k;
+  *lo = K - w * (K - *lo);
+  *hi = K + w * (*hi - K);
+  if (*lo < 0.0)
+    *lo = 0.0;
+  return SB_SUCCESS;
+}
+
+double sb_pair_count_variance(double H, double S2, double sqa, double na,
+                              double sqb, double nb, double P)
+{
+  if (!(na > 0.0) || !(P > 0.0))
+    return H > 0.0 ? NAN : 0.0;
+  /* the raw sum has mean f var(H): its H^2 terms also hold var(H) */
+  double v, f;
+  if (!(nb > 0.0)) {  /* sum_i (h_i - 2H/n)^2 */
+    v = sqa - 4.0 * H * H / na;
+    f = 1.0 - 4.0 / na + 1.0 / P;
+  } else {
+    v = (sqa - H * H / na) + (sqb - H * H / nb);
+    f = 1.0 - 1.0 / na - 1.0 / nb + 1.0 / P;
+  }
+  v += -S2 + H * H / P;
+  if (!(f > 0.0))
+    return H > 0.0 ? NAN : 0.0;
+  return v > 0.0 ? v / f : 0.0;
+}
+
 /* Exact two-sided Poisson test: p = min(1, 2 min(P(X <= k), P(X >= k)))
  * for X ~ Poisson(mu), from the gamma-Poisson duality
  * P(X <= k) = Q_gamma(k+1; mu), P(X >= k) = P_gamma(k; mu). */

@@ -50,12 +50,25 @@ static double g_cs(double phi)
 
 /* Record a kernel estimate K = scale * ncoll against Kref: exact
  * two-sided Poisson test of the collision count at SBV_ALPHA and the
- * Garwood interval it inverts. */
+ * Garwood interval it inverts, widened by the count's dispersion above 1
+ * (sb_engine_set_count_variance). */
 static int add_kernel(sbv_report *rep, const char *name, double K,
-                      unsigned long long ncoll, double Kref)
+                      unsigned long long ncoll, double dispersion,
+                      double Kref)
 {
   double scale = ncoll > 0 ? K / (double)ncoll : 1.0;
-  return sbv_add_poisson(rep, name, (unsigned long)ncoll, scale, Kref);
+  return sbv_add_poisson_dispersed(rep, name, (unsigned long)ncoll,
+                                   dispersion, scale, Kref);
+}
+
+/* The kernel of the engine's one species with the count's dispersion. */
+static int one_species_kernel(const sb_engine *e, double *K, double *lo,
+                              double *hi, double *dispersion)
+{
+  sb_engine_pair_stats ps;
+  int st = sb_engine_pair_kernel(e, 0, 0, 0.95, &ps);
+  *K = ps.K, *lo = ps.lo, *hi = ps.hi, *dispersion = ps.dispersion;
+  return st;
 }
 
 /* ====================================================== V1 kinetic gases */
@@ -138,6 +151,8 @@ static int case_gases(const sbv_ctx *ctx, sbv_report *rep)
       st = sb_engine_fill_random(e, 0, 0, n);
     if (!st)
       st = sb_engine_thermalize(e, T);
+    if (!st)
+      st = sb_engine_set_count_variance(e, 1);
     for (int k = 1; k <= NSAMP && !st; k++) {
       st = sb_engine_run_until(e, t_end * k / NSAMP);
       double K = NAN;
@@ -147,19 +162,21 @@ static int case_gases(const sbv_ctx *ctx, sbv_report *rep)
       plot[(size_t)(k - 1) * (nrun + 1) + 1 + run] = K / Kth;
     }
     if (!st) {
-      double K, lo, hi;
+      double K, lo, hi, disp;
       sb_engine_stats stt;
       sb_engine_get_stats(e, &stt);
-      sb_engine_kernel(e, 0.95, &K, &lo, &hi);
+      st = one_species_kernel(e, &K, &lo, &hi, &disp);
       char name[96];
       snprintf(name, sizeof name, "V1/%s/dt=%.0e", g->name, dt);
-      st = add_kernel(rep, name, K, stt.ncoll, Kth);
+      if (!st)
+        st = add_kernel(rep, name, K, stt.ncoll, disp, Kth);
       sbv_note(rep, "- %s, dt = %.0e s: %llu collisions in %.3g s (%llu "
-               "steps, %llu dropped), K_e/K_th = %.4f [%.4f, %.4f]",
-               g->name, dt, (unsigned long long)stt.ncoll, stt.t,
+               "steps, %llu dropped), K_e/K_th = %.4f [%.4f, %.4f], "
+               "var/mean of the count %.3f", g->name, dt,
+               (unsigned long long)stt.ncoll, stt.t,
                (unsigned long long)stt.steps,
                (unsigned long long)stt.dropped, K / Kth, lo / Kth,
-               hi / Kth);
+               hi / Kth, disp);
       sbv_progress(ctx, "  V1 %s dt=%.0e: K_e/K_th = %.4f", g->name,
                    dt, K / Kth);
     }
@@ -236,21 +253,25 @@ static int case_dense(const sbv_ctx *ctx, sbv_report *rep)
    * placement to the equilibrium pair structure */
   if (!st)
     st = sb_engine_run_until(e, 20.0 / nu);
+  if (!st)
+    st = sb_engine_set_count_variance(e, 1);
   sb_engine_reset_counters(e);
   double t1 = sb_engine_time(e);
   if (!st)
     st = sb_engine_run_until(e, t1 + 2.0 * target / (nu * (double)n));
   if (!st) {
-    double K, lo, hi;
+    double K, lo, hi, disp;
     sb_engine_stats es;
     sb_engine_get_stats(e, &es);
-    sb_engine_kernel(e, 0.95, &K, &lo, &hi);
-    st = add_kernel(rep, "V1/dense/He/phi=0.05/dt=0.3t_free", K, es.ncoll,
-                    Kth);
+    st = one_species_kernel(e, &K, &lo, &hi, &disp);
+    if (!st)
+      st = add_kernel(rep, "V1/dense/He/phi=0.05/dt=0.3t_free", K, es.ncoll,
+                      disp, Kth);
     sbv_note(rep, "Helium, %zu molecules at phi = %.2f (L = %.3g m), 300 "
              "K, dt = 0.3 mean free times (%.3g s); %llu collisions in "
              "%llu steps (%.2f per molecule and step), %llu re-examined "
              "pairs, %llu dropped; K_e/K_th = %.4f [%.4f, %.4f] (95%%), "
+             "var/mean of the count %.3f, "
              "K_th = kinetic x Carnahan-Starling g = %.4f.", n, phi, L, dt,
              (unsigned long long)es.ncoll,
              (unsigned long long)(es.steps),
@@ -258,7 +279,7 @@ static int case_dense(const sbv_ctx *ctx, sbv_report *rep)
                  ((es.t - es.t_reset) / dt),
              (unsigned long long)es.redetected,
              (unsigned long long)es.dropped, K / Kth, lo / Kth, hi / Kth,
-             g_cs(phi));
+             disp, g_cs(phi));
   }
   sb_engine_free(e);
   return st;
@@ -353,6 +374,8 @@ static int case_mixture(const sbv_ctx *ctx, sbv_report *rep)
   }
   if (!st)
     st = sb_engine_run_until(e, 0.1 * t_end);  /* warm-up */
+  if (!st)
+    st = sb_engine_set_count_variance(e, 1);
   sb_engine_reset_counters(e);
   if (!st)
     st = sb_engine_run_until(e, 1.1 * t_end);
@@ -361,7 +384,9 @@ static int case_mixture(const sbv_ctx *ctx, sbv_report *rep)
            "a warm-up of 10%% of the run, the kernel of each pair type "
            "(sb_engine_pair_kernel: its collisions over its pair exposure) "
            "vs kinetic theory times the Boublik-Mansoori contact value "
-           "g_ij; exact Poisson test.", nsp[0], nsp[1]);
+           "g_ij; exact Poisson test, its interval widened by the "
+           "count's dispersion (each particle's and each pair's "
+           "collisions: sb_engine_set_count_variance).", nsp[0], nsp[1]);
   static const char *lab[2] = {"He", "Xe"};
   for (size_t a = 0; a < 2 && !st; a++)
     for (size_t b = a; b < 2 && !st; b++) {
@@ -375,11 +400,13 @@ static int case_mixture(const sbv_ctx *ctx, sbv_report *rep)
       snprintf(name, sizeof name, "V1/mixture/%s-%s/K_e/K_th", lab[a],
                lab[b]);
       double scale = ps.ncoll ? ps.K / (double)ps.ncoll / Kth : 1.0;
-      st = sbv_add_poisson(rep, name, (unsigned long)ps.ncoll, scale, 1.0);
+      st = sbv_add_poisson_dispersed(rep, name, (unsigned long)ps.ncoll,
+                                     ps.dispersion, scale, 1.0);
       sbv_note(rep, "- %s-%s: %llu collisions, K_e = %.4g m^3/s, K_th = "
-               "%.4g (g = %.4f), K_e/K_th = %.4f [%.4f, %.4f] (95%%)",
-               lab[a], lab[b], (unsigned long long)ps.ncoll, ps.K, Kth, gab,
-               ps.K / Kth, ps.lo / Kth, ps.hi / Kth);
+               "%.4g (g = %.4f), K_e/K_th = %.4f [%.4f, %.4f] (95%%), "
+               "var/mean of the count %.3f", lab[a], lab[b],
+               (unsigned long long)ps.ncoll, ps.K, Kth, gab, ps.K / Kth,
+               ps.lo / Kth, ps.hi / Kth, ps.dispersion);
     }
   sb_engine_free(e);
   return st;

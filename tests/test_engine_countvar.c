@@ -1,0 +1,185 @@
+/* test_engine_countvar.c — the collision log of the engine
+ * (sb_engine_set_count_variance) and the variance of a pair kernel's
+ * count (sb_engine_pair_stats.ncoll_var): its bookkeeping against an
+ * independent tally of the same collisions, a run unchanged by the log,
+ * and the log's validity rules (on after collisions, reset, off). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <smolbridge/engine.h>
+#include <smolbridge/stats.h>
+
+#include "testutil.h"
+
+#define NA 40
+#define NB 40
+#define N (NA + NB)
+
+/* A binary hard-sphere gas (light species 0, heavy species 1), elastic,
+ * free flight; seed fixed. */
+static sb_engine *gas(void)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 6e-9;
+  p.dt = 1e-14;
+  p.capacity = N;
+  p.seed = 7;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  const double amu = 1.66053907e-27;
+  sb_engine_species s0 = {1.4e-10, 4.0 * amu, INFINITY, 0.0, 300.0};
+  sb_engine_species s1 = {2.16e-10, 131.3 * amu, INFINITY, 0.0, 300.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &s0, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_add_species(e, &s1, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, NA), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, 1, 0, NB), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_thermalize(e, 300.0), SB_SUCCESS);
+  return e;
+}
+
+/* An independent tally: the elastic outcome, and the counts of each
+ * particle (by index: no particle is added, removed or reordered here)
+ * with each species, and of each pair. */
+typedef struct {
+  int on;
+  double h[N][2];
+  double x[N][N];
+} tally;
+
+static int tally_elastic(sb_engine *e, const sb_engine_pair *p, double s,
+                         void *ctx)
+{
+  tally *t = ctx;
+  if (t->on) {
+    const size_t i = p->i, j = p->j;
+    t->h[i][j >= NA]++;
+    t->h[j][i >= NA]++;
+    t->x[i < j ? i : j][i < j ? j : i]++;
+  }
+  return sb_engine_outcome_elastic(e, p, s);
+}
+
+/* The variance of species pair (a, b) from the tally. */
+static double tally_variance(const tally *t, int a, int b, double *H)
+{
+  double S2 = 0.0, sqa = 0.0, sqb = 0.0;
+  *H = 0.0;
+  for (int i = 0; i < N; i++)
+    for (int j = i + 1; j < N; j++) {
+      const int si = i >= NA, sj = j >= NA;
+      if ((si == a && sj == b) || (si == b && sj == a)) {
+        *H += t->x[i][j];
+        S2 += t->x[i][j] * t->x[i][j];
+      }
+    }
+  for (int i = 0; i < N; i++) {
+    const int si = i >= NA;
+    if (a == b && si == a)
+      sqa += t->h[i][a] * t->h[i][a];
+    else if (a != b && si == a)
+      sqa += t->h[i][b] * t->h[i][b];
+    else if (a != b && si == b)
+      sqb += t->h[i][a] * t->h[i][a];
+  }
+  const double na = a ? NB : NA, nb = b ? NB : NA;
+  if (a == b)
+    return sb_pair_count_variance(*H, S2, sqa, na, 0.0, 0.0,
+                                  0.5 * na * (na - 1.0));
+  return sb_pair_count_variance(*H, S2, sqa, na, sqb, nb, na * nb);
+}
+
+/* Bookkeeping: the engine's ncoll_var for the three species pairs equals
+ * the independent tally's, after a warm-up and a reset (the log holds the
+ * collisions since the reset only); some pairs collide more than once. */
+START_TEST(test_bookkeeping)
+{
+  sb_engine *e = gas();
+  tally *t = calloc(1, sizeof *t);
+  ck_assert_int_eq(sb_engine_set_outcome_fn(e, tally_elastic, t),
+                   SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_set_count_variance(e, 1), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_run_until(e, 2e-12), SB_SUCCESS);
+  sb_engine_reset_counters(e);
+  t->on = 1;
+  ck_assert_int_eq(sb_engine_run_until(e, 2e-10), SB_SUCCESS);
+  double repeats = 0.0;
+  for (int a = 0; a < 2; a++)
+    for (int b = a; b < 2; b++) {
+      sb_engine_pair_stats ps;
+      ck_assert_int_eq(sb_engine_pair_kernel(e, a, b, 0.95, &ps),
+                       SB_SUCCESS);
+      double H;
+      const double v = tally_variance(t, a, b, &H);
+      ck_assert_msg((double)ps.ncoll == H && H > 100, "pair %d-%d: engine "
+                    "%llu collisions, tally %g", a, b,
+                    (unsigned long long)ps.ncoll, H);
+      ck_assert_rel(ps.ncoll_var, v, 1e-12);
+      ck_assert_rel(ps.dispersion, v / H, 1e-12);
+      /* the interval: Garwood's widened by sqrt(dispersion) above 1 */
+      double lo, hi;
+      sb_poisson_ci_dispersed((unsigned long)H, v / H, 0.95, &lo, &hi);
+      const double scale = ps.K / H;
+      ck_assert_rel(ps.lo, lo * scale, 1e-12);
+      ck_assert_rel(ps.hi, hi * scale, 1e-12);
+    }
+  for (int i = 0; i < N; i++)
+    for (int j = i + 1; j < N; j++)
+      repeats += t->x[i][j] > 1.0;
+  ck_assert(repeats > 0);
+  free(t);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* The log does not change the run; it is valid only when it holds every
+ * collision since the reset; off, no estimate. */
+START_TEST(test_rules)
+{
+  sb_engine *a = gas(), *b = gas();
+  ck_assert_int_eq(sb_engine_set_count_variance(a, 1), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_run_until(a, 1e-11), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_run_until(b, 1e-11), SB_SUCCESS);
+  sb_engine_pair_stats pa, pb;
+  ck_assert_int_eq(sb_engine_pair_kernel(a, 0, 1, 0.95, &pa), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_pair_kernel(b, 0, 1, 0.95, &pb), SB_SUCCESS);
+  ck_assert_uint_eq(pa.ncoll, pb.ncoll);
+  ck_assert(pa.K == pb.K && pa.ncoll > 0);
+  ck_assert(isfinite(pa.ncoll_var) && isnan(pb.ncoll_var) &&
+            isnan(pb.dispersion));
+  double lo, hi;  /* without the log: the plain Garwood interval */
+  sb_poisson_rate_ci((unsigned long)pb.ncoll, pb.K / (double)pb.ncoll,
+                     0.95, &lo, &hi);
+  ck_assert_rel(pb.lo, lo, 1e-14);
+  ck_assert_rel(pb.hi, hi, 1e-14);
+  /* on after collisions: incomplete until the next reset */
+  ck_assert_int_eq(sb_engine_set_count_variance(b, 1), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_run_until(b, 1.5e-11), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_pair_kernel(b, 0, 1, 0.95, &pb), SB_SUCCESS);
+  ck_assert(isnan(pb.ncoll_var));
+  sb_engine_reset_counters(b);
+  ck_assert_int_eq(sb_engine_run_until(b, 2.5e-11), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_pair_kernel(b, 0, 1, 0.95, &pb), SB_SUCCESS);
+  ck_assert(pb.ncoll > 0 && isfinite(pb.ncoll_var));
+  /* off: freed, no estimate */
+  ck_assert_int_eq(sb_engine_set_count_variance(b, 0), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_pair_kernel(b, 0, 1, 0.95, &pb), SB_SUCCESS);
+  ck_assert(isnan(pb.ncoll_var));
+  ck_assert_int_eq(sb_engine_set_count_variance(NULL, 1), SB_EINVAL);
+  sb_engine_free(a);
+  sb_engine_free(b);
+}
+END_TEST
+
+static Suite *suite(void)
+{
+  Suite *s = suite_create("engine_countvar");
+  TCase *tc = tcase_create("core");
+  tcase_add_test(tc, test_bookkeeping);
+  tcase_add_test(tc, test_rules);
+  suite_add_tcase(s, tc);
+  return s;
+}
+
+int main(void) { return sbt_run_suite(suite()); }
