@@ -79,6 +79,14 @@ int sbv_add_poisson(sbv_report *rep, const char *name, unsigned long k,
 int sbv_add_poisson_dispersed(sbv_report *rep, const char *name,
                               unsigned long k, double dispersion,
                               double scale, double reference);
+/* A pair kernel's row K_e/K_th (sb_engine_pair_kernel): its count's
+ * Poisson test, widened by the count's dispersion where the engine logged
+ * the collisions (sb_engine_set_count_variance), or, with info, an
+ * informational row of the same interval; and a note with the count
+ * (`what`: "collisions", "contacts"), the estimates and the dispersion. */
+int sbv_add_pair_kernel(sbv_report *rep, const char *name,
+                        const sb_engine_pair_stats *ps, double Kth,
+                        int info, const char *what);
 /* Mean of n >= 2 independent replicas vs reference: t interval and test. */
 int sbv_add_mean(sbv_report *rep, const char *name, const double *x,
                  size_t n, double reference);

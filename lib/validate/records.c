@@ -49,6 +49,25 @@ int sbv_add_poisson_dispersed(sbv_report *rep, const char *name,
   return add(rep, st, &c);
 }
 
+int sbv_add_pair_kernel(sbv_report *rep, const char *name,
+                        const sb_engine_pair_stats *ps, double Kth,
+                        int info, const char *what)
+{
+  double scale = ps->ncoll ? ps->K / (double)ps->ncoll / Kth : 1.0;
+  if (!ps->ncoll && ps->exposure > 0.0)
+    scale = 1.0 / (Kth * ps->exposure);  /* V irrelevant: rate 0 */
+  int st = info ? sbv_add_info(rep, name, ps->K / Kth, 1.0, ps->lo / Kth,
+                               ps->hi / Kth, 0.95)
+                : sbv_add_poisson_dispersed(rep, name,
+                                            (unsigned long)ps->ncoll,
+                                            ps->dispersion, scale, 1.0);
+  sbv_note(rep, "- %s: %llu %s, K_e = %.4g m^3/s, K_th = %.4g, ratio "
+           "%.4f [%.4f, %.4f] (95%%), var/mean of the count %.3f", name,
+           (unsigned long long)ps->ncoll, what, ps->K, Kth, ps->K / Kth,
+           ps->lo / Kth, ps->hi / Kth, ps->dispersion);
+  return st;
+}
+
 int sbv_add_mean(sbv_report *rep, const char *name, const double *x,
                  size_t n, double reference)
 {
