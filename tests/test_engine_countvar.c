@@ -1,8 +1,8 @@
-/* test_engine_countvar.c — the collision log of the engine
+/* test_engine_countvar.c — the collision tally of the engine
  * (sb_engine_set_count_variance) and the variance of a pair kernel's
  * count (sb_engine_pair_stats.ncoll_var): its bookkeeping against an
- * independent tally of the same collisions, a run unchanged by the log,
- * and the log's validity rules (on after collisions, reset, off). */
+ * independent tally of the same collisions, a run unchanged by it, and
+ * its validity rules (on after collisions, reset, off). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -91,8 +91,9 @@ static double tally_variance(const tally *t, int a, int b, double *H)
 }
 
 /* Bookkeeping: the engine's ncoll_var for the three species pairs equals
- * the independent tally's, after a warm-up and a reset (the log holds the
- * collisions since the reset only); some pairs collide more than once. */
+ * the independent tally's, after a warm-up and a reset (the engine's
+ * holds the collisions since the reset only); some pairs collide more
+ * than once. */
 START_TEST(test_bookkeeping)
 {
   sb_engine *e = gas();
@@ -133,7 +134,7 @@ START_TEST(test_bookkeeping)
 }
 END_TEST
 
-/* The log does not change the run; it is valid only when it holds every
+/* The tally does not change the run; it is valid only when it holds every
  * collision since the reset; off, no estimate. */
 START_TEST(test_rules)
 {
@@ -148,7 +149,7 @@ START_TEST(test_rules)
   ck_assert(pa.K == pb.K && pa.ncoll > 0);
   ck_assert(isfinite(pa.ncoll_var) && isnan(pb.ncoll_var) &&
             isnan(pb.dispersion));
-  double lo, hi;  /* without the log: the plain Garwood interval */
+  double lo, hi;  /* without the tally: the plain Garwood interval */
   sb_poisson_rate_ci((unsigned long)pb.ncoll, pb.K / (double)pb.ncoll,
                      0.95, &lo, &hi);
   ck_assert_rel(pb.lo, lo, 1e-14);

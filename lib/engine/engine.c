@@ -162,7 +162,8 @@ void sb_engine_free(sb_engine *e)
   free(e->coef);
   free(e->vsd);
   free(e->series);
-  free(e->clog);
+  sbi_idmap_free(&e->cvar_part);
+  sbi_idmap_free(&e->cvar_pair);
   free(e->pairs);
   free(e->ev);
   for (int t = 0; t < e->ntb; t++)

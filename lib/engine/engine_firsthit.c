@@ -1,6 +1,5 @@
 /* engine_firsthit.c — first-contact observer (smolbridge/engine_firsthit.h):
- * a set of pair ids (open addressing with linear probing, multiplicative
- * hashing, Knuth 1998, TAOCP vol. 3, §6.4) around a detector, counts per
+ * a set of pair ids (engine_idmap.c) around a detector, counts per
  * species pair, each particle's counted contacts (a map of the same kind)
  * for the variance of the counts, and the Smoluchowski (1917)
  * first-contact estimator of the kernel with its Garwood interval. */
@@ -18,18 +17,10 @@
 #define PI 3.14159265358979323846
 #define NPT (SB_ENGINE_PAIR_SPECIES * (SB_ENGINE_PAIR_SPECIES + 1) / 2)
 
-/* A set of particle or pair keys (never 0), with a count per key when
- * `val` is kept: open addressing, grown at half load. */
-typedef struct {
-  uint64_t *key;
-  uint32_t *val;  /* NULL: a plain set */
-  size_t cap, n;
-} idmap;
-
 struct sb_engine_firsthit {
   sb_engine_firsthit_params par;
   int attached;
-  idmap set;       /* pair keys of the pairs seen */
+  sbi_idmap set;       /* pair keys of the pairs seen */
   double t1;       /* end of the warm-up, s */
   uint64_t hits[NPT], warm[NPT], contact0[NPT];
   double pairs_apart[NPT];
@@ -39,97 +30,27 @@ struct sb_engine_firsthit {
    * SB_ENGINE_PAIR_SPECIES: with any), key (id << 5 | slot) + 1, and
    * per species pair the sums of their squares over the first species'
    * side [0] and the second's [1] (one side for a species with itself) */
-  idmap counts;
+  sbi_idmap counts;
   double sq[NPT][2], sq_all;
   double ns[SB_ENGINE_PAIR_SPECIES], n_all;  /* particles at attachment */
 };
 
-static size_t slot(uint64_t key, size_t cap)
-{
-  return (size_t)((key * 0x9E3779B97F4A7C15ULL) >> 17) & (cap - 1);
-}
-
-/* Double m's table (1024 at first); -1 out of memory. */
-static int map_grow(idmap *m, int counted)
-{
-  const size_t nc = m->cap ? 2 * m->cap : 1024;
-  uint64_t *nk = calloc(nc, sizeof *nk);
-  uint32_t *nv = counted ? calloc(nc, sizeof *nv) : NULL;
-  if (!nk || (counted && !nv)) {
-    free(nk);
-    free(nv);
-    return -1;
-  }
-  for (size_t i = 0; i < m->cap; i++)
-    if (m->key[i]) {
-      size_t h = slot(m->key[i], nc);
-      while (nk[h])
-        h = (h + 1) & (nc - 1);
-      nk[h] = m->key[i];
-      if (counted)
-        nv[h] = m->val[i];
-    }
-  free(m->key);
-  free(m->val);
-  m->key = nk;
-  m->val = nv;
-  m->cap = nc;
-  return 0;
-}
-
-/* Enter key (never 0), adding one to its count in a counted map; returns
- * the count before (a plain set: 1 if present), 0 if new, -1 out of
- * memory. */
-static long map_add(idmap *m, uint64_t key, int counted)
-{
-  if (2 * (m->n + 1) > m->cap && map_grow(m, counted))
-    return -1;
-  for (size_t h = slot(key, m->cap);; h = (h + 1) & (m->cap - 1)) {
-    if (m->key[h] == key) {
-      if (!counted)
-        return 1;
-      const uint32_t c = m->val[h];
-      m->val[h] += c < UINT32_MAX;
-      return (long)c;
-    }
-    if (!m->key[h]) {
-      m->key[h] = key;
-      if (counted)
-        m->val[h] = 1;
-      m->n++;
-      return 0;
-    }
-  }
-}
-
-static int map_has(const idmap *m, uint64_t key)
-{
-  if (!m->cap)
-    return 0;
-  for (size_t h = slot(key, m->cap);; h = (h + 1) & (m->cap - 1)) {
-    if (m->key[h] == key)
-      return 1;
-    if (!m->key[h])
-      return 0;
-  }
-}
-
 /* 1 if new, 0 if present, -1 out of memory. */
 static int set_insert(sb_engine_firsthit *f, uint64_t key)
 {
-  const long h = map_add(&f->set, key, 0);
+  const long h = sbi_idmap_add(&f->set, key, 0);
   return h < 0 ? -1 : h == 0;
 }
 
 static int set_has(const sb_engine_firsthit *f, uint64_t key)
 {
-  return map_has(&f->set, key);
+  return sbi_idmap_has(&f->set, key);
 }
 
 /* Add one to a particle's count under key; the count before, or -1. */
 static long count_add(sb_engine_firsthit *f, uint64_t key)
 {
-  return map_add(&f->counts, key, 1);
+  return sbi_idmap_add(&f->counts, key, 1);
 }
 
 /* A counted first contact of particles i, j: their counts and the sums of
@@ -158,12 +79,6 @@ static int tally(sb_engine_firsthit *f, const sb_engine *e, size_t i,
   return 0;
 }
 
-/* Key of the unordered pair of particle ids (never 0). */
-static uint64_t pair_key(uint64_t a, uint64_t b)
-{
-  return ((a < b ? a : b) << 32 | (a < b ? b : a)) + 1;
-}
-
 /* Index of the species pair of particles i, j, or -1 beyond the table. */
 static long type_of(const sb_engine *e, size_t i, size_t j)
 {
@@ -179,7 +94,7 @@ static int detect(const sb_engine *e, const sb_engine_pair *p,
                   const gsl_rng *r, void *ctx, double *s)
 {
   sb_engine_firsthit *f = ctx;
-  const uint64_t key = pair_key(e->id[p->i], e->id[p->j]);
+  const uint64_t key = sbi_pair_key(e->id[p->i], e->id[p->j]);
   if (f->par.skip_seen && set_has(f, key))
     return 0;
   int h;
@@ -246,9 +161,8 @@ sb_engine_firsthit *sb_engine_firsthit_alloc(
 void sb_engine_firsthit_free(sb_engine_firsthit *f)
 {
   if (f) {
-    free(f->set.key);
-    free(f->counts.key);
-    free(f->counts.val);
+    sbi_idmap_free(&f->set);
+    sbi_idmap_free(&f->counts);
   }
   free(f);
 }
@@ -285,7 +199,7 @@ int sb_engine_firsthit_attach(sb_engine *e, sb_engine_firsthit *f,
     }
     const double a = e->radius[i] + e->radius[j];
     if (d2 <= a * a) {
-      int fresh = set_insert(f, pair_key(e->id[i], e->id[j]));
+      int fresh = set_insert(f, sbi_pair_key(e->id[i], e->id[j]));
       if (fresh < 0)
         return sbi_error(SB_ENOMEM, __func__, "out of memory");
       if (fresh) {

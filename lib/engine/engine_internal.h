@@ -104,11 +104,26 @@ typedef struct {
   uint64_t floated;          /* steps through it, steps with floaters */
 } sbi_verlet;
 
-/* One logged collision (sb_engine_set_count_variance). */
+/* A set of particle or pair keys (never 0), with a count per key when
+ * `val` is kept (engine_idmap.c). */
 typedef struct {
-  uint64_t id[2];
-  uint32_t sp[2];
-} sbi_collision;
+  uint64_t *key;
+  uint32_t *val;  /* NULL: a plain set */
+  size_t cap, n;
+} sbi_idmap;
+
+/* Enter key (never 0), adding one to its count in a counted map; returns
+ * the count before (a plain set: 1 if present), 0 if new, -1 out of
+ * memory. */
+long sbi_idmap_add(sbi_idmap *m, uint64_t key, int counted);
+int sbi_idmap_has(const sbi_idmap *m, uint64_t key);
+/* Free the tables (the map is then empty and usable). */
+void sbi_idmap_free(sbi_idmap *m);
+/* Key of the unordered pair of particle ids (never 0). */
+static inline uint64_t sbi_pair_key(uint64_t a, uint64_t b)
+{
+  return ((a < b ? a : b) << 32 | (a < b ? b : a)) + 1;
+}
 
 struct sb_engine {
   sb_engine_params par;
@@ -186,10 +201,13 @@ struct sb_engine {
   double pexpo[SBI_NPAIRSP];
   uint64_t pcoll[SBI_NPAIRSP];
   /* the collisions since the reset, for the counts' variance
-   * (sb_engine_set_count_variance): both ids and species of each */
-  int clog_on, clog_lost;    /* logging; an entry lost (out of memory) */
-  sbi_collision *clog;
-  size_t nclog, capclog;
+   * (sb_engine_set_count_variance): each particle's with each partner
+   * species, key (id << 5 | species) + 1, each pair's (sbi_pair_key), and
+   * per species pair the sums of their squares (the particles of the first
+   * species [0], of the second [1]; one side for a species with itself) */
+  int cvar_on, cvar_lost;    /* tallying; incomplete since the reset */
+  sbi_idmap cvar_part, cvar_pair;
+  double cvar_sq[SBI_NPAIRSP][2], cvar_s2[SBI_NPAIRSP];
   double pairs0[SBI_NPAIRSP + 1]; /* scratch: pair counts at step start */
   uint64_t fam[SB_ENGINE_MAXFAM][SB_ENGINE_MAXFAM];
   sb_engine_sample *series;

@@ -25,37 +25,42 @@
 #include "common/internal.h"
 #include "engine_internal.h"
 
-/* Log collision (i, j) for the counts' variance; an entry that cannot be
- * stored marks the log lost until the next reset. */
-static void log_collision(sb_engine *e, size_t i, size_t j)
+/* Tally collision (i, j) of species pair type t for the counts'
+ * variance: each particle's collisions with the other's species and the
+ * pair's, and the sums of their squares ((h + 1)^2 - h^2 = 2 h + 1).  Out
+ * of memory: the tally is incomplete until the next reset. */
+static void tally_collision(sb_engine *e, size_t i, size_t j, size_t t)
 {
-  if (e->clog_lost)
-    return;
-  if (e->nclog == e->capclog) {
-    const size_t nc = e->capclog ? 2 * e->capclog : 1024;
-    sbi_collision *c = realloc(e->clog, nc * sizeof *c);
-    if (!c) {
-      e->clog_lost = 1;
+  const size_t s[2] = {e->species[i], e->species[j]}, q[2] = {i, j};
+  for (int side = 0; side < 2; side++) {
+    const size_t own = s[side], other = s[1 - side];
+    const long h = sbi_idmap_add(&e->cvar_part,
+                                 (e->id[q[side]] << 5 | other) + 1, 1);
+    if (h < 0) {
+      e->cvar_lost = 1;
       return;
     }
-    e->clog = c;
-    e->capclog = nc;
+    e->cvar_sq[t][own > other] += 2.0 * (double)h + 1.0;
   }
-  sbi_collision *c = &e->clog[e->nclog++];
-  c->id[0] = e->id[i];
-  c->id[1] = e->id[j];
-  c->sp[0] = (uint32_t)e->species[i];
-  c->sp[1] = (uint32_t)e->species[j];
+  const long g = sbi_idmap_add(&e->cvar_pair,
+                               sbi_pair_key(e->id[i], e->id[j]), 1);
+  if (g < 0) {
+    e->cvar_lost = 1;
+    return;
+  }
+  e->cvar_s2[t] += 2.0 * (double)g + 1.0;
 }
 
 void sbi_engine_count_collision(sb_engine *e, size_t i, size_t j)
 {
   e->ncoll++;
-  if (e->clog_on)
-    log_collision(e, i, j);
   size_t si = e->species[i], sj = e->species[j];
-  if (si < SB_ENGINE_PAIR_SPECIES && sj < SB_ENGINE_PAIR_SPECIES)
-    e->pcoll[sbi_pair_index(si, sj)]++;
+  if (si < SB_ENGINE_PAIR_SPECIES && sj < SB_ENGINE_PAIR_SPECIES) {
+    const size_t t = sbi_pair_index(si, sj);
+    e->pcoll[t]++;
+    if (e->cvar_on && !e->cvar_lost)
+      tally_collision(e, i, j, t);
+  }
   int a = e->family[i], b = e->family[j];
   if (a > b) {
     int t = a;
@@ -63,6 +68,21 @@ void sbi_engine_count_collision(sb_engine *e, size_t i, size_t j)
     b = t;
   }
   e->fam[a][b]++;
+}
+
+/* Empty the collision tally (its tables kept). */
+static void clear_tally(sb_engine *e)
+{
+  sbi_idmap *m[2] = {&e->cvar_part, &e->cvar_pair};
+  for (int k = 0; k < 2; k++) {
+    if (m[k]->cap) {
+      memset(m[k]->key, 0, m[k]->cap * sizeof *m[k]->key);
+      memset(m[k]->val, 0, m[k]->cap * sizeof *m[k]->val);
+    }
+    m[k]->n = 0;
+  }
+  memset(e->cvar_sq, 0, sizeof e->cvar_sq);
+  memset(e->cvar_s2, 0, sizeof e->cvar_s2);
 }
 
 void sb_engine_reset_counters(sb_engine *e)
@@ -79,8 +99,8 @@ void sb_engine_reset_counters(sb_engine *e)
   memset(e->nout, 0, sizeof e->nout);  /* open boundaries */
   memset(e->ninj, 0, sizeof e->ninj);
   memset(e->nskip, 0, sizeof e->nskip);
-  e->nclog = 0;
-  e->clog_lost = 0;
+  clear_tally(e);
+  e->cvar_lost = 0;
   e->t_reset = e->t;
 }
 
@@ -88,99 +108,37 @@ int sb_engine_set_count_variance(sb_engine *e, int on)
 {
   if (!e)
     return sbi_error(SB_EINVAL, __func__, "engine is NULL");
-  e->clog_on = on != 0;
-  e->nclog = 0;
-  e->clog_lost = !e->clog_on || e->ncoll > 0;  /* complete from a reset */
-  if (!e->clog_on) {
-    free(e->clog);
-    e->clog = NULL;
-    e->capclog = 0;
+  e->cvar_on = on != 0;
+  clear_tally(e);
+  e->cvar_lost = e->ncoll > 0;  /* complete only from a reset */
+  if (!e->cvar_on) {
+    sbi_idmap_free(&e->cvar_part);
+    sbi_idmap_free(&e->cvar_pair);
   }
   return SB_SUCCESS;
 }
 
-/* Keys: a particle id, or a pair of ids (lo < hi; single ids: hi 0). */
-typedef struct {
-  uint64_t lo, hi;
-} ckey;
-
-static int cmp_key(const void *a, const void *b)
-{
-  const ckey *x = a, *y = b;
-  if (x->lo != y->lo)
-    return x->lo < y->lo ? -1 : 1;
-  return x->hi < y->hi ? -1 : x->hi > y->hi;
-}
-
-/* Sum of the squared multiplicities of the n keys (sorted in place). */
-static double sum_sq_runs(ckey *k, size_t n)
-{
-  qsort(k, n, sizeof *k, cmp_key);
-  double s = 0.0;
-  for (size_t a = 0; a < n;) {
-    size_t b = a + 1;
-    while (b < n && !cmp_key(&k[b], &k[a]))
-      b++;
-    s += (double)(b - a) * (double)(b - a);
-    a = b;
-  }
-  return s;
-}
-
-/* The variance of the count H of species pair (a, b) from the collision
- * log (sb_pair_count_variance): each particle's collisions on each side,
- * each pair's, and the particles of each species now.  NaN when the log
- * does not hold exactly the count (off, lost, or not complete since the
- * reset), or out of memory. */
+/* The variance of the count H of species pair (a, b), type t, from the
+ * tally (sb_pair_count_variance, with the particles of each species now);
+ * NaN without a complete tally since the reset. */
 static double count_variance(const sb_engine *e, size_t a, size_t b,
-                             uint64_t H)
+                             size_t t, uint64_t H)
 {
-  if (!e->clog_on || e->clog_lost)
+  if (!e->cvar_on || e->cvar_lost)
     return NAN;
-  size_t m = 0;
-  for (size_t q = 0; q < e->nclog; q++) {
-    const sbi_collision *c = &e->clog[q];
-    m += (c->sp[0] == a && c->sp[1] == b) || (c->sp[0] == b && c->sp[1] == a);
-  }
-  if (m != H)
-    return NAN;
-  if (!H)
-    return 0.0;
-  /* the pairs, side a's ends and side b's (one species: both ends) */
-  ckey *k = malloc(3 * m * sizeof *k);
-  if (!k)
-    return NAN;
-  ckey *pk = k, *ka = k + m, *kb = k + 2 * m;
-  size_t np = 0, na_k = 0, nb_k = 0;
-  for (size_t q = 0; q < e->nclog; q++) {
-    const sbi_collision *c = &e->clog[q];
-    int f;  /* the end of species a */
-    if (c->sp[0] == a && c->sp[1] == b)
-      f = 0;
-    else if (c->sp[0] == b && c->sp[1] == a)
-      f = 1;
-    else
-      continue;
-    const int o = c->id[0] < c->id[1] ? 0 : 1;
-    pk[np++] = (ckey){c->id[o], c->id[1 - o]};
-    ka[na_k++] = (ckey){c->id[f], 0};
-    if (a == b)
-      ka[na_k++] = (ckey){c->id[1 - f], 0};
-    else
-      kb[nb_k++] = (ckey){c->id[1 - f], 0};
-  }
-  const double S2 = sum_sq_runs(pk, np), sqa = sum_sq_runs(ka, na_k);
-  const double sqb = a == b ? 0.0 : sum_sq_runs(kb, nb_k);
-  free(k);
   double na = 0.0, nb = 0.0;
   for (size_t i = 0; i < e->n; i++) {
     na += e->species[i] == a;
     nb += e->species[i] == b;
   }
+  const double *sq = e->cvar_sq[t];
   if (a == b)
-    return sb_pair_count_variance((double)H, S2, sqa, na, 0.0, 0.0,
-                                  0.5 * na * (na - 1.0));
-  return sb_pair_count_variance((double)H, S2, sqa, na, sqb, nb, na * nb);
+    return sb_pair_count_variance((double)H, e->cvar_s2[t], sq[0], na, 0.0,
+                                  0.0, 0.5 * na * (na - 1.0));
+  /* sq[0]: the particles of the lower species */
+  const double nlo = a < b ? na : nb, nhi = a < b ? nb : na;
+  return sb_pair_count_variance((double)H, e->cvar_s2[t], sq[0], nlo,
+                                sq[1], nhi, na * nb);
 }
 
 int sb_engine_get_stats(const sb_engine *e, sb_engine_stats *st)
@@ -290,7 +248,7 @@ int sb_engine_pair_kernel(const sb_engine *e, size_t a, size_t b,
                      "reset", a, b);
   double scale = volume(e) / e->pexpo[q];
   ps->K = scale * (double)e->pcoll[q];
-  ps->ncoll_var = count_variance(e, a, b, e->pcoll[q]);
+  ps->ncoll_var = count_variance(e, a, b, q, e->pcoll[q]);
   ps->dispersion = e->pcoll[q] > 0 ? ps->ncoll_var / (double)e->pcoll[q]
                                    : NAN;
   int st = sb_poisson_ci_dispersed((unsigned long)e->pcoll[q],

@@ -562,24 +562,27 @@ typedef struct {
   double lo, hi;    /**< exact Poisson (Garwood) interval at `level`,
                          widened by sqrt(dispersion) where that is above 1
                          (sb_poisson_ci_dispersed) */
-  double ncoll_var; /**< estimated variance of ncoll from the collisions'
-                         log (sb_engine_set_count_variance; NaN without
+  double ncoll_var; /**< estimated variance of ncoll from the collision
+                         tally (sb_engine_set_count_variance; NaN without
                          it): sb_pair_count_variance of each particle's and
                          each pair's collisions since the reset */
-  double dispersion;/**< ncoll_var / ncoll (NaN without the log) */
+  double dispersion;/**< ncoll_var / ncoll (NaN without the tally) */
 } sb_engine_pair_stats;
 
-/** Log every collision since the counter reset (on = 1; both particles'
- *  ids and species, 24 bytes each) so that sb_engine_pair_kernel can
- *  estimate the variance of its count: collisions are not independent
+/** Tally the collisions since the counter reset (on = 1): each
+ *  particle's with each partner species and each pair's, in hash tables
+ *  (about 24 bytes per particle and partner species and per pair that
+ *  collided), so that sb_engine_pair_kernel can estimate the variance of
+ *  its count: collisions are not independent
  *  events when particles differ persistently (a light molecule keeps its
  *  speed over many collisions with heavy ones: He-Xe in V1 measures
  *  var/mean ~1.5) or when pairs collide again.  Turn it on before the
- *  reset that starts the measurement (or before the first step): the log
- *  holds the collisions since then, and a count it does not hold whole
- *  (logging started later, out of memory) gives NaN.  The estimate
- *  assumes a fixed population (no merging, reinsertion or removal).
- *  on = 0 frees the log. */
+ *  reset that starts the measurement (or before the first step): a
+ *  count the tally does not hold whole (turned on after collisions, out
+ *  of memory) gives NaN until the next reset.  The estimate assumes a
+ *  fixed population (no merging, reinsertion or removal).  O(1) per
+ *  collision and per sb_engine_pair_kernel call (plus a pass over the
+ *  particles).  on = 0 frees the tables. */
 int sb_engine_set_count_variance(sb_engine *e, int on);
 
 /** The kernel of species pair (a, b), a and b < SB_ENGINE_PAIR_SPECIES

@@ -80,7 +80,7 @@ int sbv_add_poisson_dispersed(sbv_report *rep, const char *name,
                               unsigned long k, double dispersion,
                               double scale, double reference);
 /* A pair kernel's row K_e/K_th (sb_engine_pair_kernel): its count's
- * Poisson test, widened by the count's dispersion where the engine logged
+ * Poisson test, widened by the count's dispersion where the engine tallied
  * the collisions (sb_engine_set_count_variance), or, with info, an
  * informational row of the same interval; and a note with the count
  * (`what`: "collisions", "contacts"), the estimates and the dispersion. */

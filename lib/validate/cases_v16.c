@@ -60,7 +60,7 @@ int v16_run(const v16_setup *s, gsl_rng *r, v16_result *out)
   sb_engine *e = sb_engine_alloc(&p);
   if (!e)
     return SB_ENOMEM;
-  /* the collisions logged for the counts' variance (the kernel rows) */
+  /* the collisions tallied for the counts' variance (the kernel rows) */
   int st = sb_engine_set_count_variance(e, 1);
   if (!st && s->G != 0.0) {
     double G[3] = {s->G, 0, 0};

@@ -86,7 +86,7 @@ static int abr_run(const abr_setup *s, gsl_rng *fr, gsl_rng *g,
   sb_engine *e = mk_engine(s->L, s->dt, s->seed, N, SB_NEIGH_CELLS);
   if (!e)
     return SB_ENOMEM;
-  /* the collisions logged for the counts' variance */
+  /* the collisions tallied for the counts' variance */
   int st = sb_engine_set_count_variance(e, 1);
   for (int a = 0; a < 2 && !st; a++) {
     sb_engine_species sp = {s->r[a], abr_mass(s->r[a]), s->tau[a], s->B[a],

@@ -1,0 +1,86 @@
+/* engine_idmap.c — sets and counters of particle and pair keys (never 0):
+ * open addressing with linear probing, multiplicative hashing (Knuth
+ * 1998, TAOCP vol. 3, §6.4), grown at half load.  Used by the
+ * first-contact observer (pairs seen, each particle's contacts) and by the
+ * engine's collision tally (each particle's and each pair's collisions,
+ * sb_engine_set_count_variance). */
+#include <stdint.h>
+#include <stdlib.h>
+
+#include "engine_internal.h"
+
+static size_t slot(uint64_t key, size_t cap)
+{
+  return (size_t)((key * 0x9E3779B97F4A7C15ULL) >> 17) & (cap - 1);
+}
+
+/* Double m's table (1024 at first); -1 out of memory. */
+static int grow(sbi_idmap *m, int counted)
+{
+  const size_t nc = m->cap ? 2 * m->cap : 1024;
+  uint64_t *nk = calloc(nc, sizeof *nk);
+  uint32_t *nv = counted ? calloc(nc, sizeof *nv) : NULL;
+  if (!nk || (counted && !nv)) {
+    free(nk);
+    free(nv);
+    return -1;
+  }
+  for (size_t i = 0; i < m->cap; i++)
+    if (m->key[i]) {
+      size_t h = slot(m->key[i], nc);
+      while (nk[h])
+        h = (h + 1) & (nc - 1);
+      nk[h] = m->key[i];
+      if (counted)
+        nv[h] = m->val[i];
+    }
+  free(m->key);
+  free(m->val);
+  m->key = nk;
+  m->val = nv;
+  m->cap = nc;
+  return 0;
+}
+
+long sbi_idmap_add(sbi_idmap *m, uint64_t key, int counted)
+{
+  if (2 * (m->n + 1) > m->cap && grow(m, counted))
+    return -1;
+  for (size_t h = slot(key, m->cap);; h = (h + 1) & (m->cap - 1)) {
+    if (m->key[h] == key) {
+      if (!counted)
+        return 1;
+      const uint32_t c = m->val[h];
+      m->val[h] += c < UINT32_MAX;
+      return (long)c;
+    }
+    if (!m->key[h]) {
+      m->key[h] = key;
+      if (counted)
+        m->val[h] = 1;
+      m->n++;
+      return 0;
+    }
+  }
+}
+
+int sbi_idmap_has(const sbi_idmap *m, uint64_t key)
+{
+  if (!m->cap)
+    return 0;
+  for (size_t h = slot(key, m->cap);; h = (h + 1) & (m->cap - 1)) {
+    if (m->key[h] == key)
+      return 1;
+    if (!m->key[h])
+      return 0;
+  }
+}
+
+void sbi_idmap_free(sbi_idmap *m)
+{
+  free(m->key);
+  free(m->val);
+  m->key = NULL;
+  m->val = NULL;
+  m->cap = m->n = 0;
+}
