@@ -249,6 +249,36 @@ for k in $("$sb" collide --help | awk '/^  [A-Za-z_0-9]+ .* default / {print $1}
   grep -q "^| \`$k\`\|^| \`[a-z_]*\` or \`$k\`\|, \`$k\`" "$doc" \
     || fail "collide key '$k' is not in docs/engine.md §9"
 done
+# [observe] count_variance: the pair kernels' counts get a variance
+cat > "$out/gas.ini" <<EOF
+[run]
+output = $out/gas
+seed = 7
+L = 6e-9
+dt = 1e-14
+t_end = 1e-10
+thermalize = 300
+detect = ballistic
+outcome = elastic
+[observe]
+count_variance = yes
+[species He]
+radius = 140e-12
+mass = 6.64e-27
+tau = inf
+T = 300
+count = 60
+EOF
+if "$sb" collide "$out/gas.ini" 2>/dev/null; then
+  grep -q '"ncoll_var": [0-9]' "$out/gas/summary.json" &&
+    grep -q '"dispersion": [0-9]' "$out/gas/summary.json" ||
+    fail "collide count_variance: no variance in summary.json"
+  "$sb" collide "$out/gas.ini" --set observe.count_variance=no 2>/dev/null &&
+    grep -q '"dispersion": null' "$out/gas/summary.json" ||
+    fail "collide count_variance = no: a variance in summary.json"
+else
+  fail "collide count_variance failed"
+fi
 # --set overrides a key and is recorded in summary.json
 sed "s|^output = .*|output = $out/collide|" "$ini" > "$out/two.ini"
 if "$sb" collide "$out/two.ini" --set run.dt=2e-5 --set species.sphere.T=301 \

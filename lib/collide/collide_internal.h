@@ -87,6 +87,8 @@ typedef struct {
   int ngrid;
   char grid_scheme[8];
   long exits;                   /* [observe] exits (exits.csv) */
+  long count_variance;          /* [observe] count_variance: the engine's
+                                   collision tally */
   long first_hit_vn;            /* contacts.csv rows (0: off) */
   long batch_steps;             /* [observe] batch_steps (0: off) */
   double regions[COL_MAXREGION][6]; /* [observe] region: lo hi per axis */

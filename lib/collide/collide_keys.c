@@ -178,6 +178,10 @@ const sbi_col_keydef sbi_col_keys[] = {
     {"observe", "first_hit_capacitance", K_BOOL, C(first_hit_capacitance), 0,
      R_ANY, 0, 0, BOOLS, "-", "no", "reference radius K/(4 pi D) of the "
      "measured kernel (Langevin spheres, any Kn_D)"},
+    {"observe", "count_variance", K_BOOL, C(count_variance), 0, R_ANY, 0, 0,
+     BOOLS, "-", "no", "tally each particle's and each pair's collisions "
+     "for the variance of the pair kernels' counts (summary.json "
+     "pair_kernels[].dispersion; their ci95 widened by its square root)"},
     {"observe", "exits", K_BOOL, C(exits), 0, R_ANY, 0, 0, BOOLS, "-", "no",
      "record every exit through an open face after the warm-up (exits.csv)"},
     {"observe", "grid", K_VEC, C(grid), C(ngrid), R_ANY, 2, 3, NULL,

@@ -379,7 +379,11 @@ static void json_kernels(FILE *f, const sbi_col_config *c, const sb_engine *e)
       sbi_col_jnum(f, ps.lo);
       fprintf(f, ", ");
       sbi_col_jnum(f, ps.hi);
-      fprintf(f, "], ");
+      fprintf(f, "], \"ncoll_var\": ");
+      sbi_col_jnum(f, ps.ncoll_var);
+      fprintf(f, ", \"dispersion\": ");
+      sbi_col_jnum(f, ps.dispersion);
+      fprintf(f, ", ");
       json_references(f, c, sa, sb);
       fprintf(f, "}");
       firstp = 0;
