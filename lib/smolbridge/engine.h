@@ -582,7 +582,7 @@ typedef struct {
  *  of memory) gives NaN until the next reset.  The estimate assumes a
  *  fixed population (no merging, reinsertion or removal).  O(1) per
  *  collision and per sb_engine_pair_kernel call (plus a pass over the
- *  particles).  on = 0 frees the tables. */
+ *  particles).  on = 0 frees the tables.  Not kept in checkpoints. */
 int sb_engine_set_count_variance(sb_engine *e, int on);
 
 /** The kernel of species pair (a, b), a and b < SB_ENGINE_PAIR_SPECIES
