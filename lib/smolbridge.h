@@ -10,6 +10,7 @@
 #include <smolbridge/bridge.h>
 #include <smolbridge/langevin.h>
 #include <smolbridge/langevin_hit.h>
+#include <smolbridge/langevin_shear.h>
 #include <smolbridge/simulate.h>
 #include <smolbridge/kernel.h>
 #include <smolbridge/dlvo.h>

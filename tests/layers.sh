@@ -32,7 +32,7 @@ layer() {
 header_module() {
   case "$1" in
     engine_bridge|engine_firsthit|engine_field) echo engine ;;
-    langevin_hit) echo langevin ;;
+    langevin_hit|langevin_shear) echo langevin ;;
     version|ini) echo common ;;
     *) echo "$1" ;;
   esac

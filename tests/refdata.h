@@ -22,7 +22,7 @@
 
 #include "testutil.h"
 
-#define SBT_MAXCOL 16
+#define SBT_MAXCOL 64
 
 typedef struct {
   int ncol, nrow;

@@ -87,12 +87,12 @@ END_TEST
 START_TEST(test_shear_coefs)
 {
   double a[4], b[4];
-  sbi_shear_coefs(1.0 - 1e-12, a);
-  sbi_shear_coefs(1.0, b);
+  sb_langevin_shear_mean_coefs(1.0 - 1e-12, a);
+  sb_langevin_shear_mean_coefs(1.0, b);
   for (int k = 0; k < 4; k++)
     ck_assert_rel(a[k], b[k], 1e-11);
   /* leading terms at small x */
-  sbi_shear_coefs(1e-4, a);
+  sb_langevin_shear_mean_coefs(1e-4, a);
   ck_assert_rel(a[0], 1e-12 / 6.0, 1e-3);
   ck_assert_rel(a[1], 0.5e-8, 1e-3);
   ck_assert_rel(a[2], 0.5e-8, 1e-3);

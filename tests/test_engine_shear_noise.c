@@ -28,6 +28,7 @@
 #include <smolbridge/engine.h>
 
 #include "engine/engine_internal.h"
+#include "langevin/langevin_shear_internal.h"
 #include "refdata.h"
 #include "shear_rk4.h"
 #include "testutil.h"
@@ -45,7 +46,7 @@ START_TEST(test_cov_reference)
     const double x = sbt_at(&t, r, sbt_col(&t, "x")),
                  g = sbt_at(&t, r, sbt_col(&t, "g"));
     double S[4][4];
-    sbi_shear_noise_cov(x, g, S);
+    sb_langevin_shear_noise_cov(x, g, S);
     int q = 0;
     for (int i = 0; i < 4; i++)
       for (int j = 0; j <= i; j++, q++) {
@@ -78,7 +79,7 @@ START_TEST(test_chol_reference)
     const double x = sbt_at(&t, r, sbt_col(&t, "x")),
                  g = sbt_at(&t, r, sbt_col(&t, "g"));
     double L[7];
-    sbi_shear_noise_chol(x, g, L);
+    sb_langevin_shear_noise_chol(x, g, L);
     for (int k = 0; k < 7; k++) {
       const double want = sbt_at(&t, r, sbt_col(&t, nm[k]));
       const double rel = fabs(L[k] / want - 1.0);
@@ -277,7 +278,7 @@ END_TEST
  * whose leading term is Foister & van de Ven's 2 D G^2 t^3/3 and whose
  * x^2 term is the inertial lag (relative -6 tau/t); <y^2> = x - 3/2,
  * <xy> = g int K_x k_y -> D G t^2.  The closed form is checked against
- * sbi_shear_noise_cov (1e-12), then z-scores of the sample second moments
+ * sb_langevin_shear_noise_cov (1e-12), then z-scores of the sample second moments
  * (standard errors from the sample fourth moments), |z| <= 4.  Twenty
  * steps, not hundreds: the error of the uniform-flow noise in <x^2> and
  * <xy> is relative O(h/t) (the within-step shear correlation, once per
@@ -306,7 +307,7 @@ START_TEST(test_long_time)
                                           4 * t - 0.75);
     const double wyy = t - 1.5;
     double Sx[4][4];
-    sbi_shear_noise_cov(t, g, Sx);
+    sb_langevin_shear_noise_cov(t, g, Sx);
     ck_assert_rel(Sx[3][3], wxx, 1e-12);
     ck_assert_rel(Sx[1][1], wyy, 1e-12);
     /* <xy> = g int K_x k_y dr: (x^2/2 - 3x + ...) -> use the reference

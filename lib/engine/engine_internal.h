@@ -9,6 +9,7 @@
 #include <gsl/gsl_rng.h>
 #include <smolbridge/engine.h>
 #include <smolbridge/langevin.h>
+#include <smolbridge/langevin_shear.h>
 
 /* Species pairs tracked for per-pair kernels. */
 #ifdef _OPENMP
@@ -510,22 +511,6 @@ const double *sbi_engine_settling(sb_engine *e, size_t sp);
 /* After the linear transport: the nonlinear-drag step of those species
  * and, with Lees-Edwards, the exact shear correction. */
 int sbi_engine_after_transport(sb_engine *e);
-/* The step coefficients of the shear correction (engine_lees.c): for
- * x = h/tau, A = x(1+e^-x) - 2(1-e^-x), Bv = 1 - e^-x (1+x),
- * C = x - (1-e^-x), D = x^2/2 - x + (1-e^-x), by series below x = 1. */
-void sbi_shear_coefs(double x, double c[4]);
-/* Exact noise of the step in the linear shear (engine_lees.c), units
- * tau = B = 1, x = h/tau, g = G tau.  The seven integrals over r in
- * [0, x] of (K_u k_u, K_u k_y, K_x k_u, K_x k_y, K_u^2, K_u K_x, K_x^2),
- * k_u = e^-r, k_y = 1 - e^-r, K_u = 1 - e^-r (1 + r),
- * K_x = r - 2 + e^-r (2 + r): */
-void sbi_shear_noise_ints(double x, double f[7]);
-/* the covariance of (u_y, y, u_x, x) over the step: */
-void sbi_shear_noise_cov(double x, double g, double S[4][4]);
-/* and the x rows of its lower Cholesky factor against the normals
- * (z1_y, z2_y, z1_x, z2_x), whose y rows are the OU step's (s_u 0; s_xu
- * s_xc): L = (L31, L32, L33, L41, L42, L43, L44). */
-void sbi_shear_noise_chol(double x, double g, double L[7]);
 /* Cached dimensional factor per species: L[0..2] the u_x row, L[3..6]
  * the x row; on = 0 for species that keep the OU noise (free flight,
  * nonlinear drag). */

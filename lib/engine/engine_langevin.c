@@ -396,11 +396,11 @@ int sbi_engine_langevin_continue(sb_engine *e, size_t k, const sbi_event *ev,
     const double tau = sp->tau, bt = sp->B * sqrt(tau);
     const double wy = sbi_engine_w(e, k, 1);
     double cs[4];
-    sbi_shear_coefs(h / tau, cs);
+    sb_langevin_shear_mean_coefs(h / tau, cs);
     const double vr = e->u[3 * k + 1] - wy;
     dux = G * tau * (cs[1] * vr + cs[2] * wy);
     dxx = G * tau * tau * (cs[0] * vr + cs[3] * wy);
-    sbi_shear_noise_chol(h / tau, G * tau, L);
+    sb_langevin_shear_noise_chol(h / tau, G * tau, L);
     for (int q = 0; q < 7; q++)
       L[q] *= q < 3 ? bt : bt * tau;
   }

@@ -26,6 +26,7 @@
  * V_r tau (1 - e^{-t/tau}) (w_y the settling velocity along y, V_r =
  * u0_y - w_y), the x velocity obeys du/dt = (G Y(t) + w_x - u)/tau; the
  * response to G (Y(t) - Y0) over a step h, x = h/tau, e = e^{-x}, is
+ * (sb_langevin_shear_mean_coefs)
  *   du = G tau (Bv V_r + C w_y),   dx = G tau^2 (A V_r + D w_y),
  *   A = x(1+e) - 2(1-e),  Bv = 1 - e(1+x),  C = x - (1-e),
  *   D = x^2/2 - x + (1-e)
@@ -36,7 +37,8 @@
  * Noise.  The noise is exact too: the covariance of (u_y, y, u_x, x) over
  * the step, Sigma(h) = int_0^h Phi Q Phi^T ds, has the OU y block, and x
  * blocks from the response of u_x and x to dW_y through G y (kernels K_u,
- * K_x below, the integrands of Bv and A).  The transports (engine.c) draw
+ * K_x, the integrands of Bv and A; sb_langevin_shear_noise_cov and _chol,
+ * lib/langevin/langevin_shear.c).  The transports (engine.c) draw
  * the same six normals per particle; the x component takes the x rows of
  * the lower Cholesky factor of Sigma in the order (u_y, y, u_x, x)
  * against (z1_y, z2_y, z1_x, z2_x), computed once per species, dt and G
@@ -71,202 +73,6 @@ double sb_engine_lees_edwards_offset(const sb_engine *e)
   return (e && e->lees) ? e->le_off : 0.0;
 }
 
-void sbi_shear_coefs(double x, double c[4])
-{
-  if (x < 1.0) {
-    /* A = sum_{m>=3} (-1)^m (2-m) x^m/m!, Bv = sum_{m>=2} (-1)^m (m-1)
-     * x^m/m!, C = sum_{m>=2} (-1)^m x^m/m!, D = -sum_{m>=3} (-1)^m x^m/m!
-     * (terms below 1e-17 of the leading one at m = 24) */
-    double A = 0.0, Bv = 0.0, C = 0.0, D = 0.0, t = 1.0;
-    for (int m = 1; m <= 24; m++) {
-      t *= -x / m;  /* (-x)^m / m! */
-      if (m >= 2) {
-        Bv += (m - 1) * t;
-        C += t;
-      }
-      if (m >= 3) {
-        A += (2 - m) * t;
-        D -= t;
-      }
-    }
-    c[0] = A;
-    c[1] = Bv;
-    c[2] = C;
-    c[3] = D;
-    return;
-  }
-  const double e = exp(-x), ome = -expm1(-x);
-  c[0] = x * (1.0 + e) - 2.0 * ome;
-  c[1] = ome - x * e;
-  c[2] = x - ome;
-  c[3] = 0.5 * x * x - x + ome;
-}
-
-/* ---------------------------------------------- exact shear noise */
-
-/* The kernels of the noise in units tau = B = 1 (r = h - s the age of the
- * increment dW_y(s)): u_y and y respond with k_u = e^-r, k_y = 1 - e^-r;
- * the x velocity and position respond through G y with
- *   K_u = 1 - e^-r - r e^-r,   K_x = r - 2 + 2 e^-r + r e^-r
- * (per unit g = G tau).  Each as terms c r^a e^{-k r}, a, k in {0, 1}:
- * kt[kernel][a][k]; order k_u, k_y, K_u, K_x. */
-static const double shn_kt[4][2][2] = {
-    {{0, 1}, {0, 0}},
-    {{1, -1}, {0, 0}},
-    {{1, -1}, {0, -1}},
-    {{-2, 2}, {1, 1}},
-};
-/* the seven integrals over [0, x]: (K_u k_u, K_u k_y, K_x k_u, K_x k_y,
- * K_u K_u, K_u K_x, K_x K_x) as pairs of kernels */
-static const int shn_pair[7][2] = {{2, 0}, {2, 1}, {3, 0}, {3, 1},
-                                   {2, 2}, {2, 3}, {3, 3}};
-
-/* Taylor coefficient of r^n of a kernel, written so that the vanishing
- * low orders are exact zeros. */
-static double shn_taylor(int kern, int n, double fact_n)
-{
-  const double sg = (n & 1) ? -1.0 : 1.0;  /* (-1)^n */
-  switch (kern) {
-  case 0:
-    return sg / fact_n;
-  case 1:
-    return n == 0 ? 0.0 : -sg / fact_n;
-  case 2:
-    return n <= 1 ? 0.0 : sg * (n - 1) / fact_n;
-  default:
-    return n <= 2 ? 0.0 : sg * (2 - n) / fact_n;
-  }
-}
-
-#define SHN_SERIES_X 1.5
-#define SHN_NT 64
-
-void sbi_shear_noise_ints(double x, double f[7])
-{
-  if (x < SHN_SERIES_X) {
-    /* product of the Taylor series, integrated term by term (Horner from
-     * the highest degree; the terms fall as (2x)^n/n!, below 1e-17 of the
-     * leading one by n = 60 at x = 1.5) */
-    double t[4][SHN_NT], fact = 1.0;
-    for (int n = 0; n < SHN_NT; n++) {
-      if (n > 0)
-        fact *= n;
-      for (int q = 0; q < 4; q++)
-        t[q][n] = shn_taylor(q, n, fact);
-    }
-    for (int m = 0; m < 7; m++) {
-      const double *p = t[shn_pair[m][0]], *q = t[shn_pair[m][1]];
-      double acc = 0.0;
-      for (int n = SHN_NT - 1; n >= 0; n--) {
-        double c = 0.0;
-        for (int j = 0; j <= n; j++)
-          c += p[j] * q[n - j];
-        acc = acc * x + c / (n + 1);
-      }
-      f[m] = acc * x;
-    }
-    return;
-  }
-  /* closed form: int_0^x r^a e^{-k r} dr = x^{a+1}/(a+1) (k = 0),
-   * a!/k^{a+1} (1 - e^{-kx} sum_{j<=a} (kx)^j/j!) (k > 0) */
-  double J[3][3];
-  for (int a = 0; a <= 2; a++) {
-    J[a][0] = pow(x, a + 1) / (a + 1);
-    for (int k = 1; k <= 2; k++) {
-      const double y = k * x;
-      double s = 0.0, term = 1.0, fa = 1.0;
-      for (int j = 0; j <= a; j++) {
-        if (j > 0) {
-          term *= y / j;
-          fa *= j;
-        }
-        s += term;
-      }
-      J[a][k] = fa / pow((double)k, a + 1) * (1.0 - exp(-y) * s);
-    }
-  }
-  for (int m = 0; m < 7; m++) {
-    const int p = shn_pair[m][0], q = shn_pair[m][1];
-    double acc = 0.0;
-    for (int a1 = 0; a1 < 2; a1++)
-      for (int k1 = 0; k1 < 2; k1++)
-        for (int a2 = 0; a2 < 2; a2++)
-          for (int k2 = 0; k2 < 2; k2++)
-            acc += shn_kt[p][a1][k1] * shn_kt[q][a2][k2] *
-                   J[a1 + a2][k1 + k2];
-    f[m] = acc;
-  }
-}
-
-void sbi_shear_noise_cov(double x, double g, double S[4][4])
-{
-  sb_langevin_coef c;
-  double f[7];
-  sb_langevin_coef_init(&c, 1.0, 1.0, x);
-  sbi_shear_noise_ints(x, f);
-  const double a = c.s_u, b = c.s_xu, cc = c.s_xc;
-  memset(S, 0, 16 * sizeof(double));
-  S[0][0] = a * a;
-  S[1][0] = a * b;
-  S[1][1] = b * b + cc * cc;
-  S[2][2] = a * a + g * g * f[4];
-  S[3][2] = a * b + g * g * f[5];
-  S[3][3] = b * b + cc * cc + g * g * f[6];
-  S[2][0] = g * f[0];
-  S[2][1] = g * f[1];
-  S[3][0] = g * f[2];
-  S[3][1] = g * f[3];
-  for (int i = 0; i < 4; i++)
-    for (int j = i + 1; j < 4; j++)
-      S[i][j] = S[j][i];
-}
-
-void sbi_shear_noise_chol(double x, double g, double L[7])
-{
-  sb_langevin_coef c;
-  double f[7];
-  sb_langevin_coef_init(&c, 1.0, 1.0, x);
-  sbi_shear_noise_ints(x, f);
-  /* y rows: the OU factor (a 0; b cc) of the step; x rows: M = C L_y^-T
-   * against the y normals, then the Cholesky factor of the Schur
-   * complement S = Sigma_OU + R, R = g^2 S2 - M M^T the covariance of the
-   * shear part given the y noise (long double: R and its determinant
-   * cancel by up to 5 digits at small x) */
-  const long double a = c.s_u, b = c.s_xu, cc = c.s_xc, gg = g;
-  if (!(a > 0) || !(cc > 0)) {  /* x = 0: no noise */
-    for (int k = 0; k < 7; k++)
-      L[k] = 0.0;
-    return;
-  }
-  const long double M00 = gg * f[0] / a, M10 = gg * f[2] / a;
-  const long double M01 = (gg * f[1] - b * M00) / cc;
-  const long double M11 = (gg * f[3] - b * M10) / cc;
-  long double R00 = gg * gg * f[4] - M00 * M00 - M01 * M01;
-  const long double R01 = gg * gg * f[5] - M00 * M10 - M01 * M11;
-  long double R11 = gg * gg * f[6] - M10 * M10 - M11 * M11;
-  if (R00 < 0)
-    R00 = 0;
-  if (R11 < 0)
-    R11 = 0;
-  long double detR = R00 * R11 - R01 * R01;
-  if (detR < 0)
-    detR = 0;
-  long double q = b * b * R00 - 2 * a * b * R01 + a * a * R11;
-  if (q < 0)
-    q = 0;
-  const long double S00 = a * a + R00, S10 = a * b + R01;
-  const long double L33 = sqrtl(S00);
-  L[0] = (double)M00;
-  L[1] = (double)M01;
-  L[2] = (double)L33;
-  L[3] = (double)M10;
-  L[4] = (double)M11;
-  L[5] = (double)(S10 / L33);
-  /* L44^2 = S11 - L43^2 = cc^2 + (q + det R)/S00, q = (b, -a) R (b, -a)^T
-   * (the conditional variance of the x noise given the other three,
-   * without the difference of the two large terms) */
-  L[6] = (double)sqrtl(cc * cc + (q + detR) / S00);
-}
 
 int sbi_engine_shear_noise(sb_engine *e, const sbi_shear_noise **tab)
 {
@@ -301,7 +107,7 @@ int sbi_engine_shear_noise(sb_engine *e, const sbi_shear_noise **tab)
     if (!on)
       continue;
     double Lh[7];
-    sbi_shear_noise_chol(h / tau, G * tau, Lh);
+    sb_langevin_shear_noise_chol(h / tau, G * tau, Lh);
     const double bt = B * sqrt(tau);
     for (int k = 0; k < 7; k++)
       t->L[k] = Lh[k] * (k < 3 ? bt : bt * tau);
@@ -321,7 +127,7 @@ void sbi_engine_shear_correct(sb_engine *e)
     if (isinf(tau) || (sp < e->nsfl && e->sfl[sp].drag != SB_DRAG_STOKES))
       continue;  /* free flight; nonlinear drag keeps the frozen field */
     double c[4];
-    sbi_shear_coefs(h / tau, c);
+    sb_langevin_shear_mean_coefs(h / tau, c);
     const double wy = (e->has_grav && sp < e->nvset) ? e->vset[3 * sp + 1]
                                                      : 0.0;
     const double vr = e->u0[3 * i + 1] - wy;

@@ -1,0 +1,433 @@
+/* langevin_shear.c — a Langevin particle in the linear shear
+ * u_f = (G y + c_x, c_y) (in the plane of the flow; the third component is
+ * a plain Ornstein-Uhlenbeck process): the coefficients of its exact step
+ * (mean and noise; used by the engine's Lees-Edwards transport,
+ * docs/engine_forces.md section 3) and of its exact bridge, the law of the
+ * state inside a step given both ends (langevin_shear.h). */
+#include <math.h>
+#include <string.h>
+
+#include <gsl/gsl_linalg.h>
+#include <smolbridge/langevin.h>
+#include <smolbridge/langevin_shear.h>
+
+#include "common/internal.h"
+#include "langevin/langevin_shear_internal.h"
+
+void sb_langevin_shear_mean_coefs(double x, double c[4])
+{
+  if (x < 1.0) {
+    /* A = sum_{m>=3} (-1)^m (2-m) x^m/m!, Bv = sum_{m>=2} (-1)^m (m-1)
+     * x^m/m!, C = sum_{m>=2} (-1)^m x^m/m!, D = -sum_{m>=3} (-1)^m x^m/m!
+     * (terms below 1e-17 of the leading one at m = 24) */
+    double A = 0.0, Bv = 0.0, C = 0.0, D = 0.0, t = 1.0;
+    for (int m = 1; m <= 24; m++) {
+      t *= -x / m;  /* (-x)^m / m! */
+      if (m >= 2) {
+        Bv += (m - 1) * t;
+        C += t;
+      }
+      if (m >= 3) {
+        A += (2 - m) * t;
+        D -= t;
+      }
+    }
+    c[0] = A;
+    c[1] = Bv;
+    c[2] = C;
+    c[3] = D;
+    return;
+  }
+  const double e = exp(-x), ome = -expm1(-x);
+  c[0] = x * (1.0 + e) - 2.0 * ome;
+  c[1] = ome - x * e;
+  c[2] = x - ome;
+  c[3] = 0.5 * x * x - x + ome;
+}
+
+/* ---------------------------------------------- exact shear noise */
+
+/* The kernels of the noise in units tau = B = 1 (r = h - s the age of the
+ * increment dW_y(s)): u_y and y respond with k_u = e^-r, k_y = 1 - e^-r;
+ * the x velocity and position respond through G y with
+ *   K_u = 1 - e^-r - r e^-r,   K_x = r - 2 + 2 e^-r + r e^-r
+ * (per unit g = G tau).  Each as terms c r^a e^{-k r}, a, k in {0, 1}:
+ * kt[kernel][a][k]; order k_u, k_y, K_u, K_x. */
+static const double shn_kt[4][2][2] = {
+    {{0, 1}, {0, 0}},
+    {{1, -1}, {0, 0}},
+    {{1, -1}, {0, -1}},
+    {{-2, 2}, {1, 1}},
+};
+/* the seven integrals over [0, x]: (K_u k_u, K_u k_y, K_x k_u, K_x k_y,
+ * K_u K_u, K_u K_x, K_x K_x) as pairs of kernels */
+static const int shn_pair[7][2] = {{2, 0}, {2, 1}, {3, 0}, {3, 1},
+                                   {2, 2}, {2, 3}, {3, 3}};
+
+/* Taylor coefficient of r^n of a kernel, written so that the vanishing
+ * low orders are exact zeros. */
+static double shn_taylor(int kern, int n, double fact_n)
+{
+  const double sg = (n & 1) ? -1.0 : 1.0;  /* (-1)^n */
+  switch (kern) {
+  case 0:
+    return sg / fact_n;
+  case 1:
+    return n == 0 ? 0.0 : -sg / fact_n;
+  case 2:
+    return n <= 1 ? 0.0 : sg * (n - 1) / fact_n;
+  default:
+    return n <= 2 ? 0.0 : sg * (2 - n) / fact_n;
+  }
+}
+
+#define SHN_SERIES_X 1.5
+#define SHN_NT 64
+
+void sbi_shear_noise_ints(double x, double f[7])
+{
+  if (x < SHN_SERIES_X) {
+    /* product of the Taylor series, integrated term by term (Horner from
+     * the highest degree; the terms fall as (2x)^n/n!, below 1e-17 of the
+     * leading one by n = 60 at x = 1.5) */
+    double t[4][SHN_NT], fact = 1.0;
+    for (int n = 0; n < SHN_NT; n++) {
+      if (n > 0)
+        fact *= n;
+      for (int q = 0; q < 4; q++)
+        t[q][n] = shn_taylor(q, n, fact);
+    }
+    for (int m = 0; m < 7; m++) {
+      const double *p = t[shn_pair[m][0]], *q = t[shn_pair[m][1]];
+      double acc = 0.0;
+      for (int n = SHN_NT - 1; n >= 0; n--) {
+        double c = 0.0;
+        for (int j = 0; j <= n; j++)
+          c += p[j] * q[n - j];
+        acc = acc * x + c / (n + 1);
+      }
+      f[m] = acc * x;
+    }
+    return;
+  }
+  /* closed form: int_0^x r^a e^{-k r} dr = x^{a+1}/(a+1) (k = 0),
+   * a!/k^{a+1} (1 - e^{-kx} sum_{j<=a} (kx)^j/j!) (k > 0) */
+  double J[3][3];
+  for (int a = 0; a <= 2; a++) {
+    J[a][0] = pow(x, a + 1) / (a + 1);
+    for (int k = 1; k <= 2; k++) {
+      const double y = k * x;
+      double s = 0.0, term = 1.0, fa = 1.0;
+      for (int j = 0; j <= a; j++) {
+        if (j > 0) {
+          term *= y / j;
+          fa *= j;
+        }
+        s += term;
+      }
+      J[a][k] = fa / pow((double)k, a + 1) * (1.0 - exp(-y) * s);
+    }
+  }
+  for (int m = 0; m < 7; m++) {
+    const int p = shn_pair[m][0], q = shn_pair[m][1];
+    double acc = 0.0;
+    for (int a1 = 0; a1 < 2; a1++)
+      for (int k1 = 0; k1 < 2; k1++)
+        for (int a2 = 0; a2 < 2; a2++)
+          for (int k2 = 0; k2 < 2; k2++)
+            acc += shn_kt[p][a1][k1] * shn_kt[q][a2][k2] *
+                   J[a1 + a2][k1 + k2];
+    f[m] = acc;
+  }
+}
+
+void sb_langevin_shear_noise_cov(double x, double g, double S[4][4])
+{
+  sb_langevin_coef c;
+  double f[7];
+  sb_langevin_coef_init(&c, 1.0, 1.0, x);
+  sbi_shear_noise_ints(x, f);
+  const double a = c.s_u, b = c.s_xu, cc = c.s_xc;
+  memset(S, 0, 16 * sizeof(double));
+  S[0][0] = a * a;
+  S[1][0] = a * b;
+  S[1][1] = b * b + cc * cc;
+  S[2][2] = a * a + g * g * f[4];
+  S[3][2] = a * b + g * g * f[5];
+  S[3][3] = b * b + cc * cc + g * g * f[6];
+  S[2][0] = g * f[0];
+  S[2][1] = g * f[1];
+  S[3][0] = g * f[2];
+  S[3][1] = g * f[3];
+  for (int i = 0; i < 4; i++)
+    for (int j = i + 1; j < 4; j++)
+      S[i][j] = S[j][i];
+}
+
+void sb_langevin_shear_noise_chol(double x, double g, double L[7])
+{
+  sb_langevin_coef c;
+  double f[7];
+  sb_langevin_coef_init(&c, 1.0, 1.0, x);
+  sbi_shear_noise_ints(x, f);
+  /* y rows: the OU factor (a 0; b cc) of the step; x rows: M = C L_y^-T
+   * against the y normals, then the Cholesky factor of the Schur
+   * complement S = Sigma_OU + R, R = g^2 S2 - M M^T the covariance of the
+   * shear part given the y noise (long double: R and its determinant
+   * cancel by up to 5 digits at small x) */
+  const long double a = c.s_u, b = c.s_xu, cc = c.s_xc, gg = g;
+  if (!(a > 0) || !(cc > 0)) {  /* x = 0: no noise */
+    for (int k = 0; k < 7; k++)
+      L[k] = 0.0;
+    return;
+  }
+  const long double M00 = gg * f[0] / a, M10 = gg * f[2] / a;
+  const long double M01 = (gg * f[1] - b * M00) / cc;
+  const long double M11 = (gg * f[3] - b * M10) / cc;
+  long double R00 = gg * gg * f[4] - M00 * M00 - M01 * M01;
+  const long double R01 = gg * gg * f[5] - M00 * M10 - M01 * M11;
+  long double R11 = gg * gg * f[6] - M10 * M10 - M11 * M11;
+  if (R00 < 0)
+    R00 = 0;
+  if (R11 < 0)
+    R11 = 0;
+  long double detR = R00 * R11 - R01 * R01;
+  if (detR < 0)
+    detR = 0;
+  long double q = b * b * R00 - 2 * a * b * R01 + a * a * R11;
+  if (q < 0)
+    q = 0;
+  const long double S00 = a * a + R00, S10 = a * b + R01;
+  const long double L33 = sqrtl(S00);
+  L[0] = (double)M00;
+  L[1] = (double)M01;
+  L[2] = (double)L33;
+  L[3] = (double)M10;
+  L[4] = (double)M11;
+  L[5] = (double)(S10 / L33);
+  /* L44^2 = S11 - L43^2 = cc^2 + (q + det R)/S00, q = (b, -a) R (b, -a)^T
+   * (the conditional variance of the x noise given the other three,
+   * without the difference of the two large terms) */
+  L[6] = (double)sqrtl(cc * cc + (q + detR) / S00);
+}
+
+/* ------------------------------------------------------------ bridge */
+
+void sb_langevin_shear_propagator(double x, double g, double Phi[4][4],
+                                  double a[4][2])
+{
+  double c[4];
+  sb_langevin_shear_mean_coefs(x, c);
+  const double e = exp(-x), ome = -expm1(-x);
+  memset(Phi, 0, 16 * sizeof(double));
+  /* rows u_y, y (the Ornstein-Uhlenbeck step), u_x, x: u_x relaxes to
+   * G y, whose path is y(0) + u_y(0) (1 - e^-t) */
+  Phi[0][0] = e;
+  Phi[1][0] = ome;
+  Phi[1][1] = 1.0;
+  Phi[2][0] = g * c[1];
+  Phi[2][1] = g * ome;
+  Phi[2][2] = e;
+  Phi[3][0] = g * c[0];
+  Phi[3][1] = g * c[2];
+  Phi[3][2] = ome;
+  Phi[3][3] = 1.0;
+  /* the constant drift velocities: c_x as u_x's relaxation target, c_y as
+   * u_y's, which reaches u_x and x through G y (the integrals of Bv and A
+   * over the step are A and D - A) */
+  a[0][0] = 0.0;
+  a[0][1] = ome;
+  a[1][0] = 0.0;
+  a[1][1] = c[2];
+  a[2][0] = ome;
+  a[2][1] = g * c[0];
+  a[3][0] = c[2];
+  a[3][1] = g * (c[3] - c[0]);
+}
+
+/* Inverse of the symmetric positive definite 4 x 4 matrix M into Mi, by
+ * the Cholesky factor of D M D, D = diag(M_ii^-1/2) (unit diagonal: the
+ * factorisation sees the correlations, not the scales).  Status. */
+static int spd_inverse(const double M[4][4], double Mi[4][4])
+{
+  double d[4], w[16];
+  for (int i = 0; i < 4; i++) {
+    if (!(M[i][i] > 0.0) || !isfinite(M[i][i]))
+      return SB_EDOM;
+    d[i] = 1.0 / sqrt(M[i][i]);
+  }
+  for (int i = 0; i < 4; i++)
+    for (int j = 0; j < 4; j++)
+      w[4 * i + j] = d[i] * d[j] * 0.5 * (M[i][j] + M[j][i]);
+  gsl_matrix_view W = gsl_matrix_view_array(w, 4, 4);
+  gsl_error_handler_t *old = gsl_set_error_handler_off();
+  int st = gsl_linalg_cholesky_decomp1(&W.matrix);
+  if (!st)
+    st = gsl_linalg_cholesky_invert(&W.matrix);
+  gsl_set_error_handler(old);
+  if (st)
+    return SB_EDOM;
+  for (int i = 0; i < 4; i++)
+    for (int j = 0; j < 4; j++)
+      Mi[i][j] = d[i] * d[j] * w[4 * i + j];
+  return SB_SUCCESS;
+}
+
+/* C = A B (4 x n inner 4), and C = A^T B */
+static void mul(const double A[4][4], const double *B, int n, double *C)
+{
+  for (int i = 0; i < 4; i++)
+    for (int j = 0; j < n; j++) {
+      double t = 0.0;
+      for (int k = 0; k < 4; k++)
+        t += A[i][k] * B[k * n + j];
+      C[i * n + j] = t;
+    }
+}
+
+static void mul_t(const double A[4][4], const double *B, int n, double *C)
+{
+  for (int i = 0; i < 4; i++)
+    for (int j = 0; j < n; j++) {
+      double t = 0.0;
+      for (int k = 0; k < 4; k++)
+        t += A[k][i] * B[k * n + j];
+      C[i * n + j] = t;
+    }
+}
+
+static void bridge_nan(sb_langevin_shear_bridge *b)
+{
+  for (int i = 0; i < 4; i++) {
+    for (int j = 0; j < 4; j++)
+      b->ka[i][j] = b->kb[i][j] = b->cov[i][j] = NAN;
+    b->kc[i][0] = b->kc[i][1] = NAN;
+  }
+}
+
+int sb_langevin_shear_bridge_coefs(double x, double g, double s,
+                                   sb_langevin_shear_bridge *b)
+{
+  if (!b)
+    return sbi_error(SB_EINVAL, __func__, "b is NULL");
+  bridge_nan(b);
+  if (!(x >= 1e-9 && x <= 1e9) || !isfinite(g) || !(fabs(g) * x <= 100.0) ||
+      !(s >= 1e-3 * x && s <= (1.0 - 1e-3) * x))
+    return sbi_error(SB_EDOM, __func__,
+                     "x = %g (in [1e-9, 1e9]), g = %g (|g| x <= 100), s = %g "
+                     "(s/x in [1e-3, 0.999])", x, g, s);
+  const double r = x - s;
+  double Ss[4][4], Sr[4][4], Ps[4][4], Pr[4][4], as[4][2], ar[4][2];
+  sb_langevin_shear_noise_cov(s, g, Ss);
+  sb_langevin_shear_noise_cov(r, g, Sr);
+  sb_langevin_shear_propagator(s, g, Ps, as);
+  sb_langevin_shear_propagator(r, g, Pr, ar);
+  double Js[4][4], Jr[4][4], Q[4][4], C[4][4];
+  if (spd_inverse(Ss, Js) || spd_inverse(Sr, Jr))
+    return sbi_error(SB_EDOM, __func__, "the step's noise covariance is not "
+                     "positive definite (x = %g, g = %g, s = %g)", x, g, s);
+  /* the end's information Phi(r)^T Sigma(r)^-1 Phi(r) = Pr^T H,
+   * H = Jr Pr; the precision at s is Js + Pr^T H */
+  double H[4][4], T[4][4];
+  mul(Jr, &Pr[0][0], 4, &H[0][0]);
+  mul_t(Pr, &H[0][0], 4, &T[0][0]);
+  for (int i = 0; i < 4; i++)
+    for (int j = 0; j < 4; j++)
+      Q[i][j] = Js[i][j] + 0.5 * (T[i][j] + T[j][i]);
+  if (spd_inverse(Q, C))
+    return sbi_error(SB_EDOM, __func__, "the bridge's precision is not "
+                     "positive definite (x = %g, g = %g, s = %g)", x, g, s);
+  if (s <= 0.5 * x) {
+    /* the gain form (the information form's C Js Ps cancels as s -> 0):
+     * K = Sigma(s) Phi(r)^T Sigma(x)^-1, ka = Phi(s) - K Phi(x), kb = K,
+     * kc = a(s) - K a(x) */
+    double Sx[4][4], Jx[4][4], Px[4][4], ax[4][2], SsPt[4][4];
+    sb_langevin_shear_noise_cov(x, g, Sx);
+    sb_langevin_shear_propagator(x, g, Px, ax);
+    if (spd_inverse(Sx, Jx))
+      return sbi_error(SB_EDOM, __func__, "the step's noise covariance is not "
+                       "positive definite (x = %g, g = %g)", x, g);
+    for (int i = 0; i < 4; i++)
+      for (int j = 0; j < 4; j++) {
+        double t = 0.0;
+        for (int k = 0; k < 4; k++)
+          t += Ss[i][k] * Pr[j][k];
+        SsPt[i][j] = t;
+      }
+    mul(SsPt, &Jx[0][0], 4, &b->kb[0][0]);
+    double KPx[4][4], Kax[4][2];
+    mul(b->kb, &Px[0][0], 4, &KPx[0][0]);
+    mul(b->kb, &ax[0][0], 2, &Kax[0][0]);
+    for (int i = 0; i < 4; i++) {
+      for (int j = 0; j < 4; j++)
+        b->ka[i][j] = Ps[i][j] - KPx[i][j];
+      for (int j = 0; j < 2; j++)
+        b->kc[i][j] = as[i][j] - Kax[i][j];
+    }
+  } else {
+    /* the information form (the gain form's Phi(s) - K Phi(x) cancels
+     * as s -> x): ka = C Js Ps, kb = C Pr^T Jr,
+     * kc = C (Js as - Pr^T Jr ar) */
+    double PtJ[4][4], JsPs[4][4], Jsas[4][2], Jrar[4][2], PtJar[4][2];
+    double v[4][2];
+    mul(Js, &Ps[0][0], 4, &JsPs[0][0]);
+    mul(C, &JsPs[0][0], 4, &b->ka[0][0]);
+    mul_t(Pr, &Jr[0][0], 4, &PtJ[0][0]);
+    mul(C, &PtJ[0][0], 4, &b->kb[0][0]);
+    mul(Js, &as[0][0], 2, &Jsas[0][0]);
+    mul(Jr, &ar[0][0], 2, &Jrar[0][0]);
+    mul_t(Pr, &Jrar[0][0], 2, &PtJar[0][0]);
+    for (int i = 0; i < 4; i++)
+      for (int j = 0; j < 2; j++)
+        v[i][j] = Jsas[i][j] - PtJar[i][j];
+    mul(C, &v[0][0], 2, &b->kc[0][0]);
+  }
+  for (int i = 0; i < 4; i++)
+    for (int j = 0; j < 4; j++)
+      b->cov[i][j] = 0.5 * (C[i][j] + C[j][i]);
+  return SB_SUCCESS;
+}
+
+int sb_langevin_shear_bridge_moments(double tau, double B, double G,
+                                     double cx, double cy, double h,
+                                     double s, const double s0[4],
+                                     const double s1[4], double mean[4],
+                                     double cov[4][4])
+{
+  if (mean)
+    for (int i = 0; i < 4; i++)
+      mean[i] = NAN;
+  if (cov)
+    for (int i = 0; i < 16; i++)
+      (&cov[0][0])[i] = NAN;
+  if (!s0 || !s1 || !mean || !cov)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  int fin = isfinite(cx) && isfinite(cy) && isfinite(G);
+  for (int i = 0; i < 4; i++)
+    fin &= isfinite(s0[i]) && isfinite(s1[i]);
+  if (!(tau > 0.0) || !isfinite(tau) || !(B > 0.0) || !isfinite(B) ||
+      !(h > 0.0) || !isfinite(h) || !fin)
+    return sbi_error(SB_EDOM, __func__, "tau = %g, B = %g (> 0), h = %g "
+                     "(> 0), G, cx, cy and the states finite", tau, B, h);
+  sb_langevin_shear_bridge b;
+  if (sb_langevin_shear_bridge_coefs(h / tau, G * tau, s / tau, &b))
+    return sbi_error(SB_EDOM, __func__, "%s", sb_last_error());
+  /* units: velocities B sqrt(tau), positions B tau^(3/2) */
+  const double vu = B * sqrt(tau), vx = vu * tau;
+  const double sc[4] = {vu, vx, vu, vx};
+  double t0[4], t1[4];
+  for (int i = 0; i < 4; i++) {
+    t0[i] = s0[i] / sc[i];
+    t1[i] = s1[i] / sc[i];
+  }
+  const double c[2] = {cx / vu, cy / vu};
+  for (int i = 0; i < 4; i++) {
+    double m = b.kc[i][0] * c[0] + b.kc[i][1] * c[1];
+    for (int j = 0; j < 4; j++)
+      m += b.ka[i][j] * t0[j] + b.kb[i][j] * t1[j];
+    mean[i] = sc[i] * m;
+    for (int j = 0; j < 4; j++)
+      cov[i][j] = sc[i] * sc[j] * b.cov[i][j];
+  }
+  return SB_SUCCESS;
+}

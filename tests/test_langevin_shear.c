@@ -1,0 +1,383 @@
+/* test_langevin_shear.c — the exact bridge of a Langevin particle in a
+ * linear shear (<smolbridge/langevin_shear.h>, lib/langevin/langevin_shear.c).
+ *
+ *  (a) the coefficients against a 200-digit direct conditioning of the
+ *      joint Gaussian law (tests/gen_shear_bridge_ref.py: gain form, Van
+ *      Loan's covariance, mpmath's matrix exponential), h/tau in
+ *      [1e-6, 1000], G tau up to 3 (G h <= 100), s/h from the first
+ *      16-point Gauss-Legendre node to 0.9: ka, kb, kc within 1e-10
+ *      conditional standard deviations per unit of the step's noise scale,
+ *      the covariance within 1e-10 of sqrt(cov_ii cov_jj);
+ *  (b) without shear (g = 0) each in-plane pair (u_y, y), (u_x, x) is the
+ *      Ornstein-Uhlenbeck bridge of sb_langevin_bridge_moments (an
+ *      independent implementation) for h/tau in [1e-9, 1e9] and s/h in
+ *      [1e-3, 0.999] (within 1e-9 sd), and the drift velocities drop out
+ *      (kc = 0);
+ *  (b') Monte Carlo: 20 000 paths from random starts, exact forward steps
+ *      to s and on to h, with drift velocities: the residuals of S(s)
+ *      about the bridge mean, whitened by the bridge covariance, are
+ *      N(0, I) and uncorrelated with S(h) (chi-square, p >= 1e-4);
+ *  (c) sb_langevin_shear_bridge_moments in SI units: translating the whole
+ *      path by d along y while lowering c_x by G d (the same dynamics)
+ *      translates the mean by d, and translating along x does the same;
+ *  (d) the domain.
+ * Broken on purpose: dropping the constant drift terms of the bridge
+ * (kc = 0) fails (a) at g != 0, (b') (p(mean) = 1e-15) and (c) (231 sd:
+ * the drift does change the bridge in a shear); dropping the x-y
+ * correlation of the covariance fails (a) and (b') (p(cov) = 1e-5);
+ * dropping u_x's response to u_y(0) from the propagator fails (a). */
+#include <check.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <gsl/gsl_cdf.h>
+#include <gsl/gsl_linalg.h>
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+
+#include <smolbridge/common.h>
+#include <smolbridge/langevin.h>
+#include <smolbridge/langevin_shear.h>
+
+#include "refdata.h"
+#include "testutil.h"
+
+/* ------------------------------------------------- (a) reference */
+
+START_TEST(test_reference)
+{
+  sbt_table t;
+  sbt_table_load("shear_bridge.csv", &t);
+  const int cx = sbt_col(&t, "x"), cg = sbt_col(&t, "g"),
+            cs = sbt_col(&t, "s"), c0 = sbt_col(&t, "ka00");
+  double worst_m = 0.0, worst_c = 0.0;
+  for (int r = 0; r < t.nrow; r++) {
+    const double x = sbt_at(&t, r, cx), g = sbt_at(&t, r, cg),
+                 s = sbt_at(&t, r, cs);
+    const double *v = &t.v[r * t.ncol + c0];
+    const double *ka = v, *kb = v + 16, *kc = v + 32, *cv = v + 40;
+    sb_langevin_shear_bridge b;
+    ck_assert_int_eq(sb_langevin_shear_bridge_coefs(x, g, s, &b), 0);
+    /* scales: the conditional standard deviations (reference) and the
+     * step's own noise scale for the end states */
+    double sd[4], n[4], C[4][4], S[4][4];
+    for (int i = 0, q = 0; i < 4; i++)
+      for (int j = 0; j <= i; j++, q++)
+        C[i][j] = C[j][i] = cv[q];
+    sb_langevin_shear_noise_cov(x, g, S);
+    for (int i = 0; i < 4; i++) {
+      sd[i] = sqrt(C[i][i]);
+      n[i] = sqrt(S[i][i]);
+    }
+    for (int i = 0; i < 4; i++) {
+      for (int j = 0; j < 4; j++) {
+        const double ea = fabs(b.ka[i][j] - ka[4 * i + j]) * n[j] / sd[i];
+        const double eb = fabs(b.kb[i][j] - kb[4 * i + j]) * n[j] / sd[i];
+        const double ec = fabs(b.cov[i][j] - C[i][j]) / (sd[i] * sd[j]);
+        worst_m = fmax(worst_m, fmax(ea, eb));
+        worst_c = fmax(worst_c, ec);
+        ck_assert_msg(ea <= 1e-10 && eb <= 1e-10 && ec <= 1e-10,
+                      "x %g g %g s %g (%d,%d): ka %.17g/%.17g kb %.17g/%.17g "
+                      "cov %.17g/%.17g", x, g, s, i, j, b.ka[i][j],
+                      ka[4 * i + j], b.kb[i][j], kb[4 * i + j], b.cov[i][j],
+                      C[i][j]);
+      }
+      for (int j = 0; j < 2; j++) {
+        const double ec = fabs(b.kc[i][j] - kc[2 * i + j]) / sd[i];
+        worst_m = fmax(worst_m, ec);
+        ck_assert_msg(ec <= 1e-10, "x %g g %g s %g kc(%d,%d): %.17g vs %.17g",
+                      x, g, s, i, j, b.kc[i][j], kc[2 * i + j]);
+      }
+    }
+  }
+  printf("shear bridge: %d rows, worst mean coefficient error %.2g sd, "
+         "covariance %.2g\n", t.nrow, worst_m, worst_c);
+  sbt_table_free(&t);
+}
+END_TEST
+
+/* ------------------------------------------------- (b) g = 0 */
+
+START_TEST(test_no_shear)
+{
+  static const double X[] = {1e-9, 1e-4, 0.3, 2.0, 50.0, 1e3, 1e6, 1e9};
+  static const double F[] = {1e-3, 0.0053, 0.5, 0.97, 0.999};
+  const sb_langevin p = {1.0, 1.0, 0.0};
+  double worst = 0.0;
+  for (size_t a = 0; a < sizeof X / sizeof *X; a++)
+    for (size_t f = 0; f < sizeof F / sizeof *F; f++) {
+      const double x = X[a], s = F[f] * x;
+      sb_langevin_shear_bridge b;
+      ck_assert_int_eq(sb_langevin_shear_bridge_coefs(x, 0.0, s, &b), 0);
+      /* the OU bridge's coefficients from its moments at unit ends */
+      for (int blk = 0; blk < 2; blk++) {
+        const int iu = 2 * blk, ix = 2 * blk + 1; /* (u, x) of the block */
+        sb_langevin_mom m0, m;
+        ck_assert_int_eq(
+            sb_langevin_bridge_moments(&p, x, s, 0, 0, 0, 0, &m0), 0);
+        const double sdx = sqrt(m0.var_x), sdu = sqrt(m0.var_u);
+        ck_assert(fabs(b.cov[ix][ix] / m0.var_x - 1.0) <= 1e-10);
+        ck_assert(fabs(b.cov[iu][iu] / m0.var_u - 1.0) <= 1e-10);
+        ck_assert(fabs(b.cov[ix][iu] - m0.cov_xu) <= 1e-10 * sdx * sdu);
+        /* no coupling across the blocks */
+        const int o = 2 - 2 * blk;
+        for (int k = 0; k < 2; k++)
+          for (int l = 0; l < 2; l++) {
+            const double vv = b.cov[iu + k][iu + k] * b.cov[o + l][o + l];
+            ck_assert(fabs(b.cov[iu + k][o + l]) <= 1e-12 * sqrt(vv));
+            ck_assert(b.ka[iu + k][o + l] == 0.0);
+            ck_assert(b.kb[iu + k][o + l] == 0.0);
+          }
+        /* ends one noise unit off in each coordinate */
+        double S[4][4];
+        sb_langevin_shear_noise_cov(x, 0.0, S);
+        const double nu = sqrt(S[iu][iu]), nx = sqrt(S[ix][ix]);
+        const double ends[4][4] = {{nx, 0, 0, 0}, {0, nu, 0, 0},
+                                   {0, 0, nx, 0}, {0, 0, 0, nu}};
+        for (int q = 0; q < 4; q++) {
+          const double *z = ends[q]; /* x0 u0 x1 u1 */
+          ck_assert_int_eq(sb_langevin_bridge_moments(&p, x, s, z[0], z[1],
+                                                      z[2], z[3], &m), 0);
+          const double mx = b.ka[ix][ix] * z[0] + b.ka[ix][iu] * z[1] +
+                            b.kb[ix][ix] * z[2] + b.kb[ix][iu] * z[3];
+          const double mu = b.ka[iu][ix] * z[0] + b.ka[iu][iu] * z[1] +
+                            b.kb[iu][ix] * z[2] + b.kb[iu][iu] * z[3];
+          const double e = fmax(fabs(mx - m.mean_x) / sdx,
+                                fabs(mu - m.mean_u) / sdu);
+          worst = fmax(worst, e);
+          ck_assert_msg(e <= 1e-9, "x %g s %g block %d end %d: %.3g sd", x,
+                        s, blk, q, e);
+        }
+        for (int k = 0; k < 2; k++)
+          ck_assert_msg(fabs(b.kc[iu][k]) <= 1e-10 * sdu &&
+                            fabs(b.kc[ix][k]) <= 1e-10 * sdx,
+                        "x %g s %g: drift coefficient %.3g %.3g", x, s,
+                        b.kc[iu][k], b.kc[ix][k]);
+      }
+    }
+  printf("shear bridge at g = 0 against the OU bridge: worst %.2g sd\n",
+         worst);
+}
+END_TEST
+
+/* ------------------------------------------------- (b') Monte Carlo */
+
+/* Lower Cholesky factor of a 4 x 4 covariance (GSL), row-major. */
+static void chol4(const double S[4][4], double L[16])
+{
+  gsl_matrix_view m = gsl_matrix_view_array(L, 4, 4);
+  for (int i = 0; i < 4; i++)
+    for (int j = 0; j < 4; j++)
+      L[4 * i + j] = j <= i ? S[i][j] : 0.0;
+  for (int i = 0; i < 4; i++)
+    for (int j = i + 1; j < 4; j++)
+      L[4 * i + j] = S[j][i];
+  ck_assert_int_eq(gsl_linalg_cholesky_decomp1(&m.matrix), 0);
+  for (int i = 0; i < 4; i++)
+    for (int j = i + 1; j < 4; j++)
+      L[4 * i + j] = 0.0;
+}
+
+/* One exact forward piece: S <- Phi(t) S + a(t) c + L z. */
+static void forward(double t, double g, const double c[2], const double *L,
+                    const gsl_rng *r, double S[4])
+{
+  double P[4][4], a[4][2], z[4], o[4];
+  sb_langevin_shear_propagator(t, g, P, a);
+  for (int i = 0; i < 4; i++)
+    z[i] = gsl_ran_gaussian_ziggurat(r, 1.0);
+  for (int i = 0; i < 4; i++) {
+    o[i] = a[i][0] * c[0] + a[i][1] * c[1];
+    for (int j = 0; j < 4; j++)
+      o[i] += P[i][j] * S[j] + L[4 * i + j] * z[j];
+  }
+  memcpy(S, o, sizeof o);
+}
+
+/* Paths from random starts forward to s and on to x (exact steps); the
+ * residuals S(s) - E[S(s) | S(0), S(x)], whitened by the bridge's
+ * covariance, must be N(0, I) and uncorrelated with S(x) (which needs
+ * both the gain and the covariance right, and kc with drifts).
+ * Chi-square p-values: mean (4 dof), covariance (10), cross-covariance
+ * with the standardised end (16). */
+START_TEST(test_residuals)
+{
+  static const double CASES[][5] = {/* x, g, s/x, c_x, c_y */
+                                    {2.0, 0.4, 0.3, 0.7, -0.4},
+                                    {0.05, 3.0, 0.6, 1.5, 0.2},
+                                    {30.0, 0.2, 0.5, -0.3, 0.5}};
+  const size_t N = 20000;
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  gsl_rng_set(r, 2026);
+  for (size_t k = 0; k < sizeof CASES / sizeof *CASES; k++) {
+    const double x = CASES[k][0], g = CASES[k][1], s = CASES[k][2] * x;
+    const double c[2] = {CASES[k][3], CASES[k][4]};
+    sb_langevin_shear_bridge b;
+    ck_assert_int_eq(sb_langevin_shear_bridge_coefs(x, g, s, &b), 0);
+    double Ss[4][4], Sr[4][4], Sx[4][4], Ls[16], Lr[16], Lc[16];
+    sb_langevin_shear_noise_cov(s, g, Ss);
+    sb_langevin_shear_noise_cov(x - s, g, Sr);
+    sb_langevin_shear_noise_cov(x, g, Sx);
+    chol4(Ss, Ls);
+    chol4(Sr, Lr);
+    chol4(b.cov, Lc);
+    double m[4] = {0}, M[4][4] = {{0}}, X[4][4] = {{0}}, sd[4];
+    {  /* E[S(x)_i^2]: S(0) ~ N(0, I), so Phi Phi^T + Sigma + (a c)^2 */
+      double P[4][4], a[4][2];
+      sb_langevin_shear_propagator(x, g, P, a);
+      for (int i = 0; i < 4; i++) {
+        const double mu = a[i][0] * c[0] + a[i][1] * c[1];
+        double v = Sx[i][i] + mu * mu;
+        for (int j = 0; j < 4; j++)
+          v += P[i][j] * P[i][j];
+        sd[i] = sqrt(v);
+      }
+    }
+    for (size_t q = 0; q < N; q++) {
+      double S0[4], S[4], w[4], R[4];
+      for (int i = 0; i < 4; i++)
+        S0[i] = gsl_ran_gaussian_ziggurat(r, 1.0);
+      memcpy(S, S0, sizeof S);
+      forward(s, g, c, Ls, r, S);
+      double Sm[4];
+      memcpy(Sm, S, sizeof S);
+      forward(x - s, g, c, Lr, r, S);
+      for (int i = 0; i < 4; i++) {
+        R[i] = Sm[i] - (b.kc[i][0] * c[0] + b.kc[i][1] * c[1]);
+        for (int j = 0; j < 4; j++)
+          R[i] -= b.ka[i][j] * S0[j] + b.kb[i][j] * S[j];
+      }
+      for (int i = 0; i < 4; i++) { /* w = Lc^-1 R */
+        double t = R[i];
+        for (int j = 0; j < i; j++)
+          t -= Lc[4 * i + j] * w[j];
+        w[i] = t / Lc[4 * i + i];
+      }
+      for (int i = 0; i < 4; i++) {
+        m[i] += w[i];
+        for (int j = 0; j < 4; j++) {
+          M[i][j] += w[i] * w[j];
+          X[i][j] += w[i] * S[j] / sd[j];
+        }
+      }
+    }
+    double chim = 0.0, chic = 0.0, chix = 0.0;
+    const double n = (double)N;
+    for (int i = 0; i < 4; i++) {
+      chim += m[i] * m[i] / n;
+      for (int j = 0; j <= i; j++) {
+        const double d = M[i][j] / n - (i == j);
+        chic += d * d * n / (i == j ? 2.0 : 1.0);
+      }
+      for (int j = 0; j < 4; j++)
+        chix += X[i][j] * X[i][j] / n;
+    }
+    const double pm = gsl_cdf_chisq_Q(chim, 4.0),
+                 pc = gsl_cdf_chisq_Q(chic, 10.0),
+                 px = gsl_cdf_chisq_Q(chix, 16.0);
+    printf("shear bridge residuals x %g g %g s/x %g: p(mean) %.3g p(cov) "
+           "%.3g p(cross) %.3g\n", x, g, CASES[k][2], pm, pc, px);
+    ck_assert_msg(pm >= 1e-4 && pc >= 1e-4 && px >= 1e-4,
+                  "x %g g %g: p %.3g %.3g %.3g", x, g, pm, pc, px);
+  }
+  gsl_rng_free(r);
+}
+END_TEST
+
+/* ------------------------------------------------- (c) SI, invariances */
+
+START_TEST(test_translations)
+{
+  const double tau = 4e-7, B = 3.1e-2, G = 2.5e5, h = 3.0 * tau,
+               s = 0.37 * h, cx = 0.2, cy = -0.05;
+  const double vu = B * sqrt(tau), vx = vu * tau;
+  const double s0[4] = {0.3 * vu, 1e-6, -0.7 * vu, 2e-6};
+  const double s1[4] = {-0.2 * vu, 1e-6 + 0.8 * vx, 0.5 * vu,
+                        2e-6 + 1.5 * vx};
+  double m[4], c[4][4], m2[4], c2[4][4];
+  ck_assert_int_eq(sb_langevin_shear_bridge_moments(tau, B, G, cx, cy, h, s,
+                                                    s0, s1, m, c), 0);
+  for (int i = 0; i < 4; i++)
+    ck_assert(isfinite(m[i]) && c[i][i] > 0.0);
+  /* y -> y + d with c_x -> c_x - G d: the same x dynamics */
+  const double d = 7.3e-7;
+  double t0[4], t1[4];
+  for (int i = 0; i < 4; i++) {
+    t0[i] = s0[i] + (i == 1 ? d : 0.0);
+    t1[i] = s1[i] + (i == 1 ? d : 0.0);
+  }
+  ck_assert_int_eq(sb_langevin_shear_bridge_moments(tau, B, G, cx - G * d, cy,
+                                                    h, s, t0, t1, m2, c2), 0);
+  for (int i = 0; i < 4; i++) {
+    const double want = m[i] + (i == 1 ? d : 0.0);
+    ck_assert_msg(fabs(m2[i] - want) <= 1e-9 * sqrt(c[i][i]),
+                  "y shift: component %d off by %.3g sd", i,
+                  (m2[i] - want) / sqrt(c[i][i]));
+    for (int j = 0; j < 4; j++)
+      ck_assert(fabs(c2[i][j] - c[i][j]) <= 1e-12 * sqrt(c[i][i] * c[j][j]));
+  }
+  /* x -> x + d */
+  for (int i = 0; i < 4; i++) {
+    t0[i] = s0[i] + (i == 3 ? d : 0.0);
+    t1[i] = s1[i] + (i == 3 ? d : 0.0);
+  }
+  ck_assert_int_eq(sb_langevin_shear_bridge_moments(tau, B, G, cx, cy, h, s,
+                                                    t0, t1, m2, c2), 0);
+  for (int i = 0; i < 4; i++) {
+    const double want = m[i] + (i == 3 ? d : 0.0);
+    ck_assert_msg(fabs(m2[i] - want) <= 1e-9 * sqrt(c[i][i]),
+                  "x shift: component %d off by %.3g sd", i,
+                  (m2[i] - want) / sqrt(c[i][i]));
+  }
+  /* the drift matters in a shear: c_x shifts the mean of y */
+  ck_assert_int_eq(sb_langevin_shear_bridge_moments(tau, B, G, cx + 0.1, cy,
+                                                    h, s, s0, s1, m2, c2), 0);
+  ck_assert(fabs(m2[1] - m[1]) > 1e-3 * sqrt(c[1][1]));
+}
+END_TEST
+
+/* ------------------------------------------------- (d) domain */
+
+START_TEST(test_domain)
+{
+  sb_langevin_shear_bridge b;
+  ck_assert_int_eq(sb_langevin_shear_bridge_coefs(1.0, 0.1, 0.5, NULL),
+                   SB_EINVAL);
+  ck_assert_int_eq(sb_langevin_shear_bridge_coefs(1e-10, 0.1, 5e-11, &b),
+                   SB_EDOM);
+  ck_assert(isnan(b.ka[0][0]) && isnan(b.cov[3][3]) && isnan(b.kc[2][1]));
+  ck_assert_int_eq(sb_langevin_shear_bridge_coefs(1.0, 0.1, 0.0, &b),
+                   SB_EDOM);
+  ck_assert_int_eq(sb_langevin_shear_bridge_coefs(1.0, 0.1, 1e-4, &b),
+                   SB_EDOM);
+  ck_assert_int_eq(sb_langevin_shear_bridge_coefs(1.0, 0.1, 1.0, &b),
+                   SB_EDOM);
+  ck_assert_int_eq(sb_langevin_shear_bridge_coefs(10.0, 11.0, 5.0, &b),
+                   SB_EDOM);
+  ck_assert_int_eq(sb_langevin_shear_bridge_coefs(1.0, NAN, 0.5, &b),
+                   SB_EDOM);
+  ck_assert_int_eq(sb_langevin_shear_bridge_coefs(1.0, 0.1, 0.5, &b), 0);
+  double m[4], c[4][4];
+  const double z[4] = {0, 0, 0, 0};
+  ck_assert_int_eq(sb_langevin_shear_bridge_moments(0.0, 1, 1, 0, 0, 1, 0.5,
+                                                    z, z, m, c), SB_EDOM);
+  ck_assert(isnan(m[0]) && isnan(c[1][1]));
+  ck_assert_int_eq(sb_langevin_shear_bridge_moments(1, 1, 1, 0, 0, 1, 0.5,
+                                                    NULL, z, m, c), SB_EINVAL);
+}
+END_TEST
+
+int main(void)
+{
+  Suite *s = suite_create("langevin_shear");
+  TCase *tc = tcase_create("core");
+  tcase_set_timeout(tc, 60);
+  tcase_add_test(tc, test_reference);
+  tcase_add_test(tc, test_no_shear);
+  tcase_add_test(tc, test_residuals);
+  tcase_add_test(tc, test_translations);
+  tcase_add_test(tc, test_domain);
+  suite_add_tcase(s, tc);
+  return sbt_run_suite(s);
+}
