@@ -7,7 +7,6 @@
 #include <math.h>
 #include <string.h>
 
-#include <gsl/gsl_linalg.h>
 #include <smolbridge/langevin.h>
 #include <smolbridge/langevin_shear.h>
 
@@ -247,29 +246,47 @@ void sb_langevin_shear_propagator(double x, double g, double Phi[4][4],
 
 /* Inverse of the symmetric positive definite 4 x 4 matrix M into Mi, by
  * the Cholesky factor of D M D, D = diag(M_ii^-1/2) (unit diagonal: the
- * factorisation sees the correlations, not the scales).  Status. */
+ * factorisation sees the correlations, not the scales).  Written out for
+ * this fixed size rather than with GSL's, whose failure on a matrix that
+ * is not positive definite goes through the process-wide GSL error
+ * handler.  SB_EDOM when a pivot is not positive. */
 static int spd_inverse(const double M[4][4], double Mi[4][4])
 {
-  double d[4], w[16];
+  double d[4], L[4][4] = {{0}}, V[4][4] = {{0}};
   for (int i = 0; i < 4; i++) {
     if (!(M[i][i] > 0.0) || !isfinite(M[i][i]))
       return SB_EDOM;
     d[i] = 1.0 / sqrt(M[i][i]);
   }
+  for (int j = 0; j < 4; j++)
+    for (int i = j; i < 4; i++) {
+      double t = d[i] * d[j] * 0.5 * (M[i][j] + M[j][i]);
+      for (int k = 0; k < j; k++)
+        t -= L[i][k] * L[j][k];
+      if (i == j) {
+        if (!(t > 0.0))
+          return SB_EDOM;
+        L[j][j] = sqrt(t);
+      } else
+        L[i][j] = t / L[j][j];
+    }
+  /* V = L^-1 (lower), then (D M D)^-1 = V^T V */
+  for (int j = 0; j < 4; j++) {
+    V[j][j] = 1.0 / L[j][j];
+    for (int i = j + 1; i < 4; i++) {
+      double t = 0.0;
+      for (int k = j; k < i; k++)
+        t -= L[i][k] * V[k][j];
+      V[i][j] = t / L[i][i];
+    }
+  }
   for (int i = 0; i < 4; i++)
-    for (int j = 0; j < 4; j++)
-      w[4 * i + j] = d[i] * d[j] * 0.5 * (M[i][j] + M[j][i]);
-  gsl_matrix_view W = gsl_matrix_view_array(w, 4, 4);
-  gsl_error_handler_t *old = gsl_set_error_handler_off();
-  int st = gsl_linalg_cholesky_decomp1(&W.matrix);
-  if (!st)
-    st = gsl_linalg_cholesky_invert(&W.matrix);
-  gsl_set_error_handler(old);
-  if (st)
-    return SB_EDOM;
-  for (int i = 0; i < 4; i++)
-    for (int j = 0; j < 4; j++)
-      Mi[i][j] = d[i] * d[j] * w[4 * i + j];
+    for (int j = 0; j < 4; j++) {
+      double t = 0.0;
+      for (int k = i > j ? i : j; k < 4; k++)
+        t += V[k][i] * V[k][j];
+      Mi[i][j] = d[i] * d[j] * t;
+    }
   return SB_SUCCESS;
 }
 

@@ -77,8 +77,7 @@ typedef struct {
  *  beyond in information form, ka = cov Sigma(s)^-1 Phi(s),
  *  kb = cov Phi(r)^T Sigma(r)^-1, kc = cov (Sigma(s)^-1 a(s) - Phi(r)^T
  *  Sigma(r)^-1 a(r)) (each form cancels near one end of the step); each
- *  inverse by the Cholesky factor of the matrix scaled to unit diagonal
- *  (GSL).
+ *  inverse by the Cholesky factor of the matrix scaled to unit diagonal.
  *  At g = 0 the (u_y, y) and (u_x, x) blocks are the Ornstein-Uhlenbeck
  *  bridge of sb_langevin_bridge_moments and kc = 0.  Domain: x in
  *  [1e-9, 1e9], s/x in [1e-3, 0.999], |g| x <= 100, all finite; else
