@@ -191,6 +191,66 @@ START_TEST(test_le_redetect_chain)
 }
 END_TEST
 
+/* The Langevin detector's exact shear bridge across the sliding
+ * boundary: a Brownian pair (tau = 1, k_B T = 1, dt = tau, G dt = 0.1)
+ * whose partner is an image above the box has the contact law of the
+ * same pair inside the box (the image sees the field continued linearly:
+ * its drift is its particle's).  A custom detector calls
+ * sb_engine_langevin_contact 4000 times for the step's pair.  Both runs
+ * draw from the same generator (seed, and keyed transport), and the
+ * sampler's inputs agree to rounding, so the hit counts (~45%) agree
+ * draw for draw: they may differ by at most 10 (a decision flipped by
+ * rounding, a chance of ~1e-10).  Broken on purpose: without the image's
+ * velocity offset in the fluid velocity the sampler receives, the counts
+ * differ by 64. */
+typedef struct {
+  long hits, calls;
+} le_count;
+
+static int le_count_contacts(const sb_engine *e, const sb_engine_pair *p,
+                             const gsl_rng *r, void *vctx, double *s)
+{
+  le_count *c = vctx;
+  for (int k = 0; k < 4000; k++) {
+    double f;
+    const int h = sb_engine_langevin_contact(e, p, r, &f, NULL);
+    ck_assert_int_ge(h, 0);
+    c->hits += h;
+    c->calls++;
+  }
+  *s = 0.0;
+  return 0;
+}
+
+START_TEST(test_le_langevin_shear_law)
+{
+  const body bd[2] = {
+      {{10.0, 19.3, 10.0}, {0.9, 0.8, 0.05}, 0},
+      {{10.0 - DELTA + 0.3, 0.5, 10.1}, {-0.9, -0.3, 0.0}, 1}};
+  const sb_engine_species brown = {0.4, 1.0, 1.0, sqrt(2.0), 1.0 /
+                                                                 SB_BOLTZMANN};
+  le_count cnt[2] = {{0, 0}, {0, 0}};
+  for (int inside = 0; inside < 2; inside++) {
+    sb_engine *e = le_engine(LBOX, 1.0, GS, inside ? 0.0 : DELTA,
+                             SB_DETECT_BALLISTIC, SB_OUTCOME_COUNT, 4, 1);
+    ck_assert_int_eq(sb_engine_set_detector(e, le_count_contacts,
+                                            &cnt[inside], 1), 0);
+    sb_engine_add_species(e, &brown, NULL);
+    place(e, 0, &bd[0], inside);
+    place(e, 0, &bd[1], inside);
+    ck_assert_msg(sb_engine_step(e) == 0, "%s", sb_last_error());
+    sb_engine_free(e);
+  }
+  ck_assert(cnt[0].calls == 4000 && cnt[1].calls == 4000);
+  printf("langevin shear across / inside the box: %ld / %ld hits of 4000\n",
+         cnt[0].hits, cnt[1].hits);
+  ck_assert_msg(cnt[0].hits > 200 && cnt[0].hits < 3800, "%ld hits",
+                cnt[0].hits);
+  ck_assert_msg(labs(cnt[0].hits - cnt[1].hits) <= 10,
+                "across %ld, inside %ld", cnt[0].hits, cnt[1].hits);
+}
+END_TEST
+
 /* Two free-flight primaries merge across the boundary: one cluster of
  * twice the mass whose momentum is the pair's in the frame of a (b's
  * image velocity), as inside the box; chord and Langevin contacts. */
@@ -432,6 +492,7 @@ int main(void)
   tcase_add_test(tc, test_le_elastic_pair);
   tcase_add_test(tc, test_le_redetect_chain);
   tcase_add_test(tc, test_le_merge_pair);
+  tcase_add_test(tc, test_le_langevin_shear_law);
   tcase_add_test(tc, test_le_reinsert_kernel);
   tcase_add_test(tc, test_reinsert_flows_on);
   suite_add_tcase(s, tc);

@@ -17,6 +17,9 @@
  *      to s and on to h, with drift velocities: the residuals of S(s)
  *      about the bridge mean, whitened by the bridge covariance, are
  *      N(0, I) and uncorrelated with S(h) (chi-square, p >= 1e-4);
+ *  (b'') sb_langevin_shear_bridge_sample against the exact law inside
+ *      the coefficients' domain, near both ends (the halving) and in a
+ *      step below 1e-9 tau;
  *  (c) sb_langevin_shear_bridge_moments in SI units: translating the whole
  *      path by d along y while lowering c_x by G d (the same dynamics)
  *      translates the mean by d, and translating along x does the same;
@@ -25,7 +28,8 @@
  * (kc = 0) fails (a) at g != 0, (b') (p(mean) = 1e-15) and (c) (231 sd:
  * the drift does change the bridge in a shear); dropping the x-y
  * correlation of the covariance fails (a) and (b') (p(cov) = 1e-5);
- * dropping u_x's response to u_y(0) from the propagator fails (a). */
+ * dropping u_x's response to u_y(0) from the propagator fails (a); a
+ * halving that loses track of s fails (b'') near the end (p = 0). */
 #include <check.h>
 #include <math.h>
 #include <stdio.h>
@@ -285,6 +289,100 @@ START_TEST(test_residuals)
 }
 END_TEST
 
+/* sb_langevin_shear_bridge_sample: 20 000 draws, whitened by the exact
+ * law, N(0, I) (chi-square p >= 1e-4 on the mean, 4 dof, and the
+ * covariance, 10 dof): inside the coefficients' domain against
+ * sb_langevin_shear_bridge_moments (G h = 0.5, with drifts); near both
+ * ends (s/h = 1e-4, 1 - 1e-4: the interval halved by midpoint draws)
+ * and below h = 1e-9 tau (each in-plane pair from its OU bridge) at
+ * G = 0 against sb_langevin_bridge_moments, whose domain reaches there. */
+START_TEST(test_sample)
+{
+  static const double CASES[][4] = {/* h/tau, s/h, G tau, drifts on */
+                                    {2.0, 0.3, 0.25, 1},
+                                    {2.0, 1e-4, 0.0, 0},
+                                    {2.0, 1.0 - 1e-4, 0.0, 0},
+                                    {5e-10, 0.4, 0.0, 0}};
+  const double tau = 2e-6, B = 0.7;
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  gsl_rng_set(r, 99);
+  for (size_t k = 0; k < sizeof CASES / sizeof *CASES; k++) {
+    const double h = CASES[k][0] * tau, s = CASES[k][1] * h,
+                 G = CASES[k][2] / tau;
+    const double vu = B * sqrt(tau), vx = vu * tau;
+    /* ends a typical step apart: the mean motion plus a noise-sized
+     * offset (ballistic h^1.5, diffusive h^0.5); positions near 0 in the
+     * tiny step (its spread is far below an ulp of 1e-6) */
+    const double hn = h / tau, sn = hn < 1.0 ? pow(hn, 1.5) : sqrt(hn),
+                 o0 = hn < 1e-6 ? 0.0 : 1e-6;
+    const double cx = CASES[k][3] * 0.4 * vu, cy = CASES[k][3] * -0.2 * vu;
+    const double s0[4] = {0.3 * vu, o0, -0.5 * vu, 2.0 * o0};
+    const double s1[4] = {0.1 * vu, o0 + 0.2 * vu * h + 0.4 * vx * sn,
+                          0.2 * vu, 2.0 * o0 - 0.15 * vu * h - 0.7 * vx * sn};
+    double m[4], C[4][4];
+    if (G != 0.0)
+      ck_assert_int_eq(sb_langevin_shear_bridge_moments(tau, B, G, cx, cy, h,
+                                                        s, s0, s1, m, C),
+                       0);
+    else {  /* two independent OU bridges */
+      const sb_langevin p = {tau, B, 0.0};
+      memset(C, 0, sizeof C);
+      for (int c = 0; c < 2; c++) {
+        sb_langevin_mom o;
+        const int iu = 2 * c, ix = 2 * c + 1;
+        ck_assert_int_eq(sb_langevin_bridge_moments(&p, h, s, s0[ix], s0[iu],
+                                                    s1[ix], s1[iu], &o), 0);
+        m[iu] = o.mean_u, m[ix] = o.mean_x;
+        C[iu][iu] = o.var_u, C[ix][ix] = o.var_x;
+        C[iu][ix] = C[ix][iu] = o.cov_xu;
+      }
+    }
+    double L[16];
+    chol4(C, L);
+    const size_t N = 20000;
+    double mm[4] = {0}, M[4][4] = {{0}};
+    for (size_t q = 0; q < N; q++) {
+      double o[4], w[4];
+      ck_assert_int_eq(sb_langevin_shear_bridge_sample(tau, B, G, cx, cy, h,
+                                                       s, s0, s1, r, o), 0);
+      for (int i = 0; i < 4; i++) {
+        double t = o[i] - m[i];
+        for (int j = 0; j < i; j++)
+          t -= L[4 * i + j] * w[j];
+        w[i] = t / L[4 * i + i];
+      }
+      for (int i = 0; i < 4; i++) {
+        mm[i] += w[i];
+        for (int j = 0; j <= i; j++)
+          M[i][j] += w[i] * w[j];
+      }
+    }
+    double chim = 0.0, chic = 0.0;
+    for (int i = 0; i < 4; i++) {
+      chim += mm[i] * mm[i] / (double)N;
+      for (int j = 0; j <= i; j++) {
+        const double d = M[i][j] / (double)N - (i == j);
+        chic += d * d * (double)N / (i == j ? 2.0 : 1.0);
+      }
+    }
+    const double pm = gsl_cdf_chisq_Q(chim, 4.0),
+                 pc = gsl_cdf_chisq_Q(chic, 10.0);
+    printf("shear bridge sample h/tau %g s/h %g: p(mean) %.3g p(cov) %.3g\n",
+           CASES[k][0], CASES[k][1], pm, pc);
+    ck_assert_msg(pm >= 1e-4 && pc >= 1e-4, "case %zu: p %.3g %.3g", k, pm,
+                  pc);
+  }
+  double o[4];
+  const double z[4] = {0, 0, 0, 0};
+  ck_assert_int_eq(sb_langevin_shear_bridge_sample(1, 1, 0, 0, 0, 1, 1.5, z,
+                                                   z, r, o), SB_EDOM);
+  ck_assert(isnan(o[0]));
+  ck_assert_int_eq(sb_langevin_shear_bridge_sample(1, 1, 0, 0, 0, 1, 0.5, z,
+                                                   z, NULL, o), SB_EINVAL);
+  gsl_rng_free(r);
+}
+END_TEST
+
 /* ------------------------------------------------- (c) SI, invariances */
 
 START_TEST(test_translations)
@@ -376,6 +474,7 @@ int main(void)
   tcase_add_test(tc, test_reference);
   tcase_add_test(tc, test_no_shear);
   tcase_add_test(tc, test_residuals);
+  tcase_add_test(tc, test_sample);
   tcase_add_test(tc, test_translations);
   tcase_add_test(tc, test_domain);
   suite_add_tcase(s, tc);

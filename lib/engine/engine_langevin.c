@@ -146,6 +146,29 @@ void sbi_engine_langevin_begin(sb_engine *e)
     e->lp_t[k] = 0.0;
 }
 
+/* The shear rate of particle k's exact bridge: G for a Stokes species
+ * with noise in the Lees-Edwards shear (its transport is exact in the
+ * linear field, engine_lees.c), else 0 (the uniform-flow bridge). */
+static double shear_rate(const sb_engine *e, size_t k)
+{
+  const sb_engine_species *sp = &e->spec[e->species[k]];
+  const double G = e->fluid_p[0];
+  if (e->lees && e->fluid == SB_FLUID_SHEAR && G != 0.0 &&
+      !isinf(sp->tau) && sp->B > 0.0 &&
+      !(e->species[k] < e->nsfl &&
+        e->sfl[e->species[k]].drag != SB_DRAG_STOKES))
+    return G;
+  return 0.0;
+}
+
+/* The constant part c_x of the fluid velocity (G y + c_x) that particle k
+ * sees in the shear (the field G (y - L_y/2) plus its settling
+ * velocity). */
+static double shear_cx(const sb_engine *e, size_t k, double G)
+{
+  return (sbi_engine_w(e, k, 0) - e->us[3 * k]) - G * 0.5 * e->par.L[1];
+}
+
 /* State of particle k at step fraction t on its current piece (position
  * in its frame); draws from r inside a stochastic piece. */
 static int state_at(const sb_engine *e, size_t k, double t, const gsl_rng *r,
@@ -162,7 +185,23 @@ static int state_at(const sb_engine *e, size_t k, double t, const gsl_rng *r,
   const sb_engine_species *sp = &e->spec[e->species[k]];
   const double h = (1.0 - t0) * e->par.dt, s = (t - t0) * e->par.dt;
   x[0] = x[1] = x[2] = u[0] = u[1] = u[2] = 0.0;
-  for (int c = 0; c < e->par.dim; c++) {
+  int c0 = 0;
+  const double G = shear_rate(e, k);
+  if (G != 0.0) {  /* the in-plane state from the exact shear bridge */
+    const double *xa = &e->lp_x[3 * k], *ua = &e->lp_u[3 * k],
+                 *xb = &e->x[3 * k], *ub = &e->u[3 * k];
+    const double sa[4] = {ua[1], xa[1], ua[0], xa[0]},
+                 sb[4] = {ub[1], xb[1], ub[0], xb[0]};
+    double o[4];
+    int st = sb_langevin_shear_bridge_sample(
+        sp->tau, sp->B, G, shear_cx(e, k, G), sbi_engine_w(e, k, 1), h, s,
+        sa, sb, r, o);
+    if (st)
+      return st;
+    u[1] = o[0], x[1] = o[1], u[0] = o[2], x[0] = o[3];
+    c0 = 2;
+  }
+  for (int c = c0; c < e->par.dim; c++) {
     const double xa = e->lp_x[3 * k + c], ua = e->lp_u[3 * k + c];
     const double w = sbi_engine_w(e, k, c);
     if (isinf(sp->tau)) {
@@ -204,6 +243,12 @@ static void fill_path(const sb_engine *e, size_t k, const double *xa,
     q->x1[c] = e->x[3 * k + c] + sh[c] + v * h;
     q->u1[c] = e->u[3 * k + c] + v;
   }
+  /* in the shear: the fluid velocity at x0, the field continued linearly
+   * through the images (their velocity offset du is G times their y
+   * shift) */
+  q->G = shear_rate(e, k);
+  if (q->G != 0.0)
+    q->us[0] = shear_cx(e, k, q->G) + q->G * q->x0[1];
 }
 
 double sbi_pair_chord_min2(const sb_engine_pair *p)

@@ -117,6 +117,7 @@ static int touches_langevin(sb_engine *e, size_t i, int k, int s, double a)
   q.tau = sp->tau;
   q.B = sp->B;
   q.mass = e->mass[i];
+  q.G = 0.0;
   for (int c = 0; c < 3; c++) {
     q.us[c] = sbi_engine_w(e, i, c);
     q.x0[c] = e->x0[3 * i + c];

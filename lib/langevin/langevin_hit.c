@@ -22,6 +22,9 @@
 #include <gsl/gsl_randist.h>
 
 #include "common/internal.h"
+#include <smolbridge/langevin_shear.h>
+
+#include "langevin/langevin_shear_internal.h"
 #include "langevin_hit_internal.h"
 
 /* Multiplier on the quadrature value of the Rice integral (margin for the
@@ -127,6 +130,11 @@ typedef struct {
   double R, htop, eps, delta;
   sbi_lh_slot *sl[2];
   double tau[2], B[2], mass[2], wv[2][3];
+  /* linear shear: G, and each process's constant drift velocities
+   * (c_x, c_y) (the fluid velocity is (G y + c_x, c_y)); shear = 1 when a
+   * process's slot carries the in-plane shear bridge */
+  double G, cs[2][2], csbar[2];
+  int shear;
   int auditing;
   /* relative mode (relative_walk): the pair's relative state in slot 0
    * (slot 1 zero) and the barycentre's ends kept for the contact */
@@ -150,6 +158,12 @@ typedef struct {
   double mu[3][SBI_LH_NQ], mv[3][SBI_LH_NQ];
   double s2[SBI_LH_NQ], su2[SBI_LH_NQ], c[SBI_LH_NQ];
   double s2max, devmax;
+  /* shear (not isotropic): the pair's covariances by component, of the
+   * position (P: xx, xy, yy, zz), the velocity (V: the same) and between
+   * them (X: (x, u_x), (x, u_y), (y, u_x), (y, u_y), (z, u_z)); s2 then
+   * holds the largest position variance along any direction */
+  int shear;
+  double P[4][SBI_LH_NQ], V[4][SBI_LH_NQ], X[5][SBI_LH_NQ];
 } nodes;
 
 static void one_mean(const sbi_lh_coef *q, const pstate *A, const pstate *B,
@@ -159,6 +173,37 @@ static void one_mean(const sbi_lh_coef *q, const pstate *A, const pstate *B,
   *mx = A->x[p][k] + q->ax * dx + q->bx * A->u[p][k] + q->cx * B->u[p][k] +
         q->wx * w;
   *mu = q->au * dx + q->bu * A->u[p][k] + q->cu * B->u[p][k] + q->wu * w;
+}
+
+/* Process p's in-plane state (u_y, y, u_x, x) (sb_langevin_shear_bridge
+ * order) in and out of a pstate. */
+static void plane_get(const pstate *S, int p, double v[4])
+{
+  v[0] = S->u[p][1];
+  v[1] = S->x[p][1];
+  v[2] = S->u[p][0];
+  v[3] = S->x[p][0];
+}
+
+static void plane_set(pstate *S, int p, const double v[4])
+{
+  S->u[p][1] = v[0];
+  S->x[p][1] = v[1];
+  S->u[p][0] = v[2];
+  S->x[p][0] = v[3];
+}
+
+/* m = ka S_a + kb S_b + kc c (the in-plane bridge mean) */
+static void plane_mean(const double ka[4][4], const double kb[4][4],
+                       const double kc[4][2], const double *sa,
+                       const double *sb, const double *c, double m[4])
+{
+  for (int i = 0; i < 4; i++) {
+    double t = kc[i][0] * c[0] + kc[i][1] * c[1];
+    for (int j = 0; j < 4; j++)
+      t += ka[i][j] * sa[j] + kb[i][j] * sb[j];
+    m[i] = t;
+  }
 }
 
 /* One component of the node moments (the loop over the nodes vectorises:
@@ -191,10 +236,104 @@ static void node_row(const sbi_lh_level *restrict Li,
   }
 }
 
+/* eval_nodes with a shear process: each process's node means and
+ * covariances by component (in-plane from the shear bridge, the third
+ * component and non-shear processes from the level's coefficients), then
+ * the pair's. */
+static void eval_nodes_shear(const walk *W, const sbi_lh_level *Li,
+                             const sbi_lh_level *Lj, const pstate *A,
+                             const pstate *Bs, nodes *N)
+{
+  const sbi_lh_level *L[2] = {Li, Lj};
+  const double *xi = W->w->xi;
+  double sa[2][4], sb[2][4];
+  for (int p = 0; p < 2; p++) {
+    plane_get(A, p, sa[p]);
+    plane_get(Bs, p, sb[p]);
+  }
+  N->shear = 1;
+  N->s2max = N->devmax = 0.0;
+  for (int q = 0; q < SBI_LH_NQ; q++) {
+    double mx[3] = {0, 0, 0}, mu[3] = {0, 0, 0};
+    double P[4] = {0}, V[4] = {0}, X[5] = {0};
+    for (int p = 0; p < 2; p++) {
+      const double sg = p ? -1.0 : 1.0;
+      const sbi_lh_coef *c = &L[p]->q[q];
+      for (int k = 0; k < 3; k++) {
+        if (k < 2 && L[p]->sh)
+          continue;
+        double x, u;
+        one_mean(c, A, Bs, p, k, W->wv[p][k], &x, &u);
+        mx[k] += sg * x;
+        mu[k] += sg * u;
+      }
+      if (L[p]->sh) {
+        const sbi_lh_shear *S = L[p]->sh;
+        double m[4];
+        plane_mean(S->ka[q], S->kb[q], S->kc[q], sa[p], sb[p], W->cs[p], m);
+        mx[0] += sg * m[3];
+        mx[1] += sg * m[1];
+        mu[0] += sg * m[2];
+        mu[1] += sg * m[0];
+        const double (*C)[4] = S->cov[q];
+        P[0] += C[3][3];
+        P[1] += C[3][1];
+        P[2] += C[1][1];
+        V[0] += C[2][2];
+        V[1] += C[2][0];
+        V[2] += C[0][0];
+        X[0] += C[3][2];
+        X[1] += C[3][0];
+        X[2] += C[1][2];
+        X[3] += C[1][0];
+      } else {
+        P[0] += c->vx;
+        P[2] += c->vx;
+        V[0] += c->vu;
+        V[2] += c->vu;
+        X[0] += c->cxu;
+        X[3] += c->cxu;
+      }
+      P[3] += c->vx;
+      V[3] += c->vu;
+      X[4] += c->cxu;
+    }
+    double dev2 = 0.0;
+    for (int k = 0; k < 3; k++) {
+      const double ra = A->x[0][k] - A->x[1][k];
+      const double rb = Bs->x[0][k] - Bs->x[1][k];
+      const double d = mx[k] - (ra + xi[q] * (rb - ra));
+      N->mu[k][q] = mx[k];
+      N->mv[k][q] = mu[k];
+      dev2 += d * d;
+    }
+    for (int k = 0; k < 4; k++) {
+      N->P[k][q] = P[k];
+      N->V[k][q] = V[k];
+    }
+    for (int k = 0; k < 5; k++)
+      N->X[k][q] = X[k];
+    /* the largest position variance along a direction */
+    const double m = 0.5 * (P[0] + P[2]), h = 0.5 * (P[0] - P[2]);
+    N->s2[q] = fmax(m + sqrt(h * h + P[1] * P[1]), P[3]);
+    N->su2[q] = N->c[q] = NAN;
+    if (N->s2[q] > N->s2max)
+      N->s2max = N->s2[q];
+    if (dev2 > N->devmax)
+      N->devmax = dev2;
+  }
+  N->devmax = sqrt(N->devmax);
+}
+
 static void eval_nodes(const walk *W, const sbi_lh_level *Li,
                        const sbi_lh_level *Lj, const pstate *A,
                        const pstate *Bs, nodes *N)
 {
+  if (W->shear) {
+    eval_nodes_shear(W, Li, Lj, A, Bs, N);
+    return;
+  }
+  N->shear = 0;
   const double *xi = W->w->xi;
   double dev2[SBI_LH_NQ];
   for (int q = 0; q < SBI_LH_NQ; q++) {
@@ -295,13 +434,30 @@ static double rice_bound(const walk *W, const nodes *N, const pstate *A,
   if (!(dot3(n, rb) > W->R) ||
       !(pa > 0.0 || (pa > -tiny && dot3(n, va) > 0.0)))
     return 1.0;
+  /* the variances along n: the same in every direction, or (shear) from
+   * the covariances by component */
+  const double *s2v = N->s2, *su2v = N->su2, *cv = N->c;
+  double S2[SBI_LH_NQ], SU2[SBI_LH_NQ], CV[SBI_LH_NQ];
+  if (N->shear) {
+    const double a = n[0] * n[0], b = 2.0 * n[0] * n[1], c = n[1] * n[1],
+                 z = n[2] * n[2];
+    for (int q = 0; q < SBI_LH_NQ; q++) {
+      S2[q] = a * N->P[0][q] + b * N->P[1][q] + c * N->P[2][q] +
+              z * N->P[3][q];
+      SU2[q] = a * N->V[0][q] + b * N->V[1][q] + c * N->V[2][q] +
+               z * N->V[3][q];
+      CV[q] = a * N->X[0][q] + 0.5 * b * (N->X[1][q] + N->X[2][q]) +
+              c * N->X[3][q] + z * N->X[4][q];
+    }
+    s2v = S2, su2v = SU2, cv = CV;
+  }
   double x[SBI_LH_NQ], p[SBI_LH_NQ], xmin = INFINITY;
   for (int q = 0; q < SBI_LH_NQ; q++) {
     double m[3];
     node3(N->mu, q, m);
     p[q] = dot3(n, m) - W->R;
-    x[q] = N->s2[q] > 0.0 ? p[q] / sqrt(N->s2[q])
-                          : (p[q] > 0.0 ? INFINITY : -INFINITY);
+    x[q] = s2v[q] > 0.0 ? p[q] / sqrt(s2v[q])
+                        : (p[q] > 0.0 ? INFINITY : -INFINITY);
     if (x[q] < xmin)
       xmin = x[q];
   }
@@ -314,12 +470,12 @@ static double rice_bound(const walk *W, const nodes *N, const pstate *A,
   for (int q = 0; q < SBI_LH_NQ; q++) {
     if (!(x[q] < XFAR))
       continue;
-    const double s2 = N->s2[q], s = sqrt(s2);
+    const double s2 = s2v[q], s = sqrt(s2);
     double mq[3];
     node3(N->mv, q, mq);
     const double qv = dot3(n, mq);
-    const double m = qv - N->c[q] * p[q] / s2;
-    const double v = N->su2[q] - N->c[q] * N->c[q] / s2;
+    const double m = qv - cv[q] * p[q] / s2;
+    const double v = su2v[q] - cv[q] * cv[q] / s2;
     double g;
     if (!(v > 0.0))
       g = m < 0.0 ? -m : 0.0;
@@ -414,6 +570,39 @@ static int leaf(walk *W, const pstate *A, const pstate *Bs, double a,
   return 1;
 }
 
+/* The largest standard deviation of the pair's relative position along
+ * any direction on a level (shear: from the in-plane bridge). */
+static double walk_sd(const walk *W, const sbi_lh_level *Li,
+                      const sbi_lh_level *Lj)
+{
+  if (!W->shear)
+    return sqrt(Li->vxmax + Lj->vxmax);
+  return sqrt((Li->sh ? Li->sh->vmax : Li->vxmax) +
+              (Lj->sh ? Lj->sh->vmax : Lj->vxmax));
+}
+
+/* quick_bound from the chord's clearance gap, the bounds dev and vel on
+ * the mean's deviation from the chord and on the mean relative velocity,
+ * and the largest standard deviations smax, spmax of the relative
+ * position and velocity along any direction (the comment below). */
+static double quick_tail(double gap, double dev, double vel, double smax,
+                         double spmax, double h, double *x0out)
+{
+  const double G = gap - 1.25 * dev;
+  if (smax > 0.0)
+    *x0out = G / smax;
+  if (!(smax > 0.0) || !(G > 1.5 * smax))
+    return 1.0;
+  const double x0 = G / smax;
+  if (x0 > 38.0)
+    return 0.0;
+  const double ph = INV_SQRT_2PI * exp(-0.5 * x0 * x0);
+  const double f = ph / smax * (spmax * INV_SQRT_2PI + 1.25 * vel) +
+                   spmax * x0 * ph / smax;
+  double b = SAFETY * h * f;
+  return b < 1.0 ? b : 1.0;
+}
+
 /* Closed-form bound on the Rice integral of [a, a + h], from the chord
  * and the level's coefficient maxima, without evaluating the nodes.
  * With n the normal of the chord's closest approach (gap g beyond R),
@@ -435,6 +624,45 @@ static double quick_bound(const walk *W, const sbi_lh_level *Li,
   if (entry(W, ra, rb, &gap) >= 0.0)
     return 1.0;
   const sbi_lh_level *L[2] = {Li, Lj};
+  if (W->shear) {
+    /* each process's deviation and velocity bound by component: the
+     * shear bridge's in the plane (sbi_lh_shear.km), the level's
+     * per-component maxima elsewhere; the relative walk's j is zero */
+    double dev = 0.0, vel = 0.0;
+    for (int p = 0; p < (W->relm ? 1 : 2); p++) {
+      double dv[3] = {0, 0, 0}, vv[3] = {0, 0, 0};
+      int k0 = 0;
+      if (L[p]->sh) {
+        const double in[8] = {
+            fabs(Bs->x[p][0] - A->x[p][0]), fabs(Bs->x[p][1] - A->x[p][1]),
+            fabs(A->u[p][0]), fabs(A->u[p][1]), fabs(Bs->u[p][0]),
+            fabs(Bs->u[p][1]), fabs(W->cs[p][0] + W->G * A->x[p][1]),
+            fabs(W->cs[p][1])};
+        const double(*km)[8] = L[p]->sh->km;
+        for (int m = 0; m < 8; m++) {
+          dv[0] += km[0][m] * in[m];
+          dv[1] += km[1][m] * in[m];
+          vv[0] += km[2][m] * in[m];
+          vv[1] += km[3][m] * in[m];
+        }
+        k0 = 2;
+      }
+      for (int k = k0; k < W->dim; k++) {
+        const double d = fabs(Bs->x[p][k] - A->x[p][k]);
+        const double va = fabs(A->u[p][k]), vb = fabs(Bs->u[p][k]),
+                     wk = fabs(W->wv[p][k]);
+        dv[k] = L[p]->ka * d + L[p]->kb * va + L[p]->kc * vb + L[p]->kw * wk;
+        vv[k] = L[p]->kau * d + L[p]->kbu * va + L[p]->kcu * vb +
+                L[p]->kwu * wk;
+      }
+      dev += sqrt(dot3(dv, dv));
+      vel += sqrt(dot3(vv, vv));
+    }
+    const double smax = walk_sd(W, Li, Lj);
+    const double spmax = sqrt((Li->sh ? Li->sh->umax : Li->vumax) +
+                              (Lj->sh ? Lj->sh->umax : Lj->vumax));
+    return quick_tail(gap, dev, vel, smax, spmax, h, x0out);
+  }
   double dev = 0.0, vel = 0.0;
   /* same coefficients (one species): the deviations depend on the
    * relative end states only; otherwise bound each particle's */
@@ -461,19 +689,7 @@ static double quick_bound(const walk *W, const sbi_lh_level *Li,
   }
   const double smax = sqrt(Li->vxmax + Lj->vxmax);
   const double spmax = sqrt(Li->vumax + Lj->vumax);
-  const double G = gap - 1.25 * dev;
-  if (smax > 0.0)
-    *x0out = G / smax;
-  if (!(smax > 0.0) || !(G > 1.5 * smax))
-    return 1.0;
-  const double x0 = G / smax;
-  if (x0 > 38.0)
-    return 0.0;
-  const double ph = INV_SQRT_2PI * exp(-0.5 * x0 * x0);
-  const double f = ph / smax * (spmax * INV_SQRT_2PI + 1.25 * vel) +
-                   spmax * x0 * ph / smax;
-  double b = SAFETY * h * f;
-  return b < 1.0 ? b : 1.0;
+  return quick_tail(gap, dev, vel, smax, spmax, h, x0out);
 }
 
 /* Examine [a, a + h] at depth d, with end states A and Bs; 1 if the first
@@ -528,7 +744,7 @@ static int examine(walk *W, const pstate *A, const pstate *Bs, double a,
    * quadrature would hardly ever prune (its bound includes the largest
    * node probability P(p <= 0)); subdividing is always valid, so skip it
    * (not a leaf: the spread exceeds smax > 4 delta) */
-  const double smax = sqrt(Li->vxmax + Lj->vxmax);
+  const double smax = walk_sd(W, Li, Lj);
   if (x0 < XNEAR && smax > 4.0 * W->delta && d < SBI_LH_MAXDEPTH &&
       (sure || smax > 0.0))
     goto subdivide;
@@ -570,8 +786,23 @@ subdivide:;
   memset(&M, 0, sizeof M);
   /* relative mode: one process whose covariance is twice a particle's */
   const double sc = W->relm ? SQRT_2 : 1.0;
-  for (int p = 0; p < (W->relm ? 1 : 2); p++)
-    for (int k = 0; k < W->dim; k++) {
+  for (int p = 0; p < (W->relm ? 1 : 2); p++) {
+    int k0 = 0;
+    if (L[p]->sh) {  /* the in-plane state from the shear bridge */
+      const sbi_lh_shear *S = L[p]->sh;
+      double sa[4], sb[4], m[4], z[4];
+      plane_get(A, p, sa);
+      plane_get(Bs, p, sb);
+      plane_mean(S->mka, S->mkb, S->mkc, sa, sb, W->cs[p], m);
+      for (int i = 0; i < 4; i++)
+        z[i] = gsl_ran_gaussian_ziggurat(W->r, 1.0);
+      for (int i = 0; i < 4; i++)
+        for (int j = 0; j <= i; j++)
+          m[i] += sc * S->ml[i][j] * z[j];
+      plane_set(&M, p, m);
+      k0 = 2;
+    }
+    for (int k = k0; k < W->dim; k++) {
       double mx, mu;
       one_mean(&L[p]->mid, A, Bs, p, k, W->wv[p][k], &mx, &mu);
       if (L[p]->l11 > 0.0) {
@@ -583,6 +814,7 @@ subdivide:;
       M.x[p][k] = mx;
       M.u[p][k] = mu;
     }
+  }
   int st = examine(W, A, &M, a, d + 1);
   if (st)
     return st;
@@ -638,12 +870,28 @@ static int setup(walk *W, sb_langevin_hitter *w, const sb_langevin_path *pi,
     W->plane = 1;
     memcpy(W->n, plane, sizeof W->n);
   }
+  /* linear shear: one rate for the pair (particles with noise) */
+  double G = 0.0;
+  for (int p = 0; p < 2; p++) {
+    const sb_langevin_path *q = P[p];
+    if (isinf(q->tau) || q->B == 0.0 || q->G == 0.0)
+      continue;
+    if (!isfinite(q->G) || (G != 0.0 && q->G != G) ||
+        !(fabs(q->G) * dt <= 100.0))
+      return -sbi_error(SB_EDOM, func, "shear rates %g and %g: one finite "
+                        "rate for the pair, |G| dt <= 100", pi->G, pj->G);
+    G = q->G;
+  }
+  W->G = G;
   for (int p = 0; p < 2; p++) {
     const sb_langevin_path *q = P[p];
     int det = isinf(q->tau) || q->B == 0.0;
     if (!det && !(dt / q->tau >= 1e-9 && dt / q->tau <= 1e9))
       return -sbi_error(SB_EDOM, func, "dt/tau = %g outside [1e-9, 1e9]",
                         dt / q->tau);
+    /* the shear field is (G y + c_x, c_y): us is its value at x0 */
+    W->cs[p][0] = q->us[0] - G * q->x0[1];
+    W->cs[p][1] = q->us[1];
     W->tau[p] = q->tau;
     W->B[p] = q->B;
     W->mass[p] = q->mass;
@@ -662,7 +910,8 @@ static int setup(walk *W, sb_langevin_hitter *w, const sb_langevin_path *pi,
         Bs->u[p][k] = q->u1[k];
       }
     }
-    W->sl[p] = sbi_lh_slot_get(w, q->tau, q->B, dt);
+    W->sl[p] = sbi_lh_slot_get(w, q->tau, q->B, dt, det ? 0.0 : G);
+    W->shear |= W->sl[p] && W->sl[p]->shear;
   }
   /* overlapping, or touching and approaching: a contact now; touching
    * and separating (a pair that has just bounced): no contact now */
@@ -685,10 +934,41 @@ static int setup(walk *W, sb_langevin_hitter *w, const sb_langevin_path *pi,
 /* State of process p (a particle, or in relative mode the relative
  * state or the barycentre) at time s into [0, h] between end states A and
  * Bs, drawn from its bridge with the covariance scaled by sc^2. */
+/* Shear: process p's in-plane state (u_y, y, u_x, x) at time s into
+ * [0, h] between A and Bs from the exact shear bridge
+ * (sb_langevin_shear_bridge_sample; the covariance scaled by sc^2 is that
+ * of a particle with B sc; drifts cs). */
+static int shear_plane_draw(const walk *W, int p, const pstate *A,
+                            const pstate *Bs, double h, double s, double sc,
+                            const double *cs, double out[4])
+{
+  double sa[4], sb[4];
+  plane_get(A, p, sa);
+  plane_get(Bs, p, sb);
+  return sb_langevin_shear_bridge_sample(W->tau[p], W->B[p] * sc, W->G,
+                                         cs[0], cs[1], h, s, sa, sb, W->r,
+                                         out)
+             ? -SB_EDOM
+             : 0;
+}
+
 static int bridge_draw(const walk *W, int p, const pstate *A,
                        const pstate *Bs, double h, double s, double sc,
-                       const double *wv, double x[3], double v[3])
+                       const double *wv, const double *cs, double x[3],
+                       double v[3])
 {
+  int k0 = 0;
+  if (W->sl[p]->shear) {
+    double pl[4];
+    int st = shear_plane_draw(W, p, A, Bs, h, s, sc, cs, pl);
+    if (st < 0)
+      return -st;
+    v[1] = pl[0];
+    x[1] = pl[1];
+    v[0] = pl[2];
+    x[0] = pl[3];
+    k0 = 2;
+  }
   sbi_lh_coef q;
   if (!isinf(W->tau[p]) && W->B[p] > 0.0) {
     /* the bridge needs s and h - s >= 1e-60 tau, or exactly an end */
@@ -707,7 +987,7 @@ static int bridge_draw(const walk *W, int p, const pstate *A,
     double sch = q.vu - l21 * l21;
     l22 = sch > 0.0 ? sqrt(sch) : 0.0;
   }
-  for (int k = 0; k < W->dim; k++) {
+  for (int k = k0; k < W->dim; k++) {
     one_mean(&q, A, Bs, p, k, wv[k], &x[k], &v[k]);
     if (l11 > 0.0) {
       double z1 = gsl_ran_gaussian_ziggurat(W->r, 1.0);
@@ -731,10 +1011,10 @@ static int contact_states(walk *W, sb_langevin_contact *c)
   int st;
   if (W->relm) {
     double r[3] = {0}, v[3] = {0}, xc[3] = {0}, vc[3] = {0};
-    if ((st = bridge_draw(W, 0, &W->ca, &W->cb, h, s, SQRT_2, W->wv[0], r,
-                          v)) ||
+    if ((st = bridge_draw(W, 0, &W->ca, &W->cb, h, s, SQRT_2, W->wv[0],
+                          W->cs[0], r, v)) ||
         (st = bridge_draw(W, 0, &W->bary0, &W->bary1, W->htop, W->th,
-                          INV_SQRT_2, W->wbar, xc, vc)))
+                          INV_SQRT_2, W->wbar, W->csbar, xc, vc)))
       return -st;
     for (int k = 0; k < W->dim; k++) {
       xs[0][k] = xc[k] + 0.5 * r[k];
@@ -745,7 +1025,7 @@ static int contact_states(walk *W, sb_langevin_contact *c)
   } else
     for (int p = 0; p < 2; p++)
       if ((st = bridge_draw(W, p, &W->ca, &W->cb, h, s, 1.0, W->wv[p],
-                            xs[p], vs[p])))
+                            W->cs[p], xs[p], vs[p])))
         return -st;
   double r[3] = {xs[0][0] - xs[1][0], xs[0][1] - xs[1][1],
                  xs[0][2] - xs[1][2]};
@@ -804,6 +1084,11 @@ static void relative_walk(walk *W, pstate *A, pstate *Bs)
     W->wbar[k] = 0.5 * (W->wv[0][k] + W->wv[1][k]);
     W->wv[0][k] -= W->wv[1][k];
     W->wv[1][k] = 0.0;
+  }
+  for (int k = 0; k < 2; k++) {  /* the shear's drifts likewise (linear) */
+    W->csbar[k] = 0.5 * (W->cs[0][k] + W->cs[1][k]);
+    W->cs[0][k] -= W->cs[1][k];
+    W->cs[1][k] = 0.0;
   }
 }
 

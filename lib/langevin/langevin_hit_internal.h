@@ -27,6 +27,27 @@ typedef struct {
   double vx, vu, cxu;
 } sbi_lh_coef;
 
+/* Linear shear (slots with G != 0 and noise): the in-plane bridge of
+ * S = (u_y, y, u_x, x) on a level (sb_langevin_shear_bridge_coefs, in
+ * the caller's units): E[S] = ka S_a + kb S_b + kc (c_x, c_y), the
+ * covariance cov, at the quadrature nodes and at the midpoint (with its
+ * lower Cholesky factor ml); vmax and umax bound the variance of the
+ * position (velocity) along any direction over the nodes (the largest
+ * eigenvalue of the in-plane block, or the third component's). */
+typedef struct {
+  double ka[SBI_LH_NQ][4][4], kb[SBI_LH_NQ][4][4], kc[SBI_LH_NQ][4][2];
+  double cov[SBI_LH_NQ][4][4];
+  double mka[4][4], mkb[4][4], mkc[4][2], ml[4][4];
+  double vmax, umax;
+  /* for the closed-form bound: over the nodes, the largest |coefficient|
+   * of the mean's deviation from the chord (rows 0, 1: x, y) and of the
+   * mean velocity (rows 2, 3: u_x, u_y) on the inputs that determine
+   * them, (x_b - x_a, y_b - y_a, u_x(a), u_y(a), u_x(b), u_y(b), w_x, w_y),
+   * w = (c_x + G y_a, c_y) the fluid velocity at the start (translation
+   * invariance: nothing else enters) */
+  double km[4][8];
+} sbi_lh_shear;
+
 /* One refinement level of one (tau, B, dt): sub-intervals of length h. */
 typedef struct {
   int valid;
@@ -44,12 +65,15 @@ typedef struct {
    * coefficients (kau ...), and the largest variances */
   double ka, kb, kc, kw, vxmax;
   double kau, kbu, kcu, kwu, vumax;
+  sbi_lh_shear *sh;          /* shear slots: the in-plane bridge */
 } sbi_lh_level;
 
 typedef struct {
   int used;
   double tau, B, htop;       /* key (B = 0 for free flight) */
+  double G;                  /* key: linear shear rate (0: none) */
   int det;                   /* no noise: tau = inf or B = 0 */
+  int shear;                 /* noise and G != 0: levels carry sh */
   uint64_t stamp;            /* last use */
   sbi_lh_level *lev[SBI_LH_MAXDEPTH + 1];  /* lazily filled */
 } sbi_lh_slot;
@@ -65,7 +89,7 @@ struct sb_langevin_hitter {
 /* The slot of (tau, B, htop), filled or recycled; NULL on allocation
  * failure. */
 sbi_lh_slot *sbi_lh_slot_get(sb_langevin_hitter *w, double tau, double B,
-                             double htop);
+                             double htop, double G);
 /* Level d of a slot (computed on first use); NULL on failure. */
 const sbi_lh_level *sbi_lh_level_get(sb_langevin_hitter *w, sbi_lh_slot *s,
                                      unsigned d);

@@ -19,8 +19,10 @@
 
 #include <gsl/gsl_sf_exp.h>
 #include <smolbridge/langevin.h>
+#include <smolbridge/langevin_shear.h>
 
 #include "common/internal.h"
+#include "langevin/langevin_shear_internal.h"
 #include "langevin_hit_internal.h"
 
 static int det_coef(double tau, double s, sbi_lh_coef *c)
@@ -58,15 +60,18 @@ int sbi_lh_coef_at(double tau, double B, double h, double s, sbi_lh_coef *c)
 }
 
 sbi_lh_slot *sbi_lh_slot_get(sb_langevin_hitter *w, double tau, double B,
-                             double htop)
+                             double htop, double G)
 {
   if (isinf(tau))
     B = 0.0;
+  if (isinf(tau) || B == 0.0)
+    G = 0.0;  /* the shear bridge is for particles with noise */
   w->clock++;
   sbi_lh_slot *old = &w->slot[0];
   for (int k = 0; k < SBI_LH_NSLOT; k++) {
     sbi_lh_slot *s = &w->slot[k];
-    if (s->used && s->tau == tau && s->B == B && s->htop == htop) {
+    if (s->used && s->tau == tau && s->B == B && s->htop == htop &&
+        s->G == G) {
       s->stamp = w->clock;
       return s;
     }
@@ -79,12 +84,109 @@ sbi_lh_slot *sbi_lh_slot_get(sb_langevin_hitter *w, double tau, double B,
   old->tau = tau;
   old->B = B;
   old->htop = htop;
+  old->G = G;
   old->det = isinf(tau) || B == 0.0;
+  old->shear = !old->det && G != 0.0;
   old->stamp = w->clock;
   for (int d = 0; d <= SBI_LH_MAXDEPTH; d++)
     if (old->lev[d])
       old->lev[d]->valid = 0;
   return old;
+}
+
+/* Largest eigenvalue of the symmetric 2 x 2 [[a, b], [b, c]]. */
+static double eig2(double a, double b, double c)
+{
+  const double m = 0.5 * (a + c), d = 0.5 * (a - c);
+  return m + sqrt(d * d + b * b);
+}
+
+/* The in-plane bridge of a shear slot's level (its other fields filled):
+ * sb_langevin_shear_bridge_coefs in units tau = B = 1, taken to the
+ * caller's by S = D S~, D = diag(vu, vx, vu, vx), vu = B sqrt(tau),
+ * vx = vu tau.  Below h/tau = 1e-9 (that function's domain) the shear
+ * changes the law by O(G h) < 1e-9 relative: the Ornstein-Uhlenbeck
+ * coefficients of the level are used.  Status. */
+static int shear_fill(sb_langevin_hitter *w, const sbi_lh_slot *s,
+                      sbi_lh_level *L)
+{
+  if (!L->sh && !(L->sh = malloc(sizeof *L->sh)))
+    return sbi_error(SB_ENOMEM, "sb_langevin_hitter_sample",
+                     "out of memory");
+  sbi_lh_shear *S = L->sh;
+  const double tau = s->tau, x = L->h / tau, g = s->G * tau;
+  const double vu = s->B * sqrt(tau), vx = vu * tau;
+  const double D[4] = {vu, vx, vu, vx};
+  S->vmax = S->umax = 0.0;
+  for (int k = 0; k <= SBI_LH_NQ; k++) {  /* the nodes, then the midpoint */
+    const double xi = k < SBI_LH_NQ ? w->xi[k] : 0.5;
+    double (*ka)[4] = k < SBI_LH_NQ ? S->ka[k] : S->mka;
+    double (*kb)[4] = k < SBI_LH_NQ ? S->kb[k] : S->mkb;
+    double (*kc)[2] = k < SBI_LH_NQ ? S->kc[k] : S->mkc;
+    double cov[4][4];
+    sb_langevin_shear_bridge b;
+    if (x >= 1e-9) {
+      if (sb_langevin_shear_bridge_coefs(x, g, xi * x, &b))
+        return sbi_error(SB_EDOM, "sb_langevin_hitter_sample",
+                         "no shear bridge (h/tau = %g, G tau = %g): %s", x,
+                         g, sb_last_error());
+      for (int i = 0; i < 4; i++) {
+        for (int j = 0; j < 4; j++) {
+          ka[i][j] = D[i] * b.ka[i][j] / D[j];
+          kb[i][j] = D[i] * b.kb[i][j] / D[j];
+          cov[i][j] = D[i] * D[j] * b.cov[i][j];
+        }
+        kc[i][0] = D[i] * b.kc[i][0] / vu;
+        kc[i][1] = D[i] * b.kc[i][1] / vu;
+      }
+    } else {  /* the level's own (u, x) coefficients, per component */
+      const sbi_lh_coef *q = k < SBI_LH_NQ ? &L->q[k] : &L->mid;
+      memset(ka, 0, 16 * sizeof(double));
+      memset(kb, 0, 16 * sizeof(double));
+      memset(kc, 0, 8 * sizeof(double));
+      memset(cov, 0, sizeof cov);
+      for (int c = 0; c < 2; c++) {  /* (u_y, y), then (u_x, x) */
+        const int iu = 2 * c, ix = 2 * c + 1;
+        ka[ix][ix] = 1.0 - q->ax;
+        ka[ix][iu] = q->bx;
+        kb[ix][ix] = q->ax;
+        kb[ix][iu] = q->cx;
+        ka[iu][ix] = -q->au;
+        ka[iu][iu] = q->bu;
+        kb[iu][ix] = q->au;
+        kb[iu][iu] = q->cu;
+        cov[ix][ix] = q->vx;
+        cov[iu][iu] = q->vu;
+        cov[ix][iu] = cov[iu][ix] = q->cxu;
+      }
+    }
+    if (k < SBI_LH_NQ) {
+      /* the bound's coefficients (sbi_lh_shear.km): output rows x, y,
+       * u_x, u_y are S rows 3, 1, 2, 0; inputs dx, dy from kb's position
+       * columns less the chord's xi, the velocities from ka and kb, the
+       * drifts from kc */
+      static const int row[4] = {3, 1, 2, 0};
+      for (int o = 0; o < 4; o++) {
+        const int i = row[o];
+        const double in[8] = {kb[i][3] - (o == 0 ? xi : 0.0),
+                              kb[i][1] - (o == 1 ? xi : 0.0),
+                              ka[i][2], ka[i][0], kb[i][2], kb[i][0],
+                              kc[i][0], kc[i][1]};
+        for (int m = 0; m < 8; m++)
+          S->km[o][m] = k ? fmax(S->km[o][m], fabs(in[m])) : fabs(in[m]);
+      }
+      memcpy(S->cov[k], cov, sizeof cov);
+      const double vz = L->q[k].vx, uz = L->q[k].vu;
+      const double ve = eig2(cov[3][3], cov[3][1], cov[1][1]);
+      const double ue = eig2(cov[2][2], cov[2][0], cov[0][0]);
+      S->vmax = fmax(S->vmax, fmax(ve, vz));
+      S->umax = fmax(S->umax, fmax(ue, uz));
+    } else if (sbi_shear_chol4(cov, S->ml))
+      return sbi_error(SB_EDOM, "sb_langevin_hitter_sample",
+                       "shear bridge covariance not positive definite "
+                       "(h/tau = %g, G tau = %g)", x, g);
+  }
+  return SB_SUCCESS;
 }
 
 const sbi_lh_level *sbi_lh_level_get(sb_langevin_hitter *w, sbi_lh_slot *s,
@@ -96,7 +198,7 @@ const sbi_lh_level *sbi_lh_level_get(sb_langevin_hitter *w, sbi_lh_slot *s,
   if (L && L->valid)
     return L;
   if (!L) {
-    L = malloc(sizeof *L);
+    L = calloc(1, sizeof *L);
     if (!L) {
       sbi_error(SB_ENOMEM, "sb_langevin_hitter_sample", "out of memory");
       return NULL;
@@ -149,6 +251,8 @@ const sbi_lh_level *sbi_lh_level_get(sb_langevin_hitter *w, sbi_lh_slot *s,
     L->l22 = sch > 0.0 ? sqrt(sch) : 0.0;
   } else
     L->l11 = L->l21 = L->l22 = 0.0;
+  if (s->shear && shear_fill(w, s, L))
+    return NULL;
   L->valid = 1;
   return L;
 }
@@ -157,6 +261,8 @@ void sbi_lh_slots_free(sb_langevin_hitter *w)
 {
   for (int k = 0; k < SBI_LH_NSLOT; k++)
     for (int d = 0; d <= SBI_LH_MAXDEPTH; d++) {
+      if (w->slot[k].lev[d])
+        free(w->slot[k].lev[d]->sh);
       free(w->slot[k].lev[d]);
       w->slot[k].lev[d] = NULL;
     }

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <string.h>
 
+#include <gsl/gsl_randist.h>
 #include <smolbridge/langevin.h>
 #include <smolbridge/langevin_shear.h>
 
@@ -244,32 +245,44 @@ void sb_langevin_shear_propagator(double x, double g, double Phi[4][4],
   a[3][1] = g * (c[3] - c[0]);
 }
 
-/* Inverse of the symmetric positive definite 4 x 4 matrix M into Mi, by
- * the Cholesky factor of D M D, D = diag(M_ii^-1/2) (unit diagonal: the
- * factorisation sees the correlations, not the scales).  Written out for
- * this fixed size rather than with GSL's, whose failure on a matrix that
- * is not positive definite goes through the process-wide GSL error
- * handler.  SB_EDOM when a pivot is not positive. */
-static int spd_inverse(const double M[4][4], double Mi[4][4])
+/* Cholesky factor of a 4 x 4 matrix, written out for this fixed size
+ * rather than with GSL's, whose failure on a matrix that is not positive
+ * definite goes through the process-wide GSL error handler. */
+int sbi_shear_chol4(const double M[4][4], double L[4][4])
 {
-  double d[4], L[4][4] = {{0}}, V[4][4] = {{0}};
-  for (int i = 0; i < 4; i++) {
-    if (!(M[i][i] > 0.0) || !isfinite(M[i][i]))
-      return SB_EDOM;
-    d[i] = 1.0 / sqrt(M[i][i]);
-  }
+  memset(L, 0, 16 * sizeof(double));
   for (int j = 0; j < 4; j++)
     for (int i = j; i < 4; i++) {
-      double t = d[i] * d[j] * 0.5 * (M[i][j] + M[j][i]);
+      double t = 0.5 * (M[i][j] + M[j][i]);
       for (int k = 0; k < j; k++)
         t -= L[i][k] * L[j][k];
       if (i == j) {
-        if (!(t > 0.0))
+        if (!(t > 0.0) || !isfinite(t))
           return SB_EDOM;
         L[j][j] = sqrt(t);
       } else
         L[i][j] = t / L[j][j];
     }
+  return SB_SUCCESS;
+}
+
+/* Inverse of the symmetric positive definite 4 x 4 matrix M into Mi, by
+ * the Cholesky factor of D M D, D = diag(M_ii^-1/2) (unit diagonal: the
+ * factorisation sees the correlations, not the scales).  SB_EDOM when a
+ * pivot is not positive. */
+static int spd_inverse(const double M[4][4], double Mi[4][4])
+{
+  double d[4], W[4][4], L[4][4], V[4][4] = {{0}};
+  for (int i = 0; i < 4; i++) {
+    if (!(M[i][i] > 0.0) || !isfinite(M[i][i]))
+      return SB_EDOM;
+    d[i] = 1.0 / sqrt(M[i][i]);
+  }
+  for (int i = 0; i < 4; i++)
+    for (int j = 0; j < 4; j++)
+      W[i][j] = d[i] * d[j] * M[i][j];
+  if (sbi_shear_chol4(W, L))
+    return SB_EDOM;
   /* V = L^-1 (lower), then (D M D)^-1 = V^T V */
   for (int j = 0; j < 4; j++) {
     V[j][j] = 1.0 / L[j][j];
@@ -447,4 +460,91 @@ int sb_langevin_shear_bridge_moments(double tau, double B, double G,
       cov[i][j] = sc[i] * sc[j] * b.cov[i][j];
   }
   return SB_SUCCESS;
+}
+
+int sb_langevin_shear_bridge_sample(double tau, double B, double G,
+                                    double cx, double cy, double h,
+                                    double s, const double s0[4],
+                                    const double s1[4], const gsl_rng *r,
+                                    double out[4])
+{
+  if (out)
+    for (int i = 0; i < 4; i++)
+      out[i] = NAN;
+  if (!s0 || !s1 || !out || !r)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  int fin = isfinite(cx) && isfinite(cy) && isfinite(G) && isfinite(s);
+  for (int i = 0; i < 4; i++)
+    fin &= isfinite(s0[i]) && isfinite(s1[i]);
+  if (!(tau > 0.0) || !isfinite(tau) || !(B > 0.0) || !isfinite(B) ||
+      !(h > 0.0) || !isfinite(h) || !fin || !(s >= 0.0 && s <= h) ||
+      !(fabs(G) * h <= 100.0))
+    return sbi_error(SB_EDOM, __func__, "tau = %g, B = %g, h = %g (> 0), "
+                     "s = %g in [0, h], |G| h = %g <= 100, all finite", tau,
+                     B, h, s, fabs(G) * h);
+  const double vu = B * sqrt(tau), vx = vu * tau, g = G * tau;
+  const double D[4] = {vu, vx, vu, vx}, c[2] = {cx / vu, cy / vu};
+  double sa[4], sb[4];
+  for (int i = 0; i < 4; i++) {
+    sa[i] = s0[i] / D[i];
+    sb[i] = s1[i] / D[i];
+  }
+  for (;;) {
+    if (s <= 0.0 || s >= h) {  /* an end */
+      for (int i = 0; i < 4; i++)
+        out[i] = D[i] * (s <= 0.0 ? sa[i] : sb[i]);
+      return SB_SUCCESS;
+    }
+    if (h < 1e-9 * tau) {
+      /* below the coefficients' domain the shear changes the law by
+       * O(G h) < 1e-9 tau G: each in-plane pair (u, position) from its
+       * Ornstein-Uhlenbeck bridge (velocities in units of vu) */
+      const sb_langevin p = {1.0, 1.0, 0.0};
+      for (int k = 0; k < 2; k++) {
+        double xs, us;
+        int st = sb_langevin_bridge_sample(&p, h / tau, s / tau,
+                                           sa[2 * k + 1], sa[2 * k],
+                                           sb[2 * k + 1], sb[2 * k], r, &xs,
+                                           &us);
+        if (st)
+          return sbi_error(st, __func__, "%s", sb_last_error());
+        out[2 * k] = D[2 * k] * us;
+        out[2 * k + 1] = D[2 * k + 1] * xs;
+      }
+      return SB_SUCCESS;
+    }
+    /* inside the coefficients' domain s/h in [1e-3, 0.999] draw at s;
+     * nearer an end halve the interval by an exact midpoint draw and
+     * keep the half that holds s (the bridge of a Markov process) */
+    const int inside = s >= 1e-3 * h && s <= 0.999 * h;
+    const double t = inside ? s : 0.5 * h;
+    sb_langevin_shear_bridge b;
+    double m[4], L[4][4];
+    if (sb_langevin_shear_bridge_coefs(h / tau, g, t / tau, &b) ||
+        sbi_shear_chol4(b.cov, L))
+      return sbi_error(SB_EDOM, __func__, "no shear bridge at h/tau = %g, "
+                       "s/h = %g, G tau = %g", h / tau, t / h, g);
+    for (int i = 0; i < 4; i++) {
+      m[i] = b.kc[i][0] * c[0] + b.kc[i][1] * c[1];
+      for (int j = 0; j < 4; j++)
+        m[i] += b.ka[i][j] * sa[j] + b.kb[i][j] * sb[j];
+    }
+    for (int j = 0; j < 4; j++) {
+      const double z = gsl_ran_gaussian_ziggurat(r, 1.0);
+      for (int i = j; i < 4; i++)
+        m[i] += L[i][j] * z;
+    }
+    if (inside) {
+      for (int i = 0; i < 4; i++)
+        out[i] = D[i] * m[i];
+      return SB_SUCCESS;
+    }
+    if (s < t)
+      memcpy(sb, m, sizeof m);
+    else {
+      memcpy(sa, m, sizeof m);
+      s -= t;
+    }
+    h = t;
+  }
 }

@@ -10,4 +10,9 @@
  * g = G tau); series below x = 1.5, closed forms above. */
 void sbi_shear_noise_ints(double x, double f[7]);
 
+/* Lower Cholesky factor L of the symmetric positive definite 4 x 4 M
+ * (entries above the diagonal zero); SB_EDOM when a pivot is not
+ * positive. */
+int sbi_shear_chol4(const double M[4][4], double L[4][4]);
+
 #endif /* SB_LANGEVIN_SHEAR_INTERNAL_H */

@@ -12,6 +12,11 @@
  * time.  The sampler decides whether |r(t)| <= R (R = r_i + r_j) for some
  * t in [0, dt] and returns the first such time, the contact point and both
  * particles' velocities at contact, drawn from that conditional law.
+ * In a linear shear (sb_langevin_path.G != 0) the fluid velocity seen
+ * along x is G y(t): x and y couple, and each particle's in-plane state
+ * follows the exact bridge of <smolbridge/langevin_shear.h> instead (the
+ * bounds below then take their variances along a direction from the
+ * covariances by component).
  *
  * Method (docs/engine_langevin.md):
  *  - recursive midpoint refinement in time order: on a sub-interval
@@ -74,9 +79,17 @@ extern "C" {
  *  adjustment; 0 shares it equally). */
 typedef struct {
   double tau, B, mass;
-  double us[3];          /**< fluid velocity seen, constant over the step */
+  double us[3];          /**< fluid velocity seen at x0, constant over the
+                              step when G = 0 */
   double x0[3], u0[3];   /**< state at t = 0 */
   double x1[3], u1[3];   /**< state at t = dt */
+  double G;              /**< linear shear: the fluid velocity at x is
+                              us + (G (x[1] - x0[1]), 0, 0) (units 1/time;
+                              0: uniform flow).  Used for particles with
+                              noise: their in-plane bridge is then the
+                              exact one of <smolbridge/langevin_shear.h>;
+                              both particles of a pair must have the same
+                              G */
 } sb_langevin_path;
 
 /** Sampler parameters (sb_langevin_hit_params_default). */

@@ -24,6 +24,8 @@
 #ifndef SMOLBRIDGE_LANGEVIN_SHEAR_H
 #define SMOLBRIDGE_LANGEVIN_SHEAR_H
 
+#include <gsl/gsl_rng.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -101,6 +103,23 @@ int sb_langevin_shear_bridge_moments(double tau, double B, double G,
                                      double s, const double s0[4],
                                      const double s1[4], double mean[4],
                                      double cov[4][4]);
+
+/** One draw of S(s) from that law (SI units as above), for any s in
+ *  [0, h]: s = 0 and s = h return the ends; inside [1e-3, 0.999] h it is
+ *  the mean plus the Cholesky factor of cov times four normals
+ *  (gsl_ran_gaussian_ziggurat, in the order of S); nearer an end the
+ *  interval is halved by exact draws at its midpoint (the bridge of a
+ *  Markov process restricted to a sub-interval is the bridge between its
+ *  ends) until s lies inside; an interval below 1e-9 tau takes each
+ *  in-plane pair (u, position) from its Ornstein-Uhlenbeck bridge (the
+ *  shear changes the law by O(G h) there).  Domain: tau, B, h > 0,
+ *  |G| h <= 100, all finite; SB_EDOM / SB_EINVAL otherwise, out set to
+ *  NaN. */
+int sb_langevin_shear_bridge_sample(double tau, double B, double G,
+                                    double cx, double cy, double h,
+                                    double s, const double s0[4],
+                                    const double s1[4], const gsl_rng *r,
+                                    double out[4]);
 
 #ifdef __cplusplus
 }
