@@ -435,6 +435,50 @@ static void same_law(int cfg, double *tb, long hb, int nb, double *ts,
   free(ts);
 }
 
+/* ns sampler draws for the pair P over [0, 1] (R = 1): the hit times
+ * into ts and the contact states (cs_of) into cv; returns the hits. */
+static long sampler_draws(sb_langevin_hitter *w, const sb_langevin_path *P,
+                          int ns, const gsl_rng *r, double *ts,
+                          double (*cv)[2])
+{
+  long hs = 0;
+  for (int n = 0; n < ns; n++) {
+    sb_langevin_contact c;
+    int h = sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, 1.0, r, &c);
+    ck_assert_int_ge(h, 0);
+    if (h) {
+      const double x[2][3] = {{c.xi[0], c.xi[1], c.xi[2]},
+                              {c.xj[0], c.xj[1], c.xj[2]}};
+      const double u[2][3] = {{c.ui[0], c.ui[1], c.ui[2]},
+                              {c.uj[0], c.uj[1], c.uj[2]}};
+      cs_of(x, u, 1.0, cv[hs]);
+      ts[hs++] = c.t;
+    }
+  }
+  return hs;
+}
+
+/* The contact states of the brute force (cb, hb) and of the sampler
+ * (cv, hs) agree, one quantity at a time: KS2 p >= 1e-3; frees both. */
+static void same_contact_states(int cfg, double (*cb)[2], long hb,
+                                double (*cv)[2], long hs)
+{
+  for (int q = 0; q < 2; q++) {
+    double *a = malloc(hb * sizeof *a), *b = malloc(hs * sizeof *b), D, p;
+    for (long k = 0; k < hb; k++)
+      a[k] = cb[k][q];
+    for (long k = 0; k < hs; k++)
+      b[k] = cv[k][q];
+    ck_assert_int_eq(sb_ks2_test(a, hb, b, hs, &D, &p), SB_SUCCESS);
+    ck_assert_msg(p >= 1e-3, "config %d: %s at contact KS2 D = %g, p = %g",
+                  cfg, q ? "barycentre x" : "u_i along the normal", D, p);
+    free(a);
+    free(b);
+  }
+  free(cb);
+  free(cv);
+}
+
 /* Three end configurations at dt/tau = 1 (R = 1): the chord passing the
  * sphere at 1.05 (grazing), a chord passing at 1.2 with transverse
  * velocities towards the sphere at the start and away at the end (the
@@ -472,37 +516,11 @@ START_TEST(test_fixed_ends)
     double *tb = malloc(nb * sizeof *tb), *ts = malloc(ns * sizeof *ts);
     double (*cb)[2] = malloc(nb * sizeof *cb), (*cv)[2] = malloc(ns *
                                                                sizeof *cv);
-    long hb = 0, hs = 0;
+    long hb = 0;
     for (int n = 0; n < nb; n++)
       hb += bridge_brute(r, P, 256, 1.0, 1.0, NULL, &tb[hb], cb[hb]);
-    for (int n = 0; n < ns; n++) {
-      sb_langevin_contact c;
-      int h = sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, 1.0, r, &c);
-      ck_assert_int_ge(h, 0);
-      if (h) {
-        const double x[2][3] = {{c.xi[0], c.xi[1], c.xi[2]},
-                                {c.xj[0], c.xj[1], c.xj[2]}};
-        const double u[2][3] = {{c.ui[0], c.ui[1], c.ui[2]},
-                                {c.uj[0], c.uj[1], c.uj[2]}};
-        cs_of(x, u, 1.0, cv[hs]);
-        ts[hs++] = c.t;
-      }
-    }
-    /* the contact states, one quantity at a time: KS2 p >= 1e-3 */
-    for (int q = 0; q < 2; q++) {
-      double *a = malloc(hb * sizeof *a), *b = malloc(hs * sizeof *b), D, p;
-      for (long k = 0; k < hb; k++)
-        a[k] = cb[k][q];
-      for (long k = 0; k < hs; k++)
-        b[k] = cv[k][q];
-      ck_assert_int_eq(sb_ks2_test(a, hb, b, hs, &D, &p), SB_SUCCESS);
-      ck_assert_msg(p >= 1e-3, "config %d: %s at contact KS2 D = %g, p = %g",
-                    cfg, q ? "barycentre x" : "u_i along the normal", D, p);
-      free(a);
-      free(b);
-    }
-    free(cb);
-    free(cv);
+    const long hs = sampler_draws(w, P, ns, r, ts, cv);
+    same_contact_states(cfg, cb, hb, cv, hs);
     same_law(cfg, tb, hb, nb, ts, hs, ns);
   }
   sb_langevin_hitter_free(w);
@@ -668,38 +686,11 @@ START_TEST(test_shear_fixed_ends)
     double *tb = malloc(nb * sizeof *tb), *ts = malloc(ns * sizeof *ts);
     double(*cb)[2] = malloc(nb * sizeof *cb), (*cv)[2] = malloc(ns *
                                                               sizeof *cv);
-    long hb = 0, hs = 0;
+    long hb = 0;
     for (int n = 0; n < nb; n++)
       hb += shear_brute(r, P, T, 1.0, 1.0, &tb[hb], cb[hb]);
-    for (int n = 0; n < ns; n++) {
-      sb_langevin_contact c;
-      int h = sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, 1.0, r, &c);
-      ck_assert_int_ge(h, 0);
-      if (h) {
-        const double x[2][3] = {{c.xi[0], c.xi[1], c.xi[2]},
-                                {c.xj[0], c.xj[1], c.xj[2]}};
-        const double u[2][3] = {{c.ui[0], c.ui[1], c.ui[2]},
-                                {c.uj[0], c.uj[1], c.uj[2]}};
-        cs_of(x, u, 1.0, cv[hs]);
-        ts[hs++] = c.t;
-      }
-    }
-    for (int q = 0; q < 2; q++) {  /* the contact states: KS2 p >= 1e-3 */
-      double *ea = malloc(hb * sizeof *ea), *eb = malloc(hs * sizeof *eb),
-             D, pk;
-      for (long k = 0; k < hb; k++)
-        ea[k] = cb[k][q];
-      for (long k = 0; k < hs; k++)
-        eb[k] = cv[k][q];
-      ck_assert_int_eq(sb_ks2_test(ea, hb, eb, hs, &D, &pk), SB_SUCCESS);
-      ck_assert_msg(pk >= 1e-3, "shear config %d: %s at contact KS2 D = %g, "
-                    "p = %g", cfg, q ? "barycentre x" : "u_i along the "
-                    "normal", D, pk);
-      free(ea);
-      free(eb);
-    }
-    free(cb);
-    free(cv);
+    const long hs = sampler_draws(w, P, ns, r, ts, cv);
+    same_contact_states(10 + cfg, cb, hb, cv, hs);
     printf("shear fixed ends %d: brute force %ld/%d, sampler %ld/%d\n",
            cfg, hb, nb, hs, ns);
     same_law(10 + cfg, tb, hb, nb, ts, hs, ns);

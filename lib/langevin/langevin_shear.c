@@ -303,25 +303,26 @@ static int spd_inverse(const double M[4][4], double Mi[4][4])
   return SB_SUCCESS;
 }
 
-/* C = A B (4 x n inner 4), and C = A^T B */
-static void mul(const double A[4][4], const double *B, int n, double *C)
+/* C = A B and C = A^T B for a 4 x 4 A and a 4 x n B (flat, row-major:
+ * plain pointers, which GCC's access checks follow at every -O level) */
+static void mul(const double *A, const double *B, int n, double *C)
 {
   for (int i = 0; i < 4; i++)
     for (int j = 0; j < n; j++) {
       double t = 0.0;
       for (int k = 0; k < 4; k++)
-        t += A[i][k] * B[k * n + j];
+        t += A[4 * i + k] * B[k * n + j];
       C[i * n + j] = t;
     }
 }
 
-static void mul_t(const double A[4][4], const double *B, int n, double *C)
+static void mul_t(const double *A, const double *B, int n, double *C)
 {
   for (int i = 0; i < 4; i++)
     for (int j = 0; j < n; j++) {
       double t = 0.0;
       for (int k = 0; k < 4; k++)
-        t += A[k][i] * B[k * n + j];
+        t += A[4 * k + i] * B[k * n + j];
       C[i * n + j] = t;
     }
 }
@@ -359,8 +360,8 @@ int sb_langevin_shear_bridge_coefs(double x, double g, double s,
   /* the end's information Phi(r)^T Sigma(r)^-1 Phi(r) = Pr^T H,
    * H = Jr Pr; the precision at s is Js + Pr^T H */
   double H[4][4], T[4][4];
-  mul(Jr, &Pr[0][0], 4, &H[0][0]);
-  mul_t(Pr, &H[0][0], 4, &T[0][0]);
+  mul(&Jr[0][0], &Pr[0][0], 4, &H[0][0]);
+  mul_t(&Pr[0][0], &H[0][0], 4, &T[0][0]);
   for (int i = 0; i < 4; i++)
     for (int j = 0; j < 4; j++)
       Q[i][j] = Js[i][j] + 0.5 * (T[i][j] + T[j][i]);
@@ -384,10 +385,10 @@ int sb_langevin_shear_bridge_coefs(double x, double g, double s,
           t += Ss[i][k] * Pr[j][k];
         SsPt[i][j] = t;
       }
-    mul(SsPt, &Jx[0][0], 4, &b->kb[0][0]);
+    mul(&SsPt[0][0], &Jx[0][0], 4, &b->kb[0][0]);
     double KPx[4][4], Kax[4][2];
-    mul(b->kb, &Px[0][0], 4, &KPx[0][0]);
-    mul(b->kb, &ax[0][0], 2, &Kax[0][0]);
+    mul(&b->kb[0][0], &Px[0][0], 4, &KPx[0][0]);
+    mul(&b->kb[0][0], &ax[0][0], 2, &Kax[0][0]);
     for (int i = 0; i < 4; i++) {
       for (int j = 0; j < 4; j++)
         b->ka[i][j] = Ps[i][j] - KPx[i][j];
@@ -400,17 +401,17 @@ int sb_langevin_shear_bridge_coefs(double x, double g, double s,
      * kc = C (Js as - Pr^T Jr ar) */
     double PtJ[4][4], JsPs[4][4], Jsas[4][2], Jrar[4][2], PtJar[4][2];
     double v[4][2];
-    mul(Js, &Ps[0][0], 4, &JsPs[0][0]);
-    mul(C, &JsPs[0][0], 4, &b->ka[0][0]);
-    mul_t(Pr, &Jr[0][0], 4, &PtJ[0][0]);
-    mul(C, &PtJ[0][0], 4, &b->kb[0][0]);
-    mul(Js, &as[0][0], 2, &Jsas[0][0]);
-    mul(Jr, &ar[0][0], 2, &Jrar[0][0]);
-    mul_t(Pr, &Jrar[0][0], 2, &PtJar[0][0]);
+    mul(&Js[0][0], &Ps[0][0], 4, &JsPs[0][0]);
+    mul(&C[0][0], &JsPs[0][0], 4, &b->ka[0][0]);
+    mul_t(&Pr[0][0], &Jr[0][0], 4, &PtJ[0][0]);
+    mul(&C[0][0], &PtJ[0][0], 4, &b->kb[0][0]);
+    mul(&Js[0][0], &as[0][0], 2, &Jsas[0][0]);
+    mul(&Jr[0][0], &ar[0][0], 2, &Jrar[0][0]);
+    mul_t(&Pr[0][0], &Jrar[0][0], 2, &PtJar[0][0]);
     for (int i = 0; i < 4; i++)
       for (int j = 0; j < 2; j++)
         v[i][j] = Jsas[i][j] - PtJar[i][j];
-    mul(C, &v[0][0], 2, &b->kc[0][0]);
+    mul(&C[0][0], &v[0][0], 2, &b->kc[0][0]);
   }
   for (int i = 0; i < 4; i++)
     for (int j = 0; j < 4; j++)
