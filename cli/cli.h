@@ -19,8 +19,8 @@ int sbc_spray_main(int argc, char **argv);     /* cli/spray.c */
  * (C name without the sb_ prefix, arguments in C order).  Entries that
  * need randomness take a `seed` argument (the wrapper builds an MT19937
  * generator from it). */
-#define SBE_MAXARGS 10
-#define SBE_MAXOUTS 8
+#define SBE_MAXARGS 16
+#define SBE_MAXOUTS 16
 
 typedef struct {
   const char *name;                   /* C name without "sb_" */

@@ -4,6 +4,7 @@
 #include <gsl/gsl_rng.h>
 #include <smolbridge/common.h>
 #include <smolbridge/langevin.h>
+#include <smolbridge/langevin_shear.h>
 
 #include "cli.h"
 
@@ -106,6 +107,33 @@ static int sbe_w_langevin_bridge_sample(const double *i, double *o)
   return st;
 }
 
+/* tau B G cx cy h s (uy0 y0 ux0 x0) (uy1 y1 ux1 x1) -> the mean of
+ * (u_y, y, u_x, x) and the covariance's lower triangle by rows */
+static int sbe_w_langevin_shear_bridge_moments(const double *i, double *o)
+{
+  double m[4], c[4][4];
+  int st = sb_langevin_shear_bridge_moments(i[0], i[1], i[2], i[3], i[4],
+                                            i[5], i[6], &i[7], &i[11], m, c);
+  for (int k = 0; k < 4; k++)
+    o[k] = m[k];
+  for (int a = 0, q = 4; a < 4; a++)
+    for (int b = 0; b <= a; b++)
+      o[q++] = c[a][b];
+  return st;
+}
+
+/* the same arguments and seed -> one draw */
+static int sbe_w_langevin_shear_bridge_sample(const double *i, double *o)
+{
+  gsl_rng *r = seeded(i[15]);
+  if (!r)
+    return SB_ENOMEM;
+  int st = sb_langevin_shear_bridge_sample(i[0], i[1], i[2], i[3], i[4],
+                                           i[5], i[6], &i[7], &i[11], r, o);
+  gsl_rng_free(r);
+  return st;
+}
+
 #define TBT {"tau", "B", "t", NULL}
 #define MOM {"mean_x", "mean_u", "var_x", "var_u", "cov_xu", NULL}
 #define A_MOM {"tau", "B", "us", "t", "x0", "u0", NULL}
@@ -118,6 +146,14 @@ static int sbe_w_langevin_bridge_sample(const double *i, double *o)
 #define A_BRS {"tau", "B", "us", "dt", "s", "x0", "u0", "x1", "u1", "seed", \
                NULL}
 #define O_BRS {"xs", "us", NULL}
+#define A_SHB {"tau", "B", "G", "cx", "cy", "h", "s", "uy0", "y0", "ux0", \
+               "x0", "uy1", "y1", "ux1", "x1", NULL}
+#define A_SHS {"tau", "B", "G", "cx", "cy", "h", "s", "uy0", "y0", "ux0", \
+               "x0", "uy1", "y1", "ux1", "x1", "seed", NULL}
+#define O_SHB {"mean_uy", "mean_y", "mean_ux", "mean_x", "cov_uy_uy", \
+               "cov_y_uy", "cov_y_y", "cov_ux_uy", "cov_ux_y", "cov_ux_ux", \
+               "cov_x_uy", "cov_x_y", "cov_x_ux", "cov_x_x", NULL}
+#define O_SHS {"uy", "y", "ux", "x", NULL}
 #define A_STOKES {"rho_p", "d_p", "mu_f", "cc", NULL}
 #define A_MASS {"rho_p", "d_p", NULL}
 #define A_B {"T", "m_p", "tau_p", NULL}
@@ -163,6 +199,11 @@ static const sbe_func funcs[] = {
        A_BRS,
        O_BRS,
        "OU/Langevin bridge: one draw of (X_s, U_s) given both ends"),
+    EO(langevin_shear_bridge_moments, A_SHB, O_SHB,
+       "Langevin bridge in the linear shear (G y + cx, cy): law of "
+       "(u_y, y, u_x, x) at s given both end states"),
+    EO(langevin_shear_bridge_sample, A_SHS, O_SHS,
+       "Langevin bridge in the linear shear: one draw at s given both ends"),
     E(stokes_tau, A_STOKES,
       "SI: Stokes relaxation time rho_p d_p^2 Cc/(18 mu_f) [s]"),
     E(sphere_mass, A_MASS, "SI: sphere mass [kg]"),

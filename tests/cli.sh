@@ -64,6 +64,20 @@ relclose "$got" 4.7953886961324335 1e-12 || fail "poisson_ci lo = $got"
 got=$("$sb" eval chi2_sf x=3.841458820694124 dof=1)
 relclose "$got" 0.05 1e-10 || fail "chi2_sf = $got"
 expect_rc 1 "$sb" eval binomial_ci k=-1 n=10 level=0.95
+# the shear bridge without shear: its (u_x, x) block is the OU bridge
+shb="tau=4e-7 B=0.9 G=0 cx=0 cy=0 h=8e-7 s=3e-7 uy0=1e-4 y0=2e-9 ux0=-3e-4 \
+x0=1e-9 uy1=2e-4 y1=5e-10 ux1=1e-4 x1=-4e-10"
+got=$("$sb" eval langevin_shear_bridge_moments $shb | sed -n 's/^mean_x=//p')
+want=$("$sb" eval langevin_bridge_moments tau=4e-7 B=0.9 us=0 dt=8e-7 s=3e-7 \
+       x0=1e-9 u0=-3e-4 x1=-4e-10 u1=1e-4 | sed -n 's/^mean_x=//p')
+relclose "$got" "$want" 1e-9 || fail "shear bridge mean_x $got, OU $want"
+got=$("$sb" eval langevin_shear_bridge_moments $shb | sed -n 's/^cov_x_x=//p')
+want=$("$sb" eval langevin_bridge_moments tau=4e-7 B=0.9 us=0 dt=8e-7 s=3e-7 \
+       x0=1e-9 u0=-3e-4 x1=-4e-10 u1=1e-4 | sed -n 's/^var_x=//p')
+relclose "$got" "$want" 1e-9 || fail "shear bridge cov_x_x $got, OU $want"
+s1=$("$sb" eval langevin_shear_bridge_sample $shb seed=4)
+s2=$("$sb" eval langevin_shear_bridge_sample $shb seed=4)
+[ "$s1" = "$s2" ] && [ -n "$s1" ] || fail "shear bridge sample not reproducible"
 # a domain error names the function called and its arguments
 msg=$("$sb" eval dlvo_energy D=-1 r1=1e-6 r2=1e-6 A=1e-20 T=300 eps_r=78 z=1 \
       kappa=1e8 psi=0.01 model=0 2>&1 >/dev/null)
