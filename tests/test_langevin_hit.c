@@ -308,6 +308,21 @@ static void cs_of(const double x[2][3], const double u[2][3], double R,
   cs[1] = 0.5 * (x[0][0] + x[1][0]);
 }
 
+/* cs_of at fraction f of a sub-step from (xp, up) to (x, u), the states
+ * interpolated linearly along it. */
+static void cs_at(const double xp[2][3], const double up[2][3],
+                  const double x[2][3], const double u[2][3], double f,
+                  double R, double cs[2])
+{
+  double xa[2][3], ua[2][3];
+  for (int p = 0; p < 2; p++)
+    for (int k = 0; k < 3; k++) {
+      xa[p][k] = xp[p][k] + f * (x[p][k] - xp[p][k]);
+      ua[p][k] = up[p][k] + f * (u[p][k] - up[p][k]);
+    }
+  cs_of(xa, ua, R, cs);
+}
+
 /* The sampler's one-pass bridge coefficients (sbi_lh_bridge_coef)
  * against sb_langevin_bridge_moments at unit end states (the definition
  * of each coefficient), over h/tau = 1e-9 to 1e4 and s/h = 0.001 to 0.999,
@@ -399,15 +414,8 @@ static int bridge_brute(const gsl_rng *r, const sb_langevin_path *P, int nf,
     }
     if (f >= 0) {
       *t = (s + f) * h;
-      if (cs) {  /* cs_of at the entry, interpolated along the sub-step */
-        double xa[2][3], ua[2][3];
-        for (int p = 0; p < 2; p++)
-          for (int k = 0; k < 3; k++) {
-            xa[p][k] = xp[p][k] + f * (x[p][k] - xp[p][k]);
-            ua[p][k] = up[p][k] + f * (u[p][k] - up[p][k]);
-          }
-        cs_of(xa, ua, R, cs);
-      }
+      if (cs)
+        cs_at(xp, up, x, u, f, R, cs);
       return 1;
     }
   }
@@ -637,13 +645,7 @@ static int shear_brute(const gsl_rng *r, const sb_langevin_path *P,
     const double f = entry(ra, rb, R);
     if (f >= 0) {
       *t = (s + f) * h;
-      double xa[2][3], ua[2][3];  /* the states at the entry */
-      for (int p = 0; p < 2; p++)
-        for (int k = 0; k < 3; k++) {
-          xa[p][k] = xp[p][k] + f * (x[p][k] - xp[p][k]);
-          ua[p][k] = up[p][k] + f * (u[p][k] - up[p][k]);
-        }
-      cs_of(xa, ua, R, cs);
+      cs_at(xp, up, x, u, f, R, cs);
       return 1;
     }
   }
