@@ -53,6 +53,23 @@ static double entry(const double *ra, const double *rb, double R)
   return s <= 1 ? s : -1;
 }
 
+/* Chord exit fraction of ra -> rb out of |r| < R (ra inside or on the
+ * sphere), or -1: the larger root. */
+static double exit_root(const double *ra, const double *rb, double R)
+{
+  double d[3], a = 0, b = 0, c = -R * R, cb = -R * R;
+  for (int k = 0; k < 3; k++) {
+    d[k] = rb[k] - ra[k];
+    a += d[k] * d[k];
+    b += ra[k] * d[k];
+    c += ra[k] * ra[k];
+    cb += rb[k] * rb[k];
+  }
+  if (cb <= 0 || a == 0)
+    return -1;
+  return (-b + sqrt(b * b - a * c)) / a;
+}
+
 /* Result of one brute-force path. */
 typedef struct {
   int hit;
@@ -374,11 +391,12 @@ START_TEST(test_bridge_coef)
 END_TEST
 
 /* Fixed ends: brute force by sequential bridge draws.  n NULL: the
- * pair's contact |x_0 - x_1| <= R; else particle 0 alone against the
- * half-space n.x <= R (n a unit vector; P[1] unused). */
+ * pair's contact |x_0 - x_1| <= R (exitm: the first exit, |x_0 - x_1| >=
+ * R from inside); else particle 0 alone against the half-space n.x <= R
+ * (n a unit vector; P[1] unused). */
 static int bridge_brute(const gsl_rng *r, const sb_langevin_path *P, int nf,
-                        double dt, double R, const double *n, double *t,
-                        double *cs)
+                        double dt, double R, const double *n, int exitm,
+                        double *t, double *cs)
 {
   double x[2][3], u[2][3];
   for (int p = 0; p < 2; p++)
@@ -406,7 +424,7 @@ static int bridge_brute(const gsl_rng *r, const sb_langevin_path *P, int nf,
     }
     for (int k = 0; k < 3; k++)
       rb[k] = x[0][k] - (n ? 0.0 : x[1][k]);
-    double f = entry(ra, rb, R);
+    double f = exitm ? exit_root(ra, rb, R) : entry(ra, rb, R);
     if (n) {  /* linear entry into the half-space */
       double pa = ra[0] * n[0] + ra[1] * n[1] + ra[2] * n[2] - R;
       double pb = rb[0] * n[0] + rb[1] * n[1] + rb[2] * n[2] - R;
@@ -444,15 +462,19 @@ static void same_law(int cfg, double *tb, long hb, int nb, double *ts,
 }
 
 /* ns sampler draws for the pair P over [0, 1] (R = 1): the hit times
- * into ts and the contact states (cs_of) into cv; returns the hits. */
+ * into ts and the contact states (cs_of) into cv; returns the hits
+ * (exitm: the exits, sb_langevin_hitter_sample_exit). */
 static long sampler_draws(sb_langevin_hitter *w, const sb_langevin_path *P,
-                          int ns, const gsl_rng *r, double *ts,
+                          int exitm, int ns, const gsl_rng *r, double *ts,
                           double (*cv)[2])
 {
   long hs = 0;
   for (int n = 0; n < ns; n++) {
     sb_langevin_contact c;
-    int h = sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, 1.0, r, &c);
+    int h = exitm ? sb_langevin_hitter_sample_exit(w, &P[0], &P[1], 1.0,
+                                                   1.0, r, &c)
+                  : sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, 1.0,
+                                              r, &c);
     ck_assert_int_ge(h, 0);
     if (h) {
       const double x[2][3] = {{c.xi[0], c.xi[1], c.xi[2]},
@@ -526,11 +548,95 @@ START_TEST(test_fixed_ends)
                                                                sizeof *cv);
     long hb = 0;
     for (int n = 0; n < nb; n++)
-      hb += bridge_brute(r, P, 256, 1.0, 1.0, NULL, &tb[hb], cb[hb]);
-    const long hs = sampler_draws(w, P, ns, r, ts, cv);
+      hb += bridge_brute(r, P, 256, 1.0, 1.0, NULL, 0, &tb[hb], cb[hb]);
+    const long hs = sampler_draws(w, P, 0, ns, r, ts, cv);
     same_contact_states(cfg, cb, hb, cv, hs);
     same_law(cfg, tb, hb, nb, ts, hs, ns);
   }
+  sb_langevin_hitter_free(w);
+  gsl_rng_free(r);
+}
+END_TEST
+
+/* First exit (sb_langevin_hitter_sample_exit) against the same brute
+ * force (256 sequential bridge sub-steps, the chord's exit root), at
+ * dt/tau = 4 (R = 1, k_B T = 1), for four configurations: a pair that has
+ * just entered (touching, relative velocity inwards; the state of a
+ * contact) and ends inside near the sphere, so that it exits in ~40% of
+ * the paths; a pair starting inside that ends outside (it always exits:
+ * the exit time's law and the states); the first for unequal particles
+ * (mixture: both particles' walk); a pair at rest at both ends, 0.6 R
+ * from the centre on opposite sides, at dt/tau = 5 and m = 0.25 (exit in
+ * ~48%; the chord's clearance 0.4 R lets the closed-form bound act from
+ * the top level: pruning every sub-interval whose mean path is clear
+ * gives no exit at all).  1000 brute-force paths, 6000 sampler draws:
+ * two-sample binomial |z| <= 3.5, KS2 of the exit times and of the
+ * states at the exit (p >= 1e-3); every exit at distance R. */
+START_TEST(test_exit_fixed_ends)
+{
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  gsl_rng_set(r, 211);
+  sb_langevin_hitter *w = sb_langevin_hitter_alloc(NULL);
+  for (int cfg = 0; cfg < 4; cfg++) {
+    sb_langevin_path P[2] = {particle(0.25, 1),
+                             particle(cfg == 2 ? 0.75 : 0.25, cfg == 2 ? 5 : 1)};
+    if (cfg == 3) {
+      P[0] = P[1] = particle(0.2, 0.25);
+      P[0].x0[0] = 0.6;
+      P[0].x1[0] = -0.6;
+      P[0].x0[1] = 0.1;
+      P[0].x1[1] = -0.1;
+    } else if (cfg != 1) {
+      const double a[3] = {0.6, 0.8, 0}, b[3] = {-0.6, 0.75, 0.1};
+      memcpy(P[0].x0, a, sizeof a);
+      memcpy(P[0].x1, b, sizeof b);
+      P[0].u0[0] = -1.0;
+      P[0].u0[1] = -0.3;
+      P[0].u1[0] = -1.0;
+      P[0].u1[1] = 0.3;
+    } else {
+      const double a[3] = {0.2, -0.3, 0.1}, b[3] = {1.3, 0.4, -0.2};
+      memcpy(P[0].x0, a, sizeof a);
+      memcpy(P[0].x1, b, sizeof b);
+      P[0].u1[0] = 1.0;
+    }
+    const int nb = 1000, ns = 6000;
+    double *tb = malloc(nb * sizeof *tb), *ts = malloc(ns * sizeof *ts);
+    double (*cb)[2] = malloc(nb * sizeof *cb), (*cv)[2] = malloc(ns *
+                                                               sizeof *cv);
+    long hb = 0;
+    for (int n = 0; n < nb; n++)
+      hb += bridge_brute(r, P, 256, 1.0, 1.0, NULL, 1, &tb[hb], cb[hb]);
+    const long hs = sampler_draws(w, P, 1, ns, r, ts, cv);
+    printf("exit fixed ends %d: brute force %ld/%d, sampler %ld/%d\n", cfg,
+           hb, nb, hs, ns);
+    same_contact_states(20 + cfg, cb, hb, cv, hs);
+    if (cfg == 1) {  /* sure: only the law of the time */
+      ck_assert_int_eq(hb, nb);
+      ck_assert_int_eq(hs, ns);
+      double D, p;
+      ck_assert_int_eq(sb_ks2_test(tb, hb, ts, hs, &D, &p), SB_SUCCESS);
+      ck_assert_msg(p >= 1e-3, "exit times: KS2 D = %g, p = %g", D, p);
+      free(tb);
+      free(ts);
+    } else
+      same_law(20 + cfg, tb, hb, nb, ts, hs, ns);
+  }
+  /* the exit is at distance R; apart at the start: out at once */
+  sb_langevin_path P[2] = {particle(1, 1), particle(1, 1)};
+  const double a[3] = {0.2, -0.3, 0.1}, b[3] = {1.3, 0.4, -0.2};
+  memcpy(P[0].x0, a, sizeof a);
+  memcpy(P[0].x1, b, sizeof b);
+  sb_langevin_contact c;
+  ck_assert_int_eq(sb_langevin_hitter_sample_exit(w, &P[0], &P[1], 1.0, 1.0,
+                                                  r, &c), 1);
+  double d2 = 0;
+  for (int k = 0; k < 3; k++)
+    d2 += (c.xi[k] - c.xj[k]) * (c.xi[k] - c.xj[k]);
+  ck_assert_double_eq_tol(sqrt(d2), 1.0, 1e-12);
+  ck_assert_int_eq(sb_langevin_hitter_sample_exit(w, &P[0], &P[1], 0.3, 1.0,
+                                                  r, &c), 1);
+  ck_assert_double_eq(c.t, 0.0);
   sb_langevin_hitter_free(w);
   gsl_rng_free(r);
 }
@@ -691,7 +797,7 @@ START_TEST(test_shear_fixed_ends)
     long hb = 0;
     for (int n = 0; n < nb; n++)
       hb += shear_brute(r, P, T, 1.0, 1.0, &tb[hb], cb[hb]);
-    const long hs = sampler_draws(w, P, ns, r, ts, cv);
+    const long hs = sampler_draws(w, P, 0, ns, r, ts, cv);
     same_contact_states(10 + cfg, cb, hb, cv, hs);
     printf("shear fixed ends %d: brute force %ld/%d, sampler %ld/%d\n",
            cfg, hb, nb, hs, ns);
@@ -733,7 +839,7 @@ START_TEST(test_plane_fixed_ends)
     double *tb = malloc(nb * sizeof *tb), *ts = malloc(ns * sizeof *ts);
     long hb = 0, hs = 0;
     for (int n = 0; n < nb; n++)
-      hb += bridge_brute(r, P, 256, 1.0, lev[cfg], un, &tb[hb], NULL);
+      hb += bridge_brute(r, P, 256, 1.0, lev[cfg], un, 0, &tb[hb], NULL);
     for (int n = 0; n < ns; n++) {
       sb_langevin_contact c;
       int h = sb_langevin_hitter_sample_plane(w, &P[0], nn, 2.0 * lev[cfg],
@@ -790,11 +896,13 @@ END_TEST
  * misses are frequent enough to count), 3000 calls in the diffusive
  * configuration where pruning is most active: audit hits <= pruned mass
  * + 4 sqrt(mass) + 3 and pruned mass / calls <= eps; then the default
- * eps = 1e-6 misses nothing in 1000 audited calls. */
-START_TEST(test_audit_budget)
+ * eps = 1e-6 misses nothing in 1000 audited calls.  The same for the
+ * exit sampler (sb_langevin_hitter_sample_exit; _i = 1: the pair starts
+ * inside, at 0.9 R). */
+static void audit_budget(int exitm)
 {
   gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
-  gsl_rng_set(r, 301);
+  gsl_rng_set(r, exitm ? 302 : 301);
   const double eps[2] = {1e-2, 1e-6};
   const int ncall[2] = {3000, 1000};
   for (int q = 0; q < 2; q++) {
@@ -810,7 +918,7 @@ START_TEST(test_audit_budget)
       gsl_ran_dir_3d(r, &dir[0], &dir[1], &dir[2]);
       const double dt = n % 2 ? 30.0 : 1.0;
       for (int k = 0; k < 3; k++)
-        P[0].x0[k] = 1.8 * dir[k];
+        P[0].x0[k] = (exitm ? 0.9 : 1.8) * dir[k];
       for (int a = 0; a < 2; a++)
         for (int k = 0; k < 3; k++) {
           P[a].u0[k] = gsl_ran_gaussian_ziggurat(r, 1.0);
@@ -819,8 +927,11 @@ START_TEST(test_audit_budget)
           P[a].x1[k] = x;
           P[a].u1[k] = u;
         }
-      ck_assert_int_ge(sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, dt,
-                                                 r, NULL), 0);
+      ck_assert_int_ge(exitm ? sb_langevin_hitter_sample_exit(
+                                   w, &P[0], &P[1], 1.0, dt, r, NULL)
+                             : sb_langevin_hitter_sample(w, &P[0], &P[1],
+                                                         1.0, dt, r, NULL),
+                       0);
     }
     sb_langevin_hit_stats st;
     sb_langevin_hitter_stats(w, &st);
@@ -828,6 +939,10 @@ START_TEST(test_audit_budget)
     ck_assert_msg(st.pruned > 0, "nothing pruned");
     ck_assert_msg(m / st.calls <= eps[q], "pruned mass %g per call", m /
                   st.calls);
+    printf("audit (%s) eps %g: pruned %llu, mass %g, audited misses "
+           "%llu\n", exitm ? "exit" : "entry", eps[q],
+           (unsigned long long)st.pruned, m,
+           (unsigned long long)st.audit_hits);
     ck_assert_msg((double)st.audit_hits <= m + 4 * sqrt(m) + 3,
                   "eps %g: %llu audited misses, bound %g", eps[q],
                   (unsigned long long)st.audit_hits, m);
@@ -837,6 +952,11 @@ START_TEST(test_audit_budget)
   }
   gsl_rng_free(r);
 }
+
+START_TEST(test_audit_budget) { audit_budget(0); }
+END_TEST
+
+START_TEST(test_audit_exit) { audit_budget(1); }
 END_TEST
 
 /* The Rice bound is an upper bound: at the top level it exceeds the
@@ -859,7 +979,7 @@ START_TEST(test_bound)
     long hb = 0;
     double t;
     for (int n = 0; n < nb; n++)
-      hb += bridge_brute(r, P, 256, 1.0, 1.0, NULL, &t, NULL);
+      hb += bridge_brute(r, P, 256, 1.0, 1.0, NULL, 0, &t, NULL);
     double lo, hi;
     sb_binomial_ci((unsigned long)hb, (unsigned long)nb, 0.999, &lo, &hi);
     ck_assert_msg(bound >= lo, "y = %g: bound %g below brute force %g [%g, "
@@ -1001,11 +1121,13 @@ static Suite *suite(void)
   tcase_set_timeout(ta, 30);
   tcase_add_test(ta, test_bound);
   tcase_add_test(ta, test_audit_budget);
+  tcase_add_test(ta, test_audit_exit);
   suite_add_tcase(s, ta);
   TCase *tb = tcase_create("fixed");
   tcase_set_timeout(tb, 30);
   tcase_add_test(tb, test_fixed_ends);
   tcase_add_test(tb, test_plane_fixed_ends);
+  tcase_add_test(tb, test_exit_fixed_ends);
   suite_add_tcase(s, tb);
   TCase *tsh = tcase_create("shear");
   tcase_set_timeout(tsh, 120);

@@ -44,6 +44,7 @@
 #define INV_SQRT_2PI 0.39894228040143267794
 #define INV_SQRT_2 0.70710678118654752440
 #define SQRT_2 1.41421356237309504880
+#define LN_2 0.69314718055994530942
 
 void sb_langevin_hit_params_default(sb_langevin_hit_params *p)
 {
@@ -146,6 +147,9 @@ typedef struct {
    * level, any sign); scale sets the resolution */
   int plane;
   double n[3], scale;
+  /* exit mode (sb_langevin_hitter_sample_exit): the target set is the
+   * outside of the ball, |r| >= R, reached from inside */
+  int exitm;
   /* result */
   double th;         /* contact time from the start of the step */
   pstate ca, cb;     /* the leaf's end states */
@@ -421,6 +425,8 @@ static double rice_bound(const walk *W, const nodes *N, const pstate *A,
                          const pstate *Bs, double h)
 {
   double ra[3], rb[3], n[3];
+  if (W->exitm)
+    return 1.0;  /* exit mode: the closed-form bound only (exit_tail) */
   rel(A, ra);
   rel(Bs, rb);
   if (!bound_normal(W, N, ra, rb, n))
@@ -516,6 +522,29 @@ static double chord_entry(const double *ra, const double *rb, double R,
   return s <= 1.0 ? s : -1.0;
 }
 
+/* Exit mode: fraction at which the chord ra -> rb leaves the ball of
+ * radius R (ra inside it), or -1; *gap receives the chord's clearance
+ * inside, R less its largest distance from the centre (at an end: the
+ * ball is convex). */
+static double chord_exit(const double *ra, const double *rb, double R,
+                         double *gap)
+{
+  double d[3] = {rb[0] - ra[0], rb[1] - ra[1], rb[2] - ra[2]};
+  double a = dot3(d, d), b = dot3(ra, d), c = dot3(ra, ra) - R * R;
+  const double fa = dot3(ra, ra), fb = dot3(rb, rb);
+  *gap = R - sqrt(fa > fb ? fa : fb);
+  if (c > TOUCH * R * R)
+    return 0.0;
+  if (c >= -TOUCH * R * R && b >= 0.0)  /* touching: out now if leaving */
+    return 0.0;
+  if (fb <= R * R || a == 0.0)
+    return -1.0;
+  /* the positive root of a s^2 + 2 b s + c = 0 (c <= ~0) */
+  const double disc = b * b - a * c, q = sqrt(disc > 0.0 ? disc : 0.0);
+  const double s = b > 0.0 ? -c / (b + q) : (q - b) / a;
+  return s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
+}
+
 /* Plane mode: entry fraction of the chord ra -> rb into the half-space
  * n.r <= R, or -1; *gap receives the chord's smallest clearance. */
 static double plane_entry(const walk *W, const double *ra, const double *rb,
@@ -537,13 +566,18 @@ static double plane_entry(const walk *W, const double *ra, const double *rb,
 static double entry(const walk *W, const double *ra, const double *rb,
                     double *gap)
 {
+  if (W->exitm)
+    return chord_exit(ra, rb, W->R, gap);
   return W->plane ? plane_entry(W, ra, rb, gap)
                   : chord_entry(ra, rb, W->R, gap);
 }
 
-/* End of a sub-interval inside the contact set. */
+/* End of a sub-interval inside the target set (the contact set; exit
+ * mode: the outside of the ball). */
 static int inside(const walk *W, const double *r)
 {
+  if (W->exitm)
+    return dot3(r, r) >= W->R * W->R;
   return W->plane ? dot3(W->n, r) <= W->R : dot3(r, r) <= W->R * W->R;
 }
 
@@ -558,6 +592,11 @@ static int leaf(walk *W, const pstate *A, const pstate *Bs, double a,
   if (!W->auditing)
     W->w->st.leaves++;
   if (s < 0.0) {
+    if (W->exitm && dot3(ra, ra) >= W->R * W->R * (1.0 - TOUCH)) {
+      /* exit mode, a start touching the sphere on the way in (the walk's
+       * start after an entry): only the end's clearance can graze */
+      gap = W->R - sqrt(dot3(rb, rb));
+    }
     if (gap < GRAZE * W->delta && !W->auditing)
       W->w->st.grazing++;
     return 0;
@@ -601,6 +640,48 @@ static double quick_tail(double gap, double dev, double vel, double smax,
                    spmax * x0 * ph / smax;
   double b = SAFETY * h * f;
   return b < 1.0 ? b : 1.0;
+}
+
+/* Exit mode: the same closed form for leaving the ball.  The mean path
+ * stays within 1.25 dev of the chord, whose clearance inside is gap, so
+ * an exit needs |Z(t)| >= G = gap - 1.25 dev, Z the deviation from the
+ * conditional mean, which vanishes at both ends.  P(sup |Z| >= G) is at
+ * most the expected number of up-crossings of G by |Z| (Rice), the
+ * integral of f_|Z|(G) E[(d|Z|/dt)^+ | |Z| = G].  For Z isotropic in k
+ * dimensions (variances s^2, s'^2 per component, covariance c):
+ * f_|Z|(G) = chi_k(G/s)/s, and given Z = G e the radial derivative e.Z'
+ * is N(c G/s^2, s'^2 - c^2/s^2), so E[(.)^+] <= s' (x + 1/sqrt(2 pi)),
+ * x = G/s (|c| <= s s').  The integrand is then at most
+ * (s'/G) x chi_k(x) (x + 1/sqrt(2 pi)), which decreases in x >= 3:
+ * evaluate it at smax, spmax.  In the shear (Z not isotropic) smax and
+ * spmax are the largest along any direction, and the bound is not proven
+ * (measured by the audit, as the quadrature is). */
+static double exit_tail(int k, double gap, double dev, double smax,
+                        double spmax, double h, double *x0out)
+{
+  const double G = gap - 1.25 * dev;
+  if (smax > 0.0)
+    *x0out = G / smax;
+  if (!(smax > 0.0) || !(G >= 3.0 * smax))
+    return 1.0;
+  const double x = G / smax;
+  if (x > 40.0)
+    return 0.0;
+  /* chi_k(x) = x^(k-1) exp(-x^2/2) / (2^(k/2-1) Gamma(k/2)) */
+  const double chi =
+      exp((k - 1) * log(x) - 0.5 * x * x - (0.5 * k - 1.0) * LN_2 -
+          lgamma(0.5 * k));
+  double b = SAFETY * h * spmax / G * x * chi * (x + INV_SQRT_2PI);
+  return b < 1.0 ? b : 1.0;
+}
+
+/* The exit mode's tail, or the entry's. */
+static double tail(const walk *W, double gap, double dev, double vel,
+                   double smax, double spmax, double h, double *x0out)
+{
+  if (W->exitm)
+    return exit_tail(W->dim, gap, dev, smax, spmax, h, x0out);
+  return quick_tail(gap, dev, vel, smax, spmax, h, x0out);
 }
 
 /* Closed-form bound on the Rice integral of [a, a + h], from the chord
@@ -661,7 +742,7 @@ static double quick_bound(const walk *W, const sbi_lh_level *Li,
     const double smax = walk_sd(W, Li, Lj);
     const double spmax = sqrt((Li->sh ? Li->sh->umax : Li->vumax) +
                               (Lj->sh ? Lj->sh->umax : Lj->vumax));
-    return quick_tail(gap, dev, vel, smax, spmax, h, x0out);
+    return tail(W, gap, dev, vel, smax, spmax, h, x0out);
   }
   double dev = 0.0, vel = 0.0;
   /* same coefficients (one species): the deviations depend on the
@@ -689,7 +770,7 @@ static double quick_bound(const walk *W, const sbi_lh_level *Li,
   }
   const double smax = sqrt(Li->vxmax + Lj->vxmax);
   const double spmax = sqrt(Li->vumax + Lj->vumax);
-  return quick_tail(gap, dev, vel, smax, spmax, h, x0out);
+  return tail(W, gap, dev, vel, smax, spmax, h, x0out);
 }
 
 /* Examine [a, a + h] at depth d, with end states A and Bs; 1 if the first
@@ -835,13 +916,14 @@ static int check_path(const sb_langevin_path *q, int dim)
   return 1;
 }
 
-/* Set up a walk; returns 0, 1 (overlap at the start) or a negative
- * status.  plane: NULL (ball |r| <= R, scale = R), or the unit normal of
- * the half-space n.r <= R (any R; resolution xtol scale). */
+/* Set up a walk; returns 0, 1 (in the target set at the start) or a
+ * negative status.  plane: NULL (ball |r| <= R, scale = R), or the unit
+ * normal of the half-space n.r <= R (any R; resolution xtol scale);
+ * exitm: the target is the outside of the ball (plane NULL). */
 static int setup(walk *W, sb_langevin_hitter *w, const sb_langevin_path *pi,
                  const sb_langevin_path *pj, double R, const double *plane,
-                 double scale, double dt, const gsl_rng *r, pstate *A,
-                 pstate *Bs, const char *func)
+                 int exitm, double scale, double dt, const gsl_rng *r,
+                 pstate *A, pstate *Bs, const char *func)
 {
   if (!w || !pi || !pj)
     return -sbi_error(SB_EINVAL, func, "NULL argument");
@@ -866,6 +948,7 @@ static int setup(walk *W, sb_langevin_hitter *w, const sb_langevin_path *pi,
   W->eps = w->par.eps;
   W->delta = w->par.xtol * scale;
   W->scale = scale;
+  W->exitm = exitm;
   if (plane) {
     W->plane = 1;
     memcpy(W->n, plane, sizeof W->n);
@@ -926,6 +1009,13 @@ static int setup(walk *W, sb_langevin_hitter *w, const sb_langevin_path *pi,
     return pa <= tol && dot3(W->n, va) < 0.0;
   }
   double r2 = dot3(ra, ra), R2 = R * R;
+  if (exitm) {
+    /* apart, or touching and separating: out now; touching and
+     * approaching (the state of a contact): in */
+    if (r2 > R2 * (1.0 + TOUCH))
+      return 1;
+    return r2 >= R2 * (1.0 - TOUCH) && dot3(ra, va) >= 0.0;
+  }
   if (r2 < R2 * (1.0 - TOUCH))
     return 1;
   return r2 <= R2 * (1.0 + TOUCH) && dot3(ra, va) < 0.0;
@@ -1092,22 +1182,24 @@ static void relative_walk(walk *W, pstate *A, pstate *Bs)
   }
 }
 
-/* The sampler for a ball (plane NULL) or a half-space (setup). */
+/* The sampler for a ball (plane NULL), a half-space or the outside of
+ * the ball (exitm) (setup). */
 
 static int sample(sb_langevin_hitter *w, const sb_langevin_path *pi,
                   const sb_langevin_path *pj, double R, const double *plane,
-                  double scale, double dt, const gsl_rng *r,
+                  int exitm, double scale, double dt, const gsl_rng *r,
                   sb_langevin_contact *c, const char *func)
 {
   if (!r)
     return -sbi_error(SB_EINVAL, func, "r is NULL");
   walk W;
   pstate A, Bs;
-  int st = setup(&W, w, pi, pj, R, plane, scale, dt, r, &A, &Bs, func);
+  int st = setup(&W, w, pi, pj, R, plane, exitm, scale, dt, r, &A, &Bs,
+                 func);
   if (st < 0)
     return st;
   w->st.calls++;
-  if (st == 1) {  /* overlapping at the start: contact now */
+  if (st == 1) {  /* in the target set at the start: contact (exit) now */
     w->st.hits++;
     if (c) {
       memset(c, 0, sizeof *c);
@@ -1141,7 +1233,16 @@ int sb_langevin_hitter_sample(sb_langevin_hitter *w,
                               double dt, const gsl_rng *r,
                               sb_langevin_contact *c)
 {
-  return sample(w, pi, pj, R, NULL, R, dt, r, c, __func__);
+  return sample(w, pi, pj, R, NULL, 0, R, dt, r, c, __func__);
+}
+
+int sb_langevin_hitter_sample_exit(sb_langevin_hitter *w,
+                                   const sb_langevin_path *pi,
+                                   const sb_langevin_path *pj, double R,
+                                   double dt, const gsl_rng *r,
+                                   sb_langevin_contact *c)
+{
+  return sample(w, pi, pj, R, NULL, 1, R, dt, r, c, __func__);
 }
 
 int sb_langevin_hitter_sample_plane(sb_langevin_hitter *w,
@@ -1161,7 +1262,7 @@ int sb_langevin_hitter_sample_plane(sb_langevin_hitter *w,
   sb_langevin_path o;
   memset(&o, 0, sizeof o);
   o.tau = INFINITY;
-  return sample(w, p, &o, level / nn, u, scale, dt, r, c, __func__);
+  return sample(w, p, &o, level / nn, u, 0, scale, dt, r, c, __func__);
 }
 
 double sb_langevin_hitter_bound(sb_langevin_hitter *w,
@@ -1171,7 +1272,8 @@ double sb_langevin_hitter_bound(sb_langevin_hitter *w,
 {
   walk W;
   pstate A, Bs;
-  int st = setup(&W, w, pi, pj, R, NULL, R, dt, NULL, &A, &Bs, __func__);
+  int st = setup(&W, w, pi, pj, R, NULL, 0, R, dt, NULL, &A, &Bs,
+                 __func__);
   if (st < 0)
     return NAN;
   if (st == 1)

@@ -116,8 +116,8 @@ typedef struct {
 
 /** Counters since the allocation or sb_langevin_hitter_reset. */
 typedef struct {
-  uint64_t calls;     /**< sb_langevin_hitter_sample calls */
-  uint64_t hits;      /**< calls that returned a contact */
+  uint64_t calls;     /**< sampler calls (contact, plane and exit) */
+  uint64_t hits;      /**< calls that returned a contact (or exit) */
   uint64_t nodes;     /**< sub-intervals examined */
   uint64_t pruned;    /**< sub-intervals pruned by the bound */
   uint64_t leaves;    /**< sub-intervals decided on their chord */
@@ -152,6 +152,29 @@ int sb_langevin_hitter_sample(sb_langevin_hitter *w,
                               const sb_langevin_path *pj, double R,
                               double dt, const gsl_rng *r,
                               sb_langevin_contact *c);
+
+/** First exit: the first time in [0, dt] at which i and j are R apart,
+ *  for a pair that starts in contact (|x0_i - x0_j| < R, or = R and
+ *  approaching, as the states sb_langevin_hitter_sample returns at a
+ *  contact), from the same conditional law with the same method and
+ *  error budget.  The target set is the outside of the ball; the closed-
+ *  form bound then takes the expected number of up-crossings, by the norm
+ *  of the relative path's deviation from its conditional mean, of the
+ *  chord's clearance inside the ball (Rice's formula for the chi process;
+ *  docs/engine_langevin.md §2), and leaves decide on the chord's exit
+ *  root.  A leaf whose chord comes within 6 xtol R of the sphere from
+ *  inside counts as grazing (except at a start touching on the way in).
+ *  With the entry sampler from the exit state it gives every entry of a
+ *  pair that passes through contact (the engine's count outcome).
+ *  Returns 1 (exit: c->t, both states, |x_i - x_j| = R to rounding), 0
+ *  (the pair stays within R over [0, dt]) or a negative status.  A pair
+ *  apart at 0 (|x0_i - x0_j| > R, or = R and separating) exits at 0.
+ *  Domain as sb_langevin_hitter_sample. */
+int sb_langevin_hitter_sample_exit(sb_langevin_hitter *w,
+                                   const sb_langevin_path *pi,
+                                   const sb_langevin_path *pj, double R,
+                                   double dt, const gsl_rng *r,
+                                   sb_langevin_contact *c);
 
 /** First contact of one Langevin particle with the plane n.x = level
  *  (n need not be normalised), approached from the side n.x > level,
