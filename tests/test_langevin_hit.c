@@ -509,6 +509,34 @@ static void same_contact_states(int cfg, double (*cb)[2], long hb,
   free(cv);
 }
 
+/* Fixed-end draws of the pair P (R = 1, dt = 1): nb brute-force paths of
+ * 256 bridge sub-steps and ns sampler calls, first contacts or (exitm)
+ * first exits: the times and the states there (cs_of). */
+typedef struct {
+  int nb, ns;
+  long hb, hs;
+  double *tb, *ts;
+  double (*cb)[2], (*cv)[2];
+} fixed_draws;
+
+static void fixed_draws_run(fixed_draws *d, const sb_langevin_path *P,
+                            int exitm, int nb, int ns, const gsl_rng *r,
+                            sb_langevin_hitter *w)
+{
+  d->nb = nb;
+  d->ns = ns;
+  d->tb = malloc(nb * sizeof *d->tb);
+  d->ts = malloc(ns * sizeof *d->ts);
+  d->cb = malloc(nb * sizeof *d->cb);
+  d->cv = malloc(ns * sizeof *d->cv);
+  ck_assert(d->tb && d->ts && d->cb && d->cv);
+  d->hb = 0;
+  for (int n = 0; n < nb; n++)
+    d->hb += bridge_brute(r, P, 256, 1.0, 1.0, NULL, exitm, &d->tb[d->hb],
+                          d->cb[d->hb]);
+  d->hs = sampler_draws(w, P, exitm, ns, r, d->ts, d->cv);
+}
+
 /* Three end configurations at dt/tau = 1 (R = 1): the chord passing the
  * sphere at 1.05 (grazing), a chord passing at 1.2 with transverse
  * velocities towards the sphere at the start and away at the end (the
@@ -542,16 +570,10 @@ START_TEST(test_fixed_ends)
       memcpy(P[0].x1, b, sizeof b);
       P[1].u1[2] = 0.5;
     }
-    const int nb = 1000, ns = 6000;
-    double *tb = malloc(nb * sizeof *tb), *ts = malloc(ns * sizeof *ts);
-    double (*cb)[2] = malloc(nb * sizeof *cb), (*cv)[2] = malloc(ns *
-                                                               sizeof *cv);
-    long hb = 0;
-    for (int n = 0; n < nb; n++)
-      hb += bridge_brute(r, P, 256, 1.0, 1.0, NULL, 0, &tb[hb], cb[hb]);
-    const long hs = sampler_draws(w, P, 0, ns, r, ts, cv);
-    same_contact_states(cfg, cb, hb, cv, hs);
-    same_law(cfg, tb, hb, nb, ts, hs, ns);
+    fixed_draws d;
+    fixed_draws_run(&d, P, 0, 1000, 6000, r, w);
+    same_contact_states(cfg, d.cb, d.hb, d.cv, d.hs);
+    same_law(cfg, d.tb, d.hb, d.nb, d.ts, d.hs, d.ns);
   }
   sb_langevin_hitter_free(w);
   gsl_rng_free(r);
@@ -600,27 +622,22 @@ START_TEST(test_exit_fixed_ends)
       memcpy(P[0].x1, b, sizeof b);
       P[0].u1[0] = 1.0;
     }
-    const int nb = 1000, ns = 6000;
-    double *tb = malloc(nb * sizeof *tb), *ts = malloc(ns * sizeof *ts);
-    double (*cb)[2] = malloc(nb * sizeof *cb), (*cv)[2] = malloc(ns *
-                                                               sizeof *cv);
-    long hb = 0;
-    for (int n = 0; n < nb; n++)
-      hb += bridge_brute(r, P, 256, 1.0, 1.0, NULL, 1, &tb[hb], cb[hb]);
-    const long hs = sampler_draws(w, P, 1, ns, r, ts, cv);
+    fixed_draws d;
+    fixed_draws_run(&d, P, 1, 1000, 6000, r, w);
     printf("exit fixed ends %d: brute force %ld/%d, sampler %ld/%d\n", cfg,
-           hb, nb, hs, ns);
-    same_contact_states(20 + cfg, cb, hb, cv, hs);
+           d.hb, d.nb, d.hs, d.ns);
+    same_contact_states(20 + cfg, d.cb, d.hb, d.cv, d.hs);
     if (cfg == 1) {  /* sure: only the law of the time */
-      ck_assert_int_eq(hb, nb);
-      ck_assert_int_eq(hs, ns);
+      ck_assert_int_eq(d.hb, d.nb);
+      ck_assert_int_eq(d.hs, d.ns);
       double D, p;
-      ck_assert_int_eq(sb_ks2_test(tb, hb, ts, hs, &D, &p), SB_SUCCESS);
+      ck_assert_int_eq(sb_ks2_test(d.tb, d.hb, d.ts, d.hs, &D, &p),
+                       SB_SUCCESS);
       ck_assert_msg(p >= 1e-3, "exit times: KS2 D = %g, p = %g", D, p);
-      free(tb);
-      free(ts);
+      free(d.tb);
+      free(d.ts);
     } else
-      same_law(20 + cfg, tb, hb, nb, ts, hs, ns);
+      same_law(20 + cfg, d.tb, d.hb, d.nb, d.ts, d.hs, d.ns);
   }
   /* the exit is at distance R; apart at the start: out at once */
   sb_langevin_path P[2] = {particle(1, 1), particle(1, 1)};
@@ -637,6 +654,157 @@ START_TEST(test_exit_fixed_ends)
   ck_assert_int_eq(sb_langevin_hitter_sample_exit(w, &P[0], &P[1], 0.3, 1.0,
                                                   r, &c), 1);
   ck_assert_double_eq(c.t, 0.0);
+  sb_langevin_hitter_free(w);
+  gsl_rng_free(r);
+}
+END_TEST
+
+/* Brute force for every entry: nf sequential bridge sub-steps of the
+ * pair P over [0, 1] (R = 1), an entry in a sub-step when its start is
+ * outside and its chord enters (a chord enters at most once); the entry
+ * times into t (up to nmax) and the contact states (cs_at) into cs.
+ * Returns the number of entries. */
+static int bridge_brute_all(const gsl_rng *r, const sb_langevin_path *P,
+                            int nf, double *t, double (*cs)[2], int nmax)
+{
+  double x[2][3], u[2][3];
+  for (int p = 0; p < 2; p++)
+    for (int k = 0; k < 3; k++) {
+      x[p][k] = P[p].x0[k];
+      u[p][k] = P[p].u0[k];
+    }
+  const double h = 1.0 / nf;
+  int n = 0;
+  for (int s = 0; s < nf; s++) {
+    double ra[3], rb[3], xp[2][3], up[2][3], a2 = 0;
+    memcpy(xp, x, sizeof xp);
+    memcpy(up, u, sizeof up);
+    for (int k = 0; k < 3; k++) {
+      ra[k] = x[0][k] - x[1][k];
+      a2 += ra[k] * ra[k];
+    }
+    for (int p = 0; p < 2; p++)
+      for (int k = 0; k < 3; k++) {
+        sb_langevin lp = {P[p].tau, P[p].B, P[p].us[k]};
+        double xn = P[p].x1[k], un = P[p].u1[k];
+        if (s < nf - 1)
+          sb_langevin_bridge_sample(&lp, 1.0 - s * h, h, x[p][k], u[p][k],
+                                    P[p].x1[k], P[p].u1[k], r, &xn, &un);
+        x[p][k] = xn;
+        u[p][k] = un;
+      }
+    for (int k = 0; k < 3; k++)
+      rb[k] = x[0][k] - x[1][k];
+    double f = a2 > 1.0 ? entry(ra, rb, 1.0) : -1;
+    if (f >= 0) {
+      if (n < nmax) {
+        t[n] = (s + f) * h;
+        cs_at(xp, up, x, u, f, 1.0, cs[n]);
+      }
+      n++;
+    }
+  }
+  return n;
+}
+
+/* Every entry (sb_langevin_hitter_sample_all) against that brute force
+ * (512 sub-steps), m = 0.25, k_B T = 1, R = 1, dt = 1: a chord tangent
+ * to the sphere at dt/tau = 5 (0, 1, 2 or more entries), the same for
+ * unequal particles (mixture), and a pair that has just entered
+ * (touching, relative velocity inwards: it is not entering at 0) and
+ * ends inside near the sphere, at dt/tau = 4 (re-entries).  1000 brute
+ * paths, 4000 sampler calls: the mean number of entries (Welch |z| <=
+ * 3.5), the numbers of calls with 0, 1 and >= 2 entries (chi-square of
+ * the 2 x 3 table, p >= 1e-3), and KS2 of all entry times and of the
+ * contact states (p >= 1e-3). */
+START_TEST(test_all_entries)
+{
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  gsl_rng_set(r, 221);
+  sb_langevin_hitter *w = sb_langevin_hitter_alloc(NULL);
+  enum { NMAX = 64 };
+  for (int cfg = 0; cfg < 3; cfg++) {
+    sb_langevin_path P[2] = {particle(0.2, 0.25),
+                             particle(cfg == 1 ? 0.6 : 0.2,
+                                      cfg == 1 ? 1.25 : 0.25)};
+    if (cfg < 2) {
+      const double a[3] = {0.9, 1.0, 0}, b[3] = {-0.9, 1.0, 0.0};
+      memcpy(P[0].x0, a, sizeof a);
+      memcpy(P[0].x1, b, sizeof b);
+    } else {
+      P[0] = P[1] = particle(0.25, 1);
+      const double a[3] = {0.6, 0.8, 0}, b[3] = {-0.6, 0.75, 0.1};
+      memcpy(P[0].x0, a, sizeof a);
+      memcpy(P[0].x1, b, sizeof b);
+      P[0].u0[0] = -1.0;
+      P[0].u0[1] = -0.3;
+      P[0].u1[0] = -1.0;
+      P[0].u1[1] = 0.3;
+    }
+    const int nb = 1000, ns = 4000;
+    double *tb = malloc(nb * NMAX * sizeof *tb),
+           *ts = malloc(ns * NMAX * sizeof *ts);
+    double(*cb)[2] = malloc(nb * NMAX * sizeof *cb),
+    (*cv)[2] = malloc(ns * NMAX * sizeof *cv);
+    double hist[2][3] = {{0}}, sum[2] = {0}, sq[2] = {0};
+    long hb = 0, hs = 0;
+    for (int n = 0; n < nb; n++) {
+      int k = bridge_brute_all(r, P, 512, &tb[hb], &cb[hb], NMAX);
+      ck_assert_int_le(k, NMAX);
+      hb += k;
+      hist[0][k < 2 ? k : 2]++;
+      sum[0] += k;
+      sq[0] += (double)k * k;
+    }
+    for (int n = 0; n < ns; n++) {
+      int k = sb_langevin_hitter_sample_all(w, &P[0], &P[1], 1.0, 1.0, r);
+      ck_assert_int_ge(k, 0);
+      ck_assert_int_le(k, NMAX);
+      const sb_langevin_contact *c = sb_langevin_hitter_entries(w);
+      for (int q = 0; q < k; q++) {
+        const double x[2][3] = {{c[q].xi[0], c[q].xi[1], c[q].xi[2]},
+                                {c[q].xj[0], c[q].xj[1], c[q].xj[2]}};
+        const double u[2][3] = {{c[q].ui[0], c[q].ui[1], c[q].ui[2]},
+                                {c[q].uj[0], c[q].uj[1], c[q].uj[2]}};
+        ck_assert(q == 0 || c[q].t > c[q - 1].t);
+        cs_of(x, u, 1.0, cv[hs]);
+        ts[hs++] = c[q].t;
+      }
+      hist[1][k < 2 ? k : 2]++;
+      sum[1] += k;
+      sq[1] += (double)k * k;
+    }
+    const int N[2] = {nb, ns};
+    double m[2], v[2];
+    for (int q = 0; q < 2; q++) {
+      m[q] = sum[q] / N[q];
+      v[q] = (sq[q] / N[q] - m[q] * m[q]) / (N[q] - 1);
+    }
+    const double z = (m[0] - m[1]) / sqrt(v[0] + v[1]);
+    printf("all entries %d: brute force %.4f per path (0/1/2+: %g %g %g), "
+           "sampler %.4f (%g %g %g), z = %.2f\n", cfg, m[0], hist[0][0],
+           hist[0][1], hist[0][2], m[1], hist[1][0], hist[1][1],
+           hist[1][2], z);
+    ck_assert_msg(fabs(z) <= 3.5, "config %d: mean entries z = %g", cfg, z);
+    double chi2 = 0;
+    for (int c = 0; c < 3; c++) {
+      const double col = hist[0][c] + hist[1][c];
+      for (int q = 0; q < 2; q++) {
+        const double e = col * N[q] / (nb + ns);
+        if (e > 0)
+          chi2 += (hist[q][c] - e) * (hist[q][c] - e) / e;
+      }
+    }
+    ck_assert_msg(gsl_cdf_chisq_Q(chi2, 2) >= 1e-3,
+                  "config %d: 0/1/2+ entries chi2 = %g", cfg, chi2);
+    double D, p;
+    ck_assert_int_eq(sb_ks2_test(tb, hb, ts, hs, &D, &p), SB_SUCCESS);
+    ck_assert_msg(p >= 1e-3, "config %d: entry times KS2 D = %g, p = %g",
+                  cfg, D, p);
+    same_contact_states(30 + cfg, cb, hb, cv, hs);
+    free(tb);
+    free(ts);
+  }
   sb_langevin_hitter_free(w);
   gsl_rng_free(r);
 }
@@ -1128,6 +1296,7 @@ static Suite *suite(void)
   tcase_add_test(tb, test_fixed_ends);
   tcase_add_test(tb, test_plane_fixed_ends);
   tcase_add_test(tb, test_exit_fixed_ends);
+  tcase_add_test(tb, test_all_entries);
   suite_add_tcase(s, tb);
   TCase *tsh = tcase_create("shear");
   tcase_set_timeout(tsh, 120);

@@ -197,6 +197,8 @@ static int detect_push(sb_engine *e, const sb_engine_pair *p, double t)
   int hit;
   sbi_event ev;
   ev.hasc = 0;
+  if (count_only && det == SB_DETECT_LANGEVIN)
+    return sbi_engine_langevin_push_all(e, p, t);  /* every entry */
   if (count_only && det != SB_DETECT_CUSTOM && overlapping(p))
     return SB_SUCCESS;  /* pass-through: an overlap is not a new contact */
   if (det == SB_DETECT_LANGEVIN)
@@ -208,6 +210,12 @@ static int detect_push(sb_engine *e, const sb_engine_pair *p, double t)
   else
     hit = e->detect_fn(e, p, e->rng, e->detect_ctx, &s);
   return push_hit(e, p, t, hit, s, &ev);
+}
+
+int sbi_engine_push_event(sb_engine *e, const sb_engine_pair *p, double t,
+                          double s, sbi_event *ev)
+{
+  return push_hit(e, p, t, 1, s, ev);
 }
 
 /* The detector's answer (hit, s) on p: push the event (ev: the

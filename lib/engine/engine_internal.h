@@ -487,6 +487,14 @@ int sbi_engine_langevin_chord_gate(const sb_engine *e, double reach);
 int sbi_engine_langevin_detect(const sb_engine *e, const sb_engine_pair *p,
                                double t, const gsl_rng *r, double *s,
                                sbi_event *ev);
+/* Pass-through (SB_OUTCOME_COUNT): push an event for every entry of the
+ * record's pair over [t, 1] (sb_langevin_hitter_sample_all); status. */
+int sbi_engine_langevin_push_all(sb_engine *e, const sb_engine_pair *p,
+                                 double t);
+/* Push the event ev of record p (start fraction t) at fraction s of the
+ * record (engine_detect.c); status. */
+int sbi_engine_push_event(sb_engine *e, const sb_engine_pair *p, double t,
+                          double s, sbi_event *ev);
 /* Pieces start at the step's start. */
 void sbi_engine_langevin_begin(sb_engine *e);
 /* After the outcome of event ev: particle k (a partner, not removed)

@@ -19,6 +19,14 @@
  * pair's interior path is drawn independently of the other pairs' (as for
  * every pairwise detector), which is exact for dilute suspensions, where
  * a particle rarely has two partners close at once.
+ *
+ * Pass-through (SB_OUTCOME_COUNT).  A collision changes nobody, so a pair
+ * may leave contact and enter again inside the same step: its record
+ * gets one event per entry of its path (sb_langevin_hitter_sample_all:
+ * after an entry the walk looks for the exit, then for the next entry),
+ * and a pair in contact at the start of the step is followed to its exit
+ * first.  Every entry is then counted, at any dt, as the flux through
+ * the contact sphere counts them.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -298,15 +306,25 @@ int sbi_engine_langevin_chord_gate(const sb_engine *e, double reach)
   return 1;
 }
 
-int sbi_engine_langevin_detect(const sb_engine *e, const sb_engine_pair *p,
-                               double t, const gsl_rng *r, double *s,
-                               sbi_event *ev)
+/* A record ready for the sampler: both paths over the rest of the step
+ * (dtr), j seen in the image next to i (shift shj, velocity offset du). */
+typedef struct {
+  sb_langevin_path pi, pj;
+  double shj[3], du, dtr;
+} lrec;
+
+/* Both paths of record p from step fraction t; 1 (ready), 0 (nothing to
+ * look for: beyond reach, or no time left) or -1 (error). */
+static int lrec_make(const sb_engine *e, const sb_engine_pair *p, double t,
+                     const gsl_rng *r, lrec *q)
 {
   const size_t i = p->i, j = p->j;
   if (t <= 0.0 && beyond_reach(e, p))
     return 0;
   double xi[3], ui[3], xj[3], uj[3];
-  double shi[3] = {0, 0, 0}, shj[3] = {0, 0, 0}, du = 0.0;
+  double shi[3] = {0, 0, 0};
+  memset(q->shj, 0, sizeof q->shj);
+  q->du = 0.0;
   /* Inside the step a partner's state at t is drawn from its own bridge,
    * independently of the other particle, so the draw ignores that the
    * pair has not touched before t; the draw is repeated while the pair
@@ -318,46 +336,85 @@ int sbi_engine_langevin_detect(const sb_engine *e, const sb_engine_pair *p,
       return -1;
     /* j in the image next to i at t: shift shj (a multiple of the box,
      * with the Lees-Edwards offset across the sliding boundary) */
-    sbi_engine_image(e, xi, xj, t, shj, &du);
+    sbi_engine_image(e, xi, xj, t, q->shj, &q->du);
     double d2 = 0.0;
     for (int c = 0; c < e->par.dim; c++) {
-      double d = xi[c] - xj[c] - shj[c];
+      double d = xi[c] - xj[c] - q->shj[c];
       d2 += d * d;
     }
     if (!drawn || t <= 0.0 || tries >= 1000 ||
         d2 >= p->sigma * p->sigma * (1.0 + SB_ENGINE_TOUCH))
       break;
   }
-  const double dtr = (1.0 - t) * e->par.dt;
-  sb_langevin_path pi, pj;
-  fill_path(e, i, xi, ui, shi, 0.0, dtr, &pi);
-  fill_path(e, j, xj, uj, shj, du, dtr, &pj);
-  if (!(dtr > 0.0))
-    return 0;
+  q->dtr = (1.0 - t) * e->par.dt;
+  fill_path(e, i, xi, ui, shi, 0.0, q->dtr, &q->pi);
+  fill_path(e, j, xj, uj, q->shj, q->du, q->dtr, &q->pj);
+  return q->dtr > 0.0;
+}
+
+/* The event of contact c on record p (the record's step fraction *s). */
+static void lrec_event(const lrec *q, const sb_engine_pair *p,
+                       const sb_langevin_contact *c, double *s,
+                       sbi_event *ev)
+{
+  double f = c->t / q->dtr;
+  *s = f < 0.0 ? 0.0 : (f > 1.0 ? 1.0 : f);
+  if (!ev)
+    return;
+  ev->hasc = 1;
+  ev->p = *p;
+  ev->cdu = q->du;
+  for (int k = 0; k < 3; k++) {
+    /* j back in its own frame: the image moved du c.t further */
+    const double v = k == 0 ? q->du : 0.0;
+    ev->cx[0][k] = c->xi[k];
+    ev->cu[0][k] = c->ui[k];
+    ev->cx[1][k] = c->xj[k] - q->shj[k] - v * c->t;
+    ev->cu[1][k] = c->uj[k] - v;
+    ev->crel[k] = c->xi[k] - c->xj[k];
+    /* the record's chord from the Langevin states it was built on */
+    ev->p.dx0[k] = q->pi.x0[k] - q->pj.x0[k];
+    ev->p.dd[k] = (q->pi.x1[k] - q->pj.x1[k]) - ev->p.dx0[k];
+  }
+}
+
+int sbi_engine_langevin_detect(const sb_engine *e, const sb_engine_pair *p,
+                               double t, const gsl_rng *r, double *s,
+                               sbi_event *ev)
+{
+  lrec q;
+  int h = lrec_make(e, p, t, r, &q);
+  if (h <= 0)
+    return h;
   sb_langevin_contact c;
-  int h = sb_langevin_hitter_sample(e->lh, &pi, &pj, p->sigma, dtr, r, &c);
+  h = sb_langevin_hitter_sample(e->lh, &q.pi, &q.pj, p->sigma, q.dtr, r, &c);
   if (h <= 0)
     return h < 0 ? -1 : 0;
-  double f = c.t / dtr;
-  *s = f < 0.0 ? 0.0 : (f > 1.0 ? 1.0 : f);
-  if (ev) {
-    ev->hasc = 1;
-    ev->p = *p;
-    ev->cdu = du;
-    for (int k = 0; k < 3; k++) {
-      /* j back in its own frame: the image moved du c.t further */
-      const double v = k == 0 ? du : 0.0;
-      ev->cx[0][k] = c.xi[k];
-      ev->cu[0][k] = c.ui[k];
-      ev->cx[1][k] = c.xj[k] - shj[k] - v * c.t;
-      ev->cu[1][k] = c.uj[k] - v;
-      ev->crel[k] = c.xi[k] - c.xj[k];
-      /* the record's chord from the Langevin states it was built on */
-      ev->p.dx0[k] = pi.x0[k] - pj.x0[k];
-      ev->p.dd[k] = (pi.x1[k] - pj.x1[k]) - ev->p.dx0[k];
-    }
-  }
+  lrec_event(&q, p, &c, s, ev);
   return 1;
+}
+
+int sbi_engine_langevin_push_all(sb_engine *e, const sb_engine_pair *p,
+                                 double t)
+{
+  lrec q;
+  int n = lrec_make(e, p, t, e->rng, &q);
+  if (n > 0)
+    n = sb_langevin_hitter_sample_all(e->lh, &q.pi, &q.pj, p->sigma, q.dtr,
+                                      e->rng);
+  if (n < 0)
+    return sbi_error(SB_EINVAL, "sb_engine_step",
+                     "detector failed on pair (%zu, %zu)", p->i, p->j);
+  const sb_langevin_contact *c = sb_langevin_hitter_entries(e->lh);
+  for (int k = 0; k < n; k++) {
+    double s;
+    sbi_event ev;
+    lrec_event(&q, p, &c[k], &s, &ev);
+    int st = sbi_engine_push_event(e, p, t, s, &ev);
+    if (st)
+      return st;
+  }
+  return SB_SUCCESS;
 }
 
 int sb_engine_langevin_contact(const sb_engine *e, const sb_engine_pair *p,

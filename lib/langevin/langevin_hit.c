@@ -14,6 +14,7 @@
  * E[(Z)^-] = sqrt(v) phi(m/sqrt(v)) - m Phi(-m/sqrt(v)).  The integrand
  * vanishes at both ends (s -> 0 with mu > 0).
  */
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -93,6 +94,7 @@ void sb_langevin_hitter_free(sb_langevin_hitter *w)
   if (!w)
     return;
   sbi_lh_slots_free(w);
+  free(w->ent);
   free(w);
 }
 
@@ -150,6 +152,11 @@ typedef struct {
   /* exit mode (sb_langevin_hitter_sample_exit): the target set is the
    * outside of the ball, |r| >= R, reached from inside */
   int exitm;
+  /* every-entry walk (sb_langevin_hitter_sample_all): a leaf's crossing
+   * is recorded (an entry) and the walk goes on in the other mode; the
+   * barycentre's state last drawn, at time tb (relative mode) */
+  int multi;
+  double tb;
   /* result */
   double th;         /* contact time from the start of the step */
   pstate ca, cb;     /* the leaf's end states */
@@ -581,6 +588,36 @@ static int inside(const walk *W, const double *r)
   return W->plane ? dot3(W->n, r) <= W->R : dot3(r, r) <= W->R * W->R;
 }
 
+static int contact_states(walk *W, sb_langevin_contact *c);
+
+/* Every-entry walk: the leaf W->ta.. holds a crossing at W->th.  An entry
+ * is recorded (its states drawn) and the walk then looks for the exit; an
+ * exit sends it back to entries.  A chord that enters and ends outside
+ * the ball has left it again inside the leaf (a line meets the ball in
+ * one segment).  Returns 0 (go on) or a negative status. */
+static int multi_leaf(walk *W, const double *rb)
+{
+  if (W->exitm) {
+    W->exitm = 0;
+    return 0;
+  }
+  sb_langevin_hitter *w = W->w;
+  if (w->nent == w->capent) {
+    size_t cap = w->capent ? 2 * w->capent : 8;
+    sb_langevin_contact *e = realloc(w->ent, cap * sizeof *e);
+    if (!e)
+      return -SB_ENOMEM;
+    w->ent = e;
+    w->capent = cap;
+  }
+  int st = contact_states(W, &w->ent[w->nent]);
+  if (st < 0)
+    return st;
+  w->nent++;
+  W->exitm = !(dot3(rb, rb) > W->R * W->R);
+  return 0;
+}
+
 /* Leaf [a, a + h]: decide on the chord (file comment of the header). */
 static int leaf(walk *W, const pstate *A, const pstate *Bs, double a,
                 double h)
@@ -606,7 +643,7 @@ static int leaf(walk *W, const pstate *A, const pstate *Bs, double a,
   W->cb = *Bs;
   W->ta = a;
   W->hl = h;
-  return 1;
+  return W->multi ? multi_leaf(W, rb) : 1;
 }
 
 /* The largest standard deviation of the pair's relative position along
@@ -785,6 +822,7 @@ static int audit(walk *W, const pstate *A, const pstate *Bs, double a,
 {
   walk V = *W;
   V.auditing = 1;
+  V.multi = 0;  /* did it hold a crossing (of the walk's current mode)? */
   V.eps = W->eps * 1e-3;
   sb_langevin_hit_stats keep = W->w->st;
   int h = examine(&V, A, Bs, a, d);
@@ -1103,9 +1141,15 @@ static int contact_states(walk *W, sb_langevin_contact *c)
     double r[3] = {0}, v[3] = {0}, xc[3] = {0}, vc[3] = {0};
     if ((st = bridge_draw(W, 0, &W->ca, &W->cb, h, s, SQRT_2, W->wv[0],
                           W->cs[0], r, v)) ||
-        (st = bridge_draw(W, 0, &W->bary0, &W->bary1, W->htop, W->th,
-                          INV_SQRT_2, W->wbar, W->csbar, xc, vc)))
+        (st = bridge_draw(W, 0, &W->bary0, &W->bary1, W->htop - W->tb,
+                          W->th - W->tb, INV_SQRT_2, W->wbar, W->csbar, xc,
+                          vc)))
       return -st;
+    if (W->multi) {  /* the next entry's barycentre from this one's */
+      memcpy(W->bary0.x[0], xc, sizeof xc);
+      memcpy(W->bary0.u[0], vc, sizeof vc);
+      W->tb = W->th;
+    }
     for (int k = 0; k < W->dim; k++) {
       xs[0][k] = xc[k] + 0.5 * r[k];
       xs[1][k] = xc[k] - 0.5 * r[k];
@@ -1234,6 +1278,42 @@ int sb_langevin_hitter_sample(sb_langevin_hitter *w,
                               sb_langevin_contact *c)
 {
   return sample(w, pi, pj, R, NULL, 0, R, dt, r, c, __func__);
+}
+
+int sb_langevin_hitter_sample_all(sb_langevin_hitter *w,
+                                  const sb_langevin_path *pi,
+                                  const sb_langevin_path *pj, double R,
+                                  double dt, const gsl_rng *r)
+{
+  static const char *func = "sb_langevin_hitter_sample_all";
+  if (!r)
+    return -sbi_error(SB_EINVAL, func, "r is NULL");
+  walk W;
+  pstate A, Bs;
+  int st = setup(&W, w, pi, pj, R, NULL, 0, R, dt, r, &A, &Bs, func);
+  if (st < 0)
+    return st;
+  if (!W.sl[0] || !W.sl[1])
+    return -sbi_error(SB_ENOMEM, func, "out of memory");
+  w->st.calls++;
+  w->nent = 0;
+  W.multi = 1;
+  W.exitm = st == 1;  /* in contact at the start: its exit first */
+  relative_walk(&W, &A, &Bs);
+  st = examine(&W, &A, &Bs, 0.0, 0);
+  if (st < 0)
+    return -sbi_error(-st, func, st == -SB_ENOMEM ? "out of memory"
+                                                   : "coefficients failed");
+  if (w->nent > (size_t)INT_MAX)
+    return -sbi_error(SB_EMAXITER, func, "too many entries");
+  w->st.hits += w->nent > 0;
+  return (int)w->nent;
+}
+
+const sb_langevin_contact *
+sb_langevin_hitter_entries(const sb_langevin_hitter *w)
+{
+  return w ? w->ent : NULL;
 }
 
 int sb_langevin_hitter_sample_exit(sb_langevin_hitter *w,

@@ -84,6 +84,9 @@ struct sb_langevin_hitter {
   sbi_lh_slot slot[SBI_LH_NSLOT];
   uint64_t clock;
   sb_langevin_hit_stats st;
+  /* the entries of the last sb_langevin_hitter_sample_all call */
+  sb_langevin_contact *ent;
+  size_t nent, capent;
 };
 
 /* The slot of (tau, B, htop), filled or recycled; NULL on allocation

@@ -100,7 +100,10 @@ typedef enum {
 typedef enum {
   SB_OUTCOME_ELASTIC = 0,   /**< elastic with energy-loss factor eta */
   SB_OUTCOME_REINSERT = 1,  /**< remove partner j, reinsert at random */
-  SB_OUTCOME_COUNT = 2,     /**< count only, particles pass through */
+  SB_OUTCOME_COUNT = 2,     /**< count only, particles pass through; with
+                                 SB_DETECT_LANGEVIN every entry into
+                                 contact counts, also re-entries inside
+                                 a step (docs/engine.md §4) */
   SB_OUTCOME_CUSTOM = 3     /**< user callback, sb_engine_set_outcome */
 } sb_engine_outcome;
 
@@ -409,9 +412,10 @@ int sb_engine_pair_can_meet(const sb_engine *e, const double *disp,
  *  (approaching pairs only); a pair touching or overlapping at the start
  *  and approaching collides at s = 0.  With the pass-through outcome
  *  (SB_OUTCOME_COUNT) the engine skips pairs overlapping at the start
- *  (|dx0|^2 < sigma^2 (1 - SB_ENGINE_TOUCH)) before calling a built-in
- *  detector, so each contact is counted once.  Returns 1/0 as
- *  sb_engine_detect_fn. */
+ *  (|dx0|^2 < sigma^2 (1 - SB_ENGINE_TOUCH)) before calling this
+ *  detector or the overlap one, so each contact is counted once (the
+ *  Langevin detector instead follows such a pair to its exit and counts
+ *  its next entries).  Returns 1/0 as sb_engine_detect_fn. */
 int sb_engine_detect_ballistic(const sb_engine_pair *p, double *s);
 
 /** MD-type detector (Mohaupt 2011, §3.1.2, App. F), a custom detector

@@ -176,6 +176,27 @@ int sb_langevin_hitter_sample_exit(sb_langevin_hitter *w,
                                    double dt, const gsl_rng *r,
                                    sb_langevin_contact *c);
 
+/** Every entry into contact over (0, dt]: for a pair that passes
+ *  through contact (nothing happens at a contact: the engine's count
+ *  outcome), the same walk goes on after an entry, looking for the exit
+ *  (as sb_langevin_hitter_sample_exit), then for the next entry, over the
+ *  same refinement levels.  Each entry's states are drawn at its leaf as
+ *  for sb_langevin_hitter_sample (for equal particles the barycentre's
+ *  from its bridge between the previous entry's and the end).  A pair in
+ *  contact at t = 0 (overlapping, or touching and approaching) is not
+ *  entering: its exit is looked for first.  Per entry and exit, the same
+ *  error budget.  Returns the number n >= 0 of entries, whose states are
+ *  at sb_langevin_hitter_entries(w) in time order until the next call on
+ *  w, or a negative status (-SB_ENOMEM as well). */
+int sb_langevin_hitter_sample_all(sb_langevin_hitter *w,
+                                  const sb_langevin_path *pi,
+                                  const sb_langevin_path *pj, double R,
+                                  double dt, const gsl_rng *r);
+
+/** The entries of the last sb_langevin_hitter_sample_all call on w. */
+const sb_langevin_contact *
+sb_langevin_hitter_entries(const sb_langevin_hitter *w);
+
 /** First contact of one Langevin particle with the plane n.x = level
  *  (n need not be normalised), approached from the side n.x > level,
  *  over [0, dt] given its states at both ends: the same sampler, with the

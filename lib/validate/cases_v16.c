@@ -29,6 +29,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_cdf.h>
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
 
@@ -36,6 +37,7 @@
 #include <smolbridge/kernel.h>
 
 #include "cases.h"
+#include "common/numutil.h"
 #include "v16.h"
 
 #define PI 3.14159265358979323846
@@ -179,11 +181,18 @@ static void box_for(double phi, size_t n, double r, int ax, double stretch,
 void v16_ini_run(FILE *f, unsigned long seed, const double L[3], double dt,
                  size_t steps, unsigned long placement_seed)
 {
+  v16_ini_run_detect(f, seed, L, dt, steps, placement_seed, "ballistic");
+}
+
+void v16_ini_run_detect(FILE *f, unsigned long seed, const double L[3],
+                        double dt, size_t steps,
+                        unsigned long placement_seed, const char *detect)
+{
   fprintf(f, "seed = %lu\nrng = mt19937\nLx = %.17g\nLy = %.17g\n"
           "Lz = %.17g\n"
-          "dt = %.17g\nsteps = %zu\ndetect = ballistic\noutcome = count\n"
+          "dt = %.17g\nsteps = %zu\ndetect = %s\noutcome = count\n"
           "placement = uniform\nplacement_seed = %lu\n", seed, L[0], L[1],
-          L[2], dt, steps, placement_seed);
+          L[2], dt, steps, detect, placement_seed);
 }
 
 /* Write mode: a v16_run without walls as a collide configuration (the
@@ -477,3 +486,55 @@ const sbv_case sbv_cases_v16[] = {
      v16_case_deposition},
 };
 const size_t sbv_ncases_v16 = sizeof sbv_cases_v16 / sizeof sbv_cases_v16[0];
+
+/* Pass-through rate of Langevin spheres (velocity variance v2 per
+ * component each, relaxation time tau) in the linear shear U_x = G y, at
+ * contact distance R: the flux R^2 int E[(w.n)^-] dOmega with w.n ~
+ * N(G R n_x n_y, n.S.n), S = 2 v2 [[1 + (G tau)^2/2, -G tau/2, 0],
+ * [-G tau/2, 1, 0], [0, 0, 1]] the stationary covariance of the relative
+ * peculiar velocity (dc_x = -c_x/tau dt - G c_y dt + B dW_x).  Limits:
+ * v2 -> 0, (4/3) G R^3; G -> 0, sqrt(8 pi) R^2 sqrt(2 v2). */
+typedef struct {
+  double R, G, v2, gt;
+} shear_flux_ctx;
+
+/* E[(w.n)^-] for w.n ~ N(m, var) */
+static double shear_flux_at(const double n[3], void *ctx)
+{
+  const shear_flux_ctx *k = ctx;
+  const double nx = n[0], ny = n[1], nz = n[2], gt = k->gt;
+  const double m = k->G * k->R * nx * ny;
+  const double var = 2.0 * k->v2 * ((1.0 + 0.5 * gt * gt) * nx * nx -
+                                    gt * nx * ny + ny * ny + nz * nz);
+  const double sd = sqrt(var), z = m / sd;
+  return sd * exp(-0.5 * z * z) / sqrt(2.0 * PI) - m * gsl_cdf_ugaussian_P(-z);
+}
+
+double v16_shear_kinetic_flux(double R, double G, double v2, double tau)
+{
+  /* 96 Gauss-Legendre nodes in cos(theta), 192 midpoints in phi */
+  shear_flux_ctx k = {R, G, v2, G * tau};
+  return R * R * sbi_sphere_integral(shear_flux_at, &k, 96, 192, 0.5);
+}
+
+int v16_shear_fill(sb_engine *e, gsl_rng *r, const sb_engine_species *sp,
+                   size_t n, const double L[3], double G)
+{
+  const double Gv[3] = {G, 0.0, 0.0};
+  int st = sb_engine_add_species(e, sp, NULL);
+  if (!st)
+    st = sb_engine_set_fluid(e, SB_FLUID_SHEAR, Gv);
+  if (!st)
+    st = sb_engine_set_lees_edwards(e, 1);
+  const double usd = sqrt(sp->B * sp->B * sp->tau / 2.0);
+  for (size_t i = 0; i < n && !st; i++) {
+    double x[3], u[3];
+    for (int c = 0; c < 3; c++) {
+      x[c] = L[c] * gsl_rng_uniform(r);
+      u[c] = gsl_ran_gaussian_ziggurat(r, usd);
+    }
+    u[0] += G * (x[1] - 0.5 * L[1]);
+    st = sb_engine_add_particle(e, 0, 0, x, u);
+  }
+  return st;
+}

@@ -780,36 +780,6 @@ static int case_combined(const sbv_ctx *ctx, sbv_report *rep)
   return st;
 }
 
-/* Pass-through rate of Langevin spheres (velocity variance v2 per
- * component each, relaxation time tau) in the linear shear U_x = G y, at
- * contact distance R: the flux R^2 int E[(w.n)^-] dOmega with w.n ~
- * N(G R n_x n_y, n.S.n), S = 2 v2 [[1 + (G tau)^2/2, -G tau/2, 0],
- * [-G tau/2, 1, 0], [0, 0, 1]] the stationary covariance of the relative
- * peculiar velocity (dc_x = -c_x/tau dt - G c_y dt + B dW_x).  Limits:
- * v2 -> 0, (4/3) G R^3; G -> 0, sqrt(8 pi) R^2 sqrt(2 v2). */
-typedef struct {
-  double R, G, v2, gt;
-} shear_flux_ctx;
-
-/* E[(w.n)^-] for w.n ~ N(m, var) */
-static double shear_flux_at(const double n[3], void *ctx)
-{
-  const shear_flux_ctx *k = ctx;
-  const double nx = n[0], ny = n[1], nz = n[2], gt = k->gt;
-  const double m = k->G * k->R * nx * ny;
-  const double var = 2.0 * k->v2 * ((1.0 + 0.5 * gt * gt) * nx * nx -
-                                    gt * nx * ny + ny * ny + nz * nz);
-  const double sd = sqrt(var), z = m / sd;
-  return sd * exp(-0.5 * z * z) / sqrt(2.0 * PI) - m * gsl_cdf_ugaussian_P(-z);
-}
-
-static double shear_kinetic_flux(double R, double G, double v2, double tau)
-{
-  /* 96 Gauss-Legendre nodes in cos(theta), 192 midpoints in phi */
-  shear_flux_ctx k = {R, G, v2, G * tau};
-  return R * R * sbi_sphere_integral(shear_flux_at, &k, 96, 192, 0.5);
-}
-
 /* Write mode: run k of V16/combined-shear as a collide file (warm-up of
  * 100 steps, then nb blocks of per steps; placement = uniform from the
  * run's stream as the case draws it), its records kernel.K over the
@@ -874,11 +844,11 @@ static int case_shear_kinetic(const sbv_ctx *ctx, sbv_report *rep)
   /* the reference's limits (quadrature of a kinked integrand as v2 -> 0:
    * second order, 96 x 192 nodes) */
   st = sbv_add_relband(rep, "V16/combined-shear/reference/v2->0/shear",
-                       shear_kinetic_flux(R, G, 1e-24 * G * G * R * R, tau),
+                       v16_shear_kinetic_flux(R, G, 1e-24 * G * G * R * R, tau),
                        sb_kernel_shear(rad, rad, G), 1e-3);
   if (!st)
     st = sbv_add_relband(rep, "V16/combined-shear/reference/G=0/kinetic",
-                         shear_kinetic_flux(R, 0.0, 1e-6, tau),
+                         v16_shear_kinetic_flux(R, 0.0, 1e-6, tau),
                          sb_kernel_abrahamson(rad, rad, 1e-6, 1e-6), 1e-9);
   for (size_t k = 0; k < sizeof pks / sizeof pks[0] && !st; k++) {
     const double s2 = (G * R / pks[k]) * (G * R / pks[k]);  /* 2 v2 */
@@ -887,7 +857,7 @@ static int case_shear_kinetic(const sbv_ctx *ctx, sbv_report *rep)
     const double l = cbrt(V / 0.4);
     const double L[3] = {l, 0.4 * l, l};
     const double dt = tau / 20.0;
-    const double Kref = shear_kinetic_flux(R, G, v2, tau);
+    const double Kref = v16_shear_kinetic_flux(R, G, v2, tau);
     const double Kadd = sb_kernel_abrahamson(rad, rad, v2, v2) +
                         sb_kernel_shear(rad, rad, G);
     const double P = 0.5 * (double)n * (double)(n - 1);
@@ -912,23 +882,8 @@ static int case_shear_kinetic(const sbv_ctx *ctx, sbv_report *rep)
       st = SB_ENOMEM;
       break;
     }
-    const double Gv[3] = {G, 0.0, 0.0};
-    sb_engine_species sp = {rad, m, tau, B, 0.0};
-    st = sb_engine_add_species(e, &sp, NULL);
-    if (!st)
-      st = sb_engine_set_fluid(e, SB_FLUID_SHEAR, Gv);
-    if (!st)
-      st = sb_engine_set_lees_edwards(e, 1);
-    const double usd = sqrt(B * B * tau / 2.0);
-    for (size_t i = 0; i < n && !st; i++) {
-      double x[3], u[3];
-      for (int c = 0; c < 3; c++) {
-        x[c] = L[c] * gsl_rng_uniform(r);
-        u[c] = gsl_ran_gaussian_ziggurat(r, usd);
-      }
-      u[0] += G * (x[1] - 0.5 * L[1]);
-      st = sb_engine_add_particle(e, 0, 0, x, u);
-    }
+    const sb_engine_species sp = {rad, m, tau, B, 0.0};
+    st = v16_shear_fill(e, r, &sp, n, L, G);
     gsl_rng_free(r);
     /* warm-up 5 tau_p (the sheared covariance builds up), then nb time
      * blocks: batch means (the pass-through count is over-dispersed
@@ -998,6 +953,8 @@ static int case_shear_kinetic(const sbv_ctx *ctx, sbv_report *rep)
     }
     sbv_progress(ctx, "  V16 combined-shear Pe_k=%g", pks[k]);
   }
+  if (!st)
+    st = v16_shear_langevin_rows(ctx, rep);
   return st;
 }
 

@@ -64,11 +64,30 @@ double v16_slab_absorbed(double D, double t, double W);
 
 int v16_case_deposition(const sbv_ctx *ctx, sbv_report *rep);
 
+/* Pass-through rate (m^3/s) of Langevin spheres, velocity variance v2 per
+ * component each and relaxation time tau, in the linear shear U_x = G y
+ * at contact distance R: the Rice flux through the contact sphere of
+ * their Gaussian relative velocity (cases_v16.c). */
+double v16_shear_kinetic_flux(double R, double G, double v2, double tau);
+/* Species sp (one, Stokes, with noise) in the shear U_x = G (y - L_y/2)
+ * with Lees-Edwards images, n particles placed uniformly from r at
+ * their stationary peculiar velocities (sd B sqrt(tau/2)) plus the flow,
+ * in the order of smolbridge collide's placement = uniform; status. */
+int v16_shear_fill(sb_engine *e, gsl_rng *r, const sb_engine_species *sp,
+                   size_t n, const double L[3], double G);
+/* V16/combined-shear's rows for the Langevin detector at dt = tau_p
+ * (cases_v16l.c). */
+int v16_shear_langevin_rows(const sbv_ctx *ctx, sbv_report *rep);
+
 /* Write mode: the [run] keys (after sbv_ini_begin) of a V16 count run
  * with contact-time detection and uniform placement from placement_seed,
  * as v16_run and the random-field cases draw it. */
 void v16_ini_run(FILE *f, unsigned long seed, const double L[3], double dt,
                  size_t steps, unsigned long placement_seed);
+/* The same with another detector (its INI name). */
+void v16_ini_run_detect(FILE *f, unsigned long seed, const double L[3],
+                        double dt, size_t steps,
+                        unsigned long placement_seed, const char *detect);
 
 /* Write mode: v16_run of a setup with walls (no warm-up, one fluid at
  * rest) as the collide file `name` (sbv_ini_begin): placement = uniform
