@@ -64,48 +64,19 @@ static const double shn_kt[4][2][2] = {
 static const int shn_pair[7][2] = {{2, 0}, {2, 1}, {3, 0}, {3, 1},
                                    {2, 2}, {2, 3}, {3, 3}};
 
-/* Taylor coefficient of r^n of a kernel, written so that the vanishing
- * low orders are exact zeros. */
-static double shn_taylor(int kern, int n, double fact_n)
-{
-  const double sg = (n & 1) ? -1.0 : 1.0;  /* (-1)^n */
-  switch (kern) {
-  case 0:
-    return sg / fact_n;
-  case 1:
-    return n == 0 ? 0.0 : -sg / fact_n;
-  case 2:
-    return n <= 1 ? 0.0 : sg * (n - 1) / fact_n;
-  default:
-    return n <= 2 ? 0.0 : sg * (2 - n) / fact_n;
-  }
-}
-
 #define SHN_SERIES_X 1.5
-#define SHN_NT 64
 
 void sbi_shear_noise_ints(double x, double f[7])
 {
   if (x < SHN_SERIES_X) {
-    /* product of the Taylor series, integrated term by term (Horner from
-     * the highest degree; the terms fall as (2x)^n/n!, below 1e-17 of the
-     * leading one by n = 60 at x = 1.5) */
-    double t[4][SHN_NT], fact = 1.0;
-    for (int n = 0; n < SHN_NT; n++) {
-      if (n > 0)
-        fact *= n;
-      for (int q = 0; q < 4; q++)
-        t[q][n] = shn_taylor(q, n, fact);
-    }
+    /* the products' Taylor series integrated term by term, from the
+     * generated table (Horner from the highest degree; the terms fall as
+     * (2x)^n/n!, below 1e-17 of the leading one by n = 60 at x = 1.5) */
     for (int m = 0; m < 7; m++) {
-      const double *p = t[shn_pair[m][0]], *q = t[shn_pair[m][1]];
+      const double *c = sbi_shear_noise_tab[m];
       double acc = 0.0;
-      for (int n = SHN_NT - 1; n >= 0; n--) {
-        double c = 0.0;
-        for (int j = 0; j <= n; j++)
-          c += p[j] * q[n - j];
-        acc = acc * x + c / (n + 1);
-      }
+      for (int n = SBI_SHN_NT - 1; n >= 0; n--)
+        acc = acc * x + c[n];
       f[m] = acc * x;
     }
     return;

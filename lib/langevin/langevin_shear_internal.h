@@ -10,6 +10,12 @@
  * g = G tau); series below x = 1.5, closed forms above. */
 void sbi_shear_noise_ints(double x, double f[7]);
 
+/* The series' coefficients: f_m(x) = x sum_n sbi_shear_noise_tab[m][n]
+ * x^n for x < 1.5 (langevin_shear_tab.c, generated in exact rational
+ * arithmetic by gen_langevin_shear_tab.py). */
+#define SBI_SHN_NT 64
+extern const double sbi_shear_noise_tab[7][SBI_SHN_NT];
+
 /* Lower Cholesky factor L of the symmetric positive definite 4 x 4 M
  * (entries above the diagonal zero); SB_EDOM when a pivot is not
  * positive. */
