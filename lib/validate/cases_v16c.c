@@ -977,7 +977,8 @@ const sbv_case sbv_cases_v16c[] = {
     {"V16/combined-shear",
      "Langevin (Brownian, ballistic regime) spheres in laminar shear with "
      "Lees-Edwards boundaries: exact pass-through flux vs the additive "
-     "kinetic + shear kernel",
+     "kinetic + shear kernel; the Langevin detector at dt = tau_p counts "
+     "the flux (replicas), contact time misses re-entries",
      case_shear_kinetic},
 };
 const size_t sbv_ncases_v16c = sizeof sbv_cases_v16c / sizeof sbv_cases_v16c[0];
