@@ -25,6 +25,7 @@ SBE_WRAP6(kernel_gravity)
 SBE_WRAP3(kernel_shear)
 SBE_WRAP4(kernel_saffman_turner)
 SBE_WRAP4(kernel_abrahamson)
+SBE_WRAP5(kernel_shear_langevin)
 SBE_WRAP4(kernel_diffusion)
 SBE_WRAP3(brownian_b2)
 SBE_WRAP3(turb_pair_b2)
@@ -71,6 +72,8 @@ static const sbe_func funcs[] = {
     E(kernel_shear, RR("G"), "laminar shear kernel, m^3/s"),
     E(kernel_saffman_turner, RR("eps", "nu"), "Saffman-Turner kernel, m^3/s"),
     E(kernel_abrahamson, RR("u2_i", "u2_j"), "Abrahamson inertial kernel, m^3/s"),
+    E(kernel_shear_langevin, RR("u2", "tau", "G"),
+      "pass-through kernel of Langevin spheres in shear, m^3/s"),
     E(kernel_diffusion, RR("b2_i", "b2_j"), "pure-diffusion kernel, m^3/s"),
     E(brownian_b2, RTMU, "Brownian position variance rate, m^2/s"),
     E(turb_pair_b2, REPSNU,

@@ -1,12 +1,15 @@
 /* test_kernel.c — collision kernels: monodisperse limits, symmetry, SI spot
  * values (hand-computed with mpmath, 40 digits, constants in the comments),
  * transition-regime limits, Saffman–Turner from the pair diffusivity, the
- * Abrahamson flux against quadrature of the Maxwell speed density. */
+ * Abrahamson flux against quadrature of the Maxwell speed density, the
+ * pass-through kernel of Langevin spheres in shear against 30-digit
+ * quadratures. */
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_math.h>
 #include <smolbridge/kernel.h>
 
+#include "refdata.h"
 #include "testutil.h"
 
 static const double kB = 1.380649e-23;
@@ -306,6 +309,43 @@ START_TEST(test_spec)
 }
 END_TEST
 
+/* The pass-through kernel of Langevin spheres in shear against 30-digit
+ * quadratures (tests/gen_kernel_shear_langevin_ref.py: Pe_k = 0.3-3,
+ * G tau = 0.01-0.5, G = 0, unequal radii), its limits (G = 0 is
+ * Abrahamson's kernel; u2 -> 0 the laminar (4/3) G R^3, exactly at
+ * u2 = 0) and domain. */
+START_TEST(test_shear_langevin)
+{
+  sbt_table t;
+  sbt_table_load("kernel_shear_langevin.csv", &t);
+  const int c[6] = {sbt_col(&t, "r_i"), sbt_col(&t, "r_j"),
+                    sbt_col(&t, "u2"), sbt_col(&t, "tau"), sbt_col(&t, "G"),
+                    sbt_col(&t, "K")};
+  ck_assert_int_ge(t.nrow, 8);
+  for (int i = 0; i < t.nrow; i++) {
+    const double K = sb_kernel_shear_langevin(
+        sbt_at(&t, i, c[0]), sbt_at(&t, i, c[1]), sbt_at(&t, i, c[2]),
+        sbt_at(&t, i, c[3]), sbt_at(&t, i, c[4]));
+    const double ref = sbt_at(&t, i, c[5]);
+    ck_assert_msg(fabs(K / ref - 1.0) <= 1e-14, "row %d: %.17g against %.17g",
+                  i, K, ref);
+  }
+  sbt_table_free(&t);
+  ck_assert_rel(sb_kernel_shear_langevin(1e-6, 3e-6, 0.02, 1e-4, 0.0),
+                sb_kernel_abrahamson(1e-6, 3e-6, 0.02, 0.02), 1e-14);
+  ck_assert(sb_kernel_shear_langevin(1e-6, 3e-6, 0.0, 1e-4, 50.0) ==
+            sb_kernel_shear(1e-6, 3e-6, 50.0));
+  const double lam = sb_kernel_shear(1e-6, 3e-6, 50.0);
+  ck_assert_rel(sb_kernel_shear_langevin(1e-6, 3e-6, 1e-20, 1e-4, 50.0), lam,
+                1e-3);
+  ck_assert(sb_kernel_shear_langevin(1e-6, 3e-6, 0.02, 1e-4, 50.0) > lam);
+  ck_assert(isnan(sb_kernel_shear_langevin(1e-6, 3e-6, -1.0, 1e-4, 50.0)));
+  ck_assert(isnan(sb_kernel_shear_langevin(0.0, 3e-6, 1.0, 1e-4, 50.0)));
+  ck_assert(isnan(sb_kernel_shear_langevin(1e-6, 3e-6, 1.0, NAN, 50.0)));
+  ck_assert(isnan(sb_kernel_shear_langevin(1e-6, 3e-6, 1.0, 1e-4, -1.0)));
+}
+END_TEST
+
 static Suite *kernel_suite(void)
 {
   Suite *s = suite_create("kernel");
@@ -317,6 +357,7 @@ static Suite *kernel_suite(void)
   tcase_add_test(tc, test_gopalakrishnan_hogan);
   tcase_add_test(tc, test_pair_diffusivity);
   tcase_add_test(tc, test_abrahamson_flux);
+  tcase_add_test(tc, test_shear_langevin);
   tcase_add_test(tc, test_domain_errors);
   tcase_add_test(tc, test_spec);
   suite_add_tcase(s, tc);

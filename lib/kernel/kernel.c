@@ -10,6 +10,7 @@
 #include <smolbridge/kernel.h>
 
 #include "common/internal.h"
+#include "common/numutil.h"
 
 /* Boltzmann constant, J/K (exact in SI 2019; same value as SB_BOLTZMANN). */
 static const double kB = 1.380649e-23;
@@ -215,6 +216,39 @@ double sb_kernel_abrahamson(double r_i, double r_j, double u2_i,
    * E|w| = sqrt(8 s2/pi). */
   double r = r_i + r_j;
   return sqrt(8.0 * M_PI * (u2_i + u2_j)) * r * r;
+}
+
+/* E[(w.n)^-] for w.n ~ N(m, var): the inward flux density of the
+ * sheared Gaussian relative velocity along n (sb_kernel_shear_langevin) */
+typedef struct {
+  double R, G, u2, gt;
+} shear_flux;
+
+static double shear_flux_at(const double n[3], void *ctx)
+{
+  const shear_flux *k = ctx;
+  const double nx = n[0], ny = n[1], nz = n[2], gt = k->gt;
+  const double m = k->G * k->R * nx * ny;
+  const double var = 2.0 * k->u2 * ((1.0 + 0.5 * gt * gt) * nx * nx -
+                                    gt * nx * ny + ny * ny + nz * nz);
+  const double sd = sqrt(var), z = m / sd;
+  return sd * exp(-0.5 * z * z) / sqrt(2.0 * M_PI) -
+         0.5 * m * erfc(z / M_SQRT2);
+}
+
+double sb_kernel_shear_langevin(double r_i, double r_j, double u2, double tau,
+                                double G)
+{
+  CHECK_RADII(r_i, r_j);
+  CHECK(nonneg(u2) && nonneg(tau) && nonneg(G),
+        "need u2, tau, G finite and >= 0 (got %g, %g, %g)", u2, tau, G);
+  if (u2 == 0.0)
+    return sb_kernel_shear(r_i, r_j, G);  /* the integrand's limit (-m)^+ */
+  /* 96 Gauss-Legendre nodes in cos(theta), 192 midpoints in phi (the
+   * integrand is periodic in phi) */
+  const double R = r_i + r_j;
+  shear_flux k = {R, G, u2, G * tau};
+  return R * R * sbi_sphere_integral(shear_flux_at, &k, 96, 192, 0.5);
 }
 
 double sb_kernel_diffusion(double r_i, double r_j, double b2_i, double b2_j)

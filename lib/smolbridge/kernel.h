@@ -118,6 +118,31 @@ double sb_kernel_saffman_turner(double r_i, double r_j, double eps,
 double sb_kernel_abrahamson(double r_i, double r_j, double u2_i,
                             double u2_j);
 
+/** Pass-through (flux) kernel of two identical Langevin spheres in the
+ *  linear shear U_x = G y (m^3/s): each relaxes in time tau (s) towards
+ *  the local flow and has the stationary velocity variance u2 = B^2 tau/2
+ *  (m^2/s^2) per component in the gradient and vorticity directions.  The
+ *  peculiar velocity c = u - G y e_x obeys dc_x = -c_x/tau dt - G c_y dt +
+ *  B dW_x, dc_y = -c_y/tau dt + B dW_y, so the relative velocity at
+ *  separation R = r_i + r_j has the mean G R n_x n_y along the normal n
+ *  and the covariance S = 2 u2 [[1 + (G tau)^2/2, -G tau/2, 0],
+ *  [-G tau/2, 1, 0], [0, 0, 1]].  With uniform, independent positions the
+ *  mean number of entries into contact per unit time is Rice's flux
+ *    K = R^2 int dOmega [s phi(m/s) - m Phi(-m/s)],  m = G R n_x n_y,
+ *    s^2 = n.S.n
+ *  (Rice 1944): the kernel of pass-through counting at every Knudsen
+ *  number (docs/engine_forces.md §8.3b).  Limits: G = 0, Abrahamson's
+ *  sb_kernel_abrahamson(r_i, r_j, u2, u2); u2 -> 0, the laminar
+ *  (4/3) G R^3 of sb_kernel_shear (returned exactly at u2 = 0); the
+ *  additive K_Abrahamson + K_shear overestimates it by 7-29% at
+ *  Pe_k = G R/sqrt(2 u2) = 0.3-3.  96 x 192-node quadrature on the sphere:
+ *  relative accuracy 1e-14 against 30-digit values at Pe_k = 0.3-3 and
+ *  G tau = 0.01-0.5 (tests/test_kernel.c); the integrand steepens as
+ *  Pe_k grows (2e-4 at u2 -> 0).  NaN and SB_EDOM unless the radii are
+ *  > 0 and u2, tau, G >= 0, all finite. */
+double sb_kernel_shear_langevin(double r_i, double r_j, double u2, double tau,
+                                double G);
+
 /** Pure diffusion (Friedlander 2000; Mohaupt 2011,
  *  eqs 5.19, 6.18): each particle's position
  *  diffuses with per-component variance rate b2 = B_pos^2 (m^2/s), the

@@ -29,7 +29,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <gsl/gsl_cdf.h>
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
 
@@ -37,7 +36,6 @@
 #include <smolbridge/kernel.h>
 
 #include "cases.h"
-#include "common/numutil.h"
 #include "v16.h"
 
 #define PI 3.14159265358979323846
@@ -486,36 +484,6 @@ const sbv_case sbv_cases_v16[] = {
      v16_case_deposition},
 };
 const size_t sbv_ncases_v16 = sizeof sbv_cases_v16 / sizeof sbv_cases_v16[0];
-
-/* Pass-through rate of Langevin spheres (velocity variance v2 per
- * component each, relaxation time tau) in the linear shear U_x = G y, at
- * contact distance R: the flux R^2 int E[(w.n)^-] dOmega with w.n ~
- * N(G R n_x n_y, n.S.n), S = 2 v2 [[1 + (G tau)^2/2, -G tau/2, 0],
- * [-G tau/2, 1, 0], [0, 0, 1]] the stationary covariance of the relative
- * peculiar velocity (dc_x = -c_x/tau dt - G c_y dt + B dW_x).  Limits:
- * v2 -> 0, (4/3) G R^3; G -> 0, sqrt(8 pi) R^2 sqrt(2 v2). */
-typedef struct {
-  double R, G, v2, gt;
-} shear_flux_ctx;
-
-/* E[(w.n)^-] for w.n ~ N(m, var) */
-static double shear_flux_at(const double n[3], void *ctx)
-{
-  const shear_flux_ctx *k = ctx;
-  const double nx = n[0], ny = n[1], nz = n[2], gt = k->gt;
-  const double m = k->G * k->R * nx * ny;
-  const double var = 2.0 * k->v2 * ((1.0 + 0.5 * gt * gt) * nx * nx -
-                                    gt * nx * ny + ny * ny + nz * nz);
-  const double sd = sqrt(var), z = m / sd;
-  return sd * exp(-0.5 * z * z) / sqrt(2.0 * PI) - m * gsl_cdf_ugaussian_P(-z);
-}
-
-double v16_shear_kinetic_flux(double R, double G, double v2, double tau)
-{
-  /* 96 Gauss-Legendre nodes in cos(theta), 192 midpoints in phi */
-  shear_flux_ctx k = {R, G, v2, G * tau};
-  return R * R * sbi_sphere_integral(shear_flux_at, &k, 96, 192, 0.5);
-}
 
 int v16_shear_fill(sb_engine *e, gsl_rng *r, const sb_engine_species *sp,
                    size_t n, const double L[3], double G)

@@ -836,19 +836,20 @@ static int case_shear_kinetic(const sbv_ctx *ctx, sbv_report *rep)
            "excursion ends within a step, ~1%% of the Rice flux with or "
            "without shear).  Reference: the flux of the "
            "Gaussian relative velocity with mean G R n_x n_y and the "
-           "stationary sheared covariance (shear_kinetic_flux); "
+           "stationary sheared covariance (sb_kernel_shear_langevin); "
            "informational: against the additive K_kin + "
            "K_shear = sqrt(8 pi) R^2 sqrt(2 v'^2) + (4/3) G R^3.  Kinetic "
            "Peclet number Pe_k = G R/sqrt(2 v'^2).", tau, G, G * tau, n,
            target);
   /* the reference's limits (quadrature of a kinked integrand as v2 -> 0:
    * second order, 96 x 192 nodes) */
+  const double v2tiny = 1e-24 * G * G * R * R;
   st = sbv_add_relband(rep, "V16/combined-shear/reference/v2->0/shear",
-                       v16_shear_kinetic_flux(R, G, 1e-24 * G * G * R * R, tau),
+                       sb_kernel_shear_langevin(rad, rad, v2tiny, tau, G),
                        sb_kernel_shear(rad, rad, G), 1e-3);
   if (!st)
     st = sbv_add_relband(rep, "V16/combined-shear/reference/G=0/kinetic",
-                         v16_shear_kinetic_flux(R, 0.0, 1e-6, tau),
+                         sb_kernel_shear_langevin(rad, rad, 1e-6, tau, 0.0),
                          sb_kernel_abrahamson(rad, rad, 1e-6, 1e-6), 1e-9);
   for (size_t k = 0; k < sizeof pks / sizeof pks[0] && !st; k++) {
     const double s2 = (G * R / pks[k]) * (G * R / pks[k]);  /* 2 v2 */
@@ -857,7 +858,7 @@ static int case_shear_kinetic(const sbv_ctx *ctx, sbv_report *rep)
     const double l = cbrt(V / 0.4);
     const double L[3] = {l, 0.4 * l, l};
     const double dt = tau / 20.0;
-    const double Kref = v16_shear_kinetic_flux(R, G, v2, tau);
+    const double Kref = sb_kernel_shear_langevin(rad, rad, v2, tau, G);
     const double Kadd = sb_kernel_abrahamson(rad, rad, v2, v2) +
                         sb_kernel_shear(rad, rad, G);
     const double P = 0.5 * (double)n * (double)(n - 1);

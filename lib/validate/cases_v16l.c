@@ -1,7 +1,7 @@
 /* cases_v16l.c — V16/combined-shear's rows for the Langevin detector:
  * pass-through counting of Langevin spheres in a Lees-Edwards shear at
  * dt = tau_p, against the Rice flux through the contact sphere
- * (v16_shear_kinetic_flux; docs/engine_forces.md §8).
+ * (sb_kernel_shear_langevin; docs/engine_forces.md §8).
  *
  * At dt = tau_p a pair near grazing contact leaves and enters again
  * inside a step; contact-time chords cannot (a line meets the ball once),
@@ -18,6 +18,7 @@
 #include <gsl/gsl_rng.h>
 
 #include <smolbridge/engine.h>
+#include <smolbridge/kernel.h>
 #include <smolbridge/stats.h>
 
 #include "cases.h"
@@ -116,7 +117,7 @@ int v16_shear_langevin_rows(const sbv_ctx *ctx, sbv_report *rep)
   const double V = (double)n * 4.0 / 3.0 * PI * rad * rad * rad / 0.5;
   const double l = cbrt(V / 0.4);
   const double L[3] = {l, 0.4 * l, l};
-  const double Kref = v16_shear_kinetic_flux(R, G, v2, tau);
+  const double Kref = sb_kernel_shear_langevin(rad, rad, v2, tau, G);
   const sb_engine_species sp = {rad, 1000.0 * 4.0 / 3.0 * PI * rad * rad *
                                          rad,
                                 tau, sqrt(2.0 * v2 / tau), 0.0};

@@ -64,11 +64,6 @@ double v16_slab_absorbed(double D, double t, double W);
 
 int v16_case_deposition(const sbv_ctx *ctx, sbv_report *rep);
 
-/* Pass-through rate (m^3/s) of Langevin spheres, velocity variance v2 per
- * component each and relaxation time tau, in the linear shear U_x = G y
- * at contact distance R: the Rice flux through the contact sphere of
- * their Gaussian relative velocity (cases_v16.c). */
-double v16_shear_kinetic_flux(double R, double G, double v2, double tau);
 /* Species sp (one, Stokes, with noise) in the shear U_x = G (y - L_y/2)
  * with Lees-Edwards images, n particles placed uniformly from r at
  * their stationary peculiar velocities (sd B sqrt(tau/2)) plus the flow,
