@@ -105,6 +105,7 @@ _FUNCS = {
     "kernel_gravity": "r_i r_j rho_p rho_f mu g",
     "kernel_shear": "r_i r_j G", "kernel_saffman_turner": "r_i r_j eps nu",
     "kernel_abrahamson": "r_i r_j u2_i u2_j",
+    "kernel_shear_langevin": "r_i r_j u2 tau G",
     "kernel_diffusion": "r_i r_j b2_i b2_j", "brownian_b2": "r T mu",
     "turb_pair_b2": "r eps nu",
     "kernel_brownian_turb": "r_i r_j T mu eps nu",
