@@ -134,6 +134,12 @@ static int sbe_w_langevin_shear_bridge_sample(const double *i, double *o)
   return st;
 }
 
+/* tau G cx cy s (uy0 y0 ux0 x0) -> the mean of (u_y, y, u_x, x) */
+static int sbe_w_langevin_shear_mean(const double *i, double *o)
+{
+  return sb_langevin_shear_mean(i[0], i[1], i[2], i[3], i[4], &i[5], o);
+}
+
 #define TBT {"tau", "B", "t", NULL}
 #define MOM {"mean_x", "mean_u", "var_x", "var_u", "cov_xu", NULL}
 #define A_MOM {"tau", "B", "us", "t", "x0", "u0", NULL}
@@ -154,6 +160,8 @@ static int sbe_w_langevin_shear_bridge_sample(const double *i, double *o)
                "cov_y_uy", "cov_y_y", "cov_ux_uy", "cov_ux_y", "cov_ux_ux", \
                "cov_x_uy", "cov_x_y", "cov_x_ux", "cov_x_x", NULL}
 #define O_SHS {"uy", "y", "ux", "x", NULL}
+#define A_SHM {"tau", "G", "cx", "cy", "s", "uy0", "y0", "ux0", "x0", NULL}
+#define O_SHM {"mean_uy", "mean_y", "mean_ux", "mean_x", NULL}
 #define A_STOKES {"rho_p", "d_p", "mu_f", "cc", NULL}
 #define A_MASS {"rho_p", "d_p", NULL}
 #define A_B {"T", "m_p", "tau_p", NULL}
@@ -199,6 +207,10 @@ static const sbe_func funcs[] = {
        A_BRS,
        O_BRS,
        "OU/Langevin bridge: one draw of (X_s, U_s) given both ends"),
+    EO(langevin_shear_mean, A_SHM, O_SHM,
+       "Langevin particle in the linear shear (G y + cx, cy): mean of "
+       "(u_y, y, u_x, x) after s from a given state (the path without "
+       "noise)"),
     EO(langevin_shear_bridge_moments, A_SHB, O_SHB,
        "Langevin bridge in the linear shear (G y + cx, cy): law of "
        "(u_y, y, u_x, x) at s given both end states"),

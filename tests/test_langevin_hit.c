@@ -851,8 +851,10 @@ static void shear_tab_init(const sb_langevin_path *P, int nf, double dt,
                            shear_tab *T)
 {
   ck_assert(nf <= 256);
-  const double vu = P->B * sqrt(P->tau), vx = vu * P->tau;
   T->nf = nf;
+  if (P->B == 0.0)  /* no noise: shear_det_rk4, no table */
+    return;
+  const double vu = P->B * sqrt(P->tau), vx = vu * P->tau;
   T->D[0] = T->D[2] = vu;
   T->D[1] = T->D[3] = vx;
   T->c[0] = (P->us[0] - P->G * P->x0[1]) / vu; /* the drifts, scaled */
@@ -911,8 +913,40 @@ static void shear_substep(const gsl_rng *r, const sb_langevin_path *P,
                                              &u[2]), SB_SUCCESS);
 }
 
+/* A Stokes particle without noise (B = 0) in the shear (G y + c_x, c_y)
+ * (c from its path: us at x0), moved over h by classical Runge-Kutta on
+ * du/dt = (fluid(x) - u)/tau with 32 stages (independent of the
+ * library's closed-form map; error ~ (h/32 tau)^4). */
+static void shear_det_rk4(const sb_langevin_path *P, double h, double x[3],
+                          double u[3])
+{
+  const double cx = P->us[0] - P->G * P->x0[1], cy = P->us[1];
+  const int n = 32;
+  const double k = h / n;
+  for (int s = 0; s < n; s++) {
+    double y[6] = {x[0], x[1], x[2], u[0], u[1], u[2]}, d[4][6];
+    for (int q = 0; q < 4; q++) {
+      const double f = q == 0 ? 0.0 : (q == 3 ? 1.0 : 0.5);
+      double z[6];
+      for (int i = 0; i < 6; i++)
+        z[i] = y[i] + (q ? f * k * d[q - 1][i] : 0.0);
+      d[q][0] = z[3];
+      d[q][1] = z[4];
+      d[q][2] = z[5];
+      d[q][3] = (P->G * z[1] + cx - z[3]) / P->tau;
+      d[q][4] = (cy - z[4]) / P->tau;
+      d[q][5] = (P->us[2] - z[5]) / P->tau;
+    }
+    for (int i = 0; i < 6; i++)
+      y[i] += k / 6.0 * (d[0][i] + 2.0 * d[1][i] + 2.0 * d[2][i] + d[3][i]);
+    memcpy(x, y, 3 * sizeof(double));
+    memcpy(u, y + 3, 3 * sizeof(double));
+  }
+}
+
 /* Brute force in a linear shear: nf sequential exact shear-bridge
- * sub-steps per particle, contact on the sub-steps' chords: the first
+ * sub-steps per particle (B = 0: shear_det_rk4), contact on the
+ * sub-steps' chords: the first
  * (nmax = 0; a start inside is a contact at 0) or every entry from
  * outside (the first nmax stored); returns the number found. */
 static int shear_brute(const gsl_rng *r, const sb_langevin_path *P,
@@ -935,7 +969,9 @@ static int shear_brute(const gsl_rng *r, const sb_langevin_path *P,
     for (int k = 0; k < 3; k++)
       ra[k] = x[0][k] - x[1][k];
     for (int p = 0; p < 2; p++)
-      if (s < nf - 1)
+      if (P[p].B == 0.0)
+        shear_det_rk4(&P[p], h, x[p], u[p]);
+      else if (s < nf - 1)
         shear_substep(r, &P[p], &T[p], s, dt, x[p], u[p]);
       else
         for (int k = 0; k < 3; k++) {
@@ -1047,6 +1083,124 @@ START_TEST(test_shear_all_entries)
     }
     all_entries_check(40 + cfg, P, brute_all_shear, T, 1500, 6000, r, w);
   }
+  free(T);
+  sb_langevin_hitter_free(w);
+  gsl_rng_free(r);
+}
+END_TEST
+
+/* A Stokes particle without noise (B = 0) in a linear shear follows the
+ * field along its path, G y(t) + c_x, not the field at its start.
+ * (i) Against a particle at rest (free flight, u = 0): the contact time
+ * and state against a Runge-Kutta integration of the equation of motion
+ * (shear_det_rk4 and bisection on |r| = R): 1e-6 in time, velocity and
+ * position.  (ii) Against a particle with noise in the same shear (tau 1
+ * and 0.5, masses 1 and 0.25): the sampler against the brute force of 128
+ * sub-steps (the noisy one's exact shear bridge, the other's Runge-Kutta
+ * path), 5000 paths against 30 000 draws, the tests of
+ * test_shear_fixed_ends (0.474 against 0.479).  With the uniform-flow
+ * path for the particle without noise (the field frozen at its start, as
+ * before), (i) finds the contact at t = 0.708 instead of 0.777 and (ii)
+ * hits every time (20 000 draws) against the brute force's 0.47. */
+static double det_rk4_contact(const sb_langevin_path *P, double R,
+                              double x[3], double u[3])
+{
+  /* scan in 1/1024 steps for the first |r| <= R, then bisect */
+  const int n = 1024;
+  double xa[3], ua[3];
+  memcpy(xa, P->x0, sizeof xa);
+  memcpy(ua, P->u0, sizeof ua);
+  for (int s = 0; s < n; s++) {
+    double xb[3], ub[3];
+    memcpy(xb, xa, sizeof xb);
+    memcpy(ub, ua, sizeof ub);
+    shear_det_rk4(P, 1.0 / n, xb, ub);
+    if (xb[0] * xb[0] + xb[1] * xb[1] + xb[2] * xb[2] <= R * R) {
+      double lo = 0.0, hi = 1.0 / n;
+      for (int it = 0; it < 60; it++) {
+        const double m = 0.5 * (lo + hi);
+        memcpy(x, xa, 3 * sizeof(double));
+        memcpy(u, ua, 3 * sizeof(double));
+        shear_det_rk4(P, m, x, u);
+        if (x[0] * x[0] + x[1] * x[1] + x[2] * x[2] <= R * R)
+          hi = m;
+        else
+          lo = m;
+      }
+      memcpy(x, xa, 3 * sizeof(double));
+      memcpy(u, ua, 3 * sizeof(double));
+      shear_det_rk4(P, hi, x, u);
+      return s / (double)n + hi;
+    }
+    memcpy(xa, xb, sizeof xa);
+    memcpy(ua, ub, sizeof ua);
+  }
+  return -1.0;
+}
+
+START_TEST(test_shear_deterministic)
+{
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  gsl_rng_set(r, 323);
+  sb_langevin_hitter *w = sb_langevin_hitter_alloc(NULL);
+  /* (i) against a particle at rest at the origin */
+  sb_langevin_path P[2];
+  memset(P, 0, sizeof P);
+  P[0].tau = 1.0;
+  P[0].mass = 1.0;
+  P[0].G = 2.0;
+  const double x0[3] = {-1.6, 1.4, 0.2}, u0[3] = {0.4, -1.5, 0.0};
+  memcpy(P[0].x0, x0, sizeof x0);
+  memcpy(P[0].u0, u0, sizeof u0);
+  memcpy(P[0].x1, x0, sizeof x0); /* ignored without noise */
+  P[0].us[0] = 0.3 + P[0].G * x0[1];
+  P[0].us[1] = -0.2;
+  P[1].tau = INFINITY;
+  P[1].mass = 1.0;
+  double xr[3], ur[3];
+  const double tr = det_rk4_contact(&P[0], 1.0, xr, ur);
+  ck_assert(tr > 0.0 && tr < 1.0);
+  sb_langevin_contact c;
+  ck_assert_int_eq(sb_langevin_hitter_sample(w, &P[0], &P[1], 1.0, 1.0, r,
+                                             &c), 1);
+  printf("shear, no noise: contact at %.9f (Runge-Kutta %.9f)\n", c.t, tr);
+  ck_assert_abs(c.t, tr, 1e-6);
+  for (int k = 0; k < 3; k++) {
+    ck_assert_abs(c.ui[k], ur[k], 1e-6);
+    ck_assert_abs(c.xi[k] - c.xj[k], xr[k], 1e-6);
+    ck_assert_abs(c.uj[k], 0.0, 1e-15);
+  }
+  /* (ii) against a particle with noise */
+  shear_tab *T = malloc(2 * sizeof *T);
+  ck_assert_ptr_nonnull(T);
+  P[0].x0[0] = -1.25;
+  P[0].x0[1] = 1.5;
+  P[0].x0[2] = 0.1;
+  P[0].u0[0] = 0.0;
+  P[0].u0[1] = -3.0;
+  P[1] = particle(0.5, 0.25);
+  const double b[3] = {0.3, -0.2, 0.0};
+  memcpy(P[1].x1, b, sizeof b);
+  P[1].u0[0] = 0.5;
+  P[1].u1[1] = 0.4;
+  for (int p = 0; p < 2; p++) {
+    P[p].G = 2.0;
+    P[p].us[0] = 0.3 + P[p].G * P[p].x0[1];
+    P[p].us[1] = -0.2;
+    shear_tab_init(&P[p], 128, 1.0, &T[p]);
+  }
+  const int nb = 5000, ns = 30000;
+  double *tb = malloc(nb * sizeof *tb), *ts = malloc(ns * sizeof *ts);
+  double(*cb)[2] = malloc(nb * sizeof *cb), (*cv)[2] = malloc(ns *
+                                                            sizeof *cv);
+  long hb = 0;
+  for (int n = 0; n < nb; n++)
+    hb += shear_brute(r, P, T, 1.0, 1.0, &tb[hb], &cb[hb], 0);
+  const long hs = sampler_draws(w, P, 0, ns, r, ts, cv);
+  same_contact_states(50, cb, hb, cv, hs);
+  printf("shear, one without noise: brute force %ld/%d, sampler %ld/%d\n",
+         hb, nb, hs, ns);
+  same_law(50, tb, hb, nb, ts, hs, ns);
   free(T);
   sb_langevin_hitter_free(w);
   gsl_rng_free(r);
@@ -1378,6 +1532,7 @@ static Suite *suite(void)
   tcase_set_timeout(tsh, 120);
   tcase_add_test(tsh, test_shear_fixed_ends);
   tcase_add_test(tsh, test_shear_all_entries);
+  tcase_add_test(tsh, test_shear_deterministic);
   suite_add_tcase(s, tsh);
   TCase *tf = tcase_create("forward");
   tcase_set_timeout(tf, 60);

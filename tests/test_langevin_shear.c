@@ -23,7 +23,9 @@
  *  (c) sb_langevin_shear_bridge_moments in SI units: translating the whole
  *      path by d along y while lowering c_x by G d (the same dynamics)
  *      translates the mean by d, and translating along x does the same;
- *  (d) the domain.
+ *  (d) the domain;
+ *  (e) the mean path (sb_langevin_shear_mean, the exact path without
+ *      noise) against a Runge-Kutta integration.
  * Broken on purpose: dropping the constant drift terms of the bridge
  * (kc = 0) fails (a) at g != 0, (b') (p(mean) = 1e-15) and (c) (231 sd:
  * the drift does change the bridge in a shear); dropping the x-y
@@ -435,6 +437,92 @@ START_TEST(test_translations)
 }
 END_TEST
 
+/* ------------------------------------------------- (e) the mean path */
+
+/* dS/dt of (u_y, y, u_x, x) in the field (G y + cx, cy), per unit mass */
+static void shear_rhs(double tau, double G, double cx, double cy,
+                      const double *S, double *d)
+{
+  d[0] = (cy - S[0]) / tau;
+  d[1] = S[0];
+  d[2] = (G * S[1] + cx - S[2]) / tau;
+  d[3] = S[2];
+}
+
+/* (e) sb_langevin_shear_mean against classical Runge-Kutta on the
+ * equation of motion without noise (steps of at most 0.002 tau: error
+ * below 1e-12 of the increment), for tau from 1e-7 to 30 s, G tau from 0
+ * to 3 (either sign), s/tau from 1e-8 to 50, drifts of both signs: each
+ * component's increment S(s) - S(0) within 1e-9 of itself plus the
+ * rounding of the states.  Broken on purpose: dropping u_x's response to
+ * u_y(0) (g Bv) fails it (3e-3 of the increment of u_x at s = 1e-3 tau). */
+START_TEST(test_mean)
+{
+  static const double taus[3] = {1e-7, 1.0, 30.0};
+  static const double gts[4] = {0.0, 0.4, -1.3, 3.0};
+  static const double sts[5] = {1e-8, 1e-3, 0.7, 5.0, 50.0};
+  double worst = 0.0;
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 4; b++)
+      for (int c = 0; c < 5; c++) {
+        const double tau = taus[a], G = gts[b] / tau, s = sts[c] * tau;
+        const double v = 1.7, cx = 0.6 * v, cy = -0.4 * v;
+        const double s0[4] = {-1.1 * v, 0.3 * v * tau, 0.8 * v,
+                              -2.0 * v * tau};
+        double out[4];
+        ck_assert_int_eq(sb_langevin_shear_mean(tau, G, cx, cy, s, s0, out),
+                         SB_SUCCESS);
+        int n = (int)ceil(sts[c] / 0.002);
+        if (n < 1)
+          n = 1;
+        const double h = s / n;
+        double S[4];
+        memcpy(S, s0, sizeof S);
+        for (int k = 0; k < n; k++) {
+          double k1[4], k2[4], k3[4], k4[4], T[4];
+          shear_rhs(tau, G, cx, cy, S, k1);
+          for (int i = 0; i < 4; i++)
+            T[i] = S[i] + 0.5 * h * k1[i];
+          shear_rhs(tau, G, cx, cy, T, k2);
+          for (int i = 0; i < 4; i++)
+            T[i] = S[i] + 0.5 * h * k2[i];
+          shear_rhs(tau, G, cx, cy, T, k3);
+          for (int i = 0; i < 4; i++)
+            T[i] = S[i] + h * k3[i];
+          shear_rhs(tau, G, cx, cy, T, k4);
+          for (int i = 0; i < 4; i++)
+            S[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        }
+        for (int i = 0; i < 4; i++) {
+          const double dr = S[i] - s0[i], dm = out[i] - s0[i];
+          const double tol = 1e-9 * fabs(dr) +
+                             1e-15 * sqrt(n) * (fabs(s0[i]) + fabs(S[i]));
+          ck_assert_msg(fabs(dm - dr) <= tol,
+                        "tau %g, G tau %g, s/tau %g, component %d: "
+                        "increment %.15g, Runge-Kutta %.15g", tau, gts[b],
+                        sts[c], i, dm, dr);
+          if (dr != 0.0)
+            worst = fmax(worst, fabs(dm - dr) / fabs(dr));
+        }
+      }
+  printf("shear mean path against Runge-Kutta: largest relative error of "
+         "an increment %.1e\n", worst);
+  double out[4];
+  const double z[4] = {0, 0, 0, 0};
+  ck_assert_int_eq(sb_langevin_shear_mean(0.0, 1, 0, 0, 1, z, out), SB_EDOM);
+  ck_assert(isnan(out[0]) && isnan(out[3]));
+  ck_assert_int_eq(sb_langevin_shear_mean(1, 1, 0, 0, -1, z, out), SB_EDOM);
+  ck_assert_int_eq(sb_langevin_shear_mean(1, NAN, 0, 0, 1, z, out), SB_EDOM);
+  ck_assert_int_eq(sb_langevin_shear_mean(1, 1, 0, 0, 1, NULL, out),
+                   SB_EINVAL);
+  /* s = 0: the start */
+  const double s0[4] = {1, 2, 3, 4};
+  ck_assert_int_eq(sb_langevin_shear_mean(1, 1, 5, 6, 0, s0, out), 0);
+  for (int i = 0; i < 4; i++)
+    ck_assert(out[i] == s0[i]);
+}
+END_TEST
+
 /* ------------------------------------------------- (d) domain */
 
 START_TEST(test_domain)
@@ -477,6 +565,7 @@ int main(void)
   tcase_add_test(tc, test_sample);
   tcase_add_test(tc, test_translations);
   tcase_add_test(tc, test_domain);
+  tcase_add_test(tc, test_mean);
   suite_add_tcase(s, tc);
   return sbt_run_suite(s);
 }

@@ -155,14 +155,15 @@ void sbi_engine_langevin_begin(sb_engine *e)
 }
 
 /* The shear rate of particle k's exact bridge: G for a Stokes species
- * with noise in the Lees-Edwards shear (its transport is exact in the
- * linear field, engine_lees.c), else 0 (the uniform-flow bridge). */
+ * in the Lees-Edwards shear (its transport is exact in the linear field,
+ * engine_lees.c; without noise its path is the exact deterministic map),
+ * else 0 (the uniform-flow bridge). */
 static double shear_rate(const sb_engine *e, size_t k)
 {
   const sb_engine_species *sp = &e->spec[e->species[k]];
   const double G = e->fluid_p[0];
   if (e->lees && e->fluid == SB_FLUID_SHEAR && G != 0.0 &&
-      !isinf(sp->tau) && sp->B > 0.0 &&
+      !isinf(sp->tau) &&
       !(e->species[k] < e->nsfl &&
         e->sfl[e->species[k]].drag != SB_DRAG_STOKES))
     return G;
@@ -201,11 +202,19 @@ static int state_at(const sb_engine *e, size_t k, double t, const gsl_rng *r,
     const double sa[4] = {ua[1], xa[1], ua[0], xa[0]},
                  sb[4] = {ub[1], xb[1], ub[0], xb[0]};
     double o[4];
-    int st = sb_langevin_shear_bridge_sample(
-        sp->tau, sp->B, G, shear_cx(e, k, G), sbi_engine_w(e, k, 1), h, s,
-        sa, sb, r, o);
-    if (st)
-      return st;
+    if (sp->B == 0.0) {  /* no noise: the exact path from the piece's
+                            start */
+      int st = sb_langevin_shear_mean(sp->tau, G, shear_cx(e, k, G),
+                                      sbi_engine_w(e, k, 1), s, sa, o);
+      if (st)
+        return st;
+    } else {
+      int st = sb_langevin_shear_bridge_sample(
+          sp->tau, sp->B, G, shear_cx(e, k, G), sbi_engine_w(e, k, 1), h, s,
+          sa, sb, r, o);
+      if (st)
+        return st;
+    }
     u[1] = o[0], x[1] = o[1], u[0] = o[2], x[0] = o[3];
     c0 = 2;
   }

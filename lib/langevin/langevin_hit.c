@@ -991,11 +991,12 @@ static int setup(walk *W, sb_langevin_hitter *w, const sb_langevin_path *pi,
     W->plane = 1;
     memcpy(W->n, plane, sizeof W->n);
   }
-  /* linear shear: one rate for the pair (particles with noise) */
+  /* linear shear: one rate for the pair (Stokes particles; free flight
+   * does not see the fluid) */
   double G = 0.0;
   for (int p = 0; p < 2; p++) {
     const sb_langevin_path *q = P[p];
-    if (isinf(q->tau) || q->B == 0.0 || q->G == 0.0)
+    if (isinf(q->tau) || q->G == 0.0)
       continue;
     if (!isfinite(q->G) || (G != 0.0 && q->G != G) ||
         !(fabs(q->G) * dt <= 100.0))
@@ -1020,7 +1021,8 @@ static int setup(walk *W, sb_langevin_hitter *w, const sb_langevin_path *pi,
       W->wv[p][k] = isinf(q->tau) ? 0.0 : q->us[k];
       A->x[p][k] = q->x0[k];
       A->u[p][k] = q->u0[k];
-      /* without noise the end is where the start state leads */
+      /* without noise the end is where the start state leads (in the
+       * shear, in-plane, below) */
       if (det) {
         sbi_lh_coef c;
         sbi_lh_coef_at(q->tau, 0.0, dt, dt, &c);
@@ -1031,8 +1033,14 @@ static int setup(walk *W, sb_langevin_hitter *w, const sb_langevin_path *pi,
         Bs->u[p][k] = q->u1[k];
       }
     }
-    W->sl[p] = sbi_lh_slot_get(w, q->tau, q->B, dt, det ? 0.0 : G);
+    W->sl[p] = sbi_lh_slot_get(w, q->tau, q->B, dt, G);
     W->shear |= W->sl[p] && W->sl[p]->shear;
+    if (det && G != 0.0 && !isinf(q->tau)) {
+      double sa[4], sb[4];
+      plane_get(A, p, sa);
+      sbi_shear_det_state(q->tau, G, W->cs[p][0], W->cs[p][1], dt, sa, sb);
+      plane_set(Bs, p, sb);
+    }
   }
   /* overlapping, or touching and approaching: a contact now; touching
    * and separating (a pair that has just bounced): no contact now */
@@ -1088,9 +1096,15 @@ static int bridge_draw(const walk *W, int p, const pstate *A,
   int k0 = 0;
   if (W->sl[p]->shear) {
     double pl[4];
-    int st = shear_plane_draw(W, p, A, Bs, h, s, sc, cs, pl);
-    if (st < 0)
-      return -st;
+    if (W->sl[p]->det) {  /* no noise: the exact map from A */
+      double sa[4];
+      plane_get(A, p, sa);
+      sbi_shear_det_state(W->tau[p], W->G, cs[0], cs[1], s, sa, pl);
+    } else {
+      int st = shear_plane_draw(W, p, A, Bs, h, s, sc, cs, pl);
+      if (st < 0)
+        return -st;
+    }
     v[1] = pl[0];
     x[1] = pl[1];
     v[0] = pl[2];

@@ -11,8 +11,8 @@
  * table per level serves every sub-interval of that level.
  *
  * Processes without noise (tau = inf: free flight; B = 0: deterministic
- * relaxation to us) have the unconditioned mean from the start state and
- * zero covariance. */
+ * relaxation to us, or in a linear shear to the field along the path) have
+ * the unconditioned mean from the start state and zero covariance. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -63,9 +63,7 @@ sbi_lh_slot *sbi_lh_slot_get(sb_langevin_hitter *w, double tau, double B,
                              double htop, double G)
 {
   if (isinf(tau))
-    B = 0.0;
-  if (isinf(tau) || B == 0.0)
-    G = 0.0;  /* the shear bridge is for particles with noise */
+    B = G = 0.0;  /* free flight does not see the fluid */
   w->clock++;
   sbi_lh_slot *old = &w->slot[0];
   for (int k = 0; k < SBI_LH_NSLOT; k++) {
@@ -86,7 +84,7 @@ sbi_lh_slot *sbi_lh_slot_get(sb_langevin_hitter *w, double tau, double B,
   old->htop = htop;
   old->G = G;
   old->det = isinf(tau) || B == 0.0;
-  old->shear = !old->det && G != 0.0;
+  old->shear = G != 0.0;
   old->stamp = w->clock;
   for (int d = 0; d <= SBI_LH_MAXDEPTH; d++)
     if (old->lev[d])
@@ -106,7 +104,9 @@ static double eig2(double a, double b, double c)
  * caller's by S = D S~, D = diag(vu, vx, vu, vx), vu = B sqrt(tau),
  * vx = vu tau.  Below h/tau = 1e-9 (that function's domain) the shear
  * changes the law by O(G h) < 1e-9 relative: the Ornstein-Uhlenbeck
- * coefficients of the level are used.  Status. */
+ * coefficients of the level are used.  A slot without noise (B = 0, a
+ * Stokes particle) takes the exact deterministic map from each
+ * sub-interval's start (sbi_shear_det_map), no spread.  Status. */
 static int shear_fill(sb_langevin_hitter *w, const sbi_lh_slot *s,
                       sbi_lh_level *L)
 {
@@ -125,7 +125,12 @@ static int shear_fill(sb_langevin_hitter *w, const sbi_lh_slot *s,
     double (*kc)[2] = k < SBI_LH_NQ ? S->kc[k] : S->mkc;
     double cov[4][4];
     sb_langevin_shear_bridge b;
-    if (x >= 1e-9) {
+    if (s->det) {  /* no noise: the exact map from the sub-interval's
+                      start, whatever its end */
+      sbi_shear_det_map(tau, s->G, xi * L->h, ka, kc);
+      memset(kb, 0, 16 * sizeof(double));
+      memset(cov, 0, sizeof cov);
+    } else if (x >= 1e-9) {
       if (sb_langevin_shear_bridge_coefs(x, g, xi * x, &b))
         return sbi_error(SB_EDOM, "sb_langevin_hitter_sample",
                          "no shear bridge (h/tau = %g, G tau = %g): %s", x,
@@ -181,7 +186,9 @@ static int shear_fill(sb_langevin_hitter *w, const sbi_lh_slot *s,
       const double ue = eig2(cov[2][2], cov[2][0], cov[0][0]);
       S->vmax = fmax(S->vmax, fmax(ve, vz));
       S->umax = fmax(S->umax, fmax(ue, uz));
-    } else if (sbi_shear_chol4(cov, S->ml))
+    } else if (s->det)
+      memset(S->ml, 0, sizeof S->ml);
+    else if (sbi_shear_chol4(cov, S->ml))
       return sbi_error(SB_EDOM, "sb_langevin_hitter_sample",
                        "shear bridge covariance not positive definite "
                        "(h/tau = %g, G tau = %g)", x, g);

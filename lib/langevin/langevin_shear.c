@@ -216,6 +216,57 @@ void sb_langevin_shear_propagator(double x, double g, double Phi[4][4],
   a[3][1] = g * (c[3] - c[0]);
 }
 
+void sbi_shear_det_map(double tau, double G, double s, double ka[4][4],
+                       double kc[4][2])
+{
+  double Phi[4][4], a[4][2];
+  sb_langevin_shear_propagator(s / tau, G * tau, Phi, a);
+  /* physical units: S = D S~, D = diag(vu, vx, vu, vx) with B = 1 (the
+   * mean does not depend on B), vu = sqrt(tau), vx = tau^1.5; the drifts
+   * scale as velocities */
+  const double vu = sqrt(tau), vx = vu * tau;
+  const double D[4] = {vu, vx, vu, vx};
+  for (int i = 0; i < 4; i++) {
+    for (int j = 0; j < 4; j++)
+      ka[i][j] = D[i] * Phi[i][j] / D[j];
+    kc[i][0] = D[i] * a[i][0] / vu;
+    kc[i][1] = D[i] * a[i][1] / vu;
+  }
+}
+
+void sbi_shear_det_state(double tau, double G, double cx, double cy,
+                         double s, const double sa[4], double out[4])
+{
+  double ka[4][4], kc[4][2];
+  sbi_shear_det_map(tau, G, s, ka, kc);
+  for (int i = 0; i < 4; i++) {
+    double t = kc[i][0] * cx + kc[i][1] * cy;
+    for (int j = 0; j < 4; j++)
+      t += ka[i][j] * sa[j];
+    out[i] = t;
+  }
+}
+
+int sb_langevin_shear_mean(double tau, double G, double cx, double cy,
+                           double s, const double s0[4], double out[4])
+{
+  if (!s0 || !out)
+    return sbi_error(SB_EINVAL, __func__, "NULL state");
+  int ok = tau > 0.0 && isfinite(tau) && isfinite(G) && isfinite(cx) &&
+           isfinite(cy) && s >= 0.0 && isfinite(s);
+  for (int k = 0; k < 4; k++)
+    ok = ok && isfinite(s0[k]);
+  if (!ok) {
+    for (int k = 0; k < 4; k++)
+      out[k] = NAN;
+    return sbi_error(SB_EDOM, __func__, "tau = %g, G = %g, cx = %g, "
+                     "cy = %g, s = %g: tau > 0, s >= 0, all finite", tau, G,
+                     cx, cy, s);
+  }
+  sbi_shear_det_state(tau, G, cx, cy, s, s0, out);
+  return SB_SUCCESS;
+}
+
 /* Cholesky factor of a 4 x 4 matrix, written out for this fixed size
  * rather than with GSL's, whose failure on a matrix that is not positive
  * definite goes through the process-wide GSL error handler. */

@@ -1,5 +1,5 @@
-/* langevin_shear_internal.h — the shear step's noise integrals (private
- * to lib/langevin; tests use it). */
+/* langevin_shear_internal.h — the shear step's noise integrals and the
+ * deterministic shear map (private to lib/; tests use it). */
 #ifndef SB_LANGEVIN_SHEAR_INTERNAL_H
 #define SB_LANGEVIN_SHEAR_INTERNAL_H
 
@@ -20,5 +20,16 @@ extern const double sbi_shear_noise_tab[7][SBI_SHN_NT];
  * (entries above the diagonal zero); SB_EDOM when a pivot is not
  * positive. */
 int sbi_shear_chol4(const double M[4][4], double L[4][4]);
+
+/* A Stokes particle without noise (B = 0) in the shear, physical units:
+ * its in-plane state S = (u_y, y, u_x, x) after a time s >= 0 from S(0)
+ * is S(s) = ka S(0) + kc (c_x, c_y) (the mean transition of
+ * sb_langevin_shear_propagator, exact for such a particle; the fluid
+ * velocity is (G y + c_x, c_y)). */
+void sbi_shear_det_map(double tau, double G, double s, double ka[4][4],
+                       double kc[4][2]);
+/* The state itself: out = S(s) from sa = S(0). */
+void sbi_shear_det_state(double tau, double G, double cx, double cy,
+                         double s, const double sa[4], double out[4]);
 
 #endif /* SB_LANGEVIN_SHEAR_INTERNAL_H */

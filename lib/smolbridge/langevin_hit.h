@@ -85,11 +85,15 @@ typedef struct {
   double x1[3], u1[3];   /**< state at t = dt */
   double G;              /**< linear shear: the fluid velocity at x is
                               us + (G (x[1] - x0[1]), 0, 0) (units 1/time;
-                              0: uniform flow).  Used for particles with
-                              noise: their in-plane bridge is then the
-                              exact one of <smolbridge/langevin_shear.h>;
-                              both particles of a pair must have the same
-                              G */
+                              0: uniform flow).  Used for Stokes
+                              particles (finite tau): with noise their
+                              in-plane bridge is then the exact one of
+                              <smolbridge/langevin_shear.h>, without
+                              (B = 0) their path the exact one in the
+                              linear field; free flight ignores it; both
+                              particles of a pair must have the same G
+                              (one may give 0: the pair's rate is the
+                              other's) */
 } sb_langevin_path;
 
 /** Sampler parameters (sb_langevin_hit_params_default). */

@@ -47,6 +47,17 @@ void sb_langevin_shear_mean_coefs(double x, double c[4]);
 void sb_langevin_shear_propagator(double x, double g, double Phi[4][4],
                                   double a[4][2]);
 
+/** The mean of S(s) = (u_y, y, u_x, x) after a time s >= 0 from S(0) = s0,
+ *  SI units (tau in s, G in 1/s, drift velocities cx, cy in m/s): the
+ *  mean transition Phi s0 + a (c_x, c_y) of sb_langevin_shear_propagator
+ *  taken to physical units; it does not depend on B, and for a particle
+ *  without noise (B = 0) it is the exact path in the linear field (the
+ *  Langevin detector's and the engine's; tested against a Runge-Kutta
+ *  integration, tests/test_langevin_shear.c).  Domain: tau > 0, s >= 0,
+ *  all finite; SB_EDOM (out set to NaN) or SB_EINVAL (NULL) otherwise. */
+int sb_langevin_shear_mean(double tau, double G, double cx, double cy,
+                           double s, const double s0[4], double out[4]);
+
 /** The noise covariance Sigma(x) of S over a step x = h/tau >= 0 with
  *  shear g = G tau (the integral of Phi Q Phi^T, Q = diag(1, 0, 1, 0)),
  *  from closed-form integrals of the response kernels (series below
