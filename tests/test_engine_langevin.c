@@ -683,6 +683,127 @@ START_TEST(test_passthrough_flux)
 }
 END_TEST
 
+/* A noise-free Stokes sphere (B = 0, tau = 1) in the uniform flow
+ * w = (1, 0, 0) starting at u = -w curves back: x(s) = x0 + w (s -
+ * 2 tau (1 - e^{-s/tau})), at most 0.307 behind x0 (s = tau ln 2), and
+ * ends 0.054 behind it at dt = 1.5 tau.  A sphere at rest 1.0 behind it
+ * (free flight; contact distance 0.7) is touched at the s where x - x0 =
+ * -0.3, found here by bisection on that closed form.  The chords stay
+ * 0.946 apart, so the search finds the pair only through the path's
+ * bulge (sbi_engine_det_bulge); the contact time within the leaf
+ * resolution over the approach speed.  Without the bulge the pair is
+ * never examined: no contact. */
+static double back_path(double s)
+{
+  return s - 2.0 * (1.0 - exp(-s));
+}
+
+/* A custom detector: the Langevin contact, its step fraction kept. */
+static int record_contact(const sb_engine *e, const sb_engine_pair *p,
+                          const gsl_rng *r, void *ctx, double *s)
+{
+  const int h = sb_engine_langevin_contact(e, p, r, s, NULL);
+  if (h == 1)
+    *(double *)ctx = *s;
+  return h;
+}
+
+START_TEST(test_curved_no_noise)
+{
+  double lo = 0.0, hi = log(2.0);  /* back_path decreases on [0, ln 2] */
+  for (int it = 0; it < 80; it++) {
+    const double m = 0.5 * (lo + hi);
+    if (back_path(m) > -0.3)
+      lo = m;
+    else
+      hi = m;
+  }
+  for (int custom = 0; custom < 2; custom++) {
+    sb_engine *e = box(3, 10.0, 1.5, 4, 5);
+    const double U[3] = {1.0, 0.0, 0.0};
+    ck_assert_int_eq(sb_engine_set_fluid(e, SB_FLUID_UNIFORM, U), 0);
+    ck_assert_int_eq(sb_engine_set_outcome(e, SB_OUTCOME_COUNT, 0.0), 0);
+    sb_engine_species stokes = {0.35, 1.0, 1.0, 0.0, 0.0};
+    sb_engine_species rest = {0.35, 1.0, INFINITY, 0.0, 1.0};
+    ck_assert_int_eq(sb_engine_add_species(e, &stokes, NULL), 0);
+    ck_assert_int_eq(sb_engine_add_species(e, &rest, NULL), 0);
+    const double xa[3] = {5.0, 5.0, 5.0}, ua[3] = {-1.0, 0.0, 0.0};
+    const double xb[3] = {4.0, 5.0, 5.0}, ub[3] = {0.0, 0.0, 0.0};
+    ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xa, ua), 0);
+    ck_assert_int_eq(sb_engine_add_particle(e, 1, 0, xb, ub), 0);
+    double st_s = NAN;
+    if (custom)
+      ck_assert_int_eq(sb_engine_set_detector(e, record_contact, &st_s, 1),
+                       0);
+    ck_assert_msg(sb_engine_step(e) == 0, "%s", sb_last_error());
+    sb_engine_stats st;
+    sb_engine_get_stats(e, &st);
+    ck_assert_msg(st.ncoll == 1, "%s detector: %llu contacts",
+                  custom ? "custom" : "langevin",
+                  (unsigned long long)st.ncoll);
+    ck_assert_abs(sb_engine_positions(e)[0], 5.0 + back_path(1.5), 1e-12);
+    if (custom) {
+      printf("curved noise-free path: contact at %.9f tau (closed form "
+             "%.9f)\n", 1.5 * st_s, hi);
+      /* the leaf resolution 1e-6 R over the approach speed (0.12: near
+       * the turning point), twice */
+      const double vn = fabs(1.0 - 2.0 * exp(-hi));
+      ck_assert_abs(1.5 * st_s, hi, 2.0 * 0.7e-6 / vn);
+    }
+    sb_engine_free(e);
+  }
+}
+END_TEST
+
+/* The same bulge on a piece that starts mid-step (the re-detection after
+ * an outcome): in the flow w = (1, 0, 0), Stokes sphere A (B = 0, tau = 1)
+ * moves with the fluid from x = 5 and free-flight C (at 6.2, u = -2)
+ * bounces off it at t = 1/6 (elastic, equal masses: velocities
+ * exchanged), so A restarts at u = -2 and curves back, at most 0.90
+ * behind the bounce point, ending 0.25 behind it at dt = 1/6 + 2.5.
+ * Sphere B at rest at x = 3.6 is reached when A is at 4.3: its velocity
+ * after their bounce is A's there, w - 3 e^{-s'} from the closed form
+ * (within 1e-4).  Without the bulge on the new piece B is not among A's
+ * partners: one collision. */
+START_TEST(test_curved_piece)
+{
+  const double xb = 5.0 + 1.0 / 6.0;
+  double lo = 0.0, hi = log(3.0);  /* xb + s - 3 (1 - e^-s) falls to 4.3 */
+  for (int it = 0; it < 80; it++) {
+    const double m = 0.5 * (lo + hi);
+    if (xb + m - 3.0 * (1.0 - exp(-m)) > 4.3)
+      lo = m;
+    else
+      hi = m;
+  }
+  sb_engine *e = box(3, 30.0, 1.0 / 6.0 + 2.5, 4, 5);
+  const double U[3] = {1.0, 0.0, 0.0};
+  ck_assert_int_eq(sb_engine_set_fluid(e, SB_FLUID_UNIFORM, U), 0);
+  ck_assert_int_eq(sb_engine_set_outcome(e, SB_OUTCOME_ELASTIC, 1.0), 0);
+  sb_engine_species stokes = {0.35, 1.0, 1.0, 0.0, 0.0};
+  sb_engine_species flight = {0.35, 1.0, INFINITY, 0.0, 1.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &stokes, NULL), 0);
+  ck_assert_int_eq(sb_engine_add_species(e, &flight, NULL), 0);
+  const double xa[3] = {5.0, 5.0, 5.0}, ua[3] = {1.0, 0.0, 0.0};
+  const double xc[3] = {6.2, 5.0, 5.0}, uc[3] = {-2.0, 0.0, 0.0};
+  const double xB[3] = {3.6, 5.0, 5.0}, uB[3] = {0.0, 0.0, 0.0};
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xa, ua), 0);
+  ck_assert_int_eq(sb_engine_add_particle(e, 1, 0, xc, uc), 0);
+  ck_assert_int_eq(sb_engine_add_particle(e, 1, 0, xB, uB), 0);
+  ck_assert_msg(sb_engine_step(e) == 0, "%s", sb_last_error());
+  sb_engine_stats st;
+  sb_engine_get_stats(e, &st);
+  ck_assert_msg(st.ncoll == 2, "%llu collisions",
+                (unsigned long long)st.ncoll);
+  const double want = 1.0 - 3.0 * exp(-hi);
+  printf("curved piece: B leaves at %.7f (closed form %.7f)\n",
+         sb_engine_velocities(e)[6], want);
+  ck_assert_abs(sb_engine_velocities(e)[6], want, 1e-4);
+  ck_assert_abs(sb_engine_velocities(e)[3], 1.0, 1e-12);  /* C: A's */
+  sb_engine_free(e);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("engine_langevin");
@@ -691,6 +812,8 @@ static Suite *suite(void)
   tcase_add_test(tc, test_names_params);
   tcase_add_test(tc, test_elastic_contact);
   tcase_add_test(tc, test_chain);
+  tcase_add_test(tc, test_curved_no_noise);
+  tcase_add_test(tc, test_curved_piece);
   tcase_add_test(tc, test_merge_momentum);
   tcase_add_test(tc, test_merge_dlvo_contact);
   suite_add_tcase(s, tc);

@@ -428,10 +428,16 @@ static double new_piece(sb_engine *e, size_t k, double t,
   e->sub_t[k] = t;
   e->piece_at[k] = e->epoch;
   e->ver[k]++;
+  /* a noise-free Stokes path on a Langevin piece (started at t by
+   * sbi_engine_langevin_continue) curves away from its chord */
+  double bulge = 0.0;
+  if (sbi_engine_det_bulge_on(e) && e->lp_t[k] == t)
+    bulge = sbi_engine_det_bulge(e, k, &e->lp_u[3 * k],
+                                 e->lp_x[3 * k + 1], f * e->par.dt);
   /* still inside the region the search covered around x0_k?  then widen
    * its reach (others' searches see it from the cells); else it goes to
    * the far list, checked against its piece directly */
-  double r = sqrt(r0 > r1 ? r0 : r1);
+  double r = sqrt(r0 > r1 ? r0 : r1) + bulge;
   if (!e->isfar[k]) {
     if (e->radius[k] + r <= e->grid.ext_max || !e->grid.valid) {
       if (r > e->dn[k])
@@ -441,7 +447,7 @@ static double new_piece(sb_engine *e, size_t k, double t,
       e->far[e->nfar++] = k;
     }
   }
-  return e->radius[k] + sqrt(len2);  /* from the piece's start */
+  return e->radius[k] + sqrt(len2) + bulge;  /* from the piece's start */
 }
 
 /* Where particle k is at step fraction t after the outcome: the position

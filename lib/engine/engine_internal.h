@@ -495,6 +495,17 @@ int sbi_engine_langevin_push_all(sb_engine *e, const sb_engine_pair *p,
  * record (engine_detect.c); status. */
 int sbi_engine_push_event(sb_engine *e, const sb_engine_pair *p, double t,
                           double s, sbi_event *ev);
+/* Noise-free Stokes particles (B = 0, finite tau) follow curved paths,
+ * which the Langevin detector follows exactly but the neighbour search's
+ * chords do not cover: 1 if the step's search must widen each such
+ * particle's extent by sbi_engine_det_bulge (detector langevin or
+ * custom, which may call it, and such a species present). */
+int sbi_engine_det_bulge_on(const sb_engine *e);
+/* Bound on the distance of particle k's path over a piece of length h
+ * (start velocity ua at height ya in its frame) from the piece's chord,
+ * 0 for particles with noise or in free flight (engine_langevin.c). */
+double sbi_engine_det_bulge(const sb_engine *e, size_t k, const double *ua,
+                            double ya, double h);
 /* Pieces start at the step's start. */
 void sbi_engine_langevin_begin(sb_engine *e);
 /* After the outcome of event ev: particle k (a partner, not removed)

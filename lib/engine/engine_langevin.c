@@ -178,6 +178,48 @@ static double shear_cx(const sb_engine *e, size_t k, double G)
   return (sbi_engine_w(e, k, 0) - e->us[3 * k]) - G * 0.5 * e->par.L[1];
 }
 
+int sbi_engine_det_bulge_on(const sb_engine *e)
+{
+  if (e->par.detect != SB_DETECT_LANGEVIN &&
+      e->par.detect != SB_DETECT_CUSTOM)
+    return 0;
+  for (size_t sp = 0; sp < e->nspec; sp++)
+    if (!isinf(e->spec[sp].tau) && e->spec[sp].B == 0.0)
+      return 1;
+  return 0;
+}
+
+/* The path's deviation from its chord over [0, h] is
+ * F(s) = int_0^s (u - mean u) = s (1 - s/h) (mean of u before s - mean
+ * after), at most (h/4) times the range of u over the piece, taken per
+ * component: u relaxes monotonically to the fluid velocity w, a range
+ * |u_a - w| (1 - e^{-h/tau}); in the shear u_x also follows G y(t), whose
+ * response adds |G| tau (|u_y - w_y| Bv + |w_y| C) (engine_lees.c). */
+double sbi_engine_det_bulge(const sb_engine *e, size_t k, const double *ua,
+                            double ya, double h)
+{
+  const sb_engine_species *sp = &e->spec[e->species[k]];
+  if (isinf(sp->tau) || sp->B > 0.0 || !(h > 0.0))
+    return 0.0;
+  const double tau = sp->tau, a = -expm1(-h / tau);
+  const double G = shear_rate(e, k);
+  double r2 = 0.0;
+  for (int c = 0; c < e->par.dim; c++) {
+    double w = sbi_engine_w(e, k, c), r;
+    if (c == 0 && G != 0.0) {
+      double cs[4];
+      sb_langevin_shear_mean_coefs(h / tau, cs);
+      const double wy = sbi_engine_w(e, k, 1);
+      w = shear_cx(e, k, G) + G * ya;
+      r = fabs(ua[0] - w) * a +
+          fabs(G) * tau * (fabs(ua[1] - wy) * cs[1] + fabs(wy) * cs[2]);
+    } else
+      r = fabs(ua[c] - w) * a;
+    r2 += r * r;
+  }
+  return 0.25 * h * sqrt(r2);
+}
+
 /* State of particle k at step fraction t on its current piece (position
  * in its frame); draws from r inside a stochastic piece. */
 static int state_at(const sb_engine *e, size_t k, double t, const gsl_rng *r,

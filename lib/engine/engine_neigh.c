@@ -100,6 +100,14 @@ static int cutoff(sb_engine *e, const double *disp, double reach,
       if (!isfinite(dn[i]))
         return sbi_error(SB_EINVAL, func, "particle %zu: non-finite "
                          "displacement", i);
+  if (disp == e->disp && sbi_engine_det_bulge_on(e))
+    /* noise-free Stokes paths curve away from their chords: each path
+     * stays within |disp| + bulge of its start */
+    for (size_t i = 0; i < n; i++) {
+      dn[i] += sbi_engine_det_bulge(e, i, &e->u0[3 * i], e->x0[3 * i + 1],
+                                    e->par.dt);
+      m = dn[i] > m ? dn[i] : m;
+    }
   *cut = 2.0 * e->rmax + 2.0 * m + reach;
   *dmax = m;
   for (int k = 0; k < e->par.dim; k++)
