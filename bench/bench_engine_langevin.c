@@ -17,9 +17,14 @@
  *     The contact-time run is timed over its first steps and extrapolated
  *     to its length (its cost per step is constant); --full runs it to
  *     the end.  Goal: ratio >= 100.
+*  3. Threads: wall time per step of the section 1 engine (`langevin`,
+ *     the engine's default streams: every record on its own stream, the
+ *     first pass on all threads) on one thread and on all of them, at
+ *     dt/tau_p = 1 and 100; the contacts must be the same.
  * Options: --quick (smaller N), --full (no extrapolation).
- * Times are the process's CPU time (one thread: OMP_NUM_THREADS=1), which
- * a loaded machine inflates far less than the wall time.
+ * Times of sections 1 and 2 are the process's CPU time (one thread:
+ * OMP_NUM_THREADS=1), which a loaded machine inflates far less than the
+ * wall time; section 3's are wall times.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -29,6 +34,9 @@
 #include <time.h>
 
 #include <gsl/gsl_rng.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
@@ -49,9 +57,20 @@ static double now(void)
   return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
-/* Seconds per step of an engine of N Kn_D = 0.5 spheres at dt/tau_p = dtt
- * with detector `bessel` (1) or langevin (0), pass-through. */
-static double per_step(size_t N, double dtt, int bessel, double *cand)
+static double wall(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+/* Seconds per step (CPU time; wall time with threads > 0, that many
+ * threads and the engine's default streams) of an engine of N Kn_D = 0.5
+ * spheres at dt/tau_p = dtt with detector `bessel` (1) or langevin (0),
+ * pass-through; *cand: candidates per particle and step (threads > 0:
+ * the contacts). */
+static double per_step_on(size_t N, double dtt, int bessel, int threads,
+                          double *cand)
 {
   v12_phys ph;
   v12_physics(0.5, &ph);
@@ -63,7 +82,11 @@ static double per_step(size_t N, double dtt, int bessel, double *cand)
   p.dt = dtt * ph.tau;
   p.capacity = N;
   p.seed = 7;
-  p.rng_type = gsl_rng_taus2;
+  if (!threads) {
+    p.rng_type = gsl_rng_taus2;
+    p.threads = 1;
+  } else
+    p.threads = threads;
   p.outcome = SB_OUTCOME_COUNT;
   p.detect = bessel ? SB_DETECT_BALLISTIC : SB_DETECT_LANGEVIN;
   sb_engine *e = sb_engine_alloc(&p);
@@ -86,14 +109,15 @@ static double per_step(size_t N, double dtt, int bessel, double *cand)
     if (sb_engine_step(e))
       goto fail;
   sb_engine_reset_counters(e);
-  double t0 = now();
+  double t0 = threads ? wall() : now();
   for (int k = 0; k < steps; k++)
     if (sb_engine_step(e))
       goto fail;
-  double t = (now() - t0) / steps;
+  double t = ((threads ? wall() : now()) - t0) / steps;
   sb_engine_stats st;
   sb_engine_get_stats(e, &st);
-  *cand = (double)st.ncand / ((double)steps * (double)N);
+  *cand = threads ? (double)st.ncoll
+                  : (double)st.ncand / ((double)steps * (double)N);
   sb_engine_bridge_free(b);
   sb_engine_free(e);
   return t;
@@ -102,6 +126,11 @@ fail:
   sb_engine_bridge_free(b);
   sb_engine_free(e);
   return NAN;
+}
+
+static double per_step(size_t N, double dtt, int bessel, double *cand)
+{
+  return per_step_on(N, dtt, bessel, 0, cand);
 }
 
 /* Section 2 with V12's pinned generator (taus2, one stream: rng = 0) or
@@ -204,6 +233,22 @@ int main(int argc, char **argv)
   printf("   headline (default generator): %.0fx  %s (goal >= 100); with "
          "V12's taus2: %.0fx\n", r_default, ok ? "PASS" : "MISS",
          r_pinned);
+  /* 3. threads */
+#ifdef _OPENMP
+  const int nt = omp_get_num_procs();  /* whatever OMP_NUM_THREADS says */
+#else
+  const int nt = 1;
+#endif
+  printf("\n3. Threads: wall time per step, langevin, N = %zu, the "
+         "engine's streams (1 and %d threads)\n", N, nt);
+  for (int k = 0; k < 2; k++) {
+    double c1, c2;
+    double t1 = per_step_on(N, dts[k], 0, 1, &c1);
+    double t2 = per_step_on(N, dts[k], 0, nt, &c2);
+    printf("   dt/tau_p = %-5g %10.1f us %10.1f us  speed-up %.2fx  "
+           "contacts %.0f / %.0f%s\n", dts[k], 1e6 * t1, 1e6 * t2, t1 / t2,
+           c1, c2, c1 == c2 ? "" : "  DIFFER");
+  }
   printf("\n%d of 3 goals met\n", met);
   return 0;
 }

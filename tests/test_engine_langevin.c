@@ -450,6 +450,82 @@ START_TEST(test_dense_runs)
 }
 END_TEST
 
+/* With the engine's streams on (the default) every record draws from its
+ * own stream (engine_lkeyed.c), so the run does not depend on the
+ * threads: 1500 spheres (tau = 0.35, dt = 0.7), 15 steps, with the
+ * pass-through count, with elastic bounces (re-detections) and in 2-D,
+ * on 1 and on 2 threads (the parallel first pass: several hundred records
+ * per step): the same positions and velocities bit for bit, the same
+ * contacts and sampler counts.  With the streams off the detector draws
+ * from the engine's generator (its own test: the runs of V12). */
+static void threads_run(int dim, sb_engine_outcome out, int threads,
+                        double *x, double *u, sb_engine_stats *st,
+                        sb_langevin_hit_stats *hs)
+{
+  const size_t N = 1500;
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.dim = dim;
+  p.L[0] = p.L[1] = p.L[2] = dim == 3 ? 30.0 : 120.0;
+  p.dt = 0.7;
+  p.capacity = N;
+  p.seed = 31;
+  p.detect = SB_DETECT_LANGEVIN;
+  p.outcome = out;
+  p.threads = threads;
+  ck_assert_int_eq(p.streams, 1);
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  add_species(e, 0.35);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, N), SB_SUCCESS);
+  for (int k = 0; k < 15; k++)
+    ck_assert_msg(sb_engine_step(e) == SB_SUCCESS, "%s", sb_last_error());
+  memcpy(x, sb_engine_positions(e), 3 * N * sizeof(double));
+  memcpy(u, sb_engine_velocities(e), 3 * N * sizeof(double));
+  sb_engine_get_stats(e, st);
+  ck_assert_int_eq(sb_engine_langevin_stats(e, hs), SB_SUCCESS);
+  ck_assert_uint_eq(sb_engine_count(e), N);
+  sb_engine_free(e);
+}
+
+START_TEST(test_threads_identical)
+{
+  static const struct {
+    int dim;
+    sb_engine_outcome out;
+  } cfg[3] = {{3, SB_OUTCOME_COUNT}, {3, SB_OUTCOME_ELASTIC},
+              {2, SB_OUTCOME_ELASTIC}};
+  const size_t N = 1500;
+  double *x[2], *u[2];
+  for (int t = 0; t < 2; t++) {
+    x[t] = malloc(3 * N * sizeof(double));
+    u[t] = malloc(3 * N * sizeof(double));
+  }
+  for (int c = 0; c < 3; c++) {
+    sb_engine_stats st[2];
+    sb_langevin_hit_stats hs[2];
+    for (int t = 0; t < 2; t++)
+      threads_run(cfg[c].dim, cfg[c].out, t + 1, x[t], u[t], &st[t], &hs[t]);
+    printf("threads 1 / 2, %d-D %s: %llu / %llu contacts, %llu / %llu "
+           "sampler calls\n", cfg[c].dim,
+           cfg[c].out == SB_OUTCOME_COUNT ? "count" : "elastic",
+           (unsigned long long)st[0].ncoll, (unsigned long long)st[1].ncoll,
+           (unsigned long long)hs[0].calls, (unsigned long long)hs[1].calls);
+    ck_assert(st[0].ncoll > 100);
+    ck_assert_uint_eq(st[0].ncoll, st[1].ncoll);
+    ck_assert_uint_eq(hs[0].calls, hs[1].calls);
+    ck_assert_uint_eq(hs[0].hits, hs[1].hits);
+    ck_assert_uint_eq(hs[0].nodes, hs[1].nodes);
+    ck_assert(memcmp(x[0], x[1], 3 * N * sizeof(double)) == 0);
+    ck_assert(memcmp(u[0], u[1], 3 * N * sizeof(double)) == 0);
+  }
+  for (int t = 0; t < 2; t++) {
+    free(x[t]);
+    free(u[t]);
+  }
+}
+END_TEST
+
 /* Units: the same run (seed, configuration) in unit-free and in SI-like
  * units (lengths x 1e-7 m, times x 1e-6 s) gives the same contacts: the
  * engine, the reach and the sampler are scale invariant.  300 particles,
@@ -822,6 +898,7 @@ static Suite *suite(void)
   tcase_add_test(tm, test_reach_complete);
   tcase_add_test(tm, test_reach_skip);
   tcase_add_test(tm, test_dense_runs);
+  tcase_add_test(tm, test_threads_identical);
   tcase_add_test(tm, test_kernel_gh);
   tcase_add_test(tm, test_compare_pool);
   tcase_add_test(tm, test_units);

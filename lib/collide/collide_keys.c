@@ -128,9 +128,10 @@ const sbi_col_keydef sbi_col_keys[] = {
      "steps", "0 (off)", "reorder particles in memory (speed)"},
     {"run", "rng", K_NAME, C(rng), 16, R_ANY, 0, 0, RNGS, "-", "philox",
      "generator type; philox (the default, fastest): per-particle "
-     "counter-based streams for transport (parallel; results independent "
-     "of the thread count and of the particle order); mt19937, taus2: "
-     "GSL generators in particle order (the validation cases)"},
+     "counter-based streams for transport and per-pair streams for the "
+     "Langevin detector (parallel; results independent of the thread "
+     "count and of the particle order); mt19937, taus2: GSL generators "
+     "in particle order (the validation cases)"},
     {"run", "threads", K_INT, C(threads), 0, R_CLOSED, 0, 4096, NULL, "-",
      "0 (OMP_NUM_THREADS)",
      "threads of the engine's parallel parts (results do not depend on "

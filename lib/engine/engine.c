@@ -207,6 +207,7 @@ void sb_engine_free(sb_engine *e)
   free(e->sfl);   /* engine_force.c */
   free(e->vset);
   free(e->shn);   /* engine_lees.c */
+  sbi_engine_langevin_slots_free(e);
   sb_langevin_hitter_free(e->lh);
   if (e->rng)
     gsl_rng_free(e->rng);

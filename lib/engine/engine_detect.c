@@ -197,13 +197,11 @@ static int detect_push(sb_engine *e, const sb_engine_pair *p, double t)
   int hit;
   sbi_event ev;
   ev.hasc = 0;
-  if (count_only && det == SB_DETECT_LANGEVIN)
-    return sbi_engine_langevin_push_all(e, p, t);  /* every entry */
+  if (det == SB_DETECT_LANGEVIN)  /* first contact, or every entry */
+    return sbi_engine_langevin_record(e, p, t);
   if (count_only && det != SB_DETECT_CUSTOM && overlapping(p))
     return SB_SUCCESS;  /* pass-through: an overlap is not a new contact */
-  if (det == SB_DETECT_LANGEVIN)
-    hit = sbi_engine_langevin_detect(e, p, t, e->rng, &s, &ev);
-  else if (det == SB_DETECT_BALLISTIC)
+  if (det == SB_DETECT_BALLISTIC)
     hit = sb_engine_detect_ballistic(p, &s);
   else if (det == SB_DETECT_OVERLAP)
     hit = sb_engine_detect_overlap(p, &s);
@@ -483,7 +481,14 @@ int sbi_engine_detect_and_process(sb_engine *e)
     sbi_engine_langevin_begin(e);  /* a custom detector may call it */
   const size_t np = e->npairs;
   const int nt = sbi_engine_threads(&e->par);
-  if ((e->par.detect == SB_DETECT_BALLISTIC ||
+  e->lredet = 0;
+  if (e->par.detect == SB_DETECT_LANGEVIN && e->par.streams && nt > 1 &&
+      np >= 256) {
+    /* every record on its own stream: in parallel, pushed in order */
+    int st = sbi_engine_langevin_first_pass(e, nt);
+    if (st)
+      return st;
+  } else if ((e->par.detect == SB_DETECT_BALLISTIC ||
        e->par.detect == SB_DETECT_OVERLAP) && nt > 1 && np >= 256) {
     /* first pass of a deterministic detector on every thread; the events
      * are then pushed in pair order, as the serial loop below does */

@@ -264,6 +264,14 @@ struct sb_engine {
    * (x, u); an outcome that changes it starts a new piece. */
   sb_langevin_hitter *lh;
   sb_engine_langevin_params lpar;
+  /* keyed detection (streams on): slot t's hitter (slot 0: lh) and
+   * Philox generator, its events of the parallel first pass; lredet
+   * numbers the step's re-detections (each its own stream) */
+  sb_langevin_hitter **lht;
+  gsl_rng **lrt;
+  struct sbi_lbuf *lbt;
+  int nlt;
+  uint64_t lredet;
   double lreach;             /* cached reach, m (NaN: to compute) */
   double lreach_dt;
   size_t lreach_n, lreach_nspec;
@@ -487,10 +495,35 @@ int sbi_engine_langevin_chord_gate(const sb_engine *e, double reach);
 int sbi_engine_langevin_detect(const sb_engine *e, const sb_engine_pair *p,
                                double t, const gsl_rng *r, double *s,
                                sbi_event *ev);
-/* Pass-through (SB_OUTCOME_COUNT): push an event for every entry of the
- * record's pair over [t, 1] (sb_langevin_hitter_sample_all); status. */
-int sbi_engine_langevin_push_all(sb_engine *e, const sb_engine_pair *p,
-                                 double t);
+/* Where sbi_engine_langevin_events hands each event (s: the fraction of
+ * the record's interval); status. */
+typedef int (*sbi_lsink)(void *ctx, double s, sbi_event *ev);
+/* The events of record p from step fraction t with hitter lh and
+ * generator r: its first contact, or with SB_OUTCOME_COUNT every entry
+ * (sb_langevin_hitter_sample_all; a pair in contact at t is followed to
+ * its exit first), in time order; status. */
+int sbi_engine_langevin_events(const sb_engine *e, sb_langevin_hitter *lh,
+                               const gsl_rng *r, const sb_engine_pair *p,
+                               double t, sbi_lsink sink, void *ctx);
+/* The built-in Langevin detector on record p from step fraction t: its
+ * first contact (every entry with SB_OUTCOME_COUNT) pushed as events.
+ * With streams on, each record draws from its own stream, keyed by the
+ * step, both particles' ids and the pass (0: the step's first pass,
+ * later: the step's re-detections in order), so that the results do not
+ * depend on the order of the records or on the threads; else from the
+ * engine's generator in record order.  Status. */
+int sbi_engine_langevin_record(sb_engine *e, const sb_engine_pair *p,
+                               double t);
+/* The step's first pass over its np candidate records on nt > 1 threads
+ * (streams on): each record's events computed in parallel, then pushed
+ * in record order, as sbi_engine_langevin_record would.  Status. */
+int sbi_engine_langevin_first_pass(sb_engine *e, int nt);
+/* Free the per-thread slots of the keyed detection (engine_lkeyed.c). */
+void sbi_engine_langevin_slots_free(sb_engine *e);
+/* A new hitter with the engine's Langevin parameters (NULL: no memory). */
+sb_langevin_hitter *sbi_engine_langevin_hitter(const sb_engine *e);
+/* Reset every hitter's counters. */
+void sbi_engine_langevin_reset_stats(sb_engine *e);
 /* Push the event ev of record p (start fraction t) at fraction s of the
  * record (engine_detect.c); status. */
 int sbi_engine_push_event(sb_engine *e, const sb_engine_pair *p, double t,

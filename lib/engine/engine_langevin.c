@@ -57,6 +57,11 @@ static sb_langevin_hitter *new_hitter(const sb_engine *e,
   return sb_langevin_hitter_alloc(&hp);
 }
 
+sb_langevin_hitter *sbi_engine_langevin_hitter(const sb_engine *e)
+{
+  return new_hitter(e, &e->lpar);
+}
+
 int sbi_engine_langevin_init(sb_engine *e)
 {
   sb_engine_langevin_params_default(&e->lpar);
@@ -74,6 +79,7 @@ int sb_engine_set_langevin(sb_engine *e, const sb_engine_langevin_params *p)
   sb_langevin_hitter *h = new_hitter(e, p);
   if (!h)
     return sbi_error(SB_ENOMEM, __func__, "out of memory");
+  sbi_engine_langevin_slots_free(e);  /* their hitters had the old ones */
   sb_langevin_hitter_free(e->lh);
   e->lh = h;
   e->lpar = *p;
@@ -85,7 +91,31 @@ int sb_engine_langevin_stats(const sb_engine *e, sb_langevin_hit_stats *st)
 {
   if (!e || !st || !e->lh)
     return sbi_error(SB_EINVAL, __func__, "NULL argument");
-  return sb_langevin_hitter_stats(e->lh, st);
+  int r = sb_langevin_hitter_stats(e->lh, st);
+  /* the other threads' hitters (the parallel first pass) */
+  for (int t = 1; t < e->nlt && !r; t++) {
+    sb_langevin_hit_stats a;
+    r = sb_langevin_hitter_stats(e->lht[t], &a);
+    st->calls += a.calls;
+    st->hits += a.hits;
+    st->nodes += a.nodes;
+    st->pruned += a.pruned;
+    st->leaves += a.leaves;
+    st->grazing += a.grazing;
+    st->deep += a.deep;
+    st->audit_hits += a.audit_hits;
+    st->depth_max = a.depth_max > st->depth_max ? a.depth_max
+                                                : st->depth_max;
+    st->pruned_mass += a.pruned_mass;
+  }
+  return r;
+}
+
+void sbi_engine_langevin_reset_stats(sb_engine *e)
+{
+  sb_langevin_hitter_reset(e->lh);
+  for (int t = 1; t < e->nlt; t++)
+    sb_langevin_hitter_reset(e->lht[t]);
 }
 
 /* ------------------------------------------------------------ reach */
@@ -429,39 +459,59 @@ static void lrec_event(const lrec *q, const sb_engine_pair *p,
   }
 }
 
-int sbi_engine_langevin_detect(const sb_engine *e, const sb_engine_pair *p,
-                               double t, const gsl_rng *r, double *s,
-                               sbi_event *ev)
+/* The first contact of record p from step fraction t, with hitter lh and
+ * generator r. */
+static int detect_with(const sb_engine *e, sb_langevin_hitter *lh,
+                       const sb_engine_pair *p, double t, const gsl_rng *r,
+                       double *s, sbi_event *ev)
 {
   lrec q;
   int h = lrec_make(e, p, t, r, &q);
   if (h <= 0)
     return h;
   sb_langevin_contact c;
-  h = sb_langevin_hitter_sample(e->lh, &q.pi, &q.pj, p->sigma, q.dtr, r, &c);
+  h = sb_langevin_hitter_sample(lh, &q.pi, &q.pj, p->sigma, q.dtr, r, &c);
   if (h <= 0)
     return h < 0 ? -1 : 0;
   lrec_event(&q, p, &c, s, ev);
   return 1;
 }
 
-int sbi_engine_langevin_push_all(sb_engine *e, const sb_engine_pair *p,
-                                 double t)
+int sbi_engine_langevin_detect(const sb_engine *e, const sb_engine_pair *p,
+                               double t, const gsl_rng *r, double *s,
+                               sbi_event *ev)
 {
+  return detect_with(e, e->lh, p, t, r, s, ev);
+}
+
+int sbi_engine_langevin_events(const sb_engine *e, sb_langevin_hitter *lh,
+                               const gsl_rng *r, const sb_engine_pair *p,
+                               double t, sbi_lsink sink, void *ctx)
+{
+  if (e->par.outcome != SB_OUTCOME_COUNT) {
+    double s = 0.0;
+    sbi_event ev;
+    ev.hasc = 0;
+    const int h = detect_with(e, lh, p, t, r, &s, &ev);
+    if (h < 0)
+      return sbi_error(SB_EINVAL, "sb_engine_step",
+                       "detector failed on pair (%zu, %zu)", p->i, p->j);
+    return h ? sink(ctx, s, &ev) : SB_SUCCESS;
+  }
+  /* pass-through: every entry */
   lrec q;
-  int n = lrec_make(e, p, t, e->rng, &q);
+  int n = lrec_make(e, p, t, r, &q);
   if (n > 0)
-    n = sb_langevin_hitter_sample_all(e->lh, &q.pi, &q.pj, p->sigma, q.dtr,
-                                      e->rng);
+    n = sb_langevin_hitter_sample_all(lh, &q.pi, &q.pj, p->sigma, q.dtr, r);
   if (n < 0)
     return sbi_error(SB_EINVAL, "sb_engine_step",
                      "detector failed on pair (%zu, %zu)", p->i, p->j);
-  const sb_langevin_contact *c = sb_langevin_hitter_entries(e->lh);
+  const sb_langevin_contact *c = sb_langevin_hitter_entries(lh);
   for (int k = 0; k < n; k++) {
     double s;
     sbi_event ev;
     lrec_event(&q, p, &c[k], &s, &ev);
-    int st = sbi_engine_push_event(e, p, t, s, &ev);
+    int st = sink(ctx, s, &ev);
     if (st)
       return st;
   }

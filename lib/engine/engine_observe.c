@@ -90,7 +90,7 @@ void sb_engine_reset_counters(sb_engine *e)
   if (!e)
     return;
   e->ncoll = e->ncand = e->dropped = e->nredetect = 0;
-  sb_langevin_hitter_reset(e->lh);
+  sbi_engine_langevin_reset_stats(e);
   memset(e->fam, 0, sizeof e->fam);
   e->expo = 0.0;
   memset(e->pexpo, 0, sizeof e->pexpo);

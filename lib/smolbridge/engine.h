@@ -155,14 +155,23 @@ typedef struct {
                                   transport runs on all threads (the
                                   default: 28 ns per 3-D particle-step
                                   against 62 ns with MT19937 draws,
-                                  bench_langevin).  0: from the
-                                  generator, in particle order.  Everything else (placement,
-                                  outcomes, random detectors) uses the
+                                  bench_langevin).  With it, the
+                                  Langevin detector (SB_DETECT_LANGEVIN)
+                                  draws each record's path from a stream
+                                  of its own, keyed by (seed, step, pass,
+                                  both particles' ids), and its first
+                                  pass runs on all threads
+                                  (docs/engine_langevin.md §5).  0: from
+                                  the generator, in particle (record)
+                                  order.  Everything else (placement,
+                                  outcomes, custom detectors) uses the
                                   engine's generator in a fixed order. */
   int threads;               /**< threads of the parallel parts of a step
                                   (OpenMP builds: transport with streams,
                                   wrapping, the first detection pass of
-                                  the deterministic detectors); 0 (the
+                                  the deterministic detectors, and of
+                                  the Langevin detector with streams);
+                                  0 (the
                                   default): the OpenMP default
                                   (OMP_NUM_THREADS).  The results are
                                   bit-identical for any value. */
