@@ -769,6 +769,23 @@ END_TEST
  * bulge (sbi_engine_det_bulge); the contact time within the leaf
  * resolution over the approach speed.  Without the bulge the pair is
  * never examined: no contact. */
+/* A cube of edge L in the uniform flow (1, 0, 0), step dt, outcome out
+ * (elastic: restitution 1), with species 0 a Stokes sphere without noise
+ * (tau = 1) and species 1 a free-flight one, both of radius 0.35 and
+ * mass 1. */
+static sb_engine *flow_box(double L, double dt, sb_engine_outcome out)
+{
+  sb_engine *e = box(3, L, dt, 4, 5);
+  const double U[3] = {1.0, 0.0, 0.0};
+  ck_assert_int_eq(sb_engine_set_fluid(e, SB_FLUID_UNIFORM, U), 0);
+  ck_assert_int_eq(sb_engine_set_outcome(e, out, 1.0), 0);
+  const sb_engine_species stokes = {0.35, 1.0, 1.0, 0.0, 0.0};
+  const sb_engine_species flight = {0.35, 1.0, INFINITY, 0.0, 1.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &stokes, NULL), 0);
+  ck_assert_int_eq(sb_engine_add_species(e, &flight, NULL), 0);
+  return e;
+}
+
 static double back_path(double s)
 {
   return s - 2.0 * (1.0 - exp(-s));
@@ -795,14 +812,7 @@ START_TEST(test_curved_no_noise)
       hi = m;
   }
   for (int custom = 0; custom < 2; custom++) {
-    sb_engine *e = box(3, 10.0, 1.5, 4, 5);
-    const double U[3] = {1.0, 0.0, 0.0};
-    ck_assert_int_eq(sb_engine_set_fluid(e, SB_FLUID_UNIFORM, U), 0);
-    ck_assert_int_eq(sb_engine_set_outcome(e, SB_OUTCOME_COUNT, 0.0), 0);
-    sb_engine_species stokes = {0.35, 1.0, 1.0, 0.0, 0.0};
-    sb_engine_species rest = {0.35, 1.0, INFINITY, 0.0, 1.0};
-    ck_assert_int_eq(sb_engine_add_species(e, &stokes, NULL), 0);
-    ck_assert_int_eq(sb_engine_add_species(e, &rest, NULL), 0);
+    sb_engine *e = flow_box(10.0, 1.5, SB_OUTCOME_COUNT);
     const double xa[3] = {5.0, 5.0, 5.0}, ua[3] = {-1.0, 0.0, 0.0};
     const double xb[3] = {4.0, 5.0, 5.0}, ub[3] = {0.0, 0.0, 0.0};
     ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xa, ua), 0);
@@ -852,14 +862,7 @@ START_TEST(test_curved_piece)
     else
       hi = m;
   }
-  sb_engine *e = box(3, 30.0, 1.0 / 6.0 + 2.5, 4, 5);
-  const double U[3] = {1.0, 0.0, 0.0};
-  ck_assert_int_eq(sb_engine_set_fluid(e, SB_FLUID_UNIFORM, U), 0);
-  ck_assert_int_eq(sb_engine_set_outcome(e, SB_OUTCOME_ELASTIC, 1.0), 0);
-  sb_engine_species stokes = {0.35, 1.0, 1.0, 0.0, 0.0};
-  sb_engine_species flight = {0.35, 1.0, INFINITY, 0.0, 1.0};
-  ck_assert_int_eq(sb_engine_add_species(e, &stokes, NULL), 0);
-  ck_assert_int_eq(sb_engine_add_species(e, &flight, NULL), 0);
+  sb_engine *e = flow_box(30.0, 1.0 / 6.0 + 2.5, SB_OUTCOME_ELASTIC);
   const double xa[3] = {5.0, 5.0, 5.0}, ua[3] = {1.0, 0.0, 0.0};
   const double xc[3] = {6.2, 5.0, 5.0}, uc[3] = {-2.0, 0.0, 0.0};
   const double xB[3] = {3.6, 5.0, 5.0}, uB[3] = {0.0, 0.0, 0.0};

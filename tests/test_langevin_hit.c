@@ -995,6 +995,33 @@ static int shear_brute(const gsl_rng *r, const sb_langevin_path *P,
   return n;
 }
 
+/* The pair P (R = 1, dt = 1) in the shear G = 2 with drifts (cx, cy)
+ * (us = (cx + G y0, cy)): 5000 brute-force paths of 128 sub-steps
+ * (shear_brute) against 30 000 sampler draws, the hit probability, the
+ * hit times and the contact states (same_law, same_contact_states). */
+static void shear_vs_brute(int cfg, const char *what, sb_langevin_path *P,
+                           double cx, double cy, shear_tab *T,
+                           const gsl_rng *r, sb_langevin_hitter *w)
+{
+  for (int p = 0; p < 2; p++) {
+    P[p].G = 2.0;
+    P[p].us[0] = cx + P[p].G * P[p].x0[1];
+    P[p].us[1] = cy;
+    shear_tab_init(&P[p], 128, 1.0, &T[p]);
+  }
+  const int nb = 5000, ns = 30000;
+  double *tb = malloc(nb * sizeof *tb), *ts = malloc(ns * sizeof *ts);
+  double(*cb)[2] = malloc(nb * sizeof *cb), (*cv)[2] = malloc(ns *
+                                                            sizeof *cv);
+  long hb = 0;
+  for (int n = 0; n < nb; n++)
+    hb += shear_brute(r, P, T, 1.0, 1.0, &tb[hb], &cb[hb], 0);
+  const long hs = sampler_draws(w, P, 0, ns, r, ts, cv);
+  same_contact_states(cfg, cb, hb, cv, hs);
+  printf("%s: brute force %ld/%d, sampler %ld/%d\n", what, hb, nb, hs, ns);
+  same_law(cfg, tb, hb, nb, ts, hs, ns);
+}
+
 /* The sampler in a linear shear (sb_langevin_path.G) against the brute
  * force of the exact shear bridge: G dt = 2 (a strong shear), dt/tau = 1,
  * R = 1, drifts (us_x - G y0 = 0.8, us_y = -0.3); equal particles (the
@@ -1021,24 +1048,9 @@ START_TEST(test_shear_fixed_ends)
     memcpy(P[0].x1, b, sizeof b);
     P[0].u0[1] = -1.0;
     P[0].u1[1] = -0.8;
-    for (int p = 0; p < 2; p++) {
-      P[p].G = 2.0;
-      P[p].us[0] = 0.8 + P[p].G * P[p].x0[1];
-      P[p].us[1] = -0.3;
-      shear_tab_init(&P[p], 128, 1.0, &T[p]);
-    }
-    const int nb = 5000, ns = 30000;
-    double *tb = malloc(nb * sizeof *tb), *ts = malloc(ns * sizeof *ts);
-    double(*cb)[2] = malloc(nb * sizeof *cb), (*cv)[2] = malloc(ns *
-                                                              sizeof *cv);
-    long hb = 0;
-    for (int n = 0; n < nb; n++)
-      hb += shear_brute(r, P, T, 1.0, 1.0, &tb[hb], &cb[hb], 0);
-    const long hs = sampler_draws(w, P, 0, ns, r, ts, cv);
-    same_contact_states(10 + cfg, cb, hb, cv, hs);
-    printf("shear fixed ends %d: brute force %ld/%d, sampler %ld/%d\n",
-           cfg, hb, nb, hs, ns);
-    same_law(10 + cfg, tb, hb, nb, ts, hs, ns);
+    char what[32];
+    snprintf(what, sizeof what, "shear fixed ends %d", cfg);
+    shear_vs_brute(10 + cfg, what, P, 0.8, -0.3, T, r, w);
   }
   free(T);
   sb_langevin_hitter_free(w);
@@ -1183,24 +1195,7 @@ START_TEST(test_shear_deterministic)
   memcpy(P[1].x1, b, sizeof b);
   P[1].u0[0] = 0.5;
   P[1].u1[1] = 0.4;
-  for (int p = 0; p < 2; p++) {
-    P[p].G = 2.0;
-    P[p].us[0] = 0.3 + P[p].G * P[p].x0[1];
-    P[p].us[1] = -0.2;
-    shear_tab_init(&P[p], 128, 1.0, &T[p]);
-  }
-  const int nb = 5000, ns = 30000;
-  double *tb = malloc(nb * sizeof *tb), *ts = malloc(ns * sizeof *ts);
-  double(*cb)[2] = malloc(nb * sizeof *cb), (*cv)[2] = malloc(ns *
-                                                            sizeof *cv);
-  long hb = 0;
-  for (int n = 0; n < nb; n++)
-    hb += shear_brute(r, P, T, 1.0, 1.0, &tb[hb], &cb[hb], 0);
-  const long hs = sampler_draws(w, P, 0, ns, r, ts, cv);
-  same_contact_states(50, cb, hb, cv, hs);
-  printf("shear, one without noise: brute force %ld/%d, sampler %ld/%d\n",
-         hb, nb, hs, ns);
-  same_law(50, tb, hb, nb, ts, hs, ns);
+  shear_vs_brute(50, "shear, one without noise", P, 0.3, -0.2, T, r, w);
   free(T);
   sb_langevin_hitter_free(w);
   gsl_rng_free(r);
