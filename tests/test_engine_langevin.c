@@ -1,3 +1,4 @@
+#define _POSIX_C_SOURCE 200809L /* mkstemp */
 /* test_engine_langevin.c — the engine's Langevin-bridge detector
  * (SB_DETECT_LANGEVIN, lib/engine/engine_langevin.c): names and
  * parameters, the neighbour reach against an all-pairs search, contact
@@ -12,6 +13,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_randist.h>
@@ -22,6 +24,7 @@
 #include <smolbridge/langevin.h>
 #include <smolbridge/stats.h>
 
+#include "engine_same.h"
 #include "testutil.h"
 #include "validate/cases.h"
 #include "validate/firsthit.h"
@@ -526,6 +529,50 @@ START_TEST(test_threads_identical)
 }
 END_TEST
 
+/* A keyed run continued from a checkpoint is the run itself: 1500
+ * spheres with elastic bounces on 2 threads, 8 steps, saved and loaded,
+ * then 7 more steps of both (each record's stream depends on the step
+ * and the ids, which the checkpoint keeps). */
+START_TEST(test_keyed_checkpoint)
+{
+  char path[] = "/tmp/sb_lkeyed_ckpt_XXXXXX";
+  int fd = mkstemp(path);
+  ck_assert_int_ge(fd, 0);
+  close(fd);
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 30.0;
+  p.dt = 0.7;
+  p.capacity = 1500;
+  p.seed = 37;
+  p.detect = SB_DETECT_LANGEVIN;
+  p.outcome = SB_OUTCOME_ELASTIC;
+  p.threads = 2;
+  sb_engine *a = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(a);
+  add_species(a, 0.35);
+  ck_assert_int_eq(sb_engine_fill_random(a, 0, 0, 1500), SB_SUCCESS);
+  for (int k = 0; k < 8; k++)
+    ck_assert_int_eq(sb_engine_step(a), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_checkpoint_save(a, path), SB_SUCCESS);
+  int st = -1;
+  sb_engine *b = sb_engine_checkpoint_load(path, &st);
+  remove(path);
+  ck_assert_int_eq(st, SB_SUCCESS);
+  ck_assert_ptr_nonnull(b);
+  for (int k = 0; k < 7; k++) {
+    ck_assert_int_eq(sb_engine_step(a), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_step(b), SB_SUCCESS);
+  }
+  sb_engine_stats sa;
+  sb_engine_get_stats(a, &sa);
+  ck_assert(sa.ncoll > 100);
+  sbt_assert_same_run(a, b, 0);
+  sb_engine_free(a);
+  sb_engine_free(b);
+}
+END_TEST
+
 /* Units: the same run (seed, configuration) in unit-free and in SI-like
  * units (lengths x 1e-7 m, times x 1e-6 s) gives the same contacts: the
  * engine, the reach and the sampler are scale invariant.  300 particles,
@@ -902,6 +949,7 @@ static Suite *suite(void)
   tcase_add_test(tm, test_reach_skip);
   tcase_add_test(tm, test_dense_runs);
   tcase_add_test(tm, test_threads_identical);
+  tcase_add_test(tm, test_keyed_checkpoint);
   tcase_add_test(tm, test_kernel_gh);
   tcase_add_test(tm, test_compare_pool);
   tcase_add_test(tm, test_units);
