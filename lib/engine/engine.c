@@ -205,6 +205,7 @@ void sb_engine_free(sb_engine *e)
   free(e->lp_u);
   free(e->lp_t);
   free(e->sfl);   /* engine_force.c */
+  free(e->lam);
   free(e->vset);
   free(e->shn);   /* engine_lees.c */
   sbi_engine_langevin_slots_free(e);

@@ -292,41 +292,90 @@ static double rate(const sb_engine_species_fluid *fl, double tau, double d,
   return sb_drag_factor(fl->drag, fl->rho_f * sqrt(v2) * d / fl->mu) / tau;
 }
 
-/* Second-order exponential step of the nonlinear-drag species (file
- * comment); overwrites their end states and chords. */
-static void drag_step(sb_engine *e)
+/* Particle i's second-order exponential step over h from (x0, u0) (file
+ * comment) into (x, u); returns its rate. */
+static double drag_one(const sb_engine *e, size_t i, double h,
+                       const double *x0, const double *u0, double *x,
+                       double *u)
 {
-  const double h = e->par.dt;
-  const int dim = e->par.dim;
-  for (size_t i = 0; i < e->n; i++) {
-    const size_t sp = e->species[i];
-    const sb_engine_species_fluid *fl = sfl_of(e, sp);
-    if (fl->drag == SB_DRAG_STOKES)
-      continue;
-    const double tau = e->spec[sp].tau, d = 2.0 * e->radius[i];
-    double w[3] = {0, 0, 0}, a[3] = {0, 0, 0}, xs[3], us_[3];
-    if (e->fluid != SB_FLUID_REST)
-      memcpy(w, &e->us[3 * i], sizeof w);
-    if (e->has_grav)
-      gprime(e, sp, a);
-    const double *x0 = &e->x0[3 * i], *u0 = &e->u0[3 * i];
-    double l0 = rate(fl, tau, d, u0, w);
-    linear_step(l0, h, w, a, x0, u0, xs, us_);
-    double l1 = rate(fl, tau, d, us_, w);
-    linear_step(0.5 * (l0 + l1), h, w, a, x0, u0, &e->x[3 * i],
-                &e->u[3 * i]);
-    for (int k = 0; k < 3; k++) {
-      if (k >= dim)
-        e->x[3 * i + k] = e->u[3 * i + k] = 0.0;
-      e->disp[3 * i + k] = e->x[3 * i + k] - x0[k];
-    }
+  const size_t sp = e->species[i];
+  const sb_engine_species_fluid *fl = sfl_of(e, sp);
+  const double tau = e->spec[sp].tau, d = 2.0 * e->radius[i];
+  double w[3] = {0, 0, 0}, a[3] = {0, 0, 0}, xs[3], us_[3];
+  if (e->fluid != SB_FLUID_REST)
+    memcpy(w, &e->us[3 * i], sizeof w);
+  if (e->has_grav)
+    gprime(e, sp, a);
+  double l0 = rate(fl, tau, d, u0, w);
+  linear_step(l0, h, w, a, x0, u0, xs, us_);
+  double l1 = rate(fl, tau, d, us_, w);
+  const double lam = 0.5 * (l0 + l1);
+  linear_step(lam, h, w, a, x0, u0, x, u);
+  for (int k = e->par.dim; k < 3; k++)
+    x[k] = u[k] = 0.0;
+  return lam;
+}
+
+int sbi_engine_nonlinear(const sb_engine *e, size_t k)
+{
+  return e->nonlin && sfl_of(e, e->species[k])->drag != SB_DRAG_STOKES;
+}
+
+/* The nonlinear-drag species' step (file comment); overwrites their end
+ * states and chords, and keeps their rates. */
+static int drag_step(sb_engine *e)
+{
+  if (e->par.capacity > e->caplam) {
+    double *l = realloc(e->lam, e->par.capacity * sizeof *l);
+    if (!l)
+      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+    e->lam = l;
+    e->caplam = e->par.capacity;
   }
+  for (size_t i = 0; i < e->n; i++) {
+    if (!sbi_engine_nonlinear(e, i))
+      continue;
+    const double *x0 = &e->x0[3 * i];
+    e->lam[i] = drag_one(e, i, e->par.dt, x0, &e->u0[3 * i], &e->x[3 * i],
+                         &e->u[3 * i]);
+    for (int k = 0; k < 3; k++)
+      e->disp[3 * i + k] = e->x[3 * i + k] - x0[k];
+  }
+  return SB_SUCCESS;
+}
+
+void sbi_engine_drag_piece(sb_engine *e, size_t k, double h)
+{
+  const double xa[3] = {e->x[3 * k], e->x[3 * k + 1], e->x[3 * k + 2]},
+               ua[3] = {e->u[3 * k], e->u[3 * k + 1], e->u[3 * k + 2]};
+  e->lam[k] = drag_one(e, k, h, xa, ua, &e->x[3 * k], &e->u[3 * k]);
+}
+
+void sbi_engine_relax(const sb_engine *e, size_t k, double *tau,
+                      double w[3])
+{
+  const size_t sp = e->species[k];
+  if (!sbi_engine_nonlinear(e, k) || !e->lam) {
+    *tau = e->spec[sp].tau;
+    for (int c = 0; c < 3; c++)
+      w[c] = sbi_engine_w(e, k, c);
+    return;
+  }
+  double a[3] = {0, 0, 0};
+  if (e->has_grav)
+    gprime(e, sp, a);
+  *tau = 1.0 / e->lam[k];
+  for (int c = 0; c < 3; c++)
+    w[c] = (e->fluid != SB_FLUID_REST ? e->us[3 * k + c] : 0.0) +
+           a[c] * *tau;
 }
 
 int sbi_engine_after_transport(sb_engine *e)
 {
   if (e->nonlin) {
-    drag_step(e);
+    int st = drag_step(e);
+    if (st)
+      return st;
     e->dn_ready = 0;  /* new displacements */
   }
   if (e->lees && e->fluid == SB_FLUID_SHEAR) {

@@ -293,6 +293,9 @@ struct sb_engine {
   double *vset;              /* 3 per species: settling velocity (m/s) */
   size_t nvset;              /* species it was computed for (0: stale) */
   int nonlin;                /* some species has a nonlinear drag law */
+  double *lam;               /* cap (nonlin): this step's rate of each
+                                nonlinear-drag particle's linear step */
+  size_t caplam;
   int lees;                  /* Lees-Edwards images on */
   struct sbi_shear_noise *shn;  /* per species: factor of the exact shear
                                    noise (engine_lees.c), nshn entries */
@@ -563,6 +566,19 @@ const double *sbi_engine_settling(sb_engine *e, size_t sp);
 /* After the linear transport: the nonlinear-drag step of those species
  * and, with Lees-Edwards, the exact shear correction. */
 int sbi_engine_after_transport(sb_engine *e);
+/* The relaxation particle k follows over the current step without its
+ * noise: u(t) = w + (u_a - w) e^{-t/tau}.  For a nonlinear drag law the
+ * rate and terminal slip of this step's linear step (engine_force.c,
+ * tau = 1/lam, w = U_s + g' tau); else the species' tau_p and
+ * sbi_engine_w (the fluid and settling velocity). */
+void sbi_engine_relax(const sb_engine *e, size_t k, double *tau,
+                      double w[3]);
+/* 1 if particle k has a nonlinear drag law. */
+int sbi_engine_nonlinear(const sb_engine *e, size_t k);
+/* A nonlinear-drag particle whose state an outcome changed: its step over
+ * the rest h of the step from its state now (e->x, e->u), as the step's
+ * own (the rate kept for sbi_engine_relax). */
+void sbi_engine_drag_piece(sb_engine *e, size_t k, double h);
 /* Cached dimensional factor per species: L[0..2] the u_x row, L[3..6]
  * the x row; on = 0 for species that keep the OU noise (free flight,
  * nonlinear drag). */

@@ -231,11 +231,13 @@ double sbi_engine_det_bulge(const sb_engine *e, size_t k, const double *ua,
   const sb_engine_species *sp = &e->spec[e->species[k]];
   if (isinf(sp->tau) || sp->B > 0.0 || !(h > 0.0))
     return 0.0;
-  const double tau = sp->tau, a = -expm1(-h / tau);
+  double tau, rw[3];  /* a nonlinear drag: its step's rate */
+  sbi_engine_relax(e, k, &tau, rw);
+  const double a = -expm1(-h / tau);
   const double G = shear_rate(e, k);
   double r2 = 0.0;
   for (int c = 0; c < e->par.dim; c++) {
-    double w = sbi_engine_w(e, k, c), r;
+    double w = rw[c], r;
     if (c == 0 && G != 0.0) {
       double cs[4];
       sb_langevin_shear_mean_coefs(h / tau, cs);
@@ -290,15 +292,18 @@ static int state_at(const sb_engine *e, size_t k, double t, const gsl_rng *r,
     u[1] = o[0], x[1] = o[1], u[0] = o[2], x[0] = o[3];
     c0 = 2;
   }
+  /* the relaxation without noise (a nonlinear drag: its step's rate) */
+  double rt, rw[3];
+  sbi_engine_relax(e, k, &rt, rw);
   for (int c = c0; c < e->par.dim; c++) {
     const double xa = e->lp_x[3 * k + c], ua = e->lp_u[3 * k + c];
-    const double w = sbi_engine_w(e, k, c);
+    const double w = rw[c];
     if (isinf(sp->tau)) {
       x[c] = xa + ua * s;
       u[c] = ua;
     } else if (sp->B == 0.0) {
-      double a = -expm1(-s / sp->tau);
-      x[c] = xa + w * s + (ua - w) * sp->tau * a;
+      double a = -expm1(-s / rt);
+      x[c] = xa + w * s + (ua - w) * rt * a;
       u[c] = w + (ua - w) * (1.0 - a);
     } else {
       sb_langevin p = {sp->tau, sp->B, w};
@@ -321,12 +326,13 @@ static void fill_path(const sb_engine *e, size_t k, const double *xa,
                       double h, sb_langevin_path *q)
 {
   const sb_engine_species *sp = &e->spec[e->species[k]];
-  q->tau = sp->tau;
+  double w[3];  /* a nonlinear drag: its step's rate and terminal slip */
+  sbi_engine_relax(e, k, &q->tau, w);
   q->B = isinf(sp->tau) ? 0.0 : sp->B;
   q->mass = e->mass[k];
   for (int c = 0; c < 3; c++) {
     const double v = c == 0 ? du : 0.0;
-    q->us[c] = sbi_engine_w(e, k, c) + v;
+    q->us[c] = w[c] + v;
     q->x0[c] = xa[c] + sh[c];
     q->u0[c] = ua[c] + v;
     q->x1[c] = e->x[3 * k + c] + sh[c] + v * h;
@@ -578,6 +584,12 @@ int sbi_engine_langevin_continue(sb_engine *e, size_t k, const sbi_event *ev,
   }
   const sb_engine_species *sp = &e->spec[e->species[k]];
   const double h = (1.0 - t) * e->par.dt;
+  if (sbi_engine_nonlinear(e, k)) {  /* its own step (engine_force.c) */
+    sbi_engine_drag_piece(e, k, h);
+    for (int c = 0; c < 3; c++)
+      e->disp[3 * k + c] = e->x[3 * k + c] - e->x0[3 * k + c];
+    return SB_SUCCESS;
+  }
   sb_langevin_coef cf;
   if (isinf(sp->tau))
     cf = (sb_langevin_coef){h, 1.0, h, 0.0, 0.0, 0.0};
