@@ -664,6 +664,37 @@ START_TEST(test_wall_langevin_dip)
 }
 END_TEST
 
+/* The Langevin wall detector follows a nonlinear-drag species along the
+ * engine's own step: a drop (Schiller & Naumann, d = 100 um in air,
+ * tau_p = 30.9 ms) thrown at the wall y = 0 at 2 m/s travels 37.5 mm in
+ * dt = 50 ms (the Stokes relaxation of tau_p would travel 49.6 mm).  Its
+ * surface starting 42 mm from the wall: no deposit (with the Stokes
+ * path, as before, one); 33 mm: one. */
+START_TEST(test_wall_langevin_drag)
+{
+  for (int near = 0; near < 2; near++) {
+    sb_engine *e = eng(1.0, 0.05, 4, 1);
+    const double r = 50e-6, m = 1000.0 * 4.0 / 3.0 * 3.14159265358979323846 * r * r * r;
+    const sb_engine_species s = {r, m, 1000.0 * 4.0 * r * r / (18.0 * 1.8e-5),
+                                 0.0, 0.0};
+    ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), 0);
+    const sb_engine_species_fluid f = {SB_DRAG_SCHILLER_NAUMANN, 1.2,
+                                       1.8e-5};
+    ck_assert_int_eq(sb_engine_set_species_fluid(e, 0, &f), 0);
+    ck_assert_int_eq(sb_engine_set_walls(e, 1, SB_WALL_ABSORB,
+                                         SB_WALL_ABSORB), 0);
+    ck_assert_int_eq(sb_engine_set_wall_mode(e, SB_WALLDET_LANGEVIN,
+                                             SB_DEPOSIT_REMOVE), 0);
+    double x[3] = {0.5, r + (near ? 0.033 : 0.042), 0.5},
+           u[3] = {0.0, -2.0, 0.0};
+    sb_engine_add_particle(e, 0, 0, x, u);
+    ck_assert_int_eq(sb_engine_step(e), 0);
+    ck_assert_uint_eq(sb_engine_deposits(e, 2), (unsigned)near);
+    sb_engine_free(e);
+  }
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("engine_physics");
@@ -682,6 +713,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_wall_bridge_mc);
   tcase_add_test(tc, test_wall_ballistic);
   tcase_add_test(tc, test_wall_langevin_dip);
+  tcase_add_test(tc, test_wall_langevin_drag);
   tcase_add_test(tc, test_checkpoint);
   suite_add_tcase(s, tc);
   return s;

@@ -114,12 +114,13 @@ static int touches_langevin(sb_engine *e, size_t i, int k, int s, double a)
 {
   const sb_engine_species *sp = &e->spec[e->species[i]];
   sb_langevin_path q;
-  q.tau = sp->tau;
+  double w[3];  /* a nonlinear drag: its step's rate and terminal slip */
+  sbi_engine_relax(e, i, &q.tau, w);
   q.B = sp->B;
   q.mass = e->mass[i];
   q.G = 0.0;
   for (int c = 0; c < 3; c++) {
-    q.us[c] = sbi_engine_w(e, i, c);
+    q.us[c] = w[c];
     q.x0[c] = e->x0[3 * i + c];
     q.u0[c] = e->u0[3 * i + c];
     q.x1[c] = e->x[3 * i + c];
