@@ -674,7 +674,8 @@ START_TEST(test_wall_langevin_drag)
 {
   for (int near = 0; near < 2; near++) {
     sb_engine *e = eng(1.0, 0.05, 4, 1);
-    const double r = 50e-6, m = 1000.0 * 4.0 / 3.0 * 3.14159265358979323846 * r * r * r;
+    const double r = 50e-6,
+                 m = 1000.0 * 4.0 / 3.0 * 3.14159265358979 * r * r * r;
     const sb_engine_species s = {r, m, 1000.0 * 4.0 * r * r / (18.0 * 1.8e-5),
                                  0.0, 0.0};
     ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), 0);
