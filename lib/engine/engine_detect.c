@@ -489,7 +489,7 @@ int sbi_engine_detect_and_process(sb_engine *e)
     if (st)
       return st;
   } else if ((e->par.detect == SB_DETECT_BALLISTIC ||
-       e->par.detect == SB_DETECT_OVERLAP) && nt > 1 && np >= 256) {
+              e->par.detect == SB_DETECT_OVERLAP) && nt > 1 && np >= 256) {
     /* first pass of a deterministic detector on every thread; the events
      * are then pushed in pair order, as the serial loop below does */
     if (np > e->capdet) {
