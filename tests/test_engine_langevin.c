@@ -456,14 +456,14 @@ END_TEST
 /* With the engine's streams on (the default) every record draws from its
  * own stream (engine_lkeyed.c), so the run does not depend on the
  * threads: 1500 spheres (tau = 0.35, dt = 0.7), 15 steps, with the
- * pass-through count, with elastic bounces (re-detections) and in 2-D,
- * on 1 and on 2 threads (the parallel first pass: several hundred records
+ * pass-through count, with elastic bounces (re-detections), in 2-D and in
+ * the Lees-Edwards shear, on 1 and on 2 threads (the parallel first pass: several hundred records
  * per step): the same positions and velocities bit for bit, the same
  * contacts and sampler counts.  With the streams off the detector draws
  * from the engine's generator (its own test: the runs of V12). */
-static void threads_run(int dim, sb_engine_outcome out, int threads,
-                        double *x, double *u, sb_engine_stats *st,
-                        sb_langevin_hit_stats *hs)
+static void threads_run(int dim, sb_engine_outcome out, int shear,
+                        int threads, double *x, double *u,
+                        sb_engine_stats *st, sb_langevin_hit_stats *hs)
 {
   const size_t N = 1500;
   sb_engine_params p;
@@ -480,6 +480,11 @@ static void threads_run(int dim, sb_engine_outcome out, int threads,
   sb_engine *e = sb_engine_alloc(&p);
   ck_assert_ptr_nonnull(e);
   add_species(e, 0.35);
+  if (shear) {  /* Lees-Edwards: pairs across the sliding boundary */
+    const double G[3] = {0.05, 0.0, 0.0};
+    ck_assert_int_eq(sb_engine_set_fluid(e, SB_FLUID_SHEAR, G), 0);
+    ck_assert_int_eq(sb_engine_set_lees_edwards(e, 1), 0);
+  }
   ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, N), SB_SUCCESS);
   for (int k = 0; k < 15; k++)
     ck_assert_msg(sb_engine_step(e) == SB_SUCCESS, "%s", sb_last_error());
@@ -496,22 +501,25 @@ START_TEST(test_threads_identical)
   static const struct {
     int dim;
     sb_engine_outcome out;
-  } cfg[3] = {{3, SB_OUTCOME_COUNT}, {3, SB_OUTCOME_ELASTIC},
-              {2, SB_OUTCOME_ELASTIC}};
+    int shear;
+  } cfg[4] = {{3, SB_OUTCOME_COUNT, 0}, {3, SB_OUTCOME_ELASTIC, 0},
+              {2, SB_OUTCOME_ELASTIC, 0}, {3, SB_OUTCOME_ELASTIC, 1}};
   const size_t N = 1500;
   double *x[2], *u[2];
   for (int t = 0; t < 2; t++) {
     x[t] = malloc(3 * N * sizeof(double));
     u[t] = malloc(3 * N * sizeof(double));
   }
-  for (int c = 0; c < 3; c++) {
+  for (int c = 0; c < 4; c++) {
     sb_engine_stats st[2];
     sb_langevin_hit_stats hs[2];
     for (int t = 0; t < 2; t++)
-      threads_run(cfg[c].dim, cfg[c].out, t + 1, x[t], u[t], &st[t], &hs[t]);
-    printf("threads 1 / 2, %d-D %s: %llu / %llu contacts, %llu / %llu "
+      threads_run(cfg[c].dim, cfg[c].out, cfg[c].shear, t + 1, x[t], u[t],
+                  &st[t], &hs[t]);
+    printf("threads 1 / 2, %d-D %s%s: %llu / %llu contacts, %llu / %llu "
            "sampler calls\n", cfg[c].dim,
            cfg[c].out == SB_OUTCOME_COUNT ? "count" : "elastic",
+           cfg[c].shear ? " in shear" : "",
            (unsigned long long)st[0].ncoll, (unsigned long long)st[1].ncoll,
            (unsigned long long)hs[0].calls, (unsigned long long)hs[1].calls);
     ck_assert(st[0].ncoll > 100);
