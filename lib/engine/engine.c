@@ -198,9 +198,13 @@ void sb_engine_free(sb_engine *e)
   free(e->lcnt);
   free(e->lcc);
   free(e->lfs);
-  free(e->lpr);
+  free(e->lpb.p);
   free(e->lpr2);
-  free(e->lgx);
+  for (int t = 0; t < e->nlpt; t++) {
+    free(e->lpt[t].g);
+    free(e->lpt[t].pr.p);
+  }
+  free(e->lpt);
   free(e->lp_x);
   free(e->lp_u);
   free(e->lp_t);

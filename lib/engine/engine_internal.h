@@ -73,6 +73,20 @@ typedef struct {
   unsigned g;
 } sbi_lpair;
 
+/* A growing list of them. */
+typedef struct {
+  sbi_lpair *p;
+  size_t n, cap;
+} sbi_lpairbuf;
+
+/* One thread's share of the stencil query (engine_lstencil.c): its
+ * gather block (x, y, z, f; gcap members) and the candidates it found. */
+typedef struct {
+  double *g;
+  size_t gcap;
+  sbi_lpairbuf pr;
+} sbi_lpart;
+
 typedef struct {
   int valid;
   int nc[3];
@@ -239,16 +253,17 @@ struct sb_engine {
   /* Langevin search (engine_neigh.c, lsearch): chord midpoints and
    * extents in cell order (4 lcapn), the slots in midpoint-cell order
    * (lcapn), per-slot counts (lcapn + 1), the midpoint cells' starts
-   * (lcapc) and the candidates (lcappr) */
+   * (lcapc), the candidates of the walk and the ordered Verlet list (lpb),
+   * the sort's scratch (lcap2 of them) */
   double *lxm, *lfx;
   size_t *lfl, *lcnt, *lfs;
   int *lcc;                  /* the ordered Verlet list: cell coordinates
                                 per slot (3 lcapn) */
-  sbi_lpair *lpr, *lpr2;
-  size_t lcapn, lcapc, lcappr;
-  double *lgx;               /* the stencil query: one cell's block of
-                                neighbours (x, y, z, f; lgcap of them) */
-  size_t lgcap;
+  sbi_lpairbuf lpb;
+  sbi_lpair *lpr2;
+  size_t lcapn, lcapc, lcap2;
+  sbi_lpart *lpt;            /* the stencil query: each thread's share */
+  int nlpt;
   int lstencil_off;          /* tests: 1 the Langevin search walks cell
                                 by cell even where the stencil applies,
                                 2 the stencil counts without AVX2 */
@@ -409,13 +424,17 @@ typedef struct {
 } sbi_mgrid;
 
 /* Called with the slots a, b of a pair found; nonzero stops the search. */
-typedef int (*sbi_lpair_fn)(sb_engine *e, void *ctx, size_t a, size_t b);
+typedef int (*sbi_lpair_fn)(const sb_engine *e, void *ctx, size_t a,
+                            size_t b);
 
-/* Every wanted pair of M once, to emit (engine_lstencil.c).  Only for a
- * grid with >= 3 cells on each axis whose cell edges all exceed the
- * widest bound, (2 f_max + reach)(1 + tol) + 4 eabs.  0, or -1 (out of
- * memory, or emit's nonzero). */
-int sbi_lsearch_stencil(sb_engine *e, const sbi_mgrid *M, sbi_lpair_fn emit,
+/* Every wanted pair of M with its first member in the cells c0..c1-1
+ * once, to emit (engine_lstencil.c); blk is the caller's gather block
+ * (one per thread: the cell ranges of a grid may be searched at once).
+ * Only for a grid with >= 3 cells on each axis whose cell edges all
+ * exceed the widest bound, (2 f_max + reach)(1 + tol) + 4 eabs.  0, or
+ * -1 (out of memory, or emit's nonzero). */
+int sbi_lsearch_stencil(const sb_engine *e, const sbi_mgrid *M, size_t c0,
+                        size_t c1, sbi_lpart *blk, sbi_lpair_fn emit,
                         void *ctx);
 int sbi_engine_sweep(sb_engine *e, const double *x0, const double *disp,
                      double reach);

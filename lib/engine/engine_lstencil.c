@@ -12,7 +12,10 @@
  * neighbouring cells that follow it (13 in 3-D, 4 in 2-D, 1 in 1-D) are
  * gathered into one block, shifted into the cell's frame, and every
  * member of the cell is tested against the block and against the later
- * members of its own cell.  Every pair is tested exactly once.
+ * members of its own cell.  Every pair is tested exactly once.  A call
+ * visits a range of cells with a gather block of its own, so the ranges
+ * of one grid may be queried on several threads at once (engine_neigh.c,
+ * stencil_search).
  *
  * Why a block: at the densities of a first-hit run a cell holds ~2
  * particles, so a query that walks cell by cell spends its time on loop
@@ -29,17 +32,17 @@
 #include "engine_internal.h"
 
 /* Grow the gather block to hold m members (and four sentinels). */
-static int block_grow(sb_engine *e, size_t m)
+static int block_grow(sbi_lpart *blk, size_t m)
 {
   m += 4;
-  if (m <= e->lgcap)
+  if (m <= blk->gcap)
     return 0;
   const size_t c = 2 * m + 64;
-  double *x = realloc(e->lgx, 4 * c * sizeof *x);
+  double *x = realloc(blk->g, 4 * c * sizeof *x);
   if (!x)
     return -1;
-  e->lgx = x;
-  e->lgcap = c;
+  blk->g = x;
+  blk->gcap = c;
   return 0;
 }
 
@@ -115,8 +118,9 @@ static size_t run_member(const runs *R, size_t q)
   return R->r0[t] + (q - R->off[t]);
 }
 
-int sbi_lsearch_stencil(sb_engine *e, const sbi_mgrid *M,
-                        sbi_lpair_fn emit, void *ctx)
+int sbi_lsearch_stencil(const sb_engine *e, const sbi_mgrid *M, size_t c0,
+                        size_t c1, sbi_lpart *blk, sbi_lpair_fn emit,
+                        void *ctx)
 {
   const int dim = M->dim;
   const int *nf = M->nf;
@@ -135,12 +139,11 @@ int sbi_lsearch_stencil(sb_engine *e, const sbi_mgrid *M,
           so[ns][0] = o0, so[ns][1] = o1, so[ns][2] = o2;
           ns++;
         }
-  size_t nfc = 1;
+  int ci[3] = {0, 0, 0};  /* the coordinates of cell c0 */
   for (int k = 0; k < dim; k++)
-    nfc *= (size_t)nf[k];
-  int ci[3] = {0, 0, 0};
-  for (size_t c = 0; c < nfc; c++) {
-    if (c)
+    ci[k] = (int)((c0 / fst[k]) % (size_t)nf[k]);
+  for (size_t c = c0; c < c1; c++) {
+    if (c > c0)
       for (int k = 0; k < 3 && ++ci[k] == nf[k]; k++)
         ci[k] = 0;
     const size_t p0 = fs[c], p1 = fs[c + 1];
@@ -195,9 +198,9 @@ int sbi_lsearch_stencil(sb_engine *e, const sbi_mgrid *M,
       G += R.r1[t] - R.r0[t];
     }
     R.off[R.nr] = G;
-    if (block_grow(e, G))
+    if (block_grow(blk, G))
       return -1;
-    double *g = e->lgx;
+    double *g = blk->g;
     for (int t = 0; t < R.nr; t++) {
       double *b = &g[4 * R.off[t]];
       const size_t m = 4 * (R.r1[t] - R.r0[t]);

@@ -395,6 +395,10 @@ static int cell_sort(sb_engine *e, const double *x0, double cut,
   }
   size_t *start = e->cell_start, *list = e->cell_list, *cof = e->cell_of;
   memset(start, 0, (ncell + 1) * sizeof *start);
+  const int nt = n >= 4096 ? sbi_engine_threads(&e->par) : 1;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(nt)
+#endif
   for (size_t i = 0; i < n; i++) {
     size_t c = 0;
     for (int k = 0; k < dim; k++) {
@@ -403,8 +407,9 @@ static int cell_sort(sb_engine *e, const double *x0, double cut,
       c += (size_t)ck * stride[k];
     }
     cof[i] = c;
-    start[c + 1]++;
   }
+  for (size_t i = 0; i < n; i++)
+    start[cof[i] + 1]++;
   for (size_t c = 0; c < ncell; c++)
     start[c + 1] += start[c];
   /* stable scatter (increasing index within a cell); start[c] becomes the
@@ -608,6 +613,9 @@ static int cells_sees(const cell_scan *K, size_t lo, size_t hi, size_t ca,
   return cells_sees_at(K, lo, hi, ia, ib, g);
 }
 
+/* Blocks of the midpoint loop (its sums do not depend on the threads). */
+#define SBI_LSEARCH_BLOCKS 32
+
 /* Particles per cell of the midpoint grid, at least (memory: one cell
  * per 2 particles at most; with the walk 0.5 per cell was no faster, with
  * the stencil 1, 3 and 5 were not, in V12's Kn_D = 0.5 runs). */
@@ -638,40 +646,67 @@ static int lsearch_grow(sb_engine *e, size_t n)
   return 0;
 }
 
-static int lpair_push(sb_engine *e, size_t *np, size_t a, size_t b,
-                      unsigned g)
+static int lpair_push(sbi_lpairbuf *b, size_t sa, size_t sb, unsigned g)
 {
-  if (*np == e->lcappr) {
-    size_t nc = e->lcappr ? 2 * e->lcappr : 1024;
-    sbi_lpair *p = realloc(e->lpr, nc * sizeof *p);
-    if (p)
-      e->lpr = p;
-    sbi_lpair *q = realloc(e->lpr2, nc * sizeof *q);
-    if (q)
-      e->lpr2 = q;
-    if (!p || !q)
+  if (b->n == b->cap) {
+    size_t nc = b->cap ? 2 * b->cap : 1024;
+    sbi_lpair *p = realloc(b->p, nc * sizeof *p);
+    if (!p)
       return -1;
-    e->lcappr = nc;
+    b->p = p;
+    b->cap = nc;
   }
-  e->lpr[(*np)++] = (sbi_lpair){a, b, g};
+  b->p[b->n++] = (sbi_lpair){sa, sb, g};
   return 0;
 }
 
-/* Append the np pairs of e->lpr (slots a < b, rank g of b's cell) to
- * the candidates in cells()' order: by first slot (counting sort), then
- * (rank, b); the candidates are the particles list[a], list[b]. */
-static int emit_in_cell_order(sb_engine *e, size_t np, const size_t *list)
+/* At least nt shares of the Langevin search (their buffers kept). */
+static int lparts(sb_engine *e, int nt)
 {
+  if (nt <= e->nlpt)
+    return 0;
+  sbi_lpart *p = realloc(e->lpt, (size_t)nt * sizeof *p);
+  if (!p)
+    return -1;
+  for (int t = e->nlpt; t < nt; t++)
+    p[t] = (sbi_lpart){NULL, 0, {NULL, 0, 0}};
+  e->lpt = p;
+  e->nlpt = nt;
+  return 0;
+}
+
+/* Append the pairs the first nb shares found (slots a < b, rank g of b's
+ * cell) to the candidates in cells()' order: by first slot (counting
+ * sort), then (rank, b); the candidates are the particles list[a],
+ * list[b].  How the pairs are spread over the shares and ordered in them
+ * does not matter (each pair once: the order out is a total order), so
+ * the shares may come from threads. */
+static int emit_in_cell_order(sb_engine *e, int nb, const size_t *list)
+{
+  const sbi_lpart *in = e->lpt;
   const size_t n = e->n;
+  size_t np = 0;
+  for (int t = 0; t < nb; t++)
+    np += in[t].pr.n;
+  if (np > e->lcap2) {
+    sbi_lpair *q = realloc(e->lpr2, np * sizeof *q);
+    if (!q)
+      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+                       "(%zu candidate pairs)", np);
+    e->lpr2 = q;
+    e->lcap2 = np;
+  }
   size_t *cnt = e->lcnt;
   memset(cnt, 0, (n + 1) * sizeof *cnt);
-  for (size_t q = 0; q < np; q++)
-    cnt[e->lpr[q].a + 1]++;
+  for (int t = 0; t < nb; t++)
+    for (size_t q = 0; q < in[t].pr.n; q++)
+      cnt[in[t].pr.p[q].a + 1]++;
   for (size_t a = 0; a < n; a++)
     cnt[a + 1] += cnt[a];
   sbi_lpair *sp = e->lpr2;
-  for (size_t q = 0; q < np; q++)
-    sp[cnt[e->lpr[q].a]++] = e->lpr[q];
+  for (int t = 0; t < nb; t++)
+    for (size_t q = 0; q < in[t].pr.n; q++)
+      sp[cnt[in[t].pr.p[q].a]++] = in[t].pr.p[q];
   sbi_pairbuf pb = {e->pairs, e->npairs, e->cappairs};
   int bad = 0;
   for (size_t q0 = 0; q0 < np && !bad;) {
@@ -721,8 +756,8 @@ typedef struct {
  * that test applies to every pair: sbi_engine_langevin_chord_gate); half
  * of the midpoint grid's pairs in V12's Kn_D = 0.5 runs at dt = 2 tau_p.
  * -1 out of memory. */
-static inline int lprobe_emit(sb_engine *e, const cell_scan *K, size_t a,
-                              size_t b, size_t *np)
+static inline int lprobe_emit(const sb_engine *e, const cell_scan *K,
+                              size_t a, size_t b, sbi_lpairbuf *out)
 {
   const size_t s0 = a < b ? a : b, s1 = a < b ? b : a;
   const size_t i = K->list[s0], j = K->list[s1];
@@ -738,7 +773,7 @@ static inline int lprobe_emit(sb_engine *e, const cell_scan *K, size_t a,
     return 0;
   unsigned g;
   if (cells_sees(K, s0, s1, e->cell_of[i], e->cell_of[j], &g) &&
-      lpair_push(e, np, s0, s1, g))
+      lpair_push(out, s0, s1, g))
     return -1;
   return 0;
 }
@@ -750,9 +785,9 @@ static inline int lprobe_emit(sb_engine *e, const cell_scan *K, size_t a,
  * The test only has to keep every pair scan_cell() reports (cells_sees
  * decides), and its margins (1e-8 relative) dwarf the rounding of the
  * shifted differences.  -1 out of memory. */
-static inline int lprobe_cell(sb_engine *e, const cell_scan *K,
+static inline int lprobe_cell(const sb_engine *e, const cell_scan *K,
                               const lprobe *P, const double sh[3],
-                              size_t pb0, size_t pb1, size_t *np)
+                              size_t pb0, size_t pb1, sbi_lpairbuf *out)
 {
   const double *ma = P->ma, fa = P->fa, Ba = P->Ba, tol1 = P->tol1;
   const double m0 = ma[0] - sh[0], m1 = ma[1] - sh[1], m2 = ma[2] - sh[2];
@@ -767,7 +802,7 @@ static inline int lprobe_cell(sb_engine *e, const cell_scan *K,
     const int mine = (fb < fa) | ((fb == fa) & (a < P->fl[pb]));
     if (!(mine & (d0 * d0 + d1 * d1 + d2 * d2 <= B * B)))
       continue;  /* too far, or looked for from b */
-    if (lprobe_emit(e, K, a, P->fl[pb], np))
+    if (lprobe_emit(e, K, a, P->fl[pb], out))
       return -1;
   }
   return 0;
@@ -775,9 +810,9 @@ static inline int lprobe_cell(sb_engine *e, const cell_scan *K,
 
 /* lprobe_cell with each member's nearest image (minimum image per axis;
  * a 2-D box has third coordinates 0, whose image is 0 for any L2 >= 0). */
-static int lprobe_wide(sb_engine *e, const cell_scan *K, const lprobe *P,
-                       double L0, double L1, double L2, size_t pb0,
-                       size_t pb1, size_t *np)
+static int lprobe_wide(const sb_engine *e, const cell_scan *K,
+                       const lprobe *P, double L0, double L1, double L2,
+                       size_t pb0, size_t pb1, sbi_lpairbuf *out)
 {
   const double *ma = P->ma;
   const size_t a = P->a;
@@ -792,7 +827,7 @@ static int lprobe_wide(sb_engine *e, const cell_scan *K, const lprobe *P,
     if (!(fb < P->fa || (fb == P->fa && a < b)) ||
         d0 * d0 + d1 * d1 + d2 * d2 > B * B)
       continue;
-    if (lprobe_emit(e, K, a, b, np))
+    if (lprobe_emit(e, K, a, b, out))
       return -1;
   }
   return 0;
@@ -802,13 +837,61 @@ static int lprobe_wide(sb_engine *e, const cell_scan *K, const lprobe *P,
 /* sbi_lsearch_stencil's report of a pair: lprobe_emit. */
 typedef struct {
   const cell_scan *K;
-  size_t *np;
+  sbi_lpairbuf *out;
 } lstencil_ctx;
 
-static int lstencil_emit(sb_engine *e, void *vctx, size_t a, size_t b)
+static int lstencil_emit(const sb_engine *e, void *vctx, size_t a,
+                         size_t b)
 {
   const lstencil_ctx *c = vctx;
-  return lprobe_emit(e, c->K, a, b, c->np);
+  return lprobe_emit(e, c->K, a, b, c->out);
+}
+
+/* The first cell of share t of nt: the shares hold about equal numbers
+ * of the grid's n members (fs: the cells' starts, nfc cells). */
+static size_t share_start(const size_t *fs, size_t nfc, size_t n, int t,
+                          int nt)
+{
+  if (t >= nt)
+    return nfc;
+  const size_t want = (size_t)((double)n * t / nt);
+  size_t lo = 0, hi = nfc;  /* the first c with fs[c] >= want */
+  while (lo < hi) {
+    const size_t mid = lo + (hi - lo) / 2;
+    if (fs[mid] < want)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+/* The stencil query of grid M (nfc cells) on the engine's threads, each
+ * over a range of cells, then every pair in the cells' order (the same
+ * candidates in the same order for any number of threads). */
+static int stencil_search(sb_engine *e, const cell_scan *K,
+                          const sbi_mgrid *M, size_t nfc)
+{
+  const size_t n = e->n;
+  const int nt = n >= 4096 ? sbi_engine_threads(&e->par) : 1;
+  if (lparts(e, nt))
+    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+  int bad = 0;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static, 1) num_threads(nt) reduction(| : bad)
+#endif
+  for (int t = 0; t < nt; t++) {
+    sbi_lpart *part = &e->lpt[t];
+    part->pr.n = 0;
+    lstencil_ctx lc = {K, &part->pr};
+    bad |= sbi_lsearch_stencil(e, M, share_start(M->fs, nfc, n, t, nt),
+                               share_start(M->fs, nfc, n, t + 1, nt), part,
+                               lstencil_emit, &lc) != 0;
+  }
+  if (bad)
+    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+                     "(candidate pairs)");
+  return emit_in_cell_order(e, nt, K->list);
 }
 
 static int lsearch(sb_engine *e, const double *x0, const double *disp,
@@ -828,18 +911,36 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
     vol *= K.L[k];
   }
   const double tol = 1e-8, eabs = 64.0 * Lmax * DBL_EPSILON;
-  /* midpoints (in the box) and extents, in cell order */
+  /* midpoints (in the box) and extents, in cell order; on the threads
+   * in SBI_LSEARCH_BLOCKS blocks whose sums are added in order (the same
+   * sum for any number of threads) */
   double *xm = e->lxm;
+  const int nt = n >= 4096 ? sbi_engine_threads(&e->par) : 1;
+  double bsum[SBI_LSEARCH_BLOCKS], bmax[SBI_LSEARCH_BLOCKS];
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(nt)
+#endif
+  for (int blk = 0; blk < SBI_LSEARCH_BLOCKS; blk++) {
+    const size_t a0 = n * (size_t)blk / SBI_LSEARCH_BLOCKS,
+                 a1 = n * (size_t)(blk + 1) / SBI_LSEARCH_BLOCKS;
+    double sum = 0.0, max = 0.0;
+    for (size_t a = a0; a < a1; a++) {
+      const size_t i = K.list[a];
+      for (int k = 0; k < 3; k++)
+        xm[4 * a + k] =
+            k < dim ? sbi_wrap(x0[3 * i + k] + 0.5 * disp[3 * i + k], K.L[k])
+                    : 0.0;
+      xm[4 * a + 3] = e->radius[i] + 0.5 * e->dn[i];
+      sum += xm[4 * a + 3];
+      max = xm[4 * a + 3] > max ? xm[4 * a + 3] : max;
+    }
+    bsum[blk] = sum;
+    bmax[blk] = max;
+  }
   double fsum = 0.0, fmax = 0.0;
-  for (size_t a = 0; a < n; a++) {
-    const size_t i = K.list[a];
-    for (int k = 0; k < 3; k++)
-      xm[4 * a + k] =
-          k < dim ? sbi_wrap(x0[3 * i + k] + 0.5 * disp[3 * i + k], K.L[k])
-                  : 0.0;
-    xm[4 * a + 3] = e->radius[i] + 0.5 * e->dn[i];
-    fsum += xm[4 * a + 3];
-    fmax = xm[4 * a + 3] > fmax ? xm[4 * a + 3] : fmax;
+  for (int blk = 0; blk < SBI_LSEARCH_BLOCKS; blk++) {
+    fsum += bsum[blk];
+    fmax = bmax[blk] > fmax ? bmax[blk] : fmax;
   }
   /* their grid: for the stencil query (engine_lstencil.c) cells of at
    * least the widest bound 2 f_max + rho with the margins, three or more
@@ -876,6 +977,9 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
   size_t *fs = e->lfs, *fl = e->lfl, *cnt = e->lcnt;
   double *fx = e->lfx;
   memset(fs, 0, (nfc + 1) * sizeof *fs);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(nt)
+#endif
   for (size_t a = 0; a < n; a++) {  /* cnt: the midpoint's cell */
     size_t c = 0;
     for (int k = 0; k < dim; k++) {
@@ -884,8 +988,9 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
       c += (size_t)v * fst[k];
     }
     cnt[a] = c;
-    fs[c + 1]++;
   }
+  for (size_t a = 0; a < n; a++)
+    fs[cnt[a] + 1]++;
   for (size_t c = 0; c < nfc; c++)
     fs[c + 1] += fs[c];
   for (size_t a = 0; a < n; a++) {
@@ -897,23 +1002,21 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
     fs[c] = fs[c - 1];
   fs[0] = 0;
   if (stencil) {  /* every pair once, then in the cells' order */
-    size_t np = 0;
     const sbi_mgrid M = {dim, {nf[0], nf[1], nf[2]}, {fst[0], fst[1], fst[2]},
                          {K.L[0], K.L[1], K.L[2]}, fs, fl, fx, reach, tol,
                          eabs};
-    lstencil_ctx lc = {&K, &np};
     e->lsearch_stencil_n++;
-    if (sbi_lsearch_stencil(e, &M, lstencil_emit, &lc))
-      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
-                       "(%zu candidate pairs)", np);
-    return emit_in_cell_order(e, np, K.list);
+    return stencil_search(e, &K, &M, nfc);
   }
   /* every pair from its member of larger extent */
   e->lsearch_walk_n++;
   const double L0 = K.L[0], L1 = dim > 1 ? K.L[1] : 0.0,
                L2 = dim > 2 ? K.L[2] : 0.0;
   const size_t *list = K.list;
-  size_t np = 0;
+  if (lparts(e, 1))
+    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+  sbi_lpairbuf *out = &e->lpt[0].pr;
+  out->n = 0;
   int ci[3] = {0, 0, 0};
   for (size_t c = 0; c < nfc; c++) {
     if (c) {  /* the coordinates of cell c (no divisions) */
@@ -969,9 +1072,9 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
             for (int q0 = 0; q0 <= hi[0] - lo[0]; q0++) {
               const size_t c2 = off[0][q0] + off[1][q1] + off[2][q2];
               const double sh[3] = {shf[0][q0], shf[1][q1], shf[2][q2]};
-              if (lprobe_cell(e, &K, &P, sh, fs[c2], fs[c2 + 1], &np))
+              if (lprobe_cell(e, &K, &P, sh, fs[c2], fs[c2 + 1], out))
                 return sbi_error(SB_ENOMEM, "sb_engine_step", "out of "
-                                 "memory (%zu candidate pairs)", np);
+                                 "memory (%zu candidate pairs)", out->n);
             }
         continue;
       }
@@ -987,13 +1090,13 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
               v = v < 0 ? v + nf[k] : (v >= nf[k] ? v - nf[k] : v);
               c2 += (size_t)v * fst[k];
             }
-            if (lprobe_wide(e, &K, &P, L0, L1, L2, fs[c2], fs[c2 + 1], &np))
+            if (lprobe_wide(e, &K, &P, L0, L1, L2, fs[c2], fs[c2 + 1], out))
               return sbi_error(SB_ENOMEM, "sb_engine_step", "out of "
-                               "memory (%zu candidate pairs)", np);
+                               "memory (%zu candidate pairs)", out->n);
           }
     }
   }
-  return emit_in_cell_order(e, np, list);
+  return emit_in_cell_order(e, 1, list);
 }
 
 /* Where the cut-off is well below the density's cell edge (dt << tau_p),
@@ -1248,14 +1351,14 @@ static int listed(sb_engine *e, const double *x0, double cut, double D,
 /* Keep the pair of slots sa, sb (any order; cc: each slot's cell
  * coordinates) if scan_cell() would report it: push it with its rank in
  * scan_cell's loop (cells_sees_at).  0, or -1 out of memory. */
-static int keep_if_seen(sb_engine *e, const cell_scan *K, const int *cc,
-                        size_t sa, size_t sb, size_t *np)
+static int keep_if_seen(const cell_scan *K, const int *cc, size_t sa,
+                        size_t sb, sbi_lpairbuf *out)
 {
   const size_t s0 = sa < sb ? sa : sb, s1 = sa < sb ? sb : sa;
   unsigned g;
   if (!cells_sees_at(K, s0, s1, &cc[3 * s0], &cc[3 * s1], &g))
     return 0;
-  return lpair_push(e, np, s0, s1, g);
+  return lpair_push(out, s0, s1, g);
 }
 
 /* The Verlet list in the cells' order, for the detectors whose draws
@@ -1306,12 +1409,15 @@ static int listed_ordered(sb_engine *e, const double *x0, double cut,
     }
   }
   const unsigned char *fl = v->isfloat;
-  size_t np = 0;
+  if (lparts(e, 1))
+    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+  sbi_lpairbuf *out = &e->lpt[0].pr;
+  out->n = 0;
   int bad = 0;
   for (size_t q = 0; q < v->npairs && !bad; q++) {
     const size_t i = v->pairs[2 * q], j = v->pairs[2 * q + 1];
     if (!fl[i] && !fl[j])
-      bad = keep_if_seen(e, &K, cc, slot[i], slot[j], &np);
+      bad = keep_if_seen(&K, cc, slot[i], slot[j], out);
   }
   /* a floater's partners: in its own or a neighbouring cell (scan_cell
    * looks no further), each neighbouring cell once; two floaters from
@@ -1337,15 +1443,15 @@ static int listed_ordered(sb_engine *e, const double *x0, double cut,
           for (size_t b = K.start[c2]; b < K.start[c2 + 1] && !bad; b++) {
             const size_t k = K.list[b];
             if (k != f && !(fl[k] && k < f))
-              bad = keep_if_seen(e, &K, cc, sf, b, &np);
+              bad = keep_if_seen(&K, cc, sf, b, out);
           }
         }
   }
   float_clear(v);
   if (bad)
     return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
-                     "(%zu candidate pairs)", np);
-  return emit_in_cell_order(e, np, K.list);
+                     "(%zu candidate pairs)", out->n);
+  return emit_in_cell_order(e, 1, K.list);
 }
 
 /* The search of sbi_engine_find_pairs; with_list: linked cells may go
