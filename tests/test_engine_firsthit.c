@@ -16,6 +16,7 @@
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
 #include <smolbridge/engine_firsthit.h>
+#include <smolbridge/langevin.h>
 #include <smolbridge/stats.h>
 
 #include "testutil.h"
@@ -474,6 +475,132 @@ START_TEST(test_mc_variance)
 }
 END_TEST
 
+/* Around the built-in `langevin` the observer watches the built-in itself
+ * (sbi_engine_set_langevin_observer): its first pass runs on the threads
+ * with the engine's streams, and on_hit reads the contact state.  1500
+ * Langevin spheres (r = 0.5, tau = 0.35, dt = 0.7: several hundred
+ * records per step), 12 steps, warm-up 3 steps, skip_seen on.
+ * (1) On 1 and 2 threads: the same counts, warm-ups and variance
+ * estimate, and the same sequence of contacts bit for bit (a running
+ * hash of the on_hit calls in order: their times, normal velocities and
+ * separations; an observer fed out of record order fails it).
+ * (2) The contact state in on_hit: |x_i - x_j| = r_i + r_j.
+ * (3) With the streams off (the engine's generator in record order) the
+ * observed built-in is the wrapped one (fp.detect =
+ * sb_engine_detect_langevin, the search declared with
+ * sb_engine_set_detector_chord, as V12's harness does): the same counts
+ * and the same contact times in the same order.  Criterion: equality. */
+typedef struct {
+  int states;     /* read the contact state */
+  size_t n;
+  double hash;    /* running combination of the calls, order-sensitive */
+  double maxsep;  /* largest | |x_i - x_j| / (r_i + r_j) - 1 | */
+} observed;
+
+static int observe_hit(const sb_engine *e, const sb_engine_pair *p,
+                       double s, void *ctx)
+{
+  observed *o = ctx;
+  double v = p->t0 + s * p->dt;
+  if (o->states) {
+    double xi[3], ui[3], xj[3], uj[3], d2 = 0.0, vn = 0.0;
+    if (sb_engine_contact_state(e, xi, ui, xj, uj))
+      return -1;
+    for (int k = 0; k < 3; k++) {
+      d2 += (xi[k] - xj[k]) * (xi[k] - xj[k]);
+      vn += (ui[k] - uj[k]) * (xi[k] - xj[k]);
+    }
+    const double dev = fabs(sqrt(d2) / p->sigma - 1.0);
+    o->maxsep = dev > o->maxsep ? dev : o->maxsep;
+    v += 1e-3 * vn;
+  }
+  o->hash = 1.000001 * o->hash + v + 1e-9 * (double)(p->i + 7 * p->j);
+  o->n++;
+  return 0;
+}
+
+static sb_engine_firsthit_counts observed_run(int threads, int streams,
+                                              int wrapped, observed *o)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 30.0;
+  p.dt = 0.7;
+  p.capacity = 1500;
+  p.seed = 41;
+  p.threads = threads;
+  p.streams = streams;
+  p.detect = SB_DETECT_LANGEVIN;
+  p.outcome = SB_OUTCOME_COUNT;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  sb_engine_species sp = {0.5, 1.0, 0.35, sqrt(2.0 / 0.35),
+                          1.0 / SB_BOLTZMANN};
+  ck_assert_int_eq(sb_engine_add_species(e, &sp, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 1500), SB_SUCCESS);
+  sb_engine_firsthit_params fp;
+  sb_engine_firsthit_params_default(&fp);
+  fp.builtin = SB_DETECT_LANGEVIN;
+  if (wrapped)
+    fp.detect = sb_engine_detect_langevin;
+  fp.skip_seen = 1;
+  fp.on_hit = observe_hit;
+  fp.hit_ctx = o;
+  sb_engine_firsthit *f = sb_engine_firsthit_alloc(&fp);
+  ck_assert_ptr_nonnull(f);
+  const double rho = sb_engine_langevin_reach(e);
+  ck_assert(rho > 0.0);
+  ck_assert_int_eq(sb_engine_firsthit_set_warmup(f, 3 * 0.7), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_firsthit_attach(e, f, rho), SB_SUCCESS);
+  if (wrapped)
+    ck_assert_int_eq(sb_engine_set_detector_chord(e, 1), SB_SUCCESS);
+  else  /* the built-in itself, observed */
+    ck_assert_int_eq(sb_engine_get_params(e)->detect, SB_DETECT_LANGEVIN);
+  for (int k = 0; k < 12; k++)
+    ck_assert_msg(sb_engine_step(e) == SB_SUCCESS, "%s", sb_last_error());
+  sb_engine_firsthit_counts c;
+  ck_assert_int_eq(sb_engine_firsthit_get(f, SB_ENGINE_FIRSTHIT_ALL,
+                                          SB_ENGINE_FIRSTHIT_ALL, &c),
+                   SB_SUCCESS);
+  sb_engine_stats st;
+  sb_engine_get_stats(e, &st);
+  ck_assert_uint_eq(st.ncoll, 0);  /* the particles pass through */
+  sb_engine_free(e);
+  sb_engine_firsthit_free(f);
+  return c;
+}
+
+START_TEST(test_langevin_observed)
+{
+  observed o[2] = {{1, 0, 0.0, 0.0}, {1, 0, 0.0, 0.0}};
+  sb_engine_firsthit_counts c[2];
+  for (int t = 0; t < 2; t++)
+    c[t] = observed_run(t + 1, 1, 0, &o[t]);
+  printf("observed langevin, 1 / 2 threads: %llu / %llu first contacts "
+         "(%llu / %llu in the warm-up), largest |d/sigma - 1| %.1e\n",
+         (unsigned long long)c[0].hits, (unsigned long long)c[1].hits,
+         (unsigned long long)c[0].warm, (unsigned long long)c[1].warm,
+         o[0].maxsep);
+  ck_assert_uint_gt(c[0].hits, 300);
+  ck_assert_uint_gt(c[0].warm, 100);
+  ck_assert_uint_eq(c[0].hits, c[1].hits);
+  ck_assert_uint_eq(c[0].warm, c[1].warm);
+  ck_assert(c[0].hits_var == c[1].hits_var);
+  ck_assert_uint_eq(o[0].n, c[0].hits);
+  ck_assert(o[0].hash == o[1].hash);
+  ck_assert(o[0].maxsep < 1e-9 && o[1].maxsep < 1e-9);
+  /* streams off: observed = wrapped (times only: the wrapped detector
+   * has no contact state to read) */
+  observed w[2] = {{0, 0, 0.0, 0.0}, {0, 0, 0.0, 0.0}};
+  for (int t = 0; t < 2; t++)
+    c[t] = observed_run(1, 0, t, &w[t]);
+  ck_assert_uint_gt(c[0].hits, 300);
+  ck_assert_uint_eq(c[0].hits, c[1].hits);
+  ck_assert_uint_eq(c[0].warm, c[1].warm);
+  ck_assert(w[0].hash == w[1].hash);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("engine_firsthit");
@@ -486,6 +613,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_mc_smoluchowski);
   tcase_add_test(tc, test_variance_by_hand);
   tcase_add_test(tc, test_mc_variance);
+  tcase_add_test(tc, test_langevin_observed);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -245,55 +245,63 @@ START_TEST(test_threads)
 }
 END_TEST
 
-/* A custom detector declared to leave the pairs beyond the chord test
- * alone (sb_engine_set_detector_chord): the first-contact observer around
- * the `langevin` built-in (which declares it itself), as in V12 and
- * `collide` with first_hit; the same counts and run. */
+/* The first-contact observer around the `langevin` built-in (the
+ * built-in itself, observed: engine_firsthit.c), and around a wrapped
+ * Langevin detector declared to leave the pairs beyond the chord test
+ * alone (sb_engine_set_detector_chord, as V12's harness does): with the
+ * search and without it, the same counts and run. */
 START_TEST(test_firsthit)
 {
   setup s = {3, 1.0, 60.0, 3000, 1, SB_OUTCOME_COUNT, 1, 0, 0.0, 0};
-  sb_engine *e[2];
-  sb_engine_firsthit *f[2];
-  for (int q = 0; q < 2; q++) {
-    e[q] = make(&s, q);
-    sb_engine_firsthit_params fp;
-    sb_engine_firsthit_params_default(&fp);
-    fp.builtin = SB_DETECT_LANGEVIN;
-    fp.skip_seen = 1;
-    f[q] = sb_engine_firsthit_alloc(&fp);
-    ck_assert_ptr_nonnull(f[q]);
-    const double rho = sb_engine_langevin_reach(e[q]);
-    ck_assert(rho > 0.0);
-    ck_assert_int_eq(sb_engine_firsthit_attach(e[q], f[q], rho),
+  for (int wrapped = 0; wrapped < 2; wrapped++) {
+    sb_engine *e[2];
+    sb_engine_firsthit *f[2];
+    for (int q = 0; q < 2; q++) {
+      e[q] = make(&s, q);
+      sb_engine_firsthit_params fp;
+      sb_engine_firsthit_params_default(&fp);
+      fp.builtin = SB_DETECT_LANGEVIN;
+      if (wrapped)
+        fp.detect = sb_engine_detect_langevin;
+      fp.skip_seen = 1;
+      f[q] = sb_engine_firsthit_alloc(&fp);
+      ck_assert_ptr_nonnull(f[q]);
+      const double rho = sb_engine_langevin_reach(e[q]);
+      ck_assert(rho > 0.0);
+      ck_assert_int_eq(sb_engine_firsthit_attach(e[q], f[q], rho),
+                       SB_SUCCESS);
+      if (wrapped)
+        ck_assert_int_eq(sb_engine_set_detector_chord(e[q], 1), SB_SUCCESS);
+      else
+        ck_assert_int_eq(e[q]->par.detect, SB_DETECT_LANGEVIN);
+    }
+    for (int k = 0; k < 30; k++)
+      for (int q = 0; q < 2; q++)
+        ck_assert_int_eq(sb_engine_step(e[q]), SB_SUCCESS);
+    sbt_assert_same_run(e[0], e[1], SBT_SAME_REDETECTED);
+    sb_engine_firsthit_counts c0, c1;
+    ck_assert_int_eq(sb_engine_firsthit_get(f[0], SB_ENGINE_FIRSTHIT_ALL,
+                                            SB_ENGINE_FIRSTHIT_ALL, &c0),
                      SB_SUCCESS);
-    ck_assert_int_eq(e[q]->detect_chord, 1);  /* declared by the observer */
-    ck_assert_int_eq(sb_engine_set_detector_chord(e[q], 1), SB_SUCCESS);
-  }
-  for (int k = 0; k < 30; k++)
-    for (int q = 0; q < 2; q++)
-      ck_assert_int_eq(sb_engine_step(e[q]), SB_SUCCESS);
-  sbt_assert_same_run(e[0], e[1], SBT_SAME_REDETECTED);
-  sb_engine_firsthit_counts c0, c1;
-  ck_assert_int_eq(sb_engine_firsthit_get(f[0], SB_ENGINE_FIRSTHIT_ALL,
-                                          SB_ENGINE_FIRSTHIT_ALL, &c0),
-                   SB_SUCCESS);
-  ck_assert_int_eq(sb_engine_firsthit_get(f[1], SB_ENGINE_FIRSTHIT_ALL,
-                                          SB_ENGINE_FIRSTHIT_ALL, &c1),
-                   SB_SUCCESS);
-  ck_assert_uint_gt(c0.hits, 100);
-  ck_assert_uint_eq(c0.hits, c1.hits);
-  ck_assert_uint_eq(c0.warm, c1.warm);
-  sb_engine_stats s0, s1;
-  sb_engine_get_stats(e[0], &s0);
-  sb_engine_get_stats(e[1], &s1);
-  ck_assert_uint_lt(s0.ncand, s1.ncand);  /* used */
-  /* only for a custom detector */
-  ck_assert_int_eq(sb_engine_set_detect(e[0], SB_DETECT_LANGEVIN),
-                   SB_SUCCESS);
-  ck_assert_int_ne(sb_engine_set_detector_chord(e[0], 1), SB_SUCCESS);
-  for (int q = 0; q < 2; q++) {
-    sb_engine_free(e[q]);
-    sb_engine_firsthit_free(f[q]);
+    ck_assert_int_eq(sb_engine_firsthit_get(f[1], SB_ENGINE_FIRSTHIT_ALL,
+                                            SB_ENGINE_FIRSTHIT_ALL, &c1),
+                     SB_SUCCESS);
+    ck_assert_uint_gt(c0.hits, 100);
+    ck_assert_uint_eq(c0.hits, c1.hits);
+    ck_assert_uint_eq(c0.warm, c1.warm);
+    sb_engine_stats s0, s1;
+    sb_engine_get_stats(e[0], &s0);
+    sb_engine_get_stats(e[1], &s1);
+    ck_assert_uint_lt(s0.ncand, s1.ncand);  /* used */
+    if (wrapped) {  /* only for a custom detector */
+      ck_assert_int_eq(sb_engine_set_detect(e[0], SB_DETECT_LANGEVIN),
+                       SB_SUCCESS);
+      ck_assert_int_ne(sb_engine_set_detector_chord(e[0], 1), SB_SUCCESS);
+    }
+    for (int q = 0; q < 2; q++) {
+      sb_engine_free(e[q]);
+      sb_engine_firsthit_free(f[q]);
+    }
   }
 }
 END_TEST

@@ -3,18 +3,18 @@
  * first N counted first contacts (contacts.csv; v_n < 0: approach), the
  * law of the impact velocities (Mohaupt 2011, §7.2.1: in the
  * free-molecular limit |v_n| follows the flux-weighted Maxwellian of
- * variance k_B T/m_red).  The first-contact observer then wraps a
- * detector that also gives the velocities at the contact: `langevin`
- * (sb_engine_langevin_contact, the conditional law at the contact time:
- * the same draws as the built-in) or `ballistic` (the chord's contact
- * point, the velocities interpolated linearly over the step). */
+ * variance k_B T/m_red).  With `langevin` the observer's on_hit reads the
+ * states at the contact the built-in drew (sb_engine_contact_state: the
+ * conditional law at the contact time); with `ballistic` the observer
+ * wraps a detector that also gives the velocities at the contact (the
+ * chord's contact point, the velocities interpolated linearly over the
+ * step). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_firsthit.h>
-#include <smolbridge/langevin.h>
 
 #include "collide_internal.h"
 
@@ -37,27 +37,17 @@ void sbi_col_contacts_free(sbi_col_contacts *k)
   free(k);
 }
 
-/* The detector the observer wraps: the built-in, with the velocity. */
+/* The detector the observer wraps (`ballistic`): the built-in, with the
+ * velocity. */
 static int detect(const sb_engine *e, const sb_engine_pair *p,
                   const gsl_rng *r, void *ctx, double *s)
 {
+  (void)r;
   sbi_col_contacts *k = ctx;
-  int h;
   k->vn = NAN;
-  if (k->builtin == SB_DETECT_LANGEVIN) {
-    sb_langevin_contact c;
-    h = sb_engine_langevin_contact(e, p, r, s, &c);
-    if (h == 1) {
-      double vn = 0.0;
-      for (int q = 0; q < 3; q++)
-        vn += (c.ui[q] - c.uj[q]) * (c.xi[q] - c.xj[q]) / p->sigma;
-      k->vn = vn;
-    }
-  } else {
-    h = sb_engine_detect_ballistic(p, s);
-    if (h == 1)
-      k->vn = sb_engine_chord_vn(e, p, *s);
-  }
+  const int h = sb_engine_detect_ballistic(p, s);
+  if (h == 1)
+    k->vn = sb_engine_chord_vn(e, p, *s);
   return h;
 }
 
@@ -66,6 +56,15 @@ static int on_hit(const sb_engine *e, const sb_engine_pair *p, double s,
                   void *ctx)
 {
   sbi_col_contacts *k = ctx;
+  if (k->builtin == SB_DETECT_LANGEVIN) {  /* the built-in's draw */
+    double xi[3], ui[3], xj[3], uj[3];
+    if (sb_engine_contact_state(e, xi, ui, xj, uj))
+      return -1;
+    double vn = 0.0;
+    for (int q = 0; q < 3; q++)
+      vn += (ui[q] - uj[q]) * (xi[q] - xj[q]) / p->sigma;
+    k->vn = vn;
+  }
   if (isnan(k->vn) || k->n >= k->cap)
     return 0;
   const size_t *sp = sb_engine_species_of(e);
@@ -95,8 +94,10 @@ int sbi_col_contacts_setup(const sbi_col_config *c, sbi_col_run *r,
   k->b = malloc(k->cap * sizeof *k->b);
   if (!k->t || !k->v || !k->a || !k->b)
     return SB_ENOMEM;
-  fp->detect = detect;
-  fp->detect_ctx = k;
+  if (builtin != SB_DETECT_LANGEVIN) {
+    fp->detect = detect;
+    fp->detect_ctx = k;
+  }
   fp->on_hit = on_hit;
   fp->hit_ctx = k;
   return SB_SUCCESS;

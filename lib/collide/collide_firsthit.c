@@ -46,12 +46,7 @@ int sbi_col_firsthit_attach(const sbi_col_config *c, sbi_col_run *r,
   r->fh = sb_engine_firsthit_alloc(&fp);
   if (!r->fh)
     return SB_ENOMEM;
-  int st = sb_engine_firsthit_attach(r->e, r->fh, reach);
-  /* as the observer does around the built-in: the Langevin search of the
-   * cells serves the chord test */
-  if (!st && r->contacts && fp.builtin == SB_DETECT_LANGEVIN)
-    st = sb_engine_set_detector_chord(r->e, 1);
-  return st;
+  return sb_engine_firsthit_attach(r->e, r->fh, reach);
 }
 
 void sbi_col_firsthit_free(sb_engine_firsthit *f)

@@ -88,32 +88,26 @@ static long type_of(const sb_engine *e, size_t i, size_t j)
   return (long)sbi_pair_index(a, b);
 }
 
-/* The counting detector: records the pair's first detected contact and
- * answers "no collision", so the particles pass through each other. */
-static int detect(const sb_engine *e, const sb_engine_pair *p,
-                  const gsl_rng *r, void *ctx, double *s)
+/* 1 if the observer leaves record p alone (a pair seen before, with
+ * skip_seen). */
+static int skip(const sb_engine *e, const sb_engine_pair *p, void *ctx)
 {
-  sb_engine_firsthit *f = ctx;
-  const uint64_t key = sbi_pair_key(e->id[p->i], e->id[p->j]);
-  if (f->par.skip_seen && set_has(f, key))
-    return 0;
-  int h;
-  if (f->par.detect)
-    h = f->par.detect(e, p, r, f->par.detect_ctx, s);
-  else if (f->par.builtin == SB_DETECT_OVERLAP)
-    h = sb_engine_detect_overlap(p, s);
-  else if (f->par.builtin == SB_DETECT_LANGEVIN)
-    h = sb_engine_detect_langevin(e, p, r, NULL, s);
-  else
-    h = sb_engine_detect_ballistic(p, s);
-  if (h <= 0)
-    return h;
-  int fresh = set_insert(f, key);
+  const sb_engine_firsthit *f = ctx;
+  return f->par.skip_seen &&
+         set_has(f, sbi_pair_key(e->id[p->i], e->id[p->j]));
+}
+
+/* A contact of record p at fraction s of its interval: counted if it is
+ * the pair's first; 0, or -1 (out of memory, or on_hit failed). */
+static int count(sb_engine_firsthit *f, const sb_engine *e,
+                 const sb_engine_pair *p, double s)
+{
+  int fresh = set_insert(f, sbi_pair_key(e->id[p->i], e->id[p->j]));
   if (fresh <= 0)
     return fresh;  /* known pair (0), or out of memory (-1) */
   const long t = type_of(e, p->i, p->j);
   /* the record covers [t0, t0 + dt] */
-  if (p->t0 + *s * p->dt < f->t1) {
+  if (p->t0 + s * p->dt < f->t1) {
     f->warm_all++;
     if (t >= 0)
       f->warm[t]++;
@@ -124,9 +118,39 @@ static int detect(const sb_engine *e, const sb_engine_pair *p,
     f->hits[t]++;
   if (tally(f, e, p->i, p->j, t))
     return -1;
-  if (f->par.on_hit && f->par.on_hit(e, p, *s, f->par.hit_ctx) < 0)
+  if (f->par.on_hit && f->par.on_hit(e, p, s, f->par.hit_ctx) < 0)
     return -1;
   return 0;
+}
+
+/* The counting detector: records the pair's first detected contact and
+ * answers "no collision", so the particles pass through each other. */
+static int detect(const sb_engine *e, const sb_engine_pair *p,
+                  const gsl_rng *r, void *ctx, double *s)
+{
+  sb_engine_firsthit *f = ctx;
+  if (skip(e, p, f))
+    return 0;
+  int h;
+  if (f->par.detect)
+    h = f->par.detect(e, p, r, f->par.detect_ctx, s);
+  else if (f->par.builtin == SB_DETECT_OVERLAP)
+    h = sb_engine_detect_overlap(p, s);
+  else
+    h = sb_engine_detect_ballistic(p, s);
+  if (h <= 0)
+    return h;
+  return count(f, e, p, *s);
+}
+
+/* Around the built-in `langevin` (sbi_engine_set_langevin_observer): the
+ * detector's first contact of record p, serially in record order. */
+static int take(sb_engine *e, const sb_engine_pair *p, double s, void *ctx)
+{
+  if (count(ctx, e, p, s))
+    return sbi_error(SB_ENOMEM, "sb_engine_step", "first-contact "
+                     "observer: out of memory, or its on_hit failed");
+  return SB_SUCCESS;
 }
 
 void sb_engine_firsthit_params_default(sb_engine_firsthit_params *p)
@@ -223,12 +247,15 @@ int sb_engine_firsthit_attach(sb_engine *e, sb_engine_firsthit *f,
   f->n_all = N;
   f->contact0_all = (uint64_t)novall;
   f->pairs_apart_all = 0.5 * N * (N - 1.0) - novall;
-  st = sb_engine_set_detector(e, detect, f, reach);
-  /* around the `langevin` built-in the observer leaves the pairs beyond
-   * its chord test alone (set_has and the built-in draw nothing for
-   * them): the Langevin search of the cells serves it */
-  if (!st && !f->par.detect && f->par.builtin == SB_DETECT_LANGEVIN)
-    st = sb_engine_set_detector_chord(e, 1);
+  if (!f->par.detect && f->par.builtin == SB_DETECT_LANGEVIN) {
+    /* the built-in itself, observed: its own reach and search, and with
+     * the engine's streams its first pass on the threads (skip only
+     * reads the set of pairs seen, which changes in take, serially) */
+    st = sb_engine_set_detect(e, SB_DETECT_LANGEVIN);
+    if (!st)
+      sbi_engine_set_langevin_observer(e, skip, take, f);
+  } else
+    st = sb_engine_set_detector(e, detect, f, reach);
   if (!st)
     f->attached = 1;
   return st;

@@ -507,8 +507,10 @@ int sb_engine_langevin_contact(const sb_engine *e, const sb_engine_pair *p,
  *  sb_engine_reset_counters); SB_EINVAL if the detector never ran. */
 int sb_engine_langevin_stats(const sb_engine *e, sb_langevin_hit_stats *st);
 
-/** Inside an outcome callback, with SB_DETECT_LANGEVIN: the states of
- *  p->i and p->j at the contact (positions in m with x_i - x_j the contact
+/** Inside an outcome callback with SB_DETECT_LANGEVIN, or inside the
+ *  on_hit callback of a first-contact observer around that built-in
+ *  (smolbridge/engine_firsthit.h): the states of p->i and p->j at the
+ *  contact (positions in m with x_i - x_j the contact
  *  separation, |x_i - x_j| = r_i + r_j; velocities in m/s, drawn from
  *  the conditional law at the contact time).  Any argument may be NULL.
  *  SB_EINVAL when no contact state is available (another detector, or

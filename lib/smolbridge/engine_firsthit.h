@@ -68,8 +68,11 @@ extern "C" {
 #endif
 
 /** Called at every counted first contact (at or after the warm-up end):
- *  the pair record and the contact fraction s of the detector.  Return 0,
- *  or a negative value to fail the step (SB_EINVAL). */
+ *  the pair record and the contact fraction s of the detector (the time
+ *  p->t0 + s p->dt).  Around the built-in SB_DETECT_LANGEVIN the
+ *  particles' states at the contact are readable inside the call with
+ *  sb_engine_contact_state.  Return 0, or a negative value to fail the
+ *  step. */
 typedef int (*sb_engine_firsthit_fn)(const sb_engine *e,
                                      const sb_engine_pair *p, double s,
                                      void *ctx);
@@ -161,13 +164,21 @@ sb_engine_firsthit *sb_engine_firsthit_alloc(
 void sb_engine_firsthit_free(sb_engine_firsthit *f);
 
 /** Attach to engine e with the detector's neighbour reach (m, >= 0; the
- *  bridge and Langevin detectors need theirs, sb_engine_bridge_reach,
- *  sb_engine_langevin_reach): record the pairs in contact now (|x_i -
- *  x_j| <= r_i + r_j, minimum image), count the particles of each
- *  species, and install the counting detector (sb_engine_set_detector).
- *  The engine's outcome should be SB_OUTCOME_COUNT.  An observer attaches
- *  once (SB_EINVAL otherwise); the observer must outlive the engine's use
- *  of it. */
+ *  bridge detectors and a wrapped Langevin detector need theirs,
+ *  sb_engine_bridge_reach, sb_engine_langevin_reach): record the pairs in
+ *  contact now (|x_i - x_j| <= r_i + r_j, minimum image), count the
+ *  particles of each species, and install the counting detector
+ *  (sb_engine_set_detector).  Around the built-in SB_DETECT_LANGEVIN
+ *  (detect NULL) the engine's detector becomes that built-in itself,
+ *  observed (reach is then unused: the built-in computes its own every
+ *  step): it hands the observer each record's first contact, and with
+ *  the engine's counter-based streams (sb_engine_params.streams, the
+ *  default) its first pass runs on all of the engine's threads with the
+ *  same counts on any number of them (the observer counts serially, in
+ *  record order); on_hit may then read the particles' states at the
+ *  contact with sb_engine_contact_state.  The engine's outcome should be
+ *  SB_OUTCOME_COUNT.  An observer attaches once (SB_EINVAL otherwise);
+ *  the observer must outlive the engine's use of it. */
 int sb_engine_firsthit_attach(sb_engine *e, sb_engine_firsthit *f,
                               double reach);
 
