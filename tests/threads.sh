@@ -6,7 +6,11 @@
 #    in parallel) and on the sequential MT19937 (serial transport); the
 #    cells are scanned in parallel in both;
 #  - a dense hard-sphere gas (phi = 0.05, ~4400 particles, tens of
-#    thousands of candidate pairs per step: the parallel detection pass).
+#    thousands of candidate pairs per step: the parallel detection pass);
+#  - first-contact counting with the Langevin detector on the keyed
+#    streams (~9800 spheres of 50 nm, phi = 0.01, dt = 2 tau_p: the
+#    Langevin search and the observed built-in's first pass, ~2000
+#    records a step, in parallel), contacts.csv too.
 # A build without OpenMP runs everything on one thread and passes
 # trivially.
 set -u
@@ -35,6 +39,28 @@ tau = inf
 T = 300
 phi = 0.05
 INI
+cat > "$out/fh.ini" <<'INI'
+[run]
+seed = 3
+L = 4e-6
+dt = 8e-8
+steps = 60
+detect = langevin
+outcome = count
+rng = philox
+output = o
+[observe]
+first_hit = yes
+first_hit_skip_seen = yes
+first_hit_capacitance = yes
+first_hit_velocities = 5000
+[species primary]
+diameter = 50e-9
+density = 1000
+tau = 4e-8
+T = 296.15
+phi = 1e-2
+INI
 
 # run NAME THREADS-SETTING CMD...: in $out/NAME/, outputs in o/
 run() {
@@ -44,13 +70,16 @@ run() {
   sed -i 's/"wall_seconds": .*/"wall_seconds": T/' "$d/o/summary.json" 2>/dev/null
 }
 same() {  # same A B: identical outputs
-  for f in summary.json series.csv; do
+  for f in summary.json series.csv contacts.csv; do
+    [ -e "$out/$1/o/$f" ] || [ $f = contacts.csv ] || fail "$1: no $f"
+    [ -e "$out/$1/o/$f" ] || continue
     cmp -s "$out/$1/o/$f" "$out/$2/o/$f" || fail "$f differs between $1 and $2"
   done
 }
-for cfg in philox mt19937 gas; do
+for cfg in philox mt19937 gas fh; do
   case $cfg in
     gas) args="$out/gas.ini" ;;
+    fh) args="$out/fh.ini" ;;
     *) args="$ex/v2_brownian_1um.ini --set run.rng=$cfg --set run.L=7e-5 --set run.steps=150 --set run.output=o" ;;
   esac
   for nt in 1 2 3; do
@@ -80,6 +109,7 @@ awk -F, 'FNR == 1 { next } { last[FILENAME] = $8 }
 grep -q '"rng": "sb_philox4x32_10"' "$out/philox-1/o/summary.json" || fail "rng = philox not in summary.json"
 cmp -s "$out/philox-1/o/series.csv" "$out/mt19937-1/o/series.csv" && fail "philox and mt19937 runs are identical"
 grep -q '"collisions": [1-9]' "$out/gas-1/o/summary.json" || fail "gas: no collision"
+[ "$(wc -l < "$out/fh-1/o/contacts.csv")" -gt 300 ] || fail "fh: few contacts"
 "$sb" collide "$out/gas.ini" --threads 0 > /dev/null 2>&1 && fail "--threads 0 accepted"
 [ $fails -eq 0 ] || exit 1
 rm -rf "$out"
