@@ -33,9 +33,11 @@ typedef struct {
   double vn;
 } lvctx;
 
-/* The run's detector, wrapped by the first-contact observer (which skips
- * the pairs whose first contact is known); keeps the normal relative
- * velocity of the contact for lv_hit. */
+/* The run's detector other than `langevin` (which the first-contact
+ * observer watches as the built-in itself, lv_hit reading its contact
+ * state), wrapped by the observer (which skips the pairs whose first
+ * contact is known); keeps the normal relative velocity of the contact
+ * for lv_hit. */
 static int lv_detect(const sb_engine *e, const sb_engine_pair *p,
                      const gsl_rng *r, void *vctx, double *s)
 {
@@ -43,17 +45,6 @@ static int lv_detect(const sb_engine *e, const sb_engine_pair *p,
   int h;
   f->vn = NAN;
   switch (f->q->det) {
-  case LV_LANGEVIN: {
-    sb_langevin_contact c;
-    h = sb_engine_langevin_contact(e, p, r, s, &c);
-    if (h == 1) {
-      double vn = 0.0;
-      for (int k = 0; k < 3; k++)
-        vn += (c.ui[k] - c.uj[k]) * (c.xi[k] - c.xj[k]) / p->sigma;
-      f->vn = vn;
-    }
-    break;
-  }
   case LV_CHORD:
     h = sb_engine_detect_ballistic(p, s);
     if (h == 1)
@@ -72,11 +63,17 @@ static int lv_detect(const sb_engine *e, const sb_engine_pair *p,
 static int lv_hit(const sb_engine *e, const sb_engine_pair *p, double s,
                   void *vctx)
 {
-  (void)e;
-  (void)p;
   (void)s;
   lvctx *f = vctx;
   lv_out *o = f->o;
+  if (f->q->det == LV_LANGEVIN) {  /* the observed built-in's draw */
+    double xi[3], ui[3], xj[3], uj[3], vn = 0.0;
+    if (sb_engine_contact_state(e, xi, ui, xj, uj))
+      return -1;
+    for (int k = 0; k < 3; k++)
+      vn += (ui[k] - uj[k]) * (xi[k] - xj[k]) / p->sigma;
+    f->vn = vn;
+  }
   if (!isnan(f->vn) && o->nvn < f->q->vcap)
     o->vn[o->nvn++] = f->vn;
   return 0;
@@ -381,8 +378,12 @@ static int lv_engine_run(const sbv_ctx *ctx, unsigned long stream,
   lvctx f = {q, NULL, o, NAN};
   sb_engine_firsthit_params fp;
   sb_engine_firsthit_params_default(&fp);
-  fp.detect = lv_detect;
-  fp.detect_ctx = &f;
+  if (q->det == LV_LANGEVIN)  /* the built-in itself, observed */
+    fp.builtin = SB_DETECT_LANGEVIN;
+  else {
+    fp.detect = lv_detect;
+    fp.detect_ctx = &f;
+  }
   fp.skip_seen = 1;
   fp.on_hit = lv_hit;
   fp.hit_ctx = &f;
@@ -430,10 +431,6 @@ static int lv_engine_run(const sbv_ctx *ctx, unsigned long stream,
     st = sb_engine_firsthit_set_warmup(fh, q->t1);
   if (!st)
     st = sb_engine_firsthit_attach(e, fh, reach);
-  /* lv_detect around sb_engine_langevin_contact leaves the pairs beyond
-   * its chord test alone: the Langevin search serves it (the same run) */
-  if (!st && q->det == LV_LANGEVIN)
-    st = sb_engine_set_detector_chord(e, 1);
   const double c0 = cpu_seconds(q->threads == 1);
   if (!st)
     st = fh_run_until(ctx, e, q->T);
