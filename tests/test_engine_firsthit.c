@@ -476,7 +476,7 @@ START_TEST(test_mc_variance)
 END_TEST
 
 /* Around the built-in `langevin` the observer watches the built-in itself
- * (sbi_engine_set_langevin_observer): its first pass runs on the threads
+ * (sbi_engine_set_observer): its first pass runs on the threads
  * with the engine's streams, and on_hit reads the contact state.  1500
  * Langevin spheres (r = 0.5, tau = 0.35, dt = 0.7: several hundred
  * records per step), 12 steps, warm-up 3 steps, skip_seen on.
@@ -519,7 +519,8 @@ static int observe_hit(const sb_engine *e, const sb_engine_pair *p,
   return 0;
 }
 
-static sb_engine_firsthit_counts observed_run(int threads, int streams,
+static sb_engine_firsthit_counts observed_run(sb_engine_detect builtin,
+                                              int threads, int streams,
                                               int wrapped, observed *o)
 {
   sb_engine_params p;
@@ -540,22 +541,28 @@ static sb_engine_firsthit_counts observed_run(int threads, int streams,
   ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 1500), SB_SUCCESS);
   sb_engine_firsthit_params fp;
   sb_engine_firsthit_params_default(&fp);
-  fp.builtin = SB_DETECT_LANGEVIN;
-  if (wrapped)
+  counter calls = {0, 0, 0.0};
+  fp.builtin = builtin;
+  if (wrapped && builtin == SB_DETECT_LANGEVIN)
     fp.detect = sb_engine_detect_langevin;
+  else if (wrapped) {
+    fp.detect = counting_ballistic;
+    fp.detect_ctx = &calls;
+  }
   fp.skip_seen = 1;
   fp.on_hit = observe_hit;
   fp.hit_ctx = o;
   sb_engine_firsthit *f = sb_engine_firsthit_alloc(&fp);
   ck_assert_ptr_nonnull(f);
-  const double rho = sb_engine_langevin_reach(e);
-  ck_assert(rho > 0.0);
+  const double rho =
+      builtin == SB_DETECT_LANGEVIN ? sb_engine_langevin_reach(e) : 0.0;
+  ck_assert(rho > 0.0 || builtin != SB_DETECT_LANGEVIN);
   ck_assert_int_eq(sb_engine_firsthit_set_warmup(f, 3 * 0.7), SB_SUCCESS);
   ck_assert_int_eq(sb_engine_firsthit_attach(e, f, rho), SB_SUCCESS);
-  if (wrapped)
+  if (wrapped && builtin == SB_DETECT_LANGEVIN)
     ck_assert_int_eq(sb_engine_set_detector_chord(e, 1), SB_SUCCESS);
-  else  /* the built-in itself, observed */
-    ck_assert_int_eq(sb_engine_get_params(e)->detect, SB_DETECT_LANGEVIN);
+  else if (!wrapped)  /* the built-in itself, observed */
+    ck_assert_int_eq(sb_engine_get_params(e)->detect, builtin);
   for (int k = 0; k < 12; k++)
     ck_assert_msg(sb_engine_step(e) == SB_SUCCESS, "%s", sb_last_error());
   sb_engine_firsthit_counts c;
@@ -565,6 +572,8 @@ static sb_engine_firsthit_counts observed_run(int threads, int streams,
   sb_engine_stats st;
   sb_engine_get_stats(e, &st);
   ck_assert_uint_eq(st.ncoll, 0);  /* the particles pass through */
+  if (builtin != SB_DETECT_LANGEVIN)  /* enough for the parallel pass */
+    ck_assert_uint_gt(st.ncand, 12 * 256);
   sb_engine_free(e);
   sb_engine_firsthit_free(f);
   return c;
@@ -575,7 +584,7 @@ START_TEST(test_langevin_observed)
   observed o[2] = {{1, 0, 0.0, 0.0}, {1, 0, 0.0, 0.0}};
   sb_engine_firsthit_counts c[2];
   for (int t = 0; t < 2; t++)
-    c[t] = observed_run(t + 1, 1, 0, &o[t]);
+    c[t] = observed_run(SB_DETECT_LANGEVIN, t + 1, 1, 0, &o[t]);
   printf("observed langevin, 1 / 2 threads: %llu / %llu first contacts "
          "(%llu / %llu in the warm-up), largest |d/sigma - 1| %.1e\n",
          (unsigned long long)c[0].hits, (unsigned long long)c[1].hits,
@@ -593,11 +602,37 @@ START_TEST(test_langevin_observed)
    * has no contact state to read) */
   observed w[2] = {{0, 0, 0.0, 0.0}, {0, 0, 0.0, 0.0}};
   for (int t = 0; t < 2; t++)
-    c[t] = observed_run(1, 0, t, &w[t]);
+    c[t] = observed_run(SB_DETECT_LANGEVIN, 1, 0, t, &w[t]);
   ck_assert_uint_gt(c[0].hits, 300);
   ck_assert_uint_eq(c[0].hits, c[1].hits);
   ck_assert_uint_eq(c[0].warm, c[1].warm);
   ck_assert(w[0].hash == w[1].hash);
+}
+END_TEST
+
+/* The same for the built-in contact-time detector (`ballistic`, no
+ * draws): observed, on 1 and 2 threads (its parallel first pass), the
+ * same counts and contacts in the same order; observed and wrapped (a
+ * custom detector around sb_engine_detect_ballistic, searched by the
+ * cells where the built-in takes its Verlet list, so in another order)
+ * the same counts and variance estimate. */
+START_TEST(test_ballistic_observed)
+{
+  observed o[3] = {{0, 0, 0.0, 0.0}, {0, 0, 0.0, 0.0}, {0, 0, 0.0, 0.0}};
+  sb_engine_firsthit_counts c[3];
+  for (int t = 0; t < 2; t++)
+    c[t] = observed_run(SB_DETECT_BALLISTIC, t + 1, 1, 0, &o[t]);
+  c[2] = observed_run(SB_DETECT_BALLISTIC, 1, 1, 1, &o[2]);
+  printf("observed ballistic, 1 / 2 threads / wrapped: %llu / %llu / %llu "
+         "first contacts\n", (unsigned long long)c[0].hits,
+         (unsigned long long)c[1].hits, (unsigned long long)c[2].hits);
+  ck_assert_uint_gt(c[0].hits, 300);
+  for (int t = 1; t < 3; t++) {
+    ck_assert_uint_eq(c[0].hits, c[t].hits);
+    ck_assert_uint_eq(c[0].warm, c[t].warm);
+    ck_assert(c[0].hits_var == c[t].hits_var);
+  }
+  ck_assert(o[0].hash == o[1].hash);
 }
 END_TEST
 
@@ -614,6 +649,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_variance_by_hand);
   tcase_add_test(tc, test_mc_variance);
   tcase_add_test(tc, test_langevin_observed);
+  tcase_add_test(tc, test_ballistic_observed);
   suite_add_tcase(s, tc);
   return s;
 }

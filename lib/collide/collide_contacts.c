@@ -3,12 +3,11 @@
  * first N counted first contacts (contacts.csv; v_n < 0: approach), the
  * law of the impact velocities (Mohaupt 2011, §7.2.1: in the
  * free-molecular limit |v_n| follows the flux-weighted Maxwellian of
- * variance k_B T/m_red).  With `langevin` the observer's on_hit reads the
- * states at the contact the built-in drew (sb_engine_contact_state: the
- * conditional law at the contact time); with `ballistic` the observer
- * wraps a detector that also gives the velocities at the contact (the
- * chord's contact point, the velocities interpolated linearly over the
- * step). */
+ * variance k_B T/m_red).  The observer's on_hit reads them from the
+ * built-in it watches: with `langevin` the states at the contact the
+ * built-in drew (sb_engine_contact_state: the conditional law at the
+ * contact time), with `ballistic` the chord's contact point and the
+ * velocities interpolated linearly over the step (sb_engine_chord_vn). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,7 +19,6 @@
 
 struct sbi_col_contacts {
   sb_engine_detect builtin;   /* SB_DETECT_LANGEVIN or _BALLISTIC */
-  double vn;                  /* of the contact just detected (NaN: none) */
   size_t cap, n;
   double *t, *v;              /* contact time, v_n */
   size_t *a, *b;              /* species */
@@ -37,39 +35,21 @@ void sbi_col_contacts_free(sbi_col_contacts *k)
   free(k);
 }
 
-/* The detector the observer wraps (`ballistic`): the built-in, with the
- * velocity. */
-static int detect(const sb_engine *e, const sb_engine_pair *p,
-                  const gsl_rng *r, void *ctx, double *s)
-{
-  (void)r;
-  sbi_col_contacts *k = ctx;
-  k->vn = NAN;
-  const int h = sb_engine_detect_ballistic(p, s);
-  if (h == 1)
-    k->vn = sb_engine_chord_vn(e, p, *s);
-  return h;
-}
-
 /* A counted first contact: keep its velocity (the first cap). */
 static int on_hit(const sb_engine *e, const sb_engine_pair *p, double s,
                   void *ctx)
 {
   sbi_col_contacts *k = ctx;
-  if (k->builtin == SB_DETECT_LANGEVIN) {  /* the built-in's draw */
-    double xi[3], ui[3], xj[3], uj[3];
-    if (sb_engine_contact_state(e, xi, ui, xj, uj))
-      return -1;
-    double vn = 0.0;
-    for (int q = 0; q < 3; q++)
-      vn += (ui[q] - uj[q]) * (xi[q] - xj[q]) / p->sigma;
-    k->vn = vn;
-  }
-  if (isnan(k->vn) || k->n >= k->cap)
+  if (k->n >= k->cap)
     return 0;
+  const double vn = k->builtin == SB_DETECT_LANGEVIN
+                        ? sb_engine_contact_vn(e)  /* the built-in's draw */
+                        : sb_engine_chord_vn(e, p, s);
+  if (isnan(vn))
+    return -1;
   const size_t *sp = sb_engine_species_of(e);
   k->t[k->n] = p->t0 + s * p->dt;
-  k->v[k->n] = k->vn;
+  k->v[k->n] = vn;
   k->a[k->n] = sp[p->i];
   k->b[k->n] = sp[p->j];
   k->n++;
@@ -94,10 +74,6 @@ int sbi_col_contacts_setup(const sbi_col_config *c, sbi_col_run *r,
   k->b = malloc(k->cap * sizeof *k->b);
   if (!k->t || !k->v || !k->a || !k->b)
     return SB_ENOMEM;
-  if (builtin != SB_DETECT_LANGEVIN) {
-    fp->detect = detect;
-    fp->detect_ctx = k;
-  }
   fp->on_hit = on_hit;
   fp->hit_ctx = k;
   return SB_SUCCESS;

@@ -635,7 +635,7 @@ int sb_engine_set_detect(sb_engine *e, sb_engine_detect d)
   e->detect_fn = NULL;
   e->detect_reach = 0.0;
   e->detect_chord = 0;
-  sbi_engine_set_langevin_observer(e, NULL, NULL, NULL);
+  sbi_engine_set_observer(e, NULL, NULL, NULL);
   return SB_SUCCESS;
 }
 
@@ -665,7 +665,7 @@ int sb_engine_set_detector(sb_engine *e, sb_engine_detect_fn fn, void *ctx,
   e->detect_chord = 0;
   e->detect_ctx = ctx;
   e->detect_reach = reach;
-  sbi_engine_set_langevin_observer(e, NULL, NULL, NULL);
+  sbi_engine_set_observer(e, NULL, NULL, NULL);
   return SB_SUCCESS;
 }
 

@@ -177,7 +177,9 @@ static sbi_event heap_pop(sb_engine *e)
 static int detect_pure(const sb_engine *e, const sb_engine_pair *p,
                        double *s)
 {
-  if (e->par.outcome == SB_OUTCOME_COUNT && overlapping(p))
+  if (e->obs_skip && e->obs_skip(e, p, e->obs_ctx))
+    return 0;
+  if (e->par.outcome == SB_OUTCOME_COUNT && !e->obs_take && overlapping(p))
     return 0;  /* pass-through: an overlap is not a new contact */
   return e->par.detect == SB_DETECT_BALLISTIC
              ? sb_engine_detect_ballistic(p, s)
@@ -199,21 +201,51 @@ static int detect_push(sb_engine *e, const sb_engine_pair *p, double t)
   ev.hasc = 0;
   if (det == SB_DETECT_LANGEVIN)  /* first contact, or every entry */
     return sbi_engine_langevin_record(e, p, t);
-  if (count_only && det != SB_DETECT_CUSTOM && overlapping(p))
-    return SB_SUCCESS;  /* pass-through: an overlap is not a new contact */
+  if (det != SB_DETECT_CUSTOM) {
+    if (e->obs_skip && e->obs_skip(e, p, e->obs_ctx))
+      return SB_SUCCESS;
+    if (count_only && !e->obs_take && overlapping(p))
+      return SB_SUCCESS;  /* pass-through: an overlap is not a new contact */
+  }
   if (det == SB_DETECT_BALLISTIC)
     hit = sb_engine_detect_ballistic(p, &s);
   else if (det == SB_DETECT_OVERLAP)
     hit = sb_engine_detect_overlap(p, &s);
   else
     hit = e->detect_fn(e, p, e->rng, e->detect_ctx, &s);
-  return push_hit(e, p, t, hit, s, &ev);
+  return hit == 1 && det != SB_DETECT_CUSTOM ? sbi_engine_deliver(e, p, t, s, &ev)
+                                             : push_hit(e, p, t, hit, s, &ev);
 }
 
 int sbi_engine_push_event(sb_engine *e, const sb_engine_pair *p, double t,
                           double s, sbi_event *ev)
 {
   return push_hit(e, p, t, 1, s, ev);
+}
+
+void sbi_engine_set_observer(
+    sb_engine *e,
+    int (*skip)(const sb_engine *e, const sb_engine_pair *p, void *ctx),
+    int (*take)(sb_engine *e, const sb_engine_pair *p, double s, void *ctx),
+    void *ctx)
+{
+  e->obs_skip = skip;
+  e->obs_take = take;
+  e->obs_ctx = ctx;
+}
+
+int sbi_engine_deliver(sb_engine *e, const sb_engine_pair *p, double t,
+                       double s, sbi_event *ev)
+{
+  if (!e->obs_take)
+    return sbi_engine_push_event(e, p, t, s, ev);
+  if (!(s >= 0.0 && s <= 1.0))
+    return sbi_error(SB_EINVAL, "sb_engine_step",
+                     "detector returned s = %g outside [0, 1]", s);
+  e->contact = ev->hasc ? ev : NULL;
+  const int st = e->obs_take(e, p, s, e->obs_ctx);
+  e->contact = NULL;
+  return st;
 }
 
 /* The detector's answer (hit, s) on p: push the event (ev: the
@@ -523,7 +555,8 @@ int sbi_engine_detect_and_process(sb_engine *e)
       sbi_event ev;
       ev.hasc = 0;
       sbi_engine_make_pair(e, e->pairs[2 * q], e->pairs[2 * q + 1], &p);
-      int st = push_hit(e, &p, 0.0, dh[q], ds[q], &ev);
+      int st = dh[q] == 1 ? sbi_engine_deliver(e, &p, 0.0, ds[q], &ev)
+                          : push_hit(e, &p, 0.0, dh[q], ds[q], &ev);
       if (st)
         return st;
     }

@@ -123,28 +123,23 @@ static int count(sb_engine_firsthit *f, const sb_engine *e,
   return 0;
 }
 
-/* The counting detector: records the pair's first detected contact and
- * answers "no collision", so the particles pass through each other. */
+/* The counting detector around a custom one: records the pair's first
+ * detected contact and answers "no collision", so the particles pass
+ * through each other. */
 static int detect(const sb_engine *e, const sb_engine_pair *p,
                   const gsl_rng *r, void *ctx, double *s)
 {
   sb_engine_firsthit *f = ctx;
   if (skip(e, p, f))
     return 0;
-  int h;
-  if (f->par.detect)
-    h = f->par.detect(e, p, r, f->par.detect_ctx, s);
-  else if (f->par.builtin == SB_DETECT_OVERLAP)
-    h = sb_engine_detect_overlap(p, s);
-  else
-    h = sb_engine_detect_ballistic(p, s);
+  const int h = f->par.detect(e, p, r, f->par.detect_ctx, s);
   if (h <= 0)
     return h;
   return count(f, e, p, *s);
 }
 
-/* Around the built-in `langevin` (sbi_engine_set_langevin_observer): the
- * detector's first contact of record p, serially in record order. */
+/* Around a built-in (sbi_engine_set_observer): the built-in's first
+ * contact of record p, serially in record order. */
 static int take(sb_engine *e, const sb_engine_pair *p, double s, void *ctx)
 {
   if (count(ctx, e, p, s))
@@ -247,13 +242,14 @@ int sb_engine_firsthit_attach(sb_engine *e, sb_engine_firsthit *f,
   f->n_all = N;
   f->contact0_all = (uint64_t)novall;
   f->pairs_apart_all = 0.5 * N * (N - 1.0) - novall;
-  if (!f->par.detect && f->par.builtin == SB_DETECT_LANGEVIN) {
-    /* the built-in itself, observed: its own reach and search, and with
-     * the engine's streams its first pass on the threads (skip only
-     * reads the set of pairs seen, which changes in take, serially) */
-    st = sb_engine_set_detect(e, SB_DETECT_LANGEVIN);
+  if (!f->par.detect) {
+    /* the built-in itself, observed: its own reach, search (the Verlet
+     * list of the chord detectors, the Langevin search) and first pass on
+     * the threads (for `langevin` with the engine's streams); skip only
+     * reads the set of pairs seen, which changes in take, serially */
+    st = sb_engine_set_detect(e, f->par.builtin);
     if (!st)
-      sbi_engine_set_langevin_observer(e, skip, take, f);
+      sbi_engine_set_observer(e, skip, take, f);
   } else
     st = sb_engine_set_detector(e, detect, f, reach);
   if (!st)
@@ -477,5 +473,16 @@ double sb_engine_chord_vn(const sb_engine *e, const sb_engine_pair *p,
     double uj = u0[3 * p->j + k] + s * (u1[3 * p->j + k] - u0[3 * p->j + k]);
     vn += (ui - uj) * n[k] / nn;
   }
+  return vn;
+}
+
+double sb_engine_contact_vn(const sb_engine *e)
+{
+  double xi[3], ui[3], xj[3], uj[3], vn = 0.0;
+  if (sb_engine_contact_state(e, xi, ui, xj, uj))
+    return NAN;
+  const double sigma = e->contact->p.sigma;  /* |x_i - x_j| */
+  for (int k = 0; k < 3; k++)
+    vn += (ui[k] - uj[k]) * (xi[k] - xj[k]) / sigma;
   return vn;
 }

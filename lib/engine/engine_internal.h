@@ -292,12 +292,12 @@ struct sb_engine {
   size_t lreach_n, lreach_nspec;
   double *lp_x, *lp_u, *lp_t;  /* 3 cap, 3 cap, cap */
   const sbi_event *contact;  /* contact of the running outcome, or NULL */
-  /* an observer of the built-in Langevin detector's first contacts
-   * (sbi_engine_set_langevin_observer), or NULL */
-  int (*lobs_skip)(const sb_engine *e, const sb_engine_pair *p, void *ctx);
-  int (*lobs_take)(sb_engine *e, const sb_engine_pair *p, double s,
+  /* an observer of the built-in detector's first contacts
+   * (sbi_engine_set_observer), or NULL */
+  int (*obs_skip)(const sb_engine *e, const sb_engine_pair *p, void *ctx);
+  int (*obs_take)(sb_engine *e, const sb_engine_pair *p, double s,
                    void *ctx);
-  void *lobs_ctx;
+  void *obs_ctx;
 
   /* deferred removals (engine_merge.c): a particle marked hit[i] = 2 is
    * removed at the end of the step by sbi_engine_purge; nremove counts
@@ -547,26 +547,6 @@ int sbi_engine_langevin_record(sb_engine *e, const sb_engine_pair *p,
  * (streams on): each record's events computed in parallel, then pushed
  * in record order, as sbi_engine_langevin_record would.  Status. */
 int sbi_engine_langevin_first_pass(sb_engine *e, int nt);
-/* An observer of the built-in Langevin detector (the first-contact
- * observer, engine_firsthit.c), or none (NULL, NULL).  skip(e, p, ctx),
- * nonzero to leave record p alone before anything is drawn, may be
- * called on several threads at once during the step's first pass and
- * must only read.  take(e, p, s, ctx) gets the first contact of each
- * other record that has one (s: its step fraction within the record),
- * serially and in record order, with the contact state readable through
- * sb_engine_contact_state; s is the fraction of the record's interval,
- * as a custom detector's (the time p->t0 + s p->dt); no event is pushed
- * (the particles pass through); it returns a status.  sb_engine_set_detect and
- * sb_engine_set_detector remove it. */
-void sbi_engine_set_langevin_observer(
-    sb_engine *e,
-    int (*skip)(const sb_engine *e, const sb_engine_pair *p, void *ctx),
-    int (*take)(sb_engine *e, const sb_engine_pair *p, double s, void *ctx),
-    void *ctx);
-/* Hand the event ev of record p (from step fraction t, contact at record
- * fraction s) to the observer, or push it (sbi_engine_push_event). */
-int sbi_engine_langevin_deliver(sb_engine *e, const sb_engine_pair *p,
-                                double t, double s, sbi_event *ev);
 /* Free the per-thread slots of the keyed detection (engine_lkeyed.c). */
 void sbi_engine_langevin_slots_free(sb_engine *e);
 /* A new hitter with the engine's Langevin parameters (NULL: no memory). */
@@ -575,6 +555,28 @@ sb_langevin_hitter *sbi_engine_langevin_hitter(const sb_engine *e);
 void sbi_engine_langevin_reset_stats(sb_engine *e);
 /* Push the event ev of record p (start fraction t) at fraction s of the
  * record (engine_detect.c); status. */
+/* An observer of the built-in detector (the first-contact observer,
+ * engine_firsthit.c), or none (NULL, NULL).  skip(e, p, ctx), nonzero to
+ * leave record p alone before anything is drawn, may be called on
+ * several threads at once during the step's first pass and must only
+ * read.  take(e, p, s, ctx) gets the first contact of each other record
+ * that has one, serially and in record order (`langevin`: with the
+ * contact state readable through sb_engine_contact_state); s is the
+ * fraction of the record's interval, as a custom detector's (the time
+ * p->t0 + s p->dt); no event is pushed (the particles pass through, and
+ * a pair overlapping at the step's start is examined as a custom
+ * detector would be); it returns a status.  sb_engine_set_detect and
+ * sb_engine_set_detector remove it. */
+void sbi_engine_set_observer(
+    sb_engine *e,
+    int (*skip)(const sb_engine *e, const sb_engine_pair *p, void *ctx),
+    int (*take)(sb_engine *e, const sb_engine_pair *p, double s, void *ctx),
+    void *ctx);
+/* The detector's contact of record p (from step fraction t) at fraction
+ * s of the record's interval, with its event ev (ev->hasc: the contact
+ * states): to the observer, or pushed as an event.  Status. */
+int sbi_engine_deliver(sb_engine *e, const sb_engine_pair *p, double t,
+                       double s, sbi_event *ev);
 int sbi_engine_push_event(sb_engine *e, const sb_engine_pair *p, double t,
                           double s, sbi_event *ev);
 /* Noise-free Stokes particles (B = 0, finite tau) follow curved paths,

@@ -494,9 +494,9 @@ int sbi_engine_langevin_events(const sb_engine *e, sb_langevin_hitter *lh,
                                const gsl_rng *r, const sb_engine_pair *p,
                                double t, sbi_lsink sink, void *ctx)
 {
-  if (e->lobs_skip && e->lobs_skip(e, p, e->lobs_ctx))
+  if (e->obs_skip && e->obs_skip(e, p, e->obs_ctx))
     return SB_SUCCESS;
-  if (e->par.outcome != SB_OUTCOME_COUNT || e->lobs_take) {
+  if (e->par.outcome != SB_OUTCOME_COUNT || e->obs_take) {
     double s = 0.0;
     sbi_event ev;
     ev.hasc = 0;
@@ -643,28 +643,6 @@ int sbi_engine_langevin_continue(sb_engine *e, size_t k, const sbi_event *ev,
   for (int c = 0; c < 3; c++)
     e->disp[3 * k + c] = e->x[3 * k + c] - e->x0[3 * k + c];
   return SB_SUCCESS;
-}
-
-void sbi_engine_set_langevin_observer(
-    sb_engine *e,
-    int (*skip)(const sb_engine *e, const sb_engine_pair *p, void *ctx),
-    int (*take)(sb_engine *e, const sb_engine_pair *p, double s, void *ctx),
-    void *ctx)
-{
-  e->lobs_skip = skip;
-  e->lobs_take = take;
-  e->lobs_ctx = ctx;
-}
-
-int sbi_engine_langevin_deliver(sb_engine *e, const sb_engine_pair *p,
-                                double t, double s, sbi_event *ev)
-{
-  if (!e->lobs_take)
-    return sbi_engine_push_event(e, p, t, s, ev);
-  e->contact = ev;
-  const int st = e->lobs_take(e, p, s, e->lobs_ctx);
-  e->contact = NULL;
-  return st;
 }
 
 int sb_engine_contact_state(const sb_engine *e, double xi[3], double ui[3],

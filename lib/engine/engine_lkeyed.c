@@ -135,7 +135,7 @@ typedef struct {
 static int push_sink(void *ctx, double s, sbi_event *ev)
 {
   push_ctx *c = ctx;
-  return sbi_engine_langevin_deliver(c->e, c->p, c->t, s, ev);
+  return sbi_engine_deliver(c->e, c->p, c->t, s, ev);
 }
 
 int sbi_engine_langevin_record(sb_engine *e, const sb_engine_pair *p,
@@ -230,7 +230,7 @@ int sbi_engine_langevin_first_pass(sb_engine *e, int nt)
       sb_engine_pair p;
       sbi_engine_make_pair(e, e->pairs[2 * x->q], e->pairs[2 * x->q + 1],
                            &p);
-      st = sbi_engine_langevin_deliver(e, &p, 0.0, x->s, &x->ev);
+      st = sbi_engine_deliver(e, &p, 0.0, x->s, &x->ev);
       if (st)
         return st;
     }

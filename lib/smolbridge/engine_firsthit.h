@@ -71,7 +71,7 @@ extern "C" {
  *  the pair record and the contact fraction s of the detector (the time
  *  p->t0 + s p->dt).  Around the built-in SB_DETECT_LANGEVIN the
  *  particles' states at the contact are readable inside the call with
- *  sb_engine_contact_state.  Return 0, or a negative value to fail the
+ *  sb_engine_contact_state (sb_engine_contact_vn).  Return 0, or a negative value to fail the
  *  step. */
 typedef int (*sb_engine_firsthit_fn)(const sb_engine *e,
                                      const sb_engine_pair *p, double s,
@@ -168,15 +168,17 @@ void sb_engine_firsthit_free(sb_engine_firsthit *f);
  *  sb_engine_bridge_reach, sb_engine_langevin_reach): record the pairs in
  *  contact now (|x_i - x_j| <= r_i + r_j, minimum image), count the
  *  particles of each species, and install the counting detector
- *  (sb_engine_set_detector).  Around the built-in SB_DETECT_LANGEVIN
- *  (detect NULL) the engine's detector becomes that built-in itself,
- *  observed (reach is then unused: the built-in computes its own every
- *  step): it hands the observer each record's first contact, and with
- *  the engine's counter-based streams (sb_engine_params.streams, the
- *  default) its first pass runs on all of the engine's threads with the
- *  same counts on any number of them (the observer counts serially, in
- *  record order); on_hit may then read the particles' states at the
- *  contact with sb_engine_contact_state.  The engine's outcome should be
+ *  (sb_engine_set_detector).  Around a built-in (detect NULL) the
+ *  engine's detector becomes that built-in itself, observed (reach is
+ *  then unused: the built-in has its own): it hands the observer each
+ *  record's first contact, with its own neighbour search (the Verlet
+ *  list of the chord detectors, the Langevin search) and its first pass
+ *  on all of the engine's threads (`langevin`: with the engine's
+ *  counter-based streams, sb_engine_params.streams, the default), the
+ *  same counts and contacts in the same order on any number of them (the
+ *  observer counts serially, in record order); with `langevin`, on_hit
+ *  may read the particles' states at the contact with
+ *  sb_engine_contact_state or sb_engine_contact_vn.  The engine's outcome should be
  *  SB_OUTCOME_COUNT.  An observer attaches once (SB_EINVAL otherwise);
  *  the observer must outlive the engine's use of it. */
 int sb_engine_firsthit_attach(sb_engine *e, sb_engine_firsthit *f,
@@ -227,9 +229,16 @@ int sb_engine_firsthit_coefs(const sb_engine_firsthit_kernel_result *k,
  *  step's start and end (sb_engine_start_velocities, sb_engine_velocities;
  *  right where dt << tau_p).  For a detector's hit callback (contact-time
  *  detection); the `langevin` detector's contact velocities come from
- *  sb_engine_langevin_contact. */
+ *  sb_engine_contact_vn. */
 double sb_engine_chord_vn(const sb_engine *e, const sb_engine_pair *p,
                           double s);
+
+/** Normal relative velocity (m/s; < 0: approach) at the contact the
+ *  `langevin` built-in drew, inside the on_hit callback of an observer
+ *  around it (or inside an outcome): (u_i - u_j).(x_i - x_j)/|x_i - x_j|
+ *  with the states of sb_engine_contact_state (|x_i - x_j| = r_i + r_j).
+ *  NaN (and sb_last_error set) where no contact state is available. */
+double sb_engine_contact_vn(const sb_engine *e);
 
 #ifdef __cplusplus
 }

@@ -24,58 +24,39 @@
 
 #define PI 3.14159265358979323846
 
-/* Detector context: the run, and the normal relative velocity of the
- * last contact the detector reported (NaN: none). */
+/* Detector context: the run, its bridge detector (Bessel-3 or exact
+ * 3-D bridge), its output. */
 typedef struct {
   const lv_run *q;
   sb_engine_bridge *b;
   lv_out *o;
-  double vn;
 } lvctx;
 
-/* The run's detector other than `langevin` (which the first-contact
- * observer watches as the built-in itself, lv_hit reading its contact
- * state), wrapped by the observer (which skips the pairs whose first
- * contact is known); keeps the normal relative velocity of the contact
- * for lv_hit. */
+/* The bridge detectors, wrapped by the first-contact observer (which
+ * skips the pairs whose first contact is known); the observer watches
+ * the other detectors as the built-ins themselves. */
 static int lv_detect(const sb_engine *e, const sb_engine_pair *p,
                      const gsl_rng *r, void *vctx, double *s)
 {
-  lvctx *f = vctx;
-  int h;
-  f->vn = NAN;
-  switch (f->q->det) {
-  case LV_CHORD:
-    h = sb_engine_detect_ballistic(p, s);
-    if (h == 1)
-      f->vn = sb_engine_chord_vn(e, p, *s);
-    break;
-  case LV_OVERLAP:
-    h = sb_engine_detect_overlap(p, s);
-    break;
-  default:
-    h = sb_engine_detect_bridge(e, p, r, f->b, s);
-  }
-  return h;
+  const lvctx *f = vctx;
+  return sb_engine_detect_bridge(e, p, r, f->b, s);
 }
 
-/* A counted first contact: keep its normal velocity. */
+/* A counted first contact: keep its normal velocity (`langevin`: the
+ * built-in's draw at the contact; contact time: the chord's). */
 static int lv_hit(const sb_engine *e, const sb_engine_pair *p, double s,
                   void *vctx)
 {
-  (void)s;
-  lvctx *f = vctx;
+  const lvctx *f = vctx;
   lv_out *o = f->o;
-  if (f->q->det == LV_LANGEVIN) {  /* the observed built-in's draw */
-    double xi[3], ui[3], xj[3], uj[3], vn = 0.0;
-    if (sb_engine_contact_state(e, xi, ui, xj, uj))
-      return -1;
-    for (int k = 0; k < 3; k++)
-      vn += (ui[k] - uj[k]) * (xi[k] - xj[k]) / p->sigma;
-    f->vn = vn;
-  }
-  if (!isnan(f->vn) && o->nvn < f->q->vcap)
-    o->vn[o->nvn++] = f->vn;
+  if (o->nvn >= f->q->vcap ||
+      (f->q->det != LV_LANGEVIN && f->q->det != LV_CHORD))
+    return 0;
+  const double vn = f->q->det == LV_LANGEVIN ? sb_engine_contact_vn(e)
+                                             : sb_engine_chord_vn(e, p, s);
+  if (isnan(vn))
+    return -1;
+  o->vn[o->nvn++] = vn;
   return 0;
 }
 
@@ -375,11 +356,13 @@ static int lv_engine_run(const sbv_ctx *ctx, unsigned long stream,
   if (q->threads > 0)
     p.threads = q->threads;
   sb_engine *e = sb_engine_alloc(&p);
-  lvctx f = {q, NULL, o, NAN};
+  lvctx f = {q, NULL, o};
   sb_engine_firsthit_params fp;
   sb_engine_firsthit_params_default(&fp);
-  if (q->det == LV_LANGEVIN)  /* the built-in itself, observed */
-    fp.builtin = SB_DETECT_LANGEVIN;
+  if (q->det == LV_LANGEVIN || q->det == LV_CHORD || q->det == LV_OVERLAP)
+    fp.builtin = q->det == LV_LANGEVIN ? SB_DETECT_LANGEVIN
+                 : q->det == LV_CHORD  ? SB_DETECT_BALLISTIC
+                                       : SB_DETECT_OVERLAP;  /* observed */
   else {
     fp.detect = lv_detect;
     fp.detect_ctx = &f;
