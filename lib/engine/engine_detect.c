@@ -213,8 +213,9 @@ static int detect_push(sb_engine *e, const sb_engine_pair *p, double t)
     hit = sb_engine_detect_overlap(p, &s);
   else
     hit = e->detect_fn(e, p, e->rng, e->detect_ctx, &s);
-  return hit == 1 && det != SB_DETECT_CUSTOM ? sbi_engine_deliver(e, p, t, s, &ev)
-                                             : push_hit(e, p, t, hit, s, &ev);
+  if (hit == 1 && det != SB_DETECT_CUSTOM)  /* to the observer, if any */
+    return sbi_engine_deliver(e, p, t, s, &ev);
+  return push_hit(e, p, t, hit, s, &ev);
 }
 
 int sbi_engine_push_event(sb_engine *e, const sb_engine_pair *p, double t,
