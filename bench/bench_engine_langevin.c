@@ -17,15 +17,19 @@
  *     The contact-time run is timed over its first steps and extrapolated
  *     to its length (its cost per step is constant); --full runs it to
  *     the end.  Goal: ratio >= 100.
-*  3. Threads: wall time per step of the section 1 engine (`langevin`,
+ *  3. Threads: wall time per step of the section 1 engine (`langevin`,
  *     the engine's default streams: every record on its own stream, the
  *     first pass and the Langevin search's stencil query on all threads)
  *     on one thread and on all of them, at dt/tau_p = 1, 2 and 100; the
  *     contacts must be the same.
+ *  4. The headline's two runs (`langevin` at dt = 2 tau_p, contact time
+ *     at 0.01 tau_p) on one thread and on all of them, wall time, default
+ *     generator: both first-contact observers watch their built-in
+ *     detector, whose search and first pass run on the threads.
  * Options: --quick (smaller N), --full (no extrapolation).
  * Times of sections 1 and 2 are the process's CPU time (one thread:
  * OMP_NUM_THREADS=1), which a loaded machine inflates far less than the
- * wall time; section 3's are wall times.
+ * wall time; sections 3 and 4 give wall times.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -197,6 +201,33 @@ static int headline(int rng, int quick, int full, double *ratio)
   return 0;
 }
 
+/* Section 4: wall seconds of the headline's run with detector det at
+ * dt/tau_p = dtt on `threads` threads (default generator), timed over
+ * the fraction frac of its steps and extrapolated to its length. */
+static double headline_wall(int det, double dtt, int threads, double frac)
+{
+  sb_validate_options opt;
+  sb_validate_options_init(&opt);
+  sbv_ctx ctx = {0, 12345, NULL, &opt, NULL, NULL};
+  v12_phys ph;
+  v12_physics(0.5, &ph);
+  lv_run q;
+  v12_size(&ph, det, dtt, 9600.0, V12_WARM * ph.tau,
+           (V12_WARM + 300.0) * ph.tau, 0, &q);
+  q.default_rng = 1;
+  q.threads = threads;
+  const double Tfull = q.T;
+  q.T = q.dt * ceil(frac * Tfull / q.dt);
+  lv_out o;
+  const double t0 = wall();
+  if (lv_firsthit(&ctx, 9, &q, &o)) {
+    fprintf(stderr, "bench: %s\n", sb_last_error());
+    return NAN;
+  }
+  free(o.vn);
+  return (wall() - t0) * Tfull / q.T;
+}
+
 int main(int argc, char **argv)
 {
   int quick = 0, full = 0;
@@ -251,6 +282,18 @@ int main(int argc, char **argv)
     printf("   dt/tau_p = %-5g %10.1f us %10.1f us  speed-up %.2fx  "
            "contacts %.0f / %.0f%s\n", dth[k], 1e6 * t1, 1e6 * t2, t1 / t2,
            c1, c2, c1 == c2 ? "" : "  DIFFER");
+  }
+  /* 4. the headline on the threads: both runs' first pass and search
+   * are parallel (the observed built-ins), the transport too */
+  printf("\n4. Headline on threads: wall time to +-2%%, default generator, "
+         "langevin at dt = 2 tau_p, contact time at 0.01 tau_p (%s)\n",
+         full ? "run to the end" : "extrapolated from its first steps");
+  const double fr = full ? 1.0 : (quick ? 0.02 : 0.1);
+  for (int th = 1; th <= nt; th += nt > 1 ? nt - 1 : 1) {
+    const double tl = headline_wall(LV_LANGEVIN, 2.0, th, 1.0);
+    const double tc = headline_wall(LV_CHORD, 0.01, th, fr);
+    printf("   %d thread%s: langevin %6.2f s, contact time %6.1f s, "
+           "ratio %.0fx\n", th, th > 1 ? "s" : " ", tl, tc, tc / tl);
   }
   printf("\n%d of 3 goals met\n", met);
   return 0;
