@@ -91,9 +91,15 @@ static int progress(const sb_collide_progress *p, void *user)
               sb_collide_output(pc->c));
     if (pc->res)
       pc->res->particles = p->particles;
-  } else if (pc->verbose)
-    fprintf(stderr, "collide: t = %.4g s (%3.0f%%), %llu collisions\n", p->t,
-            100 * p->fraction, p->collisions);
+  } else if (pc->verbose) {
+    const char *warm = p->t <= p->t_measure ? " of the warm-up" : "";
+    if (p->first_contacts >= 0)  /* [observe] first_hit: the kernel's count */
+      fprintf(stderr, "collide: t = %.4g s (%3.0f%%%s), %lld first contacts "
+              "counted\n", p->t, 100 * p->fraction, warm, p->first_contacts);
+    else
+      fprintf(stderr, "collide: t = %.4g s (%3.0f%%%s), %llu collisions\n",
+              p->t, 100 * p->fraction, warm, p->collisions);
+  }
   return 0;
 }
 

@@ -44,6 +44,7 @@ typedef struct {
   double last_fraction, t_end;
   size_t particles;
   int stop_at;  /* stop at this STEP event (0: never) */
+  long long first_contacts;  /* of the last STEP event */
 } events;
 
 static int on_progress(const sb_collide_progress *p, void *user)
@@ -57,6 +58,7 @@ static int on_progress(const sb_collide_progress *p, void *user)
   }
   ev->steps++;
   ev->last_fraction = p->fraction;
+  ev->first_contacts = p->first_contacts;
   return ev->stop_at && ev->steps >= ev->stop_at;
 }
 
@@ -73,7 +75,7 @@ START_TEST(test_run_from_string)
   ck_assert_int_eq(sb_collide_check(c), SB_SUCCESS);
   ck_assert_uint_eq(sb_collide_nwarnings(c), 0);
   ck_assert_str_eq(sb_collide_output(c), dir);
-  events ev = {0, 0, 0, 0, 0, 0};
+  events ev = {0, 0, 0, 0, 0, 0, 0};
   ck_assert_int_eq(sb_collide_run(c, on_progress, &ev), SB_SUCCESS);
   ck_assert_int_eq(sb_collide_failed(c), SB_COLLIDE_OK);
   ck_assert_str_eq(sb_collide_error(c), "");
@@ -82,6 +84,7 @@ START_TEST(test_run_from_string)
   ck_assert_double_eq(ev.last_fraction, 1.0);
   ck_assert_uint_eq(ev.particles, 2);
   ck_assert_rel(ev.t_end, 2e-5, TOL_TIGHT);
+  ck_assert_int_eq(ev.first_contacts, -1);  /* no [observe] first_hit */
   const sb_engine *e = sb_collide_engine(c);
   ck_assert_ptr_nonnull(e);
   sb_engine_stats st;
@@ -217,7 +220,7 @@ START_TEST(test_stopped_by_callback)
   sb_collide *c = sb_collide_alloc();
   ck_assert_int_eq(sb_collide_read_string(c, text, "s.ini"), SB_SUCCESS);
   ck_assert_int_eq(sb_collide_set(c, "run.steps=50"), SB_SUCCESS);
-  events ev = {0, 0, 0, 0, 0, 3};
+  events ev = {0, 0, 0, 0, 0, 3, 0};
   ck_assert_int_ne(sb_collide_run(c, on_progress, &ev), SB_SUCCESS);
   ck_assert_int_eq(sb_collide_failed(c), SB_COLLIDE_ERUN);
   ck_assert_int_eq(ev.steps, 3);
@@ -520,10 +523,13 @@ START_TEST(test_contact_velocities)
            "mass = %g\ntau = inf\nT = %g\ncount = 50000\n", dir, m, T);
   sb_collide *c = sb_collide_alloc();
   ck_assert_int_eq(sb_collide_read_string(c, text, "c.ini"), SB_SUCCESS);
-  ck_assert_int_eq(sb_collide_run(c, NULL, NULL), SB_SUCCESS);
+  events ev;
+  memset(&ev, 0, sizeof ev);
+  ck_assert_int_eq(sb_collide_run(c, on_progress, &ev), SB_SUCCESS);
   sb_engine_firsthit_kernel_result o;
   sb_collide_firsthit(c, &o);
   ck_assert(o.c.hits > 4000 && o.c.hits < 20000);
+  ck_assert_int_eq(ev.first_contacts, (long long)o.c.hits);  /* progress */
   snprintf(path, sizeof path, "%s/contacts.csv", dir);
   FILE *f = fopen(path, "r");
   ck_assert_ptr_nonnull(f);

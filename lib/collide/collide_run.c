@@ -10,6 +10,7 @@
 
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
+#include <smolbridge/engine_firsthit.h>
 
 #include "collide_internal.h"
 
@@ -18,6 +19,7 @@ typedef struct {
   sb_collide_progress_fn fn;
   void *user;
   sb_collide_progress p;   /* times fixed at the start */
+  const sb_engine_firsthit *fh;  /* [observe] first_hit, or NULL */
 } reporter;
 
 /* Tell the callback; nonzero: it asks to stop. */
@@ -33,6 +35,12 @@ static int report(reporter *rp, const sb_engine *e, sb_collide_event ev,
   rp->p.fraction = frac;
   rp->p.particles = sb_engine_count(e);
   rp->p.collisions = (unsigned long long)s.ncoll;
+  sb_engine_firsthit_counts fc;
+  rp->p.first_contacts =
+      rp->fh && !sb_engine_firsthit_get(rp->fh, SB_ENGINE_FIRSTHIT_ALL,
+                                        SB_ENGINE_FIRSTHIT_ALL, &fc)
+          ? (long long)fc.hits
+          : -1;
   return rp->fn(&rp->p, rp->user);
 }
 
@@ -266,7 +274,7 @@ int sb_collide_run(sb_collide *cl, sb_collide_progress_fn fn, void *user)
   sbi_col_firsthit_start(r, t0 + r->warm);
   reporter rp = {fn, user, {SB_COLLIDE_BEGIN, t0, t0, t0 + r->warm,
                             r->t_end, sb_engine_get_params(e)->dt, 0.0, 0,
-                            0}};
+                            0, -1}, r->fh};
   int stopped = 0;
   if (report(&rp, e, SB_COLLIDE_BEGIN, 0.0))
     stopped = 1, st = SB_EINVAL;

@@ -110,6 +110,9 @@ typedef struct {
   size_t particles;              /**< particles (clusters) now */
   unsigned long long collisions; /**< collisions counted since the start
                                       (since the warm-up's end after it) */
+  long long first_contacts;      /**< [observe] first_hit: first contacts
+                                      counted after the warm-up's end (the
+                                      kernel's count); -1 without it */
 } sb_collide_progress;
 
 /** Progress callback: return 0 to go on, nonzero to stop the run (it

@@ -292,7 +292,8 @@ class _Progress(_ct.Structure):  # sb_collide_progress
                 ("t_begin", _ct.c_double), ("t_measure", _ct.c_double),
                 ("t_end", _ct.c_double), ("dt", _ct.c_double),
                 ("fraction", _ct.c_double), ("particles", _ct.c_size_t),
-                ("collisions", _ct.c_ulonglong)]
+                ("collisions", _ct.c_ulonglong),
+                ("first_contacts", _ct.c_longlong)]
 
 
 _PROGRESSFN = _ct.CFUNCTYPE(_ct.c_int, _ct.POINTER(_Progress), _ct.c_void_p)
@@ -346,7 +347,9 @@ def collide(config, output=None, sets=(), progress=None):
     afterwards).  ``progress`` (optional) is called with a dict (``event``
     "begin" or "step", ``t``, ``t_begin``, ``t_measure``, ``t_end``,
     ``dt`` in s, ``fraction`` of the current stretch, ``particles``,
-    ``collisions``) about every tenth of the run; a true return value or
+    ``collisions``, ``first_contacts``: the first contacts counted after
+    the warm-up with ``[observe] first_hit``, -1 without it) about every
+    tenth of the run; a true return value or
     an exception stops the run.  Keys without effect give CollideWarning.
     Returns ``(summary, series)``: the summary.json dict and the series.csv
     columns as a dict of numpy arrays (pandas.DataFrame(series) makes a
