@@ -251,11 +251,65 @@ print("kernel example: K/K_GH = %.4f [%.4f, %.4f], %d contacts"
          hi / float(sys.argv[2]), fh["hits"]))
 sys.exit(0 if ok else 1)
 PY
+cp "$out/kernel1/summary.json" "$out/kernel1.json"  # for the restart
 sed -i -e 's/"wall_seconds": .*/"wall_seconds": T/' \
   -e 's/"overrides": .*/"overrides": O/' \
   "$out/kernel1/summary.json" "$out/kernel2/summary.json" 2>/dev/null
 cmp -s "$out/kernel1/summary.json" "$out/kernel2/summary.json" ||
   fail "$kex: summary.json differs on 2 threads"
+# the same count stopped half-way (a checkpoint and the observer's counts
+# beside it) and continued from there: the first-contact results are the
+# uninterrupted run's, to the last bit
+"$sb" collide "$kex" --set "run.output=$out/kernel_a" --set run.t_end=8e-5 \
+  --set "run.checkpoint=$out/kernel.ck" > /dev/null 2>&1 &&
+  [ -s "$out/kernel.ck.firsthit" ] ||
+  fail "$kex: the half run and its checkpoint"
+"$sb" collide "$kex" --set "run.output=$out/kernel_b" \
+  --set "run.restart=$out/kernel.ck" > /dev/null 2>&1 ||
+  fail "$kex: the restart"
+"$py" - "$out/kernel1.json" "$out/kernel_b/summary.json" <<'PY' ||
+import json, sys
+a, b = (json.load(open(p))["first_hit"] for p in sys.argv[1:3])
+sys.exit(0 if a == b and a["hits"] > 8000 else 1)
+PY
+  fail "$kex: the restarted count differs from the run in one go"
+# a bridge run with turbulence continued from a checkpoint keeps the
+# Brownian share of its collisions (the split of the species' b2, whose
+# total is in the checkpoint: Mohaupt 2011, eqs 6.20-6.23); it read 1
+# when the restart took all of b2 as Brownian
+cat > "$out/turb.ini" <<EOF
+[run]
+L = 2e-5
+dt = 1e-6
+steps = 40
+detect = bridge
+outcome = count
+output = $out/turb_a
+checkpoint = $out/turb.ck
+[turbulence]
+eps = 1e-2
+nu = 1.5e-5
+[species a]
+radius = 5e-7
+density = 1000
+mu = 1.8e-5
+T = 300
+count = 2000
+EOF
+"$sb" collide "$out/turb.ini" > /dev/null 2>&1 &&
+  "$sb" collide "$out/turb.ini" --set "run.output=$out/turb_b" \
+    --set "run.checkpoint=$out/turb2.ck" --set "run.restart=$out/turb.ck" \
+    > /dev/null 2>&1 ||
+  fail "collide turbulence restart"
+"$py" - "$out/turb_a/summary.json" "$out/turb_b/summary.json" <<'PY' ||
+import json, sys
+a, b = (json.load(open(p))["bridge"] for p in sys.argv[1:3])
+sa, sb = a["brownian_share"], b["brownian_share"]
+print("turbulence restart: Brownian share %.12f / %.12f" % (sa, sb))
+sys.exit(0 if a["collisions"] > 1000 and b["collisions"] > 1000
+         and 0.9 < sa < 0.99 and abs(sb - sa) < 1e-9 else 1)
+PY
+  fail "collide turbulence restart: the Brownian share changed"
 # open boundaries: inflows and outflows from the INI file; without
 # collisions every west drop leaves east, every south drop north
 jets="${srcdir:-.}/examples/open_crossing_jets.ini"

@@ -312,6 +312,25 @@ checkpoint = /proc/x.ck'
 check "merging restart" 2 'restart with outcome = merge' '4a\
 outcome = merge\
 restart = /nonexistent.ck'
+# a first-contact count goes on from a checkpoint only with the observer's
+# counts written beside it (CHECKPOINT.firsthit), and without the
+# contacts' velocities (those before the checkpoint are not in it)
+"$sb" collide "$dir/base.ini" --set "run.checkpoint=$dir/nofh.ck" \
+  --set "run.output=$dir/nofh" > /dev/null 2>&1 ||
+  fail "a checkpoint without first_hit could not be written"
+check "first_hit restart without its counts" 2 "no $dir/nofh.ck.firsthit beside the checkpoint" '4a\
+outcome = count\
+restart = '"$dir"'/nofh.ck
+$a\
+[observe]\
+first_hit = yes'
+check "first_hit_velocities restart" 2 '[observe] first_hit_velocities with restart: the contacts before the checkpoint are not in it' '4a\
+outcome = count\
+restart = '"$dir"'/nofh.ck
+$a\
+[observe]\
+first_hit = yes\
+first_hit_velocities = 100'
 # --set
 check "--set unknown key" 2 '--set run.dtt=1: [run] dtt: unknown key' '' --set run.dtt=1
 check "--set bad form" 2 '--set dt=1: expected SECTION.KEY=VALUE' '' --set dt=1

@@ -1,13 +1,17 @@
+#define _POSIX_C_SOURCE 200809L
 /* test_engine_firsthit.c — the first-contact observer
  * (smolbridge/engine_firsthit.h): each pair counted once, pairs in contact
  * at the start excluded, warm-up, per species pair counts, skip_seen, the
  * callback, the estimator against its formula, bad arguments, a Monte
  * Carlo run of diffusive spheres against the Smoluchowski (1917)
  * absorbing-sphere count with its start-up transient, and the variance of
- * the counts (hits_var) by hand and against the spread over 200 runs. */
+ * the counts (hits_var) by hand and against the spread over 200 runs, and
+ * a count that goes on from a saved state as if it had not stopped. */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 #include <stdlib.h>
+#include <unistd.h>
 
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_randist.h>
@@ -636,6 +640,194 @@ START_TEST(test_ballistic_observed)
 }
 END_TEST
 
+/* The Kn_D ~ 0.5 engine of observed_run (streams on) and an observer
+ * (skip_seen, on_hit into o) around its built-in `langevin`; the
+ * observer attached unless `saved` names a state to load first. */
+static sb_engine_firsthit *restart_observer(observed *o, int skip_seen,
+                                            const char *saved, int *st)
+{
+  sb_engine_firsthit_params fp;
+  sb_engine_firsthit_params_default(&fp);
+  fp.builtin = SB_DETECT_LANGEVIN;
+  fp.skip_seen = skip_seen;
+  fp.on_hit = observe_hit;
+  fp.hit_ctx = o;
+  sb_engine_firsthit *f = sb_engine_firsthit_alloc(&fp);
+  ck_assert_ptr_nonnull(f);
+  *st = saved ? sb_engine_firsthit_load(f, saved) : SB_SUCCESS;
+  return f;
+}
+
+static sb_engine *restart_engine(unsigned long seed)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 30.0;
+  p.dt = 0.7;
+  p.capacity = 1500;
+  p.seed = seed;
+  p.detect = SB_DETECT_LANGEVIN;
+  p.outcome = SB_OUTCOME_COUNT;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  sb_engine_species sp = {0.5, 1.0, 0.35, sqrt(2.0 / 0.35),
+                          1.0 / SB_BOLTZMANN};
+  ck_assert_int_eq(sb_engine_add_species(e, &sp, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 1500), SB_SUCCESS);
+  return e;
+}
+
+static void steps(sb_engine *e, int n)
+{
+  for (int k = 0; k < n; k++)
+    ck_assert_msg(sb_engine_step(e) == SB_SUCCESS, "%s", sb_last_error());
+}
+
+static void write_bytes(const char *path, const char *what, size_t n)
+{
+  FILE *f = fopen(path, "wb");
+  ck_assert_ptr_nonnull(f);
+  ck_assert_uint_eq(fwrite(what, 1, n, f), n);
+  fclose(f);
+}
+
+/* A run stopped after 6 steps, saved (engine checkpoint and observer),
+ * restored and run 6 more is the 12-step run: the same counts, warm-up
+ * counts, variance estimate, kernel estimate, and the same contacts in
+ * the same order (the order-sensitive hash of on_hit goes on across the
+ * restart).  Then the errors: a state loaded into an attached observer,
+ * or into one around another detector or skip_seen; an engine at another
+ * step, or at the same step of another run; files that are not observer files, truncated or with data after
+ * the end; saving an observer not attached. */
+START_TEST(test_save_load)
+{
+  char dir[] = "/tmp/sb_firsthit_XXXXXX";
+  ck_assert_ptr_nonnull(mkdtemp(dir));
+  char ck[64], fh[64], bad[64];
+  snprintf(ck, sizeof ck, "%s/engine.ck", dir);
+  snprintf(fh, sizeof fh, "%s/engine.ck.firsthit", dir);
+  snprintf(bad, sizeof bad, "%s/bad", dir);
+  for (int skip_seen = 0; skip_seen < 2; skip_seen++) {
+    observed o[2] = {{1, 0, 0.0, 0.0}, {1, 0, 0.0, 0.0}};
+    int st;
+    /* straight */
+    sb_engine *e = restart_engine(43);
+    sb_engine_firsthit *f = restart_observer(&o[0], skip_seen, NULL, &st);
+    ck_assert_int_eq(sb_engine_firsthit_save(f, e, fh), SB_EINVAL);
+    ck_assert_int_eq(sb_engine_firsthit_set_warmup(f, 3 * 0.7), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_firsthit_attach(e, f, 0.0), SB_SUCCESS);
+    steps(e, 12);
+    sb_engine_firsthit_kernel_result k[2];
+    ck_assert_int_eq(sb_engine_firsthit_kernel(
+                         f, e, 0, 0, SB_ENGINE_FIRSTHIT_CAPACITANCE,
+                         2.0 * 1.0 * 0.35, 0.95, &k[0]),
+                     SB_SUCCESS);
+    sb_engine_firsthit_counts all[2];
+    ck_assert_int_eq(sb_engine_firsthit_get(f, SB_ENGINE_FIRSTHIT_ALL,
+                                            SB_ENGINE_FIRSTHIT_ALL, &all[0]),
+                     SB_SUCCESS);
+    sb_engine_free(e);
+    sb_engine_firsthit_free(f);
+    /* stopped at step 6, saved, restored */
+    e = restart_engine(43);
+    f = restart_observer(&o[1], skip_seen, NULL, &st);
+    ck_assert_int_eq(sb_engine_firsthit_set_warmup(f, 3 * 0.7), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_firsthit_attach(e, f, 0.0), SB_SUCCESS);
+    steps(e, 6);
+    ck_assert_int_eq(sb_engine_checkpoint_save(e, ck), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_firsthit_save(f, e, fh), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_firsthit_load(f, fh), SB_EINVAL);  /* attached */
+    sb_engine_free(e);
+    sb_engine_firsthit_free(f);
+    e = sb_engine_checkpoint_load(ck, &st);
+    ck_assert_int_eq(st, SB_SUCCESS);
+    f = restart_observer(&o[1], skip_seen, fh, &st);
+    ck_assert_msg(st == SB_SUCCESS, "%s", sb_last_error());
+    ck_assert_int_eq(sb_engine_firsthit_attach(e, f, 0.0), SB_SUCCESS);
+    steps(e, 6);
+    ck_assert_int_eq(sb_engine_firsthit_kernel(
+                         f, e, 0, 0, SB_ENGINE_FIRSTHIT_CAPACITANCE,
+                         2.0 * 1.0 * 0.35, 0.95, &k[1]),
+                     SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_firsthit_get(f, SB_ENGINE_FIRSTHIT_ALL,
+                                            SB_ENGINE_FIRSTHIT_ALL, &all[1]),
+                     SB_SUCCESS);
+    ck_assert(all[0].hits == all[1].hits && all[0].hits_var == all[1].hits_var);
+    ck_assert(all[0].hits_var > 0.0);
+    printf("save/load, skip_seen = %d: %llu / %llu first contacts "
+           "(%llu / %llu in the warm-up), K %.6g / %.6g\n", skip_seen,
+           (unsigned long long)k[0].c.hits, (unsigned long long)k[1].c.hits,
+           (unsigned long long)k[0].c.warm, (unsigned long long)k[1].c.warm,
+           k[0].K, k[1].K);
+    ck_assert_uint_gt(k[0].c.hits, 300);
+    ck_assert_uint_eq(k[0].c.hits, k[1].c.hits);
+    ck_assert_uint_eq(k[0].c.warm, k[1].c.warm);
+    ck_assert_uint_eq(k[0].c.contact0, k[1].c.contact0);
+    ck_assert(k[0].c.pairs_apart == k[1].c.pairs_apart);
+    ck_assert(k[0].c.hits_var == k[1].c.hits_var);
+    ck_assert(k[0].K == k[1].K && k[0].lo == k[1].lo && k[0].hi == k[1].hi);
+    ck_assert_uint_eq(o[0].n, o[1].n);
+    ck_assert(o[0].hash == o[1].hash);
+    /* the errors */
+    sb_engine_firsthit_free(f);
+    observed z = {0, 0, 0.0, 0.0};
+    f = restart_observer(&z, !skip_seen, fh, &st);
+    ck_assert_int_eq(st, SB_EINVAL);
+    ck_assert_ptr_nonnull(strstr(sb_last_error(), "skip_seen"));
+    sb_engine_firsthit_free(f);
+    f = restart_observer(&z, skip_seen, fh, &st);
+    ck_assert_int_eq(st, SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_firsthit_attach(e, f, 0.0), SB_EINVAL);
+    ck_assert_ptr_nonnull(strstr(sb_last_error(), "step 6"));
+    sb_engine_firsthit_free(f);
+    sb_engine_free(e);
+    e = restart_engine(44);  /* another run at the same step */
+    steps(e, 6);
+    f = restart_observer(&z, skip_seen, fh, &st);
+    ck_assert_int_eq(st, SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_firsthit_attach(e, f, 0.0), SB_EINVAL);
+    ck_assert_ptr_nonnull(strstr(sb_last_error(), "other particles"));
+    sb_engine_firsthit_free(f);
+    sb_engine_free(e);
+  }
+  int st;
+  observed z = {0, 0, 0.0, 0.0};
+  sb_engine_firsthit_params fp;
+  sb_engine_firsthit_params_default(&fp);  /* ballistic */
+  sb_engine_firsthit *f = sb_engine_firsthit_alloc(&fp);
+  ck_assert_int_eq(sb_engine_firsthit_load(f, fh), SB_EINVAL);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "langevin"));
+  sb_engine_firsthit_free(f);
+  /* not observer files, truncated, trailing data, missing */
+  FILE *in = fopen(fh, "rb");
+  ck_assert_ptr_nonnull(in);
+  char buf[1 << 16];
+  const size_t n = fread(buf, 1, sizeof buf, in);
+  fclose(in);
+  ck_assert(n > 200 && n < sizeof buf - 1);
+  const size_t cut[4] = {8, 100, n - 3, n + 1};
+  buf[n] = 0;
+  for (int q = 0; q < 4; q++) {
+    write_bytes(bad, buf, cut[q]);
+    f = restart_observer(&z, 0, bad, &st);
+    ck_assert_int_eq(st, SB_EFORMAT);
+    sb_engine_firsthit_free(f);
+  }
+  write_bytes(bad, "SBENGCK4", 8);
+  f = restart_observer(&z, 0, bad, &st);
+  ck_assert_int_eq(st, SB_EFORMAT);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "not a first-contact"));
+  sb_engine_firsthit_free(f);
+  remove(bad);
+  f = restart_observer(&z, 0, bad, &st);
+  ck_assert_int_eq(st, SB_EIO);
+  sb_engine_firsthit_free(f);
+  remove(ck);
+  remove(fh);
+  rmdir(dir);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("engine_firsthit");
@@ -650,6 +842,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_mc_variance);
   tcase_add_test(tc, test_langevin_observed);
   tcase_add_test(tc, test_ballistic_observed);
+  tcase_add_test(tc, test_save_load);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -188,10 +188,12 @@ int sbi_col_check(sbi_col_config *c)
                           "cluster sizes are not in a checkpoint; run merging "
                           "in one go", sbi_col_where(c, run, "restart"),
                           c->outcome);
-    if (c->first_hit)
-      return sbi_col_fail(c, "%s: [observe] first_hit with restart: the "
-                          "counted pairs are not in a checkpoint",
-                          sbi_col_where(c, "observe", "first_hit"));
+    if (c->first_hit && c->first_hit_vn > 0)
+      return sbi_col_fail(c, "%s: [observe] first_hit_velocities with "
+                          "restart: the contacts before the checkpoint are "
+                          "not in it; run it in one go",
+                          sbi_col_where(c, "observe",
+                                        "first_hit_velocities"));
   } else {
     if (isnan(c->Lx) || isnan(c->Ly) || (c->dim == 3 && isnan(c->Lz)))
       return sbi_col_fail(c, "[run] L (or Lx, Ly%s) is required: the box "

@@ -309,9 +309,15 @@ void sbi_col_run_free(sbi_col_run *r);
 /* --------------------------------------------------- collide_firsthit.c */
 
 /* Install first-hit counting around the run's detector (bridge context
- * r->bridge, or the built-in `builtin`) with the neighbour reach. */
+ * r->bridge, or the built-in `builtin`) with the neighbour reach; on
+ * restart with the counts saved beside the checkpoint. */
 int sbi_col_firsthit_attach(const sbi_col_config *c, sbi_col_run *r,
                             sb_engine_detect builtin, double reach);
+/* The observer's file beside a checkpoint: CHECKPOINT.firsthit. */
+void sbi_col_firsthit_path(const char *checkpoint, char *buf, size_t len);
+/* Save the observer beside [run] checkpoint (nothing without either);
+ * a status with sb_last_error() set. */
+int sbi_col_firsthit_save(const sbi_col_config *c, const sbi_col_run *r);
 /* Start of counting (end of the warm-up), s. */
 void sbi_col_firsthit_start(sbi_col_run *r, double t1);
 void sbi_col_firsthit_free(sb_engine_firsthit *f);

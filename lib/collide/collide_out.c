@@ -84,6 +84,20 @@ int sbi_col_out_prepare(sbi_col_config *c)
     fclose(g);
     if (!existed)
       remove(c->checkpoint);
+    if (c->first_hit) {  /* the observer's file beside it */
+      char fh[600];
+      sbi_col_firsthit_path(c->checkpoint, fh, sizeof fh);
+      existed = stat(fh, &st) == 0;
+      g = fopen(fh, "ab");
+      if (!g)
+        return sbi_col_fail(c, "%s: [run] checkpoint = %s: %s not "
+                            "writable: %s",
+                            sbi_col_where(c, "run", "checkpoint"),
+                            c->checkpoint, fh, strerror(errno));
+      fclose(g);
+      if (!existed)
+        remove(fh);
+    }
   }
   return 0;
 }

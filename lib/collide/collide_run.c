@@ -271,7 +271,8 @@ int sb_collide_run(sb_collide *cl, sb_collide_progress_fn fn, void *user)
   if (plan(cl) || sbi_col_out_prepare(c))
     return sbi_col_failure(cl, SB_COLLIDE_EINPUT, SB_EINVAL, c->err);
   const double t0 = sb_engine_time(e);
-  sbi_col_firsthit_start(r, t0 + r->warm);
+  if (!c->restart[0])  /* on restart the saved warm-up end stays */
+    sbi_col_firsthit_start(r, t0 + r->warm);
   reporter rp = {fn, user, {SB_COLLIDE_BEGIN, t0, t0, t0 + r->warm,
                             r->t_end, sb_engine_get_params(e)->dt, 0.0, 0,
                             0, -1}, r->fh};
@@ -304,7 +305,8 @@ int sb_collide_run(sb_collide *cl, sb_collide_progress_fn fn, void *user)
     sbi_col_more(cl, "could not write the outputs in %s/", c->output);
   }
   free(pser.rows);
-  if (c->checkpoint[0] && sb_engine_checkpoint_save(e, c->checkpoint)) {
+  if (c->checkpoint[0] && (sb_engine_checkpoint_save(e, c->checkpoint) ||
+                           sbi_col_firsthit_save(c, r))) {
     if (!cl->failed)
       sbi_col_failure(cl, SB_COLLIDE_EWRITE, SB_EIO, "");
     sbi_col_more(cl, "checkpoint: %s", sb_last_error());

@@ -554,6 +554,16 @@ static int attach_bridge(sbi_col_config *c, sbi_col_run *r)
   r->bridge = sb_engine_bridge_alloc(&bp);
   if (!r->bridge)
     return sbi_col_fail(c, "[bridge]: %s", sb_last_error());
+  /* on restart the saved species: with turbulence their Brownian share
+   * (the collision split) from the b2 set in sbi_col_setup */
+  for (int k = 0; c->restart[0] && c->eps > 0 && k < COL_MAXSPEC; k++) {
+    const sb_engine_species *s = sb_engine_get_species(r->e, (size_t)k);
+    if (s && isfinite(s->tau) &&
+        sb_engine_bridge_set_b2(r->bridge, (size_t)k, c->b2_total[k],
+                                c->b2_brown[k]))
+      return sbi_col_fail(c, "[turbulence] with restart: %s",
+                          sb_last_error());
+  }
   for (int k = 0; k < c->nsp && !c->restart[0]; k++) {
     const sb_engine_species *s = sb_engine_get_species(r->e, (size_t)k);
     if (isinf(s->tau))
@@ -665,6 +675,19 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
                                 sb_engine_set_outcome(r->e, om, c->eta))))
       return sbi_col_fail(c, "[run] restart: %s", sb_last_error());
     c->dim = sb_engine_get_params(r->e)->dim;
+    /* the position variance rates of the saved species, (B tau)^2: with
+     * turbulence B holds its part (species_build), taken out again for
+     * the Brownian one */
+    for (int k = 0; k < COL_MAXSPEC; k++) {
+      const sb_engine_species *s = sb_engine_get_species(r->e, (size_t)k);
+      if (!s || !isfinite(s->tau))
+        continue;
+      c->b2_brown[k] = c->b2_total[k] = (s->B * s->tau) * (s->B * s->tau);
+      if (c->eps > 0)
+        c->b2_brown[k] = fmax(0.0, c->b2_total[k] -
+                                       0.5 * sb_turb_pair_b2(2.0 * s->radius,
+                                                             c->eps, c->nu));
+    }
   } else {
     sb_engine_params p;
     sb_engine_params_default(&p);

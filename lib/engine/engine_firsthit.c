@@ -13,27 +13,9 @@
 
 #include "common/internal.h"
 #include "engine_internal.h"
+#include "engine_firsthit_state.h"
 
 #define PI 3.14159265358979323846
-#define NPT (SB_ENGINE_PAIR_SPECIES * (SB_ENGINE_PAIR_SPECIES + 1) / 2)
-
-struct sb_engine_firsthit {
-  sb_engine_firsthit_params par;
-  int attached;
-  sbi_idmap set;       /* pair keys of the pairs seen */
-  double t1;       /* end of the warm-up, s */
-  uint64_t hits[NPT], warm[NPT], contact0[NPT];
-  double pairs_apart[NPT];
-  uint64_t hits_all, warm_all, contact0_all;
-  double pairs_apart_all;
-  /* each particle's counted contacts with each partner species (slot
-   * SB_ENGINE_PAIR_SPECIES: with any), key (id << 5 | slot) + 1, and
-   * per species pair the sums of their squares over the first species'
-   * side [0] and the second's [1] (one side for a species with itself) */
-  sbi_idmap counts;
-  double sq[NPT][2], sq_all;
-  double ns[SB_ENGINE_PAIR_SPECIES], n_all;  /* particles at attachment */
-};
 
 /* 1 if new, 0 if present, -1 out of memory. */
 static int set_insert(sb_engine_firsthit *f, uint64_t key)
@@ -148,6 +130,25 @@ static int take(sb_engine *e, const sb_engine_pair *p, double s, void *ctx)
   return SB_SUCCESS;
 }
 
+/* Install f's detector on e (sb_engine_firsthit_attach). */
+static int install(sb_engine *e, sb_engine_firsthit *f, double reach)
+{
+  int st;
+  if (!f->par.detect) {
+    /* the built-in itself, observed: its own reach, search (the Verlet
+     * list of the chord detectors, the Langevin search) and first pass on
+     * the threads (for `langevin` with the engine's streams); skip only
+     * reads the set of pairs seen, which changes in take, serially */
+    st = sb_engine_set_detect(e, f->par.builtin);
+    if (!st)
+      sbi_engine_set_observer(e, skip, take, f);
+  } else
+    st = sb_engine_set_detector(e, detect, f, reach);
+  if (!st)
+    f->attached = 1;
+  return st;
+}
+
 void sb_engine_firsthit_params_default(sb_engine_firsthit_params *p)
 {
   memset(p, 0, sizeof *p);
@@ -197,6 +198,20 @@ int sb_engine_firsthit_attach(sb_engine *e, sb_engine_firsthit *f,
   if (!(reach >= 0.0) || !isfinite(reach))
     return sbi_error(SB_EINVAL, __func__, "reach = %g: must be finite and "
                      ">= 0", reach);
+  if (f->restored) {  /* sb_engine_firsthit_load: the saved counts */
+    if (e->steps != f->saved_steps)
+      return sbi_error(SB_EINVAL, __func__, "the observer was saved at "
+                       "step %llu, the engine is at step %llu: restore "
+                       "both from the same checkpoint",
+                       (unsigned long long)f->saved_steps,
+                       (unsigned long long)e->steps);
+    if (sbi_firsthit_print(e) != f->saved_print)
+      return sbi_error(SB_EINVAL, __func__, "the observer was saved with "
+                       "other particles than the engine has (another "
+                       "checkpoint at the same step): restore both from "
+                       "the same checkpoint");
+    return install(e, f, reach);
+  }
   /* particles per species */
   double ns[SB_ENGINE_PAIR_SPECIES] = {0};
   for (size_t i = 0; i < e->n; i++)
@@ -242,19 +257,7 @@ int sb_engine_firsthit_attach(sb_engine *e, sb_engine_firsthit *f,
   f->n_all = N;
   f->contact0_all = (uint64_t)novall;
   f->pairs_apart_all = 0.5 * N * (N - 1.0) - novall;
-  if (!f->par.detect) {
-    /* the built-in itself, observed: its own reach, search (the Verlet
-     * list of the chord detectors, the Langevin search) and first pass on
-     * the threads (for `langevin` with the engine's streams); skip only
-     * reads the set of pairs seen, which changes in take, serially */
-    st = sb_engine_set_detect(e, f->par.builtin);
-    if (!st)
-      sbi_engine_set_observer(e, skip, take, f);
-  } else
-    st = sb_engine_set_detector(e, detect, f, reach);
-  if (!st)
-    f->attached = 1;
-  return st;
+  return install(e, f, reach);
 }
 
 int sb_engine_firsthit_set_warmup(sb_engine_firsthit *f, double t1)

@@ -5,6 +5,7 @@
  * engine's collision tally (each particle's and each pair's collisions,
  * sb_engine_set_count_variance). */
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "engine_internal.h"
@@ -74,6 +75,59 @@ int sbi_idmap_has(const sbi_idmap *m, uint64_t key)
     if (!m->key[h])
       return 0;
   }
+}
+
+long sbi_idmap_put(sbi_idmap *m, uint64_t key, uint32_t val)
+{
+  const long h = sbi_idmap_add(m, key, m->val != NULL);
+  if (h < 0)
+    return -1;
+  if (m->val)
+    for (size_t s = slot(key, m->cap);; s = (s + 1) & (m->cap - 1))
+      if (m->key[s] == key) {
+        m->val[s] = val;
+        break;
+      }
+  return h;
+}
+
+int sbi_idmap_write(const sbi_idmap *m, FILE *f)
+{
+  const uint64_t n = m->n;
+  const unsigned char counted = m->val != NULL;
+  if (fwrite(&n, sizeof n, 1, f) != 1 || fwrite(&counted, 1, 1, f) != 1)
+    return -1;
+  for (size_t i = 0; i < m->cap; i++)
+    if (m->key[i] &&
+        (fwrite(&m->key[i], sizeof *m->key, 1, f) != 1 ||
+         (counted && fwrite(&m->val[i], sizeof *m->val, 1, f) != 1)))
+      return -1;
+  return 0;
+}
+
+int sbi_idmap_read(sbi_idmap *m, FILE *f, int counted)
+{
+  uint64_t n;
+  unsigned char c;
+  if (fread(&n, sizeof n, 1, f) != 1 || fread(&c, 1, 1, f) != 1)
+    return -1;
+  if (c != (counted != 0) || n > (uint64_t)1 << 40)
+    return -2;
+  sbi_idmap_free(m);
+  if (counted && grow(m, 1))  /* a counted map keeps `val` */
+    return -1;
+  for (uint64_t q = 0; q < n; q++) {
+    uint64_t key;
+    uint32_t val = 0;
+    if (fread(&key, sizeof key, 1, f) != 1 ||
+        (counted && fread(&val, sizeof val, 1, f) != 1))
+      return -1;
+    if (key == 0 || sbi_idmap_has(m, key))
+      return -2;
+    if (sbi_idmap_put(m, key, val) < 0)
+      return -1;
+  }
+  return 0;
 }
 
 void sbi_idmap_free(sbi_idmap *m)

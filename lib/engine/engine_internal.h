@@ -132,6 +132,15 @@ typedef struct {
  * memory. */
 long sbi_idmap_add(sbi_idmap *m, uint64_t key, int counted);
 int sbi_idmap_has(const sbi_idmap *m, uint64_t key);
+/* Enter key (never 0, absent) with count val (a plain set: val 0); as
+ * sbi_idmap_add. */
+long sbi_idmap_put(sbi_idmap *m, uint64_t key, uint32_t val);
+/* The map to f (its size, whether counted, then each key and count in
+ * table order, native binary), and back into m (emptied first; counted:
+ * whether the map keeps counts, which must match the file's): 0, -1 on a
+ * read or write error or out of memory, -2 on malformed data. */
+int sbi_idmap_write(const sbi_idmap *m, FILE *f);
+int sbi_idmap_read(sbi_idmap *m, FILE *f, int counted);
 /* Free the tables (the map is then empty and usable). */
 void sbi_idmap_free(sbi_idmap *m);
 /* Key of the unordered pair of particle ids (never 0). */

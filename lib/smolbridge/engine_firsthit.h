@@ -184,6 +184,30 @@ void sb_engine_firsthit_free(sb_engine_firsthit *f);
 int sb_engine_firsthit_attach(sb_engine *e, sb_engine_firsthit *f,
                               double reach);
 
+/** Save the state of an attached observer to `path` (native binary,
+ *  portable between builds of the same type sizes and endianness): the
+ *  pairs seen, the counts and sums, the warm-up end, the particles per
+ *  species at the attachment, and the step engine e is at.  Save it
+ *  beside a checkpoint of the same engine at the same step
+ *  (sb_engine_checkpoint_save): the pair ids of both must match.
+ *  SB_EINVAL (not attached), SB_EIO (cannot write; no file is left). */
+int sb_engine_firsthit_save(const sb_engine_firsthit *f, const sb_engine *e,
+                            const char *path);
+
+/** Restore a saved state into a new observer f, before it is attached
+ *  (then sb_engine_firsthit_attach keeps these counts instead of starting
+ *  afresh, and fails with SB_EINVAL unless the engine is at the saved
+ *  step: load both from the same checkpoint).  f's parameters must watch
+ *  the same detector (custom, or the same built-in) with the same
+ *  skip_seen; set detect, on_hit and their contexts again (callbacks are
+ *  not saved).  With the engine restored from its checkpoint, the run
+ *  then goes on bit for bit as if it had not stopped (the same draws: the
+ *  engine's generator state is in its checkpoint).  SB_EINVAL (attached,
+ *  another detector or skip_seen), SB_EIO (cannot open), SB_EFORMAT (not
+ *  an observer file, truncated, or from another build); f is unchanged on
+ *  failure. */
+int sb_engine_firsthit_load(sb_engine_firsthit *f, const char *path);
+
 /** End of the warm-up, s (default 0): first contacts before t1 are
  *  counted in `warm`, not in `hits`. */
 int sb_engine_firsthit_set_warmup(sb_engine_firsthit *f, double t1);
