@@ -273,6 +273,31 @@ a, b = (json.load(open(p))["first_hit"] for p in sys.argv[1:3])
 sys.exit(0 if a == b and a["hits"] > 8000 else 1)
 PY
   fail "$kex: the restarted count differs from the run in one go"
+# a merging run (DLVO sticking: draws from the engine's generator)
+# stopped half-way and continued from its checkpoint and the sizes saved
+# beside it (CHECKPOINT.agglo): the counts and sizes.csv are the run's in
+# one go, to the last bit (the restart keeps the sampling period)
+dex="${srcdir:-.}/examples/v8_dlvo_gas.ini"
+"$sb" collide "$dex" --set "run.output=$out/dlvo0" --set run.sample_every=2 \
+  > /dev/null 2>&1 &&
+  "$sb" collide "$dex" --set "run.output=$out/dlvo1" --set run.steps=12 \
+    --set run.sample_every=2 --set "run.checkpoint=$out/dlvo.ck" \
+    > /dev/null 2>&1 && [ -s "$out/dlvo.ck.agglo" ] &&
+  "$sb" collide "$dex" --set "run.output=$out/dlvo2" --set run.steps=11 \
+    --set "run.restart=$out/dlvo.ck" > /dev/null 2>&1 ||
+  fail "$dex: the run, its first half or the restart"
+cmp -s "$out/dlvo0/sizes.csv" "$out/dlvo2/sizes.csv" ||
+  fail "$dex: the restarted sizes.csv differs from the run in one go"
+"$py" - "$out/dlvo0/summary.json" "$out/dlvo2/summary.json" <<'PY' ||
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+print("merging restart: %d / %d merges, %d / %d rebounds"
+      % (a["agglo"]["merges"], b["agglo"]["merges"],
+         a["agglo"]["rebounds"], b["agglo"]["rebounds"]))
+same = all(a[k] == b[k] for k in ("agglo", "collisions", "kernel"))
+sys.exit(0 if same and a["agglo"]["merges"] > 500 else 1)
+PY
+  fail "$dex: the restarted counts differ from the run in one go"
 # a bridge run with turbulence continued from a checkpoint keeps the
 # Brownian share of its collisions (the split of the species' b2, whose
 # total is in the checkpoint: Mohaupt 2011, eqs 6.20-6.23); it read 1

@@ -309,15 +309,16 @@ check "no species" 2 'no [species NAME] section' '6,$d'
 check "unwritable output" 2 '[run] output = /proc/nope: cannot create the directory' 's|^output = .*|output = /proc/nope|'
 check "unwritable checkpoint" 2 '[run] checkpoint = /proc/x.ck: not writable' '4a\
 checkpoint = /proc/x.ck'
-check "merging restart" 2 'restart with outcome = merge' '4a\
-outcome = merge\
-restart = /nonexistent.ck'
-# a first-contact count goes on from a checkpoint only with the observer's
-# counts written beside it (CHECKPOINT.firsthit), and without the
-# contacts' velocities (those before the checkpoint are not in it)
+# a merging run goes on from a checkpoint only with its sizes written
+# beside it (CHECKPOINT.agglo), a first-contact count only with the
+# observer's counts (CHECKPOINT.firsthit), and without the contacts'
+# velocities (those before the checkpoint are not in it)
 "$sb" collide "$dir/base.ini" --set "run.checkpoint=$dir/nofh.ck" \
   --set "run.output=$dir/nofh" > /dev/null 2>&1 ||
   fail "a checkpoint without first_hit could not be written"
+check "merging restart without its sizes" 2 "restart with outcome = merge: no $dir/nofh.ck.agglo beside the checkpoint" '4a\
+outcome = merge\
+restart = '"$dir"'/nofh.ck'
 check "first_hit restart without its counts" 2 "no $dir/nofh.ck.firsthit beside the checkpoint" '4a\
 outcome = count\
 restart = '"$dir"'/nofh.ck

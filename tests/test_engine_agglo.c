@@ -1,14 +1,18 @@
 /* test_engine_agglo.c — agglomeration in the engine: particle
  * removal, the merge outcome (conservation, barycentre, sizes, growth
- * laws), the size observers, the DLVO sticking fraction and a small
- * constant-kernel run against the analytic Smoluchowski solution.
+ * laws), the size observers, the DLVO sticking fraction, a small
+ * constant-kernel run against the analytic Smoluchowski solution, and a
+ * merging run that goes on from a checkpoint as if it had not stopped.
  *
  * Units: unit-free (the engine only needs consistent units).  Gas tests:
  * diameter 1, primary mass 1, k_B T / m = 1 (species T = 1/k_B).
  */
+#define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
@@ -17,6 +21,7 @@
 #include <smolbridge/pbe.h>
 #include <smolbridge/stats.h>
 
+#include "engine_same.h"
 #include "testutil.h"
 
 #define PI 3.14159265358979323846
@@ -400,6 +405,169 @@ START_TEST(test_constant_kernel)
 }
 END_TEST
 
+/* The DLVO gas of test_merge_conservation (a barrier of 1.5 k_B T, so
+ * the sticking draws come from the engine's generator), Stokes growth. */
+static sb_engine *dlvo_gas(unsigned long seed, sb_agglo **a, double wmax,
+                           const char *saved, int *st)
+{
+  const size_t N = 400;
+  sb_engine *e = box(cbrt(N * PI / 6.0 / 0.05), 0.02, N, seed);
+  add_gas_species(e);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, N), SB_SUCCESS);
+  sb_agglo_params ap;
+  sb_agglo_params_default(&ap);
+  ap.rule = SB_AGGLO_DLVO;
+  ap.wmax = wmax;
+  *a = sb_agglo_alloc(&ap);
+  ck_assert_ptr_nonnull(*a);
+  *st = saved ? sb_agglo_load(*a, saved) : SB_SUCCESS;
+  return e;
+}
+
+/* steps with a size row after each */
+static void agglo_steps(sb_engine *e, sb_agglo *a, int n)
+{
+  for (int k = 0; k < n; k++) {
+    ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+    ck_assert_int_eq(sb_agglo_sample(a, e), SB_SUCCESS);
+  }
+}
+
+static void write_file(const char *path, const void *what, size_t n)
+{
+  FILE *f = fopen(path, "wb");
+  ck_assert_ptr_nonnull(f);
+  ck_assert_uint_eq(fwrite(what, 1, n, f), n);
+  fclose(f);
+}
+
+/* A merging run stopped after 60 steps, saved (engine checkpoint and the
+ * agglomeration context), restored and run 60 more is the 120-step run:
+ * the same particles, counters, merges and rebounds, and the same size
+ * rows; a merge after the restart reuses the saved cluster species.
+ * Then the errors: a state loaded into an attached context or one with
+ * another barrier; an engine at another step, or another run at the same
+ * step; files that are not agglomeration files, truncated or with data
+ * after the end; saving a context not attached. */
+START_TEST(test_save_load)
+{
+  const double W = 1.5 * 1.0;  /* k_B T = 1 */
+  char dir[] = "/tmp/sb_agglo_XXXXXX";
+  ck_assert_ptr_nonnull(mkdtemp(dir));
+  char ck[64], ag[64], bad[64];
+  snprintf(ck, sizeof ck, "%s/run.ck", dir);
+  snprintf(ag, sizeof ag, "%s/run.ck.agglo", dir);
+  snprintf(bad, sizeof bad, "%s/bad", dir);
+  int st;
+  sb_agglo *a, *b;
+  sb_engine *e = dlvo_gas(4, &a, W, NULL, &st);
+  ck_assert_int_eq(sb_agglo_save(a, e, ag), SB_EINVAL);  /* not attached */
+  ck_assert_int_eq(sb_agglo_attach(e, a), SB_SUCCESS);
+  agglo_steps(e, a, 120);
+  /* stopped at 60 */
+  sb_engine *f = dlvo_gas(4, &b, W, NULL, &st);
+  ck_assert_int_eq(sb_agglo_attach(f, b), SB_SUCCESS);
+  agglo_steps(f, b, 60);
+  ck_assert_int_eq(sb_engine_checkpoint_save(f, ck), SB_SUCCESS);
+  ck_assert_int_eq(sb_agglo_save(b, f, ag), SB_SUCCESS);
+  ck_assert_int_eq(sb_agglo_load(b, ag), SB_EINVAL);  /* attached */
+  sb_agglo_stats half;
+  sb_agglo_get_stats(b, &half);
+  sb_agglo_free(b);
+  sb_engine_free(f);
+  f = sb_engine_checkpoint_load(ck, &st);
+  ck_assert_int_eq(st, SB_SUCCESS);
+  sb_agglo_params ap;
+  sb_agglo_params_default(&ap);
+  ap.rule = SB_AGGLO_DLVO;
+  ap.wmax = W;
+  b = sb_agglo_alloc(&ap);
+  ck_assert_int_eq(sb_agglo_load(b, ag), SB_SUCCESS);
+  ck_assert_int_eq(sb_agglo_attach(f, b), SB_SUCCESS);
+  agglo_steps(f, b, 60);
+  sbt_assert_same_run(e, f, SBT_SAME_CANDIDATES);
+  sb_agglo_stats sa, sb;
+  sb_agglo_get_stats(a, &sa);
+  sb_agglo_get_stats(b, &sb);
+  printf("agglo save/load: %llu / %llu merges (%llu at the stop), %llu / "
+         "%llu rebounds\n", (unsigned long long)sa.nmerge,
+         (unsigned long long)sb.nmerge, (unsigned long long)half.nmerge,
+         (unsigned long long)sa.nrebound, (unsigned long long)sb.nrebound);
+  ck_assert_uint_gt(half.nmerge, 20);
+  ck_assert_uint_gt(sa.nmerge, half.nmerge + 20);
+  ck_assert_uint_gt(sa.nrebound, 20);
+  ck_assert_uint_eq(sa.nmerge, sb.nmerge);
+  ck_assert_uint_eq(sa.nrebound, sb.nrebound);
+  ck_assert(sa.erel_sum == sb.erel_sum);
+  size_t ra, rb, ca, cb;
+  const double *xa = sb_agglo_series(a, &ra, &ca);
+  const double *xb = sb_agglo_series(b, &rb, &cb);
+  ck_assert_uint_eq(ra, 120);
+  ck_assert_uint_eq(ra, rb);
+  ck_assert_uint_eq(ca, cb);
+  ck_assert(!memcmp(xa, xb, ra * ca * sizeof *xa));
+  double na[64], nb[64], ta, tb;
+  ck_assert_int_eq(sb_agglo_count_sizes(a, e, 64, na, &ta), SB_SUCCESS);
+  ck_assert_int_eq(sb_agglo_count_sizes(b, f, 64, nb, &tb), SB_SUCCESS);
+  ck_assert(!memcmp(na, nb, sizeof na) && ta == tb);
+  for (size_t k = 1; k <= 64; k++)  /* the same species for each size */
+    if (na[k - 1] > 0)
+      ck_assert_uint_eq(sb_agglo_size_of_species(a, k - 1),
+                        sb_agglo_size_of_species(b, k - 1));
+  sb_agglo_free(a);
+  sb_agglo_free(b);
+  sb_engine_free(e);
+  /* the errors: another barrier; the engine at another step; another run
+   * at the saved step */
+  e = dlvo_gas(4, &a, 2.0 * W, ag, &st);
+  ck_assert_int_eq(st, SB_EINVAL);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "other agglomeration"));
+  sb_agglo_free(a);
+  sb_engine_free(e);
+  a = sb_agglo_alloc(&ap);
+  ck_assert_int_eq(sb_agglo_load(a, ag), SB_SUCCESS);
+  ck_assert_int_eq(sb_agglo_attach(f, a), SB_EINVAL);  /* f is at 120 */
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "step 60"));
+  sb_agglo_free(a);
+  sb_engine_free(f);
+  e = dlvo_gas(5, &a, W, NULL, &st);
+  ck_assert_int_eq(sb_agglo_attach(e, a), SB_SUCCESS);
+  agglo_steps(e, a, 60);
+  sb_agglo_free(a);
+  a = sb_agglo_alloc(&ap);
+  ck_assert_int_eq(sb_agglo_load(a, ag), SB_SUCCESS);
+  ck_assert_int_eq(sb_agglo_attach(e, a), SB_EINVAL);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "other particles"));
+  sb_agglo_free(a);
+  sb_engine_free(e);
+  /* files: truncated, trailing data, not such a file, missing */
+  FILE *in = fopen(ag, "rb");
+  ck_assert_ptr_nonnull(in);
+  static char buf[1 << 16];
+  const size_t n = fread(buf, 1, sizeof buf - 1, in);
+  fclose(in);
+  ck_assert(n > 200 && n < sizeof buf - 1);
+  buf[n] = 0;
+  const size_t cut[4] = {8, 60, n - 5, n + 1};
+  for (int q = 0; q < 4; q++) {
+    write_file(bad, buf, cut[q]);
+    a = sb_agglo_alloc(&ap);
+    ck_assert_int_eq(sb_agglo_load(a, bad), SB_EFORMAT);
+    sb_agglo_free(a);
+  }
+  write_file(bad, "SBFHIT01", 8);
+  a = sb_agglo_alloc(&ap);
+  ck_assert_int_eq(sb_agglo_load(a, bad), SB_EFORMAT);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "not an agglomeration"));
+  remove(bad);
+  ck_assert_int_eq(sb_agglo_load(a, bad), SB_EIO);
+  sb_agglo_free(a);
+  remove(ck);
+  remove(ag);
+  rmdir(dir);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("engine_agglo");
@@ -408,6 +576,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_merge_pair);
   tcase_add_test(tc, test_growth);
   tcase_add_test(tc, test_merge_conservation);
+  tcase_add_test(tc, test_save_load);
   suite_add_tcase(s, tc);
   TCase *mc = tcase_create("mc");
   tcase_add_test(mc, test_dlvo_sticking);

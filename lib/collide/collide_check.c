@@ -183,11 +183,6 @@ int sbi_col_check(sbi_col_config *c)
     for (int k = 0; k < c->nsp; k++)
       sbi_col_warn(c, "%s: [%s] ignored: the particles come from the restart "
                    "checkpoint", c->sp[k].where, c->sp[k].name);
-    if (sbi_col_agglo(c))
-      return sbi_col_fail(c, "%s: [run] restart with outcome = %s: the "
-                          "cluster sizes are not in a checkpoint; run merging "
-                          "in one go", sbi_col_where(c, run, "restart"),
-                          c->outcome);
     if (c->first_hit && c->first_hit_vn > 0)
       return sbi_col_fail(c, "%s: [observe] first_hit_velocities with "
                           "restart: the contacts before the checkpoint are "

@@ -313,6 +313,11 @@ void sbi_col_run_free(sbi_col_run *r);
  * restart with the counts saved beside the checkpoint. */
 int sbi_col_firsthit_attach(const sbi_col_config *c, sbi_col_run *r,
                             sb_engine_detect builtin, double reach);
+/* The agglomeration context's file beside a checkpoint, CHECKPOINT.agglo,
+ * and its save (nothing without either); a status with sb_last_error()
+ * set (collide_setup.c). */
+void sbi_col_agglo_path(const char *checkpoint, char *buf, size_t len);
+int sbi_col_agglo_save(const sbi_col_config *c, const sbi_col_run *r);
 /* The observer's file beside a checkpoint: CHECKPOINT.firsthit. */
 void sbi_col_firsthit_path(const char *checkpoint, char *buf, size_t len);
 /* Save the observer beside [run] checkpoint (nothing without either);

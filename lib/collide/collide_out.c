@@ -84,9 +84,12 @@ int sbi_col_out_prepare(sbi_col_config *c)
     fclose(g);
     if (!existed)
       remove(c->checkpoint);
-    if (c->first_hit) {  /* the observer's file beside it */
+    if (c->first_hit || sbi_col_agglo(c)) {  /* the file beside it */
       char fh[600];
-      sbi_col_firsthit_path(c->checkpoint, fh, sizeof fh);
+      if (c->first_hit)
+        sbi_col_firsthit_path(c->checkpoint, fh, sizeof fh);
+      else
+        sbi_col_agglo_path(c->checkpoint, fh, sizeof fh);
       existed = stat(fh, &st) == 0;
       g = fopen(fh, "ab");
       if (!g)

@@ -247,11 +247,13 @@ static int plan(sb_collide *cl)
   }
   if (sbi_col_batches_setup(c, r, lround((r->t_end - t0 - r->warm) / dt)))
     return SB_EINVAL;
+  /* ~200 samples over the run; a restart keeps the checkpoint's period,
+   * so that its rows fall where those of the run in one go would */
   long nst = lround((r->t_end - t0) / dt);
-  sb_engine_set_sample_every(e, c->sample_every > 0
-                                    ? (size_t)c->sample_every
-                                    : (size_t)(nst / 200 > 0 ? nst / 200
-                                                             : 1));
+  if (c->sample_every > 0)
+    sb_engine_set_sample_every(e, (size_t)c->sample_every);
+  else if (!c->restart[0])
+    sb_engine_set_sample_every(e, (size_t)(nst / 200 > 0 ? nst / 200 : 1));
   return SB_SUCCESS;
 }
 
@@ -306,7 +308,8 @@ int sb_collide_run(sb_collide *cl, sb_collide_progress_fn fn, void *user)
   }
   free(pser.rows);
   if (c->checkpoint[0] && (sb_engine_checkpoint_save(e, c->checkpoint) ||
-                           sbi_col_firsthit_save(c, r))) {
+                           sbi_col_firsthit_save(c, r) ||
+                           sbi_col_agglo_save(c, r))) {
     if (!cl->failed)
       sbi_col_failure(cl, SB_COLLIDE_EWRITE, SB_EIO, "");
     sbi_col_more(cl, "checkpoint: %s", sb_last_error());

@@ -262,3 +262,19 @@ out:
   fclose(f);
   return NULL;
 }
+
+/* FNV-1a (Fowler, Noll & Vo) over the bytes of n items of size b. */
+static uint64_t fnv(uint64_t h, const void *p, size_t n, size_t b)
+{
+  const unsigned char *c = p;
+  for (size_t k = 0; k < n * b; k++)
+    h = (h ^ c[k]) * 0x100000001b3ULL;
+  return h;
+}
+
+uint64_t sbi_engine_fingerprint(const sb_engine *e)
+{
+  uint64_t h = fnv(0xcbf29ce484222325ULL, &e->n, 1, sizeof e->n);
+  h = fnv(h, e->id, e->n, sizeof *e->id);
+  return fnv(h, e->x, 3 * e->n, sizeof *e->x);
+}

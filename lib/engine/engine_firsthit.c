@@ -205,7 +205,7 @@ int sb_engine_firsthit_attach(sb_engine *e, sb_engine_firsthit *f,
                        "both from the same checkpoint",
                        (unsigned long long)f->saved_steps,
                        (unsigned long long)e->steps);
-    if (sbi_firsthit_print(e) != f->saved_print)
+    if (sbi_engine_fingerprint(e) != f->saved_print)
       return sbi_error(SB_EINVAL, __func__, "the observer was saved with "
                        "other particles than the engine has (another "
                        "checkpoint at the same step): restore both from "

@@ -22,22 +22,6 @@
 
 static const char MAGIC[8] = {'S', 'B', 'F', 'H', 'I', 'T', '0', '1'};
 
-/* FNV-1a (Fowler, Noll & Vo) over the bytes of n items of size b. */
-static uint64_t fnv(uint64_t h, const void *p, size_t n, size_t b)
-{
-  const unsigned char *c = p;
-  for (size_t k = 0; k < n * b; k++)
-    h = (h ^ c[k]) * 0x100000001b3ULL;
-  return h;
-}
-
-uint64_t sbi_firsthit_print(const sb_engine *e)
-{
-  uint64_t h = fnv(0xcbf29ce484222325ULL, &e->n, 1, sizeof e->n);
-  h = fnv(h, e->id, e->n, sizeof *e->id);
-  return fnv(h, e->x, 3 * e->n, sizeof *e->x);
-}
-
 /* The fixed-size part, in file order. */
 typedef struct {
   uint64_t steps, print;
@@ -94,7 +78,7 @@ int sb_engine_firsthit_save(const sb_engine_firsthit *f, const sb_engine *e,
   head h;
   memset(&h, 0, sizeof h);
   h.steps = e->steps;
-  h.print = sbi_firsthit_print(e);
+  h.print = sbi_engine_fingerprint(e);
   h.t = e->t;
   h.custom = f->par.detect != NULL;
   h.builtin = (int32_t)f->par.builtin;

@@ -34,8 +34,4 @@ struct sb_engine_firsthit {
   double ns[SB_ENGINE_PAIR_SPECIES], n_all;  /* particles at attachment */
 };
 
-/* A fingerprint of the engine's particles (ids and positions): an
- * observer's saved state belongs to the checkpoint with the same one. */
-uint64_t sbi_firsthit_print(const sb_engine *e);
-
 #endif

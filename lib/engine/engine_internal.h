@@ -141,6 +141,10 @@ long sbi_idmap_put(sbi_idmap *m, uint64_t key, uint32_t val);
  * read or write error or out of memory, -2 on malformed data. */
 int sbi_idmap_write(const sbi_idmap *m, FILE *f);
 int sbi_idmap_read(sbi_idmap *m, FILE *f, int counted);
+/* A fingerprint of the engine's particles (FNV-1a over the count, ids
+ * and positions): an observer's state saved beside a checkpoint belongs
+ * to the engine with the same one (engine_checkpoint.c). */
+uint64_t sbi_engine_fingerprint(const sb_engine *e);
 /* Free the tables (the map is then empty and usable). */
 void sbi_idmap_free(sbi_idmap *m);
 /* Key of the unordered pair of particle ids (never 0). */

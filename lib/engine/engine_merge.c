@@ -37,6 +37,7 @@
 #include <smolbridge/dlvo.h>
 
 #include "common/internal.h"
+#include "engine_agglo_state.h"
 #include "engine_internal.h"
 
 /* ============================================================ removal */
@@ -104,17 +105,6 @@ int sb_engine_set_particle_species(sb_engine *e, size_t i, size_t species)
 
 /* ============================================================ context */
 
-struct sb_agglo {
-  sb_agglo_params par;
-  sb_engine_species prim;    /* the primary species (copied at attach) */
-  size_t *sp_of_k;           /* [k]: species of size k, SIZE_MAX if none */
-  size_t ncap_k;             /* entries in sp_of_k */
-  size_t *k_of_sp;           /* [species]: size, 0 if not a cluster */
-  size_t ncap_sp;
-  sb_agglo_stats st;
-  double *rows;              /* time series, ncols per row */
-  size_t nrows, caprows;
-};
 
 void sb_agglo_params_default(sb_agglo_params *p)
 {
@@ -195,7 +185,7 @@ static int grow_index(size_t **arr, size_t *cap, size_t idx, size_t fill)
   return SB_SUCCESS;
 }
 
-static int set_map(sb_agglo *a, size_t k, size_t sp)
+int sbi_agglo_set_map(sb_agglo *a, size_t k, size_t sp)
 {
   int st = grow_index(&a->sp_of_k, &a->ncap_k, k, SIZE_MAX);
   if (!st)
@@ -215,6 +205,11 @@ int sb_agglo_attach(sb_engine *e, sb_agglo *a)
   if (p >= e->nspec)
     return sbi_error(SB_EINVAL, __func__, "primary species %zu does not "
                      "exist", p);
+  if (a->restored) {  /* sb_agglo_load: the saved sizes */
+    int st = sbi_agglo_check_restored(a, e);
+    if (st)
+      return st;
+  }
   for (size_t i = 0; i < e->n; i++)
     if (e->species[i] != p && !(e->species[i] < a->ncap_sp &&
                                 a->k_of_sp[e->species[i]]))
@@ -222,7 +217,7 @@ int sb_agglo_attach(sb_engine *e, sb_agglo *a)
                        "not a cluster species (primary %zu)", i,
                        e->species[i], p);
   a->prim = e->spec[p];
-  int st = set_map(a, 1, p);
+  int st = sbi_agglo_set_map(a, 1, p);
   if (st)
     return st;
   return sb_engine_set_outcome_fn(e, sb_engine_outcome_agglo, a);
@@ -285,7 +280,7 @@ int sb_agglo_species_of_size(sb_agglo *a, sb_engine *e, size_t k,
   size_t idx;
   st = sb_engine_add_species(e, &s, &idx);
   if (!st)
-    st = set_map(a, k, idx);
+    st = sbi_agglo_set_map(a, k, idx);
   if (!st && sp)
     *sp = idx;
   return st;

@@ -822,6 +822,24 @@ void sb_agglo_free(sb_agglo *a);
  *  outlive its use by the engine; it belongs to one engine. */
 int sb_agglo_attach(sb_engine *e, sb_agglo *a);
 
+/** Save an attached context beside a checkpoint of engine e at the same
+ *  step (sb_engine_checkpoint_save): which species is which cluster size,
+ *  the counters, the size series (sb_agglo_sample's rows), the parameters
+ *  that shape the run, and the engine's step with a fingerprint of its
+ *  particles.  Native binary, like the checkpoint.  SB_EINVAL (not
+ *  attached), SB_EIO (cannot write; no file is left). */
+int sb_agglo_save(const sb_agglo *a, const sb_engine *e, const char *path);
+
+/** Restore a saved state into a new context a (same parameters; set the
+ *  callbacks again: they are not saved), before sb_agglo_attach, which
+ *  then checks that the engine is the one restored from the same
+ *  checkpoint (its step, its particles, the masses of the saved cluster
+ *  species) and fails with SB_EINVAL otherwise.  The run then goes on bit
+ *  for bit as if it had not stopped.  SB_EINVAL (attached already, other
+ *  parameters), SB_EIO (cannot open), SB_EFORMAT (not such a file,
+ *  truncated or malformed); a is unchanged on failure. */
+int sb_agglo_load(sb_agglo *a, const char *path);
+
 /** The outcome (sb_engine_outcome_fn; ctx is the sb_agglo): the rule of
  *  the context, then merge or rebound. */
 int sb_engine_outcome_agglo(sb_engine *e, const sb_engine_pair *p, double s,
