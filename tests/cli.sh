@@ -298,6 +298,26 @@ same = all(a[k] == b[k] for k in ("agglo", "collisions", "kernel"))
 sys.exit(0 if same and a["agglo"]["merges"] > 500 else 1)
 PY
   fail "$dex: the restarted counts differ from the run in one go"
+# a kinetic gas with the collision tally (count_variance) continued from
+# its checkpoint, which keeps the tally: the pair kernel, its count
+# variance and widened interval are the run's in one go
+vex="${srcdir:-.}/examples/v1_kinetic_gas_he.ini"
+"$sb" collide "$vex" --set "run.output=$out/he0" > /dev/null 2>&1 &&
+  "$sb" collide "$vex" --set "run.output=$out/he1" --set run.t_end=5e-11 \
+    --set "run.checkpoint=$out/he.ck" > /dev/null 2>&1 &&
+  "$sb" collide "$vex" --set "run.output=$out/he2" \
+    --set "run.restart=$out/he.ck" > /dev/null 2>&1 ||
+  fail "$vex: the run, its first half or the restart"
+"$py" - "$out/he0/summary.json" "$out/he2/summary.json" <<'PY' ||
+import json, sys
+a, b = (json.load(open(p))["pair_kernels"] for p in sys.argv[1:3])
+print("count variance restart: %d / %d collisions, variance %s / %s"
+      % (a[0]["collisions"], b[0]["collisions"], a[0]["ncoll_var"],
+         b[0]["ncoll_var"]))
+sys.exit(0 if a == b and a[0]["collisions"] > 1000
+         and a[0]["ncoll_var"] is not None else 1)
+PY
+  fail "$vex: the restarted pair kernel differs from the run in one go"
 # a bridge run with turbulence continued from a checkpoint keeps the
 # Brownian share of its collisions (the split of the species' b2, whose
 # total is in the checkpoint: Mohaupt 2011, eqs 6.20-6.23); it read 1

@@ -2,14 +2,19 @@
  * (sb_engine_set_count_variance) and the variance of a pair kernel's
  * count (sb_engine_pair_stats.ncoll_var): its bookkeeping against an
  * independent tally of the same collisions, a run unchanged by it, and
- * its validity rules (on after collisions, reset, off). */
+ * its validity rules (on after collisions, reset, off), and a checkpoint
+ * that keeps it. */
+#define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <smolbridge/engine.h>
 #include <smolbridge/stats.h>
 
+#include "engine_same.h"
 #include "testutil.h"
 
 #define NA 40
@@ -173,12 +178,96 @@ START_TEST(test_rules)
 }
 END_TEST
 
+/* The tally goes through a checkpoint: a run stopped half-way, saved,
+ * loaded and run on gives the variance estimates of the run in one go,
+ * bit for bit (off in the checkpoint: off after loading); a file of the
+ * version before (no tally) still loads. */
+START_TEST(test_checkpoint)
+{
+  char path[] = "/tmp/sb_countvar_XXXXXX";
+  int fd = mkstemp(path);
+  ck_assert_int_ge(fd, 0);
+  close(fd);
+  sb_engine *a = gas(), *b = gas();
+  for (int k = 0; k < 2; k++) {
+    sb_engine *e = k ? b : a;
+    ck_assert_int_eq(sb_engine_set_count_variance(e, 1), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_run_until(e, 2e-12), SB_SUCCESS);
+    sb_engine_reset_counters(e);
+  }
+  ck_assert_int_eq(sb_engine_run_until(a, 1e-10), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_run_until(b, 5e-11), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_checkpoint_save(b, path), SB_SUCCESS);
+  sb_engine_free(b);
+  int st;
+  b = sb_engine_checkpoint_load(path, &st);
+  ck_assert_int_eq(st, SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_get_count_variance(b), 1);
+  ck_assert_int_eq(sb_engine_run_until(b, 1e-10), SB_SUCCESS);
+  for (int p = 0; p < 2; p++)
+    for (int q = p; q < 2; q++) {
+      sb_engine_pair_stats pa, pb;
+      ck_assert_int_eq(sb_engine_pair_kernel(a, p, q, 0.95, &pa),
+                       SB_SUCCESS);
+      ck_assert_int_eq(sb_engine_pair_kernel(b, p, q, 0.95, &pb),
+                       SB_SUCCESS);
+      ck_assert_uint_eq(pa.ncoll, pb.ncoll);
+      ck_assert_msg(pa.ncoll > 50 && isfinite(pa.ncoll_var) &&
+                        pa.ncoll_var == pb.ncoll_var &&
+                        pa.lo == pb.lo && pa.hi == pb.hi,
+                    "pair %d-%d: %llu collisions, variance %.17g / %.17g",
+                    p, q, (unsigned long long)pa.ncoll, pa.ncoll_var,
+                    pb.ncoll_var);
+    }
+  /* off in the checkpoint: off after loading */
+  ck_assert_int_eq(sb_engine_set_count_variance(b, 0), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_checkpoint_save(b, path), SB_SUCCESS);
+  sb_engine *c = sb_engine_checkpoint_load(path, &st);
+  ck_assert_int_eq(st, SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_get_count_variance(c), 0);
+  sb_engine_pair_stats pc;
+  ck_assert_int_eq(sb_engine_pair_kernel(c, 0, 1, 0.95, &pc), SB_SUCCESS);
+  ck_assert(isnan(pc.ncoll_var));
+  ck_assert_int_eq(sb_engine_get_count_variance(NULL), 0);
+  /* a version 4 file (no tally block: the same bytes without the last
+   * ones, magic ...4) still loads, the tally off */
+  FILE *f = fopen(path, "rb");
+  ck_assert_ptr_nonnull(f);
+  fseek(f, 0, SEEK_END);
+  const long size = ftell(f);
+  rewind(f);
+  const long np = SB_ENGINE_PAIR_SPECIES * (SB_ENGINE_PAIR_SPECIES + 1) / 2;
+  const long v4 = size - (8 + 24 * np);  /* on, lost, 3 sums per pair */
+  char *buf = malloc((size_t)size);
+  ck_assert_ptr_nonnull(buf);
+  ck_assert_uint_eq(fread(buf, 1, (size_t)size, f), (size_t)size);
+  fclose(f);
+  ck_assert(buf[7] == '5');
+  buf[7] = '4';
+  f = fopen(path, "wb");
+  ck_assert_ptr_nonnull(f);
+  ck_assert_uint_eq(fwrite(buf, 1, (size_t)v4, f), (size_t)v4);
+  fclose(f);
+  free(buf);
+  sb_engine *d = sb_engine_checkpoint_load(path, &st);
+  ck_assert_msg(st == SB_SUCCESS, "%s", sb_last_error());
+  ck_assert_int_eq(sb_engine_get_count_variance(d), 0);
+  sbt_assert_same_run(c, d, SBT_SAME_CANDIDATES);
+  sb_engine_free(d);
+  remove(path);
+  sb_engine_free(a);
+  sb_engine_free(b);
+  sb_engine_free(c);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("engine_countvar");
   TCase *tc = tcase_create("core");
   tcase_add_test(tc, test_bookkeeping);
   tcase_add_test(tc, test_rules);
+  tcase_add_test(tc, test_checkpoint);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -820,7 +820,11 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
     return sbi_col_fail(c, "[run] detect = none: %s", sb_last_error());
   if (sbi_col_exits_attach(c, r))
     return sbi_col_fail(c, "[observe] exits: %s", sb_last_error());
-  if (c->count_variance > 0 && sb_engine_set_count_variance(r->e, 1))
+  /* a restart goes on with the checkpoint's tally (whole since its
+   * reset), or starts one that gives NaN until the next reset */
+  const int tally = sb_engine_get_count_variance(r->e);
+  if (c->count_variance > 0 ? !tally && sb_engine_set_count_variance(r->e, 1)
+                            : tally && sb_engine_set_count_variance(r->e, 0))
     return sbi_col_fail(c, "[observe] count_variance: %s", sb_last_error());
   if (sbi_col_md(c) && !c->first_hit &&
       sb_engine_set_detector(r->e, sb_engine_detect_md, NULL,

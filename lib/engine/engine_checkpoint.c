@@ -4,9 +4,9 @@
  * the bytes of gsl_rng_fwrite).
  *
  * Format (native binary; portable only between builds with the same
- * type sizes and endianness): the 8-byte magic "SBENGCK3" ("SBENGCK2" files, without the block of
- * forces, Lees-Edwards and walls, still load), then the fields
- * in the order written by sb_engine_checkpoint_save.  Callbacks cannot be
+ * type sizes and endianness): the 8-byte magic "SBENGCK5" (versions 2
+ * to 4 still load: MAGIC below), then the fields in the order written by
+ * sb_engine_checkpoint_save.  Callbacks cannot be
  * saved: a custom detector / outcome / fluid callback is replaced on load
  * by the defaults (ballistic, elastic, fluid at rest); set them again.
  */
@@ -23,10 +23,12 @@
 
 /* version 3 appends the block of forces, Lees-Edwards and walls
  * (engine_wall.c) after the generator state; version 4 puts the
- * streams flag (sb_engine_params.streams) between the two.  The parameter block keeps
- * the layout of version 2 (the fields before streams), so version 2 and
- * 3 files still load (no such settings; streams off). */
-static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '4'};
+ * streams flag (sb_engine_params.streams) between the two; version 5
+ * appends the collision tally (sb_engine_set_count_variance: whether it
+ * is on and whole, its sums and both tables).  The parameter block keeps
+ * the layout of version 2 (the fields before streams), so version 2 to
+ * 4 files still load (no such settings; streams and tally off). */
+static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '5'};
 #define PAR_BYTES offsetof(sb_engine_params, streams)
 
 #define W(ptr, size, count)                                 \
@@ -34,6 +36,38 @@ static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '4'};
     if ((count) > 0 && fwrite((ptr), (size), (count), f) != (count)) \
       goto fail;                                            \
   } while (0)
+
+/* The collision tally (engine_observe.c): on, whole, the sums, and with
+ * it on both tables (engine_idmap.c).  -1 on a write error. */
+static int tally_save(const sb_engine *e, FILE *f)
+{
+  const int32_t on = e->cvar_on, lost = e->cvar_lost;
+  if (fwrite(&on, sizeof on, 1, f) != 1 ||
+      fwrite(&lost, sizeof lost, 1, f) != 1 ||
+      fwrite(e->cvar_sq, sizeof e->cvar_sq, 1, f) != 1 ||
+      fwrite(e->cvar_s2, sizeof e->cvar_s2, 1, f) != 1)
+    return -1;
+  return on ? (sbi_idmap_write(&e->cvar_part, f) ||
+               sbi_idmap_write(&e->cvar_pair, f)) ? -1 : 0
+            : 0;
+}
+
+/* Back into a loaded engine: 0, -1 on a read error or malformed data. */
+static int tally_load(sb_engine *e, FILE *f)
+{
+  int32_t on, lost;
+  if (fread(&on, sizeof on, 1, f) != 1 ||
+      fread(&lost, sizeof lost, 1, f) != 1 || (on != 0 && on != 1) ||
+      (lost != 0 && lost != 1) ||
+      fread(e->cvar_sq, sizeof e->cvar_sq, 1, f) != 1 ||
+      fread(e->cvar_s2, sizeof e->cvar_s2, 1, f) != 1)
+    return -1;
+  e->cvar_on = on;
+  e->cvar_lost = lost;
+  return on ? (sbi_idmap_read(&e->cvar_part, f, 1) ||
+               sbi_idmap_read(&e->cvar_pair, f, 1)) ? -1 : 0
+            : 0;
+}
 
 int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
 {
@@ -100,7 +134,7 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
     int32_t streams = e->par.streams;
     W(&streams, sizeof streams, 1);
   }
-  if (sbi_engine_physics_save(e, f))
+  if (sbi_engine_physics_save(e, f) || tally_save(e, f))
     goto fail;
   if (fclose(f))
     return sbi_error(SB_EIO, __func__, "write error on '%s'", path);
@@ -139,7 +173,7 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   uint64_t next_id;
   R(magic, 1, 8);
   const int ver = memcmp(magic, MAGIC, 7) ? 0 : magic[7] - '0';
-  if (ver < 2 || ver > 4)
+  if (ver < 2 || ver > 5)
     goto bad;
   const int v2 = ver == 2;
   memset(&par, 0, sizeof par);
@@ -249,6 +283,8 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
     e->par.streams = streams;
   }
   if (!v2 && sbi_engine_physics_load(e, f))
+    goto bad;
+  if (ver >= 5 && tally_load(e, f))
     goto bad;
   free(spec);
   fclose(f);

@@ -118,6 +118,11 @@ int sb_engine_set_count_variance(sb_engine *e, int on)
   return SB_SUCCESS;
 }
 
+int sb_engine_get_count_variance(const sb_engine *e)
+{
+  return e && e->cvar_on;
+}
+
 /* The variance of the count H of species pair (a, b), type t, from the
  * tally (sb_pair_count_variance, with the particles of each species now);
  * NaN without a complete tally since the reset. */

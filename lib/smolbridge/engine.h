@@ -597,8 +597,13 @@ typedef struct {
  *  of memory) gives NaN until the next reset.  The estimate assumes a
  *  fixed population (no merging, reinsertion or removal).  O(1) per
  *  collision and per sb_engine_pair_kernel call (plus a pass over the
- *  particles).  on = 0 frees the tables.  Not kept in checkpoints. */
+ *  particles).  on = 0 frees the tables.  Checkpoints keep the tally
+ *  (sb_engine_checkpoint_save): a restored engine goes on with it, so do
+ *  not call this again after loading one, which would start it afresh. */
 int sb_engine_set_count_variance(sb_engine *e, int on);
+/** 1 if the engine tallies its collisions (sb_engine_set_count_variance,
+ *  or a checkpoint of an engine that did), 0 otherwise or for NULL. */
+int sb_engine_get_count_variance(const sb_engine *e);
 
 /** The kernel of species pair (a, b), a and b < SB_ENGINE_PAIR_SPECIES
  *  (SB_EINVAL otherwise); SB_EDOM (ncoll and exposure still set) if the
