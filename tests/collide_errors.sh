@@ -316,7 +316,7 @@ checkpoint = /proc/x.ck'
 "$sb" collide "$dir/base.ini" --set "run.checkpoint=$dir/nofh.ck" \
   --set "run.output=$dir/nofh" > /dev/null 2>&1 ||
   fail "a checkpoint without first_hit could not be written"
-check "merging restart without its sizes" 2 "restart with outcome = merge: no $dir/nofh.ck.agglo beside the checkpoint" '4a\
+check "merging restart without its sizes" 2 "[run] outcome = merge with restart: no $dir/nofh.ck.agglo beside the checkpoint" '4a\
 outcome = merge\
 restart = '"$dir"'/nofh.ck'
 check "first_hit restart without its counts" 2 "no $dir/nofh.ck.firsthit beside the checkpoint" '4a\

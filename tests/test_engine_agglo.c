@@ -433,12 +433,14 @@ static void agglo_steps(sb_engine *e, sb_agglo *a, int n)
   }
 }
 
-static void write_file(const char *path, const void *what, size_t n)
+/* sbt_load_fn: a state loaded into a new context of parameters *ctx. */
+static int load_agglo(const char *path, void *ctx)
 {
-  FILE *f = fopen(path, "wb");
-  ck_assert_ptr_nonnull(f);
-  ck_assert_uint_eq(fwrite(what, 1, n, f), n);
-  fclose(f);
+  sb_agglo *a = sb_agglo_alloc(ctx);
+  ck_assert_ptr_nonnull(a);
+  const int st = sb_agglo_load(a, path);
+  sb_agglo_free(a);
+  return st;
 }
 
 /* A merging run stopped after 60 steps, saved (engine checkpoint and the
@@ -541,27 +543,7 @@ START_TEST(test_save_load)
   sb_agglo_free(a);
   sb_engine_free(e);
   /* files: truncated, trailing data, not such a file, missing */
-  FILE *in = fopen(ag, "rb");
-  ck_assert_ptr_nonnull(in);
-  static char buf[1 << 16];
-  const size_t n = fread(buf, 1, sizeof buf - 1, in);
-  fclose(in);
-  ck_assert(n > 200 && n < sizeof buf - 1);
-  buf[n] = 0;
-  const size_t cut[4] = {8, 60, n - 5, n + 1};
-  for (int q = 0; q < 4; q++) {
-    write_file(bad, buf, cut[q]);
-    a = sb_agglo_alloc(&ap);
-    ck_assert_int_eq(sb_agglo_load(a, bad), SB_EFORMAT);
-    sb_agglo_free(a);
-  }
-  write_file(bad, "SBFHIT01", 8);
-  a = sb_agglo_alloc(&ap);
-  ck_assert_int_eq(sb_agglo_load(a, bad), SB_EFORMAT);
-  ck_assert_ptr_nonnull(strstr(sb_last_error(), "not an agglomeration"));
-  remove(bad);
-  ck_assert_int_eq(sb_agglo_load(a, bad), SB_EIO);
-  sb_agglo_free(a);
+  sbt_damaged_copies(ag, bad, 60, "SBFHIT01", load_agglo, &ap);
   remove(ck);
   remove(ag);
   rmdir(dir);

@@ -523,17 +523,19 @@ static int observe_hit(const sb_engine *e, const sb_engine_pair *p,
   return 0;
 }
 
-static sb_engine_firsthit_counts observed_run(sb_engine_detect builtin,
-                                              int threads, int streams,
-                                              int wrapped, observed *o)
+/* 1500 Kn_D ~ 0.5 spheres (r = 0.5, m = 1, tau = 0.35, k_B T = 1) in a
+ * cube of 30 at dt = 2 tau, `langevin`, pass-through, on `threads`
+ * threads (0: the default) with the streams on or off. */
+static sb_engine *kn_engine(unsigned long seed, int threads, int streams)
 {
   sb_engine_params p;
   sb_engine_params_default(&p);
   p.L[0] = p.L[1] = p.L[2] = 30.0;
   p.dt = 0.7;
   p.capacity = 1500;
-  p.seed = 41;
-  p.threads = threads;
+  p.seed = seed;
+  if (threads)
+    p.threads = threads;
   p.streams = streams;
   p.detect = SB_DETECT_LANGEVIN;
   p.outcome = SB_OUTCOME_COUNT;
@@ -543,6 +545,14 @@ static sb_engine_firsthit_counts observed_run(sb_engine_detect builtin,
                           1.0 / SB_BOLTZMANN};
   ck_assert_int_eq(sb_engine_add_species(e, &sp, NULL), SB_SUCCESS);
   ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 1500), SB_SUCCESS);
+  return e;
+}
+
+static sb_engine_firsthit_counts observed_run(sb_engine_detect builtin,
+                                              int threads, int streams,
+                                              int wrapped, observed *o)
+{
+  sb_engine *e = kn_engine(41, threads, streams);
   sb_engine_firsthit_params fp;
   sb_engine_firsthit_params_default(&fp);
   counter calls = {0, 0, 0.0};
@@ -640,9 +650,8 @@ START_TEST(test_ballistic_observed)
 }
 END_TEST
 
-/* The Kn_D ~ 0.5 engine of observed_run (streams on) and an observer
- * (skip_seen, on_hit into o) around its built-in `langevin`; the
- * observer attached unless `saved` names a state to load first. */
+/* An observer (skip_seen, on_hit into o) around the built-in `langevin`
+ * of kn_engine, loaded from `saved` unless that is NULL. */
 static sb_engine_firsthit *restart_observer(observed *o, int skip_seen,
                                             const char *saved, int *st)
 {
@@ -658,37 +667,23 @@ static sb_engine_firsthit *restart_observer(observed *o, int skip_seen,
   return f;
 }
 
-static sb_engine *restart_engine(unsigned long seed)
-{
-  sb_engine_params p;
-  sb_engine_params_default(&p);
-  p.L[0] = p.L[1] = p.L[2] = 30.0;
-  p.dt = 0.7;
-  p.capacity = 1500;
-  p.seed = seed;
-  p.detect = SB_DETECT_LANGEVIN;
-  p.outcome = SB_OUTCOME_COUNT;
-  sb_engine *e = sb_engine_alloc(&p);
-  ck_assert_ptr_nonnull(e);
-  sb_engine_species sp = {0.5, 1.0, 0.35, sqrt(2.0 / 0.35),
-                          1.0 / SB_BOLTZMANN};
-  ck_assert_int_eq(sb_engine_add_species(e, &sp, NULL), SB_SUCCESS);
-  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 1500), SB_SUCCESS);
-  return e;
-}
-
 static void steps(sb_engine *e, int n)
 {
   for (int k = 0; k < n; k++)
     ck_assert_msg(sb_engine_step(e) == SB_SUCCESS, "%s", sb_last_error());
 }
 
-static void write_bytes(const char *path, const char *what, size_t n)
+/* sbt_load_fn: a state loaded into a new observer around `langevin`. */
+static int load_observer(const char *path, void *ctx)
 {
-  FILE *f = fopen(path, "wb");
-  ck_assert_ptr_nonnull(f);
-  ck_assert_uint_eq(fwrite(what, 1, n, f), n);
-  fclose(f);
+  (void)ctx;
+  observed z = {0, 0, 0.0, 0.0};
+  int st;
+  sb_engine_firsthit *f = restart_observer(&z, 0, path, &st);
+  if (st == SB_EFORMAT)
+    ck_assert_ptr_nonnull(strstr(sb_last_error(), path));
+  sb_engine_firsthit_free(f);
+  return st;
 }
 
 /* A run stopped after 6 steps, saved (engine checkpoint and observer),
@@ -711,7 +706,7 @@ START_TEST(test_save_load)
     observed o[2] = {{1, 0, 0.0, 0.0}, {1, 0, 0.0, 0.0}};
     int st;
     /* straight */
-    sb_engine *e = restart_engine(43);
+    sb_engine *e = kn_engine(43, 0, 1);
     sb_engine_firsthit *f = restart_observer(&o[0], skip_seen, NULL, &st);
     ck_assert_int_eq(sb_engine_firsthit_save(f, e, fh), SB_EINVAL);
     ck_assert_int_eq(sb_engine_firsthit_set_warmup(f, 3 * 0.7), SB_SUCCESS);
@@ -729,7 +724,7 @@ START_TEST(test_save_load)
     sb_engine_free(e);
     sb_engine_firsthit_free(f);
     /* stopped at step 6, saved, restored */
-    e = restart_engine(43);
+    e = kn_engine(43, 0, 1);
     f = restart_observer(&o[1], skip_seen, NULL, &st);
     ck_assert_int_eq(sb_engine_firsthit_set_warmup(f, 3 * 0.7), SB_SUCCESS);
     ck_assert_int_eq(sb_engine_firsthit_attach(e, f, 0.0), SB_SUCCESS);
@@ -781,7 +776,7 @@ START_TEST(test_save_load)
     ck_assert_ptr_nonnull(strstr(sb_last_error(), "step 6"));
     sb_engine_firsthit_free(f);
     sb_engine_free(e);
-    e = restart_engine(44);  /* another run at the same step */
+    e = kn_engine(44, 0, 1);  /* another run at the same step */
     steps(e, 6);
     f = restart_observer(&z, skip_seen, fh, &st);
     ck_assert_int_eq(st, SB_SUCCESS);
@@ -790,8 +785,6 @@ START_TEST(test_save_load)
     sb_engine_firsthit_free(f);
     sb_engine_free(e);
   }
-  int st;
-  observed z = {0, 0, 0.0, 0.0};
   sb_engine_firsthit_params fp;
   sb_engine_firsthit_params_default(&fp);  /* ballistic */
   sb_engine_firsthit *f = sb_engine_firsthit_alloc(&fp);
@@ -799,29 +792,7 @@ START_TEST(test_save_load)
   ck_assert_ptr_nonnull(strstr(sb_last_error(), "langevin"));
   sb_engine_firsthit_free(f);
   /* not observer files, truncated, trailing data, missing */
-  FILE *in = fopen(fh, "rb");
-  ck_assert_ptr_nonnull(in);
-  char buf[1 << 16];
-  const size_t n = fread(buf, 1, sizeof buf, in);
-  fclose(in);
-  ck_assert(n > 200 && n < sizeof buf - 1);
-  const size_t cut[4] = {8, 100, n - 3, n + 1};
-  buf[n] = 0;
-  for (int q = 0; q < 4; q++) {
-    write_bytes(bad, buf, cut[q]);
-    f = restart_observer(&z, 0, bad, &st);
-    ck_assert_int_eq(st, SB_EFORMAT);
-    sb_engine_firsthit_free(f);
-  }
-  write_bytes(bad, "SBENGCK4", 8);
-  f = restart_observer(&z, 0, bad, &st);
-  ck_assert_int_eq(st, SB_EFORMAT);
-  ck_assert_ptr_nonnull(strstr(sb_last_error(), "not a first-contact"));
-  sb_engine_firsthit_free(f);
-  remove(bad);
-  f = restart_observer(&z, 0, bad, &st);
-  ck_assert_int_eq(st, SB_EIO);
-  sb_engine_firsthit_free(f);
+  sbt_damaged_copies(fh, bad, 100, "SBENGCK5", load_observer, NULL);
   remove(ck);
   remove(fh);
   rmdir(dir);

@@ -14,6 +14,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include <smolbridge/common.h>
+
 /* Named tolerances.  TOL_REF is the accuracy promised against the
  * arbitrary-precision reference vectors. */
 #define TOL_ULPS(n) ((n) * DBL_EPSILON)
@@ -75,6 +77,45 @@ static inline const char *sbt_data_path(const char *name, char *buf,
   const char *dir = getenv("srcdir");
   snprintf(buf, len, "%s/tests/data/%s", dir ? dir : ".", name);
   return buf;
+}
+
+/* Write n bytes to path (the test fails if it cannot). */
+static inline void sbt_write_file(const char *path, const void *data,
+                                  size_t n)
+{
+  FILE *f = fopen(path, "wb");
+  ck_assert_ptr_nonnull(f);
+  ck_assert_uint_eq(fwrite(data, 1, n, f), n);
+  fclose(f);
+}
+
+/* A loader of a saved-state file: its status for the file at path. */
+typedef int (*sbt_load_fn)(const char *path, void *ctx);
+
+/* Damaged copies of the saved-state file `good`, written to `bad`: cut
+ * after its magic, after `head` bytes, three bytes short, with one byte
+ * after the end, and a file of another kind's magic `other`; load must
+ * give SB_EFORMAT for each, then SB_EIO once `bad` is gone. */
+static inline void sbt_damaged_copies(const char *good, const char *bad,
+                                      size_t head, const char *other,
+                                      sbt_load_fn load, void *ctx)
+{
+  static char buf[1 << 16];
+  FILE *in = fopen(good, "rb");
+  ck_assert_ptr_nonnull(in);
+  const size_t n = fread(buf, 1, sizeof buf - 1, in);
+  fclose(in);
+  ck_assert(n > head + 8 && n < sizeof buf - 1);
+  buf[n] = 0;
+  const size_t cut[4] = {8, head, n - 3, n + 1};
+  for (int q = 0; q < 4; q++) {
+    sbt_write_file(bad, buf, cut[q]);
+    ck_assert_int_eq(load(bad, ctx), SB_EFORMAT);
+  }
+  sbt_write_file(bad, other, 8);
+  ck_assert_int_eq(load(bad, ctx), SB_EFORMAT);
+  remove(bad);
+  ck_assert_int_eq(load(bad, ctx), SB_EIO);
 }
 
 /* Run a suite with CK_ENV-controlled forking; returns main()'s status. */

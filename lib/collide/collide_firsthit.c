@@ -7,7 +7,6 @@
  * observer's state is saved beside it (CHECKPOINT.firsthit), and a
  * restart loads it, so the count goes on as if the run had not stopped. */
 #include <math.h>
-#include <stdio.h>
 #include <string.h>
 
 #include <smolbridge/engine.h>
@@ -15,7 +14,6 @@
 #include <smolbridge/engine_firsthit.h>
 
 #include "collide_internal.h"
-#include "common/internal.h"
 
 /* every species pair of a run has its counts in the observer */
 _Static_assert(COL_MAXSPEC <= SB_ENGINE_PAIR_SPECIES,
@@ -52,33 +50,14 @@ int sbi_col_firsthit_attach(const sbi_col_config *c, sbi_col_run *r,
     return SB_ENOMEM;
   if (c->restart[0]) {  /* the count goes on from the checkpoint's */
     char path[600];
-    sbi_col_firsthit_path(c->restart, path, sizeof path);
-    FILE *f = fopen(path, "rb");
-    if (!f)
-      return sbi_error(SB_EIO, "restart", "no %s beside the checkpoint "
-                       "(it is written with the checkpoint of a run with "
-                       "first_hit): the pairs counted before it are "
-                       "unknown", path);
-    fclose(f);
-    int st = sb_engine_firsthit_load(r->fh, path);
+    int st = sbi_col_restart_beside(c, "the pairs counted before it",
+                                    path, sizeof path);
+    if (!st)
+      st = sb_engine_firsthit_load(r->fh, path);
     if (st)
       return st;
   }
   return sb_engine_firsthit_attach(r->e, r->fh, reach);
-}
-
-void sbi_col_firsthit_path(const char *checkpoint, char *buf, size_t len)
-{
-  snprintf(buf, len, "%s.firsthit", checkpoint);
-}
-
-int sbi_col_firsthit_save(const sbi_col_config *c, const sbi_col_run *r)
-{
-  if (!r->fh || !c->checkpoint[0])
-    return SB_SUCCESS;
-  char path[600];
-  sbi_col_firsthit_path(c->checkpoint, path, sizeof path);
-  return sb_engine_firsthit_save(r->fh, r->e, path);
 }
 
 void sbi_col_firsthit_free(sb_engine_firsthit *f)

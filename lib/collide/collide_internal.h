@@ -306,6 +306,23 @@ void sbi_col_grid_json(FILE *f, const sbi_col_config *c,
  * c->err set (the run is then freed). */
 int sbi_col_setup(sbi_col_config *c, sbi_col_run *r);
 void sbi_col_run_free(sbi_col_run *r);
+/* ------------------------------------------------- collide_beside.c */
+
+/* The state a run keeps beside its checkpoint, besides the engine's: the
+ * first-contact observer's (CHECKPOINT.firsthit) or the agglomeration
+ * context's (CHECKPOINT.agglo); its file name from `checkpoint` into buf
+ * (0), or 1 with no such state. */
+int sbi_col_beside(const sbi_col_config *c, const char *checkpoint,
+                   char *buf, size_t len);
+/* On restart, the file beside [run] restart into buf: 0, or SB_EIO with
+ * sb_last_error() saying it is missing and that without it `lost` (what
+ * it holds) is unknown. */
+int sbi_col_restart_beside(const sbi_col_config *c, const char *lost,
+                           char *buf, size_t len);
+/* Save the state beside [run] checkpoint (nothing without either): 0 or
+ * a status with sb_last_error() set. */
+int sbi_col_save_beside(const sbi_col_config *c, const sbi_col_run *r);
+
 /* --------------------------------------------------- collide_firsthit.c */
 
 /* Install first-hit counting around the run's detector (bridge context
@@ -313,16 +330,6 @@ void sbi_col_run_free(sbi_col_run *r);
  * restart with the counts saved beside the checkpoint. */
 int sbi_col_firsthit_attach(const sbi_col_config *c, sbi_col_run *r,
                             sb_engine_detect builtin, double reach);
-/* The agglomeration context's file beside a checkpoint, CHECKPOINT.agglo,
- * and its save (nothing without either); a status with sb_last_error()
- * set (collide_setup.c). */
-void sbi_col_agglo_path(const char *checkpoint, char *buf, size_t len);
-int sbi_col_agglo_save(const sbi_col_config *c, const sbi_col_run *r);
-/* The observer's file beside a checkpoint: CHECKPOINT.firsthit. */
-void sbi_col_firsthit_path(const char *checkpoint, char *buf, size_t len);
-/* Save the observer beside [run] checkpoint (nothing without either);
- * a status with sb_last_error() set. */
-int sbi_col_firsthit_save(const sbi_col_config *c, const sbi_col_run *r);
 /* Start of counting (end of the warm-up), s. */
 void sbi_col_firsthit_start(sbi_col_run *r, double t1);
 void sbi_col_firsthit_free(sb_engine_firsthit *f);

@@ -24,6 +24,21 @@
 
 #define PI 3.14159265358979323846
 
+/* 1 if path can be written (created and removed again if it did not
+ * exist), 0 with errno set otherwise. */
+static int writable(const char *path)
+{
+  struct stat st;
+  const int existed = stat(path, &st) == 0;
+  FILE *g = fopen(path, "ab");
+  if (!g)
+    return 0;
+  fclose(g);
+  if (!existed)
+    remove(path);
+  return 1;
+}
+
 /* Files a run writes (also those of earlier versions without a
  * manifest). */
 static int ours(const char *name)
@@ -73,33 +88,17 @@ int sbi_col_out_prepare(sbi_col_config *c)
       fclose(f))
     return sbi_col_fail(c, "%s: [run] output = %s: not writable: %s", where,
                         c->output, strerror(errno));
-  if (c->checkpoint[0]) {
-    struct stat st;
-    int existed = stat(c->checkpoint, &st) == 0;
-    FILE *g = fopen(c->checkpoint, "ab");
-    if (!g)
-      return sbi_col_fail(c, "%s: [run] checkpoint = %s: not writable: %s",
-                          sbi_col_where(c, "run", "checkpoint"), c->checkpoint,
-                          strerror(errno));
-    fclose(g);
-    if (!existed)
-      remove(c->checkpoint);
-    if (c->first_hit || sbi_col_agglo(c)) {  /* the file beside it */
-      char fh[600];
-      if (c->first_hit)
-        sbi_col_firsthit_path(c->checkpoint, fh, sizeof fh);
-      else
-        sbi_col_agglo_path(c->checkpoint, fh, sizeof fh);
-      existed = stat(fh, &st) == 0;
-      g = fopen(fh, "ab");
-      if (!g)
-        return sbi_col_fail(c, "%s: [run] checkpoint = %s: %s not "
+  if (c->checkpoint[0]) {  /* the checkpoint and the state beside it */
+    char fh[600];
+    const int beside = !sbi_col_beside(c, c->checkpoint, fh, sizeof fh);
+    for (int k = 0; k <= beside; k++) {
+      const char *p = k ? fh : c->checkpoint;
+      if (!writable(p))
+        return sbi_col_fail(c, "%s: [run] checkpoint = %s: %s%snot "
                             "writable: %s",
                             sbi_col_where(c, "run", "checkpoint"),
-                            c->checkpoint, fh, strerror(errno));
-      fclose(g);
-      if (!existed)
-        remove(fh);
+                            c->checkpoint, k ? p : "", k ? " " : "",
+                            strerror(errno));
     }
   }
   return 0;

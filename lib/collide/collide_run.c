@@ -308,8 +308,7 @@ int sb_collide_run(sb_collide *cl, sb_collide_progress_fn fn, void *user)
   }
   free(pser.rows);
   if (c->checkpoint[0] && (sb_engine_checkpoint_save(e, c->checkpoint) ||
-                           sbi_col_firsthit_save(c, r) ||
-                           sbi_col_agglo_save(c, r))) {
+                           sbi_col_save_beside(c, r))) {
     if (!cl->failed)
       sbi_col_failure(cl, SB_COLLIDE_EWRITE, SB_EIO, "");
     sbi_col_more(cl, "checkpoint: %s", sb_last_error());

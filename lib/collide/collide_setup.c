@@ -610,39 +610,17 @@ static int attach_agglo(sbi_col_config *c, sbi_col_run *r)
                         sb_last_error());
   if (c->restart[0]) {  /* the sizes and series go on from the checkpoint's */
     char path[600];
-    sbi_col_agglo_path(c->restart, path, sizeof path);
-    FILE *f = fopen(path, "rb");
-    if (!f)
-      return sbi_col_fail(c, "%s: [run] restart with outcome = %s: no %s "
-                          "beside the checkpoint (it is written with the "
-                          "checkpoint of a merging run): which species is "
-                          "which cluster size is unknown",
+    if (sbi_col_restart_beside(c, "which species is which cluster size",
+                               path, sizeof path) ||
+        sb_agglo_load(r->agglo, path))
+      return sbi_col_fail(c, "%s: [run] outcome = %s with %s",
                           sbi_col_where(c, "run", "restart"), c->outcome,
-                          path);
-    fclose(f);
-    if (sb_agglo_load(r->agglo, path))
-      return sbi_col_fail(c, "%s: [run] restart: %s",
-                          sbi_col_where(c, "run", "restart"),
                           sb_last_error());
   }
   if (sb_agglo_attach(r->e, r->agglo))
     return sbi_col_fail(c, "[run] outcome = %s: %s", c->outcome,
                         sb_last_error());
   return 0;
-}
-
-void sbi_col_agglo_path(const char *checkpoint, char *buf, size_t len)
-{
-  snprintf(buf, len, "%s.agglo", checkpoint);
-}
-
-int sbi_col_agglo_save(const sbi_col_config *c, const sbi_col_run *r)
-{
-  if (!r->agglo || !c->checkpoint[0])
-    return SB_SUCCESS;
-  char path[600];
-  sbi_col_agglo_path(c->checkpoint, path, sizeof path);
-  return sb_agglo_save(r->agglo, r->e, path);
 }
 
 /* [fluid] type = ou-field | kraichnan: the field, drawn from its own
