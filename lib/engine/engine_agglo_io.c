@@ -223,17 +223,10 @@ int sb_agglo_load(sb_agglo *a, const char *path)
 
 int sbi_agglo_check_restored(sb_agglo *a, const sb_engine *e)
 {
-  if (e->steps != a->saved_steps)
-    return sbi_error(SB_EINVAL, "sb_agglo_attach", "the context was saved "
-                     "at step %llu, the engine is at step %llu: restore "
-                     "both from the same checkpoint",
-                     (unsigned long long)a->saved_steps,
-                     (unsigned long long)e->steps);
-  if (sbi_engine_fingerprint(e) != a->saved_print)
-    return sbi_error(SB_EINVAL, "sb_agglo_attach", "the context was saved "
-                     "with other particles than the engine has (another "
-                     "checkpoint at the same step): restore both from the "
-                     "same checkpoint");
+  const int st = sbi_engine_check_saved(e, a->saved_steps, a->saved_print,
+                                        "sb_agglo_attach", "the context");
+  if (st)
+    return st;
   const double m1 = e->spec[a->par.primary].mass;
   for (size_t k = 2; k < a->ncap_k; k++) {
     const size_t sp = a->sp_of_k[k];

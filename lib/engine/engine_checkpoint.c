@@ -314,3 +314,19 @@ uint64_t sbi_engine_fingerprint(const sb_engine *e)
   h = fnv(h, e->id, e->n, sizeof *e->id);
   return fnv(h, e->x, 3 * e->n, sizeof *e->x);
 }
+
+int sbi_engine_check_saved(const sb_engine *e, uint64_t steps,
+                           uint64_t print, const char *func,
+                           const char *what)
+{
+  if (e->steps != steps)
+    return sbi_error(SB_EINVAL, func, "%s was saved at step %llu, the "
+                     "engine is at step %llu: restore both from the same "
+                     "checkpoint", what, (unsigned long long)steps,
+                     (unsigned long long)e->steps);
+  if (sbi_engine_fingerprint(e) != print)
+    return sbi_error(SB_EINVAL, func, "%s was saved with other particles "
+                     "than the engine has (another checkpoint at the same "
+                     "step): restore both from the same checkpoint", what);
+  return SB_SUCCESS;
+}

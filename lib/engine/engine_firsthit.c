@@ -199,18 +199,10 @@ int sb_engine_firsthit_attach(sb_engine *e, sb_engine_firsthit *f,
     return sbi_error(SB_EINVAL, __func__, "reach = %g: must be finite and "
                      ">= 0", reach);
   if (f->restored) {  /* sb_engine_firsthit_load: the saved counts */
-    if (e->steps != f->saved_steps)
-      return sbi_error(SB_EINVAL, __func__, "the observer was saved at "
-                       "step %llu, the engine is at step %llu: restore "
-                       "both from the same checkpoint",
-                       (unsigned long long)f->saved_steps,
-                       (unsigned long long)e->steps);
-    if (sbi_engine_fingerprint(e) != f->saved_print)
-      return sbi_error(SB_EINVAL, __func__, "the observer was saved with "
-                       "other particles than the engine has (another "
-                       "checkpoint at the same step): restore both from "
-                       "the same checkpoint");
-    return install(e, f, reach);
+    const int st = sbi_engine_check_saved(e, f->saved_steps,
+                                          f->saved_print, __func__,
+                                          "the observer");
+    return st ? st : install(e, f, reach);
   }
   /* particles per species */
   double ns[SB_ENGINE_PAIR_SPECIES] = {0};

@@ -145,6 +145,12 @@ int sbi_idmap_read(sbi_idmap *m, FILE *f, int counted);
  * and positions): an observer's state saved beside a checkpoint belongs
  * to the engine with the same one (engine_checkpoint.c). */
 uint64_t sbi_engine_fingerprint(const sb_engine *e);
+/* SB_EINVAL (message from func about `what`) unless e is at `steps` with
+ * the fingerprint `print`: the engine a state beside a checkpoint was
+ * saved with. */
+int sbi_engine_check_saved(const sb_engine *e, uint64_t steps,
+                           uint64_t print, const char *func,
+                           const char *what);
 /* Free the tables (the map is then empty and usable). */
 void sbi_idmap_free(sbi_idmap *m);
 /* Key of the unordered pair of particle ids (never 0). */
