@@ -318,6 +318,28 @@ sys.exit(0 if a == b and a[0]["collisions"] > 1000
          and a[0]["ncoll_var"] is not None else 1)
 PY
   fail "$vex: the restarted pair kernel differs from the run in one go"
+# open boundaries (the crossing jets, elastic) continued from a
+# checkpoint: the inflows are added again from the file, the checkpoint
+# keeps their counters and the outflows', so the counts and the end state
+# are the run's in one go
+jex="${srcdir:-.}/examples/open_crossing_jets.ini"
+"$sb" collide "$jex" --set "run.output=$out/jets0" > /dev/null 2>&1 &&
+  "$sb" collide "$jex" --set "run.output=$out/jets1" --set run.t_end=2e-3 \
+    --set "run.checkpoint=$out/jets.ck" > /dev/null 2>&1 &&
+  "$sb" collide "$jex" --set "run.output=$out/jets2" \
+    --set "run.restart=$out/jets.ck" > /dev/null 2>&1 ||
+  fail "$jex: the run, its first half or the restart"
+"$py" - "$out/jets0/summary.json" "$out/jets2/summary.json" <<'PY' ||
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+print("open boundaries restart: outflows %s / %s" % (a["outflows"],
+                                                    b["outflows"]))
+keys = ("outflows", "inflows", "collisions", "particles", "kernel")
+sys.exit(0 if all(a[k] == b[k] for k in keys)
+         and a["kinetic_energy"]["end"] == b["kinetic_energy"]["end"]
+         and sum(a["outflows"]) > 100 else 1)
+PY
+  fail "$jex: the restarted counts differ from the run in one go"
 # a bridge run with turbulence continued from a checkpoint keeps the
 # Brownian share of its collisions (the split of the species' b2, whose
 # total is in the checkpoint: Mohaupt 2011, eqs 6.20-6.23); it read 1

@@ -229,21 +229,34 @@ START_TEST(test_checkpoint)
   ck_assert_int_eq(sb_engine_pair_kernel(c, 0, 1, 0.95, &pc), SB_SUCCESS);
   ck_assert(isnan(pc.ncoll_var));
   ck_assert_int_eq(sb_engine_get_count_variance(NULL), 0);
-  /* a version 4 file (no tally block: the same bytes without the last
-   * ones, magic ...4) still loads, the tally off */
+  /* a version 4 file (the same bytes without the block of version 5,
+   * magic ...4) still loads, the tally off; one byte more or less does
+   * not */
   FILE *f = fopen(path, "rb");
   ck_assert_ptr_nonnull(f);
   fseek(f, 0, SEEK_END);
   const long size = ftell(f);
   rewind(f);
   const long np = SB_ENGINE_PAIR_SPECIES * (SB_ENGINE_PAIR_SPECIES + 1) / 2;
-  const long v4 = size - (8 + 24 * np);  /* on, lost, 3 sums per pair */
+  /* the block of version 5: outflows per face, the inflow slots, their
+   * injected and skipped counts, on, lost, 3 sums per pair */
+  const long v4 = size - (6 * 8 + 4 + 2 * 8 * SB_ENGINE_MAXINFLOW + 8 +
+                          24 * np);
   char *buf = malloc((size_t)size);
   ck_assert_ptr_nonnull(buf);
   ck_assert_uint_eq(fread(buf, 1, (size_t)size, f), (size_t)size);
   fclose(f);
   ck_assert(buf[7] == '5');
   buf[7] = '4';
+  for (int dn = -1; dn <= 1; dn += 2) {  /* a byte short, a byte after */
+    f = fopen(path, "wb");
+    ck_assert_ptr_nonnull(f);
+    ck_assert_uint_eq(fwrite(buf, 1, (size_t)(v4 + dn), f),
+                      (size_t)(v4 + dn));
+    fclose(f);
+    ck_assert_ptr_null(sb_engine_checkpoint_load(path, &st));
+    ck_assert_int_eq(st, SB_EFORMAT);
+  }
   f = fopen(path, "wb");
   ck_assert_ptr_nonnull(f);
   ck_assert_uint_eq(fwrite(buf, 1, (size_t)v4, f), (size_t)v4);

@@ -24,10 +24,12 @@
 /* version 3 appends the block of forces, Lees-Edwards and walls
  * (engine_wall.c) after the generator state; version 4 puts the
  * streams flag (sb_engine_params.streams) between the two; version 5
- * appends the collision tally (sb_engine_set_count_variance: whether it
- * is on and whole, its sums and both tables).  The parameter block keeps
+ * appends the open boundaries' counters and the collision tally
+ * (sb_engine_set_count_variance: whether it is on and whole, its sums
+ * and both tables).  The parameter block keeps
  * the layout of version 2 (the fields before streams), so version 2 to
- * 4 files still load (no such settings; streams and tally off). */
+ * 4 files still load (no such settings; streams and tally off, the
+ * counters 0). */
 static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '5'};
 #define PAR_BYTES offsetof(sb_engine_params, streams)
 
@@ -37,12 +39,20 @@ static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '5'};
       goto fail;                                            \
   } while (0)
 
-/* The collision tally (engine_observe.c): on, whole, the sums, and with
- * it on both tables (engine_idmap.c).  -1 on a write error. */
-static int tally_save(const sb_engine *e, FILE *f)
+/* What version 5 adds: the open boundaries' counters (engine_open.c:
+ * outflows per face, each inflow slot's injected and skipped particles;
+ * the inflows themselves are added again after loading, in the same
+ * order) and the collision tally (engine_observe.c: on, whole, the sums,
+ * and with it on both tables, engine_idmap.c).  -1 on a write error. */
+static int counters_save(const sb_engine *e, FILE *f)
 {
+  const int32_t slots = SB_ENGINE_MAXINFLOW;
   const int32_t on = e->cvar_on, lost = e->cvar_lost;
-  if (fwrite(&on, sizeof on, 1, f) != 1 ||
+  if (fwrite(e->nout, sizeof e->nout, 1, f) != 1 ||
+      fwrite(&slots, sizeof slots, 1, f) != 1 ||
+      fwrite(e->ninj, sizeof e->ninj, 1, f) != 1 ||
+      fwrite(e->nskip, sizeof e->nskip, 1, f) != 1 ||
+      fwrite(&on, sizeof on, 1, f) != 1 ||
       fwrite(&lost, sizeof lost, 1, f) != 1 ||
       fwrite(e->cvar_sq, sizeof e->cvar_sq, 1, f) != 1 ||
       fwrite(e->cvar_s2, sizeof e->cvar_s2, 1, f) != 1)
@@ -53,10 +63,15 @@ static int tally_save(const sb_engine *e, FILE *f)
 }
 
 /* Back into a loaded engine: 0, -1 on a read error or malformed data. */
-static int tally_load(sb_engine *e, FILE *f)
+static int counters_load(sb_engine *e, FILE *f)
 {
-  int32_t on, lost;
-  if (fread(&on, sizeof on, 1, f) != 1 ||
+  int32_t slots, on, lost;
+  if (fread(e->nout, sizeof e->nout, 1, f) != 1 ||
+      fread(&slots, sizeof slots, 1, f) != 1 ||
+      slots != SB_ENGINE_MAXINFLOW ||
+      fread(e->ninj, sizeof e->ninj, 1, f) != 1 ||
+      fread(e->nskip, sizeof e->nskip, 1, f) != 1 ||
+      fread(&on, sizeof on, 1, f) != 1 ||
       fread(&lost, sizeof lost, 1, f) != 1 || (on != 0 && on != 1) ||
       (lost != 0 && lost != 1) ||
       fread(e->cvar_sq, sizeof e->cvar_sq, 1, f) != 1 ||
@@ -134,7 +149,7 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
     int32_t streams = e->par.streams;
     W(&streams, sizeof streams, 1);
   }
-  if (sbi_engine_physics_save(e, f) || tally_save(e, f))
+  if (sbi_engine_physics_save(e, f) || counters_save(e, f))
     goto fail;
   if (fclose(f))
     return sbi_error(SB_EIO, __func__, "write error on '%s'", path);
@@ -284,8 +299,8 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   }
   if (!v2 && sbi_engine_physics_load(e, f))
     goto bad;
-  if (ver >= 5 && tally_load(e, f))
-    goto bad;
+  if ((ver >= 5 && counters_load(e, f)) || fgetc(f) != EOF)
+    goto bad;  /* nothing may follow */
   free(spec);
   fclose(f);
   return e;

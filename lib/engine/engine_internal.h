@@ -347,7 +347,7 @@ struct sb_engine {
   sb_engine_deposit deposit;
   uint64_t ndep[6];          /* depositions per face since the reset */
   /* open boundaries (engine_open.c): inflows, outflow counters and
-   * callback; not in checkpoints */
+   * callback; checkpoints keep the counters only */
   sb_engine_inflow inflow[SB_ENGINE_MAXINFLOW];
   uint64_t ninj[SB_ENGINE_MAXINFLOW], nskip[SB_ENGINE_MAXINFLOW];
   size_t ninflow;

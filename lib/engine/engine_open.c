@@ -73,8 +73,9 @@ int sb_engine_add_inflow(sb_engine *e, const sb_engine_inflow *in,
     return sbi_error(SB_EINVAL, __func__, "face %d: u_n dt = %g m crosses "
                      "the box (L = %g m)", in->face, un * e->par.dt,
                      e->par.L[k]);
+  /* the slot's counters stay: 0 in a new engine, the saved ones in an
+   * engine loaded from a checkpoint (its inflows added again in order) */
   e->inflow[e->ninflow] = *in;
-  e->ninj[e->ninflow] = e->nskip[e->ninflow] = 0;
   if (idx)
     *idx = e->ninflow;
   e->ninflow++;

@@ -1081,7 +1081,9 @@ typedef struct {
 
 /** Add an inflow (at most SB_ENGINE_MAXINFLOW); *idx (may be NULL) gets
  *  its index.  SB_EINVAL on a bad field.  Inflows are not stored in
- *  checkpoints: add them again after sb_engine_checkpoint_load. */
+ *  checkpoints: add them again after sb_engine_checkpoint_load, in the
+ *  same order (the checkpoint keeps each index's injected and skipped
+ *  counts, which the inflow added there goes on from). */
 int sb_engine_add_inflow(sb_engine *e, const sb_engine_inflow *in,
                          size_t *idx);
 /** Number of inflows. */
