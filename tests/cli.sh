@@ -340,6 +340,56 @@ sys.exit(0 if all(a[k] == b[k] for k in keys)
          and sum(a["outflows"]) > 100 else 1)
 PY
   fail "$jex: the restarted counts differ from the run in one go"
+# random fields continued from a checkpoint and the field saved beside it
+# (CHECKPOINT.field): the OU field (drawing from a generator of its own,
+# [fluid] seed, whose state is saved with it) and a time-dependent
+# Kraichnan field drawn from the engine's generator (so it cannot be
+# drawn again); the collisions, kernels and end state are the run's in
+# one go
+oex="${srcdir:-.}/examples/v16_abrahamson_ou_field.ini"
+cat > "$out/kr.ini" <<EOF
+[run]
+seed = 3
+L = 1e-3
+dt = 1e-5
+steps = 200
+detect = ballistic
+outcome = count
+output = $out/kr0
+[fluid]
+type = kraichnan
+eps_nu = 1e4
+shell = 2
+omega = 300
+[species a]
+radius = 2e-5
+density = 1000
+tau = 1e-5
+B = 0
+count = 3000
+EOF
+for f in "$oex" "$out/kr.ini"; do
+  b=$(basename "$f" .ini)
+  "$sb" collide "$f" --set "run.output=$out/${b}_0" --set run.steps=200 \
+    --set fluid.seed=5 > /dev/null 2>&1 &&
+    "$sb" collide "$f" --set "run.output=$out/${b}_1" --set run.steps=100 \
+      --set fluid.seed=5 --set "run.checkpoint=$out/$b.ck" \
+      > /dev/null 2>&1 && [ -s "$out/$b.ck.field" ] &&
+    "$sb" collide "$f" --set "run.output=$out/${b}_2" --set run.steps=100 \
+      --set fluid.seed=5 --set "run.restart=$out/$b.ck" > /dev/null 2>&1 ||
+    fail "$f: the run, its first half or the restart"
+  "$py" - "$out/${b}_0/summary.json" "$out/${b}_2/summary.json" <<'PY' ||
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+print("field restart (%s): %d / %d collisions"
+      % (a["fluid"], a["collisions"], b["collisions"]))
+keys = ("collisions", "kernel", "pair_kernels", "particles")
+sys.exit(0 if all(a[k] == b[k] for k in keys)
+         and a["kinetic_energy"]["end"] == b["kinetic_energy"]["end"]
+         and a["collisions"] > 20 else 1)
+PY
+    fail "$f: the restarted run differs from the run in one go"
+done
 # a bridge run with turbulence continued from a checkpoint keeps the
 # Brownian share of its collisions (the split of the species' b2, whose
 # total is in the checkpoint: Mohaupt 2011, eqs 6.20-6.23); it read 1

@@ -311,8 +311,9 @@ check "unwritable checkpoint" 2 '[run] checkpoint = /proc/x.ck: not writable' '4
 checkpoint = /proc/x.ck'
 # a merging run goes on from a checkpoint only with its sizes written
 # beside it (CHECKPOINT.agglo), a first-contact count only with the
-# observer's counts (CHECKPOINT.firsthit), and without the contacts'
-# velocities (those before the checkpoint are not in it)
+# observer's counts (CHECKPOINT.firsthit), a random field only with its
+# state (CHECKPOINT.field), and without the contacts' velocities (those
+# before the checkpoint are not in it)
 "$sb" collide "$dir/base.ini" --set "run.checkpoint=$dir/nofh.ck" \
   --set "run.output=$dir/nofh" > /dev/null 2>&1 ||
   fail "a checkpoint without first_hit could not be written"
@@ -325,6 +326,13 @@ restart = '"$dir"'/nofh.ck
 $a\
 [observe]\
 first_hit = yes'
+check "field restart without its state" 2 "[fluid] type = ou-field with restart: no $dir/nofh.ck.field beside the checkpoint (it is written with the checkpoint of a run with that field): the field's state is unknown" '4a\
+restart = '"$dir"'/nofh.ck
+$a\
+[fluid]\
+type = ou-field\
+u2 = 1e-4\
+T_L = 1e-6'
 check "first_hit_velocities restart" 2 '[observe] first_hit_velocities with restart: the contacts before the checkpoint are not in it' '4a\
 outcome = count\
 restart = '"$dir"'/nofh.ck

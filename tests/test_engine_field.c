@@ -10,10 +10,15 @@
  * (central differences), periodicity, frozen time dependence, the ratio
  * <(dU_x/dx)^2>/(eps/nu) from the lattice shell enumerated here, and its
  * flux kernel against Saffman & Turner (1956) at small R k; argument and
- * attach checks.
+ * attach checks; runs in both fields that go on from a checkpoint and
+ * the saved field as if they had not stopped.
  */
+#define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
 #include <gsl/gsl_rng.h>
 
@@ -21,6 +26,7 @@
 #include <smolbridge/engine_field.h>
 #include <smolbridge/kernel.h>
 
+#include "engine_same.h"
 #include "testutil.h"
 
 #define PI 3.14159265358979323846
@@ -269,6 +275,160 @@ START_TEST(test_errors_attach)
 }
 END_TEST
 
+/* 400 Stokes spheres (r = 4e-5 m, tau = 2e-5 s; phi ~ 0.1) in a cube of
+ * 1e-3 m at dt = 1e-5 s,
+ * elastic, sort_every 0 (the OU field follows particles by index). */
+static sb_engine *field_engine(void)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 1e-3;
+  p.dt = 1e-5;
+  p.capacity = 400;
+  p.seed = 17;
+  p.sort_every = 0;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  sb_engine_species sp = {4e-5, 1e-12, 2e-5, 0.0, 0.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &sp, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 400), SB_SUCCESS);
+  return e;
+}
+
+static void field_steps(sb_engine *e, int n)
+{
+  for (int k = 0; k < n; k++)
+    ck_assert_msg(sb_engine_step(e) == SB_SUCCESS, "%s", sb_last_error());
+}
+
+/* sbt_load_fn: the saved OU field (u2 3e-3, T_L 1e-4, dt 1e-5) loaded
+ * with the MT19937 generator *ctx, which must then be unchanged when the
+ * load fails. */
+static int load_ou(const char *path, void *ctx)
+{
+  gsl_rng *r = ctx, *before = gsl_rng_clone(r);
+  int st;
+  sb_field_ou *f = sb_field_ou_load(path, 3e-3, 1e-4, 1e-5, r, &st);
+  if (!f)
+    ck_assert(!memcmp(gsl_rng_state(r), gsl_rng_state(before),
+                      gsl_rng_size(r)));
+  sb_field_ou_free(f);
+  gsl_rng_free(before);
+  return st;
+}
+
+static int load_kr(const char *path, void *ctx)
+{
+  (void)ctx;
+  int st;
+  sb_field_kraichnan *f =
+      sb_field_kraichnan_load(path, 1e-3, 2, 1e4, 300.0, &st);
+  sb_field_kraichnan_free(f);
+  return st;
+}
+
+/* Runs in a random field stopped after 30 steps, saved (the engine's
+ * checkpoint and the field beside it) and restored go on as the run in
+ * one go, bit for bit, for 30 more steps: the OU field drawing from a
+ * generator of its own (its state saved with it) and from the engine's
+ * (restored by the checkpoint), and a time-dependent Kraichnan field
+ * drawn from the engine's generator (so it cannot be drawn again).
+ * Then the errors: other parameters, a generator of another type,
+ * damaged files. */
+START_TEST(test_save_load)
+{
+  char dir[] = "/tmp/sb_field_XXXXXX";
+  ck_assert_ptr_nonnull(mkdtemp(dir));
+  char ck[64], fp[64], bad[64];
+  snprintf(ck, sizeof ck, "%s/run.ck", dir);
+  snprintf(fp, sizeof fp, "%s/run.ck.field", dir);
+  snprintf(bad, sizeof bad, "%s/bad", dir);
+  const double u2 = 3e-3, TL = 1e-4, dt = 1e-5;
+  for (int kind = 0; kind < 3; kind++) {  /* OU own / OU engine / KR */
+    sb_engine *e[2];
+    gsl_rng *g[2] = {NULL, NULL};
+    sb_field_ou *ou[2] = {NULL, NULL};
+    sb_field_kraichnan *kr[2] = {NULL, NULL};
+    for (int k = 0; k < 2; k++) {
+      e[k] = field_engine();
+      if (kind == 0) {
+        g[k] = gsl_rng_alloc(gsl_rng_mt19937);
+        gsl_rng_set(g[k], 23);
+      }
+      gsl_rng *src = kind == 0 ? g[k] : sb_engine_rng(e[k]);
+      if (kind < 2) {
+        ou[k] = sb_field_ou_alloc(400, u2, TL, dt, src);
+        ck_assert_int_eq(sb_field_ou_attach(e[k], ou[k]), SB_SUCCESS);
+      } else {
+        kr[k] = sb_field_kraichnan_alloc(1e-3, 2, 1e4, 300.0, src);
+        ck_assert_int_eq(sb_field_kraichnan_attach(e[k], kr[k]),
+                         SB_SUCCESS);
+      }
+    }
+    field_steps(e[0], 60);
+    field_steps(e[1], 30);
+    ck_assert_int_eq(sb_engine_checkpoint_save(e[1], ck), SB_SUCCESS);
+    ck_assert_int_eq(kind < 2 ? sb_field_ou_save(ou[1], kind == 0, fp)
+                              : sb_field_kraichnan_save(kr[1], fp),
+                     SB_SUCCESS);
+    sb_engine_free(e[1]);
+    sb_field_ou_free(ou[1]);
+    sb_field_kraichnan_free(kr[1]);
+    ou[1] = NULL;
+    kr[1] = NULL;
+    int st;
+    e[1] = sb_engine_checkpoint_load(ck, &st);
+    ck_assert_int_eq(st, SB_SUCCESS);
+    if (kind == 0)
+      gsl_rng_set(g[1], 99);  /* its state comes from the file */
+    if (kind < 2) {
+      ou[1] = sb_field_ou_load(fp, u2, TL, dt,
+                               kind == 0 ? g[1] : sb_engine_rng(e[1]), &st);
+      ck_assert_msg(st == SB_SUCCESS, "%s", sb_last_error());
+      ck_assert_int_eq(sb_field_ou_attach(e[1], ou[1]), SB_SUCCESS);
+    } else {
+      kr[1] = sb_field_kraichnan_load(fp, 1e-3, 2, 1e4, 300.0, &st);
+      ck_assert_msg(st == SB_SUCCESS, "%s", sb_last_error());
+      ck_assert_int_eq(sb_field_kraichnan_attach(e[1], kr[1]), SB_SUCCESS);
+    }
+    field_steps(e[1], 30);
+    sbt_assert_same_run(e[0], e[1], SBT_SAME_CANDIDATES);
+    sb_engine_stats st0;
+    sb_engine_get_stats(e[0], &st0);
+    ck_assert_uint_gt(st0.ncoll, 0);
+    if (kind < 2)
+      ck_assert(!memcmp(sb_field_ou_seen(ou[0]), sb_field_ou_seen(ou[1]),
+                        3 * 400 * sizeof(double)));
+    /* the errors */
+    if (kind == 0) {
+      ck_assert_ptr_null(sb_field_ou_load(fp, 2.0 * u2, TL, dt, g[1], &st));
+      ck_assert_int_eq(st, SB_EINVAL);
+      gsl_rng *t = gsl_rng_alloc(gsl_rng_taus2);
+      ck_assert_ptr_null(sb_field_ou_load(fp, u2, TL, dt, t, &st));
+      ck_assert_int_eq(st, SB_EINVAL);
+      ck_assert_ptr_nonnull(strstr(sb_last_error(), "another type"));
+      gsl_rng_free(t);
+      sbt_damaged_copies(fp, bad, 30, "SBFKR001", load_ou, g[1]);
+    } else if (kind == 2) {
+      ck_assert_ptr_null(
+          sb_field_kraichnan_load(fp, 1e-3, 2, 1e4, 0.0, &st));
+      ck_assert_int_eq(st, SB_EINVAL);
+      sbt_damaged_copies(fp, bad, 30, "SBFOU001", load_kr, NULL);
+    }
+    for (int k = 0; k < 2; k++) {
+      sb_engine_free(e[k]);
+      sb_field_ou_free(ou[k]);
+      sb_field_kraichnan_free(kr[k]);
+      if (g[k])
+        gsl_rng_free(g[k]);
+    }
+  }
+  remove(ck);
+  remove(fp);
+  rmdir(dir);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("engine_field");
@@ -280,6 +440,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_kraichnan_field);
   tcase_add_test(tc, test_kraichnan_flux_limit);
   tcase_add_test(tc, test_errors_attach);
+  tcase_add_test(tc, test_save_load);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -1,40 +1,54 @@
-/* collide_beside.c — the state a run keeps beside its engine checkpoint:
- * the first-contact observer's counts ([observe] first_hit:
- * CHECKPOINT.firsthit, sb_engine_firsthit_save) or the agglomeration
- * context's sizes and series (outcome = merge | dlvo: CHECKPOINT.agglo,
- * sb_agglo_save), so that a restart goes on as if the run had not
- * stopped. */
+/* collide_beside.c — the state a run keeps beside its engine checkpoint,
+ * so that a restart goes on as if the run had not stopped:
+ *  - the counts: the first-contact observer's ([observe] first_hit:
+ *    CHECKPOINT.firsthit, sb_engine_firsthit_save) or the agglomeration
+ *    context's sizes and series (outcome = merge | dlvo: CHECKPOINT.agglo,
+ *    sb_agglo_save);
+ *  - the random field ([fluid] type = ou-field | kraichnan:
+ *    CHECKPOINT.field, sb_field_ou_save, sb_field_kraichnan_save). */
 #include <stdio.h>
+#include <string.h>
 
 #include <smolbridge/engine.h>
+#include <smolbridge/engine_field.h>
 #include <smolbridge/engine_firsthit.h>
 
 #include "collide_internal.h"
 #include "common/internal.h"
 
-int sbi_col_beside(const sbi_col_config *c, const char *checkpoint,
-                   char *buf, size_t len)
+/* The file name's suffix of state `which` of the run, or NULL. */
+static const char *suffix_of(const sbi_col_config *c, int which)
 {
-  const char *suffix = c->first_hit       ? "firsthit"
-                       : sbi_col_agglo(c) ? "agglo"
-                                          : NULL;
+  if (which == SBI_BESIDE_FIELD)
+    return !strcmp(c->fluid, "ou-field") || !strcmp(c->fluid, "kraichnan")
+               ? "field"
+               : NULL;
+  return c->first_hit ? "firsthit" : sbi_col_agglo(c) ? "agglo" : NULL;
+}
+
+int sbi_col_beside(const sbi_col_config *c, int which,
+                   const char *checkpoint, char *buf, size_t len)
+{
+  const char *suffix = suffix_of(c, which);
   if (!suffix)
     return 1;
   snprintf(buf, len, "%s.%s", checkpoint, suffix);
   return 0;
 }
 
-int sbi_col_restart_beside(const sbi_col_config *c, const char *lost,
-                           char *buf, size_t len)
+int sbi_col_restart_beside(const sbi_col_config *c, int which,
+                           const char *lost, char *buf, size_t len)
 {
-  if (sbi_col_beside(c, c->restart, buf, len))
+  if (sbi_col_beside(c, which, c->restart, buf, len))
     return SB_SUCCESS;
   FILE *f = fopen(buf, "rb");
   if (!f)
     return sbi_error(SB_EIO, "restart", "no %s beside the checkpoint (it "
                      "is written with the checkpoint of a run with %s): "
                      "%s is unknown", buf,
-                     c->first_hit ? "first_hit" : "merging", lost);
+                     which == SBI_BESIDE_FIELD ? "that field"
+                     : c->first_hit            ? "first_hit"
+                                               : "merging", lost);
   fclose(f);
   return SB_SUCCESS;
 }
@@ -42,9 +56,16 @@ int sbi_col_restart_beside(const sbi_col_config *c, const char *lost,
 int sbi_col_save_beside(const sbi_col_config *c, const sbi_col_run *r)
 {
   char path[600];
-  if (!c->checkpoint[0] || sbi_col_beside(c, c->checkpoint, path,
-                                          sizeof path))
-    return SB_SUCCESS;
-  return r->fh ? sb_engine_firsthit_save(r->fh, r->e, path)
+  int st = SB_SUCCESS;
+  if (!c->checkpoint[0])
+    return st;
+  if (!sbi_col_beside(c, SBI_BESIDE_COUNTS, c->checkpoint, path,
+                      sizeof path))
+    st = r->fh ? sb_engine_firsthit_save(r->fh, r->e, path)
                : sb_agglo_save(r->agglo, r->e, path);
+  if (!st && !sbi_col_beside(c, SBI_BESIDE_FIELD, c->checkpoint, path,
+                             sizeof path))
+    st = r->ou ? sb_field_ou_save(r->ou, r->field_rng != NULL, path)
+               : sb_field_kraichnan_save(r->kr, path);
+  return st;
 }

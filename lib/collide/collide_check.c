@@ -93,10 +93,6 @@ static int check_field(sbi_col_config *c)
   }
   unused(c, "fluid", "U", ou ? "type = ou-field" : "type = kraichnan");
   unused(c, "fluid", "G", ou ? "type = ou-field" : "type = kraichnan");
-  if (c->restart[0])
-    return sbi_col_fail(c, "%s: [fluid] type = %s with restart: the field's "
-                        "state is not in a checkpoint; run it in one go",
-                        type, c->fluid);
   if (kr) {
     if (isnan(c->kr_eps_nu))
       return sbi_col_fail(c, "%s: [fluid] type = kraichnan needs eps_nu "
@@ -140,7 +136,8 @@ static int check_field(sbi_col_config *c)
                           "entering particles change the particles the "
                           "field follows", sbi_col_where(c, c->sp[k].name,
                           "inflow"), c->sp[k].name);
-  if (!strcmp(c->placement, "random") || !c->placement[0])
+  if (!c->restart[0] && (!strcmp(c->placement, "random") ||
+                         !c->placement[0]))  /* placed, not restored */
     for (int k = 0; k < c->nsp; k++)
       if (c->sp[k].count > 0 || !isnan(c->sp[k].phi))
         return sbi_col_fail(c, "%s: [run] placement = random%s with [fluid] "

@@ -50,7 +50,8 @@ int sbi_col_firsthit_attach(const sbi_col_config *c, sbi_col_run *r,
     return SB_ENOMEM;
   if (c->restart[0]) {  /* the count goes on from the checkpoint's */
     char path[600];
-    int st = sbi_col_restart_beside(c, "the pairs counted before it",
+    int st = sbi_col_restart_beside(c, SBI_BESIDE_COUNTS,
+                                    "the pairs counted before it",
                                     path, sizeof path);
     if (!st)
       st = sb_engine_firsthit_load(r->fh, path);

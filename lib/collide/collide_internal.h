@@ -308,19 +308,22 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r);
 void sbi_col_run_free(sbi_col_run *r);
 /* ------------------------------------------------- collide_beside.c */
 
-/* The state a run keeps beside its checkpoint, besides the engine's: the
- * first-contact observer's (CHECKPOINT.firsthit) or the agglomeration
- * context's (CHECKPOINT.agglo); its file name from `checkpoint` into buf
- * (0), or 1 with no such state. */
-int sbi_col_beside(const sbi_col_config *c, const char *checkpoint,
-                   char *buf, size_t len);
-/* On restart, the file beside [run] restart into buf: 0, or SB_EIO with
- * sb_last_error() saying it is missing and that without it `lost` (what
- * it holds) is unknown. */
-int sbi_col_restart_beside(const sbi_col_config *c, const char *lost,
-                           char *buf, size_t len);
-/* Save the state beside [run] checkpoint (nothing without either): 0 or
- * a status with sb_last_error() set. */
+/* The states a run keeps beside its checkpoint, besides the engine's:
+ * its counts, the first-contact observer's (CHECKPOINT.firsthit) or the
+ * agglomeration context's (CHECKPOINT.agglo), and its random field
+ * (CHECKPOINT.field).  The file name of state `which` from `checkpoint`
+ * into buf (0), or 1 when the run has no such state. */
+enum { SBI_BESIDE_COUNTS, SBI_BESIDE_FIELD };
+int sbi_col_beside(const sbi_col_config *c, int which,
+                   const char *checkpoint, char *buf, size_t len);
+/* On restart, the file of state `which` beside [run] restart into buf: 0
+ * (also when the run has no such state), or SB_EIO with sb_last_error()
+ * saying it is missing and that without it `lost` (what it holds) is
+ * unknown. */
+int sbi_col_restart_beside(const sbi_col_config *c, int which,
+                           const char *lost, char *buf, size_t len);
+/* Save the states beside [run] checkpoint (nothing without one): 0 or a
+ * status with sb_last_error() set. */
 int sbi_col_save_beside(const sbi_col_config *c, const sbi_col_run *r);
 
 /* --------------------------------------------------- collide_firsthit.c */

@@ -88,11 +88,16 @@ int sbi_col_out_prepare(sbi_col_config *c)
       fclose(f))
     return sbi_col_fail(c, "%s: [run] output = %s: not writable: %s", where,
                         c->output, strerror(errno));
-  if (c->checkpoint[0]) {  /* the checkpoint and the state beside it */
-    char fh[600];
-    const int beside = !sbi_col_beside(c, c->checkpoint, fh, sizeof fh);
-    for (int k = 0; k <= beside; k++) {
-      const char *p = k ? fh : c->checkpoint;
+  if (c->checkpoint[0]) {  /* the checkpoint and the states beside it */
+    char fh[2][600];
+    const int counts = !sbi_col_beside(c, SBI_BESIDE_COUNTS, c->checkpoint,
+                                       fh[0], sizeof fh[0]);
+    const int field = !sbi_col_beside(c, SBI_BESIDE_FIELD, c->checkpoint,
+                                      fh[1], sizeof fh[1]);
+    for (int k = 0; k < 3; k++) {
+      if ((k == 1 && !counts) || (k == 2 && !field))
+        continue;
+      const char *p = k ? fh[k - 1] : c->checkpoint;
       if (!writable(p))
         return sbi_col_fail(c, "%s: [run] checkpoint = %s: %s%snot "
                             "writable: %s",

@@ -610,7 +610,8 @@ static int attach_agglo(sbi_col_config *c, sbi_col_run *r)
                         sb_last_error());
   if (c->restart[0]) {  /* the sizes and series go on from the checkpoint's */
     char path[600];
-    if (sbi_col_restart_beside(c, "which species is which cluster size",
+    if (sbi_col_restart_beside(c, SBI_BESIDE_COUNTS,
+                               "which species is which cluster size",
                                path, sizeof path) ||
         sb_agglo_load(r->agglo, path))
       return sbi_col_fail(c, "%s: [run] outcome = %s with %s",
@@ -656,6 +657,40 @@ static int setup_field(sbi_col_config *c, sbi_col_run *r)
     return sbi_col_fail(c, "%s: [fluid] type = kraichnan: %s", type,
                         sb_last_error());
   return 0;
+}
+
+/* On restart: the random field saved beside the checkpoint, drawing from
+ * the engine's generator or from its own ([fluid] seed: its state from
+ * the file), attached. */
+static int restart_field(sbi_col_config *c, sbi_col_run *r)
+{
+  const int ou = !strcmp(c->fluid, "ou-field");
+  if (!ou && strcmp(c->fluid, "kraichnan"))
+    return 0;
+  const char *type = sbi_col_where(c, "fluid", "type");
+  const sb_engine_params *p = sb_engine_get_params(r->e);
+  char path[600];
+  int st = sbi_col_restart_beside(c, SBI_BESIDE_FIELD, "the field's state",
+                                  path, sizeof path);
+  if (!st && ou) {
+    gsl_rng *g = sb_engine_rng(r->e);
+    if (c->field_seed >= 0) {
+      if (!(r->field_rng = gsl_rng_alloc(gsl_rng_mt19937)))
+        return sbi_col_fail(c, "out of memory");
+      g = r->field_rng;
+    }
+    r->ou = sb_field_ou_load(path, c->ou_u2, c->ou_TL, p->dt, g, &st);
+    if (!st)
+      st = sb_field_ou_attach(r->e, r->ou);
+  } else if (!st) {
+    r->kr = sb_field_kraichnan_load(path, p->L[0], (int)c->kr_shell,
+                                    c->kr_eps_nu, c->kr_omega, &st);
+    if (!st)
+      st = sb_field_kraichnan_attach(r->e, r->kr);
+  }
+  return st ? sbi_col_fail(c, "%s: [fluid] type = %s with %s", type,
+                           c->fluid, sb_last_error())
+            : 0;
 }
 
 int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
@@ -759,7 +794,7 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
     if (sb_engine_set_fluid(r->e, f, fp))
       return sbi_col_fail(c, "[fluid]: %s", sb_last_error());
   }
-  if (!c->restart[0] && setup_field(c, r))
+  if (c->restart[0] ? restart_field(c, r) : setup_field(c, r))
     return -1;
   if (setup_physics(c, r))
     return -1;

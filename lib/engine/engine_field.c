@@ -12,18 +12,24 @@
 #include <smolbridge/engine_field.h>
 #include "common/internal.h"
 #include "common/numutil.h"
+#include "engine_field_state.h"
 
 #define PI 3.14159265358979323846
 
 /* ------------------------------------------------------------- OU */
 
-struct sb_field_ou {
-  size_t n;      /* particles */
-  double *U;     /* 3 n, the velocities handed out at the next step */
-  double u2, TL, dt;
-  double b, q;   /* exp(-dt/TL), sd of the update noise */
-  const gsl_rng *r;  /* generator (owned by the caller) */
-};
+
+void sbi_field_ou_set(sb_field_ou *f, size_t n, double u2, double TL,
+                      double dt, const gsl_rng *r)
+{
+  f->n = n;
+  f->u2 = u2;
+  f->TL = TL;
+  f->dt = dt;
+  f->b = exp(-dt / TL);
+  f->q = sqrt(u2 * -expm1(-2.0 * dt / TL));
+  f->r = r;
+}
 
 sb_field_ou *sb_field_ou_alloc(size_t n, double u2, double TL, double dt,
                                const gsl_rng *r)
@@ -43,13 +49,7 @@ sb_field_ou *sb_field_ou_alloc(size_t n, double u2, double TL, double dt,
     sbi_error(SB_ENOMEM, __func__, "out of memory");
     return NULL;
   }
-  f->n = n;
-  f->u2 = u2;
-  f->TL = TL;
-  f->dt = dt;
-  f->b = exp(-dt / TL);
-  f->q = sqrt(u2 * -expm1(-2.0 * dt / TL));
-  f->r = r;
+  sbi_field_ou_set(f, n, u2, TL, dt, r);
   const double sd = sqrt(u2);
   for (size_t i = 0; i < 3 * n; i++)
     f->U[i] = gsl_ran_gaussian_ziggurat(r, sd);
@@ -131,14 +131,6 @@ int sb_field_ou_start(const sb_field_ou *f, size_t i, double tau,
 #define MAXM SB_FIELD_KRAICHNAN_MAXM
 #define MAXMODES SB_FIELD_KRAICHNAN_MAXMODES
 
-struct sb_field_kraichnan {
-  double L, s2;
-  int M;
-  size_t nm;                 /* modes */
-  int m[MAXMODES][3];
-  double a[MAXMODES][3], b[MAXMODES][3], w[MAXMODES];
-  const sb_engine *e;        /* attached engine (its time) */
-};
 
 sb_field_kraichnan *sb_field_kraichnan_alloc(double L, int M, double eps_nu,
                                              double omega,
@@ -158,6 +150,8 @@ sb_field_kraichnan *sb_field_kraichnan_alloc(double L, int M, double eps_nu,
   }
   f->L = L;
   f->M = M;
+  f->eps_nu = eps_nu;
+  f->omega = omega;
   const double lo = (M - 0.5) * (M - 0.5), hi = (M + 0.5) * (M + 0.5);
   double sk2 = 0.0;
   for (int i = -M; i <= M; i++)

@@ -73,6 +73,24 @@ int sb_field_ou_fluid(size_t n, const double *x, double *us, void *ctx);
  *  field's n particles. */
 int sb_field_ou_attach(sb_engine *e, sb_field_ou *f);
 
+/** Save the field (its parameters and seen velocities) to path, beside an
+ *  engine checkpoint of the same step; with_rng = 1 also the state of its
+ *  generator (one of its own, apart from the engine's, whose state the
+ *  checkpoint keeps).  Native binary, like the checkpoint.  SB_EINVAL,
+ *  SB_EIO (cannot write; no file is left). */
+int sb_field_ou_save(const sb_field_ou *f, int with_rng, const char *path);
+/** The saved field, drawing from r from now on (no draws here: the
+ *  engine's generator, as restored by its checkpoint, or a generator of
+ *  the saved one's type, whose state the file then replaces): u2, T_L
+ *  and dt must be the saved ones (SB_EINVAL), as must r's type when the
+ *  file holds a generator.  Attach it to the engine restored from the
+ *  same checkpoint: the run goes on bit for bit as if it had not
+ *  stopped.  NULL with *status (may be NULL) SB_EINVAL, SB_EIO (cannot
+ *  open), SB_EFORMAT (not such a file, truncated) or SB_ENOMEM; r is
+ *  unchanged on failure. */
+sb_field_ou *sb_field_ou_load(const char *path, double u2, double TL,
+                              double dt, gsl_rng *r, int *status);
+
 /** Stationary per-component velocity variance of a Stokes particle
  *  (relaxation time tau, s) driven by the field held constant over steps
  *  of dt with the exact step: -> u2 T_L/(T_L + tau) as dt -> 0 (relative
@@ -112,6 +130,17 @@ sb_field_kraichnan *sb_field_kraichnan_alloc(double L, int M, double eps_nu,
                                              double omega,
                                              const gsl_rng *r);
 void sb_field_kraichnan_free(sb_field_kraichnan *f);
+
+/** Save the realization (its parameters and modes) to path: drawn once,
+ *  it cannot be drawn again from a generator that has moved on.  Native
+ *  binary.  SB_EINVAL, SB_EIO (cannot write; no file is left). */
+int sb_field_kraichnan_save(const sb_field_kraichnan *f, const char *path);
+/** The saved realization; L, M, eps_nu and omega must be the saved ones
+ *  (SB_EINVAL).  NULL with *status (may be NULL) SB_EINVAL, SB_EIO,
+ *  SB_EFORMAT or SB_ENOMEM. */
+sb_field_kraichnan *sb_field_kraichnan_load(const char *path, double L,
+                                            int M, double eps_nu,
+                                            double omega, int *status);
 
 /** Number of modes N. */
 size_t sb_field_kraichnan_modes(const sb_field_kraichnan *f);
