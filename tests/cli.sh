@@ -257,16 +257,24 @@ sed -i -e 's/"wall_seconds": .*/"wall_seconds": T/' \
   "$out/kernel1/summary.json" "$out/kernel2/summary.json" 2>/dev/null
 cmp -s "$out/kernel1/summary.json" "$out/kernel2/summary.json" ||
   fail "$kex: summary.json differs on 2 threads"
-# the same count stopped half-way (a checkpoint and the observer's counts
-# beside it) and continued from there: the first-contact results are the
-# uninterrupted run's, to the last bit
-"$sb" collide "$kex" --set "run.output=$out/kernel_a" --set run.t_end=8e-5 \
-  --set "run.checkpoint=$out/kernel.ck" > /dev/null 2>&1 &&
-  [ -s "$out/kernel.ck.firsthit" ] ||
-  fail "$kex: the half run and its checkpoint"
-"$sb" collide "$kex" --set "run.output=$out/kernel_b" \
+# the same count stopped half-way (a checkpoint, the observer's counts
+# and the recorded contact velocities beside it) and continued from
+# there: the first-contact results are the uninterrupted run's, and
+# contacts.csv the one of that run recording the velocities, to the last
+# bit
+vn=observe.first_hit_velocities=20000
+"$sb" collide "$kex" --set "run.output=$out/kernel_v" --set $vn \
+  > /dev/null 2>&1 &&
+  "$sb" collide "$kex" --set "run.output=$out/kernel_a" --set $vn \
+    --set run.t_end=8e-5 --set "run.checkpoint=$out/kernel.ck" \
+    > /dev/null 2>&1 && [ -s "$out/kernel.ck.firsthit" ] &&
+  [ -s "$out/kernel.ck.contacts" ] ||
+  fail "$kex: the run with velocities, its first half or the checkpoint"
+"$sb" collide "$kex" --set "run.output=$out/kernel_b" --set $vn \
   --set "run.restart=$out/kernel.ck" > /dev/null 2>&1 ||
   fail "$kex: the restart"
+cmp -s "$out/kernel_v/contacts.csv" "$out/kernel_b/contacts.csv" ||
+  fail "$kex: the restarted contacts.csv differs from the run in one go"
 "$py" - "$out/kernel1.json" "$out/kernel_b/summary.json" <<'PY' ||
 import json, sys
 a, b = (json.load(open(p))["first_hit"] for p in sys.argv[1:3])

@@ -312,8 +312,8 @@ checkpoint = /proc/x.ck'
 # a merging run goes on from a checkpoint only with its sizes written
 # beside it (CHECKPOINT.agglo), a first-contact count only with the
 # observer's counts (CHECKPOINT.firsthit), a random field only with its
-# state (CHECKPOINT.field), and without the contacts' velocities (those
-# before the checkpoint are not in it)
+# state (CHECKPOINT.field), the contacts' velocities only with those
+# recorded (CHECKPOINT.contacts)
 "$sb" collide "$dir/base.ini" --set "run.checkpoint=$dir/nofh.ck" \
   --set "run.output=$dir/nofh" > /dev/null 2>&1 ||
   fail "a checkpoint without first_hit could not be written"
@@ -333,9 +333,13 @@ $a\
 type = ou-field\
 u2 = 1e-4\
 T_L = 1e-6'
-check "first_hit_velocities restart" 2 '[observe] first_hit_velocities with restart: the contacts before the checkpoint are not in it' '4a\
+"$sb" collide "$dir/base.ini" --set run.outcome=count \
+  --set observe.first_hit=yes --set "run.checkpoint=$dir/fh.ck" \
+  --set "run.output=$dir/fh" > /dev/null 2>&1 ||
+  fail "a checkpoint with first_hit could not be written"
+check "first_hit_velocities restart without them" 2 "no $dir/fh.ck.contacts beside the checkpoint (it is written with the checkpoint of a run with first_hit_velocities): the contacts recorded before it is unknown" '4a\
 outcome = count\
-restart = '"$dir"'/nofh.ck
+restart = '"$dir"'/fh.ck
 $a\
 [observe]\
 first_hit = yes\

@@ -180,8 +180,9 @@ END_TEST
 
 /* The tally goes through a checkpoint: a run stopped half-way, saved,
  * loaded and run on gives the variance estimates of the run in one go,
- * bit for bit (off in the checkpoint: off after loading); a file of the
- * version before (no tally) still loads. */
+ * bit for bit (off in the checkpoint: off after loading; on before any
+ * collision: empty tables); a file of the version before (no tally)
+ * still loads. */
 START_TEST(test_checkpoint)
 {
   char path[] = "/tmp/sb_countvar_XXXXXX";
@@ -189,6 +190,14 @@ START_TEST(test_checkpoint)
   ck_assert_int_ge(fd, 0);
   close(fd);
   sb_engine *a = gas(), *b = gas();
+  /* on, before any collision: empty tables */
+  ck_assert_int_eq(sb_engine_set_count_variance(a, 1), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_checkpoint_save(a, path), SB_SUCCESS);
+  int st0;
+  sb_engine *z = sb_engine_checkpoint_load(path, &st0);
+  ck_assert_msg(st0 == SB_SUCCESS, "%s", sb_last_error());
+  ck_assert_int_eq(sb_engine_get_count_variance(z), 1);
+  sb_engine_free(z);
   for (int k = 0; k < 2; k++) {
     sb_engine *e = k ? b : a;
     ck_assert_int_eq(sb_engine_set_count_variance(e, 1), SB_SUCCESS);

@@ -728,6 +728,12 @@ START_TEST(test_save_load)
     f = restart_observer(&o[1], skip_seen, NULL, &st);
     ck_assert_int_eq(sb_engine_firsthit_set_warmup(f, 3 * 0.7), SB_SUCCESS);
     ck_assert_int_eq(sb_engine_firsthit_attach(e, f, 0.0), SB_SUCCESS);
+    /* saved before any counted contact (empty tables): it loads */
+    ck_assert_int_eq(sb_engine_firsthit_save(f, e, fh), SB_SUCCESS);
+    observed y = {0, 0, 0.0, 0.0};
+    sb_engine_firsthit *g = restart_observer(&y, skip_seen, fh, &st);
+    ck_assert_msg(st == SB_SUCCESS, "%s", sb_last_error());
+    sb_engine_firsthit_free(g);
     steps(e, 6);
     ck_assert_int_eq(sb_engine_checkpoint_save(e, ck), SB_SUCCESS);
     ck_assert_int_eq(sb_engine_firsthit_save(f, e, fh), SB_SUCCESS);

@@ -5,7 +5,9 @@
  *    context's sizes and series (outcome = merge | dlvo: CHECKPOINT.agglo,
  *    sb_agglo_save);
  *  - the random field ([fluid] type = ou-field | kraichnan:
- *    CHECKPOINT.field, sb_field_ou_save, sb_field_kraichnan_save). */
+ *    CHECKPOINT.field, sb_field_ou_save, sb_field_kraichnan_save);
+ *  - the recorded contacts ([observe] first_hit_velocities:
+ *    CHECKPOINT.contacts, collide_contacts.c). */
 #include <stdio.h>
 #include <string.h>
 
@@ -19,6 +21,8 @@
 /* The file name's suffix of state `which` of the run, or NULL. */
 static const char *suffix_of(const sbi_col_config *c, int which)
 {
+  if (which == SBI_BESIDE_CONTACTS)
+    return c->first_hit && c->first_hit_vn > 0 ? "contacts" : NULL;
   if (which == SBI_BESIDE_FIELD)
     return !strcmp(c->fluid, "ou-field") || !strcmp(c->fluid, "kraichnan")
                ? "field"
@@ -46,9 +50,10 @@ int sbi_col_restart_beside(const sbi_col_config *c, int which,
     return sbi_error(SB_EIO, "restart", "no %s beside the checkpoint (it "
                      "is written with the checkpoint of a run with %s): "
                      "%s is unknown", buf,
-                     which == SBI_BESIDE_FIELD ? "that field"
-                     : c->first_hit            ? "first_hit"
-                                               : "merging", lost);
+                     which == SBI_BESIDE_FIELD      ? "that field"
+                     : which == SBI_BESIDE_CONTACTS ? "first_hit_velocities"
+                     : c->first_hit                 ? "first_hit"
+                                                    : "merging", lost);
   fclose(f);
   return SB_SUCCESS;
 }
@@ -67,5 +72,8 @@ int sbi_col_save_beside(const sbi_col_config *c, const sbi_col_run *r)
                              sizeof path))
     st = r->ou ? sb_field_ou_save(r->ou, r->field_rng != NULL, path)
                : sb_field_kraichnan_save(r->kr, path);
+  if (!st && !sbi_col_beside(c, SBI_BESIDE_CONTACTS, c->checkpoint, path,
+                             sizeof path))
+    st = sbi_col_contacts_save(r, path);
   return st;
 }

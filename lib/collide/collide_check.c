@@ -180,12 +180,6 @@ int sbi_col_check(sbi_col_config *c)
     for (int k = 0; k < c->nsp; k++)
       sbi_col_warn(c, "%s: [%s] ignored: the particles come from the restart "
                    "checkpoint", c->sp[k].where, c->sp[k].name);
-    if (c->first_hit && c->first_hit_vn > 0)
-      return sbi_col_fail(c, "%s: [observe] first_hit_velocities with "
-                          "restart: the contacts before the checkpoint are "
-                          "not in it; run it in one go",
-                          sbi_col_where(c, "observe",
-                                        "first_hit_velocities"));
   } else {
     if (isnan(c->Lx) || isnan(c->Ly) || (c->dim == 3 && isnan(c->Lz)))
       return sbi_col_fail(c, "[run] L (or Lx, Ly%s) is required: the box "

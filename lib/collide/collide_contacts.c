@@ -9,13 +9,16 @@
  * contact time), with `ballistic` the chord's contact point and the
  * velocities interpolated linearly over the step (sb_engine_chord_vn). */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_firsthit.h>
 
 #include "collide_internal.h"
+#include "common/internal.h"
 
 struct sbi_col_contacts {
   sb_engine_detect builtin;   /* SB_DETECT_LANGEVIN or _BALLISTIC */
@@ -96,4 +99,57 @@ int sbi_col_contacts_write(FILE *js, const sbi_col_config *c,
   fprintf(js, "  \"contacts\": {\"recorded\": %zu, \"cap\": %zu, "
           "\"file\": \"contacts.csv\"},\n", k->n, k->cap);
   return fclose(f) ? -1 : 0;
+}
+
+/* Beside a checkpoint (collide_beside.c): "SBCCON01", the recorded count,
+ * then the times, velocities and both species of each (native binary;
+ * nothing after). */
+static const char MAGIC[8] = {'S', 'B', 'C', 'C', 'O', 'N', '0', '1'};
+
+int sbi_col_contacts_save(const sbi_col_run *r, const char *path)
+{
+  const sbi_col_contacts *k = r->contacts;
+  FILE *f = fopen(path, "wb");
+  if (!f)
+    return sbi_error(SB_EIO, "checkpoint", "cannot open '%s' for writing",
+                     path);
+  const uint64_t n = k->n;
+  int ok = fwrite(MAGIC, 1, 8, f) == 8 && fwrite(&n, sizeof n, 1, f) == 1 &&
+           fwrite(k->t, sizeof *k->t, n, f) == n &&
+           fwrite(k->v, sizeof *k->v, n, f) == n &&
+           fwrite(k->a, sizeof *k->a, n, f) == n &&
+           fwrite(k->b, sizeof *k->b, n, f) == n;
+  ok &= fclose(f) == 0;
+  if (ok)
+    return SB_SUCCESS;
+  remove(path);
+  return sbi_error(SB_EIO, "checkpoint", "write error on '%s'", path);
+}
+
+int sbi_col_contacts_load(sbi_col_run *r, const char *path)
+{
+  sbi_col_contacts *k = r->contacts;
+  FILE *f = fopen(path, "rb");
+  if (!f)
+    return sbi_error(SB_EIO, "restart", "cannot open '%s'", path);
+  char mg[8];
+  uint64_t n;
+  const char *why = "truncated, or data after the end";
+  int st = SB_EFORMAT;
+  if (fread(mg, 1, 8, f) != 8 || memcmp(mg, MAGIC, 8))
+    why = "not a file of contacts";
+  else if (fread(&n, sizeof n, 1, f) == 1) {
+    if (n > k->cap)
+      st = SB_EINVAL, why = "it holds more contacts than "
+                            "first_hit_velocities allows";
+    else if (fread(k->t, sizeof *k->t, n, f) == n &&
+             fread(k->v, sizeof *k->v, n, f) == n &&
+             fread(k->a, sizeof *k->a, n, f) == n &&
+             fread(k->b, sizeof *k->b, n, f) == n && fgetc(f) == EOF) {
+      k->n = (size_t)n;
+      st = SB_SUCCESS;
+    }
+  }
+  fclose(f);
+  return st ? sbi_error(st, "restart", "'%s': %s", path, why) : SB_SUCCESS;
 }

@@ -55,6 +55,13 @@ int sbi_col_firsthit_attach(const sbi_col_config *c, sbi_col_run *r,
                                     path, sizeof path);
     if (!st)
       st = sb_engine_firsthit_load(r->fh, path);
+    if (!st && r->contacts) {
+      st = sbi_col_restart_beside(c, SBI_BESIDE_CONTACTS,
+                                  "the contacts recorded before it", path,
+                                  sizeof path);
+      if (!st)
+        st = sbi_col_contacts_load(r, path);
+    }
     if (st)
       return st;
   }

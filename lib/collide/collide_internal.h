@@ -310,10 +310,11 @@ void sbi_col_run_free(sbi_col_run *r);
 
 /* The states a run keeps beside its checkpoint, besides the engine's:
  * its counts, the first-contact observer's (CHECKPOINT.firsthit) or the
- * agglomeration context's (CHECKPOINT.agglo), and its random field
- * (CHECKPOINT.field).  The file name of state `which` from `checkpoint`
+ * agglomeration context's (CHECKPOINT.agglo), its random field
+ * (CHECKPOINT.field) and the contacts' velocities of first_hit_velocities
+ * (CHECKPOINT.contacts).  The file name of state `which` from `checkpoint`
  * into buf (0), or 1 when the run has no such state. */
-enum { SBI_BESIDE_COUNTS, SBI_BESIDE_FIELD };
+enum { SBI_BESIDE_COUNTS, SBI_BESIDE_FIELD, SBI_BESIDE_CONTACTS };
 int sbi_col_beside(const sbi_col_config *c, int which,
                    const char *checkpoint, char *buf, size_t len);
 /* On restart, the file of state `which` beside [run] restart into buf: 0
@@ -378,6 +379,11 @@ int sbi_col_contacts_setup(const sbi_col_config *c, sbi_col_run *r,
 int sbi_col_contacts_write(FILE *js, const sbi_col_config *c,
                            const sbi_col_run *r, const char *path);
 void sbi_col_contacts_free(sbi_col_contacts *k);
+/* The recorded contacts to path, beside a checkpoint, and back into the
+ * run's (set up) record on restart: 0 or a status with sb_last_error()
+ * set. */
+int sbi_col_contacts_save(const sbi_col_run *r, const char *path);
+int sbi_col_contacts_load(sbi_col_run *r, const char *path);
 
 /* ---------------------------------------------------- collide_start.c */
 

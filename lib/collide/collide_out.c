@@ -89,14 +89,13 @@ int sbi_col_out_prepare(sbi_col_config *c)
     return sbi_col_fail(c, "%s: [run] output = %s: not writable: %s", where,
                         c->output, strerror(errno));
   if (c->checkpoint[0]) {  /* the checkpoint and the states beside it */
-    char fh[2][600];
-    const int counts = !sbi_col_beside(c, SBI_BESIDE_COUNTS, c->checkpoint,
-                                       fh[0], sizeof fh[0]);
-    const int field = !sbi_col_beside(c, SBI_BESIDE_FIELD, c->checkpoint,
-                                      fh[1], sizeof fh[1]);
-    for (int k = 0; k < 3; k++) {
-      if ((k == 1 && !counts) || (k == 2 && !field))
-        continue;
+    static const int which[3] = {SBI_BESIDE_COUNTS, SBI_BESIDE_FIELD,
+                                 SBI_BESIDE_CONTACTS};
+    char fh[3][600];
+    for (int k = 0; k < 4; k++) {
+      if (k && sbi_col_beside(c, which[k - 1], c->checkpoint, fh[k - 1],
+                              sizeof fh[k - 1]))
+        continue;  /* the run has no such state */
       const char *p = k ? fh[k - 1] : c->checkpoint;
       if (!writable(p))
         return sbi_col_fail(c, "%s: [run] checkpoint = %s: %s%snot "

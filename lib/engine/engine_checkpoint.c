@@ -57,8 +57,8 @@ static int counters_save(const sb_engine *e, FILE *f)
       fwrite(e->cvar_sq, sizeof e->cvar_sq, 1, f) != 1 ||
       fwrite(e->cvar_s2, sizeof e->cvar_s2, 1, f) != 1)
     return -1;
-  return on ? (sbi_idmap_write(&e->cvar_part, f) ||
-               sbi_idmap_write(&e->cvar_pair, f)) ? -1 : 0
+  return on ? (sbi_idmap_write(&e->cvar_part, f, 1) ||
+               sbi_idmap_write(&e->cvar_pair, f, 1)) ? -1 : 0
             : 0;
 }
 

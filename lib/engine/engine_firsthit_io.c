@@ -102,8 +102,8 @@ int sb_engine_firsthit_save(const sb_engine_firsthit *f, const sb_engine *e,
   if (!out)
     return sbi_error(SB_EIO, __func__, "cannot open '%s' for writing", path);
   int bad = fwrite(MAGIC, 1, 8, out) != 8 || head_write(&h, out) ||
-            sbi_idmap_write(&f->set, out) ||
-            sbi_idmap_write(&f->counts, out);
+            sbi_idmap_write(&f->set, out, 0) ||
+            sbi_idmap_write(&f->counts, out, 1);
   bad |= fclose(out) != 0;
   if (bad) {
     remove(path);

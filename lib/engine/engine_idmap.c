@@ -91,10 +91,11 @@ long sbi_idmap_put(sbi_idmap *m, uint64_t key, uint32_t val)
   return h;
 }
 
-int sbi_idmap_write(const sbi_idmap *m, FILE *f)
+int sbi_idmap_write(const sbi_idmap *m, FILE *f, int counted_map)
 {
   const uint64_t n = m->n;
-  const unsigned char counted = m->val != NULL;
+  /* a counted map that never held a key has no `val` yet */
+  const unsigned char counted = counted_map != 0;
   if (fwrite(&n, sizeof n, 1, f) != 1 || fwrite(&counted, 1, 1, f) != 1)
     return -1;
   for (size_t i = 0; i < m->cap; i++)

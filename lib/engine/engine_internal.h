@@ -136,10 +136,11 @@ int sbi_idmap_has(const sbi_idmap *m, uint64_t key);
  * sbi_idmap_add. */
 long sbi_idmap_put(sbi_idmap *m, uint64_t key, uint32_t val);
 /* The map to f (its size, whether counted, then each key and count in
- * table order, native binary), and back into m (emptied first; counted:
- * whether the map keeps counts, which must match the file's): 0, -1 on a
- * read or write error or out of memory, -2 on malformed data. */
-int sbi_idmap_write(const sbi_idmap *m, FILE *f);
+ * table order, native binary), and back into m (emptied first); counted:
+ * whether the map keeps counts (on reading it must match the file's):
+ * 0, -1 on a read or write error or out of memory, -2 on malformed
+ * data. */
+int sbi_idmap_write(const sbi_idmap *m, FILE *f, int counted);
 int sbi_idmap_read(sbi_idmap *m, FILE *f, int counted);
 /* A fingerprint of the engine's particles (FNV-1a over the count, ids
  * and positions): an observer's state saved beside a checkpoint belongs
