@@ -154,9 +154,12 @@ const sbi_col_keydef sbi_col_keys[] = {
     {"run", "output", K_PATH, C(output), 0, R_ANY, 0, 0, NULL, "path",
      "collide-out", "output directory"},
     {"run", "checkpoint", K_PATH, C(checkpoint), 0, R_ANY, 0, 0, NULL,
-     "path", "-", "write a checkpoint at the end"},
+     "path", "-", "write a checkpoint at the end, and beside it what the "
+     "run keeps apart from the engine (PATH.firsthit, .agglo, .field, "
+     ".contacts)"},
     {"run", "restart", K_PATH, C(restart), 0, R_ANY, 0, 0, NULL, "path", "-",
-     "start from a checkpoint"},
+     "start from a checkpoint (and the files written beside it): the run "
+     "goes on as if it had not stopped"},
     /* ------------------------------------------------------- [bridge] */
     {"bridge", "ends", K_NAME, C(ends), 16, R_ANY, 0, 0, ENDS, "-",
      "position", "bridge end points: X, or Y = X + tau_p U"},
