@@ -326,6 +326,10 @@ restart = '"$dir"'/nofh.ck
 $a\
 [observe]\
 first_hit = yes'
+check "bridge restart without its counters" 2 "[run] detect = bridge with restart: no $dir/nofh.ck.bridge beside the checkpoint (it is written with the checkpoint of a run with a bridge detector): what it counted before is unknown" '4a\
+detect = bridge\
+outcome = count\
+restart = '"$dir"'/nofh.ck'
 check "field restart without its state" 2 "[fluid] type = ou-field with restart: no $dir/nofh.ck.field beside the checkpoint (it is written with the checkpoint of a run with that field): the field's state is unknown" '4a\
 restart = '"$dir"'/nofh.ck
 $a\

@@ -1,8 +1,12 @@
 /* test_engine_bridge.c — Bessel-3 bridge detection for the engine
  * (lib/engine/engine_bridge.c): tail bound and reach, detector probabilities and
  * hit times, periodic end points, barycentre place, correction step. */
+#define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
 #include <check.h>
 #include <gsl/gsl_integration.h>
@@ -13,8 +17,10 @@
 #include <smolbridge/bridge.h>
 #include <smolbridge/engine.h>
 #include <smolbridge/engine_bridge.h>
+#include <smolbridge/langevin.h>
 #include <smolbridge/stats.h>
 
+#include "engine_same.h"
 #include "testutil.h"
 
 #define PI 3.14159265358979323846
@@ -389,6 +395,116 @@ START_TEST(test_bad_arguments)
 }
 END_TEST
 
+/* 1500 Brownian spheres (r = 0.5, tau = 0.05, k_B T/m = 1) in a cube of
+ * 30 at dt = 0.5, the Bessel-3 bridge counting (pass-through) with up to
+ * 4000 hit records. */
+static sb_engine *bridge_gas(sb_engine_bridge **b, size_t cap,
+                             const char *saved, int *st)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 30.0;
+  p.dt = 0.5;
+  p.capacity = 1500;
+  p.seed = 29;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  sb_engine_species sp = {0.5, 1.0, 0.05, sqrt(2.0 / 0.05),
+                          1.0 / SB_BOLTZMANN};
+  ck_assert_int_eq(sb_engine_add_species(e, &sp, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 1500), SB_SUCCESS);
+  sb_engine_bridge_params bp;
+  sb_engine_bridge_params_default(&bp);
+  bp.outcome = SB_BRIDGE_OUT_COUNT;
+  bp.record_cap = cap;
+  *b = sb_engine_bridge_alloc(&bp);
+  ck_assert_ptr_nonnull(*b);
+  *st = saved ? sb_engine_bridge_load(*b, saved) : SB_SUCCESS;
+  return e;
+}
+
+static void bridge_steps(sb_engine *e, int n)
+{
+  for (int k = 0; k < n; k++)
+    ck_assert_msg(sb_engine_step(e) == SB_SUCCESS, "%s", sb_last_error());
+}
+
+/* sbt_load_fn: the saved counters into a new detector. */
+static int load_bridge(const char *path, void *ctx)
+{
+  (void)ctx;
+  int st;
+  sb_engine_bridge *b;
+  sb_engine *e = bridge_gas(&b, 4000, path, &st);
+  sb_engine_bridge_free(b);
+  sb_engine_free(e);
+  return st;
+}
+
+/* The counters and hit records go on from a checkpoint: a run stopped
+ * after 10 steps, saved (engine and detector) and restored is the 20-step
+ * run, its counters and records bit for bit.  Then the errors: more
+ * records than record_cap, an engine at another step, damaged files. */
+START_TEST(test_save_load)
+{
+  char dir[] = "/tmp/sb_bridge_XXXXXX";
+  ck_assert_ptr_nonnull(mkdtemp(dir));
+  char ck[64], bf[64], bad[64];
+  snprintf(ck, sizeof ck, "%s/run.ck", dir);
+  snprintf(bf, sizeof bf, "%s/run.ck.bridge", dir);
+  snprintf(bad, sizeof bad, "%s/bad", dir);
+  int st;
+  sb_engine_bridge *a, *b;
+  sb_engine *ea = bridge_gas(&a, 4000, NULL, &st);
+  sb_engine *eb = bridge_gas(&b, 4000, NULL, &st);
+  ck_assert_int_eq(sb_engine_bridge_attach(ea, a), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_bridge_attach(eb, b), SB_SUCCESS);
+  bridge_steps(ea, 20);
+  bridge_steps(eb, 10);
+  ck_assert_int_eq(sb_engine_checkpoint_save(eb, ck), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_bridge_save(b, eb, bf), SB_SUCCESS);
+  sb_engine_bridge_free(b);
+  sb_engine_free(eb);
+  eb = sb_engine_checkpoint_load(ck, &st);
+  ck_assert_int_eq(st, SB_SUCCESS);
+  sb_engine *unused = bridge_gas(&b, 4000, bf, &st);
+  sb_engine_free(unused);
+  ck_assert_msg(st == SB_SUCCESS, "%s", sb_last_error());
+  ck_assert_int_eq(sb_engine_bridge_attach(eb, b), SB_SUCCESS);
+  bridge_steps(eb, 10);
+  sbt_assert_same_run(ea, eb, SBT_SAME_CANDIDATES);
+  sb_engine_bridge_stats sa, sb;
+  sb_engine_bridge_get_stats(a, &sa);
+  sb_engine_bridge_get_stats(b, &sb);
+  ck_assert_uint_gt(sa.ncoll, 100);
+  ck_assert(!memcmp(&sa, &sb, sizeof sa));
+  size_t na, nb;
+  const sb_engine_bridge_hit *ha = sb_engine_bridge_hits(a, &na);
+  const sb_engine_bridge_hit *hb = sb_engine_bridge_hits(b, &nb);
+  ck_assert_uint_eq(na, nb);
+  ck_assert(na > 100 && !memcmp(ha, hb, na * sizeof *ha));
+  sb_engine_bridge_free(b);
+  /* the errors: too few records allowed; the engine at another step */
+  unused = bridge_gas(&b, 10, bf, &st);
+  ck_assert_int_eq(st, SB_EINVAL);
+  sb_engine_bridge_free(b);
+  sb_engine_free(unused);
+  unused = bridge_gas(&b, 4000, bf, &st);
+  ck_assert_int_eq(st, SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_bridge_attach(eb, b), SB_EINVAL);  /* at 20 */
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "step 10"));
+  sb_engine_bridge_free(b);
+  sb_engine_free(unused);
+  sbt_damaged_copies(bf, bad, 30, "SBFHIT01", load_bridge, NULL);
+  sb_engine_bridge_free(a);
+  sb_engine_free(ea);
+  sb_engine_free(eb);
+  remove(ck);
+  remove(bf);
+  rmdir(dir);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("engine_bridge");
@@ -402,6 +518,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_place_moments);
   tcase_add_test(tc, test_correction_barycentre);
   tcase_add_test(tc, test_bad_arguments);
+  tcase_add_test(tc, test_save_load);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -100,7 +100,7 @@ static inline void sbt_damaged_copies(const char *good, const char *bad,
                                       size_t head, const char *other,
                                       sbt_load_fn load, void *ctx)
 {
-  static char buf[1 << 16];
+  static char buf[1 << 20];
   FILE *in = fopen(good, "rb");
   ck_assert_ptr_nonnull(in);
   const size_t n = fread(buf, 1, sizeof buf - 1, in);

@@ -7,11 +7,14 @@
  *  - the random field ([fluid] type = ou-field | kraichnan:
  *    CHECKPOINT.field, sb_field_ou_save, sb_field_kraichnan_save);
  *  - the recorded contacts ([observe] first_hit_velocities:
- *    CHECKPOINT.contacts, collide_contacts.c). */
+ *    CHECKPOINT.contacts, collide_contacts.c);
+ *  - a bridge detector's counters and hit records (detect = bridge |
+ *    exact: CHECKPOINT.bridge, sb_engine_bridge_save). */
 #include <stdio.h>
 #include <string.h>
 
 #include <smolbridge/engine.h>
+#include <smolbridge/engine_bridge.h>
 #include <smolbridge/engine_field.h>
 #include <smolbridge/engine_firsthit.h>
 
@@ -21,6 +24,8 @@
 /* The file name's suffix of state `which` of the run, or NULL. */
 static const char *suffix_of(const sbi_col_config *c, int which)
 {
+  if (which == SBI_BESIDE_BRIDGE)
+    return sbi_col_bridge(c) ? "bridge" : NULL;
   if (which == SBI_BESIDE_CONTACTS)
     return c->first_hit && c->first_hit_vn > 0 ? "contacts" : NULL;
   if (which == SBI_BESIDE_FIELD)
@@ -51,6 +56,7 @@ int sbi_col_restart_beside(const sbi_col_config *c, int which,
                      "is written with the checkpoint of a run with %s): "
                      "%s is unknown", buf,
                      which == SBI_BESIDE_FIELD      ? "that field"
+                     : which == SBI_BESIDE_BRIDGE   ? "a bridge detector"
                      : which == SBI_BESIDE_CONTACTS ? "first_hit_velocities"
                      : c->first_hit                 ? "first_hit"
                                                     : "merging", lost);
@@ -75,5 +81,8 @@ int sbi_col_save_beside(const sbi_col_config *c, const sbi_col_run *r)
   if (!st && !sbi_col_beside(c, SBI_BESIDE_CONTACTS, c->checkpoint, path,
                              sizeof path))
     st = sbi_col_contacts_save(r, path);
+  if (!st && !sbi_col_beside(c, SBI_BESIDE_BRIDGE, c->checkpoint, path,
+                             sizeof path))
+    st = sb_engine_bridge_save(r->bridge, r->e, path);
   return st;
 }

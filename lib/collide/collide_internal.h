@@ -311,10 +311,14 @@ void sbi_col_run_free(sbi_col_run *r);
 /* The states a run keeps beside its checkpoint, besides the engine's:
  * its counts, the first-contact observer's (CHECKPOINT.firsthit) or the
  * agglomeration context's (CHECKPOINT.agglo), its random field
- * (CHECKPOINT.field) and the contacts' velocities of first_hit_velocities
- * (CHECKPOINT.contacts).  The file name of state `which` from `checkpoint`
+ * (CHECKPOINT.field), the contacts' velocities of first_hit_velocities
+ * (CHECKPOINT.contacts) and the bridge detector's counters and hit
+ * records (CHECKPOINT.bridge).  The file name of state `which` from `checkpoint`
  * into buf (0), or 1 when the run has no such state. */
-enum { SBI_BESIDE_COUNTS, SBI_BESIDE_FIELD, SBI_BESIDE_CONTACTS };
+enum {
+  SBI_BESIDE_COUNTS, SBI_BESIDE_FIELD, SBI_BESIDE_CONTACTS,
+  SBI_BESIDE_BRIDGE, SBI_BESIDE_N
+};
 int sbi_col_beside(const sbi_col_config *c, int which,
                    const char *checkpoint, char *buf, size_t len);
 /* On restart, the file of state `which` beside [run] restart into buf: 0

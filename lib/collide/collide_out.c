@@ -89,19 +89,17 @@ int sbi_col_out_prepare(sbi_col_config *c)
     return sbi_col_fail(c, "%s: [run] output = %s: not writable: %s", where,
                         c->output, strerror(errno));
   if (c->checkpoint[0]) {  /* the checkpoint and the states beside it */
-    static const int which[3] = {SBI_BESIDE_COUNTS, SBI_BESIDE_FIELD,
-                                 SBI_BESIDE_CONTACTS};
-    char fh[3][600];
-    for (int k = 0; k < 4; k++) {
-      if (k && sbi_col_beside(c, which[k - 1], c->checkpoint, fh[k - 1],
-                              sizeof fh[k - 1]))
+    char fh[600];
+    for (int k = -1; k < SBI_BESIDE_N; k++) {
+      if (k >= 0 && sbi_col_beside(c, k, c->checkpoint, fh, sizeof fh))
         continue;  /* the run has no such state */
-      const char *p = k ? fh[k - 1] : c->checkpoint;
+      const char *p = k >= 0 ? fh : c->checkpoint;
       if (!writable(p))
         return sbi_col_fail(c, "%s: [run] checkpoint = %s: %s%snot "
                             "writable: %s",
                             sbi_col_where(c, "run", "checkpoint"),
-                            c->checkpoint, k ? p : "", k ? " " : "",
+                            c->checkpoint, k >= 0 ? p : "",
+                            k >= 0 ? " " : "",
                             strerror(errno));
     }
   }

@@ -576,6 +576,16 @@ static int attach_bridge(sbi_col_config *c, sbi_col_run *r)
         return sbi_col_fail(c, "%s: [%s]: %s", c->sp[k].where, c->sp[k].name,
                             sb_last_error());
   }
+  if (c->restart[0]) {  /* its counters and records go on */
+    char path[600];
+    if (sbi_col_restart_beside(c, SBI_BESIDE_BRIDGE,
+                               "what it counted before",
+                               path, sizeof path) ||
+        sb_engine_bridge_load(r->bridge, path))
+      return sbi_col_fail(c, "%s: [run] detect = %s with %s",
+                          sbi_col_where(c, "run", "restart"), c->detect,
+                          sb_last_error());
+  }
   if (sb_engine_bridge_attach(r->e, r->bridge))
     return sbi_col_fail(c, "[run] detect = %s: %s", c->detect,
                         sb_last_error());

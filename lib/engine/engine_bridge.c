@@ -18,17 +18,9 @@
 
 #include "common/internal.h"
 #include "common/numutil.h"
+#include "engine_bridge_state.h"
 #include "engine_internal.h"
 
-struct sb_engine_bridge {
-  sb_engine_bridge_params par;
-  size_t nb2;               /* entries in b2/b2b/b2set */
-  double *b2, *b2b;         /* per-species overrides */
-  unsigned char *b2set;
-  sb_engine_bridge_stats st;
-  sb_engine_bridge_hit *hits;
-  size_t nhits;
-};
 
 void sb_engine_bridge_params_default(sb_engine_bridge_params *p)
 {
@@ -240,6 +232,13 @@ int sb_engine_bridge_attach(sb_engine *e, sb_engine_bridge *b)
     if (!isfinite(e->spec[sp].tau) && !(sp < b->nb2 && b->b2set[sp]))
       return sbi_error(SB_EINVAL, __func__,
                        "species %zu: free flight has no diffusivity", sp);
+  if (b->restored) {  /* sb_engine_bridge_load: its counters go on */
+    const int st = sbi_engine_check_saved(e, b->saved_steps, b->saved_print,
+                                          __func__, "the bridge detector");
+    if (st)
+      return st;
+    b->restored = 0;
+  }
   double reach = sb_engine_bridge_reach(e, b);
   if (!(reach >= 0.0))
     return sbi_error(SB_EINVAL, __func__, "no reach: %s", sb_last_error());

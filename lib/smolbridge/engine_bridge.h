@@ -148,6 +148,20 @@ void sb_engine_bridge_free(sb_engine_bridge *b);
 int sb_engine_bridge_set_b2(sb_engine_bridge *b, size_t species, double b2,
                             double b2_brown);
 
+/** Save the detector's counters and hit records beside a checkpoint of
+ *  engine e at the same step (sb_engine_checkpoint_save), with the
+ *  engine's step and a fingerprint of its particles.  Native binary.
+ *  SB_EINVAL, SB_EIO (cannot write; no file is left). */
+int sb_engine_bridge_save(const sb_engine_bridge *b, const sb_engine *e,
+                          const char *path);
+/** Restore them into a new detector (its parameters and b2 given again),
+ *  before sb_engine_bridge_attach, which then checks that the engine is
+ *  the one restored from the same checkpoint (SB_EINVAL otherwise).
+ *  SB_EINVAL (more records than record_cap), SB_EIO (cannot open),
+ *  SB_EFORMAT (not such a file, truncated); on failure the counters are
+ *  unchanged and no record is kept. */
+int sb_engine_bridge_load(sb_engine_bridge *b, const char *path);
+
 /** Install the detector and outcome in engine e (3-D, every species with
  *  finite tau_p): computes the reach (sb_engine_bridge_reach) from the
  *  current particle number, box, species and dt.  Call again after a

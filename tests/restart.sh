@@ -1,0 +1,167 @@
+#!/bin/sh
+# Every state a `smolbridge collide` run keeps goes through a checkpoint:
+# a run stopped part-way ([run] checkpoint, and the states written beside
+# it) and continued from there ([run] restart) gives the results of the
+# run in one go, to the last bit.  One case per state: the engine's
+# collision tally (count_variance), the open boundaries' counters, the
+# first-contact observer with the recorded contact velocities, the
+# agglomeration context (DLVO sticking, whose draws come from the
+# engine's generator), both random fields, and a bridge detector's
+# counters with the turbulent split of its collisions.
+set -u
+sb="${top_builddir:-.}/smolbridge"
+ex="${srcdir:-.}/examples"
+out="${top_builddir:-.}/tests/restart-out"
+py="${PYTHON:-python3}"
+"$py" -c 1 2>/dev/null || py=python3  # the JSON is read with Python
+rm -rf "$out"
+mkdir -p "$out"
+fails=0
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+
+# split NAME INI PART REST [--set K=V ...]: NAME_0 the run in one go,
+# NAME_1 its first part (--set PART) ending in the checkpoint NAME.ck,
+# NAME_2 the rest (--set REST, or "-") from it; the extra settings go to
+# all three, before PART and REST.  1 (and a failure) if one of them did
+# not run.
+split() {
+  name=$1 ini=$2 part=$3 rest=$4
+  shift 4
+  if ! "$sb" collide "$ini" "$@" --set "run.output=$out/${name}_0" \
+         > /dev/null 2>&1 ||
+     ! "$sb" collide "$ini" "$@" --set "run.output=$out/${name}_1" \
+         --set "$part" --set "run.checkpoint=$out/$name.ck" \
+         > /dev/null 2>&1; then
+    fail "$ini: the run in one go or its first part"
+    return 1
+  fi
+  [ "$rest" = - ] || set -- "$@" --set "$rest"
+  "$sb" collide "$ini" "$@" --set "run.output=$out/${name}_2" \
+    --set "run.restart=$out/$name.ck" > /dev/null 2>&1 ||
+    { fail "$ini: the restart"; return 1; }
+}
+
+# same NAME WHAT...: in summary.json of NAME_0 and NAME_2, each WHAT
+# (a dotted key path) equal, KEY~TOL equal to TOL relative, KEY>MIN
+# above MIN in the run in one go (a count: the case measures something)
+same() {
+  name=$1
+  shift
+  "$py" - "$out/${name}_0/summary.json" "$out/${name}_2/summary.json" \
+    "$name" "$@" <<'PY' || fail "$name: the restarted run differs from the run in one go"
+import json, re, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+def get(d, path):
+    for k in path.split("."):
+        d = d[int(k)] if isinstance(d, list) else d[k]
+    return d
+ok, shown = True, []
+for w in sys.argv[4:]:
+    key, op, val = re.match(r"([\w.]+)(?:([~>])(.*))?$", w).groups()
+    x, y = get(a, key), get(b, key)
+    if op == ">":
+        good = x > float(val)
+    elif op == "~":
+        good = abs(x - y) <= float(val) * abs(x)
+    else:
+        good = x == y
+    ok &= good
+    if not isinstance(x, (dict, list)):
+        shown.append("%s %s / %s" % (key, x, y))
+    if not good:
+        print("  %s differs: %s / %s" % (key, json.dumps(x)[:200],
+                                        json.dumps(y)[:200]))
+print("restart %s: %s" % (sys.argv[3], "; ".join(shown)))
+sys.exit(0 if ok else 1)
+PY
+}
+
+# the collision tally (count_variance) of a kinetic gas: the pair kernel,
+# its count variance and widened interval
+split he "$ex/v1_kinetic_gas_he.ini" run.t_end=5e-11 - &&
+  same he pair_kernels pair_kernels.0.ncoll_var pair_kernels.0.collisions\>1000
+
+# the open boundaries (the crossing jets, elastic): the inflows are added
+# again from the file, the checkpoint keeps their counters and the
+# outflows'
+split jets "$ex/open_crossing_jets.ini" run.t_end=2e-3 - &&
+  same jets outflows inflows collisions particles kernel \
+    kinetic_energy.end outflows.1\>100
+
+# first-contact counting with the recorded velocities (CHECKPOINT.firsthit
+# and .contacts): the first-contact results and contacts.csv
+split kernel "$ex/v12_kernel_firsthit.ini" run.t_end=8e-5 - \
+    --set observe.first_hit_velocities=20000 &&
+  same kernel first_hit contacts first_hit.hits\>8000 &&
+  { cmp -s "$out/kernel_0/contacts.csv" "$out/kernel_2/contacts.csv" ||
+    fail "kernel: the restarted contacts.csv differs"; }
+
+# a merging run (CHECKPOINT.agglo; DLVO sticking draws from the engine's
+# generator): the counts and sizes.csv (the restart keeps the sampling
+# period)
+split dlvo "$ex/v8_dlvo_gas.ini" run.steps=12 run.steps=11 \
+    --set run.sample_every=2 &&
+  same dlvo agglo collisions kernel agglo.merges\>500 &&
+  { cmp -s "$out/dlvo_0/sizes.csv" "$out/dlvo_2/sizes.csv" ||
+    fail "dlvo: the restarted sizes.csv differs"; }
+
+# the random fields (CHECKPOINT.field): the OU field drawing from a
+# generator of its own ([fluid] seed: its state saved with it), and a
+# time-dependent Kraichnan field drawn from the engine's generator (so it
+# cannot be drawn again)
+cat > "$out/kr.ini" <<EOF
+[run]
+seed = 3
+L = 1e-3
+dt = 1e-5
+steps = 200
+detect = ballistic
+outcome = count
+[fluid]
+type = kraichnan
+eps_nu = 1e4
+shell = 2
+omega = 300
+[species a]
+radius = 2e-5
+density = 1000
+tau = 1e-5
+B = 0
+count = 3000
+EOF
+split ou "$ex/v16_abrahamson_ou_field.ini" run.steps=100 run.steps=100 \
+    --set run.steps=200 --set fluid.seed=5 &&
+  same ou collisions kernel pair_kernels particles kinetic_energy.end \
+    collisions\>1000
+split kr "$out/kr.ini" run.steps=100 run.steps=100 &&
+  same kr collisions kernel particles kinetic_energy.end collisions\>20
+
+# a bridge detector in turbulence (CHECKPOINT.bridge: its counters) keeps
+# the Brownian share of its collisions (the split of the species' b2,
+# whose total the checkpoint holds: Mohaupt 2011, eqs 6.20-6.23; it read
+# 1 when the restart took all of b2 as Brownian; equal to rounding, b2's
+# Brownian part being taken out again)
+cat > "$out/turb.ini" <<EOF
+[run]
+L = 2e-5
+dt = 1e-6
+steps = 40
+detect = bridge
+outcome = count
+[turbulence]
+eps = 1e-2
+nu = 1.5e-5
+[species a]
+radius = 5e-7
+density = 1000
+mu = 1.8e-5
+T = 300
+count = 2000
+EOF
+split turb "$out/turb.ini" run.steps=20 run.steps=20 &&
+  same turb bridge.collisions bridge.detections bridge.brownian_share~1e-9 \
+    bridge.collisions\>1000
+
+rm -rf "$out"
+[ "$fails" -eq 0 ] && echo "restart: all checks passed"
+exit $((fails > 0))
