@@ -91,9 +91,11 @@ static int read_points(const char *file, sw_points *P, char *err,
   return 0;
 }
 
-/* The output directory of the base configuration (file + --set). */
+/* The output directory and the checkpoint's file name (its last path
+ * component, "" without one) of the base configuration (file + --set). */
 static int base_output(const char *ini, const char *const *sets, int nsets,
-                       char *out, size_t len, char *err, size_t elen)
+                       char *out, size_t len, char *ck, size_t cklen,
+                       char *err, size_t elen)
 {
   sb_collide *c = sb_collide_alloc();
   if (!c) {
@@ -105,8 +107,11 @@ static int base_output(const char *ini, const char *const *sets, int nsets,
     st = sb_collide_set(c, sets[i]);
   if (st)
     snprintf(err, elen, "%s", sb_collide_error(c));
-  else
+  else {
     snprintf(out, len, "%s", sb_collide_output(c));
+    const char *p = sb_collide_checkpoint(c), *slash = strrchr(p, '/');
+    snprintf(ck, cklen, "%s", slash ? slash + 1 : p);
+  }
   sb_collide_free(c);
   return st ? -1 : 0;
 }
@@ -140,14 +145,18 @@ static void kernel_cells(const col_point *res, char *buf, size_t len)
     snprintf(buf, len, "%.10g,%.10g,%.10g", res->K, res->lo, res->hi);
 }
 
-/* One point: run it and format its summary row. */
+/* One point: run it and format its summary row.  A checkpoint of the
+ * base configuration (file name ck) is written into the point's
+ * directory, unless the line gives the point's own: every point would
+ * write the same file otherwise. */
 static int run_point(const char *ini, const char *const *sets, int nsets,
-                     const char *base, size_t k, const char *line,
-                     char *row, size_t rlen, col_point *res)
+                     const char *base, const char *ck, size_t k,
+                     const char *line, char *row, size_t rlen,
+                     col_point *res)
 {
   char *words = malloc(strlen(line) + 1);
-  const char *all[2 * SW_MAXSET + 2];
-  char outset[1200];
+  const char *all[2 * SW_MAXSET + 3];
+  char outset[1200], ckset[1800];
   int n = 0, rc;
   if (!words)
     return -1;
@@ -162,6 +171,11 @@ static int run_point(const char *ini, const char *const *sets, int nsets,
   }
   snprintf(outset, sizeof outset, "run.output=%s/point_%03zu", base, k);
   all[n++] = outset;
+  if (ck[0] && !strstr(line, "run.checkpoint=")) {
+    snprintf(ckset, sizeof ckset, "run.checkpoint=%s/point_%03zu/%s", base,
+             k, ck);
+    all[n++] = ckset;
+  }
   if (nline > SW_MAXSET) {
     memset(res, 0, sizeof *res);
     res->K = res->lo = res->hi = NAN;
@@ -188,10 +202,11 @@ int col_sweep(const char *ini, const char *const *sets, int nsets,
 {
   const int rank = sbc_par_rank(), P = sbc_par_size();
   sw_points pts = {NULL, 0, 0};
-  char err[1200] = "", base[600];
+  char err[1200] = "", base[600], ck[600] = "";
   /* every rank reads the same files: the same error on each */
   if (read_points(file, &pts, err, sizeof err) ||
-      base_output(ini, sets, nsets, base, sizeof base, err, sizeof err)) {
+      base_output(ini, sets, nsets, base, sizeof base, ck, sizeof ck, err,
+                  sizeof err)) {
     if (rank == 0)
       fprintf(stderr, "collide: %s\n", err);
     points_free(&pts);
@@ -213,7 +228,7 @@ int col_sweep(const char *ini, const char *const *sets, int nsets,
   for (size_t k = (size_t)rank; k < pts.n && !bad; k += (size_t)P) {
     char row[8192];
     col_point res;
-    int rc = run_point(ini, sets, nsets, base, k, pts.line[k], row,
+    int rc = run_point(ini, sets, nsets, base, ck, k, pts.line[k], row,
                        sizeof row, &res);
     if (rc < 0) {
       bad = 1;

@@ -7,7 +7,8 @@
 # first-contact observer with the recorded contact velocities, the
 # agglomeration context (DLVO sticking, whose draws come from the
 # engine's generator), both random fields, and a bridge detector's
-# counters with the turbulent split of its collisions.
+# counters with the turbulent split of its collisions; and the points of
+# a sweep each write their own checkpoint.
 set -u
 sb="${top_builddir:-.}/smolbridge"
 ex="${srcdir:-.}/examples"
@@ -161,6 +162,36 @@ EOF
 split turb "$out/turb.ini" run.steps=20 run.steps=20 &&
   same turb bridge.collisions bridge.detections bridge.brownian_share~1e-9 \
     bridge.collisions\>1000
+
+# a sweep whose base configuration writes a checkpoint: every point writes
+# its own, in its directory (one file for all would hold the last point's
+# alone), unless its line names one
+cat > "$out/sweep.ini" <<EOF
+[run]
+L = 1e-5
+dt = 1e-7
+steps = 10
+output = $out/sweep
+checkpoint = $out/shared.ck
+[species a]
+radius = 1e-7
+density = 1000
+mu = 1e-3
+T = 300
+count = 10
+EOF
+printf 'run.seed=1\nrun.seed=2\nrun.seed=3 run.checkpoint=%s/own.ck\n' \
+  "$out" > "$out/points"
+if "$sb" collide "$out/sweep.ini" --sweep "$out/points" > /dev/null 2>&1 &&
+   [ -s "$out/sweep/point_000/shared.ck" ] &&
+   [ -s "$out/sweep/point_001/shared.ck" ] && [ -s "$out/own.ck" ] &&
+   [ ! -e "$out/shared.ck" ] && [ ! -e "$out/sweep/point_002/shared.ck" ]
+then
+  cmp -s "$out/sweep/point_000/shared.ck" "$out/sweep/point_001/shared.ck" &&
+    fail "sweep: two points wrote the same checkpoint"
+else
+  fail "sweep: the points' checkpoints are not where they belong"
+fi
 
 rm -rf "$out"
 [ "$fails" -eq 0 ] && echo "restart: all checks passed"

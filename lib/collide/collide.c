@@ -149,6 +149,11 @@ const char *sb_collide_warning(const sb_collide *cl, size_t i)
 
 const char *sb_collide_output(const sb_collide *cl) { return cl->c.output; }
 
+const char *sb_collide_checkpoint(const sb_collide *cl)
+{
+  return cl->c.checkpoint;
+}
+
 const sb_engine *sb_collide_engine(const sb_collide *cl) { return cl->r.e; }
 
 const sb_agglo *sb_collide_agglo(const sb_collide *cl)

@@ -151,6 +151,8 @@ const char *sb_collide_warning(const sb_collide *c, size_t i);
 
 /** The output directory (`[run] output`, default "collide-out"). */
 const char *sb_collide_output(const sb_collide *c);
+/** The checkpoint path (`[run] checkpoint`), "" without one. */
+const char *sb_collide_checkpoint(const sb_collide *c);
 
 /** The engine of the run, after sb_collide_setup (NULL before): its
  *  parameters, counts, kernel estimate (sb_engine_kernel) and statistics
