@@ -389,6 +389,9 @@ START_TEST(test_checkpoint_roundtrip)
   sb_engine *a = brownian_engine(SB_NEIGH_CELLS, 11, SB_OUTCOME_REINSERT);
   double U[3] = {0.1, -0.2, 0.05};
   sb_engine_set_fluid(a, SB_FLUID_UNIFORM, U);
+  /* the Langevin detector's parameters are kept too */
+  const sb_engine_langevin_params lp = {2e-6, 3e-6, 4e-9};
+  ck_assert_int_eq(sb_engine_set_langevin(a, &lp), SB_SUCCESS);
   for (int k = 0; k < 150; k++)
     ck_assert_int_eq(sb_engine_step(a), SB_SUCCESS);
   ck_assert_int_eq(sb_engine_checkpoint_save(a, path), SB_SUCCESS);
@@ -397,6 +400,9 @@ START_TEST(test_checkpoint_roundtrip)
   ck_assert_int_eq(st, SB_SUCCESS);
   ck_assert_ptr_nonnull(b);
   sbt_assert_same_run(a, b, 0);
+  sb_engine_langevin_params got;
+  ck_assert_int_eq(sb_engine_get_langevin(b, &got), SB_SUCCESS);
+  ck_assert(got.eps == lp.eps && got.xtol == lp.xtol && got.tol == lp.tol);
   for (int k = 0; k < 150; k++) {
     ck_assert_int_eq(sb_engine_step(a), SB_SUCCESS);
     ck_assert_int_eq(sb_engine_step(b), SB_SUCCESS);

@@ -247,10 +247,11 @@ START_TEST(test_checkpoint)
   const long size = ftell(f);
   rewind(f);
   const long np = SB_ENGINE_PAIR_SPECIES * (SB_ENGINE_PAIR_SPECIES + 1) / 2;
-  /* the block of version 5: outflows per face, the inflow slots, their
-   * injected and skipped counts, on, lost, 3 sums per pair */
-  const long v4 = size - (6 * 8 + 4 + 2 * 8 * SB_ENGINE_MAXINFLOW + 8 +
-                          24 * np);
+  /* the block of version 5: the Langevin detector's 3 parameters,
+   * outflows per face, the inflow slots, their injected and skipped
+   * counts, on, lost, 3 sums per pair */
+  const long v4 = size - (3 * 8 + 6 * 8 + 4 + 2 * 8 * SB_ENGINE_MAXINFLOW +
+                          8 + 24 * np);
   char *buf = malloc((size_t)size);
   ck_assert_ptr_nonnull(buf);
   ck_assert_uint_eq(fread(buf, 1, (size_t)size, f), (size_t)size);

@@ -826,9 +826,9 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
   if (sbi_col_agglo(c) && attach_agglo(c, r))
     return -1;
   if (!isnan(c->lv_eps) || !isnan(c->lv_xtol) || !isnan(c->lv_tol)) {
-    /* not in checkpoints: given again on restart */
+    /* over the defaults, or on restart over the checkpoint's */
     sb_engine_langevin_params lp;
-    sb_engine_langevin_params_default(&lp);
+    sb_engine_get_langevin(r->e, &lp);
     if (!isnan(c->lv_eps))
       lp.eps = c->lv_eps;
     if (!isnan(c->lv_xtol))

@@ -24,7 +24,8 @@
 /* version 3 appends the block of forces, Lees-Edwards and walls
  * (engine_wall.c) after the generator state; version 4 puts the
  * streams flag (sb_engine_params.streams) between the two; version 5
- * appends the open boundaries' counters and the collision tally
+ * appends the Langevin detector's parameters, the open boundaries'
+ * counters and the collision tally
  * (sb_engine_set_count_variance: whether it is on and whole, its sums
  * and both tables).  The parameter block keeps
  * the layout of version 2 (the fields before streams), so version 2 to
@@ -39,7 +40,8 @@ static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '5'};
       goto fail;                                            \
   } while (0)
 
-/* What version 5 adds: the open boundaries' counters (engine_open.c:
+/* What version 5 adds: the Langevin detector's parameters
+ * (sb_engine_set_langevin), the open boundaries' counters (engine_open.c:
  * outflows per face, each inflow slot's injected and skipped particles;
  * the inflows themselves are added again after loading, in the same
  * order) and the collision tally (engine_observe.c: on, whole, the sums,
@@ -48,7 +50,9 @@ static int counters_save(const sb_engine *e, FILE *f)
 {
   const int32_t slots = SB_ENGINE_MAXINFLOW;
   const int32_t on = e->cvar_on, lost = e->cvar_lost;
-  if (fwrite(e->nout, sizeof e->nout, 1, f) != 1 ||
+  const double lp[3] = {e->lpar.eps, e->lpar.xtol, e->lpar.tol};
+  if (fwrite(lp, sizeof lp, 1, f) != 1 ||
+      fwrite(e->nout, sizeof e->nout, 1, f) != 1 ||
       fwrite(&slots, sizeof slots, 1, f) != 1 ||
       fwrite(e->ninj, sizeof e->ninj, 1, f) != 1 ||
       fwrite(e->nskip, sizeof e->nskip, 1, f) != 1 ||
@@ -66,6 +70,12 @@ static int counters_save(const sb_engine *e, FILE *f)
 static int counters_load(sb_engine *e, FILE *f)
 {
   int32_t slots, on, lost;
+  double lp[3];
+  if (fread(lp, sizeof lp, 1, f) != 1)
+    return -1;
+  const sb_engine_langevin_params q = {lp[0], lp[1], lp[2]};
+  if (sb_engine_set_langevin(e, &q))
+    return -1;
   if (fread(e->nout, sizeof e->nout, 1, f) != 1 ||
       fread(&slots, sizeof slots, 1, f) != 1 ||
       slots != SB_ENGINE_MAXINFLOW ||

@@ -87,6 +87,14 @@ int sb_engine_set_langevin(sb_engine *e, const sb_engine_langevin_params *p)
   return SB_SUCCESS;
 }
 
+int sb_engine_get_langevin(const sb_engine *e, sb_engine_langevin_params *p)
+{
+  if (!e || !p)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  *p = e->lpar;
+  return SB_SUCCESS;
+}
+
 int sb_engine_langevin_stats(const sb_engine *e, sb_langevin_hit_stats *st)
 {
   if (!e || !st || !e->lh)

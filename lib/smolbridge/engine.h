@@ -467,9 +467,11 @@ typedef struct {
 void sb_engine_langevin_params_default(sb_engine_langevin_params *p);
 
 /** Set the parameters of the Langevin detector (whether or not it is the
- *  engine's detector now); they are not stored in checkpoints (a loaded
- *  engine uses the defaults).  SB_EINVAL on a bad value. */
+ *  engine's detector now); checkpoints keep them.  SB_EINVAL on a bad
+ *  value. */
 int sb_engine_set_langevin(sb_engine *e, const sb_engine_langevin_params *p);
+/** The parameters in use (the defaults, those set, or a checkpoint's). */
+int sb_engine_get_langevin(const sb_engine *e, sb_engine_langevin_params *p);
 
 /** The neighbour reach (m) of the Langevin detector for the current
  *  particle number, species, box and dt: the largest sb_langevin_reach
