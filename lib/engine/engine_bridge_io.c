@@ -31,7 +31,7 @@ int sb_engine_bridge_save(const sb_engine_bridge *b, const sb_engine *e,
   int ok = fwrite(MAGIC, 1, 8, f) == 8 && W(steps) && W(print) &&
            W(b->st.ndetect) && W(b->st.ncoll) && W(b->st.noverlap) &&
            W(b->st.coll_brown) && W(b->st.coll_turb) && W(nh) &&
-           fwrite(b->hits, sizeof *b->hits, nh, f) == nh;
+           (nh == 0 || fwrite(b->hits, sizeof *b->hits, nh, f) == nh);
   ok &= fclose(f) == 0;
   if (ok)
     return SB_SUCCESS;
@@ -58,7 +58,7 @@ int sb_engine_bridge_load(sb_engine_bridge *b, const char *path)
     if (nh > b->par.record_cap)
       status = SB_EINVAL, why = "it holds more hit records than this "
                                 "detector's record_cap";
-    else if (fread(b->hits, sizeof *b->hits, nh, f) == nh &&
+    else if ((nh == 0 || fread(b->hits, sizeof *b->hits, nh, f) == nh) &&
              fgetc(f) == EOF)
       status = SB_SUCCESS;
   }
