@@ -180,16 +180,9 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   int dummy;
   if (!status)
     status = &dummy;
-  *status = SB_SUCCESS;
-  if (!path) {
-    *status = sbi_error(SB_EINVAL, __func__, "path is NULL");
+  FILE *f = sbi_open_saved(path, __func__, status);
+  if (!f)
     return NULL;
-  }
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    *status = sbi_error(SB_EIO, __func__, "cannot open '%s'", path);
-    return NULL;
-  }
   sb_engine *e = NULL;
   sb_engine_species *spec = NULL;
   char magic[8];
@@ -354,4 +347,17 @@ int sbi_engine_check_saved(const sb_engine *e, uint64_t steps,
                      "than the engine has (another checkpoint at the same "
                      "step): restore both from the same checkpoint", what);
   return SB_SUCCESS;
+}
+
+FILE *sbi_open_saved(const char *path, const char *func, int *status)
+{
+  *status = SB_SUCCESS;
+  if (!path) {
+    *status = sbi_error(SB_EINVAL, func, "path is NULL");
+    return NULL;
+  }
+  FILE *f = fopen(path, "rb");
+  if (!f)
+    *status = sbi_error(SB_EIO, func, "cannot open '%s'", path);
+  return f;
 }

@@ -18,6 +18,7 @@
 
 #include "common/internal.h"
 #include "engine_field_state.h"
+#include "engine_internal.h"
 
 static const char OU_MAGIC[8] = {'S', 'B', 'F', 'O', 'U', '0', '0', '1'};
 static const char KR_MAGIC[8] = {'S', 'B', 'F', 'K', 'R', '0', '0', '1'};
@@ -132,15 +133,11 @@ sb_field_ou *sb_field_ou_load(const char *path, double u2, double TL,
   int dummy;
   if (!status)
     status = &dummy;
-  if (!path || !r) {
-    *status = sbi_error(SB_EINVAL, __func__, "NULL argument");
+  FILE *f = r ? sbi_open_saved(path, __func__, status) : NULL;
+  if (!r)
+    *status = sbi_error(SB_EINVAL, __func__, "NULL generator");
+  if (!f)
     return NULL;
-  }
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    *status = sbi_error(SB_EIO, __func__, "cannot open '%s'", path);
-    return NULL;
-  }
   const char *why;
   sb_field_ou *fd = ou_read(f, u2, TL, dt, r, status, &why);
   fclose(f);
@@ -175,15 +172,9 @@ sb_field_kraichnan *sb_field_kraichnan_load(const char *path, double L,
   int dummy;
   if (!status)
     status = &dummy;
-  if (!path) {
-    *status = sbi_error(SB_EINVAL, __func__, "NULL argument");
+  FILE *f = sbi_open_saved(path, __func__, status);
+  if (!f)
     return NULL;
-  }
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    *status = sbi_error(SB_EIO, __func__, "cannot open '%s'", path);
-    return NULL;
-  }
   sb_field_kraichnan *fd = calloc(1, sizeof *fd);
   if (!fd) {
     fclose(f);

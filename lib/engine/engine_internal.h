@@ -146,6 +146,10 @@ int sbi_idmap_read(sbi_idmap *m, FILE *f, int counted);
  * and positions): an observer's state saved beside a checkpoint belongs
  * to the engine with the same one (engine_checkpoint.c). */
 uint64_t sbi_engine_fingerprint(const sb_engine *e);
+/* A saved state's file opened for reading (*status SB_SUCCESS), or NULL
+ * with *status SB_EINVAL (path NULL) or SB_EIO and the message from
+ * func. */
+FILE *sbi_open_saved(const char *path, const char *func, int *status);
 /* SB_EINVAL (message from func about `what`) unless e is at `steps` with
  * the fingerprint `print`: the engine a state beside a checkpoint was
  * saved with. */
