@@ -537,6 +537,102 @@ START_TEST(test_threads_identical)
 }
 END_TEST
 
+/* With the streams on, a record is built and keyed with the particle of
+ * lower id first, and the re-detections after an event are keyed by the
+ * event (engine_lkeyed.c), so re-sorting the particles in memory
+ * (sort_every) leaves the run unchanged: the threads_run engine for 15
+ * steps with sort_every = 0 and 1 (the order changes every step), with
+ * the pass-through count and elastic bounces (3-D, 2-D, Lees-Edwards
+ * shear): the same contacts, sampler counts and, particle by particle (by
+ * id), the same states bit for bit.  (Not the reinsertion outcome: it
+ * moves the pair's particle of higher slot, sb_engine_outcome_reinsert.) */
+typedef struct {
+  uint64_t id;
+  double x[3], u[3];
+} id_state;
+
+static int by_id(const void *a, const void *b)
+{
+  const uint64_t p = ((const id_state *)a)->id, q = ((const id_state *)b)->id;
+  return (p > q) - (p < q);
+}
+
+static void order_run(int dim, sb_engine_outcome out, int shear, int sort,
+                      id_state *v, sb_engine_stats *st,
+                      sb_langevin_hit_stats *hs)
+{
+  const size_t N = 1500;
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.dim = dim;
+  p.L[0] = p.L[1] = p.L[2] = dim == 3 ? 30.0 : 120.0;
+  p.dt = 0.7;
+  p.capacity = N;
+  p.seed = 31;
+  p.detect = SB_DETECT_LANGEVIN;
+  p.outcome = out;
+  p.threads = 1;
+  p.sort_every = (size_t)sort;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  add_species(e, 0.35);
+  if (shear) {
+    const double G[3] = {0.05, 0.0, 0.0};
+    ck_assert_int_eq(sb_engine_set_fluid(e, SB_FLUID_SHEAR, G), 0);
+    ck_assert_int_eq(sb_engine_set_lees_edwards(e, 1), 0);
+  }
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, N), SB_SUCCESS);
+  for (int k = 0; k < 15; k++)
+    ck_assert_msg(sb_engine_step(e) == SB_SUCCESS, "%s", sb_last_error());
+  ck_assert_uint_eq(sb_engine_count(e), N);
+  const double *x = sb_engine_positions(e), *u = sb_engine_velocities(e);
+  const uint64_t *id = sb_engine_ids(e);
+  for (size_t k = 0; k < N; k++) {
+    v[k].id = id[k];
+    memcpy(v[k].x, &x[3 * k], sizeof v[k].x);
+    memcpy(v[k].u, &u[3 * k], sizeof v[k].u);
+  }
+  qsort(v, N, sizeof *v, by_id);
+  sb_engine_get_stats(e, st);
+  ck_assert_int_eq(sb_engine_langevin_stats(e, hs), SB_SUCCESS);
+  sb_engine_free(e);
+}
+
+START_TEST(test_memory_order_free)
+{
+  static const struct {
+    int dim;
+    sb_engine_outcome out;
+    int shear;
+  } cfg[4] = {{3, SB_OUTCOME_COUNT, 0}, {3, SB_OUTCOME_ELASTIC, 0},
+              {2, SB_OUTCOME_ELASTIC, 0}, {3, SB_OUTCOME_ELASTIC, 1}};
+  const size_t N = 1500;
+  id_state *v[2];
+  for (int t = 0; t < 2; t++)
+    v[t] = malloc(N * sizeof *v[t]);
+  for (int c = 0; c < 4; c++) {
+    sb_engine_stats st[2];
+    sb_langevin_hit_stats hs[2];
+    for (int t = 0; t < 2; t++)
+      order_run(cfg[c].dim, cfg[c].out, cfg[c].shear, t, v[t], &st[t],
+                &hs[t]);
+    printf("sort_every 0 / 1, %d-D outcome %d%s: %llu / %llu contacts, "
+           "%llu / %llu sampler calls\n", cfg[c].dim, (int)cfg[c].out,
+           cfg[c].shear ? " in shear" : "",
+           (unsigned long long)st[0].ncoll, (unsigned long long)st[1].ncoll,
+           (unsigned long long)hs[0].calls, (unsigned long long)hs[1].calls);
+    ck_assert(st[0].ncoll > 100);
+    ck_assert_uint_eq(st[0].ncoll, st[1].ncoll);
+    ck_assert_uint_eq(hs[0].calls, hs[1].calls);
+    ck_assert_uint_eq(hs[0].hits, hs[1].hits);
+    ck_assert_uint_eq(hs[0].nodes, hs[1].nodes);
+    ck_assert(memcmp(v[0], v[1], N * sizeof *v[0]) == 0);
+  }
+  for (int t = 0; t < 2; t++)
+    free(v[t]);
+}
+END_TEST
+
 /* A keyed run continued from a checkpoint is the run itself: 1500
  * spheres with elastic bounces on 2 threads, 8 steps, saved and loaded,
  * then 7 more steps of both (each record's stream depends on the step
@@ -1010,6 +1106,7 @@ static Suite *suite(void)
   tcase_add_test(tm, test_reach_skip);
   tcase_add_test(tm, test_dense_runs);
   tcase_add_test(tm, test_threads_identical);
+  tcase_add_test(tm, test_memory_order_free);
   tcase_add_test(tm, test_keyed_checkpoint);
   tcase_add_test(tm, test_kernel_gh);
   tcase_add_test(tm, test_compare_pool);

@@ -616,6 +616,12 @@ int sbi_engine_detect_and_process(sb_engine *e)
       }
       e->contact = &ev;
     }
+    /* the re-detections' streams, from the ids before the outcome (a
+     * reinsertion may give a particle a new id) */
+    sbi_engine_langevin_redetect_key(e, &ev);
+    /* the particle of lower id continues first (its new piece's draws):
+     * the order in memory does not matter */
+    const int first = e->id[i] < e->id[j] ? 0 : 1;
     int st = sbi_engine_apply_outcome(e, p, ev.s_rec);
     e->contact = NULL;
     if (st)
@@ -624,7 +630,8 @@ int sbi_engine_detect_and_process(sb_engine *e)
     const int ch[2] = {e->hit[i] != 2 && changed(e, i, ref[0]),
                        e->hit[j] != 2 && changed(e, j, ref[1])};
     double ext[2] = {0.0, 0.0};
-    for (int q = 0; q < 2; q++) {
+    for (int r = 0; r < 2; r++) {
+      const int q = r ^ first;
       if (e->hit[who[q]] == 2) {
         e->ver[who[q]]++;  /* removed: its events are stale */
         continue;

@@ -305,7 +305,8 @@ struct sb_engine {
   sb_engine_langevin_params lpar;
   /* keyed detection (streams on): slot t's hitter (slot 0: lh) and
    * Philox generator, its events of the parallel first pass; lredet
-   * numbers the step's re-detections (each its own stream) */
+   * the pass key of the re-detections after the event being processed
+   * (sbi_engine_langevin_redetect_key) */
   sb_langevin_hitter **lht;
   gsl_rng **lrt;
   struct sbi_lbuf *lbt;
@@ -562,11 +563,16 @@ int sbi_engine_langevin_events(const sb_engine *e, sb_langevin_hitter *lh,
  * first contact (every entry with SB_OUTCOME_COUNT) pushed as events.
  * With streams on, each record draws from its own stream, keyed by the
  * step, both particles' ids and the pass (0: the step's first pass,
- * later: the step's re-detections in order), so that the results do not
- * depend on the order of the records or on the threads; else from the
- * engine's generator in record order.  Status. */
+ * inside the step e->lredet, set for each event by
+ * sbi_engine_langevin_redetect_key), so that the results depend neither
+ * on the order of the records, nor on the threads, nor on the particles'
+ * order in memory; else from the engine's generator in record order.
+ * Status. */
 int sbi_engine_langevin_record(sb_engine *e, const sb_engine_pair *p,
                                double t);
+/* The pass key of the re-detections after event ev: a hash of its time
+ * and its two ids (odd, so never the first pass's 0). */
+void sbi_engine_langevin_redetect_key(sb_engine *e, const sbi_event *ev);
 /* The step's first pass over its np candidate records on nt > 1 threads
  * (streams on): each record's events computed in parallel, then pushed
  * in record order, as sbi_engine_langevin_record would.  Status. */

@@ -473,21 +473,64 @@ static void lrec_event(const lrec *q, const sb_engine_pair *p,
   }
 }
 
+/* The record's orientation.  The sampler walks x_i - x_j and draws i's
+ * state before j's, so a record is built with the particle of lower id
+ * first: its draws then depend on the two particles and not on their
+ * order in memory (sb_engine_sort).  *o is p, turned around if needed;
+ * returns 1 if it was. */
+static int pair_by_id(const sb_engine *e, const sb_engine_pair *p,
+                      sb_engine_pair *o)
+{
+  *o = *p;
+  if (e->id[p->i] < e->id[p->j])
+    return 0;
+  o->i = p->j;
+  o->j = p->i;
+  for (int k = 0; k < 3; k++) {
+    o->dx0[k] = -p->dx0[k];
+    o->dd[k] = -p->dd[k];
+  }
+  return 1;
+}
+
+/* An event of the turned-around record back in p's orientation. */
+static void event_turn_back(const sb_engine_pair *p, sbi_event *ev)
+{
+  for (int k = 0; k < 3; k++) {
+    double w = ev->cx[0][k];
+    ev->cx[0][k] = ev->cx[1][k];
+    ev->cx[1][k] = w;
+    w = ev->cu[0][k];
+    ev->cu[0][k] = ev->cu[1][k];
+    ev->cu[1][k] = w;
+    ev->crel[k] = -ev->crel[k];
+    ev->p.dx0[k] = -ev->p.dx0[k];
+    ev->p.dd[k] = -ev->p.dd[k];
+  }
+  ev->cdu = -ev->cdu;  /* i's image moves du along x relative to j */
+  ev->p.i = p->i;
+  ev->p.j = p->j;
+}
+
 /* The first contact of record p from step fraction t, with hitter lh and
  * generator r. */
 static int detect_with(const sb_engine *e, sb_langevin_hitter *lh,
                        const sb_engine_pair *p, double t, const gsl_rng *r,
                        double *s, sbi_event *ev)
 {
+  sb_engine_pair o;
+  const int turned = pair_by_id(e, p, &o);
   lrec q;
-  int h = lrec_make(e, p, t, r, &q);
+  int h = lrec_make(e, &o, t, r, &q);
   if (h <= 0)
     return h;
   sb_langevin_contact c;
-  h = sb_langevin_hitter_sample(lh, &q.pi, &q.pj, p->sigma, q.dtr, r, &c);
+  h = sb_langevin_hitter_sample(lh, &q.pi, &q.pj, o.sigma, q.dtr, r, &c);
   if (h <= 0)
     return h < 0 ? -1 : 0;
-  lrec_event(&q, p, &c, s, ev);
+  lrec_event(&q, &o, &c, s, ev);
+  if (turned && ev)
+    event_turn_back(p, ev);
   return 1;
 }
 
@@ -515,10 +558,12 @@ int sbi_engine_langevin_events(const sb_engine *e, sb_langevin_hitter *lh,
     return h ? sink(ctx, s, &ev) : SB_SUCCESS;
   }
   /* pass-through: every entry */
+  sb_engine_pair o;
+  const int turned = pair_by_id(e, p, &o);
   lrec q;
-  int n = lrec_make(e, p, t, r, &q);
+  int n = lrec_make(e, &o, t, r, &q);
   if (n > 0)
-    n = sb_langevin_hitter_sample_all(lh, &q.pi, &q.pj, p->sigma, q.dtr, r);
+    n = sb_langevin_hitter_sample_all(lh, &q.pi, &q.pj, o.sigma, q.dtr, r);
   if (n < 0)
     return sbi_error(SB_EINVAL, "sb_engine_step",
                      "detector failed on pair (%zu, %zu)", p->i, p->j);
@@ -526,7 +571,9 @@ int sbi_engine_langevin_events(const sb_engine *e, sb_langevin_hitter *lh,
   for (int k = 0; k < n; k++) {
     double s;
     sbi_event ev;
-    lrec_event(&q, p, &c[k], &s, &ev);
+    lrec_event(&q, &o, &c[k], &s, &ev);
+    if (turned)
+      event_turn_back(p, &ev);
     int st = sink(ctx, s, &ev);
     if (st)
       return st;

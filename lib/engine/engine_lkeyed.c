@@ -5,15 +5,17 @@
  * sb_engine_params.streams), every record the detector examines draws
  * its interior path from a Philox stream of its own (smolbridge/rng.h):
  * the key mixes the seed, the step and the pass (0 for the step's first
- * pass over the candidates, n for the step's n-th re-detection after an
- * outcome), the counter holds both particles' ids.  A record's draws then
- * depend on (seed, step, pass, id_i, id_j) alone, not on the order in
- * which the records are examined, so the first pass can run on every
- * thread and the run is the same bit for bit on any number of threads.
- * The re-detections stay serial (they follow the events in time order),
- * and their numbering is the same on any number of threads.  With the
- * streams off, the detector draws from the engine's generator in record
- * order, as before.
+ * pass over the candidates; for a re-detection after an outcome, a hash
+ * of the outcome's event: its time and both ids), the counter holds both
+ * particles' ids, the lower first, and the record itself is built with
+ * the lower id first (engine_langevin.c).  A record's draws then depend
+ * on (seed, step, pass, the two ids) alone, not on the order in which the
+ * records are examined nor on the particles' order in memory, so the
+ * first pass can run on every thread and the run is the same bit for bit
+ * on any number of threads and after any sb_engine_sort.  The
+ * re-detections stay serial (they follow the events in time order).
+ * With the streams off, the detector draws from the engine's generator in
+ * record order, as before.
  *
  * The key is splitmix64's finalizer (Steele, Lea & Flood 2014) applied
  * in turn to the seed (with a tag that keeps it apart from the
@@ -119,9 +121,20 @@ static const gsl_rng *pair_rng(const sb_engine *e, int t,
   const uint64_t key =
       mix64(mix64(mix64(e->par.seed ^ 0x4c414e4745564e21ULL) ^ e->steps) ^
             pass);
-  if (sb_rng_philox_set_stream(e->lrt[t], key, e->id[p->i], e->id[p->j]))
+  const uint64_t a = e->id[p->i], b = e->id[p->j];
+  if (sb_rng_philox_set_stream(e->lrt[t], key, a < b ? a : b, a < b ? b : a))
     return NULL;
   return e->lrt[t];
+}
+
+void sbi_engine_langevin_redetect_key(sb_engine *e, const sbi_event *ev)
+{
+  uint64_t sb;
+  memcpy(&sb, &ev->s, sizeof sb);
+  const uint64_t a = e->id[ev->p.i], b = e->id[ev->p.j];
+  /* odd: never the first pass's 0 */
+  e->lredet = mix64(mix64(mix64(sb) ^ (a < b ? a : b)) ^ (a < b ? b : a)) |
+              1u;
 }
 
 /* ------------------------------------------------------------ serial */
@@ -146,7 +159,7 @@ int sbi_engine_langevin_record(sb_engine *e, const sb_engine_pair *p,
     int st = slots_ensure(e, 1);
     if (st)
       return st;
-    r = pair_rng(e, 0, p, e->in_step ? ++e->lredet : 0);
+    r = pair_rng(e, 0, p, e->in_step ? e->lredet : 0);
     if (!r)
       return sbi_error(SB_EDOM, "sb_engine_step", "streams: step %llu or "
                        "particle id beyond the streams' range",
