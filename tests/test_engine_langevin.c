@@ -453,99 +453,10 @@ START_TEST(test_dense_runs)
 }
 END_TEST
 
-/* With the engine's streams on (the default) every record draws from its
- * own stream (engine_lkeyed.c), so the run does not depend on the
- * threads: 1500 spheres (tau = 0.35, dt = 0.7), 15 steps, with the
- * pass-through count, with elastic bounces (re-detections), in 2-D and in
- * the Lees-Edwards shear, on 1 and on 2 threads (the parallel first pass: several hundred records
- * per step): the same positions and velocities bit for bit, the same
- * contacts and sampler counts.  With the streams off the detector draws
- * from the engine's generator (its own test: the runs of V12). */
-static void threads_run(int dim, sb_engine_outcome out, int shear,
-                        int threads, double *x, double *u,
-                        sb_engine_stats *st, sb_langevin_hit_stats *hs)
-{
-  const size_t N = 1500;
-  sb_engine_params p;
-  sb_engine_params_default(&p);
-  p.dim = dim;
-  p.L[0] = p.L[1] = p.L[2] = dim == 3 ? 30.0 : 120.0;
-  p.dt = 0.7;
-  p.capacity = N;
-  p.seed = 31;
-  p.detect = SB_DETECT_LANGEVIN;
-  p.outcome = out;
-  p.threads = threads;
-  ck_assert_int_eq(p.streams, 1);
-  sb_engine *e = sb_engine_alloc(&p);
-  ck_assert_ptr_nonnull(e);
-  add_species(e, 0.35);
-  if (shear) {  /* Lees-Edwards: pairs across the sliding boundary */
-    const double G[3] = {0.05, 0.0, 0.0};
-    ck_assert_int_eq(sb_engine_set_fluid(e, SB_FLUID_SHEAR, G), 0);
-    ck_assert_int_eq(sb_engine_set_lees_edwards(e, 1), 0);
-  }
-  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, N), SB_SUCCESS);
-  for (int k = 0; k < 15; k++)
-    ck_assert_msg(sb_engine_step(e) == SB_SUCCESS, "%s", sb_last_error());
-  memcpy(x, sb_engine_positions(e), 3 * N * sizeof(double));
-  memcpy(u, sb_engine_velocities(e), 3 * N * sizeof(double));
-  sb_engine_get_stats(e, st);
-  ck_assert_int_eq(sb_engine_langevin_stats(e, hs), SB_SUCCESS);
-  ck_assert_uint_eq(sb_engine_count(e), N);
-  sb_engine_free(e);
-}
-
-START_TEST(test_threads_identical)
-{
-  static const struct {
-    int dim;
-    sb_engine_outcome out;
-    int shear;
-  } cfg[4] = {{3, SB_OUTCOME_COUNT, 0}, {3, SB_OUTCOME_ELASTIC, 0},
-              {2, SB_OUTCOME_ELASTIC, 0}, {3, SB_OUTCOME_ELASTIC, 1}};
-  const size_t N = 1500;
-  double *x[2], *u[2];
-  for (int t = 0; t < 2; t++) {
-    x[t] = malloc(3 * N * sizeof(double));
-    u[t] = malloc(3 * N * sizeof(double));
-  }
-  for (int c = 0; c < 4; c++) {
-    sb_engine_stats st[2];
-    sb_langevin_hit_stats hs[2];
-    for (int t = 0; t < 2; t++)
-      threads_run(cfg[c].dim, cfg[c].out, cfg[c].shear, t + 1, x[t], u[t],
-                  &st[t], &hs[t]);
-    printf("threads 1 / 2, %d-D %s%s: %llu / %llu contacts, %llu / %llu "
-           "sampler calls\n", cfg[c].dim,
-           cfg[c].out == SB_OUTCOME_COUNT ? "count" : "elastic",
-           cfg[c].shear ? " in shear" : "",
-           (unsigned long long)st[0].ncoll, (unsigned long long)st[1].ncoll,
-           (unsigned long long)hs[0].calls, (unsigned long long)hs[1].calls);
-    ck_assert(st[0].ncoll > 100);
-    ck_assert_uint_eq(st[0].ncoll, st[1].ncoll);
-    ck_assert_uint_eq(hs[0].calls, hs[1].calls);
-    ck_assert_uint_eq(hs[0].hits, hs[1].hits);
-    ck_assert_uint_eq(hs[0].nodes, hs[1].nodes);
-    ck_assert(memcmp(x[0], x[1], 3 * N * sizeof(double)) == 0);
-    ck_assert(memcmp(u[0], u[1], 3 * N * sizeof(double)) == 0);
-  }
-  for (int t = 0; t < 2; t++) {
-    free(x[t]);
-    free(u[t]);
-  }
-}
-END_TEST
-
-/* With the streams on, a record is built and keyed with the particle of
- * lower id first, and the re-detections after an event are keyed by the
- * event (engine_lkeyed.c), so re-sorting the particles in memory
- * (sort_every) leaves the run unchanged: the threads_run engine for 15
- * steps with sort_every = 0 and 1 (the order changes every step), with
- * the pass-through count and elastic bounces (3-D, 2-D, Lees-Edwards
- * shear): the same contacts, sampler counts and, particle by particle (by
- * id), the same states bit for bit.  (Not the reinsertion outcome: it
- * moves the pair's particle of higher slot, sb_engine_outcome_reinsert.) */
+/* The keyed engine of the two tests below: 1500 spheres (tau = 0.35,
+ * dt = 0.7), 15 steps, outcome `out`, in 2-D or 3-D, in the Lees-Edwards
+ * shear or not, on `threads` threads, re-sorted in memory every `sort`
+ * steps; the final states by id (v), the stats and the sampler's. */
 typedef struct {
   uint64_t id;
   double x[3], u[3];
@@ -557,8 +468,8 @@ static int by_id(const void *a, const void *b)
   return (p > q) - (p < q);
 }
 
-static void order_run(int dim, sb_engine_outcome out, int shear, int sort,
-                      id_state *v, sb_engine_stats *st,
+static void keyed_run(int dim, sb_engine_outcome out, int shear, int threads,
+                      int sort, id_state *v, sb_engine_stats *st,
                       sb_langevin_hit_stats *hs)
 {
   const size_t N = 1500;
@@ -571,12 +482,13 @@ static void order_run(int dim, sb_engine_outcome out, int shear, int sort,
   p.seed = 31;
   p.detect = SB_DETECT_LANGEVIN;
   p.outcome = out;
-  p.threads = 1;
+  p.threads = threads;
   p.sort_every = (size_t)sort;
+  ck_assert_int_eq(p.streams, 1);
   sb_engine *e = sb_engine_alloc(&p);
   ck_assert_ptr_nonnull(e);
   add_species(e, 0.35);
-  if (shear) {
+  if (shear) {  /* Lees-Edwards: pairs across the sliding boundary */
     const double G[3] = {0.05, 0.0, 0.0};
     ck_assert_int_eq(sb_engine_set_fluid(e, SB_FLUID_SHEAR, G), 0);
     ck_assert_int_eq(sb_engine_set_lees_edwards(e, 1), 0);
@@ -598,7 +510,12 @@ static void order_run(int dim, sb_engine_outcome out, int shear, int sort,
   sb_engine_free(e);
 }
 
-START_TEST(test_memory_order_free)
+/* Runs a (t = 0) and b (t = 1) of keyed_run for four set-ups (pass-
+ * through count, elastic bounces with re-detections in 3-D, 2-D and the
+ * shear) must be the same: contacts, sampler counts, and every
+ * particle's state bit for bit. */
+static void keyed_pairs_identical(const char *what, int threads[2],
+                                  int sort[2])
 {
   static const struct {
     int dim;
@@ -614,10 +531,11 @@ START_TEST(test_memory_order_free)
     sb_engine_stats st[2];
     sb_langevin_hit_stats hs[2];
     for (int t = 0; t < 2; t++)
-      order_run(cfg[c].dim, cfg[c].out, cfg[c].shear, t, v[t], &st[t],
-                &hs[t]);
-    printf("sort_every 0 / 1, %d-D outcome %d%s: %llu / %llu contacts, "
-           "%llu / %llu sampler calls\n", cfg[c].dim, (int)cfg[c].out,
+      keyed_run(cfg[c].dim, cfg[c].out, cfg[c].shear, threads[t], sort[t],
+                v[t], &st[t], &hs[t]);
+    printf("%s, %d-D %s%s: %llu / %llu contacts, %llu / %llu sampler "
+           "calls\n", what, cfg[c].dim,
+           cfg[c].out == SB_OUTCOME_COUNT ? "count" : "elastic",
            cfg[c].shear ? " in shear" : "",
            (unsigned long long)st[0].ncoll, (unsigned long long)st[1].ncoll,
            (unsigned long long)hs[0].calls, (unsigned long long)hs[1].calls);
@@ -630,6 +548,30 @@ START_TEST(test_memory_order_free)
   }
   for (int t = 0; t < 2; t++)
     free(v[t]);
+}
+
+/* With the engine's streams on (the default) every record draws from its
+ * own stream (engine_lkeyed.c), so the run does not depend on the
+ * threads: keyed_run on 1 and on 2 threads (the parallel first pass:
+ * several hundred records per step).  With the streams off the detector
+ * draws from the engine's generator (its own test: the runs of V12). */
+START_TEST(test_threads_identical)
+{
+  int threads[2] = {1, 2}, sort[2] = {0, 0};
+  keyed_pairs_identical("threads 1 / 2", threads, sort);
+}
+END_TEST
+
+/* A record is built and keyed with the particle of lower id first, and
+ * the re-detections after an event are keyed by the event
+ * (engine_lkeyed.c), so re-sorting the particles in memory leaves the run
+ * unchanged: keyed_run with sort_every = 0 and 1 (the order changes every
+ * step).  (Not the reinsertion outcome: it moves the pair's particle of
+ * higher slot, sb_engine_outcome_reinsert.) */
+START_TEST(test_memory_order_free)
+{
+  int threads[2] = {1, 1}, sort[2] = {0, 1};
+  keyed_pairs_identical("sort_every 0 / 1", threads, sort);
 }
 END_TEST
 
