@@ -537,6 +537,16 @@ static int place(sbi_col_config *c, sbi_col_run *r, const sb_engine_species *q)
   return st;
 }
 
+/* A restart whose state beside the checkpoint ([run] key = val keeps
+ * one) is missing or does not load. */
+static int restart_failed(sbi_col_config *c, const char *key,
+                          const char *val)
+{
+  return sbi_col_fail(c, "%s: [run] %s = %s with %s",
+                      sbi_col_where(c, "run", "restart"), key, val,
+                      sb_last_error());
+}
+
 /* Bridge detector (bridge | exact) with turbulence and hit records. */
 static int attach_bridge(sbi_col_config *c, sbi_col_run *r)
 {
@@ -576,16 +586,12 @@ static int attach_bridge(sbi_col_config *c, sbi_col_run *r)
         return sbi_col_fail(c, "%s: [%s]: %s", c->sp[k].where, c->sp[k].name,
                             sb_last_error());
   }
-  if (c->restart[0]) {  /* its counters and records go on */
-    char path[600];
-    if (sbi_col_restart_beside(c, SBI_BESIDE_BRIDGE,
-                               "what it counted before",
-                               path, sizeof path) ||
-        sb_engine_bridge_load(r->bridge, path))
-      return sbi_col_fail(c, "%s: [run] detect = %s with %s",
-                          sbi_col_where(c, "run", "restart"), c->detect,
-                          sb_last_error());
-  }
+  char path[600];
+  if (c->restart[0] &&  /* its counters and records go on */
+      (sbi_col_restart_beside(c, SBI_BESIDE_BRIDGE, "what it counted before",
+                              path, sizeof path) ||
+       sb_engine_bridge_load(r->bridge, path)))
+    return restart_failed(c, "detect", c->detect);
   if (sb_engine_bridge_attach(r->e, r->bridge))
     return sbi_col_fail(c, "[run] detect = %s: %s", c->detect,
                         sb_last_error());
@@ -618,16 +624,13 @@ static int attach_agglo(sbi_col_config *c, sbi_col_run *r)
   if (!r->agglo)
     return sbi_col_fail(c, "[run] outcome = %s: %s", c->outcome,
                         sb_last_error());
-  if (c->restart[0]) {  /* the sizes and series go on from the checkpoint's */
-    char path[600];
-    if (sbi_col_restart_beside(c, SBI_BESIDE_COUNTS,
-                               "which species is which cluster size",
-                               path, sizeof path) ||
-        sb_agglo_load(r->agglo, path))
-      return sbi_col_fail(c, "%s: [run] outcome = %s with %s",
-                          sbi_col_where(c, "run", "restart"), c->outcome,
-                          sb_last_error());
-  }
+  char path[600];
+  if (c->restart[0] &&  /* the sizes and series go on from the checkpoint's */
+      (sbi_col_restart_beside(c, SBI_BESIDE_COUNTS,
+                              "which species is which cluster size", path,
+                              sizeof path) ||
+       sb_agglo_load(r->agglo, path)))
+    return restart_failed(c, "outcome", c->outcome);
   if (sb_agglo_attach(r->e, r->agglo))
     return sbi_col_fail(c, "[run] outcome = %s: %s", c->outcome,
                         sb_last_error());
