@@ -10,6 +10,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <smolbridge/engine.h>
@@ -901,6 +903,40 @@ START_TEST(test_errors)
 }
 END_TEST
 
+/* A save that cannot write its whole file fails with SB_EIO and leaves
+ * no partial file (engine_checkpoint.c, sbi_finish_save): the process's
+ * file-size limit set to 4 kB (SIGXFSZ ignored, so the write fails with
+ * EFBIG) against a checkpoint of 2000 particles; and a save to a device
+ * (/dev/null) that succeeds does not touch it. */
+START_TEST(test_checkpoint_write_error)
+{
+  sb_engine *e = box_engine(3, 100.0, 1.0, 2000);
+  add_free(e, 0.5, 1.0);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 2000), SB_SUCCESS);
+  char path[] = "/tmp/sb_engine_full_XXXXXX";
+  int fd = mkstemp(path);
+  ck_assert_int_ge(fd, 0);
+  close(fd);
+  struct rlimit old, lim;
+  ck_assert_int_eq(getrlimit(RLIMIT_FSIZE, &old), 0);
+  lim = old;
+  lim.rlim_cur = 4096;
+  void (*was)(int) = signal(SIGXFSZ, SIG_IGN);
+  ck_assert_int_eq(setrlimit(RLIMIT_FSIZE, &lim), 0);
+  const int st = sb_engine_checkpoint_save(e, path);
+  ck_assert_int_eq(setrlimit(RLIMIT_FSIZE, &old), 0);
+  signal(SIGXFSZ, was);
+  ck_assert_int_eq(st, SB_EIO);
+  ck_assert_msg(access(path, F_OK) != 0, "a partial checkpoint was left");
+  ck_assert_int_eq(sb_engine_checkpoint_save(e, path), SB_SUCCESS);
+  ck_assert_int_eq(access(path, F_OK), 0);
+  remove(path);
+  ck_assert_int_eq(sb_engine_checkpoint_save(e, "/dev/null"), SB_SUCCESS);
+  ck_assert_int_eq(access("/dev/null", F_OK), 0);
+  sb_engine_free(e);
+}
+END_TEST
+
 /* A custom detector plugs in (the interface the bridge detector of
  * engine_bridge.c uses): here a
  * detector that reports every candidate at s = 1/2 with an extra reach;
@@ -971,6 +1007,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_detectors);
   tcase_add_test(tc, test_kernel_estimate);
   tcase_add_test(tc, test_errors);
+  tcase_add_test(tc, test_checkpoint_write_error);
   tcase_add_test(tc, test_custom_callbacks);
   suite_add_tcase(s, tc);
   return s;

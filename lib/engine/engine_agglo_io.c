@@ -75,9 +75,9 @@ int sb_agglo_save(const sb_agglo *a, const sb_engine *e, const char *path)
   if (!a->ncap_k)
     return sbi_error(SB_EINVAL, __func__, "the context is not attached: "
                      "nothing to save");
-  FILE *f = fopen(path, "wb");
+  FILE *f = sbi_open_for_save(path, __func__);
   if (!f)
-    return sbi_error(SB_EIO, __func__, "cannot open '%s' for writing", path);
+    return SB_EIO;
   const uint64_t steps = e->steps, print = sbi_engine_fingerprint(e);
   const shape s = shape_of(&a->par);
   uint64_t nmap = 0;
@@ -95,12 +95,7 @@ int sb_agglo_save(const sb_agglo *a, const sb_engine *e, const char *path)
   ok = ok && W(nrows) && W(ncols) &&
        (nrows == 0 ||
         fwrite(a->rows, sizeof *a->rows, nrows * ncols, f) == nrows * ncols);
-  ok &= fclose(f) == 0;
-  if (!ok) {
-    remove(path);
-    return sbi_error(SB_EIO, __func__, "write error on '%s'", path);
-  }
-  return SB_SUCCESS;
+  return sbi_finish_save(f, ok, path, __func__);
 }
 
 /* The file's contents. */

@@ -23,20 +23,16 @@ int sb_engine_bridge_save(const sb_engine_bridge *b, const sb_engine *e,
 {
   if (!b || !e || !path)
     return sbi_error(SB_EINVAL, __func__, "NULL argument");
-  FILE *f = fopen(path, "wb");
+  FILE *f = sbi_open_for_save(path, __func__);
   if (!f)
-    return sbi_error(SB_EIO, __func__, "cannot open '%s' for writing", path);
+    return SB_EIO;
   const uint64_t steps = e->steps, print = sbi_engine_fingerprint(e),
                  nh = b->nhits;
   int ok = fwrite(MAGIC, 1, 8, f) == 8 && W(steps) && W(print) &&
            W(b->st.ndetect) && W(b->st.ncoll) && W(b->st.noverlap) &&
            W(b->st.coll_brown) && W(b->st.coll_turb) && W(nh) &&
            (nh == 0 || fwrite(b->hits, sizeof *b->hits, nh, f) == nh);
-  ok &= fclose(f) == 0;
-  if (ok)
-    return SB_SUCCESS;
-  remove(path);
-  return sbi_error(SB_EIO, __func__, "write error on '%s'", path);
+  return sbi_finish_save(f, ok, path, __func__);
 }
 
 int sb_engine_bridge_load(sb_engine_bridge *b, const char *path)

@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <stddef.h>
 #include <string.h>
+#include <sys/stat.h>
 
 
 #include <smolbridge/rng.h>
@@ -98,9 +99,9 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
 {
   if (!e || !path)
     return sbi_error(SB_EINVAL, __func__, "NULL argument");
-  FILE *f = fopen(path, "wb");
+  FILE *f = sbi_open_for_save(path, __func__);
   if (!f)
-    return sbi_error(SB_EIO, __func__, "cannot open '%s' for writing", path);
+    return SB_EIO;
   const size_t n = e->n;
   W(MAGIC, 1, 8);
   {
@@ -161,12 +162,9 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
   }
   if (sbi_engine_physics_save(e, f) || counters_save(e, f))
     goto fail;
-  if (fclose(f))
-    return sbi_error(SB_EIO, __func__, "write error on '%s'", path);
-  return SB_SUCCESS;
+  return sbi_finish_save(f, 1, path, __func__);
 fail:
-  fclose(f);
-  return sbi_error(SB_EIO, __func__, "write error on '%s'", path);
+  return sbi_finish_save(f, 0, path, __func__);
 }
 
 #define R(ptr, size, count)                                 \
@@ -347,6 +345,25 @@ int sbi_engine_check_saved(const sb_engine *e, uint64_t steps,
                      "than the engine has (another checkpoint at the same "
                      "step): restore both from the same checkpoint", what);
   return SB_SUCCESS;
+}
+
+FILE *sbi_open_for_save(const char *path, const char *func)
+{
+  FILE *f = fopen(path, "wb");
+  if (!f)
+    sbi_error(SB_EIO, func, "cannot open '%s' for writing", path);
+  return f;
+}
+
+int sbi_finish_save(FILE *f, int ok, const char *path, const char *func)
+{
+  ok &= fclose(f) == 0;
+  if (ok)
+    return SB_SUCCESS;
+  struct stat sb;  /* a regular file only: not a device or a pipe */
+  if (stat(path, &sb) == 0 && S_ISREG(sb.st_mode))
+    remove(path);
+  return sbi_error(SB_EIO, func, "write error on '%s'", path);
 }
 
 FILE *sbi_open_saved(const char *path, const char *func, int *status)

@@ -26,23 +26,13 @@ static const char KR_MAGIC[8] = {'S', 'B', 'F', 'K', 'R', '0', '0', '1'};
 #define W(x) (fwrite(&(x), sizeof(x), 1, f) == 1)
 #define R(x) (fread(&(x), sizeof(x), 1, f) == 1)
 
-/* Close f after writing path: SB_SUCCESS, or SB_EIO (the file removed). */
-static int finish(FILE *f, int ok, const char *path, const char *func)
-{
-  ok &= fclose(f) == 0;
-  if (ok)
-    return SB_SUCCESS;
-  remove(path);
-  return sbi_error(SB_EIO, func, "write error on '%s'", path);
-}
-
 int sb_field_ou_save(const sb_field_ou *fd, int with_rng, const char *path)
 {
   if (!fd || !path)
     return sbi_error(SB_EINVAL, __func__, "NULL argument");
-  FILE *f = fopen(path, "wb");
+  FILE *f = sbi_open_for_save(path, __func__);
   if (!f)
-    return sbi_error(SB_EIO, __func__, "cannot open '%s' for writing", path);
+    return SB_EIO;
   const uint64_t n = fd->n;
   const int32_t g = with_rng != 0;
   int ok = fwrite(OU_MAGIC, 1, 8, f) == 8 && W(n) && W(fd->u2) &&
@@ -55,7 +45,7 @@ int sb_field_ou_save(const sb_field_ou *fd, int with_rng, const char *path)
          fwrite(gsl_rng_state(fd->r), 1, size, f) == size;
   }
   ok = ok && fwrite(fd->U, sizeof *fd->U, 3 * n, f) == 3 * n;
-  return finish(f, ok, path, __func__);
+  return sbi_finish_save(f, ok, path, __func__);
 }
 
 /* Read f's OU field into a new field with generator r (its state
@@ -150,9 +140,9 @@ int sb_field_kraichnan_save(const sb_field_kraichnan *fd, const char *path)
 {
   if (!fd || !path)
     return sbi_error(SB_EINVAL, __func__, "NULL argument");
-  FILE *f = fopen(path, "wb");
+  FILE *f = sbi_open_for_save(path, __func__);
   if (!f)
-    return sbi_error(SB_EIO, __func__, "cannot open '%s' for writing", path);
+    return SB_EIO;
   const int32_t M = fd->M;
   const uint64_t nm = fd->nm;
   const int ok =
@@ -162,7 +152,7 @@ int sb_field_kraichnan_save(const sb_field_kraichnan *fd, const char *path)
       fwrite(fd->a, sizeof fd->a[0], nm, f) == nm &&
       fwrite(fd->b, sizeof fd->b[0], nm, f) == nm &&
       fwrite(fd->w, sizeof fd->w[0], nm, f) == nm;
-  return finish(f, ok, path, __func__);
+  return sbi_finish_save(f, ok, path, __func__);
 }
 
 sb_field_kraichnan *sb_field_kraichnan_load(const char *path, double L,

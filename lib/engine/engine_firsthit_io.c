@@ -98,18 +98,13 @@ int sb_engine_firsthit_save(const sb_engine_firsthit *f, const sb_engine *e,
   h.sq_all = f->sq_all;
   memcpy(h.ns, f->ns, sizeof h.ns);
   h.n_all = f->n_all;
-  FILE *out = fopen(path, "wb");
+  FILE *out = sbi_open_for_save(path, __func__);
   if (!out)
-    return sbi_error(SB_EIO, __func__, "cannot open '%s' for writing", path);
-  int bad = fwrite(MAGIC, 1, 8, out) != 8 || head_write(&h, out) ||
-            sbi_idmap_write(&f->set, out, 0) ||
-            sbi_idmap_write(&f->counts, out, 1);
-  bad |= fclose(out) != 0;
-  if (bad) {
-    remove(path);
-    return sbi_error(SB_EIO, __func__, "write error on '%s'", path);
-  }
-  return SB_SUCCESS;
+    return SB_EIO;
+  const int bad = fwrite(MAGIC, 1, 8, out) != 8 || head_write(&h, out) ||
+                  sbi_idmap_write(&f->set, out, 0) ||
+                  sbi_idmap_write(&f->counts, out, 1);
+  return sbi_finish_save(out, !bad, path, __func__);
 }
 
 static const char *detector_name(int custom, int builtin)

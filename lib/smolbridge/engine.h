@@ -689,7 +689,8 @@ int sb_engine_set_particle(sb_engine *e, size_t i, const double x[3],
 /** Write the whole state (parameters, species, particles, counters, time
  *  series, built-in fluid field, generator state via gsl_rng_fwrite) to a
  *  binary file.  Callbacks (custom detector/outcome/fluid) are not saved:
- *  set them again after loading.  SB_EIO on failure. */
+ *  set them again after loading.  SB_EIO on failure (a file that could
+ *  not be written whole is removed, as by every save of the library). */
 int sb_engine_checkpoint_save(const sb_engine *e, const char *path);
 
 /** Load a checkpoint: a new engine that continues bit-identically.  NULL
