@@ -510,10 +510,10 @@ static void keyed_run(int dim, sb_engine_outcome out, int shear, int threads,
   sb_engine_free(e);
 }
 
-/* Runs a (t = 0) and b (t = 1) of keyed_run for four set-ups (pass-
+/* Runs a (t = 0) and b (t = 1) of keyed_run for five set-ups (pass-
  * through count, elastic bounces with re-detections in 3-D, 2-D and the
- * shear) must be the same: contacts, sampler counts, and every
- * particle's state bit for bit. */
+ * shear, reinsertion) must be the same: contacts, sampler counts, and
+ * every particle's state bit for bit. */
 static void keyed_pairs_identical(const char *what, int threads[2],
                                   int sort[2])
 {
@@ -521,13 +521,14 @@ static void keyed_pairs_identical(const char *what, int threads[2],
     int dim;
     sb_engine_outcome out;
     int shear;
-  } cfg[4] = {{3, SB_OUTCOME_COUNT, 0}, {3, SB_OUTCOME_ELASTIC, 0},
-              {2, SB_OUTCOME_ELASTIC, 0}, {3, SB_OUTCOME_ELASTIC, 1}};
+  } cfg[5] = {{3, SB_OUTCOME_COUNT, 0}, {3, SB_OUTCOME_ELASTIC, 0},
+              {2, SB_OUTCOME_ELASTIC, 0}, {3, SB_OUTCOME_ELASTIC, 1},
+              {3, SB_OUTCOME_REINSERT, 0}};
   const size_t N = 1500;
   id_state *v[2];
   for (int t = 0; t < 2; t++)
     v[t] = malloc(N * sizeof *v[t]);
-  for (int c = 0; c < 4; c++) {
+  for (int c = 0; c < 5; c++) {
     sb_engine_stats st[2];
     sb_langevin_hit_stats hs[2];
     for (int t = 0; t < 2; t++)
@@ -535,7 +536,9 @@ static void keyed_pairs_identical(const char *what, int threads[2],
                 v[t], &st[t], &hs[t]);
     printf("%s, %d-D %s%s: %llu / %llu contacts, %llu / %llu sampler "
            "calls\n", what, cfg[c].dim,
-           cfg[c].out == SB_OUTCOME_COUNT ? "count" : "elastic",
+           cfg[c].out == SB_OUTCOME_COUNT
+               ? "count"
+               : (cfg[c].out == SB_OUTCOME_ELASTIC ? "elastic" : "reinsert"),
            cfg[c].shear ? " in shear" : "",
            (unsigned long long)st[0].ncoll, (unsigned long long)st[1].ncoll,
            (unsigned long long)hs[0].calls, (unsigned long long)hs[1].calls);
@@ -562,12 +565,11 @@ START_TEST(test_threads_identical)
 }
 END_TEST
 
-/* A record is built and keyed with the particle of lower id first, and
- * the re-detections after an event are keyed by the event
- * (engine_lkeyed.c), so re-sorting the particles in memory leaves the run
- * unchanged: keyed_run with sort_every = 0 and 1 (the order changes every
- * step).  (Not the reinsertion outcome: it moves the pair's particle of
- * higher slot, sb_engine_outcome_reinsert.) */
+/* A record is built and keyed with the particle of lower id first, the
+ * re-detections after an event are keyed by the event (engine_lkeyed.c)
+ * and the reinsertion moves the particle of higher id, so re-sorting the
+ * particles in memory leaves the run unchanged: keyed_run with
+ * sort_every = 0 and 1 (the order changes every step). */
 START_TEST(test_memory_order_free)
 {
   int threads[2] = {1, 1}, sort[2] = {0, 1};

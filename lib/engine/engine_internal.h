@@ -499,6 +499,11 @@ void sbi_engine_make_pair(const sb_engine *e, size_t i, size_t j,
 /* Outcomes bookkeeping (engine_outcome.c). */
 int sbi_engine_apply_outcome(sb_engine *e, const sb_engine_pair *p,
                              double s);
+/* The built-in reinsertion: the pair's particle of higher id is moved
+ * (its j while the ids follow the slots), so that a run does not depend
+ * on the particles' order in memory (sb_engine_sort). */
+int sbi_engine_reinsert_higher_id(sb_engine *e, const sb_engine_pair *p,
+                                  double s);
 /* Random non-overlapping position for particle k (excluded from the
  * check), uniform in the box; SB_EMAXITER after `tries` attempts.  Inside
  * a step, `partner` is k's collision partner (tested by itself: it may sit

@@ -258,6 +258,21 @@ int sb_engine_outcome_path(sb_engine *e, size_t k, const double x[3])
   return SB_SUCCESS;
 }
 
+int sbi_engine_reinsert_higher_id(sb_engine *e, const sb_engine_pair *p,
+                                  double s)
+{
+  if (e->id[p->i] < e->id[p->j])
+    return sb_engine_outcome_reinsert(e, p, s);
+  sb_engine_pair q = *p;
+  q.i = p->j;
+  q.j = p->i;
+  for (int k = 0; k < 3; k++) {
+    q.dx0[k] = -p->dx0[k];
+    q.dd[k] = -p->dd[k];
+  }
+  return sb_engine_outcome_reinsert(e, &q, s);
+}
+
 int sbi_engine_apply_outcome(sb_engine *e, const sb_engine_pair *p,
                              double s)
 {
@@ -265,7 +280,7 @@ int sbi_engine_apply_outcome(sb_engine *e, const sb_engine_pair *p,
   case SB_OUTCOME_ELASTIC:
     return sb_engine_outcome_elastic(e, p, s);
   case SB_OUTCOME_REINSERT:
-    return sb_engine_outcome_reinsert(e, p, s);
+    return sbi_engine_reinsert_higher_id(e, p, s);
   case SB_OUTCOME_COUNT:
     return SB_SUCCESS;
   case SB_OUTCOME_CUSTOM: {

@@ -99,7 +99,8 @@ typedef enum {
 /** Built-in outcomes. */
 typedef enum {
   SB_OUTCOME_ELASTIC = 0,   /**< elastic with energy-loss factor eta */
-  SB_OUTCOME_REINSERT = 1,  /**< remove partner j, reinsert at random */
+  SB_OUTCOME_REINSERT = 1,  /**< reinsert the partner of higher id at
+                                 random (sb_engine_outcome_reinsert) */
   SB_OUTCOME_COUNT = 2,     /**< count only, particles pass through; with
                                  SB_DETECT_LANGEVIN every entry into
                                  contact counts, also re-entries inside

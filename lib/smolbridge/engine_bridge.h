@@ -55,8 +55,8 @@
  * (eq 5.26).
  *
  * Outcomes (params.outcome):
- *  SB_BRIDGE_OUT_REINSERT  partner j is put back at random (kernel
- *      validation, Mohaupt 2011, §5.3.2; sb_engine_outcome_reinsert);
+ *  SB_BRIDGE_OUT_REINSERT  the partner of higher id is put back at random
+ *      (kernel validation, Mohaupt 2011, §5.3.2; as SB_OUTCOME_REINSERT);
  *  SB_BRIDGE_OUT_CORRECT   correction step (Mohaupt 2011, §5.4.3): the pair is
  *      placed in contact at time T_a around the barycentre b(T_a), along a
  *      random unit vector e orthogonal to b1 - b0 (x_i = b + m_j a e/M,
