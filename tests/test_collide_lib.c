@@ -560,6 +560,34 @@ START_TEST(test_contact_velocities)
   free(v);
   sb_collide_free(c);
   sbt_rm_dir(dir);
+  /* a mixture re-sorted in memory every step: each row names its pair's
+   * species in the [species] order (p before q), whichever of the two
+   * particles comes first in memory */
+  snprintf(text, sizeof text,
+           "[run]\nL = 4e-6\ndt = 1e-8\nsteps = 3\nseed = 12\n"
+           "sort_every = 1\ndetect = ballistic\noutcome = count\n"
+           "placement = uniform\noutput = %s\n[observe]\nfirst_hit = yes\n"
+           "first_hit_velocities = 20000\n[species p]\nradius = 1e-8\n"
+           "mass = %g\ntau = inf\nT = %g\ncount = 25000\n[species q]\n"
+           "radius = 1e-8\nmass = %g\ntau = inf\nT = %g\ncount = 25000\n",
+           dir, m, T, m, T);
+  c = sb_collide_alloc();
+  ck_assert_int_eq(sb_collide_read_string(c, text, "c.ini"), SB_SUCCESS);
+  ck_assert_int_eq(sb_collide_run(c, NULL, NULL), SB_SUCCESS);
+  f = fopen(path, "r");
+  ck_assert_ptr_nonnull(f);
+  ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
+  size_t npq = 0, nrow = 0;
+  double vn;
+  while (fscanf(f, "%lf,%7[^,],%7[^,],%lf", &t, a, b, &vn) == 4) {
+    ck_assert_msg(strcmp(a, "q") || strcmp(b, "p"), "row %zu: q, p", nrow);
+    npq += !strcmp(a, "p") && !strcmp(b, "q");
+    nrow++;
+  }
+  fclose(f);
+  ck_assert_uint_gt(npq, 100);
+  sb_collide_free(c);
+  sbt_rm_dir(dir);
   /* a detector without contact velocities: an error naming the key */
   c = sb_collide_alloc();
   ck_assert_int_eq(sb_collide_read_string(c, text, "c.ini"), SB_SUCCESS);

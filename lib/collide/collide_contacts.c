@@ -53,8 +53,11 @@ static int on_hit(const sb_engine *e, const sb_engine_pair *p, double s,
   const size_t *sp = sb_engine_species_of(e);
   k->t[k->n] = p->t0 + s * p->dt;
   k->v[k->n] = vn;
-  k->a[k->n] = sp[p->i];
-  k->b[k->n] = sp[p->j];
+  /* the pair's species in increasing order (not the slots', which
+   * follow the order in memory) */
+  const size_t a = sp[p->i], b = sp[p->j];
+  k->a[k->n] = a < b ? a : b;
+  k->b[k->n] = a < b ? b : a;
   k->n++;
   return 0;
 }
