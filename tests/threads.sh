@@ -10,7 +10,12 @@
 #  - first-contact counting with the Langevin detector on the keyed
 #    streams (~9800 spheres of 50 nm, phi = 0.01, dt = 2 tau_p: the
 #    Langevin search and the observed built-in's first pass, ~2000
-#    records a step, in parallel), contacts.csv too.
+#    records a step, in parallel), contacts.csv too;
+#  - that first-contact run re-sorted in memory every 3 steps
+#    (sort_every, one thread): the same first-contact results and the
+#    same contacts (contacts.csv sorted: within a step its rows follow the
+#    records' order; the sums over particles of series.csv and the
+#    kinetic energy follow the memory order in their last bits).
 # A build without OpenMP runs everything on one thread and passes
 # trivially.
 set -u
@@ -110,6 +115,13 @@ grep -q '"rng": "sb_philox4x32_10"' "$out/philox-1/o/summary.json" || fail "rng 
 cmp -s "$out/philox-1/o/series.csv" "$out/mt19937-1/o/series.csv" && fail "philox and mt19937 runs are identical"
 grep -q '"collisions": [1-9]' "$out/gas-1/o/summary.json" || fail "gas: no collision"
 [ "$(wc -l < "$out/fh-1/o/contacts.csv")" -gt 300 ] || fail "fh: few contacts"
+run fh-sort OMP_NUM_THREADS=1 "$sb" collide "$out/fh.ini" --set run.sort_every=3
+[ "$(grep '"first_hit"' "$out/fh-1/o/summary.json")" = \
+  "$(grep '"first_hit"' "$out/fh-sort/o/summary.json")" ] ||
+  fail "fh: sort_every changed the first-contact results"
+[ "$(sort "$out/fh-1/o/contacts.csv" | cksum)" = \
+  "$(sort "$out/fh-sort/o/contacts.csv" | cksum)" ] ||
+  fail "fh: sort_every changed the contacts"
 "$sb" collide "$out/gas.ini" --threads 0 > /dev/null 2>&1 && fail "--threads 0 accepted"
 [ $fails -eq 0 ] || exit 1
 rm -rf "$out"

@@ -473,11 +473,16 @@ double sb_engine_chord_vn(const sb_engine *e, const sb_engine_pair *p,
 
 double sb_engine_contact_vn(const sb_engine *e)
 {
-  double xi[3], ui[3], xj[3], uj[3], vn = 0.0;
-  if (sb_engine_contact_state(e, xi, ui, xj, uj))
+  if (sb_engine_contact_state(e, NULL, NULL, NULL, NULL))
     return NAN;
-  const double sigma = e->contact->p.sigma;  /* |x_i - x_j| */
+  /* from the relative vector and velocity themselves, (u_i - u_j) - du
+   * (j's Lees-Edwards image) and x_i - x_j, not from the states: the same
+   * bits whichever particle of the pair comes first in memory */
+  const sbi_event *c = e->contact;
+  const double sigma = c->p.sigma;  /* |x_i - x_j| */
+  double vn = 0.0;
   for (int k = 0; k < 3; k++)
-    vn += (ui[k] - uj[k]) * (xi[k] - xj[k]) / sigma;
+    vn += (c->cu[0][k] - c->cu[1][k] - (k == 0 ? c->cdu : 0.0)) *
+          c->crel[k] / sigma;
   return vn;
 }
