@@ -383,6 +383,10 @@ int sbi_col_contacts_setup(const sbi_col_config *c, sbi_col_run *r,
 int sbi_col_contacts_write(FILE *js, const sbi_col_config *c,
                            const sbi_col_run *r, const char *path);
 void sbi_col_contacts_free(sbi_col_contacts *k);
+/* At the end of each step: the step's contacts in order of time (then of
+ * the pair's ids), the first cap of all kept.  The record then does not
+ * depend on the order of the particles in memory or on the threads. */
+void sbi_col_contacts_step_end(sbi_col_run *r);
 /* The recorded contacts to path, beside a checkpoint, and back into the
  * run's (set up) record on restart: 0 or a status with sb_last_error()
  * set. */

@@ -55,6 +55,7 @@ static int progress_step(sbi_col_run *r, double t_stop, sbi_col_pairs *ps,
   double last = -1;
   while (sb_engine_time(e) < t_stop - 0.5 * dt) {
     int st = sb_engine_step(e);
+    sbi_col_contacts_step_end(r);
     if (!st && r->measuring) {
       st = sbi_col_msd_step(r);
       sbi_col_batches_step(r);

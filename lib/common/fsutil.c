@@ -1,5 +1,6 @@
 /* fsutil.c — file-system helpers of the library and the command line
- * (output directories of collide, pgd, spray and validate runs). */
+ * (output directories of collide, pgd, spray and validate runs; the files
+ * of saved states). */
 #include <errno.h>
 #include <stdio.h>
 #include <string.h>
@@ -41,4 +42,37 @@ int sb_mkdir_p(const char *path)
     return io_fail(buf);
   }
   return SB_SUCCESS;
+}
+
+/* The saves of states beside checkpoints (engine, collide). */
+FILE *sbi_open_for_save(const char *path, const char *func)
+{
+  FILE *f = fopen(path, "wb");
+  if (!f)
+    sbi_error(SB_EIO, func, "cannot open '%s' for writing", path);
+  return f;
+}
+
+int sbi_finish_save(FILE *f, int ok, const char *path, const char *func)
+{
+  ok &= fclose(f) == 0;
+  if (ok)
+    return SB_SUCCESS;
+  struct stat sb;  /* a regular file only: not a device or a pipe */
+  if (stat(path, &sb) == 0 && S_ISREG(sb.st_mode))
+    remove(path);
+  return sbi_error(SB_EIO, func, "write error on '%s'", path);
+}
+
+FILE *sbi_open_saved(const char *path, const char *func, int *status)
+{
+  *status = SB_SUCCESS;
+  if (!path) {
+    *status = sbi_error(SB_EINVAL, func, "path is NULL");
+    return NULL;
+  }
+  FILE *f = fopen(path, "rb");
+  if (!f)
+    *status = sbi_error(SB_EIO, func, "cannot open '%s'", path);
+  return f;
 }

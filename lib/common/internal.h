@@ -6,6 +6,7 @@
 #define SB_INTERNAL_H
 
 #include <math.h>
+#include <stdio.h>
 #include <smolbridge/common.h>
 
 #if defined(__GNUC__)
@@ -26,5 +27,18 @@ int sbi_fail_res(sb_result *res, int status, const char *func,
                  const char *fmt, ...) SBI_PRINTF(4, 5);
 #define SBI_FAIL_RES(res, status, ...) \
   sbi_fail_res((res), (status), __func__, __VA_ARGS__)
+
+/* Saved states (fsutil.c). */
+/* A saved state's file opened for reading (*status SB_SUCCESS), or NULL
+ * with *status SB_EINVAL (path NULL) or SB_EIO and the message from
+ * func. */
+FILE *sbi_open_saved(const char *path, const char *func, int *status);
+/* A file opened to save a state to path, or NULL with the message from
+ * func (SB_EIO). */
+FILE *sbi_open_for_save(const char *path, const char *func);
+/* Close the save's file f: SB_SUCCESS if every write succeeded (ok) and
+ * so did the close, else SB_EIO with the message from func and the
+ * partial file removed (a failed save leaves no file behind). */
+int sbi_finish_save(FILE *f, int ok, const char *path, const char *func);
 
 #endif /* SB_INTERNAL_H */

@@ -14,7 +14,6 @@
 #include <stdlib.h>
 #include <stddef.h>
 #include <string.h>
-#include <sys/stat.h>
 
 
 #include <smolbridge/rng.h>
@@ -345,36 +344,4 @@ int sbi_engine_check_saved(const sb_engine *e, uint64_t steps,
                      "than the engine has (another checkpoint at the same "
                      "step): restore both from the same checkpoint", what);
   return SB_SUCCESS;
-}
-
-FILE *sbi_open_for_save(const char *path, const char *func)
-{
-  FILE *f = fopen(path, "wb");
-  if (!f)
-    sbi_error(SB_EIO, func, "cannot open '%s' for writing", path);
-  return f;
-}
-
-int sbi_finish_save(FILE *f, int ok, const char *path, const char *func)
-{
-  ok &= fclose(f) == 0;
-  if (ok)
-    return SB_SUCCESS;
-  struct stat sb;  /* a regular file only: not a device or a pipe */
-  if (stat(path, &sb) == 0 && S_ISREG(sb.st_mode))
-    remove(path);
-  return sbi_error(SB_EIO, func, "write error on '%s'", path);
-}
-
-FILE *sbi_open_saved(const char *path, const char *func, int *status)
-{
-  *status = SB_SUCCESS;
-  if (!path) {
-    *status = sbi_error(SB_EINVAL, func, "path is NULL");
-    return NULL;
-  }
-  FILE *f = fopen(path, "rb");
-  if (!f)
-    *status = sbi_error(SB_EIO, func, "cannot open '%s'", path);
-  return f;
 }

@@ -146,17 +146,6 @@ int sbi_idmap_read(sbi_idmap *m, FILE *f, int counted);
  * and positions): an observer's state saved beside a checkpoint belongs
  * to the engine with the same one (engine_checkpoint.c). */
 uint64_t sbi_engine_fingerprint(const sb_engine *e);
-/* A saved state's file opened for reading (*status SB_SUCCESS), or NULL
- * with *status SB_EINVAL (path NULL) or SB_EIO and the message from
- * func. */
-FILE *sbi_open_saved(const char *path, const char *func, int *status);
-/* A file opened to save a state to path, or NULL with the message from
- * func (SB_EIO). */
-FILE *sbi_open_for_save(const char *path, const char *func);
-/* Close the save's file f: SB_SUCCESS if every write succeeded (ok) and
- * so did the close, else SB_EIO with the message from func and the
- * partial file removed (a failed save leaves no file behind). */
-int sbi_finish_save(FILE *f, int ok, const char *path, const char *func);
 /* SB_EINVAL (message from func about `what`) unless e is at `steps` with
  * the fingerprint `print`: the engine a state beside a checkpoint was
  * saved with. */
