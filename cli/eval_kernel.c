@@ -10,6 +10,7 @@ SBE_WRAP4(kernel_brownian_co)
 SBE_WRAP4(kernel_brownian_fm)
 SBE_WRAP6(kernel_brownian_tr)
 SBE_WRAP5(kernel_kinetic)
+SBE_WRAP5(kernel_kinetic_2d)
 static int sbe_w_kernel_brownian_gh(const double *i, double *o)
 {
   o[0] = sb_kernel_brownian_gh(i[0], i[1], i[2], i[3], i[4], i[5], i[6]);
@@ -67,6 +68,7 @@ static const sbe_func funcs[] = {
     E(kernel_brownian_gh_kn, GH, "its diffusive Knudsen number Kn_D"),
     E(kernel_gh_H, KN, "dimensionless kernel H(Kn_D)"),
     E(kernel_kinetic, KIN, "hard-sphere kinetic theory, m^3/s"),
+    E(kernel_kinetic_2d, KIN, "hard-disc kinetic theory (2-D), m^2/s"),
     E(kernel_gravity, RR("rho_p", "rho_f", "mu", "g"),
       "differential settling kernel, m^3/s"),
     E(kernel_shear, RR("G"), "laminar shear kernel, m^3/s"),

@@ -248,6 +248,50 @@ START_TEST(test_abrahamson_flux)
 }
 END_TEST
 
+/* |v| times the 2-D Gaussian density of the relative velocity (variance
+ * 1 per component), on a line vy = const: the inner integral */
+static double speed_x(double vx, void *p)
+{
+  const double vy = *(const double *)p;
+  return hypot(vx, vy) * exp(-0.5 * (vx * vx + vy * vy)) / (2 * M_PI);
+}
+
+static double speed_xy(double vy, void *p)
+{
+  gsl_integration_workspace *w = p;
+  gsl_function f = {speed_x, &vy};
+  double r, err;
+  gsl_integration_qagi(&f, 1e-14, 1e-12, 200, w, &r, &err);
+  return r;
+}
+
+START_TEST(test_kinetic_2d)
+{
+  /* K = (d_i + d_j) E|v_rel|: the mean speed of the 2-D Gaussian by a
+   * double quadrature over both Cartesian components (in units of its
+   * standard deviation sqrt(kT/m_red)), not the Rayleigh mean */
+  gsl_integration_workspace *wi = gsl_integration_workspace_alloc(200);
+  gsl_integration_workspace *wo = gsl_integration_workspace_alloc(200);
+  gsl_function f = {speed_xy, wi};
+  double mean, err;
+  gsl_integration_qagi(&f, 1e-13, 1e-11, 200, wo, &mean, &err);
+  gsl_integration_workspace_free(wi);
+  gsl_integration_workspace_free(wo);
+  const double mi = 6.646e-27, mj = 2.18e-25, di = 2.8e-10, dj = 4.3e-10;
+  const double sd = sqrt(kB * T20 * (1 / mi + 1 / mj));
+  ck_assert_rel(sb_kernel_kinetic_2d(di, dj, mi, mj, T20), (di + dj) * sd * mean,
+                1e-10);
+  /* monodisperse: 2 d sqrt(pi kT/m) */
+  ck_assert_rel(sb_kernel_kinetic_2d(di, di, mi, mi, T20),
+                2 * di * sqrt(M_PI * kB * T20 / mi), TOL_TIGHT);
+  sb_clear_error();
+  ck_assert(isnan(sb_kernel_kinetic_2d(di, dj, mi, mj, 0)));
+  ck_assert_int_eq(sb_last_status(), SB_EDOM);
+  ck_assert(isnan(sb_kernel_kinetic_2d(-di, dj, mi, mj, T20)));
+  ck_assert(isnan(sb_kernel_kinetic_2d(di, dj, NAN, mj, T20)));
+}
+END_TEST
+
 START_TEST(test_domain_errors)
 {
   sb_clear_error();
@@ -358,6 +402,7 @@ static Suite *kernel_suite(void)
   tcase_add_test(tc, test_pair_diffusivity);
   tcase_add_test(tc, test_abrahamson_flux);
   tcase_add_test(tc, test_shear_langevin);
+  tcase_add_test(tc, test_kinetic_2d);
   tcase_add_test(tc, test_domain_errors);
   tcase_add_test(tc, test_spec);
   suite_add_tcase(s, tc);

@@ -204,10 +204,12 @@ void sbi_col_jnum(FILE *f, double x)
 }
 
 /* The theoretical kernels that apply to species pair (a, b) with the
- * fluid at rest: free flight at a common T: kinetic theory; Langevin
- * species: the continuum kernel 4 pi (D_a + D_b)(r_a + r_b), D = (B
- * tau)^2/2, and at a common T > 0 the free-molecular kernel and the
- * transition kernel of Gopalakrishnan & Hogan (2011) with its Kn_D. */
+ * fluid at rest: free flight at a common T: kinetic theory (2-D: of hard
+ * discs, m^2/s); Langevin species in 3-D: the continuum kernel
+ * 4 pi (D_a + D_b)(r_a + r_b), D = (B tau)^2/2, and at a common T > 0 the
+ * free-molecular kernel and the transition kernel of Gopalakrishnan &
+ * Hogan (2011) with its Kn_D.  Diffusion in 2-D has no steady kernel (the
+ * rate decays as 1/ln t), so Langevin pairs in 2-D have none. */
 static void json_references(FILE *f, const sbi_col_config *c,
                             const sb_engine_species *sa,
                             const sb_engine_species *sb)
@@ -217,9 +219,10 @@ static void json_references(FILE *f, const sbi_col_config *c,
   int same_T = sa->T > 0 && sa->T == sb->T;
   if (rest && isinf(sa->tau) && isinf(sb->tau) && same_T) {
     fprintf(f, "\"kinetic\": ");
-    sbi_col_jnum(f, sb_kernel_kinetic(2 * sa->radius, 2 * sb->radius, sa->mass,
-                                      sb->mass, sa->T));
-  } else if (rest && isfinite(sa->tau) && isfinite(sb->tau)) {
+    sbi_col_jnum(f, (c->dim == 2 ? sb_kernel_kinetic_2d : sb_kernel_kinetic)(
+                        2 * sa->radius, 2 * sb->radius, sa->mass, sb->mass,
+                        sa->T));
+  } else if (rest && c->dim == 3 && isfinite(sa->tau) && isfinite(sb->tau)) {
     double ba = sa->B * sa->tau, bb = sb->B * sb->tau;
     fprintf(f, "\"continuum\": ");
     sbi_col_jnum(f,

@@ -172,6 +172,17 @@ double sb_kernel_kinetic(double d_i, double d_j, double m_i, double m_j,
   return M_PI * r * r * sqrt(8.0 * kB * T / M_PI * (1.0 / m_i + 1.0 / m_j));
 }
 
+double sb_kernel_kinetic_2d(double d_i, double d_j, double m_i, double m_j,
+                            double T)
+{
+  CHECK(pos(d_i) && pos(d_j), "diameters must be > 0 (got %g, %g)", d_i,
+        d_j);
+  CHECK(pos(m_i) && pos(m_j) && pos(T),
+        "masses and T must be > 0 (got %g, %g, %g)", m_i, m_j, T);
+  /* mean Rayleigh speed sqrt(pi/2) sigma, sigma^2 = kT/m_red */
+  return (d_i + d_j) * sqrt(0.5 * M_PI * kB * T * (1.0 / m_i + 1.0 / m_j));
+}
+
 double sb_kernel_gravity(double r_i, double r_j, double rho_p, double rho_f,
                          double mu, double g)
 {

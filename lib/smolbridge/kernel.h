@@ -89,6 +89,17 @@ double sb_kernel_gh_H(double kn);
 double sb_kernel_kinetic(double d_i, double d_j, double m_i, double m_j,
                          double T);
 
+/** Kinetic theory of hard discs in 2-D (the plane's counterpart of
+ *  sb_kernel_kinetic), diameters d (m), masses m (kg): the relative
+ *  velocity of a Maxwellian pair has the variance k_B T/m_red per
+ *  component, so its speed is Rayleigh distributed with the mean
+ *  sqrt(pi k_B T/(2 m_red)), and a disc sweeps a strip of width d_i + d_j:
+ *  K = (d_i + d_j) sqrt(pi k_B T/(2 m_red)), in m^2/s (a rate per unit
+ *  area density).  Monodisperse: 2 d sqrt(pi k_B T/m).  All arguments
+ *  > 0 (NaN and SB_EDOM otherwise). */
+double sb_kernel_kinetic_2d(double d_i, double d_j, double m_i, double m_j,
+                            double T);
+
 /** Differential gravitational settling (Pearson, Valioulis & List
  *  1984; Mohaupt 2011, eq 2.3): K = pi (r_i + r_j)^2 |U_i - U_j|, Stokes
  *  terminal velocity U = 2 (rho_p - rho_f) g r^2/(9 mu).  No hydrodynamic
