@@ -337,6 +337,27 @@ $a\
 type = ou-field\
 u2 = 1e-4\
 T_L = 1e-6'
+# the [species] sections of a restart name the saved species: required,
+# in the first run's order and with its radius, mass, tau and T
+check "restart without species" 2 "[run] restart: give the first run's [species] sections (the checkpoint has 1 species)" '4a\
+restart = '"$dir"'/nofh.ck
+6,$d'
+check "restart with another species" 2 "t.ini:7: [species a] is not the checkpoint's species 1 (its radius differs" '4a\
+restart = '"$dir"'/nofh.ck
+s/^radius = 1e-7/radius = 2e-7/'
+check "restart with another T" 2 "(its T differs" '4a\
+restart = '"$dir"'/nofh.ck
+s/^T = 300/T = 310/'
+check "restart with two species" 2 "[run] restart: 2 [species] sections for the checkpoint's 1 species" '4a\
+restart = '"$dir"'/nofh.ck
+$a\
+[species b]\
+radius = 1e-7\
+density = 1000\
+mu = 1e-3\
+T = 300'
+check "restart: placement keys" 0 "[species a] count ignored: the particles come from the restart checkpoint" 's/^steps = 10/t_end = 2e-6/; 4a\
+restart = '"$dir"'/nofh.ck'
 "$sb" collide "$dir/base.ini" --set run.outcome=count \
   --set observe.first_hit=yes --set "run.checkpoint=$dir/fh.ck" \
   --set "run.output=$dir/fh" > /dev/null 2>&1 ||

@@ -177,9 +177,20 @@ int sbi_col_check(sbi_col_config *c)
     for (int i = 0; kept[i]; i++)
       unused(c, run, kept[i], "the state comes from the restart "
              "checkpoint");
-    for (int k = 0; k < c->nsp; k++)
-      sbi_col_warn(c, "%s: [%s] ignored: the particles come from the restart "
-                   "checkpoint", c->sp[k].where, c->sp[k].name);
+    /* the sections name and describe the saved species
+     * (collide_setup.c checks them); their placement keys are unused */
+    static const char *const placed[] = {"count", "phi", "region",
+                                         "profile", "drift", "velocities",
+                                         "velocity_scale", NULL};
+    for (int k = 0; k < c->nsp; k++) {
+      for (int i = 0; placed[i]; i++)
+        unused(c, c->sp[k].name, placed[i], "the particles come from the "
+               "restart checkpoint");
+      if (c->sp[k].npart)
+        sbi_col_warn(c, "%s: [%s] particle ignored: the particles come from "
+                     "the restart checkpoint", c->sp[k].where,
+                     c->sp[k].name);
+    }
   } else {
     if (isnan(c->Lx) || isnan(c->Ly) || (c->dim == 3 && isnan(c->Lz)))
       return sbi_col_fail(c, "[run] L (or Lx, Ly%s) is required: the box "

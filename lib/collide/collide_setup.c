@@ -537,6 +537,58 @@ static int place(sbi_col_config *c, sbi_col_run *r, const sb_engine_species *q)
   return st;
 }
 
+/* x and y equal to rounding (the same keys give the same doubles; a
+ * diameter halved or a mass from the density may differ in the last
+ * bits). */
+static int same_value(double x, double y)
+{
+  return x == y || fabs(x - y) <= 1e-12 * fmax(fabs(x), fabs(y));
+}
+
+/* On restart the [species] sections name the checkpoint's species, in
+ * order, and the output's references and first-contact radii follow
+ * them: they must be the first run's.  Each must give the saved
+ * species' radius, mass, tau and T (merging adds cluster species after
+ * them). */
+static int restart_species(sbi_col_config *c, const sb_engine *e)
+{
+  size_t ns = 0;
+  while (sb_engine_get_species(e, ns))
+    ns++;
+  if (c->nsp == 0)
+    return sbi_col_fail(c, "[run] restart: give the first run's [species] "
+                        "sections (the checkpoint has %zu species): they "
+                        "name the saved species, in order; the particles "
+                        "come from the checkpoint", ns);
+  if ((size_t)c->nsp > ns || (!sbi_col_agglo(c) && (size_t)c->nsp != ns))
+    return sbi_col_fail(c, "[run] restart: %d [species] sections for the "
+                        "checkpoint's %zu species: give the first run's, in "
+                        "the same order", c->nsp, ns);
+  for (int k = 0; k < c->nsp; k++) {
+    const sbi_col_species *s = &c->sp[k];
+    const sb_engine_species *q = sb_engine_get_species(e, (size_t)k);
+    const double r = isnan(s->diameter) ? s->radius : 0.5 * s->diameter;
+    const double m = isnan(s->mass) ? sb_sphere_mass(s->density, 2.0 * r)
+                                    : s->mass;
+    const double tau = isnan(s->tau) ? sb_stokes_tau(s->density, 2.0 * r,
+                                                     s->mu, s->cc)
+                                     : s->tau;
+    const double T = isnan(s->T) ? 0.0 : s->T;
+    const char *what = !same_value(r, q->radius) ? "radius"
+                       : !same_value(m, q->mass) ? "mass"
+                       : !same_value(tau, q->tau) ? "tau"
+                       : !same_value(T, q->T)     ? "T"
+                                                  : NULL;
+    if (what)
+      return sbi_col_fail(c, "%s: [%s] is not the checkpoint's species %d "
+                          "(its %s differs: radius %g m, mass %g kg, tau %g "
+                          "s, T %g K saved): give the first run's [species] "
+                          "sections, in the same order", s->where, s->name,
+                          k + 1, what, q->radius, q->mass, q->tau, q->T);
+  }
+  return SB_SUCCESS;
+}
+
 /* A restart whose state beside the checkpoint ([run] key = val keeps
  * one) is missing or does not load. */
 static int restart_failed(sbi_col_config *c, const char *key,
@@ -734,6 +786,8 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
         (!sbi_col_bridge(c) && (sb_engine_set_detect(r->e, dm) ||
                                 sb_engine_set_outcome(r->e, om, c->eta))))
       return sbi_col_fail(c, "[run] restart: %s", sb_last_error());
+    if (restart_species(c, r->e))
+      return -1;
     c->dim = sb_engine_get_params(r->e)->dim;
     /* the position variance rates of the saved species, (B tau)^2: with
      * turbulence B holds its part (species_build), taken out again for
