@@ -307,8 +307,18 @@ check "missing dt" 2 '[run] dt is required' '/^dt = /d'
 check "missing steps" 2 '[run] t_end or steps is required' '/^steps = /d'
 check "no species" 2 'no [species NAME] section' '6,$d'
 check "unwritable output" 2 '[run] output = /proc/nope: cannot create the directory' 's|^output = .*|output = /proc/nope|'
+# an input error found when the output is prepared leaves the previous
+# run's files
+"$sb" collide "$dir/base.ini" --set "run.output=$dir/keep" > /dev/null 2>&1 ||
+  fail "the run before the bad checkpoint failed"
 check "unwritable checkpoint" 2 '[run] checkpoint = /proc/x.ck: not writable' '4a\
-checkpoint = /proc/x.ck'
+checkpoint = /proc/x.ck' --set "run.output=$dir/keep"
+grep -q '"status": "ok"' "$dir/keep/summary.json" 2>/dev/null ||
+  fail "a bad checkpoint path removed the previous run's summary.json"
+check "msd_fit past the run" 2 '[observe] msd_fit = 2 20: the run takes 11 samples of msd_every = 1 steps (lags 0 .. 10)' '$a\
+[observe]\
+msd_every = 1\
+msd_fit = 2 20'
 # a merging run goes on from a checkpoint only with its sizes written
 # beside it (CHECKPOINT.agglo), a first-contact count only with the
 # observer's counts (CHECKPOINT.firsthit), a random field only with its

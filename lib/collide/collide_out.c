@@ -64,6 +64,23 @@ int sbi_col_out_prepare(sbi_col_config *c)
   if (sb_mkdir_p(c->output))
     return sbi_col_fail(c, "%s: [run] output = %s: cannot create the "
                         "directory: %s", where, c->output, strerror(errno));
+  /* the checkpoint and the states beside it, before the previous run's
+   * files go: an input error must leave them */
+  if (c->checkpoint[0]) {
+    char fh[600];
+    for (int k = -1; k < SBI_BESIDE_N; k++) {
+      if (k >= 0 && sbi_col_beside(c, k, c->checkpoint, fh, sizeof fh))
+        continue;  /* the run has no such state */
+      const char *p = k >= 0 ? fh : c->checkpoint;
+      if (!writable(p))
+        return sbi_col_fail(c, "%s: [run] checkpoint = %s: %s%snot "
+                            "writable: %s",
+                            sbi_col_where(c, "run", "checkpoint"),
+                            c->checkpoint, k >= 0 ? p : "",
+                            k >= 0 ? " " : "",
+                            strerror(errno));
+    }
+  }
   DIR *d = opendir(c->output);
   if (!d)
     return sbi_col_fail(c, "%s: [run] output = %s: %s", where, c->output,
@@ -88,21 +105,6 @@ int sbi_col_out_prepare(sbi_col_config *c)
       fclose(f))
     return sbi_col_fail(c, "%s: [run] output = %s: not writable: %s", where,
                         c->output, strerror(errno));
-  if (c->checkpoint[0]) {  /* the checkpoint and the states beside it */
-    char fh[600];
-    for (int k = -1; k < SBI_BESIDE_N; k++) {
-      if (k >= 0 && sbi_col_beside(c, k, c->checkpoint, fh, sizeof fh))
-        continue;  /* the run has no such state */
-      const char *p = k >= 0 ? fh : c->checkpoint;
-      if (!writable(p))
-        return sbi_col_fail(c, "%s: [run] checkpoint = %s: %s%snot "
-                            "writable: %s",
-                            sbi_col_where(c, "run", "checkpoint"),
-                            c->checkpoint, k >= 0 ? p : "",
-                            k >= 0 ? " " : "",
-                            strerror(errno));
-    }
-  }
   return 0;
 }
 

@@ -246,8 +246,21 @@ static int plan(sb_collide *cl)
                  sbi_col_where(c, "run", "stop_every"), c->stop_every, dt);
     return SB_EINVAL;
   }
-  if (sbi_col_batches_setup(c, r, lround((r->t_end - t0 - r->warm) / dt)))
+  const long nmeas = lround((r->t_end - t0 - r->warm) / dt);
+  if (sbi_col_batches_setup(c, r, nmeas))
     return SB_EINVAL;
+  /* the msd samples (collide_msd.c): the fit's lags must fit the run */
+  if (c->msd_every > 0 && c->nmsd_fit == 2) {
+    const long cap = (nmeas > 0 ? nmeas : 0) / c->msd_every + 1;
+    if (!(c->msd_fit[1] < (double)cap)) {
+      sbi_col_fail(c, "%s: [observe] msd_fit = %g %g: the run takes %ld "
+                   "samples of msd_every = %ld steps (lags 0 .. %ld); "
+                   "valid: lags below %ld",
+                   sbi_col_where(c, "observe", "msd_fit"), c->msd_fit[0],
+                   c->msd_fit[1], cap, c->msd_every, cap - 1, cap);
+      return SB_EINVAL;
+    }
+  }
   /* ~200 samples over the run; a restart keeps the checkpoint's period,
    * so that its rows fall where those of the run in one go would */
   long nst = lround((r->t_end - t0) / dt);
