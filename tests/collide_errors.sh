@@ -315,6 +315,16 @@ check "unwritable checkpoint" 2 '[run] checkpoint = /proc/x.ck: not writable' '4
 checkpoint = /proc/x.ck' --set "run.output=$dir/keep"
 grep -q '"status": "ok"' "$dir/keep/summary.json" 2>/dev/null ||
   fail "a bad checkpoint path removed the previous run's summary.json"
+# a run whose numbers overflow still writes valid JSON (null, not inf)
+"$sb" collide "$dir/base.ini" --set "run.output=$dir/huge" \
+  --set "species.a.particle=5e-6 5e-6 5e-6 1e300 0 0" > /dev/null 2>&1
+[ -s "$dir/huge/summary.json" ] || fail "overflow: no summary.json"
+grep -Eq '(: |\[|, )-?(inf|nan)' "$dir/huge/summary.json" &&
+  fail "overflow: inf or nan in summary.json"
+check "species name" 2 "t.ini:6: [species a,b]: the species name 'a,b' may hold only letters, digits, '_' and '-'" 's/^\[species a\]/[species a,b]/'
+check "negative velocity_scale" 2 '[species a] velocity_scale = 1 -1 1: -1 out of range; valid: numbers >= 0' "$A"'
+velocity_scale = 1 -1 1'
+check "free flight without T" 2 '[species a]: free flight (tau = inf) needs T > 0' 's/^mu = 1e-3/tau = inf/; s/^density = 1000/mass = 1e-18/; /^T = 300/d; s/^count = 10/particle = 1e-6 1e-6 1e-6 0 0 0/'
 check "msd_fit past the run" 2 '[observe] msd_fit = 2 20: the run takes 11 samples of msd_every = 1 steps (lags 0 .. 10)' '$a\
 [observe]\
 msd_every = 1\

@@ -203,6 +203,10 @@ static int parse_list(sbi_col_config *c, const char *sec,
     if (cnt == nmax)
       return sbi_col_fail(c, "%s: [%s] %s = %s: more than %d numbers",
                           c->where, sec, k->key, v, nmax);
+    if ((k->range == R_NONNEG && x < 0) || (k->range == R_POS && !(x > 0)))
+      return sbi_col_fail(c, "%s: [%s] %s = %s: %g out of range; valid: "
+                          "numbers %s 0", c->where, sec, k->key, v, x,
+                          k->range == R_POS ? ">" : ">=");
     out[cnt++] = x;
     p = end;
   }
@@ -387,6 +391,13 @@ static int header(void *user, const char *sec, const char *where)
   /* normalise "species.x" / "species:x" like the keys */
   const char *sn;
   if (sbi_col_is_species(name, &sn)) {
+    /* the name heads CSV columns and --set keys (species.NAME.key):
+     * no commas, quotes, dots or spaces */
+    if (sn[0] && strspn(sn, "abcdefghijklmnopqrstuvwxyz"
+                             "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
+                      strlen(sn))
+      return sbi_col_fail(c, "%s: [%s]: the species name '%s' may hold only "
+                          "letters, digits, '_' and '-'", where, sec, sn);
     char tmp[72];
     snprintf(tmp, sizeof tmp, "species %s", sn);
     copy(name, sizeof name, tmp);

@@ -349,7 +349,9 @@ static void json_kernels(FILE *f, const sbi_col_config *c, const sb_engine *e)
           (unsigned long long)st.steps);
   fprintf(f, "  \"t_measure_start\": %.17g,\n  \"t_measure_end\": %.17g,\n",
           st.t_reset, st.t);
-  fprintf(f, "  \"pair_exposure\": %.17g,\n", st.exposure);
+  fprintf(f, "  \"pair_exposure\": ");
+  sbi_col_jnum(f, st.exposure);
+  fprintf(f, ",\n");
   /* walls: depositions per face x_lo, x_hi, y_lo, y_hi, z_lo, z_hi */
   fprintf(f, "  \"deposits\": [");
   for (int q = 0; q < 6; q++)
@@ -377,9 +379,13 @@ static void json_kernels(FILE *f, const sbi_col_config *c, const sb_engine *e)
     fprintf(f, "  \"kernel\": {\"K\": null, \"ci95\": null, \"why\": ");
     jstr(f, why_no_kernel(e, &st));
     fprintf(f, "},\n");
-  } else
-    fprintf(f, "  \"kernel\": {\"K\": %.17g, \"ci95\": [%.17g, %.17g]},\n",
-            K, lo, hi);
+  } else {
+    fprintf(f, "  \"kernel\": {\"K\": %.17g, \"ci95\": [", K);
+    sbi_col_jnum(f, lo);
+    fprintf(f, ", ");
+    sbi_col_jnum(f, hi);
+    fprintf(f, "]},\n");
+  }
   fprintf(f, "  \"pair_kernels\": [");
   int firstp = 1;
   const sb_engine_species *sa, *sb;
@@ -395,8 +401,10 @@ static void json_kernels(FILE *f, const sbi_col_config *c, const sb_engine *e)
       jstr(f, sbi_col_short_name(c, a));
       fprintf(f, ", ");
       jstr(f, sbi_col_short_name(c, b));
-      fprintf(f, "], \"collisions\": %llu, \"exposure\": %.17g, \"K\": ",
-              (unsigned long long)ps.ncoll, ps.exposure);
+      fprintf(f, "], \"collisions\": %llu, \"exposure\": ",
+              (unsigned long long)ps.ncoll);
+      sbi_col_jnum(f, ps.exposure);
+      fprintf(f, ", \"K\": ");
       sbi_col_jnum(f, ps.K);
       fprintf(f, ", \"ci95\": [");
       sbi_col_jnum(f, ps.lo);
@@ -518,8 +526,11 @@ static void json_contexts(FILE *f, const sbi_col_config *c,
                  st.exposure > 0 ? (double)as.nmerge * V / st.exposure : NAN);
     fprintf(f, ", \"mean_Erel_J\": ");
     sbi_col_jnum(f, nd ? as.erel_sum / (double)nd : NAN);
-    fprintf(f, ", \"M0\": %.17g, \"M1\": %.17g, \"M2\": %.17g, \"file\": "
-            "\"sizes.csv\"},\n", m[0], m[1], m[2]);
+    for (int q = 0; q < 3; q++) {
+      fprintf(f, ", \"M%d\": ", q);
+      sbi_col_jnum(f, m[q]);
+    }
+    fprintf(f, ", \"file\": \"sizes.csv\"},\n");
   }
   if (r->fh)
     json_firsthit(f, c, r);
@@ -570,8 +581,12 @@ int sbi_col_out_write(const sbi_col_config *c, sbi_col_run *r,
       sbi_col_grid_json(f, c, r);
     if (r->measuring) {  /* energy conservation over the measurement */
       double e1 = sb_engine_kinetic_energy(r->e, NULL);
-      fprintf(f, "  \"kinetic_energy\": {\"start\": %.17g, \"end\": "
-              "%.17g, \"rel_change\": ", r->ekin0, e1);
+      /* null where not finite (an overflowing energy): JSON has no inf */
+      fprintf(f, "  \"kinetic_energy\": {\"start\": ");
+      sbi_col_jnum(f, r->ekin0);
+      fprintf(f, ", \"end\": ");
+      sbi_col_jnum(f, e1);
+      fprintf(f, ", \"rel_change\": ");
       sbi_col_jnum(f, fabs(e1 / r->ekin0 - 1.0));
       fprintf(f, "},\n");
     }

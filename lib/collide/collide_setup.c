@@ -91,9 +91,10 @@ static int species_build(sbi_col_config *c, int k, sb_engine_species *o)
   }
   double T = isnan(s->T) ? 0.0 : s->T, B = s->B;
   if (isinf(tau)) {
-    if (!(T > 0) && s->npart == 0)
+    if (!(T > 0))
       return sbi_col_fail(c, "%s: [%s]: free flight (tau = inf) needs T > 0 "
-                          "(K) for the velocities of the placed particles",
+                          "(K): the velocities of placed and reinserted "
+                          "particles, the kinetic reference",
                           sbi_col_given(c, n, "T") ? sbi_col_where(c, n, "T")
                                                : s->where, n);
     if (!isnan(s->b2))
