@@ -71,7 +71,10 @@ static int parse_double(const char *s, double *x)
   char *end;
   errno = 0;
   *x = strtod(s, &end);
-  return (end == s || *end != '\0' || errno == ERANGE) ? -1 : 0;
+  /* ERANGE: an overflow (rejected), or an underflow, which is kept if
+   * it gave a subnormal number and not 0 */
+  const int range = errno == ERANGE && !(*x != 0.0 && fabs(*x) < 1.0);
+  return (end == s || *end != '\0' || range) ? -1 : 0;
 }
 
 int sbc_eval_main(int argc, char **argv)

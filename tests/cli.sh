@@ -55,6 +55,11 @@ expect_rc 2 "$sb" eval bb_cross_prob x=1 y=1 a=0 v=1 w=2
 expect_rc 2 "$sb" eval bb_cross_prob x=1 y=1 a=zero v=1
 expect_rc 2 "$sb" eval bb_cross_prob x=1 x=1 y=1 a=0 v=1
 expect_rc 1 "$sb" eval bb_cross_prob x=1 y=1 a=0 v=-1
+# numbers strtod flags as out of range: a subnormal is a number, an
+# overflow or an underflow to 0 is not
+expect_rc 0 "$sb" eval bb_nocross_prob x=1 y=1 a=0 v=1e-316
+expect_rc 2 "$sb" eval bb_nocross_prob x=1 y=1 a=0 v=1e-400
+expect_rc 2 "$sb" eval bb_nocross_prob x=1 y=1 a=0 v=1e400
 msg=$("$sb" eval bes3b_cross_prob x=1 y=1 a=-1 v=1 2>&1 >/dev/null)
 [ -n "$msg" ] || fail "no message for a < 0"
 # stats functions: the Garwood interval of k = 10 (tabulated values) and

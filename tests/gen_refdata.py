@@ -49,11 +49,15 @@ def write(name, header, rows):
 
 
 def Phi(z):
+    # beyond |z| = 1e10 the tail is below 10^(-10^19): 0 or 1 to any
+    # precision used here (mpmath's erfc overflows for |z| ~ 1e300)
+    if abs(z) > 1e10:
+        return mp.mpf(0) if z < 0 else mp.mpf(1)
     return mp.ncdf(z)
 
 
 def Q(z):
-    return mp.ncdf(-z)
+    return Phi(-z)
 
 
 def M(z):
@@ -133,7 +137,9 @@ def gen_passage():
             (0, 1, -2.5, 1), (2.5, 1.5, -0.1, 0.3), (2.5, 1.5, -30, 0.3),
             (1, 1 - 2 ** -30, -1, 1), (3, 1, -1e-6, 2), (3, 1, -1e3, 2),
             (1e-4, 0, -1e-4, 1e-8), (1e4, 0, -1e2, 1e4),
-            (0.7, -0.3, -0.01, 1), (-1, 2, 0.4, 5), (2, 1, 3, 1e-3)]
+            (0.7, -0.3, -0.01, 1), (-1, 2, 0.4, 5), (2, 1, 3, 1e-3),
+            # 2 |nu| d / s2 from products above 2^995, finite or not
+            (0, 1, -1e300, 1e300), (0, 1, -1e300, 1), (0, 1, -1e150, 1e-150)]
     for (x, a, mu, s2) in pars:
         d = abs(x - a)
         nu = mu if x < a else -mu
@@ -216,9 +222,11 @@ def cross_ref(kind, x, y, a, v):
     with mp.workdps(200):
         x, y, a, v = map(mp.mpf, (x, y, a, v))
         if kind == 0:
-            p = mp.exp(-2 * (x - a) * (y - a) / v)
-        else:
-            p = mp.expm1(2 * a * (x + y - a) / v) / mp.expm1(2 * x * y / v)
+            # log P and 1 - P from the exponent itself: exp(-C) rounds to 1
+            # at 200 digits when C < 1e-200
+            C = 2 * (x - a) * (y - a) / v
+            return mp.exp(-C), -C, -mp.expm1(-C)
+        p = mp.expm1(2 * a * (x + y - a) / v) / mp.expm1(2 * x * y / v)
         return p, mp.log(p), 1 - p
 
 
@@ -238,6 +246,13 @@ def gen_bridge_cross():
     # deep tails: log P from -1e3 to -1e300 (P itself underflows)
     for v in (1e-3, 1e-10, 1e-100, 1e-300):
         base.append((2.0, 3.0, 1.0, v))
+    # magnitudes near the overflow (x - a, v above 2^995) and a Bessel-3
+    # exponent A = 2a(x+y-a)/v below the normal doubles
+    base += [(1.0, 1.0, 1e-5, 2e300), (1.0, 1.0, 0.5, 1.4e300),
+             (1e301, 1e-10, 1e-20, 1e300),
+             (1.0, 1.000000000001, 0.999999999999999, 1e300),
+             (1.0, 1.0, 0.999999, 1e300), (1.0, 0.5, 0.4999995, 1e300),
+             (1.0, 1e-6, 1e-306, 1e8), (1e8, 100.0, 1e-298, 1e24)]
     for kind in (0, 1):
         for (x, y, a, v) in base:
             p, lp, nc = cross_ref(kind, x, y, a, v)

@@ -28,9 +28,7 @@ static sb_result never(int kind)
 /* C = 2 (x - a)(y - a) / v in double-double (x, y > a, v > 0). */
 static sbi_dd cross_exponent(double x, double y, double a, double v)
 {
-  sbi_dd al = sbi_dd_sum(x, -a), be = sbi_dd_sum(y, -a);
-  sbi_dd p = sbi_dd_mul(al, be);
-  return sbi_dd_div(sbi_dd_mul_d(p, 2.0), (sbi_dd){v, 0.0});
+  return sbi_dd_twice_ratio(sbi_dd_sum(x, -a), sbi_dd_sum(y, -a), v);
 }
 
 static int check_args(const char *fn, double x, double y, double a, double v,
@@ -96,7 +94,8 @@ static sb_result b3_cross(int kind, double x, double y, double a, double v)
     double p = sbi_dd_expneg(cross_exponent(x, y, a, v)) * r;
     if (kind == K_P)
       return (sb_result){p, 8.0 * EPS * p};
-    double logr = log(r);
+    /* 1 - r = nc: log1p where r is near 1 (a near min(x, y)) */
+    double logr = nc < 0.5 ? log1p(-nc) : log(r);
     return (sb_result){-c + logr, 4.0 * EPS * c + 6.0 * EPS * fabs(logr)};
   }
   double eb = expm1(-B);
@@ -105,6 +104,8 @@ static sb_result b3_cross(int kind, double x, double y, double a, double v)
     return (sb_result){nc, 6.0 * EPS * nc};
   }
   double ea = expm1(-A), r = ea / eb;
+  if (A < 1e-290)  /* A near or below the subnormals: r = (A/B)/g(B), */
+    r = (a / x) * (sxa / y) * (B / -eb);  /* g(z) = (1 - e^-z)/z */
   if (kind == K_P) {
     sbi_dd C = cross_exponent(x, y, a, v);
     double p = C.hi < 746.0 ? sbi_dd_expneg(C) * r : 0.0;

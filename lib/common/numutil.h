@@ -102,6 +102,28 @@ static inline sbi_dd sbi_dd_div(sbi_dd a, sbi_dd b)
   return sbi_dd_fast(q, r / b.hi);
 }
 
+/* 2 a b / v for dd a, b > 0 and v > 0, at any magnitude: the operands are
+ * scaled by powers of two (exact) into [1, 2) before the dd operations,
+ * whose splitting overflows above 2^995, and the result scaled back
+ * (inf or 0 where it overflows or underflows). */
+static inline sbi_dd sbi_dd_twice_ratio(sbi_dd a, sbi_dd b, double v)
+{
+  if (a.hi == 0.0 || b.hi == 0.0) {
+    sbi_dd z = {0.0, 0.0};
+    return z;
+  }
+  const int ea = ilogb(a.hi), eb = ilogb(b.hi), ev = ilogb(v);
+  sbi_dd as = {ldexp(a.hi, -ea), ldexp(a.lo, -ea)};
+  sbi_dd bs = {ldexp(b.hi, -eb), ldexp(b.lo, -eb)};
+  sbi_dd vs = {ldexp(v, -ev), 0.0};
+  sbi_dd r = sbi_dd_div(sbi_dd_mul_d(sbi_dd_mul(as, bs), 2.0), vs);
+  const int e = ea + eb - ev;
+  sbi_dd out = {ldexp(r.hi, e), ldexp(r.lo, e)};
+  if (!isfinite(out.hi))
+    out.lo = 0.0;
+  return out;
+}
+
 /* exp(-(e.hi + e.lo)) for e >= 0 to about one ulp. */
 static inline double sbi_dd_expneg(sbi_dd e)
 {

@@ -55,7 +55,7 @@ static int fpt_setup(const char *fn, double x, double a, double mu,
     q->kmass = 0.0;
   } else {
     /* mass = exp(-2 |nu| d / sigma2), exponent in double-double */
-    sbi_dd k = sbi_dd_div(sbi_dd_mul_d(d, 2.0 * q->nua), (sbi_dd){sigma2, 0});
+    sbi_dd k = sbi_dd_twice_ratio(d, (sbi_dd){q->nua, 0.0}, sigma2);
     q->mass = k.hi < 746.0 ? sbi_dd_expneg(k) : 0.0;
     q->kmass = k.hi + k.lo;
   }
@@ -91,6 +91,13 @@ static void fpt_eval(const fpt_par *q, int what, double t, sb_result *res)
       val = at0 ? 1.0 : cmass(q);
     res->val = val;
     res->err = 2.0 * EPS * val;
+    return;
+  }
+  if (q->mass == 0.0) {
+    /* drift away so strong that the level is never reached (to double
+     * precision): the inverse-Gaussian point may not even be finite */
+    res->val = what == W_SF ? 1.0 : 0.0;
+    res->err = 0.0;
     return;
   }
   sbi_igpt p = fpt_point(q, t);
