@@ -112,6 +112,11 @@ static inline sbi_dd sbi_dd_twice_ratio(sbi_dd a, sbi_dd b, double v)
     sbi_dd z = {0.0, 0.0};
     return z;
   }
+  const double big = 0x1p240, small = 0x1p-240;  /* quotient < 2^721 */
+  if (a.hi < big && b.hi < big && v < big && a.hi > small && b.hi > small &&
+      v > small)  /* the usual case: no scaling needed */
+    return sbi_dd_div(sbi_dd_mul_d(sbi_dd_mul(a, b), 2.0),
+                      (sbi_dd){v, 0.0});
   const int ea = ilogb(a.hi), eb = ilogb(b.hi), ev = ilogb(v);
   sbi_dd as = {ldexp(a.hi, -ea), ldexp(a.lo, -ea)};
   sbi_dd bs = {ldexp(b.hi, -eb), ldexp(b.lo, -eb)};
