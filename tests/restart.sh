@@ -3,7 +3,8 @@
 # a run stopped part-way ([run] checkpoint, and the states written beside
 # it) and continued from there ([run] restart) gives the results of the
 # run in one go, to the last bit.  One case per state: the engine's
-# collision tally (count_variance), the open boundaries' counters, the
+# collision tally (count_variance), the outputs' part before the
+# checkpoint (a mixture's series.csv), the open boundaries' counters, the
 # first-contact observer with the recorded contact velocities, the
 # agglomeration context (DLVO sticking, whose draws come from the
 # engine's generator), both random fields, and a bridge detector's
@@ -81,6 +82,35 @@ PY
 # its count variance and widened interval
 split he "$ex/v1_kinetic_gas_he.ini" run.t_end=5e-11 - &&
   same he pair_kernels pair_kernels.0.ncoll_var pair_kernels.0.collisions\>1000
+
+# a two-species gas with a warm-up (CHECKPOINT.run): the kinetic energy
+# at the measurement start and series.csv with its per-pair kernel
+# columns from before the checkpoint
+cat > "$out/mix.ini" <<'INI'
+[run]
+seed = 4
+L = 1.2e-8
+dt = 1e-14
+t_end = 3e-12
+warmup = 5e-13
+sample_every = 10
+[species he]
+radius = 1.4e-10
+mass = 6.646e-27
+tau = inf
+T = 300
+count = 60
+[species xe]
+radius = 2.16e-10
+mass = 2.18e-25
+tau = inf
+T = 300
+count = 60
+INI
+split mix "$out/mix.ini" run.t_end=1.5e-12 - &&
+  same mix kinetic_energy pair_kernels pair_kernels.1.collisions\>2 &&
+  { cmp -s "$out/mix_0/series.csv" "$out/mix_2/series.csv" ||
+    fail "mix: the restarted series.csv differs"; }
 
 # the open boundaries (the crossing jets, elastic): the inflows are added
 # again from the file, the checkpoint keeps their counters and the

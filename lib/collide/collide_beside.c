@@ -9,7 +9,9 @@
  *  - the recorded contacts ([observe] first_hit_velocities:
  *    CHECKPOINT.contacts, collide_contacts.c);
  *  - a bridge detector's counters and hit records (detect = bridge |
- *    exact: CHECKPOINT.bridge, sb_engine_bridge_save). */
+ *    exact: CHECKPOINT.bridge, sb_engine_bridge_save);
+ *  - the outputs' part before the checkpoint (CHECKPOINT.run,
+ *    collide_runstate.c). */
 #include <stdio.h>
 #include <string.h>
 
@@ -24,6 +26,8 @@
 /* The file name's suffix of state `which` of the run, or NULL. */
 static const char *suffix_of(const sbi_col_config *c, int which)
 {
+  if (which == SBI_BESIDE_RUN)
+    return "run";
   if (which == SBI_BESIDE_BRIDGE)
     return sbi_col_bridge(c) ? "bridge" : NULL;
   if (which == SBI_BESIDE_CONTACTS)
@@ -84,5 +88,7 @@ int sbi_col_save_beside(const sbi_col_config *c, const sbi_col_run *r)
   if (!st && !sbi_col_beside(c, SBI_BESIDE_BRIDGE, c->checkpoint, path,
                              sizeof path))
     st = sb_engine_bridge_save(r->bridge, r->e, path);
+  if (!st)
+    st = sbi_col_runstate_save(c, r);
   return st;
 }

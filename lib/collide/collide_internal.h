@@ -230,6 +230,13 @@ typedef struct sbi_col_msd sbi_col_msd;  /* collide_msd.c */
 typedef struct sbi_col_contacts sbi_col_contacts;  /* collide_contacts.c */
 typedef struct sbi_col_batches sbi_col_batches;    /* collide_batches.c */
 
+/* Pair-kernel rows sampled with the series (series.csv columns). */
+typedef struct {
+  int nsp;
+  double *rows;
+  size_t nrows, cap;
+} sbi_col_pairs;
+
 typedef struct {
   sb_engine *e;
   sb_engine_bridge *bridge;     /* detect = bridge | exact */
@@ -243,6 +250,8 @@ typedef struct {
   sbi_col_batches *batches;     /* [observe] batch_steps, or NULL */
   int measuring;                /* after the warm-up */
   double ekin0;                 /* kinetic energy at the measurement start */
+  int ekin0_saved;              /* restart: ekin0 is the first run's */
+  sbi_col_pairs pairs;          /* pair kernels sampled with the series */
   double t_end;                 /* absolute end time, s */
   double warm;                  /* warm-up, s (0 on restart) */
   double *dep;                  /* deposits sampled with the series: rows */
@@ -312,12 +321,13 @@ void sbi_col_run_free(sbi_col_run *r);
  * its counts, the first-contact observer's (CHECKPOINT.firsthit) or the
  * agglomeration context's (CHECKPOINT.agglo), its random field
  * (CHECKPOINT.field), the contacts' velocities of first_hit_velocities
- * (CHECKPOINT.contacts) and the bridge detector's counters and hit
- * records (CHECKPOINT.bridge).  The file name of state `which` from `checkpoint`
+ * (CHECKPOINT.contacts), the bridge detector's counters and hit
+ * records (CHECKPOINT.bridge) and the outputs' part before the
+ * checkpoint (CHECKPOINT.run, collide_runstate.c).  The file name of state `which` from `checkpoint`
  * into buf (0), or 1 when the run has no such state. */
 enum {
   SBI_BESIDE_COUNTS, SBI_BESIDE_FIELD, SBI_BESIDE_CONTACTS,
-  SBI_BESIDE_BRIDGE, SBI_BESIDE_N
+  SBI_BESIDE_BRIDGE, SBI_BESIDE_RUN, SBI_BESIDE_N
 };
 int sbi_col_beside(const sbi_col_config *c, int which,
                    const char *checkpoint, char *buf, size_t len);
@@ -330,6 +340,17 @@ int sbi_col_restart_beside(const sbi_col_config *c, int which,
 /* Save the states beside [run] checkpoint (nothing without one): 0 or a
  * status with sb_last_error() set. */
 int sbi_col_save_beside(const sbi_col_config *c, const sbi_col_run *r);
+
+/* ------------------------------------------------- collide_runstate.c */
+
+/* What series.csv and summary.json need from the part of a run before
+ * its checkpoint, beside it in CHECKPOINT.run: the kinetic energy at the
+ * measurement start and the rows sampled with the series (pair kernels,
+ * deposits).  Save: 0 or SB_EIO with sb_last_error() set.  Load on
+ * restart: 0 (a missing file is a warning: a checkpoint of an older
+ * version), or a status with c->err set. */
+int sbi_col_runstate_save(const sbi_col_config *c, const sbi_col_run *r);
+int sbi_col_runstate_load(sbi_col_config *c, sbi_col_run *r);
 
 /* --------------------------------------------------- collide_firsthit.c */
 
@@ -419,12 +440,6 @@ void sbi_col_msd_free(sbi_col_msd *m);
  * files a previous run wrote there (its manifest.txt), check that it and
  * the checkpoint path are writable.  0 or -1 with c->err set. */
 int sbi_col_out_prepare(sbi_col_config *c);
-/* Pair-kernel rows sampled with the series (series.csv columns). */
-typedef struct {
-  int nsp;
-  double *rows;
-  size_t nrows, cap;
-} sbi_col_pairs;
 int sbi_col_pairs_sample(sbi_col_pairs *ps, const sb_engine *e);
 /* Write series.csv, summary.json, sizes.csv, hits.csv and manifest.txt;
  * status "ok" or "failed" (summary.json of a failed run says why). */

@@ -139,7 +139,8 @@ static int run_steps(sbi_col_config *c, sbi_col_run *r, sbi_col_pairs *ps,
   }
   r->measuring = 1;
   sbi_col_batches_start(r);
-  r->ekin0 = sb_engine_kinetic_energy(e, NULL);
+  if (!r->ekin0_saved)  /* a restart keeps the first run's */
+    r->ekin0 = sb_engine_kinetic_energy(e, NULL);
   if (!st)
     st = sbi_col_msd_start(c, r);
   char path[1100];
@@ -296,11 +297,10 @@ int sb_collide_run(sb_collide *cl, sb_collide_progress_fn fn, void *user)
   if (report(&rp, e, SB_COLLIDE_BEGIN, 0.0))
     stopped = 1, st = SB_EINVAL;
   /* per-pair columns for 2 to 4 species (clusters: sizes.csv) */
-  sbi_col_pairs pser = {c->nsp <= 4 && !r->agglo ? c->nsp : 0, NULL, 0, 0};
   double cpu0 = (double)clock() / CLOCKS_PER_SEC;
   long nsnap = 0;
   if (!st)
-    st = run_steps(c, r, &pser, &rp, &nsnap, &stopped);
+    st = run_steps(c, r, &r->pairs, &rp, &nsnap, &stopped);
   double secs = (double)clock() / CLOCKS_PER_SEC - cpu0;
   if (st) {
     char why[600];
@@ -311,16 +311,14 @@ int sb_collide_run(sb_collide *cl, sb_collide_progress_fn fn, void *user)
       snprintf(why, sizeof why, "step failed at t = %g s: %s",
                sb_engine_time(e), sb_last_error());
     sbi_col_failure(cl, SB_COLLIDE_ERUN, st, why);
-    if (sbi_col_out_write(c, r, &pser, secs, "failed", why, nsnap))
+    if (sbi_col_out_write(c, r, &r->pairs, secs, "failed", why, nsnap))
       sbi_col_more(cl, "could not write the outputs in %s/", c->output);
-    free(pser.rows);
     return st;
   }
-  if (sbi_col_out_write(c, r, &pser, secs, "ok", NULL, nsnap)) {
+  if (sbi_col_out_write(c, r, &r->pairs, secs, "ok", NULL, nsnap)) {
     sbi_col_failure(cl, SB_COLLIDE_EWRITE, SB_EIO, "");
     sbi_col_more(cl, "could not write the outputs in %s/", c->output);
   }
-  free(pser.rows);
   if (c->checkpoint[0] && (sb_engine_checkpoint_save(e, c->checkpoint) ||
                            sbi_col_save_beside(c, r))) {
     if (!cl->failed)

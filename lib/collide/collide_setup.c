@@ -39,6 +39,7 @@ void sbi_col_run_free(sbi_col_run *r)
   if (r->field_rng)
     gsl_rng_free(r->field_rng);
   free(r->dep);
+  free(r->pairs.rows);
   if (r->grid_f)  /* a run that did not reach its outputs */
     fclose(r->grid_f);
   if (r->exits_f)
@@ -919,5 +920,10 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
     if (sbi_col_firsthit_attach(c, r, dm, reach))
       return sbi_col_fail(c, "[observe] first_hit: %s", sb_last_error());
   }
+  /* per-pair columns of series.csv for 2 to 4 species (clusters:
+   * sizes.csv); a restart goes on from the first run's rows */
+  r->pairs.nsp = c->nsp <= 4 && !r->agglo ? c->nsp : 0;
+  if (c->restart[0] && sbi_col_runstate_load(c, r))
+    return -1;
   return 0;
 }
