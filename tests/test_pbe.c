@@ -187,6 +187,55 @@ START_TEST(test_discrete_vs_analytic)
 }
 END_TEST
 
+typedef struct {
+  double m[3][3]; /* M0..M2 at the three output times */
+  int k;
+} mom_rec;
+
+static int rec_mom(double t, const double *v, const double *n, size_t nb,
+                   const double mom[3], void *data)
+{
+  mom_rec *r = data;
+  (void)v;
+  (void)n;
+  (void)nb;
+  if (t > 0 && r->k < 3)
+    memcpy(r->m[r->k++], mom, sizeof r->m[0]);
+  return 0;
+}
+
+/* The unit of volume changes nothing but the units: constant kernel,
+ * default tolerances and solver (GMRES with the diagonal preconditioner),
+ * v1 = 1 and 1e-20 (m^3 of 27 nm spheres); M0 equal, M1 and M2 scaled by
+ * v1 and v1^2 to 1e-9, M2 = 1 + tau exactly at tau = 0.1, 1 (the tail
+ * holds < 1e-27 of the mass).  The preconditioner's mass correction once
+ * weighted the tail mass by 1/v1: M2 was 1e49 too large at v1 = 1e-20. */
+START_TEST(test_volume_scale)
+{
+  mom_rec r[2] = {{{{0}}, 0}, {{{0}}, 0}};
+  const double v1[2] = {1.0, 1e-20}, t[] = {0, 0.1, 1, 10};
+  for (int i = 0; i < 2; i++) {
+    sb_kernel_spec ks;
+    sb_pbe_config c = kernel_config(&ks, SB_KERNEL_CONSTANT, 60);
+    c.v1 = v1[i];
+    sb_pbe *p = sb_pbe_alloc(&c);
+    ck_assert_ptr_nonnull(p);
+    ck_assert_int_eq(sb_pbe_init_mono(p, 1.0), SB_SUCCESS);
+    ck_assert_int_eq(sb_pbe_solve(p, t, 4, rec_mom, &r[i], NULL),
+                     SB_SUCCESS);
+    ck_assert_int_eq(r[i].k, 3);
+    sb_pbe_free(p);
+  }
+  for (int k = 0; k < 3; k++) {
+    ck_assert_rel(r[1].m[k][0], r[0].m[k][0], 1e-9);
+    ck_assert_rel(r[1].m[k][1] / 1e-20, r[0].m[k][1], 1e-9);
+    ck_assert_rel(r[1].m[k][2] / 1e-40, r[0].m[k][2], 1e-9);
+  }
+  for (int k = 0; k < 2; k++)
+    ck_assert_rel(r[1].m[k][2] / 1e-40, 1.0 + t[k + 1], 1e-7);
+}
+END_TEST
+
 /* Without the tail the truncated system loses mass (reported as drift):
  * the report must show it. */
 START_TEST(test_discrete_truncation_drift)
@@ -646,6 +695,7 @@ static Suite *pbe_suite(void)
   tcase_set_timeout(tc, 60);
   tcase_add_loop_test(tc, test_discrete_vs_analytic, 0, 9);
   tcase_add_test(tc, test_discrete_truncation_drift);
+  tcase_add_test(tc, test_volume_scale);
   tcase_add_test(tc, test_source_removal);
   tcase_add_loop_test(tc, test_sectional_moments, 0, 3);
   tcase_add_test(tc, test_gelation);

@@ -648,7 +648,7 @@ static int cv_jtimes(N_Vector v, N_Vector Jv, sunrealtype t, N_Vector y,
  * coagulation, every Krylov vector and the Newton correction then have
  * zero M1, as without preconditioning (measured drift ~1e-15; a plain
  * diagonal drifts by 1e-10..1e-6).  The defect is put back where the mass
- * is (along D^-1 w|y|).  J_aa = -L_a - n_a K_aa (+ the sectional gain's
+ * is (along D^-1 |y|).  J_aa = -L_a - n_a K_aa (+ the sectional gain's
  * diagonal, - removal): the stiff modes are the loss of the large
  * particles, which this captures.  Tail rows are left unscaled. */
 static int cv_psetup(sunrealtype t, N_Vector y, N_Vector fy,
@@ -694,8 +694,12 @@ static int cv_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector rv,
   double *z = N_VGetArrayPointer(zv);
   double wr = 0.0, wz = 0.0, wu = 0.0;
   /* r and z may be the same vector: read r before writing z.  The mass
-   * defect is put back along u = D^-1 (w |y|), i.e. where the mass is
-   * (u = D^-1 w would move it to the empty largest sizes: unstable). */
+   * defect is put back along u = D^-1 |y|, i.e. in proportion to the
+   * mass w_a |y_a| of each component (u = D^-1 w would move it to the
+   * empty largest sizes: unstable).  Not D^-1 (w |y|): the weights have
+   * units (volume on the grid, 1 on the tail mass), and that form gave
+   * the tail mass a share scaled by 1/v1, its noise swamping a tail of
+   * small particles (v1 = 1e-20 m^3: M2 off by 1e49). */
   for (size_t a = 0; a < NY; a++) {
     double w = a < N ? p->v[a] : (a == N + 1 ? 1.0 : 0.0);
     double q = 1.0 - gamma * d[a]; /* >= 1: d <= 0 up to the gain term */
@@ -704,7 +708,7 @@ static int cv_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector rv,
     wr += w * r[a];
     z[a] = r[a] / q;
     wz += w * z[a];
-    wu += w * w * fabs(yc[a]) / q;
+    wu += w * fabs(yc[a]) / q;
   }
   if (wu > 0.0) { /* z += u (w^T r - w^T z)/(w^T u) */
     double c = (wr - wz) / wu;
@@ -712,7 +716,7 @@ static int cv_psolve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector rv,
       double w = a < N ? p->v[a] : (a == N + 1 ? 1.0 : 0.0);
       if (w != 0.0) {
         double q = 1.0 - gamma * d[a];
-        z[a] += c * w * fabs(yc[a]) / (q > 0.0 ? q : 1.0);
+        z[a] += c * fabs(yc[a]) / (q > 0.0 ? q : 1.0);
       }
     }
   }
@@ -788,7 +792,7 @@ int sb_pbe_solve(sb_pbe *p, const double *times, size_t ntimes,
 
   int status = SB_SUCCESS;
   SUNContext ctx = NULL;
-  N_Vector y = NULL;
+  N_Vector y = NULL, atolv = NULL;
   SUNMatrix A = NULL;
   SUNLinearSolver LS = NULL;
   void *mem = NULL;
@@ -820,9 +824,28 @@ int sb_pbe_solve(sb_pbe *p, const double *times, size_t ntimes,
       mx = fmax(mx, p->y0[i]);
     atol = 1e-14 * (mx > 0 ? mx : 1.0);
   }
+  /* atol is on number concentrations; the tail's mass (a number times a
+   * volume) gets atol times the mean volume at the start, so that it is
+   * resolved whatever the unit of volume (with the number's atol a tail
+   * of 1e-20 m^3 particles was pure noise, and M2 with it) */
+  atolv = N_VNew_Serial((sunindextype)NY, ctx);
+  if (!atolv) {
+    status = sbi_error(SB_ENOMEM, __func__, "CVODE allocation failed");
+    goto done;
+  }
+  {
+    double m0[3];
+    sb_pbe_moments(p->v, p->y0, p->n, m0);
+    const double vmean = m0[0] > 0 && m0[1] > 0 ? m0[1] / m0[0] : 1.0;
+    double *av = N_VGetArrayPointer(atolv);
+    for (size_t i = 0; i < NY; i++)
+      av[i] = atol;
+    if (p->tail)
+      av[p->n + 1] = atol * vmean;
+  }
   int flag = CVodeInit(mem, cv_rhs, 0.0, y);
   if (flag >= 0)
-    flag = CVodeSStolerances(mem, p->cfg.rtol, atol);
+    flag = CVodeSVtolerances(mem, p->cfg.rtol, atolv);
   if (flag >= 0)
     flag = CVodeSetUserData(mem, p);
   if (flag >= 0)
@@ -904,6 +927,8 @@ done:
     SUNMatDestroy(A);
   if (y)
     N_VDestroy(y);
+  if (atolv)
+    N_VDestroy(atolv);
   if (ctx)
     SUNContext_Free(&ctx);
   return status;

@@ -83,7 +83,9 @@ typedef struct {
   sb_kernel_fn kernel;  /**< collision kernel K(v_i, v_j) */
   const void *kparams;  /**< its parameters */
   double rtol;          /**< CVODE relative tolerance (default 1e-8) */
-  double atol;          /**< absolute tolerance on n; <= 0: 1e-14 max n(0) */
+  double atol;          /**< absolute tolerance on n; <= 0: 1e-14 max n(0)
+                             (the tail's mass: atol times the mean volume
+                             at the start) */
   sb_pbe_linsol linsol; /**< linear solver of the Newton iteration */
   long max_steps;       /**< CVODE steps allowed per output interval */
   sb_pbe_source_fn source;   /**< NULL: no source */
