@@ -13,6 +13,12 @@ int sbc_collide_main(int argc, char **argv);   /* cli/collide.c */
 int sbc_pgd_main(int argc, char **argv);       /* cli/pgd.c */
 int sbc_spray_main(int argc, char **argv);     /* cli/spray.c */
 
+/* cli/gnuplot.c: run gnuplot on script in dir (NULL: here) without a
+ * shell, its messages discarded: 0 if it succeeded, -1 otherwise
+ * (missing included); write s as a gnuplot single-quoted string. */
+int sbc_gnuplot(const char *dir, const char *script);
+void sbc_gnuplot_string(FILE *f, const char *s);
+
 /* ------------------------------------------------------------ eval table
  * `smolbridge eval NAME key=value ...` calls a public function through an
  * entry of this table.  Each module lists its functions in cli/eval_MODULE.c

@@ -347,24 +347,30 @@ int sbc_pbe_main(int argc, char **argv)
             100.0 * rep.m1_drift,
             sb_pbe_volumes(p)[sb_pbe_nbins(p) - 1]);
   rc = st || oc.stop[0] ? 1 : 0;
-  if (!st && plot) {
+  /* the data reach the disk before gnuplot reads them */
+  if (oc.dist && fclose(oc.dist) != 0) {
+    fprintf(stderr, "smolbridge pbe: write error on %s\n", out);
+    rc = 1;
+  }
+  oc.dist = NULL;
+  if (!st && plot && !rc) {
     /* gnuplot script: one curve n(v) per output time */
-    char gp[1100], cmd[2300];
+    char gp[1100];
     snprintf(gp, sizeof gp, "%s.gp", plot);
     FILE *g = fopen(gp, "w");
     if (g) {
-      fprintf(g, "set terminal pngcairo size 960,640\nset output '%s'\n"
-                 "set logscale xy\nset xlabel 'v'\nset ylabel 'n'\n"
-                 "set datafile separator ','\nset key outside\ntl = \"",
-              plot);
+      fprintf(g, "set terminal pngcairo size 960,640\nset output ");
+      sbc_gnuplot_string(g, plot);
+      fprintf(g, "\nset logscale xy\nset xlabel 'v'\nset ylabel 'n'\n"
+                 "set datafile separator ','\nset key outside\ntl = \"");
       for (size_t i = 0; i < nt; i++)
         fprintf(g, "%s%.10g", i ? " " : "", times[i]);
-      fprintf(g, "\"\nplot for [i=1:words(tl)] '%s' every ::1 using "
+      fprintf(g, "\"\nplot for [i=1:words(tl)] ");
+      sbc_gnuplot_string(g, out);
+      fprintf(g, " every ::1 using "
                  "(($1 == real(word(tl,i)) && $4 > 0) ? $3 : 1/0):4 "
-                 "with lines title 't = '.word(tl,i)\n", out);
-      fclose(g);
-      snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
-      if (system(cmd) != 0)
+                 "with lines title 't = '.word(tl,i)\n");
+      if (fclose(g) != 0 || sbc_gnuplot(NULL, gp) != 0)
         fprintf(stderr, "smolbridge pbe: could not render %s (gnuplot "
                         "missing?); script in %s\n", plot, gp);
     }

@@ -54,10 +54,7 @@ static int render_with_gnuplot(const char *dir, const char *script,
   const int *have_gnuplot = data;
   if (!*have_gnuplot)
     return -1;
-  char cmd[2300];
-  snprintf(cmd, sizeof cmd, "cd '%s' && gnuplot '%s' 2>/dev/null", dir,
-           script);
-  return system(cmd) == 0 ? 0 : -1;
+  return sbc_gnuplot(dir, script);
 }
 
 static void usage(FILE *out)

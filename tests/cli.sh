@@ -166,6 +166,16 @@ else
   fail "smolbridge pbe failed"
 fi
 rm -f "$out-p.csv" "$out-p-moments.csv"
+# --plot: gnuplot runs after the data are on disk, without a shell (a
+# quote in a file name is part of the name)
+if command -v gnuplot > /dev/null 2>&1; then
+  q="$out-q';touch pbe-injected;'"
+  "$sb" pbe -q --kernel constant --n0 1 --sizes 30 --times 0.1,1,10 \
+    --out "$q.csv" --plot "$q.png" 2>/dev/null || fail "pbe --plot failed"
+  [ -s "$q.png" ] || fail "pbe --plot: no PNG (or an empty one)"
+  [ -e pbe-injected ] && fail "pbe --plot: a file name ran as a command"
+  rm -f "$q.csv" "$q-moments.csv" "$q.png" "$q.png.gp" pbe-injected
+fi
 # gelation (multiplicative kernel, t_gel = 1/(K M2(0)) = 1): exit 1 with a
 # message, outputs only before it, no negative M0
 msg=$("$sb" pbe --kernel multiplicative --n0 1 --sizes 20 --times 0.5,1,2,5 \
