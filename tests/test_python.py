@@ -63,6 +63,28 @@ try:
     check(False, "pbe accepted an unknown kernel")
 except ValueError as e:
     check("nonsense" in str(e), "pbe error message: %s" % e)
+# bad arguments are ValueErrors naming them; past gelation (multiplicative
+# kernel, t_gel = 1/(K M2(0)) = 1) an error, not negative concentrations
+for kw, word in [({"method": "foo"}, "method"), ({"init": "gaussian"}, "init"),
+                 ({"sizes": 2.7}, "sizes"), ({"sizes": 1}, "sizes"),
+                 ({"method": "sectional", "ratio": 0}, "ratio"),
+                 ({"times": []}, "times")]:
+    args = dict(n0=1.0, times=[1.0])
+    args.update(kw)
+    try:
+        sb.pbe("constant", **args)
+        check(False, "pbe accepted %s" % kw)
+    except ValueError as e:
+        check(word in str(e), "pbe %s message: %s" % (kw, e))
+try:
+    sb.pbe("multiplicative", n0=1.0, times=[0.5, 2.0], sizes=60)
+    check(False, "pbe ran past gelation")
+except ValueError as e:
+    check("gelation at t = 1/(K M2(0)) = 1" in str(e),
+          "pbe gelation message: %s" % e)
+r = sb.pbe("multiplicative", n0=1.0, times=[0.5, 0.9], sizes=60)
+check((r["moments"][:, 0] > 0).all() and (r["n"] >= -1e-12).all(),
+      "pbe before gelation: positive concentrations")
 
 # collide from a dict: the 45-degree case (one collision, known velocities),
 # run by the library itself: no command on PATH, no subprocess

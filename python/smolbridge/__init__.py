@@ -192,6 +192,7 @@ _lib.sb_pbe_solve.argtypes = [_ct.c_void_p, _ct.POINTER(_ct.c_double),
                               _ct.c_void_p]
 _lib.sb_pbe_tail.argtypes = [_ct.c_void_p, _ct.POINTER(_ct.c_double),
                              _ct.POINTER(_ct.c_double)]
+_lib.sb_pbe_state_moments.argtypes = [_ct.c_void_p, _ct.POINTER(_ct.c_double)]
 _lib.sb_kernel_type_from_name.argtypes = [_ct.c_char_p,
                                           _ct.POINTER(_ct.c_int)]
 _lib.sb_kernel_spec_init.argtypes = [_ct.c_void_p, _ct.c_int]
@@ -211,6 +212,22 @@ def pbe(kernel, n0, times, sizes=100, method="discrete", init="mono", v1=1.0,
     M0, M1, M2 with the lumped tail), ``tail_n`` and ``tail_M1`` (nt: the
     number and mass of the sizes above the largest, discrete method).
     """
+    if method not in ("discrete", "sectional"):
+        raise ValueError("pbe: method = %r: valid: 'discrete', 'sectional'"
+                         % (method,))
+    if init not in ("mono", "exp"):
+        raise ValueError("pbe: init = %r: valid: 'mono', 'exp'" % (init,))
+    if (isinstance(sizes, bool) or not float(sizes).is_integer()
+            or not 2 <= sizes <= 1e6):
+        raise ValueError("pbe: sizes = %r: valid: a whole number from 2 to "
+                         "1e6" % (sizes,))
+    sizes = int(sizes)
+    if ratio is not None and not float(ratio) > 1:
+        raise ValueError("pbe: ratio = %r: valid: > 1 (sectional)"
+                         % (ratio,))
+    times = _np.atleast_1d(_np.asarray(times, dtype=float))
+    if times.ndim != 1 or len(times) == 0:
+        raise ValueError("pbe: times: give one or more output times")
     spec = _KernelSpec()
     kt = _ct.c_int()
     if _lib.sb_kernel_type_from_name(kernel.encode(), _ct.byref(kt)):
@@ -228,7 +245,8 @@ def pbe(kernel, n0, times, sizes=100, method="discrete", init="mono", v1=1.0,
     cfg.nsizes = int(sizes)
     cfg.v1 = float(v1)
     if method == "sectional":
-        cfg.ratio = float(ratio) if ratio else 10.0 ** (12.0 / (sizes - 1))
+        cfg.ratio = (float(ratio) if ratio is not None
+                     else 10.0 ** (12.0 / (sizes - 1)))
     cfg.kernel = _ct.cast(_lib.sb_kernel_spec_fn, _ct.c_void_p)
     cfg.kparams = _ct.cast(spec, _ct.c_void_p)
     cfg.rtol = float(rtol)
@@ -245,20 +263,43 @@ def pbe(kernel, n0, times, sizes=100, method="discrete", init="mono", v1=1.0,
             st = _lib.sb_pbe_init_exp(p, float(n0), float(v0))
         if st:
             raise ValueError("pbe: %s" % _message())
-        times = _np.asarray(times, dtype=float)
+        # multiplicative kernel: M2 = M2(0)/(1 - K M2(0) t) for any start,
+        # an infinite cluster at t = 1/(K M2(0)); no mass-conserving
+        # solution beyond it (as smolbridge pbe)
+        if kernel == "multiplicative":
+            m0 = (_ct.c_double * 3)()
+            _lib.sb_pbe_state_moments(p, m0)
+            tgel = 1.0 / (float(params.get("K", 1.0)) * m0[2])
+            if times.max() >= tgel:
+                raise ValueError(
+                    "pbe: gelation at t = 1/(K M2(0)) = %g: the population "
+                    "balance has no mass-conserving solution beyond it "
+                    "(post-gel models are not implemented); give times "
+                    "before it" % tgel)
         rows = []
+        broke = []
 
         def out(t, v, n, nb, m, data):
             tn, tm = _ct.c_double(), _ct.c_double()
             _lib.sb_pbe_tail(p, _ct.byref(tn), _ct.byref(tm))
-            rows.append((t, _np.ctypeslib.as_array(v, (nb,)).copy(),
-                         _np.ctypeslib.as_array(n, (nb,)).copy(),
+            nk = _np.ctypeslib.as_array(n, (nb,)).copy()
+            # a negative concentration: the model broke down (gelation)
+            nmin = min(nk.min(), tn.value)
+            if nmin < -1e-9 * m[0] or not m[0] > 0:
+                broke.append("at t = %g the solution has a negative number "
+                             "concentration (min %g, M0 = %g): the "
+                             "population balance broke down (gelation)"
+                             % (t, nmin, m[0]))
+                return 1
+            rows.append((t, _np.ctypeslib.as_array(v, (nb,)).copy(), nk,
                          [m[0], m[1], m[2]], tn.value, tm.value))
             return 0
 
         cb = _OUTFN(out)
         arr = (_ct.c_double * len(times))(*times)
         st = _lib.sb_pbe_solve(p, arr, len(times), cb, None, None)
+        if broke:
+            raise RuntimeError("pbe: %s" % broke[0])
         if st:
             raise RuntimeError("pbe: %s" % _message())
     finally:
