@@ -22,6 +22,7 @@ static void usage(FILE *out)
 "         --n0 N0 --init mono|exp [--v0 V0] --method discrete|sectional\n"
 "         --sizes K --times T1,T2,... --out FILE.csv [--plot FILE.png]\n"
 "         [--ratio R] [--rtol TOL] [--atol TOL] [--linsol auto|dense|gmres|gmres-diag]\n"
+"         [--gain auto|direct|fft]\n"
 "\n"
 "Integrate the Smoluchowski coagulation equation with CVODE (BDF) from a\n"
 "monodisperse (all particles of volume V1) or exponential (mean volume V0)\n"
@@ -61,6 +62,9 @@ static void usage(FILE *out)
 "  --times LIST  comma-separated increasing output times (required)\n"
 "  --rtol, --atol  CVODE tolerances (default 1e-8, automatic)\n"
 "  --linsol      auto (= gmres-diag), dense, gmres or gmres-diag\n"
+"  --gain        discrete gain of the constant, additive and multiplicative\n"
+"                kernels: auto (FFT for constant from 4096 sizes at the\n"
+"                default atol or looser), direct or fft (docs/pbe.md)\n"
 "  --plot FILE   PNG of n(v) at each output time (needs gnuplot)\n"
 "  -q, --quiet   no progress messages\n"
 "  -h, --help    this help\n"
@@ -153,6 +157,7 @@ int sbc_pbe_main(int argc, char **argv)
       {"rtol", required_argument, NULL, 'R'},
       {"atol", required_argument, NULL, 'A'},
       {"linsol", required_argument, NULL, 'L'},
+      {"gain", required_argument, NULL, 'G'},
       {"quiet", no_argument, NULL, 'q'},
       {"help", no_argument, NULL, 'h'},
       {NULL, 0, NULL, 0}};
@@ -201,9 +206,15 @@ int sbc_pbe_main(int argc, char **argv)
       else BAD("--linsol must be auto, dense, gmres or gmres-diag, got '%s'",
                optarg);
       break;
+    case 'G':
+      if (!strcmp(optarg, "auto")) cfg.gain = SB_PBE_GAIN_AUTO;
+      else if (!strcmp(optarg, "direct")) cfg.gain = SB_PBE_GAIN_DIRECT;
+      else if (!strcmp(optarg, "fft")) cfg.gain = SB_PBE_GAIN_FFT;
+      else BAD("--gain must be auto, direct or fft, got '%s'", optarg);
+      break;
     case 's':
       if (parse_num(optarg, &x) || x < 2 || x > 1e6 || x != floor(x))
-        BAD("--sizes needs an integer >= 2, got '%s'", optarg);
+        BAD("--sizes needs an integer from 2 to 1e6, got '%s'", optarg);
       cfg.nsizes = (size_t)x;
       break;
     case 't': times_s = optarg; break;

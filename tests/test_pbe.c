@@ -440,6 +440,42 @@ START_TEST(test_fft_solve)
 }
 END_TEST
 
+/* Gain AUTO at 4096 sizes of the constant kernel: the FFT at the default
+ * atol, direct sums below it.  With atol = 1e-30 the AUTO solve is the
+ * direct one bit for bit (the FFT's rounding, ~1e-18 here, made CVODE
+ * stop at its step limit), and at the default atol it is the FFT one. */
+START_TEST(test_fft_auto_tolerance)
+{
+  for (int pass = 0; pass < 2; pass++) {
+    /* 1e-30: AUTO against DIRECT; the default atol: against FFT */
+    const sb_pbe_gain g[2] = {SB_PBE_GAIN_AUTO,
+                              pass ? SB_PBE_GAIN_FFT : SB_PBE_GAIN_DIRECT};
+    sb_pbe_report rep[2];
+    double *st[2];
+    for (int i = 0; i < 2; i++) {
+      sb_kernel_spec ks;
+      sb_pbe_config c = kernel_config(&ks, SB_KERNEL_CONSTANT, 4096);
+      c.gain = g[i];
+      c.atol = pass ? 0.0 : 1e-30;
+      sb_pbe *p = sb_pbe_alloc(&c);
+      ck_assert_ptr_nonnull(p);
+      sb_pbe_init_mono(p, 1.0);
+      double t = 1e-3;
+      ck_assert_int_eq(sb_pbe_solve(p, &t, 1, NULL, NULL, &rep[i]),
+                       SB_SUCCESS);
+      st[i] = malloc(4098 * sizeof *st[i]);
+      ck_assert_ptr_nonnull(st[i]);
+      memcpy(st[i], sb_pbe_state(p), 4098 * sizeof *st[i]);
+      sb_pbe_free(p);
+    }
+    ck_assert_int_eq(rep[0].nsteps, rep[1].nsteps);
+    ck_assert_int_eq(memcmp(st[0], st[1], 4098 * sizeof *st[0]), 0);
+    free(st[0]);
+    free(st[1]);
+  }
+}
+END_TEST
+
 /* ------------------------------------------------ sectional method */
 
 /* Config of a sectional solver with 300 sections over 12 decades (ratio
@@ -696,6 +732,7 @@ static Suite *pbe_suite(void)
   tcase_add_loop_test(tc, test_discrete_vs_analytic, 0, 9);
   tcase_add_test(tc, test_discrete_truncation_drift);
   tcase_add_test(tc, test_volume_scale);
+  tcase_add_test(tc, test_fft_auto_tolerance);
   tcase_add_test(tc, test_source_removal);
   tcase_add_loop_test(tc, test_sectional_moments, 0, 3);
   tcase_add_test(tc, test_gelation);

@@ -170,6 +170,7 @@ sb_pbe *sb_pbe_alloc(const sb_pbe_config *cfg)
   p->use_fft = p->sep && (cfg->gain == SB_PBE_GAIN_FFT ||
                           (cfg->gain == SB_PBE_GAIN_AUTO && n >= 4096 &&
                            p->sep - 1 == SB_PBE_CONSTANT));
+  p->fft_auto = p->use_fft && cfg->gain == SB_PBE_GAIN_AUTO;
   if (sbi_pbe_sep_setup(p))
     goto nomem;
   for (size_t i = 0; i < n; i++)
@@ -817,13 +818,16 @@ int sb_pbe_solve(sb_pbe *p, const double *times, size_t ntimes,
   CVodeSetErrHandlerFn(mem, err_handler, p);
 #endif
   memcpy(N_VGetArrayPointer(y), p->y0, NY * sizeof(double));
-  double atol = p->cfg.atol;
-  if (!(atol > 0)) {
-    double mx = 0.0;
-    for (size_t i = 0; i < NY; i++)
-      mx = fmax(mx, p->y0[i]);
+  double atol = p->cfg.atol, mx = 0.0;
+  for (size_t i = 0; i < NY; i++)
+    mx = fmax(mx, p->y0[i]);
+  if (!(atol > 0))
     atol = 1e-14 * (mx > 0 ? mx : 1.0);
-  }
+  /* AUTO: the FFT's rounding (absolute, ~1e-16 of the largest gain) must
+   * stay below atol, or CVODE chases it (at atol = 1e-30 it stopped at
+   * its step limit): below the default atol, direct sums */
+  if (p->fft_auto)
+    p->use_fft = atol >= 1e-14 * (mx > 0 ? mx : 1.0);
   /* atol is on number concentrations; the tail's mass (a number times a
    * volume) gets atol times the mean volume at the start, so that it is
    * resolved whatever the unit of volume (with the number's atol a tail

@@ -40,6 +40,8 @@ struct sb_pbe {
   int sep;
   double sepK;
   int use_fft;       /* gain by FFT convolution (pbe_fft.c) */
+  int fft_auto;      /* gain AUTO chose the FFT at allocation; a solve
+                        with atol below its noise floor uses direct sums */
   size_t nfft;       /* padded length (power of 2 >= 2n - 1) */
   double *fa, *fb;   /* nfft doubles each */
   void *fft;         /* GSL wavetables and workspace (pbe_fft.c) */

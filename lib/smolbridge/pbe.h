@@ -55,8 +55,9 @@ typedef enum {
  *  kernels (sb_kernel_spec_fn with type constant, additive or
  *  multiplicative; other kernels always use the tabulated direct sum). */
 typedef enum {
-  SB_PBE_GAIN_AUTO = 0,  /**< FFT for the constant kernel from 4096 sizes,
-                              direct otherwise */
+  SB_PBE_GAIN_AUTO = 0,  /**< FFT for the constant kernel from 4096 sizes
+                              when atol is not below its default (1e-14
+                              max n(0)), direct otherwise */
   SB_PBE_GAIN_DIRECT = 1,/**< direct convolution sum, O(N^2/2): every
                               n_k relatively accurate (tiny tails too) */
   SB_PBE_GAIN_FFT = 2    /**< zero-padded FFT convolution, O(N log N):
