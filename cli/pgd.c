@@ -672,9 +672,13 @@ int sbc_pgd_main(int argc, char **argv)
       double h = p->L[0] / (double)p->nx;
       fprintf(e, "x,rho,u\n");
       for (size_t i = 0; i < p->nx; i++) {
+        /* the faces as sb_pgd_riemann_error computes them, so that
+         * neighbours share them exactly and a delta on a face is counted
+         * once ([a, b)); x +- h/2 rounded apart and dropped it */
+        double a = p->origin[0] + (double)i * h,
+               b = p->origin[0] + (double)(i + 1) * h;
         double x = p->origin[0] + ((double)i + 0.5) * h, m, q;
-        sb_pgd_riemann_integral(&c.rp, c.t_end, x - 0.5 * h, x + 0.5 * h, &m,
-                                &q);
+        sb_pgd_riemann_integral(&c.rp, c.t_end, a, b, &m, &q);
         fprintf(e, "%.17g,%.17g,%.17g\n", x, m / h, m > 0 ? q / m : 0.0);
       }
       st = fclose(e) ? SB_EIO : 0;

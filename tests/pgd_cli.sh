@@ -36,6 +36,20 @@ if run_example pgd_delta_shock.ini delta; then
   head -n 1 "$out/delta/fields.csv" | grep -qx 'x,rho,u' || fail "fields.csv header"
   [ "$(wc -l < "$out/delta/fields.csv")" -eq 401 ] || fail "fields.csv rows"
   [ -s "$out/delta/exact.csv" ] || fail "exact.csv missing"
+  # exact.csv holds the delta (on a cell face at t_end) once: its mass is
+  # the grid's (both 1.075), and its L1 distance to fields.csv is the
+  # summary's l1
+  paste -d, "$out/delta/exact.csv" "$out/delta/fields.csv" | awk -F, '
+    NR > 1 { me += $2; mf += $5; d = $2 - $5; l1 += d < 0 ? -d : d; n++ }
+    END { h = 1 / n; if ((me - mf) * h > 1e-9 || (mf - me) * h > 1e-9) {
+            printf "exact.csv mass %.10g, fields.csv %.10g\n", me * h, mf * h
+            exit 1 }
+          printf "%.12g\n", l1 * h }' > "$out/delta/l1" ||
+    fail "exact.csv lost the delta's mass"
+  l1=$(sed -n 's/.*"l1": \([^,]*\),.*/\1/p' "$out/delta/summary.json")
+  awk -v a="$(cat "$out/delta/l1")" -v b="$l1" \
+    'BEGIN { exit !(a - b < 1e-9 && b - a < 1e-9) }' ||
+    fail "L1 of exact.csv against fields.csv $(cat "$out/delta/l1"), summary $l1"
   grep -q '"wave": "delta"' "$out/delta/summary.json" || fail "summary.json wave"
 fi
 
