@@ -385,6 +385,24 @@ START_TEST(test_quantile_best_double)
 }
 END_TEST
 
+START_TEST(test_quantile_narrower_than_ulp)
+{
+  /* x = 0, a = 1, sigma2 = 1, drift mu: IG(mean 1/mu, shape 1), relative
+   * width sqrt(mean/shape) = mu^(-1/2) = 1e-17 .. 1e-75: every quantile
+   * with |z| < 5 is the mean to within 1e-16, i.e. two ulp (the log-t
+   * iteration returned mean*e or mean/e beyond mu ~ 1e37) */
+  const double mus[] = {1e34, 1e38, 1e40, 1e150};
+  const double ps[] = {1e-6, 0.5, 1 - 1e-6};
+  for (int i = 0; i < 4; i++)
+    for (int j = 0; j < 3; j++) {
+      double q = sb_bm_fpt_quantile(ps[j], 0.0, 1.0, mus[i], 1.0);
+      ck_assert_msg(fabs(q * mus[i] - 1.0) <= 4.5e-16,
+                    "mu %g p %g: quantile %.17g, mean %.17g", mus[i], ps[j],
+                    q, 1.0 / mus[i]);
+    }
+}
+END_TEST
+
 /* ------------------------------------------------------------ sampler */
 
 START_TEST(test_sampler)
@@ -511,6 +529,7 @@ static Suite *passage_suite(void)
   tcase_add_test(tc, test_quantile_reference);
   tcase_add_test(tc, test_quantile_roundtrip);
   tcase_add_test(tc, test_quantile_best_double);
+  tcase_add_test(tc, test_quantile_narrower_than_ulp);
   tcase_add_test(tc, test_sampler);
   tcase_set_timeout(tc, 30);
   suite_add_tcase(s, tc);

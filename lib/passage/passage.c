@@ -257,6 +257,26 @@ static double polish_t(const fpt_par *q, double t, double tg, int upper)
   return t;
 }
 
+/* A law narrower than one ulp of t: from t (the mean), step one double at
+ * a time towards the root of g (at most 64) until g changes sign, and
+ * return the better of the two doubles around it.  Newton is useless
+ * there (the density at a double can be exp(-50) of its peak). */
+static double walk_doubles(const fpt_par *q, double t, double tg, int upper)
+{
+  double f, g = fpt_g_at(q, t, tg, upper, &f);
+  for (int k = 0; k < 64 && g != 0.0; k++) {
+    double tn = nextafter(t, g > 0.0 ? 0.0 : INFINITY), gn;
+    if (!(tn > 0.0) || isinf(tn))
+      break;
+    gn = fpt_g_at(q, tn, tg, upper, &f);
+    if ((gn > 0.0) != (g > 0.0))
+      return fabs(gn) < fabs(g) ? tn : t;
+    t = tn;
+    g = gn;
+  }
+  return t;
+}
+
 int sb_bm_fpt_quantile_e(double p, double x, double a, double mu,
                          double sigma2, sb_result *res)
 {
@@ -298,6 +318,17 @@ int sb_bm_fpt_quantile_e(double p, double x, double a, double mu,
     }
     if (!(sref > 0.0) || isinf(sref))
       sref = shape;
+    if (q.nua > 0.0 && shape * q.nua > 1e32 * dist) {
+      /* relative width sqrt(mean/shape) below 1e-16: every quantile is
+       * within a few ulp of the mean, where the root in y = log(s/sref)
+       * is narrower than one ulp of y (the solver then stopped a bracket
+       * step away: off by e).  Newton in t and the best double. */
+      r.val = walk_doubles(&q, dist / q.nua, tg, upper);
+      r.err = 4.0 * EPS * r.val;
+      if (res)
+        *res = r;
+      return SB_SUCCESS;
+    }
     fpt_qctx c = {&q, sref, log(tg), upper, 0.0, 1.0};
     double y, dy;
     st = sbi_solve_increasing(fpt_qfun, &c, 0.0, 1.0, 1e-11, &y, &dy);
