@@ -599,6 +599,46 @@ END_TEST
 
 /* ------------------------------------------------ special cases, errors */
 
+/* Scale: the law of T/t depends only on x, y, a over sqrt(sigma2 t).
+ * Positions times 2^k, times 2^(2k) (sigma2 = 1) for k = -200 and 200,
+ * where sigma2 u t (t - u) leaves the doubles (the functions returned
+ * cdf 1 and pdf 0): the same cdf, sf and quantile/t, the pdf times
+ * 2^(-2k), the same draws scaled, bit for bit (powers of two). */
+START_TEST(test_hit_scale)
+{
+  typedef double (*hfn)(double, double, double, double, double, double);
+  const hfn cdf[2] = {sb_bb_hit_cdf, sb_bes3b_hit_cdf};
+  const hfn sf[2] = {sb_bb_hit_sf, sb_bes3b_hit_sf};
+  const hfn pdf[2] = {sb_bb_hit_pdf, sb_bes3b_hit_pdf};
+  const hfn qf[2] = {sb_bb_hit_quantile, sb_bes3b_hit_quantile};
+  double (*const smp[2])(const gsl_rng *, double, double, double, double,
+                         double) = {sb_bb_hit_sample, sb_bes3b_hit_sample};
+  const double x = 1.0, y = 1.3, a = 0.5, t = 1.0;
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+  for (int b3 = 0; b3 < 2; b3++)
+    for (int k = -200; k <= 200; k += 400) {
+      const double sx = ldexp(1.0, k), st = ldexp(1.0, 2 * k);
+      for (double u = 0.1; u < 1.0; u += 0.2) {
+        ck_assert(cdf[b3](u, x, y, a, 1.0, t) > 0.0);
+        ck_assert(cdf[b3](u * st, x * sx, y * sx, a * sx, 1.0, t * st) ==
+                  cdf[b3](u, x, y, a, 1.0, t));
+        ck_assert(sf[b3](u * st, x * sx, y * sx, a * sx, 1.0, t * st) ==
+                  sf[b3](u, x, y, a, 1.0, t));
+        ck_assert(pdf[b3](u * st, x * sx, y * sx, a * sx, 1.0, t * st) ==
+                  pdf[b3](u, x, y, a, 1.0, t) / st);
+        ck_assert(qf[b3](u, x * sx, y * sx, a * sx, 1.0, t * st) ==
+                  qf[b3](u, x, y, a, 1.0, t) * st);
+      }
+      gsl_rng_set(r, 5);
+      double d1 = smp[b3](r, x, y, a, 1.0, t);
+      gsl_rng_set(r, 5);
+      double d2 = smp[b3](r, x * sx, y * sx, a * sx, 1.0, t * st);
+      ck_assert(d2 == d1 * st);
+    }
+  gsl_rng_free(r);
+}
+END_TEST
+
 START_TEST(test_hit_special)
 {
   gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
@@ -698,6 +738,7 @@ static Suite *bridge_suite(void)
   tcase_add_test(tc, test_narrow_reference);
   tcase_add_test(tc, test_quantile_roundtrip);
   tcase_add_test(tc, test_quantile_best_double);
+  tcase_add_test(tc, test_hit_scale);
   tcase_add_test(tc, test_hit_special);
   tcase_add_test(tc, test_bad_input);
   tcase_set_timeout(tc, 30);

@@ -595,9 +595,54 @@ static double pdf_at(const hit_par *h, const hit_time *T, double *rel)
 
 /* --------------------------------------------------- pdf, cdf, sf */
 
+/* Arguments far from unit scale.  The law of T/t depends on x, y, a only
+ * through them over sqrt(sigma2 t), so positions, sigma2 and times are
+ * scaled by powers of two (exactly) to sigma2 t in [1, 4) and t in
+ * [1, 2) when sigma2 t^3 is outside 2^(+-600) (the products sigma2 u t w
+ * of the evaluation under- or overflowed: cdf 1 for every u).  Returns
+ * the binary exponent of the time scale (0: nothing done; invalid
+ * arguments are left to hit_setup's messages). */
+static int rescale(int b3, double *x, double *y, double *a, double *sigma2,
+                   double *t, double *u)
+{
+  if (!isfinite(*x) || !isfinite(*y) || !isfinite(*a) ||
+      !(*sigma2 > 0.0) || !isfinite(*sigma2) || !(*t > 0.0) ||
+      !isfinite(*t) || (b3 && (*a < 0.0 || *x < 0.0 || *y < 0.0)))
+    return 0;
+  const int et = ilogb(*t), ev = ilogb(*sigma2) + et;
+  if (abs(ev + 2 * et) < 600)
+    return 0;
+  const int es = ev / 2;
+  *x = ldexp(*x, -es);
+  *y = ldexp(*y, -es);
+  *a = ldexp(*a, -es);
+  *sigma2 = ldexp(*sigma2, et - 2 * es);
+  *t = ldexp(*t, -et);
+  if (u)
+    *u = ldexp(*u, -et);
+  return et;
+}
+
+static int hit_entry_unit(const char *fn, int b3, int what, double u,
+                          double x, double y, double a, double sigma2,
+                          double t, sb_result *res);
+
 static int hit_entry(const char *fn, int b3, int what, double u, double x,
                      double y, double a, double sigma2, double t,
                      sb_result *res)
+{
+  const int et = rescale(b3, &x, &y, &a, &sigma2, &t, &u);
+  int st = hit_entry_unit(fn, b3, what, u, x, y, a, sigma2, t, res);
+  if (what == W_PDF && et) { /* a density in u: per unit of time */
+    res->val = ldexp(res->val, -et);
+    res->err = ldexp(res->err, -et);
+  }
+  return st;
+}
+
+static int hit_entry_unit(const char *fn, int b3, int what, double u,
+                          double x, double y, double a, double sigma2,
+                          double t, sb_result *res)
 {
   hit_par h;
   int st = hit_setup(fn, b3, x, y, a, sigma2, t, &h, res);
@@ -791,8 +836,23 @@ static double polish_u(const hit_par *h, double u, double p, int upper)
   return u;
 }
 
+static int hit_quantile_unit(const char *fn, int b3, double p, double x,
+                             double y, double a, double sigma2, double t,
+                             sb_result *res);
+
 static int hit_quantile(const char *fn, int b3, double p, double x, double y,
                         double a, double sigma2, double t, sb_result *res)
+{
+  const int et = rescale(b3, &x, &y, &a, &sigma2, &t, NULL);
+  int st = hit_quantile_unit(fn, b3, p, x, y, a, sigma2, t, res);
+  res->val = ldexp(res->val, et);
+  res->err = ldexp(res->err, et);
+  return st;
+}
+
+static int hit_quantile_unit(const char *fn, int b3, double p, double x,
+                             double y, double a, double sigma2, double t,
+                             sb_result *res)
 {
   hit_par h;
   int st = hit_setup(fn, b3, x, y, a, sigma2, t, &h, res);
@@ -876,7 +936,7 @@ static double s_to_u(double s, double t)
   return isinf(s) ? t : t * s / (t + s);
 }
 
-double sb_bb_hit_sample(const gsl_rng *r, double x, double y, double a,
+static double bb_hit_sample_unit(const gsl_rng *r, double x, double y, double a,
                         double sigma2, double t)
 {
   hit_par h;
@@ -895,7 +955,14 @@ double sb_bb_hit_sample(const gsl_rng *r, double x, double y, double a,
   return s_to_u(S, t);
 }
 
-double sb_bes3b_hit_sample(const gsl_rng *r, double x, double y, double a,
+double sb_bb_hit_sample(const gsl_rng *r, double x, double y, double a,
+                        double sigma2, double t)
+{
+  const int et = rescale(0, &x, &y, &a, &sigma2, &t, NULL);
+  return ldexp(bb_hit_sample_unit(r, x, y, a, sigma2, t), et);
+}
+
+static double bes3b_hit_sample_unit(const gsl_rng *r, double x, double y, double a,
                            double sigma2, double t)
 {
   hit_par h;
@@ -935,4 +1002,11 @@ double sb_bes3b_hit_sample(const gsl_rng *r, double x, double y, double a,
     S += L > 0.0 ? sigma2 * (t * t) * (z * z) / (L * L) : INFINITY;
   }
   return s_to_u(S, t);
+}
+
+double sb_bes3b_hit_sample(const gsl_rng *r, double x, double y, double a,
+                           double sigma2, double t)
+{
+  const int et = rescale(1, &x, &y, &a, &sigma2, &t, NULL);
+  return ldexp(bes3b_hit_sample_unit(r, x, y, a, sigma2, t), et);
 }
