@@ -238,9 +238,11 @@ START_TEST(test_checkpoint)
   ck_assert_int_eq(sb_engine_pair_kernel(c, 0, 1, 0.95, &pc), SB_SUCCESS);
   ck_assert(isnan(pc.ncoll_var));
   ck_assert_int_eq(sb_engine_get_count_variance(NULL), 0);
-  /* a version 4 file (the same bytes without the block of version 5,
-   * magic ...4) still loads, the tally off; one byte more or less does
-   * not */
+  /* the file ends in the hash of its contents (version 6): one changed
+   * byte, or one byte less, is refused as damaged; without the hash,
+   * magic ...5, it loads as version 5; a version 4 file (the same bytes
+   * without the block of version 5, magic ...4) still loads, the tally
+   * off; one byte more or less does not */
   FILE *f = fopen(path, "rb");
   ck_assert_ptr_nonnull(f);
   fseek(f, 0, SEEK_END);
@@ -250,13 +252,35 @@ START_TEST(test_checkpoint)
   /* the block of version 5: the Langevin detector's 3 parameters,
    * outflows per face, the inflow slots, their injected and skipped
    * counts, on, lost, 3 sums per pair */
-  const long v4 = size - (3 * 8 + 6 * 8 + 4 + 2 * 8 * SB_ENGINE_MAXINFLOW +
-                          8 + 24 * np);
+  const long v5 = size - 8;
+  const long v4 = v5 - (3 * 8 + 6 * 8 + 4 + 2 * 8 * SB_ENGINE_MAXINFLOW +
+                        8 + 24 * np);
   char *buf = malloc((size_t)size);
   ck_assert_ptr_nonnull(buf);
   ck_assert_uint_eq(fread(buf, 1, (size_t)size, f), (size_t)size);
   fclose(f);
-  ck_assert(buf[7] == '5');
+  ck_assert(buf[7] == '6');
+  for (int k = 0; k < 2; k++) {  /* a byte flipped in the middle, cut */
+    buf[size / 2] ^= (char)(k == 0);
+    f = fopen(path, "wb");
+    ck_assert_ptr_nonnull(f);
+    const size_t w = (size_t)(size - k);
+    ck_assert_uint_eq(fwrite(buf, 1, w, f), w);
+    fclose(f);
+    ck_assert_ptr_null(sb_engine_checkpoint_load(path, &st));
+    ck_assert_int_eq(st, SB_EFORMAT);
+    ck_assert_ptr_nonnull(strstr(sb_last_error(), "damaged"));
+    buf[size / 2] ^= (char)(k == 0);
+  }
+  buf[7] = '5';
+  f = fopen(path, "wb");
+  ck_assert_ptr_nonnull(f);
+  ck_assert_uint_eq(fwrite(buf, 1, (size_t)v5, f), (size_t)v5);
+  fclose(f);
+  sb_engine *d5 = sb_engine_checkpoint_load(path, &st);
+  ck_assert_msg(st == SB_SUCCESS, "%s", sb_last_error());
+  sbt_assert_same_run(c, d5, SBT_SAME_CANDIDATES);
+  sb_engine_free(d5);
   buf[7] = '4';
   for (int dn = -1; dn <= 1; dn += 2) {  /* a byte short, a byte after */
     f = fopen(path, "wb");

@@ -1,12 +1,15 @@
+#define _POSIX_C_SOURCE 200809L /* open_memstream, fmemopen */
 /* engine_checkpoint.c — save and restore the whole engine state so that a
  * restarted run continues bit-identically (same positions, velocities,
  * counters and random stream: the MT19937 state is written with
  * the bytes of gsl_rng_fwrite).
  *
  * Format (native binary; portable only between builds with the same
- * type sizes and endianness): the 8-byte magic "SBENGCK5" (versions 2
- * to 4 still load: MAGIC below), then the fields in the order written by
- * sb_engine_checkpoint_save.  Callbacks cannot be
+ * type sizes and endianness): the 8-byte magic "SBENGCK6" (versions 2
+ * to 5 still load: MAGIC below), then the fields in the order written by
+ * sb_engine_checkpoint_save, then (version 6) the FNV-1a hash of all the
+ * bytes before it: a file that was cut, flipped or mixed up is refused
+ * before any of it is used.  Callbacks cannot be
  * saved: a custom detector / outcome / fluid callback is replaced on load
  * by the defaults (ballistic, elastic, fluid at rest); set them again.
  */
@@ -30,8 +33,8 @@
  * and both tables).  The parameter block keeps
  * the layout of version 2 (the fields before streams), so version 2 to
  * 4 files still load (no such settings; streams and tally off, the
- * counters 0). */
-static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '5'};
+ * counters 0).  Version 6 appends the hash of the file. */
+static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '6'};
 #define PAR_BYTES offsetof(sb_engine_params, streams)
 
 #define W(ptr, size, count)                                 \
@@ -94,13 +97,20 @@ static int counters_load(sb_engine *e, FILE *f)
             : 0;
 }
 
-int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
+/* FNV-1a (Fowler, Noll & Vo) over the bytes of n items of size b. */
+static uint64_t fnv(uint64_t h, const void *p, size_t n, size_t b)
 {
-  if (!e || !path)
-    return sbi_error(SB_EINVAL, __func__, "NULL argument");
-  FILE *f = sbi_open_for_save(path, __func__);
-  if (!f)
-    return SB_EIO;
+  const unsigned char *c = p;
+  for (size_t k = 0; k < n * b; k++)
+    h = (h ^ c[k]) * 0x100000001b3ULL;
+  return h;
+}
+
+#define FNV_BASIS 0xcbf29ce484222325ULL
+
+/* The state in the order of the format, into f: 0 or -1. */
+static int write_state(const sb_engine *e, FILE *f)
+{
   const size_t n = e->n;
   W(MAGIC, 1, 8);
   {
@@ -161,9 +171,63 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
   }
   if (sbi_engine_physics_save(e, f) || counters_save(e, f))
     goto fail;
-  return sbi_finish_save(f, 1, path, __func__);
+  return 0;
 fail:
-  return sbi_finish_save(f, 0, path, __func__);
+  return -1;
+}
+
+int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
+{
+  if (!e || !path)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  /* in memory first: the hash covers every byte, and the file is then
+   * written in one piece (also to a pipe) */
+  char *buf = NULL;
+  size_t len = 0;
+  FILE *m = open_memstream(&buf, &len);
+  if (!m)
+    return sbi_error(SB_ENOMEM, __func__, "out of memory");
+  const int bad = write_state(e, m);
+  if (fclose(m) || bad) {
+    free(buf);
+    return sbi_error(SB_ENOMEM, __func__, "out of memory for the state");
+  }
+  const uint64_t h = fnv(FNV_BASIS, buf, len, 1);
+  FILE *f = sbi_open_for_save(path, __func__);
+  if (!f) {
+    free(buf);
+    return SB_EIO;
+  }
+  const int ok = fwrite(buf, 1, len, f) == len &&
+                 fwrite(&h, sizeof h, 1, f) == 1;
+  free(buf);
+  return sbi_finish_save(f, ok, path, __func__);
+}
+
+/* The whole of f into memory (*len bytes): NULL on a read error or out
+ * of memory. */
+static char *slurp(FILE *f, size_t *len)
+{
+  size_t cap = 1 << 16, n = 0;
+  char *b = malloc(cap);
+  while (b) {
+    n += fread(b + n, 1, cap - n, f);
+    if (n < cap)
+      break;
+    char *nb = cap < ((size_t)1 << 62) ? realloc(b, 2 * cap) : NULL;
+    if (!nb) {
+      free(b);
+      return NULL;
+    }
+    b = nb;
+    cap *= 2;
+  }
+  if (b && ferror(f)) {
+    free(b);
+    return NULL;
+  }
+  *len = n;
+  return b;
 }
 
 #define R(ptr, size, count)                                 \
@@ -177,19 +241,47 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   int dummy;
   if (!status)
     status = &dummy;
-  FILE *f = sbi_open_saved(path, __func__, status);
-  if (!f)
+  FILE *file = sbi_open_saved(path, __func__, status);
+  if (!file)
     return NULL;
+  /* the whole file, its hash checked before anything is read from it
+   * (version 6) */
+  size_t len = 0;
+  char *buf = slurp(file, &len);
+  fclose(file);
+  if (!buf) {
+    *status = sbi_error(SB_EIO, __func__, "cannot read '%s'", path);
+    return NULL;
+  }
   sb_engine *e = NULL;
   sb_engine_species *spec = NULL;
+  FILE *f = NULL;
+  const int ver = len >= 8 && !memcmp(buf, MAGIC, 7) ? buf[7] - '0' : 0;
+  if (ver < 2 || ver > 6)
+    goto bad;
+  if (ver >= 6) {
+    uint64_t h;
+    if (len < 16)
+      goto bad;
+    memcpy(&h, buf + len - 8, 8);
+    if (h != fnv(FNV_BASIS, buf, len - 8, 1)) {
+      *status = sbi_error(SB_EFORMAT, __func__, "'%s' is damaged: its "
+                          "contents do not match the hash at its end "
+                          "(cut short, changed or not a checkpoint)", path);
+      goto out;
+    }
+    len -= 8;
+  }
+  f = fmemopen(buf, len, "rb");
+  if (!f) {
+    *status = sbi_error(SB_ENOMEM, __func__, "out of memory");
+    goto out;
+  }
   char magic[8];
   sb_engine_params par;
   size_t n, nspec;
   uint64_t next_id;
   R(magic, 1, 8);
-  const int ver = memcmp(magic, MAGIC, 7) ? 0 : magic[7] - '0';
-  if (ver < 2 || ver > 5)
-    goto bad;
   const int v2 = ver == 2;
   memset(&par, 0, sizeof par);
   R(&par, PAR_BYTES, 1);
@@ -303,6 +395,7 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
     goto bad;  /* nothing may follow */
   free(spec);
   fclose(f);
+  free(buf);
   return e;
 bad:
   *status = sbi_error(SB_EFORMAT, __func__,
@@ -310,22 +403,15 @@ bad:
 out:
   free(spec);
   sb_engine_free(e);
-  fclose(f);
+  if (f)
+    fclose(f);
+  free(buf);
   return NULL;
-}
-
-/* FNV-1a (Fowler, Noll & Vo) over the bytes of n items of size b. */
-static uint64_t fnv(uint64_t h, const void *p, size_t n, size_t b)
-{
-  const unsigned char *c = p;
-  for (size_t k = 0; k < n * b; k++)
-    h = (h ^ c[k]) * 0x100000001b3ULL;
-  return h;
 }
 
 uint64_t sbi_engine_fingerprint(const sb_engine *e)
 {
-  uint64_t h = fnv(0xcbf29ce484222325ULL, &e->n, 1, sizeof e->n);
+  uint64_t h = fnv(FNV_BASIS, &e->n, 1, sizeof e->n);
   h = fnv(h, e->id, e->n, sizeof *e->id);
   return fnv(h, e->x, 3 * e->n, sizeof *e->x);
 }

@@ -696,7 +696,8 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path);
 
 /** Load a checkpoint: a new engine that continues bit-identically.  NULL
  *  and *status (may be NULL) = SB_EIO / SB_EFORMAT / SB_ENOMEM on
- *  failure. */
+ *  failure; SB_EFORMAT also for a file whose contents do not match the
+ *  hash it ends with (damaged; format SBENGCK6, docs/engine.md). */
 sb_engine *sb_engine_checkpoint_load(const char *path, int *status);
 
 /* ======================================================= names */
