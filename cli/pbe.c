@@ -87,7 +87,7 @@ typedef struct {
   double t0;
   const sb_pbe *p;
   double m1_0;        /* M1 of the initial state */
-  int tail_warned;
+  double tail_warned; /* the tail's mass share at the last warning */
   char stop[400];     /* why the output stopped the solve */
 } out_ctx;
 
@@ -123,14 +123,17 @@ static int on_output(double t, const double *v, const double *n, size_t nb,
     fprintf(o->dist, "%.10g,%zu,%.17g,%.17g\n", t, nb + 1, tm / tn, tn);
   fprintf(o->mom, "%.10g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t, m[0], m[1],
           m[2], tn, tm);
-  if (o->m1_0 > 0 && tm > 1e-6 * o->m1_0 && !o->tail_warned) {
+  /* warn when the tail first holds 1e-6 of the mass, and again each
+   * time its share has grown tenfold */
+  if (o->m1_0 > 0 && tm > 1e-6 * o->m1_0 &&
+      tm > 10.0 * o->tail_warned * o->m1_0) {
     fprintf(stderr, "smolbridge pbe: warning: at t = %g, %.3g%% of the "
             "mass (number %g, mean volume %g) is in the lumped tail above "
             "the largest size (%g): its sizes are not resolved and M2 is "
             "a lower bound; the tail is the row k = %zu of the output; "
             "raise --sizes\n", t, 100.0 * tm / o->m1_0, tn, tm / tn,
             v[nb - 1], nb + 1);
-    o->tail_warned = 1;
+    o->tail_warned = tm / o->m1_0;
   }
   if (!o->quiet)
     fprintf(stderr, "smolbridge pbe: t = %g done (%.2f s): M0 = %.6g, "
@@ -229,6 +232,23 @@ int sbc_pbe_main(int argc, char **argv)
     BAD("unexpected argument '%s'", argv[optind]);
   if (!kname || !out || !times_s || isnan(n0))
     BAD("--kernel, --n0, --times and --out are required (see --help)");
+  /* input errors exit 2 before anything is allocated */
+  if (!(n0 > 0) || !isfinite(n0))
+    BAD("--n0 must be a finite number > 0, got %g", n0);
+  if (!(v1 > 0) || !isfinite(v1))
+    BAD("--v1 must be a finite number > 0, got %g", v1);
+  if (!(cfg.rtol > 0 && cfg.rtol < 1))
+    BAD("--rtol must be in (0, 1), got %g", cfg.rtol);
+  if (!(cfg.atol >= 0) || !isfinite(cfg.atol))
+    BAD("--atol must be a finite number >= 0, got %g", cfg.atol);
+  if (exp_init && !isnan(v0) && (!(v0 > 0) || !isfinite(v0)))
+    BAD("--v0 must be a finite number > 0, got %g", v0);
+  if (!isnan(ratio) && cfg.method != SB_PBE_SECTIONAL)
+    fprintf(stderr, "smolbridge pbe: warning: --ratio ignored: it sets the "
+                    "sectional grid (--method sectional)\n");
+  if (!isnan(v0) && !exp_init)
+    fprintf(stderr, "smolbridge pbe: warning: --v0 ignored: it is the mean "
+                    "volume of --init exp\n");
 
   sb_kernel_type type;
   sb_kernel_spec spec;
@@ -259,7 +279,11 @@ int sbc_pbe_main(int argc, char **argv)
   if (!times || !tcopy)
     BAD("out of memory");
   strcpy(tcopy, times_s);
-  for (char *tok = strtok(tcopy, ","); tok; tok = strtok(NULL, ",")) {
+  /* every field between commas is a time (strtok would skip empty ones) */
+  for (char *tok = tcopy, *next; tok; tok = next) {
+    next = strchr(tok, ',');
+    if (next)
+      *next++ = '\0';
     if (nt == cap) {
       double *nb = realloc(times, 2 * cap * sizeof *times);
       if (!nb)
@@ -278,6 +302,10 @@ int sbc_pbe_main(int argc, char **argv)
     nt++;
   }
   free(tcopy);
+  if (nt == 0) {
+    free(times);
+    BAD("--times: give one or more output times");
+  }
 
   cfg.kernel = sb_kernel_spec_fn;
   cfg.kparams = &spec;
@@ -348,6 +376,8 @@ int sbc_pbe_main(int argc, char **argv)
   st = nt ? sb_pbe_solve(p, times, nt, on_output, &oc, &rep) : SB_SUCCESS;
   if (oc.stop[0] && st == SB_EINVAL)
     fprintf(stderr, "smolbridge pbe: %s\n", oc.stop);
+  else if (nt == 0 && oc.stop[0])
+    ;  /* every time past gelation: said above, nothing solved */
   else
     fprintf(stderr, "smolbridge pbe: %s; %ld steps, %ld RHS evaluations, "
             "M1 drift %.3g (relative)\n", st ? sb_last_error() : "solved",

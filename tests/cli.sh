@@ -155,6 +155,18 @@ rm -rf "$out-t1" "$out-t2"
 # tau = K N0 t (analytic), file headers as documented
 expect_rc 0 "$sb" pbe --help
 expect_rc 2 "$sb" pbe --kernel no-such-kernel --n0 1 --init mono --method discrete --sizes 10 --times 1 --out "$out-p.csv"
+# input errors exit 2: empty times or fields, bad numbers
+expect_rc 2 "$sb" pbe --kernel constant --n0 1 --sizes 10 --times "" --out "$out-p.csv"
+expect_rc 2 "$sb" pbe --kernel constant --n0 1 --sizes 10 --times 1,,2 --out "$out-p.csv"
+expect_rc 2 "$sb" pbe --kernel constant --n0 -1 --sizes 10 --times 1 --out "$out-p.csv"
+expect_rc 2 "$sb" pbe --kernel constant --n0 1 --v1 0 --sizes 10 --times 1 --out "$out-p.csv"
+expect_rc 2 "$sb" pbe --kernel constant --n0 1 --rtol 2 --sizes 10 --times 1 --out "$out-p.csv"
+expect_rc 2 "$sb" pbe --kernel constant --n0 1 --gain fast --sizes 10 --times 1 --out "$out-p.csv"
+# the tail warning again when its share has grown tenfold (additive
+# kernel, 60 sizes: 0.125% at t = 1, all but 0.03% at t = 10)
+nw=$("$sb" pbe -q --kernel additive --n0 1 --sizes 60 --times 0.1,1,10 \
+       --out "$out-p.csv" 2>&1 | grep -c "lumped tail")
+[ "$nw" -eq 2 ] || fail "pbe tail warnings: $nw, want 2"
 if "$sb" pbe --kernel constant --param K=2 --n0 3 --init mono --method discrete \
      --sizes 30 --times 0.5,1 --out "$out-p.csv" 2>/dev/null; then
   head -n 1 "$out-p.csv" | grep -qx 't,k,v,n' || fail "pbe csv header"
