@@ -523,13 +523,21 @@ int sbc_validate_main(int argc, char **argv)
   sb_validate_options_init(&vo);
   vo.outdir = "validate-out";
   char *prefixes[64];
-  int nprefixes = 0, list = 0, opt;
+  int nprefixes = 0, list = 0, opt, mode_given = 0;
   unsigned long nseeds = 0;
   optind = 1;
   while ((opt = getopt_long(argc, argv, "ho:", opts, NULL)) != -1) {
     switch (opt) {
-    case 'q': vo.full = 0; break;
-    case 'f': vo.full = 1; break;
+    case 'q':
+    case 'f':
+      if (mode_given && vo.full != (opt == 'f')) {
+        fprintf(stderr, "smolbridge validate: --quick and --full: give "
+                        "one of them\n");
+        return 2;
+      }
+      vo.full = opt == 'f';
+      mode_given = 1;
+      break;
     case 'o': vo.outdir = optarg; break;
     case 's': {
       char *end;

@@ -110,6 +110,7 @@ n=$("$sb" validate --list --case 'V16/combined$' | wc -l)
 [ "$n" -eq 1 ] || fail "--case 'V16/combined\$' should select one case, got $n"
 expect_rc 2 "$sb" validate --case 'V16/comb$'
 expect_rc 2 "$sb" validate --seed -3
+expect_rc 2 "$sb" validate --quick --full --list
 rm -rf "$out"
 first=$("$sb" validate --list | awk 'NR == 1 {print $1}')
 if "$sb" validate --quick --case "$first" --out "$out" >"$out.txt" 2>&1; then
