@@ -325,6 +325,11 @@ check "species name" 2 "t.ini:6: [species a,b]: the species name 'a,b' may hold 
 check "negative velocity_scale" 2 '[species a] velocity_scale = 1 -1 1: -1 out of range; valid: numbers >= 0' "$A"'
 velocity_scale = 1 -1 1'
 check "free flight without T" 2 '[species a]: free flight (tau = inf) needs T > 0' 's/^mu = 1e-3/tau = inf/; s/^density = 1000/mass = 1e-18/; /^T = 300/d; s/^count = 10/particle = 1e-6 1e-6 1e-6 0 0 0/'
+# --set with blanks around '=' (as in an INI line) sets the key
+"$sb" collide "$dir/base.ini" --set "run.output=$dir/blank" \
+  --set "run.steps = 7" > /dev/null 2>&1 || fail "--set 'run.steps = 7' refused"
+grep -q '"steps": 7,' "$dir/blank/summary.json" 2>/dev/null ||
+  fail "--set 'run.steps = 7' did not set steps"
 check "msd_fit past the run" 2 '[observe] msd_fit = 2 20: the run takes 11 samples of msd_every = 1 steps (lags 0 .. 10)' '$a\
 [observe]\
 msd_every = 1\

@@ -468,8 +468,14 @@ int sbi_col_override(sbi_col_config *c, const char *arg)
   if (!eq || n == 0 || n >= sizeof path)
     return sbi_col_fail(c, "--set %s: expected SECTION.KEY=VALUE (e.g. "
                         "run.dt=1e-7, species.NAME.phi=1e-3)", arg);
+  /* blanks around '=' as in an INI line ("run.dt = 1e-7" quoted) */
+  while (n > 0 && (arg[n - 1] == ' ' || arg[n - 1] == '\t'))
+    n--;
   memcpy(path, arg, n);
   path[n] = 0;
+  const char *val = eq + 1;
+  while (*val == ' ' || *val == '\t')
+    val++;
   char *dot = strrchr(path, '.');
   if (!dot || dot == path || !dot[1])
     return sbi_col_fail(c, "--set %s: expected SECTION.KEY=VALUE (e.g. "
@@ -496,6 +502,6 @@ int sbi_col_override(sbi_col_config *c, const char *arg)
                           sec, names);
     }
   }
-  return set_key(c, path, dot + 1, eq + 1, 1);
+  return set_key(c, path, dot + 1, val, 1);
 }
 
