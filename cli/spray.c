@@ -30,7 +30,7 @@ typedef struct {
   long count;
   double radius, weight, T, theta, K0;
   double u[3];
-  int tag, has_T, has_theta, settle;
+  int tag, has_T, has_theta, has_weight, settle;
   char dist[16];
 } pop_cfg;
 
@@ -341,8 +341,10 @@ static int h_pop(config *c, const char *s, const char *k, const char *v)
     return integer(c, s, k, v, &p->count, 0, 100000000L);
   if (!strcmp(k, "radius"))
     return num(c, s, k, v, &p->radius, 1e-300, 1e300);
-  if (!strcmp(k, "weight"))
+  if (!strcmp(k, "weight")) {
+    p->has_weight = 1;
     return num(c, s, k, v, &p->weight, 1e-300, 1e300);
+  }
   if (!strcmp(k, "T")) {
     p->has_T = 1;
     return num(c, s, k, v, &p->T, 0, 1e300);
@@ -461,6 +463,25 @@ static sb_spray *build(const config *c, gsl_rng *rng, const char *file,
   if (isnan(c->volume)) {
     fprintf(stderr, "spray: %s: [run] volume is required\n", file);
     return NULL;
+  }
+  if (c->steps >= 0 && !isnan(c->t_end)) {
+    fprintf(stderr, "spray: %s: [run] t_end and steps: give one of them\n",
+            file);
+    return NULL;
+  }
+  for (int i = 0; i < c->npop; i++) {
+    const pop_cfg *q = &c->pop[i];
+    if (q->has_T && q->has_theta) {
+      fprintf(stderr, "spray: %s: [%s]: T and theta both set the velocity "
+              "variance; give one of them\n", file, q->name);
+      return NULL;
+    }
+    if (p.method == SB_SPRAY_BIRD && q->has_weight) {
+      fprintf(stderr, "spray: %s: [%s] weight = %g: method = bird gives "
+              "every parcel the [run] weight (%g); weights per population "
+              "need method = nanbu\n", file, q->name, q->weight, c->weight);
+      return NULL;
+    }
   }
   if (p.cross == SB_SPRAY_MAXWELL && isnan(c->B0)) {
     fprintf(stderr, "spray: %s: [run] B0 is required with cross = maxwell\n",

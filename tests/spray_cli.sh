@@ -33,6 +33,18 @@ expect_rc 2 "$sb" spray "$out/nopop.ini"
 printf '[run]\ncoalescence = brazier\n' > "$out/badcoal.ini"
 msg=$("$sb" spray "$out/badcoal.ini" 2>&1 >/dev/null)
 case "$msg" in *badcoal.ini:2*theta*orourke*) ;; *) fail "bad coalescence message: $msg" ;; esac
+# keys that contradict each other: exit 2 with a message naming them
+pop='[droplets a]\ncount = 10\nradius = 1e-5\n'
+for c in "steps|[run]\nvolume = 1\ndt = 1\nsteps = 2\nt_end = 3\n$pop|t_end and steps" \
+         "T theta|[run]\nvolume = 1\ndt = 1\nsteps = 2\n${pop}T = 300\ntheta = 1\n|T and theta" \
+         "bird weight|[run]\nvolume = 1\ndt = 1\nsteps = 2\n${pop}weight = 5\n|method = bird gives every parcel"; do
+  name=${c%%|*}; rest=${c#*|}; ini=${rest%|*}; want=${rest##*|}
+  printf "$ini" > "$out/conflict.ini"
+  msg=$("$sb" spray "$out/conflict.ini" 2>&1 >/dev/null)
+  rc=$?
+  [ $rc -eq 2 ] || fail "$name: exit $rc, want 2"
+  case "$msg" in *"$want"*) ;; *) fail "$name message: $msg" ;; esac
+done
 printf '[reitz]\nblob = 2\n' > "$out/badblob.ini"
 msg=$("$sb" spray "$out/badblob.ini" 2>&1 >/dev/null)
 case "$msg" in *badblob.ini:2*blob*) ;; *) fail "bad blob message: $msg" ;; esac
