@@ -501,12 +501,22 @@ int sbc_pgd_main(int argc, char **argv)
     if (c.have_riemann)
       INPUT_ERROR("[riemann] is 1-D (dim = 1)");
   }
+  if (c.have_riemann && c.have_initial)
+    INPUT_ERROR("[riemann] and [initial]: give one initial state");
   if (c.have_riemann) {
     c.rp.tau = p->tau;
     c.rp.ugas = p->ugas[0];
     if (!c.have_x0) /* default: the middle of the domain */
       c.rp.x0 = p->origin[0] + 0.5 * p->L[0];
+    else if (!(c.rp.x0 > p->origin[0] && c.rp.x0 < p->origin[0] + p->L[0]))
+      INPUT_ERROR("[riemann] x0 = %g: outside the domain (%g, %g)",
+                  c.rp.x0, p->origin[0], p->origin[0] + p->L[0]);
   }
+  /* the snapshots are fields_00000.csv ... fields_99999.csv */
+  if (c.output_every > 0 && c.t_end / c.output_every > 99999.0)
+    INPUT_ERROR("[run] output_every = %g: %.3g snapshots up to t_end = %g; "
+                "valid: at most 99999 (output_every >= %g)", c.output_every,
+                c.t_end / c.output_every, c.t_end, c.t_end / 99999.0);
   for (int k = 0; k < c.nin; k++) {
     if (c.in[k].side < 0 || c.in[k].count < 1 || isnan(c.in[k].rho))
       INPUT_ERROR("[%s]: side, count and rho are required", c.in[k].name);

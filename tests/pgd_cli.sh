@@ -120,6 +120,12 @@ bad "cfl = 0.8: must be in (0, 0.5]" \
 bad "bad.ini:4: [inflow a] side = 'up'" \
   "[run]" "dim = 2" "[inflow a]" "side = up"
 bad "bad.ini:2: unknown section [foo]" "[foo]" "a = 1"
+bad "[riemann] x0 = 5: outside the domain (0, 1)" \
+  "[run]" "nx = 10" "t_end = 0.1" "[riemann]" "x0 = 5" "rho_l = 1"
+bad "[riemann] and [initial]: give one initial state" \
+  "[run]" "nx = 10" "t_end = 0.1" "[riemann]" "rho_l = 1" "[initial]" "rho = 1"
+bad "[run] output_every = 1e-09: 1e+08 snapshots up to t_end = 0.1" \
+  "[run]" "nx = 10" "t_end = 0.1" "output_every = 1e-9" "[riemann]" "rho_l = 1"
 # the checks of <smolbridge/ini.h> (sb_ini_read), as collide and spray
 bad "bad.ini:3: the line starts with a blank" "[run]" "nx = 10" "  t_end = 1"
 bad "bad.ini:2: not 'key = value', '[section]' or a comment" "[run]" "nx 10"
