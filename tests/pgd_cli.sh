@@ -129,6 +129,7 @@ bad "[run] output_every = 1e-09: 1e+08 snapshots up to t_end = 0.1" \
 # the checks of <smolbridge/ini.h> (sb_ini_read), as collide and spray
 bad "bad.ini:3: the line starts with a blank" "[run]" "nx = 10" "  t_end = 1"
 bad "bad.ini:2: not 'key = value', '[section]' or a comment" "[run]" "nx 10"
+bad "bad.ini:1: section header without ']'" "[run" "nx = 10"
 "$sb" pgd "$out/no-such.ini" >/dev/null 2>&1; [ $? -eq 2 ] || fail "missing file"
 "$sb" pgd >/dev/null 2>&1; [ $? -eq 2 ] || fail "no argument"
 "$sb" pgd --help >/dev/null 2>&1 || fail "--help"

@@ -74,6 +74,12 @@ static char *read_line(char *str, int num, void *stream)
   while (*s == ' ' || *s == '\t')
     s++;
   const char *e = *s == '[' ? strchr(s, ']') : NULL;
+  if (*s == '[' && !e) {  /* libinih would go on, and the section's keys
+                             would be blamed for coming before any */
+    say(r, "section header without ']'");
+    r->stop = 1;
+    return NULL;
+  }
   if (e && r->section) {  /* libinih does not report headers */
     char name[200], where[1100];
     size_t k = (size_t)(e - s - 1);
