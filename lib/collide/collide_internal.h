@@ -442,10 +442,11 @@ void sbi_col_msd_free(sbi_col_msd *m);
 int sbi_col_out_prepare(sbi_col_config *c);
 int sbi_col_pairs_sample(sbi_col_pairs *ps, const sb_engine *e);
 /* Write series.csv, summary.json, sizes.csv, hits.csv and manifest.txt;
- * status "ok" or "failed" (summary.json of a failed run says why). */
+ * status "ok" or "failed" (summary.json of a failed run says why); secs:
+ * the run's wall-clock and CPU (all threads) seconds. */
 int sbi_col_out_write(const sbi_col_config *c, sbi_col_run *r,
-                      const sbi_col_pairs *ps, double secs, const char *status,
-                      const char *why, long nsnap);
+                      const sbi_col_pairs *ps, const double secs[2],
+                      const char *status, const char *why, long nsnap);
 /* Snapshot path of number k. */
 void sbi_col_snap_path(const sbi_col_config *c, long k, char *buf, size_t len);
 /* A JSON number: x to 17 digits, or null for NaN/inf (not JSON). */
