@@ -238,6 +238,11 @@ if "$sb" collide "$out/two.ini" 2>/dev/null; then
   [ -s "$out/collide/summary.json" ] || fail "collide: no summary.json"
   grep -q '"collisions": 1,' "$out/collide/summary.json" || fail "collide: expected 1 collision"
   head -n 1 "$out/collide/series.csv" | grep -q '^t,' || fail "collide: series.csv header"
+  # the velocities after the 45-degree impact (Thomine 2008, §7)
+  awk -F, 'NR > 1 { d = ($1 == 0 ? $8 - 0.05 : $8 + 0.05); e = $7 - 0.05
+                    if (d * d + e * e > 1e-24) bad = 1; n++ }
+           END { exit !(n == 2 && !bad) }' "$out/collide/snap_000000.csv" ||
+    fail "collide: the velocities after the impact"
 else
   fail "smolbridge collide $ini failed"
 fi
