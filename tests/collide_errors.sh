@@ -330,6 +330,11 @@ check "free flight without T" 2 '[species a]: free flight (tau = inf) needs T > 
   --set "run.steps = 7" > /dev/null 2>&1 || fail "--set 'run.steps = 7' refused"
 grep -q '"steps": 7,' "$dir/blank/summary.json" 2>/dev/null ||
   fail "--set 'run.steps = 7' did not set steps"
+check "count_variance with reinsert" 0 "[observe] count_variance with outcome = reinsert: its variance assumes a fixed population" '4a\
+outcome = reinsert
+$a\
+[observe]\
+count_variance = yes'
 check "msd_fit past the run" 2 '[observe] msd_fit = 2 20: the run takes 11 samples of msd_every = 1 steps (lags 0 .. 10)' '$a\
 [observe]\
 msd_every = 1\

@@ -296,6 +296,23 @@ int sbi_col_check(sbi_col_config *c)
     open |= !strcmp(c->wall[f], "open");
   if (c->exits > 0 && !open)
     unused(c, "observe", "exits", "no [walls] face is open");
+  /* the tally's variance is that of a fixed population (docs/engine.md
+   * §6): say so where particles are replaced, merged, enter or leave */
+  if (c->count_variance > 0) {
+    int inflow = 0;
+    for (int k = 0; k < c->nsp; k++)
+      inflow |= c->sp[k].inflow[0] != 0;
+    const char *why = !strcmp(c->outcome, "reinsert") ? "outcome = reinsert"
+                      : sbi_col_agglo(c)             ? "merging"
+                      : inflow                       ? "an inflow"
+                      : open                         ? "an open face"
+                                                     : NULL;
+    if (why)
+      sbi_col_warn(c, "%s: [observe] count_variance with %s: its variance "
+                   "assumes a fixed population of particles, so the "
+                   "dispersion and the widened interval are approximate",
+                   sbi_col_where(c, "observe", "count_variance"), why);
+  }
   if (c->hit_times && !bridge)
     return sbi_col_fail(c, "%s: [observe] hit_times records bridge hits: "
                         "needs detect = bridge or exact",
