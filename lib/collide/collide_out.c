@@ -375,9 +375,12 @@ static void json_kernels(FILE *f, const sbi_col_config *c, const sb_engine *e)
           (unsigned long long)st.ncoll, (unsigned long long)st.ncand,
           (unsigned long long)st.dropped,
           (unsigned long long)st.redetected);
-  if (kst || !isfinite(K)) {
+  const int none = sbi_col_detect_none(c);  /* nothing is detected */
+  if (kst || !isfinite(K) || none) {
     fprintf(f, "  \"kernel\": {\"K\": null, \"ci95\": null, \"why\": ");
-    jstr(f, why_no_kernel(e, &st));
+    jstr(f, none ? "detect = none: contacts between particles are not "
+                   "detected"
+                 : why_no_kernel(e, &st));
     fprintf(f, "},\n");
   } else {
     fprintf(f, "  \"kernel\": {\"K\": %.17g, \"ci95\": [", K);
