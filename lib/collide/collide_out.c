@@ -307,8 +307,18 @@ static void json_run(FILE *f, const sbi_col_config *c, const sb_engine *e)
   fprintf(f, "  \"fluid\": \"%s\",\n", c->fluid);
   fprintf(f, "  \"rng\": \"%s\",\n",
           p->rng_type ? p->rng_type->name : gsl_rng_mt19937->name);
+  /* the placement only where it placed particles: else the explicit
+   * particles, or none at the start (inflows only) */
+  int placed = 0, expl = 0;
+  for (int k = 0; k < c->nsp; k++) {
+    placed |= c->sp[k].count > 0 || !isnan(c->sp[k].phi);
+    expl |= c->sp[k].npart > 0;
+  }
   fprintf(f, "  \"placement\": \"%s\",\n",
-          c->restart[0] ? "restart" : c->placement);
+          c->restart[0] ? "restart"
+          : placed      ? c->placement
+          : expl        ? "explicit"
+                        : "none");
   fprintf(f, "  \"restart\": ");
   jstr(f, c->restart);
   fprintf(f, ",\n  \"overrides\": [");
