@@ -210,9 +210,16 @@ static int parse_list(sbi_col_config *c, const char *sec,
     out[cnt++] = x;
     p = end;
   }
-  if (cnt < nmin)
-    return sbi_col_fail(c, "%s: [%s] %s = %s: %d numbers; valid: %d to %d",
-                        c->where, sec, k->key, v, cnt, nmin, nmax);
+  if (cnt < nmin) {
+    char want[40];
+    if (nmin == nmax)
+      snprintf(want, sizeof want, "%d", nmin);
+    else
+      snprintf(want, sizeof want, "%d to %d", nmin, nmax);
+    return sbi_col_fail(c, "%s: [%s] %s = %s: %d number%s; valid: %s",
+                        c->where, sec, k->key, v, cnt, cnt == 1 ? "" : "s",
+                        want);
+  }
   *n = cnt;
   return 0;
 }
