@@ -306,6 +306,7 @@ check "missing L" 2 '[run] L (or Lx, Ly, Lz) is required' '/^L = /d'
 check "missing dt" 2 '[run] dt is required' '/^dt = /d'
 check "missing steps" 2 '[run] t_end or steps is required' '/^steps = /d'
 check "no species" 2 'no [species NAME] section' '6,$d'
+check "empty species" 2 "t.ini:6: [species a] is empty" '7,$d'
 check "unwritable output" 2 '[run] output = /proc/nope: cannot create the directory' 's|^output = .*|output = /proc/nope|'
 # an input error found when the output is prepared leaves the previous
 # run's files

@@ -195,6 +195,12 @@ int sbi_col_check(sbi_col_config *c)
     if (isnan(c->Lx) || isnan(c->Ly) || (c->dim == 3 && isnan(c->Lz)))
       return sbi_col_fail(c, "[run] L (or Lx, Ly%s) is required: the box "
                           "edge in m", c->dim == 3 ? ", Lz" : "");
+    for (int i = 0; c->nsp == 0 && i < c->nsections; i++)
+      if (!strncmp(c->sections[i], "species ", 8))
+        return sbi_col_fail(c, "%s: [%s] is empty: give radius, mass (or "
+                            "density), tau (or mu) and count, phi or "
+                            "particle", c->section_where[i],
+                            c->sections[i]);
     if (c->nsp == 0)
       return sbi_col_fail(c, "no [species NAME] section: give at least one "
                           "with radius, mass (or density), tau (or mu) and "
