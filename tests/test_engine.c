@@ -15,6 +15,9 @@
 #include <unistd.h>
 
 #include <smolbridge/engine.h>
+#include <smolbridge/engine_bridge.h>
+#include <smolbridge/engine_field.h>
+#include <smolbridge/engine_firsthit.h>
 #include <smolbridge/langevin.h>
 #include <smolbridge/rng.h>
 
@@ -985,6 +988,77 @@ START_TEST(test_custom_callbacks)
 }
 END_TEST
 
+/* An outcome that calls what it must not: the engine refuses inside a
+ * step (a nested step ran 1075 steps; run_until overflowed the stack). */
+static int out_reenter(sb_engine *e, const sb_engine_pair *p, double s,
+                       void *ctx)
+{
+  (void)p;
+  (void)s;
+  int *st = ctx;
+  const double x[3] = {1, 1, 1}, u[3] = {0, 0, 0};
+  st[0] = sb_engine_step(e);
+  st[1] = sb_engine_run_until(e, 100.0);
+  st[2] = sb_engine_set_dt(e, 1e-3);
+  st[3] = sb_engine_add_particle(e, 0, 0, x, u);
+  st[4] = sb_engine_sort(e);
+  st[5] = sb_engine_flush_removals(e);
+  st[6]++;
+  return sb_engine_outcome_elastic(e, p, s);
+}
+
+START_TEST(test_misuse)
+{
+  /* 1. re-entry from a callback: SB_EINVAL each, the step goes on */
+  sb_engine *e = box_engine(3, 20.0, 1.0, 8);
+  size_t sp = add_free(e, 0.5, 1.0);
+  double x1[3] = {5, 5, 5}, x2[3] = {6.5, 5, 5}, u1[3] = {1, 0, 0},
+         u2[3] = {0, 0, 0};
+  sb_engine_add_particle(e, sp, 0, x1, u1);
+  sb_engine_add_particle(e, sp, 0, x2, u2);
+  int st[7] = {0};
+  ck_assert_int_eq(sb_engine_set_outcome_fn(e, out_reenter, st), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  ck_assert_int_eq(st[6], 1);
+  for (int k = 0; k < 6; k++)
+    ck_assert_msg(st[k] == SB_EINVAL, "call %d: status %d", k, st[k]);
+  ck_assert(sb_engine_time(e) == 1.0);
+  ck_assert_uint_eq(sb_engine_count(e), 2);
+  /* 2. an inflow far beyond the capacity: an error at once (a rate of
+   * 1e30/s hung in GSL's Poisson draw) */
+  sb_engine_inflow in = {0, sp, 0, 1e30, {0, 0}, {20, 20}, {1, 0, 0}, 0};
+  ck_assert_int_eq(sb_engine_add_inflow(e, &in, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_set_outcome(e, SB_OUTCOME_ELASTIC, 1.0),
+                   SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_step(e), SB_EINVAL);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "capacity 8 is full"));
+  /* 3. sizes whose products wrap in size_t */
+  const size_t big[3] = {(size_t)1 << 24, (size_t)1 << 24, (size_t)1 << 16};
+  double cell = 0;
+  ck_assert_int_eq(sb_engine_grid_fields(e, big, SB_GRID_NGP, -1, &cell,
+                                         NULL), SB_EINVAL);
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+  ck_assert_ptr_null(sb_field_ou_alloc(((size_t)1 << 61) + 1, 1, 1, 1e-6, r));
+  gsl_rng_free(r);
+  sb_engine_bridge_params bp;
+  sb_engine_bridge_params_default(&bp);
+  bp.record_cap = ((size_t)1 << 60) + 1;
+  ck_assert_ptr_null(sb_engine_bridge_alloc(&bp));
+  sb_engine_bridge *b = sb_engine_bridge_alloc(NULL);
+  ck_assert_ptr_nonnull(b);
+  ck_assert_int_eq(sb_engine_bridge_set_b2(b, (size_t)-1, 1e-12, 0),
+                   SB_EINVAL);
+  sb_engine_bridge_free(b);
+  /* 4. NULL where it crashed */
+  double sfrac;
+  ck_assert_int_lt(sb_engine_detect_md(e, NULL, NULL, NULL, &sfrac), 0);
+  sb_engine_firsthit_params_default(NULL);
+  sb_field_kraichnan_eval(NULL, 0.0, 1, x1, u1);
+  ck_assert_int_eq(sb_last_status(), SB_EINVAL);
+  sb_engine_free(e);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("engine");
@@ -1009,6 +1083,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_errors);
   tcase_add_test(tc, test_checkpoint_write_error);
   tcase_add_test(tc, test_custom_callbacks);
+  tcase_add_test(tc, test_misuse);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -320,6 +320,7 @@ int sb_engine_add_particle(sb_engine *e, size_t species, int family,
 {
   if (!e || !x || !u)
     return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  SBI_NOT_IN_STEP(e, __func__);
   if (e->n >= e->par.capacity)
     return sbi_error(SB_EINVAL, __func__, "capacity %zu is full",
                      e->par.capacity);
@@ -486,6 +487,7 @@ int sb_engine_fill_box(sb_engine *e, size_t species, int family, size_t n,
 {
   if (!e || !lo || !hi)
     return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  SBI_NOT_IN_STEP(e, __func__);
   for (int k = 0; k < e->par.dim; k++) {
     if (!(lo[k] >= 0.0 && lo[k] < hi[k] && hi[k] <= e->par.L[k]))
       return sbi_error(SB_EINVAL, __func__,
@@ -744,9 +746,11 @@ int sb_engine_set_threads(sb_engine *e, int threads)
 
 int sb_engine_set_dt(sb_engine *e, double dt)
 {
-  if (!e || !(dt > 0.0) || !isfinite(dt))
-    return sbi_error(SB_EINVAL, __func__, "dt = %g: must be finite > 0",
-                     e ? dt : NAN);
+  if (!e)
+    return sbi_error(SB_EINVAL, __func__, "engine is NULL");
+  if (!(dt > 0.0) || !isfinite(dt))
+    return sbi_error(SB_EINVAL, __func__, "dt = %g: must be finite > 0", dt);
+  SBI_NOT_IN_STEP(e, __func__);
   double old = e->par.dt;
   e->par.dt = dt;
   if (sbi_engine_update_coef(e)) {
@@ -997,6 +1001,7 @@ int sb_engine_step(sb_engine *e)
 {
   if (!e)
     return sbi_error(SB_EINVAL, __func__, "engine is NULL");
+  SBI_NOT_IN_STEP(e, __func__);
   memset(e->hit, 0, e->n);
   sbi_engine_pair_counts(e, e->pairs0);
   /* forces, Lees-Edwards, walls: checks and settling (engine_force.c) */
@@ -1093,6 +1098,7 @@ int sb_engine_sort(sb_engine *e)
 {
   if (!e)
     return sbi_error(SB_EINVAL, __func__, "engine is NULL");
+  SBI_NOT_IN_STEP(e, __func__);
   const size_t n = e->n;
   if (n < 2)
     return SB_SUCCESS;

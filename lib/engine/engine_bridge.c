@@ -48,10 +48,12 @@ sb_engine_bridge *sb_engine_bridge_alloc(const sb_engine_bridge_params *p)
        p->outcome != SB_BRIDGE_OUT_CORRECT &&
        p->outcome != SB_BRIDGE_OUT_COUNT) ||
       !(p->tol > 0.0 && p->tol < 1.0) ||
-      !(p->exact_tol > 0.0 && p->exact_tol <= 0.1)) {
+      !(p->exact_tol > 0.0 && p->exact_tol <= 0.1) ||
+      p->record_cap > SIZE_MAX / sizeof *((sb_engine_bridge *)0)->hits) {
     sbi_error(SB_EINVAL, __func__, "bad parameter (mode %d, ends %d, "
-              "outcome %d, tol %g, exact_tol %g)", (int)p->mode,
-              (int)p->ends, (int)p->outcome, p->tol, p->exact_tol);
+              "outcome %d, tol %g, exact_tol %g, record_cap %zu)",
+              (int)p->mode, (int)p->ends, (int)p->outcome, p->tol,
+              p->exact_tol, p->record_cap);
     return NULL;
   }
   sb_engine_bridge *b = calloc(1, sizeof *b);
@@ -89,6 +91,9 @@ int sb_engine_bridge_set_b2(sb_engine_bridge *b, size_t species, double b2,
       !(b2_brown <= b2))
     return sbi_error(SB_EINVAL, __func__, "b2 = %g, b2_brown = %g: need "
                      "0 <= b2_brown <= b2, b2 > 0 finite", b2, b2_brown);
+  if (species >= ((size_t)1 << 20))
+    return sbi_error(SB_EINVAL, __func__, "species %zu: beyond 2^20",
+                     species);
   if (species >= b->nb2) {
     size_t nn = species + 1;
     double *n1 = realloc(b->b2, nn * sizeof *n1);

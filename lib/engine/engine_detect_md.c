@@ -13,8 +13,8 @@ int sb_engine_detect_md(const sb_engine *e, const sb_engine_pair *p,
 {
   (void)r;
   (void)ctx;
-  const double *u0 = sb_engine_start_velocities(e);
-  if (!u0)
+  const double *u0 = e && p && s ? sb_engine_start_velocities(e) : NULL;
+  if (!u0 || p->i >= sb_engine_count(e) || p->j >= sb_engine_count(e))
     return -1;
   sb_engine_pair q = *p;
   for (int k = 0; k < 3; k++)

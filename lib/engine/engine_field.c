@@ -41,6 +41,10 @@ sb_field_ou *sb_field_ou_alloc(size_t n, double u2, double TL, double dt,
               TL, dt);
     return NULL;
   }
+  if (n > SIZE_MAX / (3 * sizeof(double))) {
+    sbi_error(SB_EINVAL, __func__, "n = %zu: too many particles", n);
+    return NULL;
+  }
   sb_field_ou *f = calloc(1, sizeof *f);
   if (f)
     f->U = malloc(3 * n * sizeof *f->U);
@@ -204,6 +208,10 @@ size_t sb_field_kraichnan_modes(const sb_field_kraichnan *f)
 void sb_field_kraichnan_eval(const sb_field_kraichnan *f, double t,
                              size_t n, const double *x, double *us)
 {
+  if (!f || (n && (!x || !us))) {
+    sbi_error(SB_EINVAL, __func__, "NULL argument");
+    return;
+  }
   const int M = f->M;
   double complex rot[MAXMODES];
   for (size_t q = 0; q < f->nm; q++)

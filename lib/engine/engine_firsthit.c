@@ -151,6 +151,8 @@ static int install(sb_engine *e, sb_engine_firsthit *f, double reach)
 
 void sb_engine_firsthit_params_default(sb_engine_firsthit_params *p)
 {
+  if (!p)
+    return;
   memset(p, 0, sizeof *p);
   p->builtin = SB_DETECT_BALLISTIC;
 }

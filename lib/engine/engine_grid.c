@@ -79,6 +79,18 @@ int sb_engine_grid_fields(const sb_engine *e, const size_t n[3],
     sbi_error(SB_EINVAL, __func__, "unknown scheme %d", (int)scheme);
     return SB_EINVAL;
   }
+  if (family < -1) {
+    sbi_error(SB_EINVAL, __func__, "family %d (>= 0, or -1 for all)",
+              family);
+    return SB_EINVAL;
+  }
+  /* the cells of the three components of mom must be countable */
+  if ((double)nn[0] * (double)nn[1] * (double)nn[2] * 3.0 * sizeof(double) >
+      (double)SIZE_MAX) {
+    sbi_error(SB_EINVAL, __func__, "grid %zu x %zu x %zu: too many cells",
+              nn[0], nn[1], nn[2]);
+    return SB_EINVAL;
+  }
   const size_t ncell = nn[0] * nn[1] * nn[2];
   memset(rho, 0, ncell * sizeof *rho);
   if (mom)

@@ -142,6 +142,17 @@ long sbi_idmap_put(sbi_idmap *m, uint64_t key, uint32_t val);
  * data. */
 int sbi_idmap_write(const sbi_idmap *m, FILE *f, int counted);
 int sbi_idmap_read(sbi_idmap *m, FILE *f, int counted);
+/* SB_EINVAL (message from func) if e is inside a step, i.e. func is
+ * called from a callback, where it would change the step under way:
+ * only the sb_engine_outcome_* functions may act there. */
+#define SBI_NOT_IN_STEP(e, func)                                            \
+  do {                                                                      \
+    if ((e)->in_step)                                                       \
+      return sbi_error(SB_EINVAL, func, "called inside a step (from a "     \
+                       "callback): only the sb_engine_outcome_* functions " \
+                       "may act there");                                    \
+  } while (0)
+
 /* A fingerprint of the engine's particles (FNV-1a over the count, ids
  * and positions): an observer's state saved beside a checkpoint belongs
  * to the engine with the same one (engine_checkpoint.c). */

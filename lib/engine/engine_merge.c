@@ -89,6 +89,7 @@ int sb_engine_flush_removals(sb_engine *e)
 {
   if (!e)
     return sbi_error(SB_EINVAL, __func__, "engine is NULL");
+  SBI_NOT_IN_STEP(e, __func__);
   return sbi_engine_purge(e);
 }
 

@@ -190,8 +190,15 @@ int sbi_engine_inject(sb_engine *e)
     const sb_engine_inflow *in = &e->inflow[q];
     const int k = in->face / 2, hi = in->face % 2;
     const double r = e->spec[in->species].radius;
-    unsigned int m = in->rate > 0.0 ? gsl_ran_poisson(e->rng, in->rate * dt)
-                                    : 0;
+    /* a mean far beyond the room left cannot fit (and GSL's Poisson draw
+     * takes minutes at 1e24): the capacity error at once */
+    const double mean = in->rate * dt,
+                 room = (double)(e->par.capacity - e->n);
+    if (mean > room + 100.0 * sqrt(room + 1.0) + 100.0)
+      return sbi_error(SB_EINVAL, "sb_engine_step", "inflow %zu brings "
+                       "%g particles a step on average: capacity %zu is "
+                       "full", q, mean, e->par.capacity);
+    unsigned int m = in->rate > 0.0 ? gsl_ran_poisson(e->rng, mean) : 0;
     const double tau = e->spec[in->species].tau;
     for (unsigned int a = 0; a < m; a++) {
       double x[3] = {0, 0, 0}, u[3] = {in->u[0], in->u[1], in->u[2]};

@@ -243,8 +243,11 @@ typedef int (*sb_engine_detect_fn)(const sb_engine *e,
                                    void *ctx, double *s);
 
 /** Outcome callback: apply the collision of pair p at fraction s.  It may
- *  call sb_engine_outcome_elastic / sb_engine_outcome_reinsert.  Return a
- *  status (non-zero aborts the step with that status). */
+ *  call sb_engine_outcome_elastic / sb_engine_outcome_reinsert (and the
+ *  other sb_engine_outcome_* functions); sb_engine_step, _run_until,
+ *  _set_dt, _add_particle, _fill_*, _flush_removals and _sort return
+ *  SB_EINVAL inside a step.  Return a status (non-zero aborts the step
+ *  with that status). */
 typedef int (*sb_engine_outcome_fn)(sb_engine *e, const sb_engine_pair *p,
                                     double s, void *ctx);
 
@@ -284,7 +287,8 @@ int sb_engine_add_particle(sb_engine *e, size_t species, int family,
 /** Add n particles of a species at uniformly random positions that do not
  *  overlap any particle, with equilibrium (Maxwellian) velocities
  *  U_s(x) + N(0, vvar) per component.  SB_EMAXITER if a position cannot be
- *  found in 10000 tries (box too full). */
+ *  found in 10000 tries (box too full); the particles placed before stay
+ *  (sb_engine_count says how many). */
 int sb_engine_fill_random(sb_engine *e, size_t species, int family,
                           size_t n);
 

@@ -138,7 +138,8 @@ typedef struct sb_engine_bridge sb_engine_bridge;
 
 void sb_engine_bridge_params_default(sb_engine_bridge_params *p);
 
-/** New detector context (NULL and SB_EINVAL / SB_ENOMEM on failure). */
+/** New detector context; p NULL: the defaults (NULL and SB_EINVAL /
+ *  SB_ENOMEM on failure). */
 sb_engine_bridge *sb_engine_bridge_alloc(const sb_engine_bridge_params *p);
 void sb_engine_bridge_free(sb_engine_bridge *b);
 

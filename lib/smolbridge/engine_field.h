@@ -146,7 +146,7 @@ sb_field_kraichnan *sb_field_kraichnan_load(const char *path, double L,
 size_t sb_field_kraichnan_modes(const sb_field_kraichnan *f);
 
 /** Velocities us[3i..3i+2] (m/s) at the n positions x[3i..3i+2] (m) at
- *  time t (s). */
+ *  time t (s).  A NULL argument: nothing written, sb_last_error set. */
 void sb_field_kraichnan_eval(const sb_field_kraichnan *f, double t,
                              size_t n, const double *x, double *us);
 
