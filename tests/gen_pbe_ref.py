@@ -4,7 +4,8 @@
 Writes tests/data/pbe_analytic.csv: kind,k_or_x,tau,logn with logn =
 log(n/N0) computed with mpmath at 50 digits directly from the defining
 products (factorials as exact integers, Bessel I1 by mpmath), so large k
-that underflow in double precision are covered.  Kinds: const_mono,
+that underflow in double precision are covered; the inputs are the
+binary doubles the test reads (mpf(float(...))).  Kinds: const_mono,
 add_mono, mult_mono (k integer), const_exp, add_exp (x = v/v0).
 Run: /usr/bin/python3 tests/gen_pbe_ref.py > tests/data/pbe_analytic.csv
 """
@@ -40,15 +41,15 @@ def add_exp(x, tau):
 
 
 print("kind,a,tau,logn")
-for k in [1, 2, 3, 7, 50, 400, 10000, 1000000]:
-    for tau in ["0.001", "0.1", "1", "10", "1000"]:
-        print("const_mono,%d,%s,%s" % (k, tau, mp.nstr(const_mono(k, mpf(tau)), 25)))
-    for tau in ["0.001", "0.1", "1", "10"]:
-        print("add_mono,%d,%s,%s" % (k, tau, mp.nstr(add_mono(k, mpf(tau)), 25)))
-    for tau in ["0.001", "0.1", "0.5", "0.9", "0.999"]:
-        print("mult_mono,%d,%s,%s" % (k, tau, mp.nstr(mult_mono(k, mpf(tau)), 25)))
+for k in [1, 2, 3, 7, 50, 400, 10000, 1000000, 10 ** 9, 10 ** 15]:
+    for tau in ["0.001", "0.1", "1", "10", "1000", "1e300"]:
+        print("const_mono,%d,%s,%s" % (k, tau, mp.nstr(const_mono(k, mpf(float(tau))), 25)))
+    for tau in ["0.001", "0.1", "1", "10", "30"]:
+        print("add_mono,%d,%s,%s" % (k, tau, mp.nstr(add_mono(k, mpf(float(tau))), 25)))
+    for tau in ["0.001", "0.1", "0.5", "0.9", "0.999", "0.999999"]:
+        print("mult_mono,%d,%s,%s" % (k, tau, mp.nstr(mult_mono(k, mpf(float(tau))), 25)))
 for x in ["1e-6", "0.01", "1", "10", "300", "1e5"]:
     for tau in ["0", "0.1", "1", "10", "1000"]:
-        print("const_exp,%s,%s,%s" % (x, tau, mp.nstr(const_exp(mpf(x), mpf(tau)), 25)))
+        print("const_exp,%s,%s,%s" % (x, tau, mp.nstr(const_exp(mpf(float(x)), mpf(float(tau))), 25)))
     for tau in ["1e-12", "0.1", "1", "10"]:
-        print("add_exp,%s,%s,%s" % (x, tau, mp.nstr(add_exp(mpf(x), mpf(tau)), 25)))
+        print("add_exp,%s,%s,%s" % (x, tau, mp.nstr(add_exp(mpf(float(x)), mpf(float(tau))), 25)))

@@ -13,7 +13,10 @@
  */
 #include <math.h>
 
+#include <gsl/gsl_math.h>
 #include <gsl/gsl_sf_bessel.h>
+#include <gsl/gsl_sf_gamma.h>
+#include <gsl/gsl_sf_log.h>
 #include <smolbridge/pbe.h>
 
 #include "common/internal.h"
@@ -38,7 +41,17 @@ double sb_pbe_const_mono_logn(double k, double tau)
     return -2.0 * log1p(0.5 * tau);
   if (tau == 0.0)
     return -INFINITY;
-  return (k - 1.0) * log(0.5 * tau) - (k + 1.0) * log1p(0.5 * tau);
+  /* (k-1) log(t/(1+t)) - 2 log1p(t), t = tau/2: no terms of size k log
+   * tau that cancel */
+  return -(k - 1.0) * log1p(2.0 / tau) - 2.0 * log1p(0.5 * tau);
+}
+
+/* rest(k) = log Gamma(k) - [(k - 1/2) log k - k] = log(2 pi)/2 +
+ * log gamma*(k) (GSL's gammastar, -> 0 as k grows): the part of log Gamma
+ * that does not cancel against the k log k - k of the solutions. */
+static double lgamma_rest(double k)
+{
+  return 0.5 * log(2.0 * M_PI) + log(gsl_sf_gammastar(k));
 }
 
 double sb_pbe_add_mono_logn(double k, double tau)
@@ -50,7 +63,14 @@ double sb_pbe_add_mono_logn(double k, double tau)
     return -tau - phi;
   if (tau == 0.0)
     return -INFINITY;
-  return -tau + (k - 1.0) * log(k * phi) - k * phi - lgamma(k + 1.0);
+  /* with lgamma(k+1) = (k + 1/2) log k - k + rest(k):
+   * log n = -tau + (k-1) log phi + k q - 3/2 log k - rest(k), q = e^-tau;
+   * (k-1) log phi + k q = (k-1)(log1p(-q) + q) + q (no cancellation of
+   * terms ~ k q when phi ~ 1) */
+  const double q = exp(-tau);
+  const double lk = q < 0.5 ? (k - 1.0) * gsl_sf_log_1plusx_mx(-q) + q
+                            : (k - 1.0) * log(phi) + k * q;
+  return -tau + lk - 1.5 * log(k) - lgamma_rest(k);
 }
 
 double sb_pbe_mult_mono_logn(double k, double tau)
@@ -62,7 +82,12 @@ double sb_pbe_mult_mono_logn(double k, double tau)
     return -tau;
   if (tau == 0.0)
     return -INFINITY;
-  return (k - 3.0) * log(k) + (k - 1.0) * log(tau) - k * tau - lgamma(k);
+  /* with lgamma(k) = (k - 1/2) log k - k + rest(k):
+   * log n = -5/2 log k - rest(k) + (k-1)(log tau + 1 - tau) + 1 - tau,
+   * log tau + 1 - tau = log1p(x) - x at x = tau - 1 (near gelation the
+   * terms ~ k cancel) */
+  return -2.5 * log(k) - lgamma_rest(k) +
+         (k - 1.0) * gsl_sf_log_1plusx_mx(tau - 1.0) + (1.0 - tau);
 }
 
 double sb_pbe_const_exp_logn(double x, double tau)

@@ -187,8 +187,11 @@ void sb_pbe_moments(const double *v, const double *n, size_t nbins,
  * The _log forms return log(n_k/N0) (lgamma/log1p/expm1 based: no overflow
  * or underflow for any k); the plain forms return exp of it (0 on
  * underflow).  Domain: integer k >= 1 (as double), tau >= 0 (< 1 for
- * multiplicative); NaN and SB_EDOM otherwise.  Accuracy: a few ulp in the
- * log (relative error ~ k * 1e-16 in n_k).  Sources and checks: docs/pbe.md. */
+ * multiplicative); NaN and SB_EDOM otherwise.  Accuracy: monodisperse
+ * starts, ~1e-14 of |log n| + log k (the k log k - k of the factorials
+ * taken out through GSL's gammastar, log1p forms: tested to k = 1e15);
+ * exponential starts, a few ulp of the largest term (~ x).  Sources and
+ * checks: docs/pbe.md. */
 
 /** Constant kernel, monodisperse: n_k = (tau/2)^(k-1)/(1 + tau/2)^(k+1). */
 double sb_pbe_const_mono_logn(double k, double tau);
