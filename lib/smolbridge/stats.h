@@ -136,8 +136,10 @@ double sb_zscore_pvalue(double z);
  *  (not necessarily an integer); Q = 1 for x <= 0, 0 for x = inf.
  *  GSL's gsl_cdf_chisq_Q for dof <= 400, quadrature of the density beyond
  *  (where GSL's incomplete gamma loses accuracy or fails).  Relative error
- *  <= 1e-12 (tested against mpmath up to dof = 1e6).  NaN (SB_EDOM) for
- *  NaN arguments or dof < 1. */
+ *  <= 1e-12 (tested against mpmath up to dof = 1e6) inside the quadrature
+ *  range: the density down to e^-100 of its peak, i.e. Q above ~1e-45;
+ *  beyond it Q is 0 (z >= 15 standard deviations for dof >= ~1.2e4).
+ *  NaN (SB_EDOM) for NaN arguments or dof < 1. */
 double sb_chi2_sf(double x, double dof);
 
 /** A CDF callback: F(x; params). Must be non-decreasing, in [0, 1]. */
