@@ -149,7 +149,9 @@ double sb_kernel_abrahamson(double r_i, double r_j, double u2_i,
  *  Pe_k = G R/sqrt(2 u2) = 0.3-3.  96 x 192-node quadrature on the sphere:
  *  relative accuracy 1e-14 against 30-digit values at Pe_k = 0.3-3 and
  *  G tau = 0.01-0.5 (tests/test_kernel.c); the integrand steepens as
- *  Pe_k grows (2e-4 at u2 -> 0).  NaN and SB_EDOM unless the radii are
+ *  Pe_k grows (2e-4 at u2 -> 0) and its kink at n_x = 0 sharpens as
+ *  G tau grows (an audit against mpmath quadrature: ~1e-16 up to
+ *  G tau = 5, 5e-9 at 20, 3e-6 at 100).  NaN and SB_EDOM unless the radii are
  *  > 0 and u2, tau, G >= 0, all finite. */
 double sb_kernel_shear_langevin(double r_i, double r_j, double u2, double tau,
                                 double G);
