@@ -95,6 +95,16 @@ END_TEST
 START_TEST(test_vdw_limits)
 {
   const double A = 3e-20;
+  /* D down to 1e-300 of r (t = r/D beyond 1e154, where t^2 overflowed and
+   * the energy turned +inf): the Derjaguin limit to 1e-14; D = 5e-324
+   * overflows to -inf, not NaN */
+  for (int c = 0; c < 2; c++) {
+    const double r2 = c ? INFINITY : 1e-6, D = c ? 1e-160 : 1e-300;
+    ck_assert_rel(sb_dlvo_vdw_hamaker(A, 1e-6, r2, D),
+                  sb_dlvo_vdw_derjaguin(A, 1e-6, r2, D), 1e-14);
+    ck_assert(sb_dlvo_vdw_hamaker(A, 1e-6, r2, 5e-324) == -INFINITY);
+    ck_assert(sb_dlvo_vdw_hamaker_force(A, 1e-6, r2, 5e-324) == -INFINITY);
+  }
   const double rr[][2] = {{1e-7, 1e-7}, {2e-7, 5e-9}, {1e-6, INFINITY}};
   for (int c = 0; c < 3; c++) {
     double r1 = rr[c][0], r2 = rr[c][1];

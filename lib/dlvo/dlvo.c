@@ -94,7 +94,13 @@ static double ham_g(double t, double *err)
     return 0.5 * sum;
   }
   double y = 2.0 * t;
-  double a = -gsl_sf_log_1plusx_mx(y), b = 0.5 * y * y / (1.0 + y);
+  if (isinf(y)) {  /* D below what t = R/D can hold: the energy overflows */
+    *err = 0.0;
+    return INFINITY;
+  }
+  /* y (y/(1 + y)), not y^2/(1 + y): y^2 overflows above 1.3e154 (contact
+   * distances of R/1e154), and -A/6 g became +inf */
+  double a = -gsl_sf_log_1plusx_mx(y), b = 0.5 * y * (y / (1.0 + y));
   *err = 4.0 * EPS * (fabs(a) + fabs(b));
   return a - b;
 }
@@ -139,7 +145,7 @@ int sb_dlvo_vdw_hamaker_force_e(double A, double r1, double r2, double D,
   /* F = (A/6) g'(t) dt/dD = -(A/6) (2t/(1+2t))^2 t (1/D + 1/(D+2r1+2r2)):
    * products of positive factors, no cancellation. */
   double dl, t = ham_t(r1, r2, D, &dl);
-  double gp = 2.0 * t / (1.0 + 2.0 * t);
+  double gp = isinf(t) ? 1.0 : 2.0 * t / (1.0 + 2.0 * t);
   res->val = -A / 6.0 * gp * gp * t * dl;
   res->err = 16.0 * EPS * fabs(res->val);
   return SB_SUCCESS;
