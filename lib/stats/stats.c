@@ -632,7 +632,11 @@ double sb_zscore(double estimate, double reference, double stderr_)
               "stderr %g)", estimate, reference, stderr_);
     return NAN;
   }
-  return (estimate - reference) / stderr_;
+  const double z = (estimate - reference) / stderr_;
+  if (isnan(z))  /* inf - inf, or inf / inf */
+    sbi_error(SB_EDOM, __func__, "estimate %g, reference %g, stderr %g: "
+              "z is undefined", estimate, reference, stderr_);
+  return z;
 }
 
 double sb_zscore_pvalue(double z)

@@ -436,7 +436,7 @@ double sb_ks2_pvalue(size_t nx, size_t ny, double d)
   double ci = fabs(c - cr) <= 1e-9 * c ? cr : ceil(c);
   if (nx == ny) {
     size_t h = (size_t)ceil(ci / (double)nx); /* |i - j| >= h */
-    return ks2_equal(nx, h);
+    return fmin(1.0, ks2_equal(nx, h));  /* its sum may round above 1 */
   }
   if (L <= KS2_DP_MAX) {
     double p;
