@@ -1049,7 +1049,13 @@ START_TEST(test_misuse)
   ck_assert_int_eq(sb_engine_bridge_set_b2(b, (size_t)-1, 1e-12, 0),
                    SB_EINVAL);
   sb_engine_bridge_free(b);
-  /* 4. NULL where it crashed */
+  /* 4. a pair of one particle, a path that is not finite */
+  sb_engine_pair self = {0, 0, {0, 0, 0}, {0, 0, 0}, 1.0, 1.0, 0.0};
+  ck_assert_int_eq(sb_engine_outcome_elastic(e, &self, 0.5), SB_EINVAL);
+  ck_assert_int_eq(sb_engine_outcome_reinsert(e, &self, 0.5), SB_EINVAL);
+  const double xnan[3] = {NAN, 0, 0};
+  ck_assert_int_eq(sb_engine_outcome_path(e, 0, xnan), SB_EINVAL);
+  /* 5. NULL where it crashed */
   double sfrac;
   ck_assert_int_lt(sb_engine_detect_md(e, NULL, NULL, NULL, &sfrac), 0);
   sb_engine_firsthit_params_default(NULL);

@@ -68,7 +68,8 @@ static int elastic_contact(sb_engine *e, const sb_engine_pair *p)
 int sb_engine_outcome_elastic(sb_engine *e, const sb_engine_pair *p,
                               double s)
 {
-  if (!e || !p || p->i >= e->n || p->j >= e->n || !(s >= 0.0 && s <= 1.0))
+  if (!e || !p || p->i >= e->n || p->j >= e->n || p->i == p->j ||
+      !(s >= 0.0 && s <= 1.0))
     return sbi_error(SB_EINVAL, __func__, "bad argument");
   if (e->contact)
     return elastic_contact(e, p);
@@ -202,7 +203,7 @@ int sbi_engine_random_free_position(sb_engine *e, size_t k, size_t partner,
 int sb_engine_outcome_reinsert(sb_engine *e, const sb_engine_pair *p,
                                double s)
 {
-  if (!e || !p || p->j >= e->n)
+  if (!e || !p || p->i >= e->n || p->j >= e->n || p->i == p->j)
     return sbi_error(SB_EINVAL, __func__, "bad argument");
   const size_t j = p->j;
   double x[3], u[3];
@@ -243,6 +244,12 @@ int sb_engine_outcome_path(sb_engine *e, size_t k, const double x[3])
 {
   if (!e || !x || k >= e->n)
     return sbi_error(SB_EINVAL, __func__, "bad engine, particle or NULL");
+  if (!isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2]) ||
+      fabs(x[0]) > 1e3 * e->par.L[0] || fabs(x[1]) > 1e3 * e->par.L[1] ||
+      fabs(x[2]) > 1e3 * e->par.L[2])
+    return sbi_error(SB_EINVAL, __func__, "position (%g, %g, %g) of "
+                     "particle %zu: not finite, or far outside the box",
+                     x[0], x[1], x[2], k);
   for (int q = 0; q < e->ndeclared; q++)
     if (e->declared[q].k == k) {
       memcpy(e->declared[q].x, x, 3 * sizeof(double));
