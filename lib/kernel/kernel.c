@@ -28,6 +28,13 @@ static int nonneg(double x) { return isfinite(x) && x >= 0.0; }
     }                                                         \
   } while (0)
 
+/* Hard spheres or discs: diameters, masses and T all > 0. */
+#define CHECK_KINETIC(d_i, d_j, m_i, m_j, T)                              \
+  CHECK(pos(d_i) && pos(d_j), "diameters must be > 0 (got %g, %g)", d_i, \
+        d_j);                                                             \
+  CHECK(pos(m_i) && pos(m_j) && pos(T),                                   \
+        "masses and T must be > 0 (got %g, %g, %g)", m_i, m_j, T)
+
 #define CHECK_RADII(a, b)                                               \
   CHECK(pos(a) && pos(b), "radii must be finite and > 0 (got %g, %g)", \
         (a), (b))
@@ -164,10 +171,7 @@ double sb_kernel_brownian_gh(double r_i, double r_j, double m_i, double m_j,
 double sb_kernel_kinetic(double d_i, double d_j, double m_i, double m_j,
                          double T)
 {
-  CHECK(pos(d_i) && pos(d_j), "diameters must be > 0 (got %g, %g)", d_i,
-        d_j);
-  CHECK(pos(m_i) && pos(m_j) && pos(T),
-        "masses and T must be > 0 (got %g, %g, %g)", m_i, m_j, T);
+  CHECK_KINETIC(d_i, d_j, m_i, m_j, T);
   double r = 0.5 * (d_i + d_j);
   return M_PI * r * r * sqrt(8.0 * kB * T / M_PI * (1.0 / m_i + 1.0 / m_j));
 }
@@ -175,10 +179,7 @@ double sb_kernel_kinetic(double d_i, double d_j, double m_i, double m_j,
 double sb_kernel_kinetic_2d(double d_i, double d_j, double m_i, double m_j,
                             double T)
 {
-  CHECK(pos(d_i) && pos(d_j), "diameters must be > 0 (got %g, %g)", d_i,
-        d_j);
-  CHECK(pos(m_i) && pos(m_j) && pos(T),
-        "masses and T must be > 0 (got %g, %g, %g)", m_i, m_j, T);
+  CHECK_KINETIC(d_i, d_j, m_i, m_j, T);
   /* mean Rayleigh speed sqrt(pi/2) sigma, sigma^2 = kT/m_red */
   return (d_i + d_j) * sqrt(0.5 * M_PI * kB * T * (1.0 / m_i + 1.0 / m_j));
 }
