@@ -1,6 +1,9 @@
 #!/bin/sh
 # The installed shared library must export only sb_* symbols (libtool
-# -export-symbols-regex), and must export the public API.
+# -export-symbols-regex), and must export the public API.  It must not
+# import what acts on the whole process: abort/exit, printing to stdout,
+# assert, or GSL's process-wide error handler (switching it off inside the
+# library would race with other threads and the application).
 set -u
 lib="${top_builddir:-.}/.libs/libsmolbridge.so"
 [ -f "$lib" ] || { echo "no $lib (static-only build?)"; exit 77; }
@@ -18,6 +21,12 @@ for s in sb_strerror sb_last_error sb_version sb_bb_cross_prob \
 done
 if printf '%s\n' "$syms" | grep -q '^sbi_'; then
   echo "internal sbi_ symbols leaked"; exit 1
+fi
+imports=$(nm -D --undefined-only "$lib" | awk '{print $NF}' | sed 's/@.*//')
+bad=$(printf '%s\n' "$imports" | grep -xE 'abort|exit|_exit|_Exit|quick_exit|printf|vprintf|puts|putchar|perror|__assert_fail|gsl_set_error_handler(_off)?' || true)
+if [ -n "$bad" ]; then
+  echo "the library imports process-wide actions:"; printf '%s\n' "$bad"
+  exit 1
 fi
 n=$(printf '%s\n' "$syms" | grep -c '^sb_')
 echo "exports: $n sb_ symbols, no others"

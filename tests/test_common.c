@@ -1,8 +1,13 @@
-/* test_common.c — status strings, the per-thread error record, version. */
+/* test_common.c — status strings, the per-thread error record, version,
+ * and the wrappers that call GSL without its error handler. */
+#include <math.h>
 #include <pthread.h>
 #include <string.h>
 
+#include <gsl/gsl_errno.h>
+
 #include "common/internal.h"
+#include "common/numutil.h"
 #include "testutil.h"
 
 START_TEST(test_strerror_all_codes)
@@ -95,6 +100,56 @@ START_TEST(test_version)
 }
 END_TEST
 
+/* GSL's handler must never be reached from the wrappers: this one fails
+ * the test (the library must not switch the handler either). */
+static void fail_handler(const char *reason, const char *file, int line,
+                         int gsl_errno)
+{
+  ck_abort_msg("GSL error handler reached: %s (%s:%d, %d)", reason, file,
+               line, gsl_errno);
+}
+
+static double cubic(double x, void *p) { (void)p; return x * x * x - 2.0; }
+static double nan_inside(double x, void *p)
+{
+  (void)p;
+  return x > 0.3 && x < 0.7 ? NAN : x * x * x - 0.125;
+}
+static double gauss(double x, void *p) { (void)p; return exp(-x * x); }
+static double inv_sqrt(double x, void *p) { (void)p; return 1.0 / sqrt(x); }
+
+START_TEST(test_gsl_wrappers)
+{
+  gsl_error_handler_t *old = gsl_set_error_handler(fail_handler);
+  double r, res, err;
+  gsl_function F = {cubic, NULL};
+  ck_assert_int_eq(sbi_brent(&F, 0.0, 2.0, 0.0, 1e-15, 100, &r), SB_SUCCESS);
+  ck_assert_double_eq_tol(r, cbrt(2.0), 4e-15);
+  ck_assert_int_eq(sbi_brent(&F, 0.0, 1.0, 0.0, 1e-15, 100, &r), SB_EINVAL);
+  ck_assert_int_eq(sbi_brent(&F, 2.0, 3.0, 0.0, 1e-15, 100, &r), SB_EINVAL);
+  /* a NaN met inside the bracket ends the search (GSL's Brent would call
+   * its handler: "function value is not finite") */
+  gsl_function N = {nan_inside, NULL};
+  ck_assert_int_eq(sbi_brent(&N, 0.0, 1.0, 0.0, 1e-15, 100, &r), SB_EDOM);
+  ck_assert(isnan(r));
+  ck_assert_int_eq(sbi_brent(&N, 0.0, 0.3, 0.0, 1e-15, 100, &r), SB_EINVAL);
+  ck_assert_int_eq(sbi_brent(&N, 0.5, 1.0, 0.0, 1e-15, 100, &r), SB_EDOM);
+  gsl_function G = {gauss, NULL};
+  ck_assert_int_eq(sbi_integrate(&G, 0.0, INFINITY, 0.0, 1e-12, 100, &res,
+                                 &err), SB_SUCCESS);
+  ck_assert_double_eq_tol(res, 0.5 * sqrt(M_PI), 1e-13);
+  ck_assert_int_eq(sbi_integrate(&G, -1.0, 1.0, 0.0, 1e-12, 100, &res,
+                                 &err), SB_SUCCESS);
+  ck_assert_double_eq_tol(res, sqrt(M_PI) * erf(1.0), 1e-13);
+  /* an integrable singularity at an end */
+  gsl_function S = {inv_sqrt, NULL};
+  int st = sbi_integrate(&S, 0.0, 1.0, 0.0, 1e-10, 200, &res, &err);
+  ck_assert(st == SB_SUCCESS || st == SB_EMAXITER);
+  ck_assert_double_eq_tol(res, 2.0, 1e-6);
+  ck_assert_ptr_eq(gsl_set_error_handler(old), fail_handler);
+}
+END_TEST
+
 int main(void)
 {
   Suite *s = suite_create("common");
@@ -105,6 +160,7 @@ int main(void)
   tcase_add_test(tc, test_fail_res_macro);
   tcase_add_test(tc, test_error_record_is_per_thread);
   tcase_add_test(tc, test_version);
+  tcase_add_test(tc, test_gsl_wrappers);
   suite_add_tcase(s, tc);
   return sbt_run_suite(s);
 }

@@ -588,6 +588,113 @@ int sbi_solve_increasing4(sbi_fdf4 g, void *ctx, double y0, double step,
   return solved(root, dy, best, last, SB_EMAXITER);
 }
 
+/* f behind a guard: a non-finite value is remembered and replaced by 0
+ * (Brent then stops at once: the caller reports SB_EDOM), so GSL's
+ * SAFE_FUNC_CALL never reaches the error handler. */
+typedef struct {
+  const gsl_function *f;
+  int bad;
+} guarded_fn;
+
+static double guarded(double x, void *p)
+{
+  guarded_fn *g = p;
+  double y = GSL_FN_EVAL(g->f, x);
+  if (isfinite(y))
+    return y;
+  g->bad = 1;
+  return 0.0;
+}
+
+int sbi_brent(const gsl_function *f, double lo, double hi, double epsabs,
+              double epsrel, int maxit, double *root)
+{
+  *root = NAN;
+  const double flo = GSL_FN_EVAL(f, lo), fhi = GSL_FN_EVAL(f, hi);
+  if (!isfinite(flo) || !isfinite(fhi))
+    return SB_EDOM;
+  if (flo == 0.0 || fhi == 0.0) {
+    *root = flo == 0.0 ? lo : hi;
+    return SB_SUCCESS;
+  }
+  if ((flo > 0.0) == (fhi > 0.0) || !(lo < hi))
+    return SB_EINVAL;
+  gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+  if (!s)
+    return SB_ENOMEM;
+  guarded_fn g = {f, 0};
+  gsl_function G = {guarded, &g};
+  /* a finite bracket of opposite signs: set() raises no error */
+  gsl_root_fsolver_set(s, &G, lo, hi);
+  int st = SB_EMAXITER;
+  for (int it = 0; it < maxit; it++) {
+    gsl_root_fsolver_iterate(s);
+    *root = gsl_root_fsolver_root(s);
+    if (g.bad) {
+      st = SB_EDOM;
+      *root = NAN;
+      break;
+    }
+    if (gsl_root_test_interval(gsl_root_fsolver_x_lower(s),
+                               gsl_root_fsolver_x_upper(s), epsabs,
+                               epsrel) == GSL_SUCCESS) {
+      st = SB_SUCCESS;
+      break;
+    }
+  }
+  gsl_root_fsolver_free(s);
+  return st;
+}
+
+/* f(a + 1/u^2) 2/u^3: [a + 1, inf) onto (0, 1].  A tail x^-p becomes
+ * u^(2p - 3), smooth for p = 3/2 and 2 (the tails of the library's
+ * integrands), integrable for p > 1; exponential tails vanish at u = 0. */
+typedef struct {
+  const gsl_function *f;
+  double a;
+} semi_inf;
+
+static double semi_inf_fn(double u, void *p)
+{
+  const semi_inf *q = p;
+  if (!(u > 0.0))
+    return 0.0;
+  const double x = q->a + 1.0 / (u * u);
+  if (isinf(x))
+    return 0.0;
+  return GSL_FN_EVAL(q->f, x) * 2.0 / (u * u * u);
+}
+
+int sbi_integrate(const gsl_function *f, double a, double b, double epsabs,
+                  double epsrel, size_t n, double *res, double *err)
+{
+  *res = *err = NAN;
+  gsl_integration_cquad_workspace *ws =
+      gsl_integration_cquad_workspace_alloc(n < 3 ? 3 : n);
+  if (!ws)
+    return SB_ENOMEM;
+  int st;
+  if (isinf(b)) { /* [a, a + 1] and the mapped tail */
+    semi_inf q = {f, a};
+    gsl_function S = {semi_inf_fn, &q};
+    double r1, e1, r2, e2;
+    st = gsl_integration_cquad(f, a, a + 1.0, epsabs, epsrel, ws, &r1, &e1,
+                               NULL);
+    if (!st)
+      st = gsl_integration_cquad(&S, 0.0, 1.0, epsabs, epsrel, ws, &r2, &e2,
+                                 NULL);
+    if (!st)
+      *res = r1 + r2, *err = e1 + e2;
+  } else {
+    st = gsl_integration_cquad(f, a, b, epsabs, epsrel, ws, res, err, NULL);
+  }
+  gsl_integration_cquad_workspace_free(ws);
+  if (st)
+    return SB_ERANGE; /* GSL_EDIVERGE: the only status left */
+  return *err <= fmax(epsabs, epsrel * fabs(*res)) ? SB_SUCCESS
+                                                    : SB_EMAXITER;
+}
+
 int sbi_reach_root(gsl_function *f, double hi0, double hi_max, double xtol,
                    double *root)
 {
@@ -598,13 +705,18 @@ int sbi_reach_root(gsl_function *f, double hi0, double hi_max, double xtol,
     if (isnan(fh) || hi > hi_max)
       return SB_EMAXITER;
   }
+  /* the bracket's upper end, where f <= 0, is the conservative reach:
+   * run Brent by hand to read it */
   gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
   if (!s)
     return SB_ENOMEM;
-  /* f(0) > 0 >= f(hi), both finite: GSL raises no error */
-  gsl_root_fsolver_set(s, f, 0.0, hi);
+  guarded_fn g = {f, 0};
+  gsl_function G = {guarded, &g};
+  /* f(0) > 0 >= f(hi) (a non-finite f(0) reads 0 and is reported below):
+   * set() raises no error */
+  gsl_root_fsolver_set(s, &G, 0.0, hi);
   double up = hi;
-  for (int it = 0; it < 200; it++) {
+  for (int it = 0; it < 200 && !g.bad; it++) {
     gsl_root_fsolver_iterate(s);
     double lo = gsl_root_fsolver_x_lower(s);
     up = gsl_root_fsolver_x_upper(s);
@@ -612,6 +724,8 @@ int sbi_reach_root(gsl_function *f, double hi0, double hi_max, double xtol,
       break;
   }
   gsl_root_fsolver_free(s);
+  if (g.bad)
+    return SB_EDOM;
   *root = up;
   return SB_SUCCESS;
 }

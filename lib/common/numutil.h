@@ -264,15 +264,44 @@ typedef double (*sbi_fdf4)(double y, double kprev, void *ctx, double d[4]);
 int sbi_solve_increasing4(sbi_fdf4 g, void *ctx, double y0, double step,
                           double *root, double *dy);
 
+/* ---------------------------------- GSL without its error handler */
+
+/* GSL reports failures through a process-wide error handler (by default
+ * it aborts); switching it off inside the library would race with other
+ * threads and with the application.  These wrappers call only GSL
+ * routines that cannot reach the handler with the arguments they pass. */
+
+/* Root of f in [lo, hi] by GSL's Brent solver.  f(lo) and f(hi) must be
+ * finite and of opposite signs (or zero: that end is the root).  Stops
+ * when the bracket is within epsabs + epsrel |x| (gsl_root_test_interval)
+ * or after maxit iterations.  A non-finite value of f met during the
+ * search ends it (SB_EDOM) instead of reaching GSL's handler.  Returns
+ * SB_SUCCESS (*root the solver's estimate), SB_EINVAL (no bracket),
+ * SB_EDOM (f not finite), SB_EMAXITER (*root the last estimate) or
+ * SB_ENOMEM.  Records no error message: the caller names the cause. */
+int sbi_brent(const gsl_function *f, double lo, double hi, double epsabs,
+              double epsrel, int maxit, double *root);
+
+/* Integral of f over [a, b], b finite or +inf (then over [a, a + 1] and
+ * over u in (0, 1] with x = a + 1/u^2: the variable should be scaled to
+ * order one), by GSL's doubly adaptive CQUAD (Gonnet 2010), which reports
+ * no failure through GSL's handler and skips non-finite values.
+ * `n` intervals of workspace (>= 3).  Returns SB_SUCCESS when the error
+ * estimate *err is within max(epsabs, epsrel |*res|), SB_EMAXITER when it
+ * is not (*res and *err still set), SB_ERANGE if the integral diverges,
+ * SB_ENOMEM.  Records no error message. */
+int sbi_integrate(const gsl_function *f, double a, double b, double epsabs,
+                  double epsrel, size_t n, double *res, double *err);
+
 /* ------------------------------------------------- reach (last zero) */
 
 /* Zero of f where f(0) > 0 turns <= 0 for good (a reach: the distance
  * beyond which a tail bound stays below its tolerance).  Brackets [0, hi]
- * by doubling hi from hi0 while f(hi) > 0, then runs GSL's Brent solver
- * until the bracket is narrower than xtol (absolute).  *root receives the
+ * by doubling hi from hi0 while f(hi) > 0, then runs Brent's method
+ * (sbi_brent) until the bracket is narrower than xtol (absolute).  *root receives the
  * bracket's upper end, where f <= 0 (a conservative reach).  Returns
- * SB_SUCCESS, SB_EMAXITER (f NaN, or still > 0 beyond hi_max; *root NaN)
- * or SB_ENOMEM.  Records no error message: the caller names the cause. */
+ * SB_SUCCESS, SB_EMAXITER (f NaN, or still > 0 beyond hi_max; *root NaN),
+ * SB_EDOM (f NaN inside the bracket; *root NaN) or SB_ENOMEM.  Records no error message: the caller names the cause. */
 int sbi_reach_root(gsl_function *f, double hi0, double hi_max, double xtol,
                    double *root);
 

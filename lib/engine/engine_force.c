@@ -28,10 +28,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_roots.h>
+#include <gsl/gsl_math.h>
 
 #include "common/internal.h"
+#include "common/numutil.h"
 #include "engine_internal.h"
 
 /* ============================================================ drag laws */
@@ -177,21 +177,10 @@ static int terminal_speed(const sb_engine *e, size_t sp, double vst,
   }
   term_par q = {fl, 2.0 * e->spec[sp].radius, e->spec[sp].tau, vst};
   gsl_function F = {term_fn, &q};
-  gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-  if (!s)
+  double r;
+  int st = sbi_brent(&F, 0.0, vst, 0.0, 1e-14, 200, &r);
+  if (st == SB_ENOMEM)
     return sbi_error(SB_ENOMEM, __func__, "out of memory");
-  gsl_error_handler_t *old = gsl_set_error_handler_off();
-  int st = gsl_root_fsolver_set(s, &F, 0.0, vst);
-  double r = NAN;
-  for (int it = 0; !st && it < 200; it++) {
-    st = gsl_root_fsolver_iterate(s);
-    r = gsl_root_fsolver_root(s);
-    double lo = gsl_root_fsolver_x_lower(s), hi = gsl_root_fsolver_x_upper(s);
-    if (gsl_root_test_interval(lo, hi, 0.0, 1e-14) == GSL_SUCCESS)
-      break;
-  }
-  gsl_set_error_handler(old);
-  gsl_root_fsolver_free(s);
   if (st || !isfinite(r))
     return sbi_error(SB_EMAXITER, __func__,
                      "no terminal velocity for species %zu", sp);

@@ -11,8 +11,11 @@
  *    keeps; it is thread-local, so every routine is thread-safe.
  *
  * GSL note: GSL's default error handler aborts.  smolbridge checks arguments
- * before it calls GSL, so GSL's handler is not reached for valid or invalid
- * smolbridge input; applications may still call gsl_set_error_handler_off().
+ * before it calls GSL and uses solvers and quadratures in ways that report
+ * failures by status, so GSL's handler is not reached for valid or invalid
+ * smolbridge input.  The library never changes the handler (it is process-
+ * wide: switching it would race with other threads); applications may
+ * still call gsl_set_error_handler_off().
  */
 #ifndef SMOLBRIDGE_COMMON_H
 #define SMOLBRIDGE_COMMON_H

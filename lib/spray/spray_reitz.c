@@ -16,6 +16,7 @@
 #include <smolbridge/spray.h>
 
 #include "common/internal.h"
+#include "common/numutil.h"
 #include "spray_internal.h"
 
 void sb_spray_reitz_params_default(sb_spray_reitz_params *p)
@@ -122,7 +123,6 @@ typedef struct {
   const sb_spray_reitz_params *rp;
   double target;
   double a0;
-  gsl_integration_workspace *ws;
 } full_ctx;
 
 static double rate_gap(double x, void *p) /* x - R(x) */
@@ -149,27 +149,17 @@ static double time_to(double a, void *p) /* t(a) - target */
     return -c->target;
   gsl_function F = {integrand, c};
   double res, err;
-  gsl_integration_qags(&F, a, c->a0, 0.0, 1e-12, 1000, c->ws, &res, &err);
-  return res - c->target;
+  int st = sbi_integrate(&F, a, c->a0, 0.0, 1e-12, 1000, &res, &err);
+  /* Brent needs the sign: the estimate is kept (as it was with QAGS)
+   * when CQUAD's error estimate is above the 1e-12 asked for */
+  return (st && st != SB_EMAXITER) ? NAN : res - c->target;
 }
 
+/* Root in [lo, hi] to rtol (relative); NaN if Brent fails. */
 static double brent(gsl_function *F, double lo, double hi, double rtol)
 {
-  gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-  if (!s)
-    return NAN;
-  gsl_root_fsolver_set(s, F, lo, hi);
-  double x = 0.5 * (lo + hi);
-  for (int it = 0; it < 300; it++) {
-    gsl_root_fsolver_iterate(s);
-    x = gsl_root_fsolver_root(s);
-    if (gsl_root_test_interval(gsl_root_fsolver_x_lower(s),
-                               gsl_root_fsolver_x_upper(s), 0.0, rtol) ==
-        GSL_SUCCESS)
-      break;
-  }
-  gsl_root_fsolver_free(s);
-  return x;
+  double x;
+  return sbi_brent(F, lo, hi, 0.0, rtol, 300, &x) ? NAN : x;
 }
 
 int sb_spray_reitz_radius(double a0, double t, double U, double rho_g,
@@ -184,7 +174,7 @@ int sb_spray_reitz_radius(double a0, double t, double U, double rho_g,
     return st;
   if (!(t >= 0) || !(rp->B0 > 0) || !(rp->B1 > 0))
     return sbi_error(SB_EDOM, __func__, "need t >= 0, B0, B1 > 0");
-  full_ctx c = {U, rho_g, rho_l, liq, rp, t, a0, NULL};
+  full_ctx c = {U, rho_g, rho_l, liq, rp, t, a0};
   if (rate_gap(a0, &c) <= 0 || t == 0) {
     *a = a0;
     return SB_SUCCESS;
@@ -196,10 +186,6 @@ int sb_spray_reitz_radius(double a0, double t, double U, double rho_g,
     lo *= 0.5;
   gsl_function G = {rate_gap, &c};
   double ainf = rate_gap(lo, &c) > 0 ? 0.0 : brent(&G, lo, a0, 1e-15);
-  c.ws = gsl_integration_workspace_alloc(1000);
-  if (!c.ws)
-    return sbi_error(SB_ENOMEM, __func__, "out of memory");
-  gsl_error_handler_t *old = gsl_set_error_handler_off();
   /* t(a) decreases from +inf at a_inf to 0 at a0 */
   double hi = a0, low = ainf + (a0 - ainf) * 1e-14;
   gsl_function F = {time_to, &c};
@@ -208,8 +194,6 @@ int sb_spray_reitz_radius(double a0, double t, double U, double rho_g,
     *a = low; /* closer to a_inf than the bracket can resolve */
   else
     *a = brent(&F, low, hi, 1e-13);
-  gsl_set_error_handler(old);
-  gsl_integration_workspace_free(c.ws);
   return isnan(*a) ? sbi_error(SB_ESOLVER, __func__, "root finding failed")
                    : SB_SUCCESS;
 }

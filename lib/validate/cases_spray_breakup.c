@@ -27,6 +27,7 @@
 #include <smolbridge/spray.h>
 #include <smolbridge/stats.h>
 
+#include "common/numutil.h"
 #include "cases.h"
 #include "cases_spray.h"
 
@@ -115,12 +116,8 @@ static double renew_integrand(double r, void *par)
 static double bird_children_area(double mt)
 {
   double *h = calloc(RN_K + 1, sizeof *h);
-  gsl_integration_workspace *ws = gsl_integration_workspace_alloc(1000);
-  if (!h || !ws) {
-    free(h);
-    gsl_integration_workspace_free(ws);
+  if (!h)
     return NAN;
-  }
   renew_ctx c = {mt, -expm1(-1.0 / mt), h, 0, 0};
   gsl_function F = {renew_integrand, &c};
   for (int k = 1; k <= RN_K; k++) {
@@ -131,8 +128,7 @@ static double bird_children_area(double mt)
     h[k] = h[k - 1];
     for (int it = 0; it < 50; it++) {
       double res, err, old = h[k];
-      gsl_integration_qag(&F, 0.0, top, 1e-14, 1e-10, 1000,
-                          GSL_INTEG_GAUSS21, ws, &res, &err);
+      sbi_integrate(&F, 0.0, top, 1e-14, 1e-10, 1000, &res, &err);
       h[k] = res + tail;
       if (fabs(h[k] - old) <= 1e-14 * h[k])
         break;
@@ -140,7 +136,6 @@ static double bird_children_area(double mt)
   }
   double area = h[RN_K];
   free(h);
-  gsl_integration_workspace_free(ws);
   return area;
 }
 
@@ -372,11 +367,9 @@ typedef struct {
 static int child_law_init(child_law *c, rz_par *par, double lo, double hi)
 {
   gsl_function F = {child_density, par};
-  gsl_integration_workspace *ws = gsl_integration_workspace_alloc(200);
   c->aG = gsl_interp_alloc(gsl_interp_steffen, CH_NG);
   c->acc = gsl_interp_accel_alloc();
-  if (!ws || !c->aG || !c->acc) {
-    gsl_integration_workspace_free(ws);
+  if (!c->aG || !c->acc) {
     return SB_ENOMEM;
   }
   for (int k = 0; k < CH_NG; k++) {
@@ -384,12 +377,10 @@ static int child_law_init(child_law *c, rz_par *par, double lo, double hi)
     c->G[k] = 0;
     if (k) {
       double res, e;
-      gsl_integration_qag(&F, c->a[k - 1], c->a[k], 0, 1e-12, 200, 6, ws,
-                          &res, &e);
+      sbi_integrate(&F, c->a[k - 1], c->a[k], 0, 1e-12, 200, &res, &e);
       c->G[k] = c->G[k - 1] + res;
     }
   }
-  gsl_integration_workspace_free(ws);
   gsl_interp_init(c->aG, c->a, c->G, CH_NG);
   return SB_SUCCESS;
 }
@@ -694,13 +685,12 @@ int sbv_spray_case_reitz(const sbv_ctx *ctx, sbv_report *rep)
          * emitted */
         rz_par par = {U, rho_g, rho_l, &liq, rp.B0};
         gsl_function F = {child_density, &par};
-        gsl_integration_workspace *ws = gsl_integration_workspace_alloc(200);
         gsl_interp_accel *acc2 = gsl_interp_accel_alloc();
         double nref = 0, nmc = 0, shed = 0, res, e;
         const double *w = sb_spray_weights(s), *sv = sb_spray_shed_volume(s);
-        for (size_t i = 0; i < np && ws && acc2; i++) {
+        for (size_t i = 0; i < np && acc2; i++) {
           double at = gsl_interp_eval(fw, g0, gt, a0s[i], acc2);
-          gsl_integration_qag(&F, at, a0s[i], 0, 1e-10, 200, 6, ws, &res, &e);
+          sbi_integrate(&F, at, a0s[i], 0, 1e-10, 200, &res, &e);
           nref += res;
         }
         gsl_interp_accel_free(acc2);
@@ -716,7 +706,6 @@ int sbv_spray_case_reitz(const sbv_ctx *ctx, sbv_report *rep)
         /* unemitted shed volume counted as children of the current R */
         nmc += shed / (4.0 / 3.0 * PI * R0 * R0 * R0);
         nchild_rel = nmc / nref - 1;
-        gsl_integration_workspace_free(ws);
         if (!st)
           st = sbv_spray_add_tol(rep, "V14/reitz/nanbu/children-number/ref",
                                  nmc / nref, 1.0, 2e-3);

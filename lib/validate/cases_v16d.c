@@ -46,6 +46,7 @@
 #include <smolbridge/langevin.h>
 #include <smolbridge/stats.h>
 
+#include "common/numutil.h"
 #include "cases.h"
 #include "firsthit.h"
 #include "v16.h"
@@ -70,21 +71,13 @@ static double jint_integrand(double s, void *p)
   return s > 0.0 ? shear_deficit(s) / sqrt(s) : 0.0;
 }
 
-/* int_a^b f over (0, inf] (b = INFINITY) by GSL QAGS / QAGIU, relative
- * 1e-11; NaN on failure. */
+/* int_a^b f over (0, inf] (b = INFINITY) by CQUAD (sbi_integrate),
+ * relative 1e-11; NaN on failure. */
 static double quad(double (*f)(double, void *), double a, double b)
 {
-  gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
-  if (!w)
-    return NAN;
   gsl_function F = {f, NULL};
-  double r = NAN, err;
-  int st = isinf(b) ? gsl_integration_qagiu(&F, a, 0.0, 1e-11, 1000, w, &r,
-                                            &err)
-                    : gsl_integration_qags(&F, a, b, 0.0, 1e-11, 1000, w, &r,
-                                           &err);
-  gsl_integration_workspace_free(w);
-  return st ? NAN : r;
+  double r, err;
+  return sbi_integrate(&F, a, b, 0.0, 1e-11, 1000, &r, &err) ? NAN : r;
 }
 
 /* J(T) (file comment). */
