@@ -451,6 +451,39 @@ START_TEST(test_ks_pvalue_reference)
 }
 END_TEST
 
+/* n > 1e6, small p: twice the one-sided tail, which the code takes from
+ * the integral of its continued terms, against the mpmath sum of the
+ * terms (tests/gen_stats_ref.py, n = 2e6 and 1e7), relative 1e-13; the
+ * sum (n <= 1e6) and the integral (n > 1e6) agree across the switch. */
+START_TEST(test_ks_pvalue_large_n)
+{
+  double *v;
+  size_t n = read_csv("stats_ks_large.csv", 3, &v);
+  ck_assert_uint_ge(n, 4);
+  for (size_t i = 0; i < n; i++) {
+    const double *r = v + 3 * i;
+    size_t nn = (size_t)r[0];
+    double d = r[1], p = 2.0 * r[2];
+    sb_result res;
+    ck_assert_int_eq(sb_ks_pvalue_e(nn, d, &res), SB_SUCCESS);
+    ck_assert_msg(fabs(res.val - p) <= 1e-13 * p && fabs(res.val - p) <=
+                  res.err, "n=%zu d=%.17g: p=%.17g want %.17g (err %.3g)",
+                  nn, d, res.val, p, res.err);
+  }
+  free(v);
+  /* across the switch: log p is smooth
+   * in n, so its second difference over n = 1e6 - 1, 1e6, 1e6 + 1 (the
+   * last by the integral) is rounding unless the two methods differ */
+  for (double z = 3.0; z <= 13.0; z += 2.5) {
+    double d = z / 1000.0;
+    double a = sb_ks_pvalue(999999, d), b = sb_ks_pvalue(1000000, d),
+           c = sb_ks_pvalue(1000001, d);
+    ck_assert_msg(fabs(log(a) - 2.0 * log(b) + log(c)) < 1e-12,
+                  "z=%g: %.17g %.17g %.17g", z, a, b, c);
+  }
+}
+END_TEST
+
 START_TEST(test_kolmogorov_limit)
 {
   double *v;
@@ -1250,6 +1283,7 @@ static Suite *stats_suite(void)
   tc = tcase_create("ks");
   tcase_set_timeout(tc, 60);
   tcase_add_test(tc, test_ks_pvalue_reference);
+  tcase_add_test(tc, test_ks_pvalue_large_n);
   tcase_add_test(tc, test_kolmogorov_limit);
   tcase_add_test(tc, test_ks_closed_forms);
   tcase_add_test(tc, test_ks2_reference);

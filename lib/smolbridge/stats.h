@@ -165,12 +165,13 @@ int sb_ks_test(double *x, size_t n, sb_cdf_fn cdf, void *params,
  *     <= 8e-15);
  *   - otherwise the Pelz-Good 1976 expansion through n^-3/2: absolute
  *     error <= 0.08/n^2 (measured: 0.066/n^2 worst, near sqrt(n) d = 0.55);
- *   - for small p, twice the one-sided tail P+ (n <= 1e6), neglecting the
+ *   - for small p, twice the one-sided tail P+ (its sum for n <= 1e6, the
+ *     sum's integral beyond: relative error <= 1e-13), neglecting the
  *     probability of crossing both bands (bounded by P+^2/2, verified on
  *     the reference cases), whenever that bound is the smaller error.
  *  _e: res->err bounds |res->val - exact| (checked against 60-digit
  *  Durbin values in the tests).  Cost: <= 1 ms except the one-sided sum,
- *  O(n).  SB_EINVAL for n = 0 or NaN d. */
+ *  O(n) for n <= 1e6.  SB_EINVAL for n = 0 or NaN d. */
 double sb_ks_pvalue(size_t n, double d);
 int sb_ks_pvalue_e(size_t n, double d, sb_result *res);
 
