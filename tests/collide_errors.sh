@@ -300,6 +300,39 @@ check "particles overlap" 2 'particle overlaps the particle at' 's/^count = 10/p
 particle = 1.1e-6 1e-6 1e-6 0 0 0/'
 check "random too dense" 2 'random addition jams' 's/^L = .*/L = 2e-6/; s/^count = 10/phi = 0.45/; 4a\
 placement = random'
+# what the engine refuses when the run is built (sb_engine_set_walls,
+# sb_engine_fill_box): the lines of the keys that caused it
+check "wall on one face" 2 't.ini:13: [walls] x_lo = reflect with x_hi = periodic: a walled direction needs walls on both faces' '$a\
+[walls]\
+x_lo = reflect'
+check "walls with Lees-Edwards" 2 "t.ini:13: [walls] y_lo = absorb with [fluid] type = shear ($dir/t.ini:16): its Lees-Edwards sliding boundaries need x and y periodic" '$a\
+[walls]\
+y_lo = absorb\
+y_hi = absorb\
+[fluid]\
+type = shear\
+G = 10'
+check "walls with Lees-Edwards off" 0 '' '$a\
+[walls]\
+y_lo = absorb\
+y_hi = absorb\
+[fluid]\
+type = shear\
+G = 10\
+lees_edwards = no'
+check "region outside the box" 2 't.ini:12: [species a] region: z0 = 0, z1 = 2e-05 m; valid: 0 <= z0 < z1 <= 1e-05 (the box)' '$a\
+region = 0 1e-5 0 1e-5 0 2e-5'
+check "region outside the box, uniform placement" 2 't.ini:13: [species a] region: x0 = 3e-06, x1 = 2e-06 m; valid: 0 <= x0 < x1 <= 1e-05 (the box)' '4a\
+placement = uniform
+$a\
+region = 3e-6 2e-6 0 1e-5 0 1e-5'
+check "region between walls" 2 "t.ini:12: [species a] region: z0 = 0, z1 = 1e-07 m leaves no room for centres between the z walls ($dir/t.ini:14)" '$a\
+region = 0 1e-5 0 1e-5 0 1e-7\
+[walls]\
+z_lo = reflect\
+z_hi = reflect'
+check "region too full" 2 't.ini:11: [species a] count: sb_engine_fill_box: no free position after 10000 tries (box too full) (the region is too full' 's/^L = .*/L = 2e-6/; s/^count = 10/count = 300/; $a\
+region = 0 2e-6 0 2e-6 0 4e-7'
 check "warm-up past the end" 2 'nothing to measure' 's/^steps = 10/t_end = 1e-6\
 warmup = 2e-6/'
 check "missing L" 2 '[run] L (or Lx, Ly, Lz) is required' '/^L = /d'
@@ -379,6 +412,17 @@ s/^radius = 1e-7/radius = 2e-7/'
 check "restart with another T" 2 "(its T differs" '4a\
 restart = '"$dir"'/nofh.ck
 s/^T = 300/T = 310/'
+# the Lees-Edwards boundaries of a checkpoint: the engine refuses walls
+# in x, named by their line
+"$sb" collide "$dir/base.ini" --set fluid.type=shear --set fluid.G=10 \
+  --set "run.checkpoint=$dir/shear.ck" --set "run.output=$dir/shear" \
+  > /dev/null 2>&1 || fail "a checkpoint of a sheared run could not be written"
+check "walls on restart with Lees-Edwards" 2 't.ini:14: [walls] x_lo = reflect, x_hi = reflect: sb_engine_set_walls: Lees-Edwards boundaries need x and y periodic' '4a\
+restart = '"$dir"'/shear.ck
+$a\
+[walls]\
+x_lo = reflect\
+x_hi = reflect'
 check "restart with two species" 2 "[run] restart: 2 [species] sections for the checkpoint's 1 species" '4a\
 restart = '"$dir"'/nofh.ck
 $a\

@@ -151,6 +151,48 @@ static int check_field(sbi_col_config *c)
   return 0;
 }
 
+/* Where the walls of direction k were given (its first face key). */
+static const char *wall_where(const sbi_col_config *c, int k)
+{
+  static const char *const faces[] = {"x_lo", "x_hi", "y_lo", "y_hi",
+                                      "z_lo", "z_hi"};
+  return sbi_col_given(c, "walls", faces[2 * k])
+             ? sbi_col_where(c, "walls", faces[2 * k])
+             : sbi_col_where(c, "walls", faces[2 * k + 1]);
+}
+
+/* [walls]: both faces of a walled direction walls, none in x or y with
+ * the Lees-Edwards boundaries (sb_engine_set_walls refuses both; here
+ * with the lines of the keys). */
+static int check_walls(sbi_col_config *c)
+{
+  static const char *const faces[] = {"x_lo", "x_hi", "y_lo", "y_hi",
+                                      "z_lo", "z_hi"};
+  for (int k = 0; k < c->dim; k++) {
+    const int lo = 2 * k, hi = 2 * k + 1;
+    const int plo = !strcmp(c->wall[lo], "periodic"),
+              phi = !strcmp(c->wall[hi], "periodic");
+    if (plo != phi) {
+      const int w = plo ? hi : lo, p = plo ? lo : hi;
+      return sbi_col_fail(c, "%s: [walls] %s = %s with %s = periodic: a "
+                          "walled direction needs walls on both faces; "
+                          "valid: %s = reflect, absorb or open",
+                          sbi_col_where(c, "walls", faces[w]), faces[w],
+                          c->wall[w], faces[p], faces[p]);
+    }
+    if (k < 2 && !plo && !strcmp(c->fluid, "shear") && c->lees) {
+      const int w = sbi_col_given(c, "walls", faces[lo]) ? lo : hi;
+      return sbi_col_fail(c, "%s: [walls] %s = %s with [fluid] type = shear "
+                          "(%s): its Lees-Edwards sliding boundaries need x "
+                          "and y periodic; put the walls in z, or give "
+                          "[fluid] lees_edwards = no",
+                          sbi_col_where(c, "walls", faces[w]), faces[w],
+                          c->wall[w], sbi_col_where(c, "fluid", "type"));
+    }
+  }
+  return 0;
+}
+
 int sbi_col_check(sbi_col_config *c)
 {
   if (c->nerr)
@@ -389,7 +431,7 @@ int sbi_col_check(sbi_col_config *c)
       return sbi_col_fail(c, "%s: [fluid] type = shear needs G (1/s)",
                           sbi_col_where(c, "fluid", "type"));
   }
-  if (check_field(c))
+  if (check_field(c) || check_walls(c))
     return -1;
   if (c->nU && c->nU != c->dim)
     return sbi_col_fail(c, "%s: [fluid] U: %d numbers for dim = %ld",
@@ -458,6 +500,25 @@ int sbi_col_check(sbi_col_config *c)
                                                                   "region"),
                           n, s->nregion, c->dim, 2 * c->dim,
                           c->dim == 3 ? " z0 z1" : "");
+    for (int k = 0; k < c->dim && s->nregion; k++) {
+      const double L[3] = {c->Lx, c->Ly, c->Lz}, r = s->radius;
+      const double lo = s->region[2 * k], hi = s->region[2 * k + 1];
+      const char *w = sbi_col_where(c, n, "region");
+      const char a = (char)('x' + k);
+      if (!(lo >= 0.0 && lo < hi && hi <= L[k]))
+        return sbi_col_fail(c, "%s: [%s] region: %c0 = %g, %c1 = %g m; "
+                            "valid: 0 <= %c0 < %c1 <= %g (the box)", w, n, a,
+                            lo, a, hi, a, a, L[k]);
+      /* between walls the centres stay a radius from the faces
+       * (collide_setup.c, region_of) */
+      if (strcmp(c->wall[2 * k], "periodic") &&
+          !(fmax(lo, r) < fmin(hi, L[k] - r)))
+        return sbi_col_fail(c, "%s: [%s] region: %c0 = %g, %c1 = %g m leaves "
+                            "no room for centres between the %c walls (%s): "
+                            "they are placed in [max(%c0, r), min(%c1, L%c - "
+                            "r)] with r = %g m, L%c = %g m", w, n, a, lo, a,
+                            hi, a, wall_where(c, k), a, a, a, r, a, L[k]);
+    }
     if (strcmp(s->profile, "uniform")) {
       int walled = 0;
       for (int k = 0; k < c->dim; k++)

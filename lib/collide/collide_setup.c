@@ -264,6 +264,8 @@ static int check_explicit(sbi_col_config *c)
  * velocities include the settling velocities. */
 static int setup_physics(sbi_col_config *c, sbi_col_run *r)
 {
+  static const char *const faces[] = {"x_lo", "x_hi", "y_lo", "y_hi",
+                                      "z_lo", "z_hi"};
   if (!strcmp(c->fluid, "shear") && c->lees &&
       sb_engine_set_lees_edwards(r->e, 1))
     return sbi_col_fail(c, "[fluid] lees_edwards: %s", sb_last_error());
@@ -294,8 +296,15 @@ static int setup_physics(sbi_col_config *c, sbi_col_run *r)
              : !strcmp(c->wall[2 * k + q], "open")   ? SB_WALL_OPEN
                                                      : SB_WALL_PERIODIC;
     if ((w[0] != SB_WALL_PERIODIC || w[1] != SB_WALL_PERIODIC) &&
-        sb_engine_set_walls(r->e, k, w[0], w[1]))
-      return sbi_col_fail(c, "[walls] %c: %s", "xyz"[k], sb_last_error());
+        sb_engine_set_walls(r->e, k, w[0], w[1])) {
+      /* sbi_col_check refuses what it can see; on restart the
+       * checkpoint's Lees-Edwards boundaries */
+      const char *f = faces[2 * k + !sbi_col_given(c, "walls", faces[2 * k])];
+      return sbi_col_fail(c, "%s: [walls] %s = %s, %s = %s: %s",
+                          sbi_col_where(c, "walls", f), faces[2 * k],
+                          c->wall[2 * k], faces[2 * k + 1],
+                          c->wall[2 * k + 1], sb_last_error());
+    }
   }
   if (sb_engine_set_wall_mode(r->e,
                               !strcmp(c->wall_detect, "ballistic")
@@ -308,8 +317,6 @@ static int setup_physics(sbi_col_config *c, sbi_col_run *r)
                                   : SB_DEPOSIT_REINSERT))
     return sbi_col_fail(c, "[walls]: %s", sb_last_error());
   /* open boundaries: one inflow per species that has one */
-  static const char *const faces[] = {"x_lo", "x_hi", "y_lo", "y_hi",
-                                      "z_lo", "z_hi"};
   for (int k = 0; k < c->nsp; k++) {
     const sbi_col_species *s = &c->sp[k];
     if (!s->inflow[0])
@@ -524,14 +531,27 @@ static int place(sbi_col_config *c, sbi_col_run *r, const sb_engine_species *q)
       region_of(c, s, lo, hi);
       if (sb_engine_fill_box(r->e, (size_t)k, (int)s->family,
                              (size_t)nplace[k], lo, hi,
-                             s->ndrift ? s->drift : NULL))
-        st = sbi_col_fail(c, "%s: [%s]: %s%s", s->where, s->name,
-                          sb_last_error(),
-                          sb_last_status() == SB_EMAXITER
-                              ? " (the box or region is too full for "
-                                "random placement: placement = lattice "
-                                "reaches higher volume fractions)"
-                              : "");
+                             s->ndrift ? s->drift : NULL)) {
+        /* the key that asked for it: too full, the number placed;
+         * otherwise the region (sbi_col_check refuses what it can see) */
+        const int full = sb_last_status() == SB_EMAXITER;
+        const char *key = !full && s->nregion                ? "region"
+                          : sbi_col_given(c, s->name, "phi") ? "phi"
+                                                             : "count";
+        st = sbi_col_fail(c, "%s: [%s] %s: %s%s",
+                          sbi_col_given(c, s->name, key)
+                              ? sbi_col_where(c, s->name, key)
+                              : s->where,
+                          s->name, key, sb_last_error(),
+                          !full ? ""
+                          : s->nregion
+                              ? " (the region is too full for random "
+                                "placement: a larger region or fewer "
+                                "particles)"
+                              : " (the box is too full for random "
+                                "placement: placement = lattice reaches "
+                                "higher volume fractions)");
+      }
     }
   }
   if (g && g != sb_engine_rng(r->e))
