@@ -169,6 +169,70 @@ G = 1'
 check "eta with count" 0 '[run] eta ignored' '4a\
 outcome = count\
 eta = 0.5'
+# the walls' detector and deposition without the faces they act on, the
+# fluid's density and viscosity without the forces that use them: warned
+# about; where they act, not
+quiet() {  # quiet WHAT SED: runs, and warns about nothing
+  n=$((n + 1))
+  sed "$2" "$dir/base.ini" > "$dir/t.ini"
+  msg=$("$sb" collide "$dir/t.ini" 2>&1 >/dev/null) || { fail "$1: exit $?: $msg"; return; }
+  case "$msg" in *warning*) fail "$1 warned: $msg" ;; esac
+}
+check "walls detect without walls" 0 't.ini:13: [walls] detect ignored: no absorbing or open face' '$a\
+[walls]\
+detect = ballistic'
+check "walls deposit between reflecting walls" 0 't.ini:15: [walls] deposit ignored: no absorbing face' '$a\
+[walls]\
+z_lo = reflect\
+z_hi = reflect\
+deposit = reinsert'
+check "walls detect between reflecting walls" 0 't.ini:15: [walls] detect ignored: no absorbing or open face' '$a\
+[walls]\
+z_lo = reflect\
+z_hi = reflect\
+detect = langevin'
+check "walls deposit with open faces" 0 't.ini:16: [walls] deposit ignored: no absorbing face' '$a\
+[walls]\
+z_lo = open\
+z_hi = open\
+detect = ballistic\
+deposit = remove'
+quiet "walls detect and deposit with absorbing faces" '$a\
+[walls]\
+z_lo = absorb\
+z_hi = reflect\
+detect = ballistic\
+deposit = reinsert'
+check "fluid rho without gravity" 0 't.ini:13: [fluid] rho ignored: no gravity ([fluid] g) and no nonlinear drag law' '$a\
+[fluid]\
+rho = 1000'
+check "fluid rho with zero gravity" 0 't.ini:14: [fluid] rho ignored: no gravity' '$a\
+[fluid]\
+g = 0 0 0\
+rho = 1000'
+quiet "fluid rho with gravity" '$a\
+[fluid]\
+g = 0 0 -9.81\
+rho = 1000'
+check "fluid mu without nonlinear drag" 0 't.ini:15: [fluid] mu ignored: no species with a nonlinear drag law' '$a\
+[fluid]\
+g = 0 0 -9.81\
+rho = 1000\
+mu = 1e-3'
+check "fluid mu beside the species mu" 0 't.ini:15: [fluid] mu ignored: every species with a nonlinear drag law gives its own mu' 's/^T = 300/B = 0\
+drag = schiller-naumann/; $a\
+[fluid]\
+rho = 1000\
+mu = 1e-3'
+quiet "fluid rho and mu with a nonlinear drag" 's/^mu = 1e-3/tau = 1e-7/; s/^T = 300/B = 0\
+drag = schiller-naumann/; $a\
+[fluid]\
+rho = 1000\
+mu = 1e-3'
+check "lees_edwards without shear" 0 't.ini:14: [fluid] lees_edwards ignored: only type = shear uses it' '$a\
+[fluid]\
+type = rest\
+lees_edwards = no'
 check "shear without G" 2 '[fluid] type = shear needs G' '$a\
 [fluid]\
 type = shear'
@@ -431,6 +495,11 @@ radius = 1e-7\
 density = 1000\
 mu = 1e-3\
 T = 300'
+check "restart: fluid properties" 0 "t.ini:14: [fluid] rho ignored: the fluid properties and drag laws come from the restart checkpoint" '4a\
+restart = '"$dir"'/nofh.ck
+$a\
+[fluid]\
+rho = 1000'
 check "restart: placement keys" 0 "[species a] count ignored: the particles come from the restart checkpoint" 's/^steps = 10/t_end = 2e-6/; 4a\
 restart = '"$dir"'/nofh.ck'
 "$sb" collide "$dir/base.ini" --set run.outcome=count \

@@ -193,6 +193,57 @@ static int check_walls(sbi_col_config *c)
   return 0;
 }
 
+/* Keys of the walls and of the fluid's forces that have no effect: the
+ * wall detector without a face it detects (absorbing or open: reflecting
+ * faces fold the end state, engine_wall.c), the deposition outcome
+ * without an absorbing face, the fluid density without gravity or a
+ * nonlinear drag law (it enters only the buoyancy and the particle
+ * Reynolds number, engine_force.c), the fluid viscosity without a
+ * nonlinear-drag species that lacks its own mu, the Lees-Edwards switch
+ * without the shear field.  On restart the checkpoint keeps the fluid
+ * properties and drag laws (collide_setup.c sets them only for a new
+ * run) and may hold walls the file does not name. */
+static void check_inert(sbi_col_config *c)
+{
+  if (strcmp(c->fluid, "shear"))
+    unused(c, "fluid", "lees_edwards", "only type = shear uses it");
+  if (c->restart[0]) {
+    const char *why = "the fluid properties and drag laws come from the "
+                      "restart checkpoint";
+    unused(c, "fluid", "rho", why);
+    unused(c, "fluid", "mu", why);
+    for (int k = 0; k < c->nsp; k++)
+      unused(c, c->sp[k].name, "drag", why);
+    return;
+  }
+  int detected = 0, absorb = 0;
+  for (int f = 0; f < 2 * c->dim; f++) {
+    detected |= !strcmp(c->wall[f], "absorb") || !strcmp(c->wall[f], "open");
+    absorb |= !strcmp(c->wall[f], "absorb");
+  }
+  if (!detected)
+    unused(c, "walls", "detect", "no absorbing or open face (it detects "
+           "the contacts with those)");
+  if (!absorb)
+    unused(c, "walls", "deposit", "no absorbing face");
+  int gravity = 0, nonlin = 0, nonlin_own_mu = 1;
+  for (int k = 0; k < c->ng && k < c->dim; k++)
+    gravity |= c->g[k] != 0.0;
+  for (int k = 0; k < c->nsp; k++)
+    if (strcmp(c->sp[k].drag, "stokes")) {
+      nonlin = 1;
+      nonlin_own_mu &= !isnan(c->sp[k].mu);
+    }
+  if (!gravity && !nonlin)
+    unused(c, "fluid", "rho", "no gravity ([fluid] g) and no nonlinear drag "
+           "law ([species] drag): the fluid density enters only the "
+           "buoyancy and the particle Reynolds number");
+  if (!nonlin || nonlin_own_mu)
+    unused(c, "fluid", "mu", nonlin ? "every species with a nonlinear drag "
+           "law gives its own mu" : "no species with a nonlinear drag law "
+           "([species] drag)");
+}
+
 int sbi_col_check(sbi_col_config *c)
 {
   if (c->nerr)
@@ -545,5 +596,6 @@ int sbi_col_check(sbi_col_config *c)
                             c->dim, c->dim == 3 ? "6 (x y z ux uy uz)"
                                                 : "4 (x y ux uy)");
   }
+  check_inert(c);
   return c->nerr ? -1 : 0;
 }

@@ -347,7 +347,7 @@ static int write_dense(const sbv_ctx *ctx, sbv_report *rep, int ci, int k,
   fprintf(f, "seed = %lu\nrng = mt19937\ndim = 2\nL = %.17g\ndt = %.17g\n"
           "warmup = %.17g\nsteps = %ld\nneigh = cells\ndetect = ballistic\n"
           "outcome = %s\n\n[walls]\nx_lo = open\nx_hi = open\ny_lo = open\n"
-          "y_hi = open\ndetect = ballistic\ndeposit = remove\n\n[observe]\n"
+          "y_hi = open\ndetect = ballistic\n\n[observe]\n"
           "batch_steps = %ld\nregion_every = 10\n",
           ctx->seed * 1000 + 950 + (unsigned long)(10 * ci + k), DJ_L, dt,
           t_warm, per * nbatch, c->collide ? "elastic" : "count", per);

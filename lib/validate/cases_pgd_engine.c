@@ -348,8 +348,8 @@ static int write_jets(const sbv_ctx *ctx, sbv_report *rep, const ejet_cfg *c,
   fprintf(f, "seed = %lu\nrng = mt19937\ndim = 2\nL = 1\ndt = %.17g\n"
           "t_end = %.17g\nstop_every = %.17g\ndetect = overlap\n"
           "outcome = count\n\n[walls]\nx_lo = open\nx_hi = open\n"
-          "y_lo = open\ny_hi = open\ndetect = ballistic\n"
-          "deposit = remove\n", ctx->seed * 1000 + 970 + stream, c->dt,
+          "y_lo = open\ny_hi = open\ndetect = ballistic\n",
+          ctx->seed * 1000 + 970 + stream, c->dt,
           c->t_end, c->t_end / NSER);
   if (c->U != 0.0)
     fprintf(f, "\n[fluid]\ntype = uniform\nU = %.17g %.17g\n", c->U, c->U);

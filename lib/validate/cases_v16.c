@@ -215,12 +215,20 @@ static int write_v16(const sbv_ctx *ctx, sbv_report *rep,
   if (s->G != 0.0)
     fprintf(f, "type = shear\nG = %.17g\nlees_edwards = %s\n", s->G,
             s->lees ? "yes" : "no");
-  if (s->g[0] != 0.0 || s->g[1] != 0.0 || s->g[2] != 0.0)
+  const int grav = s->g[0] != 0.0 || s->g[1] != 0.0 || s->g[2] != 0.0;
+  if (grav)
     fprintf(f, "g = %.17g %.17g %.17g\n", s->g[0], s->g[1], s->g[2]);
   /* one fluid for all species (the cases' species share it); none for
-   * the linear drag of given tau_p */
-  if (s->sp[0].mu > 0.0)
-    fprintf(f, "rho = %.17g\nmu = %.17g\n", s->sp[0].rho_f, s->sp[0].mu);
+   * the linear drag of given tau_p; its density where the buoyancy or a
+   * nonlinear drag uses it, its viscosity where a nonlinear drag does
+   * (collide warns about the others) */
+  int nonlin = 0;
+  for (size_t a = 0; a < s->nsp; a++)
+    nonlin |= s->sp[a].drag == SB_DRAG_SCHILLER_NAUMANN;
+  if (s->sp[0].mu > 0.0 && (grav || nonlin))
+    fprintf(f, "rho = %.17g\n", s->sp[0].rho_f);
+  if (s->sp[0].mu > 0.0 && nonlin)
+    fprintf(f, "mu = %.17g\n", s->sp[0].mu);
   for (size_t a = 0; a < s->nsp; a++) {
     const v16_species *q = &s->sp[a];
     double m = q->rho_p * 4.0 / 3.0 * PI * q->r * q->r * q->r;
