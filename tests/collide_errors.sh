@@ -229,6 +229,29 @@ drag = schiller-naumann/; $a\
 [fluid]\
 rho = 1000\
 mu = 1e-3'
+check "z walls in 2-D" 0 't.ini:14: [walls] z_lo ignored: dim = 2 (no z direction)' '4a\
+dim = 2
+$a\
+[walls]\
+z_lo = absorb\
+z_hi = absorb'
+grep -q deposits "$dir/out/series.csv" && fail "z walls in 2-D: deposit columns"
+check "g of 3 numbers in 2-D" 2 't.ini:15: [fluid] g: 3 numbers for dim = 2' '4a\
+dim = 2
+$a\
+[fluid]\
+rho = 1000\
+g = 0 0 -9.81'
+check "g of 2 numbers in 3-D" 2 't.ini:13: [fluid] g: 2 numbers for dim = 3' '$a\
+[fluid]\
+g = 0 -9.81'
+check "region without count" 0 't.ini:12: [species a] region ignored: no count or phi' 's/^count = 10/particle = 1e-6 1e-6 1e-6 0 0 0/; $a\
+region = 0 1e-5 0 1e-5 0 1e-5'
+check "drift without count" 0 't.ini:12: [species a] drift ignored: no count or phi' 's/^count = 10/particle = 1e-6 1e-6 1e-6 0 0 0/; $a\
+drift = 1 0 0'
+quiet "region and drift with count" '$a\
+region = 0 1e-5 0 1e-5 0 1e-5\
+drift = 1 0 0'
 check "lees_edwards without shear" 0 't.ini:14: [fluid] lees_edwards ignored: only type = shear uses it' '$a\
 [fluid]\
 type = rest\

@@ -163,11 +163,16 @@ static const char *wall_where(const sbi_col_config *c, int k)
 
 /* [walls]: both faces of a walled direction walls, none in x or y with
  * the Lees-Edwards boundaries (sb_engine_set_walls refuses both; here
- * with the lines of the keys). */
+ * with the lines of the keys); the z faces of a 2-D box do nothing. */
 static int check_walls(sbi_col_config *c)
 {
   static const char *const faces[] = {"x_lo", "x_hi", "y_lo", "y_hi",
                                       "z_lo", "z_hi"};
+  if (c->dim == 2 && !c->restart[0])
+    for (int f = 4; f < 6; f++) {
+      unused(c, "walls", faces[f], "dim = 2 (no z direction)");
+      strcpy(c->wall[f], "periodic");  /* nor deposit columns */
+    }
   for (int k = 0; k < c->dim; k++) {
     const int lo = 2 * k, hi = 2 * k + 1;
     const int plo = !strcmp(c->wall[lo], "periodic"),
@@ -487,6 +492,9 @@ int sbi_col_check(sbi_col_config *c)
   if (c->nU && c->nU != c->dim)
     return sbi_col_fail(c, "%s: [fluid] U: %d numbers for dim = %ld",
                         sbi_col_where(c, "fluid", "U"), c->nU, c->dim);
+  if (c->ng && c->ng != c->dim)  /* the engine reads dim of them */
+    return sbi_col_fail(c, "%s: [fluid] g: %d numbers for dim = %ld",
+                        sbi_col_where(c, "fluid", "g"), c->ng, c->dim);
   if (strcmp(c->placement, "uniform"))
     unused(c, run, "placement_seed", "only placement = uniform uses it");
   /* species */
@@ -585,6 +593,13 @@ int sbi_col_check(sbi_col_config *c)
                             "between two walls", sbi_col_where(c, n,
                                                                "profile"),
                             n, s->profile);
+    }
+    if (s->count < 0 && isnan(s->phi)) {  /* placed by particle lines or
+                                              an inflow only */
+      unused(c, n, "region", "no count or phi (it bounds the particles "
+             "they place)");
+      unused(c, n, "drift", "no count or phi (it is added to the "
+             "velocities of the particles they place)");
     }
     if (s->ndrift && s->ndrift != c->dim)
       return sbi_col_fail(c, "%s: [%s] drift: %d numbers for dim = %ld",
