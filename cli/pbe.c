@@ -48,7 +48,8 @@ static void usage(FILE *out)
 "Defaults: K = 1, water at 20 C (T 293.15, mu 1.002e-3, rho_f 998.2,\n"
 "nu 1.004e-6), rho_p 1000, lambda 0, g 9.80665, G 1, eps 1e-4, u2 1,\n"
 "b2 1e-12.\n"
-"Physical kernels take volumes in m^3 (radius (3v/4pi)^(1/3)).\n"
+"Physical kernels take volumes in m^3 (radius (3v/4pi)^(1/3)).  A\n"
+"--param the kernel does not use is ignored with a warning.\n"
 "\n"
 "Options:\n"
 "  --v1 V1       monomer volume / smallest pivot (default 1)\n"
@@ -71,6 +72,39 @@ static void usage(FILE *out)
 "\n"
 "Example: smolbridge pbe --kernel constant --param K=1 --n0 1 --init mono\n"
 "           --method discrete --sizes 200 --times 0.1,1,10 --out c.csv\n");
+}
+
+/* The --param keys each kernel reads (sb_kernel_spec_fn; the others are
+ * warned about, as --ratio and --v0 where they do not apply). */
+static const char *const kernel_keys[SB_KERNEL_NTYPES] = {
+    [SB_KERNEL_CONSTANT] = "K",
+    [SB_KERNEL_ADDITIVE] = "K",
+    [SB_KERNEL_MULTIPLICATIVE] = "K",
+    [SB_KERNEL_BROWNIAN_CO] = "T, mu",
+    [SB_KERNEL_BROWNIAN_FM] = "T, rho_p",
+    [SB_KERNEL_BROWNIAN_TR] = "T, mu, rho_p, lambda",
+    [SB_KERNEL_GRAVITY] = "rho_p, rho_f, mu, g",
+    [SB_KERNEL_SHEAR] = "G",
+    [SB_KERNEL_SAFFMAN_TURNER] = "eps, nu",
+    [SB_KERNEL_BROWNIAN_TURB] = "T, mu, eps, nu",
+    [SB_KERNEL_KINETIC] = "T, rho_p",
+    [SB_KERNEL_ABRAHAMSON] = "u2",
+    [SB_KERNEL_DIFFUSION] = "b2",
+};
+
+/* 1 if key is one of the comma-separated names of list. */
+static int listed(const char *list, const char *key)
+{
+  size_t n = strlen(key);
+  for (const char *p = list; *p;) {
+    size_t m = strcspn(p, ",");
+    if (m == n && !strncmp(p, key, n))
+      return 1;
+    p += m;
+    while (*p == ',' || *p == ' ')
+      p++;
+  }
+  return 0;
 }
 
 static int parse_num(const char *s, double *x)
@@ -268,6 +302,10 @@ int sbc_pbe_main(int argc, char **argv)
       BAD("--param %s: unknown parameter '%s'; valid: K, T, mu, rho_p, "
           "rho_f, lambda, g, G, eps, nu, u2, b2 (those of --kernel %s are "
           "listed by --help)", params[i], key, kname);
+    if (!listed(kernel_keys[type], key))
+      fprintf(stderr, "smolbridge pbe: warning: --param %s ignored: --kernel "
+              "%s has no %s (its parameters: %s)\n", params[i], kname, key,
+              kernel_keys[type]);
   }
   if (sb_kernel_spec_check(&spec))
     BAD("%s", sb_last_error());

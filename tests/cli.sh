@@ -226,6 +226,22 @@ for k in kinetic abrahamson; do
 done
 msg=$("$sb" pbe --kernel blah --n0 1 --times 1 --out "$out-k.csv" 2>&1)
 case "$msg" in *"valid: constant, additive"*) ;; *) fail "pbe kernel list: $msg" ;; esac
+# a --param the kernel has no use for is warned about, as --ratio and --v0
+# are where they do not apply; the run goes on
+msg=$("$sb" pbe -q --kernel constant --param T=300 --n0 1 --sizes 10 \
+        --times 0.1 --out "$out-k.csv" 2>&1) || fail "pbe --param T=300 with constant: $msg"
+case "$msg" in *"warning: --param T=300 ignored: --kernel constant has no T (its parameters: K)"*) ;;
+  *) fail "pbe --param T=300 with constant: $msg" ;; esac
+nw=$("$sb" pbe -q --kernel gravity --param K=1 --param T=300 --param mu=1e-3 \
+       --param rho_p=2000 --param rho_f=1000 --param lambda=0 --param g=9.8 \
+       --param G=1 --param eps=1e-4 --param nu=1e-6 --param u2=1 \
+       --param b2=1e-12 --n0 1e12 --v1 5.2e-19 --sizes 10 --times 1e-3 \
+       --out "$out-k.csv" 2>&1 | grep -c "ignored: --kernel gravity has no")
+[ "$nw" -eq 8 ] || fail "pbe gravity: $nw --param warnings, want 8 (all but rho_p, rho_f, mu, g)"
+msg=$("$sb" pbe -q --kernel brownian-co --param T=300 --param mu=1e-3 \
+        --n0 1e12 --v1 5.2e-19 --sizes 10 --times 1e-3 --out "$out-k.csv" 2>&1) \
+  || fail "pbe brownian-co: $msg"
+case "$msg" in *warning*) fail "pbe brownian-co with its own parameters warned: $msg" ;; esac
 rm -f "$out-d.csv" "$out-d-moments.csv" "$out-k.csv" "$out-k-moments.csv"
 
 # --- collide: an example configuration runs and writes its outputs; an
