@@ -2,6 +2,7 @@
  * write the size distribution and its moments as CSV. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
+#include <float.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
@@ -53,7 +54,9 @@ static void usage(FILE *out)
 "\n"
 "Options:\n"
 "  --v1 V1       monomer volume / smallest pivot (default 1)\n"
-"  --n0 N0       initial number concentration (required)\n"
+"  --n0 N0       initial number concentration (required; any N0 > 0 whose\n"
+"                rate N0 K(V1, V1) is a normal double: pbe solves for n/N0\n"
+"                with the kernel N0 K)\n"
 "  --init        mono (default) or exp; --v0 V0 mean volume (default\n"
 "                10 V1 discrete, 1e4 V1 sectional)\n"
 "  --method      discrete (sizes k V1, k = 1..K, plus a lumped tail) or\n"
@@ -107,6 +110,26 @@ static int listed(const char *list, const char *key)
   return 0;
 }
 
+/* The population balance is invariant under n -> n/c, K -> c K at the
+ * same times (each term is a kernel times two concentrations): pbe
+ * solves for n/n0 with the kernel n0 K and writes n0 times the result,
+ * so that CVODE sees concentrations of order 1 whatever the unit of n0
+ * (its default absolute tolerance, 1e-14 of the largest initial
+ * concentration, was below 1/DBL_MAX at --n0 1e-300: the first step
+ * failed).  The constant, additive and multiplicative kernels scale K
+ * itself and stay sb_kernel_spec_fn (whose FFT gain the library
+ * recognises); the others go through scaled_fn. */
+typedef struct {
+  sb_kernel_spec spec;
+  double c;
+} scaled_kernel;
+
+static double scaled_fn(double v_i, double v_j, const void *params)
+{
+  const scaled_kernel *s = params;
+  return s->c * sb_kernel_spec_fn(v_i, v_j, &s->spec);
+}
+
 static int parse_num(const char *s, double *x)
 {
   char *end;
@@ -120,7 +143,8 @@ typedef struct {
   int quiet;
   double t0;
   const sb_pbe *p;
-  double m1_0;        /* M1 of the initial state */
+  double n0;          /* the solved concentrations are n/n0 */
+  double m1_0;        /* M1 of the initial state (of n/n0) */
   double tail_warned; /* the tail's mass share at the last warning */
   char stop[400];     /* why the output stopped the solve */
 } out_ctx;
@@ -136,6 +160,7 @@ static int on_output(double t, const double *v, const double *n, size_t nb,
                      const double m[3], void *data)
 {
   out_ctx *o = data;
+  const double c = o->n0;
   double tn, tm;
   sb_pbe_tail(o->p, &tn, &tm);
   /* A negative concentration means the model broke down: past gelation
@@ -148,15 +173,16 @@ static int on_output(double t, const double *v, const double *n, size_t nb,
              "negative number concentration (min %g, M0 = %g): the "
              "population balance broke down (gelation: a kernel growing "
              "faster than linearly in volume makes an infinite cluster in "
-             "finite time); outputs stop before t = %g", t, nmin, m[0], t);
+             "finite time); outputs stop before t = %g", t, c * nmin,
+             c * m[0], t);
     return 1;
   }
   for (size_t k = 0; k < nb; k++)
-    fprintf(o->dist, "%.10g,%zu,%.17g,%.17g\n", t, k + 1, v[k], n[k]);
+    fprintf(o->dist, "%.10g,%zu,%.17g,%.17g\n", t, k + 1, v[k], c * n[k]);
   if (tn > 0)  /* the lumped tail: sizes above K, at their mean volume */
-    fprintf(o->dist, "%.10g,%zu,%.17g,%.17g\n", t, nb + 1, tm / tn, tn);
-  fprintf(o->mom, "%.10g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t, m[0], m[1],
-          m[2], tn, tm);
+    fprintf(o->dist, "%.10g,%zu,%.17g,%.17g\n", t, nb + 1, tm / tn, c * tn);
+  fprintf(o->mom, "%.10g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t, c * m[0],
+          c * m[1], c * m[2], c * tn, c * tm);
   /* warn when the tail first holds 1e-6 of the mass, and again each
    * time its share has grown tenfold */
   if (o->m1_0 > 0 && tm > 1e-6 * o->m1_0 &&
@@ -165,14 +191,14 @@ static int on_output(double t, const double *v, const double *n, size_t nb,
             "mass (number %g, mean volume %g) is in the lumped tail above "
             "the largest size (%g): its sizes are not resolved and M2 is "
             "a lower bound; the tail is the row k = %zu of the output; "
-            "raise --sizes\n", t, 100.0 * tm / o->m1_0, tn, tm / tn,
+            "raise --sizes\n", t, 100.0 * tm / o->m1_0, c * tn, tm / tn,
             v[nb - 1], nb + 1);
     o->tail_warned = tm / o->m1_0;
   }
   if (!o->quiet)
     fprintf(stderr, "smolbridge pbe: t = %g done (%.2f s): M0 = %.6g, "
-                    "M1 = %.10g, M2 = %.6g\n", t, now() - o->t0, m[0], m[1],
-            m[2]);
+                    "M1 = %.10g, M2 = %.6g\n", t, now() - o->t0, c * m[0],
+            c * m[1], c * m[2]);
   return 0;
 }
 
@@ -309,6 +335,28 @@ int sbc_pbe_main(int argc, char **argv)
   }
   if (sb_kernel_spec_check(&spec))
     BAD("%s", sb_last_error());
+  scaled_kernel sk = {spec, n0};
+  const int scale_K = type == SB_KERNEL_CONSTANT ||
+                      type == SB_KERNEL_ADDITIVE ||
+                      type == SB_KERNEL_MULTIPLICATIVE;
+  if (scale_K)
+    sk.spec.K *= n0;
+  {
+    /* the rate n0 K(V1, V1) of the scaled system, a normal double */
+    const double rate = scale_K ? sb_kernel_spec_fn(v1, v1, &sk.spec)
+                                : scaled_fn(v1, v1, &sk);
+    if (!isfinite(rate) || (rate != 0.0 && fabs(rate) < DBL_MIN))
+      BAD("--n0 %g: the collision rate n0 K(V1, V1) = %g per unit time is "
+          "out of the range of doubles; change the units of time or "
+          "volume", n0, n0 * sb_kernel_spec_fn(v1, v1, &spec));
+  }
+  if (cfg.atol > 0) {  /* on n: on n/n0 it is atol/n0 */
+    const double a = cfg.atol / n0;
+    if (!isfinite(a) || a < DBL_MIN)
+      BAD("--atol %g with --n0 %g: atol/n0 is out of the range of doubles",
+          cfg.atol, n0);
+    cfg.atol = a;
+  }
 
   /* times */
   size_t nt = 0, cap = 16;
@@ -345,8 +393,8 @@ int sbc_pbe_main(int argc, char **argv)
     BAD("--times: give one or more output times");
   }
 
-  cfg.kernel = sb_kernel_spec_fn;
-  cfg.kparams = &spec;
+  cfg.kernel = scale_K ? sb_kernel_spec_fn : scaled_fn;
+  cfg.kparams = scale_K ? (const void *)&sk.spec : (const void *)&sk;
   cfg.v1 = v1;
   if (cfg.method == SB_PBE_SECTIONAL)
     cfg.ratio = isnan(ratio) ? pow(10.0, 12.0 / (double)(cfg.nsizes - 1))
@@ -360,12 +408,13 @@ int sbc_pbe_main(int argc, char **argv)
   out_ctx oc;
   memset(&oc, 0, sizeof oc);
   oc.quiet = quiet;
+  oc.n0 = n0;
   oc.t0 = now();
   if (!p) {
     fprintf(stderr, "smolbridge pbe: %s\n", sb_last_error());
     goto done;
   }
-  int st = exp_init ? sb_pbe_init_exp(p, n0, v0) : sb_pbe_init_mono(p, n0);
+  int st = exp_init ? sb_pbe_init_exp(p, 1.0, v0) : sb_pbe_init_mono(p, 1.0);
   if (st) {
     fprintf(stderr, "smolbridge pbe: %s\n", sb_last_error());
     goto done;
@@ -392,8 +441,8 @@ int sbc_pbe_main(int argc, char **argv)
     /* multiplicative kernel: M2 = M2(0)/(1 - K M2(0) t) for any start,
      * so gelation is at t = 1/(K M2(0)); past it the model has no
      * mass-conserving solution (post-gel models are not implemented) */
-    if (type == SB_KERNEL_MULTIPLICATIVE && spec.K > 0) {
-      double tgel = 1.0 / (spec.K * m0[2]);
+    if (type == SB_KERNEL_MULTIPLICATIVE && sk.spec.K > 0) {
+      double tgel = 1.0 / (sk.spec.K * m0[2]);  /* (n0 K) (M2(0)/n0) */
       if (cfg.method == SB_PBE_SECTIONAL && times[nt - 1] > 0.5 * tgel)
         fprintf(stderr, "smolbridge pbe: warning: the sectional method's "
                 "fixed pivots overestimate M2 near gelation (t_gel = %g): "

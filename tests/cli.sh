@@ -163,6 +163,23 @@ expect_rc 2 "$sb" pbe --kernel constant --n0 -1 --sizes 10 --times 1 --out "$out
 expect_rc 2 "$sb" pbe --kernel constant --n0 1 --v1 0 --sizes 10 --times 1 --out "$out-p.csv"
 expect_rc 2 "$sb" pbe --kernel constant --n0 1 --rtol 2 --sizes 10 --times 1 --out "$out-p.csv"
 expect_rc 2 "$sb" pbe --kernel constant --n0 1 --gain fast --sizes 10 --times 1 --out "$out-p.csv"
+# the solution depends on N0 only through the rate K N0: a tiny N0 with a
+# large K solves (the concentrations CVODE sees are n/N0), M0 = N0/(1 +
+# K N0 t/2); a rate out of the range of doubles is an input error
+if "$sb" pbe -q --kernel constant --param K=2e300 --n0 1e-300 --sizes 30 \
+     --times 0.5,1 --out "$out-p.csv" 2>/dev/null; then
+  m0=$(awk -F, '$1 == 1 {print $2}' "$out-p-moments.csv")
+  want=$(awk 'BEGIN { printf "%.17g", 1e-300 / (1 + 2e300 * 1e-300 / 2) }')
+  relclose "$m0" "$want" 1e-8 || fail "pbe --n0 1e-300: M0(t=1) = $m0, want $want"
+else
+  fail "pbe --n0 1e-300 --param K=2e300 failed"
+fi
+msg=$("$sb" pbe -q --kernel constant --param K=1e10 --n0 1e300 --sizes 10 \
+        --times 1 --out "$out-p.csv" 2>&1)
+rc=$?
+[ $rc -eq 2 ] || fail "pbe --n0 1e300 --param K=1e10: exit $rc, want 2: $msg"
+case "$msg" in *"--n0 1e+300: the collision rate n0 K(V1, V1) = inf"*) ;;
+  *) fail "pbe --n0 1e300 message: $msg" ;; esac
 # the tail warning again when its share has grown tenfold (additive
 # kernel, 60 sizes: 0.125% at t = 1, all but 0.03% at t = 10)
 nw=$("$sb" pbe -q --kernel additive --n0 1 --sizes 60 --times 0.1,1,10 \
