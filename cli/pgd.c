@@ -18,6 +18,7 @@
 #include <smolbridge/pgd.h>
 
 #include "cli.h"
+#include "ini_once.h"
 #include "par.h"
 #include "pgd_par.h"
 
@@ -38,6 +39,7 @@ typedef struct {
   int nin;
   char err[512];
   char err_where[256];  /* "FILE:LINE" of the first error */
+  sbc_ini_keys once;    /* the keys and headers read */
 } config;
 
 static int fail(config *c, const char *fmt, ...)
@@ -321,16 +323,34 @@ static int handler(void *user, const char *sec, const char *key,
               "boundary, inflow NAME, particles, decomposition)", sec);
 }
 
-/* sb_ini_key_fn: the handler, with the place of the first error. */
+/* sb_ini_key_fn: the handler, with the place of the first error; a key
+ * given twice is an error (no value is replaced silently). */
 static int key_fn(void *user, const char *sec, const char *key,
                   const char *v, const char *where)
 {
   config *c = user;
   const int had = c->err[0] != 0;
-  if (handler(c, sec, key, v))
+  char msg[1400];
+  if (sbc_ini_once(&c->once, sec, key, where, msg, sizeof msg))
+    fail(c, "%s", msg);
+  else if (handler(c, sec, key, v))
     return 0;
   if (!had)
     snprintf(c->err_where, sizeof c->err_where, "%s", where);
+  return 1;
+}
+
+/* sb_ini_section_fn: a section header repeated is an error (its keys
+ * would merge with the first one's). */
+static int section_fn(void *user, const char *sec, const char *where)
+{
+  config *c = user;
+  char msg[1400];
+  if (!sbc_ini_once(&c->once, sec, NULL, where, msg, sizeof msg))
+    return 0;
+  if (!c->err[0])
+    snprintf(c->err_where, sizeof c->err_where, "%s", where);
+  fail(c, "%s", msg);
   return 1;
 }
 
@@ -461,7 +481,19 @@ int sbc_pgd_main(int argc, char **argv)
   c.bx = c.by = 3;
   c.p.nx = 0;
   char err[1024] = "";
-  int rst = sb_ini_read(file, NULL, key_fn, NULL, &c, err, sizeof err);
+  int rst = sb_ini_read(file, NULL, key_fn, section_fn, &c, err,
+                        sizeof err);
+  /* L sets both edges: with Lx or Ly one of the two would be lost */
+  const char *wl = sbc_ini_where(&c.once, "run", "L");
+  for (int d = 0; d < 2 && wl && !c.err[0]; d++) {
+    const char *w = sbc_ini_where(&c.once, "run", d ? "Ly" : "Lx");
+    if (w) {
+      snprintf(c.err_where, sizeof c.err_where, "%s", w);
+      fail(&c, "[run] %s conflicts with L (at %s): L sets both edges; give "
+           "L, or Lx and Ly", d ? "Ly" : "Lx", wl);
+    }
+  }
+  sbc_ini_once_free(&c.once);
   if (c.err[0] || (rst && !err[0])) {
     fprintf(stderr, "pgd: %s: %s\n", c.err_where, c.err[0] ? c.err :
             "invalid line");

@@ -22,6 +22,7 @@
 #include <smolbridge/spray.h>
 
 #include "cli.h"
+#include "ini_once.h"
 
 #define MAXPOP 16
 
@@ -53,6 +54,7 @@ typedef struct {
   char err[512];
   int nerr;
   char err_where[600];  /* FILE:LINE of the first error */
+  sbc_ini_keys once;    /* the keys and headers read */
 } config;
 
 static void cfg_default(config *c)
@@ -397,16 +399,34 @@ static int handler(void *user, const char *sec, const char *key,
               "reitz, check, droplets NAME)", sec);
 }
 
-/* sb_ini_key_fn: the handler, with the place of the first error. */
+/* sb_ini_key_fn: the handler, with the place of the first error; a key
+ * given twice is an error (no value is replaced silently). */
 static int key_fn(void *user, const char *sec, const char *key,
                   const char *v, const char *where)
 {
   config *c = user;
   const int had = c->nerr;
-  if (handler(c, sec, key, v))
+  char msg[1400];
+  if (sbc_ini_once(&c->once, sec, key, where, msg, sizeof msg))
+    fail(c, "%s", msg);
+  else if (handler(c, sec, key, v))
     return 0;
   if (!had)
     snprintf(c->err_where, sizeof c->err_where, "%s", where);
+  return 1;
+}
+
+/* sb_ini_section_fn: a section header repeated is an error (its keys
+ * would merge with the first one's). */
+static int section_fn(void *user, const char *sec, const char *where)
+{
+  config *c = user;
+  char msg[1400];
+  if (!sbc_ini_once(&c->once, sec, NULL, where, msg, sizeof msg))
+    return 0;
+  if (!c->nerr)
+    snprintf(c->err_where, sizeof c->err_where, "%s", where);
+  fail(c, "%s", msg);
   return 1;
 }
 
@@ -598,7 +618,9 @@ int sbc_spray_main(int argc, char **argv)
   cfg_default(&c);
   const char *file = argv[1];
   char err[1024];
-  int rst = sb_ini_read(file, NULL, key_fn, NULL, &c, err, sizeof err);
+  int rst = sb_ini_read(file, NULL, key_fn, section_fn, &c, err,
+                        sizeof err);
+  sbc_ini_once_free(&c.once);
   if (c.nerr) {
     fprintf(stderr, "spray: %s: %s\n", c.err_where, c.err);
     return 2;

@@ -102,8 +102,10 @@ pgd_all() {
   mkdir -p "$out/$d"
   for r in $PGD_RUNS; do
     name=${r%%:*}; rest=${r#*:}; kinds=${rest%%:*}; scheme=${rest#*:}
-    { cat "$out/jets.ini"; printf 'kinds = %s\n' "$kinds"
-      printf '[run]\nscheme = %s\noutput = pgd_%s\n' "$scheme" "$name"
+    # scheme and output in the one [run] section, kinds in the last one
+    { sed "s/^\[run\]\$/[run]\\
+scheme = $scheme\\
+output = pgd_$name/" "$out/jets.ini"; printf 'kinds = %s\n' "$kinds"
     } > "$out/$d/pgd_$name.ini"
     (cd "$out/$d" && "$@" "$sb" pgd "pgd_$name.ini" > "pgd_$name.out" \
        2> "pgd_$name.err"; echo $? > "pgd_$name.rc")

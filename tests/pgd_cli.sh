@@ -126,6 +126,16 @@ bad "[riemann] and [initial]: give one initial state" \
   "[run]" "nx = 10" "t_end = 0.1" "[riemann]" "rho_l = 1" "[initial]" "rho = 1"
 bad "[run] output_every = 1e-09: 1e+08 snapshots up to t_end = 0.1" \
   "[run]" "nx = 10" "t_end = 0.1" "output_every = 1e-9" "[riemann]" "rho_l = 1"
+# nothing replaced or merged silently: a key given twice, a section
+# repeated, L with Lx or Ly (as collide)
+bad "bad.ini:5: [riemann] rho_l given twice (first at $out/bad.ini:4); give each key once" \
+  "[run]" "nx = 10" "[riemann]" "rho_l = 1" "rho_l = 2" "[run]" "t_end = 0.1"
+bad "bad.ini:5: section [run] repeated (first at $out/bad.ini:1); put its keys in one section" \
+  "[run]" "nx = 10" "[riemann]" "rho_l = 1" "[run]" "t_end = 0.1"
+bad "bad.ini:6: [inflow a] rho given twice (first at $out/bad.ini:5)" \
+  "[run]" "dim = 2" "[inflow a]" "side = west" "rho = 1" "rho = 2"
+bad "bad.ini:5: [run] Lx conflicts with L (at $out/bad.ini:4): L sets both edges" \
+  "[run]" "dim = 2" "nx = 10" "L = 2" "Lx = 1" "t_end = 0.1" "[initial]" "rho = 1"
 # the checks of <smolbridge/ini.h> (sb_ini_read), as collide and spray
 bad "bad.ini:3: the line starts with a blank" "[run]" "nx = 10" "  t_end = 1"
 bad "bad.ini:2: not 'key = value', '[section]' or a comment" "[run]" "nx 10"

@@ -45,6 +45,18 @@ for c in "steps|[run]\nvolume = 1\ndt = 1\nsteps = 2\nt_end = 3\n$pop|t_end and 
   [ $rc -eq 2 ] || fail "$name: exit $rc, want 2"
   case "$msg" in *"$want"*) ;; *) fail "$name message: $msg" ;; esac
 done
+# nothing replaced or merged silently: a key given twice, a section
+# repeated (as collide)
+for c in "key twice|[run]\nvolume = 1\ndt = 1\nsteps = 2\ndt = 2\n$pop|twice.ini:5: [run] dt given twice (first at $out/twice.ini:3); give each key once" \
+         "droplets key twice|[run]\nvolume = 1\ndt = 1\nsteps = 2\n${pop}radius = 2e-5\n|twice.ini:8: [droplets a] radius given twice (first at $out/twice.ini:7)" \
+         "section twice|[run]\nvolume = 1\ndt = 1\nsteps = 2\n${pop}[gas]\nrho_g = 1\n[droplets a]\nT = 300\n|twice.ini:10: section [droplets a] repeated (first at $out/twice.ini:5); put its keys in one section"; do
+  name=${c%%|*}; rest=${c#*|}; ini=${rest%|*}; want=${rest##*|}
+  printf "$ini" > "$out/twice.ini"
+  msg=$("$sb" spray "$out/twice.ini" 2>&1 >/dev/null)
+  rc=$?
+  [ $rc -eq 2 ] || fail "$name: exit $rc, want 2"
+  case "$msg" in *"$want"*) ;; *) fail "$name message: $msg" ;; esac
+done
 printf '[reitz]\nblob = 2\n' > "$out/badblob.ini"
 msg=$("$sb" spray "$out/badblob.ini" 2>&1 >/dev/null)
 case "$msg" in *badblob.ini:2*blob*) ;; *) fail "bad blob message: $msg" ;; esac

@@ -1,0 +1,78 @@
+/* ini_once.c — keys and section headers given once (ini_once.h). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ini_once.h"
+
+static char *dup_str(const char *s)
+{
+  size_t n = strlen(s) + 1;
+  char *d = malloc(n);
+  if (d)
+    memcpy(d, s, n);
+  return d;
+}
+
+int sbc_ini_once(sbc_ini_keys *o, const char *sec, const char *key,
+                 const char *where, char *msg, size_t len)
+{
+  for (size_t i = 0; i < o->n; i++) {
+    const struct sbc_ini_seen *e = &o->e[i];
+    if (strcmp(e->sec, sec) || (key == NULL) != (e->key == NULL) ||
+        (key && strcmp(e->key, key)))
+      continue;
+    if (key)
+      snprintf(msg, len, "[%s] %s given twice (first at %s); give each key "
+               "once", sec, key, e->where);
+    else
+      snprintf(msg, len, "section [%s] repeated (first at %s); put its keys "
+               "in one section", sec, e->where);
+    return 1;
+  }
+  if (o->n == o->cap) {
+    size_t cap = o->cap ? 2 * o->cap : 64;
+    struct sbc_ini_seen *e = realloc(o->e, cap * sizeof *e);
+    if (!e) {
+      snprintf(msg, len, "out of memory");
+      return -1;
+    }
+    o->e = e;
+    o->cap = cap;
+  }
+  struct sbc_ini_seen *e = &o->e[o->n];
+  e->sec = dup_str(sec);
+  e->key = key ? dup_str(key) : NULL;
+  e->where = dup_str(where);
+  if (!e->sec || (key && !e->key) || !e->where) {
+    free(e->sec);
+    free(e->key);
+    free(e->where);
+    snprintf(msg, len, "out of memory");
+    return -1;
+  }
+  o->n++;
+  return 0;
+}
+
+const char *sbc_ini_where(const sbc_ini_keys *o, const char *sec,
+                          const char *key)
+{
+  for (size_t i = 0; i < o->n; i++)
+    if (o->e[i].key && !strcmp(o->e[i].sec, sec) &&
+        !strcmp(o->e[i].key, key))
+      return o->e[i].where;
+  return NULL;
+}
+
+void sbc_ini_once_free(sbc_ini_keys *o)
+{
+  for (size_t i = 0; i < o->n; i++) {
+    free(o->e[i].sec);
+    free(o->e[i].key);
+    free(o->e[i].where);
+  }
+  free(o->e);
+  o->e = NULL;
+  o->n = o->cap = 0;
+}

@@ -1,0 +1,30 @@
+/* ini_once.h — each key once: the INI readers of `smolbridge spray` and
+ * `smolbridge pgd` refuse a key given twice in a section and a section
+ * header repeated, as `smolbridge collide` does (lib/collide/
+ * collide_ini.c), instead of taking the last value or merging the two
+ * sections silently. */
+#ifndef SB_CLI_INI_ONCE_H
+#define SB_CLI_INI_ONCE_H
+
+#include <stddef.h>
+
+typedef struct {
+  struct sbc_ini_seen {
+    char *sec, *key, *where;  /* key NULL: a section header */
+  } *e;
+  size_t n, cap;
+} sbc_ini_keys;
+
+/* Record key (NULL: the header of section sec) read at where
+ * ("FILE:LINE").  0 the first time; 1 if it was seen before, with msg
+ * (len bytes) "[sec] key given twice (first at FILE:LINE); give each key
+ * once" or "section [sec] repeated (first at FILE:LINE); put its keys in
+ * one section"; -1 out of memory (msg says so). */
+int sbc_ini_once(sbc_ini_keys *o, const char *sec, const char *key,
+                 const char *where, char *msg, size_t len);
+/* Where key of section sec was read, or NULL. */
+const char *sbc_ini_where(const sbc_ini_keys *o, const char *sec,
+                          const char *key);
+void sbc_ini_once_free(sbc_ini_keys *o);
+
+#endif /* SB_CLI_INI_ONCE_H */
