@@ -43,7 +43,8 @@ typedef struct {
   sb_spray_gas gas;
   double gvec[3];
   sb_spray_liquid liq;
-  int tab, reitz;
+  int tab, reitz;          /* on: the section is present, and */
+  int tab_off, reitz_off;  /* not enable = 0 (wherever it stands) */
   sb_spray_tab_params tp;
   sb_spray_reitz_params rp;
   char tab_children[16], reitz_children[16];
@@ -247,11 +248,12 @@ static int h_liquid(config *c, const char *s, const char *k, const char *v)
 static int h_tab(config *c, const char *s, const char *k, const char *v)
 {
   long l;
-  c->tab = 1;
+  c->tab = !c->tab_off;
   if (!strcmp(k, "enable")) {
     if (!integer(c, s, k, v, &l, 0, 1))
       return 0;
     c->tab = (int)l;
+    c->tab_off = !l;
     return 1;
   }
   if (!strcmp(k, "Cd"))
@@ -272,11 +274,12 @@ static int h_tab(config *c, const char *s, const char *k, const char *v)
 static int h_reitz(config *c, const char *s, const char *k, const char *v)
 {
   long l;
-  c->reitz = 1;
+  c->reitz = !c->reitz_off;
   if (!strcmp(k, "enable")) {
     if (!integer(c, s, k, v, &l, 0, 1))
       return 0;
     c->reitz = (int)l;
+    c->reitz_off = !l;
     return 1;
   }
   if (!strcmp(k, "B0"))

@@ -88,6 +88,16 @@ if "$sb" spray "$out/brk.ini" 2>/dev/null; then
 else
   fail "spray $ex/spray_breakup.ini failed"
 fi
+# [reitz] enable = 0 turns Reitz off wherever it stands in the section
+# (the keys after it used to turn it on again)
+sed "s|^output = .*|output = $out/brk0|; s|^\[reitz\]|[reitz]\nenable = 0|" \
+  "$ex/spray_breakup.ini" > "$out/brk0.ini"
+if "$sb" spray "$out/brk0.ini" 2>/dev/null; then
+  grep -q '"reitz_children": 0$' "$out/brk0/summary.json" \
+    || fail "[reitz] enable = 0 first: Reitz ran"
+else
+  fail "spray $out/brk0.ini failed"
+fi
 rm -rf "$out"
 [ "$fails" -eq 0 ] && echo "spray cli: all checks passed"
 exit $((fails > 0))
