@@ -1061,6 +1061,89 @@ START_TEST(test_misuse)
   sb_engine_firsthit_params_default(NULL);
   sb_field_kraichnan_eval(NULL, 0.0, 1, x1, u1);
   ck_assert_int_eq(sb_last_status(), SB_EINVAL);
+  /* 6. every public function of the engine headers that takes a pointer
+   * records SB_EINVAL for a NULL one (and returns its documented failure
+   * value); none returned without an error before */
+#define NULL_EINVAL(call)                                                  \
+  do {                                                                     \
+    sb_clear_error();                                                      \
+    (void)(call);                                                          \
+    ck_assert_msg(sb_last_status() == SB_EINVAL, "%s: status %d (\"%s\")", \
+                  #call, sb_last_status(), sb_last_error());               \
+  } while (0)
+  sb_engine_pair pp = {0, 1, {2, 0, 0}, {0, 0, 0}, 1.0, 1.0, 0.0};
+  gsl_rng *g = sb_engine_rng(e);
+  size_t nn = 7;
+  ck_assert_int_lt(sb_engine_pair_can_meet(NULL, NULL, 0.0, 0, 1), 0);
+  NULL_EINVAL(sb_engine_pair_can_meet(NULL, NULL, 0.0, 0, 1));
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "sb_engine_pair_can_meet"));
+  ck_assert_int_lt(sb_engine_pair_can_meet(e, NULL, 0.0, 0, 0), 0);
+  ck_assert_int_lt(sb_engine_pair_can_meet(e, NULL, 0.0, 0, 2), 0);
+  ck_assert_int_lt(sb_engine_pair_can_meet(e, NULL, NAN, 0, 1), 0);
+  ck_assert_int_ge(sb_engine_pair_can_meet(e, NULL, 0.0, 0, 1), 0);
+  NULL_EINVAL(sb_engine_params_default(NULL));
+  NULL_EINVAL(sb_engine_langevin_params_default(NULL));
+  NULL_EINVAL(sb_engine_bridge_params_default(NULL));
+  NULL_EINVAL(sb_agglo_params_default(NULL));
+  NULL_EINVAL(sb_engine_firsthit_params_default(NULL));
+  ck_assert_ptr_null(sb_engine_get_params(NULL));
+  NULL_EINVAL(sb_engine_get_params(NULL));
+  NULL_EINVAL(sb_engine_get_species(NULL, 0));
+  ck_assert(isnan(sb_engine_kinetic_energy(NULL, NULL)));
+  NULL_EINVAL(sb_engine_kinetic_energy(NULL, NULL));
+  ck_assert_uint_eq(sb_engine_count(NULL), 0);
+  NULL_EINVAL(sb_engine_count(NULL));
+  ck_assert(isnan(sb_engine_time(NULL)));
+  NULL_EINVAL(sb_engine_time(NULL));
+  NULL_EINVAL(sb_engine_positions(NULL));
+  NULL_EINVAL(sb_engine_velocities(NULL));
+  NULL_EINVAL(sb_engine_start_positions(NULL));
+  NULL_EINVAL(sb_engine_start_velocities(NULL));
+  NULL_EINVAL(sb_engine_radii(NULL));
+  NULL_EINVAL(sb_engine_masses(NULL));
+  NULL_EINVAL(sb_engine_species_of(NULL));
+  NULL_EINVAL(sb_engine_families(NULL));
+  NULL_EINVAL(sb_engine_ids(NULL));
+  ck_assert_ptr_null(sb_engine_rng(NULL));
+  NULL_EINVAL(sb_engine_rng(NULL));
+  NULL_EINVAL(sb_engine_reset_counters(NULL));
+  NULL_EINVAL(sb_engine_get_count_variance(NULL));
+  ck_assert_ptr_null(sb_engine_series(NULL, &nn));
+  ck_assert_uint_eq(nn, 0);
+  NULL_EINVAL(sb_engine_series(NULL, NULL));
+  NULL_EINVAL(sb_engine_check_overlaps(NULL, 0.0));
+  NULL_EINVAL(sb_engine_lees_edwards_offset(NULL));
+  NULL_EINVAL(sb_engine_deposits(NULL, 0));
+  NULL_EINVAL(sb_engine_periodic(NULL, 0));
+  NULL_EINVAL(sb_engine_ninflows(NULL));
+  NULL_EINVAL(sb_engine_inflow_injected(NULL, 0));
+  NULL_EINVAL(sb_engine_inflow_skipped(NULL, 0));
+  NULL_EINVAL(sb_engine_outflows(NULL, 0));
+  ck_assert_int_lt(sb_engine_detect_ballistic(NULL, &sfrac), 0);
+  NULL_EINVAL(sb_engine_detect_ballistic(&pp, NULL));
+  NULL_EINVAL(sb_engine_detect_overlap(NULL, &sfrac));
+  NULL_EINVAL(sb_engine_detect_md(NULL, &pp, g, NULL, &sfrac));
+  NULL_EINVAL(sb_engine_detect_md(e, NULL, g, NULL, &sfrac));
+  ck_assert_int_lt(sb_engine_detect_none(NULL, &pp, g, NULL, &sfrac), 0);
+  NULL_EINVAL(sb_engine_detect_none(NULL, &pp, g, NULL, &sfrac));
+  NULL_EINVAL(sb_engine_detect_langevin(NULL, &pp, g, NULL, &sfrac));
+  NULL_EINVAL(sb_engine_langevin_contact(e, &pp, NULL, &sfrac, NULL));
+  NULL_EINVAL(sb_engine_detect_bridge(e, &pp, g, NULL, &sfrac));
+  NULL_EINVAL(sb_engine_outcome_bridge(e, &pp, 0.5, NULL));
+  NULL_EINVAL(sb_engine_bridge_reset(NULL));
+  NULL_EINVAL(sb_engine_bridge_hits(NULL, NULL));
+  ck_assert(isnan(sb_engine_chord_vn(NULL, &pp, 0.5)));
+  NULL_EINVAL(sb_engine_chord_vn(e, NULL, 0.5));
+  NULL_EINVAL(sb_engine_firsthit_warmup(NULL));
+  NULL_EINVAL(sb_agglo_size_of_species(NULL, 0));
+  NULL_EINVAL(sb_agglo_reset_stats(NULL));
+  NULL_EINVAL(sb_agglo_series(NULL, NULL, NULL));
+  NULL_EINVAL(sb_field_ou_seen(NULL));
+  NULL_EINVAL(sb_field_kraichnan_modes(NULL));
+  ck_assert(isnan(sb_field_kraichnan_u2(NULL)));
+  NULL_EINVAL(sb_field_kraichnan_a11(NULL));
+  NULL_EINVAL(sb_field_kraichnan_flux_kernel(NULL, 1.0));
+#undef NULL_EINVAL
   sb_engine_free(e);
 }
 END_TEST

@@ -17,8 +17,10 @@
 
 void sb_engine_params_default(sb_engine_params *p)
 {
-  if (!p)
+  if (!p) {
+    sbi_error(SB_EINVAL, __func__, "params is NULL");
     return;
+  }
   memset(p, 0, sizeof *p);
   p->dim = 3;
   p->L[0] = p->L[1] = p->L[2] = 1e-4;
@@ -221,7 +223,11 @@ void sb_engine_free(sb_engine *e)
 
 const sb_engine_params *sb_engine_get_params(const sb_engine *e)
 {
-  return e ? &e->par : NULL;
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return NULL;
+  }
+  return &e->par;
 }
 
 /* ============================================================ species */
@@ -310,7 +316,12 @@ int sb_engine_add_species(sb_engine *e, const sb_engine_species *s,
 const sb_engine_species *sb_engine_get_species(const sb_engine *e,
                                                size_t idx)
 {
-  return (e && idx < e->nspec) ? &e->spec[idx] : NULL;
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return NULL;
+  }
+  /* past the last species: NULL without an error (loops stop on it) */
+  return idx < e->nspec ? &e->spec[idx] : NULL;
 }
 
 /* ============================================================ particles */
@@ -578,13 +589,18 @@ int sb_engine_fill_box(sb_engine *e, size_t species, int family, size_t n,
 double sb_engine_kinetic_energy(const sb_engine *e, double p[3])
 {
   double ek = 0.0, pm[3] = {0, 0, 0};
-  if (e)
-    for (size_t i = 0; i < e->n; i++) {
-      const double *u = &e->u[3 * i];
-      ek += 0.5 * e->mass[i] * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-      for (int k = 0; k < 3; k++)
-        pm[k] += e->mass[i] * u[k];
-    }
+  if (!e) {
+    if (p)
+      p[0] = p[1] = p[2] = NAN;
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return NAN;
+  }
+  for (size_t i = 0; i < e->n; i++) {
+    const double *u = &e->u[3 * i];
+    ek += 0.5 * e->mass[i] * (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    for (int k = 0; k < 3; k++)
+      pm[k] += e->mass[i] * u[k];
+  }
   if (p)
     for (int k = 0; k < 3; k++)
       p[k] = pm[k];
@@ -1169,11 +1185,36 @@ int sb_engine_run_until(sb_engine *e, double t_end)
 
 /* ============================================================ accessors */
 
-size_t sb_engine_count(const sb_engine *e) { return e ? e->n : 0; }
-double sb_engine_time(const sb_engine *e) { return e ? e->t : NAN; }
-/* Read-only view of a particle array (NULL for a NULL engine). */
-#define ARRAY_VIEW(type, fn, field) \
-  const type *fn(const sb_engine *e) { return e ? e->field : NULL; }
+/* The accessors return 0, NaN or NULL for a NULL engine and record
+ * SB_EINVAL (engine.h, file comment). */
+size_t sb_engine_count(const sb_engine *e)
+{
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return 0;
+  }
+  return e->n;
+}
+
+double sb_engine_time(const sb_engine *e)
+{
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return NAN;
+  }
+  return e->t;
+}
+
+/* Read-only view of a particle array. */
+#define ARRAY_VIEW(type, fn, field)                        \
+  const type *fn(const sb_engine *e)                       \
+  {                                                        \
+    if (!e) {                                              \
+      sbi_error(SB_EINVAL, __func__, "engine is NULL");    \
+      return NULL;                                         \
+    }                                                      \
+    return e->field;                                       \
+  }
 ARRAY_VIEW(double, sb_engine_positions, x)
 ARRAY_VIEW(double, sb_engine_velocities, u)
 ARRAY_VIEW(double, sb_engine_start_positions, x0)
@@ -1184,7 +1225,14 @@ ARRAY_VIEW(size_t, sb_engine_species_of, species)
 ARRAY_VIEW(int, sb_engine_families, family)
 ARRAY_VIEW(uint64_t, sb_engine_ids, id)
 #undef ARRAY_VIEW
-gsl_rng *sb_engine_rng(sb_engine *e) { return e ? e->rng : NULL; }
+gsl_rng *sb_engine_rng(sb_engine *e)
+{
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return NULL;
+  }
+  return e->rng;
+}
 
 /* ============================================================ names */
 

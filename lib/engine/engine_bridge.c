@@ -24,8 +24,10 @@
 
 void sb_engine_bridge_params_default(sb_engine_bridge_params *p)
 {
-  if (!p)
+  if (!p) {
+    sbi_error(SB_EINVAL, __func__, "params is NULL");
     return;
+  }
   p->mode = SB_BRIDGE_BESSEL;
   p->ends = SB_BRIDGE_ENDS_POSITION;
   p->outcome = SB_BRIDGE_OUT_REINSERT;
@@ -308,8 +310,15 @@ int sb_engine_detect_bridge(const sb_engine *e, const sb_engine_pair *p,
                             const gsl_rng *r, void *ctx, double *s)
 {
   sb_engine_bridge *b = ctx;
-  if (!e || !p || !r || !b || !s)
+  if (!e || !p || !r || !b || !s) {
+    sbi_error(SB_EINVAL, __func__, "NULL argument");
     return -1;
+  }
+  if (p->i >= e->n || p->j >= e->n) {
+    sbi_error(SB_EINVAL, __func__, "pair (%zu, %zu): no such particle",
+              p->i, p->j);
+    return -1;
+  }
   double A[3], B[3];
   pair_ends(e, b, p, A, B);
   const double s2 = pair_b2(e, b, p->i, p->j, NULL);
@@ -476,7 +485,10 @@ int sb_engine_outcome_bridge(sb_engine *e, const sb_engine_pair *p, double s,
 {
   sb_engine_bridge *b = ctx;
   if (!e || !p || !b)
-    return SB_EINVAL;
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  if (p->i >= e->n || p->j >= e->n || p->i == p->j)
+    return sbi_error(SB_EINVAL, __func__, "pair (%zu, %zu): not two "
+                     "particles", p->i, p->j);
   double bb, b2 = pair_b2(e, b, p->i, p->j, &bb);
   double f = bb / b2;
   b->st.ncoll++;
@@ -490,7 +502,8 @@ int sb_engine_outcome_bridge(sb_engine *e, const sb_engine_pair *p, double s,
   case SB_BRIDGE_OUT_COUNT:
     return SB_SUCCESS;
   }
-  return SB_EINVAL;
+  return sbi_error(SB_EINVAL, __func__, "unknown outcome %d",
+                   (int)b->par.outcome);
 }
 
 int sb_engine_bridge_get_stats(const sb_engine_bridge *b,
@@ -504,8 +517,10 @@ int sb_engine_bridge_get_stats(const sb_engine_bridge *b,
 
 void sb_engine_bridge_reset(sb_engine_bridge *b)
 {
-  if (!b)
+  if (!b) {
+    sbi_error(SB_EINVAL, __func__, "bridge is NULL");
     return;
+  }
   memset(&b->st, 0, sizeof b->st);
   b->nhits = 0;
 }
@@ -515,5 +530,9 @@ const sb_engine_bridge_hit *sb_engine_bridge_hits(const sb_engine_bridge *b,
 {
   if (n)
     *n = b ? b->nhits : 0;
-  return b ? b->hits : NULL;
+  if (!b) {
+    sbi_error(SB_EINVAL, __func__, "bridge is NULL");
+    return NULL;
+  }
+  return b->hits;
 }

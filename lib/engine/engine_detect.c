@@ -52,8 +52,10 @@ static void quad(const sb_engine_pair *p, double *a, double *b, double *c)
 
 int sb_engine_detect_ballistic(const sb_engine_pair *p, double *s)
 {
-  if (!p || !s)
+  if (!p || !s) {
+    sbi_error(SB_EINVAL, __func__, "NULL argument");
     return -1;
+  }
   double a, b, c;
   quad(p, &a, &b, &c);
   if (c <= 0.0) {
@@ -82,8 +84,10 @@ int sb_engine_detect_ballistic(const sb_engine_pair *p, double *s)
 
 int sb_engine_detect_overlap(const sb_engine_pair *p, double *s)
 {
-  if (!p || !s)
+  if (!p || !s) {
+    sbi_error(SB_EINVAL, __func__, "NULL argument");
     return -1;
+  }
   double e2 = 0.0;
   for (int k = 0; k < 3; k++) {
     double v = p->dx0[k] + p->dd[k];

@@ -8,14 +8,23 @@
  * and the detector that never reports a contact. */
 #include <smolbridge/engine.h>
 
+#include "common/internal.h"
+
 int sb_engine_detect_md(const sb_engine *e, const sb_engine_pair *p,
                         const gsl_rng *r, void *ctx, double *s)
 {
   (void)r;
   (void)ctx;
-  const double *u0 = e && p && s ? sb_engine_start_velocities(e) : NULL;
-  if (!u0 || p->i >= sb_engine_count(e) || p->j >= sb_engine_count(e))
+  if (!e || !p || !s) {
+    sbi_error(SB_EINVAL, __func__, "NULL argument");
     return -1;
+  }
+  const double *u0 = sb_engine_start_velocities(e);
+  if (!u0 || p->i >= sb_engine_count(e) || p->j >= sb_engine_count(e)) {
+    sbi_error(SB_EINVAL, __func__, "no start velocities or pair (%zu, %zu) "
+              "out of range", p->i, p->j);
+    return -1;
+  }
   sb_engine_pair q = *p;
   for (int k = 0; k < 3; k++)
     q.dd[k] = (u0[3 * p->i + k] - u0[3 * p->j + k]) * p->dt;
@@ -25,10 +34,11 @@ int sb_engine_detect_md(const sb_engine *e, const sb_engine_pair *p,
 int sb_engine_detect_none(const sb_engine *e, const sb_engine_pair *p,
                           const gsl_rng *r, void *ctx, double *s)
 {
-  (void)e;
-  (void)p;
   (void)r;
   (void)ctx;
-  (void)s;
+  if (!e || !p || !s) {
+    sbi_error(SB_EINVAL, __func__, "NULL argument");
+    return -1;
+  }
   return 0;
 }

@@ -70,7 +70,11 @@ void sb_field_ou_free(sb_field_ou *f)
 
 const double *sb_field_ou_seen(const sb_field_ou *f)
 {
-  return f ? f->U : NULL;
+  if (!f) {
+    sbi_error(SB_EINVAL, __func__, "field is NULL");
+    return NULL;
+  }
+  return f->U;
 }
 
 int sb_field_ou_fluid(size_t n, const double *x, double *us, void *ctx)
@@ -202,7 +206,11 @@ void sb_field_kraichnan_free(sb_field_kraichnan *f) { free(f); }
 
 size_t sb_field_kraichnan_modes(const sb_field_kraichnan *f)
 {
-  return f ? f->nm : 0;
+  if (!f) {
+    sbi_error(SB_EINVAL, __func__, "field is NULL");
+    return 0;
+  }
+  return f->nm;
 }
 
 void sb_field_kraichnan_eval(const sb_field_kraichnan *f, double t,
@@ -268,11 +276,19 @@ int sb_field_kraichnan_attach(sb_engine *e, sb_field_kraichnan *f)
 
 double sb_field_kraichnan_u2(const sb_field_kraichnan *f)
 {
+  if (!f) {
+    sbi_error(SB_EINVAL, __func__, "field is NULL");
+    return NAN;
+  }
   return 2.0 * (double)f->nm * f->s2 / 3.0;
 }
 
 double sb_field_kraichnan_a11(const sb_field_kraichnan *f)
 {
+  if (!f) {
+    sbi_error(SB_EINVAL, __func__, "field is NULL");
+    return NAN;
+  }
   const double kk = 2.0 * PI / f->L;
   double s = 0.0;
   for (size_t q = 0; q < f->nm; q++) {
@@ -320,6 +336,10 @@ static double kr_sd_wn(const double n[3], void *ctx)
 
 double sb_field_kraichnan_flux_kernel(const sb_field_kraichnan *f, double R)
 {
+  if (!f) {
+    sbi_error(SB_EINVAL, __func__, "field is NULL");
+    return NAN;
+  }
   /* K = R^2 int dOmega E[(w.n)^-] = R^2/sqrt(2 pi) int dOmega sd(n):
    * 64 Gauss-Legendre nodes in cos(theta), 128 trapezoid points in phi */
   kr_flux_ctx k = {f, R};

@@ -151,8 +151,10 @@ static int install(sb_engine *e, sb_engine_firsthit *f, double reach)
 
 void sb_engine_firsthit_params_default(sb_engine_firsthit_params *p)
 {
-  if (!p)
+  if (!p) {
+    sbi_error(SB_EINVAL, __func__, "params is NULL");
     return;
+  }
   memset(p, 0, sizeof *p);
   p->builtin = SB_DETECT_BALLISTIC;
 }
@@ -265,7 +267,11 @@ int sb_engine_firsthit_set_warmup(sb_engine_firsthit *f, double t1)
 
 double sb_engine_firsthit_warmup(const sb_engine_firsthit *f)
 {
-  return f ? f->t1 : NAN;
+  if (!f) {
+    sbi_error(SB_EINVAL, __func__, "observer is NULL");
+    return NAN;
+  }
+  return f->t1;
 }
 
 /* The U-statistic estimate of var(hits) (engine_firsthit.h, hits_var):
@@ -457,6 +463,15 @@ int sb_engine_firsthit_estimate(sb_engine_firsthit_kernel_result *k,
 double sb_engine_chord_vn(const sb_engine *e, const sb_engine_pair *p,
                           double s)
 {
+  if (!e || !p) {
+    sbi_error(SB_EINVAL, __func__, "NULL argument");
+    return NAN;
+  }
+  if (p->i >= e->n || p->j >= e->n) {
+    sbi_error(SB_EINVAL, __func__, "pair (%zu, %zu): no such particle",
+              p->i, p->j);
+    return NAN;
+  }
   const double *u0 = sb_engine_start_velocities(e);
   const double *u1 = sb_engine_velocities(e);
   double n[3], nn = 0.0, vn = 0.0;

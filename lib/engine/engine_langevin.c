@@ -39,8 +39,10 @@
 
 void sb_engine_langevin_params_default(sb_engine_langevin_params *p)
 {
-  if (!p)
+  if (!p) {
+    sbi_error(SB_EINVAL, __func__, "params is NULL");
     return;
+  }
   p->eps = 1e-6;
   p->xtol = 1e-6;
   p->tol = 1e-9;
@@ -581,12 +583,20 @@ int sbi_engine_langevin_events(const sb_engine *e, sb_langevin_hitter *lh,
   return SB_SUCCESS;
 }
 
-int sb_engine_langevin_contact(const sb_engine *e, const sb_engine_pair *p,
-                               const gsl_rng *r, double *s,
-                               sb_langevin_contact *c)
+/* sb_engine_langevin_contact for the public function who. */
+static int langevin_contact(const sb_engine *e, const sb_engine_pair *p,
+                            const gsl_rng *r, double *s,
+                            sb_langevin_contact *c, const char *who)
 {
-  if (!e || !p || !r || !s || p->i >= e->n || p->j >= e->n)
+  if (!e || !p || !r || !s) {
+    sbi_error(SB_EINVAL, who, "NULL argument");
     return -1;
+  }
+  if (p->i >= e->n || p->j >= e->n) {
+    sbi_error(SB_EINVAL, who, "pair (%zu, %zu): no such particle (%zu)",
+              p->i, p->j, e->n);
+    return -1;
+  }
   double t = (p->t0 - e->t) / e->par.dt;
   t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
   sbi_event ev;
@@ -603,11 +613,18 @@ int sb_engine_langevin_contact(const sb_engine *e, const sb_engine_pair *p,
   return h;
 }
 
+int sb_engine_langevin_contact(const sb_engine *e, const sb_engine_pair *p,
+                               const gsl_rng *r, double *s,
+                               sb_langevin_contact *c)
+{
+  return langevin_contact(e, p, r, s, c, __func__);
+}
+
 int sb_engine_detect_langevin(const sb_engine *e, const sb_engine_pair *p,
                               const gsl_rng *r, void *ctx, double *s)
 {
   (void)ctx;
-  return sb_engine_langevin_contact(e, p, r, s, NULL);
+  return langevin_contact(e, p, r, s, NULL, __func__);
 }
 
 /* ------------------------------------------------------------ after */

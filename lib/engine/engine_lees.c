@@ -70,7 +70,11 @@ int sb_engine_set_lees_edwards(sb_engine *e, int on)
 
 double sb_engine_lees_edwards_offset(const sb_engine *e)
 {
-  return (e && e->lees) ? e->le_off : 0.0;
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return 0.0;
+  }
+  return e->lees ? e->le_off : 0.0;
 }
 
 

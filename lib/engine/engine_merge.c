@@ -109,8 +109,10 @@ int sb_engine_set_particle_species(sb_engine *e, size_t i, size_t species)
 
 void sb_agglo_params_default(sb_agglo_params *p)
 {
-  if (!p)
+  if (!p) {
+    sbi_error(SB_EINVAL, __func__, "params is NULL");
     return;
+  }
   memset(p, 0, sizeof *p);
   p->primary = 0;
   p->growth = SB_AGGLO_STOKES;
@@ -226,7 +228,11 @@ int sb_agglo_attach(sb_engine *e, sb_agglo *a)
 
 size_t sb_agglo_size_of_species(const sb_agglo *a, size_t sp)
 {
-  return (a && sp < a->ncap_sp) ? a->k_of_sp[sp] : 0;
+  if (!a) {
+    sbi_error(SB_EINVAL, __func__, "context is NULL");
+    return 0;
+  }
+  return sp < a->ncap_sp ? a->k_of_sp[sp] : 0;
 }
 
 /* Species properties of a cluster of k primaries (growth law). */
@@ -297,8 +303,11 @@ int sb_agglo_get_stats(const sb_agglo *a, sb_agglo_stats *st)
 
 void sb_agglo_reset_stats(sb_agglo *a)
 {
-  if (a)
-    memset(&a->st, 0, sizeof a->st);
+  if (!a) {
+    sbi_error(SB_EINVAL, __func__, "context is NULL");
+    return;
+  }
+  memset(&a->st, 0, sizeof a->st);
 }
 
 /* ============================================================ merge */
@@ -522,7 +531,11 @@ const double *sb_agglo_series(const sb_agglo *a, size_t *nrows,
     *nrows = a ? a->nrows : 0;
   if (ncols)
     *ncols = a ? 4 + a->par.kobs : 0;
-  return a ? a->rows : NULL;
+  if (!a) {
+    sbi_error(SB_EINVAL, __func__, "context is NULL");
+    return NULL;
+  }
+  return a->rows;
 }
 
 int sb_agglo_series_csv(const sb_agglo *a, const char *path)

@@ -1546,8 +1546,14 @@ int sb_engine_neighbours(sb_engine *e, sb_engine_neigh m, const double *disp,
 int sb_engine_pair_can_meet(const sb_engine *e, const double *disp,
                             double reach, size_t i, size_t j)
 {
-  if (!e || i >= e->n || j >= e->n || i == j)
-    return 0;
+  if (!e)
+    return -sbi_error(SB_EINVAL, __func__, "engine is NULL");
+  if (i >= e->n || j >= e->n || i == j)
+    return -sbi_error(SB_EINVAL, __func__, "pair (%zu, %zu): need two "
+                      "distinct particles below %zu", i, j, e->n);
+  if (!(reach >= 0.0) || !isfinite(reach))
+    return -sbi_error(SB_EINVAL, __func__, "reach = %g: must be finite "
+                      ">= 0", reach);
   double a[3] = {0, 0, 0}, d[3] = {0, 0, 0};
   for (int k = 0; k < e->par.dim; k++) {
     a[k] = sbi_minimg(e->x[3 * i + k] - e->x[3 * j + k], e->par.L[k]);

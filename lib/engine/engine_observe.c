@@ -87,8 +87,10 @@ static void clear_tally(sb_engine *e)
 
 void sb_engine_reset_counters(sb_engine *e)
 {
-  if (!e)
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
     return;
+  }
   e->ncoll = e->ncand = e->dropped = e->nredetect = 0;
   sbi_engine_langevin_reset_stats(e);
   memset(e->fam, 0, sizeof e->fam);
@@ -120,7 +122,11 @@ int sb_engine_set_count_variance(sb_engine *e, int on)
 
 int sb_engine_get_count_variance(const sb_engine *e)
 {
-  return e && e->cvar_on;
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return 0;
+  }
+  return e->cvar_on;
 }
 
 /* The variance of the count H of species pair (a, b), type t, from the
@@ -290,14 +296,20 @@ const sb_engine_sample *sb_engine_series(const sb_engine *e, size_t *n)
 {
   if (n)
     *n = e ? e->nseries : 0;
-  return e ? e->series : NULL;
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return NULL;
+  }
+  return e->series;
 }
 
 size_t sb_engine_check_overlaps(const sb_engine *e, double rel_tol)
 {
   size_t bad = 0;
-  if (!e)
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
     return 0;
+  }
   for (size_t i = 0; i < e->n; i++)
     for (size_t j = i + 1; j < e->n; j++) {
       double d2 = 0.0;

@@ -82,21 +82,40 @@ int sb_engine_add_inflow(sb_engine *e, const sb_engine_inflow *in,
   return SB_SUCCESS;
 }
 
-size_t sb_engine_ninflows(const sb_engine *e) { return e ? e->ninflow : 0; }
+size_t sb_engine_ninflows(const sb_engine *e)
+{
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return 0;
+  }
+  return e->ninflow;
+}
 
 uint64_t sb_engine_inflow_injected(const sb_engine *e, size_t k)
 {
-  return (e && k < e->ninflow) ? e->ninj[k] : 0;
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return 0;
+  }
+  return k < e->ninflow ? e->ninj[k] : 0;
 }
 
 uint64_t sb_engine_inflow_skipped(const sb_engine *e, size_t k)
 {
-  return (e && k < e->ninflow) ? e->nskip[k] : 0;
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return 0;
+  }
+  return k < e->ninflow ? e->nskip[k] : 0;
 }
 
 uint64_t sb_engine_outflows(const sb_engine *e, int face)
 {
-  return (e && face >= 0 && face < 6) ? e->nout[face] : 0;
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return 0;
+  }
+  return (face >= 0 && face < 6) ? e->nout[face] : 0;
 }
 
 int sb_engine_set_outflow_fn(sb_engine *e, sb_engine_outflow_fn fn,

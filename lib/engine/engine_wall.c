@@ -77,12 +77,20 @@ int sb_engine_set_wall_mode(sb_engine *e, sb_engine_walldet det,
 
 uint64_t sb_engine_deposits(const sb_engine *e, int face)
 {
-  return (e && face >= 0 && face < 6) ? e->ndep[face] : 0;
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return 0;
+  }
+  return (face >= 0 && face < 6) ? e->ndep[face] : 0;
 }
 
 int sb_engine_periodic(const sb_engine *e, int k)
 {
-  return e && k >= 0 && k < 3 && e->wall[2 * k] == SB_WALL_PERIODIC;
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return 0;
+  }
+  return k >= 0 && k < 3 && e->wall[2 * k] == SB_WALL_PERIODIC;
 }
 
 /* Reinsert particle i uniformly in the accessible volume with an

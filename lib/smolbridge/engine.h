@@ -50,8 +50,12 @@
  * Thread safety: an engine object must not be used by two threads at once;
  * distinct engines are independent (no global state).
  * Errors: functions return SB_SUCCESS or a status code with a message in
- * sb_last_error(); nothing is printed; on error the state is unchanged
- * unless stated.
+ * sb_last_error() that names the public function called; nothing is
+ * printed; on error the state is unchanged unless stated.  A NULL engine
+ * (or context, observer, field) or a NULL pointer argument that is not
+ * documented as optional is SB_EINVAL: functions that return a value
+ * instead of a status then return their failure value (NULL, NaN, 0, or
+ * -1 for the detectors) and record SB_EINVAL; void functions record it.
  */
 #ifndef SMOLBRIDGE_ENGINE_H
 #define SMOLBRIDGE_ENGINE_H
@@ -411,8 +415,10 @@ int sb_engine_neighbours(sb_engine *e, sb_engine_neigh m, const double *disp,
                          double reach, size_t *npairs, const size_t **pairs);
 
 /** Exact test used by the tests: 1 if the segments x_i + s disp_i and
- *  x_j + s disp_j (s in [0,1], minimum image at the start) come within
- *  r_i + r_j + reach, else 0. */
+ *  x_j + s disp_j (s in [0,1], minimum image at the start; disp: 3n
+ *  values in m, NULL for zero) come within r_i + r_j + reach, else 0.
+ *  -SB_EINVAL (negative, message in sb_last_error()) for a NULL engine, i
+ *  or j not a particle, i == j, or reach not finite >= 0. */
 int sb_engine_pair_can_meet(const sb_engine *e, const double *disp,
                             double reach, size_t i, size_t j);
 
@@ -632,7 +638,8 @@ typedef struct {
 /** The recorded time series (array owned by the engine). */
 const sb_engine_sample *sb_engine_series(const sb_engine *e, size_t *n);
 
-/** Total kinetic energy (J) and momentum (kg m/s, p may be NULL). */
+/** Total kinetic energy (J) and momentum (kg m/s, p may be NULL); NaN
+ *  (p NaN too) for a NULL engine. */
 double sb_engine_kinetic_energy(const sb_engine *e, double p[3]);
 
 /** Number of pairs overlapping by more than rel_tol * (r_i + r_j) now
@@ -681,6 +688,8 @@ const double *sb_engine_masses(const sb_engine *e);
 const size_t *sb_engine_species_of(const sb_engine *e);
 const int *sb_engine_families(const sb_engine *e);
 const uint64_t *sb_engine_ids(const sb_engine *e);
+/** Species idx, or NULL past the last one (no error recorded: loops stop
+ *  on it). */
 const sb_engine_species *sb_engine_get_species(const sb_engine *e,
                                                size_t idx);
 /** The engine's generator (for callbacks; do not free). */
