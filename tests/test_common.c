@@ -51,6 +51,20 @@ START_TEST(test_error_record_truncates)
 }
 END_TEST
 
+/* A message that wraps the previous one (the library does this where a
+ * public function reports a failure of a function it called) keeps the
+ * inner text whole: the argument points into the record being written. */
+START_TEST(test_error_record_wraps_previous)
+{
+  sbi_error(SB_EDOM, "sb_inner", "x = %g is negative", -2.0);
+  sbi_error(SB_EINVAL, "sb_outer_function", "step failed: %s",
+            sb_last_error());
+  ck_assert_str_eq(sb_last_error(), "sb_outer_function: step failed: "
+                   "sb_inner: x = -2 is negative");
+  ck_assert_int_eq(sb_last_status(), SB_EINVAL);
+}
+END_TEST
+
 START_TEST(test_fail_res_macro)
 {
   sb_result r = {1.0, 0.0};
@@ -157,6 +171,7 @@ int main(void)
   tcase_add_test(tc, test_strerror_all_codes);
   tcase_add_test(tc, test_error_record);
   tcase_add_test(tc, test_error_record_truncates);
+  tcase_add_test(tc, test_error_record_wraps_previous);
   tcase_add_test(tc, test_fail_res_macro);
   tcase_add_test(tc, test_error_record_is_per_thread);
   tcase_add_test(tc, test_version);

@@ -33,16 +33,20 @@ const char *sb_strerror(int status)
   return status_text[status];
 }
 
+/* Formatted into a local buffer first: callers wrap the previous message
+ * (sbi_error(st, func, "...: %s", sb_last_error())), an argument that
+ * lies in last_error.msg itself, which vsnprintf may not overwrite while
+ * it reads it. */
 static void record(int status, const char *func, const char *fmt,
                    va_list ap)
 {
-  int n = snprintf(last_error.msg, sizeof last_error.msg, "%s: ",
-                   func ? func : "smolbridge");
+  char buf[sizeof last_error.msg];
+  int n = snprintf(buf, sizeof buf, "%s: ", func ? func : "smolbridge");
   if (n < 0)
     n = 0;
-  if ((size_t)n < sizeof last_error.msg) {
-    vsnprintf(last_error.msg + n, sizeof last_error.msg - (size_t)n, fmt, ap);
-  }
+  if ((size_t)n < sizeof buf)
+    vsnprintf(buf + n, sizeof buf - (size_t)n, fmt, ap);
+  memcpy(last_error.msg, buf, sizeof buf);
   last_error.status = status;
 }
 
