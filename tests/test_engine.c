@@ -906,6 +906,83 @@ START_TEST(test_errors)
 }
 END_TEST
 
+/* The message of an error names the public function the caller entered,
+ * not a helper it shares with another one. */
+static int fluid_fails(size_t n, const double *x, double *us, void *ctx)
+{
+  (void)n;
+  (void)x;
+  (void)us;
+  (void)ctx;
+  return 7;
+}
+
+static void assert_named(const char *func)
+{
+  const char *m = sb_last_error();
+  ck_assert_msg(strncmp(m, func, strlen(func)) == 0 &&
+                    m[strlen(func)] == ':',
+                "message \"%s\" does not name %s", m, func);
+}
+
+START_TEST(test_error_names)
+{
+  sb_engine *e = box_engine(3, 10.0, 1.0, 8);
+  size_t sp = add_free(e, 0.5, 1.0);
+  double x[3] = {5, 5, 5}, u[3] = {0, 0, 0};
+  /* fill_random through fill_box: it reported itself as fill_box */
+  ck_assert_int_eq(sb_engine_fill_random(e, 9, 0, 1), SB_EINVAL);
+  assert_named("sb_engine_fill_random");
+  ck_assert_int_eq(sb_engine_fill_box(e, 9, 0, 1, x, x, NULL), SB_EINVAL);
+  assert_named("sb_engine_fill_box");
+  /* the fluid field of the initial velocities: it reported the step */
+  ck_assert_int_eq(sb_engine_set_fluid_fn(e, fluid_fails, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, sp, 0, 1), SB_EINVAL);
+  assert_named("sb_engine_fill_random");
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "fluid callback failed"));
+  ck_assert_int_eq(sb_engine_set_fluid(e, SB_FLUID_REST, NULL), SB_SUCCESS);
+  /* the neighbour search outside a step: it reported the step */
+  ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, x, u), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, x, u), SB_SUCCESS);
+  double disp[6] = {6, 0, 0, 0, 0, 0};
+  size_t np;
+  const size_t *pairs;
+  for (int m = 0; m <= SB_NEIGH_BRUTE; m++) {
+    ck_assert_int_eq(sb_engine_neighbours(e, (sb_engine_neigh)m, disp, 0.0,
+                                          &np, &pairs), SB_EINVAL);
+    assert_named("sb_engine_neighbours");
+    ck_assert_ptr_nonnull(strstr(sb_last_error(), "too large"));
+  }
+  /* run_until: its own name, the step's message after it (whole) */
+  double u6[3] = {6, 0, 0};
+  ck_assert_int_eq(sb_engine_set_particle(e, 0, x, u6), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_run_until(e, 3.0), SB_EINVAL);
+  assert_named("sb_engine_run_until");
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), ": sb_engine_step: step "
+                                                "too large"));
+  /* the first-contact kernel through _get; contact_vn through
+   * contact_state */
+  sb_engine_firsthit_params fp;
+  sb_engine_firsthit_params_default(&fp);
+  sb_engine_firsthit *f = sb_engine_firsthit_alloc(&fp);
+  ck_assert_ptr_nonnull(f);
+  sb_engine_firsthit_kernel_result kr;
+  ck_assert_int_eq(sb_engine_firsthit_kernel(f, e, 0, 0, 1.0, 1.0, 0.95,
+                                             &kr), SB_EINVAL);
+  assert_named("sb_engine_firsthit_kernel");
+  sb_engine_firsthit_free(f);
+  ck_assert(isnan(sb_engine_contact_vn(e)));
+  assert_named("sb_engine_contact_vn");
+  /* the Langevin detector through sb_engine_langevin_contact */
+  sb_engine_pair pp = {0, 5, {2, 0, 0}, {0, 0, 0}, 1.0, 1.0, 0.0};
+  double s;
+  ck_assert_int_lt(sb_engine_detect_langevin(e, &pp, sb_engine_rng(e), NULL,
+                                             &s), 0);
+  assert_named("sb_engine_detect_langevin");
+  sb_engine_free(e);
+}
+END_TEST
+
 /* A save that cannot write its whole file fails with SB_EIO and leaves
  * no partial file (engine_checkpoint.c, sbi_finish_save): the process's
  * file-size limit set to 4 kB (SIGXFSZ ignored, so the write fails with
@@ -1170,6 +1247,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_detectors);
   tcase_add_test(tc, test_kernel_estimate);
   tcase_add_test(tc, test_errors);
+  tcase_add_test(tc, test_error_names);
   tcase_add_test(tc, test_checkpoint_write_error);
   tcase_add_test(tc, test_custom_callbacks);
   tcase_add_test(tc, test_misuse);

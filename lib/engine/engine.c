@@ -378,7 +378,7 @@ int sb_engine_set_particle(sb_engine *e, size_t i, const double x[3],
 }
 
 int sbi_engine_fluid_eval(sb_engine *e, size_t n, const double *x,
-                          double *us)
+                          double *us, const char *who)
 {
   switch (e->fluid) {
   case SB_FLUID_REST:
@@ -398,22 +398,23 @@ int sbi_engine_fluid_eval(sb_engine *e, size_t n, const double *x,
   case SB_FLUID_CALLBACK: {
     int st = e->fluid_fn(n, x, us, e->fluid_ctx);
     if (st)
-      return sbi_error(SB_EINVAL, "sb_engine_step",
-                       "fluid callback failed (status %d)", st);
+      return sbi_error(SB_EINVAL, who, "fluid callback failed (status %d)",
+                       st);
     if (e->par.dim == 2)
       for (size_t i = 0; i < n; i++)
         us[3 * i + 2] = 0.0;
     return SB_SUCCESS;
   }
   }
-  return SB_EINVAL;
+  return sbi_error(SB_EINVAL, who, "unknown fluid field %d", (int)e->fluid);
 }
 
 int sbi_engine_equilibrium_velocity(sb_engine *e, size_t sp,
-                                    const double x[3], double u[3])
+                                    const double x[3], double u[3],
+                                    const char *who)
 {
   double us[3];
-  int st = sbi_engine_fluid_eval(e, 1, x, us);
+  int st = sbi_engine_fluid_eval(e, 1, x, us, who);
   if (st)
     return st;
   for (int k = 0; k < 3; k++)
@@ -421,7 +422,7 @@ int sbi_engine_equilibrium_velocity(sb_engine *e, size_t sp,
                ? us[k] + gsl_ran_gaussian_ziggurat(e->rng, e->vsd[sp])
                : 0.0;
   /* with gravity: plus the species' settling velocity (engine_force.c) */
-  const double *vs = sbi_engine_settling(e, sp);
+  const double *vs = sbi_engine_settling(e, sp, who);
   if (vs)
     for (int k = 0; k < e->par.dim; k++)
       u[k] += vs[k];
@@ -484,35 +485,28 @@ static int fill_free(const sb_engine *e, const fill_grid *g, const double *x,
   return 1;
 }
 
-int sb_engine_fill_random(sb_engine *e, size_t species, int family, size_t n)
-{
-  if (!e)
-    return sbi_error(SB_EINVAL, __func__, "engine is NULL");
-  double lo[3] = {0, 0, 0};
-  return sb_engine_fill_box(e, species, family, n, lo, e->par.L, NULL);
-}
-
-int sb_engine_fill_box(sb_engine *e, size_t species, int family, size_t n,
+/* sb_engine_fill_box for the public function who */
+static int fill_region(sb_engine *e, size_t species, int family, size_t n,
                        const double lo[3], const double hi[3],
-                       const double drift[3])
+                       const double drift[3], const char *who)
 {
   if (!e || !lo || !hi)
-    return sbi_error(SB_EINVAL, __func__, "NULL argument");
-  SBI_NOT_IN_STEP(e, __func__);
+    return sbi_error(SB_EINVAL, who, "NULL argument");
+  SBI_NOT_IN_STEP(e, who);
   for (int k = 0; k < e->par.dim; k++) {
     if (!(lo[k] >= 0.0 && lo[k] < hi[k] && hi[k] <= e->par.L[k]))
-      return sbi_error(SB_EINVAL, __func__,
+      return sbi_error(SB_EINVAL, who,
                        "region [%g, %g] in direction %d: need 0 <= lo < hi "
                        "<= L = %g", lo[k], hi[k], k, e->par.L[k]);
     if (drift && !isfinite(drift[k]))
-      return sbi_error(SB_EINVAL, __func__, "drift[%d] = %g: not finite", k,
+      return sbi_error(SB_EINVAL, who, "drift[%d] = %g: not finite", k,
                        drift[k]);
   }
   if (species >= e->nspec)
-    return sbi_error(SB_EINVAL, __func__, "species %zu does not exist",
+    return sbi_error(SB_EINVAL, who, "species %zu does not exist",
                      species);
   if (n > e->par.capacity - e->n)
-    return sbi_error(SB_EINVAL, __func__, "%zu particles exceed the "
+    return sbi_error(SB_EINVAL, who, "%zu particles exceed the "
                      "capacity %zu (holding %zu)", n, e->par.capacity, e->n);
   const int dim = e->par.dim;
   const double r = e->spec[species].radius;
@@ -543,7 +537,7 @@ int sb_engine_fill_box(sb_engine *e, size_t species, int family, size_t n,
   if (!g.head || !g.next) {
     free(g.head);
     free(g.next);
-    return sbi_error(SB_ENOMEM, __func__, "out of memory");
+    return sbi_error(SB_ENOMEM, who, "out of memory");
   }
   for (size_t c = 0; c < ncell; c++)
     g.head[c] = SIZE_MAX;
@@ -562,14 +556,14 @@ int sb_engine_fill_box(sb_engine *e, size_t species, int family, size_t n,
       if (fill_free(e, &g, x, r))
         break;
       if (++tries >= 10000) {
-        st = sbi_error(SB_EMAXITER, __func__,
+        st = sbi_error(SB_EMAXITER, who,
                        "no free position after 10000 tries (box too full)");
         break;
       }
     }
     if (st)
       break;
-    st = sbi_engine_equilibrium_velocity(e, species, x, u);
+    st = sbi_engine_equilibrium_velocity(e, species, x, u, who);
     if (!st && drift)
       for (int k = 0; k < dim; k++)
         u[k] += drift[k];
@@ -584,6 +578,21 @@ int sb_engine_fill_box(sb_engine *e, size_t species, int family, size_t n,
   free(g.head);
   free(g.next);
   return st;
+}
+
+int sb_engine_fill_random(sb_engine *e, size_t species, int family, size_t n)
+{
+  if (!e)
+    return sbi_error(SB_EINVAL, __func__, "engine is NULL");
+  double lo[3] = {0, 0, 0};
+  return fill_region(e, species, family, n, lo, e->par.L, NULL, __func__);
+}
+
+int sb_engine_fill_box(sb_engine *e, size_t species, int family, size_t n,
+                       const double lo[3], const double hi[3],
+                       const double drift[3])
+{
+  return fill_region(e, species, family, n, lo, hi, drift, __func__);
 }
 
 double sb_engine_kinetic_energy(const sb_engine *e, double p[3])
@@ -945,7 +954,7 @@ static int transport(sb_engine *e)
   const double *us = NULL;
   if (e->fluid != SB_FLUID_REST) {
     /* x is the start position x0 here */
-    int st = sbi_engine_fluid_eval(e, n, e->x, e->us);
+    int st = sbi_engine_fluid_eval(e, n, e->x, e->us, "sb_engine_step");
     if (st)
       return st;
     us = e->us;
@@ -1013,6 +1022,8 @@ static int transport(sb_engine *e)
   return SB_SUCCESS;
 }
 
+static int sort_particles(sb_engine *e, const char *who);
+
 int sb_engine_step(sb_engine *e)
 {
   if (!e)
@@ -1021,7 +1032,7 @@ int sb_engine_step(sb_engine *e)
   memset(e->hit, 0, e->n);
   sbi_engine_pair_counts(e, e->pairs0);
   /* forces, Lees-Edwards, walls: checks and settling (engine_force.c) */
-  int st = sbi_engine_physics_prepare(e);
+  int st = sbi_engine_physics_prepare(e, __func__);
   if (st)
     return st;
   st = transport(e);
@@ -1063,7 +1074,7 @@ int sb_engine_step(sb_engine *e)
       return st;
   }
   if (e->par.sort_every && e->steps % e->par.sort_every == 0) {
-    st = sb_engine_sort(e);
+    st = sort_particles(e, __func__);
     if (st)
       return st;
   }
@@ -1110,11 +1121,10 @@ static void permute(void *a, size_t w, size_t size, const size_t *perm,
   memcpy(a, tmp, n * b);
 }
 
-int sb_engine_sort(sb_engine *e)
+/* sb_engine_sort for the public function who (the step sorts every
+ * sort_every steps) */
+static int sort_particles(sb_engine *e, const char *who)
 {
-  if (!e)
-    return sbi_error(SB_EINVAL, __func__, "engine is NULL");
-  SBI_NOT_IN_STEP(e, __func__);
   const size_t n = e->n;
   if (n < 2)
     return SB_SUCCESS;
@@ -1137,7 +1147,7 @@ int sb_engine_sort(sb_engine *e)
   if (!cnt || !perm) {
     free(cnt);
     free(perm);
-    return sbi_error(SB_ENOMEM, __func__, "out of memory");
+    return sbi_error(SB_ENOMEM, who, "out of memory");
   }
   size_t *cof = e->cell_of;
   for (size_t i = 0; i < n; i++) {
@@ -1171,14 +1181,24 @@ int sb_engine_sort(sb_engine *e)
   return SB_SUCCESS;
 }
 
+int sb_engine_sort(sb_engine *e)
+{
+  if (!e)
+    return sbi_error(SB_EINVAL, __func__, "engine is NULL");
+  SBI_NOT_IN_STEP(e, __func__);
+  return sort_particles(e, __func__);
+}
+
 int sb_engine_run_until(sb_engine *e, double t_end)
 {
   if (!e || !isfinite(t_end))
     return sbi_error(SB_EINVAL, __func__, "NULL engine or non-finite t_end");
   while (e->t < t_end - 0.5 * e->par.dt) {
+    const double t = e->t;
     int st = sb_engine_step(e);
-    if (st)
-      return st;
+    if (st)  /* the step's message, under this function's name */
+      return sbi_error(st, __func__, "step from t = %g s: %s", t,
+                       sb_last_error());
   }
   return SB_SUCCESS;
 }

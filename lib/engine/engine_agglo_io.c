@@ -192,7 +192,7 @@ int sb_agglo_load(sb_agglo *a, const char *path)
   for (uint64_t q = 0; q < v.nmap; q++) {
     const uint64_t k = v.map[2 * q], sp = v.map[2 * q + 1];
     if (k == 0 || k > a->par.kmax || sp >= ((uint64_t)1 << 30) ||
-        (st = sbi_agglo_set_map(a, (size_t)k, (size_t)sp))) {
+        (st = sbi_agglo_set_map(a, (size_t)k, (size_t)sp, __func__))) {
       free(v.map);
       free(v.rows);
       /* undo: the context stays as it was (never attached) */

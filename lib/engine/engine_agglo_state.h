@@ -24,8 +24,9 @@ struct sb_agglo {
   uint64_t saved_steps, saved_print;
 };
 
-/* Size k is species sp (either table grown as needed); SB_ENOMEM. */
-int sbi_agglo_set_map(sb_agglo *a, size_t k, size_t sp);
+/* Size k is species sp (either table grown as needed); SB_ENOMEM with a
+ * message from who, the public function entered. */
+int sbi_agglo_set_map(sb_agglo *a, size_t k, size_t sp, const char *who);
 /* The engine e is the one a restored state was saved with: at its step,
  * with its particles, and every saved cluster species of the mass of its
  * size (engine_agglo_io.c).  SB_EINVAL with a message otherwise. */

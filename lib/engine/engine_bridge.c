@@ -496,7 +496,7 @@ int sb_engine_outcome_bridge(sb_engine *e, const sb_engine_pair *p, double s,
   b->st.coll_turb += 1.0 - f;
   switch (b->par.outcome) {
   case SB_BRIDGE_OUT_REINSERT:
-    return sbi_engine_reinsert_higher_id(e, p, s);
+    return sbi_engine_reinsert_higher_id(e, p, s, __func__);
   case SB_BRIDGE_OUT_CORRECT:
     return correct(e, b, p, s);
   case SB_BRIDGE_OUT_COUNT:

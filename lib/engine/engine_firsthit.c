@@ -215,7 +215,8 @@ int sb_engine_firsthit_attach(sb_engine *e, sb_engine_firsthit *f,
       ns[e->species[i]] += 1.0;
   /* pairs in contact now: candidates of the neighbour search without
    * displacement, checked exactly (minimum image) */
-  int st = sbi_engine_find_pairs(e, SB_NEIGH_CELLS, e->x, NULL, 0.0);
+  int st = sbi_engine_find_pairs(e, SB_NEIGH_CELLS, e->x, NULL, 0.0,
+                                 __func__);
   if (st)
     return st;
   double nov[NPT] = {0}, novall = 0.0;
@@ -283,13 +284,14 @@ static double hits_variance(uint64_t hits, double sq, double na, double sq2,
   return sb_pair_count_variance(H, H, sq, na, sq2, nb, P);
 }
 
-int sb_engine_firsthit_get(const sb_engine_firsthit *f, size_t a, size_t b,
-                           sb_engine_firsthit_counts *c)
+/* sb_engine_firsthit_get for the public function who */
+static int get_counts(const sb_engine_firsthit *f, size_t a, size_t b,
+                      sb_engine_firsthit_counts *c, const char *who)
 {
   if (!f || !c)
-    return sbi_error(SB_EINVAL, __func__, "observer or result is NULL");
+    return sbi_error(SB_EINVAL, who, "observer or result is NULL");
   if (!f->attached)
-    return sbi_error(SB_EINVAL, __func__, "the observer is not attached");
+    return sbi_error(SB_EINVAL, who, "the observer is not attached");
   if (a == SB_ENGINE_FIRSTHIT_ALL && b == SB_ENGINE_FIRSTHIT_ALL) {
     c->hits = f->hits_all;
     c->warm = f->warm_all;
@@ -306,7 +308,7 @@ int sb_engine_firsthit_get(const sb_engine_firsthit *f, size_t a, size_t b,
     return SB_SUCCESS;
   }
   if (a >= SB_ENGINE_PAIR_SPECIES || b >= SB_ENGINE_PAIR_SPECIES)
-    return sbi_error(SB_EINVAL, __func__, "species pair (%zu, %zu): each "
+    return sbi_error(SB_EINVAL, who, "species pair (%zu, %zu): each "
                      "must be below %d (or both SB_ENGINE_FIRSTHIT_ALL)", a,
                      b, SB_ENGINE_PAIR_SPECIES);
   const size_t t = sbi_pair_index(a, b);
@@ -323,6 +325,15 @@ int sb_engine_firsthit_get(const sb_engine_firsthit *f, size_t a, size_t b,
   return SB_SUCCESS;
 }
 
+int sb_engine_firsthit_get(const sb_engine_firsthit *f, size_t a, size_t b,
+                           sb_engine_firsthit_counts *c)
+{
+  return get_counts(f, a, b, c, __func__);
+}
+
+static int estimate(sb_engine_firsthit_kernel_result *k, double level,
+                    const char *who);
+
 int sb_engine_firsthit_kernel(const sb_engine_firsthit *f,
                               const sb_engine *e, size_t a, size_t b,
                               double radius, double D, double level,
@@ -338,7 +349,7 @@ int sb_engine_firsthit_kernel(const sb_engine_firsthit *f,
       a >= e->nspec || b >= e->nspec)
     return sbi_error(SB_EINVAL, __func__, "species pair (%zu, %zu): no "
                      "such species", a, b);
-  int st = sb_engine_firsthit_get(f, a, b, &k->c);
+  int st = get_counts(f, a, b, &k->c, __func__);
   if (st)
     return st;
   const double R = e->spec[a].radius + e->spec[b].radius;
@@ -352,7 +363,7 @@ int sb_engine_firsthit_kernel(const sb_engine_firsthit *f,
   if (e->par.dim != 3)
     return sbi_error(SB_EINVAL, __func__, "dim = %d: the first-contact "
                      "reference is 3-D", e->par.dim);
-  return sb_engine_firsthit_estimate(k, level);
+  return estimate(k, level, __func__);
 }
 
 /* Inputs valid: SB_SUCCESS, or the status with a message from `func`. */
@@ -414,23 +425,24 @@ static double kernel_of(double c1, double c2, double h)
   return 2.0 * h / (c1 + sqrt(c1 * c1 + 4.0 * c2 * h));
 }
 
-int sb_engine_firsthit_estimate(sb_engine_firsthit_kernel_result *k,
-                                double level)
+/* sb_engine_firsthit_estimate for the public function who */
+static int estimate(sb_engine_firsthit_kernel_result *k, double level,
+                    const char *who)
 {
   if (!k)
-    return sbi_error(SB_EINVAL, __func__, "result is NULL");
+    return sbi_error(SB_EINVAL, who, "result is NULL");
   k->K = k->lo = k->hi = k->a = k->expected_per_K = k->dispersion = NAN;
-  int st = check_inputs(k, __func__);
+  int st = check_inputs(k, who);
   if (st)
     return st;
   if (!(level > 0.0 && level < 1.0))
-    return sbi_error(SB_EINVAL, __func__, "level = %g: must be in (0, 1)",
+    return sbi_error(SB_EINVAL, who, "level = %g: must be in (0, 1)",
                      level);
   double c1, c2;
   coefs(k, &c1, &c2);
   if (!(c1 > 0.0)) {
     k->expected_per_K = c1;
-    return sbi_error(SB_EDOM, __func__, "no exposure (%g pairs apart, "
+    return sbi_error(SB_EDOM, who, "no exposure (%g pairs apart, "
                      "counting from t1 = %g s to t = %g s)",
                      k->c.pairs_apart, k->t1, k->t);
   }
@@ -441,7 +453,7 @@ int sb_engine_firsthit_estimate(sb_engine_firsthit_kernel_result *k,
   double l, u;
   st = sb_poisson_ci_dispersed(k->c.hits, k->dispersion, level, &l, &u);
   if (st)
-    return st;
+    return sbi_error(st, who, "interval: %s", sb_last_error());
   if (k->radius > 0.0) {
     /* linear: the interval is the count's interval times the scale */
     k->a = k->radius;
@@ -458,6 +470,12 @@ int sb_engine_firsthit_estimate(sb_engine_firsthit_kernel_result *k,
   k->a = k->K / (4.0 * PI * k->D);
   k->expected_per_K = c1 + c2 * k->K;
   return SB_SUCCESS;
+}
+
+int sb_engine_firsthit_estimate(sb_engine_firsthit_kernel_result *k,
+                                double level)
+{
+  return estimate(k, level, __func__);
 }
 
 double sb_engine_chord_vn(const sb_engine *e, const sb_engine_pair *p,
@@ -490,8 +508,11 @@ double sb_engine_chord_vn(const sb_engine *e, const sb_engine_pair *p,
 
 double sb_engine_contact_vn(const sb_engine *e)
 {
-  if (sb_engine_contact_state(e, NULL, NULL, NULL, NULL))
+  if (!e || !e->contact) {
+    sbi_error(SB_EINVAL, __func__, "no contact state (Langevin detector, "
+              "inside an outcome or an on_hit callback only)");
     return NAN;
+  }
   /* from the relative vector and velocity themselves, (u_i - u_j) - du
    * (j's Lees-Edwards image) and x_i - x_j, not from the states: the same
    * bits whichever particle of the pair comes first in memory */

@@ -168,7 +168,7 @@ static double term_fn(double v, void *vp)
 
 /* Speed v >= 0 with f(Re(v)) v = vst (Brent; f >= 1 so v <= vst). */
 static int terminal_speed(const sb_engine *e, size_t sp, double vst,
-                          double *v)
+                          double *v, const char *who)
 {
   const sb_engine_species_fluid *fl = sfl_of(e, sp);
   if (fl->drag == SB_DRAG_STOKES || vst == 0.0 || fl->rho_f == 0.0) {
@@ -180,24 +180,26 @@ static int terminal_speed(const sb_engine *e, size_t sp, double vst,
   double r;
   int st = sbi_brent(&F, 0.0, vst, 0.0, 1e-14, 200, &r);
   if (st == SB_ENOMEM)
-    return sbi_error(SB_ENOMEM, __func__, "out of memory");
+    return sbi_error(SB_ENOMEM, who, "out of memory");
   if (st || !isfinite(r))
-    return sbi_error(SB_EMAXITER, __func__,
+    return sbi_error(SB_EMAXITER, who,
                      "no terminal velocity for species %zu", sp);
   *v = r;
   return SB_SUCCESS;
 }
 
-int sb_engine_settling_velocity(const sb_engine *e, size_t sp, double v[3])
+/* sb_engine_settling_velocity for the public function who */
+static int settling_velocity(const sb_engine *e, size_t sp, double v[3],
+                             const char *who)
 {
   if (!e || !v || sp >= e->nspec)
-    return sbi_error(SB_EINVAL, __func__, "bad engine, species or NULL");
+    return sbi_error(SB_EINVAL, who, "bad engine, species or NULL");
   const sb_engine_species *s = &e->spec[sp];
   memset(v, 0, 3 * sizeof(double));
   if (!e->has_grav)
     return SB_SUCCESS;
   if (isinf(s->tau))
-    return sbi_error(SB_EINVAL, __func__,
+    return sbi_error(SB_EINVAL, who,
                      "species %zu is in free flight: no settling velocity",
                      sp);
   double a[3];
@@ -206,7 +208,7 @@ int sb_engine_settling_velocity(const sb_engine *e, size_t sp, double v[3])
   if (na == 0.0)
     return SB_SUCCESS;
   double sp_ = 0.0;
-  int st = terminal_speed(e, sp, s->tau * na, &sp_);
+  int st = terminal_speed(e, sp, s->tau * na, &sp_, who);
   if (st)
     return st;
   for (int k = 0; k < 3; k++)
@@ -214,11 +216,15 @@ int sb_engine_settling_velocity(const sb_engine *e, size_t sp, double v[3])
   return SB_SUCCESS;
 }
 
+int sb_engine_settling_velocity(const sb_engine *e, size_t sp, double v[3])
+{
+  return settling_velocity(e, sp, v, __func__);
+}
+
 /* ============================================================ step hooks */
 
-int sbi_engine_physics_prepare(sb_engine *e)
+int sbi_engine_physics_prepare(sb_engine *e, const char *fn)
 {
-  static const char *fn = "sb_engine_step";
   if (e->lees) {
     if (e->fluid != SB_FLUID_SHEAR)
       return sbi_error(SB_EINVAL, fn, "Lees-Edwards boundaries need the "
@@ -243,7 +249,7 @@ int sbi_engine_physics_prepare(sb_engine *e)
       return sbi_error(SB_ENOMEM, fn, "out of memory");
     e->vset = v;
     for (size_t k = 0; k < e->nspec; k++) {
-      int st = sb_engine_settling_velocity(e, k, &v[3 * k]);
+      int st = settling_velocity(e, k, &v[3 * k], fn);
       if (st)
         return st;
     }
@@ -252,9 +258,9 @@ int sbi_engine_physics_prepare(sb_engine *e)
   return SB_SUCCESS;
 }
 
-const double *sbi_engine_settling(sb_engine *e, size_t sp)
+const double *sbi_engine_settling(sb_engine *e, size_t sp, const char *who)
 {
-  if (!e->has_grav || sbi_engine_physics_prepare(e) || sp >= e->nvset)
+  if (!e->has_grav || sbi_engine_physics_prepare(e, who) || sp >= e->nvset)
     return NULL;
   return &e->vset[3 * sp];
 }

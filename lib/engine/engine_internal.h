@@ -438,14 +438,18 @@ static inline double sbi_engine_w(const sb_engine *e, size_t k, int c)
          ((e->has_grav && sp < e->nvset) ? e->vset[3 * sp + c] : 0.0);
 }
 
+/* The neighbour-search helpers below take `who`, the public function
+ * the caller entered (sb_engine_step, sb_engine_neighbours, ...), and name
+ * it in their error messages. */
+
 /* Append a candidate pair (grows the array). */
-int sbi_engine_push_pair(sb_engine *e, size_t i, size_t j);
+int sbi_engine_push_pair(sb_engine *e, size_t i, size_t j, const char *who);
 
 /* Neighbour search on start positions x0 and displacements disp (NULL =
  * zero) with extra reach; fills e->pairs / e->npairs.  The three methods
  * live in engine_neigh.c (cells, brute) and engine_sweep.c (sweep). */
 int sbi_engine_find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
-                          const double *disp, double reach);
+                          const double *disp, double reach, const char *who);
 /* The Langevin search's midpoint grid (engine_neigh.c, lsearch): dim
  * axes of nf cells (strides fst, box edges L), the cells' starts fs, and in
  * cell order each member's slot fl and midpoint and extent fx (x, y, z, f;
@@ -475,7 +479,7 @@ int sbi_lsearch_stencil(const sb_engine *e, const sbi_mgrid *M, size_t c0,
                         size_t c1, sbi_lpart *blk, sbi_lpair_fn emit,
                         void *ctx);
 int sbi_engine_sweep(sb_engine *e, const double *x0, const double *disp,
-                     double reach);
+                     double reach, const char *who);
 /* The search of a step (sb_engine_step): x0, disp of the engine; with the
  * cells method and a deterministic detector through the Verlet list. */
 int sbi_engine_find_step_pairs(sb_engine *e, double reach);
@@ -503,19 +507,23 @@ int sbi_engine_apply_outcome(sb_engine *e, const sb_engine_pair *p,
  * (its j while the ids follow the slots), so that a run does not depend
  * on the particles' order in memory (sb_engine_sort). */
 int sbi_engine_reinsert_higher_id(sb_engine *e, const sb_engine_pair *p,
-                                  double s);
+                                  double s, const char *who);
 /* Random non-overlapping position for particle k (excluded from the
  * check), uniform in the box; SB_EMAXITER after `tries` attempts.  Inside
  * a step, `partner` is k's collision partner (tested by itself: it may sit
  * at a contact point off its path's bound), or (size_t)-1. */
 int sbi_engine_random_free_position(sb_engine *e, size_t k, size_t partner,
-                                    double x[3], size_t tries);
-/* Equilibrium velocity for species sp at position x into u. */
+                                    double x[3], size_t tries,
+                                    const char *who);
+/* Equilibrium velocity for species sp at position x into u.  Here and in
+ * the helpers below `who` is the public function entered, named in the
+ * error messages. */
 int sbi_engine_equilibrium_velocity(sb_engine *e, size_t sp,
-                                    const double x[3], double u[3]);
+                                    const double x[3], double u[3],
+                                    const char *who);
 /* Fluid velocity at n positions (built-in or callback). */
 int sbi_engine_fluid_eval(sb_engine *e, size_t n, const double *x,
-                          double *us);
+                          double *us, const char *who);
 
 /* Observers (engine_observe.c). */
 void sbi_engine_count_collision(sb_engine *e, size_t i, size_t j);
@@ -649,10 +657,10 @@ int sbi_engine_update_coef(sb_engine *e);
  * engine_wall.c); each is a no-op when its feature is off. */
 /* Check the combination of settings and refresh the settling velocities
  * (called at the start of every step). */
-int sbi_engine_physics_prepare(sb_engine *e);
+int sbi_engine_physics_prepare(sb_engine *e, const char *who);
 /* Settling velocity of species sp (m/s) for initial velocities: NULL when
  * there is no gravity. */
-const double *sbi_engine_settling(sb_engine *e, size_t sp);
+const double *sbi_engine_settling(sb_engine *e, size_t sp, const char *who);
 /* After the linear transport: the nonlinear-drag step of those species
  * and, with Lees-Edwards, the exact shear correction. */
 int sbi_engine_after_transport(sb_engine *e);
@@ -686,7 +694,8 @@ void sbi_engine_shear_correct(sb_engine *e);
 /* After the periodic search: drop pairs across walls and Lees-Edwards
  * boundaries, add the pairs across the sliding boundary. */
 int sbi_engine_boundary_pairs(sb_engine *e, const double *x0,
-                              const double *disp, double reach, double cut);
+                              const double *disp, double reach, double cut,
+                              const char *who);
 /* The image of particle j next to particle i at step fraction t
  * (positions xi, xj in the frames of x0_i, x0_j): the shift sh to add to
  * j's position -- with Lees-Edwards the image index n = +-1 across the

@@ -652,7 +652,8 @@ int sbi_engine_langevin_continue(sb_engine *e, size_t k, const sbi_event *ev,
     double xw[3];
     for (int c = 0; c < 3; c++)
       xw[c] = c < e->par.dim ? sbi_wrap(e->x[3 * k + c], e->par.L[c]) : 0.0;
-    int st = sbi_engine_fluid_eval(e, 1, xw, &e->us[3 * k]);
+    int st = sbi_engine_fluid_eval(e, 1, xw, &e->us[3 * k],
+                                   "sb_engine_step");
     if (st)
       return st;
   }

@@ -251,7 +251,7 @@ static size_t lower(const xkey *k, size_t n, double v)
 }
 
 static int try_pair(sb_engine *e, const double *x0, size_t i, size_t j,
-                    double extra, double reach)
+                    double extra, double reach, const char *who)
 {
   const double *L = e->par.L;
   if (!(x0[3 * i + 1] - x0[3 * j + 1] > 0.5 * L[1]))
@@ -265,18 +265,18 @@ static int try_pair(sb_engine *e, const double *x0, size_t i, size_t j,
                reach;
   if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > lim * lim)
     return SB_SUCCESS;
-  return sbi_engine_push_pair(e, i < j ? i : j, i < j ? j : i);
+  return sbi_engine_push_pair(e, i < j ? i : j, i < j ? j : i, who);
 }
 
 static int lees_pairs(sb_engine *e, const double *x0, double reach,
-                      double cut)
+                      double cut, const char *who)
 {
   const double *L = e->par.L;
   const double extra = fabs(e->fluid_p[0]) * L[1] * e->par.dt;
   const double c = cut + extra;
   for (int k = 0; k < e->par.dim; k++)
     if (!(c < 0.5 * L[k]))
-      return sbi_error(SB_EINVAL, "sb_engine_step",
+      return sbi_error(SB_EINVAL, who,
                        "step too large for the box: reach with the "
                        "Lees-Edwards velocity jump |G| L_y dt, %g m, is not "
                        "below L[%d]/2 = %g m", c, k, 0.5 * L[k]);
@@ -293,7 +293,7 @@ static int lees_pairs(sb_engine *e, const double *x0, double reach,
   if (!bot || !top) {
     free(bot);
     free(top);
-    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+    return sbi_error(SB_ENOMEM, who, "out of memory");
   }
   nb = nt = 0;
   for (size_t i = 0; i < e->n; i++) {
@@ -326,7 +326,7 @@ static int lees_pairs(sb_engine *e, const double *x0, double reach,
       for (size_t b = lower(bot, nb, r[w][0]); b < nb && bot[b].x <= r[w][1];
            b++)
         if (bot[b].i != i && (st = try_pair(e, x0, i, bot[b].i, extra,
-                                            reach)))
+                                            reach, who)))
           break;
     }
   }
@@ -336,7 +336,8 @@ static int lees_pairs(sb_engine *e, const double *x0, double reach,
 }
 
 int sbi_engine_boundary_pairs(sb_engine *e, const double *x0,
-                              const double *disp, double reach, double cut)
+                              const double *disp, double reach, double cut,
+                              const char *who)
 {
   (void)disp;
   if (!e->lees && !e->walled)
@@ -358,5 +359,5 @@ int sbi_engine_boundary_pairs(sb_engine *e, const double *x0,
     }
   }
   e->npairs = w;
-  return e->lees ? lees_pairs(e, x0, reach, cut) : SB_SUCCESS;
+  return e->lees ? lees_pairs(e, x0, reach, cut, who) : SB_SUCCESS;
 }

@@ -171,7 +171,8 @@ void sb_agglo_free(sb_agglo *a)
 }
 
 /* Grow an array of size_t to hold index idx, new entries = fill. */
-static int grow_index(size_t **arr, size_t *cap, size_t idx, size_t fill)
+static int grow_index(size_t **arr, size_t *cap, size_t idx, size_t fill,
+                      const char *who)
 {
   if (idx < *cap)
     return SB_SUCCESS;
@@ -180,7 +181,7 @@ static int grow_index(size_t **arr, size_t *cap, size_t idx, size_t fill)
     nc *= 2;
   size_t *na = realloc(*arr, nc * sizeof *na);
   if (!na)
-    return sbi_error(SB_ENOMEM, "sb_agglo", "out of memory");
+    return sbi_error(SB_ENOMEM, who, "out of memory");
   for (size_t k = *cap; k < nc; k++)
     na[k] = fill;
   *arr = na;
@@ -188,11 +189,11 @@ static int grow_index(size_t **arr, size_t *cap, size_t idx, size_t fill)
   return SB_SUCCESS;
 }
 
-int sbi_agglo_set_map(sb_agglo *a, size_t k, size_t sp)
+int sbi_agglo_set_map(sb_agglo *a, size_t k, size_t sp, const char *who)
 {
-  int st = grow_index(&a->sp_of_k, &a->ncap_k, k, SIZE_MAX);
+  int st = grow_index(&a->sp_of_k, &a->ncap_k, k, SIZE_MAX, who);
   if (!st)
-    st = grow_index(&a->k_of_sp, &a->ncap_sp, sp, 0);
+    st = grow_index(&a->k_of_sp, &a->ncap_sp, sp, 0, who);
   if (st)
     return st;
   a->sp_of_k[k] = sp;
@@ -220,7 +221,7 @@ int sb_agglo_attach(sb_engine *e, sb_agglo *a)
                        "not a cluster species (primary %zu)", i,
                        e->species[i], p);
   a->prim = e->spec[p];
-  int st = sbi_agglo_set_map(a, 1, p);
+  int st = sbi_agglo_set_map(a, 1, p, __func__);
   if (st)
     return st;
   return sb_engine_set_outcome_fn(e, sb_engine_outcome_agglo, a);
@@ -236,7 +237,8 @@ size_t sb_agglo_size_of_species(const sb_agglo *a, size_t sp)
 }
 
 /* Species properties of a cluster of k primaries (growth law). */
-static int grow_species(const sb_agglo *a, size_t k, sb_engine_species *s)
+static int grow_species(const sb_agglo *a, size_t k, sb_engine_species *s,
+                        const char *who)
 {
   const sb_engine_species *p1 = &a->prim;
   const double kd = (double)k;
@@ -257,40 +259,50 @@ static int grow_species(const sb_agglo *a, size_t k, sb_engine_species *s)
   case SB_AGGLO_CUSTOM: {
     int st = a->par.species_fn(k, p1, s, a->par.species_ctx);
     if (st)
-      return sbi_error(st, "sb_agglo_species_of_size",
-                       "growth callback failed for k = %zu", k);
+      return sbi_error(st, who, "growth callback failed for k = %zu", k);
     return SB_SUCCESS;
   }
   }
-  return SB_EINVAL;
+  return sbi_error(SB_EINVAL, who, "unknown growth law %d",
+                   (int)a->par.growth);
 }
 
-int sb_agglo_species_of_size(sb_agglo *a, sb_engine *e, size_t k,
-                             size_t *sp)
+/* sb_agglo_species_of_size for the public function who (a merge: the
+ * function that merged) */
+static int species_of_size(sb_agglo *a, sb_engine *e, size_t k, size_t *sp,
+                           const char *who)
 {
   if (!a || !e || k < 1)
-    return sbi_error(SB_EINVAL, __func__, "NULL argument or k = 0");
+    return sbi_error(SB_EINVAL, who, "NULL argument or k = 0");
   if (k > a->par.kmax)
-    return sbi_error(SB_EINVAL, __func__, "cluster size %zu exceeds kmax = "
+    return sbi_error(SB_EINVAL, who, "cluster size %zu exceeds kmax = "
                      "%zu", k, a->par.kmax);
   if (a->ncap_k == 0)
-    return sbi_error(SB_EINVAL, __func__, "context not attached");
+    return sbi_error(SB_EINVAL, who, "context not attached");
   if (k < a->ncap_k && a->sp_of_k[k] != SIZE_MAX) {
     if (sp)
       *sp = a->sp_of_k[k];
     return SB_SUCCESS;
   }
   sb_engine_species s;
-  int st = grow_species(a, k, &s);
+  int st = grow_species(a, k, &s, who);
   if (st)
     return st;
   size_t idx;
   st = sb_engine_add_species(e, &s, &idx);
-  if (!st)
-    st = sbi_agglo_set_map(a, k, idx);
+  if (st)
+    return sbi_error(st, who, "species of clusters of size %zu: %s", k,
+                     sb_last_error());
+  st = sbi_agglo_set_map(a, k, idx, who);
   if (!st && sp)
     *sp = idx;
   return st;
+}
+
+int sb_agglo_species_of_size(sb_agglo *a, sb_engine *e, size_t k,
+                             size_t *sp)
+{
+  return species_of_size(a, e, k, sp, __func__);
 }
 
 int sb_agglo_get_stats(const sb_agglo *a, sb_agglo_stats *st)
@@ -318,19 +330,21 @@ static size_t size_of(const sb_agglo *a, const sb_engine *e, size_t i)
   return sp < a->ncap_sp ? a->k_of_sp[sp] : 0;
 }
 
-int sb_agglo_merge(sb_engine *e, sb_agglo *a, const sb_engine_pair *p,
-                   double s)
+/* sb_agglo_merge for the public function who (the outcome, or a direct
+ * call) */
+static int agglo_merge(sb_engine *e, sb_agglo *a, const sb_engine_pair *p,
+                       double s, const char *who)
 {
   /* the end of step: barycentre of the ends (see the file comment) */
   if (!e || !a || !p || p->i >= e->n || p->j >= e->n || p->i == p->j)
-    return sbi_error(SB_EINVAL, __func__, "bad argument");
+    return sbi_error(SB_EINVAL, who, "bad argument");
   const size_t i = p->i, j = p->j;
   const size_t ki = size_of(a, e, i), kj = size_of(a, e, j);
   if (!ki || !kj)
-    return sbi_error(SB_EINVAL, __func__, "particle %zu or %zu is not a "
+    return sbi_error(SB_EINVAL, who, "particle %zu or %zu is not a "
                      "cluster of this context", i, j);
   size_t sp;
-  int st = sb_agglo_species_of_size(a, e, ki + kj, &sp);
+  int st = species_of_size(a, e, ki + kj, &sp, who);
   if (st)
     return st;
   const double mi = e->mass[i], mj = e->mass[j], M = mi + mj;
@@ -361,6 +375,12 @@ int sb_agglo_merge(sb_engine *e, sb_agglo *a, const sb_engine_pair *p,
   e->mass[i] = e->spec[sp].mass;
   a->st.nmerge++;
   return sb_engine_remove_particle(e, j);
+}
+
+int sb_agglo_merge(sb_engine *e, sb_agglo *a, const sb_engine_pair *p,
+                   double s)
+{
+  return agglo_merge(e, a, p, s, __func__);
 }
 
 /* ============================================================ DLVO */
@@ -430,7 +450,7 @@ int sb_engine_outcome_agglo(sb_engine *e, const sb_engine_pair *p, double s,
   if (!e || !p || !a)
     return sbi_error(SB_EINVAL, __func__, "NULL argument");
   if (a->par.rule == SB_AGGLO_MERGE)
-    return sb_agglo_merge(e, a, p, s);
+    return agglo_merge(e, a, p, s, __func__);
   double E = sb_agglo_erel_of(e, a, p, s, e->rng);
   double W = a->par.wmax;
   if (a->par.wmax_fn)
@@ -440,7 +460,7 @@ int sb_engine_outcome_agglo(sb_engine *e, const sb_engine_pair *p, double s,
                      E, W);
   a->st.erel_sum += E;
   if (sb_dlvo_sticks(E, W))
-    return sb_agglo_merge(e, a, p, s);
+    return agglo_merge(e, a, p, s, __func__);
   a->st.nrebound++;
   if (a->par.erel == SB_AGGLO_EREL_CONTACT) {
     /* a bounce changes the velocities, not the places at contact */

@@ -20,13 +20,13 @@
 #include "common/internal.h"
 #include "engine_internal.h"
 
-int sbi_engine_push_pair(sb_engine *e, size_t i, size_t j)
+int sbi_engine_push_pair(sb_engine *e, size_t i, size_t j, const char *who)
 {
   if (e->npairs == e->cappairs) {
     size_t nc = e->cappairs ? 2 * e->cappairs : 1024;
     size_t *np = realloc(e->pairs, 2 * nc * sizeof *np);
     if (!np)
-      return sbi_error(SB_ENOMEM, "sb_engine_step",
+      return sbi_error(SB_ENOMEM, who,
                        "out of memory (%zu candidate pairs)", nc);
     e->pairs = np;
     e->cappairs = nc;
@@ -177,12 +177,13 @@ static inline int near(const sb_engine *e, const double *x0, size_t i,
   return d2 <= lim * lim;
 }
 
-static int brute(sb_engine *e, const double *x0, double reach)
+static int brute(sb_engine *e, const double *x0, double reach,
+                 const char *who)
 {
   for (size_t i = 0; i < e->n; i++)
     for (size_t j = i + 1; j < e->n; j++)
       if (near(e, x0, i, j, reach)) {
-        int st = sbi_engine_push_pair(e, i, j);
+        int st = sbi_engine_push_pair(e, i, j, who);
         if (st)
           return st;
       }
@@ -360,7 +361,8 @@ static int scan_cell(const cell_scan *K, size_t c, sbi_pairbuf *out)
  * Verlet list (no displacements).  keep_list: the Verlet list stays valid
  * (its pairs and floaters are its own; only its cells are gone). */
 static int cell_sort(sb_engine *e, const double *x0, double cut,
-                     double reach, int for_list, int keep_list, cell_scan *K)
+                     double reach, int for_list, int keep_list, cell_scan *K,
+                     const char *who)
 {
   if (!keep_list) {  /* its cells are overwritten (a list build sets it) */
     e->vl.valid = 0;
@@ -389,7 +391,7 @@ static int cell_sort(sb_engine *e, const double *x0, double cut,
   if (ncell + 1 > e->capcells) {
     size_t *p = realloc(e->cell_start, (ncell + 1) * sizeof *p);
     if (!p)
-      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+      return sbi_error(SB_ENOMEM, who, "out of memory");
     e->cell_start = p;
     e->capcells = ncell + 1;
   }
@@ -449,10 +451,10 @@ static int cell_sort(sb_engine *e, const double *x0, double cut,
 }
 
 static int cells(sb_engine *e, const double *x0, double cut, double reach,
-                 int for_list)
+                 int for_list, const char *who)
 {
   cell_scan K;
-  int st0 = cell_sort(e, x0, cut, reach, for_list, 0, &K);
+  int st0 = cell_sort(e, x0, cut, reach, for_list, 0, &K, who);
   if (st0)
     return st0;
   const size_t n = e->n, ncell = (size_t)K.nc[0] * K.nc[1] * K.nc[2];
@@ -465,7 +467,7 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach,
     e->pairs = pb.p;
     e->npairs = pb.n;
     e->cappairs = pb.cap;
-    return st ? sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+    return st ? sbi_error(SB_ENOMEM, who, "out of memory "
                           "(%zu candidate pairs)", pb.n) : SB_SUCCESS;
   }
   /* in parallel: thread t scans the t-th of nt contiguous ranges of cells
@@ -473,7 +475,7 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach,
    * serial list, pair for pair */
   sbi_pairbuf *tb = thread_buffers(e, nt);
   if (!tb)
-    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+    return sbi_error(SB_ENOMEM, who, "out of memory");
   int bad = 0;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static, 1) num_threads(nt) reduction(| : bad)
@@ -488,7 +490,7 @@ static int cells(sb_engine *e, const double *x0, double cut, double reach,
   if (!bad)
     bad = join_buffers(e, tb, nt);
   if (bad)
-    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+    return sbi_error(SB_ENOMEM, who, "out of memory "
                      "(candidate pairs)");
   return SB_SUCCESS;
 }
@@ -681,7 +683,8 @@ static int lparts(sb_engine *e, int nt)
  * list[b].  How the pairs are spread over the shares and ordered in them
  * does not matter (each pair once: the order out is a total order), so
  * the shares may come from threads. */
-static int emit_in_cell_order(sb_engine *e, int nb, const size_t *list)
+static int emit_in_cell_order(sb_engine *e, int nb, const size_t *list,
+                              const char *who)
 {
   const sbi_lpart *in = e->lpt;
   const size_t n = e->n;
@@ -691,7 +694,7 @@ static int emit_in_cell_order(sb_engine *e, int nb, const size_t *list)
   if (np > e->lcap2) {
     sbi_lpair *q = realloc(e->lpr2, np * sizeof *q);
     if (!q)
-      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+      return sbi_error(SB_ENOMEM, who, "out of memory "
                        "(%zu candidate pairs)", np);
     e->lpr2 = q;
     e->lcap2 = np;
@@ -730,7 +733,7 @@ static int emit_in_cell_order(sb_engine *e, int nb, const size_t *list)
   e->pairs = pb.p;
   e->npairs = pb.n;
   e->cappairs = pb.cap;
-  return bad ? sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+  return bad ? sbi_error(SB_ENOMEM, who, "out of memory "
                          "(%zu candidate pairs)", pb.n) : SB_SUCCESS;
 }
 
@@ -870,12 +873,12 @@ static size_t share_start(const size_t *fs, size_t nfc, size_t n, int t,
  * over a range of cells, then every pair in the cells' order (the same
  * candidates in the same order for any number of threads). */
 static int stencil_search(sb_engine *e, const cell_scan *K,
-                          const sbi_mgrid *M, size_t nfc)
+                          const sbi_mgrid *M, size_t nfc, const char *who)
 {
   const size_t n = e->n;
   const int nt = n >= 4096 ? sbi_engine_threads(&e->par) : 1;
   if (lparts(e, nt))
-    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+    return sbi_error(SB_ENOMEM, who, "out of memory");
   int bad = 0;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static, 1) num_threads(nt) reduction(| : bad)
@@ -889,22 +892,22 @@ static int stencil_search(sb_engine *e, const cell_scan *K,
                                lstencil_emit, &lc) != 0;
   }
   if (bad)
-    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+    return sbi_error(SB_ENOMEM, who, "out of memory "
                      "(candidate pairs)");
-  return emit_in_cell_order(e, nt, K->list);
+  return emit_in_cell_order(e, nt, K->list, who);
 }
 
 static int lsearch(sb_engine *e, const double *x0, const double *disp,
-                   double cut, double reach)
+                   double cut, double reach, const char *who)
 {
   cell_scan K;
-  int st = cell_sort(e, x0, cut, reach, 0, 0, &K);
+  int st = cell_sort(e, x0, cut, reach, 0, 0, &K, who);
   if (st)
     return st;
   const size_t n = e->n;
   const int dim = K.dim;
   if (lsearch_grow(e, n))
-    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+    return sbi_error(SB_ENOMEM, who, "out of memory");
   double Lmax = 0.0, vol = 1.0;
   for (int k = 0; k < dim; k++) {
     Lmax = K.L[k] > Lmax ? K.L[k] : Lmax;
@@ -970,7 +973,7 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
   if (nfc + 1 > e->lcapc) {
     size_t *p = realloc(e->lfs, (nfc + 1) * sizeof *p);
     if (!p)
-      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+      return sbi_error(SB_ENOMEM, who, "out of memory");
     e->lfs = p;
     e->lcapc = nfc + 1;
   }
@@ -1006,7 +1009,7 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
                          {K.L[0], K.L[1], K.L[2]}, fs, fl, fx, reach, tol,
                          eabs};
     e->lsearch_stencil_n++;
-    return stencil_search(e, &K, &M, nfc);
+    return stencil_search(e, &K, &M, nfc, who);
   }
   /* every pair from its member of larger extent */
   e->lsearch_walk_n++;
@@ -1014,7 +1017,7 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
                L2 = dim > 2 ? K.L[2] : 0.0;
   const size_t *list = K.list;
   if (lparts(e, 1))
-    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+    return sbi_error(SB_ENOMEM, who, "out of memory");
   sbi_lpairbuf *out = &e->lpt[0].pr;
   out->n = 0;
   int ci[3] = {0, 0, 0};
@@ -1073,7 +1076,7 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
               const size_t c2 = off[0][q0] + off[1][q1] + off[2][q2];
               const double sh[3] = {shf[0][q0], shf[1][q1], shf[2][q2]};
               if (lprobe_cell(e, &K, &P, sh, fs[c2], fs[c2 + 1], out))
-                return sbi_error(SB_ENOMEM, "sb_engine_step", "out of "
+                return sbi_error(SB_ENOMEM, who, "out of "
                                  "memory (%zu candidate pairs)", out->n);
             }
         continue;
@@ -1091,12 +1094,12 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
               c2 += (size_t)v * fst[k];
             }
             if (lprobe_wide(e, &K, &P, L0, L1, L2, fs[c2], fs[c2 + 1], out))
-              return sbi_error(SB_ENOMEM, "sb_engine_step", "out of "
+              return sbi_error(SB_ENOMEM, who, "out of "
                                "memory (%zu candidate pairs)", out->n);
           }
     }
   }
-  return emit_in_cell_order(e, 1, list);
+  return emit_in_cell_order(e, 1, list, who);
 }
 
 /* Where the cut-off is well below the density's cell edge (dt << tau_p),
@@ -1228,7 +1231,8 @@ static int float_pairs(sb_engine *e, const double *x0, double reach,
 /* Rebuild the list around x0: pairs within r_i + r_j + reach + skin.
  * SB_SUCCESS with v->valid = 0 when a list does not pay (displacements
  * above skin / SBI_VERLET_STEPS) or does not fit the box. */
-static int list_build(sb_engine *e, const double *x0, double D, double reach)
+static int list_build(sb_engine *e, const double *x0, double D, double reach,
+                      const char *who)
 {
   sbi_verlet *v = &e->vl;
   const int dim = e->par.dim;
@@ -1240,13 +1244,13 @@ static int list_build(sb_engine *e, const double *x0, double D, double reach)
   for (int k = 0; k < dim; k++)
     if (!(cut < 0.5 * e->par.L[k]))
       return SB_SUCCESS;
-  int st = cells(e, x0, cut, reach + skin, 1);
+  int st = cells(e, x0, cut, reach + skin, 1, who);
   if (st)
     return st;
   if (e->npairs > v->cappairs) {
     size_t *p = realloc(v->pairs, 2 * e->npairs * sizeof *p);
     if (!p)
-      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+      return sbi_error(SB_ENOMEM, who, "out of memory "
                        "(%zu listed pairs)", e->npairs);
     v->pairs = p;
     v->cappairs = e->npairs;
@@ -1280,7 +1284,7 @@ static int list_build(sb_engine *e, const double *x0, double D, double reach)
  * start position within 2 (r_max + max|disp|) + reach of it; the
  * floaters are checked one by one (sbi_engine_partners). */
 static int listed(sb_engine *e, const double *x0, double cut, double D,
-                  double reach)
+                  double reach, const char *who)
 {
   sbi_verlet *v = &e->vl;
   if (list_holds(e, x0, D, reach)) {
@@ -1288,11 +1292,11 @@ static int listed(sb_engine *e, const double *x0, double cut, double D,
     v->floated += v->nfloat > 0;
   }
   else {
-    int st = list_build(e, x0, D, reach);
+    int st = list_build(e, x0, D, reach, who);
     if (st)
       return st;
     if (!v->valid)
-      return cells(e, x0, cut, reach, 0);
+      return cells(e, x0, cut, reach, 0, who);
   }
   const unsigned char *fl = v->isfloat;
   const size_t np = v->npairs;
@@ -1314,7 +1318,7 @@ static int listed(sb_engine *e, const double *x0, double cut, double D,
      * its own buffer; joined in thread order they are the serial list */
     sbi_pairbuf *tb = thread_buffers(e, nt);
     if (!tb)
-      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+      return sbi_error(SB_ENOMEM, who, "out of memory");
     const sb_engine *ce = e;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static, 1) num_threads(nt) reduction(| : bad)
@@ -1340,7 +1344,7 @@ static int listed(sb_engine *e, const double *x0, double cut, double D,
     e->cappairs = pb.cap;
   }
   if (bad)
-    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+    return sbi_error(SB_ENOMEM, who, "out of memory "
                      "(candidate pairs)");
   e->grid.valid = 1;  /* the cells of the build */
   e->grid.cut = cut;
@@ -1373,7 +1377,7 @@ static int keep_if_seen(const cell_scan *K, const int *cc, size_t sa,
  * floaters are then forgotten (re-detection finds them in those cells).
  * Without a list that holds or pays: *used = 0, nothing done. */
 static int listed_ordered(sb_engine *e, const double *x0, double cut,
-                          double D, double reach, int *used)
+                          double D, double reach, int *used, const char *who)
 {
   sbi_verlet *v = &e->vl;
   *used = 0;
@@ -1381,16 +1385,16 @@ static int listed_ordered(sb_engine *e, const double *x0, double cut,
     v->uses++;
     v->floated += v->nfloat > 0;
   } else {
-    int st = list_build(e, x0, D, reach);
+    int st = list_build(e, x0, D, reach, who);
     if (st || !v->valid)
       return st;
   }
   *used = 1;
   const size_t n = e->n;
   if (lsearch_grow(e, n))
-    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+    return sbi_error(SB_ENOMEM, who, "out of memory");
   cell_scan K;
-  int st = cell_sort(e, x0, cut, reach, 0, 1, &K);
+  int st = cell_sort(e, x0, cut, reach, 0, 1, &K, who);
   if (st)
     return st;
   size_t *slot = e->lfl;  /* particle -> its slot in cell order */
@@ -1410,7 +1414,7 @@ static int listed_ordered(sb_engine *e, const double *x0, double cut,
   }
   const unsigned char *fl = v->isfloat;
   if (lparts(e, 1))
-    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+    return sbi_error(SB_ENOMEM, who, "out of memory");
   sbi_lpairbuf *out = &e->lpt[0].pr;
   out->n = 0;
   int bad = 0;
@@ -1449,9 +1453,9 @@ static int listed_ordered(sb_engine *e, const double *x0, double cut,
   }
   float_clear(v);
   if (bad)
-    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory "
+    return sbi_error(SB_ENOMEM, who, "out of memory "
                      "(%zu candidate pairs)", out->n);
-  return emit_in_cell_order(e, 1, K.list);
+  return emit_in_cell_order(e, 1, K.list, who);
 }
 
 /* The search of sbi_engine_find_pairs; with_list: linked cells may go
@@ -1459,14 +1463,14 @@ static int listed_ordered(sb_engine *e, const double *x0, double cut,
  * detector). */
 static int find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
                       const double *disp, double reach, int with_list,
-                      int ordered, int lang)
+                      int ordered, int lang, const char *who)
 {
   e->npairs = 0;
   e->grid.valid = 0;
   if (e->n < 2)
     return SB_SUCCESS;
   double cut = 0.0, D = 0.0;
-  int st = cutoff(e, disp, reach, &cut, &D, "sb_engine_step");
+  int st = cutoff(e, disp, reach, &cut, &D, who);
   if (st)
     return st;
   e->grid.ext_max = 0.5 * (cut - reach);  /* r_max + max |disp| */
@@ -1474,34 +1478,35 @@ static int find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
   case SB_NEIGH_CELLS: {
     int used = 0;
     if (with_list)
-      st = listed(e, x0, cut, D, reach);
+      st = listed(e, x0, cut, D, reach, who);
     else if (ordered)
-      st = listed_ordered(e, x0, cut, D, reach, &used);
+      st = listed_ordered(e, x0, cut, D, reach, &used, who);
     if (!with_list && !st && !used)
-      st = lang && lsearch_pays(e, cut) ? lsearch(e, x0, disp, cut, reach)
-                                        : cells(e, x0, cut, reach, 0);
+      st = lang && lsearch_pays(e, cut)
+               ? lsearch(e, x0, disp, cut, reach, who)
+               : cells(e, x0, cut, reach, 0, who);
     break;
   }
   case SB_NEIGH_SWEEP:
-    st = sbi_engine_sweep(e, x0, disp, reach);
+    st = sbi_engine_sweep(e, x0, disp, reach, who);
     break;
   case SB_NEIGH_BRUTE:
-    st = brute(e, x0, reach);
+    st = brute(e, x0, reach, who);
     break;
   default:
-    return sbi_error(SB_EINVAL, "sb_engine_step", "unknown method %d",
+    return sbi_error(SB_EINVAL, who, "unknown method %d",
                      (int)m);
   }
   /* walls and Lees-Edwards images (engine_lees.c) */
   if (!st)
-    st = sbi_engine_boundary_pairs(e, x0, disp, reach, cut);
+    st = sbi_engine_boundary_pairs(e, x0, disp, reach, cut, who);
   return st;
 }
 
 int sbi_engine_find_pairs(sb_engine *e, sb_engine_neigh m, const double *x0,
-                          const double *disp, double reach)
+                          const double *disp, double reach, const char *who)
 {
-  return find_pairs(e, m, x0, disp, reach, 0, 0, 0);
+  return find_pairs(e, m, x0, disp, reach, 0, 0, 0, who);
 }
 
 int sbi_engine_find_step_pairs(sb_engine *e, double reach)
@@ -1528,7 +1533,7 @@ int sbi_engine_find_step_pairs(sb_engine *e, double reach)
                    !e->par.lsearch_off && !e->walled && !e->lees &&
                    !e->ninflow && sbi_engine_langevin_chord_gate(e, reach);
   return find_pairs(e, e->par.neigh, e->x0, e->disp, reach, with_list,
-                    ordered, lang);
+                    ordered, lang, "sb_engine_step");
 }
 
 int sb_engine_neighbours(sb_engine *e, sb_engine_neigh m, const double *disp,
@@ -1537,7 +1542,7 @@ int sb_engine_neighbours(sb_engine *e, sb_engine_neigh m, const double *disp,
   if (!e || !npairs || !pairs || (unsigned)m > SB_NEIGH_BRUTE ||
       !(reach >= 0.0) || !isfinite(reach))
     return sbi_error(SB_EINVAL, __func__, "bad argument");
-  int st = sbi_engine_find_pairs(e, m, e->x, disp, reach);
+  int st = sbi_engine_find_pairs(e, m, e->x, disp, reach, __func__);
   *npairs = st ? 0 : e->npairs;
   *pairs = e->pairs;
   return st;

@@ -176,7 +176,8 @@ static int position_free(sb_engine *e, size_t k, size_t partner,
 }
 
 int sbi_engine_random_free_position(sb_engine *e, size_t k, size_t partner,
-                                    double x[3], size_t tries)
+                                    double x[3], size_t tries,
+                                    const char *who)
 {
   const int dim = e->par.dim;
   const double *L = e->par.L;
@@ -194,23 +195,25 @@ int sbi_engine_random_free_position(sb_engine *e, size_t k, size_t partner,
     if (position_free(e, k, partner, x))
       return SB_SUCCESS;
   }
-  return sbi_error(SB_EMAXITER, "sb_engine_step",
+  return sbi_error(SB_EMAXITER, who,
                    "no free position for a reinserted particle after %zu "
                    "tries",
                    tries);
 }
 
-int sb_engine_outcome_reinsert(sb_engine *e, const sb_engine_pair *p,
-                               double s)
+/* sb_engine_outcome_reinsert for the public function who (the step for
+ * the built-in outcome) */
+static int outcome_reinsert(sb_engine *e, const sb_engine_pair *p, double s,
+                            const char *who)
 {
   if (!e || !p || p->i >= e->n || p->j >= e->n || p->i == p->j)
-    return sbi_error(SB_EINVAL, __func__, "bad argument");
+    return sbi_error(SB_EINVAL, who, "bad argument");
   const size_t j = p->j;
   double x[3], u[3];
-  int st = sbi_engine_random_free_position(e, j, p->i, x, 10000);
+  int st = sbi_engine_random_free_position(e, j, p->i, x, 10000, who);
   if (st)
     return st;
-  st = sbi_engine_equilibrium_velocity(e, e->species[j], x, u);
+  st = sbi_engine_equilibrium_velocity(e, e->species[j], x, u, who);
   if (st)
     return st;
   for (int k = 0; k < 3; k++) {
@@ -227,9 +230,10 @@ int sb_engine_outcome_reinsert(sb_engine *e, const sb_engine_pair *p,
    * as the particles around it do: standing still it would meet those
    * streaming past (in a shear, at a relative velocity up to G L_y/2). */
   double w[3] = {0.0, 0.0, 0.0};
-  if (e->fluid != SB_FLUID_REST && (st = sbi_engine_fluid_eval(e, 1, x, w)))
+  if (e->fluid != SB_FLUID_REST &&
+      (st = sbi_engine_fluid_eval(e, 1, x, w, who)))
     return st;
-  const double *vs = sbi_engine_settling(e, e->species[j]);
+  const double *vs = sbi_engine_settling(e, e->species[j], who);
   double tc = (p->t0 + s * p->dt - e->t) / e->par.dt;
   tc = tc < 0.0 ? 0.0 : (tc > 1.0 ? 1.0 : tc);
   const double rest = (1.0 - tc) * e->par.dt;
@@ -238,6 +242,12 @@ int sb_engine_outcome_reinsert(sb_engine *e, const sb_engine_pair *p,
   for (int k = 0; k < e->par.dim; k++)
     e->x[3 * j + k] += rest * (w[k] + (vs ? vs[k] : 0.0));
   return SB_SUCCESS;
+}
+
+int sb_engine_outcome_reinsert(sb_engine *e, const sb_engine_pair *p,
+                               double s)
+{
+  return outcome_reinsert(e, p, s, __func__);
 }
 
 int sb_engine_outcome_path(sb_engine *e, size_t k, const double x[3])
@@ -266,10 +276,10 @@ int sb_engine_outcome_path(sb_engine *e, size_t k, const double x[3])
 }
 
 int sbi_engine_reinsert_higher_id(sb_engine *e, const sb_engine_pair *p,
-                                  double s)
+                                  double s, const char *who)
 {
   if (e->id[p->i] < e->id[p->j])
-    return sb_engine_outcome_reinsert(e, p, s);
+    return outcome_reinsert(e, p, s, who);
   sb_engine_pair q = *p;
   q.i = p->j;
   q.j = p->i;
@@ -277,7 +287,7 @@ int sbi_engine_reinsert_higher_id(sb_engine *e, const sb_engine_pair *p,
     q.dx0[k] = -p->dx0[k];
     q.dd[k] = -p->dd[k];
   }
-  return sb_engine_outcome_reinsert(e, &q, s);
+  return outcome_reinsert(e, &q, s, who);
 }
 
 int sbi_engine_apply_outcome(sb_engine *e, const sb_engine_pair *p,
@@ -287,7 +297,7 @@ int sbi_engine_apply_outcome(sb_engine *e, const sb_engine_pair *p,
   case SB_OUTCOME_ELASTIC:
     return sb_engine_outcome_elastic(e, p, s);
   case SB_OUTCOME_REINSERT:
-    return sbi_engine_reinsert_higher_id(e, p, s);
+    return sbi_engine_reinsert_higher_id(e, p, s, "sb_engine_step");
   case SB_OUTCOME_COUNT:
     return SB_SUCCESS;
   case SB_OUTCOME_CUSTOM: {

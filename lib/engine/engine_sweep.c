@@ -45,7 +45,7 @@ static int kv_cmp(const void *a, const void *b)
   return (p->i > q->i) - (p->i < q->i);
 }
 
-static int sort_x(sb_engine *e, const double *x0)
+static int sort_x(sb_engine *e, const double *x0, const char *who)
 {
   const size_t n = e->n;
   size_t *ord = e->order;
@@ -75,7 +75,7 @@ static int sort_x(sb_engine *e, const double *x0)
   }
   kv *t = malloc(n * sizeof *t);
   if (!t)
-    return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+    return sbi_error(SB_ENOMEM, who, "out of memory");
   for (size_t i = 0; i < n; i++) {
     t[i].k = x0[3 * i];
     t[i].i = i;
@@ -91,12 +91,12 @@ static int sort_x(sb_engine *e, const double *x0)
 }
 
 int sbi_engine_sweep(sb_engine *e, const double *x0, const double *disp,
-                     double reach)
+                     double reach, const char *who)
 {
   const size_t n = e->n;
   const int dim = e->par.dim;
   const double *L = e->par.L;
-  int st = sort_x(e, x0);
+  int st = sort_x(e, x0, who);
   if (st)
     return st;
   double dmin[3] = {0, 0, 0}, dmax[3] = {0, 0, 0};
@@ -140,7 +140,7 @@ int sbi_engine_sweep(sb_engine *e, const double *x0, const double *disp,
         ok = d >= 0.0 ? d <= up[k] : -d <= down[k];
       }
       if (ok) {
-        st = sbi_engine_push_pair(e, R, S);
+        st = sbi_engine_push_pair(e, R, S, who);
         if (st)
           return st;
       }

@@ -107,7 +107,8 @@ static int reinsert(sb_engine *e, size_t i)
     }
     x[k] = lo + L * gsl_rng_uniform(e->rng);
   }
-  int st = sbi_engine_equilibrium_velocity(e, e->species[i], x, u);
+  int st = sbi_engine_equilibrium_velocity(e, e->species[i], x, u,
+                                           "sb_engine_step");
   if (st)
     return st;
   memcpy(&e->x[3 * i], x, sizeof x);

@@ -366,7 +366,9 @@ int sb_engine_step(sb_engine *e);
  *  Called automatically every params.sort_every steps. */
 int sb_engine_sort(sb_engine *e);
 
-/** Step until the time reaches t_end (s): while t < t_end - dt/2. */
+/** Step until the time reaches t_end (s): while t < t_end - dt/2.  A
+ *  failing step's status is returned, its message recorded after this
+ *  function's name and the time the step started from. */
 int sb_engine_run_until(sb_engine *e, double t_end);
 
 /* ======================================================= outcomes (API) */
