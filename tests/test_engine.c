@@ -891,6 +891,7 @@ START_TEST(test_errors)
   e = box_engine(2, 10.0, 1.0, 1000);
   add_free(e, 1.0, 1.0);
   ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 1000), SB_EMAXITER);
+  ck_assert_uint_eq(sb_engine_count(e), 0);
   sb_engine_free(e);
 
   /* not a checkpoint */
@@ -903,6 +904,66 @@ START_TEST(test_errors)
   ck_assert_ptr_null(sb_engine_checkpoint_load(path, &st));
   ck_assert_int_eq(st, SB_EFORMAT);
   remove(path);
+}
+END_TEST
+
+/* A fill is all or nothing: one that cannot place every particle (no
+ * room, or the fluid field fails part-way) leaves the particles, their
+ * order and positions and the id counter as they were, and the engine
+ * goes on (a fill, steps).  2-D box of 10 x 10, disks of radius 1 (at
+ * most ~30 fit): 900 cannot. */
+static int fluid_third_fails(size_t n, const double *x, double *us,
+                             void *ctx)
+{
+  (void)x;
+  int *calls = ctx;
+  for (size_t i = 0; i < n; i++)
+    us[3 * i] = us[3 * i + 1] = us[3 * i + 2] = 0.0;
+  return ++*calls == 3 ? 5 : 0;
+}
+
+START_TEST(test_fill_all_or_nothing)
+{
+  sb_engine *e = box_engine(2, 10.0, 0.01, 1000);
+  size_t sp = add_free(e, 1.0, 1.0);
+  ck_assert_int_eq(sb_engine_fill_random(e, sp, 1, 5), SB_SUCCESS);
+  ck_assert_uint_eq(sb_engine_count(e), 5);
+  double x0[15], u0[15];
+  uint64_t id0[5];
+  memcpy(x0, sb_engine_positions(e), sizeof x0);
+  memcpy(u0, sb_engine_velocities(e), sizeof u0);
+  memcpy(id0, sb_engine_ids(e), sizeof id0);
+  const double lo[3] = {0, 0, 0}, hi[3] = {10, 5, 0};
+  for (int box = 0; box < 2; box++) {
+    int st = box ? sb_engine_fill_box(e, sp, 2, 900, lo, hi, NULL)
+                 : sb_engine_fill_random(e, sp, 2, 900);
+    ck_assert_int_eq(st, SB_EMAXITER);
+    ck_assert_uint_eq(sb_engine_count(e), 5);
+    ck_assert_mem_eq(sb_engine_positions(e), x0, sizeof x0);
+    ck_assert_mem_eq(sb_engine_velocities(e), u0, sizeof u0);
+    ck_assert_mem_eq(sb_engine_ids(e), id0, sizeof id0);
+  }
+  /* the fluid field fails at the third particle of five */
+  int calls = 0;
+  ck_assert_int_eq(sb_engine_set_fluid_fn(e, fluid_third_fails, &calls),
+                   SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, sp, 2, 5), SB_EINVAL);
+  ck_assert_int_eq(calls, 3);
+  ck_assert_uint_eq(sb_engine_count(e), 5);
+  ck_assert_mem_eq(sb_engine_positions(e), x0, sizeof x0);
+  ck_assert_int_eq(sb_engine_set_fluid(e, SB_FLUID_REST, NULL), SB_SUCCESS);
+  /* the next particle gets the next id of the first fill (5), and the
+   * engine steps */
+  ck_assert_int_eq(sb_engine_fill_random(e, sp, 3, 2), SB_SUCCESS);
+  ck_assert_uint_eq(sb_engine_count(e), 7);
+  ck_assert_uint_eq(sb_engine_ids(e)[5], 5);
+  ck_assert_uint_eq(sb_engine_ids(e)[6], 6);
+  ck_assert_int_eq(sb_engine_families(e)[6], 3);
+  ck_assert_uint_eq(sb_engine_check_overlaps(e, 1e-12), 0);
+  for (int k = 0; k < 20; k++)
+    ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+  ck_assert_uint_eq(sb_engine_count(e), 7);
+  sb_engine_free(e);
 }
 END_TEST
 
@@ -1248,6 +1309,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_kernel_estimate);
   tcase_add_test(tc, test_errors);
   tcase_add_test(tc, test_error_names);
+  tcase_add_test(tc, test_fill_all_or_nothing);
   tcase_add_test(tc, test_checkpoint_write_error);
   tcase_add_test(tc, test_custom_callbacks);
   tcase_add_test(tc, test_misuse);

@@ -326,6 +326,9 @@ const sb_engine_species *sb_engine_get_species(const sb_engine *e,
 
 /* ============================================================ particles */
 
+static void append_particle(sb_engine *e, size_t species, int family,
+                            const double x[3], const double u[3]);
+
 int sb_engine_add_particle(sb_engine *e, size_t species, int family,
                            const double x[3], const double u[3])
 {
@@ -345,6 +348,14 @@ int sb_engine_add_particle(sb_engine *e, size_t species, int family,
     if (!isfinite(x[k]) || !isfinite(u[k]))
       return sbi_error(SB_EINVAL, __func__, "x[%d] = %g, u[%d] = %g: must "
                        "be finite", k, x[k], k, u[k]);
+  append_particle(e, species, family, x, u);
+  return SB_SUCCESS;
+}
+
+/* Append particle n with the next id (arguments checked by the caller). */
+static void append_particle(sb_engine *e, size_t species, int family,
+                            const double x[3], const double u[3])
+{
   size_t i = e->n++;
   for (int k = 0; k < 3; k++) {
     int on = k < e->par.dim;
@@ -358,7 +369,6 @@ int sb_engine_add_particle(sb_engine *e, size_t species, int family,
   e->id[i] = e->next_id++;
   e->hit[i] = 0;
   e->norder = 0;  /* sweep order must be rebuilt */
-  return SB_SUCCESS;
 }
 
 int sb_engine_set_particle(sb_engine *e, size_t i, const double x[3],
@@ -485,7 +495,11 @@ static int fill_free(const sb_engine *e, const fill_grid *g, const double *x,
   return 1;
 }
 
-/* sb_engine_fill_box for the public function who */
+/* sb_engine_fill_box for the public function who.  All or nothing: the
+ * particles are appended as they are placed (each new one is an obstacle
+ * for the next), and on any failure the engine is put back as it was,
+ * its particle number, id counter and sweep order (the arrays below the
+ * old number were not touched); the generator has advanced. */
 static int fill_region(sb_engine *e, size_t species, int family, size_t n,
                        const double lo[3], const double hi[3],
                        const double drift[3], const char *who)
@@ -505,9 +519,16 @@ static int fill_region(sb_engine *e, size_t species, int family, size_t n,
   if (species >= e->nspec)
     return sbi_error(SB_EINVAL, who, "species %zu does not exist",
                      species);
+  if (family < 0 || family >= SB_ENGINE_MAXFAM)
+    return sbi_error(SB_EINVAL, who, "family = %d: must be in 0..%d",
+                     family, SB_ENGINE_MAXFAM - 1);
   if (n > e->par.capacity - e->n)
     return sbi_error(SB_EINVAL, who, "%zu particles exceed the "
                      "capacity %zu (holding %zu)", n, e->par.capacity, e->n);
+  if (n == 0)
+    return SB_SUCCESS;
+  const size_t n0 = e->n, norder0 = e->norder;
+  const uint64_t next_id0 = e->next_id;
   const int dim = e->par.dim;
   const double r = e->spec[species].radius;
   fill_grid g = {{1, 1, 1}, {1, 1, 1}, NULL, NULL};
@@ -564,19 +585,31 @@ static int fill_region(sb_engine *e, size_t species, int family, size_t n,
     if (st)
       break;
     st = sbi_engine_equilibrium_velocity(e, species, x, u, who);
-    if (!st && drift)
-      for (int k = 0; k < dim; k++)
+    if (st)
+      break;
+    for (int k = 0; k < dim; k++) {
+      if (drift)
         u[k] += drift[k];
-    if (!st)
-      st = sb_engine_add_particle(e, species, family, x, u);
-    if (!st) {
-      size_t j = e->n - 1, c = fill_cell(&g, &e->x[3 * j]);
-      g.next[j] = g.head[c];
-      g.head[c] = j;
+      if (!isfinite(u[k])) {
+        st = sbi_error(SB_EINVAL, who, "velocity u[%d] = %g of a new "
+                       "particle: not finite (fluid field)", k, u[k]);
+        break;
+      }
     }
+    if (st)
+      break;
+    append_particle(e, species, family, x, u);
+    size_t j = e->n - 1, c = fill_cell(&g, &e->x[3 * j]);
+    g.next[j] = g.head[c];
+    g.head[c] = j;
   }
   free(g.head);
   free(g.next);
+  if (st) {  /* all or nothing */
+    e->n = n0;
+    e->next_id = next_id0;
+    e->norder = norder0;
+  }
   return st;
 }
 

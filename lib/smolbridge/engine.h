@@ -290,15 +290,18 @@ int sb_engine_add_particle(sb_engine *e, size_t species, int family,
 
 /** Add n particles of a species at uniformly random positions that do not
  *  overlap any particle, with equilibrium (Maxwellian) velocities
- *  U_s(x) + N(0, vvar) per component.  SB_EMAXITER if a position cannot be
- *  found in 10000 tries (box too full); the particles placed before stay
- *  (sb_engine_count says how many). */
+ *  U_s(x) + N(0, vvar) per component; ids follow on from the last one.
+ *  All or nothing: SB_EMAXITER if a position cannot be found in 10000
+ *  tries (box too full), SB_EINVAL for a bad argument or a failing fluid
+ *  callback, SB_ENOMEM; on any failure the engine holds exactly the
+ *  particles it had (same order, states and id counter) and only its
+ *  generator has advanced. */
 int sb_engine_fill_random(sb_engine *e, size_t species, int family,
                           size_t n);
 
-/** As sb_engine_fill_random, inside the region lo[k] <= x_k < hi[k] (m,
- *  0 <= lo < hi <= L), with `drift` (m/s, may be NULL) added to the
- *  equilibrium velocities (jets, beams). */
+/** As sb_engine_fill_random (all or nothing), inside the region
+ *  lo[k] <= x_k < hi[k] (m, 0 <= lo < hi <= L), with `drift` (m/s, may be
+ *  NULL) added to the equilibrium velocities (jets, beams). */
 int sb_engine_fill_box(sb_engine *e, size_t species, int family, size_t n,
                        const double lo[3], const double hi[3],
                        const double drift[3]);
