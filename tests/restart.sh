@@ -43,6 +43,61 @@ split() {
     { fail "$ini: the restart"; return 1; }
 }
 
+# bad_copies NAME HOW [SUFFIX]: NAME_bad.ck* copies of the checkpoint
+# NAME.ck and the states beside it; HOW = flip: one byte of
+# NAME.ck.SUFFIX flipped; HOW = old: every state as version 01 of its
+# format wrote it (the version digits of its magic 01, no hash at its end).
+bad_copies() {
+  "$py" - "$out" "$@" <<'PY' || fail "$1: copying"
+import glob, os, sys
+out, name, how = sys.argv[1:4]
+suf = sys.argv[4] if len(sys.argv) > 4 else ""
+ck = os.path.join(out, name + ".ck")
+for p in glob.glob(ck + "*"):
+    b = bytearray(open(p, "rb").read())
+    tail = p[len(ck):]
+    if how == "flip" and tail == "." + suf:
+        b[len(b) // 2] ^= 0x04
+    if how == "old" and tail:
+        b[6:8] = b"01"
+        del b[-8:]
+    open(os.path.join(out, name + "_bad.ck" + tail), "wb").write(b)
+PY
+}
+
+# hashed NAME INI SUFFIX... [-- --set K=V ...]: the states beside the
+# checkpoint NAME.ck end in a hash of their contents.  For each SUFFIX, a
+# restart from copies with one byte of NAME.ck.SUFFIX flipped fails,
+# saying which file is damaged; a restart from copies with every state of
+# version 01 (no hash) runs, and its contacts.csv is NAME_2's.
+hashed() {
+  name=$1 ini=$2
+  shift 2
+  sufs=
+  while [ $# -gt 0 ] && [ "$1" != -- ]; do sufs="$sufs $1"; shift; done
+  [ $# -gt 0 ] && shift
+  for suf in $sufs; do
+    bad_copies "$name" flip "$suf"
+    if "$sb" collide "$ini" "$@" --set "run.output=$out/${name}_bad" \
+         --set "run.restart=$out/${name}_bad.ck" > "$out/bad.log" 2>&1
+    then
+      fail "$name: a restart read $name.ck.$suf with a flipped byte"
+    elif ! grep -q "${name}_bad.ck.$suf' is damaged" "$out/bad.log"; then
+      fail "$name: a flipped byte of .$suf: $(grep -v warning \
+        "$out/bad.log" | head -1)"
+    fi
+  done
+  bad_copies "$name" old
+  if "$sb" collide "$ini" "$@" --set "run.output=$out/${name}_3" \
+       --set "run.restart=$out/${name}_bad.ck" > "$out/bad.log" 2>&1; then
+    cmp -s "$out/${name}_2/contacts.csv" "$out/${name}_3/contacts.csv" ||
+      fail "$name: the restart from the states of version 01 differs"
+  else
+    fail "$name: the states of version 01 do not load: $(grep -v \
+      warning "$out/bad.log" | head -1)"
+  fi
+}
+
 # same NAME WHAT...: in summary.json of NAME_0 and NAME_2, each WHAT
 # (a dotted key path) equal, KEY~TOL equal to TOL relative, KEY>MIN
 # above MIN in the run in one go (a count: the case measures something)
@@ -125,7 +180,9 @@ split kernel "$ex/v12_kernel_firsthit.ini" run.t_end=8e-5 - \
     --set observe.first_hit_velocities=20000 &&
   same kernel first_hit contacts first_hit.hits\>8000 &&
   { cmp -s "$out/kernel_0/contacts.csv" "$out/kernel_2/contacts.csv" ||
-    fail "kernel: the restarted contacts.csv differs"; }
+    fail "kernel: the restarted contacts.csv differs"; } &&
+  hashed kernel "$ex/v12_kernel_firsthit.ini" firsthit contacts run -- \
+    --set observe.first_hit_velocities=20000
 
 # a merging run (CHECKPOINT.agglo; DLVO sticking draws from the engine's
 # generator): the counts and sizes.csv (the restart keeps the sampling

@@ -544,6 +544,8 @@ START_TEST(test_save_load)
   sb_engine_free(e);
   /* files: truncated, trailing data, not such a file, missing */
   sbt_damaged_copies(ag, bad, 60, "SBFHIT01", load_agglo, &ap);
+  /* a flipped byte; the format without the hash (version 01) */
+  sbt_hash_checked(ag, bad, "01", load_agglo, &ap);
   remove(ck);
   remove(ag);
   rmdir(dir);

@@ -496,6 +496,8 @@ START_TEST(test_save_load)
   sb_engine_bridge_free(b);
   sb_engine_free(unused);
   sbt_damaged_copies(bf, bad, 30, "SBFHIT01", load_bridge, NULL);
+  /* a flipped byte; the format without the hash (version 01) */
+  sbt_hash_checked(bf, bad, "01", load_bridge, NULL);
   sb_engine_bridge_free(a);
   sb_engine_free(ea);
   sb_engine_free(eb);

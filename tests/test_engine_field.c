@@ -409,11 +409,14 @@ START_TEST(test_save_load)
       ck_assert_ptr_nonnull(strstr(sb_last_error(), "another type"));
       gsl_rng_free(t);
       sbt_damaged_copies(fp, bad, 30, "SBFKR001", load_ou, g[1]);
+      /* a flipped byte; the format without the hash (version 001) */
+      sbt_hash_checked(fp, bad, "01", load_ou, g[1]);
     } else if (kind == 2) {
       ck_assert_ptr_null(
           sb_field_kraichnan_load(fp, 1e-3, 2, 1e4, 0.0, &st));
       ck_assert_int_eq(st, SB_EINVAL);
       sbt_damaged_copies(fp, bad, 30, "SBFOU001", load_kr, NULL);
+      sbt_hash_checked(fp, bad, "01", load_kr, NULL);
     }
     for (int k = 0; k < 2; k++) {
       sb_engine_free(e[k]);

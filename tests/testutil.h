@@ -118,6 +118,50 @@ static inline void sbt_damaged_copies(const char *good, const char *bad,
   ck_assert_int_eq(load(bad, ctx), SB_EIO);
 }
 
+/* A saved-state file that ends in the hash of its contents
+ * (common/internal.h, sbi_hsave_finish): `good` with one byte flipped,
+ * at spread positions from its magic to its hash, written to `bad`, must
+ * not load (SB_EFORMAT; past the magic the message says "damaged" and
+ * names the file); and `good` as version `old` of the format wrote it
+ * (the two version digits of the magic, bytes 6-7, set to `old`, and
+ * without the hash) must load (SB_SUCCESS).  `bad` is removed. */
+static inline void sbt_hash_checked(const char *good, const char *bad,
+                                    const char old[2], sbt_load_fn load,
+                                    void *ctx)
+{
+  static char buf[1 << 20];
+  FILE *in = fopen(good, "rb");
+  ck_assert_ptr_nonnull(in);
+  const size_t n = fread(buf, 1, sizeof buf, in);
+  fclose(in);
+  ck_assert(n > 24 && n < sizeof buf);
+  const size_t at[] = {0, 6, 7, 8, 9, n / 4, n / 2, 3 * n / 4, n - 9,
+                       n - 8, n - 1};
+  for (size_t q = 0; q < sizeof at / sizeof at[0]; q++)
+    for (int bit = 0; bit < 8; bit += 7) {
+      buf[at[q]] ^= (char)(1 << bit);
+      sbt_write_file(bad, buf, n);
+      buf[at[q]] ^= (char)(1 << bit);
+      const int st = load(bad, ctx);
+      ck_assert_msg(st == SB_EFORMAT, "byte %zu of %zu, bit %d flipped: "
+                    "status %d (%s)", at[q], n, bit, st, sb_last_error());
+      if (at[q] >= 8)
+        ck_assert_msg(strstr(sb_last_error(), "damaged") &&
+                          strstr(sb_last_error(), bad),
+                      "byte %zu flipped: \"%s\"", at[q], sb_last_error());
+    }
+  const char v[2] = {buf[6], buf[7]};
+  buf[6] = old[0];
+  buf[7] = old[1];
+  sbt_write_file(bad, buf, n - 8);
+  buf[6] = v[0];
+  buf[7] = v[1];
+  const int st = load(bad, ctx);
+  ck_assert_msg(st == SB_SUCCESS, "version %c%c: status %d (%s)", old[0],
+                old[1], st, sb_last_error());
+  remove(bad);
+}
+
 /* Run a suite with CK_ENV-controlled forking; returns main()'s status. */
 static inline int sbt_run_suite(Suite *s)
 {

@@ -142,18 +142,21 @@ int sbi_col_contacts_write(FILE *js, const sbi_col_config *c,
   return fclose(f) ? -1 : 0;
 }
 
-/* Beside a checkpoint (collide_beside.c), at the end of a step: "SBCCON01",
+/* Beside a checkpoint (collide_beside.c), at the end of a step: "SBCCON02",
  * the recorded count n, then the n times, the n velocities and the n
- * species of each side (native binary: doubles and size_t; nothing
- * after). */
-static const char MAGIC[8] = {'S', 'B', 'C', 'C', 'O', 'N', '0', '1'};
+ * species of each side (native binary: doubles and size_t), then the
+ * FNV-1a hash of every byte before it (common/internal.h,
+ * sbi_hsave_finish), checked before anything is read.  Version 01, the
+ * same without the hash, still loads. */
+static const char MAGIC[8] = {'S', 'B', 'C', 'C', 'O', 'N', '0', '2'};
 
 int sbi_col_contacts_save(const sbi_col_run *r, const char *path)
 {
   const sbi_col_contacts *k = r->contacts;
-  FILE *f = sbi_open_for_save(path, "checkpoint");
+  sbi_hsave hs;
+  FILE *f = sbi_hsave_begin(&hs, "checkpoint");
   if (!f)
-    return SB_EIO;
+    return SB_ENOMEM;
   const uint64_t n = k->n;
   int ok = fwrite(MAGIC, 1, 8, f) == 8 && fwrite(&n, sizeof n, 1, f) == 1;
   for (size_t i = 0; ok && i < k->n; i++)
@@ -164,21 +167,23 @@ int sbi_col_contacts_save(const sbi_col_run *r, const char *path)
     ok = fwrite(&k->c[i].a, sizeof k->c[i].a, 1, f) == 1;
   for (size_t i = 0; ok && i < k->n; i++)
     ok = fwrite(&k->c[i].b, sizeof k->c[i].b, 1, f) == 1;
-  return sbi_finish_save(f, ok, path, "checkpoint");
+  return sbi_hsave_finish(&hs, ok, path, "checkpoint");
 }
 
 int sbi_col_contacts_load(sbi_col_run *r, const char *path)
 {
   sbi_col_contacts *k = r->contacts;
-  int st;
-  FILE *f = sbi_open_saved(path, "restart", &st);
+  int st, ver;
+  char *mem;
+  FILE *f = sbi_hload_open(path, MAGIC, 2, "file of contacts", &ver, &mem,
+                           "restart", &st);
   if (!f)
     return st;
   char mg[8];
   uint64_t n;
   const char *why = "truncated, or data after the end";
   st = SB_EFORMAT;
-  if (fread(mg, 1, 8, f) != 8 || memcmp(mg, MAGIC, 8))
+  if (fread(mg, 1, 8, f) != 8)
     why = "not a file of contacts";
   else if (fread(&n, sizeof n, 1, f) == 1) {
     contact *c = NULL;
@@ -206,5 +211,6 @@ int sbi_col_contacts_load(sbi_col_run *r, const char *path)
     }
   }
   fclose(f);
+  free(mem);
   return st ? sbi_error(st, "restart", "'%s': %s", path, why) : SB_SUCCESS;
 }

@@ -5,10 +5,12 @@
  * rows sampled with the series (the per-pair kernel columns and the
  * deposits per face).
  *
- * Format (native binary): "SBCRUN01", the energy (double), the species
+ * Format (native binary): "SBCRUN02", the energy (double), the species
  * of the pair columns (int32), the pair rows (uint64 count, then
  * 1 + 3 npairs doubles each), the deposit rows (uint64 count, then 7
- * doubles each); nothing after. */
+ * doubles each), then the FNV-1a hash of every byte before it
+ * (common/internal.h, sbi_hsave_finish), checked before anything is
+ * read.  Version 01, the same without the hash, still loads. */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,7 +19,7 @@
 #include "collide_internal.h"
 #include "common/internal.h"
 
-static const char MAGIC[8] = {'S', 'B', 'C', 'R', 'U', 'N', '0', '1'};
+static const char MAGIC[8] = {'S', 'B', 'C', 'R', 'U', 'N', '0', '2'};
 
 static size_t pair_width(int nsp)
 {
@@ -28,9 +30,10 @@ int sbi_col_runstate_save(const sbi_col_config *c, const sbi_col_run *r)
 {
   char path[600];
   sbi_col_beside(c, SBI_BESIDE_RUN, c->checkpoint, path, sizeof path);
-  FILE *f = sbi_open_for_save(path, "checkpoint");
+  sbi_hsave hs;
+  FILE *f = sbi_hsave_begin(&hs, "checkpoint");
   if (!f)
-    return SB_EIO;
+    return SB_ENOMEM;
   const int32_t nsp = r->pairs.nsp;
   const uint64_t np = r->pairs.nrows, nd = r->ndep;
   const size_t w = pair_width(nsp);
@@ -42,7 +45,7 @@ int sbi_col_runstate_save(const sbi_col_config *c, const sbi_col_run *r)
                            w * np) &&
            fwrite(&nd, sizeof nd, 1, f) == 1 &&
            (nd == 0 || fwrite(r->dep, sizeof(double), 7 * nd, f) == 7 * nd);
-  return sbi_finish_save(f, ok, path, "checkpoint");
+  return sbi_hsave_finish(&hs, ok, path, "checkpoint");
 }
 
 /* n rows of w doubles from f into a new array *rows (NULL for none). */
@@ -70,17 +73,25 @@ int sbi_col_runstate_load(sbi_col_config *c, sbi_col_run *r)
                  "deposits before it", path);
     return 0;
   }
+  fclose(f);
+  int ver, st;
+  char *mem;
+  f = sbi_hload_open(path, MAGIC, 2, "run state beside a checkpoint", &ver,
+                     &mem, "restart", &st);
+  if (!f)
+    return sbi_col_fail(c, "[run] %s", sb_last_error());
   char mg[8];
   double ekin0;
   int32_t nsp;
   uint64_t np, nd;
   double *pr = NULL, *dr = NULL;
-  int bad = fread(mg, 1, 8, f) != 8 || memcmp(mg, MAGIC, 8) ||
+  int bad = fread(mg, 1, 8, f) != 8 ||
             fread(&ekin0, sizeof ekin0, 1, f) != 1 ||
             fread(&nsp, sizeof nsp, 1, f) != 1 ||
             fread(&np, sizeof np, 1, f) != 1;
   if (!bad && nsp != r->pairs.nsp) {
     fclose(f);
+    free(mem);
     return sbi_col_fail(c, "[run] restart: %s: its series has pair columns "
                         "for %d species, this run %d", path, (int)nsp,
                         r->pairs.nsp);
@@ -89,6 +100,7 @@ int sbi_col_runstate_load(sbi_col_config *c, sbi_col_run *r)
         fread(&nd, sizeof nd, 1, f) != 1 || read_rows(f, 7, nd, &dr) ||
         fgetc(f) != EOF;
   fclose(f);
+  free(mem);
   if (bad) {
     free(pr);
     free(dr);

@@ -1,8 +1,11 @@
+#define _POSIX_C_SOURCE 200809L /* open_memstream, fmemopen */
 /* fsutil.c — file-system helpers of the library and the command line
  * (output directories of collide, pgd, spray and validate runs; the files
  * of saved states). */
 #include <errno.h>
+#include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/types.h>
@@ -74,5 +77,124 @@ FILE *sbi_open_saved(const char *path, const char *func, int *status)
   FILE *f = fopen(path, "rb");
   if (!f)
     *status = sbi_error(SB_EIO, func, "cannot open '%s'", path);
+  return f;
+}
+
+/* ------------------------------------------------ saves with a hash */
+
+uint64_t sbi_fnv1a(uint64_t h, const void *p, size_t n)
+{
+  const unsigned char *c = p;
+  for (size_t k = 0; k < n; k++)
+    h = (h ^ c[k]) * 0x100000001b3ULL;
+  return h;
+}
+
+FILE *sbi_hsave_begin(sbi_hsave *h, const char *func)
+{
+  h->buf = NULL;
+  h->len = 0;
+  h->f = open_memstream(&h->buf, &h->len);
+  if (!h->f)
+    sbi_error(SB_ENOMEM, func, "out of memory");
+  return h->f;
+}
+
+int sbi_hsave_finish(sbi_hsave *h, int ok, const char *path,
+                     const char *func)
+{
+  ok &= fclose(h->f) == 0;
+  h->f = NULL;
+  if (!ok) {
+    free(h->buf);
+    h->buf = NULL;
+    return sbi_error(SB_ENOMEM, func, "out of memory for the state");
+  }
+  const uint64_t hash = sbi_fnv1a(SBI_FNV_BASIS, h->buf, h->len);
+  FILE *f = sbi_open_for_save(path, func);
+  if (f)
+    ok = fwrite(h->buf, 1, h->len, f) == h->len &&
+         fwrite(&hash, sizeof hash, 1, f) == 1;
+  free(h->buf);
+  h->buf = NULL;
+  return f ? sbi_finish_save(f, ok, path, func) : SB_EIO;
+}
+
+/* The whole of f into memory (*len bytes; at least one byte allocated):
+ * NULL on a read error or out of memory. */
+static char *slurp(FILE *f, size_t *len)
+{
+  size_t cap = 1 << 12, n = 0;
+  char *b = malloc(cap);
+  while (b) {
+    n += fread(b + n, 1, cap - n, f);
+    if (n < cap)
+      break;
+    char *nb = cap < ((size_t)1 << 62) ? realloc(b, 2 * cap) : NULL;
+    if (!nb) {
+      free(b);
+      return NULL;
+    }
+    b = nb;
+    cap *= 2;
+  }
+  if (b && ferror(f)) {
+    free(b);
+    return NULL;
+  }
+  *len = n;
+  return b;
+}
+
+FILE *sbi_hload_open(const char *path, const char magic[8], int hashed_from,
+                     const char *what, int *ver, char **mem,
+                     const char *func, int *status)
+{
+  *mem = NULL;
+  *ver = 0;
+  FILE *file = sbi_open_saved(path, func, status);
+  if (!file)
+    return NULL;
+  size_t len = 0;
+  char *buf = slurp(file, &len);
+  fclose(file);
+  if (!buf) {
+    *status = sbi_error(SB_EIO, func, "cannot read '%s'", path);
+    return NULL;
+  }
+  const int cur = (magic[6] - '0') * 10 + (magic[7] - '0');
+  int v = 0;
+  if (len >= 8 && !memcmp(buf, magic, 6) && buf[6] >= '0' &&
+      buf[6] <= '9' && buf[7] >= '0' && buf[7] <= '9')
+    v = (buf[6] - '0') * 10 + (buf[7] - '0');
+  if (v < 1 || v > cur) {
+    free(buf);
+    *status = sbi_error(SB_EFORMAT, func, "'%s': not a %s%s", path, what,
+                        v > cur ? " of this version (written by a newer "
+                                  "build)" : "");
+    return NULL;
+  }
+  if (v >= hashed_from) {
+    uint64_t h;
+    if (len >= 16)
+      memcpy(&h, buf + len - 8, 8);
+    if (len < 16 || h != sbi_fnv1a(SBI_FNV_BASIS, buf, len - 8)) {
+      free(buf);
+      *status = sbi_error(SB_EFORMAT, func, "'%s' is damaged: its contents "
+                          "do not match the hash at its end (cut short or "
+                          "changed)", path);
+      return NULL;
+    }
+    len -= 8;
+  }
+  FILE *f = fmemopen(buf, len, "rb");
+  if (!f) {
+    free(buf);
+    *status = sbi_error(SB_ENOMEM, func, "out of memory");
+    return NULL;
+  }
+  *ver = v;
+  *mem = buf;
+  *status = SB_SUCCESS;
   return f;
 }

@@ -6,6 +6,7 @@
 #define SB_INTERNAL_H
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <smolbridge/common.h>
 
@@ -40,5 +41,35 @@ FILE *sbi_open_for_save(const char *path, const char *func);
  * so did the close, else SB_EIO with the message from func and the
  * partial file removed (a failed save leaves no file behind). */
 int sbi_finish_save(FILE *f, int ok, const char *path, const char *func);
+
+/* Saved states protected by a hash: FNV-1a, 64 bits (Fowler, Noll & Vo;
+ * basis SBI_FNV_BASIS), of every byte of the file before it, appended
+ * in native byte order.  A save writes its bytes to the memory stream
+ * of sbi_hsave_begin (NULL: SB_ENOMEM from func), then sbi_hsave_finish
+ * writes them and their hash to path in one piece (as sbi_finish_save:
+ * SB_EIO and no file left on failure; ok = 0: a write to memory failed,
+ * SB_ENOMEM). */
+#define SBI_FNV_BASIS 0xcbf29ce484222325ULL
+uint64_t sbi_fnv1a(uint64_t h, const void *p, size_t n);
+typedef struct {
+  FILE *f;
+  char *buf;
+  size_t len;
+} sbi_hsave;
+FILE *sbi_hsave_begin(sbi_hsave *h, const char *func);
+int sbi_hsave_finish(sbi_hsave *h, int ok, const char *path,
+                     const char *func);
+/* A saved state opened for reading: the whole file read into memory
+ * (*mem, to free after closing the stream), its 8-byte magic checked
+ * against `magic` (the first 6 bytes; the last 2 are the version, at
+ * most magic's own), and for a version >= hashed_from the hash at its end
+ * checked before anything else is read.  Returns a stream over the bytes
+ * before the hash, from the magic on, with the version in *ver; NULL with
+ * *status SB_EINVAL (NULL path), SB_EIO (cannot open or read), SB_EFORMAT
+ * ("not a <what>", or damaged: the hash does not match) or SB_ENOMEM and
+ * the message from func. */
+FILE *sbi_hload_open(const char *path, const char magic[8], int hashed_from,
+                     const char *what, int *ver, char **mem,
+                     const char *func, int *status);
 
 #endif /* SB_INTERNAL_H */

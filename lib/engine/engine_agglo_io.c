@@ -6,12 +6,14 @@
  * time series.
  *
  * Format (native binary, like the engine's checkpoint): the 8-byte magic
- * "SBAGGL01"; the engine's step count and a fingerprint of its particles
+ * "SBAGGL02"; the engine's step count and a fingerprint of its particles
  * at the save; the parameters that shape the run (primary species,
  * growth law, sticking rule, E_rel mode, barrier, largest and observed
  * sizes, and whether the two callbacks were set); the counters; the
  * sizes with a species, as (k, species) pairs; the series (rows and
- * columns, then the values); nothing after. */
+ * columns, then the values); then the FNV-1a hash of every byte before
+ * it (common/internal.h, sbi_hsave_finish), checked before anything is
+ * read.  Version 01, the same without the hash, still loads. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,7 +23,7 @@
 #include "engine_agglo_state.h"
 #include "engine_internal.h"
 
-static const char MAGIC[8] = {'S', 'B', 'A', 'G', 'G', 'L', '0', '1'};
+static const char MAGIC[8] = {'S', 'B', 'A', 'G', 'G', 'L', '0', '2'};
 
 /* The parameters a restored run must share with the saved one. */
 typedef struct {
@@ -75,9 +77,10 @@ int sb_agglo_save(const sb_agglo *a, const sb_engine *e, const char *path)
   if (!a->ncap_k)
     return sbi_error(SB_EINVAL, __func__, "the context is not attached: "
                      "nothing to save");
-  FILE *f = sbi_open_for_save(path, __func__);
+  sbi_hsave hs;
+  FILE *f = sbi_hsave_begin(&hs, __func__);
   if (!f)
-    return SB_EIO;
+    return SB_ENOMEM;
   const uint64_t steps = e->steps, print = sbi_engine_fingerprint(e);
   const shape s = shape_of(&a->par);
   uint64_t nmap = 0;
@@ -95,7 +98,7 @@ int sb_agglo_save(const sb_agglo *a, const sb_engine *e, const char *path)
   ok = ok && W(nrows) && W(ncols) &&
        (nrows == 0 ||
         fwrite(a->rows, sizeof *a->rows, nrows * ncols, f) == nrows * ncols);
-  return sbi_finish_save(f, ok, path, __func__);
+  return sbi_hsave_finish(&hs, ok, path, __func__);
 }
 
 /* The file's contents. */
@@ -108,19 +111,24 @@ typedef struct {
   double *rows;
 } saved;
 
-/* Read path into *v: 0, or a status with its reason in *why. */
-static int read_saved(const char *path, saved *v, const char **why)
+/* Read path into *v: 0, or a status with its reason in *why (NULL: the
+ * message is recorded already, from func). */
+static int read_saved(const char *path, saved *v, const char **why,
+                      const char *func)
 {
   memset(v, 0, sizeof *v);
-  FILE *f = fopen(path, "rb");
+  int ver, st;
+  char *mem;
+  FILE *f = sbi_hload_open(path, MAGIC, 2, "agglomeration file", &ver,
+                           &mem, func, &st);
   if (!f) {
-    *why = "cannot open it";
-    return SB_EIO;
+    *why = NULL;
+    return st;
   }
   char mg[8];
-  int st = SB_EFORMAT;
+  st = SB_EFORMAT;
   *why = "truncated";
-  if (fread(mg, 1, 8, f) != 8 || memcmp(mg, MAGIC, 8)) {
+  if (fread(mg, 1, 8, f) != 8) {
     *why = "not an agglomeration file";
     goto out;
   }
@@ -159,6 +167,7 @@ static int read_saved(const char *path, saved *v, const char **why)
   st = SB_SUCCESS;
 out:
   fclose(f);
+  free(mem);
   if (st) {
     free(v->map);
     free(v->rows);
@@ -177,9 +186,9 @@ int sb_agglo_load(sb_agglo *a, const char *path)
                      "load the saved state before attaching");
   saved v;
   const char *why;
-  int st = read_saved(path, &v, &why);
+  int st = read_saved(path, &v, &why, __func__);
   if (st)
-    return sbi_error(st, __func__, "'%s': %s", path, why);
+    return why ? sbi_error(st, __func__, "'%s': %s", path, why) : st;
   const shape mine = shape_of(&a->par);
   if (memcmp(&mine, &v.s, sizeof mine)) {
     free(v.map);

@@ -5,14 +5,17 @@
  *
  * Format (native binary, like the engine's checkpoint: portable only
  * between builds with the same type sizes and endianness): the 8-byte
- * magic "SBFHIT01"; the engine's step count, a fingerprint of its
+ * magic "SBFHIT02"; the engine's step count, a fingerprint of its
  * particles (ids and positions) and its time at the save; the
  * detector's kind (custom or which built-in) and skip_seen; the size of
  * the species-pair table; the warm-up end; the counts and sums of every
  * species pair and of all pairs; the particles per species at the
  * attachment; the set of pairs seen and each particle's counted contacts
- * (engine_idmap.c); nothing after. */
+ * (engine_idmap.c); then the FNV-1a hash of every byte before it
+ * (common/internal.h, sbi_hsave_finish), checked before anything is read.
+ * Version 01, the same without the hash, still loads. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <smolbridge/engine_firsthit.h>
@@ -20,7 +23,7 @@
 #include "common/internal.h"
 #include "engine_firsthit_state.h"
 
-static const char MAGIC[8] = {'S', 'B', 'F', 'H', 'I', 'T', '0', '1'};
+static const char MAGIC[8] = {'S', 'B', 'F', 'H', 'I', 'T', '0', '2'};
 
 /* The fixed-size part, in file order. */
 typedef struct {
@@ -98,13 +101,14 @@ int sb_engine_firsthit_save(const sb_engine_firsthit *f, const sb_engine *e,
   h.sq_all = f->sq_all;
   memcpy(h.ns, f->ns, sizeof h.ns);
   h.n_all = f->n_all;
-  FILE *out = sbi_open_for_save(path, __func__);
+  sbi_hsave hs;
+  FILE *out = sbi_hsave_begin(&hs, __func__);
   if (!out)
-    return SB_EIO;
+    return SB_ENOMEM;
   const int bad = fwrite(MAGIC, 1, 8, out) != 8 || head_write(&h, out) ||
                   sbi_idmap_write(&f->set, out, 0) ||
                   sbi_idmap_write(&f->counts, out, 1);
-  return sbi_finish_save(out, !bad, path, __func__);
+  return sbi_hsave_finish(&hs, !bad, path, __func__);
 }
 
 static const char *detector_name(int custom, int builtin)
@@ -123,15 +127,17 @@ int sb_engine_firsthit_load(sb_engine_firsthit *f, const char *path)
   if (f->attached)
     return sbi_error(SB_EINVAL, __func__, "the observer is attached "
                      "already: load the saved state before attaching");
-  FILE *in = fopen(path, "rb");
+  int ver, st;
+  char *mem;
+  FILE *in = sbi_hload_open(path, MAGIC, 2, "first-contact observer file",
+                            &ver, &mem, __func__, &st);
   if (!in)
-    return sbi_error(SB_EIO, __func__, "cannot open '%s'", path);
+    return st;
   char mg[8];
   head h;
   sbi_idmap set = {NULL, NULL, 0, 0}, counts = {NULL, NULL, 0, 0};
-  int st = SB_SUCCESS;
   const char *why = NULL;
-  if (fread(mg, 1, 8, in) != 8 || memcmp(mg, MAGIC, 8))
+  if (fread(mg, 1, 8, in) != 8)
     st = SB_EFORMAT, why = "not a first-contact observer file";
   else if (head_read(&h, in))
     st = SB_EFORMAT, why = "truncated";
@@ -149,6 +155,7 @@ int sb_engine_firsthit_load(sb_engine_firsthit *f, const char *path)
       st = SB_EFORMAT, why = "trailing data";
   }
   fclose(in);
+  free(mem);
   if (st) {
     sbi_idmap_free(&set);
     sbi_idmap_free(&counts);

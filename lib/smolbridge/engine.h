@@ -865,7 +865,9 @@ int sb_agglo_save(const sb_agglo *a, const sb_engine *e, const char *path);
  *  species) and fails with SB_EINVAL otherwise.  The run then goes on bit
  *  for bit as if it had not stopped.  SB_EINVAL (attached already, other
  *  parameters), SB_EIO (cannot open), SB_EFORMAT (not such a file,
- *  truncated or malformed); a is unchanged on failure. */
+ *  truncated, malformed, or damaged: the file ends in a hash of its
+ *  contents, format SBAGGL02, checked before anything is read; SBAGGL01
+ *  files, without it, still load); a is unchanged on failure. */
 int sb_agglo_load(sb_agglo *a, const char *path);
 
 /** The outcome (sb_engine_outcome_fn; ctx is the sb_agglo): the rule of

@@ -159,8 +159,10 @@ int sb_engine_bridge_save(const sb_engine_bridge *b, const sb_engine *e,
  *  before sb_engine_bridge_attach, which then checks that the engine is
  *  the one restored from the same checkpoint (SB_EINVAL otherwise).
  *  SB_EINVAL (more records than record_cap), SB_EIO (cannot open),
- *  SB_EFORMAT (not such a file, truncated); on failure the counters are
- *  unchanged and no record is kept. */
+ *  SB_EFORMAT (not such a file, truncated, or damaged: the file ends in
+ *  a hash of its contents, format SBBRID02, checked before anything is
+ *  read; SBBRID01 files, without it, still load); on failure the
+ *  counters are unchanged and no record is kept. */
 int sb_engine_bridge_load(sb_engine_bridge *b, const char *path);
 
 /** Install the detector and outcome in engine e (3-D, every species with

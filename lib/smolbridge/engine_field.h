@@ -86,8 +86,10 @@ int sb_field_ou_save(const sb_field_ou *f, int with_rng, const char *path);
  *  file holds a generator.  Attach it to the engine restored from the
  *  same checkpoint: the run goes on bit for bit as if it had not
  *  stopped.  NULL with *status (may be NULL) SB_EINVAL, SB_EIO (cannot
- *  open), SB_EFORMAT (not such a file, truncated) or SB_ENOMEM; r is
- *  unchanged on failure. */
+ *  open), SB_EFORMAT (not such a file, truncated, or damaged: the file
+ *  ends in a hash of its contents, format SBFOU002, checked before
+ *  anything is read; SBFOU001 files, without it, still load) or
+ *  SB_ENOMEM; r is unchanged on failure. */
 sb_field_ou *sb_field_ou_load(const char *path, double u2, double TL,
                               double dt, gsl_rng *r, int *status);
 
@@ -137,7 +139,9 @@ void sb_field_kraichnan_free(sb_field_kraichnan *f);
 int sb_field_kraichnan_save(const sb_field_kraichnan *f, const char *path);
 /** The saved realization; L, M, eps_nu and omega must be the saved ones
  *  (SB_EINVAL).  NULL with *status (may be NULL) SB_EINVAL, SB_EIO,
- *  SB_EFORMAT or SB_ENOMEM. */
+ *  SB_EFORMAT (not such a file, truncated, or damaged: hash as in
+ *  sb_field_ou_load, format SBFKR002; SBFKR001 still loads) or
+ *  SB_ENOMEM. */
 sb_field_kraichnan *sb_field_kraichnan_load(const char *path, double L,
                                             int M, double eps_nu,
                                             double omega, int *status);

@@ -204,8 +204,10 @@ int sb_engine_firsthit_save(const sb_engine_firsthit *f, const sb_engine *e,
  *  then goes on bit for bit as if it had not stopped (the same draws: the
  *  engine's generator state is in its checkpoint).  SB_EINVAL (attached,
  *  another detector or skip_seen), SB_EIO (cannot open), SB_EFORMAT (not
- *  an observer file, truncated, or from another build); f is unchanged on
- *  failure. */
+ *  an observer file, truncated, from another build, or damaged: the file
+ *  ends in a hash of its contents, format SBFHIT02, checked before
+ *  anything is read; SBFHIT01 files, without it, still load); f is
+ *  unchanged on failure. */
 int sb_engine_firsthit_load(sb_engine_firsthit *f, const char *path);
 
 /** End of the warm-up, s (default 0): first contacts before t1 are
