@@ -21,6 +21,7 @@
 #include <smolbridge/langevin.h>
 #include <smolbridge/rng.h>
 
+#include "engine/engine_internal.h"
 #include "engine_same.h"
 #include "testutil.h"
 
@@ -967,6 +968,48 @@ START_TEST(test_fill_all_or_nothing)
 }
 END_TEST
 
+/* A checkpoint whose particles share an id (or hold one at or above the
+ * id counter) is refused on load, naming the id: ids key the transport
+ * streams, the tallies and the saved states beside a checkpoint.  The
+ * files are written by the library (a valid hash) from an engine whose
+ * ids were changed through the internal header. */
+START_TEST(test_checkpoint_bad_ids)
+{
+  char path[] = "/tmp/sb_engine_ids_XXXXXX";
+  int fd = mkstemp(path);
+  ck_assert_int_ge(fd, 0);
+  close(fd);
+  for (int c = 0; c < 3; c++) {
+    sb_engine *e = box_engine(3, 10.0, 0.1, 8);
+    size_t sp = add_free(e, 0.5, 1.0);
+    ck_assert_int_eq(sb_engine_fill_random(e, sp, 0, 4), SB_SUCCESS);
+    if (c == 1)
+      e->id[3] = e->id[1];  /* two particles of id 1 */
+    if (c == 2)
+      e->id[2] = 17;  /* the counter is 4 */
+    ck_assert_int_eq(sb_engine_checkpoint_save(e, path), SB_SUCCESS);
+    sb_engine_free(e);
+    int st;
+    e = sb_engine_checkpoint_load(path, &st);
+    if (c == 0) {
+      ck_assert_int_eq(st, SB_SUCCESS);
+      ck_assert_ptr_nonnull(e);
+      sb_engine_free(e);
+      continue;
+    }
+    ck_assert_ptr_null(e);
+    ck_assert_int_eq(st, SB_EINVAL);
+    ck_assert_int_eq(sb_last_status(), SB_EINVAL);
+    ck_assert_msg(strstr(sb_last_error(), c == 1 ? "two particles have id 1"
+                                                 : "has id 17"),
+                  "%s", sb_last_error());
+    ck_assert_ptr_nonnull(strstr(sb_last_error(),
+                                 "sb_engine_checkpoint_load"));
+  }
+  remove(path);
+}
+END_TEST
+
 /* The message of an error names the public function the caller entered,
  * not a helper it shares with another one. */
 static int fluid_fails(size_t n, const double *x, double *us, void *ctx)
@@ -1310,6 +1353,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_errors);
   tcase_add_test(tc, test_error_names);
   tcase_add_test(tc, test_fill_all_or_nothing);
+  tcase_add_test(tc, test_checkpoint_bad_ids);
   tcase_add_test(tc, test_checkpoint_write_error);
   tcase_add_test(tc, test_custom_callbacks);
   tcase_add_test(tc, test_misuse);

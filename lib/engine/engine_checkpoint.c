@@ -230,6 +230,41 @@ static char *slurp(FILE *f, size_t *len)
   return b;
 }
 
+static int id_cmp(const void *a, const void *b)
+{
+  const uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+  return (x > y) - (x < y);
+}
+
+/* The particles' ids are distinct and below the id counter (the next
+ * particle's): SB_SUCCESS, or SB_EINVAL naming the first id at fault
+ * (SB_ENOMEM). */
+static int check_ids(const uint64_t *id, size_t n, uint64_t next_id,
+                     const char *path, const char *func)
+{
+  for (size_t i = 0; i < n; i++)
+    if (id[i] >= next_id)
+      return sbi_error(SB_EINVAL, func, "'%s': particle %zu has id %llu, "
+                       "not below the id counter %llu", path, i,
+                       (unsigned long long)id[i],
+                       (unsigned long long)next_id);
+  if (n < 2)
+    return SB_SUCCESS;
+  uint64_t *s = malloc(n * sizeof *s);
+  if (!s)
+    return sbi_error(SB_ENOMEM, func, "out of memory");
+  memcpy(s, id, n * sizeof *s);
+  qsort(s, n, sizeof *s, id_cmp);
+  int st = SB_SUCCESS;
+  for (size_t k = 1; k < n && !st; k++)
+    if (s[k] == s[k - 1])
+      st = sbi_error(SB_EINVAL, func, "'%s': two particles have id %llu "
+                     "(ids must be distinct)", path,
+                     (unsigned long long)s[k]);
+  free(s);
+  return st;
+}
+
 #define R(ptr, size, count)                                 \
   do {                                                      \
     if ((count) > 0 && fread((ptr), (size), (count), f) != (count)) \
@@ -319,6 +354,13 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
       goto bad;
     e->radius[i] = e->spec[e->species[i]].radius;
     e->mass[i] = e->spec[e->species[i]].mass;
+  }
+  {
+    const int st = check_ids(e->id, n, next_id, path, __func__);
+    if (st) {
+      *status = st;
+      goto out;
+    }
   }
   e->n = n;
   e->next_id = next_id;
