@@ -13,7 +13,9 @@ Every value is computed independently of the C code and of GSL:
   - KS: Durbin's matrix (Durbin 1973) powered in 60-digit arithmetic (no
     rescaling), the one-sided Birnbaum-Tingey sum, the Kolmogorov series;
   - two-sample KS: exact lattice-path counts with Python integers;
-  - chi-square and Student t: regularized incomplete gamma / beta.
+  - chi-square and Student t: regularized incomplete gamma / beta (the far
+    chi-square tails, down to the underflow edge, checked against a
+    quadrature of the density scaled by its value at x).
 """
 import os
 import sys
@@ -441,6 +443,22 @@ def gen_ks2():
 
 
 # --------------------------------------------------------- chi2, t, z
+def check_far_tail(a, y, q):
+    """Abort unless q agrees with an independent evaluation of the upper
+    tail Q(a, y), y beyond the mode: the density at y (loggamma) times the
+    integral of f(t)/f(y) over t > y, by tanh-sinh quadrature split on the
+    local decay scale."""
+    def lf(t):
+        return (a - 1) * mp.log(t) - t
+    h = 1 / max((y - a + 1) / y, 1 / mp.sqrt(a - 1))
+    pts = [y + k * h for k in (0, 1, 2, 4, 8, 16, 32, 64, 128)] + [mp.inf]
+    i = mp.quad(lambda t: mp.exp(lf(t) - lf(y)), pts)
+    q2 = mp.exp(lf(y) - mp.loggamma(a)) * i
+    if abs(q2 / q - 1) > mp.mpf(10)**-30:
+        raise RuntimeError("chi2 far tail: gammainc %s, quadrature %s"
+                           % (mp.nstr(q, 25), mp.nstr(q2, 25)))
+
+
 def gen_misc():
     rows = []
     for dof in [1, 2, 3, 10, 100, 1000, 10**5, 199999, 200001, 3 * 10**5,
@@ -456,6 +474,22 @@ def gen_misc():
             for x in [1e-3, 0.5, 1.6, 40.0, 200.0]:
                 rows.append((dof, x, gamma_tail(mp.mpf(dof) / 2,
                                                 mp.mpf(x) / 2, False)))
+    # Far upper tails at large dof, down to and past the underflow edge:
+    # x solving Q = target, rounded to a double, Q recomputed there.
+    # Targets below DBL_TRUE_MIN / 2 (~2.5e-324) must come out as 0.
+    for dof in [401, 12000, 10**5, 10**6]:
+        a = mp.mpf(dof) / 2
+        for e in [-40, -60, -100, -150, -200, -250, -300, -305, -310, -320,
+                  mp.log10(4) - 324, -325]:
+            lt = mp.mpf(e) * mp.log(10)
+            z0 = mp.sqrt(-2 * lt)
+            x = root(lambda x: lt - mp.log(gamma_tail(a, x / 2, False)),
+                     dof + z0 * mp.sqrt(2 * dof), mp.sqrt(2 * dof),
+                     mp.mpf(dof), mp.mpf(100) * dof)
+            x = float(x)
+            q = gamma_tail(a, mp.mpf(x) / 2, False)
+            check_far_tail(a, mp.mpf(x) / 2, q)
+            rows.append((dof, x, q))
     write("stats_chi2.csv", "dof,x,q", rows)
 
     rows = []

@@ -692,9 +692,32 @@ START_TEST(test_chi2_sf_reference)
   size_t n = read_csv("stats_chi2.csv", 3, &v);
   for (size_t i = 0; i < n; i++) {
     const double *r = v + 3 * i;
-    ck_assert_rel(sb_chi2_sf(r[1], r[0]), r[2], 1e-12);
+    double q = sb_chi2_sf(r[1], r[0]);
+    if (r[2] >= DBL_MIN) {
+      ck_assert_rel(q, r[2], TOL_REF);
+    } else if (r[2] > 0.0) { /* subnormal: TOL_REF or one DBL_TRUE_MIN */
+      ck_assert_msg(fabs(q - r[2]) <= fmax(TOL_REF * r[2], DBL_TRUE_MIN),
+                    "dof %g x %.17g: Q = %g, want %g", r[0], r[1], q, r[2]);
+    } else { /* Q below DBL_TRUE_MIN / 2 is 0, not NaN or DBL_TRUE_MIN */
+      ck_assert_msg(q == 0.0, "dof %g x %.17g: Q = %g, want 0", r[0], r[1],
+                    q);
+    }
   }
   free(v);
+  /* The far tail at large dof: finite, non-increasing (to the 1e-12
+   * accuracy) from the mode to where Q underflows, and 0 beyond. */
+  const double dofs[] = {401.0, 12000.0, 1e6, 1e12};
+  for (int k = 0; k < 4; k++) {
+    double d = dofs[k], sd = sqrt(2.0 * d), prev = 1.0;
+    for (double z = 0.0; z <= 80.0; z += 0.25) {
+      double q = sb_chi2_sf(d + z * sd, d);
+      ck_assert_msg(q >= 0.0 && q <= prev * (1.0 + TOL_REF),
+                    "dof %g z %g: Q = %g after %g", d, z, q, prev);
+      prev = q;
+    }
+    ck_assert_msg(prev == 0.0, "dof %g: Q(80 sigma) = %g", d, prev);
+    ck_assert_abs(sb_chi2_sf(DBL_MAX, d), 0.0, 0.0);
+  }
   ck_assert_abs(sb_chi2_sf(0.0, 3), 1.0, 0.0);
   ck_assert_abs(sb_chi2_sf(INFINITY, 3), 0.0, 0.0);
   ck_assert(isnan(sb_chi2_sf(1.0, 0.5)));

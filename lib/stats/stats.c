@@ -29,6 +29,7 @@
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_math.h>
 #include <gsl/gsl_roots.h>
+#include <gsl/gsl_sf_gamma.h>
 #include <gsl/gsl_sf_log.h>
 #include <gsl/gsl_statistics_double.h>
 
@@ -37,16 +38,24 @@
 
 /* Largest gamma/beta shape handed to GSL's CDFs. */
 #define SHAPE_GSL_MAX 200.0
-/* Quadrature: the density is integrated over mode -+ QUAD_S sigma, the
- * distances doubled (up to the support's ends) until the log density
- * relative to the mode is below -QUAD_LOGCUT, in pieces of QUAD_H sigma
- * with QUAD_N-point Gauss-Legendre rules.  With shapes >= 2 the integrand
- * is smooth on the support and varies on the scale sigma, so each piece is
- * exact to rounding (checked against mpmath in the tests). */
+/* Quadrature: a tail is integrated from x outwards in scaled form
+ * (law_scaled_tail); the beta law's normalisation over mode -+ QUAD_S
+ * sigma, the distances doubled (up to the support's ends) until the log
+ * density relative to the mode is below -QUAD_LOGCUT (the gamma law's is
+ * a closed form).  Pieces of QUAD_H local scales, QUAD_N-point
+ * Gauss-Legendre rules: with shapes >= 2 the integrand is smooth on the
+ * support and varies on that scale, so each piece is exact to rounding
+ * (checked against mpmath in the tests). */
 #define QUAD_S 15.0
 #define QUAD_LOGCUT 100.0
 #define QUAD_H 2.0
 #define QUAD_N 20
+/* Scaled tail integrals (law_scaled_tail) stop where the integrand is
+ * below e^-TAIL_LOGCUT of its start (the rest is < 4e-18 of the total);
+ * they need about TAIL_LOGCUT/QUAD_H + 10 pieces, the cap only guards
+ * against a loop that makes no progress. */
+#define TAIL_LOGCUT 40.0
+#define TAIL_MAXPIECES 4096
 #define ROOT_MAXITER 400
 
 /* ------------------------------------------------------------------ laws */
@@ -57,7 +66,7 @@ typedef struct {
   double a, b;
   int quad;      /* 1: tails by quadrature (large shapes) */
   double mode, om, sig; /* quadrature: mode, 1 - mode (beta), scale */
-  double tlo, thi, z;   /* integration range and integral of g over it */
+  double z;      /* integral of g (density / density at the mode) */
   gsl_integration_glfixed_table *gl;
   int bad;       /* set if a CDF returned NaN (never seen; defensive) */
 } law_t;
@@ -145,9 +154,19 @@ static int law_init(law_t *L, int beta, double a, double b)
   L->gl = gsl_integration_glfixed_table_alloc(QUAD_N);
   if (!L->gl)
     return SB_ENOMEM;
-  L->tlo = law_cut(L, -1.0, 0.0);
-  L->thi = law_cut(L, 1.0, beta ? 1.0 : HUGE_VAL);
-  L->z = law_int(L, L->tlo, L->mode) + law_int(L, L->mode, L->thi);
+  if (!beta) {
+    /* z = Gamma(a) e^m / m^m with m = a - 1, from GSL's
+     * gamma*(a) = Gamma(a) / (sqrt(2 pi) a^(a-1/2) e^-a):
+     * z = sqrt(2 pi a) gamma*(a) e^(-1 - (a-1) log(1 - 1/a)).  Exact to
+     * rounding at every shape, unlike a quadrature whose nodes are rounded
+     * to the grid of doubles near m (relative error ~1e-16 z sqrt(a) at
+     * z sigma) or lgamma(a) - m log(m) + m (cancels). */
+    L->z = sqrt(2.0 * M_PI) * sqrt(a) * gsl_sf_gammastar(a) *
+           exp(-1.0 - (a - 1.0) * log1p(-1.0 / a));
+  } else {
+    double tlo = law_cut(L, -1.0, 0.0), thi = law_cut(L, 1.0, 1.0);
+    L->z = law_int(L, tlo, L->mode) + law_int(L, L->mode, thi);
+  }
   return SB_SUCCESS;
 }
 
@@ -158,8 +177,103 @@ static void law_free(law_t *L)
   L->gl = NULL;
 }
 
-/* Lower (upper = 0) or upper tail probability at x.  The smaller tail is
- * integrated directly; the other is its complement (>= ~1/2, no loss). */
+/* log g(x + s) - log g(x), written without cancellation: with
+ * lpmx(u) = log(1 + u) - u and the slope phi1 = (log g)'(x),
+ *   gamma: (a-1) lpmx(s/x) + s phi1,
+ *   beta:  (a-1) lpmx(s/x) + (b-1) lpmx(-s/(1-x)) + s phi1;
+ * every term has the sign of the whole for s pointing away from the mode,
+ * so the relative error is a few ulp however far x is from the mode.
+ * -inf at or beyond the support's end. */
+static double law_dlogg(const law_t *L, double x, double phi1, double s)
+{
+  double u = s / x;
+  if (!(u > -1.0))
+    return -HUGE_VAL;
+  double e = (L->a - 1.0) * gsl_sf_log_1plusx_mx(u) + s * phi1;
+  if (L->beta) {
+    double v = -s / (1.0 - x);
+    if (!(v > -1.0))
+      return -HUGE_VAL;
+    e += (L->b - 1.0) * gsl_sf_log_1plusx_mx(v);
+  }
+  return e;
+}
+
+/* (log g)'(t) and sqrt(-(log g)''(t)) at 0 < t (< 1 for beta), written
+ * so that neither overflows before the true value does; the numerator of
+ * the slope has one rounding (fma), so its sign is right near the mode. */
+static void law_slope(const law_t *L, double t, double *phi1, double *root2)
+{
+  double a1 = L->a - 1.0;
+  if (!L->beta) {
+    *phi1 = (a1 - t) / t;
+    *root2 = sqrt(a1) / t;
+  } else {
+    double b1 = L->b - 1.0, w = 1.0 - t;
+    *phi1 = fma(-(a1 + b1), t, a1) / t / w;
+    *root2 = hypot(sqrt(a1) / t, sqrt(b1) / w);
+  }
+}
+
+typedef struct {
+  const law_t *L;
+  double x, phi1;
+} dlogg_par;
+
+/* g(x + s)/g(x) as a function of the offset s: nodes placed in s, not in
+ * t = x + s, keep their full relative precision (a node rounded to the
+ * grid of doubles near x would move g by |phi'| ulp(x), ~1e-12 at
+ * shapes ~1e6). */
+static double law_gratio(double s, void *vp)
+{
+  const dlogg_par *p = vp;
+  return exp(law_dlogg(p->L, p->x, p->phi1, s));
+}
+
+/* Tail mass of the law beyond x, away from the mode (dir = +1: above x,
+ * up to the support's end lim; dir = -1: below x, down to lim = 0), in
+ * scaled form: Q = g(x)/z * I with I = integral of g(x + s)/g(x) over s
+ * from 0 outwards, an O(1/|slope|) to O(sigma) integral whatever the size
+ * of Q.  I is integrated in pieces of QUAD_H local scales
+ * (1/max(|phi'|, sqrt(-phi''))), on which g falls by ~e^-2 at most, with
+ * QUAD_N-point Gauss-Legendre rules, until g(x + s)/g(x) < e^-TAIL_LOGCUT
+ * (the rest is below e^-TAIL_LOGCUT of I, log g being concave).  The
+ * product is formed in log space, so Q is right down to the smallest
+ * subnormal and 0 below it. */
+static double law_scaled_tail(const law_t *L, double x, double dir,
+                              double lim)
+{
+  double lg = law_logg(L, x), phi1, root2;
+  if (!(lg > -HUGE_VAL))
+    return 0.0;
+  double lq = lg - log(L->z); /* log of the density at x, normalised */
+  law_slope(L, x, &phi1, &root2);
+  /* I <= 1/|phi'(x)| (log g is concave): below this bound Q is under
+   * half the smallest subnormal and rounds to 0. */
+  if (dir * phi1 < 0.0 && lq - log(fabs(phi1)) < log(DBL_TRUE_MIN) - 1.0)
+    return 0.0;
+  dlogg_par par = {L, x, phi1};
+  gsl_function F = {law_gratio, &par};
+  double slim = lim - x, s = 0.0, sum = 0.0;
+  for (int i = 0; i < TAIL_MAXPIECES; i++) {
+    double p1, r2;
+    law_slope(L, x + s, &p1, &r2);
+    double s1 = s + dir * QUAD_H / fmax(fabs(p1), r2);
+    if (dir * (s1 - slim) >= 0.0)
+      s1 = slim;
+    if (s1 == s) /* no room left in double precision */
+      break;
+    sum += dir * gsl_integration_glfixed(&F, s, s1, L->gl);
+    s = s1;
+    if (s == slim || law_dlogg(L, x, phi1, s) < -TAIL_LOGCUT)
+      break;
+  }
+  return sum > 0.0 ? exp(lq + log(sum)) : 0.0;
+}
+
+/* Lower (upper = 0) or upper tail probability at x.  The tail away from
+ * the mode is integrated directly (scaled form); the other is its
+ * complement (>= ~1/2, no loss). */
 static double law_tail(law_t *L, double x, int upper)
 {
   double v;
@@ -175,10 +289,10 @@ static double law_tail(law_t *L, double x, int upper)
     return v;
   }
   if (x <= L->mode) {
-    double lt = x <= L->tlo ? 0.0 : law_int(L, L->tlo, x) / L->z;
+    double lt = law_scaled_tail(L, x, -1.0, 0.0);
     return upper ? 1.0 - lt : lt;
   }
-  double ut = x >= L->thi ? 0.0 : law_int(L, x, L->thi) / L->z;
+  double ut = law_scaled_tail(L, x, 1.0, L->beta ? 1.0 : HUGE_VAL);
   return upper ? ut : 1.0 - ut;
 }
 
