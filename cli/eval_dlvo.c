@@ -125,7 +125,9 @@ static int w_erel(const double *i, double *o)
 {
   const double v1[3] = {i[2], 0, 0}, v2[3] = {0, 0, 0};
   o[0] = sb_dlvo_erel(i[0], i[1], v1, v2);
-  return isnan(o[0]) ? SB_EDOM : SB_SUCCESS;
+  if (!isnan(o[0]))
+    return SB_SUCCESS;
+  return sb_last_status() != SB_SUCCESS ? sb_last_status() : SB_EDOM;
 }
 
 #define WF {"W", "F", NULL}

@@ -445,6 +445,81 @@ START_TEST(test_erel_values)
 }
 END_TEST
 
+/* Extreme arguments: the limits where they are representable (no error
+ * recorded), NaN and SB_ERANGE where the result overflows. */
+START_TEST(test_erel_extreme)
+{
+  for (int l = 0; l < 4; l++) {
+    sb_dlvo_erel_law law = (sb_dlvo_erel_law)l;
+    sb_clear_error();
+    ck_assert(sb_dlvo_erel_P(INFINITY, 1, law, 3) == 1.0);
+    ck_assert(sb_dlvo_erel_Q(INFINITY, 1, law, 3) == 0.0);
+    ck_assert(sb_dlvo_erel_pdf(INFINITY, 1, law, 3) == 0.0);
+    ck_assert(sb_dlvo_erel_logQ(INFINITY, 1, law, 3) == -INFINITY);
+    /* E/theta = 1e300 (GSL's erf is NaN beyond ~1e124) and E/theta
+     * overflowing (theta subnormal): P = 1, Q = 0, density 0 */
+    const double Es[2] = {1e300, 1.0}, ths[2] = {1.0, 1e-320};
+    for (int c = 0; c < 2; c++) {
+      ck_assert(sb_dlvo_erel_P(Es[c], ths[c], law, 3) == 1.0);
+      ck_assert(sb_dlvo_erel_Q(Es[c], ths[c], law, 3) == 0.0);
+      ck_assert(sb_dlvo_erel_pdf(Es[c], ths[c], law, 3) == 0.0);
+    }
+    ck_assert_int_eq(sb_last_status(), SB_SUCCESS);
+    /* log Q = -x + log(prefactor), x = 1e300: -1e300 to rounding */
+    ck_assert_rel(sb_dlvo_erel_logQ(1e300, 1, law, 3), -1e300, TOL_TIGHT);
+    ck_assert(isnan(sb_dlvo_erel_logQ(1.0, 1e-320, law, 3)));
+    ck_assert_int_eq(sb_last_status(), SB_ERANGE);
+  }
+  /* the density at E = 0 for k = 1 is 1/theta: overflows for theta 1e-320;
+   * for k = 1/2 it is +inf (documented), not an error */
+  sb_clear_error();
+  ck_assert(sb_dlvo_erel_pdf(0, 1e-320, SB_DLVO_EREL_STATIONARY_NORMAL, 3) ==
+            INFINITY);
+  ck_assert_int_eq(sb_last_status(), SB_SUCCESS);
+  ck_assert(isnan(sb_dlvo_erel_pdf(0, 1e-320, SB_DLVO_EREL_COLLISION_NORMAL,
+                                   3)));
+  ck_assert_int_eq(sb_last_status(), SB_ERANGE);
+  ck_assert_rel(sb_dlvo_erel_pdf(0, 1e-300, SB_DLVO_EREL_COLLISION_NORMAL, 3),
+                1e300, TOL_TIGHT);
+
+  /* E_rel at extreme scales, against hand values: |w| = 5 x scale */
+  const double z[3] = {0, 0, 0};
+  const double big[3] = {3e200, 4e200, 0}, tiny[3] = {3e-200, 4e-200, 0};
+  sb_clear_error();
+  /* mu = 1e-250: E = 0.5e-250 * 25e400 */
+  ck_assert_rel(sb_dlvo_erel(2e-250, 2e-250, big, z), 1.25e151, TOL_TIGHT);
+  /* mu = 1e250: E = 0.5e250 * 25e-400 */
+  ck_assert_rel(sb_dlvo_erel(2e250, 2e250, tiny, z), 1.25e-149, TOL_TIGHT);
+  /* m1/m2 overflows: mu = m2 */
+  const double one[3] = {1, 0, 0};
+  ck_assert_rel(sb_dlvo_erel(1e300, 1e-10, one, z), 0.5e-10, TOL_TIGHT);
+  ck_assert_rel(sb_dlvo_erel(1e-10, 1e300, one, z), 0.5e-10, TOL_TIGHT);
+  /* velocities of opposite sign whose difference overflows, small mu:
+   * w = 2^1024, mu = 2^-1030, E = 2^1017 exactly */
+  const double vp[3] = {0x1p1023, 0, 0}, vm[3] = {-0x1p1023, 0, 0};
+  ck_assert_rel(sb_dlvo_erel(0x1p-1029, 0x1p-1029, vp, vm), 0x1p1017,
+                TOL_TIGHT);
+  /* normal part with |n| tiny or huge: n along x and along (1, 1, 0) */
+  const double v34[3] = {3, 4, 0};
+  const double nt[3] = {1e-200, 0, 0}, nh[3] = {1e200, 1e200, 0};
+  ck_assert_rel(sb_dlvo_erel_normal(2, 2, v34, z, nt), 0.5 * 9.0, TOL_TIGHT);
+  ck_assert_rel(sb_dlvo_erel_normal(2, 2, v34, z, nh), 0.5 * 24.5,
+                TOL_TIGHT);
+  ck_assert_rel(sb_dlvo_erel_normal(2e-250, 2e-250, big, z, nh),
+                1.225e151, TOL_TIGHT);
+  /* underflow is 0, not an error */
+  ck_assert(sb_dlvo_erel(1, 2, tiny, z) == 0.0);
+  ck_assert_int_eq(sb_last_status(), SB_SUCCESS);
+  /* overflow */
+  const double v300[3] = {1e300, 0, 0};
+  ck_assert(isnan(sb_dlvo_erel(1, 2, v300, z)));
+  ck_assert_int_eq(sb_last_status(), SB_ERANGE);
+  sb_clear_error();
+  ck_assert(isnan(sb_dlvo_erel_normal(1, 2, v300, z, one)));
+  ck_assert_int_eq(sb_last_status(), SB_ERANGE);
+}
+END_TEST
+
 START_TEST(test_erel_ref)
 {
   FILE *f = csv_open("dlvo_erel.csv");
@@ -677,6 +752,7 @@ static Suite *suite(void)
   tcase_set_timeout(t, 30);
   tcase_add_test(t, test_erel_values);
   tcase_add_test(t, test_erel_ref);
+  tcase_add_test(t, test_erel_extreme);
   tcase_add_test(t, test_erel_quad);
   tcase_add_test(t, test_erel_mc);
   tcase_add_test(t, test_erel_sample);

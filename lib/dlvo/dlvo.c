@@ -532,6 +532,48 @@ static int vec_ok(const double *v)
   return v && fin(v[0]) && fin(v[1]) && fin(v[2]);
 }
 
+/* mu = m1 m2/(m1 + m2) without overflow of m1 m2, nor of m1/m2 (the
+ * ratio is taken the other way round where it would overflow). */
+static double reduced_mass(double m1, double m2)
+{
+  double r = m1 / m2;
+  return isinf(r) ? m2 / (1.0 + m2 / m1) : m1 / (1.0 + r);
+}
+
+/* Half the velocity difference d = (v1 - v2)/2 (exact for normal
+ * velocities, and no overflow of the difference) and its largest
+ * component in magnitude. */
+static double half_diff(const double *v1, const double *v2, double d[3])
+{
+  double dm = 0.0;
+  for (int k = 0; k < 3; k++) {
+    d[k] = 0.5 * v1[k] - 0.5 * v2[k];
+    dm = fmax(dm, fabs(d[k]));
+  }
+  return dm;
+}
+
+/* A velocity scale (m/s) inside which the plain formulas for E_rel can
+ * neither overflow nor underflow in their sums of squares; outside it
+ * they are evaluated in scaled form. */
+#define EREL_VMIN 1e-100
+#define EREL_VMAX 1e100
+
+/* (1/2) mu |w|^2 c with |w| = 2 dm: 2 (sqrt(mu) dm)^2 c, the factors
+ * ordered so that an intermediate over/underflows only where E does;
+ * NaN and SB_ERANGE recorded (for func) if E overflows. */
+static double erel_scaled(double mu, double dm, double c, const char *func)
+{
+  double u = sqrt(mu) * dm;
+  double E = (2.0 * c * u) * u;
+  if (isinf(E)) {
+    sbi_error(SB_ERANGE, func, "the energy overflows (mu = %g, |v1 - v2| "
+              "~ %g)", mu, 2.0 * dm);
+    return NAN;
+  }
+  return E;
+}
+
 double sb_dlvo_erel(double m1, double m2, const double v1[3],
                     const double v2[3])
 {
@@ -541,11 +583,24 @@ double sb_dlvo_erel(double m1, double m2, const double v1[3],
               "m2 = %g)", m1, m2);
     return NAN;
   }
-  double w2 = 0.0;
+  const double mu = reduced_mass(m1, m2);
+  double d[3], dm = half_diff(v1, v2, d);
+  if (dm == 0.0 || (dm >= EREL_VMIN && dm <= EREL_VMAX)) {
+    double w2 = 0.0;
+    for (int k = 0; k < 3; k++)
+      w2 += (v1[k] - v2[k]) * (v1[k] - v2[k]);
+    double E = 0.5 * mu * w2;
+    if (isinf(E)) {
+      sbi_error(SB_ERANGE, __func__, "the energy overflows (mu = %g, "
+                "|v1 - v2|^2 = %g)", mu, w2);
+      return NAN;
+    }
+    return E;
+  }
+  double c = 0.0;
   for (int k = 0; k < 3; k++)
-    w2 += (v1[k] - v2[k]) * (v1[k] - v2[k]);
-  /* mu = m1 m2/(m1 + m2) written to avoid overflow of m1 m2 */
-  return 0.5 * (m1 / (1.0 + m1 / m2)) * w2;
+    c += (d[k] / dm) * (d[k] / dm);
+  return erel_scaled(mu, dm, c, __func__);
 }
 
 double sb_dlvo_erel_normal(double m1, double m2, const double v1[3],
@@ -558,12 +613,33 @@ double sb_dlvo_erel_normal(double m1, double m2, const double v1[3],
               "m2 = %g)", m1, m2);
     return NAN;
   }
-  double wn = 0.0, nn = 0.0;
-  for (int k = 0; k < 3; k++) {
-    wn += (v1[k] - v2[k]) * n[k];
-    nn += n[k] * n[k];
+  const double mu = reduced_mass(m1, m2);
+  double d[3], dm = half_diff(v1, v2, d);
+  double nm = fmax(fabs(n[0]), fmax(fabs(n[1]), fabs(n[2])));
+  if ((dm == 0.0 || (dm >= EREL_VMIN && dm <= EREL_VMAX)) &&
+      nm >= EREL_VMIN && nm <= EREL_VMAX) {
+    double wn = 0.0, nn = 0.0;
+    for (int k = 0; k < 3; k++) {
+      wn += (v1[k] - v2[k]) * n[k];
+      nn += n[k] * n[k];
+    }
+    double E = 0.5 * mu * (wn * wn / nn);
+    if (isinf(E)) {
+      sbi_error(SB_ERANGE, __func__, "the energy overflows (mu = %g, "
+                "w.n/|n| = %g)", mu, wn / sqrt(nn));
+      return NAN;
+    }
+    return E;
   }
-  return 0.5 * (m1 / (1.0 + m1 / m2)) * (wn * wn / nn);
+  if (dm == 0.0)
+    return 0.0;
+  /* scaled: c = ((d/dm).(n/nm))^2 / |n/nm|^2 <= 3 */
+  double dn = 0.0, nn = 0.0;
+  for (int k = 0; k < 3; k++) {
+    dn += (d[k] / dm) * (n[k] / nm);
+    nn += (n[k] / nm) * (n[k] / nm);
+  }
+  return erel_scaled(mu, dm, dn * dn / nn, __func__);
 }
 
 int sb_dlvo_sticks(double E_rel, double W_max) { return E_rel > W_max; }
@@ -618,6 +694,12 @@ static double p_series(int k2, double x, double *rel)
 static double erf_sqrt(double x, int upper, gsl_sf_result *ef)
 {
   double y = sqrt(x);
+  if (y > 1e10) { /* GSL's erf and erfc return NaN from y ~ 1e62 on;
+                   * erfc(y) < e^-1e20 underflows here */
+    ef->val = upper ? 0.0 : 1.0;
+    ef->err = upper ? 0.0 : EPS;
+    return ef->val;
+  }
   double h = y > 0.0 ? -fma(y, y, -x) / (2.0 * y) : 0.0; /* sqrt(x) - y */
   double d = h * M_2_SQRTPI * exp(-y * y);
   if (upper) {
@@ -671,7 +753,8 @@ static double gam_pq(int k2, double x, int upper, double *err)
     }
   default: /* 4: k = 2 */
     v = upper ? (1.0 + x) * exp(-x) : -expm1(-x) - x * exp(-x);
-    *err = (4.0 + 2.0 * x) * EPS * (upper ? v : 1.0 + x * exp(-x));
+    /* (4 + 2x) EPS, written so that it cannot overflow */
+    *err = (4.0 * EPS + 2.0 * EPS * x) * (upper ? v : 1.0 + x * exp(-x));
     return v;
   }
 }
@@ -684,7 +767,9 @@ static int erel_pq(double E, double theta, sb_dlvo_erel_law law, int dim,
   int s = law_k2(E, theta, law, dim, res, &k2);
   if (s != SB_SUCCESS)
     return s;
-  if (isinf(E)) {
+  /* E = inf, or E/theta beyond DBL_MAX: Q < e^-DBL_MAX is 0 and P rounds
+   * to 1 */
+  if (isinf(E / theta)) {
     res->val = upper ? 0.0 : 1.0, res->err = 0.0;
     return SB_SUCCESS;
   }
@@ -722,6 +807,13 @@ double sb_dlvo_erel_logQ(double E, double theta, sb_dlvo_erel_law law,
   if (law_k2(E, theta, law, dim, res, &k2) != SB_SUCCESS)
     return NAN;
   double x = E / theta;
+  if (isinf(x)) {
+    if (isinf(E))
+      return -HUGE_VAL; /* Q = 0 exactly */
+    sbi_error(SB_ERANGE, __func__, "log Q ~ -E/theta overflows (E = %g, "
+              "theta = %g)", E, theta);
+    return NAN;
+  }
   if (x < 1.0) { /* log1p(-P) keeps the relative accuracy when Q ~ 1 */
     double P = gam_pq(k2, x, 0, &rr.err);
     return P < 0.25 ? log1p(-P) : log(gam_pq(k2, x, 1, &rr.err));
@@ -743,14 +835,22 @@ double sb_dlvo_erel_pdf(double E, double theta, sb_dlvo_erel_law law,
   int k2;
   if (law_k2(E, theta, law, dim, res, &k2) != SB_SUCCESS)
     return NAN;
-  double x = E / theta;
+  double x = E / theta, f;
+  if (isinf(x))
+    return 0.0; /* e^-x underflows whatever the prefactor */
   /* x^(k-1) e^-x / (Gamma(k) theta) */
   switch (k2) {
-  case 1: return exp(-x) / (sqrt(M_PI * x) * theta);
-  case 2: return exp(-x) / theta;
-  case 3: return 2.0 * sqrt(x / M_PI) * exp(-x) / theta;
-  default: return x * exp(-x) / theta;
+  case 1: f = exp(-x) / (sqrt(M_PI * x) * theta); break;
+  case 2: f = exp(-x) / theta; break;
+  case 3: f = 2.0 * sqrt(x / M_PI) * exp(-x) / theta; break;
+  default: f = x * exp(-x) / theta; break;
   }
+  if (isinf(f) && !(k2 == 1 && E == 0.0)) { /* theta below ~1e-308 */
+    sbi_error(SB_ERANGE, __func__, "the density overflows (E = %g, "
+              "theta = %g)", E, theta);
+    return NAN;
+  }
+  return f;
 }
 
 double sb_dlvo_erel_sample(const gsl_rng *r, double theta,

@@ -208,13 +208,19 @@ int sb_dlvo_barrier(const sb_dlvo_pair *p, sb_dlvo_barrier_t *b);
 /** Relative kinetic energy of two particles (Mohaupt 2011, App. C,
  *  eq C.13):
  *  E = (1/2) m1 m2/(m1 + m2) |v1 - v2|^2, J.  Masses [kg] > 0, velocities
- *  [m/s] 3-vectors, finite.  NaN and SB_EDOM otherwise. */
+ *  [m/s] 3-vectors, finite.  NaN and SB_EDOM otherwise.  Any finite
+ *  masses and velocities: |v1 - v2| outside [1e-100, 1e100] m/s is
+ *  evaluated in scaled form (no overflow of the difference or its square,
+ *  none of m1/m2), so E is right (a few ulps) wherever it is a normal
+ *  double, and 0 where it underflows; NaN and SB_ERANGE where it
+ *  overflows. */
 double sb_dlvo_erel(double m1, double m2, const double v1[3],
                     const double v2[3]);
 
 /** The part of it along the line of centres n (any non-zero 3-vector,
  *  e.g. x2 - x1): (1/2) mu ((v1 - v2).n)^2/|n|^2, J — the energy that
- *  works against a central force; the tangential part is conserved. */
+ *  works against a central force; the tangential part is conserved.
+ *  Domain and overflow as sb_dlvo_erel (n of any finite magnitude). */
 double sb_dlvo_erel_normal(double m1, double m2, const double v1[3],
                            const double v2[3], const double n[3]);
 
@@ -246,8 +252,10 @@ typedef enum {
 /** Gamma shape k of a law in dimension dim (1, 2 or 3); NaN if invalid. */
 double sb_dlvo_erel_shape(sb_dlvo_erel_law law, int dim);
 
-/** Density of E (1/J) at E >= 0; theta [J] > 0.  E = 0 gives +inf for
- *  k = 1/2, 1/theta for k = 1, 0 otherwise. */
+/** Density of E (1/J) at E >= 0 (E = inf allowed); theta [J] > 0,
+ *  finite.  E = 0 gives +inf for k = 1/2, 1/theta for k = 1, 0
+ *  otherwise; 0 where E/theta overflows or e^-E/theta underflows; NaN and
+ *  SB_ERANGE where the density overflows (theta below ~1e-308 J). */
 double sb_dlvo_erel_pdf(double E, double theta, sb_dlvo_erel_law law,
                         int dim);
 /** P(E_rel <= E) and Q = P(E_rel > E), each computed directly (no 1 - x):
@@ -259,7 +267,10 @@ double sb_dlvo_erel_pdf(double E, double theta, sb_dlvo_erel_law law,
  *  and P for k = 3/2, 2 by the positive series x^k e^{-x} sum_n
  *  x^n/Gamma(k+n+1) for x < 2, the closed forms 1 - Q otherwise.
  *  Q(W_max) is the probability of sticking under the rule above.
- *  Relative error <= 1e-14; err bounds from GSL's erf/erfc. */
+ *  Domain: E >= 0 (inf allowed), theta > 0 finite; where E/theta
+ *  overflows (E = inf, or theta tiny) P = 1 and Q = 0, the correctly
+ *  rounded values.  Relative error <= 1e-14; err bounds from GSL's
+ *  erf/erfc. */
 double sb_dlvo_erel_P(double E, double theta, sb_dlvo_erel_law law,
                       int dim);
 int sb_dlvo_erel_P_e(double E, double theta, sb_dlvo_erel_law law, int dim,
@@ -268,7 +279,9 @@ double sb_dlvo_erel_Q(double E, double theta, sb_dlvo_erel_law law,
                       int dim);
 int sb_dlvo_erel_Q_e(double E, double theta, sb_dlvo_erel_law law, int dim,
                      sb_result *res);
-/** log Q, finite where Q underflows (E/theta > ~700). */
+/** log Q, finite where Q underflows (E/theta > ~700); -inf at E = inf
+ *  (Q = 0); NaN and SB_ERANGE where E is finite but E/theta overflows
+ *  (log Q ~ -E/theta is then below -DBL_MAX). */
 double sb_dlvo_erel_logQ(double E, double theta, sb_dlvo_erel_law law,
                          int dim);
 
