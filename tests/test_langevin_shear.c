@@ -523,6 +523,38 @@ START_TEST(test_mean)
 }
 END_TEST
 
+/* (e') the mean path at extreme time scales, against its limits: tau
+ * -> 0, the particle follows the fluid (u_y = cy, y = y0 + cy s,
+ * u_x = G y + cx, x = x0 + (G y0 + cx) s + G cy s^2/2); tau -> inf, it
+ * keeps its velocity; s -> inf with cy = 0, u_x relaxed to G y + cx and
+ * x ~ (G y + cx) s.  The O(tau) and O(1/tau) corrections are below the
+ * rounding.  Where x overflows (cy != 0, s = 1e300): SB_ERANGE. */
+START_TEST(test_mean_extreme)
+{
+  const double s0[4] = {1, 1, 1, 1};
+  const double G = 1.0, cx = 0.1, cy = 0.2, s = 0.5;
+  double out[4];
+  const double taus[3] = {1e-300, 1e-320, 1e300};
+  const double want[3][4] = {{0.2, 1.1, 1.2, 1.575},
+                             {0.2, 1.1, 1.2, 1.575},
+                             {1.0, 1.5, 1.0, 1.5}};
+  for (int t = 0; t < 3; t++) {
+    ck_assert_int_eq(sb_langevin_shear_mean(taus[t], G, cx, cy, s, s0, out),
+                     SB_SUCCESS);
+    for (int i = 0; i < 4; i++)
+      ck_assert_rel(out[i], want[t][i], TOL_TIGHT);
+  }
+  ck_assert_int_eq(sb_langevin_shear_mean(1.0, G, cx, 0.0, 1e300, s0, out),
+                   SB_SUCCESS);
+  const double w2[4] = {0.0, 2.0, 2.1, 2.1e300};
+  for (int i = 0; i < 4; i++)
+    ck_assert_rel(out[i], w2[i], TOL_TIGHT);
+  ck_assert_int_eq(sb_langevin_shear_mean(1.0, G, cx, cy, 1e300, s0, out),
+                   SB_ERANGE);
+  ck_assert(isnan(out[0]) && isnan(out[3]));
+}
+END_TEST
+
 /* ------------------------------------------------- (d) domain */
 
 START_TEST(test_domain)
@@ -566,6 +598,7 @@ int main(void)
   tcase_add_test(tc, test_translations);
   tcase_add_test(tc, test_domain);
   tcase_add_test(tc, test_mean);
+  tcase_add_test(tc, test_mean_extreme);
   suite_add_tcase(s, tc);
   return sbt_run_suite(s);
 }

@@ -216,22 +216,77 @@ void sb_langevin_shear_propagator(double x, double g, double Phi[4][4],
   a[3][1] = g * (c[3] - c[0]);
 }
 
+/* The deterministic map in physical units, written directly in tau, G
+ * and s: the entries of D Phi D^-1 and D a / vu (D = diag(vu, vx, vu, vx),
+ * vu = sqrt(tau), vx = tau^1.5 with B = 1) are Phi's and a's times 1, tau
+ * or 1/tau, which cancel against the powers of x = s/tau in the
+ * coefficients:
+ *   tau (1 - e^-x), tau Bv, tau C, tau A, tau^2 A, tau^2 (D - A)
+ * are formed without x itself for x >= 1 (closed forms in s and tau) and
+ * from the series of Bv/x^2, C/x^2, A/x^3, (D - A)/x^4 (O(1)) times
+ * powers of s and x for x < 1.  So nothing overflows or underflows unless
+ * the entry does: tau from subnormal to 1e300 with s, G ordinary (the
+ * scaling through sqrt(tau) and tau^1.5 underflowed below tau ~ 1e-205,
+ * and x^2/2 overflowed above x ~ 1e154).  x < 1 also takes D - A from its
+ * own series, without the cancellation of D and A. */
 void sbi_shear_det_map(double tau, double G, double s, double ka[4][4],
                        double kc[4][2])
 {
-  double Phi[4][4], a[4][2];
-  sb_langevin_shear_propagator(s / tau, G * tau, Phi, a);
-  /* physical units: S = D S~, D = diag(vu, vx, vu, vx) with B = 1 (the
-   * mean does not depend on B), vu = sqrt(tau), vx = tau^1.5; the drifts
-   * scale as velocities */
-  const double vu = sqrt(tau), vx = vu * tau;
-  const double D[4] = {vu, vx, vu, vx};
-  for (int i = 0; i < 4; i++) {
-    for (int j = 0; j < 4; j++)
-      ka[i][j] = D[i] * Phi[i][j] / D[j];
-    kc[i][0] = D[i] * a[i][0] / vu;
-    kc[i][1] = D[i] * a[i][1] / vu;
+  const double x = s / tau, e = exp(-x), ome = -expm1(-x);
+  double t1, tbv, tc, ta, tta, ttda; /* the products above */
+  if (x < 1.0) {
+    /* t_m = (-1)^m x^(m-k)/m! from m = k: Bv/x^2 = sum_{m>=2} (m-1) t_m,
+     * C/x^2 = sum_{m>=2} t_m (k = 2); A/x^3 = sum_{m>=3} (2-m) t_m
+     * (k = 3); (D - A)/x^4 = sum_{m>=4} (m-3) t_m (k = 4); terms below
+     * 1e-17 of the leading one by m = 26 */
+    double bv2 = 0.0, c2 = 0.0, a3 = 0.0, da4 = 0.0;
+    double t = 0.5;
+    for (int m = 2; m <= 26; m++, t *= -x / m) {
+      bv2 += (m - 1) * t;
+      c2 += t;
+    }
+    t = -1.0 / 6.0;
+    for (int m = 3; m <= 27; m++, t *= -x / m)
+      a3 += (2 - m) * t;
+    t = 1.0 / 24.0;
+    for (int m = 4; m <= 28; m++, t *= -x / m)
+      da4 += (m - 3) * t;
+    /* tau (1 - e^-x) = s (1 - e^-x)/x (-> s as x -> 0) */
+    t1 = x > 0.0 ? s * (ome / x) : s;
+    const double sx = s * x; /* tau x^2 = s x, tau^2 x^3 = s (s x) */
+    tbv = sx * bv2;
+    tc = sx * c2;
+    ta = sx * x * a3;
+    tta = s * sx * a3;
+    ttda = sx * sx * da4;
+  } else {
+    t1 = tau * ome;
+    tbv = t1 - s * e;               /* tau (1 - e^-x - x e^-x) */
+    tc = s - t1;                    /* tau (x - (1 - e^-x)) */
+    ta = s * (1.0 + e) - 2.0 * t1;  /* tau (x (1 + e^-x) - 2 (1 - e^-x)) */
+    tta = tau * ta;
+    /* tau^2 (x^2/2 - 2x - x e^-x + 3 (1 - e^-x)) */
+    ttda = s * (0.5 * s - 2.0 * tau - tau * e) + 3.0 * tau * t1;
   }
+  memset(ka, 0, 16 * sizeof(double));
+  ka[0][0] = e;
+  ka[1][0] = t1;
+  ka[1][1] = 1.0;
+  ka[2][0] = G * tbv;
+  ka[2][1] = G * ome;
+  ka[2][2] = e;
+  ka[3][0] = G * tta;
+  ka[3][1] = G * tc;
+  ka[3][2] = t1;
+  ka[3][3] = 1.0;
+  kc[0][0] = 0.0;
+  kc[0][1] = ome;
+  kc[1][0] = 0.0;
+  kc[1][1] = tc;
+  kc[2][0] = ome;
+  kc[2][1] = G * ta;
+  kc[3][0] = tc;
+  kc[3][1] = G * ttda;
 }
 
 void sbi_shear_det_state(double tau, double G, double cx, double cy,
@@ -239,10 +294,17 @@ void sbi_shear_det_state(double tau, double G, double cx, double cy,
 {
   double ka[4][4], kc[4][2];
   sbi_shear_det_map(tau, G, s, ka, kc);
+  /* a zero drift or state component contributes 0 even where its
+   * coefficient overflows (tau^2 (D - A) ~ s^2/2 at s ~ 1e300) */
+  const double c[2] = {cx, cy};
   for (int i = 0; i < 4; i++) {
-    double t = kc[i][0] * cx + kc[i][1] * cy;
+    double t = 0.0;
+    for (int j = 0; j < 2; j++)
+      if (c[j] != 0.0)
+        t += kc[i][j] * c[j];
     for (int j = 0; j < 4; j++)
-      t += ka[i][j] * sa[j];
+      if (sa[j] != 0.0)
+        t += ka[i][j] * sa[j];
     out[i] = t;
   }
 }
@@ -264,6 +326,13 @@ int sb_langevin_shear_mean(double tau, double G, double cx, double cy,
                      cx, cy, s);
   }
   sbi_shear_det_state(tau, G, cx, cy, s, s0, out);
+  for (int k = 0; k < 4; k++)
+    if (!isfinite(out[k])) {
+      for (int j = 0; j < 4; j++)
+        out[j] = NAN;
+      return sbi_error(SB_ERANGE, __func__, "the mean overflows (tau = %g, "
+                       "G = %g, s = %g)", tau, G, s);
+    }
   return SB_SUCCESS;
 }
 

@@ -54,7 +54,11 @@ void sb_langevin_shear_propagator(double x, double g, double Phi[4][4],
  *  without noise (B = 0) it is the exact path in the linear field (the
  *  Langevin detector's and the engine's; tested against a Runge-Kutta
  *  integration, tests/test_langevin_shear.c).  Domain: tau > 0, s >= 0,
- *  all finite; SB_EDOM (out set to NaN) or SB_EINVAL (NULL) otherwise. */
+ *  all finite; SB_EDOM (out set to NaN) or SB_EINVAL (NULL) otherwise.
+ *  Computed in physical units without the scales sqrt(tau), tau^1.5, so
+ *  tau may be anything from subnormal (the particle follows the fluid) to
+ *  1e300 (it keeps its velocity); SB_ERANGE (out set to NaN) where a
+ *  component overflows (e.g. x ~ G cy s^2/2 at s = 1e300). */
 int sb_langevin_shear_mean(double tau, double G, double cx, double cy,
                            double s, const double s0[4], double out[4]);
 
