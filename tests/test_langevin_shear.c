@@ -555,6 +555,53 @@ START_TEST(test_mean_extreme)
 }
 END_TEST
 
+/* (e'') the bridge moments in SI units at extreme scales: the mean does
+ * not depend on B (B = 1e-320 as B = 1), the covariance is B^2 times
+ * B = 1's (B = 1e150), an overflowing covariance (B = 1e200) is SB_ERANGE;
+ * and at tau = 2^-1000 (tau^1.5 underflows) the law is the tau = 1 law
+ * with time scaled by tau = 2^-1000 exactly: positions unchanged,
+ * velocities and drifts times 2^1000, Var u times 2^-1000 (B fixed),
+ * Var x ~ 2^-3000 = 0. */
+START_TEST(test_bridge_moments_extreme)
+{
+  const double s0[4] = {0.3, -0.2, 0.1, 0.4}, s1[4] = {1.0, 1.1, 0.9, 1.2};
+  double m1[4], c1[4][4], m[4], c[4][4];
+  ck_assert_int_eq(sb_langevin_shear_bridge_moments(1, 1, 1, 0.1, 0.2, 1,
+                                                    0.5, s0, s1, m1, c1),
+                   SB_SUCCESS);
+  ck_assert_int_eq(sb_langevin_shear_bridge_moments(1, 1e-320, 1, 0.1, 0.2, 1,
+                                                    0.5, s0, s1, m, c),
+                   SB_SUCCESS);
+  for (int i = 0; i < 4; i++)
+    ck_assert_rel(m[i], m1[i], TOL_TIGHT);
+  ck_assert_int_eq(sb_langevin_shear_bridge_moments(1, 1e150, 1, 0.1, 0.2, 1,
+                                                    0.5, s0, s1, m, c),
+                   SB_SUCCESS);
+  for (int i = 0; i < 4; i++) {
+    ck_assert_rel(m[i], m1[i], TOL_TIGHT);
+    for (int j = 0; j < 4; j++)
+      ck_assert_rel(c[i][j], 1e300 * c1[i][j], TOL_TIGHT);
+  }
+  ck_assert_int_eq(sb_langevin_shear_bridge_moments(1, 1e200, 1, 0.1, 0.2, 1,
+                                                    0.5, s0, s1, m, c),
+                   SB_ERANGE);
+  ck_assert(isnan(m[0]) && isnan(c[3][3]));
+  const double l = 0x1p-1000, il = 0x1p1000;
+  const double t0[4] = {il * s0[0], s0[1], il * s0[2], s0[3]};
+  const double t1[4] = {il * s1[0], s1[1], il * s1[2], s1[3]};
+  ck_assert_int_eq(sb_langevin_shear_bridge_moments(l, 1, il, il * 0.1,
+                                                    il * 0.2, l, 0.5 * l, t0,
+                                                    t1, m, c),
+                   SB_SUCCESS);
+  for (int i = 0; i < 4; i++)
+    ck_assert_rel(m[i], (i % 2 ? 1.0 : il) * m1[i], 1e-14);
+  ck_assert_rel(c[0][0], l * c1[0][0], 1e-14);
+  ck_assert_rel(c[2][0], l * c1[2][0], 1e-14);
+  ck_assert_rel(c[2][2], l * c1[2][2], 1e-14);
+  ck_assert(c[3][3] == 0.0 && c[1][1] == 0.0);
+}
+END_TEST
+
 /* ------------------------------------------------- (d) domain */
 
 START_TEST(test_domain)
@@ -599,6 +646,7 @@ int main(void)
   tcase_add_test(tc, test_domain);
   tcase_add_test(tc, test_mean);
   tcase_add_test(tc, test_mean_extreme);
+  tcase_add_test(tc, test_bridge_moments_extreme);
   suite_add_tcase(s, tc);
   return sbt_run_suite(s);
 }

@@ -510,6 +510,23 @@ int sb_langevin_shear_bridge_coefs(double x, double g, double s,
   return SB_SUCCESS;
 }
 
+/* f[0] f[1] ... f[n-1] with the binary exponents summed apart (frexp)
+ * and applied once at the end: no intermediate overflow or underflow, inf
+ * or 0 only where the product itself overflows or underflows. */
+static double scaled_prod(const double *f, int n)
+{
+  double m = 1.0;
+  int e = 0;
+  for (int i = 0; i < n; i++) {
+    int k;
+    m *= frexp(f[i], &k);
+    e += k;
+    m = frexp(m, &k); /* keep m in [1/2, 1) */
+    e += k;
+  }
+  return ldexp(m, e);
+}
+
 int sb_langevin_shear_bridge_moments(double tau, double B, double G,
                                      double cx, double cy, double h,
                                      double s, const double s0[4],
@@ -534,23 +551,41 @@ int sb_langevin_shear_bridge_moments(double tau, double B, double G,
   sb_langevin_shear_bridge b;
   if (sb_langevin_shear_bridge_coefs(h / tau, G * tau, s / tau, &b))
     return sbi_error(SB_EDOM, __func__, "%s", sb_last_error());
-  /* units: velocities B sqrt(tau), positions B tau^(3/2) */
-  const double vu = B * sqrt(tau), vx = vu * tau;
-  const double sc[4] = {vu, vx, vu, vx};
-  double t0[4], t1[4];
+  /* units: velocities B sqrt(tau), positions B tau^(3/2).  The mean does
+   * not depend on B: its coefficients are taken to physical units by the
+   * ratios of the scales (1, tau or 1/tau); the covariance is B^2 tau
+   * r_i r_j cov_ij (r = 1 for a velocity, tau for a position), a product
+   * formed with the exponents set aside, so neither B sqrt(tau) nor its
+   * square over- or underflows on the way. */
+  const double r[4] = {1.0, tau, 1.0, tau};
   for (int i = 0; i < 4; i++) {
-    t0[i] = s0[i] / sc[i];
-    t1[i] = s1[i] / sc[i];
+    double m = 0.0;
+    for (int k = 0; k < 2; k++)
+      m += b.kc[i][k] * r[i] * (k == 0 ? cx : cy);
+    for (int j = 0; j < 4; j++) {
+      /* sc_i/sc_j: 1, tau (position from velocity), 1/tau (the reverse) */
+      const double q = i % 2 == j % 2 ? 1.0 : (j % 2 ? 1.0 / tau : tau);
+      const double t = b.ka[i][j] * s0[j] + b.kb[i][j] * s1[j];
+      if (t != 0.0)
+        m += t * q;
+    }
+    mean[i] = m;
+    for (int j = 0; j < 4; j++) {
+      const double f[6] = {B, B, tau, r[i], r[j], b.cov[i][j]};
+      cov[i][j] = scaled_prod(f, 6);
+    }
   }
-  const double c[2] = {cx / vu, cy / vu};
-  for (int i = 0; i < 4; i++) {
-    double m = b.kc[i][0] * c[0] + b.kc[i][1] * c[1];
+  for (int i = 0; i < 4; i++)
     for (int j = 0; j < 4; j++)
-      m += b.ka[i][j] * t0[j] + b.kb[i][j] * t1[j];
-    mean[i] = sc[i] * m;
-    for (int j = 0; j < 4; j++)
-      cov[i][j] = sc[i] * sc[j] * b.cov[i][j];
-  }
+      if (!isfinite(mean[i]) || !isfinite(cov[i][j])) {
+        for (int k = 0; k < 4; k++) {
+          mean[k] = NAN;
+          for (int l = 0; l < 4; l++)
+            cov[k][l] = NAN;
+        }
+        return sbi_error(SB_ERANGE, __func__, "the moments overflow (tau = "
+                         "%g, B = %g, h = %g)", tau, B, h);
+      }
   return SB_SUCCESS;
 }
 

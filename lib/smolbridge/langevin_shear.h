@@ -112,7 +112,12 @@ int sb_langevin_shear_bridge_coefs(double x, double g, double s,
  *  [0, h] (s, h in seconds) given S(0) = s0 and S(h) = s1, for a
  *  particle of relaxation time tau > 0 and B > 0 in the shear G (1/s) with
  *  drift velocities cx, cy (m/s).  Domain as sb_langevin_shear_bridge_coefs
- *  with x = h/tau and s/h; mean and cov set to NaN on error. */
+ *  with x = h/tau and s/h; mean and cov set to NaN on error.  The mean
+ *  does not depend on B and is formed without the scales B sqrt(tau),
+ *  B tau^1.5 (any B, tau down to subnormal); the covariance B^2 tau
+ *  r_i r_j cov_ij (r = 1 or tau) with the exponents set aside, so it is
+ *  right wherever representable, 0 where it underflows; SB_ERANGE (all
+ *  outputs NaN) where an output overflows (e.g. B = 1e200). */
 int sb_langevin_shear_bridge_moments(double tau, double B, double G,
                                      double cx, double cy, double h,
                                      double s, const double s0[4],
