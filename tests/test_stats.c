@@ -318,6 +318,16 @@ START_TEST(test_rate_and_ratio)
                    SB_SUCCESS);
   ck_assert_rel(lo, 2.5e-3 * lo0, TOL_TIGHT);
   ck_assert_rel(hi, 2.5e-3 * hi0, TOL_TIGHT);
+  /* extreme scales: hi = 1e308 * 10.5 overflows; 1e300 and 1e-300 do
+   * not (lo, hi > 1 for k = 5 at 0.95 level: 1.62 and 11.67) */
+  ck_assert_int_eq(sb_poisson_ci(5, 0.95, &lo0, &hi0), SB_SUCCESS);
+  ck_assert_int_eq(sb_poisson_rate_ci(5, 1e308, 0.95, &lo, &hi), SB_ERANGE);
+  ck_assert(isnan(lo) && isnan(hi));
+  ck_assert_int_eq(sb_poisson_rate_ci(5, 1e300, 0.95, &lo, &hi), SB_SUCCESS);
+  ck_assert_rel(hi, 1e300 * hi0, TOL_TIGHT);
+  ck_assert_int_eq(sb_poisson_rate_ci(5, 1e-300, 0.95, &lo, &hi),
+                   SB_SUCCESS);
+  ck_assert_rel(lo, 1e-300 * lo0, TOL_TIGHT);
 
   /* Ratio = (f p/(1-p)) over the Clopper-Pearson interval of k1 of N. */
   double blo, bhi;

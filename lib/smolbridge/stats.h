@@ -53,7 +53,9 @@ int sb_binomial_ci(unsigned long k, unsigned long n, double level,
 
 /** Interval for a rate estimated as scale * k with k Poisson (for example a
  *  collision kernel K = c N_c): scale times the Garwood interval.
- *  scale must be finite and > 0. */
+ *  scale must be finite and > 0 (SB_EINVAL otherwise); SB_ERANGE, with lo
+ *  and hi NaN, where scale * hi overflows (e.g. scale = 1e308); lo may
+ *  underflow to 0. */
 int sb_poisson_rate_ci(unsigned long k, double scale, double level,
                        double *lo, double *hi);
 

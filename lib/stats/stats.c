@@ -463,6 +463,11 @@ int sb_poisson_rate_ci(unsigned long k, double scale, double level,
   if (st == SB_SUCCESS) {
     *lo *= scale;
     *hi *= scale;
+    if (isinf(*hi)) { /* underflow of lo (to 0 at worst) is no error */
+      set_nan2(lo, hi);
+      return sbi_error(SB_ERANGE, __func__, "scale * hi overflows (k = %lu, "
+                       "scale = %g)", k, scale);
+    }
   }
   return st;
 }
