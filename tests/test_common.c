@@ -37,6 +37,10 @@ START_TEST(test_error_record)
   ck_assert_str_eq(sb_last_error(), "sb_demo: v = -1 must be positive");
   sb_clear_error();
   ck_assert_str_eq(sb_last_error(), "");
+  /* an outer routine passing the inner message on */
+  sbi_error(SB_EDOM, "sb_inner", "x = %d", 3);
+  sbi_error(SB_EDOM, "sb_outer", "%s", sb_last_error());
+  ck_assert_str_eq(sb_last_error(), "sb_outer: sb_inner: x = 3");
 }
 END_TEST
 
