@@ -401,6 +401,13 @@ START_TEST(test_zscore)
   sb_clear_error();  /* inf - inf: NaN with the domain error too */
   ck_assert(isnan(sb_zscore(INFINITY, INFINITY, 1.0)));
   ck_assert_int_eq(sb_last_status(), SB_EDOM);
+  /* finite arguments: the difference overflows but z does not; z
+   * overflows (SB_ERANGE) */
+  ck_assert_rel(sb_zscore(1.5e308, -1.5e308, 1e10), 3e298, TOL_TIGHT);
+  sb_clear_error();
+  ck_assert(isnan(sb_zscore(1.0, 2.0, 1e-320)));
+  ck_assert_int_eq(sb_last_status(), SB_ERANGE);
+  ck_assert(sb_zscore(INFINITY, 2.0, 0.5) == INFINITY);
   /* the equal-size sum rounded to 1 + 1 ulp at nx = ny = 5, d = 0.2 */
   ck_assert(sb_ks2_pvalue(5, 5, 0.2) <= 1.0);
   ck_assert(isnan(sb_zscore(1.0, 1.0, NAN)));

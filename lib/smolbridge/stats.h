@@ -123,7 +123,10 @@ double sb_poisson_pvalue(unsigned long k, double mu);
 double sb_binomial_pvalue(unsigned long k, unsigned long n, double p);
 
 /** z-score (estimate - reference) / stderr_; NaN (SB_EDOM recorded) if
- *  stderr_ <= 0 or any argument is NaN. */
+ *  stderr_ <= 0 or any argument is NaN.  +-inf for an infinite estimate or
+ *  reference (not both); for finite arguments, NaN and SB_ERANGE where z
+ *  overflows (e.g. stderr_ = 1e-320), and no overflow of the difference
+ *  (1e308 - -1e308) where z itself is finite. */
 double sb_zscore(double estimate, double reference, double stderr_);
 
 /** Two-sided p-value of a standard normal z-score: 2 Q(|z|), computed

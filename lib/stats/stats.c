@@ -751,10 +751,20 @@ double sb_zscore(double estimate, double reference, double stderr_)
               "stderr %g)", estimate, reference, stderr_);
     return NAN;
   }
-  const double z = (estimate - reference) / stderr_;
+  double z = (estimate - reference) / stderr_;
   if (isnan(z))  /* inf - inf, or inf / inf */
     sbi_error(SB_EDOM, __func__, "estimate %g, reference %g, stderr %g: "
               "z is undefined", estimate, reference, stderr_);
+  else if (isinf(z) && isfinite(estimate) && isfinite(reference) &&
+           isfinite(stderr_)) {
+    /* the difference may overflow where z does not (1e308 - -1e308) */
+    z = 2.0 * ((0.5 * estimate - 0.5 * reference) / stderr_);
+    if (isinf(z)) {
+      sbi_error(SB_ERANGE, __func__, "estimate %g, reference %g, stderr %g: "
+                "z overflows", estimate, reference, stderr_);
+      return NAN;
+    }
+  }
   return z;
 }
 
