@@ -52,6 +52,10 @@ def main():
             rows.append((r, r, u2, gt / 1000.0, 1000.0))
     rows.append((r, r, 0.5 * (1000.0 * R) ** 2, 1e-5, 0.0))
     rows.append((1e-6, 3e-6, 2e-3, 2e-4, 150.0))
+    # large G tau, where the integrand has a kink of width 1/(G tau) at
+    # n_x = 0 (phi = pi/2, a breakpoint here) and K -> R^2 sqrt(2 pi u2) G tau
+    rows.append((1e-6, 1e-6, 1e-6, 1e3, 1.0))
+    rows.append((1e-6, 1e-6, 1e-6, 1e6, 1.0))
     print("# sb_kernel_shear_langevin: pass-through flux of identical "
           "Langevin spheres in shear")
     print("# (tests/gen_kernel_shear_langevin_ref.py, mpmath 30 digits)")

@@ -231,7 +231,10 @@ double sb_kernel_abrahamson(double r_i, double r_j, double u2_i,
 }
 
 /* E[(w.n)^-] for w.n ~ N(m, var): the inward flux density of the
- * sheared Gaussian relative velocity along n (sb_kernel_shear_langevin) */
+ * sheared Gaussian relative velocity along n (sb_kernel_shear_langevin).
+ * var = 2 u2 q(n), q = (1 + gt^2/2) nx^2 - gt nx ny + ny^2 + nz^2, is
+ * formed as (sqrt(2 u2) s)^2 q/s^2 with s = max(1, gt), so that gt^2 does
+ * not overflow (gt up to ~1e308). */
 typedef struct {
   double R, G, u2, gt;
 } shear_flux;
@@ -240,10 +243,11 @@ static double shear_flux_at(const double n[3], void *ctx)
 {
   const shear_flux *k = ctx;
   const double nx = n[0], ny = n[1], nz = n[2], gt = k->gt;
+  const double sc = gt > 1.0 ? gt : 1.0, a = 1.0 / sc, b = gt / sc;
   const double m = k->G * k->R * nx * ny;
-  const double var = 2.0 * k->u2 * ((1.0 + 0.5 * gt * gt) * nx * nx -
-                                    gt * nx * ny + ny * ny + nz * nz);
-  const double sd = sqrt(var), z = m / sd;
+  const double qs = (a * a + 0.5 * b * b) * nx * nx - b * a * nx * ny +
+                    a * a * (ny * ny + nz * nz);
+  const double sd = M_SQRT2 * sqrt(k->u2) * sc * sqrt(qs), z = m / sd;
   return sd * exp(-0.5 * z * z) / sqrt(2.0 * M_PI) -
          0.5 * m * erfc(z / M_SQRT2);
 }
@@ -260,7 +264,14 @@ double sb_kernel_shear_langevin(double r_i, double r_j, double u2, double tau,
    * integrand is periodic in phi) */
   const double R = r_i + r_j;
   shear_flux k = {R, G, u2, G * tau};
-  return R * R * sbi_sphere_integral(shear_flux_at, &k, 96, 192, 0.5);
+  const double K = R * R * sbi_sphere_integral(shear_flux_at, &k, 96, 192,
+                                               0.5);
+  if (!isfinite(K)) { /* K ~ R^2 sqrt(2 pi u2) G tau at large G tau */
+    sbi_error(SB_ERANGE, __func__, "the kernel overflows (G tau = %g, "
+              "G R = %g, R = %g)", G * tau, G * R, R);
+    return NAN;
+  }
+  return K;
 }
 
 double sb_kernel_diffusion(double r_i, double r_j, double b2_i, double b2_j)

@@ -151,8 +151,12 @@ double sb_kernel_abrahamson(double r_i, double r_j, double u2_i,
  *  G tau = 0.01-0.5 (tests/test_kernel.c); the integrand steepens as
  *  Pe_k grows (2e-4 at u2 -> 0) and its kink at n_x = 0 sharpens as
  *  G tau grows (an audit against mpmath quadrature: ~1e-16 up to
- *  G tau = 5, 5e-9 at 20, 3e-6 at 100).  NaN and SB_EDOM unless the radii are
- *  > 0 and u2, tau, G >= 0, all finite. */
+ *  G tau = 5, 5e-9 at 20, 3e-6 at 100, 4.5e-5 from 1e3 on: mpmath at 1e3
+ *  and 1e6, the limit R^2 sqrt(2 pi u2) G tau (1 + O(1/(G tau))) beyond;
+ *  the variance is formed without (G tau)^2, so any G tau up to ~1e308
+ *  works).  NaN and SB_EDOM unless the radii are > 0 and u2, tau, G >= 0,
+ *  all finite; NaN and SB_ERANGE where K overflows (e.g. tau = G = 1e200,
+ *  K ~ 1e386). */
 double sb_kernel_shear_langevin(double r_i, double r_j, double u2, double tau,
                                 double G);
 
