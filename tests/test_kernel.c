@@ -314,6 +314,93 @@ START_TEST(test_domain_errors)
 }
 END_TEST
 
+/* Extreme arguments (1e-320 ... 1e300, each argument in turn, the others
+ * ordinary): a kernel is finite with no error recorded, or NaN with the
+ * error (SB_ERANGE where the value or an intermediate overflows, SB_EDOM
+ * outside the domain) -- never a silent inf or NaN.  And the
+ * Gopalakrishnan-Hogan kernel at tau = 1e300 (f_red underflowing) is the
+ * free-molecular pi R^2 sqrt(8 kT/(pi m_red)) (it was NaN). */
+typedef double (*kfn)(const double *a);
+static double k_co(const double *a)
+{ return sb_kernel_brownian_co(a[0], a[1], a[2], a[3]); }
+static double k_fm(const double *a)
+{ return sb_kernel_brownian_fm(a[0], a[1], a[2], a[3]); }
+static double k_tr(const double *a)
+{ return sb_kernel_brownian_tr(a[0], a[1], a[2], a[3], a[4], a[5]); }
+static double k_gh(const double *a)
+{ return sb_kernel_brownian_gh(a[0], a[1], a[2], a[3], a[4], a[5], a[6]); }
+static double k_ghkn(const double *a)
+{ return sb_kernel_brownian_gh_kn(a[0], a[1], a[2], a[3], a[4], a[5], a[6]); }
+static double k_kin(const double *a)
+{ return sb_kernel_kinetic(a[0], a[1], a[2], a[3], a[4]); }
+static double k_kin2(const double *a)
+{ return sb_kernel_kinetic_2d(a[0], a[1], a[2], a[3], a[4]); }
+static double k_grav(const double *a)
+{ return sb_kernel_gravity(a[0], a[1], a[2], a[3], a[4], a[5]); }
+static double k_sh(const double *a)
+{ return sb_kernel_shear(a[0], a[1], a[2]); }
+static double k_st(const double *a)
+{ return sb_kernel_saffman_turner(a[0], a[1], a[2], a[3]); }
+static double k_ab(const double *a)
+{ return sb_kernel_abrahamson(a[0], a[1], a[2], a[3]); }
+static double k_shl(const double *a)
+{ return sb_kernel_shear_langevin(a[0], a[1], a[2], a[3], a[4]); }
+static double k_dif(const double *a)
+{ return sb_kernel_diffusion(a[0], a[1], a[2], a[3]); }
+static double k_b2(const double *a) { return sb_brownian_b2(a[0], a[1], a[2]); }
+static double k_tb2(const double *a)
+{ return sb_turb_pair_b2(a[0], a[1], a[2]); }
+static double k_bt(const double *a)
+{ return sb_kernel_brownian_turb(a[0], a[1], a[2], a[3], a[4], a[5]); }
+
+START_TEST(test_extreme_arguments)
+{
+  static const struct {
+    kfn f;
+    int n;
+    double a[7];
+  } k[] = {
+      {k_co, 4, {1e-6, 2e-6, 300, 1e-3}},
+      {k_fm, 4, {1e-8, 2e-8, 300, 1000}},
+      {k_tr, 6, {1e-7, 2e-7, 300, 1.8e-5, 1000, 6.8e-8}},
+      {k_gh, 7, {1e-7, 2e-7, 4e-18, 3e-17, 1e-7, 3e-7, 300}},
+      {k_ghkn, 7, {1e-7, 2e-7, 4e-18, 3e-17, 1e-7, 3e-7, 300}},
+      {k_kin, 5, {1e-9, 2e-9, 1e-25, 2e-25, 300}},
+      {k_kin2, 5, {1e-9, 2e-9, 1e-25, 2e-25, 300}},
+      {k_grav, 6, {1e-6, 2e-6, 2000, 1000, 1e-3, 9.81}},
+      {k_sh, 3, {1e-6, 2e-6, 10}},
+      {k_st, 4, {1e-6, 2e-6, 1e-3, 1e-6}},
+      {k_ab, 4, {1e-6, 2e-6, 1e-4, 2e-4}},
+      {k_shl, 5, {1e-6, 1e-6, 1e-6, 1e-3, 100}},
+      {k_dif, 4, {1e-6, 2e-6, 1e-12, 2e-12}},
+      {k_b2, 3, {1e-6, 300, 1e-3}},
+      {k_tb2, 3, {1e-6, 1e-3, 1e-6}},
+      {k_bt, 6, {1e-6, 2e-6, 300, 1e-3, 1e-3, 1e-6}},
+  };
+  const double ext[6] = {1e-320, 1e-300, 1e300, DBL_MAX, INFINITY, -1e300};
+  for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
+    for (int i = 0; i < k[f].n; i++)
+      for (int e = 0; e < 6; e++) {
+        double a[7];
+        memcpy(a, k[f].a, sizeof a);
+        a[i] = ext[e];
+        sb_clear_error();
+        const double v = k[f].f(a);
+        const int st = sb_last_status();
+        ck_assert_msg(isfinite(v) ? st == SB_SUCCESS
+                                  : isnan(v) && st != SB_SUCCESS,
+                      "kernel %zu, argument %d = %g: %g with status %d", f,
+                      i, ext[e], v, st);
+      }
+  const double ri = 1e-7, rj = 2e-7, mi = 4e-18, mj = 3e-17, R = ri + rj;
+  const double mr = mi * mj / (mi + mj);
+  ck_assert_rel(sb_kernel_brownian_gh(ri, rj, mi, mj, 1e300, 3e-7, 300),
+                M_PI * R * R * sqrt(8 * kB * 300 / (M_PI * mr)), 1e-14);
+  ck_assert_rel(sb_kernel_brownian_gh(ri, rj, mi, mj, 1e300, 1e300, 300),
+                M_PI * R * R * sqrt(8 * kB * 300 / (M_PI * mr)), 1e-14);
+}
+END_TEST
+
 START_TEST(test_spec)
 {
   sb_kernel_spec s;
@@ -419,6 +506,7 @@ static Suite *kernel_suite(void)
   tcase_add_test(tc, test_kinetic_2d);
   tcase_add_test(tc, test_domain_errors);
   tcase_add_test(tc, test_spec);
+  tcase_add_test(tc, test_extreme_arguments);
   suite_add_tcase(s, tc);
   return s;
 }

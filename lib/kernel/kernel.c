@@ -39,6 +39,30 @@ static int nonneg(double x) { return isfinite(x) && x >= 0.0; }
   CHECK(pos(a) && pos(b), "radii must be finite and > 0 (got %g, %g)", \
         (a), (b))
 
+/* A kernel's value, or NaN and SB_ERANGE (recorded for func) where it is
+ * not finite: the result, or an intermediate such as 1/m for a mass of
+ * 1e-320, overflowed at extreme arguments. */
+static double kernel_value(double K, const char *func)
+{
+  if (isfinite(K))
+    return K;
+  sbi_error(SB_ERANGE, func, "the value overflows at these arguments "
+            "(got %g)", K);
+  return NAN;
+}
+
+/* m1 m2/(m1 + m2) for m1, m2 > 0: the plain form (symmetric in its
+ * rounding) unless the product over- or underflows, then
+ * min/(1 + min/max). */
+static double reduced(double m1, double m2)
+{
+  double p = m1 * m2;
+  if (isfinite(p) && p >= DBL_MIN)
+    return p / (m1 + m2);
+  double lo = fmin(m1, m2), hi = fmax(m1, m2);
+  return lo / (1.0 + lo / hi);
+}
+
 /* Stokes–Einstein diffusivity with optional Cunningham slip correction
  * (Davies 1945 coefficients, Knudsen number lambda/r). */
 static double diffusivity(double r, double T, double mu, double lambda)
@@ -75,7 +99,8 @@ double sb_kernel_brownian_co(double r_i, double r_j, double T, double mu)
   /* (2kT/3mu)(1/r_i + 1/r_j)(r_i + r_j): the same as k_co with lambda 0,
    * written this way so that the monodisperse value is exactly 8kT/3mu
    * up to rounding. */
-  return 2.0 * kB * T / (3.0 * mu) * (1.0 / r_i + 1.0 / r_j) * (r_i + r_j);
+  return kernel_value(2.0 * kB * T / (3.0 * mu) * (1.0 / r_i + 1.0 / r_j) *
+                          (r_i + r_j), __func__);
 }
 
 double sb_kernel_brownian_fm(double r_i, double r_j, double T, double rho_p)
@@ -83,7 +108,7 @@ double sb_kernel_brownian_fm(double r_i, double r_j, double T, double rho_p)
   CHECK_RADII(r_i, r_j);
   CHECK(pos(T) && pos(rho_p), "T and rho_p must be > 0 (got %g, %g)", T,
         rho_p);
-  return k_fm(r_i, r_j, T, rho_p);
+  return kernel_value(k_fm(r_i, r_j, T, rho_p), __func__);
 }
 
 double sb_kernel_brownian_tr(double r_i, double r_j, double T, double mu,
@@ -99,8 +124,9 @@ double sb_kernel_brownian_tr(double r_i, double r_j, double T, double mu,
   /* (1 + kn)/(1 + 2kn(1 + kn)); for kn -> inf this is 1/(2kn), giving
    * kco/(2kn) = kfm. */
   if (kn > 1e150) /* avoid overflow of kn^2: the fm limit is exact here */
-    return kfm;
-  return kco * (1.0 + kn) / (1.0 + 2.0 * kn * (1.0 + kn));
+    return kernel_value(kfm, __func__);
+  return kernel_value(kco * (1.0 + kn) / (1.0 + 2.0 * kn * (1.0 + kn)),
+                      __func__);
 }
 
 /* Transition regime of Langevin spheres (Gopalakrishnan & Hogan 2011,
@@ -109,6 +135,13 @@ double sb_kernel_brownian_tr(double r_i, double r_j, double T, double mu,
  *       / (1 + 3.502 Kn + 7.211 Kn^2 + 11.211 Kn^3),
  * finite at Kn = 0 (the continuum 4 pi); for huge Kn it is evaluated in
  * powers of 1/Kn (no overflow). */
+/* Kn g(Kn) in powers of u = 1/Kn (u = 0 allowed: sqrt(8 pi)). */
+static double gh_kng(double u)
+{
+  return (sqrt(8.0 * M_PI) * 11.211 + u * (25.836 + u * 4.0 * M_PI)) /
+         (11.211 + u * (7.211 + u * (3.502 + u)));
+}
+
 static double gh_g(double kn)
 {
   const double s8pi = sqrt(8.0 * M_PI);
@@ -126,7 +159,7 @@ double sb_kernel_gh_H(double kn)
   CHECK(kn >= 0.0 && isfinite(kn), "Kn_D must be finite and >= 0 (got %g)",
         kn);
   if (kn > 1e100)  /* H ~ sqrt(8 pi) Kn: kn^2 would overflow */
-    return kn * (kn * gh_g(kn));
+    return kernel_value(kn * (kn * gh_g(kn)), __func__);
   return kn * kn * gh_g(kn);
 }
 
@@ -136,8 +169,8 @@ static double gh_knd(double r_i, double r_j, double m_i, double m_j,
                      double *f_red, double *R)
 {
   double f_i = m_i / tau_i, f_j = m_j / tau_j;
-  *m_red = m_i * m_j / (m_i + m_j);
-  *f_red = f_i * f_j / (f_i + f_j);
+  *m_red = reduced(m_i, m_j);
+  *f_red = reduced(f_i, f_j);
   *R = r_i + r_j;
   return sqrt(kB * T * *m_red) / (*f_red * *R);
 }
@@ -151,7 +184,8 @@ double sb_kernel_brownian_gh_kn(double r_i, double r_j, double m_i,
         "masses, tau and T must be finite and > 0 (got %g, %g, %g, %g, %g)",
         m_i, m_j, tau_i, tau_j, T);
   double mr, fr, R;
-  return gh_knd(r_i, r_j, m_i, m_j, tau_i, tau_j, T, &mr, &fr, &R);
+  return kernel_value(gh_knd(r_i, r_j, m_i, m_j, tau_i, tau_j, T, &mr, &fr,
+                             &R), __func__);
 }
 
 double sb_kernel_brownian_gh(double r_i, double r_j, double m_i, double m_j,
@@ -164,8 +198,13 @@ double sb_kernel_brownian_gh(double r_i, double r_j, double m_i, double m_j,
   double mr, fr, R;
   double kn = gh_knd(r_i, r_j, m_i, m_j, tau_i, tau_j, T, &mr, &fr, &R);
   /* beta = H f_red R^3/m_red = (H/Kn^2) kT R/f_red: no division by a
-   * vanishing Kn^2 */
-  return gh_g(kn) * kB * T * R / fr;
+   * vanishing Kn^2.  Near the free-molecular limit (Kn_D > 1e50, where
+   * f_red may be so small that kT R/f_red overflows) the same as
+   * (Kn g) R^2 sqrt(kT/m_red), Kn g -> sqrt(8 pi). */
+  if (kn > 1e50)
+    return kernel_value(gh_kng(1.0 / kn) * R * R * sqrt(kB * T / mr),
+                        __func__);
+  return kernel_value(gh_g(kn) * kB * T * R / fr, __func__);
 }
 
 double sb_kernel_kinetic(double d_i, double d_j, double m_i, double m_j,
@@ -173,7 +212,9 @@ double sb_kernel_kinetic(double d_i, double d_j, double m_i, double m_j,
 {
   CHECK_KINETIC(d_i, d_j, m_i, m_j, T);
   double r = 0.5 * (d_i + d_j);
-  return M_PI * r * r * sqrt(8.0 * kB * T / M_PI * (1.0 / m_i + 1.0 / m_j));
+  return kernel_value(
+      M_PI * r * r * sqrt(8.0 * kB * T / M_PI * (1.0 / m_i + 1.0 / m_j)),
+      __func__);
 }
 
 double sb_kernel_kinetic_2d(double d_i, double d_j, double m_i, double m_j,
@@ -181,7 +222,9 @@ double sb_kernel_kinetic_2d(double d_i, double d_j, double m_i, double m_j,
 {
   CHECK_KINETIC(d_i, d_j, m_i, m_j, T);
   /* mean Rayleigh speed sqrt(pi/2) sigma, sigma^2 = kT/m_red */
-  return (d_i + d_j) * sqrt(0.5 * M_PI * kB * T * (1.0 / m_i + 1.0 / m_j));
+  return kernel_value(
+      (d_i + d_j) * sqrt(0.5 * M_PI * kB * T * (1.0 / m_i + 1.0 / m_j)),
+      __func__);
 }
 
 double sb_kernel_gravity(double r_i, double r_j, double rho_p, double rho_f,
@@ -196,7 +239,7 @@ double sb_kernel_gravity(double r_i, double r_j, double rho_p, double rho_f,
   double du = 2.0 * fabs(rho_p - rho_f) * g * fabs(r_i - r_j) * (r_i + r_j) /
               (9.0 * mu);
   double r = r_i + r_j;
-  return M_PI * r * r * du;
+  return kernel_value(M_PI * r * r * du, __func__);
 }
 
 double sb_kernel_shear(double r_i, double r_j, double G)
@@ -204,7 +247,7 @@ double sb_kernel_shear(double r_i, double r_j, double G)
   CHECK_RADII(r_i, r_j);
   CHECK(nonneg(G), "G must be >= 0 (got %g)", G);
   double r = r_i + r_j;
-  return 4.0 / 3.0 * G * r * r * r;
+  return kernel_value(4.0 / 3.0 * G * r * r * r, __func__);
 }
 
 double sb_kernel_saffman_turner(double r_i, double r_j, double eps,
@@ -214,7 +257,8 @@ double sb_kernel_saffman_turner(double r_i, double r_j, double eps,
   CHECK(nonneg(eps) && pos(nu), "need eps >= 0, nu > 0 (got %g, %g)", eps,
         nu);
   double r = r_i + r_j;
-  return sqrt(8.0 * M_PI * eps / (15.0 * nu)) * r * r * r;
+  return kernel_value(sqrt(8.0 * M_PI * eps / (15.0 * nu)) * r * r * r,
+                      __func__);
 }
 
 double sb_kernel_abrahamson(double r_i, double r_j, double u2_i,
@@ -227,7 +271,7 @@ double sb_kernel_abrahamson(double r_i, double r_j, double u2_i,
    * s2 = u2_i + u2_j) through a sphere of radius r: pi r^2 E|w|, with
    * E|w| = sqrt(8 s2/pi). */
   double r = r_i + r_j;
-  return sqrt(8.0 * M_PI * (u2_i + u2_j)) * r * r;
+  return kernel_value(sqrt(8.0 * M_PI * (u2_i + u2_j)) * r * r, __func__);
 }
 
 /* E[(w.n)^-] for w.n ~ N(m, var): the inward flux density of the
@@ -279,21 +323,22 @@ double sb_kernel_diffusion(double r_i, double r_j, double b2_i, double b2_j)
   CHECK_RADII(r_i, r_j);
   CHECK(nonneg(b2_i) && nonneg(b2_j),
         "variance rates must be >= 0 (got %g, %g)", b2_i, b2_j);
-  return 2.0 * M_PI * (b2_i + b2_j) * (r_i + r_j);
+  return kernel_value(2.0 * M_PI * (b2_i + b2_j) * (r_i + r_j), __func__);
 }
 
 double sb_brownian_b2(double r, double T, double mu)
 {
   CHECK(pos(r) && pos(T) && pos(mu), "r, T, mu must be > 0 (got %g, %g, %g)",
         r, T, mu);
-  return kB * T / (3.0 * M_PI * mu * r);
+  return kernel_value(kB * T / (3.0 * M_PI * mu * r), __func__);
 }
 
 double sb_turb_pair_b2(double r, double eps, double nu)
 {
   CHECK(pos(r) && nonneg(eps) && pos(nu),
         "need r > 0, eps >= 0, nu > 0 (got %g, %g, %g)", r, eps, nu);
-  return sqrt(2.0 / (15.0 * M_PI)) * sqrt(eps / nu) * r * r;
+  return kernel_value(sqrt(2.0 / (15.0 * M_PI)) * sqrt(eps / nu) * r * r,
+                      __func__);
 }
 
 double sb_kernel_brownian_turb(double r_i, double r_j, double T, double mu,
@@ -306,7 +351,7 @@ double sb_kernel_brownian_turb(double r_i, double r_j, double T, double mu,
   double r = r_i + r_j;
   double b2 = sb_brownian_b2(r_i, T, mu) + sb_brownian_b2(r_j, T, mu) +
               sb_turb_pair_b2(r, eps, nu);
-  return 2.0 * M_PI * b2 * r;
+  return kernel_value(2.0 * M_PI * b2 * r, __func__);
 }
 
 /* ------------------------------------------------------ test kernels */

@@ -9,7 +9,11 @@
  * mu (Pa s), densities rho (kg/m^3), kinematic viscosity nu (m^2/s),
  * dissipation rate eps (m^2/s^3), shear rate G (1/s).  They return NaN and
  * record SB_EDOM (sb_last_error) when an argument is not finite and
- * positive (rho_f, lambda may be 0).  Accuracy: closed forms, a few ulp.
+ * positive (rho_f, lambda may be 0), and NaN with SB_ERANGE where the
+ * value is not finite at extreme arguments: where it overflows, and at a
+ * few corners where an intermediate does though the value would not
+ * (e.g. 1/m for a mass of 1e-320 in the kinetic kernels) -- never a
+ * silent inf or NaN.  Accuracy: closed forms, a few ulp.
  * Boltzmann constant: k_B = 1.380649e-23 J/K (exact, SI 2019).
  * Derivations and sources: docs/kernel.md.
  */
@@ -72,6 +76,9 @@ double sb_kernel_brownian_tr(double r_i, double r_j, double T, double mu,
  *  from the Milne extrapolation length of the Klein-Kramers equation
  *  (Marshall & Watson 1985).  Unlike sb_kernel_brownian_tr (Dahneke) it
  *  takes the particles' Langevin parameters directly, as the engine does.
+ *  The reduced mass and friction are formed without their products
+ *  underflowing, and beyond Kn_D = 1e50 beta = (Kn g) R^2 sqrt(kT/m_red),
+ *  so tau up to 1e300 gives the free-molecular limit (it was NaN).
  *  Cost: a few ns. */
 double sb_kernel_brownian_gh(double r_i, double r_j, double m_i, double m_j,
                              double tau_i, double tau_j, double T);
