@@ -25,9 +25,9 @@
 
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_errno.h>
-#include <gsl/gsl_roots.h>
 #include <smolbridge/pgd.h>
 #include "common/internal.h"
+#include "common/numutil.h"
 
 /* Drag time map: s(t), e(t) = e^{-t/tau} (s = t, e = 1 without drag). */
 static void drag_map(double tau, double t, double *s, double *e)
@@ -292,21 +292,10 @@ int sb_pgd_smooth_foot(const sb_pgd_smooth *s, double x, double t,
   if (k == 200)
     return sbi_error(SB_EMAXITER, __func__, "no foot found for x = %g at "
                      "t = %g (characteristics crossed?)", x, t);
-  gsl_root_fsolver *r = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-  if (!r)
+  st = sbi_brent(&F, lo, hi, DBL_MIN, 4 * DBL_EPSILON, 300, xi);
+  if (st == SB_ENOMEM)
     return sbi_error(SB_ENOMEM, __func__, "out of memory");
-  gsl_root_fsolver_set(r, &F, lo, hi); /* signs checked above */
-  int it;
-  for (it = 0; it < 300; it++) {
-    gsl_root_fsolver_iterate(r);
-    double a = gsl_root_fsolver_x_lower(r), b = gsl_root_fsolver_x_upper(r);
-    if (gsl_root_test_interval(a, b, DBL_MIN, 4 * DBL_EPSILON) ==
-        GSL_SUCCESS)
-      break;
-  }
-  *xi = gsl_root_fsolver_root(r);
-  gsl_root_fsolver_free(r);
-  if (it == 300)
+  if (st)
     return sbi_error(SB_EMAXITER, __func__, "root finding did not converge "
                      "for x = %g", x);
   return SB_SUCCESS;

@@ -8,11 +8,11 @@
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_randist.h>
-#include <gsl/gsl_roots.h>
 
 #include <smolbridge/spray.h>
 
 #include "common/internal.h"
+#include "common/numutil.h"
 #include "spray_internal.h"
 
 void sb_spray_tab_params_default(sb_spray_tab_params *p)
@@ -127,20 +127,9 @@ static double cross_in(const osc *o, double a, double b, double level,
   if (fb == 0)
     return b;
   gsl_function F = {root_f, &c};
-  gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-  if (!s)
-    return NAN;
-  gsl_root_fsolver_set(s, &F, a, b);
-  double x = 0.5 * (a + b);
-  for (int it = 0; it < 200; it++) {
-    gsl_root_fsolver_iterate(s);
-    x = gsl_root_fsolver_root(s);
-    double lo = gsl_root_fsolver_x_lower(s), hi = gsl_root_fsolver_x_upper(s);
-    if (gsl_root_test_interval(lo, hi, tol, 0) == GSL_SUCCESS)
-      break;
-  }
-  gsl_root_fsolver_free(s);
-  return x;
+  double x;
+  int st = sbi_brent(&F, a, b, tol, 0.0, 200, &x);
+  return (st && st != SB_EMAXITER) ? NAN : x;
 }
 
 /* Times t > 0 where y' = 0: y' = e^{-bt}[zd0 C - (b zd0 + w0^2 z0) S]. */
