@@ -120,9 +120,7 @@ int sbi_hsave_finish(sbi_hsave *h, int ok, const char *path,
   return f ? sbi_finish_save(f, ok, path, func) : SB_EIO;
 }
 
-/* The whole of f into memory (*len bytes; at least one byte allocated):
- * NULL on a read error or out of memory. */
-static char *slurp(FILE *f, size_t *len)
+char *sbi_slurp(FILE *f, size_t *len)
 {
   size_t cap = 1 << 12, n = 0;
   char *b = malloc(cap);
@@ -156,7 +154,7 @@ FILE *sbi_hload_open(const char *path, const char magic[8], int hashed_from,
   if (!file)
     return NULL;
   size_t len = 0;
-  char *buf = slurp(file, &len);
+  char *buf = sbi_slurp(file, &len);
   fclose(file);
   if (!buf) {
     *status = sbi_error(SB_EIO, func, "cannot read '%s'", path);

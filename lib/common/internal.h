@@ -59,6 +59,9 @@ typedef struct {
 FILE *sbi_hsave_begin(sbi_hsave *h, const char *func);
 int sbi_hsave_finish(sbi_hsave *h, int ok, const char *path,
                      const char *func);
+/* The whole of f into memory (*len bytes; at least one byte allocated):
+ * NULL on a read error or out of memory. */
+char *sbi_slurp(FILE *f, size_t *len);
 /* A saved state opened for reading: the whole file read into memory
  * (*mem, to free after closing the stream), its 8-byte magic checked
  * against `magic` (the first 6 bytes; the last 2 are the version, at

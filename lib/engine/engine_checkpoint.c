@@ -97,17 +97,6 @@ static int counters_load(sb_engine *e, FILE *f)
             : 0;
 }
 
-/* FNV-1a (Fowler, Noll & Vo) over the bytes of n items of size b. */
-static uint64_t fnv(uint64_t h, const void *p, size_t n, size_t b)
-{
-  const unsigned char *c = p;
-  for (size_t k = 0; k < n * b; k++)
-    h = (h ^ c[k]) * 0x100000001b3ULL;
-  return h;
-}
-
-#define FNV_BASIS 0xcbf29ce484222325ULL
-
 /* The state in the order of the format, into f: 0 or -1. */
 static int write_state(const sb_engine *e, FILE *f)
 {
@@ -182,52 +171,11 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
     return sbi_error(SB_EINVAL, __func__, "NULL argument");
   /* in memory first: the hash covers every byte, and the file is then
    * written in one piece (also to a pipe) */
-  char *buf = NULL;
-  size_t len = 0;
-  FILE *m = open_memstream(&buf, &len);
+  sbi_hsave h;
+  FILE *m = sbi_hsave_begin(&h, __func__);
   if (!m)
-    return sbi_error(SB_ENOMEM, __func__, "out of memory");
-  const int bad = write_state(e, m);
-  if (fclose(m) || bad) {
-    free(buf);
-    return sbi_error(SB_ENOMEM, __func__, "out of memory for the state");
-  }
-  const uint64_t h = fnv(FNV_BASIS, buf, len, 1);
-  FILE *f = sbi_open_for_save(path, __func__);
-  if (!f) {
-    free(buf);
-    return SB_EIO;
-  }
-  const int ok = fwrite(buf, 1, len, f) == len &&
-                 fwrite(&h, sizeof h, 1, f) == 1;
-  free(buf);
-  return sbi_finish_save(f, ok, path, __func__);
-}
-
-/* The whole of f into memory (*len bytes): NULL on a read error or out
- * of memory. */
-static char *slurp(FILE *f, size_t *len)
-{
-  size_t cap = 1 << 16, n = 0;
-  char *b = malloc(cap);
-  while (b) {
-    n += fread(b + n, 1, cap - n, f);
-    if (n < cap)
-      break;
-    char *nb = cap < ((size_t)1 << 62) ? realloc(b, 2 * cap) : NULL;
-    if (!nb) {
-      free(b);
-      return NULL;
-    }
-    b = nb;
-    cap *= 2;
-  }
-  if (b && ferror(f)) {
-    free(b);
-    return NULL;
-  }
-  *len = n;
-  return b;
+    return SB_ENOMEM;
+  return sbi_hsave_finish(&h, write_state(e, m) == 0, path, __func__);
 }
 
 static int id_cmp(const void *a, const void *b)
@@ -282,7 +230,7 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   /* the whole file, its hash checked before anything is read from it
    * (version 6) */
   size_t len = 0;
-  char *buf = slurp(file, &len);
+  char *buf = sbi_slurp(file, &len);
   fclose(file);
   if (!buf) {
     *status = sbi_error(SB_EIO, __func__, "cannot read '%s'", path);
@@ -299,7 +247,7 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
     if (len < 16)
       goto bad;
     memcpy(&h, buf + len - 8, 8);
-    if (h != fnv(FNV_BASIS, buf, len - 8, 1)) {
+    if (h != sbi_fnv1a(SBI_FNV_BASIS, buf, len - 8)) {
       *status = sbi_error(SB_EFORMAT, __func__, "'%s' is damaged: its "
                           "contents do not match the hash at its end "
                           "(cut short, changed or not a checkpoint)", path);
@@ -453,9 +401,9 @@ out:
 
 uint64_t sbi_engine_fingerprint(const sb_engine *e)
 {
-  uint64_t h = fnv(FNV_BASIS, &e->n, 1, sizeof e->n);
-  h = fnv(h, e->id, e->n, sizeof *e->id);
-  return fnv(h, e->x, 3 * e->n, sizeof *e->x);
+  uint64_t h = sbi_fnv1a(SBI_FNV_BASIS, &e->n, sizeof e->n);
+  h = sbi_fnv1a(h, e->id, e->n * sizeof *e->id);
+  return sbi_fnv1a(h, e->x, 3 * e->n * sizeof *e->x);
 }
 
 int sbi_engine_check_saved(const sb_engine *e, uint64_t steps,
