@@ -471,6 +471,10 @@ START_TEST(test_bes3_reference)
   ck_assert(sb_bes3_fpt_cdf(1.0, 0.5, 1.0, 1.0) == 1.0);
   ck_assert(sb_bes3_fpt_cdf(1.0, 2.0, 0.0, 1.0) == 0.0);
   ck_assert(sb_bes3_fpt_sf(1.0, 2.0, 0.0, 1.0) == 1.0);
+  /* t far below d^2/sigma2 (eps = 1e65): nothing has happened yet */
+  ck_assert(sb_bes3_fpt_sf(1e-130, 2.0, 1.0, 1.0) == 1.0);
+  ck_assert(sb_bes3_fpt_cdf(1e-130, 2.0, 1.0, 1.0) == 0.0);
+  ck_assert(sb_bes3_fpt_pdf(1e-130, 2.0, 1.0, 1.0) == 0.0);
 }
 END_TEST
 

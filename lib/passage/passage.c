@@ -429,7 +429,9 @@ static int bes3_entry(const char *fn, int what, double t, double x, double a,
     rel = eps <= 3.0 ? (4.0 + 2.0 * eps * eps) * EPS : 8.0 * EPS;
   } else {
     /* (1 - a/x) + (a/x) erf(eps/sqrt 2): positive terms */
-    double e = gsl_sf_erf(eps * 0.70710678118654752440);
+    /* erf is 1 in double from eps ~ 8.3 on; GSL's erf is NaN from an
+     * argument of ~1e62 (t tiny against d^2/sigma2) */
+    double e = eps > 10.0 ? 1.0 : gsl_sf_erf(eps * 0.70710678118654752440);
     val = ch + h * e;
     rel = 4.0 * EPS;
   }
