@@ -406,6 +406,7 @@ START_TEST(test_spec)
   sb_kernel_spec s;
   sb_kernel_type t;
   ck_assert_int_eq(sb_kernel_type_from_name("bogus", &t), SB_EINVAL);
+  ck_assert_int_eq(sb_kernel_type_from_name("shear", NULL), SB_SUCCESS);
   ck_assert_int_eq(sb_kernel_spec_init(&s, SB_KERNEL_NTYPES), SB_EINVAL);
   for (int k = 0; k < SB_KERNEL_NTYPES; k++) {
     const char *name = sb_kernel_type_name((sb_kernel_type)k);

@@ -50,6 +50,8 @@ START_TEST(params_checked)
   ck_assert_int_eq(sb_pgd_scheme_from_name("muscl", &s), SB_SUCCESS);
   ck_assert_int_eq(s, SB_PGD_MUSCL);
   ck_assert_int_eq(sb_pgd_scheme_from_name("weno", &s), SB_EINVAL);
+  ck_assert_int_eq(sb_pgd_scheme_from_name("muscl", NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_pgd_scheme_from_name("weno", NULL), SB_EINVAL);
 }
 END_TEST
 

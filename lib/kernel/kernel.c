@@ -400,10 +400,11 @@ const char *sb_kernel_type_name(sb_kernel_type type)
 
 int sb_kernel_type_from_name(const char *name, sb_kernel_type *type)
 {
-  if (name && type)
+  if (name)
     for (int t = 0; t < SB_KERNEL_NTYPES; t++)
       if (!strcmp(name, type_names[t])) {
-        *type = (sb_kernel_type)t;
+        if (type)
+          *type = (sb_kernel_type)t;
         return SB_SUCCESS;
       }
   char valid[300] = "";

@@ -151,12 +151,9 @@ int sb_pgd_params_add_inflow(sb_pgd_params *p, sb_pgd_side side,
 
 int sb_pgd_scheme_from_name(const char *name, sb_pgd_scheme *s)
 {
-  if (name && !strcmp(name, "upwind")) {
-    *s = SB_PGD_UPWIND;
-    return SB_SUCCESS;
-  }
-  if (name && !strcmp(name, "muscl")) {
-    *s = SB_PGD_MUSCL;
+  if (name && (!strcmp(name, "upwind") || !strcmp(name, "muscl"))) {
+    if (s)
+      *s = !strcmp(name, "muscl") ? SB_PGD_MUSCL : SB_PGD_UPWIND;
     return SB_SUCCESS;
   }
   return sbi_error(SB_EINVAL, __func__, "scheme '%s': must be upwind or "

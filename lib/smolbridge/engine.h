@@ -724,7 +724,8 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status);
 
 /** Names used by the CLI ("cells", "sweep", "brute"; "ballistic",
  *  "overlap", "langevin"; "elastic", "reinsert", "count"); return
- *  SB_EINVAL for an unknown name, with the valid names in the message. */
+ *  SB_EINVAL for an unknown name, with the valid names in the message.
+ *  The output may be NULL (the name is only checked). */
 int sb_engine_neigh_from_name(const char *name, sb_engine_neigh *m);
 int sb_engine_detect_from_name(const char *name, sb_engine_detect *d);
 int sb_engine_outcome_from_name(const char *name, sb_engine_outcome *o);

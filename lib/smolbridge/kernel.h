@@ -283,7 +283,7 @@ int sb_kernel_spec_init(sb_kernel_spec *s, sb_kernel_type type);
  *  "brownian-co", "brownian-fm", "brownian-tr", "gravity", "shear",
  *  "saffman-turner", "brownian-turb", "kinetic", "abrahamson",
  *  "diffusion"); returns SB_EINVAL if unknown, with the valid names in
- *  the message. */
+ *  the message.  type may be NULL (the name is only checked). */
 int sb_kernel_type_from_name(const char *name, sb_kernel_type *type);
 /** Name of a type (NULL if out of range). */
 const char *sb_kernel_type_name(sb_kernel_type type);

@@ -121,7 +121,8 @@ int sb_pgd_params_add_inflow(sb_pgd_params *p, sb_pgd_side side,
                              size_t first, size_t count, double rho,
                              double ux, double uy);
 
-/** "upwind" | "muscl" -> scheme; SB_EINVAL otherwise. */
+/** "upwind" | "muscl" -> scheme; SB_EINVAL otherwise.  s may be NULL
+ *  (the name is only checked). */
 int sb_pgd_scheme_from_name(const char *name, sb_pgd_scheme *s);
 const char *sb_pgd_scheme_name(sb_pgd_scheme s);
 

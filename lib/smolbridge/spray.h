@@ -114,7 +114,8 @@ typedef struct {
 void sb_spray_params_default(sb_spray_params *p);
 
 /** Names for configuration files: "bird"/"nanbu", "hard-sphere"/"maxwell",
- *  "majorant"/"ntc".  SB_EINVAL for an unknown name. */
+ *  "majorant"/"ntc".  SB_EINVAL for an unknown name.  The output may be
+ *  NULL (the name is only checked). */
 int sb_spray_method_from_name(const char *name, sb_spray_method *m);
 int sb_spray_cross_from_name(const char *name, sb_spray_cross *c);
 int sb_spray_select_from_name(const char *name, sb_spray_select *s);
