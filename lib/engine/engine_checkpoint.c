@@ -280,8 +280,13 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   if (par.outcome == SB_OUTCOME_CUSTOM)
     par.outcome = SB_OUTCOME_ELASTIC;
   e = sb_engine_alloc(&par);
+  if (!e && sb_last_status() == SB_ENOMEM) {
+    *status = sbi_error(SB_ENOMEM, __func__, "out of memory for the "
+                        "engine of '%s' (capacity %zu)", path, par.capacity);
+    goto out;
+  }
   if (!e)
-    goto bad;
+    goto bad; /* parameters the engine refuses: not a valid file */
   spec = malloc((nspec ? nspec : 1) * sizeof *spec);
   if (!spec) {
     *status = sbi_error(SB_ENOMEM, __func__, "out of memory");
