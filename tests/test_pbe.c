@@ -191,6 +191,33 @@ START_TEST(test_discrete_vs_analytic)
 }
 END_TEST
 
+/* Concentrations whose default absolute tolerance (1e-14 of them) is not
+ * a normal double: a clear SB_EDOM before CVODE starts (it failed on its
+ * first step with a corrector message); the scaled problem n/N0 with the
+ * kernel N0 K solves, and gives M0 = 1/(1 + N0 K t/2) times N0. */
+START_TEST(test_tiny_concentrations)
+{
+  sb_kernel_spec ks;
+  sb_pbe_config c = kernel_config(&ks, SB_KERNEL_CONSTANT, 40);
+  ks.K = 2e300;
+  sb_pbe *p = sb_pbe_alloc(&c);
+  ck_assert_ptr_nonnull(p);
+  ck_assert_int_eq(sb_pbe_init_mono(p, 1e-300), SB_SUCCESS);
+  double t = 1.0;
+  ck_assert_int_eq(sb_pbe_solve(p, &t, 1, NULL, NULL, NULL), SB_EDOM);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "too small"));
+  sb_pbe_free(p);
+  ks.K = 2e300 * 1e-300;
+  p = sb_pbe_alloc(&c);
+  ck_assert_int_eq(sb_pbe_init_mono(p, 1.0), SB_SUCCESS);
+  ck_assert_int_eq(sb_pbe_solve(p, &t, 1, NULL, NULL, NULL), SB_SUCCESS);
+  double m[3];
+  sb_pbe_state_moments(p, m);
+  ck_assert_rel(1e-300 * m[0], 1e-300 / (1.0 + 2.0 * 1.0 / 2.0), 1e-7);
+  sb_pbe_free(p);
+}
+END_TEST
+
 typedef struct {
   double m[3][3]; /* M0..M2 at the three output times */
   int k;
@@ -727,6 +754,7 @@ static Suite *pbe_suite(void)
   Suite *s = suite_create("pbe");
   TCase *tc = tcase_create("analytic");
   tcase_add_test(tc, test_analytic_vs_mpmath);
+  tcase_add_test(tc, test_tiny_concentrations);
   tcase_add_test(tc, test_analytic_normalisation);
   tcase_add_test(tc, test_analytic_exp_quadrature);
   tcase_add_test(tc, test_analytic_domain);

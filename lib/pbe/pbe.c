@@ -11,6 +11,7 @@
  * zero M1 and the corrected iterate has the predictor's M1.  M1 drifts only
  * by rounding and by collisions leaving the grid.
  */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -846,6 +847,19 @@ int sb_pbe_solve(sb_pbe *p, const double *times, size_t ntimes,
       av[i] = atol;
     if (p->tail)
       av[p->n + 1] = atol * vmean;
+    /* CVODE weighs errors by 1/(rtol |y| + atol): an atol that is not a
+     * normal double (concentrations near 1e-300, or a tail mass out of
+     * range) makes the weights infinite and the first step fail */
+    if (!(atol >= DBL_MIN) || (p->tail && !(av[p->n + 1] >= DBL_MIN &&
+                                            isfinite(av[p->n + 1])))) {
+      status = sbi_error(SB_EDOM, __func__, "absolute tolerance %g (tail "
+                         "mass %g) out of the range of doubles: initial "
+                         "concentrations up to %g are too small for the "
+                         "unit of number; solve for n/N0 with the kernel "
+                         "N0 K instead", atol, p->tail ? atol * vmean : 0.0,
+                         mx);
+      goto done;
+    }
   }
   int flag = CVodeInit(mem, cv_rhs, 0.0, y);
   if (flag >= 0)

@@ -86,7 +86,12 @@ typedef struct {
   double rtol;          /**< CVODE relative tolerance (default 1e-8) */
   double atol;          /**< absolute tolerance on n; <= 0: 1e-14 max n(0)
                              (the tail's mass: atol times the mean volume
-                             at the start) */
+                             at the start).  Both must be normal doubles
+                             (>= DBL_MIN), or the solve fails with SB_EDOM:
+                             for concentrations below ~1e-294 solve for
+                             n/N0 with the kernel N0 K (the population
+                             balance is invariant under n -> n/c,
+                             K -> c K), as `smolbridge pbe` does */
   sb_pbe_linsol linsol; /**< linear solver of the Newton iteration */
   long max_steps;       /**< CVODE steps allowed per output interval */
   sb_pbe_source_fn source;   /**< NULL: no source */
