@@ -137,7 +137,7 @@ static int case_riemann(const sbv_ctx *ctx, sbv_report *rep)
   /* profiles at a coarse resolution for the plot */
   if (!st && ctx->outdir) {
     enum { NP = 200 };
-    static double plot[NP * 7];
+    double plot[NP * 7]; /* on the stack: no state shared between calls */
     double r2[NP], q2[NP];
     const char *figs[2] = {"pgd_riemann_delta", "pgd_riemann_vacuum"};
     const int which[2] = {0, 2};
