@@ -1,4 +1,5 @@
 /* ini_once.c — keys and section headers given once (ini_once.h). */
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -75,4 +76,39 @@ void sbc_ini_once_free(sbc_ini_keys *o)
   free(o->e);
   o->e = NULL;
   o->n = o->cap = 0;
+}
+
+void sbc_ini_warn(const char *cmd, const char *where, const char *fmt, ...)
+{
+  va_list ap;
+  fprintf(stderr, "%s: warning: %s: ", cmd, where);
+  va_start(ap, fmt);
+  vfprintf(stderr, fmt, ap);
+  va_end(ap);
+  fputc('\n', stderr);
+}
+
+int sbc_ini_unused(const sbc_ini_keys *o, const char *cmd, const char *sec,
+                   const char *key, const char *why)
+{
+  const char *w = sbc_ini_where(o, sec, key);
+  if (!w)
+    return 0;
+  sbc_ini_warn(cmd, w, "[%s] %s ignored: %s", sec, key, why);
+  return 1;
+}
+
+int sbc_ini_section_unused(const sbc_ini_keys *o, const char *cmd,
+                           const char *sec, const char *keep,
+                           const char *why)
+{
+  int n = 0;
+  for (size_t i = 0; i < o->n; i++) {
+    const struct sbc_ini_seen *e = &o->e[i];
+    if (!e->key || strcmp(e->sec, sec) || (keep && !strcmp(e->key, keep)))
+      continue;
+    sbc_ini_warn(cmd, e->where, "[%s] %s ignored: %s", sec, e->key, why);
+    n++;
+  }
+  return n;
 }

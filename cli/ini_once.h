@@ -2,7 +2,9 @@
  * `smolbridge pgd` refuse a key given twice in a section and a section
  * header repeated, as `smolbridge collide` does (lib/collide/
  * collide_ini.c), instead of taking the last value or merging the two
- * sections silently. */
+ * sections silently.  The keys read, with their places, also let them
+ * warn about keys that have no effect in the configuration (as collide
+ * does, lib/collide/collide_check.c). */
 #ifndef SB_CLI_INI_ONCE_H
 #define SB_CLI_INI_ONCE_H
 
@@ -26,5 +28,22 @@ int sbc_ini_once(sbc_ini_keys *o, const char *sec, const char *key,
 const char *sbc_ini_where(const sbc_ini_keys *o, const char *sec,
                           const char *key);
 void sbc_ini_once_free(sbc_ini_keys *o);
+
+/* "CMD: warning: WHERE: MESSAGE" on stderr: a key without effect (the
+ * run goes on, its exit status unchanged). */
+void sbc_ini_warn(const char *cmd, const char *where, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+/* If key of section sec was read: "CMD: warning: FILE:LINE: [sec] key
+ * ignored: why" (the format of `smolbridge collide`); 1 if it warned. */
+int sbc_ini_unused(const sbc_ini_keys *o, const char *cmd, const char *sec,
+                   const char *key, const char *why);
+/* The same for every key read in section sec but `keep` (may be NULL);
+ * the number of warnings. */
+int sbc_ini_section_unused(const sbc_ini_keys *o, const char *cmd,
+                           const char *sec, const char *keep,
+                           const char *why);
 
 #endif /* SB_CLI_INI_ONCE_H */

@@ -2,7 +2,8 @@
  * kinetics (collisions, coalescence, TAB and Reitz breakup) from an INI
  * file (libinih), write OUTPUT/series.csv, OUTPUT/final.csv and
  * OUTPUT/summary.json, and optionally check the run against the BKW exact
- * solution.  Every key, unit and default: docs/spray.md; examples:
+ * solution; keys without effect are warned about on stderr.  Every key,
+ * unit and default: docs/spray.md; examples:
  * examples/spray_*.ini.  Exit status: 0 success, 1 failed run or check,
  * 2 bad usage or input. */
 #define _POSIX_C_SOURCE 200809L
@@ -440,6 +441,43 @@ static sb_spray_children children_of(const char *w)
                                    : SB_SPRAY_CHILDREN_AUTO;
 }
 
+/* ------------------------------------------------ keys without effect */
+
+/* If cond: "spray: warning: FILE:LINE: [sec] key ignored: why", when key
+ * was read (the format of `smolbridge collide`). */
+static void unused(const config *c, int cond, const char *sec,
+                   const char *key, const char *why)
+{
+  if (cond)
+    sbc_ini_unused(&c->once, "spray", sec, key, why);
+}
+
+/* Warn about the keys read that have no effect in this configuration
+ * (the run goes on; docs/spray.md §8). */
+static void warn_unused(const config *c)
+{
+  int settles = !strcmp(c->merge, "settling");
+  for (int i = 0; i < c->npop; i++)
+    settles |= c->pop[i].settle;
+  unused(c, strcmp(c->cross, "maxwell"), "run", "B0",
+         "cross = hard-sphere (B0 is the rate of cross = maxwell)");
+  for (int i = 0; i < c->npop; i++)
+    unused(c, strcmp(c->pop[i].dist, "bkw"), c->pop[i].name, "K0",
+           "distribution = maxwell (K0 is the start of distribution = "
+           "bkw)");
+  unused(c, !c->check_bkw, "check", "nse",
+         "no BKW check (bkw = 1) uses it");
+  unused(c, !settles, "gas", "g",
+         "nothing settles (gravity acts through merge_velocity = settling "
+         "or [droplets] settling = 1)");
+  if (c->tab_off)
+    sbc_ini_section_unused(&c->once, "spray", "tab", "enable",
+                           "enable = 0 turns TAB off");
+  if (c->reitz_off)
+    sbc_ini_section_unused(&c->once, "spray", "reitz", "enable",
+                           "enable = 0 turns Reitz breakup off");
+}
+
 static void usage(FILE *f)
 {
   fprintf(f,
@@ -467,6 +505,7 @@ static void usage(FILE *f)
 "  [check]          bkw = 1: compare E|v|^4 with the BKW solution\n"
 "                   (maxwell kernel, one population), nse (default 5)\n"
 "Writes OUTPUT/series.csv, OUTPUT/final.csv, OUTPUT/summary.json.\n"
+"Keys without effect in the configuration are warned about on stderr.\n"
 "Exit status: 0 success, 1 failed run or check, 2 bad usage or input.\n"
 "Every key with its unit and default: docs/spray.md.\n");
 }
@@ -623,6 +662,8 @@ int sbc_spray_main(int argc, char **argv)
   char err[1024];
   int rst = sb_ini_read(file, NULL, key_fn, section_fn, &c, err,
                         sizeof err);
+  if (!c.nerr && !rst)
+    warn_unused(&c);
   sbc_ini_once_free(&c.once);
   if (c.nerr) {
     fprintf(stderr, "spray: %s: %s\n", c.err_where, c.err);

@@ -1,7 +1,8 @@
 #!/bin/sh
 # End-to-end checks of `smolbridge spray`: help and exit codes, input
-# errors naming file, line and key, the example configurations (BKW check,
-# breakup with volume conservation), and a failing check exiting 1.
+# errors naming file, line and key, warnings about keys without effect,
+# the example configurations (BKW check, breakup with volume
+# conservation; no warnings), and a failing check exiting 1.
 set -u
 sb="${top_builddir:-.}/smolbridge"
 ex="${srcdir:-.}/examples"
@@ -61,9 +62,55 @@ printf '[reitz]\nblob = 2\n' > "$out/badblob.ini"
 msg=$("$sb" spray "$out/badblob.ini" 2>&1 >/dev/null)
 case "$msg" in *badblob.ini:2*blob*) ;; *) fail "bad blob message: $msg" ;; esac
 
-# BKW example: the run checks itself (exit 0), writes its files
+# keys that have no effect in the configuration: a warning naming the
+# file, line, section and key (as collide), the exit status unchanged;
+# none where the key matters
+base="[run]\nvolume = 1\ndt = 1e-3\nsteps = 1\noutput = $out/w\n"  # lines 1-5
+drops='[droplets a]\ncount = 10\nradius = 1e-5\n'              # lines 6-8
+unused() {  # unused NAME WANT INI: WANT after "FILE:" ("": no warning)
+  printf "$3" > "$out/w.ini"
+  msg=$("$sb" spray "$out/w.ini" 2>&1 >/dev/null)
+  rc=$?
+  [ $rc -eq 0 ] || fail "$1: exit $rc, want 0: $msg"
+  if [ -n "$2" ]; then
+    case "$msg" in *"spray: warning: $out/w.ini:$2"*) ;;
+      *) fail "$1: no warning '$2' in: $msg" ;; esac
+  else
+    case "$msg" in *warning*) fail "$1: unexpected warning: $msg" ;; esac
+  fi
+}
+unused "B0 with hard spheres" "6: [run] B0 ignored: cross = hard-sphere" \
+  "${base}B0 = 1e-4\n$drops"
+unused "B0 with maxwell" "" "${base}B0 = 1e-4\ncross = maxwell\n$drops"
+unused "K0 with maxwell" "9: [droplets a] K0 ignored: distribution = maxwell" \
+  "$base${drops}K0 = 0.7\n"
+unused "K0 with bkw" "" "$base${drops}K0 = 0.7\ndistribution = bkw\ntheta = 1\n"
+unused "nse without bkw" "10: [check] nse ignored: no BKW check" \
+  "$base$drops[check]\nnse = 3\n"
+unused "nse with bkw = 0" "11: [check] nse ignored: no BKW check" \
+  "$base$drops[check]\nbkw = 0\nnse = 3\n"
+unused "nse with bkw = 1" "" "${base}cross = maxwell\nB0 = 1e-4\n${drops}distribution = bkw\ntheta = 1\n[check]\nbkw = 1\nnse = 1e9\n"
+unused "g without settling" "10: [gas] g ignored: nothing settles" \
+  "$base$drops[gas]\ng = 0 0 -1\n"
+unused "g with settling drops" "" "$base${drops}settling = 1\n[gas]\ng = 0 0 -1\n"
+unused "g with merge_velocity = settling" "" \
+  "${base}merge_velocity = settling\ntheta_cr = 1\n$drops[gas]\ng = 0 0 -1\n"
+# [tab] / [reitz] enable = 0 wherever it stands: every other key warned
+unused "[tab] enable = 0 after" "10: [tab] Cd ignored: enable = 0 turns TAB off" \
+  "$base$drops[tab]\nCd = 10\nenable = 0\n"
+unused "[tab] enable = 0 before" "11: [tab] child_tag ignored: enable = 0" \
+  "$base$drops[tab]\nenable = 0\nchild_tag = 3\n"
+case "$msg" in *"[tab] enable ignored"*) fail "[tab] enable itself warned: $msg" ;; esac
+unused "[tab] on" "" "$base$drops[tab]\nCd = 10\n"
+unused "[reitz] enable = 0" "11: [reitz] B1 ignored: enable = 0 turns Reitz breakup off" \
+  "$base$drops[reitz]\nenable = 0\nB1 = 5\n"
+unused "[reitz] on" "" "$base$drops[reitz]\nB1 = 5\n"
+
+# BKW example: the run checks itself (exit 0), writes its files, and
+# warns about nothing
 sed "s|^output = .*|output = $out/bkw|" "$ex/spray_bkw.ini" > "$out/bkw.ini"
-if "$sb" spray "$out/bkw.ini" 2>/dev/null; then
+if "$sb" spray "$out/bkw.ini" 2>"$out/bkw.err"; then
+  grep warning "$out/bkw.err" && fail "spray_bkw.ini warns"
   head -n 1 "$out/bkw/series.csv" | grep -q '^t,parcels,number,.*,M4_bkw$' \
     || fail "series.csv header"
   grep -q '"bkw"' "$out/bkw/summary.json" || fail "summary.json: no bkw"
@@ -80,7 +127,8 @@ expect_rc 1 "$sb" spray "$out/bkw-strict.ini"
 
 # breakup example: volume conserved, every drop below 7 um at the end
 sed "s|^output = .*|output = $out/brk|" "$ex/spray_breakup.ini" > "$out/brk.ini"
-if "$sb" spray "$out/brk.ini" 2>/dev/null; then
+if "$sb" spray "$out/brk.ini" 2>"$out/brk.err"; then
+  grep warning "$out/brk.err" && fail "spray_breakup.ini warns"
   awk -F, 'NR == 2 { v = $9 } END { d = ($9 - v) / v; if (d < 0) d = -d;
     exit !(d < 1e-13) }' "$out/brk/series.csv" || fail "volume not conserved"
   awk -F, 'NR > 1 && $2 >= 7e-6 { bad = 1 } END { exit bad }' \
