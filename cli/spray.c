@@ -456,11 +456,36 @@ static void unused(const config *c, int cond, const char *sec,
  * (the run goes on; docs/spray.md §8). */
 static void warn_unused(const config *c)
 {
-  int settles = !strcmp(c->merge, "settling");
+  const int orourke = !strcmp(c->coal, "orourke");
+  const int merges = orourke || c->theta_cr > 0;
+  const int breakup = c->tab || c->reitz;
+  const int bird = !strcmp(c->method, "bird");
+  int settles = merges && !strcmp(c->merge, "settling");
   for (int i = 0; i < c->npop; i++)
     settles |= c->pop[i].settle;
   unused(c, strcmp(c->cross, "maxwell"), "run", "B0",
          "cross = hard-sphere (B0 is the rate of cross = maxwell)");
+  unused(c, !bird, "run", "weight",
+         "method = nanbu (each [droplets] section sets its weight)");
+  unused(c, orourke, "run", "theta_cr",
+         "coalescence = orourke (the Weber-number boundary decides)");
+  unused(c, !merges, "run", "merge_velocity",
+         "no collision coalesces (theta_cr = 0 with coalescence = theta)");
+  unused(c, !breakup, "gas", "u",
+         "no breakup model ([tab], [reitz]) is on");
+  unused(c, !breakup && !settles, "gas", "rho_g",
+         "no breakup model ([tab], [reitz]) is on and nothing settles");
+  unused(c, !settles && !(c->reitz && c->rp.stripping), "gas", "mu_g",
+         "nothing settles and no Reitz stripping test (stripping = 1)");
+  unused(c, !breakup && !orourke, "liquid", "sigma",
+         "no breakup model ([tab], [reitz]) is on and coalescence = theta");
+  unused(c, !breakup, "liquid", "mu_l",
+         "no breakup model ([tab], [reitz]) is on");
+  unused(c, c->reitz && (!strcmp(c->reitz_children, "particles") ||
+                         (!strcmp(c->reitz_children, "auto") && bird)),
+         "reitz", "emit_fraction",
+         "the children are particles (emit_fraction paces parcel "
+         "children)");
   for (int i = 0; i < c->npop; i++)
     unused(c, strcmp(c->pop[i].dist, "bkw"), c->pop[i].name, "K0",
            "distribution = maxwell (K0 is the start of distribution = "

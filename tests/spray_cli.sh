@@ -105,6 +105,41 @@ unused "[tab] on" "" "$base$drops[tab]\nCd = 10\n"
 unused "[reitz] enable = 0" "11: [reitz] B1 ignored: enable = 0 turns Reitz breakup off" \
   "$base$drops[reitz]\nenable = 0\nB1 = 5\n"
 unused "[reitz] on" "" "$base$drops[reitz]\nB1 = 5\n"
+unused "[run] weight with nanbu" "6: [run] weight ignored: method = nanbu" \
+  "${base}weight = 3\nmethod = nanbu\n$drops"
+unused "[run] weight with bird" "" "${base}weight = 3\n$drops"
+unused "theta_cr with orourke" "6: [run] theta_cr ignored: coalescence = orourke" \
+  "${base}theta_cr = 0.5\ncoalescence = orourke\n$drops"
+unused "theta_cr with theta" "" "${base}theta_cr = 0.5\ncoalescence = theta\n$drops"
+unused "merge_velocity without coalescence" \
+  "6: [run] merge_velocity ignored: no collision coalesces" \
+  "${base}merge_velocity = momentum\n$drops"
+unused "merge_velocity with theta_cr" "" \
+  "${base}merge_velocity = momentum\ntheta_cr = 0.5\n$drops"
+unused "merge_velocity with orourke" "" \
+  "${base}merge_velocity = momentum\ncoalescence = orourke\n$drops"
+unused "merge_velocity = settling without coalescence: g" \
+  "8: [gas] g ignored: nothing settles" \
+  "${base}merge_velocity = settling\n[gas]\ng = 0 0 -1\n$drops"
+# [gas] and [liquid]: used by the breakup models, settling and O'Rourke
+gl='[gas]\nu = 1 0 0\nrho_g = 2\nmu_g = 2e-5\n[liquid]\nsigma = 0.05\nmu_l = 2e-3\n'
+for k in "10: [gas] u ignored: no breakup model" \
+         "11: [gas] rho_g ignored: no breakup model" \
+         "12: [gas] mu_g ignored: nothing settles and no Reitz stripping" \
+         "14: [liquid] sigma ignored: no breakup model" \
+         "15: [liquid] mu_l ignored: no breakup model"; do
+  unused "no breakup" "$k" "$base$drops$gl"
+done
+unused "[reitz] with stripping" "" "$base$drops$gl[reitz]\nstripping = 1\n"
+unused "[tab]: mu_g" "12: [gas] mu_g ignored" "$base$drops$gl[tab]\nCd = 5\n"
+unused "settling: rho_g, mu_g" "" \
+  "$base${drops}settling = 1\n[gas]\nrho_g = 2\nmu_g = 2e-5\n"
+unused "orourke: sigma" "" "${base}coalescence = orourke\n$drops[liquid]\nsigma = 0.05\n"
+unused "emit_fraction, bird children" \
+  "10: [reitz] emit_fraction ignored: the children are particles" \
+  "$base$drops[reitz]\nemit_fraction = 0.1\n"
+unused "emit_fraction, nanbu children" "" \
+  "${base}method = nanbu\n$drops[reitz]\nemit_fraction = 0.1\n"
 
 # BKW example: the run checks itself (exit 0), writes its files, and
 # warns about nothing
