@@ -2,7 +2,8 @@
  * INI file (<smolbridge/ini.h>): a 1-D Riemann problem or a 2-D run with inflows,
  * Eulerian, Lagrangian or domain-decomposed.  Writes fields.csv (and for
  * 2-D fields.vtk), exact.csv for Riemann problems, and summary.json to
- * the output directory.  Keys, units and defaults: docs/pgd.md. */
+ * the output directory; keys without effect are warned about on stderr.
+ * Keys, units and defaults: docs/pgd.md. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <math.h>
@@ -28,6 +29,7 @@ typedef struct {
   char method[16], output[512], kinds[64];
   size_t bx, by;
   int have_riemann, have_initial, have_ny, have_L[2], have_x0;
+  int n_origin, n_U, n_init_u;  /* numbers given (1: x only, 2: x y) */
   sb_pgd_riemann rp;
   double init_rho, init_u[2];
   /* inflow sections under construction */
@@ -156,7 +158,7 @@ static int handler(void *user, const char *sec, const char *key,
     }
     if (!strcmp(key, "origin")) {
       double o[2];
-      if (!pair(c, sec, key, v, o, NULL))
+      if (!pair(c, sec, key, v, o, &c->n_origin))
         return 0;
       p->origin[0] = o[0];
       p->origin[1] = o[1];
@@ -224,7 +226,7 @@ static int handler(void *user, const char *sec, const char *key,
     if (!strcmp(key, "rho"))
       return num(c, sec, key, v, &c->init_rho, 0, 1e300, "a density >= 0");
     if (!strcmp(key, "u"))
-      return pair(c, sec, key, v, c->init_u, NULL);
+      return pair(c, sec, key, v, c->init_u, &c->n_init_u);
     return fail(c, "[initial]: unknown key '%s' (rho, u)", key);
   }
   if (!strcmp(sec, "drag")) {
@@ -232,7 +234,7 @@ static int handler(void *user, const char *sec, const char *key,
       return num(c, sec, key, v, &p->tau, 1e-300, INFINITY,
                  "a time > 0 or inf (no drag)");
     if (!strcmp(key, "U"))
-      return pair(c, sec, key, v, p->ugas, NULL);
+      return pair(c, sec, key, v, p->ugas, &c->n_U);
     return fail(c, "[drag]: unknown key '%s' (tau, U)", key);
   }
   if (!strcmp(sec, "boundary")) {
@@ -354,6 +356,66 @@ static int section_fn(void *user, const char *sec, const char *where)
   return 1;
 }
 
+/* ------------------------------------------------ keys without effect */
+
+/* If cond: "pgd: warning: FILE:LINE: [sec] key ignored: why", when key was
+ * read (the format of `smolbridge collide`). */
+static void unused(const config *c, int cond, const char *sec,
+                   const char *key, const char *why)
+{
+  if (cond)
+    sbc_ini_unused(&c->once, "pgd", sec, key, why);
+}
+
+/* A key "x [y]" read with its y value (n = 2) in 1-D. */
+static void unused_y(const config *c, int n, const char *sec,
+                     const char *key)
+{
+  const char *w = sbc_ini_where(&c->once, sec, key);
+  if (w && n == 2)
+    sbc_ini_warn("pgd", w, "[%s] %s ignored in y: dim = 1 (the x value is "
+                 "used)", sec, key);
+}
+
+/* Warn about the keys read that have no effect in this configuration
+ * (the run goes on; docs/pgd.md §9). */
+static void warn_unused(const config *c)
+{
+  const int dim = c->p.dim ? c->p.dim : 1;
+  const int euler = !strcmp(c->method, "euler"),
+            dd = !strcmp(c->method, "decomposition");
+  const int drag = !isinf(c->p.tau);
+  char why[128];
+  if (dim == 1) {
+    unused(c, 1, "run", "ny", "dim = 1 (one row of cells)");
+    unused(c, 1, "run", "Ly", "dim = 1 (the domain is L or Lx, along x)");
+    unused(c, 1, "boundary", "south", "dim = 1 (only west and east)");
+    unused(c, 1, "boundary", "north", "dim = 1 (only west and east)");
+    unused_y(c, c->n_origin, "run", "origin");
+    unused_y(c, c->n_init_u, "initial", "u");
+    if (drag)
+      unused_y(c, c->n_U, "drag", "U");
+  }
+  unused(c, !drag, "drag", "U", "no drag (tau = inf, the default)");
+  unused(c, !strcmp(c->method, "lagrange"), "run", "scheme",
+         "method = lagrange (the scheme is the Eulerian solver's)");
+  snprintf(why, sizeof why, "method = %s starts empty (inflows only)",
+           c->method);
+  unused(c, !euler && !(c->init_rho > 0), "initial", "rho", why);
+  unused(c, !euler && !(c->init_rho > 0), "initial", "u", why);
+  if (euler)
+    sbc_ini_section_unused(&c->once, "pgd", "particles", NULL,
+                           "method = euler has no particles");
+  else if (dd && c->kinds[0] && !strchr(c->kinds, 'L'))
+    sbc_ini_section_unused(&c->once, "pgd", "particles", NULL,
+                           "[decomposition] kinds has no L block (no "
+                           "particles)");
+  snprintf(why, sizeof why, "method = %s (blocks are for method = "
+           "decomposition)", c->method);
+  if (!dd)
+    sbc_ini_section_unused(&c->once, "pgd", "decomposition", NULL, why);
+}
+
 /* ------------------------------------------------------------ helpers */
 
 /* Remove the files a previous run may have left (ours only). */
@@ -440,7 +502,8 @@ static void usage(FILE *f)
 "Writes OUTPUT/fields.csv (x,rho,u in 1-D; x,y,rho,ux,uy in 2-D),\n"
 "fields.vtk (2-D), exact.csv (Riemann problems), summary.json, and\n"
 "fields_NNNNN.csv every output_every.  Keys, units, defaults:\n"
-"docs/pgd.md; examples: examples/pgd_*.ini.\n"
+"docs/pgd.md; examples: examples/pgd_*.ini.  Keys without effect in\n"
+"the configuration are warned about on stderr.\n"
 "Exit status: 0 done, 1 the run failed, 2 usage or input error.\n");
 }
 
@@ -493,6 +556,8 @@ int sbc_pgd_main(int argc, char **argv)
            "L, or Lx and Ly", d ? "Ly" : "Lx", wl);
     }
   }
+  if (!c.err[0] && !rst && rank == 0)
+    warn_unused(&c);
   sbc_ini_once_free(&c.once);
   if (c.err[0] || (rst && !err[0])) {
     fprintf(stderr, "pgd: %s: %s\n", c.err_where, c.err[0] ? c.err :

@@ -1,8 +1,9 @@
 #!/bin/sh
 # `smolbridge pgd`: the example INI files run and give the right answers
-# (checked here against the closed forms, computed independently in awk),
-# input errors give file:line, the key and the valid values with exit
-# status 2, and a new run does not leave a previous run's files behind.
+# (checked here against the closed forms, computed independently in awk)
+# without warnings, input errors give file:line, the key and the valid
+# values with exit status 2, keys without effect a warning, and a new run
+# does not leave a previous run's files behind.
 set -u
 sb="${top_builddir:-.}/smolbridge"
 src="${srcdir:-.}"
@@ -85,14 +86,82 @@ if run_example pgd_crossing_jets.ini jetsL -e 's|^method = .*|method = lagrange|
     || fail "Lagrangian jets do not cross"
   grep -q '"particles"' "$out/jetsL/summary.json" || fail "particle count"
 fi
-# --- decomposition (Lagrangian centre block): the mass budget closes
-if run_example pgd_crossing_jets.ini jetsD -e 's|^method = .*|method = decomposition|'; then
+# --- decomposition (Lagrangian centre block, the section of the
+# example's comment): the mass budget closes
+if run_example pgd_crossing_jets.ini jetsD -e 's|^method = .*|method = decomposition|' \
+    -e '$s|$|\n[decomposition]\nblocks = 3 3\nkinds = EEEELEEEE|'; then
   awk '/"mass"/ { gsub(/[,]/, ""); m = $2 }
        /"inflow"/ { gsub(/[][,]/, " "); i = $2 }
        /"outflow"/ { gsub(/[][,]/, " "); o = $2 }
        END { d = m - (i - o); if (d < 0) d = -d; exit !(d < 1e-13) }' \
     "$out/jetsD/summary.json" || fail "decomposition mass budget"
 fi
+
+# --- the examples (and the decomposition above) warn about nothing
+for name in delta vacuum jets jetsD; do
+  grep warning "$out/$name.log" && fail "$name: a warning"
+done
+
+# --- keys that have no effect in the configuration: a warning naming the
+# file, line, section and key (as collide), the exit status unchanged;
+# none where the key matters
+unused() {  # unused NAME WANT INI-LINES...: WANT after "FILE:" ("": none)
+  name=$1; want=$2; shift 2
+  printf '%s\n' "$@" > "$out/w.ini"
+  msg=$("$sb" pgd "$out/w.ini" 2>&1 >/dev/null)
+  rc=$?
+  [ $rc -eq 0 ] || fail "$name: exit $rc, want 0: $msg"
+  if [ -n "$want" ]; then
+    case "$msg" in *"pgd: warning: $out/w.ini:$want"*) ;;
+      *) fail "$name: no warning '$want' in: $msg" ;; esac
+  else
+    case "$msg" in *warning*) fail "$name: unexpected warning: $msg" ;; esac
+  fi
+}
+r1="[run]
+nx = 10
+t_end = 0.01
+output = $out/w"                               # lines 1-4, 1-D
+r2="[run]
+dim = 2
+nx = 6
+t_end = 0.01
+output = $out/w"                               # lines 1-5, 2-D
+rp="[riemann]
+rho_l = 1"
+unused "1-D ny" "5: [run] ny ignored: dim = 1" "$r1" "ny = 5" "$rp"
+unused "2-D ny" "" "$r2" "ny = 4"
+unused "1-D Ly" "5: [run] Ly ignored: dim = 1" "$r1" "Ly = 2" "$rp"
+unused "2-D Ly" "" "$r2" "Ly = 2"
+unused "1-D origin y" "5: [run] origin ignored in y: dim = 1" "$r1" "origin = 0 3" "$rp"
+unused "1-D origin x" "" "$r1" "origin = 0.5" "$rp"
+unused "2-D origin" "" "$r2" "origin = 0 3"
+unused "1-D south" "8: [boundary] south ignored: dim = 1" "$r1" "$rp" "[boundary]" "south = outflow"
+unused "1-D north" "8: [boundary] north ignored: dim = 1" "$r1" "$rp" "[boundary]" "north = outflow"
+unused "1-D west" "" "$r1" "$rp" "[boundary]" "west = outflow"
+unused "2-D south" "" "$r2" "[boundary]" "south = outflow"
+unused "1-D drag U y" "9: [drag] U ignored in y: dim = 1" "$r1" "$rp" "[drag]" "tau = 1" "U = 0.5 2"
+unused "1-D drag U x" "" "$r1" "$rp" "[drag]" "tau = 1" "U = 0.5"
+unused "2-D drag U" "" "$r2" "[drag]" "tau = 1" "U = 0.5 2"
+unused "U without drag" "8: [drag] U ignored: no drag" "$r1" "$rp" "[drag]" "U = 0.5"
+unused "U with tau = inf" "9: [drag] U ignored: no drag" "$r1" "$rp" "[drag]" "tau = inf" "U = 0.5"
+unused "1-D initial u y" "7: [initial] u ignored in y: dim = 1" "$r1" "[initial]" "rho = 1" "u = 1 2"
+unused "2-D initial u" "" "$r2" "[initial]" "rho = 1" "u = 1 2"
+unused "[particles] with euler" "7: [particles] inject_time ignored: method = euler has no particles" \
+  "$r2" "[particles]" "inject_time = 3"
+unused "[particles] with lagrange" "" "$r2" "method = lagrange" "[particles]" "inject_time = 3"
+unused "[particles], no L block" "11: [particles] inject_face ignored: [decomposition] kinds has no L block" \
+  "$r2" "method = decomposition" "[decomposition]" "blocks = 2 2" "kinds = EEEE" "[particles]" "inject_face = 3"
+unused "[particles], an L block" "" \
+  "$r2" "method = decomposition" "[decomposition]" "blocks = 2 2" "kinds = EELE" "[particles]" "inject_face = 3"
+unused "[decomposition] with euler" "7: [decomposition] blocks ignored: method = euler" \
+  "$r2" "[decomposition]" "blocks = 2 2"
+unused "[decomposition] with lagrange" "9: [decomposition] kinds ignored: method = lagrange" \
+  "$r2" "method = lagrange" "[decomposition]" "blocks = 2 2" "kinds = EELE"
+unused "scheme with lagrange" "7: [run] scheme ignored: method = lagrange" "$r2" "method = lagrange" "scheme = upwind"
+unused "scheme with euler" "" "$r2" "scheme = muscl"
+unused "[initial] with lagrange" "8: [initial] rho ignored: method = lagrange starts empty" \
+  "$r2" "method = lagrange" "[initial]" "rho = 0"
 
 # --- a previous run's snapshots do not survive a new run
 run_example pgd_vacuum.ini snaps -e 's|^t_end = .*|t_end = 0.2\noutput_every = 0.05|'
