@@ -426,8 +426,15 @@ static int section_fn(void *user, const char *sec, const char *where)
 {
   config *c = user;
   char msg[1400];
-  if (!sbc_ini_once(&c->once, sec, NULL, where, msg, sizeof msg))
+  if (!sbc_ini_once(&c->once, sec, NULL, where, msg, sizeof msg)) {
+    /* the section's presence enables its model (docs/spray.md), also
+     * with no key in it; enable = 0 anywhere in it turns it off */
+    if (!strcmp(sec, "tab"))
+      c->tab = !c->tab_off;
+    if (!strcmp(sec, "reitz"))
+      c->reitz = !c->reitz_off;
     return 0;
+  }
   if (!c->nerr)
     snprintf(c->err_where, sizeof c->err_where, "%s", where);
   fail(c, "%s", msg);

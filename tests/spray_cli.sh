@@ -181,6 +181,18 @@ if "$sb" spray "$out/brk0.ini" 2>/dev/null; then
 else
   fail "spray $out/brk0.ini failed"
 fi
+# a bare [reitz] header enables Reitz breakup with its defaults (the
+# model used to be switched on only by a key in the section)
+sed "s|^output = .*|output = $out/brk1|; /^B0 = /d; /^B1 = /d; /^child_tag = /d; /^emit_fraction = /d" \
+  "$ex/spray_breakup.ini" > "$out/brk1.ini"
+grep -A1 '^\[reitz\]' "$out/brk1.ini" | grep -q '^\[droplets\|^$' \
+  || fail "brk1.ini: [reitz] not bare"
+if "$sb" spray "$out/brk1.ini" 2>/dev/null; then
+  grep -q '"reitz_children": 0$' "$out/brk1/summary.json" \
+    && fail "a bare [reitz] section: Reitz did not run"
+else
+  fail "spray $out/brk1.ini failed"
+fi
 rm -rf "$out"
 [ "$fails" -eq 0 ] && echo "spray cli: all checks passed"
 exit $((fails > 0))
