@@ -9,7 +9,8 @@
 # agglomeration context (DLVO sticking, whose draws come from the
 # engine's generator), both random fields, and a bridge detector's
 # counters with the turbulent split of its collisions; and the points of
-# a sweep each write their own checkpoint.
+# a sweep each write their own checkpoint; and a restart changes the
+# walls' settings and the Lees-Edwards images only where its file says so.
 set -u
 sb="${top_builddir:-.}/smolbridge"
 ex="${srcdir:-.}/examples"
@@ -249,6 +250,93 @@ EOF
 split turb "$out/turb.ini" run.steps=20 run.steps=20 &&
   same turb bridge.collisions bridge.detections bridge.brownian_share~1e-9 \
     bridge.collisions\>1000
+
+# a restart changes the checkpoint's boundaries only where its file says
+# so: the faces given replace its walls; without [walls] detect and deposit it keeps the checkpoint's wall
+# detector and deposition outcome (the run in one go, bit for bit), one
+# of the two alone sets the other to its default, with a warning unless
+# the faces make it inert (the engine sets them together); [fluid]
+# lees_edwards = no switches the checkpoint's Lees-Edwards images off,
+# with [fluid] type = shear given or without [fluid] type, and another
+# type given leaves none
+cat > "$out/walls.ini" <<EOF
+[run]
+seed = 4
+L = 2e-5
+dt = 1e-6
+steps = 400
+detect = ballistic
+outcome = count
+[walls]
+z_lo = absorb
+z_hi = absorb
+[species a]
+radius = 5e-7
+density = 1000
+mu = 1.8e-5
+T = 300
+count = 2000
+EOF
+wset="--set walls.detect=ballistic --set walls.deposit=reinsert"
+# shellcheck disable=SC2086  # $wset: two options
+if "$sb" collide "$out/walls.ini" $wset --set "run.output=$out/walls_0" \
+     > /dev/null 2>&1 &&
+   "$sb" collide "$out/walls.ini" $wset --set "run.output=$out/walls_1" \
+     --set run.steps=200 --set "run.checkpoint=$out/walls.ck" \
+     > /dev/null 2>&1 &&
+   "$sb" collide "$out/walls.ini" --set "run.output=$out/walls_2" \
+     --set run.steps=200 --set "run.restart=$out/walls.ck" > /dev/null 2>&1
+then
+  same walls collisions particles deposits deposits.5\>0
+else
+  fail "walls: the run in one go, its first part or the restart"
+fi
+"$sb" collide "$out/walls.ini" --set "run.output=$out/walls_3" \
+  --set walls.deposit=remove --set "run.restart=$out/walls.ck" \
+  > "$out/bad.log" 2>&1 || fail "walls: the restart with [walls] deposit"
+grep -q "deposit with restart but no detect: the checkpoint's wall detector is replaced by detect = bridge" \
+  "$out/bad.log" || fail "walls: no warning with [walls] deposit alone"
+"$sb" collide "$out/walls.ini" --set "run.output=$out/walls_3" \
+  --set walls.z_lo=open --set walls.z_hi=open --set walls.detect=ballistic \
+  --set "run.restart=$out/walls.ck" > "$out/bad.log" 2>&1 ||
+  fail "walls: the restart with open faces"
+! grep -q "with restart but no" "$out/bad.log" ||
+  fail "walls: a warning about deposit without absorbing faces"
+# periodic faces given replace the checkpoint's walls: no more deposits
+"$sb" collide "$out/walls.ini" --set "run.output=$out/walls_4" \
+  --set walls.z_lo=periodic --set walls.z_hi=periodic \
+  --set run.steps=200 --set "run.restart=$out/walls.ck" > /dev/null 2>&1 &&
+  "$py" - "$out/walls_1/summary.json" "$out/walls_4/summary.json" <<'PY' ||
+import json, sys
+a, b = (json.load(open(p))["deposits"] for p in sys.argv[1:3])
+sys.exit(0 if a == b and sum(a) > 0 else 1)
+PY
+  fail "walls: z_lo, z_hi = periodic did not remove the checkpoint's walls"
+if "$sb" collide "$out/walls.ini" --set "run.output=$out/lees_1" \
+     --set run.steps=20 --set walls.z_lo=periodic --set walls.z_hi=periodic \
+     --set fluid.type=shear --set fluid.G=1e4 \
+     --set "run.checkpoint=$out/lees.ck" > /dev/null 2>&1; then
+  for how in "fluid.type=shear --set fluid.G=1e4 --set fluid.lees_edwards=no" \
+             "fluid.lees_edwards=no" "fluid.type=rest" \
+             "fluid.lees_edwards=yes"; do
+    # shellcheck disable=SC2086  # $how: one or more --set options
+    "$sb" collide "$out/walls.ini" --set run.steps=20 --set $how \
+      --set walls.z_lo=periodic --set walls.z_hi=periodic \
+      --set "run.output=$out/lees_2" --set "run.restart=$out/lees.ck" \
+      > /dev/null 2>&1 || { fail "lees: the restart with $how"; continue; }
+    "$py" - "$out/lees_1/summary.json" "$out/lees_2/summary.json" "$how" <<'PY' ||
+import json, sys
+a, b = (json.load(open(p))["lees_edwards_offset"] for p in sys.argv[1:3])
+# on: the offset G L_y t (mod L_x) at twice the first part's end
+want = 2 * a if sys.argv[3].endswith("=yes") else 0.0
+sys.exit(0 if a > 0 and abs(b - want) <= 1e-9 * a else 1)
+PY
+      fail "lees: the restart with $how: $(grep -o \
+        '"lees_edwards_offset": [^,]*' "$out/lees_2/summary.json")"
+  done
+else
+  fail "lees: the first part"
+fi
 
 # a sweep whose base configuration writes a checkpoint: every point writes
 # its own, in its directory (one file for all would hold the last point's

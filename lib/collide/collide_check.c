@@ -210,7 +210,10 @@ static int check_walls(sbi_col_config *c)
  * run) and may hold walls the file does not name. */
 static void check_inert(sbi_col_config *c)
 {
-  if (strcmp(c->fluid, "shear"))
+  /* on restart without [fluid] type it applies to the checkpoint's
+   * field (collide_setup.c) */
+  if (strcmp(c->fluid, "shear") &&
+      (!c->restart[0] || sbi_col_given(c, "fluid", "type")))
     unused(c, "fluid", "lees_edwards", "only type = shear uses it");
   if (c->restart[0]) {
     const char *why = "the fluid properties and drag laws come from the "

@@ -259,6 +259,36 @@ static int check_explicit(sbi_col_config *c)
   return 0;
 }
 
+/* On restart with one of [walls] detect and deposit: the engine sets the
+ * two together and cannot report the checkpoint's, so the other one
+ * (key) takes the file's value, its default; a warning says so unless
+ * the file's faces show that it does nothing (every walled direction
+ * given, no absorbing face for deposit, no absorbing or open one for
+ * detect). */
+static void restart_wall_mode_warn(sbi_col_config *c, const sbi_col_run *r,
+                                   const char *key)
+{
+  static const char *const faces[] = {"x_lo", "x_hi", "y_lo", "y_hi",
+                                      "z_lo", "z_hi"};
+  const int detect = !strcmp(key, "detect");
+  int inert = 1;
+  for (int k = 0; k < c->dim; k++) {
+    if (!sbi_col_given(c, "walls", faces[2 * k]) &&
+        !sbi_col_given(c, "walls", faces[2 * k + 1]))
+      inert &= sb_engine_periodic(r->e, k);  /* the checkpoint's walls */
+    for (int q = 2 * k; q < 2 * k + 2; q++)
+      inert &= strcmp(c->wall[q], "absorb") &&
+               (!detect || strcmp(c->wall[q], "open"));
+  }
+  if (!inert)
+    sbi_col_warn(c, "%s: [walls] %s with restart but no %s: the checkpoint's "
+                 "%s is replaced by %s = %s, the default (the two are set "
+                 "together); give %s to choose", sbi_col_where(c, "walls",
+                 detect ? "deposit" : "detect"), detect ? "deposit" : "detect",
+                 key, detect ? "wall detector" : "deposition outcome", key,
+                 detect ? c->wall_detect : c->deposit, key);
+}
+
 /* Lees-Edwards images, gravity, per-species fluid properties and drag
  * laws, walls (docs/engine_forces.md); before the placement, whose
  * velocities include the settling velocities. */
@@ -266,9 +296,23 @@ static int setup_physics(sbi_col_config *c, sbi_col_run *r)
 {
   static const char *const faces[] = {"x_lo", "x_hi", "y_lo", "y_hi",
                                       "z_lo", "z_hi"};
-  if (!strcmp(c->fluid, "shear") && c->lees &&
-      sb_engine_set_lees_edwards(r->e, 1))
-    return sbi_col_fail(c, "[fluid] lees_edwards: %s", sb_last_error());
+  /* Lees-Edwards images: a new run has them with type = shear unless
+   * lees_edwards = no; a restart keeps the checkpoint's unless the file
+   * gives lees_edwards (which then applies to the checkpoint's field) or
+   * [fluid] type (the fluid set afresh, as for a new run: off with any
+   * other type than shear) */
+  const int fluid_given = sbi_col_given(c, "fluid", "type");
+  if (!c->restart[0] || fluid_given ||
+      sbi_col_given(c, "fluid", "lees_edwards")) {
+    const int on = c->lees && (!strcmp(c->fluid, "shear") ||
+                               (c->restart[0] && !fluid_given));
+    if (sb_engine_set_lees_edwards(r->e, on))
+      return sbi_col_fail(c, "%s: [fluid] lees_edwards = %s: %s",
+                          sbi_col_given(c, "fluid", "lees_edwards")
+                              ? sbi_col_where(c, "fluid", "lees_edwards")
+                              : sbi_col_where(c, "fluid", "type"),
+                          on ? "yes" : "no", sb_last_error());
+  }
   if (c->ng) {
     double g[3] = {0, 0, 0};
     memcpy(g, c->g, (size_t)c->ng * sizeof(double));
@@ -295,7 +339,12 @@ static int setup_physics(sbi_col_config *c, sbi_col_run *r)
              : !strcmp(c->wall[2 * k + q], "absorb") ? SB_WALL_ABSORB
              : !strcmp(c->wall[2 * k + q], "open")   ? SB_WALL_OPEN
                                                      : SB_WALL_PERIODIC;
-    if ((w[0] != SB_WALL_PERIODIC || w[1] != SB_WALL_PERIODIC) &&
+    /* a restart keeps the checkpoint's walls of a direction whose faces
+     * the file does not give */
+    const int given = sbi_col_given(c, "walls", faces[2 * k]) ||
+                      sbi_col_given(c, "walls", faces[2 * k + 1]);
+    if ((w[0] != SB_WALL_PERIODIC || w[1] != SB_WALL_PERIODIC ||
+         (c->restart[0] && given)) &&
         sb_engine_set_walls(r->e, k, w[0], w[1])) {
       /* sbi_col_check refuses what it can see; on restart the
        * checkpoint's Lees-Edwards boundaries */
@@ -306,7 +355,14 @@ static int setup_physics(sbi_col_config *c, sbi_col_run *r)
                           c->wall[2 * k + 1], sb_last_error());
     }
   }
-  if (sb_engine_set_wall_mode(r->e,
+  /* a restart keeps the checkpoint's wall detector and deposition
+   * outcome unless the file gives one of them */
+  const int det = sbi_col_given(c, "walls", "detect"),
+            dep = sbi_col_given(c, "walls", "deposit");
+  if (c->restart[0] && det != dep)
+    restart_wall_mode_warn(c, r, det ? "deposit" : "detect");
+  if ((!c->restart[0] || det || dep) &&
+      sb_engine_set_wall_mode(r->e,
                               !strcmp(c->wall_detect, "ballistic")
                                   ? SB_WALLDET_BALLISTIC
                               : !strcmp(c->wall_detect, "langevin")
