@@ -50,7 +50,8 @@ static void usage(FILE *out)
 "nu 1.004e-6), rho_p 1000, lambda 0, g 9.80665, G 1, eps 1e-4, u2 1,\n"
 "b2 1e-12.\n"
 "Physical kernels take volumes in m^3 (radius (3v/4pi)^(1/3)).  A\n"
-"--param the kernel does not use is ignored with a warning.\n"
+"--param the kernel does not use is ignored with a warning; one given\n"
+"twice is an error.\n"
 "\n"
 "Options:\n"
 "  --v1 V1       monomer volume / smallest pivot (default 1)\n"
@@ -322,6 +323,10 @@ int sbc_pbe_main(int argc, char **argv)
       BAD("--param needs KEY=VALUE, got '%s'", params[i]);
     memcpy(key, params[i], (size_t)(eq - params[i]));
     key[eq - params[i]] = '\0';
+    for (int j = 0; j < i; j++)  /* as a key given twice in an INI file */
+      if (!strncmp(params[j], params[i], (size_t)(eq - params[i]) + 1))
+        BAD("--param %s given twice (%s, then %s); give each parameter "
+            "once", key, params[j], params[i]);
     if (parse_num(eq + 1, &x))
       BAD("--param %s: '%s' is not a finite number", params[i], eq + 1);
     if (sb_kernel_spec_set(&spec, key, x))

@@ -180,6 +180,14 @@ rc=$?
 [ $rc -eq 2 ] || fail "pbe --n0 1e300 --param K=1e10: exit $rc, want 2: $msg"
 case "$msg" in *"--n0 1e+300: the collision rate n0 K(V1, V1) = inf"*) ;;
   *) fail "pbe --n0 1e300 message: $msg" ;; esac
+# a --param key given twice is an input error naming the key (as a key
+# given twice in an INI file), not the last value taken silently
+msg=$("$sb" pbe -q --kernel brownian-co --param T=300 --param mu=1e-3 \
+        --param T=310 --n0 1 --sizes 10 --times 1 --out "$out-p.csv" 2>&1)
+rc=$?
+[ $rc -eq 2 ] || fail "pbe --param T twice: exit $rc, want 2: $msg"
+case "$msg" in *"--param T given twice (T=300, then T=310)"*) ;;
+  *) fail "pbe --param T twice: message: $msg" ;; esac
 # the tail warning again when its share has grown tenfold (additive
 # kernel, 60 sizes: 0.125% at t = 1, all but 0.03% at t = 10)
 nw=$("$sb" pbe -q --kernel additive --n0 1 --sizes 60 --times 0.1,1,10 \
