@@ -8,6 +8,8 @@ set -u
 sb="${top_builddir:-.}/smolbridge"
 src="${srcdir:-.}"
 out="${top_builddir:-.}/tests/pgd-cli-out"
+# shellcheck source=tests/cli_common.sh
+. "$src/tests/cli_common.sh"
 rm -rf "$out"
 mkdir -p "$out"
 fails=0
@@ -108,15 +110,7 @@ done
 unused() {  # unused NAME WANT INI-LINES...: WANT after "FILE:" ("": none)
   name=$1; want=$2; shift 2
   printf '%s\n' "$@" > "$out/w.ini"
-  msg=$("$sb" pgd "$out/w.ini" 2>&1 >/dev/null)
-  rc=$?
-  [ $rc -eq 0 ] || fail "$name: exit $rc, want 0: $msg"
-  if [ -n "$want" ]; then
-    case "$msg" in *"pgd: warning: $out/w.ini:$want"*) ;;
-      *) fail "$name: no warning '$want' in: $msg" ;; esac
-  else
-    case "$msg" in *warning*) fail "$name: unexpected warning: $msg" ;; esac
-  fi
+  warned pgd "$name" "$want"
 }
 r1="[run]
 nx = 10

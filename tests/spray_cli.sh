@@ -15,6 +15,8 @@ expect_rc() {  # expect_rc RC CMD...
   got=$?
   [ "$got" -eq "$want" ] || fail "'$*' exited $got, want $want"
 }
+# shellcheck source=tests/cli_common.sh
+. "${srcdir:-.}/tests/cli_common.sh"
 rm -rf "$out"
 mkdir -p "$out"
 
@@ -69,15 +71,7 @@ base="[run]\nvolume = 1\ndt = 1e-3\nsteps = 1\noutput = $out/w\n"  # lines 1-5
 drops='[droplets a]\ncount = 10\nradius = 1e-5\n'              # lines 6-8
 unused() {  # unused NAME WANT INI: WANT after "FILE:" ("": no warning)
   printf "$3" > "$out/w.ini"
-  msg=$("$sb" spray "$out/w.ini" 2>&1 >/dev/null)
-  rc=$?
-  [ $rc -eq 0 ] || fail "$1: exit $rc, want 0: $msg"
-  if [ -n "$2" ]; then
-    case "$msg" in *"spray: warning: $out/w.ini:$2"*) ;;
-      *) fail "$1: no warning '$2' in: $msg" ;; esac
-  else
-    case "$msg" in *warning*) fail "$1: unexpected warning: $msg" ;; esac
-  fi
+  warned spray "$1" "$2"
 }
 unused "B0 with hard spheres" "6: [run] B0 ignored: cross = hard-sphere" \
   "${base}B0 = 1e-4\n$drops"
