@@ -78,27 +78,47 @@ void sbc_ini_once_free(sbc_ini_keys *o)
   o->n = o->cap = 0;
 }
 
-void sbc_ini_warn(const char *cmd, const char *where, const char *fmt, ...)
+void sbc_ini_warn(sbc_ini_keys *o, const char *cmd, const char *where,
+                  const char *fmt, ...)
 {
+  char msg[sizeof o->warn[0] - 112];  /* room for where */
   va_list ap;
-  fprintf(stderr, "%s: warning: %s: ", cmd, where);
   va_start(ap, fmt);
-  vfprintf(stderr, fmt, ap);
+  vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
-  fputc('\n', stderr);
+  fprintf(stderr, "%s: warning: %s: %s\n", cmd, where, msg);
+  if (o->nwarn < SBC_INI_MAXWARN)
+    snprintf(o->warn[o->nwarn++], sizeof o->warn[0], "%s: %s", where, msg);
 }
 
-int sbc_ini_unused(const sbc_ini_keys *o, const char *cmd, const char *sec,
+int sbc_ini_unused(sbc_ini_keys *o, const char *cmd, const char *sec,
                    const char *key, const char *why)
 {
   const char *w = sbc_ini_where(o, sec, key);
   if (!w)
     return 0;
-  sbc_ini_warn(cmd, w, "[%s] %s ignored: %s", sec, key, why);
+  sbc_ini_warn(o, cmd, w, "[%s] %s ignored: %s", sec, key, why);
   return 1;
 }
 
-int sbc_ini_section_unused(const sbc_ini_keys *o, const char *cmd,
+void sbc_ini_json_warnings(FILE *f, const sbc_ini_keys *o)
+{
+  fputs("\"warnings\": [", f);
+  for (size_t i = 0; i < o->nwarn; i++) {
+    fputs(i ? ", \"" : "\"", f);
+    for (const unsigned char *p = (const unsigned char *)o->warn[i]; *p; p++)
+      if (*p == '"' || *p == '\\')
+        fprintf(f, "\\%c", *p);
+      else if (*p < 0x20)
+        fprintf(f, "\\u%04x", *p);
+      else
+        fputc(*p, f);
+    fputc('"', f);
+  }
+  fputc(']', f);
+}
+
+int sbc_ini_section_unused(sbc_ini_keys *o, const char *cmd,
                            const char *sec, const char *keep,
                            const char *why)
 {
@@ -107,7 +127,7 @@ int sbc_ini_section_unused(const sbc_ini_keys *o, const char *cmd,
     const struct sbc_ini_seen *e = &o->e[i];
     if (!e->key || strcmp(e->sec, sec) || (keep && !strcmp(e->key, keep)))
       continue;
-    sbc_ini_warn(cmd, e->where, "[%s] %s ignored: %s", sec, e->key, why);
+    sbc_ini_warn(o, cmd, e->where, "[%s] %s ignored: %s", sec, e->key, why);
     n++;
   }
   return n;

@@ -9,12 +9,19 @@
 #define SB_CLI_INI_ONCE_H
 
 #include <stddef.h>
+#include <stdio.h>
+
+#define SBC_INI_MAXWARN 64
 
 typedef struct {
   struct sbc_ini_seen {
     char *sec, *key, *where;  /* key NULL: a section header */
   } *e;
   size_t n, cap;
+  /* the warnings given, "FILE:LINE: MESSAGE" (the first SBC_INI_MAXWARN;
+   * kept by sbc_ini_once_free) for summary.json, as collide lists its */
+  char warn[SBC_INI_MAXWARN][512];
+  size_t nwarn;
 } sbc_ini_keys;
 
 /* Record key (NULL: the header of section sec) read at where
@@ -30,20 +37,26 @@ const char *sbc_ini_where(const sbc_ini_keys *o, const char *sec,
 void sbc_ini_once_free(sbc_ini_keys *o);
 
 /* "CMD: warning: WHERE: MESSAGE" on stderr: a key without effect (the
- * run goes on, its exit status unchanged). */
-void sbc_ini_warn(const char *cmd, const char *where, const char *fmt, ...)
+ * run goes on, its exit status unchanged); "WHERE: MESSAGE" recorded in
+ * o's warnings. */
+void sbc_ini_warn(sbc_ini_keys *o, const char *cmd, const char *where,
+                  const char *fmt, ...)
 #if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
+    __attribute__((format(printf, 4, 5)))
 #endif
     ;
 /* If key of section sec was read: "CMD: warning: FILE:LINE: [sec] key
  * ignored: why" (the format of `smolbridge collide`); 1 if it warned. */
-int sbc_ini_unused(const sbc_ini_keys *o, const char *cmd, const char *sec,
+int sbc_ini_unused(sbc_ini_keys *o, const char *cmd, const char *sec,
                    const char *key, const char *why);
 /* The same for every key read in section sec but `keep` (may be NULL);
  * the number of warnings. */
-int sbc_ini_section_unused(const sbc_ini_keys *o, const char *cmd,
+int sbc_ini_section_unused(sbc_ini_keys *o, const char *cmd,
                            const char *sec, const char *keep,
                            const char *why);
+
+/* The member of summary.json that lists them, as `smolbridge collide`
+ * writes it: "warnings": ["FILE:LINE: MESSAGE", ...] (no newline). */
+void sbc_ini_json_warnings(FILE *f, const sbc_ini_keys *o);
 
 #endif /* SB_CLI_INI_ONCE_H */

@@ -360,7 +360,7 @@ static int section_fn(void *user, const char *sec, const char *where)
 
 /* If cond: "pgd: warning: FILE:LINE: [sec] key ignored: why", when key was
  * read (the format of `smolbridge collide`). */
-static void unused(const config *c, int cond, const char *sec,
+static void unused(config *c, int cond, const char *sec,
                    const char *key, const char *why)
 {
   if (cond)
@@ -368,18 +368,18 @@ static void unused(const config *c, int cond, const char *sec,
 }
 
 /* A key "x [y]" read with its y value (n = 2) in 1-D. */
-static void unused_y(const config *c, int n, const char *sec,
+static void unused_y(config *c, int n, const char *sec,
                      const char *key)
 {
   const char *w = sbc_ini_where(&c->once, sec, key);
   if (w && n == 2)
-    sbc_ini_warn("pgd", w, "[%s] %s ignored in y: dim = 1 (the x value is "
+    sbc_ini_warn(&c->once, "pgd", w, "[%s] %s ignored in y: dim = 1 (the x value is "
                  "used)", sec, key);
 }
 
 /* Warn about the keys read that have no effect in this configuration
  * (the run goes on; docs/pgd.md §9). */
-static void warn_unused(const config *c)
+static void warn_unused(config *c)
 {
   const int dim = c->p.dim ? c->p.dim : 1;
   const int euler = !strcmp(c->method, "euler"),
@@ -812,6 +812,9 @@ int sbc_pgd_main(int argc, char **argv)
           "  \"steps\": %zu,\n  \"cpu_seconds\": %.3f,\n", sb_version(),
           p->dim, p->nx, p->ny, c.method, sb_pgd_scheme_name(p->scheme),
           c.t_end, nsteps, secs);
+  fprintf(js, "  ");
+  sbc_ini_json_warnings(js, &c.once);
+  fprintf(js, ",\n");
   fprintf(js, "  \"mass\": %.17g,\n  \"momentum\": [%.17g, %.17g],\n"
           "  \"inflow\": [%.17g, %.17g, %.17g],\n"
           "  \"outflow\": [%.17g, %.17g, %.17g]", tot[0], tot[1], tot[2],

@@ -452,7 +452,7 @@ static sb_spray_children children_of(const char *w)
 
 /* If cond: "spray: warning: FILE:LINE: [sec] key ignored: why", when key
  * was read (the format of `smolbridge collide`). */
-static void unused(const config *c, int cond, const char *sec,
+static void unused(config *c, int cond, const char *sec,
                    const char *key, const char *why)
 {
   if (cond)
@@ -461,7 +461,7 @@ static void unused(const config *c, int cond, const char *sec,
 
 /* Warn about the keys read that have no effect in this configuration
  * (the run goes on; docs/spray.md §8). */
-static void warn_unused(const config *c)
+static void warn_unused(config *c)
 {
   const int orourke = !strcmp(c->coal, "orourke");
   const int merges = orourke || c->theta_cr > 0;
@@ -834,6 +834,8 @@ int sbc_spray_main(int argc, char **argv)
             c.select, c.cross, sp->volume, c.dt, sb_spray_time(s),
             sb_spray_count(s), t.number, ss.candidates, ss.bounces,
             ss.merges, ss.tab_breakups, ss.reitz_children);
+    fprintf(f, ",\n  ");
+    sbc_ini_json_warnings(f, &c.once);
     if (c.check_bkw)
       fprintf(f, ",\n  \"bkw\": {\"M4\": %.17g, \"M4_exact\": %.17g, "
               "\"worst_se\": %.6g, \"nse\": %.6g}", m4, ref, worst,

@@ -170,7 +170,7 @@ fi
 sed "s|^output = .*|output = $out/brk0|; s|^\[reitz\]|[reitz]\nenable = 0|" \
   "$ex/spray_breakup.ini" > "$out/brk0.ini"
 if "$sb" spray "$out/brk0.ini" 2>/dev/null; then
-  grep -q '"reitz_children": 0$' "$out/brk0/summary.json" \
+  grep -q '"reitz_children": 0,$' "$out/brk0/summary.json" \
     || fail "[reitz] enable = 0 first: Reitz ran"
 else
   fail "spray $out/brk0.ini failed"
