@@ -135,6 +135,14 @@ if "$sb" validate --resume --case 'V16/combined$' --out "$out-r" >/dev/null 2>&1
   [ "$(ls "$out-r/runs" | grep -c '\.run$')" -gt 0 ] || fail "--resume saved no run"
   cmp -s "$out-r.csv" "$out-r/validate.csv" || fail "--resume changed the records"
   grep -q "read back from the saved runs" "$out-r.err" || fail "--resume read no run"
+  # a saved run with a byte flipped is refused, saying so, and made again
+  r=$(ls "$out-r/runs"/*.run | head -n 1)
+  printf 'X' | dd of="$r" bs=1 seek=20 conv=notrunc 2>/dev/null
+  "$sb" validate --resume --case 'V16/combined$' --out "$out-r" >/dev/null 2>"$out-r.err" &&
+    cmp -s "$out-r.csv" "$out-r/validate.csv" ||
+    fail "--resume with a damaged saved run: another result"
+  grep -q "saved run refused, made again: .*'$r' is damaged" "$out-r.err" ||
+    fail "--resume: no word of the damaged saved run: $(grep -i refused "$out-r.err")"
 else
   fail "validate --resume failed"
 fi

@@ -3,9 +3,11 @@
  * .resume): a resumed case gives the records of a fresh one bit for bit,
  * really reads the saved runs (a doctored file changes the records), and
  * ignores files that are not for the run: resume off, another key, a
- * truncated file.  Two cases: V16/combined (Langevin first-hit runs) and
+ * truncated file; refuses a file that does not match the hash at its
+ * end, saying so, and still reads the files of version 1 (no hash).  Two cases: V16/combined (Langevin first-hit runs) and
  * V7/brownian-turb (bridge first-hit runs). */
 #include <dirent.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -48,9 +50,25 @@ static size_t ndiffer(const sb_comparison *a, const sb_comparison *b,
   return d;
 }
 
-enum { DOUBLE_VALUES, CHANGE_KEY, TRUNCATE };
+enum { DOUBLE_VALUES, CHANGE_KEY, TRUNCATE, FLIP, OLD_FORMAT };
 
-/* Edit every saved run in dir; returns the number of files. */
+/* FNV-1a, 64 bits (Fowler, Noll & Vo), written here again: the hash the
+ * saved runs end with (version 2). */
+static uint64_t fnv1a(const char *p, size_t n)
+{
+  uint64_t h = 0xcbf29ce484222325ULL;
+  for (size_t i = 0; i < n; i++) {
+    h ^= (unsigned char)p[i];
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
+
+/* Edit every saved run in dir; returns the number of files.  The files
+ * end with the hash of the text before it, which the edits write again
+ * (the edited file is whole), except FLIP: the text of DOUBLE_VALUES with
+ * the old hash (a damaged file); OLD_FORMAT: the text of DOUBLE_VALUES as
+ * version 1 wrote it (its magic line, no hash). */
 static size_t edit_saved(const char *dir, int how)
 {
   DIR *d = opendir(dir);
@@ -61,20 +79,38 @@ static size_t edit_saved(const char *dir, int how)
     size_t len = strlen(de->d_name);
     if (len < 5 || strcmp(de->d_name + len - 4, ".run"))
       continue;
-    char path[1024], line[4096];
-    snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
-    FILE *f = fopen(path, "r");
-    ck_assert_ptr_nonnull(f);
-    char *text = calloc(1, 1 << 22);
+    char path[1024], line[4096], *text = calloc(1, 1 << 22),
+                                 *in = calloc(1, 1 << 22);
     ck_assert_ptr_nonnull(text);
+    ck_assert_ptr_nonnull(in);
+    snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
+    FILE *f = fopen(path, "rb");
+    ck_assert_ptr_nonnull(f);
+    size_t nin = fread(in, 1, (1 << 22) - 1, f);
+    fclose(f);
+    ck_assert_uint_gt(nin, 17);
+    ck_assert_mem_eq(in, "SBVRUN02\n", 9);  /* the format written now */
+    uint64_t hash;
+    memcpy(&hash, in + nin - 8, 8);
+    ck_assert(hash == fnv1a(in, nin - 8));  /* a whole file */
+    in[nin - 8] = 0;
     size_t n = 0;
     int row = -1;  /* value lines after "vals=" */
-    while (fgets(line, sizeof line, f)) {
+    for (char *p = in, *q; *p; p = q) {
+      q = strchr(p, '\n');
+      ck_assert_ptr_nonnull(q);
+      q++;
+      ck_assert_uint_lt((size_t)(q - p), sizeof line);
+      memcpy(line, p, (size_t)(q - p));
+      line[q - p] = 0;
       if (how == TRUNCATE && strcmp(line, "end\n") == 0)
         continue;
       if (how == CHANGE_KEY && strncmp(line, "key=", 4) == 0)
         line[4] = 'X';
-      if (row >= 0 && row < 3 && how == DOUBLE_VALUES) {
+      if (how == OLD_FORMAT && p == in)
+        strcpy(line, "smolbridge-run 1\n");
+      if (row >= 0 && row < 3 &&
+          (how == DOUBLE_VALUES || how == FLIP || how == OLD_FORMAT)) {
         /* the first values are counts and kernels: doubling them
          * changes every estimate made from the run */
         double v = strtod(line, NULL);
@@ -89,16 +125,28 @@ static size_t edit_saved(const char *dir, int how)
       memcpy(text + n, line, l);
       n += l;
     }
-    fclose(f);
-    f = fopen(path, "w");
+    if (how != FLIP)
+      hash = fnv1a(text, n);
+    f = fopen(path, "wb");
     ck_assert_ptr_nonnull(f);
     ck_assert_uint_eq(fwrite(text, 1, n, f), n);
+    if (how != OLD_FORMAT)
+      ck_assert_uint_eq(fwrite(&hash, 8, 1, f), 1);
     fclose(f);
     free(text);
+    free(in);
     nfiles++;
   }
   closedir(d);
   return nfiles;
+}
+
+/* Progress lines that say a saved run was refused as damaged. */
+static void count_damaged(const char *line, void *data)
+{
+  if (strstr(line, "saved run refused, made again") &&
+      strstr(line, "is damaged"))
+    ++*(int *)data;
 }
 
 static void check_case(const char *name)
@@ -149,6 +197,24 @@ static void check_case(const char *name)
                   "%s: a %s file was read", name,
                   how == TRUNCATE ? "truncated" : "foreign");
   }
+  /* a file whose contents do not match its hash is refused, saying so,
+   * and the run made again */
+  int ndamaged = 0;
+  opt.progress = count_damaged;
+  opt.progress_data = &ndamaged;
+  const size_t nfiles = edit_saved(runs, FLIP);
+  free(again);
+  again = run_case(name, &opt, &n);
+  ck_assert_msg(ndiffer(fresh, again, n) == 0,
+                "%s: a file that does not match its hash was read", name);
+  ck_assert_int_eq(ndamaged, (int)nfiles);
+  /* a file of version 1 (no hash) is still read */
+  ck_assert_uint_eq(edit_saved(runs, OLD_FORMAT), nfiles);
+  free(again);
+  again = run_case(name, &opt, &n);
+  ck_assert_msg(ndiffer(fresh, again, n) > 0,
+                "%s: the saved runs of version 1 were not read", name);
+  ck_assert_int_eq(ndamaged, (int)nfiles);
   free(fresh);
   free(saved);
   free(resumed);

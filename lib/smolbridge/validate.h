@@ -68,7 +68,7 @@ typedef struct {
   sb_validate_render_fn render;     /**< NULL: plots are not rendered */
   void *render_data;
   const char *run_dir;     /**< directory where each finished engine run
-                                of a case is saved (one small text file
+                                of a case is saved (one small file
                                 per run; created if missing; today the
                                 first-hit kernel runs of V2-V5, V7, VX,
                                 V12 and V16's Langevin cases, V2's thesis
@@ -77,7 +77,12 @@ typedef struct {
                                 same inputs (seed, stream, every parameter,
                                 library version) is read back instead of
                                 run again, bit for bit: a long --full run
-                                that was stopped resumes where it was.  The
+                                that was stopped resumes where it was.  A
+                                file that does not match the hash at its
+                                end (cut short or changed) is refused,
+                                said so on a progress line, and the run
+                                made again; files without a hash (written
+                                before it) are still read.  The
                                 inputs do not include the code: empty
                                 run_dir after changing the library */
 } sb_validate_options;

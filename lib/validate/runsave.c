@@ -11,9 +11,17 @@
 #include <smolbridge/common.h>
 #include <smolbridge/validate.h>
 
+#include "common/internal.h"
 #include "runsave.h"
 
-#define MAGIC "smolbridge-run 1"
+/* Format (text): the magic line, "key=KEY", "vals=N" and N values, one
+ * a line in C99 hexadecimal, "extra=M" and M values, "end"; then (version
+ * 2) the FNV-1a hash of every byte before it, 8 bytes in native order
+ * (common/internal.h, sbi_hsave_finish): a file that was cut, flipped or
+ * mixed up is refused before any of it is used.  Version 1 files
+ * (magic line "smolbridge-run 1", no hash) still load. */
+static const char MAGIC[8] = {'S', 'B', 'V', 'R', 'U', 'N', '0', '2'};
+#define MAGIC_V1 "smolbridge-run 1\n"
 
 static void key_add(sbv_runkey *k, const char *fmt, ...)
 {
@@ -106,13 +114,30 @@ int sbv_run_load(const sbv_ctx *ctx, const sbv_runkey *k, double *vals,
   if (!f)
     return 0;
   static const size_t cap = SBV_KEY_MAX + 8;
-  char *line = malloc(cap);
+  char *line = malloc(cap), *mem = NULL;
   if (!line) {
     fclose(f);
     return SB_ENOMEM;
   }
-  int ok = fgets(line, (int)cap, f) && strcmp(line, MAGIC "\n") == 0 &&
-           fgets(line, (int)cap, f) && strncmp(line, "key=", 4) == 0 &&
+  int ok = fgets(line, (int)cap, f) != NULL;
+  if (ok && strcmp(line, MAGIC_V1)) {  /* version 2: its hash checked */
+    fclose(f);
+    int ver, st;
+    f = sbi_hload_open(path, MAGIC, 2, "saved run", &ver, &mem, __func__,
+                       &st);
+    if (!f) {
+      free(line);
+      if (st == SB_ENOMEM)
+        return st;
+      /* damaged, or not a saved run: made again (and saved over) */
+      sbv_progress(ctx, "  (saved run refused, made again: %s)",
+                   sb_last_error());
+      return 0;
+    }
+    ok = fgets(line, (int)cap, f) && !memcmp(line, MAGIC, 8) &&
+         line[8] == '\n' && line[9] == 0;
+  }
+  ok = ok && fgets(line, (int)cap, f) && strncmp(line, "key=", 4) == 0 &&
            strlen(line + 4) == k->n + 1 &&
            memcmp(line + 4, k->s, k->n) == 0 && line[4 + k->n] == '\n';
   free(line);
@@ -126,6 +151,7 @@ int sbv_run_load(const sbv_ctx *ctx, const sbv_runkey *k, double *vals,
     x = malloc(ne * sizeof *x);
     if (!x) {
       fclose(f);
+      free(mem);
       return SB_ENOMEM;
     }
   }
@@ -134,6 +160,7 @@ int sbv_run_load(const sbv_ctx *ctx, const sbv_runkey *k, double *vals,
   char tail[8];
   ok = ok && fgets(tail, sizeof tail, f) && strcmp(tail, "end\n") == 0;
   fclose(f);
+  free(mem);
   if (!ok) {  /* another key, or damaged: make the run again */
     free(x);
     return 0;
@@ -167,24 +194,25 @@ void sbv_run_save(const sbv_ctx *ctx, const sbv_runkey *k,
   /* a name of this process and call: concurrent savers never share it */
   snprintf(tmp, sizeof tmp, "%s.%ld.%p.tmp", path, (long)getpid(),
            (const void *)k);
-  FILE *f = sb_mkdir_p(dir) == SB_SUCCESS ? fopen(tmp, "w") : NULL;
+  sbi_hsave hs;  /* the text, then its hash (sbi_hsave_finish) */
+  FILE *f = sb_mkdir_p(dir) == SB_SUCCESS ? sbi_hsave_begin(&hs, __func__)
+                                          : NULL;
   int ok = f != NULL;
   if (ok) {
-    fprintf(f, MAGIC "\nkey=%s\nvals=%zu\n", k->s, nvals);
+    fprintf(f, "%.8s\nkey=%s\nvals=%zu\n", MAGIC, k->s, nvals);
     for (size_t i = 0; i < nvals; i++)
       fprintf(f, "%a\n", vals[i]);
     fprintf(f, "extra=%zu\n", nextra);
     for (size_t i = 0; i < nextra; i++)
       fprintf(f, "%a\n", extra[i]);
     fprintf(f, "end\n");
-    ok = !ferror(f);
-    ok = fclose(f) == 0 && ok;
+    ok = sbi_hsave_finish(&hs, !ferror(f), tmp, __func__) == SB_SUCCESS;
+  }  /* (a failed finish leaves no file) */
+  if (ok && rename(tmp, path)) {
+    ok = 0;
+    remove(tmp);
   }
-  if (ok)
-    ok = rename(tmp, path) == 0;
   if (!ok) {
-    if (f)
-      remove(tmp);
     sbv_progress(ctx, "  (could not save the run as %s; a resumed run "
                  "will make it again)", path);
   }

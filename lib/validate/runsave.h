@@ -4,7 +4,7 @@
  * A --full validation runs for hours; a run that stops (killed, machine
  * reset) must not lose the engine runs it finished.  With
  * sb_validate_options.run_dir set, each first-hit run saves its results in
- * run_dir as one small text file named by a hash of its key; with
+ * run_dir as one small file (text and a hash) named by a hash of its key; with
  * .resume also set, a run whose key is found there is read back instead
  * of being run again.  The key is the text of every input that decides
  * the result (kind of run, library version, base seed, stream and each
@@ -16,7 +16,9 @@
  * run_dir (docs/validation.md, "Resuming a long run").
  *
  * Values are written in hexadecimal floating point: a resumed run gives
- * the records bit for bit.  Files are written under a temporary name and
+ * the records bit for bit.  The file ends with the hash of its text
+ * (runsave.c): one that does not match is refused, with a progress line,
+ * and the run made again.  Files are written under a temporary name and
  * renamed, so a run killed while saving leaves no partial file; two
  * processes (MPI ranks, calibration seeds) may share run_dir.
  */
