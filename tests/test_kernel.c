@@ -315,9 +315,10 @@ START_TEST(test_domain_errors)
 END_TEST
 
 /* Extreme arguments (1e-320 ... 1e300, each argument in turn, the others
- * ordinary): a kernel is finite with no error recorded, or NaN with the
- * error (SB_ERANGE where the value or an intermediate overflows, SB_EDOM
- * outside the domain) -- never a silent inf or NaN.  And the
+ * ordinary): a kernel is finite with no error
+ * recorded, or NaN with the error (SB_ERANGE where the value overflows,
+ * SB_EDOM outside the domain) -- never a silent inf or NaN; at the finite
+ * extremes the value against mpmath.  And the
  * Gopalakrishnan-Hogan kernel at tau = 1e300 (f_red underflowing) is the
  * free-molecular pi R^2 sqrt(8 kT/(pi m_red)) (it was NaN). */
 typedef double (*kfn)(const double *a);
@@ -392,6 +393,39 @@ START_TEST(test_extreme_arguments)
                       "kernel %zu, argument %d = %g: %g with status %d", f,
                       i, ext[e], v, st);
       }
+  /* the finite extremes against mpmath (tests/gen_kernel_corner_ref.py,
+   * same table): the value wherever it is a normal double (also where
+   * an intermediate such as 1/m, k_B T or 3 pi mu r over/underflows:
+   * these were SB_ERANGE, 0 or a subnormal with lost digits), SB_ERANGE
+   * where it exceeds DBL_MAX, no error where it underflows */
+  sbt_table t;
+  sbt_table_load("kernel_corners.csv", &t);
+  const int cf = sbt_col(&t, "f"), ca = sbt_col(&t, "arg"),
+            cx = sbt_col(&t, "x"), cK = sbt_col(&t, "K");
+  ck_assert_int_ge(t.nrow, 280);
+  for (int row = 0; row < t.nrow; row++) {
+    const int f = (int)sbt_at(&t, row, cf), i = (int)sbt_at(&t, row, ca);
+    const double want = sbt_at(&t, row, cK);
+    double a[7];
+    memcpy(a, k[f].a, sizeof a);
+    a[i] = sbt_at(&t, row, cx);
+    sb_clear_error();
+    const double v = k[f].f(a);
+    const int st = sb_last_status();
+    if (isinf(want))
+      ck_assert_msg(isnan(v) && st == SB_ERANGE, "kernel %d, argument %d "
+                    "= %g: %g (status %d), want SB_ERANGE", f, i, a[i], v,
+                    st);
+    else if (want == 0.0)
+      ck_assert_msg(st == SB_SUCCESS && v >= 0.0 && v <= DBL_MIN,
+                    "kernel %d, argument %d = %g: %g (status %d), want "
+                    "below DBL_MIN", f, i, a[i], v, st);
+    else
+      ck_assert_msg(st == SB_SUCCESS && fabs(v / want - 1.0) <= 1e-14,
+                    "kernel %d, argument %d = %g: %.17g (status %d), want "
+                    "%.17g", f, i, a[i], v, st, want);
+  }
+  sbt_table_free(&t);
   const double ri = 1e-7, rj = 2e-7, mi = 4e-18, mj = 3e-17, R = ri + rj;
   const double mr = mi * mj / (mi + mj);
   ck_assert_rel(sb_kernel_brownian_gh(ri, rj, mi, mj, 1e300, 3e-7, 300),

@@ -163,6 +163,93 @@ double sbi_mills_diff(double z, double h, double lo, double *rel_err);
 double sbi_mills_diff_m(double z, double h, double mlo, double mhi,
                         double *rel_err);
 
+/* ------------------------------------------- extended-exponent products */
+
+/* A value m 2^e with m in [1/2, 1) (or m = 0, e = 0), for products and
+ * quotients whose intermediates over- or underflow a double (a mass of
+ * 1e-320 inverted, kT/m with m tiny, a prefactor of 1e300 times
+ * exp(-800)).  Each operation rounds its mantissa once, exactly as the
+ * same operation on doubles rounds when nothing over/underflows: a chain
+ * of sbi_xd operations gives the same bits as the plain chain in the
+ * normal range, and the right value (up to the final rounding) wherever
+ * that is a double.  Arguments must be finite. */
+typedef struct {
+  double m;
+  int e;
+} sbi_xd;
+
+static inline sbi_xd sbi_xd_of(double x)
+{
+  sbi_xd r;
+  r.m = frexp(x, &r.e);
+  return r;
+}
+
+static inline sbi_xd sbi_xd_norm(double m, int e)
+{
+  sbi_xd r;
+  r.m = frexp(m, &r.e);
+  r.e = r.m == 0.0 ? 0 : r.e + e;
+  return r;
+}
+
+static inline sbi_xd sbi_xd_mul(sbi_xd a, sbi_xd b)
+{
+  return sbi_xd_norm(a.m * b.m, a.e + b.e);
+}
+
+static inline sbi_xd sbi_xd_div(sbi_xd a, sbi_xd b)
+{
+  return sbi_xd_norm(a.m / b.m, a.e - b.e);
+}
+
+/* sqrt(a), a >= 0 */
+static inline sbi_xd sbi_xd_sqrt(sbi_xd a)
+{
+  const int odd = a.e & 1;
+  return sbi_xd_norm(sqrt(odd ? 2.0 * a.m : a.m), (a.e - odd) / 2);
+}
+
+/* a + b: aligned to the larger exponent, one rounding */
+static inline sbi_xd sbi_xd_add(sbi_xd a, sbi_xd b)
+{
+  if (a.m == 0.0)
+    return b;
+  if (b.m == 0.0)
+    return a;
+  const int E = a.e > b.e ? a.e : b.e;
+  return sbi_xd_norm(ldexp(a.m, a.e - E) + ldexp(b.m, b.e - E), E);
+}
+
+/* The double nearest a: +-inf above DBL_MAX, subnormal or 0 below
+ * DBL_MIN. */
+static inline double sbi_xd_val(sbi_xd a)
+{
+  const int e = a.e > 4000 ? 4000 : a.e < -4000 ? -4000 : a.e;
+  return ldexp(a.m, e);
+}
+
+/* log(a), a > 0 */
+static inline double sbi_xd_log(sbi_xd a)
+{
+  return log(a.m) + a.e * M_LN2;
+}
+
+/* exp(-x) for x >= 0 (+inf allowed: 0), without underflow: Cody-Waite
+ * reduction x = k ln 2 + r with ln 2 split so that k ln2_hi is exact. */
+static inline sbi_xd sbi_xd_expneg(double x)
+{
+  if (!(x < 1e6))
+    return sbi_xd_of(0.0);
+  if (x < 700.0)
+    return sbi_xd_of(exp(-x));
+  const double ln2_hi = 6.93147180369123816490e-01,
+               ln2_lo = 1.90821492927058770002e-10;
+  const double k = floor(x / M_LN2);
+  const double r = (x - k * ln2_hi) - k * ln2_lo;
+  return sbi_xd_norm(exp(-r), -(int)k);
+}
+
 /* --------------------------------------------- inverse-Gaussian kernel */
 
 /* One evaluation point of the law of S = first passage to 0 of

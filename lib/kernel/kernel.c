@@ -51,45 +51,73 @@ static double kernel_value(double K, const char *func)
   return NAN;
 }
 
-/* m1 m2/(m1 + m2) for m1, m2 > 0: the plain form (symmetric in its
- * rounding) unless the product over- or underflows, then
- * min/(1 + min/max). */
-static double reduced(double m1, double m2)
+/* The kernels are evaluated in sbi_xd arithmetic (numutil.h): the same
+ * operations in the same order as the plain formulas (so the same bits
+ * wherever no intermediate over/underflows), but an intermediate such as
+ * 1/m for m = 1e-320, k_B T for T = 1e-320 or 3 pi mu r for mu = 1e-320
+ * no longer turns a representable kernel into inf, 0 or a subnormal that
+ * has lost its digits. */
+#define X(x) sbi_xd_of(x)
+#define MUL(a, b) sbi_xd_mul((a), (b))
+#define DIV(a, b) sbi_xd_div((a), (b))
+#define ADD(a, b) sbi_xd_add((a), (b))
+#define SQRT(a) sbi_xd_sqrt(a)
+
+/* A kernel in sbi_xd form: its value, or NaN and SB_ERANGE (for func)
+ * where it exceeds DBL_MAX. */
+static double kernel_xd(sbi_xd K, const char *func)
 {
-  double p = m1 * m2;
-  if (isfinite(p) && p >= DBL_MIN)
-    return p / (m1 + m2);
-  double lo = fmin(m1, m2), hi = fmax(m1, m2);
-  return lo / (1.0 + lo / hi);
+  return kernel_value(sbi_xd_val(K), func);
+}
+
+/* m1 m2/(m1 + m2) for m1, m2 > 0 */
+static sbi_xd reduced(double m1, double m2)
+{
+  return DIV(MUL(X(m1), X(m2)), ADD(X(m1), X(m2)));
 }
 
 /* Stokes–Einstein diffusivity with optional Cunningham slip correction
  * (Davies 1945 coefficients, Knudsen number lambda/r). */
-static double diffusivity(double r, double T, double mu, double lambda)
+static sbi_xd diffusivity(double r, double T, double mu, double lambda)
 {
-  double c = 1.0;
+  sbi_xd c = X(1.0);
   if (lambda > 0.0) {
-    double kn = lambda / r;
-    c = 1.0 + kn * (1.257 + 0.4 * exp(-1.1 / kn));
+    const sbi_xd kn = DIV(X(lambda), X(r));
+    const double knv = sbi_xd_val(kn); /* inf: exp(-0) = 1 */
+    c = ADD(X(1.0), MUL(kn, X(1.257 + 0.4 * exp(-1.1 / knv))));
   }
-  return kB * T * c / (6.0 * M_PI * mu * r);
+  return DIV(MUL(MUL(X(kB), X(T)), c), MUL(MUL(X(6.0 * M_PI), X(mu)), X(r)));
 }
 
 /* K_co = 4 pi (D_i + D_j)(r_i + r_j) */
-static double k_co(double ri, double rj, double T, double mu, double lambda)
+static sbi_xd k_co(double ri, double rj, double T, double mu, double lambda)
 {
-  return 4.0 * M_PI * (diffusivity(ri, T, mu, lambda) +
-                       diffusivity(rj, T, mu, lambda)) * (ri + rj);
+  return MUL(MUL(X(4.0 * M_PI), ADD(diffusivity(ri, T, mu, lambda),
+                                    diffusivity(rj, T, mu, lambda))),
+             ADD(X(ri), X(rj)));
+}
+
+/* (4/3) pi rho r^3 */
+static sbi_xd sphere_mass(double rho, double r)
+{
+  return MUL(MUL(MUL(MUL(MUL(X(rho), X(4.0 / 3.0)), X(M_PI)), X(r)), X(r)),
+             X(r));
+}
+
+/* 1/m_i + 1/m_j */
+static sbi_xd inv_sum(sbi_xd mi, sbi_xd mj)
+{
+  return ADD(DIV(X(1.0), mi), DIV(X(1.0), mj));
 }
 
 /* K_fm = pi (r_i + r_j)^2 c_ij, c_ij^2 = (8kT/pi)(1/m_i + 1/m_j) */
-static double k_fm(double ri, double rj, double T, double rho)
+static sbi_xd k_fm(double ri, double rj, double T, double rho)
 {
-  double mi = rho * (4.0 / 3.0) * M_PI * ri * ri * ri;
-  double mj = rho * (4.0 / 3.0) * M_PI * rj * rj * rj;
-  double c = sqrt(8.0 * kB * T / M_PI * (1.0 / mi + 1.0 / mj));
-  double r = ri + rj;
-  return M_PI * r * r * c;
+  const sbi_xd mi = sphere_mass(rho, ri), mj = sphere_mass(rho, rj);
+  const sbi_xd c = SQRT(MUL(DIV(MUL(X(8.0 * kB), X(T)), X(M_PI)),
+                            inv_sum(mi, mj)));
+  const sbi_xd r = ADD(X(ri), X(rj));
+  return MUL(MUL(MUL(X(M_PI), r), r), c);
 }
 
 double sb_kernel_brownian_co(double r_i, double r_j, double T, double mu)
@@ -99,8 +127,10 @@ double sb_kernel_brownian_co(double r_i, double r_j, double T, double mu)
   /* (2kT/3mu)(1/r_i + 1/r_j)(r_i + r_j): the same as k_co with lambda 0,
    * written this way so that the monodisperse value is exactly 8kT/3mu
    * up to rounding. */
-  return kernel_value(2.0 * kB * T / (3.0 * mu) * (1.0 / r_i + 1.0 / r_j) *
-                          (r_i + r_j), __func__);
+  return kernel_xd(MUL(MUL(DIV(MUL(X(2.0 * kB), X(T)), MUL(X(3.0), X(mu))),
+                           inv_sum(X(r_i), X(r_j))),
+                       ADD(X(r_i), X(r_j))),
+                   __func__);
 }
 
 double sb_kernel_brownian_fm(double r_i, double r_j, double T, double rho_p)
@@ -108,7 +138,7 @@ double sb_kernel_brownian_fm(double r_i, double r_j, double T, double rho_p)
   CHECK_RADII(r_i, r_j);
   CHECK(pos(T) && pos(rho_p), "T and rho_p must be > 0 (got %g, %g)", T,
         rho_p);
-  return kernel_value(k_fm(r_i, r_j, T, rho_p), __func__);
+  return kernel_xd(k_fm(r_i, r_j, T, rho_p), __func__);
 }
 
 double sb_kernel_brownian_tr(double r_i, double r_j, double T, double mu,
@@ -118,15 +148,17 @@ double sb_kernel_brownian_tr(double r_i, double r_j, double T, double mu,
   CHECK(pos(T) && pos(mu) && pos(rho_p),
         "T, mu, rho_p must be > 0 (got %g, %g, %g)", T, mu, rho_p);
   CHECK(nonneg(lambda), "lambda must be >= 0 (got %g)", lambda);
-  double kco = k_co(r_i, r_j, T, mu, lambda);
-  double kfm = k_fm(r_i, r_j, T, rho_p);
-  double kn = kco / (2.0 * kfm); /* Dahneke's Knudsen number */
+  const sbi_xd kco = k_co(r_i, r_j, T, mu, lambda);
+  const sbi_xd kfm = k_fm(r_i, r_j, T, rho_p);
+  /* Dahneke's Knudsen number */
+  const double kn = sbi_xd_val(DIV(kco, MUL(X(2.0), kfm)));
   /* (1 + kn)/(1 + 2kn(1 + kn)); for kn -> inf this is 1/(2kn), giving
    * kco/(2kn) = kfm. */
   if (kn > 1e150) /* avoid overflow of kn^2: the fm limit is exact here */
-    return kernel_value(kfm, __func__);
-  return kernel_value(kco * (1.0 + kn) / (1.0 + 2.0 * kn * (1.0 + kn)),
-                      __func__);
+    return kernel_xd(kfm, __func__);
+  return kernel_xd(DIV(MUL(kco, X(1.0 + kn)),
+                       X(1.0 + 2.0 * kn * (1.0 + kn))),
+                   __func__);
 }
 
 /* Transition regime of Langevin spheres (Gopalakrishnan & Hogan 2011,
@@ -163,16 +195,16 @@ double sb_kernel_gh_H(double kn)
   return kn * kn * gh_g(kn);
 }
 
-/* Kn_D = sqrt(kT m_red)/(f_red R), f = m/tau; NaN on bad input. */
-static double gh_knd(double r_i, double r_j, double m_i, double m_j,
-                     double tau_i, double tau_j, double T, double *m_red,
-                     double *f_red, double *R)
+/* Kn_D = sqrt(kT m_red)/(f_red R), f = m/tau. */
+static sbi_xd gh_knd(double r_i, double r_j, double m_i, double m_j,
+                     double tau_i, double tau_j, double T, sbi_xd *m_red,
+                     sbi_xd *f_red, sbi_xd *R)
 {
-  double f_i = m_i / tau_i, f_j = m_j / tau_j;
+  const sbi_xd f_i = DIV(X(m_i), X(tau_i)), f_j = DIV(X(m_j), X(tau_j));
   *m_red = reduced(m_i, m_j);
-  *f_red = reduced(f_i, f_j);
-  *R = r_i + r_j;
-  return sqrt(kB * T * *m_red) / (*f_red * *R);
+  *f_red = DIV(MUL(f_i, f_j), ADD(f_i, f_j));
+  *R = ADD(X(r_i), X(r_j));
+  return DIV(SQRT(MUL(MUL(X(kB), X(T)), *m_red)), MUL(*f_red, *R));
 }
 
 double sb_kernel_brownian_gh_kn(double r_i, double r_j, double m_i,
@@ -183,9 +215,9 @@ double sb_kernel_brownian_gh_kn(double r_i, double r_j, double m_i,
   CHECK(pos(m_i) && pos(m_j) && pos(tau_i) && pos(tau_j) && pos(T),
         "masses, tau and T must be finite and > 0 (got %g, %g, %g, %g, %g)",
         m_i, m_j, tau_i, tau_j, T);
-  double mr, fr, R;
-  return kernel_value(gh_knd(r_i, r_j, m_i, m_j, tau_i, tau_j, T, &mr, &fr,
-                             &R), __func__);
+  sbi_xd mr, fr, R;
+  return kernel_xd(gh_knd(r_i, r_j, m_i, m_j, tau_i, tau_j, T, &mr, &fr, &R),
+                   __func__);
 }
 
 double sb_kernel_brownian_gh(double r_i, double r_j, double m_i, double m_j,
@@ -195,26 +227,32 @@ double sb_kernel_brownian_gh(double r_i, double r_j, double m_i, double m_j,
   CHECK(pos(m_i) && pos(m_j) && pos(tau_i) && pos(tau_j) && pos(T),
         "masses, tau and T must be finite and > 0 (got %g, %g, %g, %g, %g)",
         m_i, m_j, tau_i, tau_j, T);
-  double mr, fr, R;
-  double kn = gh_knd(r_i, r_j, m_i, m_j, tau_i, tau_j, T, &mr, &fr, &R);
+  sbi_xd mr, fr, R;
+  const sbi_xd knx = gh_knd(r_i, r_j, m_i, m_j, tau_i, tau_j, T, &mr, &fr,
+                            &R);
+  const double kn = sbi_xd_val(knx);
   /* beta = H f_red R^3/m_red = (H/Kn^2) kT R/f_red: no division by a
    * vanishing Kn^2.  Near the free-molecular limit (Kn_D > 1e50, where
    * f_red may be so small that kT R/f_red overflows) the same as
    * (Kn g) R^2 sqrt(kT/m_red), Kn g -> sqrt(8 pi). */
   if (kn > 1e50)
-    return kernel_value(gh_kng(1.0 / kn) * R * R * sqrt(kB * T / mr),
-                        __func__);
-  return kernel_value(gh_g(kn) * kB * T * R / fr, __func__);
+    return kernel_xd(MUL(MUL(MUL(X(gh_kng(sbi_xd_val(DIV(X(1.0), knx)))), R),
+                             R),
+                         SQRT(DIV(MUL(X(kB), X(T)), mr))),
+                     __func__);
+  return kernel_xd(DIV(MUL(MUL(MUL(X(gh_g(kn)), X(kB)), X(T)), R), fr),
+                   __func__);
 }
 
 double sb_kernel_kinetic(double d_i, double d_j, double m_i, double m_j,
                          double T)
 {
   CHECK_KINETIC(d_i, d_j, m_i, m_j, T);
-  double r = 0.5 * (d_i + d_j);
-  return kernel_value(
-      M_PI * r * r * sqrt(8.0 * kB * T / M_PI * (1.0 / m_i + 1.0 / m_j)),
-      __func__);
+  const sbi_xd r = MUL(X(0.5), ADD(X(d_i), X(d_j)));
+  return kernel_xd(MUL(MUL(MUL(X(M_PI), r), r),
+                       SQRT(MUL(DIV(MUL(X(8.0 * kB), X(T)), X(M_PI)),
+                                inv_sum(X(m_i), X(m_j))))),
+                   __func__);
 }
 
 double sb_kernel_kinetic_2d(double d_i, double d_j, double m_i, double m_j,
@@ -222,9 +260,10 @@ double sb_kernel_kinetic_2d(double d_i, double d_j, double m_i, double m_j,
 {
   CHECK_KINETIC(d_i, d_j, m_i, m_j, T);
   /* mean Rayleigh speed sqrt(pi/2) sigma, sigma^2 = kT/m_red */
-  return kernel_value(
-      (d_i + d_j) * sqrt(0.5 * M_PI * kB * T * (1.0 / m_i + 1.0 / m_j)),
-      __func__);
+  return kernel_xd(MUL(ADD(X(d_i), X(d_j)),
+                       SQRT(MUL(MUL(MUL(X(0.5 * M_PI), X(kB)), X(T)),
+                                inv_sum(X(m_i), X(m_j))))),
+                   __func__);
 }
 
 double sb_kernel_gravity(double r_i, double r_j, double rho_p, double rho_f,
@@ -236,18 +275,21 @@ double sb_kernel_gravity(double r_i, double r_j, double rho_p, double rho_f,
         rho_p, rho_f, mu, g);
   /* |U_i - U_j| = 2|rho_p - rho_f| g |r_i^2 - r_j^2|/(9 mu), with the
    * difference of squares factored to avoid cancellation. */
-  double du = 2.0 * fabs(rho_p - rho_f) * g * fabs(r_i - r_j) * (r_i + r_j) /
-              (9.0 * mu);
-  double r = r_i + r_j;
-  return kernel_value(M_PI * r * r * du, __func__);
+  const sbi_xd r = ADD(X(r_i), X(r_j));
+  const sbi_xd du =
+      DIV(MUL(MUL(MUL(MUL(X(2.0), X(fabs(rho_p - rho_f))), X(g)),
+                  X(fabs(r_i - r_j))),
+              r),
+          MUL(X(9.0), X(mu)));
+  return kernel_xd(MUL(MUL(MUL(X(M_PI), r), r), du), __func__);
 }
 
 double sb_kernel_shear(double r_i, double r_j, double G)
 {
   CHECK_RADII(r_i, r_j);
   CHECK(nonneg(G), "G must be >= 0 (got %g)", G);
-  double r = r_i + r_j;
-  return kernel_value(4.0 / 3.0 * G * r * r * r, __func__);
+  const sbi_xd r = ADD(X(r_i), X(r_j));
+  return kernel_xd(MUL(MUL(MUL(MUL(X(4.0 / 3.0), X(G)), r), r), r), __func__);
 }
 
 double sb_kernel_saffman_turner(double r_i, double r_j, double eps,
@@ -256,9 +298,13 @@ double sb_kernel_saffman_turner(double r_i, double r_j, double eps,
   CHECK_RADII(r_i, r_j);
   CHECK(nonneg(eps) && pos(nu), "need eps >= 0, nu > 0 (got %g, %g)", eps,
         nu);
-  double r = r_i + r_j;
-  return kernel_value(sqrt(8.0 * M_PI * eps / (15.0 * nu)) * r * r * r,
-                      __func__);
+  const sbi_xd r = ADD(X(r_i), X(r_j));
+  return kernel_xd(MUL(MUL(MUL(SQRT(DIV(MUL(X(8.0 * M_PI), X(eps)),
+                                        MUL(X(15.0), X(nu)))),
+                               r),
+                           r),
+                       r),
+                   __func__);
 }
 
 double sb_kernel_abrahamson(double r_i, double r_j, double u2_i,
@@ -270,8 +316,11 @@ double sb_kernel_abrahamson(double r_i, double r_j, double u2_i,
   /* Flux of a Maxwellian relative velocity (per-component variance
    * s2 = u2_i + u2_j) through a sphere of radius r: pi r^2 E|w|, with
    * E|w| = sqrt(8 s2/pi). */
-  double r = r_i + r_j;
-  return kernel_value(sqrt(8.0 * M_PI * (u2_i + u2_j)) * r * r, __func__);
+  const sbi_xd r = ADD(X(r_i), X(r_j));
+  return kernel_xd(MUL(MUL(SQRT(MUL(X(8.0 * M_PI), ADD(X(u2_i), X(u2_j)))),
+                           r),
+                       r),
+                   __func__);
 }
 
 /* E[(w.n)^-] for w.n ~ N(m, var): the inward flux density of the
@@ -323,22 +372,37 @@ double sb_kernel_diffusion(double r_i, double r_j, double b2_i, double b2_j)
   CHECK_RADII(r_i, r_j);
   CHECK(nonneg(b2_i) && nonneg(b2_j),
         "variance rates must be >= 0 (got %g, %g)", b2_i, b2_j);
-  return kernel_value(2.0 * M_PI * (b2_i + b2_j) * (r_i + r_j), __func__);
+  return kernel_xd(MUL(MUL(X(2.0 * M_PI), ADD(X(b2_i), X(b2_j))),
+                       ADD(X(r_i), X(r_j))),
+                   __func__);
+}
+
+/* kT/(3 pi mu r) */
+static sbi_xd b2_brownian(double r, double T, double mu)
+{
+  return DIV(MUL(X(kB), X(T)), MUL(MUL(X(3.0 * M_PI), X(mu)), X(r)));
+}
+
+/* sqrt(2/(15 pi)) sqrt(eps/nu) r^2 */
+static sbi_xd b2_turb(sbi_xd r, double eps, double nu)
+{
+  return MUL(MUL(MUL(X(sqrt(2.0 / (15.0 * M_PI))), SQRT(DIV(X(eps), X(nu)))),
+                 r),
+             r);
 }
 
 double sb_brownian_b2(double r, double T, double mu)
 {
   CHECK(pos(r) && pos(T) && pos(mu), "r, T, mu must be > 0 (got %g, %g, %g)",
         r, T, mu);
-  return kernel_value(kB * T / (3.0 * M_PI * mu * r), __func__);
+  return kernel_xd(b2_brownian(r, T, mu), __func__);
 }
 
 double sb_turb_pair_b2(double r, double eps, double nu)
 {
   CHECK(pos(r) && nonneg(eps) && pos(nu),
         "need r > 0, eps >= 0, nu > 0 (got %g, %g, %g)", r, eps, nu);
-  return kernel_value(sqrt(2.0 / (15.0 * M_PI)) * sqrt(eps / nu) * r * r,
-                      __func__);
+  return kernel_xd(b2_turb(X(r), eps, nu), __func__);
 }
 
 double sb_kernel_brownian_turb(double r_i, double r_j, double T, double mu,
@@ -348,10 +412,10 @@ double sb_kernel_brownian_turb(double r_i, double r_j, double T, double mu,
   CHECK(pos(T) && pos(mu), "T and mu must be > 0 (got %g, %g)", T, mu);
   CHECK(nonneg(eps) && pos(nu), "need eps >= 0, nu > 0 (got %g, %g)", eps,
         nu);
-  double r = r_i + r_j;
-  double b2 = sb_brownian_b2(r_i, T, mu) + sb_brownian_b2(r_j, T, mu) +
-              sb_turb_pair_b2(r, eps, nu);
-  return kernel_value(2.0 * M_PI * b2 * r, __func__);
+  const sbi_xd r = ADD(X(r_i), X(r_j));
+  const sbi_xd b2 = ADD(ADD(b2_brownian(r_i, T, mu), b2_brownian(r_j, T, mu)),
+                        b2_turb(r, eps, nu));
+  return kernel_xd(MUL(MUL(X(2.0 * M_PI), b2), r), __func__);
 }
 
 /* ------------------------------------------------------ test kernels */

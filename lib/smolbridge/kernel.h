@@ -10,10 +10,12 @@
  * dissipation rate eps (m^2/s^3), shear rate G (1/s).  They return NaN and
  * record SB_EDOM (sb_last_error) when an argument is not finite and
  * positive (rho_f, lambda may be 0), and NaN with SB_ERANGE where the
- * value is not finite at extreme arguments: where it overflows, and at a
- * few corners where an intermediate does though the value would not
- * (e.g. 1/m for a mass of 1e-320 in the kinetic kernels) -- never a
- * silent inf or NaN.  Accuracy: closed forms, a few ulp.
+ * value overflows (exceeds DBL_MAX) -- never a silent inf or NaN.  The
+ * formulas are evaluated with an extended exponent, so an intermediate
+ * that over- or underflows (1/m for a mass of 1e-320, k_B T for
+ * T = 1e-320, 3 pi mu r for mu = 1e-320) does not matter: the value is
+ * returned wherever it is a double (subnormal, or 0, where it underflows).
+ * Accuracy: closed forms, a few ulp (also at those corners).
  * Boltzmann constant: k_B = 1.380649e-23 J/K (exact, SI 2019).
  * Derivations and sources: docs/kernel.md.
  */
