@@ -311,11 +311,33 @@ START_TEST(test_domain_errors)
   ck_assert(isnan(sb_brownian_b2(1e-6, -T20, MUW)));
   ck_assert(isnan(sb_kernel_brownian_turb(1e-6, 1e-6, T20, MUW, -1, 1e-6)));
   ck_assert(strlen(sb_last_error()) > 0);
+  /* the test kernels: volumes finite and > 0, K finite and >= 0 */
+  const double bad[4] = {NAN, -1.0, 0.0, INFINITY};
+  for (int b = 0; b < 4; b++)
+    for (int w = 0; w < 3; w++)
+      for (int arg = 0; arg < 3; arg++) {
+        double a[3] = {1.0, 2.0, 3.0};
+        if (arg == 2 && b == 2)
+          continue; /* K = 0 is allowed */
+        a[arg] = bad[b];
+        sb_clear_error();
+        const double v = w == 0   ? sb_kernel_constant(a[0], a[1], a[2])
+                         : w == 1 ? sb_kernel_additive(a[0], a[1], a[2])
+                                  : sb_kernel_multiplicative(a[0], a[1], a[2]);
+        ck_assert_msg(isnan(v) && sb_last_status() == SB_EDOM,
+                      "test kernel %d, argument %d = %g: %g", w, arg,
+                      a[arg], v);
+      }
+  ck_assert(sb_kernel_multiplicative(1, 2, 0) == 0.0);
+  sb_clear_error();
+  ck_assert(isnan(sb_kernel_multiplicative(1e200, 1e200, 1)));
+  ck_assert_int_eq(sb_last_status(), SB_ERANGE);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "sb_kernel_multiplicative"));
 }
 END_TEST
 
 /* Extreme arguments (1e-320 ... 1e300, each argument in turn, the others
- * ordinary): a kernel is finite with no error
+ * ordinary; the test kernels too): a kernel is finite with no error
  * recorded, or NaN with the error (SB_ERANGE where the value overflows,
  * SB_EDOM outside the domain) -- never a silent inf or NaN; at the finite
  * extremes the value against mpmath.  And the
@@ -353,6 +375,12 @@ static double k_tb2(const double *a)
 { return sb_turb_pair_b2(a[0], a[1], a[2]); }
 static double k_bt(const double *a)
 { return sb_kernel_brownian_turb(a[0], a[1], a[2], a[3], a[4], a[5]); }
+static double k_const(const double *a)
+{ return sb_kernel_constant(a[0], a[1], a[2]); }
+static double k_add(const double *a)
+{ return sb_kernel_additive(a[0], a[1], a[2]); }
+static double k_mult(const double *a)
+{ return sb_kernel_multiplicative(a[0], a[1], a[2]); }
 
 START_TEST(test_extreme_arguments)
 {
@@ -377,6 +405,9 @@ START_TEST(test_extreme_arguments)
       {k_b2, 3, {1e-6, 300, 1e-3}},
       {k_tb2, 3, {1e-6, 1e-3, 1e-6}},
       {k_bt, 6, {1e-6, 2e-6, 300, 1e-3, 1e-3, 1e-6}},
+      {k_const, 3, {1e-18, 2e-18, 1e-9}},
+      {k_add, 3, {1e-18, 2e-18, 1e-9}},
+      {k_mult, 3, {1e-18, 2e-18, 1e-9}},
   };
   const double ext[6] = {1e-320, 1e-300, 1e300, DBL_MAX, INFINITY, -1e300};
   for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)

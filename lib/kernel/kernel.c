@@ -420,21 +420,28 @@ double sb_kernel_brownian_turb(double r_i, double r_j, double T, double mu,
 
 /* ------------------------------------------------------ test kernels */
 
+/* Volumes finite and > 0, K finite and >= 0 (as sb_kernel_spec_check). */
+#define CHECK_TEST(v_i, v_j, K)                                           \
+  CHECK(pos(v_i) && pos(v_j), "volumes must be finite and > 0 (got %g, "  \
+        "%g)", v_i, v_j);                                                 \
+  CHECK(nonneg(K), "K must be finite and >= 0 (got %g)", K)
+
 double sb_kernel_constant(double v_i, double v_j, double K)
 {
-  (void)v_i;
-  (void)v_j;
+  CHECK_TEST(v_i, v_j, K);
   return K;
 }
 
 double sb_kernel_additive(double v_i, double v_j, double K)
 {
-  return K * (v_i + v_j);
+  CHECK_TEST(v_i, v_j, K);
+  return kernel_xd(MUL(X(K), ADD(X(v_i), X(v_j))), __func__);
 }
 
 double sb_kernel_multiplicative(double v_i, double v_j, double K)
 {
-  return K * v_i * v_j;
+  CHECK_TEST(v_i, v_j, K);
+  return kernel_xd(MUL(MUL(X(K), X(v_i)), X(v_j)), __func__);
 }
 
 /* ------------------------------------------------------ callback form */

@@ -224,11 +224,15 @@ double sb_kernel_brownian_turb_r2(double r_i, double r_j, double T,
 
 /* ------------------------------------------------------ test kernels */
 
-/** Constant kernel K (m^3/s). */
+/** Constant kernel K (m^3/s).  Volumes v_i, v_j [m^3] finite and > 0 and
+ *  K finite and >= 0 (as sb_kernel_spec_check), else NaN and SB_EDOM. */
 double sb_kernel_constant(double v_i, double v_j, double K);
-/** Additive (Golovin) kernel K (v_i + v_j), K in 1/s. */
+/** Additive (Golovin) kernel K (v_i + v_j), K in 1/s.  Domain as the
+ *  constant kernel; NaN and SB_ERANGE where the value overflows. */
 double sb_kernel_additive(double v_i, double v_j, double K);
-/** Multiplicative kernel K v_i v_j, K in 1/(m^3 s). */
+/** Multiplicative kernel K v_i v_j, K in 1/(m^3 s).  Domain as the
+ *  constant kernel; NaN and SB_ERANGE where the value overflows (the
+ *  product is formed without intermediate over/underflow). */
 double sb_kernel_multiplicative(double v_i, double v_j, double K);
 
 /* ------------------------------------------------------ callback form */
