@@ -210,8 +210,123 @@ def gen_erel():
     write('dlvo_erel.csv', 'k2,x,P,Q,pdf,logQ', rows)
 
 
+# ------------------------------------------------------------ sweep
+# tests/test_dlvo.c, test_extreme_arguments: each argument of each
+# function in turn at an extreme value, the others ordinary (the same
+# table, same order).  Evaluated at 1000 digits: the centre-distance form
+# of the Hamaker energy cancels by up to ~650 digits there (D = 1e-320
+# against r ~ 1e-6, or r = DBL_MAX against D); forces are numerical
+# derivatives with a step relative to D.  Values "inf" (|value| above
+# DBL_MAX: SB_ERANGE expected), "-inf" (the Hamaker energy where t = R/D
+# exceeds DBL_MAX: -inf by the documented convention, though |W| may be
+# below DBL_MAX there) and 0 (below DBL_MIN) are markers.
+DBL_MAX = mpf(1.7976931348623157e308)
+DBL_MIN = mpf(2.2250738585072014e-308)
+
+
+def dforce(f, D):
+    return -diff(f, D, h=D * mpf('1e-40'))
+
+
+def pair_w(a, force):
+    r1, r2, A, T, eps_r, z, kappa, psi1, psi2, d0, D, vdw, edl = a
+
+    def w(d):
+        v = vdw_ham(A, r1, r2, d) if vdw else vdw_der(A, r1, r2, d)
+        e = edl_hhf(d, r1, r2, kappa, eps_r, psi1, psi2) if edl else \
+            edl_lsa(d, r1, r2, kappa, eps_r, T, z, psi1, psi2)
+        return v + e
+    return dforce(w, D) if force else w(D)
+
+
+SWEEP = [  # function index, number of swept arguments, ordinary arguments
+    (0, 4, [1e-20, 1e-6, 2e-6, 1e-8]),
+    (1, 4, [1e-20, 1e-6, 2e-6, 1e-8]),
+    (2, 4, [1e-20, 1e-6, 2e-6, 1e-8]),
+    (3, 4, [1e-20, 1e-6, 2e-6, 1e-8]),
+    (4, 9, [1e-8, 1e-6, 2e-6, 1e8, 78.4, 298.0, 1.0, 0.03, 0.02]),
+    (5, 9, [1e-8, 1e-6, 2e-6, 1e8, 78.4, 298.0, 1.0, 0.03, 0.02]),
+    (6, 7, [1e-8, 1e-6, 2e-6, 1e8, 78.4, 0.03, 0.02]),
+    (7, 7, [1e-8, 1e-6, 2e-6, 1e8, 78.4, 0.03, 0.02]),
+    (8, 4, [6e23, 1.0, 78.4, 298.0]),
+    # pairs: r1, r2, A, T, eps_r, z, kappa, psi1, psi2, d_contact, D,
+    # then the models (not swept)
+    (9, 11, [1e-6, 2e-6, 1e-20, 298.0, 78.4, 1.0, 1e8, 0.03, 0.02, 4e-10,
+             1e-8, 1, 1]),
+    (10, 11, [1e-6, 2e-6, 1e-20, 298.0, 78.4, 1.0, 1e8, 0.03, 0.02, 4e-10,
+              1e-8, 0, 0]),
+    (11, 11, [1e-6, 2e-6, 1e-20, 298.0, 78.4, 1.0, 1e8, 0.03, 0.02, 4e-10,
+              1e-8, 1, 1]),
+    (12, 11, [1e-6, 2e-6, 1e-20, 298.0, 78.4, 1.0, 1e8, 0.03, 0.02, 4e-10,
+              1e-8, 0, 0]),
+]
+# which arguments may be negative (A, psi1, psi2) and which infinite (r2)
+SIGNED = {0: [0], 1: [0], 2: [0], 3: [0], 4: [7, 8], 5: [7, 8], 6: [5, 6],
+          7: [5, 6], 8: [], 9: [2, 7, 8], 10: [2, 7, 8], 11: [2, 7, 8],
+          12: [2, 7, 8]}
+
+
+def ham_t(a, f):
+    """t = 2 r1 r2/(D (D + 2 r1 + 2 r2)) of the Hamaker energy (r1/D for a
+    plane): the energy is -inf by convention where t exceeds DBL_MAX."""
+    r1, r2, D = (a[1], a[2], a[3]) if f == 0 else (a[0], a[1], a[10])
+    if isinf(r2):
+        return r1 / D
+    return 2 * r1 * r2 / (D * (D + 2 * r1 + 2 * r2))
+
+
+def sweep_value(f, a):
+    if f == 0:
+        return vdw_ham(*a)
+    if f == 1:
+        return dforce(lambda d: vdw_ham(a[0], a[1], a[2], d), a[3])
+    if f == 2:
+        return vdw_der(*a)
+    if f == 3:
+        return dforce(lambda d: vdw_der(a[0], a[1], a[2], d), a[3])
+    if f == 4:
+        return edl_lsa(*a)
+    if f == 5:
+        return dforce(lambda d: edl_lsa(d, *a[1:]), a[0])
+    if f == 6:
+        return edl_hhf(*a)
+    if f == 7:
+        return dforce(lambda d: edl_hhf(d, *a[1:]), a[0])
+    if f == 8:
+        n0, z, eps_r, T = a
+        return (2 * n0 * (z * ECH) ** 2 / (eps_r * EPS0 * kB * T)) ** 0.5
+    return pair_w(a, f in (11, 12))
+
+
+def gen_sweep():
+    rows = []
+    with mp.workdps(1000):
+        for f, n, base in SWEEP:
+            for i in range(n):
+                xs = [1e-320, 1e-300, 1e300, 1.7976931348623157e308]
+                if i in SIGNED[f]:
+                    xs += [-1e-320, -1e300, -1.7976931348623157e308]
+                for x in xs:
+                    a = [mpf(v) for v in base]
+                    a[i] = mpf(x)
+                    v = sweep_value(f, a)
+                    if f in (0, 9) and ham_t(a, f) > DBL_MAX:
+                        vs = '-inf'  # the documented convention, A > 0
+                    elif abs(v) > DBL_MAX:
+                        vs = 'inf'
+                    elif abs(v) < DBL_MIN:
+                        vs = '0'
+                    else:
+                        vs = mp.nstr(v, 20, min_fixed=1, max_fixed=0)
+                    rows.append('%d,%d,%r,%s' % (f, i, x, vs))
+    with open(os.path.join(HERE, 'data', 'dlvo_sweep.csv'), 'w') as fh:
+        fh.write('f,arg,x,value\n')
+        fh.write('\n'.join(rows) + '\n')
+
+
 if __name__ == '__main__':
     gen_vdw()
     gen_edl()
     gen_erel()
     gen_barrier()
+    gen_sweep()

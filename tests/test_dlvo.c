@@ -96,14 +96,17 @@ START_TEST(test_vdw_limits)
 {
   const double A = 3e-20;
   /* D down to 1e-300 of r (t = r/D beyond 1e154, where t^2 overflowed and
-   * the energy turned +inf): the Derjaguin limit to 1e-14; D = 5e-324
-   * overflows to -inf, not NaN */
+   * the energy turned +inf): the Derjaguin limit to 1e-14; at D = 5e-324
+   * (t = R/D beyond DBL_MAX) the energy is the documented -inf, not NaN,
+   * and the force SB_ERANGE */
   for (int c = 0; c < 2; c++) {
     const double r2 = c ? INFINITY : 1e-6, D = c ? 1e-160 : 1e-300;
     ck_assert_rel(sb_dlvo_vdw_hamaker(A, 1e-6, r2, D),
                   sb_dlvo_vdw_derjaguin(A, 1e-6, r2, D), 1e-14);
     ck_assert(sb_dlvo_vdw_hamaker(A, 1e-6, r2, 5e-324) == -INFINITY);
-    ck_assert(sb_dlvo_vdw_hamaker_force(A, 1e-6, r2, 5e-324) == -INFINITY);
+    sb_clear_error(); /* the force overflows: SB_ERANGE, not -inf */
+    ck_assert(isnan(sb_dlvo_vdw_hamaker_force(A, 1e-6, r2, 5e-324)));
+    ck_assert_int_eq(sb_last_status(), SB_ERANGE);
   }
   const double rr[][2] = {{1e-7, 1e-7}, {2e-7, 5e-9}, {1e-6, INFINITY}};
   for (int c = 0; c < 3; c++) {
@@ -665,6 +668,152 @@ END_TEST
 
 /* ---------------------------------------------------------------- errors */
 
+/* Extreme arguments (each argument in turn over 1e-320 ... DBL_MAX, inf,
+ * negative values; the others ordinary): a function returns a finite
+ * value and SB_SUCCESS, or NaN and an error (SB_EDOM outside the domain,
+ * SB_ERANGE where the value exceeds DBL_MAX) -- never a silent inf or
+ * NaN, except the documented -inf of the Hamaker energy where t = R/D
+ * exceeds DBL_MAX.  At the finite extremes the value against mpmath at
+ * 1000 digits (tests/gen_dlvo_ref.py, dlvo_sweep.csv: the same table),
+ * with an honest error bound: where an intermediate over/underflowed
+ * (psi = 1e300 gave NaN, A = 1e300 a force of -inf, eps_r = DBL_MAX or
+ * kappa D = 1e308 an inf or NaN energy or bound) the value is now right
+ * wherever it is a double. */
+typedef int (*dfn)(const double *a, sb_result *r);
+static int d_ham(const double *a, sb_result *r)
+{ return sb_dlvo_vdw_hamaker_e(a[0], a[1], a[2], a[3], r); }
+static int d_hamf(const double *a, sb_result *r)
+{ return sb_dlvo_vdw_hamaker_force_e(a[0], a[1], a[2], a[3], r); }
+static int d_der(const double *a, sb_result *r)
+{ return sb_dlvo_vdw_derjaguin_e(a[0], a[1], a[2], a[3], r); }
+static int d_derf(const double *a, sb_result *r)
+{ return sb_dlvo_vdw_derjaguin_force_e(a[0], a[1], a[2], a[3], r); }
+static int d_lsa(const double *a, sb_result *r)
+{
+  return sb_dlvo_edl_lsa_e(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7],
+                           a[8], r);
+}
+static int d_lsaf(const double *a, sb_result *r)
+{
+  return sb_dlvo_edl_lsa_force_e(a[0], a[1], a[2], a[3], a[4], a[5], a[6],
+                                 a[7], a[8], r);
+}
+static int d_hhf(const double *a, sb_result *r)
+{ return sb_dlvo_edl_hhf_e(a[0], a[1], a[2], a[3], a[4], a[5], a[6], r); }
+static int d_hhff(const double *a, sb_result *r)
+{
+  return sb_dlvo_edl_hhf_force_e(a[0], a[1], a[2], a[3], a[4], a[5], a[6],
+                                 r);
+}
+static int d_kappa(const double *a, sb_result *r)
+{
+  sb_clear_error();
+  r->val = sb_dlvo_debye_kappa(a[0], a[1], a[2], a[3]);
+  r->err = 4.0 * DBL_EPSILON * fabs(r->val);
+  return sb_last_status();
+}
+static sb_dlvo_pair d_pair(const double *a)
+{
+  return mk((int)a[11], (int)a[12], a[0], a[1], a[2], a[5], a[6], a[7],
+            a[8], a[9]);
+}
+static int d_energy(const double *a, sb_result *r)
+{
+  sb_dlvo_pair p = d_pair(a);
+  p.T = a[3];
+  p.eps_r = a[4];
+  return sb_dlvo_energy_e(&p, a[10], r);
+}
+static int d_force(const double *a, sb_result *r)
+{
+  sb_dlvo_pair p = d_pair(a);
+  p.T = a[3];
+  p.eps_r = a[4];
+  return sb_dlvo_force_e(&p, a[10], r);
+}
+
+START_TEST(test_extreme_arguments)
+{
+  static const struct {
+    dfn f;
+    int n;
+    double a[13];
+  } k[] = {
+      {d_ham, 4, {1e-20, 1e-6, 2e-6, 1e-8}},
+      {d_hamf, 4, {1e-20, 1e-6, 2e-6, 1e-8}},
+      {d_der, 4, {1e-20, 1e-6, 2e-6, 1e-8}},
+      {d_derf, 4, {1e-20, 1e-6, 2e-6, 1e-8}},
+      {d_lsa, 9, {1e-8, 1e-6, 2e-6, 1e8, 78.4, 298, 1, 0.03, 0.02}},
+      {d_lsaf, 9, {1e-8, 1e-6, 2e-6, 1e8, 78.4, 298, 1, 0.03, 0.02}},
+      {d_hhf, 7, {1e-8, 1e-6, 2e-6, 1e8, 78.4, 0.03, 0.02}},
+      {d_hhff, 7, {1e-8, 1e-6, 2e-6, 1e8, 78.4, 0.03, 0.02}},
+      {d_kappa, 4, {6e23, 1, 78.4, 298}},
+      {d_energy, 11,
+       {1e-6, 2e-6, 1e-20, 298, 78.4, 1, 1e8, 0.03, 0.02, 4e-10, 1e-8, 1, 1}},
+      {d_energy, 11,
+       {1e-6, 2e-6, 1e-20, 298, 78.4, 1, 1e8, 0.03, 0.02, 4e-10, 1e-8, 0, 0}},
+      {d_force, 11,
+       {1e-6, 2e-6, 1e-20, 298, 78.4, 1, 1e8, 0.03, 0.02, 4e-10, 1e-8, 1, 1}},
+      {d_force, 11,
+       {1e-6, 2e-6, 1e-20, 298, 78.4, 1, 1e8, 0.03, 0.02, 4e-10, 1e-8, 0, 0}},
+  };
+  const double ext[9] = {1e-320, 1e-300,  1e300,    DBL_MAX,  INFINITY,
+                         -1e300, -1e-320, -INFINITY, -DBL_MAX};
+  for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
+    for (int i = 0; i < k[f].n; i++)
+      for (int e = 0; e < 9; e++) {
+        double a[13];
+        memcpy(a, k[f].a, sizeof a);
+        a[i] = ext[e];
+        sb_clear_error();
+        sb_result r = {0.0, 0.0};
+        const int st = k[f].f(a, &r);
+        const int ham_inf = (f == 0 || f == 9) && r.val == -INFINITY &&
+                            st == SB_SUCCESS;
+        ck_assert_msg(ham_inf || (st == SB_SUCCESS
+                                      ? isfinite(r.val) && isfinite(r.err)
+                                      : isnan(r.val) &&
+                                            strlen(sb_last_error()) > 0),
+                      "function %zu, argument %d = %g: %g +- %g, status %d",
+                      f, i, ext[e], r.val, r.err, st);
+      }
+  FILE *fh = csv_open("dlvo_sweep.csv");
+  double v[MAXCOL];
+  int rows = 0;
+  while (csv_row(fh, v) == 4) {
+    const int f = (int)v[0], i = (int)v[1];
+    const double want = v[3];
+    double a[13];
+    memcpy(a, k[f].a, sizeof a);
+    a[i] = v[2];
+    sb_clear_error();
+    sb_result r = {0.0, 0.0};
+    const int st = k[f].f(a, &r);
+    if (want == -INFINITY) /* Hamaker energy, t = R/D beyond DBL_MAX */
+      ck_assert_msg(r.val == -INFINITY && st == SB_SUCCESS,
+                    "function %d, argument %d = %g: %g (status %d), want "
+                    "-inf", f, i, a[i], r.val, st);
+    else if (isinf(want))
+      ck_assert_msg(isnan(r.val) && st == SB_ERANGE,
+                    "function %d, argument %d = %g: %g (status %d), want "
+                    "SB_ERANGE", f, i, a[i], r.val, st);
+    else if (want == 0.0)
+      ck_assert_msg(st == SB_SUCCESS && fabs(r.val) <= DBL_MIN &&
+                        fabs(r.val) <= r.err + DBL_MIN,
+                    "function %d, argument %d = %g: %g +- %g (status %d), "
+                    "want below DBL_MIN", f, i, a[i], r.val, r.err, st);
+    else
+      ck_assert_msg(st == SB_SUCCESS && fabs(r.val / want - 1.0) <= 1e-13 &&
+                        fabs(r.val - want) <= r.err,
+                    "function %d, argument %d = %g: %.17g +- %.3g (status "
+                    "%d), want %.17g", f, i, a[i], r.val, r.err, st, want);
+    rows++;
+  }
+  fclose(fh);
+  ck_assert_int_ge(rows, 400);
+}
+END_TEST
+
 START_TEST(test_bad_input)
 {
   sb_result res;
@@ -740,6 +889,7 @@ static Suite *suite(void)
   tcase_add_test(t, test_force_fd);
   tcase_add_test(t, test_sign_changes);
   tcase_add_test(t, test_bad_input);
+  tcase_add_test(t, test_extreme_arguments);
   suite_add_tcase(s, t);
   t = tcase_create("barrier");
   tcase_set_timeout(t, 30);

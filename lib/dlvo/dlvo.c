@@ -26,11 +26,12 @@ static int pos(double x) { return isfinite(x) && x > 0.0; }
 /* r2 may be +inf (plane) */
 static int radius2(double x) { return x > 0.0 && !isnan(x); }
 
-/* Fail an _e function with SB_EDOM unless cond. */
+/* Fail an _e function with SB_EDOM unless cond; the message names the
+ * public function `who` (in scope wherever REQ is used). */
 #define REQ(cond, ...)                                       \
   do {                                                       \
     if (!(cond))                                             \
-      return SBI_FAIL_RES(res, SB_EDOM, __VA_ARGS__);        \
+      return sbi_fail_res(res, SB_EDOM, who, __VA_ARGS__);   \
   } while (0)
 
 #define REQ_GEOM(r1, r2, D)                                                \
@@ -50,10 +51,55 @@ static int radius2(double x) { return x > 0.0 && !isnan(x); }
     return s_ == SB_SUCCESS ? r_.val : NAN;                                \
   } while (0)
 
-/* Derjaguin radius r1 r2/(r1 + r2), = r1 for a plane. */
+/* The potentials are formed in sbi_xd arithmetic (common/numutil.h):
+ * the same operations in the same order as the plain formulas, so the
+ * same bits where nothing over/underflows, but a prefactor such as
+ * eps_r = 1e300, (psi1 + psi2)^2 with psi = 1e300, (kT/ze)^2 with
+ * z = 1e-320 or exp(-kappa D) below DBL_MIN no longer turns a
+ * representable value into inf, 0 or NaN. */
+#define X(x) sbi_xd_of(x)
+#define MUL(a, b) sbi_xd_mul((a), (b))
+#define DIV(a, b) sbi_xd_div((a), (b))
+#define ADD(a, b) sbi_xd_add((a), (b))
+
+static sbi_xd xabs(sbi_xd a)
+{
+  a.m = fabs(a.m);
+  return a;
+}
+
+static sbi_xd xneg(sbi_xd a)
+{
+  a.m = -a.m;
+  return a;
+}
+
+/* Store the value and error bound val, err in *res: SB_SUCCESS, or NaN
+ * and SB_ERANGE (for the public function who) where either exceeds
+ * DBL_MAX.  A value that underflows gets the half-ulp of the subnormals
+ * added to its bound. */
+static int finish(sbi_xd val, sbi_xd err, sb_result *res, const char *who)
+{
+  const double v = sbi_xd_val(val), e = sbi_xd_val(err);
+  if (!isfinite(v))
+    return sbi_fail_res(res, SB_ERANGE, who, "the value overflows (|value| "
+                        "~ 2^%d > DBL_MAX)", val.e);
+  if (!isfinite(e))
+    return sbi_fail_res(res, SB_ERANGE, who, "the error bound of the value "
+                        "%g overflows", v);
+  res->val = v;
+  res->err = fabs(v) < DBL_MIN ? e + 0x1p-1074 : e;
+  return SB_SUCCESS;
+}
+
+/* Derjaguin radius r1 r2/(r1 + r2), = r1 for a plane; the ratio the other
+ * way round where r1/r2 overflows. */
 static double reff(double r1, double r2)
 {
-  return isinf(r2) ? r1 : r1 / (1.0 + r1 / r2);
+  if (isinf(r2))
+    return r1;
+  const double q = r1 / r2;
+  return isinf(q) ? r2 / (1.0 + r2 / r1) : r1 / (1.0 + q);
 }
 
 /* ------------------------------------------------------------ Debye */
@@ -66,8 +112,16 @@ double sb_dlvo_debye_kappa(double n0, double z, double eps_r, double T)
               n0, z, eps_r, T);
     return NAN;
   }
-  double ze = z * SB_DLVO_ECHARGE;
-  return sqrt(2.0 * n0 * ze * ze / (eps_r * SB_DLVO_EPS0 * kB * T));
+  const sbi_xd ze = MUL(X(z), X(SB_DLVO_ECHARGE));
+  const double k = sbi_xd_val(sbi_xd_sqrt(
+      DIV(MUL(MUL(MUL(X(2.0), X(n0)), ze), ze),
+          MUL(MUL(MUL(X(eps_r), X(SB_DLVO_EPS0)), X(kB)), X(T)))));
+  if (isinf(k)) {
+    sbi_error(SB_ERANGE, __func__, "kappa overflows (n0 = %g, z = %g, eps_r "
+              "= %g, T = %g)", n0, z, eps_r, T);
+    return NAN;
+  }
+  return k;
 }
 
 /* ------------------------------------------------------------ van der Waals */
@@ -77,7 +131,8 @@ double sb_dlvo_debye_kappa(double n0, double z, double eps_r, double T)
  *   g = (1/2) sum_{k>=3} (-1)^(k-1) (k-2)/k y^k
  * (alternating, terms decreasing for y <= 1/2) for t < 1/4; above, the
  * form -(ln(1+y) - y) - y^2/(2(1+y)) with GSL's log_1plusx_mx loses at
- * most a factor 16 to cancellation. */
+ * most a factor 16 to cancellation.  Beyond t = DBL_MAX/2 (y overflows)
+ * g = t - (ln 2t - 1/2) + O(1/t). */
 static double ham_g(double t, double *err)
 {
   if (t < 0.25) {
@@ -94,9 +149,9 @@ static double ham_g(double t, double *err)
     return 0.5 * sum;
   }
   double y = 2.0 * t;
-  if (isinf(y)) {  /* D below what t = R/D can hold: the energy overflows */
-    *err = 0.0;
-    return INFINITY;
+  if (isinf(y)) {
+    *err = 4.0 * EPS * t;
+    return t - (log(t) + M_LN2 - 0.5);
   }
   /* y (y/(1 + y)), not y^2/(1 + y): y^2 overflows above 1.3e154 (contact
    * distances of R/1e154), and -A/6 g became +inf */
@@ -105,92 +160,130 @@ static double ham_g(double t, double *err)
   return a - b;
 }
 
-/* t = 2 r1 r2/(D (D + 2 r1 + 2 r2)) (r1/D for a plane) and the logarithmic
- * derivative -d ln t/dD = 1/D + 1/(D + 2 r1 + 2 r2). */
-static double ham_t(double r1, double r2, double D, double *dlog)
+/* t = 2 r1 r2/(D (D + 2 r1 + 2 r2)) (r1/D for a plane) and, if dlog is not
+ * NULL, the logarithmic derivative -d ln t/dD = 1/D + 1/(D + 2 r1 + 2 r2),
+ * both in sbi_xd form (t may exceed DBL_MAX, 1/D too). */
+static sbi_xd ham_t(double r1, double r2, double D, sbi_xd *dlog)
 {
   if (isinf(r2)) {
-    *dlog = 1.0 / D;
-    return r1 / D;
+    if (dlog)
+      *dlog = DIV(X(1.0), X(D));
+    return DIV(X(r1), X(D));
   }
-  double s = D + 2.0 * (r1 + r2);
-  *dlog = 1.0 / D + 1.0 / s;
-  return (2.0 * r1 / D) * (r2 / s);
+  const sbi_xd s = ADD(X(D), MUL(X(2.0), ADD(X(r1), X(r2))));
+  if (dlog)
+    *dlog = ADD(DIV(X(1.0), X(D)), DIV(X(1.0), s));
+  return MUL(DIV(MUL(X(2.0), X(r1)), X(D)), DIV(X(r2), s));
+}
+
+static int hamaker(double A, double r1, double r2, double D, sb_result *res,
+                   const char *who)
+{
+  REQ_VDW(A, r1, r2, D);
+  const sbi_xd tx = ham_t(r1, r2, D, NULL);
+  const double t = sbi_xd_val(tx);
+  if (A == 0.0) {
+    res->val = res->err = 0.0;
+    return SB_SUCCESS;
+  }
+  if (isinf(t)) {
+    /* D below ~R/DBL_MAX: t = R/D is not a double; the energy is -inf
+     * for A > 0 by convention (documented; the contact singularity) */
+    res->val = A > 0.0 ? -INFINITY : INFINITY;
+    res->err = 0.0;
+    return SB_SUCCESS;
+  }
+  sbi_xd g, eg;
+  if (t < 0x1p-60) {
+    /* g = (1/2)(1/3) y^3 (1 + O(y)), y = 2t: the series' first term,
+     * formed without the underflow of y^3 */
+    const sbi_xd y = MUL(X(2.0), tx);
+    g = MUL(X(0.5), MUL(X(1.0 / 3.0), MUL(MUL(y, y), y)));
+    eg = MUL(X(4.0 * EPS), g);
+  } else {
+    double e;
+    g = X(ham_g(t, &e));
+    /* t carries ~4 ulp; g'(t) t <= 2 g for every t (g' = (2t/(1+2t))^2)
+     * is not true near 0, so bound the propagated part by
+     * g'(t) t 4 eps. */
+    const double gp = t > 1e300 ? 1.0 : 2.0 * t / (1.0 + 2.0 * t);
+    eg = X(e + 4.0 * EPS * gp * gp * t);
+  }
+  const sbi_xd W = MUL(DIV(X(-A), X(6.0)), g);
+  return finish(W, ADD(MUL(DIV(X(fabs(A)), X(6.0)), eg),
+                       MUL(X(2.0 * EPS), xabs(W))),
+                res, who);
 }
 
 int sb_dlvo_vdw_hamaker_e(double A, double r1, double r2, double D,
                           sb_result *res)
 {
-  REQ_VDW(A, r1, r2, D);
-  double dl, t = ham_t(r1, r2, D, &dl), eg;
-  double g = ham_g(t, &eg);
-  /* t carries ~4 ulp; g'(t) t <= 2 g for every t (g' = (2t/(1+2t))^2) is
-   * not true near 0, so bound the propagated part by g'(t) t 4 eps. */
-  double gp = 2.0 * t / (1.0 + 2.0 * t);
-  eg += 4.0 * EPS * gp * gp * t;
-  res->val = -A / 6.0 * g;
-  res->err = fabs(A) / 6.0 * eg + 2.0 * EPS * fabs(res->val);
-  return SB_SUCCESS;
+  return hamaker(A, r1, r2, D, res, __func__);
 }
 
 double sb_dlvo_vdw_hamaker(double A, double r1, double r2, double D)
 {
-  VAL(sb_dlvo_vdw_hamaker_e(A, r1, r2, D, &r_));
+  VAL(hamaker(A, r1, r2, D, &r_, __func__));
+}
+
+static int hamaker_force(double A, double r1, double r2, double D,
+                         sb_result *res, const char *who)
+{
+  REQ_VDW(A, r1, r2, D);
+  /* F = (A/6) g'(t) dt/dD = -(A/6) (2t/(1+2t))^2 t (1/D + 1/(D+2r1+2r2)):
+   * products of positive factors, no cancellation. */
+  sbi_xd dl;
+  const sbi_xd tx = ham_t(r1, r2, D, &dl);
+  const double t = sbi_xd_val(tx);
+  const sbi_xd gp =
+      t > 1e300 ? X(1.0) : DIV(MUL(X(2.0), tx), X(1.0 + 2.0 * t));
+  const sbi_xd F = MUL(MUL(MUL(MUL(DIV(X(-A), X(6.0)), gp), gp), tx), dl);
+  return finish(F, MUL(X(16.0 * EPS), xabs(F)), res, who);
 }
 
 int sb_dlvo_vdw_hamaker_force_e(double A, double r1, double r2, double D,
                                 sb_result *res)
 {
-  REQ_VDW(A, r1, r2, D);
-  /* F = (A/6) g'(t) dt/dD = -(A/6) (2t/(1+2t))^2 t (1/D + 1/(D+2r1+2r2)):
-   * products of positive factors, no cancellation. */
-  double dl, t = ham_t(r1, r2, D, &dl);
-  double gp = isinf(t) ? 1.0 : 2.0 * t / (1.0 + 2.0 * t);
-  res->val = -A / 6.0 * gp * gp * t * dl;
-  res->err = 16.0 * EPS * fabs(res->val);
-  return SB_SUCCESS;
+  return hamaker_force(A, r1, r2, D, res, __func__);
 }
 
 double sb_dlvo_vdw_hamaker_force(double A, double r1, double r2, double D)
 {
-  VAL(sb_dlvo_vdw_hamaker_force_e(A, r1, r2, D, &r_));
+  VAL(hamaker_force(A, r1, r2, D, &r_, __func__));
 }
 
 /* Derjaguin energy (force = 0) or force (force = 1). */
 static int derjaguin(double A, double r1, double r2, double D, sb_result *res,
-                     int force)
+                     int force, const char *who)
 {
   REQ_VDW(A, r1, r2, D);
-  if (force) {
-    res->val = -A * reff(r1, r2) / (6.0 * D * D);
-    res->err = 5.0 * EPS * fabs(res->val);
-  } else {
-    res->val = -A * reff(r1, r2) / (6.0 * D);
-    res->err = 4.0 * EPS * fabs(res->val);
-  }
-  return SB_SUCCESS;
+  sbi_xd den = MUL(X(6.0), X(D));
+  if (force)
+    den = MUL(den, X(D));
+  const sbi_xd W = DIV(MUL(X(-A), X(reff(r1, r2))), den);
+  return finish(W, MUL(X((force ? 5.0 : 4.0) * EPS), xabs(W)), res, who);
 }
 
 int sb_dlvo_vdw_derjaguin_e(double A, double r1, double r2, double D,
                             sb_result *res)
 {
-  return derjaguin(A, r1, r2, D, res, 0);
+  return derjaguin(A, r1, r2, D, res, 0, __func__);
 }
 
 double sb_dlvo_vdw_derjaguin(double A, double r1, double r2, double D)
 {
-  VAL(derjaguin(A, r1, r2, D, &r_, 0));
+  VAL(derjaguin(A, r1, r2, D, &r_, 0, __func__));
 }
 
 int sb_dlvo_vdw_derjaguin_force_e(double A, double r1, double r2, double D,
                                   sb_result *res)
 {
-  return derjaguin(A, r1, r2, D, res, 1);
+  return derjaguin(A, r1, r2, D, res, 1, __func__);
 }
 
 double sb_dlvo_vdw_derjaguin_force(double A, double r1, double r2, double D)
 {
-  VAL(derjaguin(A, r1, r2, D, &r_, 1));
+  VAL(derjaguin(A, r1, r2, D, &r_, 1, __func__));
 }
 
 /* ------------------------------------------------------------ double layer */
@@ -201,112 +294,166 @@ double sb_dlvo_vdw_derjaguin_force(double A, double r1, double r2, double D)
   REQ(fin(psi1) && fin(psi2), "surface potentials must be finite (got %g, " \
       "%g)", psi1, psi2)
 
+/* The error factor (c0 + 3x) eps times |terms| (0 where the terms are 0,
+ * whatever x: kappa D may be inf there). */
+static sbi_xd xerr(double c0, double x, sbi_xd terms)
+{
+  return terms.m == 0.0 ? terms : MUL(X((c0 + 3.0 * x) * EPS), terms);
+}
+
+/* tanh(psi/(4 kT/ze)) with kT/ze in sbi_xd form: the argument itself
+ * where it is below 2^-27 (tanh u = u (1 - u^2/3)), so that a tiny
+ * argument keeps its digits */
+static sbi_xd lsa_gamma(double psi, sbi_xd kt_ze)
+{
+  const sbi_xd u = DIV(X(psi), MUL(X(4.0), kt_ze));
+  const double uv = sbi_xd_val(u);
+  return fabs(uv) < 0x1p-27 ? u : X(tanh(uv));
+}
+
 /* LSA energy; *force gets kappa W (same relative error). */
 static int lsa(double D, double r1, double r2, double kappa, double eps_r,
                double T, double z, double psi1, double psi2, sb_result *res,
-               int force)
+               int force, const char *who)
 {
   REQ_GEOM(r1, r2, D);
   REQ_EDL(kappa, eps_r, psi1, psi2);
   REQ(pos(T) && pos(z), "T and z must be finite and > 0 (got %g, %g)", T, z);
-  double kt_ze = kB * T / (z * SB_DLVO_ECHARGE);
-  double g1 = tanh(psi1 / (4.0 * kt_ze)), g2 = tanh(psi2 / (4.0 * kt_ze));
-  double w = 64.0 * M_PI * eps_r * SB_DLVO_EPS0 * reff(r1, r2) * kt_ze *
-             kt_ze * g1 * g2 * exp(-kappa * D);
+  const sbi_xd kt_ze = DIV(MUL(X(kB), X(T)), MUL(X(z), X(SB_DLVO_ECHARGE)));
+  const sbi_xd g1 = lsa_gamma(psi1, kt_ze), g2 = lsa_gamma(psi2, kt_ze);
+  const double x = kappa * D;
+  sbi_xd w = MUL(MUL(MUL(MUL(MUL(MUL(MUL(MUL(X(64.0 * M_PI), X(eps_r)),
+                                             X(SB_DLVO_EPS0)),
+                                         X(reff(r1, r2))),
+                                     kt_ze),
+                                 kt_ze),
+                             g1),
+                         g2),
+                     sbi_xd_expneg(x));
   if (force)
-    w *= kappa;
-  res->val = w;
+    w = MUL(w, X(kappa));
   /* ~12 roundings; exp(-x) turns x's relative rounding (the product
    * kappa D, ~2 ulp with that of its inputs) into x times as much */
-  res->err = (16.0 + 3.0 * kappa * D) * EPS * fabs(w);
-  return SB_SUCCESS;
+  return finish(w, xerr(16.0, x, xabs(w)), res, who);
 }
 
 int sb_dlvo_edl_lsa_e(double D, double r1, double r2, double kappa,
                       double eps_r, double T, double z, double psi1,
                       double psi2, sb_result *res)
 {
-  return lsa(D, r1, r2, kappa, eps_r, T, z, psi1, psi2, res, 0);
+  return lsa(D, r1, r2, kappa, eps_r, T, z, psi1, psi2, res, 0, __func__);
 }
 
 double sb_dlvo_edl_lsa(double D, double r1, double r2, double kappa,
                        double eps_r, double T, double z, double psi1,
                        double psi2)
 {
-  VAL(lsa(D, r1, r2, kappa, eps_r, T, z, psi1, psi2, &r_, 0));
+  VAL(lsa(D, r1, r2, kappa, eps_r, T, z, psi1, psi2, &r_, 0, __func__));
 }
 
 int sb_dlvo_edl_lsa_force_e(double D, double r1, double r2, double kappa,
                             double eps_r, double T, double z, double psi1,
                             double psi2, sb_result *res)
 {
-  return lsa(D, r1, r2, kappa, eps_r, T, z, psi1, psi2, res, 1);
+  return lsa(D, r1, r2, kappa, eps_r, T, z, psi1, psi2, res, 1, __func__);
 }
 
 double sb_dlvo_edl_lsa_force(double D, double r1, double r2, double kappa,
                              double eps_r, double T, double z, double psi1,
                              double psi2)
 {
-  VAL(lsa(D, r1, r2, kappa, eps_r, T, z, psi1, psi2, &r_, 1));
+  VAL(lsa(D, r1, r2, kappa, eps_r, T, z, psi1, psi2, &r_, 1, __func__));
 }
 
-/* HHF energy or force.  ln(1 + e^-x) = log1p(exp(-x)),
- * ln(1 - e^-x) = sbi_log1mexp(x) (Maechler 2012); the force terms 1/(e^x + 1) and
- * 1/expm1(x) are accurate for every x > 0 (1/inf = 0 for large x). */
+/* HHF energy or force, x = kappa D.  For x <= 1 the printed form: with
+ * ln(1 + e^-x) = log1p(exp(-x)), ln(1 - e^-x) = sbi_log1mexp(x) (Maechler
+ * 2012), = ln x where kappa D underflows; the force terms 1/(e^x + 1) and
+ * 1/expm1(x) (= 1/x where kappa D underflows).  For x > 1, where the two
+ * printed terms ~ (psi1 +- psi2)^2 e^-x cancel unless psi1 psi2 is large,
+ * the equivalent form with q = psi1^2 + psi2^2, p = psi1 psi2:
+ *   W = pi eps R [q ln(1 - e^{-2x}) + 4 p atanh(e^{-x})],
+ *   F = pi eps R kappa [2 p/sinh x - 2 q/expm1(2x)]
+ * (ln(1 - u^2) = -u^2 and atanh u = u, 1/sinh x = 2e^-x, 1/expm1(2x) =
+ * e^{-2x} to double precision where e^-x < 1e-300). */
 static int hhf(double D, double r1, double r2, double kappa, double eps_r,
-               double psi1, double psi2, sb_result *res, int force)
+               double psi1, double psi2, sb_result *res, int force,
+               const char *who)
 {
   REQ_GEOM(r1, r2, D);
   REQ_EDL(kappa, eps_r, psi1, psi2);
-  double x = kappa * D;
-  double sp = (psi1 + psi2) * (psi1 + psi2), sm = (psi1 - psi2) * (psi1 - psi2);
-  double pre = M_PI * eps_r * SB_DLVO_EPS0 * reff(r1, r2);
-  double a, b;
-  if (force) {
-    pre *= kappa;
-    a = sp / (exp(x) + 1.0);
-    b = sm == 0.0 ? 0.0 : -sm / expm1(x);
+  const double x = kappa * D;
+  const sbi_xd kd = MUL(X(kappa), X(D)); /* x without underflow */
+  sbi_xd pre = MUL(MUL(MUL(X(M_PI), X(eps_r)), X(SB_DLVO_EPS0)),
+                   X(reff(r1, r2)));
+  sbi_xd a, b;
+  if (x <= 1.0) {
+    const sbi_xd s1 = ADD(X(psi1), X(psi2)), s2 = ADD(X(psi1), X(-psi2));
+    const sbi_xd sp = MUL(s1, s1), sm = MUL(s2, s2);
+    const int tiny = !(x >= 1e-300);
+    if (force) {
+      pre = MUL(pre, X(kappa));
+      a = DIV(sp, X(exp(x) + 1.0));
+      b = sm.m == 0.0 ? X(0.0)
+          : tiny      ? xneg(DIV(sm, kd))
+                      : DIV(xneg(sm), X(expm1(x)));
+    } else {
+      a = MUL(sp, X(log1p(exp(-x))));
+      b = sm.m == 0.0 ? X(0.0)
+                      : MUL(sm, X(tiny ? sbi_xd_log(kd) : sbi_log1mexp(x)));
+    }
   } else {
-    a = sp * log1p(exp(-x));
-    b = sm == 0.0 ? 0.0 : sm * sbi_log1mexp(x);
+    const sbi_xd q = ADD(MUL(X(psi1), X(psi1)), MUL(X(psi2), X(psi2)));
+    const sbi_xd p = MUL(X(psi1), X(psi2));
+    const int far = x >= 700.0; /* e^-x below 1e-300 */
+    if (force) {
+      pre = MUL(pre, X(kappa));
+      a = far ? MUL(MUL(X(4.0), p), sbi_xd_expneg(x))
+              : DIV(MUL(X(2.0), p), X(sinh(x)));
+      b = far ? MUL(MUL(X(-2.0), q), sbi_xd_expneg(2.0 * x))
+              : DIV(MUL(X(-2.0), q), X(expm1(2.0 * x)));
+    } else {
+      a = MUL(q, far ? xneg(sbi_xd_expneg(2.0 * x))
+                     : X(sbi_log1mexp(2.0 * x)));
+      b = MUL(MUL(X(4.0), p), far ? sbi_xd_expneg(x) : X(atanh(exp(-x))));
+    }
   }
-  res->val = pre * (a + b);
+  const sbi_xd W = MUL(pre, ADD(a, b));
   /* each term ~8 roundings plus the x-sensitivity (<= x relative for the
    * exponentials; <= 1 for the logarithms near 0 since x d/dx ln(1-e^-x)
    * = x/expm1(x) <= 1) */
-  res->err = pre * (10.0 + 3.0 * x) * EPS * (fabs(a) + fabs(b)) +
-             2.0 * EPS * fabs(res->val);
-  return SB_SUCCESS;
+  return finish(W, ADD(MUL(pre, xerr(10.0, x, ADD(xabs(a), xabs(b)))),
+                       MUL(X(2.0 * EPS), xabs(W))),
+                res, who);
 }
 
 int sb_dlvo_edl_hhf_e(double D, double r1, double r2, double kappa,
                       double eps_r, double psi1, double psi2, sb_result *res)
 {
-  return hhf(D, r1, r2, kappa, eps_r, psi1, psi2, res, 0);
+  return hhf(D, r1, r2, kappa, eps_r, psi1, psi2, res, 0, __func__);
 }
 
 double sb_dlvo_edl_hhf(double D, double r1, double r2, double kappa,
                        double eps_r, double psi1, double psi2)
 {
-  VAL(hhf(D, r1, r2, kappa, eps_r, psi1, psi2, &r_, 0));
+  VAL(hhf(D, r1, r2, kappa, eps_r, psi1, psi2, &r_, 0, __func__));
 }
 
 int sb_dlvo_edl_hhf_force_e(double D, double r1, double r2, double kappa,
                             double eps_r, double psi1, double psi2,
                             sb_result *res)
 {
-  return hhf(D, r1, r2, kappa, eps_r, psi1, psi2, res, 1);
+  return hhf(D, r1, r2, kappa, eps_r, psi1, psi2, res, 1, __func__);
 }
 
 double sb_dlvo_edl_hhf_force(double D, double r1, double r2, double kappa,
                              double eps_r, double psi1, double psi2)
 {
-  VAL(hhf(D, r1, r2, kappa, eps_r, psi1, psi2, &r_, 1));
+  VAL(hhf(D, r1, r2, kappa, eps_r, psi1, psi2, &r_, 1, __func__));
 }
 
 /* ------------------------------------------------------------ pair */
 
-int sb_dlvo_pair_check(const sb_dlvo_pair *p)
+static int pair_check(const sb_dlvo_pair *p, const char *who)
 {
   sb_result *res = NULL;
   REQ(p != NULL, "pair is NULL");
@@ -330,59 +477,72 @@ int sb_dlvo_pair_check(const sb_dlvo_pair *p)
   return SB_SUCCESS;
 }
 
-/* The two parts of the energy (force = 0) or of the force (force = 1) of
- * a checked pair. */
-static void parts(const sb_dlvo_pair *p, double D, int force, sb_result *v,
-                  sb_result *e)
+int sb_dlvo_pair_check(const sb_dlvo_pair *p)
 {
-  if (p->vdw == SB_DLVO_VDW_HAMAKER) {
-    if (force)
-      sb_dlvo_vdw_hamaker_force_e(p->A, p->r1, p->r2, D, v);
-    else
-      sb_dlvo_vdw_hamaker_e(p->A, p->r1, p->r2, D, v);
-  } else {
-    if (force)
-      sb_dlvo_vdw_derjaguin_force_e(p->A, p->r1, p->r2, D, v);
-    else
-      sb_dlvo_vdw_derjaguin_e(p->A, p->r1, p->r2, D, v);
-  }
-  if (p->edl == SB_DLVO_EDL_LSA)
-    lsa(D, p->r1, p->r2, p->kappa, p->eps_r, p->T, p->z, p->psi1, p->psi2, e,
-        force);
-  else
-    hhf(D, p->r1, p->r2, p->kappa, p->eps_r, p->psi1, p->psi2, e, force);
+  return pair_check(p, __func__);
 }
 
-static int total(const sb_dlvo_pair *p, double D, int force, sb_result *res)
+/* The two parts of the energy (force = 0) or of the force (force = 1) of
+ * a checked pair; the first failing status (messages for who). */
+static int parts(const sb_dlvo_pair *p, double D, int force, sb_result *v,
+                 sb_result *e, const char *who)
 {
-  int s = sb_dlvo_pair_check(p); /* records the message */
+  int s;
+  if (p->vdw == SB_DLVO_VDW_HAMAKER)
+    s = force ? hamaker_force(p->A, p->r1, p->r2, D, v, who)
+              : hamaker(p->A, p->r1, p->r2, D, v, who);
+  else
+    s = derjaguin(p->A, p->r1, p->r2, D, v, force, who);
+  int s2 = p->edl == SB_DLVO_EDL_LSA
+               ? lsa(D, p->r1, p->r2, p->kappa, p->eps_r, p->T, p->z, p->psi1,
+                     p->psi2, e, force, who)
+               : hhf(D, p->r1, p->r2, p->kappa, p->eps_r, p->psi1, p->psi2, e,
+                     force, who);
+  return s ? s : s2;
+}
+
+static int total(const sb_dlvo_pair *p, double D, int force, sb_result *res,
+                 const char *who)
+{
+  int s = pair_check(p, who); /* records the message */
   if (s != SB_SUCCESS) {
     res->val = res->err = NAN;
     return s;
   }
   REQ(pos(D), "separation D must be finite and > 0 (got %g)", D);
   sb_result v, e;
-  parts(p, D, force, &v, &e);
+  s = parts(p, D, force, &v, &e, who);
+  if (s != SB_SUCCESS) {
+    res->val = res->err = NAN;
+    return s;
+  }
   res->val = v.val + e.val;
+  if (isinf(v.val) && !force) { /* the Hamaker energy's documented -inf */
+    res->err = 0.0;
+    return SB_SUCCESS;
+  }
   res->err = v.err + e.err + EPS * fabs(res->val);
+  if (!isfinite(res->val) || !isfinite(res->err))
+    return sbi_fail_res(res, SB_ERANGE, who, "the %s overflows (%g + %g)",
+                        force ? "force" : "energy", v.val, e.val);
   return SB_SUCCESS;
 }
 
 int sb_dlvo_energy_e(const sb_dlvo_pair *p, double D, sb_result *res)
 {
-  return total(p, D, 0, res);
+  return total(p, D, 0, res, __func__);
 }
 double sb_dlvo_energy(const sb_dlvo_pair *p, double D)
 {
-  VAL(total(p, D, 0, &r_));
+  VAL(total(p, D, 0, &r_, __func__));
 }
 int sb_dlvo_force_e(const sb_dlvo_pair *p, double D, sb_result *res)
 {
-  return total(p, D, 1, res);
+  return total(p, D, 1, res, __func__);
 }
 double sb_dlvo_force(const sb_dlvo_pair *p, double D)
 {
-  VAL(total(p, D, 1, &r_));
+  VAL(total(p, D, 1, &r_, __func__));
 }
 
 /* ------------------------------------------------------------ barrier */
@@ -391,7 +551,7 @@ double sb_dlvo_force(const sb_dlvo_pair *p, double D)
 static double fW(const sb_dlvo_pair *p, double D, double *err)
 {
   sb_result v, e;
-  parts(p, D, 0, &v, &e);
+  parts(p, D, 0, &v, &e, "sb_dlvo_barrier");
   if (err)
     *err = v.err + e.err + EPS * fabs(v.val + e.val);
   return v.val + e.val;
@@ -400,7 +560,7 @@ static double fW(const sb_dlvo_pair *p, double D, double *err)
 static double fF(double D, void *ctx)
 {
   sb_result v, e;
-  parts((const sb_dlvo_pair *)ctx, D, 1, &v, &e);
+  parts((const sb_dlvo_pair *)ctx, D, 1, &v, &e, "sb_dlvo_barrier");
   return v.val + e.val;
 }
 
@@ -430,7 +590,7 @@ static int refine(const sb_dlvo_pair *p, double lo, double hi, double *root,
     return sbi_error(SB_EMAXITER, "sb_dlvo_barrier",
                      "root finder did not converge near D = %g", *root);
   sb_result v, e;
-  parts(p, *root, 1, &v, &e);
+  parts(p, *root, 1, &v, &e, "sb_dlvo_barrier");
   double h = 1e-4 * *root;
   double dF = fabs(fF(*root + h, (void *)p) - fF(*root - h, (void *)p)) /
               (2.0 * h);
@@ -444,7 +604,8 @@ static int refine(const sb_dlvo_pair *p, double lo, double hi, double *root,
 int sb_dlvo_barrier(const sb_dlvo_pair *p, sb_dlvo_barrier_t *b)
 {
   sb_result *res = NULL;
-  int s = sb_dlvo_pair_check(p);
+  const char *const who = __func__;
+  int s = pair_check(p, who);
   if (s != SB_SUCCESS)
     return s;
   REQ(b != NULL, "result pointer is NULL");
@@ -464,7 +625,7 @@ int sb_dlvo_barrier(const sb_dlvo_pair *p, sb_dlvo_barrier_t *b)
     int k;
     for (k = 0; k < 80; k++, Dhi *= 2.0) {
       sb_result v, e;
-      parts(p, Dhi, 1, &v, &e);
+      parts(p, Dhi, 1, &v, &e, __func__);
       if (v.val + e.val < 0.0 && fabs(e.val) <= 1e-3 * fabs(v.val))
         break;
     }
@@ -661,6 +822,7 @@ double sb_dlvo_erel_shape(sb_dlvo_erel_law law, int dim)
 static int law_k2(double E, double theta, sb_dlvo_erel_law law, int dim,
                   sb_result *res, int *k2)
 {
+  const char *const who = __func__;
   double k = sb_dlvo_erel_shape(law, dim);
   REQ(!isnan(k), "invalid law %d or dimension %d", (int)law, dim);
   REQ(pos(theta), "theta must be finite and > 0 (got %g)", theta);

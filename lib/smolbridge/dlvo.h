@@ -46,6 +46,18 @@
  * relative error below 2e-14 for every D); the _e forms return honest
  * absolute error bounds, checked in tests/test_dlvo.c against mpmath at
  * 60 digits.  Errors: NaN (or the status) and SB_EDOM on a bad argument.
+ *
+ * Extreme arguments: potentials, forces and kappa are formed with an
+ * extended exponent (no intermediate over/underflows), so each returns
+ * its value wherever it is a double -- 0 or a subnormal where it
+ * underflows (the error bound covers that) -- and NaN with SB_ERANGE
+ * (the message names the function) where the value or its error bound
+ * exceeds DBL_MAX; never a silent inf or NaN.  One documented exception:
+ * the Hamaker energy (and the total energy with it) is -inf for A > 0
+ * (+inf for A < 0) with SB_SUCCESS where t = R/D exceeds DBL_MAX (D below
+ * about R/DBL_MAX: the contact singularity), even though |W| ~ A t/6 may
+ * still be a double there.  Checked over 1e-320 ... DBL_MAX, +-inf for
+ * every argument against mpmath (docs/dlvo.md, "Extreme arguments").
  */
 #ifndef SMOLBRIDGE_DLVO_H
 #define SMOLBRIDGE_DLVO_H
@@ -67,29 +79,38 @@ extern "C" {
 /** Inverse Debye length of a symmetric z:z electrolyte,
  *  kappa = sqrt(2 n0 z^2 e^2/(eps_r eps_0 k_B T)), 1/m.  n0 [m^-3] > 0 is
  *  the bulk number density of each ion species (1 mM = 6.02214076e23 m^-3),
- *  z > 0, eps_r > 0, T [K] > 0.  Water at 25 C, 1 mM 1:1: 1/kappa = 9.6 nm. */
+ *  z > 0, eps_r > 0, T [K] > 0.  Water at 25 C, 1 mM 1:1: 1/kappa = 9.6 nm.
+ *  NaN and SB_EDOM on bad input, NaN and SB_ERANGE where kappa exceeds
+ *  DBL_MAX. */
 double sb_dlvo_debye_kappa(double n0, double z, double eps_r, double T);
 
 /* ============================================================ van der Waals */
 
 /** Full Hamaker sphere–sphere (r2 = INFINITY: sphere–plane) energy, J.
- *  A [J] finite (> 0 attractive), r1 > 0, r2 > 0 or +inf, D > 0. */
+ *  A [J] finite (> 0 attractive), r1 > 0, r2 > 0 or +inf, D > 0.
+ *  Returns -inf (A > 0; +inf for A < 0, 0 for A = 0) with SB_SUCCESS
+ *  where t = 2 r1 r2/(D(D + 2r1 + 2r2)) exceeds DBL_MAX (D below about
+ *  R/DBL_MAX: the contact singularity, by convention); NaN and SB_ERANGE
+ *  where W exceeds DBL_MAX otherwise (|A| near DBL_MAX). */
 double sb_dlvo_vdw_hamaker(double A, double r1, double r2, double D);
 int sb_dlvo_vdw_hamaker_e(double A, double r1, double r2, double D,
                           sb_result *res);
 /** Its force -dW/dD, N:
  *  -(32/3) A r1^3 r2^3 (D + r1 + r2)/[(D(D + 2r1 + 2r2))^2 ((D + 2r1)(D +
- *  2r2))^2]; sphere–plane -(2/3) A r1^3/(D^2 (D + 2r1)^2). */
+ *  2r2))^2]; sphere–plane -(2/3) A r1^3/(D^2 (D + 2r1)^2).  NaN and
+ *  SB_ERANGE where F exceeds DBL_MAX (e.g. A = 1e300 J, or D below about
+ *  1e-168 m for A = 1e-20 J, R = 1 um), also where t does. */
 double sb_dlvo_vdw_hamaker_force(double A, double r1, double r2, double D);
 int sb_dlvo_vdw_hamaker_force_e(double A, double r1, double r2, double D,
                                 sb_result *res);
 
 /** Derjaguin (short-distance) form -A R/(6D), J (Mohaupt 2011,
- *  eqs 1.6–1.7). */
+ *  eqs 1.6–1.7).  NaN and SB_ERANGE where it exceeds DBL_MAX. */
 double sb_dlvo_vdw_derjaguin(double A, double r1, double r2, double D);
 int sb_dlvo_vdw_derjaguin_e(double A, double r1, double r2, double D,
                             sb_result *res);
-/** Its force -A R/(6 D^2), N. */
+/** Its force -A R/(6 D^2), N; NaN and SB_ERANGE where it exceeds
+ *  DBL_MAX (e.g. D = 1e-320 m). */
 double sb_dlvo_vdw_derjaguin_force(double A, double r1, double r2, double D);
 int sb_dlvo_vdw_derjaguin_force_e(double A, double r1, double r2, double D,
                                   sb_result *res);
@@ -97,7 +118,9 @@ int sb_dlvo_vdw_derjaguin_force_e(double A, double r1, double r2, double D,
 /* ============================================================ double layer */
 
 /** LSA double-layer energy (formula above), J.  kappa [1/m] > 0,
- *  eps_r > 0, T [K] > 0, z > 0, psi1, psi2 [V] finite. */
+ *  eps_r > 0, T [K] > 0, z > 0, psi1, psi2 [V] finite.  exp(-kappa D) is
+ *  formed without underflow, so a large prefactor times a tiny
+ *  exponential is right; NaN and SB_ERANGE where W exceeds DBL_MAX. */
 double sb_dlvo_edl_lsa(double D, double r1, double r2, double kappa,
                        double eps_r, double T, double z, double psi1,
                        double psi2);
@@ -112,14 +135,20 @@ int sb_dlvo_edl_lsa_force_e(double D, double r1, double r2, double kappa,
                             double eps_r, double T, double z, double psi1,
                             double psi2, sb_result *res);
 
-/** HHF constant-potential double-layer energy (formula above), J. */
+/** HHF constant-potential double-layer energy (formula above), J.  For
+ *  kappa D > 1 evaluated as pi eps R [(psi1^2 + psi2^2) ln(1 - e^{-2 kappa
+ *  D}) + 4 psi1 psi2 atanh(e^{-kappa D})] (the same function without the
+ *  cancellation of the printed terms, e.g. at psi = 1e300 V); NaN and
+ *  SB_ERANGE where W exceeds DBL_MAX. */
 double sb_dlvo_edl_hhf(double D, double r1, double r2, double kappa,
                        double eps_r, double psi1, double psi2);
 int sb_dlvo_edl_hhf_e(double D, double r1, double r2, double kappa,
                       double eps_r, double psi1, double psi2,
                       sb_result *res);
 /** Its force pi eps R kappa [(psi1 + psi2)^2/(e^{kappa D} + 1)
- *  - (psi1 - psi2)^2/(e^{kappa D} - 1)], N. */
+ *  - (psi1 - psi2)^2/(e^{kappa D} - 1)], N; for kappa D > 1 as
+ *  pi eps R kappa [2 psi1 psi2/sinh(kappa D) - 2 (psi1^2 + psi2^2)/
+ *  expm1(2 kappa D)].  NaN and SB_ERANGE where F exceeds DBL_MAX. */
 double sb_dlvo_edl_hhf_force(double D, double r1, double r2, double kappa,
                              double eps_r, double psi1, double psi2);
 int sb_dlvo_edl_hhf_force_e(double D, double r1, double r2, double kappa,
@@ -158,11 +187,14 @@ typedef struct {
 int sb_dlvo_pair_check(const sb_dlvo_pair *p);
 
 /** Total DLVO energy W(D) = W_vdw + W_edl, J (Mohaupt 2011, eqs
- *  1.11–1.12, corrected as above).  D > 0. */
+ *  1.11–1.12, corrected as above).  D > 0.  -inf with the Hamaker model
+ *  where its energy is (D below about R/DBL_MAX); NaN and SB_ERANGE where
+ *  a part or the sum exceeds DBL_MAX. */
 double sb_dlvo_energy(const sb_dlvo_pair *p, double D);
 int sb_dlvo_energy_e(const sb_dlvo_pair *p, double D, sb_result *res);
 /** Total force F(D) = -dW/dD, N (> 0 repulsive; Mohaupt 2011, eqs
- *  1.13–1.14, with the sign corrected). */
+ *  1.13–1.14, with the sign corrected).  NaN and SB_ERANGE where a part or
+ *  the sum exceeds DBL_MAX. */
 double sb_dlvo_force(const sb_dlvo_pair *p, double D);
 int sb_dlvo_force_e(const sb_dlvo_pair *p, double D, sb_result *res);
 
