@@ -633,6 +633,69 @@ START_TEST(test_domain)
 }
 END_TEST
 
+/* (e''') one draw at a subnormal B (the scales B sqrt(tau), B tau^1.5
+ * subnormal: the states divided by them overflowed and the draw was
+ * NaN).  The law is linear: B = 2^-1060 with states and drifts times
+ * 2^-1000 is the B = 2^-60 draw of the same seed times 2^-1000 (to
+ * rounding: the two are formed differently), at s inside [1e-3, 0.999] h
+ * and near an end (the halving branch); at B = 1e-320 with ordinary
+ * states the draw is the bridge mean (the noise, ~1e-320, is below its
+ * rounding); and at s within 1e-9 tau of an end (the Ornstein-Uhlenbeck
+ * branch) with B = 2^-1060 the draw is the B = 1 draw times 2^-1060
+ * exactly (dyadic states). */
+START_TEST(test_sample_subnormal_B)
+{
+  const double l = 0x1p-1000, d0[4] = {0.3, -0.2, 0.1, 0.4},
+               d1[4] = {1.0, 1.1, -0.9, 1.2};
+  const double t0[4] = {l * d0[0], l * d0[1], l * d0[2], l * d0[3]};
+  const double t1[4] = {l * d1[0], l * d1[1], l * d1[2], l * d1[3]};
+  const double ss[2] = {0.5, 1e-5};
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  for (int k = 0; k < 2; k++) {
+    double ref[4], out[4];
+    gsl_rng_set(r, 17);
+    ck_assert_int_eq(sb_langevin_shear_bridge_sample(1, 0x1p-60, 0.5, 0.25,
+                                                     -0.125, 1, ss[k], d0,
+                                                     d1, r, ref),
+                     SB_SUCCESS);
+    gsl_rng_set(r, 17);
+    ck_assert_int_eq(sb_langevin_shear_bridge_sample(1, 0x1p-1060, 0.5,
+                                                     0.25 * l, -0.125 * l, 1,
+                                                     ss[k], t0, t1, r, out),
+                     SB_SUCCESS);
+    for (int i = 0; i < 4; i++)
+      ck_assert_rel(out[i], l * ref[i], 1e-13);
+  }
+  double m[4], c[4][4], out[4];
+  ck_assert_int_eq(sb_langevin_shear_bridge_moments(1, 1e-320, 1, 0.1, 0.2,
+                                                    1, 0.5, d0, d1, m, c),
+                   SB_SUCCESS);
+  ck_assert_int_eq(sb_langevin_shear_bridge_sample(1, 1e-320, 1, 0.1, 0.2, 1,
+                                                   0.5, d0, d1, r, out),
+                   SB_SUCCESS);
+  for (int i = 0; i < 4; i++)
+    ck_assert_rel(out[i], m[i], 1e-13);
+  const double e = 0x1p-1060, q0[4] = {0.25, -0.5, 0.125, 0.75},
+               q1[4] = {1.0, 1.125, -0.875, 1.25};
+  const double u0[4] = {e * q0[0], e * q0[1], e * q0[2], e * q0[3]};
+  const double u1[4] = {e * q1[0], e * q1[1], e * q1[2], e * q1[3]};
+  double ref[4];
+  gsl_rng_set(r, 5);
+  ck_assert_int_eq(sb_langevin_shear_bridge_sample(1, 1, 0.5, 0.25, -0.125, 1,
+                                                   1e-12, q0, q1, r, ref),
+                   SB_SUCCESS);
+  gsl_rng_set(r, 5);
+  ck_assert_int_eq(sb_langevin_shear_bridge_sample(1, e, 0.5, 0.25 * e,
+                                                   -0.125 * e, 1, 1e-12, u0,
+                                                   u1, r, out),
+                   SB_SUCCESS);
+  for (int i = 0; i < 4; i++)
+    ck_assert_msg(out[i] == ldexp(ref[i], -1060), "component %d: %g, want "
+                  "%g", i, out[i], ldexp(ref[i], -1060));
+  gsl_rng_free(r);
+}
+END_TEST
+
 int main(void)
 {
   Suite *s = suite_create("langevin_shear");
@@ -647,6 +710,7 @@ int main(void)
   tcase_add_test(tc, test_mean);
   tcase_add_test(tc, test_mean_extreme);
   tcase_add_test(tc, test_bridge_moments_extreme);
+  tcase_add_test(tc, test_sample_subnormal_B);
   suite_add_tcase(s, tc);
   return sbt_run_suite(s);
 }

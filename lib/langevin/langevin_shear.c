@@ -4,6 +4,7 @@
  * (mean and noise; used by the engine's Lees-Edwards transport,
  * docs/engine_forces.md section 3) and of its exact bridge, the law of the
  * state inside a step given both ends (langevin_shear.h). */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -589,6 +590,86 @@ int sb_langevin_shear_bridge_moments(double tau, double B, double G,
   return SB_SUCCESS;
 }
 
+/* The draw of sb_langevin_shear_bridge_sample for checked arguments;
+ * errors are recorded for who. */
+static int bridge_draw(double tau, double B, double G, double cx, double cy,
+                       double h, double s, const double s0[4],
+                       const double s1[4], const gsl_rng *r, double out[4],
+                       const char *who);
+
+/* The same draw formed in SI units, for B sqrt(tau) or B tau^1.5 below
+ * DBL_MIN (where bridge_draw's states in units of those scales
+ * overflow): the mean as in sb_langevin_shear_bridge_moments (no scales),
+ * the noise the unit-scale Cholesky draw times B sqrt(tau) r_i with the
+ * exponents set aside (scaled_prod); the same normals in the same order.
+ * Returns 1, out untouched and no number drawn, if the interval would
+ * get below 1e-9 tau (the Ornstein-Uhlenbeck branch of bridge_draw, left
+ * to the caller). */
+static int bridge_draw_si(double tau, double B, double G, double cx,
+                          double cy, double h, double s, const double s0[4],
+                          const double s1[4], const gsl_rng *r,
+                          double out[4], const char *who)
+{
+  const double g = G * tau, rs[4] = {1.0, tau, 1.0, tau};
+  /* the halving below, without draws: does it reach h < 1e-9 tau? */
+  for (double hh = h, ss = s; ss > 0.0 && ss < hh;) {
+    if (hh < 1e-9 * tau)
+      return 1;
+    if (ss >= 1e-3 * hh && ss <= 0.999 * hh)
+      break;
+    hh *= 0.5;
+    if (ss >= hh)
+      ss -= hh;
+  }
+  double sa[4], sb[4];
+  memcpy(sa, s0, sizeof sa);
+  memcpy(sb, s1, sizeof sb);
+  for (;;) {
+    if (s <= 0.0 || s >= h) {
+      memcpy(out, s <= 0.0 ? sa : sb, 4 * sizeof *out);
+      return SB_SUCCESS;
+    }
+    if (h < 1e-9 * tau)
+      return 1;
+    const int inside = s >= 1e-3 * h && s <= 0.999 * h;
+    const double t = inside ? s : 0.5 * h;
+    sb_langevin_shear_bridge b;
+    double m[4], L[4][4], z[4];
+    if (sb_langevin_shear_bridge_coefs(h / tau, g, t / tau, &b) ||
+        sbi_shear_chol4(b.cov, L))
+      return sbi_error(SB_EDOM, who, "no shear bridge at h/tau = %g, "
+                       "s/h = %g, G tau = %g", h / tau, t / h, g);
+    for (int j = 0; j < 4; j++)
+      z[j] = gsl_ran_gaussian_ziggurat(r, 1.0);
+    for (int i = 0; i < 4; i++) {
+      double mi = 0.0, ni = 0.0;
+      for (int k = 0; k < 2; k++)
+        mi += b.kc[i][k] * rs[i] * (k == 0 ? cx : cy);
+      for (int j = 0; j < 4; j++) {
+        const double q = i % 2 == j % 2 ? 1.0 : (j % 2 ? 1.0 / tau : tau);
+        const double tt = b.ka[i][j] * sa[j] + b.kb[i][j] * sb[j];
+        if (tt != 0.0)
+          mi += tt * q;
+      }
+      for (int j = 0; j <= i; j++)
+        ni += L[i][j] * z[j];
+      const double f[4] = {B, sqrt(tau), rs[i], ni};
+      m[i] = mi + scaled_prod(f, 4);
+    }
+    if (inside) {
+      memcpy(out, m, sizeof m);
+      return SB_SUCCESS;
+    }
+    if (s < t)
+      memcpy(sb, m, sizeof m);
+    else {
+      memcpy(sa, m, sizeof m);
+      s -= t;
+    }
+    h = t;
+  }
+}
+
 int sb_langevin_shear_bridge_sample(double tau, double B, double G,
                                     double cx, double cy, double h,
                                     double s, const double s0[4],
@@ -609,6 +690,54 @@ int sb_langevin_shear_bridge_sample(double tau, double B, double G,
     return sbi_error(SB_EDOM, __func__, "tau = %g, B = %g, h = %g (> 0), "
                      "s = %g in [0, h], |G| h = %g <= 100, all finite", tau,
                      B, h, s, fabs(G) * h);
+  const double vu = B * sqrt(tau), vx = vu * tau;
+  int st;
+  if (vu >= DBL_MIN && vx >= DBL_MIN) {
+    st = bridge_draw(tau, B, G, cx, cy, h, s, s0, s1, r, out, __func__);
+  } else if ((st = bridge_draw_si(tau, B, G, cx, cy, h, s, s0, s1, r, out,
+                                   __func__)) == 1) {
+    /* The scales B sqrt(tau), B tau^1.5 are subnormal or 0 (B = 1e-320):
+     * the states divided by them overflowed (NaN); within 1e-9 tau of an
+     * end the SI-unit draw does not apply.  The law is linear: states,
+     * drifts and B scaled by 2^k give the draw scaled by 2^k (the same
+     * normals), so draw with B sqrt(tau) tau^(0 or 1) near 1 (k no larger
+     * than keeps the scaled states below 2^1000) and scale back exactly;
+     * states more than ~1e300 standard deviations apart stay out of
+     * reach (SB_ERANGE below). */
+    const double lt = log2(tau), lmin = lt < 0.0 ? 1.5 * lt : 0.5 * lt;
+    double big = fmax(fabs(cx), fabs(cy));
+    for (int i = 0; i < 4; i++)
+      big = fmax(big, fmax(fabs(s0[i]), fabs(s1[i])));
+    int k = -(ilogb(B) + (int)floor(lmin));
+    if (big > 0.0 && k > 1000 - ilogb(big))
+      k = 1000 - ilogb(big);
+    double t0[4], t1[4];
+    for (int i = 0; i < 4; i++) {
+      t0[i] = ldexp(s0[i], k);
+      t1[i] = ldexp(s1[i], k);
+    }
+    st = bridge_draw(tau, ldexp(B, k), G, ldexp(cx, k), ldexp(cy, k), h, s,
+                     t0, t1, r, out, __func__);
+    for (int i = 0; i < 4; i++)
+      out[i] = ldexp(out[i], -k);
+  }
+  if (st == SB_SUCCESS)
+    for (int i = 0; i < 4; i++)
+      if (!isfinite(out[i])) {
+        for (int j = 0; j < 4; j++)
+          out[j] = NAN;
+        return sbi_error(SB_ERANGE, __func__, "the draw is not finite "
+                         "(tau = %g, B = %g, h = %g: the states are beyond "
+                         "DBL_MAX standard deviations)", tau, B, h);
+      }
+  return st;
+}
+
+static int bridge_draw(double tau, double B, double G, double cx, double cy,
+                       double h, double s, const double s0[4],
+                       const double s1[4], const gsl_rng *r, double out[4],
+                       const char *who)
+{
   const double vu = B * sqrt(tau), vx = vu * tau, g = G * tau;
   const double D[4] = {vu, vx, vu, vx}, c[2] = {cx / vu, cy / vu};
   double sa[4], sb[4];
@@ -634,7 +763,7 @@ int sb_langevin_shear_bridge_sample(double tau, double B, double G,
                                            sb[2 * k + 1], sb[2 * k], r, &xs,
                                            &us);
         if (st)
-          return sbi_error(st, __func__, "%s", sb_last_error());
+          return sbi_error(st, who, "%s", sb_last_error());
         out[2 * k] = D[2 * k] * us;
         out[2 * k + 1] = D[2 * k + 1] * xs;
       }
@@ -649,7 +778,7 @@ int sb_langevin_shear_bridge_sample(double tau, double B, double G,
     double m[4], L[4][4];
     if (sb_langevin_shear_bridge_coefs(h / tau, g, t / tau, &b) ||
         sbi_shear_chol4(b.cov, L))
-      return sbi_error(SB_EDOM, __func__, "no shear bridge at h/tau = %g, "
+      return sbi_error(SB_EDOM, who, "no shear bridge at h/tau = %g, "
                        "s/h = %g, G tau = %g", h / tau, t / h, g);
     for (int i = 0; i < 4; i++) {
       m[i] = b.kc[i][0] * c[0] + b.kc[i][1] * c[1];

@@ -134,7 +134,14 @@ int sb_langevin_shear_bridge_moments(double tau, double B, double G,
  *  in-plane pair (u, position) from its Ornstein-Uhlenbeck bridge (the
  *  shear changes the law by O(G h) there).  Domain: tau, B, h > 0,
  *  |G| h <= 100, all finite; SB_EDOM / SB_EINVAL otherwise, out set to
- *  NaN. */
+ *  NaN.  Where B sqrt(tau) or B tau^1.5 is below DBL_MIN (B subnormal,
+ *  e.g. 1e-320) the draw is formed in SI units instead (the mean as in
+ *  sb_langevin_shear_bridge_moments, the noise scaled with the exponents
+ *  set aside; within 1e-9 tau of an end, with B and the states scaled by
+ *  a power of 2), so it is finite; elsewhere the computation, and the
+ *  output for a given generator state, are unchanged.  SB_ERANGE (out
+ *  NaN) if the draw is still not finite (states ~1e300 standard
+ *  deviations apart). */
 int sb_langevin_shear_bridge_sample(double tau, double B, double G,
                                     double cx, double cy, double h,
                                     double s, const double s0[4],
