@@ -814,6 +814,48 @@ START_TEST(test_extreme_arguments)
 }
 END_TEST
 
+/* Errors name the public function that was called (the shared check of
+ * law, theta and E reported its own name, law_k2). */
+START_TEST(test_error_names)
+{
+  const sb_dlvo_erel_law bad = (sb_dlvo_erel_law)99;
+  sb_result r;
+  const char *names[6] = {"sb_dlvo_erel_P:", "sb_dlvo_erel_Q:",
+                          "sb_dlvo_erel_Q_e:", "sb_dlvo_erel_logQ:",
+                          "sb_dlvo_erel_pdf:", "sb_dlvo_erel_P_e:"};
+  for (int k = 0; k < 6; k++) {
+    sb_clear_error();
+    switch (k) {
+    case 0: ck_assert(isnan(sb_dlvo_erel_P(1, 1, bad, 3))); break;
+    case 1: ck_assert(isnan(sb_dlvo_erel_Q(-1, 1, SB_DLVO_EREL_STATIONARY,
+                                           3))); break;
+    case 2:
+      ck_assert_int_eq(sb_dlvo_erel_Q_e(1, 1, SB_DLVO_EREL_STATIONARY, 7,
+                                        &r), SB_EDOM);
+      break;
+    case 3: ck_assert(isnan(sb_dlvo_erel_logQ(1, NAN, bad, 3))); break;
+    case 4: ck_assert(isnan(sb_dlvo_erel_pdf(1, 0, SB_DLVO_EREL_STATIONARY,
+                                             3))); break;
+    default:
+      ck_assert_int_eq(sb_dlvo_erel_P_e(NAN, 1, SB_DLVO_EREL_STATIONARY, 3,
+                                        &r), SB_EDOM);
+    }
+    ck_assert_msg(!strncmp(sb_last_error(), names[k], strlen(names[k])),
+                  "call %d: %s", k, sb_last_error());
+  }
+  /* and the potentials' shared helpers (derjaguin, lsa, hhf, total) */
+  sb_clear_error();
+  ck_assert(isnan(sb_dlvo_edl_hhf(-1, 1e-6, 1e-6, 1e8, 78, 0.01, 0.01)));
+  ck_assert_msg(!strncmp(sb_last_error(), "sb_dlvo_edl_hhf:", 16), "%s",
+                sb_last_error());
+  sb_dlvo_pair p = mk(0, 0, 1e-6, 1e-6, 1e-20, 1, 1e8, 0.01, 0.01, 4e-10);
+  sb_clear_error();
+  ck_assert(isnan(sb_dlvo_force(&p, -1)));
+  ck_assert_msg(!strncmp(sb_last_error(), "sb_dlvo_force:", 14), "%s",
+                sb_last_error());
+}
+END_TEST
+
 START_TEST(test_bad_input)
 {
   sb_result res;
@@ -890,6 +932,7 @@ static Suite *suite(void)
   tcase_add_test(t, test_sign_changes);
   tcase_add_test(t, test_bad_input);
   tcase_add_test(t, test_extreme_arguments);
+  tcase_add_test(t, test_error_names);
   suite_add_tcase(s, t);
   t = tcase_create("barrier");
   tcase_set_timeout(t, 30);

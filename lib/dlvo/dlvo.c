@@ -818,11 +818,11 @@ double sb_dlvo_erel_shape(sb_dlvo_erel_law law, int dim)
   }
 }
 
-/* Shape k (twice: 1..4) from law and dim, or SB_EDOM. */
+/* Shape k (twice: 1..4) from law and dim, or SB_EDOM (for the public
+ * function who). */
 static int law_k2(double E, double theta, sb_dlvo_erel_law law, int dim,
-                  sb_result *res, int *k2)
+                  sb_result *res, int *k2, const char *who)
 {
-  const char *const who = __func__;
   double k = sb_dlvo_erel_shape(law, dim);
   REQ(!isnan(k), "invalid law %d or dimension %d", (int)law, dim);
   REQ(pos(theta), "theta must be finite and > 0 (got %g)", theta);
@@ -923,10 +923,10 @@ static double gam_pq(int k2, double x, int upper, double *err)
 
 /* P (upper = 0) or Q (upper = 1) of the law at E. */
 static int erel_pq(double E, double theta, sb_dlvo_erel_law law, int dim,
-                   int upper, sb_result *res)
+                   int upper, sb_result *res, const char *who)
 {
   int k2;
-  int s = law_k2(E, theta, law, dim, res, &k2);
+  int s = law_k2(E, theta, law, dim, res, &k2, who);
   if (s != SB_SUCCESS)
     return s;
   /* E = inf, or E/theta beyond DBL_MAX: Q < e^-DBL_MAX is 0 and P rounds
@@ -942,23 +942,23 @@ static int erel_pq(double E, double theta, sb_dlvo_erel_law law, int dim,
 int sb_dlvo_erel_P_e(double E, double theta, sb_dlvo_erel_law law, int dim,
                      sb_result *res)
 {
-  return erel_pq(E, theta, law, dim, 0, res);
+  return erel_pq(E, theta, law, dim, 0, res, __func__);
 }
 
 double sb_dlvo_erel_P(double E, double theta, sb_dlvo_erel_law law, int dim)
 {
-  VAL(erel_pq(E, theta, law, dim, 0, &r_));
+  VAL(erel_pq(E, theta, law, dim, 0, &r_, __func__));
 }
 
 int sb_dlvo_erel_Q_e(double E, double theta, sb_dlvo_erel_law law, int dim,
                      sb_result *res)
 {
-  return erel_pq(E, theta, law, dim, 1, res);
+  return erel_pq(E, theta, law, dim, 1, res, __func__);
 }
 
 double sb_dlvo_erel_Q(double E, double theta, sb_dlvo_erel_law law, int dim)
 {
-  VAL(erel_pq(E, theta, law, dim, 1, &r_));
+  VAL(erel_pq(E, theta, law, dim, 1, &r_, __func__));
 }
 
 double sb_dlvo_erel_logQ(double E, double theta, sb_dlvo_erel_law law,
@@ -966,7 +966,7 @@ double sb_dlvo_erel_logQ(double E, double theta, sb_dlvo_erel_law law,
 {
   sb_result rr, *res = &rr;
   int k2;
-  if (law_k2(E, theta, law, dim, res, &k2) != SB_SUCCESS)
+  if (law_k2(E, theta, law, dim, res, &k2, __func__) != SB_SUCCESS)
     return NAN;
   double x = E / theta;
   if (isinf(x)) {
@@ -995,7 +995,7 @@ double sb_dlvo_erel_pdf(double E, double theta, sb_dlvo_erel_law law,
 {
   sb_result rr, *res = &rr;
   int k2;
-  if (law_k2(E, theta, law, dim, res, &k2) != SB_SUCCESS)
+  if (law_k2(E, theta, law, dim, res, &k2, __func__) != SB_SUCCESS)
     return NAN;
   double x = E / theta, f;
   if (isinf(x))
