@@ -21,6 +21,7 @@
 #include <smolbridge/pbe.h>
 #include <smolbridge/stats.h>
 
+#include "engine/engine_internal.h"
 #include "engine_same.h"
 #include "testutil.h"
 
@@ -325,6 +326,36 @@ static double cdf_g32(double x, void *par)
   return sb_dlvo_erel_P(x, 1.0, SB_DLVO_EREL_STATIONARY, 3);
 }
 
+/* An error of sb_agglo_erel_of names it, not the dlvo sampler it calls
+ * (sb_dlvo_erel_sample): an energy scale mu (s_i^2 + s_j^2) that
+ * overflows (velocity scale set to 1e300 m/s through the internal
+ * header) is NaN and SB_ERANGE from sb_agglo_erel_of. */
+START_TEST(test_erel_error_name)
+{
+  sb_engine *e = box(20.0, 0.01, 4, 21);
+  add_gas_species(e);
+  sb_agglo_params ap;
+  sb_agglo_params_default(&ap);
+  ap.rule = SB_AGGLO_DLVO;
+  ap.erel = SB_AGGLO_EREL_STATIONARY;
+  sb_agglo *a = sb_agglo_alloc(&ap);
+  ck_assert_int_eq(sb_agglo_attach(e, a), SB_SUCCESS);
+  double x0[3] = {1, 1, 1}, x1[3] = {5, 5, 5}, u[3] = {0, 0, 0};
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, x0, u), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, x1, u), SB_SUCCESS);
+  sb_engine_pair p = {0, 1, {-4, -4, -4}, {0, 0, 0}, 1.0, 0.01, 0.0};
+  gsl_rng *r = sb_engine_rng(e);
+  ck_assert(isfinite(sb_agglo_erel_of(e, a, &p, 0.0, r)));
+  e->vsd[0] = 1e300;
+  sb_clear_error();
+  ck_assert(isnan(sb_agglo_erel_of(e, a, &p, 0.0, r)));
+  ck_assert_msg(!strncmp(sb_last_error(), "sb_agglo_erel_of:", 17),
+                "message: %s", sb_last_error());
+  sb_agglo_free(a);
+  sb_engine_free(e);
+}
+END_TEST
+
 START_TEST(test_erel_stationary)
 {
   sb_engine *e = box(20.0, 0.01, 4, 21);
@@ -565,6 +596,7 @@ static Suite *suite(void)
   TCase *mc = tcase_create("mc");
   tcase_add_test(mc, test_dlvo_sticking);
   tcase_add_test(mc, test_erel_stationary);
+  tcase_add_test(mc, test_erel_error_name);
   tcase_add_test(mc, test_constant_kernel);
   tcase_set_timeout(mc, 60);
   suite_add_tcase(s, mc);

@@ -24,6 +24,7 @@
 #include <smolbridge/langevin.h>
 #include <smolbridge/stats.h>
 
+#include "engine/engine_internal.h"
 #include "engine_same.h"
 #include "testutil.h"
 #include "validate/cases.h"
@@ -72,6 +73,30 @@ START_TEST(test_names_params)
   ck_assert_int_eq(sb_engine_set_detect(e, SB_DETECT_CUSTOM), SB_EINVAL);
   ck_assert_int_eq(sb_engine_contact_state(e, NULL, NULL, NULL, NULL),
                    SB_EINVAL);
+  sb_engine_free(e);
+}
+END_TEST
+
+/* An error of sb_engine_langevin_stats names it, not the langevin
+ * function it calls (sb_langevin_hitter_stats): a thread slot without a
+ * hitter, set up through the internal header. */
+START_TEST(test_stats_error_name)
+{
+  sb_engine *e = box(3, 20.0, 1.0, 8, 1);
+  add_species(e, 1.0);
+  ck_assert_ptr_nonnull(e->lh);
+  sb_langevin_hit_stats st;
+  ck_assert_int_eq(sb_engine_langevin_stats(e, &st), SB_SUCCESS);
+  sb_langevin_hitter **lht = e->lht, *fake[2] = {e->lh, NULL};
+  const int nlt = e->nlt;
+  e->lht = fake;
+  e->nlt = 2;
+  sb_clear_error();
+  ck_assert_int_eq(sb_engine_langevin_stats(e, &st), SB_EINVAL);
+  ck_assert_msg(!strncmp(sb_last_error(), "sb_engine_langevin_stats:", 25),
+                "message: %s", sb_last_error());
+  e->lht = lht;
+  e->nlt = nlt;
   sb_engine_free(e);
 }
 END_TEST
@@ -1036,6 +1061,7 @@ static Suite *suite(void)
   TCase *tc = tcase_create("core");
   tcase_set_timeout(tc, 30);
   tcase_add_test(tc, test_names_params);
+  tcase_add_test(tc, test_stats_error_name);
   tcase_add_test(tc, test_elastic_contact);
   tcase_add_test(tc, test_chain);
   tcase_add_test(tc, test_curved_no_noise);

@@ -101,6 +101,12 @@ int sb_engine_langevin_stats(const sb_engine *e, sb_langevin_hit_stats *st)
 {
   if (!e || !st || !e->lh)
     return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  /* the hitters checked here, so that an error names this function
+   * (sb_langevin_hitter_stats fails only on NULL) */
+  for (int t = 1; t < e->nlt; t++)
+    if (!e->lht[t])
+      return sbi_error(SB_EINVAL, __func__, "thread slot %d has no hitter",
+                       t);
   int r = sb_langevin_hitter_stats(e->lh, st);
   /* the other threads' hitters (the parallel first pass) */
   for (int t = 1; t < e->nlt && !r; t++) {

@@ -404,11 +404,18 @@ double sb_agglo_erel_of(const sb_engine *e, const sb_agglo *a,
     double theta = mu * (si * si + sj * sj);
     if (!(theta > 0.0))
       return 0.0;  /* no velocity fluctuations: E_rel = 0 */
-    return sb_dlvo_erel_sample(r, theta,
-                               a->par.erel_normal
-                                   ? SB_DLVO_EREL_STATIONARY_NORMAL
-                                   : SB_DLVO_EREL_STATIONARY,
-                               e->par.dim);
+    const sb_dlvo_erel_law law = a->par.erel_normal
+                                     ? SB_DLVO_EREL_STATIONARY_NORMAL
+                                     : SB_DLVO_EREL_STATIONARY;
+    /* sb_dlvo_erel_sample's own checks, so that an error names this
+     * function (it cannot fail past them) */
+    if (!isfinite(theta) || isnan(sb_dlvo_erel_shape(law, e->par.dim))) {
+      sbi_error(SB_ERANGE, __func__, "the energy scale mu (s_i^2 + s_j^2) "
+                "= %g is not finite (s_i = %g, s_j = %g m/s)", theta, si,
+                sj);
+      return NAN;
+    }
+    return sb_dlvo_erel_sample(r, theta, law, e->par.dim);
   }
   if (e->contact) {
     /* Langevin detector: the sampled velocities at contact */
