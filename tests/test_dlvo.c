@@ -814,6 +814,33 @@ START_TEST(test_extreme_arguments)
 }
 END_TEST
 
+/* The error bound of P for k = 1 and k = 2 at large x stays a few ulp
+ * (P -> 1 to full precision): it was (1 + x) 2 eps and (4 + 2x) eps,
+ * 4e-10 at x = 1e6.  The bound is still honest against the exact
+ * 1 - (1 + x) e^-x at x = 3, 30 (mpmath: 0.80085172652854422808,
+ * 0.99999999999709913688). */
+START_TEST(test_erel_P_err)
+{
+  const double xs[3] = {100.0, 1e3, 1e6};
+  for (int k = 0; k < 3; k++) {
+    sb_result r;
+    ck_assert_int_eq(sb_dlvo_erel_P_e(xs[k], 1, SB_DLVO_EREL_COLLISION_NORMAL,
+                                      3, &r), SB_SUCCESS);
+    ck_assert(r.val == 1.0 && r.err <= 4 * DBL_EPSILON);
+    ck_assert_int_eq(sb_dlvo_erel_P_e(xs[k], 1, SB_DLVO_EREL_COLLISION, 3,
+                                      &r), SB_SUCCESS);
+    ck_assert(r.val == 1.0 && r.err <= 4 * DBL_EPSILON);
+  }
+  sb_result r;
+  ck_assert_int_eq(sb_dlvo_erel_P_e(3, 1, SB_DLVO_EREL_COLLISION, 3, &r),
+                   SB_SUCCESS);
+  CHECK_ERR(r, 0.80085172652854422808, 1e-15);
+  ck_assert_int_eq(sb_dlvo_erel_P_e(30, 1, SB_DLVO_EREL_COLLISION, 3, &r),
+                   SB_SUCCESS);
+  CHECK_ERR(r, 0.99999999999709913688, 1e-15);
+}
+END_TEST
+
 /* Errors name the public function that was called (the shared check of
  * law, theta and E reported its own name, law_k2). */
 START_TEST(test_error_names)
@@ -944,6 +971,7 @@ static Suite *suite(void)
   t = tcase_create("erel");
   tcase_set_timeout(t, 30);
   tcase_add_test(t, test_erel_values);
+  tcase_add_test(t, test_erel_P_err);
   tcase_add_test(t, test_erel_ref);
   tcase_add_test(t, test_erel_extreme);
   tcase_add_test(t, test_erel_quad);

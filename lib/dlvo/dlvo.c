@@ -897,8 +897,16 @@ static double gam_pq(int k2, double x, int upper, double *err)
     *err = ef.err + 4.0 * EPS * fabs(v);
     return v;
   case 2:
-    v = upper ? exp(-x) : -expm1(-x);
-    *err = rel * v;
+    if (upper) {
+      v = exp(-x);
+      *err = rel * v;
+      return v;
+    }
+    /* P = -expm1(-x): one rounding, plus x's rounding (<= x eps/2, from
+     * E/theta) times dP/dx = e^-x -- not (1 + x) eps relative, which
+     * grew without bound although P -> 1 */
+    v = -expm1(-x);
+    *err = 2.0 * EPS * v + EPS * x * exp(-x);
     return v;
   case 3:
     if (upper) { /* e^-x (2 M(sqrt(2x)) + 2 sqrt(x/pi)) */
@@ -914,10 +922,22 @@ static double gam_pq(int k2, double x, int upper, double *err)
       return v;
     }
   default: /* 4: k = 2 */
-    v = upper ? (1.0 + x) * exp(-x) : -expm1(-x) - x * exp(-x);
-    /* (4 + 2x) EPS, written so that it cannot overflow */
-    *err = (4.0 * EPS + 2.0 * EPS * x) * (upper ? v : 1.0 + x * exp(-x));
-    return v;
+    if (upper) {
+      v = (1.0 + x) * exp(-x);
+      /* (4 + 2x) EPS, written so that it cannot overflow */
+      *err = (4.0 * EPS + 2.0 * EPS * x) * v;
+      return v;
+    }
+    {
+      /* P = a - b, a = -expm1(-x), b = x e^-x (x >= 2 here, P >= 0.59):
+       * a to 1 ulp; b to 3 ulp plus x eps/2 relative through e^-x; the
+       * difference 1 ulp; x's own rounding moves P by dP/dx = b times
+       * x eps/2.  The bound tends to ~3 eps, not (4 + 2x) eps. */
+      const double a = -expm1(-x), b = x * exp(-x);
+      v = a - b;
+      *err = EPS * (2.0 * a + (3.0 + x) * b + v);
+      return v;
+    }
   }
 }
 

@@ -302,7 +302,9 @@ double sb_dlvo_erel_pdf(double E, double theta, sb_dlvo_erel_law law,
  *  Domain: E >= 0 (inf allowed), theta > 0 finite; where E/theta
  *  overflows (E = inf, or theta tiny) P = 1 and Q = 0, the correctly
  *  rounded values.  Relative error <= 1e-14; err bounds from GSL's
- *  erf/erfc. */
+ *  erf/erfc; for P with k = 1 and k = 2 a bound of a few ulp at every x
+ *  (the rounding of x = E/theta enters through the density, x e^-x), for
+ *  Q the x eps relative that e^-x's sensitivity to x requires. */
 double sb_dlvo_erel_P(double E, double theta, sb_dlvo_erel_law law,
                       int dim);
 int sb_dlvo_erel_P_e(double E, double theta, sb_dlvo_erel_law law, int dim,
