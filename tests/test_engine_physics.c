@@ -375,6 +375,13 @@ START_TEST(test_settling)
   sb_engine_species f = {r, m, INFINITY, 0.0, 300.0};
   sb_engine_add_species(e, &f, NULL);
   ck_assert_int_eq(sb_engine_step(e), SB_EINVAL);
+  /* a fill draws the settling velocity: it fails as the step does (not
+   * succeed without it, leaving the message behind) and adds nothing */
+  sb_clear_error();
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 2), SB_EINVAL);
+  ck_assert_int_eq(sb_last_status(), SB_EINVAL);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "free-flight"));
+  ck_assert_uint_eq(sb_engine_count(e), 1);
   sb_engine_free(e);
 
   /* Schiller-Naumann: 100 um water drop in air */

@@ -432,7 +432,9 @@ int sbi_engine_equilibrium_velocity(sb_engine *e, size_t sp,
                ? us[k] + gsl_ran_gaussian_ziggurat(e->rng, e->vsd[sp])
                : 0.0;
   /* with gravity: plus the species' settling velocity (engine_force.c) */
-  const double *vs = sbi_engine_settling(e, sp, who);
+  const double *vs;
+  if ((st = sbi_engine_settling(e, sp, &vs, who)))
+    return st;
   if (vs)
     for (int k = 0; k < e->par.dim; k++)
       u[k] += vs[k];

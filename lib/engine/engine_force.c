@@ -258,11 +258,19 @@ int sbi_engine_physics_prepare(sb_engine *e, const char *fn)
   return SB_SUCCESS;
 }
 
-const double *sbi_engine_settling(sb_engine *e, size_t sp, const char *who)
+int sbi_engine_settling(sb_engine *e, size_t sp, const double **vs,
+                        const char *who)
 {
-  if (!e->has_grav || sbi_engine_physics_prepare(e, who) || sp >= e->nvset)
-    return NULL;
-  return &e->vset[3 * sp];
+  *vs = NULL;
+  if (!e->has_grav)
+    return SB_SUCCESS;
+  int st = sbi_engine_physics_prepare(e, who);
+  if (st)
+    return st;
+  if (sp >= e->nvset)
+    return sbi_error(SB_EINVAL, who, "species %zu does not exist", sp);
+  *vs = &e->vset[3 * sp];
+  return SB_SUCCESS;
 }
 
 /* Exact step of du/dt = -lam (u - w) + a from (x0, u0) over h. */

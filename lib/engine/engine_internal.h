@@ -658,9 +658,12 @@ int sbi_engine_update_coef(sb_engine *e);
 /* Check the combination of settings and refresh the settling velocities
  * (called at the start of every step). */
 int sbi_engine_physics_prepare(sb_engine *e, const char *who);
-/* Settling velocity of species sp (m/s) for initial velocities: NULL when
- * there is no gravity. */
-const double *sbi_engine_settling(sb_engine *e, size_t sp, const char *who);
+/* Settling velocity of species sp (m/s) into *vs (NULL when there is no
+ * gravity), after the checks of sbi_engine_physics_prepare: its status
+ * (message from who), so that a fill, an inflow or a reinsertion fails
+ * rather than draw velocities without it. */
+int sbi_engine_settling(sb_engine *e, size_t sp, const double **vs,
+                        const char *who);
 /* After the linear transport: the nonlinear-drag step of those species
  * and, with Lees-Edwards, the exact shear correction. */
 int sbi_engine_after_transport(sb_engine *e);

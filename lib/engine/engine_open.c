@@ -191,7 +191,9 @@ static int flight(sb_engine *e, const sb_engine_inflow *in, double tau,
   int st = sbi_engine_fluid_eval(e, 1, x, U, "sb_engine_step");
   if (st)
     return st;
-  const double *vs = sbi_engine_settling(e, in->species, "sb_engine_step");
+  const double *vs;
+  if ((st = sbi_engine_settling(e, in->species, &vs, "sb_engine_step")))
+    return st;
   const double decay = exp(-h / tau), grow = -tau * expm1(-h / tau);
   for (int d = 0; d < dim; d++) {
     const double Ud = U[d] + (vs ? vs[d] : 0.0);

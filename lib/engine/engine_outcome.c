@@ -233,7 +233,9 @@ static int outcome_reinsert(sb_engine *e, const sb_engine_pair *p, double s,
   if (e->fluid != SB_FLUID_REST &&
       (st = sbi_engine_fluid_eval(e, 1, x, w, who)))
     return st;
-  const double *vs = sbi_engine_settling(e, e->species[j], who);
+  const double *vs;
+  if ((st = sbi_engine_settling(e, e->species[j], &vs, who)))
+    return st;
   double tc = (p->t0 + s * p->dt - e->t) / e->par.dt;
   tc = tc < 0.0 ? 0.0 : (tc > 1.0 ? 1.0 : tc);
   const double rest = (1.0 - tc) * e->par.dt;

@@ -290,10 +290,14 @@ int sb_engine_add_particle(sb_engine *e, size_t species, int family,
 
 /** Add n particles of a species at uniformly random positions that do not
  *  overlap any particle, with equilibrium (Maxwellian) velocities
- *  U_s(x) + N(0, vvar) per component; ids follow on from the last one.
+ *  U_s(x) + N(0, vvar) per component, plus the species' settling velocity
+ *  under gravity (sb_engine_set_gravity); ids follow on from the last one.
  *  All or nothing: SB_EMAXITER if a position cannot be found in 10000
- *  tries (box too full), SB_EINVAL for a bad argument or a failing fluid
- *  callback, SB_ENOMEM; on any failure the engine holds exactly the
+ *  tries (box too full) or a settling velocity cannot be found,
+ *  SB_EINVAL for a bad argument, a failing fluid callback, or settings
+ *  sb_engine_step would refuse that the settling velocities depend on
+ *  (gravity with a free-flight species, Lees-Edwards boundaries without
+ *  the shear field), SB_ENOMEM; on any failure the engine holds exactly the
  *  particles it had (same order, states and id counter) and only its
  *  generator has advanced. */
 int sb_engine_fill_random(sb_engine *e, size_t species, int family,
