@@ -163,6 +163,54 @@ START_TEST(test_merge_pair)
 }
 END_TEST
 
+/* Outside a step sb_agglo_merge merges at the current positions (not an
+ * error: no message is left behind), across the periodic boundary; the
+ * partner goes with sb_engine_flush_removals.  Mass, momentum and the
+ * barycentre by hand. */
+START_TEST(test_merge_outside_step)
+{
+  const double L = 20.0;
+  sb_engine *e = box(L, 0.01, 4, 5);
+  add_gas_species(e);
+  double xa[3] = {0.3, 5.0, 5.0}, ua[3] = {1.0, 0.3, -0.2};
+  double xb[3] = {L - 0.6, 5.2, 5.0}, ub[3] = {-1.5, 0.1, 0.4};
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xa, ua), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xb, ub), SB_SUCCESS);
+  sb_agglo *a = agglo(e, SB_AGGLO_STOKES, SB_AGGLO_MERGE, 0.0);
+  sb_engine_pair p;
+  memset(&p, 0, sizeof p);
+  p.i = 0;
+  p.j = 1;
+  p.dx0[0] = xa[0] - (xb[0] - L);  /* the image of b next to a */
+  p.dx0[1] = xa[1] - xb[1];
+  p.sigma = 1.0;
+  p.dt = 0.01;
+  sb_clear_error();
+  ck_assert_int_eq(sb_agglo_merge(e, a, &p, 0.5), SB_SUCCESS);
+  ck_assert_msg(sb_last_status() == SB_SUCCESS, "message left: %s",
+                sb_last_error());
+  ck_assert_uint_eq(sb_engine_count(e), 2);  /* b is marked */
+  ck_assert_int_eq(sb_engine_flush_removals(e), SB_SUCCESS);
+  ck_assert_uint_eq(sb_engine_count(e), 1);
+  const double *x = sb_engine_positions(e), *u = sb_engine_velocities(e);
+  ck_assert_abs(sb_engine_masses(e)[0], 2.0, 0.0);
+  ck_assert_uint_eq(sb_engine_ids(e)[0], 0);
+  double bx = 0.5 * (xa[0] + xb[0] - L);
+  bx -= L * floor(bx / L);
+  ck_assert_rel(x[0], bx, 1e-14);
+  ck_assert_rel(x[1], 0.5 * (xa[1] + xb[1]), 1e-14);
+  for (int k = 0; k < 3; k++)
+    ck_assert_abs(u[k], 0.5 * (ua[k] + ub[k]), 1e-15);
+  ck_assert_uint_eq(sb_agglo_size_of_species(a, sb_engine_species_of(e)[0]),
+                    2);
+  /* still an error: a pair with itself */
+  p.j = 0;
+  ck_assert_int_eq(sb_agglo_merge(e, a, &p, 0.5), SB_EINVAL);
+  sb_agglo_free(a);
+  sb_engine_free(e);
+}
+END_TEST
+
 /* Growth laws: STOKES species of size k follow r ~ k^(1/3), m ~ k,
  * D = (B tau)^2/2 ~ k^(-1/3) (Stokes-Einstein) and equipartition
  * m B^2 tau/2 = k_B T; CONSTANT keeps r, tau, B. */
@@ -589,6 +637,7 @@ static Suite *suite(void)
   TCase *tc = tcase_create("merge");
   tcase_add_test(tc, test_remove);
   tcase_add_test(tc, test_merge_pair);
+  tcase_add_test(tc, test_merge_outside_step);
   tcase_add_test(tc, test_growth);
   tcase_add_test(tc, test_merge_conservation);
   tcase_add_test(tc, test_save_load);

@@ -737,6 +737,10 @@ int sbi_engine_outflow(sb_engine *e, size_t i, int face);
 /* End of the step: walls (deposition, reflection), then wrapping with
  * the Lees-Edwards shift. */
 int sbi_engine_boundaries(sb_engine *e);
+/* Particle i back into the box through its periodic faces (and the
+ * Lees-Edwards boundary), as the end of a step does: for a change made
+ * outside a step. */
+void sbi_engine_wrap_one(sb_engine *e, size_t i);
 /* Checkpoint block of these settings (format version 3). */
 int sbi_engine_physics_save(const sb_engine *e, FILE *f);
 int sbi_engine_physics_load(sb_engine *e, FILE *f);

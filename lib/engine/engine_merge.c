@@ -354,7 +354,10 @@ static int agglo_merge(sb_engine *e, sb_agglo *a, const sb_engine_pair *p,
    * contact time (x_j = x_i - (dx0 + s dd) there), so the engine can
    * examine its pairs over the rest of the step from that place */
   double xi[3], bc[3] = {0, 0, 0};
-  if (sb_engine_position_at(e, i, p->t0 + s * p->dt, xi) == SB_SUCCESS) {
+  /* outside a step there is no path to examine: the merge is at the
+   * current positions (nothing to declare) */
+  if (e->in_step &&
+      sb_engine_position_at(e, i, p->t0 + s * p->dt, xi) == SB_SUCCESS) {
     for (int k = 0; k < e->par.dim; k++)
       bc[k] = xi[k] - fj * (p->dx0[k] + s * p->dd[k]);
     sb_engine_outcome_path(e, i, bc);
@@ -370,6 +373,8 @@ static int agglo_merge(sb_engine *e, sb_agglo *a, const sb_engine_pair *p,
     e->disp[3 * i + k] += xb - e->x[3 * i + k];
     e->x[3 * i + k] = xb;
   }
+  if (!e->in_step)  /* a step wraps at its end; outside one, now */
+    sbi_engine_wrap_one(e, i);
   e->species[i] = sp;
   e->radius[i] = e->spec[sp].radius;
   e->mass[i] = e->spec[sp].mass;

@@ -246,6 +246,26 @@ static inline void wrap_periodic(double *x, const double *L, const int *per,
       x[k] = sbi_wrap(x[k], L[k]);
 }
 
+void sbi_engine_wrap_one(sb_engine *e, size_t i)
+{
+  const double *L = e->par.L;
+  double *x = &e->x[3 * i];
+  if (e->lees) {  /* as the pass below, without advancing the offset */
+    const double n = floor(x[1] / L[1]);
+    if (n != 0.0) {
+      x[1] -= n * L[1];
+      x[0] -= n * e->le_off;
+      e->u[3 * i] -= n * e->fluid_p[0] * L[1];
+      if (x[1] >= L[1])
+        x[1] = 0.0;
+    }
+  }
+  int per[3] = {0, 0, 0};
+  for (int k = 0; k < e->par.dim; k++)
+    per[k] = e->wall[2 * k] == SB_WALL_PERIODIC;
+  wrap_periodic(x, L, per, e->par.dim);
+}
+
 int sbi_engine_boundaries(sb_engine *e)
 {
   if (e->walled) {

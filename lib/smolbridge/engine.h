@@ -883,7 +883,17 @@ int sb_engine_outcome_agglo(sb_engine *e, const sb_engine_pair *p, double s,
                             void *ctx);
 /** Merge pair p now (see the file comment of lib/engine/engine_merge.c): slot
  *  p->i receives the cluster of k_i + k_j primaries at the mass
- *  barycentre with the total momentum; p->j is marked for removal. */
+ *  barycentre with the total momentum; p->j is marked for removal.
+ *  Inside a step (from an outcome callback) p is the detector's record
+ *  and s the contact fraction; p->j goes at the end of the step.  Outside
+ *  a step (e.g. to build clusters before a run) it is not an error: the
+ *  merge is at the current positions, with x_i - x_j = p->dx0 + p->dd
+ *  (the image of j next to i; s is not used), the cluster wrapped into
+ *  the box, and p->j stays marked
+ *  until sb_engine_flush_removals, which must be called before the next
+ *  step.  SB_EINVAL for a bad argument (p->i == p->j, an index out of
+ *  range, a particle not of a cluster species of a) or a size above
+ *  kmax. */
 int sb_agglo_merge(sb_engine *e, sb_agglo *a, const sb_engine_pair *p,
                    double s);
 /** E_rel (J) the rule uses for pair p in contact at fraction s of the
