@@ -1270,6 +1270,18 @@ START_TEST(test_misuse)
   ck_assert_ptr_null(sb_engine_get_params(NULL));
   NULL_EINVAL(sb_engine_get_params(NULL));
   NULL_EINVAL(sb_engine_get_species(NULL, 0));
+  ck_assert_uint_eq(sb_engine_species_count(NULL), 0);
+  NULL_EINVAL(sb_engine_species_count(NULL));
+  /* past the last species: NULL, the end-of-list sentinel, no error */
+  {
+    const size_t ns = sb_engine_species_count(e);
+    ck_assert_uint_ge(ns, 1);
+    ck_assert_ptr_nonnull(sb_engine_get_species(e, ns - 1));
+    sb_clear_error();
+    ck_assert_ptr_null(sb_engine_get_species(e, ns));
+    ck_assert_ptr_null(sb_engine_get_species(e, SIZE_MAX));
+    ck_assert_int_eq(sb_last_status(), SB_SUCCESS);
+  }
   ck_assert(isnan(sb_engine_kinetic_energy(NULL, NULL)));
   NULL_EINVAL(sb_engine_kinetic_energy(NULL, NULL));
   ck_assert_uint_eq(sb_engine_count(NULL), 0);

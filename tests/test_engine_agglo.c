@@ -203,6 +203,9 @@ START_TEST(test_merge_outside_step)
     ck_assert_abs(u[k], 0.5 * (ua[k] + ub[k]), 1e-15);
   ck_assert_uint_eq(sb_agglo_size_of_species(a, sb_engine_species_of(e)[0]),
                     2);
+  /* the species of size 2 was created: two species now */
+  ck_assert_uint_eq(sb_engine_species_count(e), 2);
+  ck_assert_ptr_nonnull(sb_engine_get_species(e, 1));
   /* still an error: a pair with itself */
   p.j = 0;
   ck_assert_int_eq(sb_agglo_merge(e, a, &p, 0.5), SB_EINVAL);

@@ -324,6 +324,15 @@ const sb_engine_species *sb_engine_get_species(const sb_engine *e,
   return idx < e->nspec ? &e->spec[idx] : NULL;
 }
 
+size_t sb_engine_species_count(const sb_engine *e)
+{
+  if (!e) {
+    sbi_error(SB_EINVAL, __func__, "engine is NULL");
+    return 0;
+  }
+  return e->nspec;
+}
+
 /* ============================================================ particles */
 
 static void append_particle(sb_engine *e, size_t species, int family,

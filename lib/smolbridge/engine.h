@@ -697,10 +697,15 @@ const double *sb_engine_masses(const sb_engine *e);
 const size_t *sb_engine_species_of(const sb_engine *e);
 const int *sb_engine_families(const sb_engine *e);
 const uint64_t *sb_engine_ids(const sb_engine *e);
-/** Species idx, or NULL past the last one (no error recorded: loops stop
- *  on it). */
+/** Species idx (0 .. sb_engine_species_count(e) - 1), or NULL for idx at
+ *  or past the count: an end-of-list sentinel, not an error (nothing is
+ *  recorded; loops may stop on it).  NULL and SB_EINVAL for e NULL. */
 const sb_engine_species *sb_engine_get_species(const sb_engine *e,
                                                size_t idx);
+/** Number of species of the engine (those added, and the cluster species
+ *  an agglomeration context creates as sizes appear); 0 and SB_EINVAL for
+ *  e NULL. */
+size_t sb_engine_species_count(const sb_engine *e);
 /** The engine's generator (for callbacks; do not free). */
 gsl_rng *sb_engine_rng(sb_engine *e);
 /** Set the state of particle i (m, m/s), e.g. in tests. */
