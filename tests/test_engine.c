@@ -968,6 +968,84 @@ START_TEST(test_fill_all_or_nothing)
 }
 END_TEST
 
+/* FNV-1a, 64 bits (Fowler, Noll & Vo): the hash a checkpoint ends with,
+ * computed here independently of the library. */
+static uint64_t fnv1a(const unsigned char *p, size_t n)
+{
+  uint64_t h = 0xcbf29ce484222325ULL;
+  for (size_t k = 0; k < n; k++)
+    h = (h ^ p[k]) * 0x100000001b3ULL;
+  return h;
+}
+
+static void swap_bytes(unsigned char *p, size_t n)
+{
+  for (size_t a = 0, b = n - 1; a < b; a++, b--) {
+    unsigned char t = p[a];
+    p[a] = p[b];
+    p[b] = t;
+  }
+}
+
+/* A checkpoint written on a machine of the other byte order: its header
+ * numbers (dimension, L, dt, seed) and the hash at its end byte-swapped,
+ * the hash taken over the swapped bytes, as that machine writes it.  The
+ * load refuses it with SB_EFORMAT saying so (it used to say "damaged"),
+ * by its hash; the same file as version 5 (no hash) by its dimension; a
+ * file with one byte changed is still "damaged", and the original loads. */
+START_TEST(test_checkpoint_byte_order)
+{
+  char path[] = "/tmp/sb_engine_bo_XXXXXX";
+  int fd = mkstemp(path);
+  ck_assert_int_ge(fd, 0);
+  close(fd);
+  sb_engine *e = box_engine(3, 10.0, 0.1, 8);
+  size_t sp = add_free(e, 0.5, 1.0);
+  ck_assert_int_eq(sb_engine_fill_random(e, sp, 0, 4), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_checkpoint_save(e, path), SB_SUCCESS);
+  sb_engine_free(e);
+  FILE *f = fopen(path, "rb");
+  ck_assert_ptr_nonnull(f);
+  static unsigned char buf[1 << 16], sw[1 << 16];
+  const size_t n = fread(buf, 1, sizeof buf, f);
+  fclose(f);
+  ck_assert(n > 64 && n < sizeof buf && buf[7] == '6');
+  /* the parameter block after the magic: int dim (and padding), double
+   * L[3], double dt, unsigned long seed */
+  memcpy(sw, buf, n);
+  swap_bytes(sw + 8, sizeof(int));
+  for (int k = 0; k < 5; k++)
+    swap_bytes(sw + 16 + 8 * k, 8);
+  uint64_t h = fnv1a(sw, n - 8);
+  memcpy(sw + n - 8, &h, 8);
+  swap_bytes(sw + n - 8, 8);
+  const size_t len[3] = {n, n, n - 8};
+  for (int c = 0; c < 3; c++) {
+    if (c == 1) {  /* one byte changed: damaged, whatever its order */
+      sw[n / 2] ^= 1;
+    }
+    if (c == 2) {  /* version 5: no hash */
+      sw[n / 2] ^= 1;
+      sw[7] = '5';
+    }
+    sbt_write_file(path, (const char *)sw, len[c]);
+    int st = 0;
+    sb_clear_error();
+    ck_assert_ptr_null(sb_engine_checkpoint_load(path, &st));
+    ck_assert_int_eq(st, SB_EFORMAT);
+    ck_assert_msg(strstr(sb_last_error(), c == 1 ? "is damaged"
+                                                 : "other byte order"),
+                  "case %d: %s", c, sb_last_error());
+  }
+  sbt_write_file(path, (const char *)buf, n);
+  int st = 0;
+  e = sb_engine_checkpoint_load(path, &st);
+  ck_assert_int_eq(st, SB_SUCCESS);
+  sb_engine_free(e);
+  remove(path);
+}
+END_TEST
+
 /* A checkpoint whose particles share an id (or hold one at or above the
  * id counter) is refused on load, naming the id: ids key the transport
  * streams, the tallies and the saved states beside a checkpoint.  The
@@ -1366,6 +1444,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_error_names);
   tcase_add_test(tc, test_fill_all_or_nothing);
   tcase_add_test(tc, test_checkpoint_bad_ids);
+  tcase_add_test(tc, test_checkpoint_byte_order);
   tcase_add_test(tc, test_checkpoint_write_error);
   tcase_add_test(tc, test_custom_callbacks);
   tcase_add_test(tc, test_misuse);

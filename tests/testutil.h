@@ -122,7 +122,9 @@ static inline void sbt_damaged_copies(const char *good, const char *bad,
  * (common/internal.h, sbi_hsave_finish): `good` with one byte flipped,
  * at spread positions from its magic to its hash, written to `bad`, must
  * not load (SB_EFORMAT; past the magic the message says "damaged" and
- * names the file); and `good` as version `old` of the format wrote it
+ * names the file); with its hash byte-swapped, it must be refused as
+ * written on a machine of the other byte order; and `good` as version
+ * `old` of the format wrote it
  * (the two version digits of the magic, bytes 6-7, set to `old`, and
  * without the hash) must load (SB_SUCCESS).  `bad` is removed. */
 static inline void sbt_hash_checked(const char *good, const char *bad,
@@ -150,6 +152,26 @@ static inline void sbt_hash_checked(const char *good, const char *bad,
                           strstr(sb_last_error(), bad),
                       "byte %zu flipped: \"%s\"", at[q], sb_last_error());
     }
+  /* the hash stored byte-swapped, as a machine of the other byte order
+   * writes it: refused as such (SB_EFORMAT, "other byte order"), not as
+   * damaged */
+  for (int k = 0; k < 4; k++) {
+    char t = buf[n - 8 + k];
+    buf[n - 8 + k] = buf[n - 1 - k];
+    buf[n - 1 - k] = t;
+  }
+  sbt_write_file(bad, buf, n);
+  for (int k = 0; k < 4; k++) {
+    char t = buf[n - 8 + k];
+    buf[n - 8 + k] = buf[n - 1 - k];
+    buf[n - 1 - k] = t;
+  }
+  {
+    const int so = load(bad, ctx);
+    ck_assert_msg(so == SB_EFORMAT && strstr(sb_last_error(),
+                                             "other byte order"),
+                  "hash byte-swapped: status %d (%s)", so, sb_last_error());
+  }
   const char v[2] = {buf[6], buf[7]};
   buf[6] = old[0];
   buf[7] = old[1];

@@ -120,6 +120,28 @@ int sbi_hsave_finish(sbi_hsave *h, int ok, const char *path,
   return f ? sbi_finish_save(f, ok, path, func) : SB_EIO;
 }
 
+uint32_t sbi_bswap32(uint32_t v)
+{
+  return (v >> 24) | ((v >> 8) & 0xff00u) | ((v << 8) & 0xff0000u) |
+         (v << 24);
+}
+
+static uint64_t bswap64(uint64_t v)
+{
+  return ((uint64_t)sbi_bswap32((uint32_t)v) << 32) |
+         sbi_bswap32((uint32_t)(v >> 32));
+}
+
+int sbi_hash_check(const char *buf, size_t len)
+{
+  uint64_t h;
+  memcpy(&h, buf + len - 8, 8);
+  const uint64_t want = sbi_fnv1a(SBI_FNV_BASIS, buf, len - 8);
+  if (h == want)
+    return 0;
+  return bswap64(h) == want ? 1 : -1;
+}
+
 char *sbi_slurp(FILE *f, size_t *len)
 {
   size_t cap = 1 << 12, n = 0;
@@ -173,14 +195,16 @@ FILE *sbi_hload_open(const char *path, const char magic[8], int hashed_from,
     return NULL;
   }
   if (v >= hashed_from) {
-    uint64_t h;
-    if (len >= 16)
-      memcpy(&h, buf + len - 8, 8);
-    if (len < 16 || h != sbi_fnv1a(SBI_FNV_BASIS, buf, len - 8)) {
+    const int c = len >= 16 ? sbi_hash_check(buf, len) : -1;
+    if (c) {
       free(buf);
-      *status = sbi_error(SB_EFORMAT, func, "'%s' is damaged: its contents "
-                          "do not match the hash at its end (cut short or "
-                          "changed)", path);
+      *status = c > 0
+          ? sbi_error(SB_EFORMAT, func, "'%s' was written on a machine of "
+                      "the other byte order: a %s is native binary, load "
+                      "it where it was written", path, what)
+          : sbi_error(SB_EFORMAT, func, "'%s' is damaged: its contents "
+                      "do not match the hash at its end (cut short or "
+                      "changed)", path);
       return NULL;
     }
     len -= 8;

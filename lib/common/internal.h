@@ -59,6 +59,13 @@ typedef struct {
 FILE *sbi_hsave_begin(sbi_hsave *h, const char *func);
 int sbi_hsave_finish(sbi_hsave *h, int ok, const char *path,
                      const char *func);
+/* The hash at the end of buf (len >= 16 bytes, the hash included): 0 if
+ * it matches the bytes before it, 1 if it matches with its 8 bytes in
+ * reverse order (a file written on a machine of the other byte order:
+ * the saved states are native binary), -1 otherwise (damaged). */
+int sbi_hash_check(const char *buf, size_t len);
+/* v with its bytes in reverse order. */
+uint32_t sbi_bswap32(uint32_t v);
 /* The whole of f into memory (*len bytes; at least one byte allocated):
  * NULL on a read error or out of memory. */
 char *sbi_slurp(FILE *f, size_t *len);
@@ -69,7 +76,8 @@ char *sbi_slurp(FILE *f, size_t *len);
  * checked before anything else is read.  Returns a stream over the bytes
  * before the hash, from the magic on, with the version in *ver; NULL with
  * *status SB_EINVAL (NULL path), SB_EIO (cannot open or read), SB_EFORMAT
- * ("not a <what>", or damaged: the hash does not match) or SB_ENOMEM and
+ * ("not a <what>", damaged: the hash does not match, or written on a
+ * machine of the other byte order: it matches byte-swapped) or SB_ENOMEM and
  * the message from func. */
 FILE *sbi_hload_open(const char *path, const char magic[8], int hashed_from,
                      const char *what, int *ver, char **mem,

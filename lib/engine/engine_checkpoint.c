@@ -5,7 +5,9 @@
  * the bytes of gsl_rng_fwrite).
  *
  * Format (native binary; portable only between builds with the same
- * type sizes and endianness): the 8-byte magic "SBENGCK6" (versions 2
+ * type sizes and endianness: a file of the other byte order is recognised
+ * by its hash, which then matches byte-swapped, or by its first number,
+ * the dimension, and refused as such): the 8-byte magic "SBENGCK6" (versions 2
  * to 5 still load: MAGIC below), then the fields in the order written by
  * sb_engine_checkpoint_save, then (version 6) the FNV-1a hash of all the
  * bytes before it: a file that was cut, flipped or mixed up is refused
@@ -243,17 +245,28 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   if (ver < 2 || ver > 6)
     goto bad;
   if (ver >= 6) {
-    uint64_t h;
     if (len < 16)
       goto bad;
-    memcpy(&h, buf + len - 8, 8);
-    if (h != sbi_fnv1a(SBI_FNV_BASIS, buf, len - 8)) {
+    const int c = sbi_hash_check(buf, len);
+    if (c > 0)
+      goto foreign;
+    if (c) {
       *status = sbi_error(SB_EFORMAT, __func__, "'%s' is damaged: its "
                           "contents do not match the hash at its end "
                           "(cut short, changed or not a checkpoint)", path);
       goto out;
     }
     len -= 8;
+  }
+  /* the magic and version are text, the same in either byte order; the
+   * first number, the dimension (2 or 3), tells the order of a file
+   * without the hash (versions 2 to 5) */
+  if (len >= 12) {
+    int32_t dim;
+    memcpy(&dim, buf + 8, 4);
+    const uint32_t sw = sbi_bswap32((uint32_t)dim);
+    if (!(dim >= 1 && dim <= 3) && sw >= 1 && sw <= 3)
+      goto foreign;
   }
   f = fmemopen(buf, len, "rb");
   if (!f) {
@@ -395,6 +408,12 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
 bad:
   *status = sbi_error(SB_EFORMAT, __func__,
                       "'%s' is not a valid engine checkpoint", path);
+  goto out;
+foreign:
+  *status = sbi_error(SB_EFORMAT, __func__, "'%s' was written on a machine "
+                      "of the other byte order: checkpoints are native "
+                      "binary, load it on a machine of the byte order that "
+                      "wrote it", path);
 out:
   free(spec);
   sb_engine_free(e);

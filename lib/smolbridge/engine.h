@@ -724,7 +724,9 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path);
 /** Load a checkpoint: a new engine that continues bit-identically.  NULL
  *  and *status (may be NULL) = SB_EIO / SB_EFORMAT / SB_ENOMEM on
  *  failure; SB_EFORMAT also for a file whose contents do not match the
- *  hash it ends with (damaged; format SBENGCK6, docs/engine.md);
+ *  hash it ends with (damaged; format SBENGCK6, docs/engine.md), and
+ *  for a file written on a machine of the other byte order (checkpoints
+ *  are native binary; the message says so);
  *  SB_EINVAL, naming the id, for particles that share an id or hold one
  *  not below the file's id counter. */
 sb_engine *sb_engine_checkpoint_load(const char *path, int *status);
