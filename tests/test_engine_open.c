@@ -7,7 +7,9 @@
  * the pooled count of well separated snapshots); the balance injected =
  * left + inside, exactly; the outflow callback's crossing time against
  * the straight chord computed by hand; the arrivals' positions uniform
- * over the inlet (KS); argument checks; open faces through a checkpoint.
+ * over the inlet (KS); argument checks; open faces through a checkpoint;
+ * a run with inflows continued from a checkpoint against the run in one
+ * go, bit for bit.
  */
 #include <math.h>
 #include <stdio.h>
@@ -21,6 +23,7 @@
 #include <smolbridge/langevin.h>
 #include <smolbridge/stats.h>
 
+#include "engine_same.h"
 #include "testutil.h"
 
 /* A 2-D box of edge L with one non-Brownian species of radius r and
@@ -228,6 +231,105 @@ START_TEST(test_open_checkpoint)
 }
 END_TEST
 
+/* The engine of test_inflow_restart: a 2-D box open in x, periodic in y,
+ * Brownian spheres under gravity with elastic collisions, two opposed
+ * inflows (the second one redrawing overlapping arrivals). */
+static sb_engine *jets(unsigned long seed)
+{
+  const double L = 1e-3;
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.dim = 2;
+  p.L[0] = p.L[1] = L;
+  p.dt = 1e-5;
+  p.capacity = 4096;
+  p.seed = seed;
+  p.outcome = SB_OUTCOME_ELASTIC;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  const double tau = 1e-4, vsd = 0.1;
+  sb_engine_species s = {1e-5, 1e-12, tau, sqrt(2.0 * vsd * vsd / tau), 0.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_set_walls(e, 0, SB_WALL_OPEN, SB_WALL_OPEN),
+                   SB_SUCCESS);
+  const double g[3] = {0.0, -9.81, 0.0};
+  ck_assert_int_eq(sb_engine_set_gravity(e, g), SB_SUCCESS);
+  return e;
+}
+
+static void jets_inflows(sb_engine *e)
+{
+  const double L = 1e-3;
+  sb_engine_inflow a = {0, 0, 0, 4e5, {0.2 * L, 0}, {0.8 * L, 0},
+                        {1.0, 0.1, 0}, 0};
+  sb_engine_inflow b = {1, 0, 1, 3e5, {0.1 * L, 0}, {0.6 * L, 0},
+                        {-0.8, 0, 0}, 1};
+  ck_assert_int_eq(sb_engine_add_inflow(e, &a, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_add_inflow(e, &b, NULL), SB_SUCCESS);
+}
+
+/* A run with inflows continued from a checkpoint, its inflows added again
+ * as documented, is the run without the stop, bit for bit: the particles
+ * (ids, positions, velocities), the collisions, the injected, skipped and
+ * outflow counters.  Inflows are settings (like the callbacks), and
+ * everything they draw from, the engine's generator, and their counters
+ * are in the checkpoint.  120 + 120 steps, a few hundred particles,
+ * thousands of collisions. */
+START_TEST(test_inflow_restart)
+{
+  const int n1 = 120, n2 = 120;
+  sb_engine *a = jets(23), *b = jets(23);
+  jets_inflows(a);
+  jets_inflows(b);
+  for (int k = 0; k < n1 + n2; k++)
+    ck_assert_msg(sb_engine_step(a) == SB_SUCCESS, "%s", sb_last_error());
+  for (int k = 0; k < n1; k++)
+    ck_assert_msg(sb_engine_step(b) == SB_SUCCESS, "%s", sb_last_error());
+  char path[] = "/tmp/sb_open_restart_XXXXXX";
+  int fd = mkstemp(path);
+  ck_assert_int_ge(fd, 0);
+  close(fd);
+  ck_assert_int_eq(sb_engine_checkpoint_save(b, path), SB_SUCCESS);
+  sb_engine_free(b);
+  int st = 0;
+  b = sb_engine_checkpoint_load(path, &st);
+  ck_assert_msg(b != NULL, "%s", sb_last_error());
+  unlink(path);
+  ck_assert_uint_eq(sb_engine_ninflows(b), 0);  /* not in the file */
+  jets_inflows(b);
+  for (int k = 0; k < n2; k++)
+    ck_assert_msg(sb_engine_step(b) == SB_SUCCESS, "%s", sb_last_error());
+  sbt_assert_same_run(a, b, SBT_SAME_CANDIDATES | SBT_SAME_REDETECTED);
+  const size_t n = sb_engine_count(a);
+  ck_assert(!memcmp(sb_engine_ids(a), sb_engine_ids(b), n * sizeof(uint64_t)));
+  ck_assert(!memcmp(sb_engine_families(a), sb_engine_families(b),
+                    n * sizeof(int)));
+  for (size_t q = 0; q < 2; q++) {
+    ck_assert_uint_eq(sb_engine_inflow_injected(a, q),
+                      sb_engine_inflow_injected(b, q));
+    ck_assert_uint_eq(sb_engine_inflow_skipped(a, q),
+                      sb_engine_inflow_skipped(b, q));
+  }
+  for (int f = 0; f < 4; f++)
+    ck_assert_uint_eq(sb_engine_outflows(a, f), sb_engine_outflows(b, f));
+  sb_engine_stats sa;
+  sb_engine_get_stats(a, &sa);
+  printf("inflow restart: %zu particles, %llu + %llu injected, %llu "
+         "skipped, %llu + %llu out, %llu collisions\n", n,
+         (unsigned long long)sb_engine_inflow_injected(a, 0),
+         (unsigned long long)sb_engine_inflow_injected(a, 1),
+         (unsigned long long)sb_engine_inflow_skipped(a, 1),
+         (unsigned long long)sb_engine_outflows(a, 0),
+         (unsigned long long)sb_engine_outflows(a, 1),
+         (unsigned long long)sa.ncoll);
+  ck_assert_uint_gt(n, 100);
+  ck_assert_uint_gt(sa.ncoll, 100);
+  ck_assert_uint_gt(sb_engine_outflows(a, 0) + sb_engine_outflows(a, 1), 50);
+  sb_engine_free(a);
+  sb_engine_free(b);
+}
+END_TEST
+
 /* With drag, an arrival's partial step follows the exact path: after
  * h since entry, u = u0 e^{-h/tau} and x = u0 tau (1 - e^{-h/tau}) (fluid
  * at rest), so x = tau (u0 - u) for every arrival of the first step, with
@@ -268,6 +370,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_inflow_uniform);
   tcase_add_test(tc, test_inflow_errors);
   tcase_add_test(tc, test_open_checkpoint);
+  tcase_add_test(tc, test_inflow_restart);
   tcase_add_test(tc, test_inflow_drag_flight);
   suite_add_tcase(s, tc);
   return s;

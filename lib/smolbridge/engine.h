@@ -1132,7 +1132,10 @@ typedef struct {
  *  its index.  SB_EINVAL on a bad field.  Inflows are not stored in
  *  checkpoints: add them again after sb_engine_checkpoint_load, in the
  *  same order (the checkpoint keeps each index's injected and skipped
- *  counts, which the inflow added there goes on from). */
+ *  counts, which the inflow added there goes on from).  An inflow has no
+ *  other state (its arrivals draw from the engine's generator, which the
+ *  checkpoint keeps), so the same inflows added again continue the run
+ *  bit for bit, as if it had not stopped (docs/engine_forces.md §4). */
 int sb_engine_add_inflow(sb_engine *e, const sb_engine_inflow *in,
                          size_t *idx);
 /** Number of inflows. */
