@@ -216,6 +216,8 @@ void sb_engine_free(sb_engine *e)
   free(e->shn);   /* engine_lees.c */
   sbi_engine_langevin_slots_free(e);
   sb_langevin_hitter_free(e->lh);
+  free(e->lacc);
+  free(e->lpm);
   if (e->rng)
     gsl_rng_free(e->rng);
   free(e);

@@ -310,6 +310,11 @@ struct sb_engine {
    * (x, u); an outcome that changes it starts a new piece. */
   sb_langevin_hitter *lh;
   sb_engine_langevin_params lpar;
+  /* the detector's counters (sb_engine_langevin_stats): each hitter is
+   * reset before a call, and the call's counters are added here in a
+   * fixed order (sbi_engine_langevin_fold), so that the floating-point
+   * pruned_mass does not depend on the threads; allocated with lh */
+  sb_langevin_hit_stats *lacc;
   /* keyed detection (streams on): slot t's hitter (slot 0: lh) and
    * Philox generator, its events of the parallel first pass; lredet
    * the pass key of the re-detections after the event being processed
@@ -318,6 +323,9 @@ struct sb_engine {
   gsl_rng **lrt;
   struct sbi_lbuf *lbt;
   int nlt;
+  double *lpm;               /* parallel first pass: each record's pruned
+                              * mass, added in record order after it */
+  size_t caplpm;
   uint64_t lredet;
   double lreach;             /* cached reach, m (NaN: to compute) */
   double lreach_dt;
@@ -575,10 +583,23 @@ typedef int (*sbi_lsink)(void *ctx, double s, sbi_event *ev);
  * generator r: its first contact, or with SB_OUTCOME_COUNT and no
  * observer every entry (sb_langevin_hitter_sample_all; a pair in contact
  * at t is followed to its exit first), in time order; nothing for a
- * record the observer skips.  Status. */
+ * record the observer skips.  The sampler's counters of the record are
+ * added to *acc.  Status. */
 int sbi_engine_langevin_events(const sb_engine *e, sb_langevin_hitter *lh,
                                const gsl_rng *r, const sb_engine_pair *p,
-                               double t, sbi_lsink sink, void *ctx);
+                               double t, sbi_lsink sink, void *ctx,
+                               sb_langevin_hit_stats *acc);
+/* Add the counters of one (or several) sampler calls, one, to acc: the
+ * counts are summed, depth_max is the larger one, and pruned_mass is
+ * added only if with_mass (the parallel pass adds it in record order
+ * afterwards). */
+void sbi_engine_langevin_fold(sb_langevin_hit_stats *acc,
+                              const sb_langevin_hit_stats *one,
+                              int with_mass);
+/* Before a sampler call on lh outside sbi_engine_langevin_events (the
+ * walls): reset lh; after it, sbi_engine_langevin_done adds the call's
+ * counters to the engine's. */
+void sbi_engine_langevin_done(const sb_engine *e, sb_langevin_hitter *lh);
 /* The built-in Langevin detector on record p from step fraction t: its
  * first contact (every entry with SB_OUTCOME_COUNT) pushed as events.
  * With streams on, each record draws from its own stream, keyed by the

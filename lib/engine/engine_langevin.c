@@ -69,7 +69,39 @@ int sbi_engine_langevin_init(sb_engine *e)
   sb_engine_langevin_params_default(&e->lpar);
   e->lreach = NAN;
   e->lh = new_hitter(e, &e->lpar);
-  return e->lh ? SB_SUCCESS : SB_ENOMEM;
+  e->lacc = calloc(1, sizeof *e->lacc);
+  return e->lh && e->lacc ? SB_SUCCESS : SB_ENOMEM;
+}
+
+void sbi_engine_langevin_fold(sb_langevin_hit_stats *acc,
+                              const sb_langevin_hit_stats *one,
+                              int with_mass)
+{
+  acc->calls += one->calls;
+  acc->hits += one->hits;
+  acc->nodes += one->nodes;
+  acc->pruned += one->pruned;
+  acc->leaves += one->leaves;
+  acc->grazing += one->grazing;
+  acc->deep += one->deep;
+  acc->audit_hits += one->audit_hits;
+  if (one->depth_max > acc->depth_max)
+    acc->depth_max = one->depth_max;
+  if (with_mass)
+    acc->pruned_mass += one->pruned_mass;
+}
+
+/* The counters of lh's calls since its reset, added to acc. */
+static void hit_done(sb_langevin_hitter *lh, sb_langevin_hit_stats *acc)
+{
+  sb_langevin_hit_stats one;
+  if (sb_langevin_hitter_stats(lh, &one) == SB_SUCCESS)
+    sbi_engine_langevin_fold(acc, &one, 1);
+}
+
+void sbi_engine_langevin_done(const sb_engine *e, sb_langevin_hitter *lh)
+{
+  hit_done(lh, e->lacc);
 }
 
 int sb_engine_set_langevin(sb_engine *e, const sb_engine_langevin_params *p)
@@ -99,39 +131,17 @@ int sb_engine_get_langevin(const sb_engine *e, sb_engine_langevin_params *p)
 
 int sb_engine_langevin_stats(const sb_engine *e, sb_langevin_hit_stats *st)
 {
-  if (!e || !st || !e->lh)
+  if (!e || !st || !e->lacc)
     return sbi_error(SB_EINVAL, __func__, "NULL argument");
-  /* the hitters checked here, so that an error names this function
-   * (sb_langevin_hitter_stats fails only on NULL) */
-  for (int t = 1; t < e->nlt; t++)
-    if (!e->lht[t])
-      return sbi_error(SB_EINVAL, __func__, "thread slot %d has no hitter",
-                       t);
-  int r = sb_langevin_hitter_stats(e->lh, st);
-  /* the other threads' hitters (the parallel first pass) */
-  for (int t = 1; t < e->nlt && !r; t++) {
-    sb_langevin_hit_stats a;
-    r = sb_langevin_hitter_stats(e->lht[t], &a);
-    st->calls += a.calls;
-    st->hits += a.hits;
-    st->nodes += a.nodes;
-    st->pruned += a.pruned;
-    st->leaves += a.leaves;
-    st->grazing += a.grazing;
-    st->deep += a.deep;
-    st->audit_hits += a.audit_hits;
-    st->depth_max = a.depth_max > st->depth_max ? a.depth_max
-                                                : st->depth_max;
-    st->pruned_mass += a.pruned_mass;
-  }
-  return r;
+  /* every call's counters, the parallel pass's included, were added in
+   * a fixed order (sbi_engine_langevin_fold) */
+  *st = *e->lacc;
+  return SB_SUCCESS;
 }
 
 void sbi_engine_langevin_reset_stats(sb_engine *e)
 {
-  sb_langevin_hitter_reset(e->lh);
-  for (int t = 1; t < e->nlt; t++)
-    sb_langevin_hitter_reset(e->lht[t]);
+  memset(e->lacc, 0, sizeof *e->lacc);
 }
 
 /* ------------------------------------------------------------ reach */
@@ -524,7 +534,7 @@ static void event_turn_back(const sb_engine_pair *p, sbi_event *ev)
  * generator r. */
 static int detect_with(const sb_engine *e, sb_langevin_hitter *lh,
                        const sb_engine_pair *p, double t, const gsl_rng *r,
-                       double *s, sbi_event *ev)
+                       double *s, sbi_event *ev, sb_langevin_hit_stats *acc)
 {
   sb_engine_pair o;
   const int turned = pair_by_id(e, p, &o);
@@ -533,7 +543,9 @@ static int detect_with(const sb_engine *e, sb_langevin_hitter *lh,
   if (h <= 0)
     return h;
   sb_langevin_contact c;
+  sb_langevin_hitter_reset(lh);
   h = sb_langevin_hitter_sample(lh, &q.pi, &q.pj, o.sigma, q.dtr, r, &c);
+  hit_done(lh, acc);
   if (h <= 0)
     return h < 0 ? -1 : 0;
   lrec_event(&q, &o, &c, s, ev);
@@ -546,12 +558,13 @@ int sbi_engine_langevin_detect(const sb_engine *e, const sb_engine_pair *p,
                                double t, const gsl_rng *r, double *s,
                                sbi_event *ev)
 {
-  return detect_with(e, e->lh, p, t, r, s, ev);
+  return detect_with(e, e->lh, p, t, r, s, ev, e->lacc);
 }
 
 int sbi_engine_langevin_events(const sb_engine *e, sb_langevin_hitter *lh,
                                const gsl_rng *r, const sb_engine_pair *p,
-                               double t, sbi_lsink sink, void *ctx)
+                               double t, sbi_lsink sink, void *ctx,
+                               sb_langevin_hit_stats *acc)
 {
   if (e->obs_skip && e->obs_skip(e, p, e->obs_ctx))
     return SB_SUCCESS;
@@ -559,7 +572,7 @@ int sbi_engine_langevin_events(const sb_engine *e, sb_langevin_hitter *lh,
     double s = 0.0;
     sbi_event ev;
     ev.hasc = 0;
-    const int h = detect_with(e, lh, p, t, r, &s, &ev);
+    const int h = detect_with(e, lh, p, t, r, &s, &ev, acc);
     if (h < 0)
       return sbi_error(SB_EINVAL, "sb_engine_step",
                        "detector failed on pair (%zu, %zu)", p->i, p->j);
@@ -570,8 +583,11 @@ int sbi_engine_langevin_events(const sb_engine *e, sb_langevin_hitter *lh,
   const int turned = pair_by_id(e, p, &o);
   lrec q;
   int n = lrec_make(e, &o, t, r, &q);
-  if (n > 0)
+  if (n > 0) {
+    sb_langevin_hitter_reset(lh);
     n = sb_langevin_hitter_sample_all(lh, &q.pi, &q.pj, o.sigma, q.dtr, r);
+    hit_done(lh, acc);
+  }
   if (n < 0)
     return sbi_error(SB_EINVAL, "sb_engine_step",
                      "detector failed on pair (%zu, %zu)", p->i, p->j);

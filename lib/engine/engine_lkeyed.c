@@ -27,7 +27,10 @@
  * increasing order and keeps their events with the record's index; the
  * events are then pushed in record order (a merge of the threads' sorted
  * lists), which is the order of the serial pass: the event heap, and so
- * the outcome order, is the same. */
+ * the outcome order, is the same.  So are the sampler's counters
+ * (sb_engine_langevin_stats): each record's are taken alone (its hitter
+ * reset before it) and its pruned mass, a floating-point sum, is added in
+ * record order after the pass, as the serial pass adds it. */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -49,6 +52,7 @@ struct sbi_lbuf {
   lent *v;
   size_t n, cap;
   size_t q;    /* the record being examined */
+  sb_langevin_hit_stats acc;  /* the sampler's counts, without the mass */
   int st;      /* first error status of the thread */
   char msg[256];
 };
@@ -166,7 +170,12 @@ int sbi_engine_langevin_record(sb_engine *e, const sb_engine_pair *p,
                        (unsigned long long)e->steps);
   }
   push_ctx c = {e, p, t};
-  return sbi_engine_langevin_events(e, e->lh, r, p, t, push_sink, &c);
+  sb_langevin_hit_stats rec;
+  memset(&rec, 0, sizeof rec);
+  const int st = sbi_engine_langevin_events(e, e->lh, r, p, t, push_sink, &c,
+                                            &rec);
+  sbi_engine_langevin_fold(e->lacc, &rec, 1);  /* as the parallel pass */
+  return st;
 }
 
 /* ------------------------------------------------------------ parallel */
@@ -196,6 +205,7 @@ static void pass_thread(const sb_engine *e, int t, int nt, size_t np)
   struct sbi_lbuf *b = &e->lbt[t];
   b->n = 0;
   b->st = SB_SUCCESS;
+  memset(&b->acc, 0, sizeof b->acc);
   for (size_t q0 = (size_t)t * LBLOCK; q0 < np && !b->st;
        q0 += (size_t)nt * LBLOCK) {
     const size_t q1 = q0 + LBLOCK < np ? q0 + LBLOCK : np;
@@ -204,9 +214,13 @@ static void pass_thread(const sb_engine *e, int t, int nt, size_t np)
       sbi_engine_make_pair(e, e->pairs[2 * q], e->pairs[2 * q + 1], &p);
       const gsl_rng *r = pair_rng(e, t, &p, 0);
       b->q = q;
+      sb_langevin_hit_stats rec;
+      memset(&rec, 0, sizeof rec);
       b->st = r ? sbi_engine_langevin_events(e, e->lht[t], r, &p, 0.0,
-                                             buf_sink, b)
+                                             buf_sink, b, &rec)
                 : SB_EDOM;
+      sbi_engine_langevin_fold(&b->acc, &rec, 0);
+      e->lpm[q] = rec.pruned_mass;  /* added in record order afterwards */
       if (b->st)
         snprintf(b->msg, sizeof b->msg, "%s",
                  r ? sb_last_error() : "streams: a particle id or the "
@@ -223,12 +237,27 @@ int sbi_engine_langevin_first_pass(sb_engine *e, int nt)
   if (st)
     return st;
   const size_t np = e->npairs;
+  if (np > e->caplpm) {
+    double *m = realloc(e->lpm, np * sizeof *m);
+    if (!m)
+      return sbi_error(SB_ENOMEM, "sb_engine_step", "out of memory");
+    e->lpm = m;
+    e->caplpm = np;
+  }
+  for (size_t q = 0; q < np; q++)
+    e->lpm[q] = 0.0;
   const sb_engine *ce = e;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static, 1) num_threads(nt)
 #endif
   for (int t = 0; t < nt; t++)
     pass_thread(ce, t, nt, np);
+  /* the sampler's counters as the serial pass adds them: the pruned mass
+   * record by record, in record order, whatever the threads */
+  for (int t = 0; t < nt; t++)
+    sbi_engine_langevin_fold(e->lacc, &e->lbt[t].acc, 0);
+  for (size_t q = 0; q < np; q++)
+    e->lacc->pruned_mass += e->lpm[q];
   for (int t = 0; t < nt; t++)
     if (e->lbt[t].st)
       return sbi_error(e->lbt[t].st, "sb_engine_step", "%s", e->lbt[t].msg);

@@ -143,8 +143,10 @@ static int touches_langevin(sb_engine *e, size_t i, int k, int s, double a)
                            ? e->radius[i]
                            : sqrt(sb_langevin_var_x(sp->tau, sp->B,
                                                     e->par.dt)) + 1e-300;
+  sb_langevin_hitter_reset(e->lh);
   int h = sb_langevin_hitter_sample_plane(e->lh, &q, n, level, scale,
                                           e->par.dt, e->rng, NULL);
+  sbi_engine_langevin_done(e, e->lh);
   return h < 0 ? h : h == 1;
 }
 

@@ -526,7 +526,9 @@ int sb_engine_langevin_contact(const sb_engine *e, const sb_engine_pair *p,
                                sb_langevin_contact *c);
 
 /** Counters of the Langevin detector since the engine's allocation (or
- *  sb_engine_reset_counters); SB_EINVAL if the detector never ran. */
+ *  sb_engine_reset_counters), the wall detector's included; the same on
+ *  any number of threads, pruned_mass bit for bit (each sampler call's
+ *  counters are added in record order).  SB_EINVAL for NULL. */
 int sb_engine_langevin_stats(const sb_engine *e, sb_langevin_hit_stats *st);
 
 /** Inside an outcome callback with SB_DETECT_LANGEVIN, or inside the
