@@ -87,6 +87,7 @@ START_TEST(test_stats_error_name)
   ck_assert_ptr_nonnull(e->lh);
   sb_langevin_hit_stats st;
   ck_assert_int_eq(sb_engine_langevin_stats(e, &st), SB_SUCCESS);
+  ck_assert(st.calls == 0 && st.nodes == 0 && st.pruned_mass == 0.0);
   sb_clear_error();
   ck_assert_int_eq(sb_engine_langevin_stats(e, NULL), SB_EINVAL);
   ck_assert_msg(!strncmp(sb_last_error(), "sb_engine_langevin_stats:", 25),
