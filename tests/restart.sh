@@ -253,9 +253,8 @@ split turb "$out/turb.ini" run.steps=20 run.steps=20 &&
 
 # a restart changes the checkpoint's boundaries only where its file says
 # so: the faces given replace its walls; without [walls] detect and deposit it keeps the checkpoint's wall
-# detector and deposition outcome (the run in one go, bit for bit), one
-# of the two alone sets the other to its default, with a warning unless
-# the faces make it inert (the engine sets them together); [fluid]
+# detector and deposition outcome (the run in one go, bit for bit), and
+# one of the two given alone keeps the checkpoint's other one; [fluid]
 # lees_edwards = no switches the checkpoint's Lees-Edwards images off,
 # with [fluid] type = shear given or without [fluid] type, and another
 # type given leaves none
@@ -291,17 +290,24 @@ then
 else
   fail "walls: the run in one go, its first part or the restart"
 fi
-"$sb" collide "$out/walls.ini" --set "run.output=$out/walls_3" \
-  --set walls.deposit=remove --set "run.restart=$out/walls.ck" \
-  > "$out/bad.log" 2>&1 || fail "walls: the restart with [walls] deposit"
-grep -q "deposit with restart but no detect: the checkpoint's wall detector is replaced by detect = bridge" \
-  "$out/bad.log" || fail "walls: no warning with [walls] deposit alone"
-"$sb" collide "$out/walls.ini" --set "run.output=$out/walls_3" \
-  --set walls.z_lo=open --set walls.z_hi=open --set walls.detect=ballistic \
-  --set "run.restart=$out/walls.ck" > "$out/bad.log" 2>&1 ||
-  fail "walls: the restart with open faces"
-! grep -q "with restart but no" "$out/bad.log" ||
-  fail "walls: a warning about deposit without absorbing faces"
+# deposit alone keeps the checkpoint's detect = ballistic: the same run
+# as with both given, another than with detect = bridge
+for d in "" ballistic bridge; do
+  "$sb" collide "$out/walls.ini" --set "run.output=$out/walls_3$d" \
+    --set walls.deposit=remove ${d:+--set walls.detect=$d} \
+    --set "run.restart=$out/walls.ck" > "$out/bad$d.log" 2>&1 ||
+    fail "walls: the restart with [walls] deposit ${d:+and detect = $d}"
+done
+! grep -q "\[walls\]" "$out/bad.log" ||
+  fail "walls: a warning with [walls] deposit alone on restart"
+"$py" - "$out"/walls_3/summary.json "$out"/walls_3ballistic/summary.json \
+  "$out"/walls_3bridge/summary.json <<'PY' ||
+import json, sys
+a, b, c = (json.load(open(p)) for p in sys.argv[1:4])
+key = lambda d: (d["collisions"], d["particles"], d["deposits"])
+sys.exit(0 if key(a) == key(b) and key(a) != key(c) else 1)
+PY
+  fail "walls: [walls] deposit alone on restart did not keep the checkpoint's detect"
 # periodic faces given replace the checkpoint's walls: no more deposits
 "$sb" collide "$out/walls.ini" --set "run.output=$out/walls_4" \
   --set walls.z_lo=periodic --set walls.z_hi=periodic \

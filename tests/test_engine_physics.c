@@ -630,6 +630,12 @@ START_TEST(test_checkpoint)
   sb_engine_species_fluid fl;
   sb_engine_get_species_fluid(b, 0, &fl);
   ck_assert(fl.drag == SB_DRAG_SCHILLER_NAUMANN && fl.rho_f == 1000.0);
+  sb_engine_walldet det = SB_WALLDET_BRIDGE;
+  sb_engine_deposit dep = SB_DEPOSIT_REMOVE;
+  ck_assert_int_eq(sb_engine_get_wall_mode(b, &det, &dep), SB_SUCCESS);
+  ck_assert(det == SB_WALLDET_BALLISTIC && dep == SB_DEPOSIT_REINSERT);
+  ck_assert_int_eq(sb_engine_get_wall_mode(b, NULL, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_get_wall_mode(NULL, &det, &dep), SB_EINVAL);
   sb_engine_free(a);
   sb_engine_free(b);
 }

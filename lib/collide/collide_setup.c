@@ -259,36 +259,6 @@ static int check_explicit(sbi_col_config *c)
   return 0;
 }
 
-/* On restart with one of [walls] detect and deposit: the engine sets the
- * two together and cannot report the checkpoint's, so the other one
- * (key) takes the file's value, its default; a warning says so unless
- * the file's faces show that it does nothing (every walled direction
- * given, no absorbing face for deposit, no absorbing or open one for
- * detect). */
-static void restart_wall_mode_warn(sbi_col_config *c, const sbi_col_run *r,
-                                   const char *key)
-{
-  static const char *const faces[] = {"x_lo", "x_hi", "y_lo", "y_hi",
-                                      "z_lo", "z_hi"};
-  const int detect = !strcmp(key, "detect");
-  int inert = 1;
-  for (int k = 0; k < c->dim; k++) {
-    if (!sbi_col_given(c, "walls", faces[2 * k]) &&
-        !sbi_col_given(c, "walls", faces[2 * k + 1]))
-      inert &= sb_engine_periodic(r->e, k);  /* the checkpoint's walls */
-    for (int q = 2 * k; q < 2 * k + 2; q++)
-      inert &= strcmp(c->wall[q], "absorb") &&
-               (!detect || strcmp(c->wall[q], "open"));
-  }
-  if (!inert)
-    sbi_col_warn(c, "%s: [walls] %s with restart but no %s: the checkpoint's "
-                 "%s is replaced by %s = %s, the default (the two are set "
-                 "together); give %s to choose", sbi_col_where(c, "walls",
-                 detect ? "deposit" : "detect"), detect ? "deposit" : "detect",
-                 key, detect ? "wall detector" : "deposition outcome", key,
-                 detect ? c->wall_detect : c->deposit, key);
-}
-
 /* Lees-Edwards images, gravity, per-species fluid properties and drag
  * laws, walls (docs/engine_forces.md); before the placement, whose
  * velocities include the settling velocities. */
@@ -356,21 +326,21 @@ static int setup_physics(sbi_col_config *c, sbi_col_run *r)
     }
   }
   /* a restart keeps the checkpoint's wall detector and deposition
-   * outcome unless the file gives one of them */
-  const int det = sbi_col_given(c, "walls", "detect"),
-            dep = sbi_col_given(c, "walls", "deposit");
-  if (c->restart[0] && det != dep)
-    restart_wall_mode_warn(c, r, det ? "deposit" : "detect");
-  if ((!c->restart[0] || det || dep) &&
-      sb_engine_set_wall_mode(r->e,
-                              !strcmp(c->wall_detect, "ballistic")
-                                  ? SB_WALLDET_BALLISTIC
-                              : !strcmp(c->wall_detect, "langevin")
-                                  ? SB_WALLDET_LANGEVIN
-                                  : SB_WALLDET_BRIDGE,
-                              strcmp(c->deposit, "reinsert")
-                                  ? SB_DEPOSIT_REMOVE
-                                  : SB_DEPOSIT_REINSERT))
+   * outcome unless the file gives them (each on its own) */
+  sb_engine_walldet wdet = !strcmp(c->wall_detect, "ballistic")
+                               ? SB_WALLDET_BALLISTIC
+                           : !strcmp(c->wall_detect, "langevin")
+                               ? SB_WALLDET_LANGEVIN
+                               : SB_WALLDET_BRIDGE;
+  sb_engine_deposit wdep = strcmp(c->deposit, "reinsert")
+                               ? SB_DEPOSIT_REMOVE
+                               : SB_DEPOSIT_REINSERT;
+  if (c->restart[0])
+    sb_engine_get_wall_mode(r->e,
+                            sbi_col_given(c, "walls", "detect") ? NULL : &wdet,
+                            sbi_col_given(c, "walls", "deposit") ? NULL
+                                                                 : &wdep);
+  if (sb_engine_set_wall_mode(r->e, wdet, wdep))
     return sbi_col_fail(c, "[walls]: %s", sb_last_error());
   /* open boundaries: one inflow per species that has one */
   for (int k = 0; k < c->nsp; k++) {

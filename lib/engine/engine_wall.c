@@ -75,6 +75,18 @@ int sb_engine_set_wall_mode(sb_engine *e, sb_engine_walldet det,
   return SB_SUCCESS;
 }
 
+int sb_engine_get_wall_mode(const sb_engine *e, sb_engine_walldet *det,
+                            sb_engine_deposit *dep)
+{
+  if (!e)
+    return sbi_error(SB_EINVAL, __func__, "engine is NULL");
+  if (det)
+    *det = e->walldet;
+  if (dep)
+    *dep = e->deposit;
+  return SB_SUCCESS;
+}
+
 uint64_t sb_engine_deposits(const sb_engine *e, int face)
 {
   if (!e) {

@@ -1089,6 +1089,11 @@ int sb_engine_set_walls(sb_engine *e, int k, sb_engine_wall lo,
  *  remove). */
 int sb_engine_set_wall_mode(sb_engine *e, sb_engine_walldet det,
                             sb_engine_deposit dep);
+/** The detector and outcome of the absorbing walls (as set, or as a
+ *  checkpoint restored them); either output may be NULL.  SB_EINVAL for
+ *  a NULL engine. */
+int sb_engine_get_wall_mode(const sb_engine *e, sb_engine_walldet *det,
+                            sb_engine_deposit *dep);
 /** Depositions since the counter reset on face 2k (lo) or 2k + 1 (hi) of
  *  direction k; 0 for a bad face. */
 uint64_t sb_engine_deposits(const sb_engine *e, int face);
