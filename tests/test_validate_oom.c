@@ -9,7 +9,9 @@
  * allocation it can do without (a note of the report), succeed with the
  * records of the run without failure.  Allocations that GSL makes are
  * left alone: GSL's own recovery is not under test
- * (gsl_ran_discrete_preproc of GSL 2.7 does not survive one).
+ * (gsl_ran_discrete_preproc of GSL 2.7 does not survive one).  Cases too
+ * long for that sweep have their parts called directly (v12.h) with a
+ * report whose next growth of its records fails.
  * Linux/glibc only: elsewhere the test does nothing. */
 #define _GNU_SOURCE /* dladdr */
 #include <stdlib.h>
@@ -19,6 +21,7 @@
 
 #include <smolbridge/validate.h>
 #include "testutil.h"
+#include "validate/v12.h"
 
 #if defined(__GLIBC__)
 #include <dlfcn.h>
@@ -29,6 +32,7 @@ extern void *__libc_realloc(void *p, size_t n);
 
 static long fail_at = -1; /* index of the allocation that fails (-1: none) */
 static long nalloc = -1;  /* allocations since arming (-1: not counting) */
+static void *fail_grow;   /* a block whose next realloc fails (once) */
 
 static int fail_now(void *caller)
 {
@@ -51,6 +55,10 @@ void *calloc(size_t m, size_t n)
 }
 void *realloc(void *p, size_t n)
 {
+  if (p && p == fail_grow) {
+    fail_grow = NULL;
+    return NULL;
+  }
   return fail_now(CALLER) ? NULL : __libc_realloc(p, n);
 }
 #else
@@ -145,12 +153,71 @@ START_TEST(test_spray_conservation_stops)
 }
 END_TEST
 
+#if SBT_OOM
+/* A report of n rows (the next one grows its records, see report.c)
+ * whose next growth fails. */
+static sbv_report *full_report(size_t n)
+{
+  sbv_report *rep = sb_validate_report_alloc();
+  ck_assert_ptr_nonnull(rep);
+  for (size_t i = 0; i < n; i++)
+    ck_assert_int_eq(sbv_add_info(rep, "V0/filler", 1.0, 1.0, 0.0, 2.0,
+                                  0.95), SB_SUCCESS);
+  fail_grow = (void *)sb_validate_report_record(rep, 0);
+  return rep;
+}
+#endif
+
+/* V12 mixture: the status of its last two rows (the contact-place slope)
+ * was dropped, so a row lost for want of memory went unnoticed.  The
+ * report is filled so that the first of them grows the records. */
+START_TEST(test_v12_mixture_last_rows)
+{
+#if SBT_OOM
+  gsl_set_error_handler_off();
+  sb_validate_options o;
+  sb_validate_options_init(&o);
+  const sbv_ctx ctx = {0, o.seed, NULL, &o, NULL, NULL};
+  sbv_report *rep = full_report(13); /* + 3 kernel rows = 16 */
+  ck_assert_int_eq(v12_mixture(&ctx, rep), SB_ENOMEM);
+  ck_assert_ptr_null(fail_grow);
+  sb_validate_report_free(rep);
+#endif
+}
+END_TEST
+
+/* V12 velocities: a failed sticking-fraction row was overwritten by the
+ * next row's status. */
+START_TEST(test_v12_velocities_stick_rows)
+{
+#if SBT_OOM
+  gsl_set_error_handler_off();
+  sb_validate_options o;
+  sb_validate_options_init(&o);
+  const sbv_ctx ctx = {0, o.seed, NULL, &o, NULL, NULL};
+  enum { N = 500 };
+  static double vref[N], vl[N];
+  for (int i = 0; i < N; i++) {
+    vref[i] = 0.5 * (i + 0.5) / N;
+    vl[i] = 0.5 * (i + 0.25) / N;
+  }
+  v12_vel vel = {0.05, vref, {vl, NULL}, N, {N, 0}};
+  sbv_report *rep = full_report(16);
+  ck_assert_int_eq(v12_velocities(&ctx, rep, &vel, 1), SB_ENOMEM);
+  ck_assert_ptr_null(fail_grow);
+  sb_validate_report_free(rep);
+#endif
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("validate_oom");
   TCase *tc = tcase_create("oom");
   tcase_set_timeout(tc, 300);
   tcase_add_test(tc, test_spray_conservation_stops);
+  tcase_add_test(tc, test_v12_mixture_last_rows);
+  tcase_add_test(tc, test_v12_velocities_stick_rows);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -244,7 +244,7 @@ int v12_mixture(const sbv_ctx *ctx, sbv_report *rep)
            "early in the step see the large particle's motion smoothed "
            "over its tau_p (informational row).", nh, slope, se, exact,
            thesis, slope / thesis);
-  return SB_SUCCESS;
+  return st;
 }
 
 /* ------------------------------------------------------------ velocities */
@@ -295,7 +295,7 @@ int v12_velocities(const sbv_ctx *ctx, sbv_report *rep, const v12_vel *vel,
       if (!v->vl[d])
         continue;
       const double dtt = d ? 10.0 : 1.0;
-      for (int w = 0; w < 7 && !d && np < 14; w++) {
+      for (int w = 0; w < 7 && !d && np < 14 && !st; w++) {
         double vmin = sqrt(2.0 * wkt[w] * kT / mred);
         double *p = plot + 6 * np++;
         p[0] = wkt[w];
@@ -312,6 +312,8 @@ int v12_velocities(const sbv_ctx *ctx, sbv_report *rep, const v12_vel *vel,
         sb_binomial_ci(ns, v->nl[d], 0.95, &lo, &hi);
         st = sbv_add_info(rep, name, p[1], p[2], lo, hi, 0.95);
       }
+      if (st)
+        break;
       char name[96];
       snprintf(name, sizeof name, "V12/vn/Kn=%g/dt=%g/langevin-vs-ct/KS2",
                v->kn, dtt);
