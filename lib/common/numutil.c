@@ -151,7 +151,7 @@ double sbi_mills_diff_m(double z, double h, double mlo, double mhi,
     if (n > 0.0 && n < 12.0)
       jn = 2 * (int)n + 3;
   }
-  if (z <= 3.0) {
+  if (!(z > 3.0)) { /* NaN z too: (int) of NaN below is undefined */
     /* forward recurrence J_{k+1} = k J_{k-1} - z J_k (integration by parts);
      * it loses accuracy as z grows (J_1 = 1 - z J_0 cancels), measured
      * <= 9 ulp for D up to z = 3 (tests/data/mdiff.csv) */
