@@ -368,6 +368,8 @@ static int case_slope(const sbv_ctx *ctx, sbv_report *rep)
     for (int s = 0; s < 2 && st == SB_SUCCESS; s++) {
       st = rms_errors(&p, S[s]->tmax, K, R, N, r, &rms[2 * s][i],
                       &rms[2 * s + 1][i]);
+      if (st)
+        break;  /* no RMS to plot */
       sb_langevin_mom m;
       sb_langevin_moments(&p, S[s]->tmax, 0.0, 0.0, &m);
       /* exact RMS for Gaussian samples: sd/sqrt(N), var sqrt(2/(N-1)) */
