@@ -316,12 +316,11 @@ static int run_my_tasks(const tasks *T, unsigned char **out, size_t *outlen)
     count_verdicts(rep, &np_, &nf_, &ni_);
     seed_rows += sb_validate_report_nrecords(rep);
     seed_fail += nf_;
-    void *pk;
+    void *pk = NULL;
     size_t n;
     int bad = sb_validate_report_pack(rep, &pk, &n) ||
               put_task(out, outlen, &cap, t, pk, n);
-    if (!bad)
-      free(pk);
+    free(pk);  /* put_task copied it (or failed) */
     sb_validate_report_free(rep);
     if (bad)
       return -1;
