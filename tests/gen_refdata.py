@@ -156,6 +156,27 @@ def gen_passage():
             vals = [pdf if pdf > TINY else -1, cdf if cdf > TINY else -1,
                     sf if sf > TINY else -1]
             rows.append((t, x, a, mu, s2, vals[0], vals[1], vals[2], mass))
+    # extreme-but-representable corners (t, x, a, mu, s2): sigma2 t or
+    # nu t beyond DBL_MAX or above the 2^995 where a Veltkamp split
+    # overflows, exp(-E) or eps / t out of range with a normal density
+    big = sys.float_info.max
+    for (t, x, a, mu, s2) in [
+            (1e140, 0, 1, 1, 1e160), (1e10, 0, 1, 1, 1e290),
+            (1e10, 0, 1, -1e-300, 1e290), (1e300, 0, 1, 0.4, 0.8),
+            (big, 0, 1, 0.4, 0.8), (big, 0, 1, -0.4, 0.8),
+            (1.3, 0, 1, 0.4, 1e300), (1.3, 0, 1, -0.4, big),
+            (1e-300, 0, 1e-150, 0.4, 0.8), (1e-300, 0, 1e-150, 0, 1),
+            (2.0 ** -1000, 0, 1, 2.0 ** 1000, 2.0 ** 1000),
+            (2.0 ** 1000 + 2.0 ** 960, 0, 2.0 ** 1000, 1, 2.0 ** 1000),
+            (2.0 ** 1000 + 2.0 ** 960, 2.0 ** 1000, 0, 1, 2.0 ** 1000),
+            (1e200, 0, 1e300, 1e100 * (1 + 2.0 ** -40), 1e-300),
+            (1e-200, 1e-300, 0, 1e-100, 1e-300), (1e300, 0, 1e300, 0, 1e300)]:
+        # 400 digits: Q(c) - exp(2 nu d/s2) Q(b) cancels down to 1e-300
+        with mp.workdps(400):
+            pdf, cdf, sf, mass = ig_parts(t, x, a, mu, s2)
+        vals = [pdf if pdf > TINY else -1, cdf if cdf > TINY else -1,
+                sf if sf > TINY else -1]
+        rows.append((t, x, a, mu, s2, vals[0], vals[1], vals[2], mass))
     write("passage_bm.csv",
           ["t", "x", "a", "mu", "sigma2", "pdf", "cdf", "sf", "mass"], rows)
 
@@ -175,6 +196,21 @@ def gen_passage():
             sf = 1 - cdf
             rows.append((t, x, a, s2, pdf if pdf > TINY else -1,
                          cdf if cdf > TINY else -1, sf))
+    # extreme corners: sigma2 t beyond DBL_MAX or above 2^995, a density
+    # near 1e300 at t = 1e-300
+    for (t, x, a, s2) in [(1e-300, 1e-150, 0.5e-150, 1), (1e10, 1, 0.5, 1e290),
+                          (1e300, 2, 0.5, 1e300), (sys.float_info.max, 2, 0.5,
+                                                   0.8),
+                          (1e300, 1e300, 0.5e300, 1e300)]:
+        xx, aa, ss, tt = map(mp.mpf, (x, a, s2, t))
+        d = xx - aa
+        z = d / mp.sqrt(2 * ss * tt)
+        pdf = aa / xx * d / mp.sqrt(2 * mp.pi * ss * tt ** 3) * \
+            mp.exp(-d * d / (2 * ss * tt))
+        cdf = aa / xx * mp.erfc(z)
+        sf = 1 - cdf
+        rows.append((t, x, a, s2, pdf if pdf > TINY else -1,
+                     cdf if cdf > TINY else -1, sf))
     write("passage_bes3.csv", ["t", "x", "a", "sigma2", "pdf", "cdf", "sf"],
           rows)
 

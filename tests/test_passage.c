@@ -514,6 +514,83 @@ START_TEST(test_bad_input)
 }
 END_TEST
 
+/* Every argument in turn over +-1e-320 ... +-DBL_MAX, +-inf and 0, the
+ * others ordinary: the value is finite with status 0, or NaN with an
+ * error status (never NaN, or inf with status 0); the values themselves at
+ * the extreme corners are checked against mpmath in passage_bm.csv and
+ * passage_bes3.csv (the rows after the "extreme" comment of
+ * tests/gen_refdata.py). */
+typedef double (*pfn)(const double *a);
+static double e_pdf(const double *a)
+{
+  return sb_bm_fpt_pdf(a[0], a[1], a[2], a[3], a[4]);
+}
+static double e_cdf(const double *a)
+{
+  return sb_bm_fpt_cdf(a[0], a[1], a[2], a[3], a[4]);
+}
+static double e_sf(const double *a)
+{
+  return sb_bm_fpt_sf(a[0], a[1], a[2], a[3], a[4]);
+}
+static double e_mass(const double *a)
+{
+  return sb_bm_fpt_mass(a[1], a[2], a[3], a[4]);
+}
+static double e_b3pdf(const double *a)
+{
+  return sb_bes3_fpt_pdf(a[0], a[1], a[2], a[4]);
+}
+static double e_b3cdf(const double *a)
+{
+  return sb_bes3_fpt_cdf(a[0], a[1], a[2], a[4]);
+}
+static double e_b3sf(const double *a)
+{
+  return sb_bes3_fpt_sf(a[0], a[1], a[2], a[4]);
+}
+
+START_TEST(test_extreme_arguments)
+{
+  /* (t, x, a, mu, sigma2); Bessel-3 ignores mu */
+  static const double base[3][5] = {{1.3, 0.0, 1.0, 0.4, 0.8},
+                                    {1.3, 0.0, 1.0, -0.4, 0.8},
+                                    {1.3, 2.0, 0.5, 0.0, 0.8}};
+  static const struct {
+    pfn f;
+    int b;
+  } k[] = {{e_pdf, 0}, {e_cdf, 0}, {e_sf, 0}, {e_mass, 0},
+           {e_pdf, 1}, {e_cdf, 1}, {e_sf, 1}, {e_mass, 1},
+           {e_b3pdf, 2}, {e_b3cdf, 2}, {e_b3sf, 2}};
+  const double ext[] = {1e-320,   1e-300,   1e300,    DBL_MAX,
+                        INFINITY, -1e-320,  -1e-300,  -1e300,
+                        -DBL_MAX, -INFINITY, 0.0,     0x1p995,
+                        0x1p-995, 1e154,    1e-154};
+  for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
+    for (int i = 0; i < 5; i++)
+      for (size_t e = 0; e < sizeof ext / sizeof ext[0]; e++) {
+        double a[5];
+        memcpy(a, base[k[f].b], sizeof a);
+        a[i] = ext[e];
+        sb_clear_error();
+        const double v = k[f].f(a);
+        const int st = sb_last_status();
+        ck_assert_msg(isfinite(v) ? st == SB_SUCCESS && v >= 0.0
+                                  : isnan(v) && st != SB_SUCCESS,
+                      "function %zu, argument %d = %g: %g with status %d", f,
+                      i, ext[e], v, st);
+      }
+  /* a density above DBL_MAX (t = 1e-310 at the mean of a narrow law) is
+   * SB_ERANGE, not inf */
+  sb_result r;
+  ck_assert_int_eq(sb_bm_fpt_pdf_e(1e-310, 0.0, 1e-155, 0.0, 1.0, &r),
+                   SB_ERANGE);
+  ck_assert(isnan(r.val));
+  ck_assert_int_eq(sb_bes3_fpt_pdf_e(1e-310, 2e-155, 1e-155, 1.0, &r),
+                   SB_ERANGE);
+}
+END_TEST
+
 static Suite *passage_suite(void)
 {
   Suite *s = suite_create("passage");
@@ -539,6 +616,7 @@ static Suite *passage_suite(void)
   suite_add_tcase(s, tc);
   tc = tcase_create("bes3");
   tcase_add_test(tc, test_bes3_reference);
+  tcase_add_test(tc, test_extreme_arguments);
   tcase_add_test(tc, test_bad_input);
   suite_add_tcase(s, tc);
   return s;

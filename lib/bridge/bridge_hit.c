@@ -487,7 +487,7 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
    * point at L1 (for the density and its derivatives, which only steer the
    * quantile) then follows from the mid one: kap and c smaller by dl */
   int nx = h->rho > h->rnx;
-  sbi_igpt p1, pm = {0.0, 0.0, 0.0, 0.0}, p2 = pm;
+  sbi_igpt p1, pm = {0.0, 0.0, 0.0, 0.0, {0.0, 0.0}}, p2 = pm;
   if (nx) {
     pm = point(h, T, sbi_dd_add(h->L1, (sbi_dd){h->mn, 0.0}));
     double dl = h->mn * T->u / T->q;

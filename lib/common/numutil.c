@@ -204,18 +204,48 @@ double sbi_mills_diff_m(double z, double h, double mlo, double mhi,
 
 /* ------------------------------------------- inverse-Gaussian kernel */
 
-sbi_igpt sbi_igpt_make(sbi_dd num, sbi_dd den, double eps, double kap)
+sbi_igpt sbi_igpt_make_x(sbi_dd num, sbi_dd den, int e, double eps,
+                         double kap)
 {
   sbi_igpt p;
   p.eps = eps;
   p.kap = kap;
-  double q = sqrt(den.hi);
-  p.c = (num.hi + num.lo) / q;
-  /* E = num^2 / (2 den) in double-double, exp(-E) to ~1 ulp */
-  sbi_dd n2 = sbi_dd_mul(num, num);
-  sbi_dd E = sbi_dd_div(n2, sbi_dd_mul_d(den, 2.0));
-  p.ex = (E.hi < 746.0) ? sbi_dd_expneg(E) : 0.0;
+  const double big = 0x1p400, small = 0x1p-400;
+  if ((e == 0 && den.hi < big && den.hi > small &&
+       fabs(num.hi) < 0x1p200) ||
+      !(den.hi > 0.0 && den.hi <= DBL_MAX && fabs(num.hi) <= DBL_MAX)) {
+    /* the usual case (and the degenerate den = 0 or inf, num inf):
+     * E = num^2 / (2 den) in double-double, exp(-E) to ~1 ulp */
+    double q = sqrt(den.hi);
+    p.c = (num.hi + num.lo) / q;
+    sbi_dd n2 = sbi_dd_mul(num, num);
+    p.E = sbi_dd_div(n2, sbi_dd_mul_d(den, 2.0));
+  } else if (num.hi == 0.0) {
+    p.c = 0.0;
+    p.E = (sbi_dd){0.0, 0.0};
+  } else {
+    /* c = 2^(e + kn - kd) ns / sqrt(ds), E = c^2/2, with ns = num 2^-kn
+     * and ds = den 2^(-2 kd) in [1, 4): each operation rounds as the
+     * plain one does where that stays in range (same bits), and only
+     * the final ldexp can overflow (c = +-inf, E = inf) or underflow */
+    const int kn = ilogb(num.hi), kd = ilogb(den.hi) / 2, ec = e + kn - kd;
+    sbi_dd ns = {ldexp(num.hi, -kn), ldexp(num.lo, -kn)};
+    sbi_dd ds = {ldexp(den.hi, -2 * kd), ldexp(den.lo, -2 * kd)};
+    double c = (ns.hi + ns.lo) / sqrt(ds.hi);
+    sbi_dd E = sbi_dd_div(sbi_dd_mul(ns, ns), sbi_dd_mul_d(ds, 2.0));
+    /* |ec| can exceed the range of ldexp's useful exponents: clamp */
+    const int ecl = ec > 4000 ? 4000 : ec < -4000 ? -4000 : ec;
+    p.c = ldexp(c, ecl);
+    p.E.hi = ldexp(E.hi, 2 * ecl);
+    p.E.lo = isfinite(p.E.hi) ? ldexp(E.lo, 2 * ecl) : 0.0;
+  }
+  p.ex = (p.E.hi < 746.0) ? sbi_dd_expneg(p.E) : 0.0;
   return p;
+}
+
+sbi_igpt sbi_igpt_make(sbi_dd num, sbi_dd den, double eps, double kap)
+{
+  return sbi_igpt_make_x(num, den, 0, eps, kap);
 }
 
 /* exp(-c^2/2) M(kap + eps) = exp(2 kap eps) Q(kap + eps) */

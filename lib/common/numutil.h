@@ -267,11 +267,22 @@ static inline sbi_xd sbi_xd_expneg(double x)
  * error bounds are returned through *rel (may be NULL). */
 typedef struct {
   double eps, kap, c, ex;
+  sbi_dd E; /* c^2/2 in double-double (+inf where it overflows) */
 } sbi_igpt;
 
 /* Build a point from the exact numerator num = nu s - d (as dd), the
- * variance den = sigma2 s (as dd), eps and kap. */
+ * variance den = sigma2 s (as dd, 0 < den < inf), eps and kap; any
+ * magnitudes (see sbi_igpt_make_x). */
 sbi_igpt sbi_igpt_make(sbi_dd num, sbi_dd den, double eps, double kap);
+/* The same for the numerator num 2^e and the variance den 2^(2e'), with
+ * c = 2^e num / sqrt(den) (e = e' absorbed: only the ratio matters), so
+ * that a caller whose num or den would over/underflow passes scaled
+ * parts.  c and c^2/2 are formed from num and den scaled by powers of two
+ * into [1, 4) (exact) wherever the plain double-double operations (whose
+ * Veltkamp splitting overflows above 2^995) could leave their range; they
+ * are +-inf / +inf where c overflows, the value where it is a double. */
+sbi_igpt sbi_igpt_make_x(sbi_dd num, sbi_dd den, int e, double eps,
+                         double kap);
 
 double sbi_ig_cdf(const sbi_igpt *p, double *rel);
 /* wl F + wa SBF (upper = 0) or wl SF + wa SBSF (upper = 1) for wl, wa >= 0,

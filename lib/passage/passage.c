@@ -62,24 +62,90 @@ static int fpt_setup(const char *fn, double x, double a, double mu,
   return SB_SUCCESS;
 }
 
+/* Plain double-double arithmetic is exact for these operands: their
+ * products stay far from overflow (and from the 2^995 where Veltkamp's
+ * split overflows) and from the subnormals. */
+static int in_window(double v)
+{
+  return v < 0x1p400 && v > 0x1p-400;
+}
+
+/* sigma2 t = den 2^(2k), den in [1, 4) exact (0 < sigma2, t < inf):
+ * formed from the mantissas so that nothing over/underflows. */
+static sbi_dd scaled_var(double sigma2, double t, int *k)
+{
+  const int es = ilogb(sigma2), et = ilogb(t), e2 = es + et;
+  sbi_dd den = sbi_dd_prod(ldexp(sigma2, -es), ldexp(t, -et));
+  *k = (e2 - (e2 & 1)) / 2;
+  if (e2 & 1) {
+    den.hi *= 2.0;
+    den.lo *= 2.0;
+  }
+  return den;
+}
+
 /* Inverse-Gaussian point (drift |nu|) at time t, 0 < t < inf. */
 static sbi_igpt fpt_point(const fpt_par *q, double t)
 {
-  sbi_dd den = sbi_dd_prod(q->sigma2, t);
-  sbi_dd num = sbi_dd_add(sbi_dd_prod(q->nua, t), sbi_dd_neg(q->d));
-  double s = sqrt(den.hi);
-  return sbi_igpt_make(num, den, q->d.hi / s, q->nua * t / s);
+  if (in_window(t) && in_window(q->sigma2) && in_window(q->d.hi) &&
+      (q->nua == 0.0 || in_window(q->nua))) {
+    sbi_dd den = sbi_dd_prod(q->sigma2, t);
+    sbi_dd num = sbi_dd_add(sbi_dd_prod(q->nua, t), sbi_dd_neg(q->d));
+    double s = sqrt(den.hi);
+    return sbi_igpt_make(num, den, q->d.hi / s, q->nua * t / s);
+  }
+  /* extreme magnitudes (sigma2 t or nu t beyond DBL_MAX, a product above
+   * 2^995, ...): the same operations on mantissas scaled by powers of two,
+   * i.e. the same roundings wherever the plain path stays in range.
+   * sigma2 t = den 2^(2k), s = rs 2^k, nu t - d = num 2^m. */
+  int k;
+  const sbi_dd den = scaled_var(q->sigma2, t, &k);
+  const double rs = sqrt(den.hi);
+  const int et = ilogb(t), ed = ilogb(q->d.hi);
+  double kap = 0.0;
+  int m = ed;
+  sbi_dd pt = {0.0, 0.0};
+  if (q->nua > 0.0) {
+    const int en = ilogb(q->nua), ep = en + et;
+    pt = sbi_dd_prod(ldexp(q->nua, -en), ldexp(t, -et)); /* nu t 2^-ep */
+    kap = ldexp(pt.hi / rs, ep - k);
+    m = ep > ed ? ep : ed;
+    pt.hi = ldexp(pt.hi, ep - m);
+    pt.lo = ldexp(pt.lo, ep - m);
+  }
+  const sbi_dd dm = {ldexp(q->d.hi, -m), ldexp(q->d.lo, -m)};
+  const sbi_dd num = sbi_dd_add(pt, sbi_dd_neg(dm));
+  const double eps = ldexp(ldexp(q->d.hi, -ed) / rs, ed - k);
+  return sbi_igpt_make_x(num, den, m - k, eps, kap);
 }
 
-/* Core of pdf/cdf/sf: validated parameters, t >= 0. */
-static void fpt_eval(const fpt_par *q, int what, double t, sb_result *res)
+/* w d exp(-E) / (t sqrt(2 pi sigma2 t)) with an extended exponent range,
+ * for densities whose plain product over- or underflows in an
+ * intermediate (eps / t or exp(-E) beyond the doubles): +inf if the
+ * density itself exceeds DBL_MAX. */
+static double pdf_xd(double w, double d, double t, double sigma2, sbi_dd E)
+{
+  if (!(E.hi < 1e6) || w == 0.0)
+    return 0.0;
+  sbi_xd ex = sbi_xd_expneg(E.hi);
+  ex.m *= 1.0 - E.lo;
+  sbi_xd st = sbi_xd_sqrt(sbi_xd_mul(sbi_xd_of(sigma2), sbi_xd_of(t)));
+  sbi_xd f = sbi_xd_div(sbi_xd_mul(sbi_xd_of(w), sbi_xd_of(d)),
+                        sbi_xd_mul(sbi_xd_of(t), st));
+  f = sbi_xd_mul(sbi_xd_mul(f, ex), sbi_xd_of(INV_RT2PI));
+  return sbi_xd_val(f);
+}
+
+/* Core of pdf/cdf/sf: validated parameters, t >= 0.  Returns SB_ERANGE
+ * (nothing recorded) if the density exceeds DBL_MAX. */
+static int fpt_eval(const fpt_par *q, int what, double t, sb_result *res)
 {
   double val, err;
   if (q->d.hi == 0.0) {
     /* starts on the level: T = 0 */
     res->val = what == W_CDF ? 1.0 : 0.0;
     res->err = 0.0;
-    return;
+    return SB_SUCCESS;
   }
   if (t == 0.0 || isinf(t)) {
     int at0 = t == 0.0;
@@ -91,14 +157,14 @@ static void fpt_eval(const fpt_par *q, int what, double t, sb_result *res)
       val = at0 ? 1.0 : cmass(q);
     res->val = val;
     res->err = 2.0 * EPS * val;
-    return;
+    return SB_SUCCESS;
   }
   if (q->mass == 0.0) {
     /* drift away so strong that the level is never reached (to double
      * precision): the inverse-Gaussian point may not even be finite */
     res->val = what == W_SF ? 1.0 : 0.0;
     res->err = 0.0;
-    return;
+    return SB_SUCCESS;
   }
   sbi_igpt p = fpt_point(q, t);
   double rel = 0.0;
@@ -107,6 +173,12 @@ static void fpt_eval(const fpt_par *q, int what, double t, sb_result *res)
      * equals (d - |nu| t)^2 + 4 |nu| t d, i.e. the defective factor */
     val = q->mass * (p.eps / t) * p.ex * INV_RT2PI;
     rel = 8.0 * EPS;
+    if (!(val >= DBL_MIN && val <= DBL_MAX)) {
+      /* eps / t or exp(-E) out of range (or a subnormal density) */
+      val = pdf_xd(q->mass, q->d.hi, t, q->sigma2, p.E);
+      if (isinf(val))
+        return SB_ERANGE;
+    }
   } else if (what == W_CDF) {
     val = q->mass * sbi_ig_cdf(&p, &rel);
     rel += 2.0 * EPS;
@@ -124,6 +196,7 @@ static void fpt_eval(const fpt_par *q, int what, double t, sb_result *res)
   err = rel * val;
   res->val = val;
   res->err = err;
+  return SB_SUCCESS;
 }
 
 static int fpt_entry(const char *fn, int what, double t, double x, double a,
@@ -135,7 +208,9 @@ static int fpt_entry(const char *fn, int what, double t, double x, double a,
     return st;
   if (isnan(t) || t < 0.0)
     return sbi_fail(res, SB_EDOM, fn, "t = %g must be >= 0", t);
-  fpt_eval(&q, what, t, res);
+  if (fpt_eval(&q, what, t, res))
+    return sbi_fail(res, SB_ERANGE, fn,
+                    "the density at t = %g exceeds DBL_MAX", t);
   return SB_SUCCESS;
 }
 
@@ -414,13 +489,33 @@ static int bes3_entry(const char *fn, int what, double t, double x, double a,
     return SB_SUCCESS;
   }
   /* eps = d / sqrt(sigma2 t); exp(-eps^2/2) from the exact d^2/(2 sigma2 t) */
-  sbi_dd den = sbi_dd_prod(sigma2, t);
-  double eps = d.hi / sqrt(den.hi);
-  sbi_dd E = sbi_dd_div(sbi_dd_mul(d, d), sbi_dd_mul_d(den, 2.0));
-  double ex = E.hi < 746.0 ? sbi_dd_expneg(E) : 0.0;
+  double eps, ex;
+  sbi_dd E;
+  if (in_window(sigma2) && in_window(t) && in_window(d.hi)) {
+    sbi_dd den = sbi_dd_prod(sigma2, t);
+    eps = d.hi / sqrt(den.hi);
+    E = sbi_dd_div(sbi_dd_mul(d, d), sbi_dd_mul_d(den, 2.0));
+    ex = E.hi < 746.0 ? sbi_dd_expneg(E) : 0.0;
+  } else {
+    /* scaled by powers of two (see fpt_point): sigma2 t = den 2^(2k) */
+    int k;
+    const sbi_dd den = scaled_var(sigma2, t, &k);
+    const int ed = ilogb(d.hi);
+    const sbi_dd dm = {ldexp(d.hi, -ed), ldexp(d.lo, -ed)};
+    eps = ldexp(dm.hi / sqrt(den.hi), ed - k);
+    sbi_igpt p = sbi_igpt_make_x(dm, den, ed - k, eps, 0.0);
+    E = p.E;
+    ex = p.ex;
+  }
   if (what == W_PDF) {
     val = h * (eps / t) * ex * INV_RT2PI;
     rel = 8.0 * EPS;
+    if (!(val >= DBL_MIN && val <= DBL_MAX)) {
+      val = pdf_xd(h, d.hi, t, sigma2, E);
+      if (isinf(val))
+        return sbi_fail(res, SB_ERANGE, fn,
+                        "the density at t = %g exceeds DBL_MAX", t);
+    }
   } else if (what == W_CDF) {
     /* (a/x) erfc(eps/sqrt 2) = (a/x) 2 Q(eps) = (a/x) 2 exp(-eps^2/2) M(eps) */
     double tail = eps <= 3.0 ? gsl_cdf_ugaussian_Q(eps)

@@ -37,6 +37,14 @@
  * form) or SB_EDOM with res = {NaN, NaN} (_e form) and records a message
  * (sb_last_error()).
  *
+ * Extremes: pdf, cdf, sf and mass take any finite x, a, mu, sigma2, t
+ * (sigma2 t, nu t or d^2 beyond DBL_MAX included; operands are scaled by
+ * powers of two where a product would leave the double range, with the
+ * same bits as before elsewhere) and return the value wherever it is a
+ * normal double; a density above DBL_MAX is SB_ERANGE (NaN); values below
+ * DBL_MIN are 0 or subnormal without error.  The quantile at extreme
+ * arguments is not covered (docs/passage.md).
+ *
  * Accuracy (tested against mpmath at 50 digits, tests/data/passage_*.csv):
  * relative error below 1e-13 for pdf, cdf and sf over t/mean and
  * sigma2 t/d^2 from 1e-8 to 1e8, down to values of 1e-300; the _e err is an
