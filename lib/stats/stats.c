@@ -166,8 +166,23 @@ static int law_init(law_t *L, int beta, double a, double b)
   } else {
     double tlo = law_cut(L, -1.0, 0.0), thi = law_cut(L, 1.0, 1.0);
     L->z = law_int(L, tlo, L->mode) + law_int(L, L->mode, thi);
+    /* a law narrower than the grid of doubles at its mode (callers flip
+     * those, beta_flip); never go on with a zero or NaN normalisation */
+    if (!(L->z > 0.0 && isfinite(L->z)))
+      return SB_ESOLVER;
   }
   return SB_SUCCESS;
+}
+
+/* Beta(a, b) with its mass crowded against 1 (1 - mode < 2^-26): its tails
+ * and quantiles are taken from the mirror law Beta(b, a) at 1 - x, where
+ * doubles are dense (near 1 their spacing, 1.1e-16, can exceed the width
+ * of the law: n > 2^53 trials with k near n).  The threshold leaves every
+ * law with both shapes <= SHAPE_GSL_MAX, and all but such crowded ones,
+ * as they were. */
+static int beta_flip(double a, double b)
+{
+  return a > b && (b - 1.0) / (a + b - 2.0) < 0x1p-26;
 }
 
 static void law_free(law_t *L)
@@ -375,6 +390,10 @@ static int law_quantile(law_t *L, int upper, double target, double *x)
   if (isinf(hi)) /* unreachable: the doubling stops before overflow */
     return SB_ESOLVER;
 
+  /* GSL's handler would abort on a bracket without a sign change (only
+   * NaN tails could give one; defensive) */
+  if (!(flo < 0.0 && fhi > 0.0))
+    return SB_ESOLVER;
   gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
   if (!s)
     return SB_ENOMEM;
@@ -399,6 +418,12 @@ static int law_quantile(law_t *L, int upper, double target, double *x)
 static int quantile(int beta, double a, double b, int upper, double target,
                     double *x)
 {
+  if (beta && beta_flip(a, b)) { /* X ~ Beta(a, b) iff 1 - X ~ Beta(b, a) */
+    double y = NAN;
+    int st = quantile(1, b, a, !upper, target, &y);
+    *x = 1.0 - y;
+    return st;
+  }
   law_t L;
   int st = law_init(&L, beta, a, b);
   if (st == SB_SUCCESS)
@@ -597,6 +622,27 @@ int sb_binomial_ci(unsigned long k, unsigned long n, double level,
   return SB_SUCCESS;
 }
 
+/* Lower (upper = 0) or upper tail of Beta(a, b) at x in (0, 1); crowded
+ * laws (beta_flip) through the mirror law at 1 - x, exact for x >= 1/2
+ * (below 1/2 their lower tail is far below the smallest double: 0). */
+static int beta_tail(double a, double b, double x, int upper, double *v)
+{
+  law_t L;
+  int flip = beta_flip(a, b);
+  if (flip && x < 0.5) { /* log density at 1/2 < -0.69 (a - 1) < -4e7 */
+    *v = upper ? 1.0 : 0.0;
+    return SB_SUCCESS;
+  }
+  int st = flip ? law_init(&L, 1, b, a) : law_init(&L, 1, a, b);
+  if (st == SB_SUCCESS) {
+    *v = flip ? law_tail(&L, 1.0 - x, !upper) : law_tail(&L, x, upper);
+    if (L.bad)
+      st = SB_ELOSS;
+  }
+  law_free(&L);
+  return st;
+}
+
 /* Exact binomial tails at p, 0 < p < 1, 0 <= k <= n (n >= 1):
  * P(X >= k) = I_p(k, n-k+1) and P(X <= k) = I_{1-p}(n-k, k+1), with the
  * closed forms where a Beta shape is 1 (or the tail is the whole law). */
@@ -604,39 +650,24 @@ static int binomial_tails(unsigned long k, unsigned long n, double p,
                           double *ge, double *le)
 {
   double kd = (double)k, nd = (double)n, md = (double)(n - k);
-  law_t L;
-  int bad = 0;
+  int st;
   if (k == 0)
     *ge = 1.0;
   else if (k == 1)
     *ge = -expm1(nd * log1p(-p));
   else if (k == n)
     *ge = exp(nd * log(p));
-  else {
-    if (law_init(&L, 1, kd, md + 1.0) != SB_SUCCESS) {
-      law_free(&L);
-      return SB_ENOMEM;
-    }
-    *ge = law_tail(&L, p, 0);
-    bad |= L.bad;
-    law_free(&L);
-  }
+  else if ((st = beta_tail(kd, md + 1.0, p, 0, ge)) != SB_SUCCESS)
+    return st;
   if (k == n)
     *le = 1.0;
   else if (k == 0)
     *le = exp(nd * log1p(-p));
   else if (k == n - 1)
     *le = -expm1(nd * log(p));
-  else {
-    if (law_init(&L, 1, kd + 1.0, md) != SB_SUCCESS) {
-      law_free(&L);
-      return SB_ENOMEM;
-    }
-    *le = law_tail(&L, p, 1);
-    bad |= L.bad;
-    law_free(&L);
-  }
-  return bad ? SB_ELOSS : SB_SUCCESS;
+  else if ((st = beta_tail(kd + 1.0, md, p, 1, le)) != SB_SUCCESS)
+    return st;
+  return SB_SUCCESS;
 }
 
 double sb_binomial_pvalue(unsigned long k, unsigned long n, double p)
