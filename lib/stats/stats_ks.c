@@ -41,6 +41,7 @@
                                   <= 7.6e-15 vs long double, docs) */
 #define KS_PG_C 0.08           /* |Pelz-Good - exact| <= KS_PG_C/n^2 */
 #define KS2_DP_MAX 1e7         /* lattice recursion up to nx*ny */
+#define KS2_EQ_LOOP 10000000   /* equal sizes: summed log ratios up to here */
 
 /* ------------------------------------------------- one-sided (Smirnov) */
 
@@ -391,6 +392,9 @@ double sb_kolmogorov_sf(double t)
       if (e < 1e-17 * s || e == 0.0)
         break;
     }
+    if (s == 0.0) /* t < ~0.04: the CDF underflows (and sqrt(2 pi)/t may
+                   * overflow): Q = 1 to double precision */
+      return 1.0;
     return 1.0 - sqrt(2.0 * M_PI) / t * s;
   }
   double s = 0.0, a = -2.0 * t * t;
@@ -451,16 +455,42 @@ int sb_ks_test(double *x, size_t n, sb_cdf_fn cdf, void *params, double *d,
 
 /* ------------------------------------------------------------ two-sample */
 
+/* log[C(2n, n - T) / C(2n, n)] = log[n!^2 / ((n-T)! (n+T)!)] for
+ * 1 <= T < n in closed form (Stirling with the exact remainders
+ * stirlerr, the log terms as n [(1+u) lpmx(u) + (1-u) lpmx(-u) + 2u^2]
+ * with u = T/n, lpmx(u) = log(1+u) - u: no cancellation). */
+static double ks2_logratio(size_t nn, size_t TT)
+{
+  double n = (double)nn, T = (double)TT, u = T / n;
+  return 2.0 * stirlerr(n) - stirlerr((double)(nn - TT)) - stirlerr(n + T) -
+         n * ((1.0 + u) * gsl_sf_log_1plusx_mx(u) +
+              (1.0 - u) * gsl_sf_log_1plusx_mx(-u) + 2.0 * u * u) -
+         0.5 * log1p(-u * u);
+}
+
 /* Equal sizes, integer threshold h (D >= h/n): Gnedenko & Korolyuk 1951,
  *   P = 2 sum_{j>=1} (-1)^(j+1) C(2n, n - j h) / C(2n, n),
  * the ratios as products prod_{i<t} (n - i)/(n + 1 + i) summed in logs. */
 static double ks2_equal(size_t n, size_t h)
 {
+  /* h^2 < n/325: the paths with |i - j| < h number at most (2h - 1)
+   * (2 cos(pi/(2h)))^(2n) (the largest eigenvalue of a path graph on 2h - 1
+   * vertices), so P(D < h/n) <= 4 h sqrt(n) exp(-pi^2 n/(4 h^2)) < e^-750
+   * and p = 1.  Used only where the sum below would need more than ~1e7
+   * terms (n > 1e12). */
+  if ((double)n > 1e12 && (double)h * (double)h * 325.0 < (double)n)
+    return 1.0;
   double lr = 0.0, s = 0.0;
   size_t t = 0;
-  for (size_t j = 1; j * h <= n; j++) {
-    for (; t < j * h; t++)
-      lr += log1p(-(2.0 * t + 1.0) / ((double)n + 1.0 + (double)t));
+  for (size_t j = 1; j <= n / h; j++) { /* j h <= n, without overflow */
+    if (j * h > KS2_EQ_LOOP) { /* closed form: O(1) however large n */
+      if (j * h > n / 2) /* the ratio is below exp(-0.26 n) (u > 1/2), */
+        break;           /* with n > 1e7 far below the smallest double */
+      lr = ks2_logratio(n, j * h);
+    } else {
+      for (; t < j * h; t++)
+        lr += log1p(-(2.0 * t + 1.0) / ((double)n + 1.0 + (double)t));
+    }
     double term = exp(lr);
     s += (j & 1) ? term : -term;
     if (term < 1e-17 * s || term == 0.0)
@@ -515,8 +545,12 @@ double sb_ks2_pvalue(size_t nx, size_t ny, double d)
   double c = d * L, cr = nearbyint(c);
   double ci = fabs(c - cr) <= 1e-9 * c ? cr : ceil(c);
   if (nx == ny) {
-    size_t h = (size_t)ceil(ci / (double)nx); /* |i - j| >= h */
-    return fmin(1.0, ks2_equal(nx, h));  /* its sum may round above 1 */
+    double hd = ceil(ci / (double)nx); /* |i - j| >= h */
+    /* h >= n: P = 2/C(2n, n) (h = n) or 0, and 2/C(2n, n) underflows for
+     * n > 540 (also keeps h representable when n is near SIZE_MAX) */
+    if (hd >= (double)nx && nx > 1000)
+      return 0.0;
+    return fmin(1.0, ks2_equal(nx, (size_t)hd)); /* sum may round above 1 */
   }
   if (L <= KS2_DP_MAX) {
     double p;
