@@ -528,7 +528,34 @@ double sb_pair_count_variance(double H, double S2, double sqa, double na,
   v += -S2 + H * H / P;
   if (!(f > 0.0))
     return H > 0.0 ? NAN : 0.0;
-  return v > 0.0 ? v / f : 0.0;
+  if (!isfinite(v)) {
+    /* H^2 (or a sum of squares) overflowed: the same sums with H scaled by
+     * 2^-e and the squares by 2^-2e (exact), the result scaled back */
+    int e;
+    double big = fmax(fmax(fabs(H), sqrt(fabs(sqa))), fmax(sqrt(fabs(S2)),
+                      nb > 0.0 ? sqrt(fabs(sqb)) : 0.0));
+    frexp(big, &e);
+    double Hs = ldexp(H, -e), as = ldexp(sqa, -2 * e), Ss = ldexp(S2, -2 * e);
+    if (!(nb > 0.0))
+      v = as - 4.0 * Hs * Hs / na;
+    else
+      v = (as - Hs * Hs / na) + (ldexp(sqb, -2 * e) - Hs * Hs / nb);
+    v += -Ss + Hs * Hs / P;
+    v = v > 0.0 ? ldexp(v / f, 2 * e) : 0.0;
+    if (!isfinite(v)) { /* var(H) overflows, or H^2/P and 1/P both do */
+      sbi_error(SB_ERANGE, __func__, "var(H) or an intermediate overflows "
+                "(H = %g, sqa = %g, P = %g, divisor %g)", H, sqa, P, f);
+      return NAN;
+    }
+    return v;
+  }
+  v = v > 0.0 ? v / f : 0.0;
+  if (isinf(v)) { /* v finite, f tiny */
+    sbi_error(SB_ERANGE, __func__, "var(H) overflows (H = %g, sqa = %g, "
+              "divisor %g)", H, sqa, f);
+    return NAN;
+  }
+  return v;
 }
 
 /* Exact two-sided Poisson test: p = min(1, 2 min(P(X <= k), P(X >= k)))
