@@ -720,6 +720,21 @@ double sb_binomial_pvalue(unsigned long k, unsigned long n, double p)
   return q < 1.0 ? q : 1.0;
 }
 
+/* (t2 / t1) x / y (y > 0), given f = t2 / t1 as rounded: f x / y where f
+ * is a normal double (the usual case); else (t2/t1 overflowed or
+ * underflowed) with the exponents apart, so that the result is right
+ * wherever it is representable (and overflows or underflows otherwise). */
+static double times_ratio(double x, double y, double t2, double t1, double f)
+{
+  if (isfinite(f) && f >= DBL_MIN)
+    return f * x / y;
+  if (x == 0.0)
+    return 0.0;
+  int e1, e2;
+  double m2 = frexp(t2, &e2), m1 = frexp(t1, &e1);
+  return ldexp(m2 / m1 * (x / y), e2 - e1);
+}
+
 int sb_poisson_ratio_ci(unsigned long k1, double t1, unsigned long k2,
                         double t2, double level, double *ratio, double *lo,
                         double *hi)
@@ -746,7 +761,8 @@ int sb_poisson_ratio_ci(unsigned long k1, double t1, unsigned long k2,
     return SB_SUCCESS;
   }
   if (ratio)
-    *ratio = k2 == 0 ? HUGE_VAL : ((double)k1 / (double)k2) * f;
+    *ratio = k2 == 0 ? HUGE_VAL : times_ratio((double)k1 / (double)k2, 1.0,
+                                              t2, t1, f);
   /* p = R t1/(R t1 + t2), so R = f p/(1-p).  By symmetry of the
    * Clopper-Pearson interval, 1 - p_lo(k1) = p_hi(k2) and
    * 1 - p_hi(k1) = p_lo(k2): use those so 1 - p never cancels. */
@@ -758,8 +774,16 @@ int sb_poisson_ratio_ci(unsigned long k1, double t1, unsigned long k2,
     set_nan2(lo, hi);
     return sbi_error(st, __func__, "root finding failed");
   }
-  *lo = f * lo1 / hi2;
-  *hi = lo2 > 0.0 ? f * hi1 / lo2 : HUGE_VAL;
+  *lo = times_ratio(lo1, hi2, t2, t1, f);
+  *hi = lo2 > 0.0 ? times_ratio(hi1, lo2, t2, t1, f) : HUGE_VAL;
+  if (isinf(*lo) || (lo2 > 0.0 && isinf(*hi)) ||
+      (ratio && k2 > 0 && isinf(*ratio))) {
+    set_nan2(lo, hi);
+    if (ratio)
+      *ratio = NAN;
+    return sbi_error(SB_ERANGE, __func__, "the ratio overflows (k1 = %lu, "
+                     "t1 = %g, k2 = %lu, t2 = %g)", k1, t1, k2, t2);
+  }
   return SB_SUCCESS;
 }
 
