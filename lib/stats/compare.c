@@ -185,6 +185,8 @@ int sb_compare_mean(sb_comparison *c, const char *name, const double *x,
   if (st != SB_SUCCESS) {
     sb_compare(c, name ? name : "", SB_RULE_COVER, m, reference, NAN, NAN,
                0.95, NAN);
+    if (st == SB_ERANGE)
+      return sbi_error(st, __func__, "%s", sb_last_error());
     return sbi_error(SB_EINVAL, __func__,
                      "need n >= 2 finite samples, a finite reference and "
                      "0 < alpha < 1 (n = %zu, alpha = %g)", n, alpha);

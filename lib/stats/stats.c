@@ -811,15 +811,42 @@ int sb_mean_ci(const double *x, size_t n, double level, double *mean,
   double q = 0.5 * (1.0 - level), nu = (double)(n - 1), tq;
   /* Upper quantile from Q, not P((1+level)/2), to keep q's digits.  GSL's
    * Cauchy (nu = 1) inverse is inaccurate for q < 1e-15: use cot(pi q). */
-  if (n == 2)
+  if (level < 1e-8) /* q rounds to 1/2: t = level / (2 f_nu(0)), the
+                     * next term O(level^3) below rounding */
+    tq = 0.5 * level * exp(gsl_sf_lngamma(0.5 * nu) -
+                           gsl_sf_lngamma(0.5 * (nu + 1.0))) * sqrt(nu * M_PI);
+  else if (n == 2)
     tq = 1.0 / tan(M_PI * q);
   else
     tq = gsl_cdf_tdist_Qinv(q, nu);
-  double half = tq * sqrt(var / (double)n);
+  double sd = sqrt(var / (double)n);
+  if (!isfinite(m) || !isfinite(sd)) {
+    /* x - m or the squares overflowed (|x| near DBL_MAX): the same sums on
+     * x 2^-e, exact, with 2^e > max |x|; the results scaled back */
+    double big = 0.0, ms = 0.0, ss = 0.0;
+    int e;
+    for (size_t i = 0; i < n; i++)
+      big = fmax(big, fabs(x[i]));
+    frexp(big, &e);
+    for (size_t i = 0; i < n; i++)
+      ms += (ldexp(x[i], -e) - ms) / (double)(i + 1);
+    for (size_t i = 0; i < n; i++) {
+      double dd = ldexp(x[i], -e) - ms;
+      ss += dd * dd;
+    }
+    m = ldexp(ms, e); /* |m| <= max |x|: finite */
+    sd = ldexp(sqrt(ss / nu / (double)n), e);
+  }
+  double half = tq * sd;
   if (mean)
     *mean = m;
   *lo = m - half;
   *hi = m + half;
+  if (!isfinite(*lo) || !isfinite(*hi)) {
+    set_nan2(lo, hi);
+    return sbi_error(SB_ERANGE, __func__, "the interval overflows (mean %g, "
+                     "half width %g, n = %zu)", m, half, n);
+  }
   return SB_SUCCESS;
 }
 
