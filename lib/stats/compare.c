@@ -99,9 +99,10 @@ int sb_compare_poisson(sb_comparison *c, const char *name, unsigned long k,
                      "need scale = %g > 0, reference = %g >= 0 and "
                      "0 < alpha = %g < 1", scale, reference, alpha);
   }
-  double lo, hi;
+  double lo, hi, mu = reference / scale;
   int st = sb_poisson_rate_ci(k, scale, 1.0 - alpha, &lo, &hi);
-  double p = sb_poisson_pvalue(k, reference / scale);
+  /* a mean beyond DBL_MAX puts any count in the far lower tail: p = 0 */
+  double p = isinf(mu) ? 0.0 : sb_poisson_pvalue(k, mu);
   if (st != SB_SUCCESS || isnan(p)) {
     int why = st != SB_SUCCESS ? st : sb_last_status();
     sb_compare(c, name ? name : "", SB_RULE_COVER, scale * (double)k,
@@ -120,7 +121,13 @@ int sb_compare_poisson_dispersed(sb_comparison *c, const char *name,
                                  double scale, double reference,
                                  double alpha)
 {
-  if (!(dispersion > 1.0) || !isfinite(dispersion))
+  if (dispersion == HUGE_VAL) {
+    if (c)
+      sb_compare(c, name ? name : "", SB_RULE_COVER, NAN, reference, NAN,
+                 NAN, 0.95, NAN);
+    return sbi_error(SB_EINVAL, __func__, "dispersion = inf");
+  }
+  if (!(dispersion > 1.0))
     return sb_compare_poisson(c, name, k, scale, reference, alpha);
   int st = sb_compare_poisson(c, name, k, scale, reference, alpha);
   if (st != SB_SUCCESS && st != SB_ELOSS)
@@ -138,7 +145,7 @@ int sb_compare_poisson_dispersed(sb_comparison *c, const char *name,
   double mu = K + (reference / scale - K) / w;
   if (lo == 0.0 && mu < l)  /* clipped: every rate down to 0 is inside */
     mu = l;
-  const double p = sb_poisson_pvalue(k, mu);
+  const double p = isinf(mu) ? 0.0 : sb_poisson_pvalue(k, mu);
   return sb_compare(c, name, SB_RULE_COVER, scale * K, reference,
                     scale * lo, scale * hi, 1.0 - alpha, isnan(p) ? NAN : p);
 }

@@ -500,8 +500,12 @@ int sb_poisson_rate_ci(unsigned long k, double scale, double level,
 int sb_poisson_ci_dispersed(unsigned long k, double dispersion, double level,
                             double *lo, double *hi)
 {
+  if (dispersion == HUGE_VAL) {
+    set_nan2(lo, hi);
+    return sbi_error(SB_EINVAL, __func__, "dispersion = inf (k = %lu)", k);
+  }
   int st = sb_poisson_ci(k, level, lo, hi);
-  if (st || !(dispersion > 1.0) || !isfinite(dispersion))
+  if (st || !(dispersion > 1.0))
     return st;
   const double w = sqrt(dispersion), K = (double)k;
   *lo = K - w * (K - *lo);
@@ -514,6 +518,13 @@ int sb_poisson_ci_dispersed(unsigned long k, double dispersion, double level,
 double sb_pair_count_variance(double H, double S2, double sqa, double na,
                               double sqb, double nb, double P)
 {
+  if (!isfinite(H) || !isfinite(S2) || !isfinite(sqa) || isnan(na) ||
+      isnan(P) || isnan(nb) || (nb > 0.0 && !isfinite(sqb))) {
+    sbi_error(SB_EDOM, __func__, "need finite H, S2, sqa (and sqb if nb > "
+              "0), na, nb, P not NaN (H = %g, S2 = %g, sqa = %g, na = %g, "
+              "sqb = %g, nb = %g, P = %g)", H, S2, sqa, na, sqb, nb, P);
+    return NAN;
+  }
   if (!(na > 0.0) || !(P > 0.0))
     return H > 0.0 ? NAN : 0.0;
   /* the raw sum has mean f var(H): its H^2 terms also hold var(H) */
