@@ -4,7 +4,8 @@
 Usage:  /usr/bin/python3 tests/gen_stats_ref.py [OUTDIR]   (default tests/data)
 Writes stats_*.csv (header line, 20 significant digits).  Takes about 15 CPU
 minutes, mostly the Durbin matrices of the KS vectors.  Optional further
-arguments select parts: intervals ks ks2 misc kslarge.
+arguments select parts: intervals ks ks2 misc kslarge extreme (extreme is
+not in the default set; it takes ~1 CPU minute).
 
 Every value is computed independently of the C code and of GSL:
   - Poisson / binomial tails: mpmath's regularized incomplete gamma, exact
@@ -513,6 +514,108 @@ def gen_misc():
     write("stats_zpvalue.csv", "z,p", rows)
 
 
+# ------------------------------------------------- extreme arguments
+def binom_le(k, n, q):
+    """P(X <= k), X ~ binomial(n, q), k small: the terms from (1-q)^n by
+    their exact ratios (n - f)/(f + 1) q/(1 - q)."""
+    q = mp.mpf(q)
+    t = mp.exp(n * mp.log1p(-q))
+    tot = t
+    for f in range(k):
+        t *= mp.mpf(n - f) / (f + 1) * q / (1 - q)
+        tot += t
+    return tot
+
+
+def cp_small(k, n, level):
+    """Clopper-Pearson interval for a small count k of n >= 1 trials, from
+    the finite sums (no incomplete beta): P(X >= k | lo) = t,
+    P(X <= k | hi) = t."""
+    t = (1 - mp.mpf(level)) / 2
+    ph = mp.mpf(k) / n
+    sd = mp.sqrt((ph + mp.mpf(1) / n) / n)
+    tiny = mp.mpf(10)**-60
+    lo = mp.mpf(0) if k == 0 else root(
+        lambda p: (1 - binom_le(k - 1, n, p)) - t, max(ph - 2 * sd, tiny),
+        sd, tiny, ph)
+    hi = root(lambda p: t - binom_le(k, n, p), ph + 2 * sd, sd, ph,
+              mp.mpf(1) / 2)
+    return lo, hi
+
+
+def ks2_equal_sum(n, d):
+    """P(D >= d), equal sizes n: the threshold h as the C code forms it
+    from the double d, then the Gnedenko-Korolyuk sum with 50-digit
+    log-gamma ratios."""
+    L = float(n) * float(n)
+    c = d * L
+    cr = float(round(c))
+    ci = cr if abs(c - cr) <= 1e-9 * c else float(mp.ceil(c))
+    h = int(mp.ceil(mp.mpf(ci) / n))
+    lg = 2 * mp.loggamma(n + 1)
+    s, j = mp.mpf(0), 1
+    while j * h <= n:
+        term = mp.exp(lg - mp.loggamma(n - j * h + 1) -
+                      mp.loggamma(n + j * h + 1))
+        s += term if j % 2 else -term
+        if term < mp.mpf(10)**-40 * s:
+            break
+        j += 1
+    return 2 * s
+
+
+def gen_extreme():
+    """Rows case,a,b,c,w1,w2 for test_extreme_arguments (integers exact,
+    doubles as given to the C code; w2 nan where unused):
+      1 binomial p-value  (k, n, p)         w1 = p-value
+      2 binomial CI       (k, n, level)     w1, w2 = lo, hi
+      3 Poisson ratio CI  (k1, k2, level), t1 = t2 = 1: w1, w2 = lo, hi
+      4 two-sample KS, equal sizes (n, n, d)  w1 = P(D >= d)
+      5 Poisson ratio CI  (k1, k2, t2) with t1 = 1e-300, level 0.95
+      6 mean CI of x = (1e308, 1.2e308, 1.1e308) at level a: w1, w2
+      7 pair-count variance (H, sqa, na) with S2 = H, P = 1e12, nb = 0."""
+    rows = []
+    N = 2**64 - 1
+    q = mp.mpf(2)**-53
+    p = 1 - q  # the double 1 - 2^-53
+    # failures F = n - X ~ binomial(n, q): P(X <= k) = P(F >= n - k)
+    for k in [N - 2000, N - 2048, N - 2100]:
+        f = N - k
+        ge = binom_le(f, N, q)           # P(X >= k) = P(F <= f)
+        le = 1 - binom_le(f - 1, N, q)   # P(X <= k) = P(F >= f)
+        rows.append((1, k, N, p, min(1, 2 * min(ge, le)), "nan"))
+        rows.append((1, N - k, N, q, min(1, 2 * min(ge, le)), "nan"))
+    for n in [2**54 + 1, N]:
+        for k in [2, 3, 10]:
+            for lv in ["0.95", "0.999999"]:
+                lo, hi = cp_small(k, n, float(lv))
+                rows.append((2, k, n, float(lv), lo, hi))
+                rows.append((2, n - k, n, float(lv), 1 - hi, 1 - lo))
+                rows.append((3, k, n - k, float(lv), lo / (1 - lo),
+                             hi / (1 - hi)))
+    for n, d in [(30000001, 9000 / 30000001), (30000001, 3e-4),
+                 (10**13, 3e-7), (N, 1e-9)]:
+        rows.append((4, n, n, d, ks2_equal_sum(n, d), "nan"))
+    for k2, t2 in [(10**6, 1e10), (10**6, 1e300)]:
+        lo, hi = cp_small(1, k2 + 1, 0.95)
+        f = mp.mpf(t2) / mp.mpf(1e-300)
+        rows.append((5, 1, k2, t2, f * lo / (1 - lo), f * hi / (1 - hi)))
+    x = [mp.mpf(1e308), mp.mpf(1.2e308), mp.mpf(1.1e308)]
+    m = sum(x) / 3
+    sd = mp.sqrt(sum((v - m)**2 for v in x) / 2 / 3)
+    for lv in [0.5, 0.95]:
+        qq = (1 - mp.mpf(lv)) / 2
+        # Student t with 2 degrees of freedom: Q(t) = (1 - t/sqrt(2+t^2))/2
+        t = (1 - 2 * qq) * mp.sqrt(2 / (1 - (1 - 2 * qq)**2))
+        rows.append((6, lv, 3, 0, m - t * sd, m + t * sd))
+    for H, sqa, na in [(1e155, 1e306, 1e6), (1e160, 1.5e308, 1e15)]:
+        H, sqa, na, P = mp.mpf(H), mp.mpf(sqa), mp.mpf(na), mp.mpf(1e12)
+        v = sqa - 4 * H * H / na - H + H * H / P
+        f = 1 - 4 / na + 1 / P
+        rows.append((7, H, sqa, na, v / f, "nan"))
+    write("stats_extreme.csv", "case,a,b,c,w1,w2", rows)
+
+
 if __name__ == "__main__":
     os.makedirs(OUT, exist_ok=True)
     what = sys.argv[2:] or ["intervals", "ks", "ks2", "misc", "kslarge"]
@@ -526,3 +629,5 @@ if __name__ == "__main__":
         gen_ks()
     if "kslarge" in what:
         gen_ks_large()
+    if "extreme" in what:
+        gen_extreme()

@@ -7,7 +7,9 @@
  * seeded Monte Carlo checks whose sample sizes and pass criteria are stated
  * next to each test.
  */
+#include <limits.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -1294,6 +1296,314 @@ START_TEST(test_compare_mean)
 }
 END_TEST
 
+/* ========================================== extreme arguments (policy) */
+
+/* A call that failed: status set, message naming fname, outputs NaN. */
+static void expect_error(int st, const char *fname, double a, double b)
+{
+  ck_assert_msg(st != SB_SUCCESS, "%s: expected an error status", fname);
+  ck_assert_msg(strstr(sb_last_error(), fname) != NULL,
+                "message '%s' does not name %s", sb_last_error(), fname);
+  ck_assert_msg(isnan(a) && isnan(b), "%s failed but left %g, %g", fname,
+                a, b);
+}
+
+/* An interval [lo, hi] of a nonnegative quantity: right (ordered, not NaN,
+ * finite lo; hi <= top) or an error with NaN outputs. */
+static void expect_interval(int st, const char *fname, double lo, double hi,
+                            double top)
+{
+  if (st != SB_SUCCESS) {
+    expect_error(st, fname, lo, hi);
+    return;
+  }
+  ck_assert_msg(lo >= 0.0 && lo <= hi && hi <= top && isfinite(lo),
+                "%s: interval [%g, %g] (top %g)", fname, lo, hi, top);
+}
+
+/* A probability returned as a double: in [0, 1], or NaN with a status and a
+ * message naming fname. */
+static void expect_prob(double v, const char *fname)
+{
+  if (isnan(v)) {
+    ck_assert_msg(sb_last_status() != SB_SUCCESS &&
+                  strstr(sb_last_error(), fname) != NULL,
+                  "%s returned NaN without an error naming it", fname);
+    return;
+  }
+  ck_assert_msg(v >= 0.0 && v <= 1.0, "%s = %g", fname, v);
+}
+
+/* Rows of tests/data/stats_extreme.csv (tests/gen_stats_ref.py extreme):
+ * mpmath values at representable corners (counts near ULONG_MAX, laws
+ * narrower than the doubles near 1, overflowing intermediates).  A want of
+ * +-inf means the true value overflows: SB_ERANGE expected. */
+static void extreme_rows(void)
+{
+  char path[1024], line[1024];
+  FILE *f = fopen(sbt_data_path("stats_extreme.csv", path, sizeof path), "r");
+  ck_assert_msg(f != NULL, "cannot open %s", path);
+  ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
+  int rows = 0;
+  while (fgets(line, sizeof line, f)) {
+    int cs;
+    char sa[64], sb[64], sc[64], s1[64], s2[64];
+    if (sscanf(line, "%d,%63[^,],%63[^,],%63[^,],%63[^,],%63s", &cs, sa, sb,
+               sc, s1, s2) != 6)
+      continue;
+    unsigned long a = strtoul(sa, NULL, 10), b = strtoul(sb, NULL, 10);
+    double c = strtod(sc, NULL), w1 = strtod(s1, NULL), w2 = strtod(s2, NULL);
+    double lo = NAN, hi = NAN, v, r;
+    int st;
+    sb_clear_error();
+    switch (cs) {
+    case 1:
+      v = sb_binomial_pvalue(a, b, c);
+      ck_assert_int_eq(sb_last_status(), SB_SUCCESS);
+      ck_assert_rel(v, w1, 1e-10);
+      break;
+    case 2: /* near 1 only the absolute error is meaningful (a double) */
+      ck_assert_int_eq(sb_binomial_ci(a, b, c, &lo, &hi), SB_SUCCESS);
+      if (w1 < 0.5) {
+        ck_assert_rel(lo, w1, 1e-13);
+        ck_assert_rel(hi, w2, 1e-13);
+      } else {
+        ck_assert_abs(lo, w1, DBL_EPSILON);
+        ck_assert_abs(hi, w2, DBL_EPSILON);
+      }
+      break;
+    case 3:
+      ck_assert_int_eq(sb_poisson_ratio_ci(a, 1.0, b, 1.0, c, &r, &lo, &hi),
+                       SB_SUCCESS);
+      ck_assert_rel(lo, w1, 1e-13);
+      ck_assert_rel(hi, w2, 1e-13);
+      break;
+    case 4:
+      v = sb_ks2_pvalue(a, b, c);
+      ck_assert_int_eq(sb_last_status(), SB_SUCCESS);
+      ck_assert_rel(v, w1, 1e-12);
+      break;
+    case 5:
+      st = sb_poisson_ratio_ci(a, 1e-300, b, c, 0.95, &r, &lo, &hi);
+      if (isinf(w2)) {
+        ck_assert_int_eq(st, SB_ERANGE);
+        expect_error(st, "sb_poisson_ratio_ci", lo, hi);
+      } else {
+        ck_assert_int_eq(st, SB_SUCCESS);
+        ck_assert_rel(lo, w1, 1e-13);
+        ck_assert_rel(hi, w2, 1e-13);
+        ck_assert_rel(r, c / (double)b / 1e-300, 1e-15);
+      }
+      break;
+    case 6: {
+      const double x[3] = {1e308, 1.2e308, 1.1e308};
+      double m;
+      ck_assert_int_eq(sb_mean_ci(x, 3, (double)strtod(sa, NULL), &m, &lo,
+                                  &hi), SB_SUCCESS);
+      ck_assert_rel(m, 1.1e308, 4 * DBL_EPSILON);
+      ck_assert_rel(lo, w1, 1e-13);
+      ck_assert_rel(hi, w2, 1e-13);
+      break;
+    }
+    case 7: {
+      double H = strtod(sa, NULL), sqa = strtod(sb, NULL);
+      v = sb_pair_count_variance(H, H, sqa, c, 0.0, 0.0, 1e12);
+      if (isinf(w1)) {
+        ck_assert(isnan(v));
+        ck_assert_int_eq(sb_last_status(), SB_ERANGE);
+      } else {
+        ck_assert_int_eq(sb_last_status(), SB_SUCCESS);
+        ck_assert_rel(v, w1, 1e-13);
+      }
+      break;
+    }
+    default:
+      ck_abort_msg("stats_extreme.csv: unknown case %d", cs);
+    }
+    rows++;
+  }
+  fclose(f);
+  ck_assert_int_ge(rows, 40);
+}
+
+/* Every public function of stats.h, each argument in turn over extreme
+ * values: the right value (checked where it is known: mpmath rows above,
+ * closed forms below) or an error status with a message naming the
+ * function, never NaN, a wrong value or +-inf with status 0 unless the
+ * header documents it. */
+START_TEST(test_extreme_arguments)
+{
+  const unsigned long K[] = {0, 1, 2, 1000, 9007199254740993UL,
+                             ULONG_MAX - 1, ULONG_MAX};
+  const double LV[] = {0.0, 1.0, 1e-300, 1.0 - 1e-16, 0.95, NAN};
+  const double D[] = {0.0, -0.0, 1e-320, -1e-320, DBL_MAX, -DBL_MAX,
+                      INFINITY, -INFINITY, NAN, 1.0, 0.5};
+  const double DISP[] = {0.0, 1.0, 1e300, NAN, INFINITY};
+  const size_t nK = sizeof K / sizeof K[0], nL = sizeof LV / sizeof LV[0],
+               nD = sizeof D / sizeof D[0];
+  double lo, hi, r, v;
+  int st;
+
+  extreme_rows();
+
+  for (size_t i = 0; i < nK; i++) {
+    for (size_t j = 0; j < nL; j++) {
+      st = sb_poisson_ci(K[i], LV[j], &lo, &hi);
+      expect_interval(st, "sb_poisson_ci", lo, hi, HUGE_VAL);
+      ck_assert(st != SB_SUCCESS || isfinite(hi));
+      for (size_t m = 0; m < nK; m++) {
+        if (K[i] > K[m] || (j != 3 && j != 4))
+          continue;
+        st = sb_binomial_ci(K[i], K[m], LV[j], &lo, &hi);
+        expect_interval(st, "sb_binomial_ci", lo, hi, 1.0);
+        for (size_t a = 0; a < nD; a++) {
+          sb_clear_error();
+          expect_prob(sb_binomial_pvalue(K[i], K[m], fabs(D[a]) * 0.5),
+                      "sb_binomial_pvalue");
+        }
+      }
+    }
+    for (size_t j = 0; j < 5; j++) {
+      st = sb_poisson_ci_dispersed(K[i], DISP[j], 0.95, &lo, &hi);
+      expect_interval(st, "sb_poisson_ci_dispersed", lo, hi, HUGE_VAL);
+      ck_assert(st != SB_SUCCESS || isfinite(hi));
+    }
+    for (size_t a = 0; a < nD; a++) {
+      st = sb_poisson_rate_ci(K[i], D[a], 0.95, &lo, &hi);
+      expect_interval(st, "sb_poisson_rate_ci", lo, hi, DBL_MAX);
+      sb_clear_error();
+      expect_prob(sb_poisson_pvalue(K[i], D[a]), "sb_poisson_pvalue");
+      for (size_t m = 0; m < nK; m += 2)
+        for (size_t b = 0; b < nD; b++) {
+          st = sb_poisson_ratio_ci(K[i], D[a], K[m], D[b], 0.95, &r, &lo,
+                                   &hi);
+          if (st != SB_SUCCESS) {
+            expect_error(st, "sb_poisson_ratio_ci", lo, hi);
+            continue;
+          }
+          /* documented: hi = inf iff k2 = 0; ratio NaN iff k1 = k2 = 0 */
+          ck_assert(lo >= 0.0 && lo <= hi && isfinite(lo));
+          ck_assert(isfinite(hi) == (K[m] != 0));
+          ck_assert(isnan(r) == (K[i] == 0 && K[m] == 0));
+        }
+    }
+  }
+  /* the crowded beta laws: k = n - 1, n - 2 of n > 2^53 trials */
+  ck_assert_int_eq(sb_binomial_ci(ULONG_MAX - 2, ULONG_MAX, 0.95, &lo, &hi),
+                   SB_SUCCESS);
+  ck_assert(lo == 1.0 && hi == 1.0); /* 1 - O(1e-19), rounded */
+  ck_assert(sb_binomial_pvalue(ULONG_MAX - 1, ULONG_MAX, 0.5) == 0.0);
+  ck_assert(sb_binomial_pvalue(ULONG_MAX - 2, ULONG_MAX, 1e-300) == 0.0);
+  /* an infinite dispersion is an error, NaN still means "none" */
+  ck_assert_int_eq(sb_poisson_ci_dispersed(5, INFINITY, 0.95, &lo, &hi),
+                   SB_EINVAL);
+
+  /* pair-count variance: NaN/inf counts are errors, not 0 */
+  for (int a = 0; a < 7; a++)
+    for (size_t j = 0; j < nD; j++) {
+      double x[7] = {100, 100, 500, 50, 450, 60, 3000};
+      x[a] = D[j];
+      sb_clear_error();
+      v = sb_pair_count_variance(x[0], x[1], x[2], x[3], x[4], x[5], x[6]);
+      if (isnan(v)) {
+        /* documented NaN without a status: na, P or the divisor not
+         * positive (H > 0) */
+        double f = 1.0 - 1.0 / x[3] - (x[5] > 0.0 ? 1.0 / x[5] : 0.0) +
+                   1.0 / x[6];
+        ck_assert_msg(sb_last_status() != SB_SUCCESS || !(x[3] > 0.0) ||
+                      !(x[6] > 0.0) || !(f > 0.0),
+                      "pair_count_variance arg %d = %g: NaN, no status", a,
+                      D[j]);
+      } else {
+        ck_assert_msg(v >= 0.0 && isfinite(v),
+                      "pair_count_variance arg %d = %g: %g", a, D[j], v);
+        ck_assert(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]));
+      }
+    }
+
+  /* mean interval */
+  for (size_t a = 0; a < nD; a++)
+    for (size_t b = 0; b < nD; b++)
+      for (size_t j = 0; j < nL; j++) {
+        const double x[3] = {D[a], D[b], D[a]};
+        double m;
+        for (size_t n = 2; n <= 3; n++) {
+          st = sb_mean_ci(x, n, LV[j], &m, &lo, &hi);
+          if (st != SB_SUCCESS) {
+            expect_error(st, "sb_mean_ci", lo, hi);
+            continue;
+          }
+          ck_assert(isfinite(m) && isfinite(lo) && isfinite(hi));
+          ck_assert(lo <= m && m <= hi);
+        }
+      }
+  { /* level below 1e-8: half width level/(2 f(0)) s/sqrt(n), f the t
+     * density; nu = 1: pi level/2 (= tan(pi level/2)), s/sqrt(2) = 1/2 */
+    const double x[2] = {-0.5, 0.5};
+    ck_assert_int_eq(sb_mean_ci(x, 2, 1e-300, NULL, &lo, &hi), SB_SUCCESS);
+    ck_assert_rel(hi, 3.14159265358979323846 / 4 * 1e-300, 1e-14);
+    ck_assert_rel(lo, -hi, 0.0);
+  }
+
+  /* z-scores and the goodness-of-fit p-values */
+  for (size_t a = 0; a < nD; a++) {
+    for (size_t b = 0; b < nD; b++)
+      for (size_t c = 0; c < nD; c++) {
+        sb_clear_error();
+        v = sb_zscore(D[a], D[b], D[c]);
+        /* documented: +-inf for an infinite estimate or reference */
+        if (isnan(v))
+          ck_assert(sb_last_status() != SB_SUCCESS &&
+                    strstr(sb_last_error(), "sb_zscore") != NULL);
+        else if (isinf(v))
+          ck_assert(isinf(D[a]) || isinf(D[b]));
+      }
+    sb_clear_error();
+    expect_prob(sb_zscore_pvalue(D[a]), "sb_zscore_pvalue");
+    sb_clear_error();
+    expect_prob(sb_kolmogorov_sf(D[a]), "sb_kolmogorov_sf");
+    for (size_t b = 0; b < nD; b++) {
+      sb_clear_error();
+      expect_prob(sb_chi2_sf(D[a], D[b]), "sb_chi2_sf");
+    }
+    const size_t N[] = {1, 2, 141, 100001, 9007199254740993UL, SIZE_MAX};
+    for (size_t i = 0; i < 6; i++) {
+      sb_result res;
+      st = sb_ks_pvalue_e(N[i], D[a], &res);
+      if (st == SB_SUCCESS)
+        ck_assert(res.val >= 0.0 && res.val <= 1.0);
+      else
+        ck_assert(isnan(D[a]));
+      for (size_t j = 0; j < 6; j++) {
+        sb_clear_error();
+        expect_prob(sb_ks2_pvalue(N[i], N[j], D[a]), "sb_ks2_pvalue");
+      }
+    }
+  }
+  /* Q(t) = 1 to double precision for t < 0.1 (was NaN below ~1e-154) */
+  ck_assert(sb_kolmogorov_sf(1e-320) == 1.0);
+  ck_assert(sb_kolmogorov_sf(1e-200) == 1.0);
+  ck_assert(sb_ks2_pvalue(3, SIZE_MAX, 1e-320) == 1.0);
+  /* equal sizes: D >= 1/n always; D = 1 has probability 2/C(2n, n) */
+  ck_assert(sb_ks2_pvalue(SIZE_MAX, SIZE_MAX, 1e-320) == 1.0);
+  ck_assert(sb_ks2_pvalue(SIZE_MAX, SIZE_MAX, 1.0) == 0.0);
+  ck_assert(sb_ks2_pvalue(9007199254740993UL, 9007199254740993UL, 1.0) ==
+            0.0);
+
+  /* comparison helpers pass the extremes on */
+  sb_comparison c;
+  ck_assert_int_eq(sb_compare_poisson_dispersed(&c, "x", 5, INFINITY, 1.0,
+                                                5.0, 0.05), SB_EINVAL);
+  ck_assert_int_eq(sb_compare_poisson(&c, "x", 5, 1e-300, 1e300, 0.05),
+                   SB_SUCCESS);
+  ck_assert(c.p_value == 0.0 && c.verdict == SB_FAIL);
+  {
+    const double x[3] = {DBL_MAX, -DBL_MAX, DBL_MAX};
+    ck_assert_int_eq(sb_compare_mean(&c, "x", x, 3, 0.0, 0.05), SB_ERANGE);
+  }
+}
+END_TEST
+
 static Suite *stats_suite(void)
 {
   Suite *s = suite_create("stats");
@@ -1348,6 +1658,7 @@ static Suite *stats_suite(void)
   tc = tcase_create("records_and_errors");
   tcase_add_test(tc, test_comparison);
   tcase_add_test(tc, test_bad_arguments);
+  tcase_add_test(tc, test_extreme_arguments);
   suite_add_tcase(s, tc);
   return s;
 }

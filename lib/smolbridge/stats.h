@@ -47,7 +47,9 @@ int sb_poisson_ci(unsigned long k, double level, double *lo, double *hi);
  *  against mpmath, n up to 1e15); 1 - hi is only as accurate as a double
  *  near 1.  Method as for sb_poisson_ci (GSL's incomplete beta while both
  *  shapes are <= 200, quadrature beyond; closed forms for k = 0, 1, n-1,
- *  n).  SB_EINVAL for n = 0, k > n, level outside (0,1). */
+ *  n; laws crowded against 1 (k near n > 2^53) through the mirror law at
+ *  1 - p, so lo and hi are right to rounding, often exactly 1, there).
+ *  SB_EINVAL for n = 0, k > n, level outside (0,1). */
 int sb_binomial_ci(unsigned long k, unsigned long n, double level,
                    double *lo, double *hi);
 
@@ -62,8 +64,9 @@ int sb_poisson_rate_ci(unsigned long k, double scale, double level,
 /** The Garwood interval of k (sb_poisson_ci) for a count whose variance
  *  is `dispersion` times its mean: widened about k by sqrt(dispersion)
  *  where that is above 1 (the lower end clipped at 0); dispersion <= 1 or
- *  NaN gives sb_poisson_ci exactly.  Approximate (quasi-Poisson), as
- *  sb_compare_poisson_dispersed, whose interval it is. */
+ *  NaN gives sb_poisson_ci exactly; dispersion = +inf is SB_EINVAL.
+ *  Approximate (quasi-Poisson), as sb_compare_poisson_dispersed, whose
+ *  interval it is. */
 int sb_poisson_ci_dispersed(unsigned long k, double dispersion, double level,
                             double *lo, double *hi);
 
@@ -84,7 +87,10 @@ int sb_poisson_ci_dispersed(unsigned long k, double dispersion, double level,
  *  var(H) too).  For Poisson pair counts it is ~H; particles that take
  *  part in more events than others (a persistent speed, a longer
  *  exposure) raise it.  Not below 0; NaN if na or P is not positive or
- *  the divisor is not (fewer than ~5 particles; 0 if H = 0). */
+ *  the divisor is not (fewer than ~5 particles; 0 if H = 0), without an
+ *  error status.  NaN with SB_EDOM for NaN arguments or infinite H, S2,
+ *  sqa (sqb if nb > 0); NaN with SB_ERANGE where var(H) exceeds DBL_MAX
+ *  (or H^2/P and 1/P both overflow); H^2 itself may overflow. */
 double sb_pair_count_variance(double H, double S2, double sqa, double na,
                               double sqb, double nb, double P);
 
@@ -93,7 +99,9 @@ double sb_pair_count_variance(double H, double S2, double sqa, double na,
  *  (given k1 + k2 = N, k1 is binomial with p = R t1 / (R t1 + t2)), with the
  *  Clopper-Pearson interval for p, so coverage >= level.  *ratio receives
  *  (k1/t1)/(k2/t2) (+inf if k2 = 0, NaN if k1 = k2 = 0); hi is +inf if
- *  k2 = 0; N = 0 gives the uninformative [0, +inf].  ratio may be NULL. */
+ *  k2 = 0; N = 0 gives the uninformative [0, +inf].  ratio may be NULL.
+ *  t2/t1 may lie beyond the doubles; SB_ERANGE (all outputs NaN) where
+ *  lo, a finite hi or the ratio exceed DBL_MAX; they may underflow. */
 int sb_poisson_ratio_ci(unsigned long k1, double t1, unsigned long k2,
                         double t2, double level, double *ratio, double *lo,
                         double *hi);
@@ -101,7 +109,9 @@ int sb_poisson_ratio_ci(unsigned long k1, double t1, unsigned long k2,
 /** Mean of n >= 2 finite samples and its Student-t interval from the
  *  sample variance: mean -+ t_{(1+level)/2}(n-1) s / sqrt(n) (exact for
  *  normal samples, asymptotically right for any finite-variance law).
- *  mean may be NULL. */
+ *  Samples up to +-DBL_MAX (sums scaled where they overflow); SB_ERANGE,
+ *  lo and hi NaN, *mean set, where an end exceeds DBL_MAX.  level < 1e-8:
+ *  t = level / (2 f(0)), f the t density.  mean may be NULL. */
 int sb_mean_ci(const double *x, size_t n, double level, double *mean,
                double *lo, double *hi);
 
@@ -119,7 +129,9 @@ double sb_poisson_pvalue(unsigned long k, double mu);
  *  forms where a shape is 1).  NaN (SB_EDOM) for n = 0, k > n or p
  *  outside [0, 1].  Accuracy: relative 1e-10 (tested against direct
  *  summation) for p >= 1e-30; smaller p come from the same scaled tail
- *  integrals as sb_chi2_sf (shapes above 200) but are not tested here. */
+ *  integrals as sb_chi2_sf (shapes above 200) but are not tested here.
+ *  k near n > 2^53 (laws crowded against 1) through the mirror law at
+ *  1 - p (tested against mpmath for n = 2^64 - 1, p = 1 - 2^-53). */
 double sb_binomial_pvalue(unsigned long k, unsigned long n, double p);
 
 /** z-score (estimate - reference) / stderr_; NaN (SB_EDOM recorded) if
@@ -186,7 +198,8 @@ int sb_ks_pvalue_e(size_t n, double d, sb_result *res);
 /** Survival function of the Kolmogorov limit law,
  *  Q(t) = P(sup|B| >= t) = 2 sum_{j>=1} (-1)^(j-1) exp(-2 j^2 t^2) (for the
  *  Brownian bridge B), via its theta-function dual for t < 1.  Relative
- *  accuracy ~1e-15 for Q >= 1e-300.  Q(t) = 1 for t <= 0; NaN for NaN. */
+ *  accuracy ~1e-15 for Q >= 1e-300.  Q(t) = 1 for t < 0.1 (to double
+ *  precision) and t <= 0; NaN (SB_EDOM) for NaN. */
 double sb_kolmogorov_sf(double t);
 
 /** Two-sample Kolmogorov-Smirnov test: *d = sup |F_x - F_y| (ties handled
@@ -198,7 +211,9 @@ int sb_ks2_test(double *x, size_t nx, double *y, size_t ny, double *d,
                 double *p);
 
 /** P(D >= d) for the two-sample KS statistic of continuous samples:
- *   - nx = ny = n: exact (Gnedenko-Korolyuk alternating sum), any n;
+ *   - nx = ny = n: exact (Gnedenko-Korolyuk alternating sum), any n (log
+ *     ratios in closed form beyond 1e7; 1 for n > 1e12 and n d^2 <
+ *     1/325 where the sum would be long, the neglected mass < e^-750);
  *   - nx * ny <= 1e7: exact lattice-path recursion (Hodges 1957) summing
  *     only positive terms, relative accuracy ~1e-13, ~15 ns per cell;
  *   - otherwise asymptotic, Stephens' small-sample correction:
@@ -290,7 +305,8 @@ int sb_compare(sb_comparison *c, const char *name, sb_rule rule,
  *  exact two-sided Poisson test of k against the mean reference/scale
  *  (sb_poisson_pvalue); rule SB_RULE_COVER.  The test and the interval are
  *  inversions of each other: PASS iff p >= alpha iff the reference lies in
- *  the printed interval.  Use it for collision kernels K_e = scale N_c. */
+ *  the printed interval (p = 0 where reference/scale exceeds DBL_MAX).
+ *  Use it for collision kernels K_e = scale N_c. */
 int sb_compare_poisson(sb_comparison *c, const char *name, unsigned long k,
                        double scale, double reference, double alpha);
 
