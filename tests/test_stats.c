@@ -1592,6 +1592,17 @@ START_TEST(test_extreme_arguments)
 
   /* comparison helpers pass the extremes on */
   sb_comparison c;
+  char buf[64];
+  sb_compare(&c, "x", SB_RULE_COVER, 1.0, 1.0, 0.0, 2.0, 0.999999999, 0.5);
+  sb_comparison_rule_text(&c, buf, sizeof buf);
+  ck_assert_str_eq(buf, "ref in 99.9999999% CI");
+  sb_compare(&c, "x", SB_RULE_COVER, 1.0, 1.0, 0.0, 2.0, 1.0 - 0x1p-53,
+             0.5);
+  sb_comparison_rule_text(&c, buf, sizeof buf);
+  ck_assert_str_eq(buf, "ref in 99.99999999999999% CI");
+  sb_compare(&c, "x", SB_RULE_COVER, 1.0, 1.0, 0.0, 2.0, 1e-300, 0.5);
+  sb_comparison_rule_text(&c, buf, sizeof buf);
+  ck_assert_str_eq(buf, "ref in 1e-298% CI");
   ck_assert_int_eq(sb_compare_poisson_dispersed(&c, "x", 5, INFINITY, 1.0,
                                                 5.0, 0.05), SB_EINVAL);
   ck_assert_int_eq(sb_compare_poisson(&c, "x", 5, 1e-300, 1e300, 0.05),

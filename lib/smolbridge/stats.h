@@ -344,7 +344,9 @@ const char *sb_verdict_name(sb_verdict v);
 
 /** The rule in words for a table ("ref in 99.9% CI", "est in 99.9%
  *  acceptance", "ref in tolerance band", "95% CI above ref", "95% CI
- *  below ref", "informational"); snprintf semantics; -1 for NULL c. */
+ *  below ref", "informational"); snprintf semantics; -1 for NULL c.
+ *  The level is the shortest percentage keeping level and 1 - level to 3
+ *  digits ("99.9999999%" for 0.999999999, up to 17 digits). */
 int sb_comparison_rule_text(const sb_comparison *c, char *buf, size_t len);
 
 /** Write the record as one CSV line (no newline) matching the header

@@ -238,13 +238,17 @@ const char *sb_verdict_name(sb_verdict v)
   return "unknown";
 }
 
-/* "99.9%" or "95%": the level as the shortest percentage. */
+/* "99.9%" or "95%": the level as the shortest percentage that keeps both
+ * the level and 1 - level to 3 digits (0.999999999 is "99.9999999%", not
+ * "1e+02%"; 1e-300 is "1e-298%"). */
 static void fmt_level(char *buf, size_t len, double level)
 {
   char tmp[32];
-  for (int prec = 1; prec <= 10; prec++) {
+  double tol = fmin(1e-9 * 100.0, fabs(1e-3 * 100.0 * fmin(level, 1.0 -
+                                                            level)));
+  for (int prec = 1; prec <= 17; prec++) {
     snprintf(tmp, sizeof tmp, "%.*g", prec, 100.0 * level);
-    if (fabs(strtod(tmp, NULL) - 100.0 * level) <= 1e-9 * 100.0)
+    if (fabs(strtod(tmp, NULL) - 100.0 * level) <= tol)
       break;
   }
   snprintf(buf, len, "%s%%", tmp);
