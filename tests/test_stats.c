@@ -1612,6 +1612,15 @@ START_TEST(test_extreme_arguments)
     const double x[3] = {DBL_MAX, -DBL_MAX, DBL_MAX};
     ck_assert_int_eq(sb_compare_mean(&c, "x", x, 3, 0.0, 0.05), SB_ERANGE);
   }
+  { /* alpha near 1 (level 2^-53): the t test of (1, 2) against 0 is
+     * t = 3 on 1 degree of freedom whatever alpha: p = 1 - 2 atan(3)/pi */
+    const double x[2] = {1.0, 2.0};
+    ck_assert_int_eq(sb_compare_mean(&c, "x", x, 2, 0.0, 1.0 - 0x1p-53),
+                     SB_SUCCESS);
+    ck_assert_rel(c.p_value, 1.0 - 2.0 * atan(3.0) / 3.14159265358979323846,
+                  1e-13);
+    ck_assert_int_eq(c.verdict, SB_FAIL); /* p < alpha */
+  }
 }
 END_TEST
 

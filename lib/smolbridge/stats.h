@@ -333,7 +333,10 @@ int sb_compare_binomial(sb_comparison *c, const char *name, unsigned long k,
 /** Mean of n >= 2 independent replicas x[] against `reference`: Student-t
  *  interval at 1 - alpha (sb_mean_ci) and the two-sided one-sample t test
  *  (exact for normal replicas, asymptotically right otherwise); rule
- *  SB_RULE_COVER. */
+ *  SB_RULE_COVER.  SB_ERANGE where the interval overflows (sb_mean_ci);
+ *  for alpha > 1 - 1e-8 the test statistic comes from the standard error
+ *  directly (the interval is then narrower than the rounding of the
+ *  mean). */
 int sb_compare_mean(sb_comparison *c, const char *name, const double *x,
                     size_t n, double reference, double alpha);
 

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include <gsl/gsl_cdf.h>
+#include <gsl/gsl_statistics_double.h>
 #include <gsl/gsl_math.h>
 
 #include "common/internal.h"
@@ -200,7 +201,16 @@ int sb_compare_mean(sb_comparison *c, const char *name, const double *x,
   }
   /* Two-sided one-sample t test; consistent with the t interval. */
   double half = hi - m, p;
-  if (half > 0.0) {
+  if (alpha > 1.0 - 1e-8) {
+    /* level < 1e-8: the interval is narrower than the rounding of m (and
+     * its quantile is not GSL's): t from the standard error itself */
+    double se = gsl_stats_sd_m(x, 1, n, m) / sqrt((double)n);
+    double t = fabs(m - reference) / se;
+    p = se > 0.0 ? 2.0 * gsl_cdf_tdist_Q(t, (double)(n - 1))
+                 : (m == reference ? 1.0 : 0.0);
+    if (p > 1.0)
+      p = 1.0;
+  } else if (half > 0.0) {
     double nu = (double)(n - 1);
     double tq = n == 2 ? 1.0 / tan(M_PI * 0.5 * alpha)
                        : gsl_cdf_tdist_Qinv(0.5 * alpha, nu);
