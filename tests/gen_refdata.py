@@ -373,6 +373,23 @@ def gen_bridge_hit():
                              pdf if pdf > TINY else -1,
                              cdf if cdf > TINY else -1,
                              sf if sf > TINY else -1))
+    # extreme-but-representable corners (400 digits: with v ~ 1e300 the
+    # B3B density and mixture cancel to 1e-300): u = 1e-300 with a
+    # normal density near 1e280 (B3B: y/x = 1e-31, the y -> 0 law),
+    # t = 1e300 and DBL_MAX, t = 1e-300 (rescaled)
+    big = sys.float_info.max
+    for (kind, u, x, y, a, s2, t) in [
+            (0, 1e-300, 1e-149, 0.5, 0.0, 1.0, 1.0),
+            (0, 0.3, 1.0, 0.5, 0.0, 1.0, 1e300),
+            (0, 0.3, 1.0, 0.5, 0.0, 1.0, big),
+            (0, 0.3e-300, 1e-150, 0.5e-150, 0.0, 1.0, 1e-300),
+            (1, 1e-300, 2e-149, 1e-180, 1e-149, 1.0, 1.0),
+            (1, 0.3, 2.0, 1.0, 0.5, 1.0, 1e300),
+            (1, 0.3e-300, 2e-150, 1e-150, 0.5e-150, 1.0, 1e-300)]:
+        with mp.workdps(400):
+            pdf, cdf, sf = hit_ref(kind, u, x, y, a, s2, t)
+        rows.append((kind, u, x, y, a, s2, t, pdf if pdf > TINY else -1,
+                     cdf if cdf > TINY else -1, sf if sf > TINY else -1))
     write("bridge_hit.csv",
           ["kind", "u", "x", "y", "a", "sigma2", "t", "pdf", "cdf", "sf"],
           rows)

@@ -722,6 +722,76 @@ START_TEST(test_bad_input)
 }
 END_TEST
 
+/* Every argument in turn over +-1e-320 ... +-DBL_MAX, 0 and a few
+ * magnitudes where double-double products (2^995) or squares (1e154)
+ * overflow, the others ordinary: the value is finite with status 0, or NaN
+ * with an error status (never NaN, or +-inf with status 0).  The values at
+ * the extreme corners are checked against mpmath in bridge_hit.csv (the
+ * rows after the "extreme" comment of tests/gen_refdata.py). */
+typedef double (*xfn)(const double *a);
+static double x_bbpdf(const double *a)
+{
+  return sb_bb_hit_pdf(a[0], a[1], a[2], a[3], a[4], a[5]);
+}
+static double x_bbcdf(const double *a)
+{
+  return sb_bb_hit_cdf(a[0], a[1], a[2], a[3], a[4], a[5]);
+}
+static double x_bbsf(const double *a)
+{
+  return sb_bb_hit_sf(a[0], a[1], a[2], a[3], a[4], a[5]);
+}
+static double x_b3pdf(const double *a)
+{
+  return sb_bes3b_hit_pdf(a[0], a[1], a[2], a[3], a[4], a[5]);
+}
+static double x_b3cdf(const double *a)
+{
+  return sb_bes3b_hit_cdf(a[0], a[1], a[2], a[3], a[4], a[5]);
+}
+static double x_b3sf(const double *a)
+{
+  return sb_bes3b_hit_sf(a[0], a[1], a[2], a[3], a[4], a[5]);
+}
+
+START_TEST(test_extreme_arguments)
+{
+  /* (u or p, x, y, a, sigma2, t) */
+  static const double base[2][6] = {{0.3, 1.0, 0.5, 0.0, 1.0, 1.0},
+                                    {0.3, 2.0, 1.0, 0.5, 1.0, 1.0}};
+  static const struct {
+    xfn f;
+    int b;
+  } k[] = {{x_bbpdf, 0}, {x_bbcdf, 0}, {x_bbsf, 0},
+           {x_b3pdf, 1}, {x_b3cdf, 1}, {x_b3sf, 1}};
+  const double ext[] = {1e-320,  1e-300,  1e300,    DBL_MAX, -1e-320,
+                        -1e-300, -1e300,  -DBL_MAX, 0.0,     0x1p995,
+                        0x1p-995, 1e154,  1e-154};
+  for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
+    for (int i = 0; i < 6; i++)
+      for (size_t e = 0; e < sizeof ext / sizeof ext[0]; e++) {
+        double a[6];
+        memcpy(a, base[k[f].b], sizeof a);
+        a[i] = ext[e];
+        sb_clear_error();
+        const double v = k[f].f(a);
+        const int st = sb_last_status();
+        ck_assert_msg(isfinite(v) ? st == SB_SUCCESS
+                                  : isnan(v) && st != SB_SUCCESS,
+                      "function %zu, argument %d = %g: %g with status %d", f,
+                      i, ext[e], v, st);
+      }
+  /* a density above DBL_MAX is SB_ERANGE naming the function */
+  sb_result r;
+  ck_assert_int_eq(sb_bb_hit_pdf_e(1e-310, 1e-155, 1e-155, 0.0, 1.0, 1e-300,
+                                   &r),
+                   SB_ERANGE);
+  ck_assert(isnan(r.val));
+  ck_assert(strstr(sb_last_error(), "sb_bb_hit_pdf") != NULL);
+  ck_assert(strstr(sb_last_error(), "u = 1e-310") != NULL);
+}
+END_TEST
+
 static Suite *bridge_suite(void)
 {
   Suite *s = suite_create("bridge");
@@ -740,6 +810,7 @@ static Suite *bridge_suite(void)
   tcase_add_test(tc, test_quantile_best_double);
   tcase_add_test(tc, test_hit_scale);
   tcase_add_test(tc, test_hit_special);
+  tcase_add_test(tc, test_extreme_arguments);
   tcase_add_test(tc, test_bad_input);
   tcase_set_timeout(tc, 30);
   suite_add_tcase(s, tc);

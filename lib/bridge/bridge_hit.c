@@ -572,7 +572,33 @@ static hit_prob prob_at(const hit_par *h, const hit_time *T, int want)
   return h->b3 ? b3_prob(h, T, want) : bb_prob(h, T, want);
 }
 
-/* density at T (0 < u < t), with relative error bound *rel */
+/* The density alpha t / (q u) phi(c) ratio where the plain product leaves
+ * the normal doubles: the prefactor can overflow while exp(-c^2/2)
+ * underflows (u ~ 1e-300: NaN from inf * 0), or c^2/2 be NaN (alpha or
+ * |beta| near DBL_MAX overflow the double-double products).  Extended
+ * exponents; c^2/2 from the point where it is finite, else from plain
+ * doubles (|c| > 1e154 there, exp(-c^2/2) = 0).  +inf if the density
+ * exceeds DBL_MAX, 0 or subnormal below DBL_MIN. */
+static double pdf_extreme(const hit_par *h, const hit_time *T,
+                          const sbi_igpt *p, double ratio)
+{
+  sbi_dd E = p->E;
+  if (!(E.hi >= 0.0)) {
+    double c = h->L1.hi * (T->u / T->q) - h->al.hi * (T->w.hi / T->q);
+    E = (sbi_dd){fabs(c) < 1e154 ? 0.5 * c * c : INFINITY, 0.0};
+  }
+  if (!(E.hi < 1e6))
+    return 0.0;
+  sbi_xd ex = sbi_xd_expneg(E.hi);
+  ex.m *= 1.0 - E.lo;
+  sbi_xd f = sbi_xd_div(sbi_xd_mul(sbi_xd_of(h->al.hi), sbi_xd_of(h->t)),
+                        sbi_xd_mul(sbi_xd_of(T->q), sbi_xd_of(T->u)));
+  f = sbi_xd_mul(sbi_xd_mul(f, ex), sbi_xd_of(INV_RT2PI * ratio));
+  return sbi_xd_val(f);
+}
+
+/* density at T (0 < u < t), with relative error bound *rel (+inf if it
+ * exceeds DBL_MAX) */
 static double pdf_at(const hit_par *h, const hit_time *T, double *rel)
 {
   /* BB hitting density given T <= t: f_alpha(u) g_{t-u}(L1)/g_t(alpha+L1)
@@ -580,17 +606,20 @@ static double pdf_at(const hit_par *h, const hit_time *T, double *rel)
   sbi_igpt p = point(h, T, h->L1);
   double f = h->al.hi * h->t / (T->q * T->u) * p.ex * INV_RT2PI;
   *rel = 8.0 * EPS;
-  if (!h->b3)
-    return f;
-  /* B3B: times [1 - exp(-2ay/(sigma2 w))] / (1 - rho); for y = 0 the limit
-   * a t / (x w) */
-  double ratio;
-  if (h->mn == 0.0)
-    ratio = h->a * h->t / ((h->al.hi + h->a) * T->w.hi);
-  else
-    ratio = -expm1(-2.0 * h->a * h->y / (h->sigma2 * T->w.hi)) / h->omr;
-  *rel += 6.0 * EPS;
-  return f * ratio;
+  double ratio = 1.0;
+  if (h->b3) {
+    /* B3B: times [1 - exp(-2ay/(sigma2 w))] / (1 - rho); for y = 0 the
+     * limit a t / (x w) */
+    if (h->mn == 0.0)
+      ratio = h->a * h->t / ((h->al.hi + h->a) * T->w.hi);
+    else
+      ratio = -expm1(-2.0 * h->a * h->y / (h->sigma2 * T->w.hi)) / h->omr;
+    *rel += 6.0 * EPS;
+    f *= ratio;
+  }
+  if (!(f >= DBL_MIN && f <= DBL_MAX) && ratio > 0.0)
+    f = pdf_extreme(h, T, &p, ratio);
+  return f;
 }
 
 /* --------------------------------------------------- pdf, cdf, sf */
@@ -631,11 +660,17 @@ static int hit_entry(const char *fn, int b3, int what, double u, double x,
                      double y, double a, double sigma2, double t,
                      sb_result *res)
 {
+  const double u0 = u;
   const int et = rescale(b3, &x, &y, &a, &sigma2, &t, &u);
   int st = hit_entry_unit(fn, b3, what, u, x, y, a, sigma2, t, res);
-  if (what == W_PDF && et) { /* a density in u: per unit of time */
-    res->val = ldexp(res->val, -et);
-    res->err = ldexp(res->err, -et);
+  if (what == W_PDF && st == SB_SUCCESS) {
+    if (et) { /* a density in u: per unit of time */
+      res->val = ldexp(res->val, -et);
+      res->err = ldexp(res->err, -et);
+    }
+    if (isinf(res->val))
+      return sbi_fail(res, SB_ERANGE, fn,
+                      "the density at u = %g exceeds DBL_MAX", u0);
   }
   return st;
 }
@@ -674,7 +709,7 @@ static int hit_entry_unit(const char *fn, int b3, int what, double u,
   }
   if (what == W_PDF) {
     double rel;
-    val = pdf_at(&h, &T, &rel);
+    val = pdf_at(&h, &T, &rel); /* +inf above DBL_MAX: see hit_entry */
     *res = (sb_result){val, rel * val};
     return SB_SUCCESS;
   }

@@ -50,6 +50,10 @@
  *        middle with a proven truncation and rounding bound, or by 3- and
  *        4-point Gauss-Legendre quadrature where the bound fails
  *        (docs/bridge.md §3).
+ * Extremes: pdf, cdf and sf take any finite arguments; the pdf is the
+ * right value wherever it is a normal double (extended exponents where an
+ * intermediate leaves the doubles), 0 or subnormal below DBL_MIN, and
+ * SB_ERANGE (NaN) where it exceeds DBL_MAX (docs/bridge.md).
  * Special cases: x <= a: T_a = 0 (cdf = 1 for u >= 0, pdf 0, quantile 0,
  * sample 0).  y <= a < x: the bridge surely hits, same formulas.  For B3B
  * a = 0 with x, y > 0 is SB_EDOM (the bridge never hits 0); y = 0 < x with
