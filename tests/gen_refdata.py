@@ -294,6 +294,16 @@ def gen_bridge_cross():
             p, lp, nc = cross_ref(kind, x, y, a, v)
             rows.append((kind, x, y, a, v, p if p > TINY else -1, lp,
                          nc if nc > TINY else -1))
+    # extreme corners: (x - a)(y - a) above DBL_MAX or below DBL_MIN with
+    # C = 2(x - a)(y - a)/v a normal double, log P near -DBL_MAX
+    for (kind, x, y, a, v) in [
+            (0, 1e200, 1e200, 0.0, 1e300), (0, 1e-200, 1e-200, 0.0, 1e-300),
+            (0, 1.0, 0.5, -1e300, 1e300), (0, 1e300, 0.5, 0.0, 1e-8),
+            (1, 1e200, 1e200, 0.5, 1e300), (1, 3e-200, 2e-200, 1e-200, 1e-300),
+            (1, 1e300, 1.5, 1.0, 1e-8)]:
+        p, lp, nc = cross_ref(kind, x, y, a, v)
+        rows.append((kind, x, y, a, v, p if p > TINY else -1, lp,
+                     nc if nc > TINY else -1))
     write("bridge_cross.csv",
           ["kind", "x", "y", "a", "v", "p", "logp", "nocross"], rows)
 

@@ -726,8 +726,9 @@ END_TEST
  * magnitudes where double-double products (2^995) or squares (1e154)
  * overflow, the others ordinary: the value is finite with status 0, or NaN
  * with an error status (never NaN, or +-inf with status 0).  The values at
- * the extreme corners are checked against mpmath in bridge_hit.csv (the
- * rows after the "extreme" comment of tests/gen_refdata.py). */
+ * the extreme corners are checked against mpmath in bridge_hit.csv and
+ * bridge_cross.csv (the rows after the "extreme" comments of
+ * tests/gen_refdata.py). */
 typedef double (*xfn)(const double *a);
 static double x_bbpdf(const double *a)
 {
@@ -754,16 +755,42 @@ static double x_b3sf(const double *a)
   return sb_bes3b_hit_sf(a[0], a[1], a[2], a[3], a[4], a[5]);
 }
 
+/* crossing functions: (x, y, a, v) in a[1..4]; log P = -inf with status
+ * 0 only where P = 0 exactly (v = 0, or a Bessel-3 level a = 0) */
+static double x_bblog(const double *a)
+{
+  double v = sb_bb_cross_logprob(a[1], a[2], a[3], a[4]);
+  return isinf(v) && v < 0.0 && a[4] == 0.0 ? 0.0 : v;
+}
+static double x_b3log(const double *a)
+{
+  double v = sb_bes3b_cross_logprob(a[1], a[2], a[3], a[4]);
+  return isinf(v) && v < 0.0 && (a[4] == 0.0 || a[3] == 0.0) ? 0.0 : v;
+}
+static double x_bbp(const double *a)
+{
+  return sb_bb_cross_prob(a[1], a[2], a[3], a[4]) +
+         sb_bb_nocross_prob(a[1], a[2], a[3], a[4]);
+}
+static double x_b3p(const double *a)
+{
+  return sb_bes3b_cross_prob(a[1], a[2], a[3], a[4]) +
+         sb_bes3b_nocross_prob(a[1], a[2], a[3], a[4]);
+}
+
 START_TEST(test_extreme_arguments)
 {
-  /* (u or p, x, y, a, sigma2, t) */
-  static const double base[2][6] = {{0.3, 1.0, 0.5, 0.0, 1.0, 1.0},
-                                    {0.3, 2.0, 1.0, 0.5, 1.0, 1.0}};
+  /* (u or p, x, y, a, sigma2, t); crossings (-, x, y, a, v) */
+  static const double base[4][6] = {{0.3, 1.0, 0.5, 0.0, 1.0, 1.0},
+                                    {0.3, 2.0, 1.0, 0.5, 1.0, 1.0},
+                                    {0.0, 1.0, 0.5, 0.0, 1.0, 0.0},
+                                    {0.0, 2.0, 1.0, 0.5, 1.0, 0.0}};
   static const struct {
     xfn f;
     int b;
   } k[] = {{x_bbpdf, 0}, {x_bbcdf, 0}, {x_bbsf, 0},
-           {x_b3pdf, 1}, {x_b3cdf, 1}, {x_b3sf, 1}};
+           {x_b3pdf, 1}, {x_b3cdf, 1}, {x_b3sf, 1},
+           {x_bblog, 2}, {x_b3log, 3}, {x_bbp, 2}, {x_b3p, 3}};
   const double ext[] = {1e-320,  1e-300,  1e300,    DBL_MAX, -1e-320,
                         -1e-300, -1e300,  -DBL_MAX, 0.0,     0x1p995,
                         0x1p-995, 1e154,  1e-154};
@@ -789,6 +816,18 @@ START_TEST(test_extreme_arguments)
   ck_assert(isnan(r.val));
   ck_assert(strstr(sb_last_error(), "sb_bb_hit_pdf") != NULL);
   ck_assert(strstr(sb_last_error(), "u = 1e-310") != NULL);
+  /* log P below -DBL_MAX is SB_ERANGE; P = 0 exactly gives -inf */
+  ck_assert_int_eq(sb_bb_cross_logprob_e(1.0, 0.5, 0.0, 1e-320, &r),
+                   SB_ERANGE);
+  ck_assert(strstr(sb_last_error(), "sb_bb_cross_logprob") != NULL);
+  ck_assert_int_eq(sb_bes3b_cross_logprob_e(DBL_MAX, 2.0, 0.5, 1.0, &r),
+                   SB_ERANGE);
+  ck_assert_int_eq(sb_bb_cross_logprob_e(1.0, 0.5, 0.0, 0.0, &r),
+                   SB_SUCCESS);
+  ck_assert(r.val == -INFINITY);
+  ck_assert_int_eq(sb_bes3b_cross_logprob_e(1.0, 0.5, 0.0, 1.0, &r),
+                   SB_SUCCESS);
+  ck_assert(r.val == -INFINITY);
 }
 END_TEST
 

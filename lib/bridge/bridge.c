@@ -31,6 +31,34 @@ static sbi_dd cross_exponent(double x, double y, double a, double v)
   return sbi_dd_twice_ratio(sbi_dd_sum(x, -a), sbi_dd_sum(y, -a), v);
 }
 
+/* 2 p q / v (p, q, v > 0) in double, to a few ulp: the plain expression
+ * where the product p q is a normal double, else from the operands scaled
+ * by powers of two (same roundings), so that the value is right wherever
+ * it is a double and +inf only where it exceeds DBL_MAX (the product
+ * overflowed for x - a ~ 1e300 with C = 2 (x - a)(y - a)/v finite, or was
+ * 0 below DBL_MIN). */
+static double twice_ratio(double p, double q, double v)
+{
+  const double pr = p * q;
+  if (pr >= DBL_MIN && pr <= DBL_MAX)
+    return 2.0 * pr / v;
+  if (isinf(p) || isinf(q))
+    return INFINITY; /* |x - a| > DBL_MAX: C >= 2^972 / v, v <= DBL_MAX */
+  if (p == 0.0 || q == 0.0)
+    return 0.0;
+  const int ep = ilogb(p), eq = ilogb(q), ev = ilogb(v);
+  const double m = 2.0 * (ldexp(p, -ep) * ldexp(q, -eq)) / ldexp(v, -ev);
+  const long e = (long)ep + eq - ev;
+  return ldexp(m, e > 4000 ? 4000 : e < -4000 ? -4000 : (int)e);
+}
+
+/* p q / (r s) (all > 0) where r s may underflow */
+static double prod_ratio(double p, double q, double r, double s)
+{
+  const double rs = r * s;
+  return rs >= DBL_MIN ? (p * q) / rs : (p / r) * (q / s);
+}
+
 static int check_args(const char *fn, double x, double y, double a, double v,
                       int bessel, sb_result *res)
 {
@@ -64,9 +92,9 @@ static sb_result bb_cross(int kind, double x, double y, double a, double v)
     double p = C.hi < 746.0 ? sbi_dd_expneg(C) : 0.0;
     return (sb_result){p, 3.0 * EPS * p};
   }
-  double c = 2.0 * ((x - a) * (y - a)) / v;
+  double c = twice_ratio(x - a, y - a, v);
   if (kind == K_LOG)
-    return (sb_result){-c, 4.0 * EPS * c};
+    return (sb_result){-c, 4.0 * EPS * c}; /* -inf: SB_ERANGE (entry) */
   double nc = -expm1(-c);
   return (sb_result){nc, 5.0 * EPS * nc};
 }
@@ -83,12 +111,12 @@ static sb_result b3_cross(int kind, double x, double y, double a, double v)
    * with A = 2a(x+y-a)/v, B = 2xy/v = A + C.  Both ratios are quotients of
    * two negative numbers computed to ~1 ulp (expm1 has condition number
    * <= 1 here), so nothing cancels. */
-  double c = 2.0 * ((x - a) * (y - a)) / v; /* C to a few ulp */
+  double c = twice_ratio(x - a, y - a, v); /* C to a few ulp */
   double sxa = (x - a) + y; /* x + y - a, a sum of positives */
-  double A = 2.0 * a * sxa / v, B = 2.0 * x * y / v;
+  double A = twice_ratio(a, sxa, v), B = twice_ratio(x, y, v);
   int tiny = B < 1e-280; /* v huge: the ratios are their limits */
   if (tiny) {
-    double nc = ((x - a) * (y - a)) / (x * y), r = (a * sxa) / (x * y);
+    double nc = prod_ratio(x - a, y - a, x, y), r = prod_ratio(a, sxa, x, y);
     if (kind == K_NO)
       return (sb_result){nc, 6.0 * EPS * nc};
     double p = sbi_dd_expneg(cross_exponent(x, y, a, v)) * r;
@@ -139,6 +167,12 @@ static int cross_entry(const char *fn, int bessel, int kind, double x,
   if (st)
     return st;
   *res = bessel ? b3_cross(kind, x, y, a, v) : bb_cross(kind, x, y, a, v);
+  if (kind == K_LOG && isinf(res->val) && v > 0.0 &&
+      !(bessel && a == 0.0) && x > a && y > a)
+    /* log P = -C below -DBL_MAX (not the exact -inf of P = 0) */
+    return sbi_fail(res, SB_ERANGE, fn,
+                    "log P = -2 (x - a)(y - a)/v < -DBL_MAX (x = %g, y = %g, "
+                    "a = %g, v = %g)", x, y, a, v);
   return SB_SUCCESS;
 }
 

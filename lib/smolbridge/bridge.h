@@ -24,6 +24,10 @@
  * mpmath at 50 digits for v/len^2 in [1e-8, 1e8]); the logs keep that
  * relative accuracy where P underflows (log P down to -1e300 and beyond).
  * The exponent 2 alpha beta / v is formed in double-double arithmetic.
+ * Extremes: any finite magnitudes (products beyond the doubles are scaled
+ * by powers of two); the log is SB_ERANGE (NaN) where log P < -DBL_MAX
+ * (e.g. v = 1e-320) and -inf with status 0 only where P = 0 exactly (v = 0
+ * with no end point overlapping, B3B a = 0).
  *
  * Conditioned hitting time T_a = inf{u : X_u = a} given T_a <= t, arguments
  * (u or p, x, y, a, sigma2, t), sigma2 > 0, t > 0:
