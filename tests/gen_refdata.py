@@ -215,8 +215,9 @@ def gen_passage():
           rows)
 
 
-def ig_quantile(p, x, a, mu, s2):
-    """Exact quantile by bisection-safeguarded root finding in log t."""
+def ig_quantile(p, x, a, mu, s2, span=200):
+    """Exact quantile by bisection-safeguarded root finding in log t
+    (log t in [-span, span])."""
     p = mp.mpf(p)
 
     def F(lt):
@@ -225,7 +226,7 @@ def ig_quantile(p, x, a, mu, s2):
     def S(lt):  # for p > 1/2 use the complement for resolution
         return (1 - p) - ig_parts(mp.exp(lt), x, a, mu, s2)[2]
     g = F if p <= 0.5 else S
-    lo, hi = mp.mpf(-200), mp.mpf(200)
+    lo, hi = mp.mpf(-span), mp.mpf(span)
     for _ in range(400):
         mid = (lo + hi) / 2
         if g(mid) < 0:
@@ -248,6 +249,17 @@ def gen_passage_quantile():
             if p >= mass:
                 continue
             rows.append((p, x, a, mu, s2, ig_quantile(p, x, a, mu, s2)))
+    # extreme-but-representable corners: d^2/sigma2 or d/nu beyond the
+    # doubles (quantiles near 1e300 and 1e-300), tiny drifts; 400 digits,
+    # log t in [-800, 800]
+    for (p, x, a, mu, s2) in [
+            (0.3, 0, 1e300, 0.4, 0.8), (0.3, 0, 1e154, 0.4, 0.8),
+            (0.3, 0, 1e-150, 0.4, 0.8), (0.3, 0, 1e-100, 0, 1e-200),
+            (0.7, 0, 1, 1e-300, 1), (0.5, 0, 1e200, 1e-100, 1e300),
+            (0.9, 1e-300, 0, -1e-300, 1e-300), (0.2, 0, 1e300, 1e290, 1e-300)]:
+        with mp.workdps(400):
+            q = ig_quantile(p, x, a, mu, s2, 800)
+        rows.append((p, x, a, mu, s2, q))
     write("passage_quantile.csv", ["p", "x", "a", "mu", "sigma2", "q"], rows)
 
 

@@ -517,9 +517,9 @@ END_TEST
 /* Every argument in turn over +-1e-320 ... +-DBL_MAX, +-inf and 0, the
  * others ordinary: the value is finite with status 0, or NaN with an
  * error status (never NaN, or inf with status 0); the values themselves at
- * the extreme corners are checked against mpmath in passage_bm.csv and
- * passage_bes3.csv (the rows after the "extreme" comment of
- * tests/gen_refdata.py). */
+ * the extreme corners are checked against mpmath in passage_bm.csv,
+ * passage_bes3.csv and passage_quantile.csv (the rows after the "extreme"
+ * comments of tests/gen_refdata.py). */
 typedef double (*pfn)(const double *a);
 static double e_pdf(const double *a)
 {
@@ -550,6 +550,31 @@ static double e_b3sf(const double *a)
   return sb_bes3_fpt_sf(a[0], a[1], a[2], a[4]);
 }
 
+/* quantile and sampler: +inf (the level is never reached) is right only
+ * where p >= mass (quantile) or mass < 1 (sampler); mapped to 0 there */
+static double e_quant(const double *a)
+{
+  double v = sb_bm_fpt_quantile(a[0], a[1], a[2], a[3], a[4]);
+  if (isinf(v) && v > 0.0 && a[0] >= sb_bm_fpt_mass(a[1], a[2], a[3], a[4]))
+    return 0.0;
+  return v;
+}
+static gsl_rng *e_rng; /* test_extreme_arguments' generator */
+static double e_sample(const double *a)
+{
+  gsl_rng *r = e_rng;
+  double m = 0.0;
+  for (int i = 0; i < 8; i++) {
+    double v = sb_bm_fpt_sample(r, a[1], a[2], a[3], a[4]);
+    if (isinf(v) && v > 0.0 && sb_bm_fpt_mass(a[1], a[2], a[3], a[4]) < 1.0)
+      v = 0.0;
+    if (!isfinite(v))
+      return v;
+    m += v;
+  }
+  return m / 8.0;
+}
+
 START_TEST(test_extreme_arguments)
 {
   /* (t, x, a, mu, sigma2); Bessel-3 ignores mu */
@@ -561,7 +586,9 @@ START_TEST(test_extreme_arguments)
     int b;
   } k[] = {{e_pdf, 0}, {e_cdf, 0}, {e_sf, 0}, {e_mass, 0},
            {e_pdf, 1}, {e_cdf, 1}, {e_sf, 1}, {e_mass, 1},
-           {e_b3pdf, 2}, {e_b3cdf, 2}, {e_b3sf, 2}};
+           {e_b3pdf, 2}, {e_b3cdf, 2}, {e_b3sf, 2},
+           {e_quant, 0}, {e_quant, 1}, {e_sample, 0}, {e_sample, 1}};
+  e_rng = gsl_rng_alloc(gsl_rng_mt19937);
   const double ext[] = {1e-320,   1e-300,   1e300,    DBL_MAX,
                         INFINITY, -1e-320,  -1e-300,  -1e300,
                         -DBL_MAX, -INFINITY, 0.0,     0x1p995,
@@ -588,6 +615,15 @@ START_TEST(test_extreme_arguments)
   ck_assert(isnan(r.val));
   ck_assert_int_eq(sb_bes3_fpt_pdf_e(1e-310, 2e-155, 1e-155, 1.0, &r),
                    SB_ERANGE);
+  /* a quantile or draw above DBL_MAX is SB_ERANGE (NaN), not +inf */
+  ck_assert_int_eq(sb_bm_fpt_quantile_e(0.3, 0.0, 1e300, 1e-10, 1.0, &r),
+                   SB_ERANGE);
+  ck_assert(isnan(r.val));
+  ck_assert(strstr(sb_last_error(), "sb_bm_fpt_quantile") != NULL);
+  sb_clear_error();
+  ck_assert(isnan(sb_bm_fpt_sample(e_rng, 0.0, 1e300, 1e-10, 1.0)));
+  ck_assert_int_eq(sb_last_status(), SB_ERANGE);
+  gsl_rng_free(e_rng);
 }
 END_TEST
 

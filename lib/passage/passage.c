@@ -352,21 +352,76 @@ static double walk_doubles(const fpt_par *q, double t, double tg, int upper)
   return t;
 }
 
+/* Units for the quantile and the sampler where d = |x - a|, sigma2 or
+ * |mu| is outside 2^(+-300) (d^2/sigma2 or d/|nu| then over/underflowed:
+ * a start point of 0 or +inf).  Lengths are scaled by 2^-m (d in [1, 2)),
+ * times by 2^-n with n the smaller of the diffusion and drift time scales
+ * (d^2/sigma2, d/|mu|), so that sigma2 and |mu| become at most ~2 (all
+ * exact: powers of two; the law of T 2^-n is that of the scaled
+ * arguments).  sigma2 is kept >= 2^-1000, which only narrows a law whose
+ * relative width is below 2^-490 already.  Returns n (0: unchanged;
+ * invalid arguments are left to fpt_setup's messages). */
+static int fpt_units(double *x, double *a, double *mu, double *sigma2)
+{
+  if (is_bad(*x) || is_bad(*a) || is_bad(*mu) || !(*sigma2 > 0.0) ||
+      is_bad(*sigma2))
+    return 0;
+  const double d = fabs(*x - *a), mua = fabs(*mu);
+  const double lo = 0x1p-300, hi = 0x1p300;
+  if (d == 0.0 || (d > lo && d < hi && *sigma2 > lo && *sigma2 < hi &&
+                   (mua == 0.0 || (mua > lo && mua < hi))))
+    return 0;
+  const int m = isinf(d) ? 1024 : ilogb(d), es = ilogb(*sigma2);
+  int n = 2 * m - es;
+  if (mua > 0.0 && m - ilogb(mua) < n)
+    n = m - ilogb(mua);
+  int e2 = n - 2 * m; /* sigma2 2^e2, e2 + es <= 0 */
+  if (e2 + es < -1000)
+    e2 = -1000 - es;
+  *x = ldexp(*x, -m);
+  *a = ldexp(*a, -m);
+  *mu = ldexp(*mu, n - m);
+  *sigma2 = ldexp(*sigma2, e2);
+  return n;
+}
+
+static int fpt_quantile_unit(const char *fn, double p, double x, double a,
+                             double mu, double sigma2, sb_result *res);
+
 int sb_bm_fpt_quantile_e(double p, double x, double a, double mu,
                          double sigma2, sb_result *res)
 {
+  const double x0 = x, a0 = a;
+  const int n = fpt_units(&x, &a, &mu, &sigma2);
+  sb_result r;
+  int st = fpt_quantile_unit(__func__, p, x, a, mu, sigma2, &r);
+  if (n && !isnan(r.val)) {
+    const double v = r.val;
+    r.val = ldexp(r.val, n);
+    r.err = ldexp(r.err, n);
+    if (isinf(r.val) && isfinite(v))
+      st = sbi_fail(&r, SB_ERANGE, __func__, "the quantile for p = %g, "
+                    "x = %g, a = %g exceeds DBL_MAX", p, x0, a0);
+  }
+  if (res)
+    *res = r;
+  return st;
+}
+
+/* The quantile for arguments in fpt_units' range. */
+static int fpt_quantile_unit(const char *fn, double p, double x, double a,
+                             double mu, double sigma2, sb_result *res)
+{
   fpt_par q;
   sb_result r = {NAN, NAN};
-  int st = fpt_setup(__func__, x, a, mu, sigma2, &q, &r);
+  int st = fpt_setup(fn, x, a, mu, sigma2, &q, &r);
   if (st) {
-    if (res)
-      *res = r;
+    *res = r;
     return st;
   }
   if (!(p >= 0.0 && p <= 1.0)) {
-    st = sbi_fail(&r, SB_EDOM, __func__, "p = %g must be in [0, 1]", p);
-    if (res)
-      *res = r;
+    st = sbi_fail(&r, SB_EDOM, fn, "p = %g must be in [0, 1]", p);
+    *res = r;
     return st;
   }
   if (q.d.hi == 0.0 || p == 0.0) {
@@ -400,8 +455,7 @@ int sb_bm_fpt_quantile_e(double p, double x, double a, double mu,
        * step away: off by e).  Newton in t and the best double. */
       r.val = walk_doubles(&q, dist / q.nua, tg, upper);
       r.err = 4.0 * EPS * r.val;
-      if (res)
-        *res = r;
+      *res = r;
       return SB_SUCCESS;
     }
     fpt_qctx c = {&q, sref, log(tg), upper, 0.0, 1.0};
@@ -413,10 +467,9 @@ int sb_bm_fpt_quantile_e(double p, double x, double a, double mu,
     /* last step, rounding of exp and of the target, noise of F or SF */
     r.err = r.val * (2.0 * dy + 8.0 * EPS + (c.rel + 4.0 * EPS) / c.dlog);
     if (st)
-      sbi_error(st, __func__, "no convergence for p = %g", p);
+      sbi_error(st, fn, "no convergence for p = %g", p);
   }
-  if (res)
-    *res = r;
+  *res = r;
   return st;
 }
 
@@ -430,14 +483,35 @@ double sb_bm_fpt_quantile(double p, double x, double a, double mu,
 
 /* -------------------------------------------------------- sampler */
 
+static double fpt_sample_unit(const char *fn, const gsl_rng *r, double x,
+                              double a, double mu, double sigma2);
+
 double sb_bm_fpt_sample(const gsl_rng *r, double x, double a, double mu,
                         double sigma2)
 {
+  const double x0 = x, a0 = a;
+  const int n = fpt_units(&x, &a, &mu, &sigma2);
+  const double v = fpt_sample_unit(__func__, r, x, a, mu, sigma2);
+  if (n == 0 || !isfinite(v))
+    return v;
+  const double t = ldexp(v, n);
+  if (isinf(t)) {
+    sbi_error(SB_ERANGE, __func__, "the draw for x = %g, a = %g exceeds "
+              "DBL_MAX", x0, a0);
+    return NAN;
+  }
+  return t;
+}
+
+/* One draw for arguments in fpt_units' range. */
+static double fpt_sample_unit(const char *fn, const gsl_rng *r, double x,
+                              double a, double mu, double sigma2)
+{
   fpt_par q;
-  if (fpt_setup(__func__, x, a, mu, sigma2, &q, NULL))
+  if (fpt_setup(fn, x, a, mu, sigma2, &q, NULL))
     return NAN;
   if (r == NULL) {
-    sbi_fail(NULL, SB_EINVAL, __func__, "r is NULL");
+    sbi_fail(NULL, SB_EINVAL, fn, "r is NULL");
     return NAN;
   }
   if (q.d.hi == 0.0)

@@ -42,8 +42,11 @@
  * powers of two where a product would leave the double range, with the
  * same bits as before elsewhere) and return the value wherever it is a
  * normal double; a density above DBL_MAX is SB_ERANGE (NaN); values below
- * DBL_MIN are 0 or subnormal without error.  The quantile at extreme
- * arguments is not covered (docs/passage.md).
+ * DBL_MIN are 0 or subnormal without error.  The quantile and the sampler
+ * work in units scaled by powers of two where d, sigma2 or |mu| is far
+ * from 1: a quantile or draw above DBL_MAX is SB_ERANGE with NaN (the
+ * sampler records the status for sb_last_status()); +inf with status 0
+ * only for the defective law (docs/passage.md).
  *
  * Accuracy (tested against mpmath at 50 digits, tests/data/passage_*.csv):
  * relative error below 1e-13 for pdf, cdf and sf over t/mean and
@@ -75,10 +78,12 @@ double sb_bm_fpt_sf(double t, double x, double a, double mu, double sigma2);
  *  exp(-2 |x - a| |mu| / sigma2). */
 double sb_bm_fpt_mass(double x, double a, double mu, double sigma2);
 /** Smallest t with P(T <= t) >= p, for p in [0, 1]: 0 for p = 0 and +inf
- *  for p >= mass (defective law) or p = 1.  Full double precision. */
+ *  for p >= mass (defective law) or p = 1.  Full double precision; NaN
+ *  (SB_ERANGE) where the quantile exceeds DBL_MAX. */
 double sb_bm_fpt_quantile(double p, double x, double a, double mu,
                           double sigma2);
-/** One exact draw of T; +inf when the path never reaches the level.
+/** One exact draw of T; +inf when the path never reaches the level; NaN
+ *  (SB_ERANGE recorded) if the draw exceeds DBL_MAX.
  *  Uses one Gaussian (gsl_ran_gaussian_ziggurat) and one or two uniforms
  *  (gsl_rng_uniform) per call. */
 double sb_bm_fpt_sample(const gsl_rng *r, double x, double a, double mu,
