@@ -417,11 +417,12 @@ def gen_bridge_hit():
           rows)
 
 
-def hit_quantile(kind, p, x, y, a, s2, t):
-    """Exact quantile: bisection in log s, s = u t/(t - u)."""
+def hit_quantile(kind, p, x, y, a, s2, t, span=300):
+    """Exact quantile: bisection in log s, s = u t/(t - u), log s in
+    [-span, span]."""
     p = mp.mpf(p)
     t_ = mp.mpf(t)
-    lo, hi = mp.mpf(-300), mp.mpf(300)
+    lo, hi = mp.mpf(-span), mp.mpf(span)
     for _ in range(500):
         mid = (lo + hi) / 2
         s = mp.exp(mid)
@@ -449,6 +450,20 @@ def gen_bridge_quantile():
             for p in ps:
                 rows.append((kind, p, x, y, a, s2, t,
                              hit_quantile(kind, p, x, y, a, s2, t)))
+    # extreme corners (the iteration in log s failed there): laws
+    # narrower than one ulp (sigma2 = 1e-154, a = -1e300), u ~ 1e-300
+    # (sigma2 = 1e300), t = 1e300; 400 digits, log s in [-800, 800]
+    for (kind, p, x, y, a, s2, t) in [
+            (0, 0.3, 1.0, 0.5, 0.0, 1e-154, 1.0),
+            (0, 0.3, 1.0, 0.5, 0.0, 1e300, 1.0),
+            (0, 0.3, 1.0, 0.5, 0.0, 1.0, 1e300),
+            (0, 0.3, 1.0, 0.5, -1e300, 1.0, 1.0),
+            (1, 0.3, 2.0, 1.0, 0.5, 1e300, 1.0),
+            (1, 0.3, 2.0, 1.0, 0.5, 1.0, 1e300),
+            (1, 0.3, 2.0, 1.0, 0.5, 1e-154, 1.0)]:
+        with mp.workdps(400):
+            q = hit_quantile(kind, p, x, y, a, s2, t, 800)
+        rows.append((kind, p, x, y, a, s2, t, q))
     write("bridge_quantile.csv",
           ["kind", "p", "x", "y", "a", "sigma2", "t", "q"], rows)
 

@@ -726,9 +726,9 @@ END_TEST
  * magnitudes where double-double products (2^995) or squares (1e154)
  * overflow, the others ordinary: the value is finite with status 0, or NaN
  * with an error status (never NaN, or +-inf with status 0).  The values at
- * the extreme corners are checked against mpmath in bridge_hit.csv and
- * bridge_cross.csv (the rows after the "extreme" comments of
- * tests/gen_refdata.py). */
+ * the extreme corners are checked against mpmath in bridge_hit.csv,
+ * bridge_cross.csv and bridge_quantile.csv (the rows after the "extreme"
+ * comments of tests/gen_refdata.py). */
 typedef double (*xfn)(const double *a);
 static double x_bbpdf(const double *a)
 {
@@ -753,6 +753,15 @@ static double x_b3cdf(const double *a)
 static double x_b3sf(const double *a)
 {
   return sb_bes3b_hit_sf(a[0], a[1], a[2], a[3], a[4], a[5]);
+}
+
+static double x_bbq(const double *a)
+{
+  return sb_bb_hit_quantile(a[0], a[1], a[2], a[3], a[4], a[5]);
+}
+static double x_b3q(const double *a)
+{
+  return sb_bes3b_hit_quantile(a[0], a[1], a[2], a[3], a[4], a[5]);
 }
 
 /* crossing functions: (x, y, a, v) in a[1..4]; log P = -inf with status
@@ -790,7 +799,8 @@ START_TEST(test_extreme_arguments)
     int b;
   } k[] = {{x_bbpdf, 0}, {x_bbcdf, 0}, {x_bbsf, 0},
            {x_b3pdf, 1}, {x_b3cdf, 1}, {x_b3sf, 1},
-           {x_bblog, 2}, {x_b3log, 3}, {x_bbp, 2}, {x_b3p, 3}};
+           {x_bblog, 2}, {x_b3log, 3}, {x_bbp, 2}, {x_b3p, 3},
+           {x_bbq, 0},   {x_b3q, 1}};
   const double ext[] = {1e-320,  1e-300,  1e300,    DBL_MAX, -1e-320,
                         -1e-300, -1e300,  -DBL_MAX, 0.0,     0x1p995,
                         0x1p-995, 1e154,  1e-154};

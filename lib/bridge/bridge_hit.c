@@ -23,6 +23,8 @@
  */
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_integration.h>
@@ -871,6 +873,45 @@ static double polish_u(const hit_par *h, double u, double p, int upper)
   return u;
 }
 
+/* Fallback where the iteration in log s fails (laws narrower than one
+ * ulp of u, sigma2 t ~ 1e300 or 1e-300 relative to alpha^2, u near the
+ * underflow): bisection on the binary representation of u in [0, t] (the
+ * order of non-negative doubles is that of their bit patterns, so at most
+ * 64 steps) on the public evaluation path, then the better of the two
+ * adjacent doubles.  Where sigma2 u t w underflows the public cdf is 0 (u
+ * < t/2) or 1, and so is the sign used here.  *err: two ulp plus the cdf
+ * noise (1e-13 relative) over the density. */
+static double bisect_u(const hit_par *h, double p, int upper, double *err)
+{
+  uint64_t lo, hi;
+  double ulo = 0.0, uhi = h->t, glo = -p, ghi = 1.0 - p, f = 0.0;
+  memcpy(&lo, &ulo, sizeof lo);
+  memcpy(&hi, &uhi, sizeof hi);
+  while (hi - lo > 1) {
+    uint64_t mid = lo + (hi - lo) / 2;
+    double um, fm;
+    memcpy(&um, &mid, sizeof um);
+    double g = hit_g_at(h, um, p, upper, &fm);
+    if (isnan(g))
+      g = um < 0.5 * h->t ? -1.0 : 1.0;
+    if (g < 0.0) {
+      lo = mid;
+      ulo = um;
+      glo = g;
+    } else {
+      hi = mid;
+      uhi = um;
+      ghi = g;
+      f = fm;
+    }
+  }
+  const int up = fabs(ghi) <= fabs(glo);
+  const double u = up ? uhi : ulo;
+  *err = 2.0 * (uhi - ulo) +
+         (f > 0.0 ? 1e-13 * (upper ? 1.0 - p : p) / f : 0.0);
+  return u;
+}
+
 static int hit_quantile_unit(const char *fn, int b3, double p, double x,
                              double y, double a, double sigma2, double t,
                              sb_result *res);
@@ -938,6 +979,10 @@ static int hit_quantile_unit(const char *fn, int b3, double p, double x,
   res->val = u;
   res->err = u * w / t * (2.0 * dy + 8.0 * EPS + c.err / c.dlog) +
              2.0 * EPS * u;
+  if (st == SB_EMAXITER) {
+    res->val = bisect_u(&h, p, upper, &res->err);
+    st = SB_SUCCESS;
+  }
   if (st)
     sbi_error(st, fn, "no convergence for p = %g", p);
   return st;

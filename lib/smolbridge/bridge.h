@@ -57,7 +57,9 @@
  * Extremes: pdf, cdf and sf take any finite arguments; the pdf is the
  * right value wherever it is a normal double (extended exponents where an
  * intermediate leaves the doubles), 0 or subnormal below DBL_MIN, and
- * SB_ERANGE (NaN) where it exceeds DBL_MAX (docs/bridge.md).
+ * SB_ERANGE (NaN) where it exceeds DBL_MAX (docs/bridge.md).  The
+ * quantile falls back to bisection on the doubles of [0, t] where its
+ * iteration fails (laws narrower than one ulp, u ~ 1e-300 t).
  * Special cases: x <= a: T_a = 0 (cdf = 1 for u >= 0, pdf 0, quantile 0,
  * sample 0).  y <= a < x: the bridge surely hits, same formulas.  For B3B
  * a = 0 with x, y > 0 is SB_EDOM (the bridge never hits 0); y = 0 < x with
