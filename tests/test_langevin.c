@@ -592,6 +592,270 @@ START_TEST(test_extremes_finite)
 }
 END_TEST
 
+/* ------------------------------------------------- extreme arguments */
+
+/* One public function of langevin.h on an argument vector a: its status
+ * (sb_last_status for the plain forms, after sb_clear_error), its
+ * outputs in out[0..n-1] (n returned in *n) and the name that its error
+ * messages must carry. */
+typedef int (*xfn)(const double *a, double *out, int *n, const char **nm);
+
+#define PLAIN(NAME, EXPR)                                                   \
+  static int NAME(const double *a, double *out, int *n, const char **nm)   \
+  {                                                                         \
+    *nm = #EXPR;                                                            \
+    sb_clear_error();                                                       \
+    out[0] = EXPR(a[0], a[1], a[2]);                                        \
+    *n = 1;                                                                 \
+    return sb_last_status();                                                \
+  }
+#define WITH_E(NAME, EXPR)                                                  \
+  static int NAME(const double *a, double *out, int *n, const char **nm)   \
+  {                                                                         \
+    sb_result r;                                                            \
+    *nm = #EXPR;                                                            \
+    int st = EXPR(a[0], a[1], a[2], &r);                                    \
+    out[0] = r.val;                                                         \
+    out[1] = r.err;                                                         \
+    *n = 2;                                                                 \
+    return st;                                                              \
+  }
+PLAIN(x_var_u, sb_langevin_var_u)
+PLAIN(x_var_x, sb_langevin_var_x)
+PLAIN(x_cov_xu, sb_langevin_cov_xu)
+PLAIN(x_var_x_cond, sb_langevin_var_x_cond)
+PLAIN(x_msd, sb_langevin_msd)
+PLAIN(x_msd_bal, sb_langevin_msd_ballistic)
+PLAIN(x_msd_dif, sb_langevin_msd_diffusive)
+PLAIN(x_vacf, sb_langevin_vacf)
+WITH_E(x_var_u_e, sb_langevin_var_u_e)
+WITH_E(x_var_x_e, sb_langevin_var_x_e)
+WITH_E(x_cov_xu_e, sb_langevin_cov_xu_e)
+WITH_E(x_var_x_cond_e, sb_langevin_var_x_cond_e)
+WITH_E(x_msd_e, sb_langevin_msd_e)
+
+static int x_var_stat(const double *a, double *out, int *n, const char **nm)
+{
+  *nm = "sb_langevin_var_stat";
+  sb_clear_error();
+  out[0] = sb_langevin_var_stat(a[0], a[1]);
+  *n = 1;
+  return sb_last_status();
+}
+
+/* a = tau, B, us, t, x0, u0 */
+static int x_moments(const double *a, double *out, int *n, const char **nm)
+{
+  sb_langevin p = {a[0], a[1], a[2]};
+  sb_langevin_mom m;
+  *nm = "sb_langevin_moments";
+  int st = sb_langevin_moments(&p, a[3], a[4], a[5], &m);
+  out[0] = m.var_x, out[1] = m.var_u, out[2] = m.cov_xu;
+  out[3] = m.mean_x, out[4] = m.mean_u;
+  *n = 5;
+  return st;
+}
+
+/* a = tau, B, dt */
+static int x_coef(const double *a, double *out, int *n, const char **nm)
+{
+  sb_langevin_coef c;
+  *nm = "sb_langevin_coef_init";
+  int st = sb_langevin_coef_init(&c, a[0], a[1], a[2]);
+  out[0] = c.s_u, out[1] = c.s_xu, out[2] = c.s_xc, out[3] = c.gain;
+  out[4] = c.decay;
+  *n = 5;
+  return st;
+}
+
+static gsl_rng *xrng; /* test_extreme_arguments's generator */
+
+/* a = tau, B, us, dt, x, u: the new state (or the old one on error) */
+static int x_step(const double *a, double *out, int *n, const char **nm)
+{
+  sb_langevin p = {a[0], a[1], a[2]};
+  *nm = "sb_langevin_step";
+  out[3] = a[4], out[4] = a[5];
+  int st = sb_langevin_step(&p, a[3], xrng, &out[3], &out[4]);
+  out[0] = out[1] = out[2] = 0.0; /* (variances: none) */
+  *n = 5;
+  if (st) /* unchanged */
+    ck_assert(memcmp(&out[3], &a[4], sizeof(double)) == 0 &&
+              memcmp(&out[4], &a[5], sizeof(double)) == 0);
+  return st;
+}
+
+/* a = tau, B, us, dt, x, u: one particle of the batched step */
+static int x_step3(const double *a, double *out, int *n, const char **nm)
+{
+  double x[3] = {a[4], a[4], a[4]}, u[3] = {a[5], a[5], a[5]};
+  double us[3] = {a[2], a[2], a[2]};
+  *nm = "sb_langevin_step3";
+  int st = sb_langevin_step3(1, a[3], &a[0], &a[1], us, x, u, xrng);
+  out[0] = out[1] = out[2] = 0.0;
+  out[3] = x[1], out[4] = u[2];
+  *n = 5;
+  return st;
+}
+
+/* a = tau, B, us, dt, s/dt, x0, u0, x1, u1 */
+static int x_bridge(const double *a, double *out, int *n, const char **nm)
+{
+  sb_langevin p = {a[0], a[1], a[2]};
+  sb_langevin_mom m;
+  *nm = "sb_langevin_bridge_moments";
+  int st = sb_langevin_bridge_moments(&p, a[3], a[4] * a[3], a[5], a[6],
+                                      a[7], a[8], &m);
+  out[0] = m.var_x, out[1] = m.var_u, out[2] = 0.0;
+  out[3] = m.mean_x, out[4] = m.mean_u;
+  *n = 5;
+  return st;
+}
+
+static int x_bridge_sample(const double *a, double *out, int *n,
+                           const char **nm)
+{
+  sb_langevin p = {a[0], a[1], a[2]};
+  *nm = "sb_langevin_bridge_sample";
+  int st = sb_langevin_bridge_sample(&p, a[3], a[4] * a[3], a[5], a[6],
+                                     a[7], a[8], xrng, &out[3], &out[4]);
+  out[0] = out[1] = out[2] = 0.0;
+  *n = 5;
+  return st;
+}
+
+/* Each argument of each public function of langevin.h in turn over
+ * +-1e-320, +-1e-300, 0, +-1e300, +-DBL_MAX, +-inf, NaN (the others
+ * ordinary): the outputs are finite (variances and the SI quantities
+ * >= 0; a mean between the extremes of its inputs' scales is not
+ * checked) with status 0, or the status is an error, the plain value
+ * NaN and the message names the public function.  Then the corners of
+ * tests/data/langevin_extreme.csv (gen_langevin_ref.py, mpmath) where
+ * t/tau, B^2 or tau^3 leave the double range: the value wherever it is a
+ * normal double (these gave NaN, inf or 0 before), 0 or a subnormal
+ * where it underflows. */
+START_TEST(test_extreme_arguments)
+{
+  static const struct {
+    xfn f;
+    int n;       /* arguments */
+    int nonneg;  /* outputs 0..nonneg-1 are >= 0 */
+    double a[9];
+  } k[] = {
+      {x_var_u, 3, 1, {0.7, 1.3, 0.4}},
+      {x_var_x, 3, 1, {0.7, 1.3, 0.4}},
+      {x_cov_xu, 3, 1, {0.7, 1.3, 0.4}},
+      {x_var_x_cond, 3, 1, {0.7, 1.3, 0.4}},
+      {x_msd, 3, 1, {0.7, 1.3, 0.4}},
+      {x_msd_bal, 3, 1, {0.7, 1.3, 0.4}},
+      {x_msd_dif, 3, 1, {0.7, 1.3, 0.4}},
+      {x_vacf, 3, 1, {0.7, 1.3, -0.4}},
+      {x_var_u_e, 3, 2, {0.7, 1.3, 0.4}},
+      {x_var_x_e, 3, 2, {0.7, 1.3, 0.4}},
+      {x_cov_xu_e, 3, 2, {0.7, 1.3, 0.4}},
+      {x_var_x_cond_e, 3, 2, {0.7, 1.3, 0.4}},
+      {x_msd_e, 3, 2, {0.7, 1.3, 0.4}},
+      {x_var_stat, 2, 1, {0.7, 1.3}},
+      {x_moments, 6, 3, {0.7, 1.3, 0.2, 0.4, 1.5, -0.8}},
+      {x_coef, 3, 5, {0.7, 1.3, 0.4}},
+      {x_step, 6, 3, {0.7, 1.3, 0.2, 0.4, 1.5, -0.8}},
+      {x_step3, 6, 3, {0.7, 1.3, 0.2, 0.4, 1.5, -0.8}},
+      {x_bridge, 9, 2, {0.7, 1.3, 0.2, 0.4, 0.3, 1.5, -0.8, 1.6, 0.1}},
+      {x_bridge_sample, 9, 3, {0.7, 1.3, 0.2, 0.4, 0.3, 1.5, -0.8, 1.6,
+                               0.1}},
+  };
+  const double ext[] = {1e-320, -1e-320, 1e-300, -1e-300, 0.0, 1e300,
+                        -1e300, DBL_MAX, -DBL_MAX, INFINITY, -INFINITY,
+                        NAN};
+  const int next = (int)(sizeof ext / sizeof ext[0]);
+  int nbad = 0; /* every failure is printed, then counted */
+#define XCHECK(cond, ...)                                                   \
+  do {                                                                      \
+    if (!(cond)) {                                                          \
+      fprintf(stderr, __VA_ARGS__);                                         \
+      fputc('\n', stderr);                                                 \
+      nbad++;                                                               \
+    }                                                                       \
+  } while (0)
+  xrng = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(xrng, 20261129);
+  for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
+    for (int i = 0; i < k[f].n; i++)
+      for (int e = 0; e < next; e++) {
+        double a[9], out[5];
+        int n;
+        const char *nm;
+        memcpy(a, k[f].a, sizeof a);
+        a[i] = ext[e];
+        sb_clear_error();
+        const int st = k[f].f(a, out, &n, &nm);
+        if (st == SB_SUCCESS) {
+          for (int j = 0; j < n; j++)
+            XCHECK(isfinite(out[j]) && (j >= k[f].nonneg ||
+                                               out[j] >= 0),
+                          "%s, argument %d = %g: output %d = %g with "
+                          "status 0", nm, i, ext[e], j, out[j]);
+        } else {
+          XCHECK(st == SB_EDOM || st == SB_ERANGE,
+                        "%s, argument %d = %g: status %d", nm, i, ext[e],
+                        st);
+          XCHECK(strstr(sb_last_error(), nm) != NULL,
+                        "%s, argument %d = %g: message \"%s\"", nm, i,
+                        ext[e], sb_last_error());
+          if (n == 1)
+            XCHECK(isnan(out[0]), "%s, argument %d = %g: %g with "
+                          "status %d", nm, i, ext[e], out[0], st);
+        }
+      }
+  gsl_rng_free(xrng);
+#undef XCHECK
+  ck_assert_int_eq(nbad, 0);
+
+  sbt_table t;
+  sbt_table_load("langevin_extreme.csv", &t);
+  ck_assert_int_ge(t.nrow, 10);
+  int (*fe[5])(double, double, double, sb_result *) = {
+      sb_langevin_var_x_e, sb_langevin_var_u_e, sb_langevin_cov_xu_e,
+      sb_langevin_var_x_cond_e, sb_langevin_msd_e};
+  double (*fp[6])(double, double, double) = {
+      sb_langevin_var_x, sb_langevin_var_u, sb_langevin_cov_xu,
+      sb_langevin_var_x_cond, sb_langevin_msd, sb_langevin_vacf};
+  const char *nm[6] = {"var_x", "var_u", "cov_xu", "var_x_cond", "msd",
+                       "vacf"};
+  for (int i = 0; i < t.nrow; i++) {
+    const double tau = sbt_get(&t, i, "tau"), B = sbt_get(&t, i, "B");
+    const double tt = sbt_get(&t, i, "t");
+    for (int j = 0; j < 6; j++) {
+      const double want = sbt_get(&t, i, nm[j]);
+      char call[96];
+      snprintf(call, sizeof call, "%s(tau=%g, B=%g, t=%g)", nm[j], tau, B,
+               tt);
+      if (j < 5)
+        check_e(fe[j], nm[j], tau, B, tt, want, TOL_MOM);
+      ck_assert_msg(sbt_reldiff(fp[j](tau, B, tt), want) <= TOL_MOM,
+                    "%s: %.17g, want %.17g", call, fp[j](tau, B, tt), want);
+    }
+    sb_langevin p = {tau, B, 0.0};
+    sb_langevin_mom m;
+    ck_assert_int_eq(sb_langevin_moments(&p, tt, 0.0, 0.0, &m), SB_SUCCESS);
+    ck_assert_rel(m.var_x, sbt_get(&t, i, "var_x"), TOL_MOM);
+    ck_assert_rel(m.var_u, sbt_get(&t, i, "var_u"), TOL_MOM);
+    ck_assert_rel(m.cov_xu, sbt_get(&t, i, "cov_xu"), TOL_MOM);
+    sb_langevin_coef c;
+    ck_assert_int_eq(sb_langevin_coef_init(&c, tau, B, tt), SB_SUCCESS);
+    const double g = sbt_get(&t, i, "gain");
+    if (g >= DBL_MIN)
+      ck_assert_rel(c.gain, g, TOL_MOM);
+    else /* subnormal: to its last place */
+      ck_assert_abs(c.gain, g, 0x1p-1074);
+    ck_assert_rel(c.s_u, sbt_get(&t, i, "s_u"), TOL_MOM);
+    ck_assert_rel(c.s_xu, sbt_get(&t, i, "s_xu"), TOL_MOM);
+    ck_assert_rel(c.s_xc, sbt_get(&t, i, "s_xc"), TOL_MOM);
+  }
+  sbt_table_free(&t);
+}
+END_TEST
+
 enum { S3N = 5 }; /* particles in test_step3_order */
 
 /* Restart a run: states from (x0, u0), generator seeded with seed. */
@@ -701,6 +965,7 @@ static Suite *langevin_suite(void)
   tcase_add_test(tc, test_domain);
   tcase_add_test(tc, test_extremes_finite);
   tcase_add_test(tc, test_step3_order);
+  tcase_add_test(tc, test_extreme_arguments);
   suite_add_tcase(s, tc);
   return s;
 }

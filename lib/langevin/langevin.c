@@ -9,6 +9,8 @@
 #include <smolbridge/langevin.h>
 
 #include "common/internal.h"
+#include "common/numutil.h"
+#include "langevin_internal.h"
 
 /* Error bounds, in units of |val|, for the closed forms below: a few
  * roundings each (see the accuracy note in each helper); the tests check
@@ -65,6 +67,77 @@ static double sc_vx(double h)
   return cfun(h) + a * a * a / (2.0 * (2.0 - a));
 }
 
+static double sc_xu2(double h)
+{
+  double a = -expm1(-h);
+  return a * a * a / (2.0 * (2.0 - a));
+}
+
+static double sc_msd(double h);
+
+#define X(x) sbi_xd_of(x)
+#define MUL(a, b) sbi_xd_mul((a), (b))
+
+/* Extreme arguments.  The values are products B^2 tau^k K(h) whose
+ * factors can each leave the double range while the value is a double:
+ * tau = 1e300 with t = 1 has h = 1e-300 and K(h) ~ h^3 = 0, times
+ * tau^3 = inf (a NaN before); tau = 1e-300 with t = 1e300 has h = inf.
+ * The products are taken in sbi_xd arithmetic (numutil.h: the same bits
+ * as the double chain wherever nothing over/underflows), h = t/tau too,
+ * and K(h) comes from sbi_langevin_kern: below DBL_MIN the leading term
+ * k0 h^j of its Taylor series at 0 (K(h) = k0 h^j (1 + O(h)) with
+ * h < 1e-100 there), above h = DBL_MAX its limit (h for the kernels
+ * growing like h - const, relative error const/h < 1e-307). */
+sbi_xd sbi_langevin_kern(int kind, sbi_xd h)
+{
+  const double hv = sbi_xd_val(h);
+  if (isinf(hv)) {
+    if (kind == SBI_LK_A)
+      return X(1.0);
+    if (kind == SBI_LK_VX || kind == SBI_LK_VXC || kind == SBI_LK_MSD)
+      return h;
+    return X(0.5);
+  }
+  double K;
+  switch (kind) {
+  case SBI_LK_A: K = -expm1(-hv); break;
+  case SBI_LK_VU: K = sc_vu(hv); break;
+  case SBI_LK_CXU: K = sc_cxu(hv); break;
+  case SBI_LK_XU2: K = sc_xu2(hv); break;
+  case SBI_LK_VX: K = sc_vx(hv); break;
+  case SBI_LK_VXC: K = cfun(hv); break;
+  default: K = sc_msd(hv); break;
+  }
+  if (K >= DBL_MIN)
+    return X(K);
+  /* small h: K ~ k0 h^j */
+  static const double k0[] = {1.0, 1.0, 0.5, 0.25, 1.0 / 3.0, 1.0 / 12.0,
+                              0.5};
+  static const int j[] = {1, 1, 2, 3, 3, 3, 2};
+  sbi_xd v = X(k0[kind]);
+  for (int i = 0; i < j[kind]; i++)
+    v = MUL(v, h);
+  return v;
+}
+
+/* The double nearest v; NaN and SB_ERANGE (recorded for func) where it
+ * exceeds DBL_MAX. */
+static double xd_value(sbi_xd v, const char *func)
+{
+  const double d = sbi_xd_val(v);
+  if (isfinite(d))
+    return d;
+  sbi_error(SB_ERANGE, func, "the value overflows a double at these "
+            "arguments");
+  return NAN;
+}
+
+/* h = t/tau as an sbi_xd */
+static sbi_xd xd_h(double t, double tau)
+{
+  return sbi_xd_div(X(t), X(tau));
+}
+
 /* Argument checks shared by the (tau, B, t) functions; returns a status and
  * records the message under the public function's name. */
 static int check_tbt(const char *func, double tau, double B, double t,
@@ -82,9 +155,10 @@ static int check_tbt(const char *func, double tau, double B, double t,
 }
 
 /* Define `double sb_NAME(tau, B, t)` and `int sb_NAME_e(..., res)` from a
- * scaled kernel KERN(h) (value = B^2 tau^k KERN(t/tau), TAUK the
- * expression tau^k) and a relative error bound. */
-#define SB_LANGEVIN_TBT(NAME, KERN, TAUK, RELERR)                           \
+ * scaled kernel KIND (value = B^2 tau^k K(t/tau), TAUK the sbi_xd
+ * expression tau^k) and a relative error bound; SB_ERANGE where the value
+ * exceeds DBL_MAX. */
+#define SB_LANGEVIN_TBT(NAME, KIND, TAUK, RELERR)                           \
   int sb_langevin_##NAME##_e(double tau, double B, double t,                \
                              sb_result *res)                                \
   {                                                                         \
@@ -96,28 +170,35 @@ static int check_tbt(const char *func, double tau, double B, double t,
     }                                                                       \
     if (!res)                                                               \
       return sbi_error(SB_EINVAL, __func__, "res is NULL");                 \
-    double v = B * B * (TAUK) * KERN(t / tau);                              \
+    double v = xd_value(MUL(MUL(MUL(X(B), X(B)), TAUK),                     \
+                            sbi_langevin_kern(KIND, xd_h(t, tau))),         \
+                        __func__);                                          \
     res->val = v;                                                           \
     res->err = (RELERR) * fabs(v);                                          \
-    return SB_SUCCESS;                                                      \
+    return isnan(v) ? SB_ERANGE : SB_SUCCESS;                               \
   }                                                                         \
   double sb_langevin_##NAME(double tau, double B, double t)                 \
   {                                                                         \
     if (check_tbt(__func__, tau, B, t, 0))                                  \
       return NAN;                                                           \
-    return B * B * (TAUK) * KERN(t / tau);                                  \
+    return xd_value(MUL(MUL(MUL(X(B), X(B)), TAUK),                         \
+                        sbi_langevin_kern(KIND, xd_h(t, tau))),             \
+                    __func__);                                              \
   }
 
-SB_LANGEVIN_TBT(var_u, sc_vu, tau, ERR_VU)
-SB_LANGEVIN_TBT(cov_xu, sc_cxu, tau * tau, ERR_CXU)
-SB_LANGEVIN_TBT(var_x, sc_vx, tau * tau * tau, ERR_VX)
-SB_LANGEVIN_TBT(var_x_cond, cfun, tau * tau * tau, ERR_VXC)
+#define TAU1 X(tau)
+#define TAU2 MUL(X(tau), X(tau))
+#define TAU3 MUL(MUL(X(tau), X(tau)), X(tau))
+SB_LANGEVIN_TBT(var_u, SBI_LK_VU, TAU1, ERR_VU)
+SB_LANGEVIN_TBT(cov_xu, SBI_LK_CXU, TAU2, ERR_CXU)
+SB_LANGEVIN_TBT(var_x, SBI_LK_VX, TAU3, ERR_VX)
+SB_LANGEVIN_TBT(var_x_cond, SBI_LK_VXC, TAU3, ERR_VXC)
 
 double sb_langevin_var_stat(double tau, double B)
 {
   if (check_tbt(__func__, tau, B, 0.0, 0))
     return NAN;
-  return 0.5 * B * B * tau;
+  return xd_value(MUL(MUL(MUL(X(0.5), X(B)), X(B)), X(tau)), __func__);
 }
 
 /* MSD = B^2 tau^3 (h - a), a = 1 - e^{-h}.  h - a cancels for small h
@@ -141,40 +222,50 @@ int sb_langevin_msd_e(double tau, double B, double t, sb_result *res)
   }
   if (!res)
     return sbi_error(SB_EINVAL, __func__, "res is NULL");
-  double v = B * B * tau * tau * tau * sc_msd(t / tau);
+  double v = xd_value(MUL(MUL(MUL(MUL(MUL(X(B), X(B)), X(tau)), X(tau)),
+                              X(tau)),
+                          sbi_langevin_kern(SBI_LK_MSD, xd_h(t, tau))),
+                      "sb_langevin_msd_e");
   res->val = v;
   res->err = ERR_VX * fabs(v);
-  return SB_SUCCESS;
+  return isnan(v) ? SB_ERANGE : SB_SUCCESS;
 }
 
 double sb_langevin_msd(double tau, double B, double t)
 {
   if (check_tbt(__func__, tau, B, t, 0))
     return NAN;
-  sb_result r;
-  sb_langevin_msd_e(tau, B, t, &r);
-  return r.val;
+  return xd_value(MUL(MUL(MUL(MUL(MUL(X(B), X(B)), X(tau)), X(tau)),
+                          X(tau)),
+                      sbi_langevin_kern(SBI_LK_MSD, xd_h(t, tau))),
+                  __func__);
 }
 
 double sb_langevin_msd_ballistic(double tau, double B, double t)
 {
   if (check_tbt(__func__, tau, B, t, 0))
     return NAN;
-  return 0.5 * B * B * tau * t * t;
+  return xd_value(MUL(MUL(MUL(MUL(MUL(X(0.5), X(B)), X(B)), X(tau)), X(t)),
+                      X(t)),
+                  __func__);
 }
 
 double sb_langevin_msd_diffusive(double tau, double B, double t)
 {
   if (check_tbt(__func__, tau, B, t, 0))
     return NAN;
-  return B * B * tau * tau * t;
+  return xd_value(MUL(MUL(MUL(MUL(X(B), X(B)), X(tau)), X(tau)), X(t)),
+                  __func__);
 }
 
 double sb_langevin_vacf(double tau, double B, double t)
 {
   if (check_tbt(__func__, tau, B, t, 1))
     return NAN;
-  return 0.5 * B * B * tau * exp(-fabs(t) / tau);
+  /* |t|/tau = inf gives exp(-inf) = 0, the right value */
+  return xd_value(MUL(MUL(MUL(MUL(X(0.5), X(B)), X(B)), X(tau)),
+                      sbi_xd_expneg(fabs(t) / tau)),
+                  __func__);
 }
 
 int sb_langevin_moments(const sb_langevin *p, double t, double x0, double u0,
@@ -192,12 +283,37 @@ int sb_langevin_moments(const sb_langevin *p, double t, double x0, double u0,
     return sbi_error(SB_EDOM, __func__,
                      "us = %g, x0 = %g, u0 = %g must be finite", p->us, x0,
                      u0);
-  double tau = p->tau, B2 = p->B * p->B, h = t / tau;
-  double a = -expm1(-h), w = u0 - p->us;
-  m->mean_u = p->us + w * exp(-h);
-  m->mean_x = x0 + p->us * t + w * tau * a;
-  m->var_u = B2 * tau * sc_vu(h);
-  m->cov_xu = B2 * tau * tau * sc_cxu(h);
-  m->var_x = B2 * tau * tau * tau * sc_vx(h);
+  const double tau = p->tau, B = p->B;
+  const sbi_xd hx = xd_h(t, tau), ax = sbi_langevin_kern(SBI_LK_A, hx);
+  const sbi_xd B2 = MUL(X(B), X(B));
+  const double h = sbi_xd_val(hx); /* t/tau: inf gives e = 0 */
+  double w = u0 - p->us, e = exp(-h), mx, mu;
+  /* (the same operations as the plain formulas of the header) */
+  if (isfinite(w)) {
+    mu = p->us + w * e;
+    mx = x0 + p->us * t + sbi_xd_val(MUL(MUL(X(w), X(tau)), ax));
+  } else { /* u0 - us overflows: halve it, mean_u lies between us and u0 */
+    w = 0.5 * u0 - 0.5 * p->us;
+    mu = 2.0 * (0.5 * p->us + w * e);
+    mx = x0 + p->us * t + 2.0 * sbi_xd_val(MUL(MUL(X(w), X(tau)), ax));
+  }
+  const double vu = sbi_xd_val(
+      MUL(MUL(B2, X(tau)), sbi_langevin_kern(SBI_LK_VU, hx)));
+  const double cxu = sbi_xd_val(
+      MUL(MUL(MUL(B2, X(tau)), X(tau)), sbi_langevin_kern(SBI_LK_CXU, hx)));
+  const double vx = sbi_xd_val(
+      MUL(MUL(MUL(MUL(B2, X(tau)), X(tau)), X(tau)),
+          sbi_langevin_kern(SBI_LK_VX, hx)));
+  if (!isfinite(mx) || !isfinite(mu) || !isfinite(vx) || !isfinite(vu) ||
+      !isfinite(cxu))
+    return sbi_error(SB_ERANGE, __func__,
+                     "a moment overflows a double (mean_x = %g, mean_u = "
+                     "%g, var_x = %g, var_u = %g, cov_xu = %g)", mx, mu, vx,
+                     vu, cxu);
+  m->mean_u = mu;
+  m->mean_x = mx;
+  m->var_u = vu;
+  m->cov_xu = cxu;
+  m->var_x = vx;
   return SB_SUCCESS;
 }

@@ -27,17 +27,24 @@
  * Sampling: Cholesky of S, with S11 = P22/det P, S12 = -P12/det P and the
  * Schur complement S22 - S12^2/S11 = 1/P22.
  */
+#include <float.h>
 #include <math.h>
 
 #include <gsl/gsl_randist.h>
 #include <smolbridge/langevin.h>
 
 #include "common/internal.h"
+#include "common/numutil.h"
 #include "langevin_hit_internal.h"
+
+#define X(x) sbi_xd_of(x)
+#define MUL(a, b) sbi_xd_mul((a), (b))
 
 /* Smallest s/tau or (dt-s)/tau accepted: det P ~ (tau/s)^4 must not
  * overflow (1e-60 leaves a margin of ~10^60). */
 #define HMIN 1e-60
+/* Largest dt/tau accepted (the scaled lag moments are ~h there). */
+#define HMAX 1e300
 
 /* Unit-free transition over lag h: Phi = [[1, a], [0, e]] and the inverse
  * covariance M = Sigma^{-1} = [[vu, -cxu], [-cxu, vx]] / (vu * vxc). */
@@ -103,6 +110,13 @@ typedef struct {
   double mx, mu;           /* posterior mean, scaled frame (origin x0) */
   double p11, p12, p22;    /* posterior precision */
   double det;              /* det P */
+  /* Extreme B or tau: the scales sx = B tau^1.5 or su = B tau^0.5 (or
+   * the scaled end states) leave the normal range, and the mean is taken
+   * unscaled instead (scaled = 0): mean_x = x0 + us s + ox, mean_u =
+   * us + ou, with sbi_xd products for tau times a velocity. */
+  int scaled;
+  double ox, ou;
+  sbi_xd sx, su;           /* the scales */
 } post;
 
 /* Validate, reduce to the scaled frame and compute the posterior.
@@ -139,19 +153,49 @@ static int bridge_core(const char *func, const sb_langevin *p, double dt,
                      "s = %g is closer than 1e-60 tau to 0 or dt = %g", s,
                      dt);
 
+  if (!(h <= HMAX))
+    return sbi_error(SB_EDOM, func, "dt/tau = %g exceeds 1e300", h);
+
   /* scaled end states in the moving frame (origin at x0) */
-  double sx = B * tau * sqrt(tau), su = B * sqrt(tau);
-  double U0 = (u0 - us) / su;
-  double X1 = ((x1 - x0) - us * dt) / sx, U1 = (u1 - us) / su;
+  const double w0 = u0 - us, w1 = u1 - us, d1 = (x1 - x0) - us * dt;
+  if (!isfinite(w0) || !isfinite(w1) || !isfinite(d1))
+    return sbi_error(SB_ERANGE, func, "u0 - us = %g, u1 - us = %g or "
+                     "x1 - x0 - us dt = %g overflows", w0, w1, d1);
+  const sbi_xd sx = MUL(MUL(X(B), X(tau)), sbi_xd_sqrt(X(tau)));
+  const sbi_xd su = MUL(X(B), sbi_xd_sqrt(X(tau)));
+  q->sx = sx, q->su = su;
+  double U0 = sbi_xd_val(sbi_xd_div(X(w0), su));
+  double X1 = sbi_xd_val(sbi_xd_div(X(d1), sx));
+  double U1 = sbi_xd_val(sbi_xd_div(X(w1), su));
 
   gain g;
   gain_init(&g, hs, hr, h);
   q->p11 = g.p11, q->p12 = g.p12, q->p22 = g.p22, q->det = g.det;
-  /* prior mean at s and innovation at dt (unconditioned mean Phi_dt Z0) */
-  double msx = U0 * g.as, msu = U0 * g.es;
-  double dx = X1 - U0 * g.ah, du = U1 - U0 * g.eh;
-  q->mx = msx + g.k11 * dx + g.k12 * du;
-  q->mu = msu + g.k21 * dx + g.k22 * du;
+  const double sxv = sbi_xd_val(sx), suv = sbi_xd_val(su);
+  q->scaled = sxv >= DBL_MIN && suv >= DBL_MIN && isfinite(sxv) &&
+              isfinite(suv) && isfinite(U0) && isfinite(X1) &&
+              isfinite(U1);
+  if (q->scaled) {
+    /* prior mean at s and innovation at dt (unconditioned mean
+     * Phi_dt Z0) */
+    double msx = U0 * g.as, msu = U0 * g.es;
+    double dx = X1 - U0 * g.ah, du = U1 - U0 * g.eh;
+    q->mx = msx + g.k11 * dx + g.k12 * du;
+    q->mu = msu + g.k21 * dx + g.k22 * du;
+    q->ox = sxv * q->mx;
+    q->ou = suv * q->mu;
+  } else {
+    /* the same mean times (sx, su), with sx U0 = tau w0, sx X1 = d1,
+     * sx U1 = tau w1, su U0 = w0, su X1 = d1/tau, su U1 = w1 */
+    const sbi_xd T0 = MUL(X(tau), X(w0));
+    const double dx = d1 - sbi_xd_val(MUL(T0, X(g.ah)));
+    const double du = w1 - w0 * g.eh;
+    q->mx = q->mu = NAN;
+    q->ox = sbi_xd_val(MUL(T0, X(g.as))) + g.k11 * dx +
+            g.k12 * sbi_xd_val(MUL(X(tau), X(du)));
+    q->ou = w0 * g.es + sbi_xd_val(sbi_xd_div(X(g.k21), X(tau))) * dx +
+            g.k22 * du;
+  }
   return SB_SUCCESS;
 }
 
@@ -178,13 +222,25 @@ int sb_langevin_bridge_moments(const sb_langevin *p, double dt, double s,
     m->var_x = m->var_u = m->cov_xu = 0.0;
     return SB_SUCCESS;
   }
-  double tau = p->tau, B2 = p->B * p->B;
-  double sx = p->B * tau * sqrt(tau), su = p->B * sqrt(tau);
-  m->mean_x = x0 + p->us * s + sx * q.mx;
-  m->mean_u = p->us + su * q.mu;
-  m->var_x = B2 * tau * tau * tau * (q.p22 / q.det);
-  m->var_u = B2 * tau * (q.p11 / q.det);
-  m->cov_xu = B2 * tau * tau * (-q.p12 / q.det);
+  const double tau = p->tau;
+  const sbi_xd B2 = MUL(X(p->B), X(p->B));
+  const double mx = x0 + p->us * s + q.ox, mu = p->us + q.ou;
+  const double vx = sbi_xd_val(MUL(MUL(MUL(MUL(B2, X(tau)), X(tau)), X(tau)),
+                                   X(q.p22 / q.det)));
+  const double vu = sbi_xd_val(MUL(MUL(B2, X(tau)), X(q.p11 / q.det)));
+  const double cxu = sbi_xd_val(MUL(MUL(MUL(B2, X(tau)), X(tau)),
+                                    X(-q.p12 / q.det)));
+  if (!isfinite(mx) || !isfinite(mu) || !isfinite(vx) || !isfinite(vu) ||
+      !isfinite(cxu))
+    return sbi_error(SB_ERANGE, __func__,
+                     "a moment overflows a double (mean_x = %g, mean_u = "
+                     "%g, var_x = %g, var_u = %g, cov_xu = %g)", mx, mu, vx,
+                     vu, cxu);
+  m->mean_x = mx;
+  m->mean_u = mu;
+  m->var_x = vx;
+  m->var_u = vu;
+  m->cov_xu = cxu;
   return SB_SUCCESS;
 }
 
@@ -214,10 +270,20 @@ int sb_langevin_bridge_sample(const sb_langevin *p, double dt, double s,
   double l22 = 1.0 / sqrt(q.p22);
   double z1 = gsl_ran_gaussian_ziggurat(r, 1.0);
   double z2 = gsl_ran_gaussian_ziggurat(r, 1.0);
-  double tau = p->tau;
-  double sx = p->B * tau * sqrt(tau), su = p->B * sqrt(tau);
-  *xs = x0 + p->us * s + sx * (q.mx + l11 * z1);
-  *us = p->us + su * (q.mu + l21 * z1 + l22 * z2);
+  double x, u;
+  if (q.scaled) {
+    const double sx = sbi_xd_val(q.sx), su = sbi_xd_val(q.su);
+    x = x0 + p->us * s + sx * (q.mx + l11 * z1);
+    u = p->us + su * (q.mu + l21 * z1 + l22 * z2);
+  } else {
+    x = x0 + p->us * s + q.ox + sbi_xd_val(MUL(q.sx, X(l11 * z1)));
+    u = p->us + q.ou + sbi_xd_val(MUL(q.su, X(l21 * z1 + l22 * z2)));
+  }
+  if (!isfinite(x) || !isfinite(u))
+    return sbi_error(SB_ERANGE, __func__, "the draw (x = %g, u = %g) "
+                     "overflows a double", x, u);
+  *xs = x;
+  *us = u;
   return SB_SUCCESS;
 }
 

@@ -19,20 +19,47 @@
 #include <smolbridge/rng.h>
 
 #include "common/internal.h"
+#include "langevin_internal.h"
 
-static int coef_fill(sb_langevin_coef *c, double tau, double B, double dt)
+/* The coefficients in sbi_xd arithmetic (the same bits as the double
+ * formulas wherever nothing over/underflows; langevin_internal.h for the
+ * kernels at h = dt/tau below 1e-100 or above DBL_MAX): tau = 1e300 with
+ * dt = 1 gave s_xu = 0 and s_xc = NaN before.  SB_ERANGE (for func), *c
+ * NaN, where a coefficient exceeds DBL_MAX. */
+static int coef_fill(sb_langevin_coef *c, double tau, double B, double dt,
+                     const char *func)
 {
-  double h = dt / tau, a = -expm1(-h);
-  double st = sqrt(tau), bt = B * st;  /* B sqrt(tau) */
+  const sbi_xd h = sbi_xd_div(sbi_xd_of(dt), sbi_xd_of(tau));
+  const sbi_xd tx = sbi_xd_of(tau);
+  const sbi_xd bt = sbi_xd_mul(sbi_xd_of(B), sbi_xd_sqrt(tx)); /* B sqrt(tau) */
+  const sbi_xd btt = sbi_xd_mul(bt, tx);
   c->dt = dt;
-  c->decay = exp(-h);
-  c->gain = tau * a;
-  c->s_u = bt * sqrt(0.5 * a * (2.0 - a));
-  c->s_xu = bt * tau * sqrt(a * a * a / (2.0 * (2.0 - a)));
-  /* unit-free c(h): var_x_cond with tau = B = 1 at t = h (never fails:
-   * h >= 0 is finite since dt and tau are) */
-  c->s_xc = bt * tau * sqrt(sb_langevin_var_x_cond(1.0, 1.0, h));
+  c->decay = exp(-sbi_xd_val(h));
+  c->gain = sbi_xd_val(sbi_xd_mul(tx, sbi_langevin_kern(SBI_LK_A, h)));
+  c->s_u = sbi_xd_val(
+      sbi_xd_mul(bt, sbi_xd_sqrt(sbi_langevin_kern(SBI_LK_VU, h))));
+  c->s_xu = sbi_xd_val(
+      sbi_xd_mul(btt, sbi_xd_sqrt(sbi_langevin_kern(SBI_LK_XU2, h))));
+  /* c(h) as in sb_langevin_var_x_cond (its small-h series) */
+  c->s_xc = sbi_xd_val(
+      sbi_xd_mul(btt, sbi_xd_sqrt(sbi_langevin_kern(SBI_LK_VXC, h))));
+  if (!isfinite(c->gain) || !isfinite(c->s_u) || !isfinite(c->s_xu) ||
+      !isfinite(c->s_xc)) {
+    int st = sbi_error(SB_ERANGE, func,
+                       "tau = %g, B = %g, dt = %g: a step coefficient "
+                       "overflows a double", tau, B, dt);
+    c->dt = c->decay = c->gain = c->s_u = c->s_xu = c->s_xc = NAN;
+    return st;
+  }
   return SB_SUCCESS;
+}
+
+/* tau, B, dt (valid) within 2^-300..2^300 (or B, dt zero): no
+ * coefficient can overflow (B tau^1.5 sqrt(h) < 2^900) */
+static int ordinary(double tau, double B, double dt)
+{
+  return tau > 0x1p-300 && tau < 0x1p300 && (B == 0 || (B > 0x1p-300 &&
+         B < 0x1p300)) && (dt == 0 || (dt > 0x1p-300 && dt < 0x1p300));
 }
 
 static int bad_params(const char *func, double tau, double B, double dt)
@@ -57,7 +84,7 @@ int sb_langevin_coef_init(sb_langevin_coef *c, double tau, double B,
     c->dt = c->decay = c->gain = c->s_u = c->s_xu = c->s_xc = NAN;
     return st;
   }
-  return coef_fill(c, tau, B, dt);
+  return coef_fill(c, tau, B, dt, __func__);
 }
 
 /* One component: the exact update with coefficients c, fluid velocity w.
@@ -87,8 +114,17 @@ int sb_langevin_step(const sb_langevin *p, double dt, const gsl_rng *r,
   if (dt == 0)
     return SB_SUCCESS;
   sb_langevin_coef c;
-  coef_fill(&c, p->tau, p->B, dt);
-  step1(&c, p->us, r, x, u);
+  st = coef_fill(&c, p->tau, p->B, dt, __func__);
+  if (st)
+    return st;
+  double xn = *x, un = *u;
+  step1(&c, p->us, r, &xn, &un);
+  if (!isfinite(xn) || !isfinite(un))
+    return sbi_error(SB_ERANGE, __func__,
+                     "the new state (x = %g, u = %g) overflows a double",
+                     xn, un);
+  *x = xn;
+  *u = un;
   return SB_SUCCESS;
 }
 
@@ -107,12 +143,25 @@ int sb_langevin_step3(size_t n, double dt, const double *tau,
       return sbi_error(st, __func__,
                        "particle %zu: tau = %g, B = %g, dt = %g (need tau > "
                        "0, B >= 0, dt >= 0, finite)", i, tau[i], B[i], dt);
+    for (int k = 0; k < 3; k++)
+      if (!isfinite(x[3 * i + k]) || !isfinite(u[3 * i + k]) ||
+          (us && !isfinite(us[3 * i + k])))
+        return sbi_error(SB_EDOM, __func__, "particle %zu: x, u and us "
+                         "must be finite", i);
+    if (!ordinary(tau[i], B[i], dt)) {
+      sb_langevin_coef c;
+      st = coef_fill(&c, tau[i], B[i], dt, __func__);
+      if (st)
+        return sbi_error(st, __func__, "particle %zu: tau = %g, B = %g, "
+                         "dt = %g: a coefficient overflows", i, tau[i],
+                         B[i], dt);
+    }
   }
   if (dt == 0)
     return SB_SUCCESS;
   for (size_t i = 0; i < n; i++) {
     sb_langevin_coef c;
-    coef_fill(&c, tau[i], B[i], dt);
+    coef_fill(&c, tau[i], B[i], dt, __func__); /* checked above */
     for (int k = 0; k < 3; k++)
       step1(&c, us ? us[3 * i + k] : 0.0, r, &x[3 * i + k], &u[3 * i + k]);
   }

@@ -34,6 +34,16 @@
  * t/tau in [1e-10, 1e10]; below 1e-10 the results stay accurate until
  * var_x underflows (t/tau ~ 1e-100 for tau = B = 1).
  *
+ * Extreme arguments (docs/langevin.md §6): every function returns the
+ * right value wherever it is a double, for any tau, B, t in the double
+ * range (tau = 1e300 with t = 1: var_x = B^2 t^3/3; tau = 1e-300 with
+ * t = 1e300: B^2 tau^2 t; B^2 or tau^3 beyond DBL_MAX): the products are
+ * formed with the exponents set aside (the same bits as the formulas
+ * above wherever nothing over/underflows) and the unit-free kernels by
+ * their leading term where t/tau is below ~1e-100 or above DBL_MAX.  A
+ * value above DBL_MAX is SB_ERANGE (NaN for the plain forms); one below
+ * DBL_MIN is 0 or a subnormal, without error.
+ *
  * Thread safety: no global state; generators are passed in by the caller.
  * Randomness: Gaussian variates come from gsl_ran_gaussian_ziggurat, drawn
  * in a documented order, so the same generator state gives bit-identical
@@ -72,7 +82,8 @@ typedef struct {
 
 /** Exact moments of (X_t, U_t) given X_0 = x0, U_0 = u0 (formulas above).
  *  Domain: valid *p, t >= 0 finite, x0 and u0 finite; else SB_EDOM (and
- *  SB_EINVAL for NULL pointers), with *m set to NaN.  Accuracy: variances
+ *  SB_EINVAL for NULL pointers), with *m set to NaN; SB_ERANGE, *m NaN,
+ *  where a moment exceeds DBL_MAX.  Accuracy: variances
  *  and covariance to a few ulps; the means to a few ulps of the largest of
  *  |x0|, |us t|, |(u0 - us) tau a|. */
 int sb_langevin_moments(const sb_langevin *p, double t, double x0, double u0,
@@ -80,8 +91,9 @@ int sb_langevin_moments(const sb_langevin *p, double t, double x0, double u0,
 
 /* The next functions depend on (tau, B, t) only.  Domain: tau > 0, B >= 0,
  * t >= 0, all finite (t may be negative for the autocorrelation).  The plain
- * form returns NaN on a domain error; the _e form returns the status and an
- * error estimate err (a bound, a few ulps of val). */
+ * form returns NaN on a domain error (SB_EDOM) or where the value exceeds
+ * DBL_MAX (SB_ERANGE, recorded for sb_last_error); the _e form returns the
+ * status and an error estimate err (a bound, a few ulps of val). */
 
 /** Velocity variance B^2 tau/2 (1 - e^{-2t/tau}) = B^2 tau/2 a (2 - a). */
 double sb_langevin_var_u(double tau, double B, double t);
@@ -141,7 +153,9 @@ double sb_langevin_vacf(double tau, double B, double t);
  *  without dividing by var_u so that dt -> 0 is not degenerate).
  *  Domain: valid *p, dt >= 0 finite (dt = 0 leaves the state unchanged),
  *  valid for dt/tau in [1e-10, 1e10] and beyond; *x, *u finite.
- *  Errors: SB_EDOM / SB_EINVAL, state unchanged. */
+ *  Errors: SB_EDOM / SB_EINVAL, state unchanged; SB_ERANGE, state
+ *  unchanged, where a coefficient (sb_langevin_coef_init) or the new
+ *  state exceeds DBL_MAX. */
 int sb_langevin_step(const sb_langevin *p, double dt, const gsl_rng *r,
                      double *x, double *u);
 
@@ -158,7 +172,10 @@ typedef struct {
 } sb_langevin_coef;
 
 /** Coefficients of the exact step of length dt for (tau, B).
- *  Domain: tau > 0, B >= 0, dt >= 0, all finite; else SB_EDOM, *c NaN. */
+ *  Domain: tau > 0, B >= 0, dt >= 0, all finite; else SB_EDOM, *c NaN.
+ *  Right at any such arguments (tau = 1e300 with dt = 1: s_xu = B/2,
+ *  s_xc = B/sqrt(12)); SB_ERANGE, *c NaN, where one exceeds DBL_MAX
+ *  (B tau^1.5 ~ 1e450). */
 int sb_langevin_coef_init(sb_langevin_coef *c, double tau, double B,
                           double dt);
 
@@ -171,8 +188,9 @@ int sb_langevin_coef_init(sb_langevin_coef *c, double tau, double B,
  *  The three components are independent copies of the 1-D model.
  *  Draw order: for i = 0..n-1, for k = 0..2: z1, z2 (as sb_langevin_step),
  *  so a batch of n particles equals n*3 scalar steps in that order.
- *  All tau[i], B[i] are validated before anything moves (SB_EDOM and no
- *  change on a bad one).  Coefficients are computed per particle; use
+ *  All tau[i], B[i] and the states x, u, us (finite) are validated before
+ *  anything moves (SB_EDOM and no change on a bad one; SB_ERANGE and no
+ *  change where a coefficient overflows, as sb_langevin_coef_init).  Coefficients are computed per particle; use
  *  sb_langevin_step3_coef to reuse precomputed ones. */
 int sb_langevin_step3(size_t n, double dt, const double *tau,
                       const double *B, const double *us, double *x,
@@ -181,8 +199,9 @@ int sb_langevin_step3(size_t n, double dt, const double *tau,
 /** Batched 3-D exact step with precomputed coefficients: particle i uses
  *  coef[cidx[i]] (a table per particle class), or coef[i] if cidx is NULL.
  *  Layout and draw order as sb_langevin_step3; us may be NULL.  The
- *  coefficients are trusted (built by sb_langevin_coef_init); this is the
- *  fast path (see bench/bench_langevin.c for its cost). */
+ *  coefficients are trusted (built by sb_langevin_coef_init), and neither
+ *  the states nor us are checked: this is the fast path (see
+ *  bench/bench_langevin.c for its cost). */
 int sb_langevin_step3_coef(size_t n, const sb_langevin_coef *coef,
                            const size_t *cidx, const double *us, double *x,
                            double *u, const gsl_rng *r);
@@ -228,9 +247,13 @@ int sb_langevin_step3_draw(const sb_langevin_coef *c, const double *us,
  *  B_pos = B tau (variance B^2 tau^2 s(dt-s)/dt, Mohaupt 2011, eq J.5) between
  *  x0 + tau u0 and x1 - tau u1 (Y = X + tau U is exactly a Brownian
  *  motion).  Domain: valid *p with B > 0, dt > 0, s in [0, dt],
- *  all finite, and s, dt - s each either 0 or >= 1e-60 tau (SB_EDOM
- *  otherwise: the scaled precision would overflow).  s = 0 and s = dt
- *  return the end states with zero variance. */
+ *  all finite, and s, dt - s each either 0 or >= 1e-60 tau, and
+ *  dt <= 1e300 tau (SB_EDOM otherwise: the scaled precision would
+ *  overflow).  s = 0 and s = dt return the end states with zero variance.
+ *  Any B, tau in the double range: where B sqrt(tau) or B tau^1.5 leaves
+ *  the normal range the mean is formed without those scales.  SB_ERANGE
+ *  (outputs NaN) where u0 - us, u1 - us, x1 - x0 - us dt or a moment
+ *  exceeds DBL_MAX. */
 int sb_langevin_bridge_moments(const sb_langevin *p, double dt, double s,
                                double x0, double u0, double x1, double u1,
                                sb_langevin_mom *m);
@@ -239,7 +262,8 @@ int sb_langevin_bridge_moments(const sb_langevin *p, double dt, double s,
  *  X_s = mean_x + L11 z1, U_s = mean_u + L21 z1 + L22 z2 with L the
  *  Cholesky factor of the conditional covariance; z1, z2 drawn in that
  *  order with gsl_ran_gaussian_ziggurat.  Domain as above; on error
- *  *xs, *us are set to NaN. */
+ *  (SB_ERANGE also where the draw exceeds DBL_MAX) *xs, *us are set to
+ *  NaN. */
 int sb_langevin_bridge_sample(const sb_langevin *p, double dt, double s,
                               double x0, double u0, double x1, double u1,
                               const gsl_rng *r, double *xs, double *us);
