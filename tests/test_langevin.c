@@ -724,6 +724,30 @@ static int x_bridge_sample(const double *a, double *out, int *n,
   return st;
 }
 
+#define SI(NAME, EXPR, NARG, ...)                                           \
+  static int NAME(const double *a, double *out, int *n, const char **nm)   \
+  {                                                                         \
+    *nm = #EXPR;                                                            \
+    sb_clear_error();                                                       \
+    out[0] = EXPR(__VA_ARGS__);                                             \
+    *n = 1;                                                                 \
+    return sb_last_status();                                                \
+  }
+SI(x_stokes_tau, sb_stokes_tau, 4, a[0], a[1], a[2], a[3])
+SI(x_sphere_mass, sb_sphere_mass, 2, a[0], a[1])
+SI(x_brownian_B, sb_brownian_B, 3, a[0], a[1], a[2])
+SI(x_einstein_D, sb_einstein_D, 4, a[0], a[1], a[2], a[3])
+SI(x_knudsen, sb_knudsen, 2, a[0], a[1])
+SI(x_cunningham, sb_cunningham, 1, a[0])
+SI(x_cunningham_gen, sb_cunningham_gen, 4, a[0], a[1], a[2], a[3])
+SI(x_kolmogorov_time, sb_kolmogorov_time, 2, a[0], a[1])
+SI(x_kolmogorov_length, sb_kolmogorov_length, 2, a[0], a[1])
+SI(x_stokes_number, sb_stokes_number, 2, a[0], a[1])
+SI(x_particle_reynolds, sb_particle_reynolds, 3, a[0], a[1], a[2])
+SI(x_collision_speed, sb_collision_speed, 1, a[0])
+SI(x_wunsch_dt, sb_wunsch_dt, 3, a[0], a[1], a[2])
+SI(x_wunsch_dt_brownian, sb_wunsch_dt_brownian, 4, a[0], a[1], a[2], a[3])
+
 /* Each argument of each public function of langevin.h in turn over
  * +-1e-320, +-1e-300, 0, +-1e300, +-DBL_MAX, +-inf, NaN (the others
  * ordinary): the outputs are finite (variances and the SI quantities
@@ -763,6 +787,21 @@ START_TEST(test_extreme_arguments)
       {x_bridge, 9, 2, {0.7, 1.3, 0.2, 0.4, 0.3, 1.5, -0.8, 1.6, 0.1}},
       {x_bridge_sample, 9, 3, {0.7, 1.3, 0.2, 0.4, 0.3, 1.5, -0.8, 1.6,
                                0.1}},
+      {x_stokes_tau, 4, 1, {1000, 1e-6, 1.8e-5, 1.1}},
+      {x_sphere_mass, 2, 1, {1000, 1e-6}},
+      {x_brownian_B, 3, 1, {300, 1e-15, 1e-6}},
+      {x_einstein_D, 4, 1, {300, 1.8e-5, 1e-6, 1.1}},
+      {x_knudsen, 2, 1, {6.6e-8, 1e-6}},
+      {x_cunningham, 1, 1, {0.13}},
+      /* (A1, A2 may be any finite reals: Cc is the formula's value) */
+      {x_cunningham_gen, 4, 0, {0.13, 1.2, 0.4, 1.1}},
+      {x_kolmogorov_time, 2, 1, {0.01, 1.5e-5}},
+      {x_kolmogorov_length, 2, 1, {0.01, 1.5e-5}},
+      {x_stokes_number, 2, 1, {1e-3, 0.03}},
+      {x_particle_reynolds, 3, 1, {1e-6, 0.01, 1.5e-5}},
+      {x_collision_speed, 1, 1, {1e-4}},
+      {x_wunsch_dt, 3, 1, {1e-6, 1e-4, 0.13}},
+      {x_wunsch_dt_brownian, 4, 1, {1e-6, 1000, 300, 0.13}},
   };
   const double ext[] = {1e-320, -1e-320, 1e-300, -1e-300, 0.0, 1e300,
                         -1e300, DBL_MAX, -DBL_MAX, INFINITY, -INFINITY,
@@ -809,6 +848,14 @@ START_TEST(test_extreme_arguments)
       }
   gsl_rng_free(xrng);
 #undef XCHECK
+  /* SI helpers whose intermediates over/underflow (nu/eps = 1e310,
+   * m_p tau_p = 1e-330, mu_f = 1e-320): the value (mpmath, 40 digits) */
+  ck_assert_rel(sb_kolmogorov_time(1e-320, 1e-10), 1.0000055664551363047e155,
+                TOL_TIGHT);
+  ck_assert_rel(sb_brownian_B(300, 1e-320, 1e-10), 9.1016406345808276821e154,
+                TOL_TIGHT);
+  ck_assert_rel(sb_stokes_tau(1e-300, 1e-8, 1e-320, 1.0),
+                555.56174052292114595, TOL_TIGHT);
   ck_assert_int_eq(nbad, 0);
 
   sbt_table t;

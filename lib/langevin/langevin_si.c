@@ -8,9 +8,46 @@
 #include <smolbridge/langevin.h>
 
 #include "common/internal.h"
+#include "common/numutil.h"
 
 /* positive and finite */
 static int pos(double v) { return v > 0 && isfinite(v); }
+
+/* The helpers are products and quotients of their arguments, evaluated in
+ * sbi_xd arithmetic (numutil.h): the same operations in the same order as
+ * the plain formulas, so the same bits wherever nothing over/underflows,
+ * and the right value wherever it is a double when an intermediate such
+ * as d_p^3 or nu/eps leaves the double range. */
+#define X(x) sbi_xd_of(x)
+#define MUL(a, b) sbi_xd_mul((a), (b))
+#define DIV(a, b) sbi_xd_div((a), (b))
+#define SQRT(a) sbi_xd_sqrt(a)
+
+/* The double nearest v; NaN and SB_ERANGE (recorded for func) where it
+ * exceeds DBL_MAX (0 or a subnormal, without error, where it is below
+ * DBL_MIN). */
+static double si_value(sbi_xd v, const char *func)
+{
+  const double d = sbi_xd_val(v);
+  if (isfinite(d))
+    return d;
+  sbi_error(SB_ERANGE, func, "the value overflows a double at these "
+            "arguments");
+  return NAN;
+}
+
+/* rho_p pi d_p^3 / 6 */
+static sbi_xd sphere_mass(double rho_p, double d_p)
+{
+  return DIV(MUL(MUL(MUL(MUL(X(rho_p), X(M_PI)), X(d_p)), X(d_p)), X(d_p)),
+             X(6.0));
+}
+
+/* (3/2) sqrt(pi u2) */
+static sbi_xd collision_speed(sbi_xd u2)
+{
+  return MUL(X(1.5), SQRT(MUL(X(M_PI), u2)));
+}
 
 double sb_stokes_tau(double rho_p, double d_p, double mu_f, double cc)
 {
@@ -23,7 +60,9 @@ double sb_stokes_tau(double rho_p, double d_p, double mu_f, double cc)
   /* Mohaupt 2011, eq 1.4: tau_p = (rho_p/rho_f) d_p^2 / (18 nu_f),
    * mu = rho nu; the slip correction divides the drag by Cc, so tau_p is
    * multiplied. */
-  return rho_p * d_p * d_p * cc / (18.0 * mu_f);
+  return si_value(DIV(MUL(MUL(MUL(X(rho_p), X(d_p)), X(d_p)), X(cc)),
+                      MUL(X(18.0), X(mu_f))),
+                  __func__);
 }
 
 double sb_sphere_mass(double rho_p, double d_p)
@@ -33,7 +72,7 @@ double sb_sphere_mass(double rho_p, double d_p)
               "rho_p = %g, d_p = %g must be positive and finite", rho_p, d_p);
     return NAN;
   }
-  return rho_p * M_PI * d_p * d_p * d_p / 6.0;
+  return si_value(sphere_mass(rho_p, d_p), __func__);
 }
 
 double sb_brownian_B(double T, double m_p, double tau_p)
@@ -45,7 +84,9 @@ double sb_brownian_B(double T, double m_p, double tau_p)
     return NAN;
   }
   /* Mohaupt 2011, eq A.5: B^2 tau_p / 2 = k_B T / m_p (equipartition) */
-  return sqrt(2.0 * SB_BOLTZMANN * T / (m_p * tau_p));
+  return si_value(SQRT(DIV(MUL(X(2.0 * SB_BOLTZMANN), X(T)),
+                           MUL(X(m_p), X(tau_p)))),
+                  __func__);
 }
 
 double sb_einstein_D(double T, double mu_f, double d_p, double cc)
@@ -57,7 +98,9 @@ double sb_einstein_D(double T, double mu_f, double d_p, double cc)
     return NAN;
   }
   /* Einstein (1905), Stokes mobility Cc / (3 pi mu d) */
-  return SB_BOLTZMANN * T * cc / (3.0 * M_PI * mu_f * d_p);
+  return si_value(DIV(MUL(MUL(X(SB_BOLTZMANN), X(T)), X(cc)),
+                      MUL(MUL(X(3.0 * M_PI), X(mu_f)), X(d_p))),
+                  __func__);
 }
 
 double sb_knudsen(double lambda, double d_p)
@@ -68,7 +111,22 @@ double sb_knudsen(double lambda, double d_p)
               d_p);
     return NAN;
   }
-  return 2.0 * lambda / d_p;
+  return si_value(DIV(MUL(X(2.0), X(lambda)), X(d_p)), __func__);
+}
+
+/* 1 + kn (A1 + A2 exp(-A3/kn)); NaN and SB_ERANGE (for func) where it
+ * overflows (kn or A1, A2 near DBL_MAX) */
+static double cunningham(double kn, double A1, double A2, double A3,
+                         const char *func)
+{
+  if (kn == 0)
+    return 1.0; /* continuum limit */
+  const double cc = 1.0 + kn * (A1 + A2 * exp(-A3 / kn));
+  if (isfinite(cc))
+    return cc;
+  sbi_error(SB_ERANGE, func, "kn = %g, A1 = %g, A2 = %g: the correction "
+            "overflows a double", kn, A1, A2);
+  return NAN;
 }
 
 double sb_cunningham_gen(double kn, double A1, double A2, double A3)
@@ -80,9 +138,7 @@ double sb_cunningham_gen(double kn, double A1, double A2, double A3)
               kn, A1, A2, A3);
     return NAN;
   }
-  if (kn == 0)
-    return 1.0; /* continuum limit */
-  return 1.0 + kn * (A1 + A2 * exp(-A3 / kn));
+  return cunningham(kn, A1, A2, A3, __func__);
 }
 
 double sb_cunningham(double kn)
@@ -92,7 +148,7 @@ double sb_cunningham(double kn)
     return NAN;
   }
   /* Davies (1945) */
-  return sb_cunningham_gen(kn, 1.257, 0.400, 1.10);
+  return cunningham(kn, 1.257, 0.400, 1.10, __func__);
 }
 
 /* ------------------------------------------------ dimensionless numbers */
@@ -104,7 +160,7 @@ double sb_kolmogorov_time(double eps, double nu)
               "eps = %g, nu = %g must be positive and finite", eps, nu);
     return NAN;
   }
-  return sqrt(nu / eps); /* Pope (2000), eq 6.1 */
+  return si_value(SQRT(DIV(X(nu), X(eps))), __func__); /* Pope (2000), 6.1 */
 }
 
 double sb_kolmogorov_length(double eps, double nu)
@@ -115,7 +171,8 @@ double sb_kolmogorov_length(double eps, double nu)
     return NAN;
   }
   /* (nu^3/eps)^(1/4) = sqrt(nu) (nu/eps)^(1/4), no overflow of nu^3 */
-  return sqrt(nu) * sqrt(sqrt(nu / eps));
+  return si_value(MUL(SQRT(X(nu)), SQRT(SQRT(DIV(X(nu), X(eps))))),
+                  __func__);
 }
 
 double sb_stokes_number(double tau_p, double tau_f)
@@ -126,7 +183,7 @@ double sb_stokes_number(double tau_p, double tau_f)
               tau_f);
     return NAN;
   }
-  return tau_p / tau_f;
+  return si_value(DIV(X(tau_p), X(tau_f)), __func__);
 }
 
 double sb_particle_reynolds(double d_p, double w, double nu_f)
@@ -137,7 +194,7 @@ double sb_particle_reynolds(double d_p, double w, double nu_f)
               "finite", d_p, nu_f, w);
     return NAN;
   }
-  return w * d_p / nu_f;
+  return si_value(DIV(MUL(X(w), X(d_p)), X(nu_f)), __func__);
 }
 
 double sb_collision_speed(double u2)
@@ -150,7 +207,7 @@ double sb_collision_speed(double u2)
    * s2 = 2 u2; collisions sample it with weight |w| (flux through the
    * contact sphere), so their mean speed is E|w|^2/E|w| =
    * 3 s2 / sqrt(8 s2/pi) = (3/2) sqrt(pi u2). */
-  return 1.5 * sqrt(M_PI * u2);
+  return si_value(collision_speed(X(u2)), __func__);
 }
 
 double sb_wunsch_dt(double d_p, double u2, double frac)
@@ -162,7 +219,8 @@ double sb_wunsch_dt(double d_p, double u2, double frac)
     return NAN;
   }
   /* Mohaupt 2011, eq 3.2: (3/2) sqrt(pi T_p) dt_lim / d_p = frac */
-  return frac * d_p / sb_collision_speed(u2);
+  return si_value(DIV(MUL(X(frac), X(d_p)), collision_speed(X(u2))),
+                  __func__);
 }
 
 double sb_wunsch_dt_brownian(double d_p, double rho_p, double T, double frac)
@@ -173,6 +231,7 @@ double sb_wunsch_dt_brownian(double d_p, double rho_p, double T, double frac)
               "and finite", d_p, rho_p, T, frac);
     return NAN;
   }
-  double m = rho_p * M_PI * d_p * d_p * d_p / 6.0;
-  return sb_wunsch_dt(d_p, SB_BOLTZMANN * T / m, frac);
+  /* sb_wunsch_dt with u2 = k_B T / m, m = rho_p pi d_p^3/6 */
+  const sbi_xd u2 = DIV(MUL(X(SB_BOLTZMANN), X(T)), sphere_mass(rho_p, d_p));
+  return si_value(DIV(MUL(X(frac), X(d_p)), collision_speed(u2)), __func__);
 }

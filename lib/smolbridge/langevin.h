@@ -268,7 +268,11 @@ int sb_langevin_bridge_sample(const sb_langevin *p, double dt, double s,
                               double x0, double u0, double x1, double u1,
                               const gsl_rng *r, double *xs, double *us);
 
-/* ================================================= SI helpers (SI units) */
+/* ================================================= SI helpers (SI units)
+ * Products and quotients of the arguments, right wherever the value is a
+ * double (an intermediate such as d_p^3 or nu/eps may over/underflow);
+ * NaN and SB_ERANGE where it exceeds DBL_MAX, 0 or a subnormal without
+ * error below DBL_MIN.  Domain errors: NaN and SB_EDOM. */
 
 /** Boltzmann constant, J/K (exact since the 2019 SI redefinition). */
 #define SB_BOLTZMANN 1.380649e-23
