@@ -17,6 +17,7 @@
  * Brute force, fixed ends ("bridge"): each particle's path is built by
  * nf sequential exact bridge draws (sb_langevin_bridge_sample, the state
  * at the next sub-step given the current one and the fixed end). */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -1500,6 +1501,131 @@ START_TEST(test_reach)
 }
 END_TEST
 
+/* ------------------------------------------------- extreme arguments */
+
+static int hx_bad; /* failures of test_extreme_arguments, printed */
+
+#define HXCHECK(cond, ...)                                                  \
+  do {                                                                      \
+    if (!(cond)) {                                                          \
+      fprintf(stderr, __VA_ARGS__);                                         \
+      fputc('\n', stderr);                                                  \
+      hx_bad++;                                                             \
+    }                                                                       \
+  } while (0)
+
+static int finite_contact(const sb_langevin_contact *c, double dt)
+{
+  int ok = c->t >= 0.0 && c->t <= dt;
+  for (int k = 0; k < 3; k++)
+    ok = ok && isfinite(c->xi[k]) && isfinite(c->ui[k]) &&
+         isfinite(c->xj[k]) && isfinite(c->uj[k]);
+  return ok;
+}
+
+/* A sampler's return value h: >= 0 with finite contacts, or -SB_EDOM /
+ * -SB_ERANGE with a message naming the function. */
+static void hx_check(int h, const char *nm, const char *what, double v,
+                     const sb_langevin_contact *c, int nc, double dt)
+{
+  if (h < 0) {
+    HXCHECK(h == -SB_EDOM || h == -SB_ERANGE, "%s, %s = %g: status %d", nm,
+            what, v, h);
+    HXCHECK(strstr(sb_last_error(), nm) != NULL,
+            "%s, %s = %g: message \"%s\"", nm, what, v, sb_last_error());
+    return;
+  }
+  for (int i = 0; i < nc; i++)
+    HXCHECK(finite_contact(&c[i], dt), "%s, %s = %g: contact %d at t = %g "
+            "not finite or outside [0, dt]", nm, what, v, i, c[i].t);
+}
+
+/* Each parameter of particle i (tau, B, mass, a start and end state
+ * component, us, G), R and dt, and the arguments of the reach functions,
+ * in turn over +-1e-320, +-1e-300, 0, +-1e300, +-DBL_MAX, +-inf, NaN:
+ * every sampler returns a contact with finite states in [0, dt], no
+ * contact, or -SB_EDOM / -SB_ERANGE naming itself; the bound is in [0, 1]
+ * or NaN with an error; the miss bound and reach are finite and >= 0 or
+ * NaN with an error. */
+START_TEST(test_extreme_arguments)
+{
+  const double ext[] = {1e-320, -1e-320, 1e-300, -1e-300, 0.0, 1e300,
+                        -1e300, DBL_MAX, -DBL_MAX, INFINITY, -INFINITY,
+                        NAN};
+  const int next = (int)(sizeof ext / sizeof ext[0]);
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
+  gsl_rng_set(r, 20261129);
+  sb_langevin_hitter *w = sb_langevin_hitter_alloc(NULL);
+  ck_assert_ptr_nonnull(w);
+  enum { NPAR = 11 };
+  static const char *pname[NPAR] = {"tau", "B", "mass", "x0", "u0", "x1",
+                                    "u1", "us", "G", "R", "dt"};
+  for (int a = 0; a < NPAR; a++)
+    for (int e = 0; e < next; e++) {
+      sb_langevin_path P[2] = {particle(1, 1), particle(1, 1)};
+      P[0].x0[0] = 2.5, P[0].u0[0] = -1.0;
+      P[0].x1[0] = 1.6, P[0].x1[1] = 0.2, P[0].u1[0] = -0.5;
+      P[1].x1[0] = 0.1;
+      double R = 1.0, dt = 1.0;
+      double *arg[NPAR] = {&P[0].tau, &P[0].B, &P[0].mass, &P[0].x0[0],
+                           &P[0].u0[0], &P[0].x1[0], &P[0].u1[0],
+                           &P[0].us[0], &P[0].G, &R, &dt};
+      *arg[a] = ext[e];
+      sb_langevin_contact c;
+      int h = sb_langevin_hitter_sample(w, &P[0], &P[1], R, dt, r, &c);
+      hx_check(h, "sb_langevin_hitter_sample", pname[a], ext[e], &c, h == 1,
+               dt);
+      h = sb_langevin_hitter_sample_exit(w, &P[0], &P[1], R, dt, r, &c);
+      hx_check(h, "sb_langevin_hitter_sample_exit", pname[a], ext[e], &c,
+               h == 1, dt);
+      h = sb_langevin_hitter_sample_all(w, &P[0], &P[1], R, dt, r);
+      hx_check(h, "sb_langevin_hitter_sample_all", pname[a], ext[e],
+               sb_langevin_hitter_entries(w), h > 0 ? h : 0, dt);
+      const double n[3] = {1.0, 0.0, 0.0};
+      h = sb_langevin_hitter_sample_plane(w, &P[0], n, R, 0.1, dt, r, &c);
+      hx_check(h, "sb_langevin_hitter_sample_plane", pname[a], ext[e], &c,
+               h == 1, dt);
+      sb_clear_error();
+      const double b = sb_langevin_hitter_bound(w, &P[0], &P[1], R, dt);
+      HXCHECK((b >= 0.0 && b <= 1.0) ||
+                  (isnan(b) && sb_last_status() != SB_SUCCESS),
+              "sb_langevin_hitter_bound, %s = %g: %g with status %d",
+              pname[a], ext[e], b, sb_last_status());
+    }
+  sb_langevin_hitter_free(w);
+  gsl_rng_free(r);
+
+  /* n, R, tau_i, B_i, tau_j, B_j, dt, rho (or tol) */
+  static const double base[8] = {1.0, 1.0, 1.0, 1.4, 2.0, 0.7, 1.0, 0.5};
+  for (int a = 0; a < 8; a++)
+    for (int e = 0; e < next; e++) {
+      double v[8];
+      memcpy(v, base, sizeof v);
+      v[a] = ext[e];
+      sb_clear_error();
+      double m = sb_langevin_miss_bound(3, v[0], v[1], v[2], v[3], v[4],
+                                        v[5], v[6], v[7]);
+      HXCHECK((m >= 0.0 && isfinite(m) && sb_last_status() == SB_SUCCESS) ||
+                  (isnan(m) && sb_last_status() != SB_SUCCESS &&
+                   strstr(sb_last_error(), "sb_langevin_miss_bound")),
+              "sb_langevin_miss_bound, argument %d = %g: %g with status %d",
+              a, ext[e], m, sb_last_status());
+      if (a == 7)
+        v[7] = ext[e] > 0 && ext[e] < 1 ? ext[e] : v[7] * 1e-9 / 0.5;
+      sb_clear_error();
+      m = sb_langevin_reach(3, v[0], v[1], v[2], v[3], v[4], v[5], v[6],
+                            a == 7 ? ext[e] : 1e-9);
+      HXCHECK((m >= 0.0 && isfinite(m) && sb_last_status() == SB_SUCCESS) ||
+                  (isnan(m) && sb_last_status() != SB_SUCCESS &&
+                   strstr(sb_last_error(), "sb_langevin_reach")),
+              "sb_langevin_reach, argument %d = %g: %g with status %d", a,
+              ext[e], m, sb_last_status());
+    }
+  ck_assert_int_eq(hx_bad, 0);
+}
+END_TEST
+#undef HXCHECK
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("langevin_hit");
@@ -1507,6 +1633,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_args);
   tcase_add_test(tc, test_deterministic);
   tcase_add_test(tc, test_reach);
+  tcase_add_test(tc, test_extreme_arguments);
   tcase_add_test(tc, test_fluid_free);
   tcase_add_test(tc, test_bridge_coef);
   suite_add_tcase(s, tc);

@@ -23,6 +23,7 @@
 #include <gsl/gsl_randist.h>
 
 #include "common/internal.h"
+#include <smolbridge/langevin.h>
 #include <smolbridge/langevin_shear.h>
 
 #include "langevin/langevin_shear_internal.h"
@@ -954,6 +955,11 @@ static int check_path(const sb_langevin_path *q, int dim)
   return 1;
 }
 
+/* Largest length of the problem, relative to the scale and absolute
+ * (setup). */
+#define LMAX_REL 1e100
+#define LMAX_ABS 1e150
+
 /* Set up a walk; returns 0, 1 (in the target set at the start) or a
  * negative status.  plane: NULL (ball |r| <= R, scale = R), or the unit
  * normal of the half-space n.r <= R (any R; resolution xtol scale);
@@ -975,6 +981,29 @@ static int setup(walk *W, sb_langevin_hitter *w, const sb_langevin_path *pi,
                       "R = %g, dt = %g, or a particle's tau, B, mass or "
                       "state is out of its domain", R, dt);
   const sb_langevin_path *P[2] = {pi, pj};
+  /* Lengths of the problem (positions, u dt, us dt, the noise's position
+   * spread) beyond 1e100 R or 1e150: the bounds' squares and the bridge
+   * coefficients would overflow, nothing would be pruned and the walk
+   * would refine to its depth limit everywhere (B = 1e300 or x0 = 1e300
+   * took minutes).  SB_EDOM. */
+  for (int p = 0; p < 2; p++) {
+    const sb_langevin_path *q = P[p];
+    double L = 0.0;
+    if (isfinite(q->tau) && q->B > 0.0)
+      L = sqrt(sb_langevin_var_x(q->tau, q->B, dt)); /* NaN: overflow */
+    for (int k = 0; k < dim; k++) {
+      const double l[5] = {fabs(q->x0[k]), fabs(q->x1[k]),
+                           fabs(q->u0[k]) * dt, fabs(q->u1[k]) * dt,
+                           fabs(q->us[k]) * dt};
+      for (int i = 0; i < 5; i++)
+        L = l[i] > L ? l[i] : L;
+    }
+    if (!(L <= LMAX_ABS) || !(L <= LMAX_REL * scale))
+      return -sbi_error(SB_EDOM, func,
+                        "particle %d: a length of the problem (position, "
+                        "velocity times dt or noise spread) of %g exceeds "
+                        "1e100 times the scale %g or 1e150", p, L, scale);
+  }
   memset(W, 0, sizeof *W);
   memset(A, 0, sizeof *A);
   memset(Bs, 0, sizeof *Bs);

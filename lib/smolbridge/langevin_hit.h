@@ -150,7 +150,11 @@ sb_langevin_hitter_params(const sb_langevin_hitter *w);
  *  overlaps at t = 0 (|x0_i - x0_j| <= R) is in contact at t = 0.
  *  Draws Gaussians and uniforms from r.  Domain: R > 0, dt > 0 finite,
  *  finite states, tau > 0, B >= 0, and dt/tau in [1e-9, 1e9] for the
- *  particles with noise. */
+ *  particles with noise; every length of the problem (a position
+ *  component, |u| dt, |us| dt at either end, the noise's position spread
+ *  sqrt(var_x(tau, B, dt))) at most 1e100 R and 1e150 (-SB_EDOM
+ *  otherwise: the bounds would overflow and nothing would be pruned;
+ *  docs/engine_langevin.md §2). */
 int sb_langevin_hitter_sample(sb_langevin_hitter *w,
                               const sb_langevin_path *pi,
                               const sb_langevin_path *pj, double R,
@@ -215,7 +219,8 @@ sb_langevin_hitter_entries(const sb_langevin_hitter *w);
  *  Brownian-bridge version).  Returns 1 (contact: c->t, c->xi on the
  *  plane, c->ui; c->xj, c->uj zero), 0, or a negative status; a start at
  *  or beyond the plane (touching and approaching) is a contact at t = 0.
- *  Domain as sb_langevin_hitter_sample; level finite. */
+ *  Domain as sb_langevin_hitter_sample (lengths at most 1e100 scale);
+ *  level finite. */
 int sb_langevin_hitter_sample_plane(sb_langevin_hitter *w,
                                     const sb_langevin_path *p,
                                     const double n[3], double level,
