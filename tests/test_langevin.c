@@ -848,6 +848,31 @@ START_TEST(test_extreme_arguments)
       }
   gsl_rng_free(xrng);
 #undef XCHECK
+  /* The bridge mean does not depend on B (the gain is unit-free): at
+   * B = 1e-320 and 1e300 (the scales B sqrt(tau), B tau^1.5 outside the
+   * normal range: the mean formed without them) it is the one at B = 1,
+   * and the variances scale as B^2 (here to 1e-20 and 1e300 times). */
+  {
+    sb_langevin_mom m1, me;
+    for (int k = 0; k < 3; k++) {
+      const double Bk[3] = {1e-320, 1e-10, 1e150};
+      sb_langevin p1 = {0.7, 1.0, 0.2}, pe = {0.7, Bk[k], 0.2};
+      ck_assert_int_eq(sb_langevin_bridge_moments(&p1, 0.4, 0.12, 1.5, -0.8,
+                                                  1.6, 0.1, &m1),
+                       SB_SUCCESS);
+      ck_assert_int_eq(sb_langevin_bridge_moments(&pe, 0.4, 0.12, 1.5, -0.8,
+                                                  1.6, 0.1, &me),
+                       SB_SUCCESS);
+      ck_assert_rel(me.mean_x, m1.mean_x, 1e-14);
+      ck_assert_rel(me.mean_u, m1.mean_u, 1e-13);
+      if (k > 0) {
+        const double B2 = Bk[k] * Bk[k];
+        ck_assert_rel(me.var_x, B2 * m1.var_x, 1e-14);
+        ck_assert_rel(me.var_u, B2 * m1.var_u, 1e-14);
+        ck_assert_rel(me.cov_xu, B2 * m1.cov_xu, 1e-14);
+      }
+    }
+  }
   /* SI helpers whose intermediates over/underflow (nu/eps = 1e310,
    * m_p tau_p = 1e-330, mu_f = 1e-320): the value (mpmath, 40 digits) */
   ck_assert_rel(sb_kolmogorov_time(1e-320, 1e-10), 1.0000055664551363047e155,
