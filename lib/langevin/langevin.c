@@ -138,6 +138,16 @@ static sbi_xd xd_h(double t, double tau)
   return sbi_xd_div(X(t), X(tau));
 }
 
+int sbi_langevin_plain_ok(double tau, double B, double t)
+{
+  const double at = fabs(t);
+  return tau >= 0x1p-100 && tau <= 0x1p100 &&
+         (B == 0.0 || (B >= 0x1p-100 && B <= 0x1p100)) &&
+         (at == 0.0 || (at >= 0x1p-100 && at <= 0x1p100));
+}
+
+double sbi_langevin_cfun(double h) { return cfun(h); }
+
 /* Argument checks shared by the (tau, B, t) functions; returns a status and
  * records the message under the public function's name. */
 static int check_tbt(const char *func, double tau, double B, double t,
@@ -158,7 +168,15 @@ static int check_tbt(const char *func, double tau, double B, double t,
  * scaled kernel KIND (value = B^2 tau^k K(t/tau), TAUK the sbi_xd
  * expression tau^k) and a relative error bound; SB_ERANGE where the value
  * exceeds DBL_MAX. */
-#define SB_LANGEVIN_TBT(NAME, KIND, TAUK, RELERR)                           \
+#define SB_LANGEVIN_TBT(NAME, KIND, KERN, TAUKP, TAUK, RELERR)             \
+  static double NAME##_val(double tau, double B, double t, const char *fn)  \
+  {                                                                         \
+    if (sbi_langevin_plain_ok(tau, B, t))                                   \
+      return B * B * (TAUKP) * KERN(t / tau);                               \
+    return xd_value(MUL(MUL(MUL(X(B), X(B)), TAUK),                         \
+                        sbi_langevin_kern(KIND, xd_h(t, tau))),             \
+                    fn);                                                    \
+  }                                                                         \
   int sb_langevin_##NAME##_e(double tau, double B, double t,                \
                              sb_result *res)                                \
   {                                                                         \
@@ -170,9 +188,7 @@ static int check_tbt(const char *func, double tau, double B, double t,
     }                                                                       \
     if (!res)                                                               \
       return sbi_error(SB_EINVAL, __func__, "res is NULL");                 \
-    double v = xd_value(MUL(MUL(MUL(X(B), X(B)), TAUK),                     \
-                            sbi_langevin_kern(KIND, xd_h(t, tau))),         \
-                        __func__);                                          \
+    double v = NAME##_val(tau, B, t, __func__);                             \
     res->val = v;                                                           \
     res->err = (RELERR) * fabs(v);                                          \
     return isnan(v) ? SB_ERANGE : SB_SUCCESS;                               \
@@ -181,18 +197,16 @@ static int check_tbt(const char *func, double tau, double B, double t,
   {                                                                         \
     if (check_tbt(__func__, tau, B, t, 0))                                  \
       return NAN;                                                           \
-    return xd_value(MUL(MUL(MUL(X(B), X(B)), TAUK),                         \
-                        sbi_langevin_kern(KIND, xd_h(t, tau))),             \
-                    __func__);                                              \
+    return NAME##_val(tau, B, t, __func__);                                 \
   }
 
 #define TAU1 X(tau)
 #define TAU2 MUL(X(tau), X(tau))
 #define TAU3 MUL(MUL(X(tau), X(tau)), X(tau))
-SB_LANGEVIN_TBT(var_u, SBI_LK_VU, TAU1, ERR_VU)
-SB_LANGEVIN_TBT(cov_xu, SBI_LK_CXU, TAU2, ERR_CXU)
-SB_LANGEVIN_TBT(var_x, SBI_LK_VX, TAU3, ERR_VX)
-SB_LANGEVIN_TBT(var_x_cond, SBI_LK_VXC, TAU3, ERR_VXC)
+SB_LANGEVIN_TBT(var_u, SBI_LK_VU, sc_vu, tau, TAU1, ERR_VU)
+SB_LANGEVIN_TBT(cov_xu, SBI_LK_CXU, sc_cxu, tau * tau, TAU2, ERR_CXU)
+SB_LANGEVIN_TBT(var_x, SBI_LK_VX, sc_vx, tau * tau * tau, TAU3, ERR_VX)
+SB_LANGEVIN_TBT(var_x_cond, SBI_LK_VXC, cfun, tau * tau * tau, TAU3, ERR_VXC)
 
 double sb_langevin_var_stat(double tau, double B)
 {
@@ -212,6 +226,15 @@ static double sc_msd(double h)
   return sc_vx(h) + 0.5 * a * a;
 }
 
+static double msd_val(double tau, double B, double t, const char *fn)
+{
+  if (sbi_langevin_plain_ok(tau, B, t))
+    return B * B * tau * tau * tau * sc_msd(t / tau);
+  return xd_value(MUL(MUL(MUL(MUL(MUL(X(B), X(B)), X(tau)), X(tau)), X(tau)),
+                      sbi_langevin_kern(SBI_LK_MSD, xd_h(t, tau))),
+                  fn);
+}
+
 int sb_langevin_msd_e(double tau, double B, double t, sb_result *res)
 {
   int st = check_tbt(__func__, tau, B, t, 0);
@@ -222,10 +245,7 @@ int sb_langevin_msd_e(double tau, double B, double t, sb_result *res)
   }
   if (!res)
     return sbi_error(SB_EINVAL, __func__, "res is NULL");
-  double v = xd_value(MUL(MUL(MUL(MUL(MUL(X(B), X(B)), X(tau)), X(tau)),
-                              X(tau)),
-                          sbi_langevin_kern(SBI_LK_MSD, xd_h(t, tau))),
-                      "sb_langevin_msd_e");
+  double v = msd_val(tau, B, t, __func__);
   res->val = v;
   res->err = ERR_VX * fabs(v);
   return isnan(v) ? SB_ERANGE : SB_SUCCESS;
@@ -235,10 +255,7 @@ double sb_langevin_msd(double tau, double B, double t)
 {
   if (check_tbt(__func__, tau, B, t, 0))
     return NAN;
-  return xd_value(MUL(MUL(MUL(MUL(MUL(X(B), X(B)), X(tau)), X(tau)),
-                          X(tau)),
-                      sbi_langevin_kern(SBI_LK_MSD, xd_h(t, tau))),
-                  __func__);
+  return msd_val(tau, B, t, __func__);
 }
 
 double sb_langevin_msd_ballistic(double tau, double B, double t)
@@ -284,6 +301,20 @@ int sb_langevin_moments(const sb_langevin *p, double t, double x0, double u0,
                      "us = %g, x0 = %g, u0 = %g must be finite", p->us, x0,
                      u0);
   const double tau = p->tau, B = p->B;
+  if (sbi_langevin_plain_ok(tau, B, t)) { /* the formulas as they read */
+    double B2 = B * B, h = t / tau;
+    double a = -expm1(-h), w = u0 - p->us;
+    double mu = p->us + w * exp(-h);
+    double mx = x0 + p->us * t + w * tau * a;
+    if (isfinite(mu) && isfinite(mx)) {
+      m->mean_u = mu;
+      m->mean_x = mx;
+      m->var_u = B2 * tau * sc_vu(h);
+      m->cov_xu = B2 * tau * tau * sc_cxu(h);
+      m->var_x = B2 * tau * tau * tau * sc_vx(h);
+      return SB_SUCCESS;
+    }
+  }
   const sbi_xd hx = xd_h(t, tau), ax = sbi_langevin_kern(SBI_LK_A, hx);
   const sbi_xd B2 = MUL(X(B), X(B));
   const double h = sbi_xd_val(hx); /* t/tau: inf gives e = 0 */

@@ -24,4 +24,14 @@ enum { SBI_LK_A, SBI_LK_VU, SBI_LK_CXU, SBI_LK_XU2, SBI_LK_VX, SBI_LK_VXC,
  * relative error O(1/h)). */
 sbi_xd sbi_langevin_kern(int kind, sbi_xd h);
 
+/* 1 if tau, |t| and B (or t, B zero) lie in [2^-100, 2^100]: then h = t/tau
+ * is in [2^-200, 2^200] and no intermediate of the double formulas
+ * (B^2 tau^k K(h) >= 2^-510, <= 2^510) leaves the normal range, so they
+ * are used as they read (the fast path; the sbi_xd forms give the same
+ * bits there, at 3-4 times the cost). */
+int sbi_langevin_plain_ok(double tau, double B, double t);
+
+/* c(h) = h - 2 tanh(h/2) in doubles (its small-h series), h >= 0 */
+double sbi_langevin_cfun(double h);
+
 #endif /* SB_LANGEVIN_INTERNAL_H */

@@ -29,6 +29,17 @@
 static int coef_fill(sb_langevin_coef *c, double tau, double B, double dt,
                      const char *func)
 {
+  if (sbi_langevin_plain_ok(tau, B, dt)) { /* the formulas as they read */
+    double h = dt / tau, a = -expm1(-h);
+    double st = sqrt(tau), bt = B * st;  /* B sqrt(tau) */
+    c->dt = dt;
+    c->decay = exp(-h);
+    c->gain = tau * a;
+    c->s_u = bt * sqrt(0.5 * a * (2.0 - a));
+    c->s_xu = bt * tau * sqrt(a * a * a / (2.0 * (2.0 - a)));
+    c->s_xc = bt * tau * sqrt(sbi_langevin_cfun(h));
+    return SB_SUCCESS;
+  }
   const sbi_xd h = sbi_xd_div(sbi_xd_of(dt), sbi_xd_of(tau));
   const sbi_xd tx = sbi_xd_of(tau);
   const sbi_xd bt = sbi_xd_mul(sbi_xd_of(B), sbi_xd_sqrt(tx)); /* B sqrt(tau) */
