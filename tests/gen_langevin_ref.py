@@ -111,11 +111,13 @@ def extreme_row(tau, B, t):
         gain = tau_ * (1 - exp(-t_ / tau_))
         s_u = vu**0.5
         # s_xu = cov/s_u, s_xc = sqrt(var_x|u) (langevin.h, exact step)
-        row = row + [gain, s_u, cv / s_u, vxc**0.5]
+        # the means from (x0, u0) = (1.5, -0.8) with us = 0.37
+        mx, mu = ou_moments(tau, B, 0.37, t, 1.5, -0.8)[:2]
+        row = row + [gain, s_u, cv / s_u, vxc**0.5, mx, mu]
         # below half the smallest subnormal the double is 0 (vacf =
         # B^2 tau/2 e^{-1e300}): write 0, not a 10^(-4e299) literal
         return [v if isinstance(v, float) else
-                (+v if v >= mpf(2)**-1075 else mpf(0)) for v in row]
+                (+v if abs(v) >= mpf(2)**-1075 else mpf(0)) for v in row]
 
 
 def write(name, header, rows, dps=None):
@@ -187,7 +189,7 @@ def main():
         (1e100, 1e-160, 1e100), (1e-200, 1e200, 3e-200))]
     write("langevin_extreme.csv",
           ["tau", "B", "t", "var_x", "var_u", "cov_xu", "var_x_cond", "msd",
-           "vacf", "gain", "s_u", "s_xu", "s_xc"], rows,
+           "vacf", "gain", "s_u", "s_xu", "s_xc", "mean_x", "mean_u"], rows,
           dps="3|log10 t/tau|+60")
 
 

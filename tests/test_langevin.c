@@ -907,9 +907,13 @@ START_TEST(test_extreme_arguments)
       ck_assert_msg(sbt_reldiff(fp[j](tau, B, tt), want) <= TOL_MOM,
                     "%s: %.17g, want %.17g", call, fp[j](tau, B, tt), want);
     }
-    sb_langevin p = {tau, B, 0.0};
+    sb_langevin p = {tau, B, 0.37};
     sb_langevin_mom m;
-    ck_assert_int_eq(sb_langevin_moments(&p, tt, 0.0, 0.0, &m), SB_SUCCESS);
+    ck_assert_int_eq(sb_langevin_moments(&p, tt, 1.5, -0.8, &m), SB_SUCCESS);
+    /* means: to a few ulps of their largest term (1.5 or us t) */
+    const double mscale = fmax(1.5, 0.37 * tt);
+    ck_assert_abs(m.mean_x, sbt_get(&t, i, "mean_x"), 4e-16 * mscale);
+    ck_assert_abs(m.mean_u, sbt_get(&t, i, "mean_u"), 4e-16);
     ck_assert_rel(m.var_x, sbt_get(&t, i, "var_x"), TOL_MOM);
     ck_assert_rel(m.var_u, sbt_get(&t, i, "var_u"), TOL_MOM);
     ck_assert_rel(m.cov_xu, sbt_get(&t, i, "cov_xu"), TOL_MOM);
