@@ -244,13 +244,19 @@ int sb_spray_coalesces(double cos_chi, double theta_cr);
  *    gamma = r_large/r_small >= 1,  We = rho_l |g|^2 r_small/sigma;
  *  grazing collisions beyond b_cr separate.  Returns (b_cr/(r1+r2))^2, the
  *  fraction of collisions that merge for this pair (1 when g = 0); NaN
- *  (SB_EDOM) unless r1, r2, rho_l, sigma > 0 and g >= 0.  For equal
- *  drops every collision merges iff We <= 3.12. */
+ *  (SB_EDOM) unless r1, r2, rho_l, sigma > 0 and g >= 0 (all finite).
+ *  gamma^3 and rho_l g^2 r_small may leave the double range: the ratio is
+ *  then formed with an extended exponent (the same value, or its
+ *  underflow to a subnormal or 0).  For equal drops every collision
+ *  merges iff We <= 3.12. */
 double sb_spray_orourke_b2(double r1, double r2, double g, double rho_l,
                            double sigma);
 
 /** Pair rate coefficient B (m^3/s) of the cross-section model:
- *  hard spheres pi (r1 + r2)^2 |g|, Maxwell B0. */
+ *  hard spheres pi (r1 + r2)^2 |g| (r1, r2, g finite >= 0; B0 unused),
+ *  Maxwell B0 (finite > 0; r1, r2, g unused).  NaN (SB_EDOM) outside
+ *  these domains; where (r1 + r2)^2 over/underflows the product is formed
+ *  with an extended exponent; NaN (SB_ERANGE) when B exceeds DBL_MAX. */
 double sb_spray_pair_rate(sb_spray_cross c, double B0, double r1, double r2,
                           double g);
 

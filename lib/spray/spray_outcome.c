@@ -2,20 +2,46 @@
  * collision velocities for unequal masses, the impact-parameter
  * coalescence test, and the Stokes settling velocity rule.  Pure
  * functions (no state). */
+#include <float.h>
 #include <math.h>
 
 #include <smolbridge/spray.h>
 
 #include "common/internal.h"
+#include "common/numutil.h"
 #include "spray_internal.h"
 
 double sb_spray_pair_rate(sb_spray_cross c, double B0, double r1, double r2,
                           double g)
 {
-  if (c == SB_SPRAY_MAXWELL)
+  if (c == SB_SPRAY_MAXWELL) {
+    if (!(B0 > 0) || !isfinite(B0)) {
+      sbi_error(SB_EDOM, __func__, "B0 = %g: must be finite > 0", B0);
+      return NAN;
+    }
     return B0;
+  }
+  if (!(r1 >= 0) || !(r2 >= 0) || !(g >= 0) || !isfinite(r1) ||
+      !isfinite(r2) || !isfinite(g)) {
+    sbi_error(SB_EDOM, __func__, "need finite r1, r2, g >= 0 (r1 = %g, "
+              "r2 = %g, g = %g)", r1, r2, g);
+    return NAN;
+  }
   double d = r1 + r2;
-  return SBI_PI * d * d * g;
+  double B = SBI_PI * d * d * g;
+  if ((!(B >= DBL_MIN) && g > 0 && d > 0) || isinf(B)) {
+    /* d^2 or the product over/underflows: the same chain with an
+     * extended exponent (same bits in the normal range) */
+    sbi_xd xd = sbi_xd_add(sbi_xd_of(r1), sbi_xd_of(r2));
+    B = sbi_xd_val(sbi_xd_mul(sbi_xd_mul(sbi_xd_mul(sbi_xd_of(SBI_PI), xd),
+                                          xd), sbi_xd_of(g)));
+    if (isinf(B)) {
+      sbi_error(SB_ERANGE, __func__, "pi (r1 + r2)^2 g overflows (r1 = %g, "
+                "r2 = %g, g = %g)", r1, r2, g);
+      return NAN;
+    }
+  }
+  return B;
 }
 
 /* In the centre-of-mass frame the relative velocity keeps its modulus and
@@ -72,6 +98,22 @@ double sb_spray_orourke_b2(double r1, double r2, double g, double rho_l,
   /* 2.4 f/We = 2.4 f sigma/(rho_l g^2 r_s), compared without dividing
    * (g = 0 is allowed) */
   double num = 2.4 * f * sigma, den = rho_l * g * g * rs;
+  if (g > 0 && !(num >= DBL_MIN && den >= DBL_MIN && isfinite(num) &&
+                 isfinite(den))) {
+    /* gamma^3, g^2 or a product over/underflows: the ratio with an
+     * extended exponent (q >= 1 iff its exponent is >= 1) */
+    sbi_xd G = sbi_xd_div(sbi_xd_of(fmax(r1, r2)), sbi_xd_of(rs));
+    sbi_xd F = sbi_xd_mul(
+        G, sbi_xd_add(sbi_xd_mul(G, sbi_xd_add(G, sbi_xd_of(-2.4))),
+                      sbi_xd_of(2.7)));
+    sbi_xd N = sbi_xd_mul(sbi_xd_mul(sbi_xd_of(2.4), F), sbi_xd_of(sigma));
+    sbi_xd D = sbi_xd_mul(sbi_xd_mul(sbi_xd_mul(sbi_xd_of(rho_l),
+                                                sbi_xd_of(g)),
+                                     sbi_xd_of(g)),
+                          sbi_xd_of(rs));
+    sbi_xd q = sbi_xd_div(N, D);
+    return q.e >= 1 ? 1.0 : sbi_xd_val(q);
+  }
   return num >= den ? 1.0 : num / den;
 }
 
