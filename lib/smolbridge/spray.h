@@ -323,7 +323,14 @@ void sb_spray_tab_params_default(sb_spray_tab_params *p);
 /** Closed-form TAB state at time t for constant relative speed urel (m/s),
  *  radius r, from (y0, ydot0).  Underdamped case (omega^2 > 0) exact;
  *  overdamped and critical cases use the matching closed forms.  Returns
- *  SB_EDOM for non-positive r, sigma, rho or negative mu, t. */
+ *  SB_EDOM for non-positive r, sigma, rho_l, negative rho_g, mu, Cd, t or
+ *  any argument not finite; SB_ERANGE where w0^2, 1/t_d or We/12 leave the
+ *  double range (r near 1e-100 or 1e100 m, urel near 1e150 m/s), where y
+ *  or y' overflows, and where the phase omega t exceeds 2^52 while
+ *  e^{-t/t_d} > 0 (the oscillation is not resolved in double precision;
+ *  the phase error is ~ omega t DBL_EPSILON radians).  The same
+ *  SB_EDOM/SB_ERANGE domain holds for sb_spray_tab_breakup_time (SB_ERANGE
+ *  also when y' at breakup overflows) and sb_spray_tab_we_crit. */
 int sb_spray_tab_state(double t, double r, double urel, double rho_g,
                        double rho_l, const sb_spray_liquid *liq, double Cd,
                        double y0, double ydot0, double *y, double *ydot);
@@ -348,7 +355,10 @@ double sb_spray_tab_we_crit(double r, double rho_l,
 /** Sauter mean radius of the children, from energy conservation
  *  (O'Rourke & Amsden 1987): parent surface + oscillation energy (K = 10/3)
  *  at y = 1 equals children surface + normal kinetic energy:
- *    r/r32 = 7/3 + rho_l r^3 ydot^2/(8 sigma). */
+ *    r/r32 = 7/3 + rho_l r^3 ydot^2/(8 sigma).
+ *  NaN (SB_EDOM) unless r, rho_l, sigma are finite > 0 and ydot finite;
+ *  r^3 ydot^2 is formed with an extended exponent where it over/underflows
+ *  (r32 then underflows to a subnormal or 0 only if it is that small). */
 double sb_spray_tab_r32(double r, double ydot, double rho_l, double sigma);
 
 /** Advance every parcel's TAB state by dt in the gas (relative velocity

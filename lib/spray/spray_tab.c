@@ -3,6 +3,7 @@
  * form at constant relative velocity, the breakup time (|y| = 1), the
  * critical Weber number and the children's Sauter radius from energy
  * conservation.  Derivations: docs/spray.md, "TAB". */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -41,7 +42,9 @@ static int osc_init(osc *o, double r, double urel, double rho_g,
     return sbi_error(SB_EDOM, func, "NULL liquid");
   if (!(r > 0) || !(rho_g >= 0) || !(rho_l > 0) || !(liq->sigma > 0) ||
       !(liq->mu_l >= 0) || !(Cd >= 0) || !isfinite(urel) || !isfinite(r) ||
-      !isfinite(y0) || !isfinite(ydot0))
+      !isfinite(y0) || !isfinite(ydot0) || !isfinite(rho_g) ||
+      !isfinite(rho_l) || !isfinite(liq->sigma) || !isfinite(liq->mu_l) ||
+      !isfinite(Cd))
     return sbi_error(SB_EDOM, func, "need r, rho_l, sigma > 0 and rho_g, "
                      "mu_l, Cd >= 0, finite (r = %g, rho_l = %g, sigma = %g)",
                      r, rho_l, liq->sigma);
@@ -51,6 +54,12 @@ static int osc_init(osc *o, double r, double urel, double rho_g,
   o->yeq = (2.0 / 3.0) * (rho_g / rho_l) * urel * urel / (r * r) / o->w02;
   o->z0 = y0 - o->yeq;
   o->zd0 = ydot0;
+  if (!(o->w02 > 0) || !isfinite(o->w02) || !isfinite(o->beta) ||
+      !isfinite(o->w2) || !isfinite(o->yeq) || !isfinite(o->z0) ||
+      !isfinite(o->beta * o->z0) || !isfinite(o->w02 * o->z0))
+    return sbi_error(SB_ERANGE, func, "the oscillator's scales leave the "
+                     "double range (w0^2 = %g, 1/t_d = %g, We/12 = %g)",
+                     o->w02, o->beta, o->yeq);
   return SB_SUCCESS;
 }
 
@@ -64,9 +73,11 @@ static void osc_cs(const osc *o, double t, double *ec, double *es)
     *ec = e * (1.0 - 0.5 * w2 * t * t);
     *es = e * t * (1.0 - w2 * t * t / 6.0);
   } else if (w2 > 0) {
-    double w = sqrt(w2), e = exp(-b * t);
-    *ec = e * cos(w * t);
-    *es = e * sin(w * t) / w;
+    double w = sqrt(w2), e = exp(-b * t), wt = w * t;
+    /* wt = inf: the oscillation has died out (e = 0: tab_state refuses
+     * an unresolved phase with e > 0) */
+    *ec = isinf(wt) ? 0.0 : e * cos(wt);
+    *es = isinf(wt) ? 0.0 : e * sin(wt) / w;
   } else {
     double k = sqrt(-w2);
     double ep = exp((k - b) * t), em = exp(-(k + b) * t);
@@ -95,9 +106,21 @@ int sb_spray_tab_state(double t, double r, double urel, double rho_g,
   int st = osc_init(&o, r, urel, rho_g, rho_l, liq, Cd, y0, ydot0, __func__);
   if (st)
     return st;
-  if (!(t >= 0))
-    return sbi_error(SB_EDOM, __func__, "t = %g: must be >= 0", t);
-  osc_eval(&o, t, y, ydot);
+  if (!(t >= 0) || !isfinite(t))
+    return sbi_error(SB_EDOM, __func__, "t = %g: must be finite >= 0", t);
+  if (o.w2 > 0 && exp(-o.beta * t) > 0 && sqrt(o.w2) * t > 0x1p52)
+    return sbi_error(SB_ERANGE, __func__, "phase omega t = %g: the "
+                     "oscillation is not resolved in double precision",
+                     sqrt(o.w2) * t);
+  double yy, yd;
+  osc_eval(&o, t, &yy, &yd);
+  if (!isfinite(yy) || !isfinite(yd))
+    return sbi_error(SB_ERANGE, __func__, "y = %g, y' = %g overflow", yy,
+                     yd);
+  if (y)
+    *y = yy;
+  if (ydot)
+    *ydot = yd;
   return SB_SUCCESS;
 }
 
@@ -197,9 +220,16 @@ int sb_spray_tab_breakup_time(double r, double urel, double rho_g,
     double t2 = cross_in(&o, a, b, -1.0, tol);
     double t = isnan(t1) ? t2 : (isnan(t2) ? t1 : fmin(t1, t2));
     if (!isnan(t) && t > 0) {
+      double yd;
+      osc_eval(&o, t, NULL, &yd);
+      if (!isfinite(yd)) {
+        *tb = INFINITY;
+        return sbi_error(SB_ERANGE, __func__, "y' = %g at breakup "
+                         "overflows", yd);
+      }
       *tb = t;
       if (ydot_b)
-        osc_eval(&o, t, NULL, ydot_b);
+        *ydot_b = yd;
       return SB_SUCCESS;
     }
     a = b;
@@ -228,11 +258,22 @@ double sb_spray_tab_we_crit(double r, double rho_l,
 
 double sb_spray_tab_r32(double r, double ydot, double rho_l, double sigma)
 {
-  if (!(r > 0) || !(rho_l > 0) || !(sigma > 0) || !isfinite(ydot)) {
-    sbi_error(SB_EDOM, __func__, "need r, rho_l, sigma > 0, finite ydot");
+  if (!(r > 0) || !(rho_l > 0) || !(sigma > 0) || !isfinite(ydot) ||
+      !isfinite(r) || !isfinite(rho_l) || !isfinite(sigma)) {
+    sbi_error(SB_EDOM, __func__, "need finite r, rho_l, sigma > 0, finite "
+              "ydot");
     return NAN;
   }
-  return r / (7.0 / 3.0 + rho_l * r * r * r * ydot * ydot / (8.0 * sigma));
+  double X = rho_l * r * r * r * ydot * ydot / (8.0 * sigma);
+  if (ydot != 0 && !(X >= DBL_MIN && isfinite(X))) {
+    /* r^3 ydot^2 over/underflows: the same chain, extended exponent */
+    sbi_xd R = sbi_xd_of(r), V = sbi_xd_of(ydot);
+    sbi_xd x = sbi_xd_mul(sbi_xd_of(rho_l), R);
+    x = sbi_xd_mul(sbi_xd_mul(sbi_xd_mul(sbi_xd_mul(x, R), R), V), V);
+    x = sbi_xd_div(sbi_xd_div(x, sbi_xd_of(8.0)), sbi_xd_of(sigma));
+    return sbi_xd_val(sbi_xd_div(R, sbi_xd_add(sbi_xd_of(7.0 / 3.0), x)));
+  }
+  return r / (7.0 / 3.0 + X);
 }
 
 /* ------------------------------------------------------------ stepping */
