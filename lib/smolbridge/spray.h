@@ -410,7 +410,10 @@ void sb_spray_reitz_params_default(sb_spray_reitz_params *p);
  *  length U 2 pi/Omega (one wave period) or Lambda (one wavelength),
  *  whichever is smaller.  r > a whenever Lambda > 4a/3 (always when
  *  B0 Lambda >= a with B0 = 0.61) and U 2 pi/Omega > 4a/3: the drops then
- *  grow.  NaN (SB_EDOM) unless a, U, Lambda, Omega > 0.  Applied by
+ *  grow.  NaN (SB_EDOM) unless a, U, Lambda, Omega are finite > 0; a^2 U
+ *  and a^2 Lambda are formed with an extended exponent where they
+ *  over/underflow (the result, a cube root, is then representable for
+ *  every finite argument).  Applied by
  *  sb_spray_reitz_step when params.blob = 1, once per parcel added with
  *  sb_spray_add (drops born by TAB or Reitz breakup are formed drops). */
 double sb_spray_reitz_blob_radius(double a, double U, double Lambda,
@@ -418,8 +421,12 @@ double sb_spray_reitz_blob_radius(double a, double U, double Lambda,
 
 /** Wavelength Lambda (m) and growth rate Omega (1/s) of the fastest
  *  Kelvin-Helmholtz wave (Reitz 1987 fits above).  SB_EDOM for
- *  non-positive a, U, rho_g, rho_l, sigma or negative mu_l.  mu_l = 0
- *  gives Z = T = 0 (inviscid). */
+ *  non-positive a, rho_g, rho_l, sigma, negative U, mu_l or any argument
+ *  not finite.  mu_l = 0 gives Z = T = 0 (inviscid).  Where We, a^3 or a
+ *  power of the fits leaves the double range the fits are evaluated
+ *  through logarithms (relative error ~ |ln Lambda| DBL_EPSILON, resp.
+ *  Omega); SB_ERANGE when Lambda or Omega is outside the normal double
+ *  range (e.g. a < 1e-200 m: Omega ~ a^-1.5). */
 int sb_spray_reitz_wave(double a, double U, double rho_g, double rho_l,
                         const sb_spray_liquid *liq, double *Lambda,
                         double *Omega);
@@ -435,7 +442,10 @@ double sb_spray_reitz_radius_frozen(double a0, double R, double c, double t);
 /** Radius a(t) of the full model (Lambda, Omega re-evaluated at the current
  *  radius) at constant U: t(a) = int_a^a0 tau(x)/(x - R(x)) dx by GSL
  *  adaptive quadrature, inverted with GSL Brent; relative accuracy ~1e-10.
- *  Stops at the stable radius (a_inf with a_inf = R(a_inf)). */
+ *  Stops at the stable radius (a_inf with a_inf = R(a_inf)).  SB_EDOM as
+ *  sb_spray_reitz_wave (message naming this function) or for t < 0;
+ *  SB_ERANGE where the fits at a0 (plain double arithmetic, as the
+ *  quadrature uses them) leave the normal range. */
 int sb_spray_reitz_radius(double a0, double t, double U, double rho_g,
                           double rho_l, const sb_spray_liquid *liq,
                           const sb_spray_reitz_params *rp, double *a);

@@ -46,8 +46,22 @@ double sb_spray_reitz_blob_radius(double a, double U, double Lambda,
               "U = %g, Lambda = %g, Omega = %g)", a, U, Lambda, Omega);
     return NAN;
   }
-  return fmin(cbrt(3.0 * SBI_PI * a * a * U / (2.0 * Omega)),
-              cbrt(0.75 * a * a * Lambda));
+  double v1 = 3.0 * SBI_PI * a * a * U / (2.0 * Omega);
+  double v2 = 0.75 * a * a * Lambda;
+  if (!(v1 >= DBL_MIN && v1 <= DBL_MAX && v2 >= DBL_MIN && v2 <= DBL_MAX)) {
+    /* a^2 U or a^2 Lambda over/underflows: the same chains with an
+     * extended exponent, then the cube root of m 2^e */
+    sbi_xd A = sbi_xd_of(a);
+    sbi_xd x1 = sbi_xd_mul(sbi_xd_mul(sbi_xd_of(3.0 * SBI_PI), A), A);
+    x1 = sbi_xd_div(sbi_xd_mul(x1, sbi_xd_of(U)),
+                    sbi_xd_mul(sbi_xd_of(2.0), sbi_xd_of(Omega)));
+    sbi_xd x2 = sbi_xd_mul(sbi_xd_mul(sbi_xd_mul(sbi_xd_of(0.75), A), A),
+                           sbi_xd_of(Lambda));
+    sbi_xd x = (x1.e < x2.e || (x1.e == x2.e && x1.m < x2.m)) ? x1 : x2;
+    int q = x.e >= 0 ? x.e / 3 : -((-x.e + 2) / 3);
+    return ldexp(cbrt(ldexp(x.m, x.e - 3 * q)), q);
+  }
+  return fmin(cbrt(v1), cbrt(v2));
 }
 
 /* The fits, for valid arguments (U >= 0).  Z = sqrt(We_l)/Re_l =
@@ -65,18 +79,72 @@ static void wave(double a, double U, double rho_g, double rho_l,
        sqrt(liq->sigma / (rho_l * a * a * a));
 }
 
+/* log(1 + c x^p) from lx = log x (lx = -inf: x = 0). */
+static double log1p_pow(double c, double lx, double p)
+{
+  double y = log(c) + p * lx;
+  return y > 0 ? y + log1p(exp(-y)) : log1p(exp(y));
+}
+
+/* The fits through logarithms, for arguments whose We, Z, T or powers
+ * leave the double range (relative error ~ |log| DBL_EPSILON). */
+static void wave_log(double a, double U, double rho_g, double rho_l,
+                     const sb_spray_liquid *liq, double *lL, double *lO)
+{
+  double la = log(a), ls = log(liq->sigma), lrl = log(rho_l);
+  double lWe = log(rho_g) + 2.0 * log(U) + la - ls;
+  double lZ = log(liq->mu_l) - 0.5 * (lrl + la + ls);
+  double lT = lZ + 0.5 * lWe;
+  *lL = la + log(9.02) + log1p_pow(0.45, lZ, 0.5) +
+        log1p_pow(0.4, lT, 0.7) - 0.6 * log1p_pow(0.87, lWe, 1.67);
+  *lO = log(0.34) + log1p_pow(0.38 / 0.34, lWe, 1.5) -
+        log1p_pow(1.0, lZ, 1.0) - log1p_pow(1.4, lT, 0.6) +
+        0.5 * (ls - lrl) - 1.5 * la;
+}
+
+static int wave_check(double a, double U, double rho_g, double rho_l,
+                      const sb_spray_liquid *liq, const char *func)
+{
+  if (!liq)
+    return sbi_error(SB_EDOM, func, "NULL liquid");
+  if (!(a > 0) || !(U >= 0) || !(rho_g > 0) || !(rho_l > 0) ||
+      !(liq->sigma > 0) || !(liq->mu_l >= 0) || !isfinite(a) ||
+      !isfinite(U) || !isfinite(rho_g) || !isfinite(rho_l) ||
+      !isfinite(liq->sigma) || !isfinite(liq->mu_l))
+    return sbi_error(SB_EDOM, func, "need finite a, rho_g, rho_l, sigma > "
+                     "0, U, mu_l >= 0 (a = %g, U = %g)", a, U);
+  return SB_SUCCESS;
+}
+
+/* Is a plain value in the normal double range? */
+static int normal_pos(double x)
+{
+  return x >= DBL_MIN && x <= DBL_MAX;
+}
+
 int sb_spray_reitz_wave(double a, double U, double rho_g, double rho_l,
                         const sb_spray_liquid *liq, double *Lambda,
                         double *Omega)
 {
-  if (!liq || !Lambda || !Omega)
+  int st = wave_check(a, U, rho_g, rho_l, liq, __func__);
+  if (st)
+    return st;
+  if (!Lambda || !Omega)
     return sbi_error(SB_EDOM, __func__, "NULL argument");
-  if (!(a > 0) || !(U >= 0) || !(rho_g > 0) || !(rho_l > 0) ||
-      !(liq->sigma > 0) || !(liq->mu_l >= 0) || !isfinite(a) ||
-      !isfinite(U) || !isfinite(rho_g) || !isfinite(rho_l))
-    return sbi_error(SB_EDOM, __func__, "need a, rho_g, rho_l, sigma > 0, "
-                     "U, mu_l >= 0 (a = %g, U = %g)", a, U);
-  wave(a, U, rho_g, rho_l, liq, Lambda, Omega);
+  double L, O;
+  wave(a, U, rho_g, rho_l, liq, &L, &O);
+  if (!normal_pos(L) || !normal_pos(O)) {
+    /* an intermediate (We, a^3, a power) over/underflowed */
+    double lL, lO;
+    wave_log(a, U, rho_g, rho_l, liq, &lL, &lO);
+    L = exp(lL);
+    O = exp(lO);
+    if (!normal_pos(L) || !normal_pos(O))
+      return sbi_error(SB_ERANGE, __func__, "Lambda = exp(%g), Omega = "
+                       "exp(%g) outside the normal double range", lL, lO);
+  }
+  *Lambda = L;
+  *Omega = O;
   return SB_SUCCESS;
 }
 
@@ -169,9 +237,13 @@ int sb_spray_reitz_radius(double a0, double t, double U, double rho_g,
   double L, O;
   if (!rp || !a)
     return sbi_error(SB_EDOM, __func__, "NULL argument");
-  int st = sb_spray_reitz_wave(a0, U, rho_g, rho_l, liq, &L, &O);
+  int st = wave_check(a0, U, rho_g, rho_l, liq, __func__);
   if (st)
     return st;
+  wave(a0, U, rho_g, rho_l, liq, &L, &O);
+  if (!normal_pos(L) || !normal_pos(O) || !normal_pos(L * O))
+    return sbi_error(SB_ERANGE, __func__, "Lambda = %g, Omega = %g at a0 = "
+                     "%g: the fits leave the double range", L, O, a0);
   if (!(t >= 0) || !(rp->B0 > 0) || !(rp->B1 > 0))
     return sbi_error(SB_EDOM, __func__, "need t >= 0, B0, B1 > 0");
   full_ctx c = {U, rho_g, rho_l, liq, rp, t, a0};
