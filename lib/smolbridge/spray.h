@@ -470,7 +470,13 @@ int sb_spray_reitz_step(sb_spray *s, const sb_spray_gas *gas,
  *    f(v) = (2 pi K theta)^{-3/2} exp(-v^2/(2 K theta))
  *           [(5K - 3)/(2K) + (1 - K) v^2/(2 K^2 theta)],
  *    K(t) = 1 - (1 - K0) exp(-lambda t/6),  3/5 <= K0 <= 1.
- *  f is a probability density in R^3 (integral 1). */
+ *  f is a probability density in R^3 (integral 1).  Domains: K in
+ *  [3/5, 1], theta finite > 0, lambda and t finite >= 0, v and s not NaN
+ *  (v, s = +-inf allowed: f = 0, cdf = 1); else NaN (SB_EDOM).  Where
+ *  (2 pi K theta)^{-3/2}, e^{-x}, theta^2 or theta^3 leave the double
+ *  range the values are formed with an extended exponent (the result, or
+ *  its underflow to a subnormal or 0); NaN (SB_ERANGE) when f, E|v|^4 or
+ *  E|v|^6 exceeds DBL_MAX (theta > ~1e154 for the fourth moment). */
 double sb_spray_bkw_K(double K0, double lambda, double t);
 double sb_spray_bkw_pdf(double v, double K, double theta);
 /** P(|v| <= s) = (5K-3)/(2K) P(3/2, x) + 3(1-K)/(2K) P(5/2, x),
@@ -494,8 +500,14 @@ int sb_spray_bkw_sample(double K, double theta, gsl_rng *rng, double v[3]);
  *   afterwards; d = r_a + r_b, s^2 = k_B (T_a/m_a + T_b/m_b)):
  *     dDelta/dt = -(16/3) sqrt(2/pi) pi d^2 (n_a + n_b)
  *                  m_a m_b/(m_a + m_b)^2 s Delta,
- *   solved in closed form (s^2 is linear in Delta).  Outputs T_a, T_b at t.
- *  SB_EDOM for non-positive arguments (T may be any positive values). */
+ *   solved in closed form (s^2 is linear in Delta).  Outputs T_a, T_b at t
+ *  (either pointer may be NULL).  SB_EDOM for non-positive or non-finite
+ *  arguments (T may be any finite positive values).  Products of the
+ *  rate constants that over/underflow (n near DBL_MAX, m or r near
+ *  1e-300) are formed with an extended exponent, and n_a T_a0 + n_b T_b0
+ *  through the fractions n_a/n, n_b/n where it overflows; SB_ERANGE
+ *  (outputs unchanged) where an intermediate of the hard-sphere closed
+ *  form (k T/m, its square root) still leaves the double range. */
 typedef struct {
   double n_a, n_b, m_a, m_b, r_a, r_b, T_a0, T_b0;
 } sb_spray_mixture;
@@ -503,7 +515,9 @@ int sb_spray_two_temp_maxwell(const sb_spray_mixture *mx, double B0,
                               double t, double *T_a, double *T_b);
 int sb_spray_two_temp_hs(const sb_spray_mixture *mx, double t, double *T_a,
                          double *T_b);
-/** The hard-sphere rate dT_a/dt (K/s) for Maxwellian species at T_a, T_b. */
+/** The hard-sphere rate dT_a/dt (K/s) for Maxwellian species at T_a, T_b
+ *  (finite > 0): NaN with SB_EDOM outside the domain, SB_ERANGE when the
+ *  rate overflows. */
 double sb_spray_two_temp_hs_rate(const sb_spray_mixture *mx, double T_a,
                                  double T_b);
 

@@ -2,6 +2,7 @@
  * against: the BKW solution (Bobylev 1975; Krook & Wu 1976) and the
  * two-temperature relaxation of a binary mixture.  Derivations:
  * docs/spray.md, "Exact results". */
+#include <float.h>
 #include <math.h>
 
 #include <gsl/gsl_randist.h>
@@ -11,15 +12,17 @@
 #include <smolbridge/spray.h>
 
 #include "common/internal.h"
+#include "common/numutil.h"
 #include "spray_internal.h"
 
 /* M4 - 15 theta^2 = -15 theta^2 (1 - K)^2 decays as exp(-lambda t/3) for
  * isotropic Maxwell scattering, so 1 - K decays as exp(-lambda t/6). */
 double sb_spray_bkw_K(double K0, double lambda, double t)
 {
-  if (!(K0 >= 0.6 && K0 <= 1.0) || !(lambda >= 0) || !(t >= 0)) {
-    sbi_error(SB_EDOM, __func__, "need 3/5 <= K0 <= 1, lambda >= 0, t >= 0 "
-              "(K0 = %g, lambda = %g, t = %g)", K0, lambda, t);
+  if (!(K0 >= 0.6 && K0 <= 1.0) || !(lambda >= 0) || !(t >= 0) ||
+      !isfinite(lambda) || !isfinite(t)) {
+    sbi_error(SB_EDOM, __func__, "need 3/5 <= K0 <= 1, finite lambda >= 0, "
+              "t >= 0 (K0 = %g, lambda = %g, t = %g)", K0, lambda, t);
     return NAN;
   }
   return 1.0 - (1.0 - K0) * exp(-lambda * t / 6.0);
@@ -35,25 +38,53 @@ static int bkw_dom(double K, double theta, const char *func)
   return 0;
 }
 
+/* Scalar arguments other than K and theta: not NaN. */
+static int arg_dom(double v, const char *func)
+{
+  if (isnan(v)) {
+    sbi_error(SB_EDOM, func, "argument is NaN");
+    return 1;
+  }
+  return 0;
+}
+
 double sb_spray_bkw_pdf(double v, double K, double theta)
 {
-  if (bkw_dom(K, theta, __func__) || isnan(v))
+  if (bkw_dom(K, theta, __func__) || arg_dom(v, __func__))
     return NAN;
   double kt = K * theta, x = v * v / (2.0 * kt);
   double a = (5.0 * K - 3.0) / (2.0 * K);
   double b = (1.0 - K) / K;  /* (1-K) v^2/(2 K^2 theta) = b x */
-  return pow(2.0 * SBI_PI * kt, -1.5) * exp(-x) * (a + b * x);
+  double f = pow(2.0 * SBI_PI * kt, -1.5) * exp(-x) * (a + b * x);
+  if (f >= DBL_MIN && f <= DBL_MAX)
+    return f;
+  /* x = inf or > 1e6: e^{-x} beats every prefactor (< 2^1700) */
+  if (!(x < 1e6))
+    return 0.0;
+  /* (2 pi K theta)^{-3/2} or e^{-x} leaves the range: extended exponent */
+  sbi_xd q = sbi_xd_mul(sbi_xd_mul(sbi_xd_of(2.0 * SBI_PI), sbi_xd_of(K)),
+                        sbi_xd_of(theta));
+  sbi_xd p = sbi_xd_div(sbi_xd_of(1.0), sbi_xd_mul(q, sbi_xd_sqrt(q)));
+  f = sbi_xd_val(sbi_xd_mul(sbi_xd_mul(p, sbi_xd_expneg(x)),
+                            sbi_xd_of(a + b * x)));
+  if (isinf(f)) {
+    sbi_error(SB_ERANGE, __func__, "f(%g) overflows (K theta = %g)", v, kt);
+    return NAN;
+  }
+  return f;
 }
 
 double sb_spray_bkw_speed_cdf(double s, double K, double theta)
 {
-  if (bkw_dom(K, theta, __func__) || isnan(s))
+  if (bkw_dom(K, theta, __func__) || arg_dom(s, __func__))
     return NAN;
   if (s <= 0)
     return 0.0;
   if (isinf(s))
     return 1.0;
   double x = s * s / (2.0 * K * theta);
+  if (isinf(x))
+    return 1.0; /* 1 - P < e^{-x} x^{3/2} underflows long before */
   double a = (5.0 * K - 3.0) / (2.0 * K), c = 3.0 * (1.0 - K) / (2.0 * K);
   return a * gsl_sf_gamma_inc_P(1.5, x) + c * gsl_sf_gamma_inc_P(2.5, x);
 }
@@ -62,14 +93,36 @@ double sb_spray_bkw_m4(double K, double theta)
 {
   if (bkw_dom(K, theta, __func__))
     return NAN;
-  return theta * theta * K * (30.0 - 15.0 * K);
+  double m = theta * theta * K * (30.0 - 15.0 * K);
+  if (!(theta * theta >= DBL_MIN && m <= DBL_MAX)) {
+    /* theta^2 over/underflows: the same chain, extended exponent */
+    sbi_xd T = sbi_xd_of(theta);
+    m = sbi_xd_val(sbi_xd_mul(sbi_xd_mul(sbi_xd_mul(T, T), sbi_xd_of(K)),
+                              sbi_xd_of(30.0 - 15.0 * K)));
+    if (isinf(m)) {
+      sbi_error(SB_ERANGE, __func__, "E|v|^4 overflows (theta = %g)", theta);
+      return NAN;
+    }
+  }
+  return m;
 }
 
 double sb_spray_bkw_m6(double K, double theta)
 {
   if (bkw_dom(K, theta, __func__))
     return NAN;
-  return theta * theta * theta * K * K * (315.0 - 210.0 * K);
+  double m = theta * theta * theta * K * K * (315.0 - 210.0 * K);
+  if (!(theta * theta * theta >= DBL_MIN && m <= DBL_MAX)) {
+    sbi_xd T = sbi_xd_of(theta), k = sbi_xd_of(K);
+    m = sbi_xd_val(sbi_xd_mul(
+        sbi_xd_mul(sbi_xd_mul(sbi_xd_mul(sbi_xd_mul(T, T), T), k), k),
+        sbi_xd_of(315.0 - 210.0 * K)));
+    if (isinf(m)) {
+      sbi_error(SB_ERANGE, __func__, "E|v|^6 overflows (theta = %g)", theta);
+      return NAN;
+    }
+  }
+  return m;
 }
 
 /* f = a Maxwell(K theta) + (1 - a) (v^2/(3 K theta)) Maxwell(K theta),
@@ -82,7 +135,11 @@ int sb_spray_bkw_sample(double K, double theta, gsl_rng *rng, double v[3])
     return sbi_error(SB_EDOM, __func__, "NULL rng or v");
   double a = (5.0 * K - 3.0) / (2.0 * K);
   double dof = gsl_rng_uniform(rng) < a ? 3.0 : 5.0;
-  double sp = sqrt(K * theta * gsl_ran_chisq(rng, dof));
+  double c2 = gsl_ran_chisq(rng, dof), kc = K * theta * c2;
+  /* K theta chi^2 over/underflows: the square roots apart */
+  double sp = kc >= DBL_MIN && kc <= DBL_MAX
+                  ? sqrt(kc)
+                  : sqrt(K) * sqrt(theta) * sqrt(c2);
   gsl_ran_dir_3d(rng, &v[0], &v[1], &v[2]);
   for (int k = 0; k < 3; k++)
     v[k] *= sp;
@@ -100,16 +157,63 @@ static int mix_check(const sb_spray_mixture *m, const char *func)
   return SB_SUCCESS;
 }
 
+/* The fractions n_a/n, n_b/n (n = n_a + n_b), also where n overflows. */
+static void fractions(const sb_spray_mixture *m, double *fa, double *fb)
+{
+  double n = m->n_a + m->n_b;
+  if (isinf(n)) {
+    double s = fmax(m->n_a, m->n_b), a = m->n_a / s, b = m->n_b / s;
+    n = a + b;
+    *fa = a / n;
+    *fb = b / n;
+  } else {
+    *fa = m->n_a / n;
+    *fb = m->n_b / n;
+  }
+}
+
 /* Delta(t) -> T_a, T_b with n_a T_a + n_b T_b conserved. */
 static void split_T(const sb_spray_mixture *m, double delta, double *Ta,
                     double *Tb)
 {
   double n = m->n_a + m->n_b;
   double Tm = (m->n_a * m->T_a0 + m->n_b * m->T_b0) / n;
+  double fa = m->n_a / n, fb = m->n_b / n;
+  if (!isfinite(Tm) || !isfinite(n)) {
+    /* n_a T_a0 or n overflows: the mean through the fractions */
+    fractions(m, &fa, &fb);
+    Tm = fa * m->T_a0 + fb * m->T_b0;
+  }
   if (Ta)
-    *Ta = Tm + m->n_b / n * delta;
+    *Ta = Tm + fb * delta;
   if (Tb)
-    *Tb = Tm - m->n_a / n * delta;
+    *Tb = Tm - fa * delta;
+}
+
+/* pre (n_a + n_b) m_a m_b/(m_a + m_b)^2 (pre >= 0), with an extended
+ * exponent where a product over/underflows (same bits otherwise). */
+static double mix_rate(double pre, const sb_spray_mixture *mx)
+{
+  double M = mx->m_a + mx->m_b, n = mx->n_a + mx->n_b;
+  double num = pre * n * mx->m_a * mx->m_b, M2 = M * M;
+  if (pre == 0 || (num >= DBL_MIN && num <= DBL_MAX && M2 >= DBL_MIN &&
+                   M2 <= DBL_MAX))
+    return num / M2;
+  sbi_xd Mx = sbi_xd_add(sbi_xd_of(mx->m_a), sbi_xd_of(mx->m_b));
+  sbi_xd nx = sbi_xd_add(sbi_xd_of(mx->n_a), sbi_xd_of(mx->n_b));
+  sbi_xd q = sbi_xd_mul(sbi_xd_mul(sbi_xd_mul(sbi_xd_of(pre), nx),
+                                   sbi_xd_of(mx->m_a)),
+                        sbi_xd_of(mx->m_b));
+  return sbi_xd_val(sbi_xd_div(q, sbi_xd_mul(Mx, Mx)));
+}
+
+/* Outputs finite, else SB_ERANGE. */
+static int temps_ok(double Ta, double Tb, const char *func)
+{
+  if (!isfinite(Ta) || !isfinite(Tb))
+    return sbi_error(SB_ERANGE, func, "T_a = %g, T_b = %g: an intermediate "
+                     "leaves the double range", Ta, Tb);
+  return SB_SUCCESS;
 }
 
 /* Isotropic Maxwell scattering: the energy species a gains in an a-b
@@ -121,31 +225,71 @@ int sb_spray_two_temp_maxwell(const sb_spray_mixture *mx, double B0,
   int st = mix_check(mx, __func__);
   if (st)
     return st;
-  if (!(B0 > 0) || !(t >= 0))
-    return sbi_error(SB_EDOM, __func__, "B0 = %g, t = %g: need B0 > 0, "
-                     "t >= 0", B0, t);
-  double M = mx->m_a + mx->m_b;
-  double rate = 2.0 * B0 * (mx->n_a + mx->n_b) * mx->m_a * mx->m_b / (M * M);
-  split_T(mx, (mx->T_a0 - mx->T_b0) * exp(-rate * t), T_a, T_b);
+  if (!(B0 > 0) || !(t >= 0) || !isfinite(B0) || !isfinite(t))
+    return sbi_error(SB_EDOM, __func__, "B0 = %g, t = %g: need finite "
+                     "B0 > 0, t >= 0", B0, t);
+  double rate = mix_rate(2.0 * B0, mx);
+  double e = t == 0 ? 1.0 : exp(-rate * t), Ta, Tb;
+  split_T(mx, (mx->T_a0 - mx->T_b0) * e, &Ta, &Tb);
+  if ((st = temps_ok(Ta, Tb, __func__)))
+    return st;
+  if (T_a)
+    *T_a = Ta;
+  if (T_b)
+    *T_b = Tb;
   return SB_SUCCESS;
 }
 
 static double hs_C(const sb_spray_mixture *mx)
 {
-  double d = mx->r_a + mx->r_b, M = mx->m_a + mx->m_b;
-  return (16.0 / 3.0) * sqrt(2.0 / SBI_PI) * SBI_PI * d * d *
-         (mx->n_a + mx->n_b) * mx->m_a * mx->m_b / (M * M);
+  double d = mx->r_a + mx->r_b;
+  double pre = (16.0 / 3.0) * sqrt(2.0 / SBI_PI) * SBI_PI * d * d;
+  if (!(pre >= DBL_MIN && pre <= DBL_MAX)) {
+    sbi_xd dx = sbi_xd_add(sbi_xd_of(mx->r_a), sbi_xd_of(mx->r_b));
+    sbi_xd c = sbi_xd_mul(sbi_xd_mul(sbi_xd_of((16.0 / 3.0) *
+                                                sqrt(2.0 / SBI_PI) * SBI_PI),
+                                     dx),
+                          dx);
+    sbi_xd M = sbi_xd_add(sbi_xd_of(mx->m_a), sbi_xd_of(mx->m_b));
+    sbi_xd nx = sbi_xd_add(sbi_xd_of(mx->n_a), sbi_xd_of(mx->n_b));
+    c = sbi_xd_mul(sbi_xd_mul(sbi_xd_mul(c, nx), sbi_xd_of(mx->m_a)),
+                   sbi_xd_of(mx->m_b));
+    return sbi_xd_val(sbi_xd_div(c, sbi_xd_mul(M, M)));
+  }
+  return mix_rate(pre, mx);
+}
+
+static int radii_ok(const sb_spray_mixture *mx)
+{
+  return mx->r_a > 0 && mx->r_b > 0 && isfinite(mx->r_a) &&
+         isfinite(mx->r_b);
 }
 
 double sb_spray_two_temp_hs_rate(const sb_spray_mixture *mx, double T_a,
                                  double T_b)
 {
-  if (mix_check(mx, __func__) || !(mx->r_a > 0) || !(mx->r_b > 0) ||
-      !(T_a > 0) || !(T_b > 0))
+  if (mix_check(mx, __func__))
     return NAN;
+  if (!radii_ok(mx) || !(T_a > 0) || !(T_b > 0) || !isfinite(T_a) ||
+      !isfinite(T_b)) {
+    sbi_error(SB_EDOM, __func__, "need finite r_a, r_b, T_a, T_b > 0 "
+              "(T_a = %g, T_b = %g)", T_a, T_b);
+    return NAN;
+  }
   double s = sqrt(SB_BOLTZMANN * (T_a / mx->m_a + T_b / mx->m_b));
   double n = mx->n_a + mx->n_b;
-  return -hs_C(mx) * mx->n_b / n * s * (T_a - T_b);
+  double r = -hs_C(mx) * mx->n_b / n * s * (T_a - T_b);
+  if (!isfinite(r)) {
+    double fa, fb;
+    fractions(mx, &fa, &fb);
+    r = -hs_C(mx) * fb * s * (T_a - T_b);
+  }
+  if (!isfinite(r)) {
+    sbi_error(SB_ERANGE, __func__, "the rate overflows (T_a = %g, T_b = %g)",
+              T_a, T_b);
+    return NAN;
+  }
+  return r;
 }
 
 /* dD/dt = -C D sqrt(alpha + beta D), s^2 = alpha + beta D.  With
@@ -160,8 +304,9 @@ int sb_spray_two_temp_hs(const sb_spray_mixture *mx, double t, double *T_a,
   int st = mix_check(mx, __func__);
   if (st)
     return st;
-  if (!(mx->r_a > 0) || !(mx->r_b > 0) || !(t >= 0))
-    return sbi_error(SB_EDOM, __func__, "need r_a, r_b > 0 and t >= 0");
+  if (!radii_ok(mx) || !(t >= 0) || !isfinite(t))
+    return sbi_error(SB_EDOM, __func__, "need finite r_a, r_b > 0 and "
+                     "t >= 0");
   const double k = SB_BOLTZMANN, n = mx->n_a + mx->n_b;
   double Tm = (mx->n_a * mx->T_a0 + mx->n_b * mx->T_b0) / n;
   double D0 = mx->T_a0 - mx->T_b0;
@@ -172,6 +317,14 @@ int sb_spray_two_temp_hs(const sb_spray_mixture *mx, double t, double *T_a,
   double e = exp(-hs_C(mx) * sa * t);
   double rho = beta * D0 / q * e;
   double D = 4.0 * alpha * D0 * e / (q * (1.0 - rho) * (1.0 - rho));
-  split_T(mx, D, T_a, T_b);
+  double Ta, Tb;
+  split_T(mx, D, &Ta, &Tb);
+  if (!isfinite(D) || (st = temps_ok(Ta, Tb, __func__)))
+    return st ? st : sbi_error(SB_ERANGE, __func__, "an intermediate "
+                               "leaves the double range");
+  if (T_a)
+    *T_a = Ta;
+  if (T_b)
+    *T_b = Tb;
   return SB_SUCCESS;
 }
