@@ -21,6 +21,7 @@
  * commutes with sticky collisions); every solution maps back. */
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include <gsl/gsl_integration.h>
@@ -41,22 +42,82 @@ static void drag_map(double tau, double t, double *s, double *e)
   }
 }
 
+static int delta_dom(double rho_l, double u_l, double rho_r, double u_r)
+{
+  return rho_l > 0 && rho_r > 0 && u_l > u_r && isfinite(rho_l) &&
+         isfinite(rho_r) && isfinite(u_l) && isfinite(u_r);
+}
+
+/* The sqrt(rho)-weighted mean of u_l and u_r (valid arguments): a mean,
+ * so representable; through the weights where a u_l + b u_r overflows. */
+static double delta_speed(double rho_l, double u_l, double rho_r, double u_r)
+{
+  double a = sqrt(rho_l), b = sqrt(rho_r);
+  double sig = (a * u_l + b * u_r) / (a + b);
+  if (!isfinite(sig)) {
+    double wa = a / (a + b), wb = b / (a + b);
+    sig = wa * u_l + wb * u_r;
+  }
+  return sig;
+}
+
+/* sqrt(rho_l rho_r)(u_l - u_r) (valid arguments), with an extended
+ * exponent where the product or u_l - u_r leaves the range; inf if the
+ * rate exceeds DBL_MAX. */
+static double delta_mass_rate(double rho_l, double u_l, double rho_r,
+                              double u_r)
+{
+  double sa = sqrt(rho_l), sb = sqrt(rho_r), p = sa * sb, du = u_l - u_r;
+  double m = p * du;
+  if (!(p >= DBL_MIN && m >= DBL_MIN && m <= DBL_MAX)) {
+    sbi_xd d = isinf(du) ? sbi_xd_mul(sbi_xd_of(0.5 * u_l - 0.5 * u_r),
+                                      sbi_xd_of(2.0))
+                         : sbi_xd_of(du);
+    m = sbi_xd_val(sbi_xd_mul(sbi_xd_mul(sbi_xd_of(sa), sbi_xd_of(sb)), d));
+  }
+  return m;
+}
+
 double sb_pgd_delta_speed(double rho_l, double u_l, double rho_r, double u_r)
 {
-  if (!(rho_l > 0) || !(rho_r > 0) || !(u_l > u_r) || !isfinite(rho_l) ||
-      !isfinite(rho_r) || !isfinite(u_l) || !isfinite(u_r))
+  if (!delta_dom(rho_l, u_l, rho_r, u_r)) {
+    sbi_error(SB_EDOM, __func__, "need finite rho_l, rho_r > 0 and u_l > "
+              "u_r (rho_l = %g, u_l = %g, rho_r = %g, u_r = %g)", rho_l, u_l,
+              rho_r, u_r);
     return NAN;
-  double a = sqrt(rho_l), b = sqrt(rho_r);
-  return (a * u_l + b * u_r) / (a + b);
+  }
+  return delta_speed(rho_l, u_l, rho_r, u_r);
 }
 
 double sb_pgd_delta_mass_rate(double rho_l, double u_l, double rho_r,
                               double u_r)
 {
-  if (!(rho_l > 0) || !(rho_r > 0) || !(u_l > u_r) || !isfinite(rho_l) ||
-      !isfinite(rho_r) || !isfinite(u_l) || !isfinite(u_r))
+  if (!delta_dom(rho_l, u_l, rho_r, u_r)) {
+    sbi_error(SB_EDOM, __func__, "need finite rho_l, rho_r > 0 and u_l > "
+              "u_r (rho_l = %g, u_l = %g, rho_r = %g, u_r = %g)", rho_l, u_l,
+              rho_r, u_r);
     return NAN;
-  return sqrt(rho_l) * sqrt(rho_r) * (u_l - u_r);
+  }
+  double m = delta_mass_rate(rho_l, u_l, rho_r, u_r);
+  if (isinf(m)) {
+    sbi_error(SB_ERANGE, __func__, "sqrt(rho_l rho_r)(u_l - u_r) overflows "
+              "(rho_l = %g, u_l = %g, rho_r = %g, u_r = %g)", rho_l, u_l,
+              rho_r, u_r);
+    return NAN;
+  }
+  return m;
+}
+
+/* Every output of a solved pattern finite, else SB_ERANGE. */
+static int sol_ok(const sb_pgd_riemann_sol *w, const char *f)
+{
+  if (!isfinite(w->xl) || !isfinite(w->xr) || !isfinite(w->mass) ||
+      !isfinite(w->ul) || !isfinite(w->ur) ||
+      (w->type == SB_PGD_WAVE_DELTA && !isfinite(w->vel)))
+    return sbi_error(SB_ERANGE, f, "the wave positions, velocities or the "
+                     "delta's mass leave the double range (xl = %g, xr = %g, "
+                     "mass = %g)", w->xl, w->xr, w->mass);
+  return SB_SUCCESS;
 }
 
 static int check_rp(const sb_pgd_riemann *rp, double t, const char *f)
@@ -106,11 +167,27 @@ int sb_pgd_riemann_solve(const sb_pgd_riemann *rp, double t,
     sol->xl = x0 + vl * s;
     sol->xr = x0 + vr * s;
   } else {
-    double sig = sb_pgd_delta_speed(rp->rho_l, vl, rp->rho_r, vr);
+    double sig = delta_speed(rp->rho_l, vl, rp->rho_r, vr);
     sol->type = SB_PGD_WAVE_DELTA;
     sol->xl = sol->xr = x0 + sig * s;
-    sol->mass = sb_pgd_delta_mass_rate(rp->rho_l, vl, rp->rho_r, vr) * s;
+    sol->mass = delta_mass_rate(rp->rho_l, vl, rp->rho_r, vr) * s;
     sol->vel = U + sig * e;
+  }
+  return sol_ok(sol, __func__);
+}
+
+/* sb_pgd_riemann_solve with errors named after func. */
+static int solve_for(const sb_pgd_riemann *rp, double t,
+                     sb_pgd_riemann_sol *w, const char *func)
+{
+  int st = check_rp(rp, t, func);
+  if (st)
+    return st;
+  st = sb_pgd_riemann_solve(rp, t, w);
+  if (st) {
+    char msg[256];
+    snprintf(msg, sizeof msg, "%s", sb_last_error());
+    return sbi_error(st, func, "%s", msg);
   }
   return SB_SUCCESS;
 }
@@ -119,9 +196,11 @@ int sb_pgd_riemann_eval(const sb_pgd_riemann *rp, double x, double t,
                         double *rho, double *u)
 {
   sb_pgd_riemann_sol w;
-  int st = sb_pgd_riemann_solve(rp, t, &w);
+  int st = solve_for(rp, t, &w, __func__);
   if (st)
     return st;
+  if (isnan(x))
+    return sbi_error(SB_EDOM, __func__, "x is NaN");
   double r = 0, v = 0;
   if (x < w.xl) {
     r = rp->rho_l;
@@ -159,13 +238,16 @@ int sb_pgd_riemann_integral(const sb_pgd_riemann *rp, double t, double a,
                             double b, double *mass, double *mom)
 {
   sb_pgd_riemann_sol w;
-  int st = sb_pgd_riemann_solve(rp, t, &w);
+  int st = solve_for(rp, t, &w, __func__);
   if (st)
     return st;
   if (!(a <= b))
     return sbi_error(SB_EDOM, __func__, "interval [%g, %g] is empty", a, b);
   double m, q;
   integral_sol(rp, &w, a, b, &m, &q);
+  if (!isfinite(m) || !isfinite(q))
+    return sbi_error(SB_ERANGE, __func__, "mass = %g, momentum = %g in "
+                     "[%g, %g] leave the double range", m, q, a, b);
   if (mass)
     *mass = m;
   if (mom)
@@ -186,11 +268,23 @@ int sb_pgd_riemann_error(const sb_pgd_riemann *rp, double t, double a,
                          double *w1)
 {
   sb_pgd_riemann_sol w;
-  int st = sb_pgd_riemann_solve(rp, t, &w);
+  int st = solve_for(rp, t, &w, __func__);
   if (st)
     return st;
-  if (!rho || n == 0 || !(h > 0) || !isfinite(a))
-    return sbi_error(SB_EINVAL, __func__, "need rho, n > 0, h > 0");
+  if (!rho || n == 0)
+    return sbi_error(SB_EINVAL, __func__, "need rho, n > 0");
+  if (!(h > 0) || !isfinite(h) || !isfinite(a) ||
+      !isfinite(a + (double)n * h))
+    return sbi_error(SB_EDOM, __func__, "need finite a, h > 0 and a + n h "
+                     "(a = %g, h = %g)", a, h);
+  if (fmax(fabs(a), fabs(a + (double)n * h)) * DBL_EPSILON > 1e-6 * h)
+    return sbi_error(SB_ERANGE, __func__, "cells of width h = %g at |x| = "
+                     "%g are not resolved in double precision", h,
+                     fmax(fabs(a), fabs(a + (double)n * h)));
+  for (size_t i = 0; i < n; i++)
+    if (!isfinite(rho[i]))
+      return sbi_error(SB_EDOM, __func__, "rho[%zu] = %g: must be finite",
+                       i, rho[i]);
   double sl1 = 0, sw1 = 0, Mnum = 0;
   const int has_delta = w.type == SB_PGD_WAVE_DELTA;
   for (size_t i = 0; i < n; i++) {
@@ -219,6 +313,9 @@ int sb_pgd_riemann_error(const sb_pgd_riemann *rp, double t, double a,
       Mnum += rho[i] * h;
     }
   }
+  if (!isfinite(sl1) || (w1 && !isfinite(sw1)))
+    return sbi_error(SB_ERANGE, __func__, "l1 = %g, w1 = %g leave the double "
+                     "range", sl1, sw1);
   if (l1)
     *l1 = sl1;
   if (w1)
@@ -252,14 +349,15 @@ static int check_smooth(const sb_pgd_smooth *s, double t, const char *f)
   return SB_SUCCESS;
 }
 
-int sb_pgd_smooth_foot(const sb_pgd_smooth *s, double x, double t,
-                       double *xi)
+/* The foot, errors named after func (s and t checked by the caller). */
+static int foot(const sb_pgd_smooth *s, double x, double t, double *xi,
+                const char *func)
 {
-  int st = check_smooth(s, t, __func__);
-  if (st)
-    return st;
-  if (!isfinite(x) || !xi)
-    return sbi_error(SB_EINVAL, __func__, "x = %g: must be finite", x);
+  int st;
+  if (!xi)
+    return sbi_error(SB_EINVAL, func, "NULL xi");
+  if (!isfinite(x))
+    return sbi_error(SB_EDOM, func, "x = %g: must be finite", x);
   double sf, e;
   drag_map(s->tau, t, &sf, &e);
   double U = isinf(s->tau) ? 0.0 : s->ugas;
@@ -267,7 +365,7 @@ int sb_pgd_smooth_foot(const sb_pgd_smooth *s, double x, double t,
   gsl_function F = {foot_f, &fp};
   double g0 = x - U * t, f0 = foot_f(g0, &fp);
   if (!isfinite(f0))
-    return sbi_error(SB_EDOM, __func__, "u0 not finite near %g", g0);
+    return sbi_error(SB_EDOM, func, "u0 not finite near %g", g0);
   if (f0 == 0) {
     *xi = g0;
     return SB_SUCCESS;
@@ -283,22 +381,31 @@ int sb_pgd_smooth_foot(const sb_pgd_smooth *s, double x, double t,
       hi = g0 + d;
     double fl = foot_f(lo, &fp), fh = foot_f(hi, &fp);
     if (!isfinite(fl) || !isfinite(fh))
-      return sbi_error(SB_EDOM, __func__, "u0 not finite in [%g, %g]", lo,
+      return sbi_error(SB_EDOM, func, "u0 not finite in [%g, %g]", lo,
                        hi);
     if (fl <= 0 && fh >= 0)
       break;
     d *= 2;
   }
   if (k == 200)
-    return sbi_error(SB_EMAXITER, __func__, "no foot found for x = %g at "
+    return sbi_error(SB_EMAXITER, func, "no foot found for x = %g at "
                      "t = %g (characteristics crossed?)", x, t);
   st = sbi_brent(&F, lo, hi, DBL_MIN, 4 * DBL_EPSILON, 300, xi);
   if (st == SB_ENOMEM)
-    return sbi_error(SB_ENOMEM, __func__, "out of memory");
+    return sbi_error(SB_ENOMEM, func, "out of memory");
   if (st)
-    return sbi_error(SB_EMAXITER, __func__, "root finding did not converge "
+    return sbi_error(SB_EMAXITER, func, "root finding did not converge "
                      "for x = %g", x);
   return SB_SUCCESS;
+}
+
+int sb_pgd_smooth_foot(const sb_pgd_smooth *s, double x, double t,
+                       double *xi)
+{
+  int st = check_smooth(s, t, __func__);
+  if (st)
+    return st;
+  return foot(s, x, t, xi, __func__);
 }
 
 typedef struct {
@@ -350,8 +457,8 @@ int sb_pgd_smooth_integral(const sb_pgd_smooth *s, double t, double a,
   if (!(a <= b))
     return sbi_error(SB_EDOM, __func__, "interval [%g, %g] is empty", a, b);
   double xa, xb;
-  if ((st = sb_pgd_smooth_foot(s, a, t, &xa)) ||
-      (st = sb_pgd_smooth_foot(s, b, t, &xb)))
+  if ((st = foot(s, a, t, &xa, __func__)) ||
+      (st = foot(s, b, t, &xb, __func__)))
     return st;
   double m = s->mass0(xb, s->data) - s->mass0(xa, s->data);
   if (mass)

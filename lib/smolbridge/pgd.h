@@ -230,6 +230,15 @@ typedef struct {
   double ul, ur;      /**< velocities of the two states at t */
 } sb_pgd_riemann_sol;
 
+/** SB_EDOM for arguments outside the ranges above (t finite >= 0);
+ *  SB_ERANGE when a wave position, a velocity or the delta's mass is not
+ *  a finite double (e.g. u_l - u_r or sqrt(rho_l rho_r)(u_l - u_r) s
+ *  beyond DBL_MAX).  The delta speed is formed through its weights where
+ *  sqrt(rho_l) u_l overflows, the mass rate with an extended exponent
+ *  where sqrt(rho_l rho_r) or the product leaves the range.  The same
+ *  statuses, named after the function called, hold for _eval (x not
+ *  NaN), _integral (SB_ERANGE when the mass or momentum in [a, b]
+ *  overflows, e.g. an infinite a or b) and _error. */
 int sb_pgd_riemann_solve(const sb_pgd_riemann *rp, double t,
                          sb_pgd_riemann_sol *sol);
 
@@ -245,8 +254,10 @@ int sb_pgd_riemann_integral(const sb_pgd_riemann *rp, double t, double a,
                             double b, double *mass, double *mom);
 
 /** Speed and mass growth rate of the delta-shock of (rho_l, u_l) against
- *  (rho_r, u_r) without drag (u_l > u_r, rho_l, rho_r > 0; NaN
- *  otherwise). */
+ *  (rho_r, u_r) without drag (u_l > u_r, rho_l, rho_r > 0, all finite;
+ *  NaN with SB_EDOM otherwise).  The speed, a weighted mean of u_l and
+ *  u_r, is representable for every valid argument; the mass rate is NaN
+ *  with SB_ERANGE where it exceeds DBL_MAX. */
 double sb_pgd_delta_speed(double rho_l, double u_l, double rho_r,
                           double u_r);
 double sb_pgd_delta_mass_rate(double rho_l, double u_l, double rho_r,
@@ -258,7 +269,10 @@ double sb_pgd_delta_mass_rate(double rho_l, double u_l, double rho_r,
  *  cell averages); w1 = integral over [a, a + n h] of |M_num - M_exact|,
  *  M the cumulative mass from a (the Wasserstein-1 distance when both
  *  masses agree), computed exactly for the piecewise-constant numerical
- *  density.  Either pointer may be NULL. */
+ *  density.  Either pointer may be NULL.  SB_EINVAL for a NULL rho or
+ *  n = 0; SB_EDOM unless a, h > 0, a + n h and every rho[i] are finite;
+ *  SB_ERANGE where the cells are not resolved in double precision
+ *  (max(|a|, |a + n h|) DBL_EPSILON > 1e-6 h) or a norm overflows. */
 int sb_pgd_riemann_error(const sb_pgd_riemann *rp, double t, double a,
                          double h, size_t n, const double *rho, double *l1,
                          double *w1);
@@ -284,11 +298,16 @@ typedef struct {
  *  X(xi, t) = x, bracketed by expansion from x - ugas t and refined by
  *  GSL's Brent solver to 4 DBL_EPSILON.  Valid while X is increasing in
  *  xi (1 + u0'(xi) s(t) > 0 everywhere: the caller's responsibility);
- *  SB_EMAXITER if no bracket is found.  u0 must be finite. */
+ *  SB_EMAXITER if no bracket is found.  u0 must be finite (SB_EDOM where
+ *  it is not, e.g. a periodic u0 of |x| near DBL_MAX); SB_EDOM for a
+ *  non-finite x, SB_EINVAL for NULL pointers. */
 int sb_pgd_smooth_foot(const sb_pgd_smooth *s, double x, double t,
                        double *xi);
 
-/** Exact mass and momentum in [a, b] at t. */
+/** Exact mass and momentum in [a, b] at t.  Errors of the feet as
+ *  sb_pgd_smooth_foot (named after this function); SB_EMAXITER when the
+ *  momentum quadrature does not converge, e.g. over ~1e300 periods of an
+ *  oscillating rho0 u0 (the mass, from mass0, is then still set). */
 int sb_pgd_smooth_integral(const sb_pgd_smooth *s, double t, double a,
                            double b, double *mass, double *mom);
 
