@@ -23,6 +23,14 @@ Writes (into tests/data/):
                    Lambda, Omega fixed at a0.
   spray_twotemp.csv  na,nb,ma,mb,ra,rb,Ta0,Tb0,t,Ta  hard-sphere Maxwellian
                    closure dD/dt = -C D s(D) integrated by odefun.
+  spray_extreme.csv  kind,a1,...,a8,value  closed forms at corners where a
+                   double intermediate over/underflows but the value is a
+                   normal double (arguments are exact doubles, written with
+                   repr): kind 0 pair rate pi (r1 + r2)^2 g; 1 O'Rourke
+                   b_cr^2/(r1 + r2)^2; 2 TAB r32; 3 Reitz blob radius; 4 BKW
+                   density (theta as given); 5 BKW E|v|^6; 6 two-temperature
+                   Maxwell T_a; 7 pgd delta mass rate; 8 pgd delta speed
+                   (kinds 7, 8 are read by tests/test_pgd_exact.c).
 Run: /usr/bin/python3 tests/gen_spray_ref.py   (about a minute)
 """
 import os
@@ -222,11 +230,76 @@ def write_twotemp():
     return rows
 
 
+# kind, arguments (exact doubles; unused columns 0)
+EXTREME = [
+    (0, [1e160, 1e160, 1e-100]),
+    (0, [1e-170, 1e-170, 1e100]),
+    (1, [1e-300, 1e-300, 1e200, 1000.0, 0.072]),
+    (1, [1e-100, 1e10, 1e200, 1000.0, 1e-100]),
+    (2, [1e-200, 1e300, 1000.0, 0.072]),
+    (3, [1e300, 1e-100, 1e250, 1e10]),
+    (4, [3.7e-99, 0.8, 1e-200]),
+    (5, [0.8, 1e-103]),
+    (6, [1e20, 2e20, 1e-300, 5e-26, 300.0, 500.0, 1e-16, 1e270]),
+    (7, [1e-320, 1e300, 1e-320, -1e300]),
+    (8, [4.0, 1.7976931348623157e308, 1.0, -1e308]),
+]
+
+
+def extreme_value(kind, a):
+    a = [mpf(x) for x in a]  # exact binary values
+    if kind == 0:
+        return pi * (a[0] + a[1]) ** 2 * a[2]
+    if kind == 1:
+        r1, r2, g, rho, sg = a[:5]
+        rs = min(r1, r2)
+        gam = max(r1, r2) / rs
+        f = gam ** 3 - mpf("2.4") * gam ** 2 + mpf("2.7") * gam
+        return min(mpf(1), mpf("2.4") * f * sg / (rho * g * g * rs))
+    if kind == 2:
+        r, yd, rho, sg = a[:4]
+        return r / (mpf(7) / 3 + rho * r ** 3 * yd ** 2 / (8 * sg))
+    if kind == 3:
+        A, U, L, O = a[:4]
+        return min(mp.cbrt(3 * pi * A * A * U / (2 * O)),
+                   mp.cbrt(mpf(3) / 4 * A * A * L))
+    if kind == 4:
+        v, K, th = a[:3]
+        kt = K * th
+        x = v * v / (2 * kt)
+        return (2 * pi * kt) ** mpf(-1.5) * exp(-x) * (
+            (5 * K - 3) / (2 * K) + (1 - K) / K * x)
+    if kind == 5:
+        K, th = a[:2]
+        return th ** 3 * K * K * (315 - 210 * K)
+    if kind == 6:
+        na, nb, ma, mb, Ta0, Tb0, B0, t = a
+        n = na + nb
+        rate = 2 * B0 * n * ma * mb / (ma + mb) ** 2
+        return (na * Ta0 + nb * Tb0) / n + nb / n * (Ta0 - Tb0) * exp(-rate * t)
+    if kind == 7:
+        return sqrt(a[0]) * sqrt(a[2]) * (a[1] - a[3])
+    if kind == 8:
+        return (sqrt(a[0]) * a[1] + sqrt(a[2]) * a[3]) / (sqrt(a[0]) +
+                                                         sqrt(a[2]))
+    raise ValueError(kind)
+
+
+def write_extreme():
+    rows = ["kind,a1,a2,a3,a4,a5,a6,a7,a8,value"]
+    for kind, a in EXTREME:
+        args = [repr(float(x)) for x in a] + ["0"] * (8 - len(a))
+        rows.append("%d,%s,%s" % (kind, ",".join(args),
+                                  s20(extreme_value(kind, a))))
+    return rows
+
+
 def main():
     check_bkw()
     for name, fn in [("spray_bkw.csv", write_bkw), ("spray_tab.csv", write_tab),
                      ("spray_reitz.csv", write_reitz),
-                     ("spray_twotemp.csv", write_twotemp)]:
+                     ("spray_twotemp.csv", write_twotemp),
+                     ("spray_extreme.csv", write_extreme)]:
         rows = fn()
         with open(os.path.join(HERE, name), "w") as f:
             f.write("\n".join(rows) + "\n")

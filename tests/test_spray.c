@@ -4,7 +4,9 @@
  * tests/data/spray_*.csv: BKW verified there as a solution in Bobylev's
  * Fourier form, the ODEs integrated by Taylor series), conservation of the
  * operators to round-off, and argument checking. */
+#include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -609,6 +611,270 @@ START_TEST(test_totals_and_temperature)
 }
 END_TEST
 
+/* ------------------------------------------------- extreme arguments */
+
+/* One public reference function of spray.h on an argument vector a: its
+ * status (sb_last_status for the plain forms, after sb_clear_error), its
+ * outputs out[0..n-1] and the name its error messages must carry. */
+typedef int (*xfn)(const double *a, double *out, int *n, const char **nm);
+
+#define XPLAIN(NAME, FN, ...)                                              \
+  static int NAME(const double *a, double *out, int *n, const char **nm)   \
+  {                                                                         \
+    *nm = #FN;                                                              \
+    sb_clear_error();                                                       \
+    out[0] = FN(__VA_ARGS__);                                               \
+    *n = 1;                                                                 \
+    return sb_last_status();                                                \
+  }
+XPLAIN(x_coalesces, sb_spray_coalesces, a[0], a[1])
+XPLAIN(x_orourke, sb_spray_orourke_b2, a[0], a[1], a[2], a[3], a[4])
+XPLAIN(x_rate_hs, sb_spray_pair_rate, SB_SPRAY_HARD_SPHERE, a[0], a[1], a[2],
+       a[3])
+XPLAIN(x_rate_mx, sb_spray_pair_rate, SB_SPRAY_MAXWELL, a[0], a[1], a[2],
+       a[3])
+XPLAIN(x_r32, sb_spray_tab_r32, a[0], a[1], a[2], a[3])
+XPLAIN(x_blob, sb_spray_reitz_blob_radius, a[0], a[1], a[2], a[3])
+XPLAIN(x_frozen, sb_spray_reitz_radius_frozen, a[0], a[1], a[2], a[3])
+XPLAIN(x_bkw_K, sb_spray_bkw_K, a[0], a[1], a[2])
+XPLAIN(x_bkw_pdf, sb_spray_bkw_pdf, a[0], a[1], a[2])
+XPLAIN(x_bkw_cdf, sb_spray_bkw_speed_cdf, a[0], a[1], a[2])
+XPLAIN(x_bkw_m4, sb_spray_bkw_m4, a[0], a[1])
+XPLAIN(x_bkw_m6, sb_spray_bkw_m6, a[0], a[1])
+
+static int x_we_crit(const double *a, double *out, int *n, const char **nm)
+{
+  sb_spray_liquid liq = {a[2], a[3]};
+  *nm = "sb_spray_tab_we_crit";
+  sb_clear_error();
+  out[0] = sb_spray_tab_we_crit(a[0], a[1], &liq, a[4]);
+  *n = 1;
+  return sb_last_status();
+}
+
+/* a = t, r, urel, rho_g, rho_l, sigma, mu_l, Cd, y0, ydot0 */
+static int x_tab_state(const double *a, double *out, int *n, const char **nm)
+{
+  sb_spray_liquid liq = {a[5], a[6]};
+  *nm = "sb_spray_tab_state";
+  *n = 2;
+  return sb_spray_tab_state(a[0], a[1], a[2], a[3], a[4], &liq, a[7], a[8],
+                            a[9], &out[0], &out[1]);
+}
+
+/* a = r, urel, rho_g, rho_l, sigma, mu_l, Cd, y0, ydot0, tmax; tb may be
+ * +inf (documented: no breakup) */
+static int x_tab_tb(const double *a, double *out, int *n, const char **nm)
+{
+  sb_spray_liquid liq = {a[4], a[5]};
+  *nm = "sb_spray_tab_breakup_time";
+  *n = 2;
+  int st = sb_spray_tab_breakup_time(a[0], a[1], a[2], a[3], &liq, a[6],
+                                     a[7], a[8], a[9], &out[0], &out[1]);
+  if (st == SB_SUCCESS && out[0] == INFINITY)
+    out[0] = out[1] = 0.0; /* (y' at breakup: not set) */
+  return st;
+}
+
+/* a = a, U, rho_g, rho_l, sigma, mu_l */
+static int x_wave(const double *a, double *out, int *n, const char **nm)
+{
+  sb_spray_liquid liq = {a[4], a[5]};
+  *nm = "sb_spray_reitz_wave";
+  *n = 2;
+  return sb_spray_reitz_wave(a[0], a[1], a[2], a[3], &liq, &out[0], &out[1]);
+}
+
+/* a = a0, t, U, rho_g, rho_l, sigma, mu_l */
+static int x_reitz_radius(const double *a, double *out, int *n,
+                          const char **nm)
+{
+  sb_spray_liquid liq = {a[5], a[6]};
+  sb_spray_reitz_params rp;
+  sb_spray_reitz_params_default(&rp);
+  *nm = "sb_spray_reitz_radius";
+  *n = 1;
+  out[0] = NAN; /* (a plain NaN on error for the check below) */
+  return sb_spray_reitz_radius(a[0], a[1], a[2], a[3], a[4], &liq, &rp,
+                               &out[0]);
+}
+
+static gsl_rng *xrng;
+
+static int x_bkw_sample(const double *a, double *out, int *n, const char **nm)
+{
+  *nm = "sb_spray_bkw_sample";
+  *n = 3;
+  out[0] = out[1] = out[2] = 0.0;
+  return sb_spray_bkw_sample(a[0], a[1], xrng, out);
+}
+
+/* a = n_a, n_b, m_a, m_b, T_a0, T_b0, B0, t */
+static int x_tt_maxwell(const double *a, double *out, int *n, const char **nm)
+{
+  sb_spray_mixture mx = {a[0], a[1], a[2], a[3], 1e-6, 2e-6, a[4], a[5]};
+  *nm = "sb_spray_two_temp_maxwell";
+  *n = 2;
+  return sb_spray_two_temp_maxwell(&mx, a[6], a[7], &out[0], &out[1]);
+}
+
+/* a = n_a, n_b, m_a, m_b, r_a, r_b, T_a0, T_b0, t */
+static int x_tt_hs(const double *a, double *out, int *n, const char **nm)
+{
+  sb_spray_mixture mx = {a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7]};
+  *nm = "sb_spray_two_temp_hs";
+  *n = 2;
+  return sb_spray_two_temp_hs(&mx, a[8], &out[0], &out[1]);
+}
+
+/* a = n_a, n_b, m_a, m_b, r_a, r_b, T_a0, T_b0, T_a, T_b */
+static int x_tt_hs_rate(const double *a, double *out, int *n, const char **nm)
+{
+  sb_spray_mixture mx = {a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7]};
+  *nm = "sb_spray_two_temp_hs_rate";
+  sb_clear_error();
+  out[0] = sb_spray_two_temp_hs_rate(&mx, a[8], a[9]);
+  *n = 1;
+  return sb_last_status();
+}
+
+/* Each argument of each closed-form reference function of spray.h in turn
+ * over +-1e-320, +-1e-300, 0, +-1e300, +-DBL_MAX, +-inf, NaN (the others
+ * ordinary): the outputs are finite (those that are >= 0 by definition
+ * checked so) with status 0, or the status is SB_EDOM/SB_ERANGE, a plain
+ * value NaN and the message names the public function. */
+START_TEST(test_extreme_arguments)
+{
+  static const struct {
+    xfn f;
+    int n;      /* arguments */
+    int nonneg; /* outputs 0..nonneg-1 are >= 0 */
+    double a[10];
+  } k[] = {
+      {x_coalesces, 2, 1, {-0.3, 0.9}},
+      {x_orourke, 5, 1, {1e-5, 2e-5, 3.0, 1000, 0.072}},
+      {x_rate_hs, 4, 1, {1e-9, 1e-5, 2e-5, 3.0}},
+      {x_rate_mx, 4, 1, {1e-9, 1e-5, 2e-5, 3.0}},
+      {x_tab_state, 10, 0,
+       {1e-4, 1e-4, 50, 1.2, 800, 0.03, 1e-3, 5, 0.1, 20}},
+      {x_tab_tb, 10, 1, {1e-4, 50, 1.2, 800, 0.03, 1e-3, 5, 0.1, 20, 1e-2}},
+      {x_we_crit, 5, 1, {1e-4, 800, 0.03, 1e-3, 5}},
+      {x_r32, 4, 1, {1e-4, 30, 800, 0.03}},
+      {x_blob, 4, 1, {1e-4, 50, 2e-4, 3e3}},
+      {x_wave, 6, 2, {1e-4, 50, 1.2, 800, 0.03, 1e-3}},
+      {x_frozen, 4, 1, {1e-4, 2e-5, 0.5, 1e-4}},
+      {x_reitz_radius, 7, 1, {1e-4, 1e-4, 50, 1.2, 800, 0.03, 1e-3}},
+      {x_bkw_K, 3, 1, {0.7, 2.0, 0.3}},
+      {x_bkw_pdf, 3, 1, {0.8, 0.7, 1.3}},
+      {x_bkw_cdf, 3, 1, {0.8, 0.7, 1.3}},
+      {x_bkw_m4, 2, 1, {0.7, 1.3}},
+      {x_bkw_m6, 2, 1, {0.7, 1.3}},
+      {x_bkw_sample, 2, 0, {0.7, 1.3}},
+      {x_tt_maxwell, 8, 2, {1e20, 2e20, 3e-26, 5e-26, 300, 500, 1e-16, 0.1}},
+      {x_tt_hs, 9, 2,
+       {1e20, 2e20, 3e-26, 5e-26, 1e-10, 2e-10, 300, 500, 1e-3}},
+      {x_tt_hs_rate, 10, 0,
+       {1e20, 2e20, 3e-26, 5e-26, 1e-10, 2e-10, 300, 500, 350, 450}},
+  };
+  const double ext[] = {1e-320, -1e-320, 1e-300, -1e-300, 0.0, 1e300,
+                        -1e300, DBL_MAX, -DBL_MAX, INFINITY, -INFINITY,
+                        NAN};
+  const int next = (int)(sizeof ext / sizeof ext[0]);
+  int nbad = 0; /* every failure is printed, then counted */
+#define XCHECK(cond, ...)                                                   \
+  do {                                                                      \
+    if (!(cond)) {                                                          \
+      fprintf(stderr, __VA_ARGS__);                                         \
+      fputc('\n', stderr);                                                  \
+      nbad++;                                                               \
+    }                                                                       \
+  } while (0)
+  xrng = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(xrng, 20261129);
+  for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
+    for (int i = 0; i < k[f].n; i++)
+      for (int e = 0; e < next; e++) {
+        double a[10], out[3];
+        int n;
+        const char *nm;
+        memcpy(a, k[f].a, sizeof a);
+        a[i] = ext[e];
+        sb_clear_error();
+        const int st = k[f].f(a, out, &n, &nm);
+        if (st == SB_SUCCESS) {
+          for (int j = 0; j < n; j++)
+            XCHECK(isfinite(out[j]) && (j >= k[f].nonneg || out[j] >= 0),
+                   "%s, argument %d = %g: output %d = %g with status 0", nm,
+                   i, ext[e], j, out[j]);
+        } else {
+          XCHECK(st == SB_EDOM || st == SB_ERANGE,
+                 "%s, argument %d = %g: status %d", nm, i, ext[e], st);
+          XCHECK(strstr(sb_last_error(), nm) != NULL,
+                 "%s, argument %d = %g: message \"%s\"", nm, i, ext[e],
+                 sb_last_error());
+          if (n == 1)
+            XCHECK(isnan(out[0]), "%s, argument %d = %g: %g with status %d",
+                   nm, i, ext[e], out[0], st);
+        }
+      }
+  gsl_rng_free(xrng);
+#undef XCHECK
+  ck_assert_int_eq(nbad, 0);
+
+  /* Corners where a double intermediate over/underflows but the value is
+   * a normal double: tests/data/spray_extreme.csv (gen_spray_ref.py,
+   * mpmath, 30 digits).  These gave 0 (pair rate, O'Rourke, BKW
+   * density), inf, a wrong r32 (r/(7/3)) or a rate from a subnormal
+   * product (two-temperature) before. */
+  sbt_table t;
+  sbt_table_load("spray_extreme.csv", &t);
+  int ck = sbt_col(&t, "kind"), cv = sbt_col(&t, "value"),
+      ca = sbt_col(&t, "a1"), nrow = 0;
+  for (int i = 0; i < t.nrow; i++) {
+    const int kind = (int)sbt_at(&t, i, ck);
+    double a[8], got;
+    for (int j = 0; j < 8; j++)
+      a[j] = sbt_at(&t, i, ca + j);
+    switch (kind) {
+    case 0:
+      got = sb_spray_pair_rate(SB_SPRAY_HARD_SPHERE, 1.0, a[0], a[1], a[2]);
+      break;
+    case 1:
+      got = sb_spray_orourke_b2(a[0], a[1], a[2], a[3], a[4]);
+      break;
+    case 2:
+      got = sb_spray_tab_r32(a[0], a[1], a[2], a[3]);
+      break;
+    case 3:
+      got = sb_spray_reitz_blob_radius(a[0], a[1], a[2], a[3]);
+      break;
+    case 4:
+      got = sb_spray_bkw_pdf(a[0], a[1], a[2]);
+      break;
+    case 5:
+      got = sb_spray_bkw_m6(a[0], a[1]);
+      break;
+    case 6: {
+      sb_spray_mixture mx = {a[0], a[1], a[2], a[3], 1e-6, 1e-6, a[4], a[5]};
+      ck_assert_int_eq(sb_spray_two_temp_maxwell(&mx, a[6], a[7], &got,
+                                                 NULL),
+                       SB_SUCCESS);
+      break;
+    }
+    default:
+      continue; /* (pgd rows: test_pgd_exact.c) */
+    }
+    ck_assert_msg(fabs(got - sbt_at(&t, i, cv)) <=
+                      1e-13 * fabs(sbt_at(&t, i, cv)),
+                  "row %d (kind %d): %.17g, mpmath %.17g", i, kind, got,
+                  sbt_at(&t, i, cv));
+    nrow++;
+  }
+  ck_assert_int_ge(nrow, 9);
+  sbt_table_free(&t);
+}
+END_TEST
+
 static Suite *suite(void)
 {
   Suite *s = suite_create("spray");
@@ -628,6 +894,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_reitz_step);
   tcase_add_test(tc, test_reitz_blob);
   tcase_add_test(tc, test_totals_and_temperature);
+  tcase_add_test(tc, test_extreme_arguments);
   suite_add_tcase(s, tc);
   return s;
 }
