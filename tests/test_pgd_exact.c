@@ -5,10 +5,14 @@
  * conservation over a window, limits, brute-force quadrature of the error
  * norms, and moving particles for the smooth solutions. */
 #include <check.h>
+#include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <smolbridge/pgd.h>
+#include "refdata.h"
 #include "testutil.h"
 
 #ifndef M_PI
@@ -299,6 +303,185 @@ START_TEST(smooth_vs_particles)
 }
 END_TEST
 
+/* ------------------------------------------------- extreme arguments */
+
+typedef int (*xfn)(const double *a, double *out, int *n, const char **nm);
+
+/* a = x0, rho_l, u_l, rho_r, u_r, tau, ugas, t; outputs xl, xr, mass, ul,
+ * ur, vel (delta only) */
+static int x_solve(const double *a, double *out, int *n, const char **nm)
+{
+  sb_pgd_riemann rp = {a[0], a[1], a[2], a[3], a[4], a[5], a[6]};
+  sb_pgd_riemann_sol w;
+  *nm = "sb_pgd_riemann_solve";
+  int st = sb_pgd_riemann_solve(&rp, a[7], &w);
+  out[0] = w.xl, out[1] = w.xr, out[2] = w.mass, out[3] = w.ul;
+  out[4] = w.ur, out[5] = w.type == SB_PGD_WAVE_DELTA ? w.vel : 0.0;
+  *n = 6;
+  return st;
+}
+
+/* a = x0, rho_l, u_l, rho_r, u_r, tau, ugas, t, x */
+static int x_eval(const double *a, double *out, int *n, const char **nm)
+{
+  sb_pgd_riemann rp = {a[0], a[1], a[2], a[3], a[4], a[5], a[6]};
+  *nm = "sb_pgd_riemann_eval";
+  *n = 2;
+  return sb_pgd_riemann_eval(&rp, a[8], a[7], &out[0], &out[1]);
+}
+
+/* a = x0, rho_l, u_l, rho_r, u_r, tau, ugas, t, a, b */
+static int x_integral(const double *a, double *out, int *n, const char **nm)
+{
+  sb_pgd_riemann rp = {a[0], a[1], a[2], a[3], a[4], a[5], a[6]};
+  *nm = "sb_pgd_riemann_integral";
+  *n = 2;
+  return sb_pgd_riemann_integral(&rp, a[7], a[8], a[9], &out[0], &out[1]);
+}
+
+/* a = x0, rho_l, u_l, rho_r, u_r, tau, ugas, t, a, h, rho[0..1] */
+static int x_error(const double *a, double *out, int *n, const char **nm)
+{
+  sb_pgd_riemann rp = {a[0], a[1], a[2], a[3], a[4], a[5], a[6]};
+  *nm = "sb_pgd_riemann_error";
+  *n = 2;
+  return sb_pgd_riemann_error(&rp, a[7], a[8], a[9], 2, &a[10], &out[0],
+                              &out[1]);
+}
+
+#define XPLAIN(NAME, FN)                                                    \
+  static int NAME(const double *a, double *out, int *n, const char **nm)   \
+  {                                                                         \
+    *nm = #FN;                                                              \
+    sb_clear_error();                                                       \
+    out[0] = FN(a[0], a[1], a[2], a[3]);                                    \
+    *n = 1;                                                                 \
+    return sb_last_status();                                                \
+  }
+XPLAIN(x_dspeed, sb_pgd_delta_speed)
+XPLAIN(x_dmass, sb_pgd_delta_mass_rate)
+
+/* a = tau, ugas, t, x */
+static int x_foot(const double *a, double *out, int *n, const char **nm)
+{
+  sb_pgd_smooth s = {r0, m0, u0, NULL, a[0], a[1]};
+  *nm = "sb_pgd_smooth_foot";
+  *n = 1;
+  out[0] = 0.0;
+  return sb_pgd_smooth_foot(&s, a[3], a[2], &out[0]);
+}
+
+/* a = tau, ugas, t, a, b */
+static int x_smooth_int(const double *a, double *out, int *n,
+                        const char **nm)
+{
+  sb_pgd_smooth s = {r0, m0, u0, NULL, a[0], a[1]};
+  *nm = "sb_pgd_smooth_integral";
+  *n = 2;
+  return sb_pgd_smooth_integral(&s, a[2], a[3], a[4], &out[0], &out[1]);
+}
+
+/* Each argument of each exact-solution function in turn over +-1e-320,
+ * +-1e-300, 0, +-1e300, +-DBL_MAX, +-inf, NaN (the others ordinary): the
+ * outputs are finite (masses and norms >= 0) with status 0, or the
+ * status is SB_EDOM/SB_ERANGE, a plain value NaN and the message names
+ * the public function. */
+START_TEST(extreme_arguments)
+{
+  static const struct {
+    xfn f;
+    int n;     /* arguments */
+    int nn[6]; /* which outputs are >= 0 */
+    double a[12];
+  } k[] = {
+      {x_solve, 8, {0, 0, 1, 0, 0, 0},
+       {0.1, 1.0, 1.5, 2.0, -0.5, 0.7, 0.3, 0.4}},
+      {x_solve, 8, {0, 0, 1, 0, 0, 0},
+       {0.1, 1.0, -0.5, 2.0, 1.5, INFINITY, 0.3, 0.4}},
+      {x_eval, 9, {1, 0, 0, 0, 0, 0},
+       {0.1, 1.0, 1.5, 2.0, -0.5, 0.7, 0.3, 0.4, 0.2}},
+      {x_integral, 10, {1, 0, 0, 0, 0, 0},
+       {0.1, 1.0, 1.5, 2.0, -0.5, 0.7, 0.3, 0.4, -0.3, 0.9}},
+      {x_error, 12, {1, 1, 0, 0, 0, 0},
+       {0.1, 1.0, 1.5, 2.0, -0.5, 0.7, 0.3, 0.4, -0.3, 0.5, 1.1, 1.9}},
+      {x_dspeed, 4, {0, 0, 0, 0, 0, 0}, {1.0, 1.5, 2.0, -0.5}},
+      {x_dmass, 4, {1, 0, 0, 0, 0, 0}, {1.0, 1.5, 2.0, -0.5}},
+      {x_foot, 4, {0, 0, 0, 0, 0, 0}, {0.4, -0.5, 0.5, 0.3}},
+      {x_smooth_int, 5, {1, 0, 0, 0, 0, 0}, {0.4, -0.5, 0.5, 0.2, 0.45}},
+  };
+  const double ext[] = {1e-320, -1e-320, 1e-300, -1e-300, 0.0, 1e300,
+                        -1e300, DBL_MAX, -DBL_MAX, INFINITY, -INFINITY,
+                        NAN};
+  const int next = (int)(sizeof ext / sizeof ext[0]);
+  int nbad = 0; /* every failure is printed, then counted */
+#define XCHECK(cond, ...)                                                   \
+  do {                                                                      \
+    if (!(cond)) {                                                          \
+      fprintf(stderr, __VA_ARGS__);                                         \
+      fputc('\n', stderr);                                                  \
+      nbad++;                                                               \
+    }                                                                       \
+  } while (0)
+  for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
+    for (int i = 0; i < k[f].n; i++)
+      for (int e = 0; e < next; e++) {
+        double a[12], out[6];
+        int n;
+        const char *nm;
+        memcpy(a, k[f].a, sizeof a);
+        a[i] = ext[e];
+        sb_clear_error();
+        const int st = k[f].f(a, out, &n, &nm);
+        if (st == SB_SUCCESS) {
+          for (int j = 0; j < n; j++)
+            XCHECK(isfinite(out[j]) && (!k[f].nn[j] || out[j] >= 0),
+                   "%s (row %zu), argument %d = %g: output %d = %g with "
+                   "status 0", nm, f, i, ext[e], j, out[j]);
+        } else {
+          /* (the momentum quadrature of sb_pgd_smooth_integral over
+           * ~1e300 periods of rho0 u0: SB_EMAXITER, documented) */
+          XCHECK(st == SB_EDOM || st == SB_ERANGE ||
+                     (k[f].f == x_smooth_int && st == SB_EMAXITER),
+                 "%s (row %zu), argument %d = %g: status %d", nm, f, i,
+                 ext[e], st);
+          XCHECK(strstr(sb_last_error(), nm) != NULL,
+                 "%s (row %zu), argument %d = %g: message \"%s\"", nm, f, i,
+                 ext[e], sb_last_error());
+          if (n == 1 && (k[f].f == x_dspeed || k[f].f == x_dmass))
+            XCHECK(isnan(out[0]), "%s, argument %d = %g: %g with status %d",
+                   nm, i, ext[e], out[0], st);
+        }
+      }
+#undef XCHECK
+  ck_assert_int_eq(nbad, 0);
+
+  /* The delta at corners where sqrt(rho) u or the mass-rate product
+   * leaves the double range: kinds 7 (mass rate) and 8 (speed) of
+   * tests/data/spray_extreme.csv (gen_spray_ref.py, mpmath). */
+  sbt_table t;
+  sbt_table_load("spray_extreme.csv", &t);
+  int ck = sbt_col(&t, "kind"), cv = sbt_col(&t, "value"),
+      ca = sbt_col(&t, "a1"), nrow = 0;
+  for (int i = 0; i < t.nrow; i++) {
+    const int kind = (int)sbt_at(&t, i, ck);
+    if (kind != 7 && kind != 8)
+      continue;
+    double a[4];
+    for (int j = 0; j < 4; j++)
+      a[j] = sbt_at(&t, i, ca + j);
+    double got = kind == 7 ? sb_pgd_delta_mass_rate(a[0], a[1], a[2], a[3])
+                           : sb_pgd_delta_speed(a[0], a[1], a[2], a[3]);
+    ck_assert_msg(fabs(got - sbt_at(&t, i, cv)) <=
+                      1e-13 * fabs(sbt_at(&t, i, cv)),
+                  "row %d (kind %d): %.17g, mpmath %.17g", i, kind, got,
+                  sbt_at(&t, i, cv));
+    nrow++;
+  }
+  ck_assert_int_ge(nrow, 2);
+  sbt_table_free(&t);
+}
+END_TEST
+
 Suite *suite(void)
 {
   Suite *s = suite_create("pgd_exact");
@@ -312,6 +495,7 @@ Suite *suite(void)
   tcase_set_timeout(tc, 30);
   tcase_add_test(tc, riemann_error_norms);
   tcase_add_test(tc, smooth_vs_particles);
+  tcase_add_test(tc, extreme_arguments);
   suite_add_tcase(s, tc);
   return s;
 }
