@@ -315,9 +315,11 @@ static int x_solve(const double *a, double *out, int *n, const char **nm)
   sb_pgd_riemann_sol w;
   *nm = "sb_pgd_riemann_solve";
   int st = sb_pgd_riemann_solve(&rp, a[7], &w);
+  *n = 6;
+  if (st) /* w is not written on an error */
+    return st;
   out[0] = w.xl, out[1] = w.xr, out[2] = w.mass, out[3] = w.ul;
   out[4] = w.ur, out[5] = w.type == SB_PGD_WAVE_DELTA ? w.vel : 0.0;
-  *n = 6;
   return st;
 }
 
