@@ -636,6 +636,19 @@ START_TEST(test_checkpoint)
   ck_assert(det == SB_WALLDET_BALLISTIC && dep == SB_DEPOSIT_REINSERT);
   ck_assert_int_eq(sb_engine_get_wall_mode(b, NULL, NULL), SB_SUCCESS);
   ck_assert_int_eq(sb_engine_get_wall_mode(NULL, &det, &dep), SB_EINVAL);
+  /* the fluid the checkpoint restored: shear G = 50 1/s with the images */
+  sb_engine_fluid f = SB_FLUID_REST;
+  double fp[3] = {-1, -1, -1};
+  int lees = 0;
+  ck_assert_int_eq(sb_engine_get_fluid(b, &f, fp, &lees), SB_SUCCESS);
+  ck_assert(f == SB_FLUID_SHEAR && fp[0] == 50.0 && fp[1] == 0.0 &&
+            fp[2] == 0.0 && lees == 1);
+  ck_assert_int_eq(sb_engine_get_fluid(b, NULL, NULL, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_get_fluid(NULL, &f, fp, &lees), SB_EINVAL);
+  sb_engine_set_lees_edwards(b, 0);
+  sb_engine_set_fluid(b, SB_FLUID_REST, NULL);
+  ck_assert_int_eq(sb_engine_get_fluid(b, &f, fp, &lees), SB_SUCCESS);
+  ck_assert(f == SB_FLUID_REST && fp[0] == 0.0 && lees == 0);
   sb_engine_free(a);
   sb_engine_free(b);
 }

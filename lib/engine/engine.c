@@ -788,6 +788,23 @@ int sb_engine_set_fluid(sb_engine *e, sb_engine_fluid f, const double p[3])
   return SB_SUCCESS;
 }
 
+int sb_engine_get_fluid(const sb_engine *e, sb_engine_fluid *f, double p[3],
+                        int *lees)
+{
+  if (!e)
+    return sbi_error(SB_EINVAL, __func__, "engine is NULL");
+  if (f)
+    *f = e->fluid;
+  if (p)
+    for (int k = 0; k < 3; k++)
+      p[k] = e->fluid == SB_FLUID_UNIFORM || e->fluid == SB_FLUID_SHEAR
+                 ? e->fluid_p[k]
+                 : 0.0;
+  if (lees)
+    *lees = e->lees;
+  return SB_SUCCESS;
+}
+
 int sb_engine_set_fluid_fn(sb_engine *e, sb_engine_fluid_fn fn, void *ctx)
 {
   if (!e || !fn)

@@ -351,6 +351,14 @@ int sb_engine_set_outcome_fn(sb_engine *e, sb_engine_outcome_fn fn,
 /** Built-in fluid field with parameters p[3] (see sb_engine_fluid). */
 int sb_engine_set_fluid(sb_engine *e, sb_engine_fluid f, const double p[3]);
 int sb_engine_set_fluid_fn(sb_engine *e, sb_engine_fluid_fn fn, void *ctx);
+/** The fluid the engine runs with (as set, or as a checkpoint restored
+ *  it): the field f, its parameters p[3] (zeros for SB_FLUID_REST and
+ *  SB_FLUID_CALLBACK) and whether the Lees-Edwards images are on (*lees =
+ *  1, sb_engine_set_lees_edwards).  A checkpoint keeps the built-in
+ *  fields; one saved with a callback loads as SB_FLUID_REST.  Any output
+ *  may be NULL.  SB_EINVAL for a NULL engine. */
+int sb_engine_get_fluid(const sb_engine *e, sb_engine_fluid *f, double p[3],
+                        int *lees);
 /** Time-series sampling period in steps (0: off). */
 int sb_engine_set_sample_every(sb_engine *e, size_t every);
 /** Threads of the parallel parts (see sb_engine_params.threads; 0: the
