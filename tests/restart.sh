@@ -10,7 +10,8 @@
 # engine's generator), both random fields, and a bridge detector's
 # counters with the turbulent split of its collisions; and the points of
 # a sweep each write their own checkpoint; and a restart changes the
-# walls' settings and the Lees-Edwards images only where its file says so.
+# walls' settings and the Lees-Edwards images only where its file says
+# so, and checks its keys against the fluid the checkpoint keeps.
 set -u
 sb="${top_builddir:-.}/smolbridge"
 ex="${srcdir:-.}/examples"
@@ -318,6 +319,14 @@ a, b = (json.load(open(p))["deposits"] for p in sys.argv[1:3])
 sys.exit(0 if a == b and sum(a) > 0 else 1)
 PY
   fail "walls: z_lo, z_hi = periodic did not remove the checkpoint's walls"
+# lees_edwards without [fluid] type applies to the checkpoint's field: at
+# rest it does nothing (warned)
+"$sb" collide "$out/walls.ini" --set "run.output=$out/walls_5" \
+  --set fluid.lees_edwards=no --set run.steps=20 \
+  --set "run.restart=$out/walls.ck" > "$out/bad.log" 2>&1 &&
+  grep -q "lees_edwards ignored: the restart checkpoint's field is rest" \
+    "$out/bad.log" ||
+  fail "walls: lees_edwards = no on a checkpoint at rest was not warned about"
 if "$sb" collide "$out/walls.ini" --set "run.output=$out/lees_1" \
      --set run.steps=20 --set walls.z_lo=periodic --set walls.z_hi=periodic \
      --set fluid.type=shear --set fluid.G=1e4 \
@@ -340,6 +349,34 @@ PY
       fail "lees: the restart with $how: $(grep -o \
         '"lees_edwards_offset": [^,]*' "$out/lees_2/summary.json")"
   done
+  # without [fluid] type the checks see the checkpoint's shear field and
+  # images (they took the fluid at rest): msd_every is refused with the
+  # images, runs without them, and summary.json names the field; G
+  # without type is warned as ignored for what it is (not "type = rest")
+  "$sb" collide "$out/walls.ini" --set run.steps=20 \
+    --set walls.z_lo=periodic --set walls.z_hi=periodic \
+    --set observe.msd_every=2 --set "run.output=$out/lees_3" \
+    --set "run.restart=$out/lees.ck" > "$out/bad.log" 2>&1
+  rc=$?
+  [ "$rc" -eq 2 ] && grep -q "msd_every with Lees-Edwards images (the \
+restart checkpoint's \[fluid\] type = shear)" "$out/bad.log" ||
+    fail "lees: msd_every against the checkpoint's images (exit $rc): \
+$(grep -v warning "$out/bad.log" | head -1)"
+  if "$sb" collide "$out/walls.ini" --set run.steps=20 \
+       --set walls.z_lo=periodic --set walls.z_hi=periodic \
+       --set observe.msd_every=2 --set fluid.lees_edwards=no \
+       --set fluid.G=3 --set "run.output=$out/lees_3" \
+       --set "run.restart=$out/lees.ck" > "$out/bad.log" 2>&1; then
+    grep -q '"fluid": "shear"' "$out/lees_3/summary.json" ||
+      fail "lees: the restart does not name the checkpoint's field: \
+$(grep -o '"fluid": [^,]*' "$out/lees_3/summary.json")"
+    grep -q "G ignored: on restart the checkpoint's field is kept unless \
+\[fluid\] type is given" "$out/bad.log" ||
+      fail "lees: [fluid] G without type: $(grep 'G ignored' "$out/bad.log")"
+  else
+    fail "lees: msd_every with lees_edwards = no: $(grep -v warning \
+      "$out/bad.log" | head -1)"
+  fi
 else
   fail "lees: the first part"
 fi

@@ -252,6 +252,15 @@ static void check_inert(sbi_col_config *c)
            "([species] drag)");
 }
 
+int sbi_col_fluid_check(sbi_col_config *c)
+{
+  if (strcmp(c->fluid, "shear") && sbi_col_given(c, "fluid", "lees_edwards"))
+    sbi_col_warn(c, "%s: [fluid] lees_edwards ignored: the restart "
+                 "checkpoint's field is %s (only type = shear uses it)",
+                 sbi_col_where(c, "fluid", "lees_edwards"), c->fluid);
+  return sbi_col_msd_lees_check(c);
+}
+
 int sbi_col_check(sbi_col_config *c)
 {
   if (c->nerr)
@@ -475,8 +484,14 @@ int sbi_col_check(sbi_col_config *c)
       conflict(c, "run", "snapshot_steps", "snapshot_every",
                "two snapshot schedules"))
     return -1;
-  /* fluid */
-  if (!strcmp(c->fluid, "rest")) {
+  /* fluid (on restart without type the checkpoint's: sbi_col_fluid_check
+   * once it is read) */
+  if (c->restart[0] && !sbi_col_given(c, "fluid", "type")) {
+    const char *why = "on restart the checkpoint's field is kept unless "
+                      "[fluid] type is given";
+    unused(c, "fluid", "U", why);
+    unused(c, "fluid", "G", why);
+  } else if (!strcmp(c->fluid, "rest")) {
     unused(c, "fluid", "U", "type = rest");
     unused(c, "fluid", "G", "type = rest");
   } else if (!strcmp(c->fluid, "uniform")) {

@@ -150,6 +150,10 @@ int sbi_col_override(sbi_col_config *c, const char *arg);
 /* Cross-key checks after all keys: conflicts, requirements, keys that do
  * not apply (warnings in c->warn).  0 or -1 with c->err set. */
 int sbi_col_check(sbi_col_config *c);
+/* On restart without [fluid] type, once the checkpoint's field and
+ * Lees-Edwards images are in c (collide_setup.c): the checks that depend
+ * on them.  0 or -1 with c->err set. */
+int sbi_col_fluid_check(sbi_col_config *c);
 /* Where a key was set ("" if it was not); section "species NAME". */
 const char *sbi_col_where(const sbi_col_config *c, const char *sec,
                           const char *key);
@@ -428,6 +432,7 @@ int sbi_col_start_velocities(sbi_col_config *c, sbi_col_run *r);
  * (nothing without the key). */
 /* Cross-key checks of msd_every and msd_fit (0 or -1 with c->err). */
 int sbi_col_msd_check(sbi_col_config *c);
+int sbi_col_msd_lees_check(sbi_col_config *c);
 int sbi_col_msd_start(const sbi_col_config *c, sbi_col_run *r);
 int sbi_col_msd_step(sbi_col_run *r);
 int sbi_col_msd_write(FILE *js, const sbi_col_config *c,

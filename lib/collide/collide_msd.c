@@ -68,11 +68,8 @@ int sbi_col_msd_check(sbi_col_config *c)
                         "the particles that collide %s; valid outcomes: "
                         "elastic, count, correction", w, c->outcome,
                         sbi_col_agglo(c) ? "merge" : "jump elsewhere");
-  if (!strcmp(c->fluid, "shear") && c->lees)
-    return sbi_col_fail(c, "%s: [observe] msd_every with Lees-Edwards images "
-                        "([fluid] type = shear): an image crossing shifts x "
-                        "by a moving offset; give [fluid] lees_edwards = no",
-                        w);
+  if (sbi_col_msd_lees_check(c))
+    return -1;
   for (int k = 0; k < c->nsp; k++)
     if (c->sp[k].inflow[0])
       return sbi_col_fail(c, "%s: [observe] msd_every with [%s] inflow: the "
@@ -86,6 +83,24 @@ int sbi_col_msd_check(sbi_col_config *c)
                           "reflect (deposit = remove)", w, FACE[f],
                           c->wall[f]);
   return 0;
+}
+
+/* The Lees-Edwards images: a particle crossing y = 0 or L_y is shifted
+ * along x by the moving offset, which the minimum image of a step's
+ * displacement does not undo.  On restart without [fluid] type the field
+ * and the images are the checkpoint's: collide_setup.c calls this again
+ * once they are known. */
+int sbi_col_msd_lees_check(sbi_col_config *c)
+{
+  if (c->msd_every <= 0 || strcmp(c->fluid, "shear") || !c->lees)
+    return 0;
+  const int kept = c->restart[0] && !sbi_col_given(c, "fluid", "type");
+  return sbi_col_fail(c, "%s: [observe] msd_every with Lees-Edwards images "
+                      "(%s): an image crossing shifts x by a moving offset; "
+                      "give [fluid] lees_edwards = no",
+                      sbi_col_where(c, "observe", "msd_every"),
+                      kept ? "the restart checkpoint's [fluid] type = shear"
+                           : "[fluid] type = shear");
 }
 
 static int take_sample(sbi_col_msd *m)

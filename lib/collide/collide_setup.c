@@ -4,6 +4,7 @@
  * uniform placement), fluid, bridge detector, turbulence, agglomeration
  * and first-hit counting.  Errors name the section and key at fault. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -806,6 +807,33 @@ static int restart_field(sbi_col_config *c, sbi_col_run *r)
             : 0;
 }
 
+/* A restart without [fluid] type runs in the checkpoint's field, with
+ * the Lees-Edwards images as setup_physics left them: the configuration
+ * takes them over (summary.json names the field, the references are
+ * those of its fluid) and the checks that depend on them run now
+ * (sbi_col_check ran before the checkpoint was read). */
+static int restart_fluid(sbi_col_config *c, sbi_col_run *r)
+{
+  if (!c->restart[0] || sbi_col_given(c, "fluid", "type"))
+    return 0;
+  sb_engine_fluid f;
+  double p[3];
+  int lees;
+  sb_engine_get_fluid(r->e, &f, p, &lees);
+  snprintf(c->fluid, sizeof c->fluid, "%s",
+           f == SB_FLUID_UNIFORM ? "uniform"
+           : f == SB_FLUID_SHEAR ? "shear"
+                                 : "rest");
+  if (f == SB_FLUID_UNIFORM) {
+    memcpy(c->U, p, sizeof c->U);
+    c->nU = (int)c->dim;
+  }
+  if (f == SB_FLUID_SHEAR)
+    c->G = p[0];
+  c->lees = lees;
+  return sbi_col_fluid_check(c);
+}
+
 int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
 {
   memset(r, 0, sizeof *r);
@@ -911,7 +939,7 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
   }
   if (c->restart[0] ? restart_field(c, r) : setup_field(c, r))
     return -1;
-  if (setup_physics(c, r))
+  if (setup_physics(c, r) || restart_fluid(c, r))
     return -1;
   if (!c->restart[0]) {
     if (place(c, r, q))

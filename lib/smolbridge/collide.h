@@ -83,9 +83,12 @@ int sb_collide_check(sb_collide *c);
 /** Build the engine, its species and particles (placement) and the
  *  detector, outcome and observer contexts (after sb_collide_check, which
  *  it calls if needed).  Input errors found only now (a particle larger
- *  than the box, a box too full for random placement, ...; also running
- *  out of memory, with its message) return SB_EINVAL.  Called by
- *  sb_collide_run when not called before. */
+ *  than the box, a box too full for random placement; on restart without
+ *  [fluid] type, what depends on the checkpoint's fluid field and
+ *  Lees-Edwards images, e.g. [observe] msd_every against the images, and
+ *  the warnings about it; ...; also running out of memory, with its
+ *  message) return SB_EINVAL.  Called by sb_collide_run when not called
+ *  before. */
 int sb_collide_setup(sb_collide *c);
 
 /** Events of a run (sb_collide_progress.event). */
