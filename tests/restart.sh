@@ -176,6 +176,53 @@ split jets "$ex/open_crossing_jets.ini" run.t_end=2e-3 - &&
   same jets outflows inflows collisions particles kernel \
     kinetic_energy.end outflows.1\>100
 
+# an inflow that fills the box for longer than the first part lasts: the
+# restart gets the capacity of the run in one go (the checkpoint holds its
+# first part's: room for 111 particles where 379 are in at the end; the
+# restart stopped with 'capacity 111 is full'), so the checkpoints that
+# the run in one go and the restart write are the same, byte for byte
+cat > "$out/fill.ini" <<EOF
+[run]
+seed = 7
+dim = 2
+L = 1e-3
+dt = 1e-5
+t_end = 4e-3
+sample_every = 5
+detect = ballistic
+outcome = count
+[walls]
+x_lo = open
+x_hi = open
+detect = ballistic
+[species a]
+radius = 2e-6
+density = 1000
+tau = inf
+T = 1e-12
+inflow = x_lo
+inflow_rate = 1e5
+inflow_velocity = 0.1 0
+EOF
+if "$sb" collide "$out/fill.ini" --set "run.output=$out/fill_0" \
+     --set "run.checkpoint=$out/fill_0.ck" > /dev/null 2>&1 &&
+   "$sb" collide "$out/fill.ini" --set "run.output=$out/fill_1" \
+     --set run.t_end=1e-4 --set "run.checkpoint=$out/fill.ck" \
+     > /dev/null 2>&1; then
+  if "$sb" collide "$out/fill.ini" --set "run.output=$out/fill_2" \
+       --set "run.restart=$out/fill.ck" \
+       --set "run.checkpoint=$out/fill_2.ck" > "$out/bad.log" 2>&1; then
+    same fill particles inflows outflows particles\>300
+    cmp -s "$out/fill_0.ck" "$out/fill_2.ck" ||
+      fail "fill: the restart's checkpoint differs from the run in one go's"
+  else
+    fail "fill: the restart: $(grep -o '"error": [^}]*' \
+      "$out/fill_2/summary.json")"
+  fi
+else
+  fail "fill: the run in one go or its first part"
+fi
+
 # first-contact counting with the recorded velocities (CHECKPOINT.firsthit
 # and .contacts): the first-contact results and contacts.csv
 split kernel "$ex/v12_kernel_firsthit.ini" run.t_end=8e-5 - \

@@ -613,13 +613,33 @@ START_TEST(test_checkpoint)
   int st;
   sb_engine *b = sb_engine_checkpoint_load(path, &st);
   ck_assert_ptr_nonnull(b);
+  /* more room (2000 for the file's 200) changes nothing else; less, or
+   * 0, leaves the file's; more than 2^40 is refused */
+  sb_engine *c = sb_engine_checkpoint_load_capacity(path, 2000, &st);
+  ck_assert_ptr_nonnull(c);
+  ck_assert_uint_eq(sb_engine_get_params(c)->capacity, 2000);
+  sb_engine *d = sb_engine_checkpoint_load_capacity(path, 0, NULL);
+  ck_assert_ptr_nonnull(d);
+  ck_assert_uint_eq(sb_engine_get_params(d)->capacity, 200);
+  sb_engine_free(d);
+  st = 0;
+  ck_assert_ptr_null(sb_engine_checkpoint_load_capacity(
+      path, ((size_t)1 << 40) + 1, &st));
+  ck_assert_int_eq(st, SB_EINVAL);
   remove(path);
   ck_assert(sb_engine_lees_edwards_offset(b) ==
             sb_engine_lees_edwards_offset(a));
   for (int k = 0; k < 40; k++) {
     ck_assert_int_eq(sb_engine_step(a), 0);
     ck_assert_int_eq(sb_engine_step(b), 0);
+    ck_assert_int_eq(sb_engine_step(c), 0);
   }
+  ck_assert_uint_eq(sb_engine_count(a), sb_engine_count(c));
+  ck_assert(memcmp(sb_engine_positions(a), sb_engine_positions(c),
+                   3 * sb_engine_count(a) * sizeof(double)) == 0);
+  ck_assert(memcmp(sb_engine_velocities(a), sb_engine_velocities(c),
+                   3 * sb_engine_count(a) * sizeof(double)) == 0);
+  sb_engine_free(c);
   ck_assert_uint_eq(sb_engine_count(a), sb_engine_count(b));
   ck_assert(memcmp(sb_engine_positions(a), sb_engine_positions(b),
                    3 * sb_engine_count(a) * sizeof(double)) == 0);

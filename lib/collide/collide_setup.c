@@ -136,14 +136,31 @@ static int species_build(sbi_col_config *c, int k, sb_engine_species *o)
   return 0;
 }
 
-static long species_count(const sbi_col_config *c, const sbi_col_species *s)
+/* The particles section s places in a box of volume vol (m^3, 2-D m^2),
+ * those of phi with the particle volume pvol. */
+static long placed_count(const sbi_col_species *s, double vol, double pvol)
 {
   if (s->count >= 0)
     return s->count + s->npart;
   if (!isnan(s->phi))
-    return lround(s->phi * volume_of(c) / particle_volume(c, s->radius)) +
-           s->npart;
+    return lround(s->phi * vol / pvol) + s->npart;
   return s->npart;
+}
+
+static long species_count(const sbi_col_config *c, const sbi_col_species *s)
+{
+  return placed_count(s, volume_of(c), particle_volume(c, s->radius));
+}
+
+/* Room for the particles the inflows can bring in by time T (s, from
+ * t = 0; none leaving), at most 2e6. */
+static long inflow_room(const sbi_col_config *c, double T)
+{
+  double inflow = 0.0;
+  for (int k = 0; k < c->nsp; k++)
+    if (c->sp[k].inflow[0])
+      inflow += c->sp[k].inflow_rate * T * 1.1 + 100.0;
+  return (long)fmin(inflow, 2e6);
 }
 
 /* Fluid velocity at x (as the engine's built-in fields; the Kraichnan
@@ -807,6 +824,36 @@ static int restart_field(sbi_col_config *c, sbi_col_run *r)
             : 0;
 }
 
+/* The capacity of the run in one go, as a new run computes it: the
+ * particles the [species] sections place (in the checkpoint's box, with
+ * its species' radii) and the inflows' room up to the end time (t_end,
+ * or the checkpoint's time and steps more; a restart has no warm-up).
+ * The checkpoint holds the capacity of the run that wrote it, whose end
+ * time was the checkpoint's: with inflows, too little for the rest.
+ * Called before [run] dt is applied. */
+static size_t restart_capacity(const sbi_col_config *c, const sb_engine *e)
+{
+  const sb_engine_params *p = sb_engine_get_params(e);
+  const int dim = p->dim;
+  const double vol = p->L[0] * p->L[1] * (dim == 3 ? p->L[2] : 1.0);
+  long total = 0;
+  for (int k = 0; k < c->nsp; k++) {
+    const sb_engine_species *q = sb_engine_get_species(e, (size_t)k);
+    if (!q)
+      return 0;  /* not the checkpoint's species: restart_species says */
+    const double r = q->radius;
+    total += placed_count(&c->sp[k], vol,
+                          dim == 3 ? 4.0 / 3.0 * PI * r * r * r
+                                   : PI * r * r);
+  }
+  const double dt = sbi_col_given(c, "run", "dt") ? c->dt : p->dt;
+  const double T = isfinite(c->t_end)
+                       ? c->t_end
+                       : sb_engine_time(e) + (double)c->steps * dt;
+  total += inflow_room(c, T);
+  return total > 0 ? (size_t)total : 0;
+}
+
 /* A restart without [fluid] type runs in the checkpoint's field, with
  * the Lees-Edwards images as setup_physics left them: the configuration
  * takes them over (summary.json names the field, the references are
@@ -852,6 +899,12 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
   if (c->restart[0]) {
     int st;
     r->e = sb_engine_checkpoint_load(c->restart, &st);
+    size_t cap;
+    if (r->e && (cap = restart_capacity(c, r->e)) >
+                    sb_engine_get_params(r->e)->capacity) {
+      sb_engine_free(r->e);
+      r->e = sb_engine_checkpoint_load_capacity(c->restart, cap, &st);
+    }
     if (!r->e)
       return sbi_col_fail(c, "%s: [run] restart = %s: %s",
                           sbi_col_where(c, "run", "restart"), c->restart,
@@ -904,16 +957,13 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
       total += species_count(c, &c->sp[k]);
     }
     /* inflows: room for every particle that can enter in the run (none
-     * leaving), at most 2e6 more */
-    double inflow = 0.0;
+     * leaving), at most 2e6 more (a restart asks for the same:
+     * restart_capacity) */
     const double T = isfinite(c->t_end)
                          ? c->t_end
                          : (c->steps > 0 ? (double)c->steps * c->dt : 0.0) +
                                (isfinite(c->warmup) ? c->warmup : 0.0);
-    for (int k = 0; k < c->nsp; k++)
-      if (c->sp[k].inflow[0])
-        inflow += c->sp[k].inflow_rate * T * 1.1 + 100.0;
-    total += (long)fmin(inflow, 2e6);
+    total += inflow_room(c, T);
     p.capacity = total > 0 ? (size_t)total : 1;
     r->e = sb_engine_alloc(&p);
     if (!r->e)

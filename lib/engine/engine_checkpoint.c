@@ -221,12 +221,15 @@ static int check_ids(const uint64_t *id, size_t n, uint64_t next_id,
       goto bad;                                             \
   } while (0)
 
-sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
+/* The engine of checkpoint `path`, with room for at least `capacity`
+ * particles (its own capacity if that is larger); messages name func. */
+static sb_engine *load(const char *path, size_t capacity, int *status,
+                       const char *func)
 {
   int dummy;
   if (!status)
     status = &dummy;
-  FILE *file = sbi_open_saved(path, __func__, status);
+  FILE *file = sbi_open_saved(path, func, status);
   if (!file)
     return NULL;
   /* the whole file, its hash checked before anything is read from it
@@ -235,7 +238,7 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   char *buf = sbi_slurp(file, &len);
   fclose(file);
   if (!buf) {
-    *status = sbi_error(SB_EIO, __func__, "cannot read '%s'", path);
+    *status = sbi_error(SB_EIO, func, "cannot read '%s'", path);
     return NULL;
   }
   sb_engine *e = NULL;
@@ -251,7 +254,7 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
     if (c > 0)
       goto foreign;
     if (c) {
-      *status = sbi_error(SB_EFORMAT, __func__, "'%s' is damaged: its "
+      *status = sbi_error(SB_EFORMAT, func, "'%s' is damaged: its "
                           "contents do not match the hash at its end "
                           "(cut short, changed or not a checkpoint)", path);
       goto out;
@@ -270,7 +273,7 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   }
   f = fmemopen(buf, len, "rb");
   if (!f) {
-    *status = sbi_error(SB_ENOMEM, __func__, "out of memory");
+    *status = sbi_error(SB_ENOMEM, func, "out of memory");
     goto out;
   }
   char magic[8];
@@ -286,6 +289,8 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   R(&nspec, sizeof nspec, 1);
   if (n > par.capacity || nspec > ((size_t)1 << 20))
     goto bad;
+  if (capacity > par.capacity)
+    par.capacity = capacity;  /* room only: no state depends on it */
   par.rng_type = NULL;  /* the pointer is meaningless in a file: the
                           * generator's name is stored below */
   if (par.detect == SB_DETECT_CUSTOM)
@@ -294,7 +299,7 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
     par.outcome = SB_OUTCOME_ELASTIC;
   e = sb_engine_alloc(&par);
   if (!e && sb_last_status() == SB_ENOMEM) {
-    *status = sbi_error(SB_ENOMEM, __func__, "out of memory for the "
+    *status = sbi_error(SB_ENOMEM, func, "out of memory for the "
                         "engine of '%s' (capacity %zu)", path, par.capacity);
     goto out;
   }
@@ -302,7 +307,7 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
     goto bad; /* parameters the engine refuses: not a valid file */
   spec = malloc((nspec ? nspec : 1) * sizeof *spec);
   if (!spec) {
-    *status = sbi_error(SB_ENOMEM, __func__, "out of memory");
+    *status = sbi_error(SB_ENOMEM, func, "out of memory");
     goto out;
   }
   R(spec, sizeof *spec, nspec);
@@ -322,7 +327,7 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
     e->mass[i] = e->spec[e->species[i]].mass;
   }
   {
-    const int st = check_ids(e->id, n, next_id, path, __func__);
+    const int st = check_ids(e->id, n, next_id, path, func);
     if (st) {
       *status = st;
       goto out;
@@ -356,7 +361,7 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
     if (ns) {
       e->series = malloc(ns * sizeof *e->series);
       if (!e->series) {
-        *status = sbi_error(SB_ENOMEM, __func__, "out of memory");
+        *status = sbi_error(SB_ENOMEM, func, "out of memory");
         goto out;
       }
       e->capseries = ns;
@@ -380,7 +385,7 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
         goto bad;
       gsl_rng *r = gsl_rng_alloc(found);
       if (!r) {
-        *status = sbi_error(SB_ENOMEM, __func__, "out of memory");
+        *status = sbi_error(SB_ENOMEM, func, "out of memory");
         goto out;
       }
       gsl_rng_free(e->rng);
@@ -406,11 +411,11 @@ sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
   free(buf);
   return e;
 bad:
-  *status = sbi_error(SB_EFORMAT, __func__,
+  *status = sbi_error(SB_EFORMAT, func,
                       "'%s' is not a valid engine checkpoint", path);
   goto out;
 foreign:
-  *status = sbi_error(SB_EFORMAT, __func__, "'%s' was written on a machine "
+  *status = sbi_error(SB_EFORMAT, func, "'%s' was written on a machine "
                       "of the other byte order: checkpoints are native "
                       "binary, load it on a machine of the byte order that "
                       "wrote it", path);
@@ -421,6 +426,25 @@ out:
     fclose(f);
   free(buf);
   return NULL;
+}
+
+sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
+{
+  return load(path, 0, status, __func__);
+}
+
+sb_engine *sb_engine_checkpoint_load_capacity(const char *path,
+                                              size_t capacity, int *status)
+{
+  int dummy;
+  if (!status)
+    status = &dummy;
+  if (capacity > ((size_t)1 << 40)) {
+    *status = sbi_error(SB_EINVAL, __func__, "capacity = %zu: must be at "
+                        "most 2^40", capacity);
+    return NULL;
+  }
+  return load(path, capacity, status, __func__);
 }
 
 uint64_t sbi_engine_fingerprint(const sb_engine *e)

@@ -740,6 +740,17 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path);
  *  SB_EINVAL, naming the id, for particles that share an id or hold one
  *  not below the file's id counter. */
 sb_engine *sb_engine_checkpoint_load(const char *path, int *status);
+/** As sb_engine_checkpoint_load, with room for at least `capacity`
+ *  particles (sb_engine_params.capacity; the checkpoint's own if that is
+ *  larger, so 0 gives it): for a run that goes on with more particles
+ *  than the one that wrote the file had room for (inflows over a longer
+ *  time).  The capacity holds no state: the engine continues
+ *  bit-identically, and a checkpoint it writes records the capacity it
+ *  has.  SB_EINVAL for capacity > 2^40; otherwise as
+ *  sb_engine_checkpoint_load (SB_ENOMEM when the room does not fit in
+ *  memory). */
+sb_engine *sb_engine_checkpoint_load_capacity(const char *path,
+                                              size_t capacity, int *status);
 
 /* ======================================================= names */
 
