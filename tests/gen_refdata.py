@@ -15,6 +15,24 @@ here (check_closed_forms, run first; it aborts on a mismatch) and again in
 the C tests with GSL QAGS.  Inputs are exact binary doubles: each input is
 written with repr() and read back as the same double, and mpmath sees the
 exact value of that double.
+
+Precision per row (passage files: passage_bm, passage_bes3,
+passage_quantile).  A row's values are computed at its base precision (60
+digits, 400 for the extreme corners) and again at 40 more digits; if any
+value differs by more than 1e-24 relative (or falls on the other side of
+the 1e-300 cut-off), the base precision is doubled and the comparison
+repeated.  The values written are those at the first precision that passed,
+so each has a relative error below about 1e-24, well inside the 20 digits
+written: rounding errors grow by the same factor at both precisions, so the
+40 extra digits make the second value's error 1e-40 times the first's and
+their difference measures the first's error.  Rows that were already
+right at the base precision are written with the same bytes as before;
+e.g. the mass exp(-2 d |nu| / sigma2) of the law with 2 d |nu| / sigma2 =
+2e300 needs 480 digits, as its exponent must be exact to 1e-24 absolute.
+
+  /usr/bin/python3 tests/gen_refdata.py --verify [group ...]
+regenerates without writing and exits with status 1, naming the rows,
+if a committed file differs from what the script produces.
 """
 import math
 import os
@@ -38,14 +56,56 @@ def f17(x):
     return repr(float(x))
 
 
+VERIFY = {"on": False, "failed": []}  # --verify: compare, do not write
+
+
 def write(name, header, rows):
     path = os.path.join(DATA, name)
+    lines = [",".join(header)] + [",".join(f17(v) for v in r) for r in rows]
+    if VERIFY["on"]:
+        with open(path) as fh:
+            old = fh.read().split("\n")[:-1]
+        bad = [i + 1 for i in range(max(len(old), len(lines)))
+               if i >= len(old) or i >= len(lines) or old[i] != lines[i]]
+        for i in bad[:20]:
+            print("%s line %d differs:\n  committed %s\n  generated %s" %
+                  (name, i, old[i - 1] if i <= len(old) else "(none)",
+                   lines[i - 1] if i <= len(lines) else "(none)"))
+        print("checked %s: %d rows, %d differ" % (name, len(rows), len(bad)))
+        if bad:
+            VERIFY["failed"].append(name)
+        return
     with open(path, "w") as fh:
-        fh.write(",".join(header) + "\n")
-        for r in rows:
-            fh.write(",".join(f17(v) for v in r) + "\n")
+        fh.write("\n".join(lines) + "\n")
     print("wrote %s: %d rows, %d bytes" % (name, len(rows),
                                            os.path.getsize(path)))
+
+
+def _agree(u, v):
+    """Reference values u (base precision) and v (40 more digits) agree to
+    1e-24 relative; -1 (below 1e-300) and exact values must match."""
+    if not isinstance(u, mp.mpf) or not isinstance(v, mp.mpf):
+        return type(u) is type(v) and u == v
+    if mp.isinf(u) or mp.isinf(v) or v == 0:
+        return u == v
+    return abs(u - v) <= mp.mpf(10) ** -24 * abs(v)
+
+
+def settled(f, dps):
+    """f() (a tuple of reference values) at the lowest of dps, 2 dps,
+    4 dps, ... at which it agrees with f() at 40 more digits (module
+    docstring); the values are rounded to that precision."""
+    while True:
+        with mp.workdps(dps):
+            lo = tuple(+v if isinstance(v, mp.mpf) else v for v in f())
+        with mp.workdps(dps + 40):
+            hi = f()
+        if all(_agree(u, v) for u, v in zip(lo, hi)):
+            return lo
+        if dps >= 1 << 14:
+            raise ArithmeticError("no settled precision up to %d digits"
+                                  % dps)
+        dps *= 2
 
 
 def Phi(z):
@@ -129,6 +189,25 @@ def ig_parts(t, x, a, mu, s2):
     return pdf, cdf, sf, mass
 
 
+def ig_row(t, x, a, mu, s2):
+    """pdf, cdf, sf (-1 below 1e-300) and mass of a passage_bm.csv row."""
+    pdf, cdf, sf, mass = ig_parts(t, x, a, mu, s2)
+    return (pdf if pdf > TINY else -1, cdf if cdf > TINY else -1,
+            sf if sf > TINY else -1, mass)
+
+
+def bes3_row(t, x, a, s2):
+    """pdf, cdf (-1 below 1e-300) and sf of a passage_bes3.csv row."""
+    xx, aa, ss, tt = map(mp.mpf, (x, a, s2, t))
+    d = xx - aa
+    z = d / mp.sqrt(2 * ss * tt)
+    pdf = aa / xx * d / mp.sqrt(2 * mp.pi * ss * tt ** 3) * \
+        mp.exp(-d * d / (2 * ss * tt))
+    cdf = aa / xx * mp.erfc(z)
+    sf = 1 - cdf
+    return pdf if pdf > TINY else -1, cdf if cdf > TINY else -1, sf
+
+
 def gen_passage():
     rows = []
     # (x, a, mu, s2): level below/above, drift towards/away/zero, d small,
@@ -152,10 +231,8 @@ def gen_passage():
                                     10, 100, 1e3, 1e5, 1e8)]
         for t in ts:
             t = float(t)
-            pdf, cdf, sf, mass = ig_parts(t, x, a, mu, s2)
-            vals = [pdf if pdf > TINY else -1, cdf if cdf > TINY else -1,
-                    sf if sf > TINY else -1]
-            rows.append((t, x, a, mu, s2, vals[0], vals[1], vals[2], mass))
+            rows.append((t, x, a, mu, s2) +
+                        settled(lambda: ig_row(t, x, a, mu, s2), 60))
     # extreme-but-representable corners (t, x, a, mu, s2): sigma2 t or
     # nu t beyond DBL_MAX or above the 2^995 where a Veltkamp split
     # overflows, exp(-E) or eps / t out of range with a normal density
@@ -172,11 +249,8 @@ def gen_passage():
             (1e200, 0, 1e300, 1e100 * (1 + 2.0 ** -40), 1e-300),
             (1e-200, 1e-300, 0, 1e-100, 1e-300), (1e300, 0, 1e300, 0, 1e300)]:
         # 400 digits: Q(c) - exp(2 nu d/s2) Q(b) cancels down to 1e-300
-        with mp.workdps(400):
-            pdf, cdf, sf, mass = ig_parts(t, x, a, mu, s2)
-        vals = [pdf if pdf > TINY else -1, cdf if cdf > TINY else -1,
-                sf if sf > TINY else -1]
-        rows.append((t, x, a, mu, s2, vals[0], vals[1], vals[2], mass))
+        rows.append((t, x, a, mu, s2) +
+                    settled(lambda: ig_row(t, x, a, mu, s2), 400))
     write("passage_bm.csv",
           ["t", "x", "a", "mu", "sigma2", "pdf", "cdf", "sf", "mass"], rows)
 
@@ -188,29 +262,16 @@ def gen_passage():
         tl = float(d * d / ss)
         for k in (-8, -3, -2, -1, -0.3, 0, 0.3, 1, 2, 4, 8):
             t = tl * 10 ** k
-            tt = mp.mpf(t)
-            z = d / mp.sqrt(2 * ss * tt)
-            pdf = aa / xx * d / mp.sqrt(2 * mp.pi * ss * tt ** 3) * \
-                mp.exp(-d * d / (2 * ss * tt))
-            cdf = aa / xx * mp.erfc(z)
-            sf = 1 - cdf
-            rows.append((t, x, a, s2, pdf if pdf > TINY else -1,
-                         cdf if cdf > TINY else -1, sf))
+            rows.append((t, x, a, s2) +
+                        settled(lambda: bes3_row(t, x, a, s2), 60))
     # extreme corners: sigma2 t beyond DBL_MAX or above 2^995, a density
     # near 1e300 at t = 1e-300
     for (t, x, a, s2) in [(1e-300, 1e-150, 0.5e-150, 1), (1e10, 1, 0.5, 1e290),
                           (1e300, 2, 0.5, 1e300), (sys.float_info.max, 2, 0.5,
                                                    0.8),
                           (1e300, 1e300, 0.5e300, 1e300)]:
-        xx, aa, ss, tt = map(mp.mpf, (x, a, s2, t))
-        d = xx - aa
-        z = d / mp.sqrt(2 * ss * tt)
-        pdf = aa / xx * d / mp.sqrt(2 * mp.pi * ss * tt ** 3) * \
-            mp.exp(-d * d / (2 * ss * tt))
-        cdf = aa / xx * mp.erfc(z)
-        sf = 1 - cdf
-        rows.append((t, x, a, s2, pdf if pdf > TINY else -1,
-                     cdf if cdf > TINY else -1, sf))
+        rows.append((t, x, a, s2) +
+                    settled(lambda: bes3_row(t, x, a, s2), 60))
     write("passage_bes3.csv", ["t", "x", "a", "sigma2", "pdf", "cdf", "sf"],
           rows)
 
@@ -248,7 +309,8 @@ def gen_passage_quantile():
         for p in ps:
             if p >= mass:
                 continue
-            rows.append((p, x, a, mu, s2, ig_quantile(p, x, a, mu, s2)))
+            rows.append((p, x, a, mu, s2) + settled(
+                lambda: (ig_quantile(p, x, a, mu, s2),), 60))
     # extreme-but-representable corners: d^2/sigma2 or d/nu beyond the
     # doubles (quantiles near 1e300 and 1e-300), tiny drifts; 400 digits,
     # log t in [-800, 800]
@@ -257,9 +319,8 @@ def gen_passage_quantile():
             (0.3, 0, 1e-150, 0.4, 0.8), (0.3, 0, 1e-100, 0, 1e-200),
             (0.7, 0, 1, 1e-300, 1), (0.5, 0, 1e200, 1e-100, 1e300),
             (0.9, 1e-300, 0, -1e-300, 1e-300), (0.2, 0, 1e300, 1e290, 1e-300)]:
-        with mp.workdps(400):
-            q = ig_quantile(p, x, a, mu, s2, 800)
-        rows.append((p, x, a, mu, s2, q))
+        rows.append((p, x, a, mu, s2) + settled(
+            lambda: (ig_quantile(p, x, a, mu, s2, 800),), 400))
     write("passage_quantile.csv", ["p", "x", "a", "mu", "sigma2", "q"], rows)
 
 
@@ -538,7 +599,11 @@ def check_closed_forms():
 if __name__ == "__main__":
     os.makedirs(DATA, exist_ok=True)
     check_closed_forms()
-    which = sys.argv[1:] or ["mills", "passage", "passage_quantile",
+    args = sys.argv[1:]
+    if args[:1] == ["--verify"]:
+        VERIFY["on"] = True
+        args = args[1:]
+    which = args or ["mills", "passage", "passage_quantile",
                              "bridge_cross", "bridge_hit", "bridge_quantile",
                              "bridge_narrow"]
     if "mills" in which:
@@ -555,3 +620,5 @@ if __name__ == "__main__":
         gen_bridge_quantile()
     if "bridge_narrow" in which:
         gen_bridge_narrow()
+    if VERIFY["failed"]:
+        sys.exit("differ from the generator: " + ", ".join(VERIFY["failed"]))
