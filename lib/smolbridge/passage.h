@@ -48,7 +48,8 @@
  * sampler records the status for sb_last_status()); +inf with status 0
  * only for the defective law (docs/passage.md).
  *
- * Accuracy (tested against mpmath at 50 digits, tests/data/passage_*.csv):
+ * Accuracy (tested against mpmath values with at least 20 correct digits,
+ * tests/data/passage_*.csv):
  * relative error below 1e-13 for pdf, cdf and sf over t/mean and
  * sigma2 t/d^2 from 1e-8 to 1e8, down to values of 1e-300; the _e err is an
  * honest absolute bound (tested).  Quantiles: |cdf(q) - p| <= 1e-13 and q to
