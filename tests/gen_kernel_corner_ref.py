@@ -4,6 +4,8 @@
 kernel in turn set to 1e-320, 1e-300, 1e300 and DBL_MAX, the others at
 the ordinary values of that test's table (same order, same values; the
 quadrature kernel sb_kernel_shear_langevin, index 11, is left out).
+Indices 19 and 20 (sb_kernel_diffusion_r2, sb_kernel_brownian_turb_r2)
+come last, so that the rows of 0-18 are unchanged.
 
 The formulas are those of lib/smolbridge/kernel.h and docs/kernel.md,
 written here plainly and evaluated with mpmath at 50 digits, so that no
@@ -120,6 +122,25 @@ def bt(ri, rj, T, mu, eps, nu):
     return dif(ri, rj, b2(ri, T, mu) + b2(rj, T, mu), tb2(ri + rj, eps, nu))
 
 
+def dr2(R, b0, b2):
+    # steady rate with b2(r) = b0 + b2 (r/R)^2: 2 pi b2 R/g(t), t^2 = b0/b2,
+    # g(t) = (t - atan t)/t^3; t - atan t ~ t^3/3 cancels at small t, so
+    # the working precision grows with -log10 t (t down to ~1e-170 here)
+    if b2 == 0:
+        return 2 * pi * b0 * R
+    if b0 == 0:
+        return 6 * pi * b2 * R
+    t = mp.sqrt(b0 / b2)
+    extra = max(0, int(-2 * mp.log10(t))) + 20
+    with mp.extradps(extra):
+        g = (t - mp.atan(t)) / t**3
+        return 2 * pi * b2 * R / g
+
+
+def btr2(ri, rj, T, mu, eps, nu):
+    return dr2(ri + rj, b2(ri, T, mu) + b2(rj, T, mu), tb2(ri + rj, eps, nu))
+
+
 def const(vi, vj, K):
     return K
 
@@ -152,6 +173,8 @@ KERNELS = [
     (16, const, [1e-18, 2e-18, 1e-9]),
     (17, additive, [1e-18, 2e-18, 1e-9]),
     (18, mult, [1e-18, 2e-18, 1e-9]),
+    (19, dr2, [2e-6, 1e-12, 2e-12]),
+    (20, btr2, [1e-6, 2e-6, 300, 1e-3, 1e-3, 1e-6]),
 ]
 EXTREMES = [1e-320, 1e-300, 1e300, DBL_MAX]
 

@@ -337,7 +337,8 @@ START_TEST(test_domain_errors)
 END_TEST
 
 /* Extreme arguments (1e-320 ... 1e300, each argument in turn, the others
- * ordinary; the test kernels too): a kernel is finite with no error
+ * ordinary; the test kernels and the steady rates with separation-
+ * dependent diffusivity too): a kernel is finite with no error
  * recorded, or NaN with the error (SB_ERANGE where the value overflows,
  * SB_EDOM outside the domain) -- never a silent inf or NaN; at the finite
  * extremes the value against mpmath.  And the
@@ -381,6 +382,10 @@ static double k_add(const double *a)
 { return sb_kernel_additive(a[0], a[1], a[2]); }
 static double k_mult(const double *a)
 { return sb_kernel_multiplicative(a[0], a[1], a[2]); }
+static double k_dr2(const double *a)
+{ return sb_kernel_diffusion_r2(a[0], a[1], a[2]); }
+static double k_btr2(const double *a)
+{ return sb_kernel_brownian_turb_r2(a[0], a[1], a[2], a[3], a[4], a[5]); }
 
 START_TEST(test_extreme_arguments)
 {
@@ -408,6 +413,8 @@ START_TEST(test_extreme_arguments)
       {k_const, 3, {1e-18, 2e-18, 1e-9}},
       {k_add, 3, {1e-18, 2e-18, 1e-9}},
       {k_mult, 3, {1e-18, 2e-18, 1e-9}},
+      {k_dr2, 3, {2e-6, 1e-12, 2e-12}},
+      {k_btr2, 6, {1e-6, 2e-6, 300, 1e-3, 1e-3, 1e-6}},
   };
   const double ext[6] = {1e-320, 1e-300, 1e300, DBL_MAX, INFINITY, -1e300};
   for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)

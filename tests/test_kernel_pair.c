@@ -2,7 +2,8 @@
  * with separation (sb_kernel_diffusion_r2, sb_kernel_brownian_turb_r2):
  * GSL quadrature of the flux integral 4 pi / int ds/(s^2 kappa(s)), the
  * Smoluchowski and pure-r^2 limits, continuity across the series switch,
- * Brownian + turbulent composition, domain errors.  The Monte Carlo check
+ * Brownian + turbulent composition, domain errors, corners with two
+ * extreme arguments against mpmath.  The Monte Carlo check
  * (fine-step integration of the 3-D SDE) is validation case
  * V17/pair-diffusivity. */
 #include <gsl/gsl_errno.h>
@@ -119,6 +120,50 @@ START_TEST(test_domain)
 }
 END_TEST
 
+/* Corners where a product of the closed form leaves the double range but
+ * K is a double (values: mpmath at 50 digits, the formulas of
+ * tests/gen_kernel_corner_ref.py; single extreme arguments are in
+ * tests/test_kernel.c, test_extreme_arguments): b2_0 = 1e-315 (2 pi b2_0
+ * subnormal) with R = 1e300 was a wrong value, T = 1e300 with radii of
+ * 1e-300 (b2_Brown ~ 1e579) NaN, R = 1e-320 with b2 = 1e300 the rounding
+ * of a subnormal. */
+START_TEST(test_extreme)
+{
+  static const struct { double a[6]; int turb; double K; } c[] = {
+      {{1e300, 1e-315, 0.0}, 0, 6.283185297639724822e-15},
+      {{1e-320, 1e300, 3e299}, 0, 1.517296543654084908e-19},
+      {{1e-320, 1e300, 0.0}, 0, 6.283115357625393152e-20},
+      {{1e-300, 1e-300, 1e300, 1e-3, 1e-3, 1e-6}, 1,
+       3.6817306666666667833e+280},
+      {{1e-300, 2e-300, 1e300, 1e-3, 0.0, 1e-6}, 1,
+       4.1419470000000001313e+280},
+  };
+  for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+    const double *a = c[i].a;
+    sb_clear_error();
+    const double K =
+        c[i].turb ? sb_kernel_brownian_turb_r2(a[0], a[1], a[2], a[3], a[4],
+                                               a[5])
+                  : sb_kernel_diffusion_r2(a[0], a[1], a[2]);
+    ck_assert_msg(sb_last_status() == SB_SUCCESS &&
+                      fabs(K / c[i].K - 1.0) <= 1e-14,
+                  "case %zu: %.17g (status %d), want %.17g", i, K,
+                  sb_last_status(), c[i].K);
+  }
+  /* where K overflows: SB_ERANGE naming the function (this was SB_EDOM
+   * from sb_kernel_diffusion_r2 after sb_turb_pair_b2 overflowed) */
+  sb_clear_error();
+  ck_assert(isnan(sb_kernel_brownian_turb_r2(1e300, 1e-6, 300, 1e-3, 1e-3,
+                                             1e-6)));
+  ck_assert_int_eq(sb_last_status(), SB_ERANGE);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "sb_kernel_brownian_turb_r2"));
+  sb_clear_error();
+  ck_assert(isnan(sb_kernel_diffusion_r2(1e300, 1e300, 1e-12)));
+  ck_assert_int_eq(sb_last_status(), SB_ERANGE);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "sb_kernel_diffusion_r2"));
+}
+END_TEST
+
 static Suite *kernel_pair_suite(void)
 {
   Suite *s = suite_create("kernel_pair");
@@ -127,6 +172,7 @@ static Suite *kernel_pair_suite(void)
   tcase_add_test(tc, test_limits);
   tcase_add_test(tc, test_brownian_turb);
   tcase_add_test(tc, test_domain);
+  tcase_add_test(tc, test_extreme);
   suite_add_tcase(s, tc);
   return s;
 }

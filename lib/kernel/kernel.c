@@ -11,6 +11,7 @@
 
 #include "common/internal.h"
 #include "common/numutil.h"
+#include "kernel_internal.h"
 
 /* Boltzmann constant, J/K (exact in SI 2019; same value as SB_BOLTZMANN). */
 static const double kB = 1.380649e-23;
@@ -378,13 +379,13 @@ double sb_kernel_diffusion(double r_i, double r_j, double b2_i, double b2_j)
 }
 
 /* kT/(3 pi mu r) */
-static sbi_xd b2_brownian(double r, double T, double mu)
+sbi_xd sbi_kernel_b2_brownian(double r, double T, double mu)
 {
   return DIV(MUL(X(kB), X(T)), MUL(MUL(X(3.0 * M_PI), X(mu)), X(r)));
 }
 
 /* sqrt(2/(15 pi)) sqrt(eps/nu) r^2 */
-static sbi_xd b2_turb(sbi_xd r, double eps, double nu)
+sbi_xd sbi_kernel_b2_turb(sbi_xd r, double eps, double nu)
 {
   return MUL(MUL(MUL(X(sqrt(2.0 / (15.0 * M_PI))), SQRT(DIV(X(eps), X(nu)))),
                  r),
@@ -395,14 +396,14 @@ double sb_brownian_b2(double r, double T, double mu)
 {
   CHECK(pos(r) && pos(T) && pos(mu), "r, T, mu must be > 0 (got %g, %g, %g)",
         r, T, mu);
-  return kernel_xd(b2_brownian(r, T, mu), __func__);
+  return kernel_xd(sbi_kernel_b2_brownian(r, T, mu), __func__);
 }
 
 double sb_turb_pair_b2(double r, double eps, double nu)
 {
   CHECK(pos(r) && nonneg(eps) && pos(nu),
         "need r > 0, eps >= 0, nu > 0 (got %g, %g, %g)", r, eps, nu);
-  return kernel_xd(b2_turb(X(r), eps, nu), __func__);
+  return kernel_xd(sbi_kernel_b2_turb(X(r), eps, nu), __func__);
 }
 
 double sb_kernel_brownian_turb(double r_i, double r_j, double T, double mu,
@@ -413,8 +414,9 @@ double sb_kernel_brownian_turb(double r_i, double r_j, double T, double mu,
   CHECK(nonneg(eps) && pos(nu), "need eps >= 0, nu > 0 (got %g, %g)", eps,
         nu);
   const sbi_xd r = ADD(X(r_i), X(r_j));
-  const sbi_xd b2 = ADD(ADD(b2_brownian(r_i, T, mu), b2_brownian(r_j, T, mu)),
-                        b2_turb(r, eps, nu));
+  const sbi_xd b2 = ADD(ADD(sbi_kernel_b2_brownian(r_i, T, mu),
+                            sbi_kernel_b2_brownian(r_j, T, mu)),
+                        sbi_kernel_b2_turb(r, eps, nu));
   return kernel_xd(MUL(MUL(X(2.0 * M_PI), b2), r), __func__);
 }
 

@@ -22,6 +22,8 @@
 #include <smolbridge/kernel.h>
 
 #include "common/internal.h"
+#include "common/numutil.h"
+#include "kernel_internal.h"
 
 static int pos(double x) { return isfinite(x) && x > 0.0; }
 static int nonneg(double x) { return isfinite(x) && x >= 0.0; }
@@ -42,6 +44,46 @@ static double g_of_t(double t)
   return (t - atan(t)) / (t * t * t);
 }
 
+/* 2 pi b R / d for b, R > 0 and d = O(1) (a ratio of g or of the Brownian
+ * asymptote): the plain double operations where b, R and the products
+ * 2 pi b, 2 pi b R are normal doubles (ordinary arguments: the bits are
+ * those of the plain formula), else the same operations with an extended
+ * exponent (numutil.h), so that a product that over/underflows (b2 near
+ * DBL_MAX, R near 1e-320) does not matter where K itself is a double.
+ * NaN and SB_ERANGE (for func) where K exceeds DBL_MAX. */
+static double two_pi_bR_over(sbi_xd b, sbi_xd R, double d, const char *func)
+{
+  const double bd = sbi_xd_val(b), Rd = sbi_xd_val(R);
+  const double p = 2.0 * M_PI * bd, q = p * Rd, K = q / d;
+  if (isnormal(bd) && isnormal(Rd) && isnormal(p) && isnormal(q) &&
+      isfinite(K))
+    return K;
+  const double Kx = sbi_xd_val(sbi_xd_div(
+      sbi_xd_mul(sbi_xd_mul(sbi_xd_of(2.0 * M_PI), b), R), sbi_xd_of(d)));
+  if (!isfinite(Kx)) {
+    sbi_error(SB_ERANGE, func, "the rate overflows (R = %g, b2 = %g)", Rd,
+              bd);
+    return NAN;
+  }
+  return Kx;
+}
+
+/* The closed form for R > 0, b2_0, b2_2 >= 0 not both 0, given with an
+ * extended exponent.  t = sqrt(b2_0/b2_2) is formed in sbi_xd too (the
+ * same bits as the plain quotient and root where it is normal); as a
+ * double it may overflow (t = inf: the Brownian branch, exact there) or
+ * underflow (the series, g = 1/3). */
+static double dr2(sbi_xd R, sbi_xd b2_0, sbi_xd b2_2, const char *func)
+{
+  if (b2_2.m == 0.0)
+    return two_pi_bR_over(b2_0, R, 1.0, func);
+  const double t = sbi_xd_val(sbi_xd_sqrt(sbi_xd_div(b2_0, b2_2)));
+  if (t > 1e6) /* g = 1/t^2 - pi/(2 t^3) + O(t^-4): Brownian limit */
+    return two_pi_bR_over(b2_0, R, 1.0 - M_PI / (2.0 * t) + 1.0 / (t * t),
+                          func);
+  return two_pi_bR_over(b2_2, R, g_of_t(t), func);
+}
+
 double sb_kernel_diffusion_r2(double R, double b2_0, double b2_2)
 {
   if (!pos(R) || !nonneg(b2_0) || !nonneg(b2_2) ||
@@ -51,12 +93,7 @@ double sb_kernel_diffusion_r2(double R, double b2_0, double b2_2)
               "%g)", R, b2_0, b2_2);
     return NAN;
   }
-  if (b2_2 == 0.0)
-    return 2.0 * M_PI * b2_0 * R;
-  double t = sqrt(b2_0 / b2_2);
-  if (t > 1e6) /* g = 1/t^2 - pi/(2 t^3) + O(t^-4): Brownian limit */
-    return 2.0 * M_PI * b2_0 * R / (1.0 - M_PI / (2.0 * t) + 1.0 / (t * t));
-  return 2.0 * M_PI * b2_2 * R / g_of_t(t);
+  return dr2(sbi_xd_of(R), sbi_xd_of(b2_0), sbi_xd_of(b2_2), __func__);
 }
 
 double sb_kernel_brownian_turb_r2(double r_i, double r_j, double T,
@@ -69,8 +106,12 @@ double sb_kernel_brownian_turb_r2(double r_i, double r_j, double T,
               "%g, %g)", r_i, r_j, T, mu, eps, nu);
     return NAN;
   }
-  double R = r_i + r_j;
-  return sb_kernel_diffusion_r2(R, sb_brownian_b2(r_i, T, mu) +
-                                       sb_brownian_b2(r_j, T, mu),
-                                sb_turb_pair_b2(R, eps, nu));
+  /* b2_0 and b2_2 with an extended exponent (the bits of sb_brownian_b2
+   * and sb_turb_pair_b2 where those are normal): one of them may leave
+   * the double range where K does not (T = 1e300 with r = 1e-300), and
+   * an error is reported for this function, not for a helper. */
+  const sbi_xd R = sbi_xd_add(sbi_xd_of(r_i), sbi_xd_of(r_j));
+  return dr2(R, sbi_xd_add(sbi_kernel_b2_brownian(r_i, T, mu),
+                           sbi_kernel_b2_brownian(r_j, T, mu)),
+             sbi_kernel_b2_turb(R, eps, nu), __func__);
 }

@@ -209,8 +209,11 @@ double sb_kernel_brownian_turb(double r_i, double r_j, double T, double mu,
  *  dissipative range): 6 pi b2_2 R, three times the rate 2 pi b2(R) R
  *  that the diffusivity frozen at contact gives.  For an anisotropic
  *  pair diffusivity (Brunk, Koch & Lion 1998) only the radial component
- *  enters, as b2(r).  Domain: R > 0, b2_0, b2_2 >= 0 not both 0.
- *  Accuracy: a few ulp (series of g for t <= 0.4). */
+ *  enters, as b2(r).  Domain: R > 0, b2_0, b2_2 >= 0 not both 0, all
+ *  finite, else NaN and SB_EDOM.  Accuracy: a few ulp (series of g for
+ *  t <= 0.4), also where 2 pi b2 R over/underflows as a double product
+ *  (b2 near DBL_MAX, R = 1e-320 or 1e300 with b2 = 1e-315: formed with
+ *  an extended exponent); NaN and SB_ERANGE where K exceeds DBL_MAX. */
 double sb_kernel_diffusion_r2(double R, double b2_0, double b2_2);
 
 /** sb_kernel_diffusion_r2 for Brownian + turbulent pair diffusion with
@@ -218,7 +221,11 @@ double sb_kernel_diffusion_r2(double R, double b2_0, double b2_2);
  *  sb_brownian_b2(r_j), b2_2 = sb_turb_pair_b2(r_i + r_j, eps, nu).
  *  Compare sb_kernel_brownian_turb (the same diffusivity frozen at
  *  contact, = K_co + K_Saffman-Turner); with T -> 0 this is three times
- *  Saffman-Turner. */
+ *  Saffman-Turner.  Domain: radii, T, mu, nu finite and > 0, eps finite
+ *  and >= 0, else NaN and SB_EDOM.  b2_0 and b2_2 are formed with an
+ *  extended exponent, so K is returned wherever it is a double even if
+ *  they are not (T = 1e300 with radii of 1e-300); NaN and SB_ERANGE
+ *  naming this function where K exceeds DBL_MAX. */
 double sb_kernel_brownian_turb_r2(double r_i, double r_j, double T,
                                   double mu, double eps, double nu);
 
