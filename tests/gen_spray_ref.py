@@ -30,7 +30,10 @@ Writes (into tests/data/):
                    b_cr^2/(r1 + r2)^2; 2 TAB r32; 3 Reitz blob radius; 4 BKW
                    density (theta as given); 5 BKW E|v|^6; 6 two-temperature
                    Maxwell T_a; 7 pgd delta mass rate; 8 pgd delta speed
-                   (kinds 7, 8 are read by tests/test_pgd_exact.c).
+                   (kinds 7, 8 are read by tests/test_pgd_exact.c); 9
+                   two-temperature hard-sphere T_a (r_a = r_b = a7, t =
+                   a8, from the textbook form of the closed solution at
+                   800 digits); 10 its rate dT_a/dt (r_a = r_b = a5).
 Run: /usr/bin/python3 tests/gen_spray_ref.py   (about a minute)
 """
 import os
@@ -244,6 +247,86 @@ EXTREME = [
     (7, [1e-320, 1e300, 1e-320, -1e300]),
     (8, [4.0, 1.7976931348623157e308, 1.0, -1e308]),
 ]
+# two-temperature hard spheres: kind 9 T_a(t) (n_a, n_b, m_a, m_b, T_a0,
+# T_b0, r_a = r_b, t), kind 10 the rate dT_a/dt (n_a, n_b, m_a, m_b,
+# r_a = r_b, T_a, T_b); t = None: the time 1/(C sqrt(alpha)), rounded to
+# a double, so that most rows are in the middle of the relaxation
+DBL_MAX = sys.float_info.max
+TT_BASE = [1e20, 2e20, 3e-26, 5e-26, 300.0, 500.0, 1e-10, None]
+TT_EXT = [(0, 1e300), (0, DBL_MAX), (1, 1e300), (1, DBL_MAX),
+          (2, 1e-320), (2, 1e-300), (3, 1e-320), (3, 1e-300),
+          (4, 1e300), (4, DBL_MAX), (5, 1e300), (5, DBL_MAX),
+          (2, 1e300, 3, 1e300), (2, DBL_MAX, 3, DBL_MAX),
+          (2, 1e-320, 3, 1e-320), (4, 1e300, 5, 1e-300),
+          (4, 1e-300, 5, 1e300), (0, 1e-300, 4, 1e300),
+          (6, 1e300, 7, 0.0), (6, 1e-300, 7, 1e300),
+          (0, 1e270, 1, 1e-90, 4, 1e-250, 5, 1e200),
+          (0, 6e135, 1, 8e296, 2, 1e146, 3, 2e273, 4, 1e-38, 5, 1e-297,
+           6, 1e25, 7, 0.0),
+          (0, 6e135, 1, 8e296, 2, 1e146, 3, 2e273, 4, 1e-38, 5, 1e-297,
+           6, 1e25),
+          (0, 3e14, 1, 2e12, 2, 7e-247, 3, 3e-112, 4, 3.6e-168, 5, 3.7e-35,
+           6, 7e66, 7, 1.8e-127)]
+for e in TT_EXT:
+    a = list(TT_BASE)
+    for k in range(0, len(e), 2):
+        a[e[k]] = e[k + 1]
+    EXTREME.append((9, a))
+RATE_BASE = [1e20, 2e20, 3e-26, 5e-26, 1e-10, 350.0, 450.0]
+for e in [(2, 1e-320), (3, 1e-320), (2, 1e-320, 3, 1e-320),
+          (5, 1e300, 4, 1e-200), (6, 1e300, 4, 1e-200),
+          (0, DBL_MAX, 5, 1e300, 4, 1e-200), (0, 1e300, 1, 1e-100)]:
+    a = list(RATE_BASE)
+    for k in range(0, len(e), 2):
+        a[e[k]] = e[k + 1]
+    EXTREME.append((10, a))
+
+
+def tt_hs_parts(na, nb, ma, mb, Ta0, Tb0, r):
+    """C, alpha, beta, D0, T_m and n_b/n of the hard-sphere closure
+    dD/dt = -C D sqrt(alpha + beta D) (mpmath numbers)."""
+    n = na + nb
+    d = 2 * r
+    C = mpf(16) / 3 * sqrt(2 / pi) * pi * d * d * n * ma * mb / (ma + mb) ** 2
+    Tm = (na * Ta0 + nb * Tb0) / n
+    alpha = KB * Tm * (1 / ma + 1 / mb)
+    beta = KB * (nb / ma - na / mb) / n
+    return C, alpha, beta, Ta0 - Tb0, Tm, nb / n
+
+
+def tt_hs_time(a):
+    """t = 1/(C sqrt(alpha)), as a double, where a[7] is None."""
+    if a[7] is not None:
+        return a
+    with mp.workdps(60):
+        C, alpha = tt_hs_parts(*[mpf(x) for x in a[:7]])[:2]
+        return a[:7] + [float(1 / (C * sqrt(alpha)))]
+
+
+def tt_hs_Ta(a):
+    """T_a(t) from the textbook solution: with u^2 = alpha + beta D,
+    (u - sqrt(alpha))/(u + sqrt(alpha)) = rho0 exp(-C sqrt(alpha) t),
+    D = 4 alpha rho/(beta (1 - rho)^2) (D0 exp(-C sqrt(alpha) t) for
+    beta = 0), at 800 digits (rho0 may be 1 - 1e-600)."""
+    with mp.workdps(800):
+        na, nb, ma, mb, Ta0, Tb0, r, t = [mpf(x) for x in a]
+        C, alpha, beta, D0, Tm, fb = tt_hs_parts(na, nb, ma, mb, Ta0, Tb0, r)
+        sa = sqrt(alpha)
+        e = exp(-C * sa * t)
+        if beta == 0:
+            D = D0 * e
+        else:
+            u0 = sqrt(alpha + beta * D0)
+            rho = (u0 - sa) / (u0 + sa) * e
+            D = 4 * alpha * rho / (beta * (1 - rho) ** 2)
+        return +(Tm + fb * D)
+
+
+def tt_hs_rate(a):
+    """dT_a/dt = -C (n_b/n) s (T_a - T_b), s^2 = k (T_a/m_a + T_b/m_b)."""
+    na, nb, ma, mb, r, Ta, Tb = a
+    C = tt_hs_parts(na, nb, ma, mb, Ta, Tb, r)[0]
+    return -C * nb / (na + nb) * sqrt(KB * (Ta / ma + Tb / mb)) * (Ta - Tb)
 
 
 def extreme_value(kind, a):
@@ -282,12 +365,18 @@ def extreme_value(kind, a):
     if kind == 8:
         return (sqrt(a[0]) * a[1] + sqrt(a[2]) * a[3]) / (sqrt(a[0]) +
                                                          sqrt(a[2]))
+    if kind == 9:
+        return tt_hs_Ta(a)
+    if kind == 10:
+        return tt_hs_rate(a)
     raise ValueError(kind)
 
 
 def write_extreme():
     rows = ["kind,a1,a2,a3,a4,a5,a6,a7,a8,value"]
     for kind, a in EXTREME:
+        if kind == 9:
+            a = tt_hs_time(a)
         args = [repr(float(x)) for x in a] + ["0"] * (8 - len(a))
         rows.append("%d,%s,%s" % (kind, ",".join(args),
                                   s20(extreme_value(kind, a))))

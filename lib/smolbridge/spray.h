@@ -505,9 +505,17 @@ int sb_spray_bkw_sample(double K, double theta, gsl_rng *rng, double v[3]);
  *  arguments (T may be any finite positive values).  Products of the
  *  rate constants that over/underflow (n near DBL_MAX, m or r near
  *  1e-300) are formed with an extended exponent, and n_a T_a0 + n_b T_b0
- *  through the fractions n_a/n, n_b/n where it overflows; SB_ERANGE
- *  (outputs unchanged) where an intermediate of the hard-sphere closed
- *  form (k T/m, its square root) still leaves the double range. */
+ *  through the fractions n_a/n, n_b/n where it overflows.  The
+ *  hard-sphere T_a, T_b lie between T_a0 and T_b0, and
+ *  sb_spray_two_temp_hs returns them for every argument in the domain:
+ *  where an intermediate of its closed form (n T, k T/m, their square
+ *  roots, C sqrt(alpha) t) leaves the normal range it is evaluated in a
+ *  scaled form with an extended exponent (docs/spray.md, "Extreme
+ *  arguments"); never SB_ERANGE.  Accuracy: a few ulp against mpmath,
+ *  also at such corners (m = 1e-320 or 1e300, n or T near DBL_MAX),
+ *  except that the plain form gives the colder species as
+ *  T_m - f |Delta|, which loses about log2(T_m/T) bits where the mixture
+ *  temperature T_m is far above it (a rare, much hotter species). */
 typedef struct {
   double n_a, n_b, m_a, m_b, r_a, r_b, T_a0, T_b0;
 } sb_spray_mixture;
@@ -517,7 +525,10 @@ int sb_spray_two_temp_hs(const sb_spray_mixture *mx, double t, double *T_a,
                          double *T_b);
 /** The hard-sphere rate dT_a/dt (K/s) for Maxwellian species at T_a, T_b
  *  (finite > 0): NaN with SB_EDOM outside the domain, SB_ERANGE when the
- *  rate overflows. */
+ *  rate overflows.  C, s and n_b/n are formed with an extended exponent
+ *  where a plain product leaves the normal range, so the rate is
+ *  returned wherever it is a double (m = 1e-320: k T/m overflows,
+ *  the rate is 1e-141). */
 double sb_spray_two_temp_hs_rate(const sb_spray_mixture *mx, double T_a,
                                  double T_b);
 

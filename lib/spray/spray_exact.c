@@ -240,22 +240,28 @@ int sb_spray_two_temp_maxwell(const sb_spray_mixture *mx, double B0,
   return SB_SUCCESS;
 }
 
+/* (16/3) sqrt(2/pi) pi d^2 (n_a + n_b) m_a m_b/(m_a + m_b)^2, d = r_a + r_b,
+ * with an extended exponent throughout (the over/underflow branches of
+ * the hard-sphere law). */
+static sbi_xd hs_Cx(const sb_spray_mixture *mx)
+{
+  sbi_xd dx = sbi_xd_add(sbi_xd_of(mx->r_a), sbi_xd_of(mx->r_b));
+  sbi_xd c = sbi_xd_mul(
+      sbi_xd_mul(sbi_xd_of((16.0 / 3.0) * sqrt(2.0 / SBI_PI) * SBI_PI), dx),
+      dx);
+  sbi_xd M = sbi_xd_add(sbi_xd_of(mx->m_a), sbi_xd_of(mx->m_b));
+  sbi_xd nx = sbi_xd_add(sbi_xd_of(mx->n_a), sbi_xd_of(mx->n_b));
+  c = sbi_xd_mul(sbi_xd_mul(sbi_xd_mul(c, nx), sbi_xd_of(mx->m_a)),
+                 sbi_xd_of(mx->m_b));
+  return sbi_xd_div(c, sbi_xd_mul(M, M));
+}
+
 static double hs_C(const sb_spray_mixture *mx)
 {
   double d = mx->r_a + mx->r_b;
   double pre = (16.0 / 3.0) * sqrt(2.0 / SBI_PI) * SBI_PI * d * d;
-  if (!(pre >= DBL_MIN && pre <= DBL_MAX)) {
-    sbi_xd dx = sbi_xd_add(sbi_xd_of(mx->r_a), sbi_xd_of(mx->r_b));
-    sbi_xd c = sbi_xd_mul(sbi_xd_mul(sbi_xd_of((16.0 / 3.0) *
-                                                sqrt(2.0 / SBI_PI) * SBI_PI),
-                                     dx),
-                          dx);
-    sbi_xd M = sbi_xd_add(sbi_xd_of(mx->m_a), sbi_xd_of(mx->m_b));
-    sbi_xd nx = sbi_xd_add(sbi_xd_of(mx->n_a), sbi_xd_of(mx->n_b));
-    c = sbi_xd_mul(sbi_xd_mul(sbi_xd_mul(c, nx), sbi_xd_of(mx->m_a)),
-                   sbi_xd_of(mx->m_b));
-    return sbi_xd_val(sbi_xd_div(c, sbi_xd_mul(M, M)));
-  }
+  if (!(pre >= DBL_MIN && pre <= DBL_MAX))
+    return sbi_xd_val(hs_Cx(mx));
   return mix_rate(pre, mx);
 }
 
@@ -278,11 +284,23 @@ double sb_spray_two_temp_hs_rate(const sb_spray_mixture *mx, double T_a,
   }
   double s = sqrt(SB_BOLTZMANN * (T_a / mx->m_a + T_b / mx->m_b));
   double n = mx->n_a + mx->n_b;
-  double r = -hs_C(mx) * mx->n_b / n * s * (T_a - T_b);
-  if (!isfinite(r)) {
-    double fa, fb;
-    fractions(mx, &fa, &fb);
-    r = -hs_C(mx) * fb * s * (T_a - T_b);
+  double c = hs_C(mx), p = -c * mx->n_b, q = p / n, w = q * s;
+  double r = w * (T_a - T_b);
+  if (!(isnormal(c) && isnormal(s) && isnormal(p) && isnormal(q) &&
+        isnormal(w) && isnormal(r))) {
+    /* outside the plain products' range (n overflows, k T/m for
+     * m = 1e-320, s = inf but C tiny, or a subnormal partial product;
+     * also T_a = T_b, where r = 0 either way): C, s and n_b/n with an
+     * extended exponent */
+    const sbi_xd fb =
+        sbi_xd_div(sbi_xd_of(mx->n_b),
+                   sbi_xd_add(sbi_xd_of(mx->n_a), sbi_xd_of(mx->n_b)));
+    const sbi_xd k = sbi_xd_of(SB_BOLTZMANN);
+    const sbi_xd sx = sbi_xd_sqrt(sbi_xd_add(
+        sbi_xd_div(sbi_xd_mul(k, sbi_xd_of(T_a)), sbi_xd_of(mx->m_a)),
+        sbi_xd_div(sbi_xd_mul(k, sbi_xd_of(T_b)), sbi_xd_of(mx->m_b))));
+    r = -sbi_xd_val(sbi_xd_mul(sbi_xd_mul(sbi_xd_mul(hs_Cx(mx), fb), sx),
+                                sbi_xd_of(T_a - T_b)));
   }
   if (!isfinite(r)) {
     sbi_error(SB_ERANGE, __func__, "the rate overflows (T_a = %g, T_b = %g)",
@@ -290,6 +308,70 @@ double sb_spray_two_temp_hs_rate(const sb_spray_mixture *mx, double T_a,
     return NAN;
   }
   return r;
+}
+
+/* T_a(t), T_b(t) of sb_spray_two_temp_hs where a double intermediate of
+ * the plain closed form leaves the normal range (n_a T_a0 or n
+ * overflows, n_b/n underflows, k T/m overflows for m = 1e-320 or is
+ * subnormal for m = 1e300, C = inf at t = 0, ...).  T_a, T_b lie between
+ * T_a0 and T_b0, so they are doubles whatever the arguments.  With
+ * s = u0 + sqrt(alpha), w = sqrt(alpha)/s, rho0 = beta Delta0/s^2
+ * (1 - rho0 = 2 w), gam = rho0/(2 w) = beta Delta0/(2 sqrt(alpha) s)
+ * and e = exp(-C sqrt(alpha) t), the solution is
+ *   F = Delta/Delta0 = e/(1 + z)^2,  z = gam (1 - e),
+ *   1 - F = (1 - e)(u0/sqrt(alpha) + gam^2 (1 - e))/(1 + z)^2
+ * (using 1 + 2 gam = u0/sqrt(alpha)); z > -1/2 and both factors of 1 - F
+ * are sums of non-negative terms.  The hotter species is then
+ * T_m + f |Delta| and the colder T_0 + f |Delta0| (1 - F) (f the other
+ * species' fraction): sums of positive terms, without the cancellation
+ * of T_m - f |Delta|.  Everything is formed with an extended exponent
+ * and 1 - e by expm1. */
+static void two_temp_hs_wide(const sb_spray_mixture *mx, double t,
+                             double *Ta, double *Tb)
+{
+  const sbi_xd na = sbi_xd_of(mx->n_a), nb = sbi_xd_of(mx->n_b);
+  const sbi_xd Ta0 = sbi_xd_of(mx->T_a0), Tb0 = sbi_xd_of(mx->T_b0);
+  const sbi_xd n = sbi_xd_add(na, nb);
+  const sbi_xd fa = sbi_xd_div(na, n), fb = sbi_xd_div(nb, n);
+  const sbi_xd Tm = sbi_xd_add(sbi_xd_mul(fa, Ta0), sbi_xd_mul(fb, Tb0));
+  const double D0 = mx->T_a0 - mx->T_b0;
+  const sbi_xd k = sbi_xd_of(SB_BOLTZMANN);
+  const sbi_xd ia = sbi_xd_div(sbi_xd_of(1.0), sbi_xd_of(mx->m_a));
+  const sbi_xd ib = sbi_xd_div(sbi_xd_of(1.0), sbi_xd_of(mx->m_b));
+  const sbi_xd alpha = sbi_xd_mul(sbi_xd_mul(k, Tm), sbi_xd_add(ia, ib));
+  /* beta = k (f_b/m_a - f_a/m_b);  u0^2 = alpha + beta Delta0 =
+   * k (T_a0/m_a + T_b0/m_b), a sum of positive terms */
+  const sbi_xd fan = sbi_xd_mul(sbi_xd_of(-1.0), fa);
+  const sbi_xd beta = sbi_xd_mul(
+      k, sbi_xd_add(sbi_xd_mul(fb, ia), sbi_xd_mul(fan, ib)));
+  const sbi_xd u0 = sbi_xd_sqrt(
+      sbi_xd_mul(k, sbi_xd_add(sbi_xd_mul(Ta0, ia), sbi_xd_mul(Tb0, ib))));
+  const sbi_xd sa = sbi_xd_sqrt(alpha), s = sbi_xd_add(u0, sa);
+  /* x = C sqrt(alpha) t (t = 0: x = 0 even where C overflows) */
+  const double x =
+      t == 0.0 ? 0.0
+               : sbi_xd_val(sbi_xd_mul(sbi_xd_mul(hs_Cx(mx), sa),
+                                       sbi_xd_of(t)));
+  const sbi_xd e = sbi_xd_of(exp(-x)), ome = sbi_xd_of(-expm1(-x));
+  const sbi_xd gam =
+      sbi_xd_div(sbi_xd_mul(beta, sbi_xd_of(D0)),
+                 sbi_xd_mul(sbi_xd_mul(sbi_xd_of(2.0), sa), s));
+  const sbi_xd opz = sbi_xd_add(sbi_xd_of(1.0), sbi_xd_mul(gam, ome));
+  const sbi_xd opz2 = sbi_xd_mul(opz, opz);
+  const sbi_xd F = sbi_xd_div(e, opz2);
+  const sbi_xd omF = sbi_xd_div(
+      sbi_xd_mul(ome, sbi_xd_add(sbi_xd_div(u0, sa),
+                                 sbi_xd_mul(sbi_xd_mul(gam, gam), ome))),
+      opz2);
+  const sbi_xd aD = sbi_xd_of(fabs(D0));
+  /* hot: T_m + f |Delta0| F;  cold: T_0 + f |Delta0| (1 - F) */
+  if (D0 >= 0.0) {
+    *Ta = sbi_xd_val(sbi_xd_add(Tm, sbi_xd_mul(sbi_xd_mul(fb, aD), F)));
+    *Tb = sbi_xd_val(sbi_xd_add(Tb0, sbi_xd_mul(sbi_xd_mul(fa, aD), omF)));
+  } else {
+    *Tb = sbi_xd_val(sbi_xd_add(Tm, sbi_xd_mul(sbi_xd_mul(fa, aD), F)));
+    *Ta = sbi_xd_val(sbi_xd_add(Ta0, sbi_xd_mul(sbi_xd_mul(fb, aD), omF)));
+  }
 }
 
 /* dD/dt = -C D sqrt(alpha + beta D), s^2 = alpha + beta D.  With
@@ -314,14 +396,27 @@ int sb_spray_two_temp_hs(const sb_spray_mixture *mx, double t, double *T_a,
   double beta = k * (mx->n_b / mx->m_a - mx->n_a / mx->m_b) / n;
   double sa = sqrt(alpha), u0 = sqrt(alpha + beta * D0);
   double q = (u0 + sa) * (u0 + sa);
-  double e = exp(-hs_C(mx) * sa * t);
+  double C = hs_C(mx), Csa = -C * sa;
+  double e = exp(Csa * t);
   double rho = beta * D0 / q * e;
-  double D = 4.0 * alpha * D0 * e / (q * (1.0 - rho) * (1.0 - rho));
+  double num = 4.0 * alpha * D0 * e, den = q * (1.0 - rho) * (1.0 - rho);
+  double D = num / den;
   double Ta, Tb;
-  split_T(mx, D, &Ta, &Tb);
-  if (!isfinite(D) || (st = temps_ok(Ta, Tb, __func__)))
-    return st ? st : sbi_error(SB_ERANGE, __func__, "an intermediate "
-                               "leaves the double range");
+  /* the plain form where its intermediates are normal doubles; a
+   * subnormal num or Delta (e = exp(-x) below DBL_MIN) only where Delta
+   * is negligible against T_m, as before */
+  const int negl = fabs(D) <= 0x1p-60 * Tm;
+  if (isfinite(n) && isnormal(mx->n_a / n) && isnormal(mx->n_b / n) &&
+      isnormal(Tm) && isnormal(alpha) && (beta == 0.0 || isnormal(beta)) &&
+      isnormal(sa) && isnormal(u0) && isnormal(q) && isnormal(C) &&
+      isnormal(Csa) && isnormal(den) &&
+      (isnormal(num) || e == 0.0 || D0 == 0.0 || negl) &&
+      (isnormal(D) || D == 0.0 || negl))
+    split_T(mx, D, &Ta, &Tb);
+  else
+    two_temp_hs_wide(mx, t, &Ta, &Tb);
+  if ((st = temps_ok(Ta, Tb, __func__)))
+    return st;
   if (T_a)
     *T_a = Ta;
   if (T_b)
