@@ -459,7 +459,8 @@ def gen_bridge_hit():
     # extreme-but-representable corners (400 digits: with v ~ 1e300 the
     # B3B density and mixture cancel to 1e-300): u = 1e-300 with a
     # normal density near 1e280 (B3B: y/x = 1e-31, the y -> 0 law),
-    # t = 1e300 and DBL_MAX, t = 1e-300 (rescaled)
+    # t = 1e300 and DBL_MAX, t = 1e-300 (rescaled), and B3B at u = 1e-300
+    # with min(a, y) ~ 1e-149
     big = sys.float_info.max
     for (kind, u, x, y, a, s2, t) in [
             (0, 1e-300, 1e-149, 0.5, 0.0, 1.0, 1.0),
@@ -468,7 +469,12 @@ def gen_bridge_hit():
             (0, 0.3e-300, 1e-150, 0.5e-150, 0.0, 1.0, 1e-300),
             (1, 1e-300, 2e-149, 1e-180, 1e-149, 1.0, 1.0),
             (1, 0.3, 2.0, 1.0, 0.5, 1.0, 1e300),
-            (1, 0.3e-300, 2e-150, 1e-150, 0.5e-150, 1.0, 1e-300)]:
+            (1, 0.3e-300, 2e-150, 1e-150, 0.5e-150, 1.0, 1e-300),
+            # B3B, u = 1e-300 with min(a, y) ~ 1e-149 (1 - rho ~ 1e-298):
+            # the expansion of the mixture, whose products L u and
+            # 2 dl ex g0 underflow
+            (1, 1e-300, 2e-149, 1e-149, 1e-149, 1.0, 1.0),
+            (1, 1e-300, 2e-149, 1e-149, 0.5e-149, 1.0, 1.0)]:
         with mp.workdps(400):
             pdf, cdf, sf = hit_ref(kind, u, x, y, a, s2, t)
         rows.append((kind, u, x, y, a, s2, t, pdf if pdf > TINY else -1,

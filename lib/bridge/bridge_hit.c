@@ -126,13 +126,25 @@ static hit_time make_time(const hit_par *h, double u, sbi_dd w)
   return T;
 }
 
+/* a b / c for a, b >= 0, c > 0: the plain expression where a b is a
+ * normal double (same bits), else with extended exponents (u ~ 1e-300
+ * with positions ~ 1e-149: L u underflows although L u / q is ~ 1e-299) */
+static double prod_quot(double a, double b, double c)
+{
+  const double p = a * b;
+  if ((p >= DBL_MIN && p <= DBL_MAX) || a == 0.0 || b == 0.0)
+    return p / c;
+  return sbi_xd_val(
+      sbi_xd_div(sbi_xd_mul(sbi_xd_of(a), sbi_xd_of(b)), sbi_xd_of(c)));
+}
+
 /* IG point of the drift length L at time T. */
 static sbi_igpt point(const hit_par *h, const hit_time *T, sbi_dd L)
 {
   sbi_dd num = sbi_dd_add(sbi_dd_mul_d(L, T->u),
                           sbi_dd_neg(sbi_dd_mul(h->al, T->w)));
-  return sbi_igpt_make(num, T->den, h->al.hi * T->w.hi / T->q,
-                       L.hi * T->u / T->q);
+  return sbi_igpt_make(num, T->den, prod_quot(h->al.hi, T->w.hi, T->q),
+                       prod_quot(L.hi, T->u, T->q));
 }
 
 /* ------------------------------------------------ B3B: the mixture (2) */
@@ -281,11 +293,12 @@ static int nx_order(double r, double km, double lo, double dl, double *tail)
 }
 
 /* One panel: ex(Lc) [Ft(-dl) - Ft(dl)] at the point pc (L = Lc) to order
- * K; *err its absolute error bound (the truncation bound `tail` relative
- * included).  Returns 0 if rounding could exceed NX_RTOL relative. */
+ * K, times dls/dl (a power of two: see narrow); *err its absolute error
+ * bound (the truncation bound `tail` relative included), scaled alike.
+ * Returns 0 if rounding could exceed NX_RTOL relative. */
 static int nx_panel(const hit_par *h, const hit_time *T, const sbi_igpt *pc,
-                    double dl, int K, double tail, int sf, double *val,
-                    double *err)
+                    double dl, double dls, int K, double tail, int sf,
+                    double *val, double *err)
 {
   double u = T->u, z = pc->eps, km = pc->kap, c = pc->c;
   double lo = sf ? c : -c, b = km + z;
@@ -358,16 +371,16 @@ static int nx_panel(const hit_par *h, const hit_time *T, const sbi_igpt *pc,
     double gk = 0.0;
     for (int i = 0; i <= k; i++)
       gk += P[k - i] * Q[i];
-    corr += 2.0 * dl * gk / (k + 1);
+    corr += 2.0 * dls * gk / (k + 1);
   }
   double ecorr = K < 3 ? 0.0
-                       : 2.0 * dl * (6.0 * K + 16.0) * EPS *
+                       : 2.0 * dls * (6.0 * K + 16.0) * EPS *
                              (psum * qsum - qm0 - qm1 - ad * qm0);
-  double tot = 2.0 * dl * g0 + corr;
+  double tot = 2.0 * dls * g0 + corr;
   if (!(tot > 0.0) || ecorr > NX_RTOL * tot)
     return 0;
   *val = pc->ex * tot;
-  *err = pc->ex * (2.0 * dl * (tA * (rA + 3.0 * EPS) + tB * (rB + 3.0 * EPS) +
+  *err = pc->ex * (2.0 * dls * (tA * (rA + 3.0 * EPS) + tB * (rB + 3.0 * EPS) +
                                tail * g0) + ecorr) + 4.0 * EPS * *val;
   return 1;
 }
@@ -381,6 +394,14 @@ static int narrow(const hit_par *h, const hit_time *T, const sbi_igpt *pm,
   double r = h->t / T->u, uq = T->u / T->q, A = h->al.hi + h->L1.hi;
   for (int n = 1; n <= NX_NPAN; n *= 2) {
     double hw = h->mn / n, dl = hw * uq;
+    /* the panels' values are proportional to dl, as is 1 - rho: where dl
+     * is tiny (u ~ 1e-300 with min(a, y) ~ 1e-149: 2 dl ex g0 underflows
+     * although the ratio is a normal probability) they are formed scaled
+     * by 2^ks (exact: the same bits once scaled back wherever nothing
+     * underflowed; ks <= 900 keeps them below 2^900 since the numerator
+     * of (1) is at most 1 - rho <= 1) */
+    const int ks = dl < 0x1p-300 ? (ilogb(dl) < -900 ? 900 : -ilogb(dl)) : 0;
+    const double dls = ldexp(dl, ks);
     sbi_igpt pc[NX_NPAN];
     int K[NX_NPAN];
     double tail[NX_NPAN];
@@ -397,15 +418,15 @@ static int narrow(const hit_par *h, const hit_time *T, const sbi_igpt *pm,
     double tot = 0.0, e = 0.0;
     for (int j = 0; j < n && ok; j++) {
       double vj = 0.0, ej = 0.0, lc = (2 * j + 1) * hw;
-      ok = nx_panel(h, T, &pc[j], dl, K[j], tail[j], sf, &vj, &ej);
+      ok = nx_panel(h, T, &pc[j], dl, dls, K[j], tail[j], sf, &vj, &ej);
       double om = n == 1 ? h->om1 : exp(-lc * (2.0 * A + lc) / (2.0 * h->v));
       tot += om * vj;
       e += om * ej;
     }
     if (!ok)
       return 0; /* rounding, not truncation: more panels would not help */
-    *val = tot / h->omr;
-    *err = (e + 4.0 * EPS * tot) / h->omr;
+    *val = ldexp(tot / h->omr, -ks);
+    *err = ldexp((e + 4.0 * EPS * tot) / h->omr, -ks);
     return 1;
   }
   return 0;
@@ -492,7 +513,7 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
   sbi_igpt p1, pm = {0.0, 0.0, 0.0, 0.0, {0.0, 0.0}}, p2 = pm;
   if (nx) {
     pm = point(h, T, sbi_dd_add(h->L1, (sbi_dd){h->mn, 0.0}));
-    double dl = h->mn * T->u / T->q;
+    double dl = prod_quot(h->mn, T->u, T->q);
     p1 = pm;
     p1.kap -= dl;
     p1.c -= dl;
