@@ -841,6 +841,59 @@ START_TEST(test_extreme_arguments)
 }
 END_TEST
 
+/* The samplers, every argument in turn over +-1e-320 ... +-DBL_MAX, +-inf,
+ * NaN, 0 and the double-double/square limits, the others ordinary: each of
+ * 20 draws (MT19937, seed 7) is in [0, t] with status 0, or NaN with an
+ * error status whose message names the public function (the errors used to
+ * name an internal helper).  Draws used to exceed t by an ulp where s >> t
+ * (t = 1e150: ~1% of the draws; t = DBL_MAX: +inf). */
+START_TEST(test_sampler_extreme)
+{
+  static const double base[2][5] = {{1.0, 0.5, 0.0, 1.0, 1.0},
+                                    {2.0, 1.0, 0.5, 1.0, 1.0}};
+  static const char *name[2] = {"sb_bb_hit_sample", "sb_bes3b_hit_sample"};
+  const double ext[] = {1e-320,   1e-300,  1e-150, 1.0,      1e150,
+                        1e300,    DBL_MAX, INFINITY, -1e-320, -1e-300,
+                        -1e-150,  -1.0,    -1e150, -1e300,   -DBL_MAX,
+                        -INFINITY, NAN,    0.0,    0x1p995,  1e154,
+                        1e-154};
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(r, 7);
+  for (int b3 = 0; b3 < 2; b3++)
+    for (int i = 0; i < 5; i++)
+      for (size_t e = 0; e < sizeof ext / sizeof ext[0]; e++) {
+        double a[5];
+        memcpy(a, base[b3], sizeof a);
+        a[i] = ext[e];
+        for (int k = 0; k < 20; k++) {
+          sb_clear_error();
+          const double v =
+              b3 ? sb_bes3b_hit_sample(r, a[0], a[1], a[2], a[3], a[4])
+                 : sb_bb_hit_sample(r, a[0], a[1], a[2], a[3], a[4]);
+          const int st = sb_last_status();
+          if (isnan(v)) {
+            ck_assert_msg(st != SB_SUCCESS &&
+                              strstr(sb_last_error(), name[b3]) != NULL,
+                          "%s, argument %d = %g: NaN with status %d (%s)",
+                          name[b3], i, ext[e], st, sb_last_error());
+            break;
+          }
+          ck_assert_msg(st == SB_SUCCESS && v >= 0.0 && v <= a[4],
+                        "%s, argument %d = %g: %.17g with status %d",
+                        name[b3], i, ext[e], v, st);
+        }
+      }
+  /* t = 1e150: 2000 draws, none above t */
+  for (int k = 0; k < 2000; k++)
+    ck_assert(sb_bes3b_hit_sample(r, 2.0, 1.0, 0.5, 1.0, 1e150) <= 1e150);
+  sb_clear_error();
+  ck_assert(isnan(sb_bb_hit_sample(NULL, 1.0, 0.5, 0.0, 1.0, 1.0)));
+  ck_assert_int_eq(sb_last_status(), SB_EINVAL);
+  ck_assert(strstr(sb_last_error(), "sb_bb_hit_sample") != NULL);
+  gsl_rng_free(r);
+}
+END_TEST
+
 static Suite *bridge_suite(void)
 {
   Suite *s = suite_create("bridge");
@@ -865,6 +918,7 @@ static Suite *bridge_suite(void)
   suite_add_tcase(s, tc);
   tc = tcase_create("samplers");
   tcase_add_test(tc, test_samplers);
+  tcase_add_test(tc, test_sampler_extreme);
   tcase_set_timeout(tc, 60);
   suite_add_tcase(s, tc);
   return s;

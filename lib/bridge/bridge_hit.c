@@ -1032,19 +1032,23 @@ HIT_QUANT(bes3b, 1)
 
 /* ---------------------------------------------------------- samplers */
 
+/* u = t s/(t + s) <= t: the rounding can exceed t by an ulp (s >> t,
+ * e.g. t = 1e150 with x ~ 1: ~1% of the draws; t = DBL_MAX gave +inf
+ * after the rescaling), so it is clipped to t */
 static double s_to_u(double s, double t)
 {
-  return isinf(s) ? t : t * s / (t + s);
+  const double u = isinf(s) ? t : t * s / (t + s);
+  return u > t ? t : u;
 }
 
-static double bb_hit_sample_unit(const gsl_rng *r, double x, double y, double a,
-                        double sigma2, double t)
+static double bb_hit_sample_unit(const char *fn, const gsl_rng *r, double x,
+                                 double y, double a, double sigma2, double t)
 {
   hit_par h;
-  if (hit_setup(__func__, 0, x, y, a, sigma2, t, &h, NULL))
+  if (hit_setup(fn, 0, x, y, a, sigma2, t, &h, NULL))
     return NAN;
   if (r == NULL) {
-    sbi_fail(NULL, SB_EINVAL, __func__, "r is NULL");
+    sbi_fail(NULL, SB_EINVAL, fn, "r is NULL");
     return NAN;
   }
   if (h.trivial == T_ZERO)
@@ -1060,17 +1064,18 @@ double sb_bb_hit_sample(const gsl_rng *r, double x, double y, double a,
                         double sigma2, double t)
 {
   const int et = rescale(0, &x, &y, &a, &sigma2, &t, NULL);
-  return ldexp(bb_hit_sample_unit(r, x, y, a, sigma2, t), et);
+  return ldexp(bb_hit_sample_unit(__func__, r, x, y, a, sigma2, t), et);
 }
 
-static double bes3b_hit_sample_unit(const gsl_rng *r, double x, double y, double a,
-                           double sigma2, double t)
+static double bes3b_hit_sample_unit(const char *fn, const gsl_rng *r,
+                                    double x, double y, double a,
+                                    double sigma2, double t)
 {
   hit_par h;
-  if (hit_setup(__func__, 1, x, y, a, sigma2, t, &h, NULL))
+  if (hit_setup(fn, 1, x, y, a, sigma2, t, &h, NULL))
     return NAN;
   if (r == NULL) {
-    sbi_fail(NULL, SB_EINVAL, __func__, "r is NULL");
+    sbi_fail(NULL, SB_EINVAL, fn, "r is NULL");
     return NAN;
   }
   if (h.trivial != T_NONE)
@@ -1109,5 +1114,5 @@ double sb_bes3b_hit_sample(const gsl_rng *r, double x, double y, double a,
                            double sigma2, double t)
 {
   const int et = rescale(1, &x, &y, &a, &sigma2, &t, NULL);
-  return ldexp(bes3b_hit_sample_unit(r, x, y, a, sigma2, t), et);
+  return ldexp(bes3b_hit_sample_unit(__func__, r, x, y, a, sigma2, t), et);
 }

@@ -59,7 +59,9 @@
  * intermediate leaves the doubles), 0 or subnormal below DBL_MIN, and
  * SB_ERANGE (NaN) where it exceeds DBL_MAX (docs/bridge.md).  The
  * quantile falls back to bisection on the doubles of [0, t] where its
- * iteration fails (laws narrower than one ulp, u ~ 1e-300 t).
+ * iteration fails (laws narrower than one ulp, u ~ 1e-300 t).  The
+ * samplers return a double in [0, t] for any valid arguments (t up to
+ * DBL_MAX), or NaN with SB_EDOM/SB_EINVAL and a message naming them.
  * Special cases: x <= a: T_a = 0 (cdf = 1 for u >= 0, pdf 0, quantile 0,
  * sample 0).  y <= a < x: the bridge surely hits, same formulas.  For B3B
  * a = 0 with x, y > 0 is SB_EDOM (the bridge never hits 0); y = 0 < x with
