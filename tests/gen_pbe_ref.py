@@ -53,3 +53,8 @@ for x in ["1e-6", "0.01", "1", "10", "300", "1e5"]:
         print("const_exp,%s,%s,%s" % (x, tau, mp.nstr(const_exp(mpf(float(x)), mpf(float(tau))), 25)))
     for tau in ["1e-12", "0.1", "1", "10"]:
         print("add_exp,%s,%s,%s" % (x, tau, mp.nstr(add_exp(mpf(float(x)), mpf(float(tau))), 25)))
+# multiplicative kernel at small tau: tau - 1 rounds away tau's bits (and
+# is -1 below 2^-54, outside GSL's log_1plusx_mx)
+for k in [2, 7, 400, 10 ** 9]:
+    for tau in ["0.05", "1e-10", "1e-20", "1e-300"]:
+        print("mult_mono,%d,%s,%s" % (k, tau, mp.nstr(mult_mono(k, mpf(float(tau))), 25)))

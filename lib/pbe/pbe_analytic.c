@@ -85,9 +85,13 @@ double sb_pbe_mult_mono_logn(double k, double tau)
   /* with lgamma(k) = (k - 1/2) log k - k + rest(k):
    * log n = -5/2 log k - rest(k) + (k-1)(log tau + 1 - tau) + 1 - tau,
    * log tau + 1 - tau = log1p(x) - x at x = tau - 1 (near gelation the
-   * terms ~ k cancel) */
-  return -2.5 * log(k) - lgamma_rest(k) +
-         (k - 1.0) * gsl_sf_log_1plusx_mx(tau - 1.0) + (1.0 - tau);
+   * terms ~ k cancel).  For tau < 1/16 it is formed directly: x = tau - 1
+   * rounds away tau's low bits (relative error 1e-16/tau: 1e-6 at tau =
+   * 1e-10), and for tau < 2^-54 it is -1, outside GSL's domain (its
+   * error handler, which aborts by default) */
+  const double lt = tau < 0.0625 ? log(tau) + (1.0 - tau)
+                                 : gsl_sf_log_1plusx_mx(tau - 1.0);
+  return -2.5 * log(k) - lgamma_rest(k) + (k - 1.0) * lt + (1.0 - tau);
 }
 
 double sb_pbe_const_exp_logn(double x, double tau)
