@@ -9,6 +9,8 @@ binary doubles the test reads (mpf(float(...))).  Kinds: const_mono,
 add_mono, mult_mono (k integer), const_exp, add_exp (x = v/v0).
 Run: /usr/bin/python3 tests/gen_pbe_ref.py > tests/data/pbe_analytic.csv
 """
+import sys
+
 from mpmath import mp, mpf, log, exp, factorial, besseli, sqrt, expm1
 
 mp.dps = 50
@@ -58,3 +60,8 @@ for x in ["1e-6", "0.01", "1", "10", "300", "1e5"]:
 for k in [2, 7, 400, 10 ** 9]:
     for tau in ["0.05", "1e-10", "1e-20", "1e-300"]:
         print("mult_mono,%d,%s,%s" % (k, tau, mp.nstr(mult_mono(k, mpf(float(tau))), 25)))
+# additive kernel, exponential start, at x near DBL_MAX: 2 x sqrt(T)
+# overflows (inf * 0 at tau = 0 gave NaN)
+for (x, tau) in [(1e300, "1"), (sys.float_info.max, "1"),
+                 (sys.float_info.max, "1e-300"), (sys.float_info.max, "1e-20")]:
+    print("add_exp,%r,%s,%s" % (x, tau, mp.nstr(add_exp(mpf(x), mpf(float(tau))), 25)))

@@ -105,10 +105,16 @@ double sb_pbe_add_exp_logn(double x, double tau)
 {
   DOMAIN(!(x > 0.0 && isfinite(x)), "x must be finite and > 0 (got %g)", x);
   DOMAIN(bad_tau(tau), "tau must be finite and >= 0 (got %g)", tau);
-  double T = -expm1(-tau), sT = sqrt(T), z = 2.0 * x * sT;
+  /* z = x (2 sqrt T): the same bits as (2 x) sqrt T, which overflowed for
+   * x > DBL_MAX/2 (inf * 0 = NaN at tau = 0) */
+  double T = -expm1(-tau), sT = sqrt(T), z = x * (2.0 * sT);
   /* n = e^-tau e^{-(1+T)x} I1(z)/(x sqrt T); with I1(z) = e^z I1s(z):
    * exponent -(1+T)x + z = -x (1 - sqrt T)^2, no cancellation. */
   double e = -tau - x * (1.0 - sT) * (1.0 - sT);
+  if (isinf(z)) /* I1s(z) = (2 pi z)^(-1/2) (1 + O(1/z)) (Abramowitz &
+                 * Stegun 1964, 9.7.1); GSL's scaled I1 gives 0 at inf */
+    return e - 0.5 * (log(2.0 * M_PI) + log(x) + log(2.0 * sT)) -
+           log(x * sT);
   if (z < 0.1) {
     /* I1(z)/(z/2) = sum_m (z^2/4)^m/(m!(m+1)!): 6 terms reach 1e-19 for
      * z < 0.1 (GSL's scaled I1 drops the e^-z factor at tiny z). */
