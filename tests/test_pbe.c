@@ -143,6 +143,58 @@ START_TEST(test_analytic_domain)
 }
 END_TEST
 
+/* Extreme arguments: every analytic function, each argument over
+ * +-1e-320 ... +-DBL_MAX, +-inf, NaN, 0 and a few ordinary values, the
+ * other ordinary: status 0 with a value that is not NaN (n finite >= 0;
+ * log n may be -inf, where n = 0 or log n < -DBL_MAX), or NaN with an
+ * error status whose message names the function called (the _n forms
+ * used to name their _logn form); GSL's handler is never reached. */
+typedef double (*an_fn)(double, double);
+START_TEST(test_analytic_extreme)
+{
+  static const struct {
+    an_fn f;
+    const char *name;
+    int logn;
+  } fs[] = {{sb_pbe_const_mono_logn, "sb_pbe_const_mono_logn", 1},
+            {sb_pbe_const_mono_n, "sb_pbe_const_mono_n", 0},
+            {sb_pbe_add_mono_logn, "sb_pbe_add_mono_logn", 1},
+            {sb_pbe_add_mono_n, "sb_pbe_add_mono_n", 0},
+            {sb_pbe_mult_mono_logn, "sb_pbe_mult_mono_logn", 1},
+            {sb_pbe_mult_mono_n, "sb_pbe_mult_mono_n", 0},
+            {sb_pbe_const_exp_logn, "sb_pbe_const_exp_logn", 1},
+            {sb_pbe_const_exp_n, "sb_pbe_const_exp_n", 0},
+            {sb_pbe_add_exp_logn, "sb_pbe_add_exp_logn", 1},
+            {sb_pbe_add_exp_n, "sb_pbe_add_exp_n", 0}};
+  const double ext[] = {1e-320,  1e-300,  1e-150,   1.0,      1e150,
+                        1e300,   DBL_MAX, INFINITY, -1e-320,  -1e-300,
+                        -1e-150, -1.0,    -1e150,   -1e300,   -DBL_MAX,
+                        -INFINITY, NAN,   0.0,      2.0,      0.5,
+                        1e15,    1e16,    700.0,    1.0 - 1e-16};
+  const size_t ne = sizeof ext / sizeof ext[0];
+  gsl_calls = 0;
+  gsl_error_handler_t *old = gsl_set_error_handler(count_gsl);
+  for (size_t f = 0; f < sizeof fs / sizeof fs[0]; f++)
+    for (size_t i = 0; i < ne; i++)
+      for (size_t j = 0; j < ne; j++) {
+        sb_clear_error();
+        const double v = fs[f].f(ext[i], ext[j]);
+        const int st = sb_last_status();
+        if (st != SB_SUCCESS)
+          ck_assert_msg(isnan(v) && strstr(sb_last_error(), fs[f].name),
+                        "%s(%g, %g) = %g, status %d: %s", fs[f].name, ext[i],
+                        ext[j], v, st, sb_last_error());
+        else
+          ck_assert_msg(fs[f].logn ? !isnan(v) && v < INFINITY
+                                   : isfinite(v) && v >= 0.0,
+                        "%s(%g, %g) = %g with status 0", fs[f].name, ext[i],
+                        ext[j], v);
+      }
+  gsl_set_error_handler(old);
+  ck_assert_int_eq(gsl_calls, 0);
+}
+END_TEST
+
 /* ------------------------------------------------ discrete system */
 
 /* Default config with `nsizes` sizes and the built-in kernel `type` with
@@ -779,6 +831,7 @@ static Suite *pbe_suite(void)
   tcase_add_test(tc, test_analytic_normalisation);
   tcase_add_test(tc, test_analytic_exp_quadrature);
   tcase_add_test(tc, test_analytic_domain);
+  tcase_add_test(tc, test_analytic_extreme);
   suite_add_tcase(s, tc);
   tc = tcase_create("solver");
   tcase_set_timeout(tc, 60);

@@ -25,15 +25,17 @@
 static int bad_k(double k) { return !(k >= 1.0 && k == floor(k) && isfinite(k)); }
 static int bad_tau(double tau) { return !(tau >= 0.0 && isfinite(tau)); }
 
+/* the functions below take the public name fn for their messages (the
+ * _logn and _n forms share them) */
 #define DOMAIN(cond, ...)                       \
   do {                                          \
     if (cond) {                                 \
-      sbi_error(SB_EDOM, __func__, __VA_ARGS__); \
+      sbi_error(SB_EDOM, fn, __VA_ARGS__);      \
       return NAN;                               \
     }                                           \
   } while (0)
 
-double sb_pbe_const_mono_logn(double k, double tau)
+static double const_mono_logn(const char *fn, double k, double tau)
 {
   DOMAIN(bad_k(k), "k must be an integer >= 1 (got %g)", k);
   DOMAIN(bad_tau(tau), "tau must be finite and >= 0 (got %g)", tau);
@@ -54,7 +56,7 @@ static double lgamma_rest(double k)
   return 0.5 * log(2.0 * M_PI) + log(gsl_sf_gammastar(k));
 }
 
-double sb_pbe_add_mono_logn(double k, double tau)
+static double add_mono_logn(const char *fn, double k, double tau)
 {
   DOMAIN(bad_k(k), "k must be an integer >= 1 (got %g)", k);
   DOMAIN(bad_tau(tau), "tau must be finite and >= 0 (got %g)", tau);
@@ -73,7 +75,7 @@ double sb_pbe_add_mono_logn(double k, double tau)
   return -tau + lk - 1.5 * log(k) - lgamma_rest(k);
 }
 
-double sb_pbe_mult_mono_logn(double k, double tau)
+static double mult_mono_logn(const char *fn, double k, double tau)
 {
   DOMAIN(bad_k(k), "k must be an integer >= 1 (got %g)", k);
   DOMAIN(bad_tau(tau) || tau >= 1.0,
@@ -94,14 +96,14 @@ double sb_pbe_mult_mono_logn(double k, double tau)
   return -2.5 * log(k) - lgamma_rest(k) + (k - 1.0) * lt + (1.0 - tau);
 }
 
-double sb_pbe_const_exp_logn(double x, double tau)
+static double const_exp_logn(const char *fn, double x, double tau)
 {
   DOMAIN(!(x >= 0.0 && isfinite(x)), "x must be finite and >= 0 (got %g)", x);
   DOMAIN(bad_tau(tau), "tau must be finite and >= 0 (got %g)", tau);
   return -x / (1.0 + 0.5 * tau) - 2.0 * log1p(0.5 * tau);
 }
 
-double sb_pbe_add_exp_logn(double x, double tau)
+static double add_exp_logn(const char *fn, double x, double tau)
 {
   DOMAIN(!(x > 0.0 && isfinite(x)), "x must be finite and > 0 (got %g)", x);
   DOMAIN(bad_tau(tau), "tau must be finite and >= 0 (got %g)", tau);
@@ -129,9 +131,13 @@ double sb_pbe_add_exp_logn(double x, double tau)
 }
 
 #define EXPFORM(name)                                  \
+  double sb_pbe_##name##_logn(double a, double tau)    \
+  {                                                    \
+    return name##_logn(__func__, a, tau);              \
+  }                                                    \
   double sb_pbe_##name##_n(double a, double tau)       \
   {                                                    \
-    return exp(sb_pbe_##name##_logn(a, tau));          \
+    return exp(name##_logn(__func__, a, tau));         \
   }
 EXPFORM(const_mono)
 EXPFORM(add_mono)

@@ -192,7 +192,9 @@ void sb_pbe_moments(const double *v, const double *n, size_t nbins,
  * The _log forms return log(n_k/N0) (lgamma/log1p/expm1 based: no overflow
  * or underflow for any k); the plain forms return exp of it (0 on
  * underflow).  Domain: integer k >= 1 (as double), tau >= 0 (< 1 for
- * multiplicative); NaN and SB_EDOM otherwise.  Accuracy: monodisperse
+ * multiplicative); NaN and SB_EDOM (the message names the function
+ * called) otherwise.  log n is -inf where n = 0 (tau = 0, k > 1) or
+ * where log n < -DBL_MAX (k ~ DBL_MAX).  Accuracy: monodisperse
  * starts, ~1e-14 of |log n| + log k (the k log k - k of the factorials
  * taken out through GSL's gammastar, log1p forms: tested to k = 1e15);
  * exponential starts, a few ulp of the largest term (~ x).  Sources and
