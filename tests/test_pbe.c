@@ -195,6 +195,54 @@ START_TEST(test_analytic_extreme)
 }
 END_TEST
 
+/* sigma_g: a distribution with one occupied bin (or one dominant bin) has
+ * sigma_g = 1, not NaN (the variance rounded below 0: v = 0.1, n = 5504.04
+ * gave NaN); weights near DBL_MAX (the sums overflowed) give the value of
+ * equal weights; a NaN n, or an occupied bin with infinite n or v not
+ * finite > 0 is SB_EDOM naming the function. */
+START_TEST(test_sigma_g_extreme)
+{
+  double v[3] = {0.1, 0.2, 0.3}, n[3] = {5504.04, 0.0, 0.0};
+  for (double vv = 0.1; vv < 1e6; vv *= 1.37)
+    for (double nn = 1e-3; nn < 1e4; nn *= 3.3) {
+      v[0] = vv;
+      n[0] = nn;
+      sb_clear_error();
+      ck_assert_msg(fabs(sb_pbe_sigma_g(v, n, 3) - 1.0) <= 4 * DBL_EPSILON,
+                    "v %g n %g: %.17g", vv, nn,
+                    sb_pbe_sigma_g(v, n, 3));
+      ck_assert_int_eq(sb_last_status(), SB_SUCCESS);
+    }
+  const double ext[] = {1e-320, 1e-300, 1e-150, 1.0,       1e150,
+                        1e300,  DBL_MAX, INFINITY, -1e-320, -1.0,
+                        -DBL_MAX, -INFINITY, NAN,  0.0};
+  for (size_t e = 0; e < sizeof ext / sizeof ext[0]; e++)
+    for (int which = 0; which < 2; which++) {
+      double vv[3] = {1.0, 2.0, 3.0}, nv[3] = {1.0, 1.0, 1.0};
+      if (which)
+        vv[1] = ext[e];
+      else
+        nv[1] = ext[e];
+      sb_clear_error();
+      const double sg = sb_pbe_sigma_g(vv, nv, 3);
+      const int st = sb_last_status();
+      if (st != SB_SUCCESS)
+        ck_assert_msg(isnan(sg) && st == SB_EDOM &&
+                          strstr(sb_last_error(), "sb_pbe_sigma_g"),
+                      "%s = %g: %g, status %d", which ? "v" : "n", ext[e], sg,
+                      st);
+      else
+        ck_assert_msg(isfinite(sg) && sg >= 1.0, "%s = %g: %g with status 0",
+                      which ? "v" : "n", ext[e], sg);
+    }
+  double big[2] = {DBL_MAX, DBL_MAX}, one[2] = {1.0, 1.0}, v2[2] = {1.0, 8.0};
+  sb_clear_error();
+  ck_assert_rel(sb_pbe_sigma_g(v2, big, 2), sb_pbe_sigma_g(v2, one, 2),
+                4 * DBL_EPSILON);
+  ck_assert_int_eq(sb_last_status(), SB_SUCCESS);
+}
+END_TEST
+
 /* ------------------------------------------------ discrete system */
 
 /* Default config with `nsizes` sizes and the built-in kernel `type` with
@@ -832,6 +880,7 @@ static Suite *pbe_suite(void)
   tcase_add_test(tc, test_analytic_exp_quadrature);
   tcase_add_test(tc, test_analytic_domain);
   tcase_add_test(tc, test_analytic_extreme);
+  tcase_add_test(tc, test_sigma_g_extreme);
   suite_add_tcase(s, tc);
   tc = tcase_create("solver");
   tcase_set_timeout(tc, 60);

@@ -67,21 +67,47 @@ int sb_pbe_solve_moments(sb_pbe *p, const double *times, size_t ntimes,
   return sb_pbe_solve(p, times, ntimes, mom_out, &row, rep);
 }
 
+/* sum of w_i and of w_i (l_i - mu)^j, l = ln(v)/3, weights w_i = n_i 2^-e
+ * (j = 1 with mu = 0: the mean's sum; j = 2: the variance's) */
+static void sigma_sums(const double *v, const double *n, size_t nbins, int e,
+                       double mu, int j, double s[2])
+{
+  s[0] = s[1] = 0;
+  for (size_t i = 0; i < nbins; i++)
+    if (n[i] > 0) {
+      double d = log(v[i]) / 3 - mu, w = ldexp(n[i], -e);
+      s[0] += w;
+      s[1] += j == 1 ? w * d : w * d * d;
+    }
+}
+
 double sb_pbe_sigma_g(const double *v, const double *n, size_t nbins)
 {
-  double s0 = 0, s1 = 0, s2 = 0;
-  for (size_t i = 0; v && n && i < nbins; i++)
-    if (n[i] > 0) {
-      double l = log(v[i]) / 3;
-      s0 += n[i];
-      s1 += n[i] * l;
-      s2 += n[i] * l * l;
+  double nmax = 0;
+  for (size_t i = 0; v && n && i < nbins; i++) {
+    if (isnan(n[i]) ||
+        (n[i] > 0 && (isinf(n[i]) || !(v[i] > 0 && isfinite(v[i]))))) {
+      sbi_error(SB_EDOM, __func__, "bin %zu: n = %g, v = %g (need n not NaN, "
+                "and finite n, finite v > 0 where n > 0)", i, n[i], v[i]);
+      return NAN;
     }
-  if (!(s0 > 0)) {
+    if (n[i] > nmax)
+      nmax = n[i];
+  }
+  if (!(nmax > 0)) {
     sbi_error(SB_EINVAL, __func__, "no bin with n > 0 (or v, n NULL)");
     return NAN;
   }
-  return exp(sqrt(s2 / s0 - (s1 / s0) * (s1 / s0)));
+  /* two passes (mean, then squared deviations): the one-pass s2/s0 -
+   * (s1/s0)^2 rounded to slightly below 0 or above where one bin dominates
+   * (a monodisperse distribution gave NaN, or 1 + 3e-9); weights scaled by
+   * 2^-e, e = ilogb(max n), where the sums would overflow */
+  const int e = nmax > 0x1p900 ? ilogb(nmax) : 0;
+  double s[2];
+  sigma_sums(v, n, nbins, e, 0.0, 1, s);
+  const double mu = s[1] / s[0];
+  sigma_sums(v, n, nbins, e, mu, 2, s);
+  return exp(sqrt(s[1] / s[0]));
 }
 
 double sb_pbe_mono_n(sb_pbe_kernel_kind kind, double k, double tau)

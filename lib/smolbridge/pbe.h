@@ -264,7 +264,11 @@ int sb_pbe_solve_moments(sb_pbe *p, const double *times, size_t ntimes,
 /** Number-weighted geometric standard deviation of the diameter
  *  (d ~ v^(1/3)) of a distribution: exp of the standard deviation of
  *  ln(v_i)/3 weighted by n_i over the bins with n_i > 0 (sectional pivots
- *  stand for their sections).  NaN and SB_EINVAL if no bin has n_i > 0. */
+ *  stand for their sections), in two passes (mean, then squared
+ *  deviations: 1 to a few ulp for a single occupied bin; weights scaled
+ *  where their sums would overflow).  NaN and SB_EINVAL if no bin has
+ *  n_i > 0; NaN and SB_EDOM if an n_i is NaN, or a bin with n_i > 0 has
+ *  n_i infinite or v_i not finite > 0. */
 double sb_pbe_sigma_g(const double *v, const double *n, size_t nbins);
 
 /** n_k/N0 of the monodisperse analytic solution for `kind`: dispatches to
