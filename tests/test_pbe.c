@@ -140,6 +140,29 @@ START_TEST(test_analytic_domain)
   double m[3];
   ck_assert_int_eq(sb_pbe_analytic_moments(SB_PBE_MULTIPLICATIVE, 0, 1.0, m),
                    SB_EDOM);
+  /* every kind and start over tau from 1e-320 to DBL_MAX: finite moments
+   * or an error naming the function (additive M2 = e^(2 tau) overflowed
+   * to +inf with status 0 beyond tau ~ 354.9) */
+  const double taus[] = {1e-320, 1e-300, 0.5, 354.0, 355.0, 1e150, DBL_MAX,
+                         INFINITY, -1e-320, NAN};
+  for (int kind = -1; kind < 4; kind++)
+    for (int es = 0; es < 2; es++)
+      for (size_t i = 0; i < sizeof taus / sizeof taus[0]; i++) {
+        sb_clear_error();
+        int st = sb_pbe_analytic_moments((sb_pbe_kernel_kind)kind, es,
+                                         taus[i], m);
+        if (st != SB_SUCCESS)
+          ck_assert(strstr(sb_last_error(), "sb_pbe_analytic_moments"));
+        else
+          ck_assert_msg(isfinite(m[0]) && isfinite(m[1]) && isfinite(m[2]),
+                        "kind %d start %d tau %g: %g %g %g", kind, es,
+                        taus[i], m[0], m[1], m[2]);
+      }
+  ck_assert_int_eq(sb_pbe_analytic_moments(SB_PBE_ADDITIVE, 0, 355.0, m),
+                   SB_ERANGE);
+  ck_assert_int_eq(sb_pbe_analytic_moments(SB_PBE_ADDITIVE, 1, 354.0, m),
+                   SB_SUCCESS);
+  ck_assert_rel(m[2], 2.0 * exp(708.0), 4 * DBL_EPSILON);
 }
 END_TEST
 

@@ -163,6 +163,9 @@ int sb_pbe_analytic_moments(sb_pbe_kernel_kind kind, int exp_start,
   case SB_PBE_ADDITIVE: /* dM0/dt = -K M0 M1, dM2/dt = 2 K M1 M2 */
     m[0] = exp(-tau);
     m[2] = m20 * exp(2.0 * tau);
+    if (isinf(m[2])) /* tau > ~354.9 */
+      return sbi_error(SB_ERANGE, __func__, "additive kernel: M2 = %g "
+                       "exp(2 tau) exceeds DBL_MAX at tau = %g", m20, tau);
     return SB_SUCCESS;
   case SB_PBE_MULTIPLICATIVE: /* dM0/dt = -K M1^2/2, dM2/dt = K M2^2 */
     if (exp_start)

@@ -234,7 +234,10 @@ typedef enum {
  *  constant: M0 = 1/(1 + tau/2), M2 = M2(0) + tau; additive: M0 = e^-tau,
  *  M2 = M2(0) e^(2 tau); multiplicative (mono only, tau < 1):
  *  M0 = 1 - tau/2, M2 = 1/(1 - tau).  M1 = 1 (pre-gel).  M2(0) = 1 (mono)
- *  or 2 (exp). */
+ *  or 2 (exp).  Errors: SB_EINVAL (m NULL, unknown kind, multiplicative
+ *  with exp_start), SB_EDOM (tau not finite >= 0, or >= 1 multiplicative),
+ *  SB_ERANGE where M2 exceeds DBL_MAX (additive, tau > ~354.9); the
+ *  contents of m are then unspecified. */
 int sb_pbe_analytic_moments(sb_pbe_kernel_kind kind, int exp_start,
                             double tau, double m[3]);
 
