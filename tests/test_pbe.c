@@ -5,6 +5,7 @@
  * moments, M1 conservation, gelation time, source/removal against a closed
  * form, and error reporting. */
 #include <float.h>
+#include <stdint.h>
 #include <string.h>
 
 #include <gsl/gsl_errno.h>
@@ -263,6 +264,50 @@ START_TEST(test_sigma_g_extreme)
   ck_assert_rel(sb_pbe_sigma_g(v2, big, 2), sb_pbe_sigma_g(v2, one, 2),
                 4 * DBL_EPSILON);
   ck_assert_int_eq(sb_last_status(), SB_SUCCESS);
+}
+END_TEST
+
+/* The sectional grid helpers over extreme arguments: a ratio finite > 1
+ * and 2 <= nsizes <= 1e6, or SB_EINVAL naming the function with the
+ * config unchanged (decades 1e-320 gave ratio 1, 1e300 ratio +inf, and a
+ * count beyond SIZE_MAX was converted with undefined behaviour: nsizes 1
+ * on x86-64, all with status 0). */
+START_TEST(test_config_sectional_extreme)
+{
+  const double ext[] = {1e-320,  1e-300, 1e-150, 1.0,      1e150, 1e300,
+                        DBL_MAX, INFINITY, -1.0, -INFINITY, NAN,  0.0,
+                        2.0,     1e15,   1e16,   1.0 + DBL_EPSILON};
+  const size_t ns[] = {0, 1, 2, 3, 100, 1000000, SIZE_MAX};
+  const size_t ne = sizeof ext / sizeof ext[0];
+  for (size_t i = 0; i < ne; i++) {
+    for (size_t k = 0; k < sizeof ns / sizeof ns[0]; k++) {
+      sb_pbe_config c;
+      sb_pbe_config_init(&c);
+      sb_clear_error();
+      int st = sb_pbe_config_sectional(&c, ns[k], ext[i]);
+      if (st != SB_SUCCESS)
+        ck_assert(st == SB_EINVAL && c.method == SB_PBE_DISCRETE &&
+                  strstr(sb_last_error(), "sb_pbe_config_sectional"));
+      else
+        ck_assert_msg(c.ratio > 1.0 && isfinite(c.ratio) &&
+                          c.nsizes == ns[k],
+                      "%zu sections, %g decades: ratio %g", ns[k], ext[i],
+                      c.ratio);
+    }
+    for (size_t j = 0; j < ne; j++) {
+      sb_pbe_config c;
+      sb_pbe_config_init(&c);
+      sb_clear_error();
+      int st = sb_pbe_config_sectional_ratio(&c, ext[i], ext[j]);
+      if (st != SB_SUCCESS)
+        ck_assert(st == SB_EINVAL && c.method == SB_PBE_DISCRETE &&
+                  strstr(sb_last_error(), "sb_pbe_config_sectional_ratio"));
+      else
+        ck_assert_msg(c.nsizes >= 2 && c.nsizes <= 1000000,
+                      "ratio %g, %g decades: nsizes %zu", ext[i], ext[j],
+                      c.nsizes);
+    }
+  }
 }
 END_TEST
 
@@ -904,6 +949,7 @@ static Suite *pbe_suite(void)
   tcase_add_test(tc, test_analytic_domain);
   tcase_add_test(tc, test_analytic_extreme);
   tcase_add_test(tc, test_sigma_g_extreme);
+  tcase_add_test(tc, test_config_sectional_extreme);
   suite_add_tcase(s, tc);
   tc = tcase_create("solver");
   tcase_set_timeout(tc, 60);

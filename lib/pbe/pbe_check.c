@@ -19,9 +19,14 @@ int sb_pbe_config_sectional(sb_pbe_config *cfg, size_t nsections,
   if (!(decades > 0 && isfinite(decades)))
     return sbi_error(SB_EINVAL, __func__,
                      "decades must be finite and > 0 (got %g)", decades);
+  const double ratio = pow(10.0, decades / (double)(nsections - 1));
+  if (!(ratio > 1.0 && isfinite(ratio)))
+    return sbi_error(SB_EINVAL, __func__, "%g decades over %zu sections: "
+                     "pivot ratio %g (need finite > 1)", decades, nsections,
+                     ratio);
   cfg->method = SB_PBE_SECTIONAL;
   cfg->nsizes = nsections;
-  cfg->ratio = pow(10.0, decades / (double)(nsections - 1));
+  cfg->ratio = ratio;
   return SB_SUCCESS;
 }
 
@@ -36,9 +41,16 @@ int sb_pbe_config_sectional_ratio(sb_pbe_config *cfg, double ratio,
   if (!(decades > 0 && isfinite(decades)))
     return sbi_error(SB_EINVAL, __func__,
                      "decades must be finite and > 0 (got %g)", decades);
+  /* the count as a double first: beyond SIZE_MAX (or +inf) the conversion
+   * was undefined (it wrapped to 1 on x86-64) */
+  const double cnt = ceil(decades * log(10.0) / log(ratio)) + 1;
+  if (!(cnt <= 1e6))
+    return sbi_error(SB_EINVAL, __func__, "ratio %g over %g decades needs "
+                     "%g sections (sb_pbe_alloc allows at most 1e6)", ratio,
+                     decades, cnt);
   cfg->method = SB_PBE_SECTIONAL;
   cfg->ratio = ratio;
-  cfg->nsizes = (size_t)ceil(decades * log(10.0) / log(ratio)) + 1;
+  cfg->nsizes = (size_t)cnt;
   return SB_SUCCESS;
 }
 

@@ -248,12 +248,14 @@ int sb_pbe_analytic_moments(sb_pbe_kernel_kind kind, int exp_start,
 /** Sectional grid of `nsections` pivots spanning `decades` decades above
  *  v1: sets method SB_PBE_SECTIONAL, nsizes = nsections and
  *  ratio = 10^(decades/(nsections - 1)); other fields are left as they are.
- *  SB_EINVAL if cfg is NULL, nsections < 2 or decades is not finite > 0. */
+ *  SB_EINVAL (cfg unchanged) if cfg is NULL, nsections < 2, decades is
+ *  not finite > 0, or the ratio rounds to 1 or overflows. */
 int sb_pbe_config_sectional(sb_pbe_config *cfg, size_t nsections,
                             double decades);
 /** The same with a given pivot ratio (> 1, finite): nsizes is the
  *  smallest count reaching `decades` decades above v1,
- *  ceil(decades ln 10 / ln ratio) + 1. */
+ *  ceil(decades ln 10 / ln ratio) + 1; SB_EINVAL (cfg unchanged) as
+ *  above or if that count exceeds 1e6 (sb_pbe_alloc's limit). */
 int sb_pbe_config_sectional_ratio(sb_pbe_config *cfg, double ratio,
                                   double decades);
 
