@@ -938,6 +938,62 @@ START_TEST(test_errors)
 }
 END_TEST
 
+/* sb_pbe_init_exp over n0, v0 in +-1e-320 ... +-DBL_MAX, inf, NaN, both
+ * methods, with and without the tail: status 0 with a finite state, or an
+ * error naming the function (then no initial state: sb_pbe_solve is
+ * SB_EINVAL).  Before: sectional v0 = 1e-320 gave a NaN pivot 0 (GSL's
+ * P(2, +inf)), and the discrete tail mass n0 q^K (K v1 + v0) +inf for
+ * n0 v0 ~ 1e300, with status 0. */
+START_TEST(test_init_exp_extreme)
+{
+  const double ext[] = {1e-320,  1e-300, 1e-150, 1.0,     1e150,
+                        1e300,   DBL_MAX, INFINITY, -1.0,  NAN,
+                        0.0,     2.0,    0.5};
+  const size_t ne = sizeof ext / sizeof ext[0];
+  for (int meth = 0; meth < 2; meth++)
+    for (int tail = 0; tail < 2; tail++) {
+      sb_pbe_config c;
+      sb_pbe_config_init(&c);
+      c.method = meth ? SB_PBE_SECTIONAL : SB_PBE_DISCRETE;
+      c.nsizes = 20;
+      c.tail = tail;
+      sb_pbe *p = sb_pbe_alloc(&c);
+      ck_assert_ptr_nonnull(p);
+      for (size_t i = 0; i < ne; i++)
+        for (size_t j = 0; j < ne; j++) {
+          sb_clear_error();
+          int st = sb_pbe_init_exp(p, ext[i], ext[j]);
+          if (st != SB_SUCCESS) {
+            ck_assert_msg(strstr(sb_last_error(), "sb_pbe_init_exp") != NULL,
+                          "%s", sb_last_error());
+            continue;
+          }
+          const double *y = sb_pbe_state(p);
+          double tn, tm;
+          sb_pbe_tail(p, &tn, &tm);
+          for (size_t k = 0; k < 20; k++)
+            ck_assert_msg(isfinite(y[k]) && y[k] >= 0.0,
+                          "method %d tail %d n0 %g v0 %g: n[%zu] = %g", meth,
+                          tail, ext[i], ext[j], k, y[k]);
+          ck_assert(isfinite(tn) && isfinite(tm));
+        }
+      /* sectional, v0 far below x_0 = v1 = 1: all the mass at pivot 0 */
+      if (meth) {
+        ck_assert_int_eq(sb_pbe_init_exp(p, 1.0, 1e-320), SB_SUCCESS);
+        ck_assert(sb_pbe_state(p)[0] == 1e-320);
+      }
+      /* after an overflow the initial state is cleared */
+      if (!meth && tail) {
+        ck_assert_int_eq(sb_pbe_init_exp(p, 1e300, 1e300), SB_ERANGE);
+        const double times[1] = {1.0};
+        ck_assert_int_eq(sb_pbe_solve(p, times, 1, NULL, NULL, NULL),
+                         SB_EINVAL);
+      }
+      sb_pbe_free(p);
+    }
+}
+END_TEST
+
 static Suite *pbe_suite(void)
 {
   Suite *s = suite_create("pbe");
@@ -967,6 +1023,7 @@ static Suite *pbe_suite(void)
   tcase_add_loop_test(tc, test_rhs_paths, 0, 2);
   tcase_add_loop_test(tc, test_fft_solve, 0, 2);
   tcase_add_test(tc, test_self_preserving);
+  tcase_add_test(tc, test_init_exp_extreme);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -305,6 +305,16 @@ int sb_pbe_init_exp(sb_pbe *p, double n0, double v0)
       p->y0[p->n + 1] = n0 * qK * ((double)p->n * p->cfg.v1 + v0);
     }
   }
+  for (size_t i = 0; i < p->ny; i++)
+    if (!isfinite(p->y0[i])) {
+      /* n0 v0 (the mass concentration) beyond DBL_MAX: the initial state
+       * is cleared rather than left half-written */
+      memset(p->y0, 0, p->ny * sizeof *p->y0);
+      p->have_init = 0;
+      return sbi_error(SB_ERANGE, __func__, "n0 = %g, v0 = %g: the initial "
+                       "state overflows (scale n by 1/N0 and the kernel by "
+                       "N0)", n0, v0);
+    }
   memcpy(p->y, p->y0, p->ny * sizeof *p->y);
   p->have_init = 1;
   return SB_SUCCESS;

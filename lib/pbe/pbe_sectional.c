@@ -132,7 +132,12 @@ void sbi_pbe_sect_gain_jac(const sb_pbe *p, const double *n, double *J,
 
 /* 1 - (1 + d) e^-d = P(2, d), the regularised incomplete gamma: positive,
  * computed without cancellation. */
-static double p2(double d) { return d > 0 ? gsl_sf_gamma_inc_P(2.0, d) : 0.0; }
+/* P(2, d) = 1 - (1 + d) e^-d; 1 at d = +inf (v0 ~ 1e-320 below x_0:
+ * GSL gives NaN there) */
+static double p2(double d)
+{
+  return d > 0 ? (isinf(d) ? 1.0 : gsl_sf_gamma_inc_P(2.0, d)) : 0.0;
+}
 
 int sbi_pbe_sect_init_exp(sb_pbe *p, double n0, double v0)
 {

@@ -155,7 +155,10 @@ int sb_pbe_init_mono(sb_pbe *p, double n0);
  *  [x_i, x_{i+1}] is split between its pivots conserving number and mass
  *  (below x_0: mass-conserving to pivot 0; above the last: dropped).
  *  Discrete: the geometric distribution n_k = N0 (1-q) q^(k-1),
- *  q = 1 - v1/v0 (mean volume v0, needs v0 > v1). */
+ *  q = 1 - v1/v0 (mean volume v0, needs v0 > v1).  SB_EDOM for n0, v0
+ *  not finite > 0; SB_ERANGE where the state overflows (the mass n0 v0
+ *  near DBL_MAX: solve for n/N0 instead), and the initial state is then
+ *  cleared (sb_pbe_solve fails until one is set). */
 int sb_pbe_init_exp(sb_pbe *p, double n0, double v0);
 
 /** Integrate from t = 0 (the initial state) to each times[i] (increasing,
