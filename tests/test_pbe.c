@@ -994,6 +994,51 @@ START_TEST(test_init_exp_extreme)
 }
 END_TEST
 
+/* sb_pbe_rhs: t or an n_k not finite is SB_EDOM, rates beyond DBL_MAX
+ * (n ~ 1e300 with K = 1) SB_ERANGE, naming the function; before, both
+ * returned a NaN/inf dn/dt with status 0.  Finite rates: status 0. */
+START_TEST(test_rhs_extreme)
+{
+  const double ext[] = {1e-320, 1e-300, 1e-150, 1.0,     1e150,    1e300,
+                        DBL_MAX, INFINITY, -1e-320, -1.0,   -1e300,
+                        -INFINITY, NAN,  0.0};
+  for (int meth = 0; meth < 2; meth++)
+    for (int tail = 0; tail < 2; tail++) {
+      sb_pbe_config c;
+      sb_pbe_config_init(&c);
+      c.method = meth ? SB_PBE_SECTIONAL : SB_PBE_DISCRETE;
+      c.nsizes = 20;
+      c.tail = tail;
+      sb_pbe *p = sb_pbe_alloc(&c);
+      ck_assert_ptr_nonnull(p);
+      for (size_t e = 0; e < sizeof ext / sizeof ext[0]; e++)
+        for (int which = 0; which < 3; which++) {
+          double n[20] = {1.0, 0.5}, d[20], t = 0.5;
+          if (which == 2)
+            t = ext[e];
+          else
+            n[which ? 19 : 1] = ext[e];
+          sb_clear_error();
+          int st = sb_pbe_rhs(p, t, n, d);
+          if (st != SB_SUCCESS) {
+            ck_assert(st == SB_EDOM || st == SB_ERANGE);
+            ck_assert(strstr(sb_last_error(), "sb_pbe_rhs") != NULL);
+            continue;
+          }
+          for (int k = 0; k < 20; k++)
+            ck_assert_msg(isfinite(d[k]), "method %d tail %d arg %d = %g: "
+                          "dn/dt[%d] = %g", meth, tail, which, ext[e], k,
+                          d[k]);
+        }
+      double n[20] = {1e300, 1e300}, d[20];
+      ck_assert_int_eq(sb_pbe_rhs(p, 0.0, n, d), SB_ERANGE);
+      n[0] = NAN;
+      ck_assert_int_eq(sb_pbe_rhs(p, 0.0, n, d), SB_EDOM);
+      sb_pbe_free(p);
+    }
+}
+END_TEST
+
 static Suite *pbe_suite(void)
 {
   Suite *s = suite_create("pbe");
@@ -1024,6 +1069,7 @@ static Suite *pbe_suite(void)
   tcase_add_loop_test(tc, test_fft_solve, 0, 2);
   tcase_add_test(tc, test_self_preserving);
   tcase_add_test(tc, test_init_exp_extreme);
+  tcase_add_test(tc, test_rhs_extreme);
   suite_add_tcase(s, tc);
   return s;
 }

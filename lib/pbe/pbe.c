@@ -505,13 +505,29 @@ static void full_rhs(sb_pbe *p, double t, const double *n, double *dndt)
     tail_rhs(p, t, n, p->gbuf, dndt);
 }
 
+/* dn/dt finite, else SB_ERANGE (K n^2 beyond DBL_MAX) */
+static int rhs_check(const char *fn, const double *dndt, size_t n)
+{
+  for (size_t i = 0; i < n; i++)
+    if (!isfinite(dndt[i]))
+      return sbi_error(SB_ERANGE, fn, "dn/dt[%zu] = %g: the rates overflow",
+                       i, dndt[i]);
+  return SB_SUCCESS;
+}
+
 int sb_pbe_rhs(sb_pbe *p, double t, const double *n, double *dndt)
 {
   if (!p || !n || !dndt)
     return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  if (!isfinite(t))
+    return sbi_error(SB_EDOM, __func__, "t = %g must be finite", t);
+  for (size_t i = 0; i < p->n; i++)
+    if (!isfinite(n[i]))
+      return sbi_error(SB_EDOM, __func__, "n[%zu] = %g must be finite", i,
+                       n[i]);
   if (!p->tail) {
     full_rhs(p, t, n, dndt);
-    return SB_SUCCESS;
+    return rhs_check(__func__, dndt, p->n);
   }
   /* grid only: evaluate with an empty tail */
   double *y = malloc(p->ny * sizeof *y), *yd = malloc(p->ny * sizeof *yd);
@@ -526,7 +542,7 @@ int sb_pbe_rhs(sb_pbe *p, double t, const double *n, double *dndt)
   memcpy(dndt, yd, p->n * sizeof *dndt);
   free(y);
   free(yd);
-  return SB_SUCCESS;
+  return rhs_check(__func__, dndt, p->n);
 }
 
 static int cv_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *data)

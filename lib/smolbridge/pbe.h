@@ -178,7 +178,9 @@ void sb_pbe_tail(const sb_pbe *p, double *number, double *mass);
 /** Moments of the current state including the tail (see sb_pbe_output_fn). */
 void sb_pbe_state_moments(const sb_pbe *p, double m[3]);
 
-/** Evaluate the right-hand side dn/dt at (t, n) (for tests and benches). */
+/** Evaluate the right-hand side dn/dt at (t, n) (for tests and benches).
+ *  SB_EDOM if t or an n[k] is not finite, SB_ERANGE if a rate exceeds
+ *  DBL_MAX (dndt is then unspecified), SB_EINVAL for NULL arguments. */
 int sb_pbe_rhs(sb_pbe *p, double t, const double *n, double *dndt);
 
 /** M0, M1, M2 = sum_k v_k^j n_k (compensated summation). */
