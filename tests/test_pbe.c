@@ -1039,6 +1039,36 @@ START_TEST(test_rhs_extreme)
 }
 END_TEST
 
+/* Moments past DBL_MAX are +inf (the compensated sum gave inf - inf =
+ * NaN), and a discrete grid whose largest size K v1 overflows is refused
+ * by sb_pbe_alloc (v1 = DBL_MAX gave volumes +inf with status 0). */
+START_TEST(test_moments_overflow)
+{
+  const double v[2] = {1e200, 2e200}, n[2] = {1.0, 1.0};
+  double m[3];
+  sb_pbe_moments(v, n, 2, m);
+  ck_assert(m[0] == 2.0);
+  ck_assert_rel(m[1], 3e200, 4 * DBL_EPSILON);
+  ck_assert(m[2] == INFINITY);
+  const double big[2] = {DBL_MAX, DBL_MAX}, one[2] = {1.0, 1.0};
+  sb_pbe_moments(one, big, 2, m);
+  ck_assert(m[0] == INFINITY && m[1] == INFINITY && m[2] == INFINITY);
+  sb_pbe_config c;
+  sb_pbe_config_init(&c);
+  c.nsizes = 20;
+  c.v1 = DBL_MAX / 10;
+  sb_clear_error();
+  ck_assert_ptr_null(sb_pbe_alloc(&c));
+  ck_assert_int_eq(sb_last_status(), SB_EDOM);
+  ck_assert(strstr(sb_last_error(), "sb_pbe_alloc") != NULL);
+  c.v1 = DBL_MAX / 20;
+  sb_pbe *p = sb_pbe_alloc(&c);
+  ck_assert_ptr_nonnull(p);
+  ck_assert(isfinite(sb_pbe_volumes(p)[19]));
+  sb_pbe_free(p);
+}
+END_TEST
+
 static Suite *pbe_suite(void)
 {
   Suite *s = suite_create("pbe");
@@ -1070,6 +1100,7 @@ static Suite *pbe_suite(void)
   tcase_add_test(tc, test_self_preserving);
   tcase_add_test(tc, test_init_exp_extreme);
   tcase_add_test(tc, test_rhs_extreme);
+  tcase_add_test(tc, test_moments_overflow);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -105,6 +105,12 @@ sb_pbe *sb_pbe_alloc(const sb_pbe_config *cfg)
               cfg->v1);
     return NULL;
   }
+  if (cfg->method == SB_PBE_DISCRETE &&
+      !isfinite((double)cfg->nsizes * cfg->v1)) {
+    sbi_error(SB_EDOM, __func__, "the largest size %zu v1 = %zu x %g "
+              "overflows", cfg->nsizes, cfg->nsizes, cfg->v1);
+    return NULL;
+  }
   if (cfg->method == SB_PBE_SECTIONAL &&
       !(cfg->ratio > 1.0 && isfinite(cfg->ratio) &&
         isfinite(cfg->v1 * pow(cfg->ratio, (double)cfg->nsizes)))) {
@@ -767,7 +773,8 @@ void sb_pbe_moments(const double *v, const double *n, size_t nbins,
       c += fabs(s) >= fabs(x) ? (s - t) + x : (x - t) + s;
       s = t;
     }
-    m[j] = s + c;
+    /* past DBL_MAX the correction is inf - inf: the moment is +-inf */
+    m[j] = isinf(s) ? s : s + c;
   }
 }
 

@@ -79,7 +79,8 @@ typedef double (*sb_pbe_removal_fn)(double t, double v, const void *params);
 typedef struct {
   sb_pbe_method method;
   size_t nsizes;        /**< K (discrete) or N (sectional), >= 2 */
-  double v1;            /**< monomer volume / smallest pivot, > 0 */
+  double v1;            /**< monomer volume / smallest pivot, > 0
+                             (discrete: nsizes v1 finite, else SB_EDOM) */
   double ratio;         /**< sectional pivot ratio x_{i+1}/x_i, > 1 */
   sb_kernel_fn kernel;  /**< collision kernel K(v_i, v_j) */
   const void *kparams;  /**< its parameters */
@@ -183,7 +184,8 @@ void sb_pbe_state_moments(const sb_pbe *p, double m[3]);
  *  DBL_MAX (dndt is then unspecified), SB_EINVAL for NULL arguments. */
 int sb_pbe_rhs(sb_pbe *p, double t, const double *n, double *dndt);
 
-/** M0, M1, M2 = sum_k v_k^j n_k (compensated summation). */
+/** M0, M1, M2 = sum_k v_k^j n_k (compensated summation); +-inf where a
+ *  sum exceeds DBL_MAX. */
 void sb_pbe_moments(const double *v, const double *n, size_t nbins,
                     double m[3]);
 
