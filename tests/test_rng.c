@@ -405,6 +405,51 @@ START_TEST(test_gsl_words)
 }
 END_TEST
 
+/* Integer arguments 0, 1, the largest valid and the first invalid values
+ * and UINT64_MAX for id and step: sb_stream_init, sb_rng_philox_set_stream
+ * and sb_stream_gaussian_keyed succeed exactly where id <= 2^47 - 1 and
+ * step <= 2^48 - 1, and otherwise return SB_EDOM with a message naming
+ * themselves (set_stream's named sb_stream_init); an invalid key leaves
+ * the stream at (seed, 0, 0) as documented. */
+START_TEST(test_key_extremes)
+{
+  const uint64_t ids[] = {0, 1, SB_STREAM_MAX_ID, SB_STREAM_MAX_ID + 1,
+                          SB_STREAM_MAX_STEP, SB_STREAM_MAX_STEP + 1,
+                          UINT64_MAX};
+  const size_t ni = sizeof ids / sizeof ids[0];
+  gsl_rng *r = gsl_rng_alloc(sb_rng_philox);
+  for (size_t i = 0; i < ni; i++)
+    for (size_t j = 0; j < ni; j++) {
+      const uint64_t id = ids[i], step = ids[j];
+      const int ok = id <= SB_STREAM_MAX_ID && step <= SB_STREAM_MAX_STEP;
+      sb_stream s, s0;
+      sb_clear_error();
+      int st = sb_stream_init(&s, UINT64_MAX, id, step);
+      ck_assert_int_eq(st, ok ? SB_SUCCESS : SB_EDOM);
+      if (!ok) {
+        ck_assert(strstr(sb_last_error(), "sb_stream_init") != NULL);
+        sb_stream_init(&s0, UINT64_MAX, 0, 0);
+        ck_assert_uint_eq(sb_stream_u32(&s), sb_stream_u32(&s0));
+      }
+      sb_clear_error();
+      st = sb_rng_philox_set_stream(r, UINT64_MAX, id, step);
+      ck_assert_int_eq(st, ok ? SB_SUCCESS : SB_EDOM);
+      if (!ok)
+        ck_assert_msg(strstr(sb_last_error(), "sb_rng_philox_set_stream"),
+                      "%s", sb_last_error());
+      double z[3] = {0.0, 0.0, 0.0};
+      sb_clear_error();
+      st = sb_stream_gaussian_keyed(UINT64_MAX, step, 1, &id, 0, 3, z);
+      ck_assert_int_eq(st, ok ? SB_SUCCESS : SB_EDOM);
+      if (!ok)
+        ck_assert(strstr(sb_last_error(), "sb_stream_gaussian_keyed"));
+      else
+        ck_assert(isfinite(z[0]) && isfinite(z[1]) && isfinite(z[2]));
+    }
+  gsl_rng_free(r);
+}
+END_TEST
+
 START_TEST(test_gsl_laws)
 {
   gsl_rng *r = gsl_rng_alloc(sb_rng_philox);
@@ -429,6 +474,7 @@ static Suite *rng_suite(void)
   tcase_add_test(tc, test_batch_equal);
   tcase_add_test(tc, test_zig_tables);
   tcase_add_test(tc, test_gsl_words);
+  tcase_add_test(tc, test_key_extremes);
   suite_add_tcase(s, tc);
   TCase *mc = tcase_create("monte-carlo");
   tcase_set_timeout(mc, 60);

@@ -57,5 +57,10 @@ int sb_rng_philox_set_stream(gsl_rng *r, uint64_t seed, uint64_t id,
   philox_state *p = r->state;
   int st = sb_stream_init(&p->s, seed, id, step);
   p->own = 0;
+  if (st) /* the message names this function, not sb_stream_init */
+    return sbi_error(st, __func__, "id = %llu, step = %llu: need id <= "
+                     "SB_STREAM_MAX_ID = 2^47 - 1, step <= "
+                     "SB_STREAM_MAX_STEP = 2^48 - 1", (unsigned long long)id,
+                     (unsigned long long)step);
   return st;
 }

@@ -113,7 +113,8 @@ extern const gsl_rng_type *const sb_rng_philox;
 /** Point a generator of type sb_rng_philox at the stream of (seed, id,
  *  step): its next words are those of sb_stream_init(s, seed, id, step)
  *  followed by sb_stream_u32.  SB_EINVAL if r is NULL or not of type
- *  sb_rng_philox; SB_EDOM as sb_stream_init. */
+ *  sb_rng_philox; SB_EDOM as sb_stream_init (the message names this
+ *  function). */
 int sb_rng_philox_set_stream(gsl_rng *r, uint64_t seed, uint64_t id,
                              uint64_t step);
 
