@@ -47,6 +47,8 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <float.h>
 
 #include <gsl/gsl_math.h>
 #include <gsl/gsl_randist.h>
@@ -583,6 +585,95 @@ START_TEST(test_sim_args)
 }
 END_TEST
 
+/* The grid simulators at extreme arguments.  (1) Every argument of the
+ * three path functions over +-1e-320 ... +-DBL_MAX, +-inf, NaN, 0 (the
+ * others x = 2, y = 1, a = 0.5, sigma2 = t = 1), n = 1 and 8, 20 paths
+ * each: status 0 with k in [-1, n), or an error naming the function.
+ * (2) t = 1e300 and DBL_MAX, sigma2 = 1e-300 t = 1e300 (sigma2 t^2 beyond
+ * the doubles: the sub-step variance was +inf, the positions NaN, and the
+ * path never crossed): the crossing frequency of 2000 paths (n = 8, seed
+ * 8101) within 5 binomial sd (+ 0.005) of sb_bb_cross_prob /
+ * sb_bes3b_cross_prob / sb_bes3_fpt_cdf, and the _hits counts agree.
+ * (3) sigma2 t = 1e-320 with |a| = 1e300: no crossing. */
+START_TEST(test_sim_extreme)
+{
+  gsl_rng *r = rng_new(8101);
+  const double ext[] = {1e-320,  1e-300, 1e-150, 1.0,       1e150,
+                        1e300,   DBL_MAX, INFINITY, -1e-320, -1.0,
+                        -1e300,  -DBL_MAX, -INFINITY, NAN,   0.0};
+  static const char *name[3] = {"sb_sim_bb_path", "sb_sim_bes3b_path",
+                                "sb_sim_bes3_path"};
+  for (int kind = 0; kind < 3; kind++)
+    for (int i = 0; i < 5; i++)
+      for (size_t e = 0; e < sizeof ext / sizeof ext[0]; e++)
+        for (int n = 1; n <= 8; n *= 8) {
+          double a[5] = {2.0, 1.0, 0.5, 1.0, 1.0};
+          a[i] = ext[e];
+          for (int rep = 0; rep < 20; rep++) {
+            int k = -7;
+            sb_clear_error();
+            int st = kind == 0 ? sb_sim_bb_path(r, a[0], a[1], a[2], a[3],
+                                                a[4], n, &k)
+                     : kind == 1 ? sb_sim_bes3b_path(r, a[0], a[1], a[2],
+                                                     a[3], a[4], n, &k)
+                                 : sb_sim_bes3_path(r, a[0], a[2], a[3], a[4],
+                                                    n, &k);
+            if (st != SB_SUCCESS) {
+              ck_assert(strstr(sb_last_error(), name[kind]) != NULL);
+              break;
+            }
+            ck_assert_msg(k >= -1 && k < n, "%s argument %d = %g: k = %d",
+                          name[kind], i, ext[e], k);
+          }
+        }
+  const double sets[3][2] = {{1.0, 1e300}, {1.0, DBL_MAX}, {1e-300, 1e300}};
+  for (int kind = 0; kind < 3; kind++)
+    for (int j = 0; j < 3; j++) {
+      const double x = 2.0, y = 1.0, a = 0.5, s2 = sets[j][0], t = sets[j][1];
+      /* the exact P(cross) from the closed forms (bridge, passage) */
+      const double v = s2 * t;
+      const double P =
+          kind == 0   ? sb_bb_cross_prob(x, y, a, v)
+          : kind == 1 ? sb_bes3b_cross_prob(x, y, a, v)
+                      : sb_bes3_fpt_cdf(t, x, a, s2);
+      const int N = 2000;
+      int cnt = 0;
+      for (int p = 0; p < N; p++) {
+        int k;
+        int st = kind == 0   ? sb_sim_bb_path(r, x, y, a, s2, t, 8, &k)
+                 : kind == 1 ? sb_sim_bes3b_path(r, x, y, a, s2, t, 8, &k)
+                             : sb_sim_bes3_path(r, x, a, s2, t, 8, &k);
+        ck_assert_int_eq(st, SB_SUCCESS);
+        cnt += k >= 0;
+      }
+      const double f = (double)cnt / N, sd = sqrt(P * (1 - P) / N);
+      ck_assert_msg(fabs(f - P) <= 5 * sd + 0.005,
+                    "kind %d sigma2 %g t %g: frequency %g, P = %g", kind, s2,
+                    t, f, P);
+      unsigned long h[8], nh;
+      int st = kind == 0   ? sb_sim_bb_hits(r, x, y, a, s2, t, 8, N, h, &nh)
+               : kind == 1 ? sb_sim_bes3b_hits(r, x, y, a, s2, t, 8, N, h, &nh)
+                           : sb_sim_bes3_hits(r, x, a, s2, t, 8, N, h, &nh);
+      ck_assert_int_eq(st, SB_SUCCESS);
+      ck_assert_msg(fabs((double)nh / N - P) <= 5 * sd + 0.005,
+                    "hits kind %d sigma2 %g t %g: %lu of %d, P = %g", kind,
+                    s2, t, nh, N, P);
+    }
+  /* sigma2 t far below 1 with positions far above its root: the laws are
+   * deterministic (P = 0 here, computed by sb_bb_cross_prob); scaling the
+   * positions with sigma2 t would overflow them */
+  ck_assert(sb_bb_cross_prob(-1.0, -1e150, -1e300, 1e-320) == 0.0);
+  for (int p = 0; p < 200; p++) {
+    int k;
+    ck_assert_int_eq(sb_sim_bb_path(r, -1.0, -1e150, -1e300, 1e-320, 1.0, 4,
+                                    &k),
+                     SB_SUCCESS);
+    ck_assert_int_eq(k, -1);
+  }
+  gsl_rng_free(r);
+}
+END_TEST
+
 /* ============================================================ suite */
 
 static Suite *bridge_mc_suite(void)
@@ -614,6 +705,11 @@ static Suite *bridge_mc_suite(void)
                       (int)(sizeof fpt_sets / sizeof fpt_sets[0]));
   tcase_add_test(tc, test_fpt_sampler_gaussian_zero);
   tcase_add_test(tc, test_sim_args);
+  suite_add_tcase(s, tc);
+
+  tc = tcase_create("sim_extreme");
+  tcase_set_timeout(tc, 60);
+  tcase_add_test(tc, test_sim_extreme);
   suite_add_tcase(s, tc);
   return s;
 }

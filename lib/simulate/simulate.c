@@ -6,8 +6,10 @@
  * purpose, independently of lib/bridge/bridge.c: the simulators exist to check
  * sb_bb_cross_prob / sb_bes3b_cross_prob and the hitting-time laws, so
  * they must not call them. */
+#include <float.h>
 #include <math.h>
 #include <stddef.h>
+#include <stdlib.h>
 
 #include <gsl/gsl_math.h>
 #include <gsl/gsl_randist.h>
@@ -163,12 +165,33 @@ static int check_args(const char *fn, int kind, const gsl_rng *r, double x,
   return SB_SUCCESS;
 }
 
+/* The law of the first-crossing sub-step is unchanged when t is scaled by
+ * 2^-e and sigma2 by 2^e (sigma2 t is kept).  The kernels form sigma2 dt
+ * (T - dt) ~ sigma2 t^2: outside 2^(+-600) (t = 1e300 with sigma2 = 1:
+ * +inf, then NaN positions that never cross) t is scaled (exactly) into
+ * [1, 2) if sigma2 2^e stays a normal double; elsewhere nothing changes
+ * (same draws, same bits).  The positions are left as they are (scaling
+ * them could overflow or underflow them), so sigma2 t itself beyond the
+ * normal doubles is not helped. */
+static void rescale(double *s2, double *t)
+{
+  const int et = ilogb(*t), ev = ilogb(*s2) + et;
+  if (abs(ev + et) < 600)
+    return;
+  const double s2n = ldexp(*s2, et);
+  if (!(s2n >= DBL_MIN && s2n <= DBL_MAX))
+    return;
+  *s2 = s2n;
+  *t = ldexp(*t, -et);
+}
+
 static int run_path(const char *fn, int kind, const gsl_rng *r, double x,
                     double y, double a, double s2, double t, int n, int *k)
 {
   int st = check_args(fn, kind, r, x, y, a, s2, t, n, k);
   if (st != SB_SUCCESS)
     return st;
+  rescale(&s2, &t);
   *k = kind == K_BB      ? path_bb(r, x, y, a, s2, t, n)
        : kind == K_BES3B ? path_bes3b(r, x, y, a, s2, t, n)
                          : path_bes3(r, x, a, s2, t, n);
@@ -185,6 +208,7 @@ static int run_hits(const char *fn, int kind, const gsl_rng *r, double x,
     return st;
   if (!ncross)
     return sbi_error(SB_EINVAL, fn, "NULL argument");
+  rescale(&s2, &t);
   for (int k = 0; k < n; k++)
     hits[k] = 0;
   unsigned long nh = 0;

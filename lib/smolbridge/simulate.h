@@ -49,7 +49,12 @@
  *                       Gaussian and <= n uniform draws.
  * Arguments: finite x, y, a; sigma2 > 0 and t > 0 finite; n >= 1; r and the
  * outputs not NULL.  Bessel-3: a >= 0, x >= 0, y >= 0 (a = 0: never
- * crosses).  x <= a is a crossing in sub-step 0 (no draws are made).  The
+ * crosses).  Where sigma2 t^2 is outside 2^(+-600), t is first scaled
+ * by a power of two into [1, 2) and sigma2 by its inverse (the law is
+ * unchanged; elsewhere the draws are bit-identical).  Not covered: sigma2
+ * t itself beyond the normal doubles with positions ~ 1e300, or x - a
+ * overflowing (docs/simulate.md).  x <= a is a crossing in
+ * sub-step 0 (no draws are made).  The
  * _path functions set *k to the sub-step index in [0, n) of the first
  * crossing, or -1 if the path stays above a; the _hits functions simulate
  * npaths independent paths and set hits[k] (n entries, zeroed first) to the
