@@ -994,6 +994,42 @@ START_TEST(test_init_exp_extreme)
 }
 END_TEST
 
+/* The functions that delegate (to the analytic solutions or to
+ * sb_pbe_solve) name themselves in their error messages, followed by the
+ * delegate's message (they left the delegate's name alone). */
+START_TEST(test_delegated_errors)
+{
+  sb_clear_error();
+  ck_assert(isnan(sb_pbe_mono_n(SB_PBE_CONSTANT, 0.5, 1.0)));
+  ck_assert_int_eq(sb_last_status(), SB_EDOM);
+  ck_assert(strstr(sb_last_error(), "sb_pbe_mono_n: ") == sb_last_error());
+  ck_assert(strstr(sb_last_error(), "sb_pbe_const_mono_n") != NULL);
+  const double n[3] = {1.0, 0.0, 0.0};
+  sb_pbe_analytic_cmp cmp;
+  ck_assert_int_eq(sb_pbe_compare_analytic(n, 3, SB_PBE_ADDITIVE, NAN, 0.0,
+                                           &cmp),
+                   SB_EDOM);
+  ck_assert(strstr(sb_last_error(), "sb_pbe_compare_analytic: ") ==
+            sb_last_error());
+  sb_pbe_config c;
+  sb_pbe_config_init(&c);
+  c.nsizes = 10;
+  sb_pbe *p = sb_pbe_alloc(&c);
+  ck_assert_ptr_nonnull(p);
+  ck_assert_int_eq(sb_pbe_init_mono(p, 1.0), SB_SUCCESS);
+  const double bad[2] = {1.0, NAN};
+  double m[2][3], tg;
+  ck_assert_int_eq(sb_pbe_solve_moments(p, bad, 2, m, NULL), SB_EINVAL);
+  ck_assert(strstr(sb_last_error(), "sb_pbe_solve_moments: ") ==
+            sb_last_error());
+  ck_assert_int_eq(sb_pbe_gelation_time(p, bad, 2, 10.0, &tg), SB_EINVAL);
+  ck_assert(strstr(sb_last_error(), "sb_pbe_gelation_time: ") ==
+            sb_last_error());
+  ck_assert(isnan(tg));
+  sb_pbe_free(p);
+}
+END_TEST
+
 /* sb_pbe_rhs: t or an n_k not finite is SB_EDOM, rates beyond DBL_MAX
  * (n ~ 1e300 with K = 1) SB_ERANGE, naming the function; before, both
  * returned a NaN/inf dn/dt with status 0.  Finite rates: status 0. */
@@ -1100,6 +1136,7 @@ static Suite *pbe_suite(void)
   tcase_add_test(tc, test_self_preserving);
   tcase_add_test(tc, test_init_exp_extreme);
   tcase_add_test(tc, test_rhs_extreme);
+  tcase_add_test(tc, test_delegated_errors);
   tcase_add_test(tc, test_moments_overflow);
   suite_add_tcase(s, tc);
   return s;

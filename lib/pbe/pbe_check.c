@@ -76,7 +76,10 @@ int sb_pbe_solve_moments(sb_pbe *p, const double *times, size_t ntimes,
   if (!m)
     return sbi_error(SB_EINVAL, __func__, "m is NULL");
   double(*row)[3] = m;
-  return sb_pbe_solve(p, times, ntimes, mom_out, &row, rep);
+  int st = sb_pbe_solve(p, times, ntimes, mom_out, &row, rep);
+  if (st) /* the message names this function, then sb_pbe_solve's */
+    return sbi_error(st, __func__, "%s", sb_last_error());
+  return st;
 }
 
 /* sum of w_i and of w_i (l_i - mu)^j, l = ln(v)/3, weights w_i = n_i 2^-e
@@ -124,17 +127,24 @@ double sb_pbe_sigma_g(const double *v, const double *n, size_t nbins)
 
 double sb_pbe_mono_n(sb_pbe_kernel_kind kind, double k, double tau)
 {
+  double n;
   switch (kind) {
   case SB_PBE_CONSTANT:
-    return sb_pbe_const_mono_n(k, tau);
+    n = sb_pbe_const_mono_n(k, tau);
+    break;
   case SB_PBE_ADDITIVE:
-    return sb_pbe_add_mono_n(k, tau);
+    n = sb_pbe_add_mono_n(k, tau);
+    break;
   case SB_PBE_MULTIPLICATIVE:
-    return sb_pbe_mult_mono_n(k, tau);
+    n = sb_pbe_mult_mono_n(k, tau);
+    break;
   default:
     sbi_error(SB_EINVAL, __func__, "unknown kernel kind %d", (int)kind);
     return NAN;
   }
+  if (isnan(n)) /* the message names this function, then the solution */
+    sbi_error(sb_last_status(), __func__, "%s", sb_last_error());
+  return n;
 }
 
 int sb_pbe_compare_analytic(const double *n, size_t kmax,
@@ -150,7 +160,7 @@ int sb_pbe_compare_analytic(const double *n, size_t kmax,
     double a = sb_pbe_mono_n(kind, (double)k, tau);
     if (isnan(a)) { /* error recorded by the analytic solution */
       *res = (sb_pbe_analytic_cmp){0, 0, 0, 0, 0};
-      return sb_last_status();
+      return sbi_error(sb_last_status(), __func__, "%s", sb_last_error());
     }
     if (!(a >= nmin))
       continue;
@@ -207,8 +217,8 @@ int sb_pbe_gelation_time(sb_pbe *p, const double *times, size_t ntimes,
     *tgel = g.tgel;
     return SB_SUCCESS;
   }
-  if (st)
-    return st;
+  if (st) /* the message names this function, then sb_pbe_solve's */
+    return sbi_error(st, __func__, "%s", sb_last_error());
   return sbi_error(SB_EINVAL, __func__,
                    "M2 did not exceed %g before the last time", m2_cross);
 }

@@ -266,6 +266,10 @@ int sb_pbe_config_sectional(sb_pbe_config *cfg, size_t nsections,
 int sb_pbe_config_sectional_ratio(sb_pbe_config *cfg, double ratio,
                                   double decades);
 
+/* The functions below that delegate (to the analytic solutions or to
+ * sb_pbe_solve) report its errors under their own name followed by the
+ * delegate's message. */
+
 /** Integrate like sb_pbe_solve (no output callback) and store the moments
  *  M0, M1, M2 at each times[i] in m[i] (see sb_pbe_output_fn); rows past
  *  a failure are left as they were.  Returns sb_pbe_solve's status
