@@ -33,7 +33,10 @@ Writes (into tests/data/):
                    (kinds 7, 8 are read by tests/test_pgd_exact.c); 9
                    two-temperature hard-sphere T_a (r_a = r_b = a7, t =
                    a8, from the textbook form of the closed solution at
-                   800 digits); 10 its rate dT_a/dt (r_a = r_b = a5).
+                   800 digits); 10 its rate dT_a/dt (r_a = r_b = a5);
+                   11, 12 T_b of the Maxwell (as 6) and hard-sphere (as
+                   9) laws, with a rare, much hotter species a (kinds 6
+                   and 9 the same with a and b exchanged).
 Run: /usr/bin/python3 tests/gen_spray_ref.py   (about a minute)
 """
 import os
@@ -281,6 +284,46 @@ for e in [(2, 1e-320), (3, 1e-320), (2, 1e-320, 3, 1e-320),
         a[e[k]] = e[k + 1]
     EXTREME.append((10, a))
 
+# a rare, much hotter species (f_hot T_hot0/T_cold0 = 1e15): the colder
+# species' T as T_m - f |Delta| cancels (before, a wrong or negative T_b
+# with status 0).  Kinds 11 and 12: T_b of the Maxwell (arguments as kind
+# 6) and hard-sphere (as kind 9) laws; kinds 6 and 9 the same with the
+# roles of a and b exchanged (T_a the colder species).  Times: the given
+# multiples of the relaxation time (1/rate, 1/(C sqrt(alpha))), rounded
+# to doubles.
+TT_COLD_FACTORS = [0.0, 1e-18, 1e-15, 1e-12, 1e-6, 1.0]
+TT_COLD = []
+for f in TT_COLD_FACTORS:
+    TT_COLD.append((11, [1e17, 1e20, 3e-26, 5e-26, 1e6, 1e-12, 1e-16, f]))
+    TT_COLD.append((6, [1e20, 1e17, 5e-26, 3e-26, 1e-12, 1e6, 1e-16, f]))
+for f in TT_COLD_FACTORS:
+    TT_COLD.append((12, [1e17, 1e20, 3e-26, 5e-26, 1e6, 1e-12, 1e-10, f]))
+    TT_COLD.append((9, [1e20, 1e17, 5e-26, 3e-26, 1e-12, 1e6, 1e-10, f]))
+
+
+def tt_cold_time(kind, a):
+    """a[7] (a multiple of the relaxation time) -> t as a double."""
+    with mp.workdps(60):
+        x = [mpf(v) for v in a]
+        if kind in (6, 11):
+            na, nb, ma, mb = x[:4]
+            rate = 2 * x[6] * (na + nb) * ma * mb / (ma + mb) ** 2
+        else:
+            C, alpha = tt_hs_parts(*x[:7])[:2]
+            rate = C * sqrt(alpha)
+        return a[:7] + [float(x[7] / rate)]
+
+
+def tt_maxwell_T(a, species):
+    """T_a (species 0) or T_b (1) of the Maxwell law, at 100 digits."""
+    with mp.workdps(100):
+        na, nb, ma, mb, Ta0, Tb0, B0, t = [mpf(x) for x in a]
+        n = na + nb
+        rate = 2 * B0 * n * ma * mb / (ma + mb) ** 2
+        Tm = (na * Ta0 + nb * Tb0) / n
+        D = (Ta0 - Tb0) * exp(-rate * t)
+        return +(Tm + nb / n * D if species == 0 else Tm - na / n * D)
+
 
 def tt_hs_parts(na, nb, ma, mb, Ta0, Tb0, r):
     """C, alpha, beta, D0, T_m and n_b/n of the hard-sphere closure
@@ -322,6 +365,15 @@ def tt_hs_Ta(a):
         return +(Tm + fb * D)
 
 
+def tt_hs_Tb(a):
+    """T_b(t) = T_a(t) - Delta(t), from the same solution."""
+    with mp.workdps(800):
+        na, nb, ma, mb, Ta0, Tb0, r, t = [mpf(x) for x in a]
+        Ta = tt_hs_Ta(a)
+        return +(Ta - (Ta - (na * Ta0 + nb * Tb0) / (na + nb)) *
+                 (na + nb) / nb)
+
+
 def tt_hs_rate(a):
     """dT_a/dt = -C (n_b/n) s (T_a - T_b), s^2 = k (T_a/m_a + T_b/m_b)."""
     na, nb, ma, mb, r, Ta, Tb = a
@@ -356,10 +408,7 @@ def extreme_value(kind, a):
         K, th = a[:2]
         return th ** 3 * K * K * (315 - 210 * K)
     if kind == 6:
-        na, nb, ma, mb, Ta0, Tb0, B0, t = a
-        n = na + nb
-        rate = 2 * B0 * n * ma * mb / (ma + mb) ** 2
-        return (na * Ta0 + nb * Tb0) / n + nb / n * (Ta0 - Tb0) * exp(-rate * t)
+        return tt_maxwell_T(a, 0)
     if kind == 7:
         return sqrt(a[0]) * sqrt(a[2]) * (a[1] - a[3])
     if kind == 8:
@@ -369,12 +418,16 @@ def extreme_value(kind, a):
         return tt_hs_Ta(a)
     if kind == 10:
         return tt_hs_rate(a)
+    if kind == 11:
+        return tt_maxwell_T(a, 1)
+    if kind == 12:
+        return tt_hs_Tb(a)
     raise ValueError(kind)
 
 
 def write_extreme():
     rows = ["kind,a1,a2,a3,a4,a5,a6,a7,a8,value"]
-    for kind, a in EXTREME:
+    for kind, a in EXTREME + [(k, tt_cold_time(k, a)) for k, a in TT_COLD]:
         if kind == 9:
             a = tt_hs_time(a)
         args = [repr(float(x)) for x in a] + ["0"] * (8 - len(a))

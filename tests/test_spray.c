@@ -834,7 +834,10 @@ START_TEST(test_extreme_arguments)
    * n/m overflows (n = 1e300, m = 1e-320, T = 1e300), and with status 0
    * a T_a wrong in the fourth digit for m_a = m_b = 1e300 (k T/m
    * subnormal) and T_a = 7.5e-200 instead of T_a0 = 1e-38 at t = 0 for
-   * n_a = 6e135, n_b = 8e296, m_a = 1e146, m_b = 2e273. */
+   * n_a = 6e135, n_b = 8e296, m_a = 1e146, m_b = 2e273.  Kinds 11, 12
+   * (T_b of both laws) and the last rows of kinds 6, 9: a rare species
+   * at 1e6 K, the other at 1e-12 K (n ratio 1e-3); the colder species
+   * came out as T_m - f |Delta|, wrong in every digit or negative. */
   sbt_table t;
   sbt_table_load("spray_extreme.csv", &t);
   int ck = sbt_col(&t, "kind"), cv = sbt_col(&t, "value"),
@@ -876,6 +879,19 @@ START_TEST(test_extreme_arguments)
                        SB_SUCCESS);
       break;
     }
+    case 11: { /* T_b of the Maxwell law (arguments as kind 6) */
+      sb_spray_mixture mx = {a[0], a[1], a[2], a[3], 1e-6, 1e-6, a[4], a[5]};
+      ck_assert_int_eq(sb_spray_two_temp_maxwell(&mx, a[6], a[7], NULL,
+                                                 &got),
+                       SB_SUCCESS);
+      break;
+    }
+    case 12: { /* T_b of the hard-sphere law (arguments as kind 9) */
+      sb_spray_mixture mx = {a[0], a[1], a[2], a[3], a[6], a[6], a[4], a[5]};
+      ck_assert_int_eq(sb_spray_two_temp_hs(&mx, a[7], NULL, &got),
+                       SB_SUCCESS);
+      break;
+    }
     case 10: { /* r_a = r_b = a[4], rate at T_a = a[5], T_b = a[6] */
       sb_spray_mixture mx = {a[0], a[1], a[2], a[3], a[4], a[4], a[5], a[6]};
       sb_clear_error();
@@ -892,7 +908,7 @@ START_TEST(test_extreme_arguments)
                   sbt_at(&t, i, cv));
     nrow++;
   }
-  ck_assert_int_ge(nrow, 40);
+  ck_assert_int_ge(nrow, 64);
   sbt_table_free(&t);
 }
 END_TEST

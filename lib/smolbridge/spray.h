@@ -511,11 +511,15 @@ int sb_spray_bkw_sample(double K, double theta, gsl_rng *rng, double v[3]);
  *  where an intermediate of its closed form (n T, k T/m, their square
  *  roots, C sqrt(alpha) t) leaves the normal range it is evaluated in a
  *  scaled form with an extended exponent (docs/spray.md, "Extreme
- *  arguments"); never SB_ERANGE.  Accuracy: a few ulp against mpmath,
- *  also at such corners (m = 1e-320 or 1e300, n or T near DBL_MAX),
- *  except that the plain form gives the colder species as
- *  T_m - f |Delta|, which loses about log2(T_m/T) bits where the mixture
- *  temperature T_m is far above it (a rare, much hotter species). */
+ *  arguments"); never SB_ERANGE.  Both laws give the hotter species as
+ *  T_m + f |Delta| and the colder as T_0 + f' |Delta0 - Delta(t)| (T_0
+ *  its initial temperature, f, f' the other species' number fraction,
+ *  Delta0 - Delta(t) in a form without cancellation, 1 - exp(-x) by
+ *  expm1): sums of non-negative terms, so both are positive and neither
+ *  loses digits where T_m is far above the colder species (a rare, much
+ *  hotter species).  Accuracy: a few ulp against mpmath for both
+ *  species, also at such corners (m = 1e-320 or 1e300, n or T near
+ *  DBL_MAX, T_hot0/T_cold0 = 1e18 with n_hot/n_cold = 1e-3). */
 typedef struct {
   double n_a, n_b, m_a, m_b, r_a, r_b, T_a0, T_b0;
 } sb_spray_mixture;

@@ -172,9 +172,37 @@ static void fractions(const sb_spray_mixture *m, double *fa, double *fb)
   }
 }
 
-/* Delta(t) -> T_a, T_b with n_a T_a + n_b T_b conserved. */
-static void split_T(const sb_spray_mixture *m, double delta, double *Ta,
-                    double *Tb)
+/* (n_x/(n_a + n_b)) y for the fraction f = n_x/n, with an extended
+ * exponent where f, y or the product is not a normal double. */
+static double frac_times(const sb_spray_mixture *m, double f, double nx,
+                         sbi_xd y)
+{
+  const double yv = sbi_xd_val(y), p = f * yv;
+  if (yv == 0.0 || (isnormal(f) && isnormal(yv) && isnormal(p)))
+    return p;
+  sbi_xd n = sbi_xd_add(sbi_xd_of(m->n_a), sbi_xd_of(m->n_b));
+  return sbi_xd_val(sbi_xd_mul(sbi_xd_div(sbi_xd_of(nx), n), y));
+}
+
+/* 1 - exp(-x) for x >= 0, also where x is below DBL_MIN (x (1 - x/2),
+ * relative error below x^2/6 < 2^-60, for x < 2^-30). */
+static sbi_xd one_minus_expneg(sbi_xd x)
+{
+  const double v = sbi_xd_val(x);
+  if (v >= 0x1p-30)
+    return sbi_xd_of(-expm1(-v));
+  return sbi_xd_mul(x, sbi_xd_of(1.0 - 0.5 * v));
+}
+
+/* Delta(t) and gap = Delta0 - Delta(t) (same sign as Delta0, formed by
+ * the caller without cancellation, with an extended exponent) -> T_a,
+ * T_b with n_a T_a + n_b T_b conserved.  The hotter species is T_m + f_other |Delta| and the colder
+ * T_0 + f_hot |gap|: both sums of non-negative terms, so each is
+ * accurate to a few ulp (T_m - f |Delta| for the colder species would
+ * lose about log2(T_m/T) bits, down to a negative T, where a rare
+ * species is much hotter). */
+static void split_T(const sb_spray_mixture *m, double delta, sbi_xd gap,
+                    double *Ta, double *Tb)
 {
   double n = m->n_a + m->n_b;
   double Tm = (m->n_a * m->T_a0 + m->n_b * m->T_b0) / n;
@@ -184,10 +212,15 @@ static void split_T(const sb_spray_mixture *m, double delta, double *Ta,
     fractions(m, &fa, &fb);
     Tm = fa * m->T_a0 + fb * m->T_b0;
   }
-  if (Ta)
+  if (m->T_a0 == m->T_b0) {
+    *Ta = *Tb = m->T_a0;
+  } else if (m->T_a0 > m->T_b0) {
     *Ta = Tm + fb * delta;
-  if (Tb)
+    *Tb = m->T_b0 + frac_times(m, fa, m->n_a, gap);
+  } else {
+    *Ta = m->T_a0 - frac_times(m, fb, m->n_b, gap);
     *Tb = Tm - fa * delta;
+  }
 }
 
 /* pre (n_a + n_b) m_a m_b/(m_a + m_b)^2 (pre >= 0), with an extended
@@ -230,7 +263,11 @@ int sb_spray_two_temp_maxwell(const sb_spray_mixture *mx, double B0,
                      "B0 > 0, t >= 0", B0, t);
   double rate = mix_rate(2.0 * B0, mx);
   double e = t == 0 ? 1.0 : exp(-rate * t), Ta, Tb;
-  split_T(mx, (mx->T_a0 - mx->T_b0) * e, &Ta, &Tb);
+  /* Delta0 - Delta = Delta0 (1 - e), 1 - e by expm1 */
+  const double D0 = mx->T_a0 - mx->T_b0;
+  const sbi_xd ome =
+      one_minus_expneg(sbi_xd_mul(sbi_xd_of(rate), sbi_xd_of(t)));
+  split_T(mx, D0 * e, sbi_xd_mul(sbi_xd_of(D0), ome), &Ta, &Tb);
   if ((st = temps_ok(Ta, Tb, __func__)))
     return st;
   if (T_a)
@@ -411,10 +448,25 @@ int sb_spray_two_temp_hs(const sb_spray_mixture *mx, double t, double *T_a,
       isnormal(sa) && isnormal(u0) && isnormal(q) && isnormal(C) &&
       isnormal(Csa) && isnormal(den) &&
       (isnormal(num) || e == 0.0 || D0 == 0.0 || negl) &&
-      (isnormal(D) || D == 0.0 || negl))
-    split_T(mx, D, &Ta, &Tb);
-  else
+      (isnormal(D) || D == 0.0 || negl)) {
+    /* Delta0 - Delta = Delta0 (1 - F) without cancellation, F =
+     * Delta/Delta0 = e/(1 + z)^2 (see two_temp_hs_wide):
+     *   1 - F = (1 - e) (u0/sqrt(alpha))/(1 + z)^2 + (z/(1 + z))^2,
+     * z = gam (1 - e), gam = rho0 (u0 + sqrt(alpha))/(2 sqrt(alpha)) >
+     * -1/2, so both terms are non-negative and bounded */
+    const sbi_xd omex =
+        one_minus_expneg(sbi_xd_mul(sbi_xd_of(-Csa), sbi_xd_of(t)));
+    const double ome = sbi_xd_val(omex), r = u0 / sa;
+    const double gam = beta * D0 / q * 0.5 * (r + 1.0);
+    const double z = gam * ome, opz = 1.0 + z, zq = z / opz;
+    const sbi_xd omF =
+        sbi_xd_add(sbi_xd_div(sbi_xd_mul(omex, sbi_xd_of(r)),
+                              sbi_xd_of(opz * opz)),
+                   sbi_xd_of(zq * zq));
+    split_T(mx, D, sbi_xd_mul(sbi_xd_of(D0), omF), &Ta, &Tb);
+  } else {
     two_temp_hs_wide(mx, t, &Ta, &Tb);
+  }
   if ((st = temps_ok(Ta, Tb, __func__)))
     return st;
   if (T_a)
