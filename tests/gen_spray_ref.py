@@ -36,7 +36,8 @@ Writes (into tests/data/):
                    800 digits); 10 its rate dT_a/dt (r_a = r_b = a5);
                    11, 12 T_b of the Maxwell (as 6) and hard-sphere (as
                    9) laws, with a rare, much hotter species a (kinds 6
-                   and 9 the same with a and b exchanged).
+                   and 9 the same with a and b exchanged), then
+                   hard-sphere rows with u0 far from sqrt(alpha).
 Run: /usr/bin/python3 tests/gen_spray_ref.py   (about a minute)
 """
 import os
@@ -299,6 +300,17 @@ for f in TT_COLD_FACTORS:
 for f in TT_COLD_FACTORS:
     TT_COLD.append((12, [1e17, 1e20, 3e-26, 5e-26, 1e6, 1e-12, 1e-10, f]))
     TT_COLD.append((9, [1e20, 1e17, 5e-26, 3e-26, 1e-12, 1e6, 1e-10, f]))
+
+# hard spheres where u0 = sqrt(alpha + beta Delta0) is far from
+# sqrt(alpha): a rare hotter species (n_a/n_b = 1e-9, u0 >> sqrt(alpha):
+# 1 - rho cancelled in the hotter T_a) and a heavy hot species with a
+# light cold one (m_a/m_b = 1e10, u0 << sqrt(alpha): alpha + beta Delta0
+# cancelled, T_b); kind 9 T_a, 12 T_b.
+for f in [1e-6, 1e-3, 1.0]:
+    TT_COLD.append((9, [1e14, 1e23, 3e-26, 5e-26, 1e6, 1e-12, 1e-10, f]))
+for f in [1e-3, 1.0, 1e3]:
+    TT_COLD.append((12, [1e20, 1e20, 1e-20, 1e-30, 300.0, 1e-3, 1e-10, f]))
+    TT_COLD.append((9, [1e20, 1e20, 1e-20, 1e-30, 300.0, 1e-3, 1e-10, f]))
 
 
 def tt_cold_time(kind, a):

@@ -519,7 +519,8 @@ int sb_spray_bkw_sample(double K, double theta, gsl_rng *rng, double v[3]);
  *  loses digits where T_m is far above the colder species (a rare, much
  *  hotter species).  Accuracy: a few ulp against mpmath for both
  *  species, also at such corners (m = 1e-320 or 1e300, n or T near
- *  DBL_MAX, T_hot0/T_cold0 = 1e18 with n_hot/n_cold = 1e-3). */
+ *  DBL_MAX, T_hot0/T_cold0 = 1e18 with n_hot/n_cold = 1e-9 or 1e-3,
+ *  m_a/m_b = 1e10). */
 typedef struct {
   double n_a, n_b, m_a, m_b, r_a, r_b, T_a0, T_b0;
 } sb_spray_mixture;

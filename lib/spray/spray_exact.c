@@ -414,9 +414,15 @@ static void two_temp_hs_wide(const sb_spray_mixture *mx, double t,
 /* dD/dt = -C D sqrt(alpha + beta D), s^2 = alpha + beta D.  With
  * u = sqrt(alpha + beta D): (u - sqrt(alpha))/(u + sqrt(alpha)) =
  * rho0 exp(-C sqrt(alpha) t), and D = 4 alpha rho/(beta (1 - rho)^2),
- * rewritten without the division by beta (which may vanish):
- * D = 4 alpha D0 e/((u0 + sqrt(alpha))^2 (1 - rho)^2), e = exp(-C
- * sqrt(alpha) t), rho = rho0 e, rho0 = beta D0/(u0 + sqrt(alpha))^2. */
+ * rho = rho0 e, e = exp(-C sqrt(alpha) t).  Evaluated as in
+ * two_temp_hs_wide, without the division by beta (which may vanish) and
+ * without the cancellation of 1 - rho (rho0 near 1 where u0 >>
+ * sqrt(alpha), e.g. a rare, much hotter species): with r =
+ * u0/sqrt(alpha), gam = (r - 1)/2 > -1/2 and z = gam (1 - e) > -1/2,
+ *   F = D/D0 = e/(1 + z)^2,
+ *   1 - F = (1 - e) r/(1 + z)^2 + (z/(1 + z))^2
+ * (both terms non-negative); the hotter species is T_m + f |D| and the
+ * colder T_0 + f' |D0| (1 - F) (split_T). */
 int sb_spray_two_temp_hs(const sb_spray_mixture *mx, double t, double *T_a,
                          double *T_b)
 {
@@ -430,39 +436,30 @@ int sb_spray_two_temp_hs(const sb_spray_mixture *mx, double t, double *T_a,
   double Tm = (mx->n_a * mx->T_a0 + mx->n_b * mx->T_b0) / n;
   double D0 = mx->T_a0 - mx->T_b0;
   double alpha = k * Tm * (1.0 / mx->m_a + 1.0 / mx->m_b);
-  double beta = k * (mx->n_b / mx->m_a - mx->n_a / mx->m_b) / n;
-  double sa = sqrt(alpha), u0 = sqrt(alpha + beta * D0);
-  double q = (u0 + sa) * (u0 + sa);
+  /* u0^2 = alpha + beta D0 = k (T_a0/m_a + T_b0/m_b), a sum of positive
+   * terms (alpha + beta D0 cancels where u0 << sqrt(alpha)) */
+  double sa = sqrt(alpha),
+         u0 = sqrt(k * (mx->T_a0 / mx->m_a + mx->T_b0 / mx->m_b));
   double C = hs_C(mx), Csa = -C * sa;
   double e = exp(Csa * t);
-  double rho = beta * D0 / q * e;
-  double num = 4.0 * alpha * D0 * e, den = q * (1.0 - rho) * (1.0 - rho);
-  double D = num / den;
+  const sbi_xd omex =
+      one_minus_expneg(sbi_xd_mul(sbi_xd_of(-Csa), sbi_xd_of(t)));
+  const double ome = sbi_xd_val(omex), r = u0 / sa, gam = 0.5 * (r - 1.0);
+  const double z = gam * ome, opz = 1.0 + z, opz2 = opz * opz;
+  const double D = D0 * (e / opz2), zq = z / opz;
   double Ta, Tb;
   /* the plain form where its intermediates are normal doubles; a
-   * subnormal num or Delta (e = exp(-x) below DBL_MIN) only where Delta
+   * subnormal e or Delta (e = exp(-x) below DBL_MIN) only where Delta
    * is negligible against T_m, as before */
   const int negl = fabs(D) <= 0x1p-60 * Tm;
   if (isfinite(n) && isnormal(mx->n_a / n) && isnormal(mx->n_b / n) &&
-      isnormal(Tm) && isnormal(alpha) && (beta == 0.0 || isnormal(beta)) &&
-      isnormal(sa) && isnormal(u0) && isnormal(q) && isnormal(C) &&
-      isnormal(Csa) && isnormal(den) &&
-      (isnormal(num) || e == 0.0 || D0 == 0.0 || negl) &&
+      isnormal(Tm) && isnormal(alpha) && isnormal(sa) && isnormal(u0) &&
+      isnormal(r) && isnormal(opz2) && isnormal(C) && isnormal(Csa) &&
+      (isnormal(e) || e == 0.0 || D0 == 0.0 || negl) &&
       (isnormal(D) || D == 0.0 || negl)) {
-    /* Delta0 - Delta = Delta0 (1 - F) without cancellation, F =
-     * Delta/Delta0 = e/(1 + z)^2 (see two_temp_hs_wide):
-     *   1 - F = (1 - e) (u0/sqrt(alpha))/(1 + z)^2 + (z/(1 + z))^2,
-     * z = gam (1 - e), gam = rho0 (u0 + sqrt(alpha))/(2 sqrt(alpha)) >
-     * -1/2, so both terms are non-negative and bounded */
-    const sbi_xd omex =
-        one_minus_expneg(sbi_xd_mul(sbi_xd_of(-Csa), sbi_xd_of(t)));
-    const double ome = sbi_xd_val(omex), r = u0 / sa;
-    const double gam = beta * D0 / q * 0.5 * (r + 1.0);
-    const double z = gam * ome, opz = 1.0 + z, zq = z / opz;
-    const sbi_xd omF =
-        sbi_xd_add(sbi_xd_div(sbi_xd_mul(omex, sbi_xd_of(r)),
-                              sbi_xd_of(opz * opz)),
-                   sbi_xd_of(zq * zq));
+    const sbi_xd omF = sbi_xd_add(
+        sbi_xd_div(sbi_xd_mul(omex, sbi_xd_of(r)), sbi_xd_of(opz2)),
+        sbi_xd_of(zq * zq));
     split_T(mx, D, sbi_xd_mul(sbi_xd_of(D0), omF), &Ta, &Tb);
   } else {
     two_temp_hs_wide(mx, t, &Ta, &Tb);
