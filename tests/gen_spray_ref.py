@@ -37,7 +37,8 @@ Writes (into tests/data/):
                    11, 12 T_b of the Maxwell (as 6) and hard-sphere (as
                    9) laws, with a rare, much hotter species a (kinds 6
                    and 9 the same with a and b exchanged), then
-                   hard-sphere rows with u0 far from sqrt(alpha).
+                   hard-sphere rows with u0 far from sqrt(alpha) and
+                   Maxwell rows with n T below the subnormals.
 Run: /usr/bin/python3 tests/gen_spray_ref.py   (about a minute)
 """
 import os
@@ -311,6 +312,15 @@ for f in [1e-6, 1e-3, 1.0]:
 for f in [1e-3, 1.0, 1e3]:
     TT_COLD.append((12, [1e20, 1e20, 1e-20, 1e-30, 300.0, 1e-3, 1e-10, f]))
     TT_COLD.append((9, [1e20, 1e20, 1e-20, 1e-30, 300.0, 1e-3, 1e-10, f]))
+
+# Maxwell law with n_a T_a0 and n_b T_b0 below the subnormals (n = 1e-200,
+# T = 1e-150): the mixture temperature T_m underflowed to 0 (before, T_b
+# relaxed towards 0); kind 6 T_a, 11 T_b.
+for f in [0.0, 1.0, 10.0]:
+    TT_COLD.append((6, [1e-200, 1e-200, 3e-26, 5e-26, 1e-150, 3e-150, 1e-16,
+                        f]))
+    TT_COLD.append((11, [1e-200, 1e-200, 3e-26, 5e-26, 1e-150, 3e-150,
+                         1e-16, f]))
 
 
 def tt_cold_time(kind, a):

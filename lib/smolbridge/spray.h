@@ -505,7 +505,8 @@ int sb_spray_bkw_sample(double K, double theta, gsl_rng *rng, double v[3]);
  *  arguments (T may be any finite positive values).  Products of the
  *  rate constants that over/underflow (n near DBL_MAX, m or r near
  *  1e-300) are formed with an extended exponent, and n_a T_a0 + n_b T_b0
- *  through the fractions n_a/n, n_b/n where it overflows.  The
+ *  through the fractions n_a/n, n_b/n where it overflows (with an
+ *  extended exponent where it underflows, n T below 1e-300).  The
  *  hard-sphere T_a, T_b lie between T_a0 and T_b0, and
  *  sb_spray_two_temp_hs returns them for every argument in the domain:
  *  where an intermediate of its closed form (n T, k T/m, their square

@@ -205,12 +205,22 @@ static void split_T(const sb_spray_mixture *m, double delta, sbi_xd gap,
                     double *Ta, double *Tb)
 {
   double n = m->n_a + m->n_b;
-  double Tm = (m->n_a * m->T_a0 + m->n_b * m->T_b0) / n;
+  const double pa = m->n_a * m->T_a0, pb = m->n_b * m->T_b0;
+  double Tm = (pa + pb) / n;
   double fa = m->n_a / n, fb = m->n_b / n;
   if (!isfinite(Tm) || !isfinite(n)) {
     /* n_a T_a0 or n overflows: the mean through the fractions */
     fractions(m, &fa, &fb);
     Tm = fa * m->T_a0 + fb * m->T_b0;
+  }
+  if (!isnormal(pa) || !isnormal(pb) || !isnormal(Tm)) {
+    /* a product or the mean below DBL_MIN (n T near 1e-300): with an
+     * extended exponent (same bits where the above is normal) */
+    const sbi_xd nx = sbi_xd_add(sbi_xd_of(m->n_a), sbi_xd_of(m->n_b));
+    Tm = sbi_xd_val(sbi_xd_div(
+        sbi_xd_add(sbi_xd_mul(sbi_xd_of(m->n_a), sbi_xd_of(m->T_a0)),
+                   sbi_xd_mul(sbi_xd_of(m->n_b), sbi_xd_of(m->T_b0))),
+        nx));
   }
   if (m->T_a0 == m->T_b0) {
     *Ta = *Tb = m->T_a0;
