@@ -231,7 +231,12 @@ void sb_spray_post_collision(const double v1[3], const double v2[3],
 
 /** Does a collision with deflection cosine cos_chi = sigma . g/|g|
  *  coalesce for the critical angle theta_cr?  Returns 1 iff
- *  b^2/(r+r_*)^2 = (1 + cos_chi)/2 <= sin^2(theta_cr). */
+ *  b^2/(r+r_*)^2 = (1 + cos_chi)/2 <= sin^2(theta_cr) (0 for
+ *  theta_cr <= 0).  The int result has no NaN: when cos_chi or theta_cr
+ *  is NaN, or theta_cr is infinite, it returns 0 and records SB_EDOM
+ *  naming this function (sb_last_status, sb_last_error); a caller that
+ *  must tell this from "does not coalesce" calls sb_clear_error() first
+ *  and checks sb_last_status().  Infinite cos_chi is compared as given. */
 int sb_spray_coalesces(double cos_chi, double theta_cr);
 
 /** Weber-number dependent coalescence boundary of O'Rourke (1981, PhD
