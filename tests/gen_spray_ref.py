@@ -29,8 +29,10 @@ Writes (into tests/data/):
                    repr): kind 0 pair rate pi (r1 + r2)^2 g; 1 O'Rourke
                    b_cr^2/(r1 + r2)^2; 2 TAB r32; 3 Reitz blob radius; 4 BKW
                    density (theta as given); 5 BKW E|v|^6; 6 two-temperature
-                   Maxwell T_a; 7 pgd delta mass rate; 8 pgd delta speed
-                   (kinds 7, 8 are read by tests/test_pgd_exact.c).
+                   Maxwell T_a; 7 pgd delta mass rate; 8 pgd delta speed;
+                   9, 10 pgd Riemann mass, momentum in [a, b] (rho_l,
+                   u_l, rho_r, u_r, t, a, b; x0 = 0, no drag) (kinds 7 to
+                   10 are read by tests/test_pgd_exact.c).
 Run: /usr/bin/python3 tests/gen_spray_ref.py   (about a minute)
 """
 import os
@@ -243,7 +245,36 @@ EXTREME = [
     (6, [1e20, 2e20, 1e-300, 5e-26, 300.0, 500.0, 1e-16, 1e270]),
     (7, [1e-320, 1e300, 1e-320, -1e300]),
     (8, [4.0, 1.7976931348623157e308, 1.0, -1e308]),
+    # pgd Riemann integral (x0 = 0, no drag): rho u length overflows,
+    # b - a overflows, rho u underflows
+    (9, [1e200, 1e200, 1e200, 1e200, 1e-300, -1e-200, 1e-200]),
+    (10, [1e200, 1e200, 1e200, 1e200, 1e-300, -1e-200, 1e-200]),
+    (9, [1e-10, 2.0, 0.0, 1.0, 8e307, -1e308, 1.5e308]),
+    (10, [1e-10, 2.0, 0.0, 1.0, 8e307, -1e308, 1.5e308]),
+    (9, [1e-200, -1e-200, 3e-200, 1e-200, 1.0, -1e200, 1e200]),
+    (10, [1e-200, -1e-200, 3e-200, 1e-200, 1.0, -1e200, 1e200]),
 ]
+
+
+def riemann_integral(rl, ul, rr, ur, t, a, b):
+    """Mass and momentum in [a, b] of the drag-free Riemann problem at
+    x0 = 0 (contact, vacuum or delta-shock; docs/pgd.md)."""
+    dm = dq = mpf(0)
+    if rl == 0 and rr == 0:
+        xl = xr = mpf(0)
+    elif rl == 0 or rr == 0 or ul == ur:
+        xl = xr = (ul if rl > 0 else ur) * t
+    elif ul < ur:
+        xl, xr = ul * t, ur * t
+    else:
+        sig = (sqrt(rl) * ul + sqrt(rr) * ur) / (sqrt(rl) + sqrt(rr))
+        xl = xr = sig * t
+        if a <= xl < b:
+            dm = sqrt(rl * rr) * (ul - ur) * t
+            dq = dm * sig
+    ll = max(mpf(0), min(b, xl) - a)
+    lr = max(mpf(0), b - max(a, xr))
+    return (rl * ll + rr * lr + dm, rl * ul * ll + rr * ur * lr + dq)
 
 
 def extreme_value(kind, a):
@@ -282,6 +313,8 @@ def extreme_value(kind, a):
     if kind == 8:
         return (sqrt(a[0]) * a[1] + sqrt(a[2]) * a[3]) / (sqrt(a[0]) +
                                                          sqrt(a[2]))
+    if kind in (9, 10):
+        return riemann_integral(*a[:7])[kind - 9]
     raise ValueError(kind)
 
 
