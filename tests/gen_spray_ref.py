@@ -32,7 +32,10 @@ Writes (into tests/data/):
                    Maxwell T_a; 7 pgd delta mass rate; 8 pgd delta speed;
                    9, 10 pgd Riemann mass, momentum in [a, b] (rho_l,
                    u_l, rho_r, u_r, t, a, b; x0 = 0, no drag) (kinds 7 to
-                   10 are read by tests/test_pgd_exact.c).
+                   10 are read by tests/test_pgd_exact.c); 11 Reitz
+                   full-model radius (a0, t, U, rho_g, rho_l, sigma, mu_l;
+                   B0 = 0.61, B1 = 10) by odefun in scaled variables,
+                   checked against the quadrature of dt = -da/rate.
 Run: /usr/bin/python3 tests/gen_spray_ref.py   (about a minute)
 """
 import os
@@ -254,6 +257,37 @@ EXTREME = [
     (9, [1e-200, -1e-200, 3e-200, 1e-200, 1.0, -1e200, 1e200]),
     (10, [1e-200, -1e-200, 3e-200, 1e-200, 1.0, -1e200, 1e200]),
 ]
+# Reitz full-model radius (kind 11) where the plain fits leave the range
+# (a^3 underflows, We^1.67 overflows, a^3 overflows): (a0, U, rho_g,
+# rho_l, sigma, mu_l) at t = f tau(a0) rounded to a double
+REITZ_EXTREME = [
+    (("1e-150", "1e80", "10", "1000", "0.072", "0"), ["0.5"]),
+    (("1e-4", "1e100", "1.2", "1000", "0.072", "1e-3"), ["0.5"]),
+    (("1e120", "1", "1.2", "1000", "0.072", "1e-3"), ["0.5"]),
+]
+
+
+def reitz_radius_scaled(a0, t, U, rg, rl, sg, mu):
+    """Full Reitz model a(t) (B0 = 0.61, B1 = 10) by odefun in the
+    variables y = a/a0, s = t/tau(a0) (odefun's tolerance is absolute),
+    checked against s = int_y^1 dy'/(tau0/a0 rate(a0 y')) by quad."""
+    B0, B1, C = mpf("0.61"), mpf(10), mpf("3.726")
+    L0, O0 = wave(a0, U, rg, rl, sg, mu)
+    if a0 <= B0 * L0 or t == 0:
+        return a0
+    tau0 = C * B1 * a0 / (L0 * O0)
+
+    def rate(a):  # -da/dt
+        LL, OO = wave(a, U, rg, rl, sg, mu)
+        return (a - B0 * LL) * LL * OO / (C * B1 * a)
+    s = t / tau0
+    sol = odefun(lambda s_, y: -tau0 / a0 * rate(a0 * y), 0, mpf(1))
+    y = mp.re(sol(s))
+    # (quad's tolerance is absolute too: integrate in y)
+    back = quad(lambda u: a0 / (tau0 * rate(a0 * u)), [y, 1])
+    if abs(back / s - 1) > mpf(10) ** -25:
+        sys.exit("Reitz radius: odefun and quad disagree (%s)" % (back / s))
+    return a0 * y
 
 
 def riemann_integral(rl, ul, rr, ur, t, a, b):
@@ -315,12 +349,22 @@ def extreme_value(kind, a):
                                                          sqrt(a[2]))
     if kind in (9, 10):
         return riemann_integral(*a[:7])[kind - 9]
+    if kind == 11:
+        return reitz_radius_scaled(*a[:7])
     raise ValueError(kind)
 
 
 def write_extreme():
     rows = ["kind,a1,a2,a3,a4,a5,a6,a7,a8,value"]
-    for kind, a in EXTREME:
+    B1, C = mpf(10), mpf("3.726")
+    rows_in = list(EXTREME)
+    for c, fs in REITZ_EXTREME:
+        a0, U, rg, rl, sg, mu = [mpf(x) for x in c]
+        L0, O0 = wave(a0, U, rg, rl, sg, mu)
+        for f in fs:
+            t = float(mpf(f) * C * B1 * a0 / (L0 * O0))
+            rows_in.append((11, [float(a0), t] + [float(x) for x in c[1:]]))
+    for kind, a in rows_in:
         args = [repr(float(x)) for x in a] + ["0"] * (8 - len(a))
         rows.append("%d,%s,%s" % (kind, ",".join(args),
                                   s20(extreme_value(kind, a))))

@@ -448,9 +448,13 @@ double sb_spray_reitz_radius_frozen(double a0, double R, double c, double t);
  *  radius) at constant U: t(a) = int_a^a0 tau(x)/(x - R(x)) dx by GSL
  *  adaptive quadrature, inverted with GSL Brent; relative accuracy ~1e-10.
  *  Stops at the stable radius (a_inf with a_inf = R(a_inf)).  SB_EDOM as
- *  sb_spray_reitz_wave (message naming this function) or for t < 0;
- *  SB_ERANGE where the fits at a0 (plain double arithmetic, as the
- *  quadrature uses them) leave the normal range. */
+ *  sb_spray_reitz_wave (message naming this function) or for t < 0.
+ *  Where the plain fits leave the normal double range at a0 or near the
+ *  stable radius (We^1.67, a^3 over/underflowing: a0 ~ 1e-150 or 1e120 m,
+ *  U ~ 1e100 m/s) the quadrature uses the fits through logarithms and an
+ *  integrand scaled by a power of two (relative accuracy ~1e-10 still).
+ *  The result lies in [a_inf, a0]; SB_ERANGE only where a(t) is below
+ *  DBL_MIN (a_inf there: U ~ 1e300 m/s). */
 int sb_spray_reitz_radius(double a0, double t, double U, double rho_g,
                           double rho_l, const sb_spray_liquid *liq,
                           const sb_spray_reitz_params *rp, double *a);
