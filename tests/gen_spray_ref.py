@@ -35,7 +35,11 @@ Writes (into tests/data/):
                    10 are read by tests/test_pgd_exact.c); 11 Reitz
                    full-model radius (a0, t, U, rho_g, rho_l, sigma, mu_l;
                    B0 = 0.61, B1 = 10) by odefun in scaled variables,
-                   checked against the quadrature of dt = -da/rate.
+                   checked against the quadrature of dt = -da/rate;
+                   12, 13 TAB y, y' (t, r, U, rho_g, mu_l, Cd, y0, y0';
+                   rho_l = 1000, sigma = 0.072) in closed form, checked
+                   against odefun in scaled variables; 14 TAB breakup time
+                   (r, U, rho_g, mu_l, Cd, y0, y0', tmax).
 Run: /usr/bin/python3 tests/gen_spray_ref.py   (about a minute)
 """
 import os
@@ -267,6 +271,70 @@ REITZ_EXTREME = [
 ]
 
 
+# TAB at corners (kinds 12 y, 13 y', 14 breakup time; rho_l = 1000,
+# sigma = 0.072): r ~ 1e-100 (beta^2 overflows), r ~ 1e103 (r^3
+# overflows), y0 or y0' near DBL_MAX.  12, 13: t, r, U, rho_g, mu_l, Cd,
+# y0, y0'; 14: r, U, rho_g, mu_l, Cd, y0, y0', tmax.
+TAB_EXTREME = [
+    [1e-194, 1e-100, 50.0, 1.2, 1e-3, 5.0, 0.1, 20.0],
+    [1e-102, 1e-100, 50.0, 1.2, 1e-3, 5.0, 0.1, 20.0],
+    [1e154, 1e103, 1e-52, 1.2, 1e-3, 5.0, 0.1, 1e-160],
+    [1e-12, 1e-4, 50.0, 1.2, 1e-3, 5.0, 1e308, 0.0],
+    [1e-5, 1e-4, 50.0, 1.2, 1e-3, 5.0, 0.1, -1e308],
+]
+TAB_TB_EXTREME = [
+    [1e103, 1e-49, 1.2, 1e-3, 5.0, 0.1, 0.0, 1e160],
+]
+
+
+def tab_closed(t, r, U, rg, mu, Cd, y0, yd0):
+    """y(t), y'(t) of the TAB equation (spray_tab.csv) in closed form at
+    250 digits (the overdamped slow rate cancels to ~100 digits at r =
+    1e-100).  Where t max(beta, w0) <= 100 it is checked against odefun
+    in the variables s = t max(beta, w0), z/A."""
+    with mp.workdps(250):
+        t, r, U, rg, mu, Cd, y0, yd0 = [mpf(x) for x in
+                                         (t, r, U, rg, mu, Cd, y0, yd0)]
+        rl, sg = mpf(1000), mpf("0.072")
+        w02 = 8 * sg / (rl * r ** 3)
+        b = Cd * mu / (2 * rl * r * r)
+        yeq = mpf(2) / 3 * rg / rl * U * U / (r * r) / w02
+        z0 = y0 - yeq
+        w = mp.sqrt(mp.mpc(w02 - b * b))
+        C = mp.cos(w * t)
+        S = mp.sin(w * t) / w
+        e = exp(-b * t)
+        y = mp.re(yeq + e * (z0 * C + (yd0 + b * z0) * S))
+        yd = mp.re(e * (yd0 * C - (b * yd0 + w02 * z0) * S))
+        Om = max(b, sqrt(w02))
+        if t * Om <= 100:
+            A = max(abs(z0), abs(yd0) / Om)
+            B, W = b / Om, w02 / Om ** 2
+            with mp.workdps(30):
+                sol = odefun(lambda s_, u: [u[1], -W * u[0] - 2 * B * u[1]],
+                             0, [z0 / A, yd0 / (Om * A)])
+                u = sol(t * Om)
+            for got, ref in ((yeq + A * u[0], y), (A * Om * u[1], yd)):
+                if abs(got - ref) > mpf(10) ** -20 * (abs(ref) + A * 1e-5):
+                    sys.exit("TAB closed form vs odefun: %s %s" % (got, ref))
+        return y, yd
+
+
+def tab_tb(r, U, rg, mu, Cd, y0, yd0, tmax):
+    """First |y| = 1 in (0, tmax] of tab_closed: a scan of 4000 points,
+    then findroot (the rows have y rising through 1)."""
+    f = lambda t: tab_closed(t, r, U, rg, mu, Cd, y0, yd0)[0]
+    tmax = mpf(tmax)
+    prev = mpf(0)
+    for j in range(1, 4001):
+        t = tmax * j / 4000
+        if f(t) >= 1:
+            return findroot(lambda x: f(x) - 1, (prev, t),
+                            solver="anderson")
+        prev = t
+    return mpf("inf")
+
+
 def reitz_radius_scaled(a0, t, U, rg, rl, sg, mu):
     """Full Reitz model a(t) (B0 = 0.61, B1 = 10) by odefun in the
     variables y = a/a0, s = t/tau(a0) (odefun's tolerance is absolute),
@@ -351,6 +419,10 @@ def extreme_value(kind, a):
         return riemann_integral(*a[:7])[kind - 9]
     if kind == 11:
         return reitz_radius_scaled(*a[:7])
+    if kind in (12, 13):
+        return tab_closed(*a)[kind - 12]
+    if kind == 14:
+        return tab_tb(*a)
     raise ValueError(kind)
 
 
@@ -364,6 +436,9 @@ def write_extreme():
         for f in fs:
             t = float(mpf(f) * C * B1 * a0 / (L0 * O0))
             rows_in.append((11, [float(a0), t] + [float(x) for x in c[1:]]))
+    for a in TAB_EXTREME:
+        rows_in += [(12, a), (13, a)]
+    rows_in += [(14, a) for a in TAB_TB_EXTREME]
     for kind, a in rows_in:
         args = [repr(float(x)) for x in a] + ["0"] * (8 - len(a))
         rows.append("%d,%s,%s" % (kind, ",".join(args),

@@ -887,17 +887,38 @@ START_TEST(test_extreme_arguments)
                        SB_SUCCESS);
       break;
     }
+    case 12:
+    case 13: { /* TAB state: SB_ERANGE before (beta^2, r^3, beta z0 or
+                  beta y0' overflowing) */
+      sb_spray_liquid liq = {0.072, a[4]};
+      double y, yd;
+      ck_assert_int_eq(sb_spray_tab_state(a[0], a[1], a[2], a[3], 1000.0,
+                                          &liq, a[5], a[6], a[7], &y, &yd),
+                       SB_SUCCESS);
+      got = kind == 12 ? y : yd;
+      break;
+    }
+    case 14: {
+      sb_spray_liquid liq = {0.072, a[3]};
+      ck_assert_int_eq(sb_spray_tab_breakup_time(a[0], a[1], a[2], 1000.0,
+                                                 &liq, a[4], a[5], a[6],
+                                                 a[7], &got, NULL),
+                       SB_SUCCESS);
+      break;
+    }
     default:
       continue; /* (pgd rows: test_pgd_exact.c) */
     }
-    /* (the Reitz radius: its documented accuracy ~1e-10) */
+    /* (the Reitz radius: its documented accuracy ~1e-10; the breakup
+     * time: 1e-12 of the period, here 5e-11 relative) */
     ck_assert_msg(fabs(got - sbt_at(&t, i, cv)) <=
-                      (kind == 11 ? 1e-9 : 1e-13) * fabs(sbt_at(&t, i, cv)),
+                      (kind == 11 || kind == 14 ? 1e-9 : 1e-13) *
+                          fabs(sbt_at(&t, i, cv)),
                   "row %d (kind %d): %.17g, mpmath %.17g", i, kind, got,
                   sbt_at(&t, i, cv));
     nrow++;
   }
-  ck_assert_int_ge(nrow, 12);
+  ck_assert_int_ge(nrow, 23);
   sbt_table_free(&t);
 }
 END_TEST

@@ -329,13 +329,20 @@ void sb_spray_tab_params_default(sb_spray_tab_params *p);
  *  radius r, from (y0, ydot0).  Underdamped case (omega^2 > 0) exact;
  *  overdamped and critical cases use the matching closed forms.  Returns
  *  SB_EDOM for non-positive r, sigma, rho_l, negative rho_g, mu, Cd, t or
- *  any argument not finite; SB_ERANGE where w0^2, 1/t_d or We/12 leave the
- *  double range (r near 1e-100 or 1e100 m, urel near 1e150 m/s), where y
- *  or y' overflows, and where the phase omega t exceeds 2^52 while
- *  e^{-t/t_d} > 0 (the oscillation is not resolved in double precision;
- *  the phase error is ~ omega t DBL_EPSILON radians).  The same
- *  SB_EDOM/SB_ERANGE domain holds for sb_spray_tab_breakup_time (SB_ERANGE
- *  also when y' at breakup overflows) and sb_spray_tab_we_crit. */
+ *  any argument not finite; SB_ERANGE where We/12 exceeds DBL_MAX (urel
+ *  near 1e150 m/s for ordinary drops), where y or y' overflows, and where
+ *  the phase omega t exceeds 2^52 while e^{-t/t_d} > 0 (the oscillation
+ *  is not resolved in double precision; the phase error is
+ *  ~ omega t DBL_EPSILON radians).  Where w0^2, 1/t_d, 1/t_d^2, We/12 or
+ *  the initial state's products (y0/t_d, w0^2 y0, y0'/t_d) leave the
+ *  normal range (r near 1e-100 or 1e100 m, y0 or y0' near DBL_MAX) the
+ *  oscillator is solved in units scaled by powers of two (time by
+ *  1/max(w0, 1/t_d), y by up to 2^-1020), its scales formed with an
+ *  extended exponent and the overdamped slow rate as
+ *  -w0^2/(k + 1/t_d) (k = sqrt(1/t_d^2 - w0^2)); other arguments give the
+ *  same bits as the plain formulas.  The same SB_EDOM/SB_ERANGE domain
+ *  holds for sb_spray_tab_breakup_time (SB_ERANGE also when y' at
+ *  breakup overflows) and sb_spray_tab_we_crit. */
 int sb_spray_tab_state(double t, double r, double urel, double rho_g,
                        double rho_l, const sb_spray_liquid *liq, double Cd,
                        double y0, double ydot0, double *y, double *ydot);
