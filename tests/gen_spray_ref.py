@@ -30,7 +30,8 @@ Writes (into tests/data/):
                    b_cr^2/(r1 + r2)^2; 2 TAB r32; 3 Reitz blob radius; 4 BKW
                    density (theta as given); 5 BKW E|v|^6; 6 two-temperature
                    Maxwell T_a; 7 pgd delta mass rate; 8 pgd delta speed
-                   (kinds 7, 8 are read by tests/test_pgd_exact.c); 9
+                   (kinds 7, 8, 13, 14 are read by
+                   tests/test_pgd_exact.c); 9
                    two-temperature hard-sphere T_a (r_a = r_b = a7, t =
                    a8, from the textbook form of the closed solution at
                    800 digits); 10 its rate dT_a/dt (r_a = r_b = a5);
@@ -38,7 +39,16 @@ Writes (into tests/data/):
                    9) laws, with a rare, much hotter species a (kinds 6
                    and 9 the same with a and b exchanged), then
                    hard-sphere rows with u0 far from sqrt(alpha) and
-                   Maxwell rows with n T below the subnormals.
+                   Maxwell rows with n T below the subnormals;
+                   13, 14 pgd Riemann mass, momentum in [a, b] (rho_l,
+                   u_l, rho_r, u_r, t, a, b; x0 = 0, no drag); 15 Reitz
+                   full-model radius (a0, t, U, rho_g, rho_l, sigma, mu_l;
+                   B0 = 0.61, B1 = 10) by odefun in scaled variables,
+                   checked against the quadrature of dt = -da/rate;
+                   16, 17 TAB y, y' (t, r, U, rho_g, mu_l, Cd, y0, y0';
+                   rho_l = 1000, sigma = 0.072) in closed form, checked
+                   against odefun in scaled variables; 18 TAB breakup time
+                   (r, U, rho_g, mu_l, Cd, y0, y0', tmax).
 Run: /usr/bin/python3 tests/gen_spray_ref.py   (about a minute)
 """
 import os
@@ -403,6 +413,136 @@ def tt_hs_rate(a):
     return -C * nb / (na + nb) * sqrt(KB * (Ta / ma + Tb / mb)) * (Ta - Tb)
 
 
+# pgd Riemann integral (x0 = 0, no drag), kinds 13 mass, 14 momentum:
+# rho u length overflows, b - a overflows, rho u underflows
+RIEMANN_EXTREME = [
+    (13, [1e200, 1e200, 1e200, 1e200, 1e-300, -1e-200, 1e-200]),
+    (14, [1e200, 1e200, 1e200, 1e200, 1e-300, -1e-200, 1e-200]),
+    (13, [1e-10, 2.0, 0.0, 1.0, 8e307, -1e308, 1.5e308]),
+    (14, [1e-10, 2.0, 0.0, 1.0, 8e307, -1e308, 1.5e308]),
+    (13, [1e-200, -1e-200, 3e-200, 1e-200, 1.0, -1e200, 1e200]),
+    (14, [1e-200, -1e-200, 3e-200, 1e-200, 1.0, -1e200, 1e200]),
+]
+
+
+# Reitz full-model radius (kind 15) where the plain fits leave the range
+# (a^3 underflows, We^1.67 overflows, a^3 overflows): (a0, U, rho_g,
+# rho_l, sigma, mu_l) at t = f tau(a0) rounded to a double
+REITZ_EXTREME = [
+    (("1e-150", "1e80", "10", "1000", "0.072", "0"), ["0.5"]),
+    (("1e-4", "1e100", "1.2", "1000", "0.072", "1e-3"), ["0.5"]),
+    (("1e120", "1", "1.2", "1000", "0.072", "1e-3"), ["0.5"]),
+]
+
+
+# TAB at corners (kinds 16 y, 17 y', 18 breakup time; rho_l = 1000,
+# sigma = 0.072): r ~ 1e-100 (beta^2 overflows), r ~ 1e103 (r^3
+# overflows), y0 or y0' near DBL_MAX.  16, 17: t, r, U, rho_g, mu_l, Cd,
+# y0, y0'; 18: r, U, rho_g, mu_l, Cd, y0, y0', tmax.
+TAB_EXTREME = [
+    [1e-194, 1e-100, 50.0, 1.2, 1e-3, 5.0, 0.1, 20.0],
+    [1e-102, 1e-100, 50.0, 1.2, 1e-3, 5.0, 0.1, 20.0],
+    [1e154, 1e103, 1e-52, 1.2, 1e-3, 5.0, 0.1, 1e-160],
+    [1e-12, 1e-4, 50.0, 1.2, 1e-3, 5.0, 1e308, 0.0],
+    [1e-5, 1e-4, 50.0, 1.2, 1e-3, 5.0, 0.1, -1e308],
+]
+TAB_TB_EXTREME = [
+    [1e103, 1e-49, 1.2, 1e-3, 5.0, 0.1, 0.0, 1e160],
+]
+
+
+def tab_closed(t, r, U, rg, mu, Cd, y0, yd0):
+    """y(t), y'(t) of the TAB equation (spray_tab.csv) in closed form at
+    250 digits (the overdamped slow rate cancels to ~100 digits at r =
+    1e-100).  Where t max(beta, w0) <= 100 it is checked against odefun
+    in the variables s = t max(beta, w0), z/A."""
+    with mp.workdps(250):
+        t, r, U, rg, mu, Cd, y0, yd0 = [mpf(x) for x in
+                                         (t, r, U, rg, mu, Cd, y0, yd0)]
+        rl, sg = mpf(1000), mpf("0.072")
+        w02 = 8 * sg / (rl * r ** 3)
+        b = Cd * mu / (2 * rl * r * r)
+        yeq = mpf(2) / 3 * rg / rl * U * U / (r * r) / w02
+        z0 = y0 - yeq
+        w = mp.sqrt(mp.mpc(w02 - b * b))
+        C = mp.cos(w * t)
+        S = mp.sin(w * t) / w
+        e = exp(-b * t)
+        y = mp.re(yeq + e * (z0 * C + (yd0 + b * z0) * S))
+        yd = mp.re(e * (yd0 * C - (b * yd0 + w02 * z0) * S))
+        Om = max(b, sqrt(w02))
+        if t * Om <= 100:
+            A = max(abs(z0), abs(yd0) / Om)
+            B, W = b / Om, w02 / Om ** 2
+            with mp.workdps(30):
+                sol = odefun(lambda s_, u: [u[1], -W * u[0] - 2 * B * u[1]],
+                             0, [z0 / A, yd0 / (Om * A)])
+                u = sol(t * Om)
+            for got, ref in ((yeq + A * u[0], y), (A * Om * u[1], yd)):
+                if abs(got - ref) > mpf(10) ** -20 * (abs(ref) + A * 1e-5):
+                    sys.exit("TAB closed form vs odefun: %s %s" % (got, ref))
+        return y, yd
+
+
+def tab_tb(r, U, rg, mu, Cd, y0, yd0, tmax):
+    """First |y| = 1 in (0, tmax] of tab_closed: a scan of 4000 points,
+    then findroot (the rows have y rising through 1)."""
+    f = lambda t: tab_closed(t, r, U, rg, mu, Cd, y0, yd0)[0]
+    tmax = mpf(tmax)
+    prev = mpf(0)
+    for j in range(1, 4001):
+        t = tmax * j / 4000
+        if f(t) >= 1:
+            return findroot(lambda x: f(x) - 1, (prev, t),
+                            solver="anderson")
+        prev = t
+    return mpf("inf")
+
+
+def reitz_radius_scaled(a0, t, U, rg, rl, sg, mu):
+    """Full Reitz model a(t) (B0 = 0.61, B1 = 10) by odefun in the
+    variables y = a/a0, s = t/tau(a0) (odefun's tolerance is absolute),
+    checked against s = int_y^1 dy'/(tau0/a0 rate(a0 y')) by quad."""
+    B0, B1, C = mpf("0.61"), mpf(10), mpf("3.726")
+    L0, O0 = wave(a0, U, rg, rl, sg, mu)
+    if a0 <= B0 * L0 or t == 0:
+        return a0
+    tau0 = C * B1 * a0 / (L0 * O0)
+
+    def rate(a):  # -da/dt
+        LL, OO = wave(a, U, rg, rl, sg, mu)
+        return (a - B0 * LL) * LL * OO / (C * B1 * a)
+    s = t / tau0
+    sol = odefun(lambda s_, y: -tau0 / a0 * rate(a0 * y), 0, mpf(1))
+    y = mp.re(sol(s))
+    # (quad's tolerance is absolute too: integrate in y)
+    back = quad(lambda u: a0 / (tau0 * rate(a0 * u)), [y, 1])
+    if abs(back / s - 1) > mpf(10) ** -25:
+        sys.exit("Reitz radius: odefun and quad disagree (%s)" % (back / s))
+    return a0 * y
+
+
+def riemann_integral(rl, ul, rr, ur, t, a, b):
+    """Mass and momentum in [a, b] of the drag-free Riemann problem at
+    x0 = 0 (contact, vacuum or delta-shock; docs/pgd.md)."""
+    dm = dq = mpf(0)
+    if rl == 0 and rr == 0:
+        xl = xr = mpf(0)
+    elif rl == 0 or rr == 0 or ul == ur:
+        xl = xr = (ul if rl > 0 else ur) * t
+    elif ul < ur:
+        xl, xr = ul * t, ur * t
+    else:
+        sig = (sqrt(rl) * ul + sqrt(rr) * ur) / (sqrt(rl) + sqrt(rr))
+        xl = xr = sig * t
+        if a <= xl < b:
+            dm = sqrt(rl * rr) * (ul - ur) * t
+            dq = dm * sig
+    ll = max(mpf(0), min(b, xl) - a)
+    lr = max(mpf(0), b - max(a, xr))
+    return (rl * ll + rr * lr + dm, rl * ul * ll + rr * ur * lr + dq)
+
+
 def extreme_value(kind, a):
     a = [mpf(x) for x in a]  # exact binary values
     if kind == 0:
@@ -444,12 +584,32 @@ def extreme_value(kind, a):
         return tt_maxwell_T(a, 1)
     if kind == 12:
         return tt_hs_Tb(a)
+    if kind in (13, 14):
+        return riemann_integral(*a[:7])[kind - 13]
+    if kind == 15:
+        return reitz_radius_scaled(*a[:7])
+    if kind in (16, 17):
+        return tab_closed(*a)[kind - 16]
+    if kind == 18:
+        return tab_tb(*a)
     raise ValueError(kind)
 
 
 def write_extreme():
     rows = ["kind,a1,a2,a3,a4,a5,a6,a7,a8,value"]
-    for kind, a in EXTREME + [(k, tt_cold_time(k, a)) for k, a in TT_COLD]:
+    B1, C = mpf(10), mpf("3.726")
+    rows_in = EXTREME + [(k, tt_cold_time(k, a)) for k, a in TT_COLD]
+    rows_in += RIEMANN_EXTREME
+    for c, fs in REITZ_EXTREME:
+        a0, U, rg, rl, sg, mu = [mpf(x) for x in c]
+        L0, O0 = wave(a0, U, rg, rl, sg, mu)
+        for f in fs:
+            t = float(mpf(f) * C * B1 * a0 / (L0 * O0))
+            rows_in.append((15, [float(a0), t] + [float(x) for x in c[1:]]))
+    for a in TAB_EXTREME:
+        rows_in += [(16, a), (17, a)]
+    rows_in += [(18, a) for a in TAB_TB_EXTREME]
+    for kind, a in rows_in:
         if kind == 9:
             a = tt_hs_time(a)
         args = [repr(float(x)) for x in a] + ["0"] * (8 - len(a))

@@ -459,28 +459,50 @@ START_TEST(extreme_arguments)
 
   /* The delta at corners where sqrt(rho) u or the mass-rate product
    * leaves the double range: kinds 7 (mass rate) and 8 (speed) of
-   * tests/data/spray_extreme.csv (gen_spray_ref.py, mpmath). */
+   * tests/data/spray_extreme.csv (gen_spray_ref.py, mpmath); the mass
+   * (13) and momentum (14) of sb_pgd_riemann_integral where rho u, rho u
+   * length or b - a over/underflows (SB_ERANGE or a momentum of 0
+   * before). */
   sbt_table t;
   sbt_table_load("spray_extreme.csv", &t);
   int ck = sbt_col(&t, "kind"), cv = sbt_col(&t, "value"),
       ca = sbt_col(&t, "a1"), nrow = 0;
   for (int i = 0; i < t.nrow; i++) {
     const int kind = (int)sbt_at(&t, i, ck);
-    if (kind != 7 && kind != 8)
+    if (kind != 7 && kind != 8 && kind != 13 && kind != 14)
       continue;
-    double a[4];
-    for (int j = 0; j < 4; j++)
+    double a[7], got, mq[2] = {NAN, NAN};
+    for (int j = 0; j < 7; j++)
       a[j] = sbt_at(&t, i, ca + j);
-    double got = kind == 7 ? sb_pgd_delta_mass_rate(a[0], a[1], a[2], a[3])
-                           : sb_pgd_delta_speed(a[0], a[1], a[2], a[3]);
+    if (kind >= 13) {
+      sb_pgd_riemann rp = {0.0, a[0], a[1], a[2], a[3], INFINITY, 0.0};
+      ck_assert_int_eq(sb_pgd_riemann_integral(&rp, a[4], a[5], a[6],
+                                               &mq[0], &mq[1]),
+                       SB_SUCCESS);
+      got = mq[kind - 13];
+    } else {
+      got = kind == 7 ? sb_pgd_delta_mass_rate(a[0], a[1], a[2], a[3])
+                      : sb_pgd_delta_speed(a[0], a[1], a[2], a[3]);
+    }
     ck_assert_msg(fabs(got - sbt_at(&t, i, cv)) <=
                       1e-13 * fabs(sbt_at(&t, i, cv)),
                   "row %d (kind %d): %.17g, mpmath %.17g", i, kind, got,
                   sbt_at(&t, i, cv));
     nrow++;
   }
-  ck_assert_int_ge(nrow, 2);
+  ck_assert_int_ge(nrow, 8);
   sbt_table_free(&t);
+
+  /* vacuum of infinite extent holds no mass: an infinite a or b is
+   * SB_ERANGE only where the density there is > 0 */
+  sb_pgd_riemann vac = {0.0, 0.0, 1.0, 2.0, 1.0, INFINITY, 0.0};
+  double m = NAN, q = NAN;
+  ck_assert_int_eq(sb_pgd_riemann_integral(&vac, 0.5, -INFINITY, 1.5, &m, &q),
+                   SB_SUCCESS);
+  ck_assert_rel(m, 2.0, 4 * DBL_EPSILON);  /* 2 (1.5 - 0.5) */
+  ck_assert_rel(q, 2.0, 4 * DBL_EPSILON);
+  ck_assert_int_eq(sb_pgd_riemann_integral(&vac, 0.5, -1.0, INFINITY, &m, &q),
+                   SB_ERANGE);
 }
 END_TEST
 

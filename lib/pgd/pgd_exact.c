@@ -234,6 +234,59 @@ static void integral_sol(const sb_pgd_riemann *rp,
   *mom = q;
 }
 
+/* Is the product x y free of overflow and underflow (or exactly 0)? */
+static int prod_ok(double x, double y)
+{
+  const double p = fabs(x * y);
+  return x == 0 || y == 0 || (p >= DBL_MIN && p <= DBL_MAX);
+}
+
+/* rho (hi - lo) for hi > lo (either may be infinite) as m 2^e, also
+ * where hi - lo overflows; 0 for rho = 0 (vacuum, of any extent); *inf
+ * set if the mass is infinite. */
+static sbi_xd xd_mass(double rho, double hi, double lo, int *inf)
+{
+  if (rho == 0 || !(hi > lo))
+    return sbi_xd_of(0.0);
+  if (isinf(hi) || isinf(lo)) {
+    *inf = 1;
+    return sbi_xd_of(0.0);
+  }
+  const double d = hi - lo;
+  const sbi_xd len = isfinite(d) ? sbi_xd_of(d)
+                                 : sbi_xd_mul(sbi_xd_of(0.5 * hi - 0.5 * lo),
+                                              sbi_xd_of(2.0));
+  return sbi_xd_mul(sbi_xd_of(rho), len);
+}
+
+/* integral_sol's sums with an extended exponent, for where a length
+ * (b - a beyond DBL_MAX), a product rho u length or a partial sum leaves
+ * the double range while the mass and momentum may not; a vacuum side
+ * of infinite extent adds nothing.  +inf / NaN where the mass is
+ * infinite. */
+static void integral_sol_x(const sb_pgd_riemann *rp,
+                           const sb_pgd_riemann_sol *w, double a, double b,
+                           double *mass, double *mom)
+{
+  int inf = 0;
+  const sbi_xd ml = xd_mass(rp->rho_l, fmin(b, w->xl), a, &inf),
+               mr = xd_mass(rp->rho_r, b, fmax(a, w->xr), &inf);
+  if (inf) {
+    *mass = INFINITY;
+    *mom = NAN;
+    return;
+  }
+  sbi_xd m = sbi_xd_add(ml, mr);
+  sbi_xd q = sbi_xd_add(sbi_xd_mul(ml, sbi_xd_of(w->ul)),
+                        sbi_xd_mul(mr, sbi_xd_of(w->ur)));
+  if (w->type == SB_PGD_WAVE_DELTA && a <= w->xl && w->xl < b) {
+    m = sbi_xd_add(m, sbi_xd_of(w->mass));
+    q = sbi_xd_add(q, sbi_xd_mul(sbi_xd_of(w->mass), sbi_xd_of(w->vel)));
+  }
+  *mass = sbi_xd_val(m);
+  *mom = sbi_xd_val(q);
+}
+
 int sb_pgd_riemann_integral(const sb_pgd_riemann *rp, double t, double a,
                             double b, double *mass, double *mom)
 {
@@ -245,6 +298,18 @@ int sb_pgd_riemann_integral(const sb_pgd_riemann *rp, double t, double a,
     return sbi_error(SB_EDOM, __func__, "interval [%g, %g] is empty", a, b);
   double m, q;
   integral_sol(rp, &w, a, b, &m, &q);
+  /* plain sums unless a length, rho_l u_l, rho_r u_r (their order in
+   * integral_sol), a product with a length or with the delta's mass, or
+   * a sum over/underflowed */
+  const double ll = fmin(b, w.xl) - a, lr = b - fmax(a, w.xr);
+  if (!isfinite(m) || !isfinite(q) || !isfinite(ll) || !isfinite(lr) ||
+      !prod_ok(rp->rho_l, w.ul) || !prod_ok(rp->rho_r, w.ur) ||
+      (ll > 0 && (!prod_ok(rp->rho_l, ll) ||
+                  !prod_ok(rp->rho_l * w.ul, ll))) ||
+      (lr > 0 && (!prod_ok(rp->rho_r, lr) ||
+                  !prod_ok(rp->rho_r * w.ur, lr))) ||
+      (w.type == SB_PGD_WAVE_DELTA && !prod_ok(w.mass, w.vel)))
+    integral_sol_x(rp, &w, a, b, &m, &q);
   if (!isfinite(m) || !isfinite(q))
     return sbi_error(SB_ERANGE, __func__, "mass = %g, momentum = %g in "
                      "[%g, %g] leave the double range", m, q, a, b);

@@ -238,7 +238,12 @@ typedef struct {
  *  where sqrt(rho_l rho_r) or the product leaves the range.  The same
  *  statuses, named after the function called, hold for _eval (x not
  *  NaN), _integral (SB_ERANGE when the mass or momentum in [a, b]
- *  overflows, e.g. an infinite a or b) and _error. */
+ *  overflows, e.g. an infinite a or b on a side of density > 0; the
+ *  sums are formed with an extended exponent where b - a, rho u or
+ *  rho u (b - a) leaves the double range, so the result is right
+ *  wherever it is a double) and _error.  The integral needs a solved
+ *  wave pattern: SB_ERANGE also where a wave position or the delta's
+ *  mass overflows, even if [a, b] holds a finite mass. */
 int sb_pgd_riemann_solve(const sb_pgd_riemann *rp, double t,
                          sb_pgd_riemann_sol *sol);
 

@@ -231,7 +231,12 @@ void sb_spray_post_collision(const double v1[3], const double v2[3],
 
 /** Does a collision with deflection cosine cos_chi = sigma . g/|g|
  *  coalesce for the critical angle theta_cr?  Returns 1 iff
- *  b^2/(r+r_*)^2 = (1 + cos_chi)/2 <= sin^2(theta_cr). */
+ *  b^2/(r+r_*)^2 = (1 + cos_chi)/2 <= sin^2(theta_cr) (0 for
+ *  theta_cr <= 0).  The int result has no NaN: when cos_chi or theta_cr
+ *  is NaN, or theta_cr is infinite, it returns 0 and records SB_EDOM
+ *  naming this function (sb_last_status, sb_last_error); a caller that
+ *  must tell this from "does not coalesce" calls sb_clear_error() first
+ *  and checks sb_last_status().  Infinite cos_chi is compared as given. */
 int sb_spray_coalesces(double cos_chi, double theta_cr);
 
 /** Weber-number dependent coalescence boundary of O'Rourke (1981, PhD
@@ -324,13 +329,20 @@ void sb_spray_tab_params_default(sb_spray_tab_params *p);
  *  radius r, from (y0, ydot0).  Underdamped case (omega^2 > 0) exact;
  *  overdamped and critical cases use the matching closed forms.  Returns
  *  SB_EDOM for non-positive r, sigma, rho_l, negative rho_g, mu, Cd, t or
- *  any argument not finite; SB_ERANGE where w0^2, 1/t_d or We/12 leave the
- *  double range (r near 1e-100 or 1e100 m, urel near 1e150 m/s), where y
- *  or y' overflows, and where the phase omega t exceeds 2^52 while
- *  e^{-t/t_d} > 0 (the oscillation is not resolved in double precision;
- *  the phase error is ~ omega t DBL_EPSILON radians).  The same
- *  SB_EDOM/SB_ERANGE domain holds for sb_spray_tab_breakup_time (SB_ERANGE
- *  also when y' at breakup overflows) and sb_spray_tab_we_crit. */
+ *  any argument not finite; SB_ERANGE where We/12 exceeds DBL_MAX (urel
+ *  near 1e150 m/s for ordinary drops), where y or y' overflows, and where
+ *  the phase omega t exceeds 2^52 while e^{-t/t_d} > 0 (the oscillation
+ *  is not resolved in double precision; the phase error is
+ *  ~ omega t DBL_EPSILON radians).  Where w0^2, 1/t_d, 1/t_d^2, We/12 or
+ *  the initial state's products (y0/t_d, w0^2 y0, y0'/t_d) leave the
+ *  normal range (r near 1e-100 or 1e100 m, y0 or y0' near DBL_MAX) the
+ *  oscillator is solved in units scaled by powers of two (time by
+ *  1/max(w0, 1/t_d), y by up to 2^-1020), its scales formed with an
+ *  extended exponent and the overdamped slow rate as
+ *  -w0^2/(k + 1/t_d) (k = sqrt(1/t_d^2 - w0^2)); other arguments give the
+ *  same bits as the plain formulas.  The same SB_EDOM/SB_ERANGE domain
+ *  holds for sb_spray_tab_breakup_time (SB_ERANGE also when y' at
+ *  breakup overflows) and sb_spray_tab_we_crit. */
 int sb_spray_tab_state(double t, double r, double urel, double rho_g,
                        double rho_l, const sb_spray_liquid *liq, double Cd,
                        double y0, double ydot0, double *y, double *ydot);
@@ -443,9 +455,13 @@ double sb_spray_reitz_radius_frozen(double a0, double R, double c, double t);
  *  radius) at constant U: t(a) = int_a^a0 tau(x)/(x - R(x)) dx by GSL
  *  adaptive quadrature, inverted with GSL Brent; relative accuracy ~1e-10.
  *  Stops at the stable radius (a_inf with a_inf = R(a_inf)).  SB_EDOM as
- *  sb_spray_reitz_wave (message naming this function) or for t < 0;
- *  SB_ERANGE where the fits at a0 (plain double arithmetic, as the
- *  quadrature uses them) leave the normal range. */
+ *  sb_spray_reitz_wave (message naming this function) or for t < 0.
+ *  Where the plain fits leave the normal double range at a0 or near the
+ *  stable radius (We^1.67, a^3 over/underflowing: a0 ~ 1e-150 or 1e120 m,
+ *  U ~ 1e100 m/s) the quadrature uses the fits through logarithms and an
+ *  integrand scaled by a power of two (relative accuracy ~1e-10 still).
+ *  The result lies in [a_inf, a0]; SB_ERANGE only where a(t) is below
+ *  DBL_MIN (a_inf there: U ~ 1e300 m/s). */
 int sb_spray_reitz_radius(double a0, double t, double U, double rho_g,
                           double rho_l, const sb_spray_liquid *liq,
                           const sb_spray_reitz_params *rp, double *a);

@@ -73,6 +73,12 @@ void sb_spray_post_collision(const double v1[3], const double v2[3],
  * coalescence term. */
 int sb_spray_coalesces(double cos_chi, double theta_cr)
 {
+  /* an int result has no NaN: 0 with SB_EDOM recorded (header) */
+  if (isnan(cos_chi) || isnan(theta_cr) || isinf(theta_cr)) {
+    sbi_error(SB_EDOM, __func__, "cos_chi = %g, theta_cr = %g: NaN or an "
+              "infinite angle", cos_chi, theta_cr);
+    return 0;
+  }
   if (!(theta_cr > 0))
     return 0;
   double s = sin(theta_cr);

@@ -185,18 +185,40 @@ double sb_spray_reitz_radius_frozen(double a0, double R, double c, double t)
 
 /* ------------------------------------------------ full model at constant U */
 
+/* The quadrature uses the plain fits (lg = 0) unless they leave the
+ * normal range at a0 or near the stable radius; then (lg = 1) the fits
+ * through logarithms, the variable u = x 2^-ex (a0 2^-ex in [1, 2): the
+ * interval's width stays finite) and the integrand scaled by 2^-sc (the
+ * time by the same power of two) so that CQUAD sees values of order
+ * one. */
 typedef struct {
   double U, rho_g, rho_l;
   const sb_spray_liquid *liq;
   const sb_spray_reitz_params *rp;
   double target;
   double a0;
+  int lg, sc, ex;
 } full_ctx;
+
+/* log of tau(x) = 3.726 B1 x/(Lambda Omega) and R(x) = B0 Lambda(x) in
+ * the log mode */
+static double log_tau_R(const full_ctx *c, double x, double *R)
+{
+  double lL, lO;
+  wave_log(x, c->U, c->rho_g, c->rho_l, c->liq, &lL, &lO);
+  *R = c->rp->B0 * exp(lL);
+  return log(3.726 * c->rp->B1) + log(x) - lL - lO;
+}
 
 static double rate_gap(double x, void *p) /* x - R(x) */
 {
   const full_ctx *c = p;
   double L, O;
+  if (c->lg) {
+    double R;
+    log_tau_R(c, x, &R);
+    return x - R;
+  }
   wave(x, c->U, c->rho_g, c->rho_l, c->liq, &L, &O);
   return x - c->rp->B0 * L;
 }
@@ -205,6 +227,11 @@ static double integrand(double x, void *p) /* tau(x)/(x - R(x)) */
 {
   const full_ctx *c = p;
   double L, O;
+  if (c->lg) { /* x is u: tau(x)/(x - R) dx/du 2^-sc */
+    x = ldexp(x, c->ex);
+    double R, lt = log_tau_R(c, x, &R);
+    return exp(lt + (c->ex - c->sc) * M_LN2 - log(x - R));
+  }
   wave(x, c->U, c->rho_g, c->rho_l, c->liq, &L, &O);
   double tau = 3.726 * c->rp->B1 * x / (L * O);
   return tau / (x - c->rp->B0 * L);
@@ -213,14 +240,16 @@ static double integrand(double x, void *p) /* tau(x)/(x - R(x)) */
 static double time_to(double a, void *p) /* t(a) - target */
 {
   full_ctx *c = p;
+  const double target = ldexp(c->target, -c->sc);
   if (a >= c->a0)
-    return -c->target;
+    return -target;
   gsl_function F = {integrand, c};
   double res, err;
-  int st = sbi_integrate(&F, a, c->a0, 0.0, 1e-12, 1000, &res, &err);
+  int st = sbi_integrate(&F, ldexp(a, -c->ex), ldexp(c->a0, -c->ex), 0.0,
+                         1e-12, 1000, &res, &err);
   /* Brent needs the sign: the estimate is kept (as it was with QAGS)
    * when CQUAD's error estimate is above the 1e-12 asked for */
-  return (st && st != SB_EMAXITER) ? NAN : res - c->target;
+  return (st && st != SB_EMAXITER) ? NAN : res - target;
 }
 
 /* Root in [lo, hi] to rtol (relative); NaN if Brent fails. */
@@ -230,38 +259,72 @@ static double brent(gsl_function *F, double lo, double hi, double rtol)
   return sbi_brent(F, lo, hi, 0.0, rtol, 300, &x) ? NAN : x;
 }
 
+/* Are the plain fits at x in the normal range (as the quadrature needs
+ * them)? */
+static int plain_fits_ok(const full_ctx *c, double x)
+{
+  double L, O;
+  wave(x, c->U, c->rho_g, c->rho_l, c->liq, &L, &O);
+  return normal_pos(L) && normal_pos(O) && normal_pos(L * O);
+}
+
+/* Stable radius a_inf: x - B0 Lambda(x) changes sign below a0 (Lambda/x
+ * grows without bound as x -> 0 through the Ohnesorge number); 0 if no
+ * sign change is found within `halvings` halvings of a0 (or above
+ * DBL_MIN). */
+static double stable_radius(full_ctx *c, int halvings)
+{
+  double lo = c->a0;
+  for (int k = 0; k < halvings && 0.5 * lo >= DBL_MIN && rate_gap(lo, c) > 0;
+       k++)
+    lo *= 0.5;
+  gsl_function G = {rate_gap, c};
+  return rate_gap(lo, c) > 0 ? 0.0 : brent(&G, lo, c->a0, 1e-15);
+}
+
 int sb_spray_reitz_radius(double a0, double t, double U, double rho_g,
                           double rho_l, const sb_spray_liquid *liq,
                           const sb_spray_reitz_params *rp, double *a)
 {
-  double L, O;
   if (!rp || !a)
     return sbi_error(SB_EDOM, __func__, "NULL argument");
   int st = wave_check(a0, U, rho_g, rho_l, liq, __func__);
   if (st)
     return st;
-  wave(a0, U, rho_g, rho_l, liq, &L, &O);
-  if (!normal_pos(L) || !normal_pos(O) || !normal_pos(L * O))
-    return sbi_error(SB_ERANGE, __func__, "Lambda = %g, Omega = %g at a0 = "
-                     "%g: the fits leave the double range", L, O, a0);
   if (!(t >= 0) || !(rp->B0 > 0) || !(rp->B1 > 0))
     return sbi_error(SB_EDOM, __func__, "need t >= 0, B0, B1 > 0");
-  full_ctx c = {U, rho_g, rho_l, liq, rp, t, a0};
+  full_ctx c = {U, rho_g, rho_l, liq, rp, t, a0, 0, 0, 0};
+  c.lg = !plain_fits_ok(&c, a0);
   if (rate_gap(a0, &c) <= 0 || t == 0) {
     *a = a0;
     return SB_SUCCESS;
   }
-  /* stable radius a_inf: x - B0 Lambda(x) changes sign below a0 (Lambda/x
-   * grows without bound as x -> 0 through the Ohnesorge number) */
-  double lo = a0;
-  for (int k = 0; k < 60 && rate_gap(lo, &c) > 0; k++)
-    lo *= 0.5;
-  gsl_function G = {rate_gap, &c};
-  double ainf = rate_gap(lo, &c) > 0 ? 0.0 : brent(&G, lo, a0, 1e-15);
-  /* t(a) decreases from +inf at a_inf to 0 at a0 */
+  double ainf = stable_radius(&c, 60);
   double hi = a0, low = ainf + (a0 - ainf) * 1e-14;
+  if (!c.lg && !plain_fits_ok(&c, low)) {
+    /* the plain fits leave the range on the way to a_inf */
+    c.lg = 1;
+    ainf = stable_radius(&c, 60);
+    low = ainf + (a0 - ainf) * 1e-14;
+  }
+  if (c.lg) {
+    /* halve down to the smallest normal radii (a_inf may be many orders
+     * below a0, or below DBL_MIN: then 0); bracket within 1e-12 of
+     * a_inf; scale by the integrand at a0 */
+    ainf = stable_radius(&c, 2200);
+    low = ainf > 0 ? fmin(ainf * (1.0 + 0x1p-40), ainf + (a0 - ainf) * 1e-14)
+                   : DBL_MIN;
+    double R, lt = log_tau_R(&c, a0, &R);
+    c.ex = ilogb(a0);
+    c.sc = (int)floor((lt - log(a0 - R)) / M_LN2) + c.ex;
+  }
+  /* t(a) decreases from +inf at a_inf to 0 at a0 */
   gsl_function F = {time_to, &c};
   double fl = time_to(low, &c);
+  if (fl <= 0 && c.lg && ainf == 0)
+    return sbi_error(SB_ERANGE, __func__, "a(t) < DBL_MIN: the radius "
+                     "relaxes below the normal double range (a0 = %g, "
+                     "U = %g)", a0, U);
   if (fl <= 0)
     *a = low; /* closer to a_inf than the bracket can resolve */
   else

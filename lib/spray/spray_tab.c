@@ -4,6 +4,7 @@
  * critical Weber number and the children's Sauter radius from energy
  * conservation.  Derivations: docs/spray.md, "TAB". */
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <string.h>
 
@@ -28,11 +29,74 @@ void sb_spray_tab_params_default(sb_spray_tab_params *p)
 
 /* Oscillator z'' + 2 beta z' + w0^2 z = 0 for z = y - y_eq, with
  * y_eq = F/w0^2 = We/12, F = (2/3)(rho_g/rho_l) U^2/r^2,
- * w0^2 = 8 sigma/(rho_l r^3), beta = 1/t_d = Cd mu_l/(2 rho_l r^2). */
+ * w0^2 = 8 sigma/(rho_l r^3), beta = 1/t_d = Cd mu_l/(2 rho_l r^2).
+ * Where these scales or the initial state leave the plain double range
+ * the oscillator is kept in scaled units: time t = 2^ks tau and
+ * z = 2^ms Z (powers of two, exact), so beta, w0^2, w2, z0, zd0 below
+ * are 2^ks beta, 2^(2 ks) w0^2, ..., z0 2^-ms, ydot0 2^(ks - ms); ks =
+ * ms = 0 in the plain case, which thereby keeps its bits. */
 typedef struct {
   double yeq, beta, w02, w2; /* w2 = w0^2 - beta^2 */
   double z0, zd0;
+  double km, kp; /* overdamped: k - beta, k + beta, k = sqrt(-w2) */
+  double ys;     /* yeq 2^-ms */
+  int ks, ms;
 } osc;
+
+/* x in the normal range (or 0 where zero is exact: zero_ok) */
+static int nrm(double x, int zero_ok)
+{
+  const double a = fabs(x);
+  return (zero_ok && x == 0) || (a >= DBL_MIN && a <= DBL_MAX);
+}
+
+/* The scaled oscillator (see osc) with extended-exponent scales. */
+static int osc_scaled(osc *o, double r, double urel, double rho_g,
+                      double rho_l, const sb_spray_liquid *liq, double Cd,
+                      double y0, double ydot0, const char *func)
+{
+  const sbi_xd R = sbi_xd_of(r), Rl = sbi_xd_of(rho_l);
+  const sbi_xd r2 = sbi_xd_mul(R, R), r3 = sbi_xd_mul(r2, R);
+  const sbi_xd w02 = sbi_xd_div(sbi_xd_mul(sbi_xd_of(8.0),
+                                           sbi_xd_of(liq->sigma)),
+                                sbi_xd_mul(Rl, r3));
+  const sbi_xd b = sbi_xd_div(sbi_xd_mul(sbi_xd_of(Cd),
+                                         sbi_xd_of(liq->mu_l)),
+                              sbi_xd_mul(sbi_xd_of(2.0), sbi_xd_mul(Rl, r2)));
+  /* the faster rate max(beta, w0) = m 2^e becomes m: ks = -e */
+  const sbi_xd w0 = sbi_xd_sqrt(w02);
+  const int e = (b.m != 0.0 && (b.e > w0.e || (b.e == w0.e && b.m > w0.m)))
+                    ? b.e : w0.e;
+  o->ks = -e;
+  o->beta = sbi_xd_val(sbi_xd_norm(b.m, b.e + o->ks));
+  o->w02 = sbi_xd_val(sbi_xd_norm(w02.m, w02.e + 2 * o->ks));
+  o->w2 = o->w02 - o->beta * o->beta;
+  /* y_eq = We/12 = rho_g U^2 r/(12 sigma) */
+  const sbi_xd U = sbi_xd_of(urel);
+  const sbi_xd yq = sbi_xd_div(
+      sbi_xd_mul(sbi_xd_mul(sbi_xd_of(rho_g), sbi_xd_mul(U, U)), R),
+      sbi_xd_mul(sbi_xd_of(12.0), sbi_xd_of(liq->sigma)));
+  o->yeq = sbi_xd_val(yq);
+  if (!isfinite(o->yeq))
+    return sbi_error(SB_ERANGE, func, "We/12 = 2^%d leaves the double "
+                     "range", yq.e);
+  const sbi_xd z0 = sbi_xd_add(sbi_xd_of(y0), sbi_xd_of(-o->yeq));
+  const sbi_xd zd0 = sbi_xd_norm(sbi_xd_of(ydot0).m,
+                                 sbi_xd_of(ydot0).e + o->ks);
+  /* |Z0|, |Zd0| < 2^1020: the sums of osc_eval stay finite */
+  int em = z0.m != 0.0 ? z0.e : INT_MIN;
+  if (zd0.m != 0.0 && zd0.e > em)
+    em = zd0.e;
+  o->ms = em > 1020 ? em - 1020 : 0;
+  o->z0 = sbi_xd_val(sbi_xd_norm(z0.m, z0.e - o->ms));
+  o->zd0 = sbi_xd_val(sbi_xd_norm(zd0.m, zd0.e - o->ms));
+  o->ys = ldexp(o->yeq, -o->ms);
+  if (o->w2 < 0) { /* k - beta = -w0^2/(k + beta) without cancellation */
+    o->kp = sqrt(-o->w2) + o->beta;
+    o->km = -o->w02 / o->kp;
+  }
+  return SB_SUCCESS;
+}
 
 static int osc_init(osc *o, double r, double urel, double rho_g,
                     double rho_l, const sb_spray_liquid *liq, double Cd,
@@ -51,12 +115,37 @@ static int osc_init(osc *o, double r, double urel, double rho_g,
   o->w02 = 8.0 * liq->sigma / (rho_l * r * r * r);
   o->beta = Cd * liq->mu_l / (2.0 * rho_l * r * r);
   o->w2 = o->w02 - o->beta * o->beta;
-  o->yeq = (2.0 / 3.0) * (rho_g / rho_l) * urel * urel / (r * r) / o->w02;
+  const double f = (2.0 / 3.0) * (rho_g / rho_l) * urel,
+               fu = f * urel, fr = fu / (r * r);
+  o->yeq = fr / o->w02;
   o->z0 = y0 - o->yeq;
   o->zd0 = ydot0;
-  if (!(o->w02 > 0) || !isfinite(o->w02) || !isfinite(o->beta) ||
-      !isfinite(o->w2) || !isfinite(o->yeq) || !isfinite(o->z0) ||
-      !isfinite(o->beta * o->z0) || !isfinite(o->w02 * o->z0))
+  o->ks = o->ms = 0;
+  o->ys = o->yeq;
+  const double cm = Cd * liq->mu_l, bz = o->beta * o->z0,
+               bzd = o->beta * o->zd0, wz = o->w02 * o->z0;
+  /* plain: every scale and product in the normal range (or exactly 0) */
+  const int plain =
+      nrm(rho_l * r * r * r, 0) && nrm(o->w02, 0) &&
+      (cm == 0 || (nrm(cm, 0) && nrm(2.0 * rho_l * r * r, 0) &&
+                   nrm(o->beta, 0))) &&
+      isfinite(o->w2) &&
+      (rho_g == 0 || urel == 0 ||
+       (nrm(rho_g / rho_l, 0) && nrm(f, 0) && nrm(fu, 0) &&
+        nrm(r * r, 0) && nrm(fr, 0) && nrm(o->yeq, 0))) &&
+      isfinite(o->z0) && isfinite(bz) && isfinite(wz) && isfinite(bzd) &&
+      isfinite(o->zd0 + bz) && isfinite(bzd + wz);
+  if (!plain) {
+    int st = osc_scaled(o, r, urel, rho_g, rho_l, liq, Cd, y0, ydot0, func);
+    if (st)
+      return st;
+  } else if (o->w2 < 0) {
+    const double k = sqrt(-o->w2);
+    o->km = k - o->beta;
+    o->kp = k + o->beta;
+  }
+  if (!isfinite(o->w02) || !isfinite(o->beta) || !isfinite(o->w2) ||
+      !isfinite(o->z0) || !isfinite(o->zd0))
     return sbi_error(SB_ERANGE, func, "the oscillator's scales leave the "
                      "double range (w0^2 = %g, 1/t_d = %g, We/12 = %g)",
                      o->w02, o->beta, o->yeq);
@@ -64,7 +153,8 @@ static int osc_init(osc *o, double r, double urel, double rho_g,
 }
 
 /* e^{-beta t} C(t) and e^{-beta t} S(t), C'' = -w2 C, S'' = -w2 S,
- * C(0) = 1, C'(0) = 0, S(0) = 0, S'(0) = 1, without overflow. */
+ * C(0) = 1, C'(0) = 0, S(0) = 0, S'(0) = 1, without overflow (t in the
+ * oscillator's units). */
 static void osc_cs(const osc *o, double t, double *ec, double *es)
 {
   double w2 = o->w2, b = o->beta;
@@ -80,22 +170,23 @@ static void osc_cs(const osc *o, double t, double *ec, double *es)
     *es = isinf(wt) ? 0.0 : e * sin(wt) / w;
   } else {
     double k = sqrt(-w2);
-    double ep = exp((k - b) * t), em = exp(-(k + b) * t);
+    double ep = exp(o->km * t), em = exp(-o->kp * t);
     *ec = 0.5 * (ep + em);
     *es = 0.5 * (ep - em) / k;
   }
 }
 
 /* z = e^{-bt}[z0 C + (zd0 + b z0) S],  z' = e^{-bt}[zd0 C - (b zd0 +
- * w0^2 z0) S] */
+ * w0^2 z0) S], at t in the oscillator's units; y, y' in SI units. */
 static void osc_eval(const osc *o, double t, double *y, double *yd)
 {
   double ec, es;
   osc_cs(o, t, &ec, &es);
   if (y)
-    *y = o->yeq + o->z0 * ec + (o->zd0 + o->beta * o->z0) * es;
+    *y = ldexp(o->ys + o->z0 * ec + (o->zd0 + o->beta * o->z0) * es, o->ms);
   if (yd)
-    *yd = o->zd0 * ec - (o->beta * o->zd0 + o->w02 * o->z0) * es;
+    *yd = ldexp(o->zd0 * ec - (o->beta * o->zd0 + o->w02 * o->z0) * es,
+                o->ms - o->ks);
 }
 
 int sb_spray_tab_state(double t, double r, double urel, double rho_g,
@@ -108,12 +199,13 @@ int sb_spray_tab_state(double t, double r, double urel, double rho_g,
     return st;
   if (!(t >= 0) || !isfinite(t))
     return sbi_error(SB_EDOM, __func__, "t = %g: must be finite >= 0", t);
-  if (o.w2 > 0 && exp(-o.beta * t) > 0 && sqrt(o.w2) * t > 0x1p52)
+  const double tau = ldexp(t, -o.ks); /* the oscillator's time unit */
+  if (o.w2 > 0 && exp(-o.beta * tau) > 0 && sqrt(o.w2) * tau > 0x1p52)
     return sbi_error(SB_ERANGE, __func__, "phase omega t = %g: the "
                      "oscillation is not resolved in double precision",
-                     sqrt(o.w2) * t);
+                     sqrt(o.w2) * tau);
   double yy, yd;
-  osc_eval(&o, t, &yy, &yd);
+  osc_eval(&o, tau, &yy, &yd);
   if (!isfinite(yy) || !isfinite(yd))
     return sbi_error(SB_ERANGE, __func__, "y = %g, y' = %g overflow", yy,
                      yd);
@@ -203,6 +295,8 @@ int sb_spray_tab_breakup_time(double r, double urel, double rho_g,
       *ydot_b = ydot0;
     return SB_SUCCESS;
   }
+  /* in the oscillator's time unit (tb = 2^ks t) */
+  const double tm = ldexp(tmax, -o.ks);
   double scale = o.w02 > 0 ? 1.0 / sqrt(o.w02) : 1.0;
   double tol = 1e-12 * scale;
   /* envelope of |z|: e^{-bt} sqrt(A^2 + B^2) (underdamped) */
@@ -212,10 +306,10 @@ int sb_spray_tab_breakup_time(double r, double urel, double rho_g,
     amp = sqrt(o.z0 * o.z0 + B * B);
   }
   double a = 0.0;
-  for (int seg = 0; seg < 100000 && a < tmax; seg++) {
+  for (int seg = 0; seg < 100000 && a < tm; seg++) {
     double b = next_extremum(&o, a);
-    if (b > tmax)
-      b = tmax;
+    if (b > tm)
+      b = tm;
     double t1 = cross_in(&o, a, b, 1.0, tol);
     double t2 = cross_in(&o, a, b, -1.0, tol);
     double t = isnan(t1) ? t2 : (isnan(t2) ? t1 : fmin(t1, t2));
@@ -227,14 +321,14 @@ int sb_spray_tab_breakup_time(double r, double urel, double rho_g,
         return sbi_error(SB_ERANGE, __func__, "y' = %g at breakup "
                          "overflows", yd);
       }
-      *tb = t;
+      *tb = ldexp(t, o.ks);
       if (ydot_b)
         *ydot_b = yd;
       return SB_SUCCESS;
     }
     a = b;
     if (o.w2 > 0) {
-      double env = amp * exp(-o.beta * a);
+      double env = ldexp(amp * exp(-o.beta * a), o.ms);
       if (o.yeq + env < 1.0 && o.yeq - env > -1.0)
         break; /* the decaying oscillation can no longer reach |y| = 1 */
     }
