@@ -12,6 +12,7 @@
 #include <smolbridge/langevin.h>
 
 #include "refdata.h"
+#include "sweep.h"
 #include "testutil.h"
 
 /* Accuracy promised for the moments (the specification asks for 1e-12
@@ -598,7 +599,7 @@ END_TEST
  * (sb_last_status for the plain forms, after sb_clear_error), its
  * outputs in out[0..n-1] (n returned in *n) and the name that its error
  * messages must carry. */
-typedef int (*xfn)(const double *a, double *out, int *n, const char **nm);
+typedef sbt_xfn xfn;
 
 #define PLAIN(NAME, EXPR)                                                   \
   static int NAME(const double *a, double *out, int *n, const char **nm)   \
@@ -803,51 +804,14 @@ START_TEST(test_extreme_arguments)
       {x_wunsch_dt, 3, 1, {1e-6, 1e-4, 0.13}},
       {x_wunsch_dt_brownian, 4, 1, {1e-6, 1000, 300, 0.13}},
   };
-  const double ext[] = {1e-320, -1e-320, 1e-300, -1e-300, 0.0, 1e300,
-                        -1e300, DBL_MAX, -DBL_MAX, INFINITY, -INFINITY,
-                        NAN};
-  const int next = (int)(sizeof ext / sizeof ext[0]);
   int nbad = 0; /* every failure is printed, then counted */
-#define XCHECK(cond, ...)                                                   \
-  do {                                                                      \
-    if (!(cond)) {                                                          \
-      fprintf(stderr, __VA_ARGS__);                                         \
-      fputc('\n', stderr);                                                 \
-      nbad++;                                                               \
-    }                                                                       \
-  } while (0)
   xrng = gsl_rng_alloc(gsl_rng_mt19937);
   gsl_rng_set(xrng, 20261129);
+  const int na = (int)(sizeof k[0].a / sizeof k[0].a[0]);
   for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
-    for (int i = 0; i < k[f].n; i++)
-      for (int e = 0; e < next; e++) {
-        double a[9], out[5];
-        int n;
-        const char *nm;
-        memcpy(a, k[f].a, sizeof a);
-        a[i] = ext[e];
-        sb_clear_error();
-        const int st = k[f].f(a, out, &n, &nm);
-        if (st == SB_SUCCESS) {
-          for (int j = 0; j < n; j++)
-            XCHECK(isfinite(out[j]) && (j >= k[f].nonneg ||
-                                               out[j] >= 0),
-                          "%s, argument %d = %g: output %d = %g with "
-                          "status 0", nm, i, ext[e], j, out[j]);
-        } else {
-          XCHECK(st == SB_EDOM || st == SB_ERANGE,
-                        "%s, argument %d = %g: status %d", nm, i, ext[e],
-                        st);
-          XCHECK(strstr(sb_last_error(), nm) != NULL,
-                        "%s, argument %d = %g: message \"%s\"", nm, i,
-                        ext[e], sb_last_error());
-          if (n == 1)
-            XCHECK(isnan(out[0]), "%s, argument %d = %g: %g with "
-                          "status %d", nm, i, ext[e], out[0], st);
-        }
-      }
+    nbad += sbt_sweep_vec(k[f].f, k[f].a, na, k[f].n,
+                          SBT_SWEEP_FIRST(k[f].nonneg), 0, SBT_SWEEP_NAN, f);
   gsl_rng_free(xrng);
-#undef XCHECK
   /* The bridge mean does not depend on B (the gain is unit-free): at
    * B = 1e-320 and 1e300 (the scales B sqrt(tau), B tau^1.5 outside the
    * normal range: the mean formed without them) it is the one at B = 1,

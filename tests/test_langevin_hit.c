@@ -34,6 +34,7 @@
 #include <smolbridge/stats.h>
 
 #include "langevin/langevin_hit_internal.h"
+#include "sweep.h"
 #include "testutil.h"
 
 /* Chord entry fraction of ra -> rb into |r| <= R, or -1. */
@@ -1505,14 +1506,7 @@ END_TEST
 
 static int hx_bad; /* failures of test_extreme_arguments, printed */
 
-#define HXCHECK(cond, ...)                                                  \
-  do {                                                                      \
-    if (!(cond)) {                                                          \
-      fprintf(stderr, __VA_ARGS__);                                         \
-      fputc('\n', stderr);                                                  \
-      hx_bad++;                                                             \
-    }                                                                       \
-  } while (0)
+#define HXCHECK(cond, ...) SBT_XCHECK(hx_bad, cond, __VA_ARGS__)
 
 static int finite_contact(const sb_langevin_contact *c, double dt)
 {
@@ -1549,10 +1543,8 @@ static void hx_check(int h, const char *nm, const char *what, double v,
  * NaN with an error. */
 START_TEST(test_extreme_arguments)
 {
-  const double ext[] = {1e-320, -1e-320, 1e-300, -1e-300, 0.0, 1e300,
-                        -1e300, DBL_MAX, -DBL_MAX, INFINITY, -INFINITY,
-                        NAN};
-  const int next = (int)(sizeof ext / sizeof ext[0]);
+  const double *ext = sbt_sweep_ext;
+  const int next = SBT_SWEEP_NEXT;
   gsl_rng *r = gsl_rng_alloc(gsl_rng_taus2);
   gsl_rng_set(r, 20261129);
   sb_langevin_hitter *w = sb_langevin_hitter_alloc(NULL);

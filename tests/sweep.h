@@ -1,0 +1,160 @@
+/* sweep.h — the extreme-argument sweep shared by the Check suites of the
+ * reference functions (test_langevin, test_spray, test_pgd_exact,
+ * test_langevin_hit, test_bridge, test_passage).
+ *
+ * What it checks: each argument of a function in turn is set to each value
+ * of a list of extremes (subnormal, tiny, huge, +-DBL_MAX, +-inf, NaN; the
+ * other arguments keep ordinary values), and the function must either
+ * succeed with finite outputs, or fail the documented way: an error status
+ * (SB_EDOM or SB_ERANGE), a plain return value of NaN and, for the
+ * vector form, an error message naming the public function.
+ *
+ * Why: the closed forms over- or underflow in intermediates (t/tau, B^2,
+ * d^3, 1/m, double-double products) long before their values leave the
+ * double range.  The sweep catches an inf or NaN returned with status 0,
+ * a crash or hang at a corner, and an error the caller cannot attribute.
+ * It does not check the values: each suite compares those at the corners
+ * with mpmath rows of its reference tables.
+ *
+ * Two lists:
+ *   sbt_sweep_ext  +-1e-320, +-1e-300, 0, +-1e300, +-DBL_MAX, +-inf, NaN
+ *                  (sbt_sweep_vec and the hand-written loops of
+ *                  test_langevin_hit)
+ *   sbt_sweep_dd   +-1e-320, +-1e-300, +-1e300, +-DBL_MAX, +-inf, 0, and
+ *                  2^+-995, 1e+-154, where double-double products or
+ *                  squares over/underflow (sbt_sweep_scalar)
+ * The order of the values is part of the sweep: a sampler drawing from one
+ * generator through the whole sweep sees the same stream every run. */
+#ifndef SB_SWEEP_H
+#define SB_SWEEP_H
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <check.h>
+#include <smolbridge/common.h>
+
+static const double sbt_sweep_ext[] = {
+    1e-320, -1e-320, 1e-300,  -1e-300,  0.0,       1e300,
+    -1e300, DBL_MAX, -DBL_MAX, INFINITY, -INFINITY, NAN};
+#define SBT_SWEEP_NEXT ((int)(sizeof sbt_sweep_ext / sizeof sbt_sweep_ext[0]))
+
+static const double sbt_sweep_dd[] = {
+    1e-320,   1e-300,  1e300,    DBL_MAX,   INFINITY,
+    -1e-320,  -1e-300, -1e300,   -DBL_MAX,  -INFINITY,
+    0.0,      0x1p995, 0x1p-995, 1e154,     1e-154};
+
+/* A check that does not stop the sweep: where cond is false, print the
+ * message (printf arguments) on stderr and count it in the int lvalue
+ * nbad.  The suite asserts nbad == 0 after the sweep, so every failing
+ * corner is listed, not only the first. */
+#define SBT_XCHECK(nbad, cond, ...)                                         \
+  do {                                                                      \
+    if (!(cond)) {                                                          \
+      fprintf(stderr, __VA_ARGS__);                                         \
+      fputc('\n', stderr);                                                  \
+      (nbad)++;                                                             \
+    }                                                                       \
+  } while (0)
+
+/* A function under the vector sweep: a wrapper that calls the public
+ * function with the arguments a[], stores its n outputs in out[] (at most
+ * SBT_SWEEP_MAXOUT), the public function's name in *nm, and returns its
+ * status. */
+typedef int (*sbt_xfn)(const double *a, double *out, int *n, const char **nm);
+enum { SBT_SWEEP_MAXARG = 16, SBT_SWEEP_MAXOUT = 8 };
+
+/* nonneg mask of sbt_sweep_vec: outputs 0 .. k-1 are >= 0 */
+#define SBT_SWEEP_FIRST(k) ((1u << (k)) - 1u)
+
+/* What sbt_sweep_vec expects of a function that fails (flags, or-ed):
+ * SBT_SWEEP_NAN   its single output is NaN (a plain return value);
+ * SBT_SWEEP_ZERO  its single output is 0 (an int result, which has no NaN);
+ * SBT_SWEEP_NO_ERANGE  SB_ERANGE is a failure too (outputs that always fit
+ *                 in a double, e.g. temperatures between two given ones). */
+enum { SBT_SWEEP_NAN = 1, SBT_SWEEP_ZERO = 2, SBT_SWEEP_NO_ERANGE = 4 };
+/* Each of the first narg arguments of f in turn over sbt_sweep_ext, the
+ * others from base[0 .. nbase-1] (nbase <= SBT_SWEEP_MAXARG; f may read
+ * all of them).  Status 0: every output finite, output j >= 0 where bit j
+ * of nonneg is set.  Otherwise: the status is SB_EDOM, SB_ERANGE (unless
+ * flags has SBT_SWEEP_NO_ERANGE) or `also' (0: no other), the message
+ * names *nm and, where f has a single output, that output is NaN or 0 as
+ * flags say.  row (the index in the suite's table) labels the messages.
+ * Returns the number of failed checks, each printed on stderr
+ * (SBT_XCHECK). */
+static inline int sbt_sweep_vec(sbt_xfn f, const double *base, int nbase,
+                                int narg, unsigned nonneg, int also,
+                                int flags, size_t row)
+{
+  int nbad = 0;
+  for (int i = 0; i < narg; i++)
+    for (int e = 0; e < SBT_SWEEP_NEXT; e++) {
+      const double x = sbt_sweep_ext[e];
+      double a[SBT_SWEEP_MAXARG] = {0}, out[SBT_SWEEP_MAXOUT];
+      int n;
+      const char *nm;
+      memcpy(a, base, (size_t)nbase * sizeof a[0]);
+      a[i] = x;
+      sb_clear_error();
+      const int st = f(a, out, &n, &nm);
+      if (st == SB_SUCCESS) {
+        for (int j = 0; j < n; j++)
+          SBT_XCHECK(nbad,
+                     isfinite(out[j]) && (!(nonneg >> j & 1u) || out[j] >= 0),
+                     "%s (row %zu), argument %d = %g: output %d = %g with "
+                     "status 0", nm, row, i, x, j, out[j]);
+      } else {
+        SBT_XCHECK(nbad,
+                   st == SB_EDOM ||
+                       (st == SB_ERANGE && !(flags & SBT_SWEEP_NO_ERANGE)) ||
+                       (also && st == also),
+                   "%s (row %zu), argument %d = %g: status %d", nm, row, i,
+                   x, st);
+        SBT_XCHECK(nbad, strstr(sb_last_error(), nm) != NULL,
+                   "%s (row %zu), argument %d = %g: message \"%s\"", nm, row,
+                   i, x, sb_last_error());
+        if ((flags & (SBT_SWEEP_NAN | SBT_SWEEP_ZERO)) && n == 1)
+          SBT_XCHECK(nbad,
+                     flags & SBT_SWEEP_ZERO ? out[0] == 0.0 : isnan(out[0]),
+                     "%s (row %zu), argument %d = %g: %g with status %d", nm,
+                     row, i, x, out[0], st);
+      }
+    }
+  return nbad;
+}
+
+/* A function under the scalar sweep: returns the public function's value
+ * (the suite's wrapper may map a documented non-finite value to 0). */
+typedef double (*sbt_sfn)(const double *a);
+
+/* Each of the narg arguments of f in turn over sbt_sweep_dd (leaving out
+ * +-inf unless with_inf), the others from base[0 .. narg-1]: the value is
+ * finite with status 0 (and >= 0 where nonneg is set), or NaN with an
+ * error status; never NaN or inf with status 0.  Stops the test at the
+ * first failure (ck_assert_msg), labelled with fidx, the index in the
+ * suite's table. */
+static inline void sbt_sweep_scalar(sbt_sfn f, const double *base, int narg,
+                                    int with_inf, int nonneg, size_t fidx)
+{
+  for (int i = 0; i < narg; i++)
+    for (size_t e = 0; e < sizeof sbt_sweep_dd / sizeof sbt_sweep_dd[0];
+         e++) {
+      const double x = sbt_sweep_dd[e];
+      double a[SBT_SWEEP_MAXARG];
+      if (isinf(x) && !with_inf)
+        continue;
+      memcpy(a, base, (size_t)narg * sizeof a[0]);
+      a[i] = x;
+      sb_clear_error();
+      const double v = f(a);
+      const int st = sb_last_status();
+      ck_assert_msg(isfinite(v) ? st == SB_SUCCESS && (!nonneg || v >= 0.0)
+                                : isnan(v) && st != SB_SUCCESS,
+                    "function %zu, argument %d = %g: %g with status %d",
+                    fidx, i, x, v, st);
+    }
+}
+
+#endif /* SB_SWEEP_H */
