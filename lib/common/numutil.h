@@ -229,6 +229,19 @@ static inline double sbi_xd_val(sbi_xd a)
   return ldexp(a.m, e);
 }
 
+/* The double nearest a as a public function's value: NaN and SB_ERANGE
+ * (recorded for func) where it exceeds DBL_MAX; 0 or a subnormal, without
+ * error, where it is below DBL_MIN. */
+static inline double sbi_xd_checked(sbi_xd a, const char *func)
+{
+  const double d = sbi_xd_val(a);
+  if (isfinite(d))
+    return d;
+  sbi_error(SB_ERANGE, func, "the value overflows a double at these "
+            "arguments");
+  return NAN;
+}
+
 /* log(a), a > 0 */
 static inline double sbi_xd_log(sbi_xd a)
 {

@@ -120,18 +120,6 @@ sbi_xd sbi_langevin_kern(int kind, sbi_xd h)
   return v;
 }
 
-/* The double nearest v; NaN and SB_ERANGE (recorded for func) where it
- * exceeds DBL_MAX. */
-static double xd_value(sbi_xd v, const char *func)
-{
-  const double d = sbi_xd_val(v);
-  if (isfinite(d))
-    return d;
-  sbi_error(SB_ERANGE, func, "the value overflows a double at these "
-            "arguments");
-  return NAN;
-}
-
 /* h = t/tau as an sbi_xd */
 static sbi_xd xd_h(double t, double tau)
 {
@@ -173,9 +161,9 @@ static int check_tbt(const char *func, double tau, double B, double t,
   {                                                                         \
     if (sbi_langevin_plain_ok(tau, B, t))                                   \
       return B * B * (TAUKP) * KERN(t / tau);                               \
-    return xd_value(MUL(MUL(MUL(X(B), X(B)), TAUK),                         \
-                        sbi_langevin_kern(KIND, xd_h(t, tau))),             \
-                    fn);                                                    \
+    return sbi_xd_checked(MUL(MUL(MUL(X(B), X(B)), TAUK),                   \
+                              sbi_langevin_kern(KIND, xd_h(t, tau))),       \
+                          fn);                                              \
   }                                                                         \
   int sb_langevin_##NAME##_e(double tau, double B, double t,                \
                              sb_result *res)                                \
@@ -212,7 +200,7 @@ double sb_langevin_var_stat(double tau, double B)
 {
   if (check_tbt(__func__, tau, B, 0.0, 0))
     return NAN;
-  return xd_value(MUL(MUL(MUL(X(0.5), X(B)), X(B)), X(tau)), __func__);
+  return sbi_xd_checked(MUL(MUL(MUL(X(0.5), X(B)), X(B)), X(tau)), __func__);
 }
 
 /* MSD = B^2 tau^3 (h - a), a = 1 - e^{-h}.  h - a cancels for small h
@@ -230,9 +218,10 @@ static double msd_val(double tau, double B, double t, const char *fn)
 {
   if (sbi_langevin_plain_ok(tau, B, t))
     return B * B * tau * tau * tau * sc_msd(t / tau);
-  return xd_value(MUL(MUL(MUL(MUL(MUL(X(B), X(B)), X(tau)), X(tau)), X(tau)),
-                      sbi_langevin_kern(SBI_LK_MSD, xd_h(t, tau))),
-                  fn);
+  return sbi_xd_checked(MUL(MUL(MUL(MUL(MUL(X(B), X(B)), X(tau)), X(tau)),
+                                X(tau)),
+                            sbi_langevin_kern(SBI_LK_MSD, xd_h(t, tau))),
+                        fn);
 }
 
 int sb_langevin_msd_e(double tau, double B, double t, sb_result *res)
@@ -262,17 +251,18 @@ double sb_langevin_msd_ballistic(double tau, double B, double t)
 {
   if (check_tbt(__func__, tau, B, t, 0))
     return NAN;
-  return xd_value(MUL(MUL(MUL(MUL(MUL(X(0.5), X(B)), X(B)), X(tau)), X(t)),
-                      X(t)),
-                  __func__);
+  return sbi_xd_checked(MUL(MUL(MUL(MUL(MUL(X(0.5), X(B)), X(B)), X(tau)),
+                                X(t)),
+                            X(t)),
+                        __func__);
 }
 
 double sb_langevin_msd_diffusive(double tau, double B, double t)
 {
   if (check_tbt(__func__, tau, B, t, 0))
     return NAN;
-  return xd_value(MUL(MUL(MUL(MUL(X(B), X(B)), X(tau)), X(tau)), X(t)),
-                  __func__);
+  return sbi_xd_checked(MUL(MUL(MUL(MUL(X(B), X(B)), X(tau)), X(tau)), X(t)),
+                        __func__);
 }
 
 double sb_langevin_vacf(double tau, double B, double t)
@@ -280,9 +270,9 @@ double sb_langevin_vacf(double tau, double B, double t)
   if (check_tbt(__func__, tau, B, t, 1))
     return NAN;
   /* |t|/tau = inf gives exp(-inf) = 0, the right value */
-  return xd_value(MUL(MUL(MUL(MUL(X(0.5), X(B)), X(B)), X(tau)),
-                      sbi_xd_expneg(fabs(t) / tau)),
-                  __func__);
+  return sbi_xd_checked(MUL(MUL(MUL(MUL(X(0.5), X(B)), X(B)), X(tau)),
+                            sbi_xd_expneg(fabs(t) / tau)),
+                        __func__);
 }
 
 int sb_langevin_moments(const sb_langevin *p, double t, double x0, double u0,

@@ -23,19 +23,6 @@ static int pos(double v) { return v > 0 && isfinite(v); }
 #define DIV(a, b) sbi_xd_div((a), (b))
 #define SQRT(a) sbi_xd_sqrt(a)
 
-/* The double nearest v; NaN and SB_ERANGE (recorded for func) where it
- * exceeds DBL_MAX (0 or a subnormal, without error, where it is below
- * DBL_MIN). */
-static double si_value(sbi_xd v, const char *func)
-{
-  const double d = sbi_xd_val(v);
-  if (isfinite(d))
-    return d;
-  sbi_error(SB_ERANGE, func, "the value overflows a double at these "
-            "arguments");
-  return NAN;
-}
-
 /* rho_p pi d_p^3 / 6 */
 static sbi_xd sphere_mass(double rho_p, double d_p)
 {
@@ -60,9 +47,9 @@ double sb_stokes_tau(double rho_p, double d_p, double mu_f, double cc)
   /* Mohaupt 2011, eq 1.4: tau_p = (rho_p/rho_f) d_p^2 / (18 nu_f),
    * mu = rho nu; the slip correction divides the drag by Cc, so tau_p is
    * multiplied. */
-  return si_value(DIV(MUL(MUL(MUL(X(rho_p), X(d_p)), X(d_p)), X(cc)),
-                      MUL(X(18.0), X(mu_f))),
-                  __func__);
+  return sbi_xd_checked(DIV(MUL(MUL(MUL(X(rho_p), X(d_p)), X(d_p)), X(cc)),
+                            MUL(X(18.0), X(mu_f))),
+                        __func__);
 }
 
 double sb_sphere_mass(double rho_p, double d_p)
@@ -72,7 +59,7 @@ double sb_sphere_mass(double rho_p, double d_p)
               "rho_p = %g, d_p = %g must be positive and finite", rho_p, d_p);
     return NAN;
   }
-  return si_value(sphere_mass(rho_p, d_p), __func__);
+  return sbi_xd_checked(sphere_mass(rho_p, d_p), __func__);
 }
 
 double sb_brownian_B(double T, double m_p, double tau_p)
@@ -84,9 +71,9 @@ double sb_brownian_B(double T, double m_p, double tau_p)
     return NAN;
   }
   /* Mohaupt 2011, eq A.5: B^2 tau_p / 2 = k_B T / m_p (equipartition) */
-  return si_value(SQRT(DIV(MUL(X(2.0 * SB_BOLTZMANN), X(T)),
-                           MUL(X(m_p), X(tau_p)))),
-                  __func__);
+  return sbi_xd_checked(SQRT(DIV(MUL(X(2.0 * SB_BOLTZMANN), X(T)),
+                                 MUL(X(m_p), X(tau_p)))),
+                        __func__);
 }
 
 double sb_einstein_D(double T, double mu_f, double d_p, double cc)
@@ -98,9 +85,9 @@ double sb_einstein_D(double T, double mu_f, double d_p, double cc)
     return NAN;
   }
   /* Einstein (1905), Stokes mobility Cc / (3 pi mu d) */
-  return si_value(DIV(MUL(MUL(X(SB_BOLTZMANN), X(T)), X(cc)),
-                      MUL(MUL(X(3.0 * M_PI), X(mu_f)), X(d_p))),
-                  __func__);
+  return sbi_xd_checked(DIV(MUL(MUL(X(SB_BOLTZMANN), X(T)), X(cc)),
+                            MUL(MUL(X(3.0 * M_PI), X(mu_f)), X(d_p))),
+                        __func__);
 }
 
 double sb_knudsen(double lambda, double d_p)
@@ -111,7 +98,7 @@ double sb_knudsen(double lambda, double d_p)
               d_p);
     return NAN;
   }
-  return si_value(DIV(MUL(X(2.0), X(lambda)), X(d_p)), __func__);
+  return sbi_xd_checked(DIV(MUL(X(2.0), X(lambda)), X(d_p)), __func__);
 }
 
 /* 1 + kn (A1 + A2 exp(-A3/kn)); NaN and SB_ERANGE (for func) where it
@@ -160,7 +147,8 @@ double sb_kolmogorov_time(double eps, double nu)
               "eps = %g, nu = %g must be positive and finite", eps, nu);
     return NAN;
   }
-  return si_value(SQRT(DIV(X(nu), X(eps))), __func__); /* Pope (2000), 6.1 */
+  /* Pope (2000), 6.1 */
+  return sbi_xd_checked(SQRT(DIV(X(nu), X(eps))), __func__);
 }
 
 double sb_kolmogorov_length(double eps, double nu)
@@ -171,8 +159,8 @@ double sb_kolmogorov_length(double eps, double nu)
     return NAN;
   }
   /* (nu^3/eps)^(1/4) = sqrt(nu) (nu/eps)^(1/4), no overflow of nu^3 */
-  return si_value(MUL(SQRT(X(nu)), SQRT(SQRT(DIV(X(nu), X(eps))))),
-                  __func__);
+  return sbi_xd_checked(MUL(SQRT(X(nu)), SQRT(SQRT(DIV(X(nu), X(eps))))),
+                        __func__);
 }
 
 double sb_stokes_number(double tau_p, double tau_f)
@@ -183,7 +171,7 @@ double sb_stokes_number(double tau_p, double tau_f)
               tau_f);
     return NAN;
   }
-  return si_value(DIV(X(tau_p), X(tau_f)), __func__);
+  return sbi_xd_checked(DIV(X(tau_p), X(tau_f)), __func__);
 }
 
 double sb_particle_reynolds(double d_p, double w, double nu_f)
@@ -194,7 +182,7 @@ double sb_particle_reynolds(double d_p, double w, double nu_f)
               "finite", d_p, nu_f, w);
     return NAN;
   }
-  return si_value(DIV(MUL(X(w), X(d_p)), X(nu_f)), __func__);
+  return sbi_xd_checked(DIV(MUL(X(w), X(d_p)), X(nu_f)), __func__);
 }
 
 double sb_collision_speed(double u2)
@@ -207,7 +195,7 @@ double sb_collision_speed(double u2)
    * s2 = 2 u2; collisions sample it with weight |w| (flux through the
    * contact sphere), so their mean speed is E|w|^2/E|w| =
    * 3 s2 / sqrt(8 s2/pi) = (3/2) sqrt(pi u2). */
-  return si_value(collision_speed(X(u2)), __func__);
+  return sbi_xd_checked(collision_speed(X(u2)), __func__);
 }
 
 double sb_wunsch_dt(double d_p, double u2, double frac)
@@ -219,8 +207,8 @@ double sb_wunsch_dt(double d_p, double u2, double frac)
     return NAN;
   }
   /* Mohaupt 2011, eq 3.2: (3/2) sqrt(pi T_p) dt_lim / d_p = frac */
-  return si_value(DIV(MUL(X(frac), X(d_p)), collision_speed(X(u2))),
-                  __func__);
+  return sbi_xd_checked(DIV(MUL(X(frac), X(d_p)), collision_speed(X(u2))),
+                        __func__);
 }
 
 double sb_wunsch_dt_brownian(double d_p, double rho_p, double T, double frac)
@@ -233,5 +221,6 @@ double sb_wunsch_dt_brownian(double d_p, double rho_p, double T, double frac)
   }
   /* sb_wunsch_dt with u2 = k_B T / m, m = rho_p pi d_p^3/6 */
   const sbi_xd u2 = DIV(MUL(X(SB_BOLTZMANN), X(T)), sphere_mass(rho_p, d_p));
-  return si_value(DIV(MUL(X(frac), X(d_p)), collision_speed(u2)), __func__);
+  return sbi_xd_checked(DIV(MUL(X(frac), X(d_p)), collision_speed(u2)),
+                        __func__);
 }
