@@ -938,6 +938,20 @@ START_TEST(test_errors)
 }
 END_TEST
 
+/* The four small grids of the extreme-argument tests below: discrete or
+ * sectional (meth), with or without the tail bin, 20 sizes. */
+static sb_pbe *extreme_pbe(int meth, int tail)
+{
+  sb_pbe_config c;
+  sb_pbe_config_init(&c);
+  c.method = meth ? SB_PBE_SECTIONAL : SB_PBE_DISCRETE;
+  c.nsizes = 20;
+  c.tail = tail;
+  sb_pbe *p = sb_pbe_alloc(&c);
+  ck_assert_ptr_nonnull(p);
+  return p;
+}
+
 /* sb_pbe_init_exp over n0, v0 in +-1e-320 ... +-DBL_MAX, inf, NaN, both
  * methods, with and without the tail: status 0 with a finite state, or an
  * error naming the function (then no initial state: sb_pbe_solve is
@@ -952,13 +966,7 @@ START_TEST(test_init_exp_extreme)
   const size_t ne = sizeof ext / sizeof ext[0];
   for (int meth = 0; meth < 2; meth++)
     for (int tail = 0; tail < 2; tail++) {
-      sb_pbe_config c;
-      sb_pbe_config_init(&c);
-      c.method = meth ? SB_PBE_SECTIONAL : SB_PBE_DISCRETE;
-      c.nsizes = 20;
-      c.tail = tail;
-      sb_pbe *p = sb_pbe_alloc(&c);
-      ck_assert_ptr_nonnull(p);
+      sb_pbe *p = extreme_pbe(meth, tail);
       for (size_t i = 0; i < ne; i++)
         for (size_t j = 0; j < ne; j++) {
           sb_clear_error();
@@ -1040,13 +1048,7 @@ START_TEST(test_rhs_extreme)
                         -INFINITY, NAN,  0.0};
   for (int meth = 0; meth < 2; meth++)
     for (int tail = 0; tail < 2; tail++) {
-      sb_pbe_config c;
-      sb_pbe_config_init(&c);
-      c.method = meth ? SB_PBE_SECTIONAL : SB_PBE_DISCRETE;
-      c.nsizes = 20;
-      c.tail = tail;
-      sb_pbe *p = sb_pbe_alloc(&c);
-      ck_assert_ptr_nonnull(p);
+      sb_pbe *p = extreme_pbe(meth, tail);
       for (size_t e = 0; e < sizeof ext / sizeof ext[0]; e++)
         for (int which = 0; which < 3; which++) {
           double n[20] = {1.0, 0.5}, d[20], t = 0.5;
