@@ -223,6 +223,31 @@ else
   fail "fill: the run in one go or its first part"
 fi
 
+# the same with steps: the room up to the end time is truncated to whole
+# particles, 25000/s x 1.1 x 400 dt + 100 = 430 on the boundary; the
+# restart's time after the checkpoint's 200 steps, summed step by step,
+# is below 200 dt in the last place (0.011999999999999983 s for 400 dt
+# = 0.012 s), and the room it gave was 429: the restart counts the steps
+# as the run in one go does, and the checkpoints are the same, byte for
+# byte
+sed -e 's/^t_end = .*/steps = 400/' -e 's/^dt = .*/dt = 3e-5/' \
+  -e 's/^inflow_rate = .*/inflow_rate = 25000/' "$out/fill.ini" \
+  > "$out/fills.ini"
+if "$sb" collide "$out/fills.ini" --set "run.output=$out/fills_0" \
+     --set "run.checkpoint=$out/fills_0.ck" > /dev/null 2>&1 &&
+   "$sb" collide "$out/fills.ini" --set "run.output=$out/fills_1" \
+     --set run.steps=200 --set "run.checkpoint=$out/fills.ck" \
+     > /dev/null 2>&1 &&
+   "$sb" collide "$out/fills.ini" --set "run.output=$out/fills_2" \
+     --set run.steps=200 --set "run.restart=$out/fills.ck" \
+     --set "run.checkpoint=$out/fills_2.ck" > /dev/null 2>&1; then
+  same fills particles inflows outflows particles\>200
+  cmp -s "$out/fills_0.ck" "$out/fills_2.ck" ||
+    fail "fills: the restart's checkpoint differs from the run in one go's"
+else
+  fail "fills: the run in one go, its first part or the restart"
+fi
+
 # first-contact counting with the recorded velocities (CHECKPOINT.firsthit
 # and .contacts): the first-contact results and contacts.csv
 split kernel "$ex/v12_kernel_firsthit.ini" run.t_end=8e-5 - \

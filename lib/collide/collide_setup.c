@@ -4,6 +4,7 @@
  * uniform placement), fluid, bridge detector, turbulence, agglomeration
  * and first-hit counting.  Errors name the section and key at fault. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -150,6 +151,31 @@ static long placed_count(const sbi_col_species *s, double vol, double pvol)
 static long species_count(const sbi_col_config *c, const sbi_col_species *s)
 {
   return placed_count(s, volume_of(c), particle_volume(c, s->radius));
+}
+
+/* The end time up to which the inflows get room: t_end, or with steps
+ * the run's steps in all times dt, done + steps with `done` the steps
+ * before the measured ones (a new run's warm-up, a restart's checkpoint).
+ * A restart thus computes what the run in one go computes, to the bit:
+ * its time after the checkpoint, summed step by step, can differ from
+ * steps times dt in the last place, and the room is truncated. */
+static double room_end(const sbi_col_config *c, uint64_t done, double dt)
+{
+  if (isfinite(c->t_end))
+    return c->t_end;
+  return (double)(done + (uint64_t)(c->steps > 0 ? c->steps : 0)) * dt;
+}
+
+/* The steps the warm-up of a new run takes: as collide_run.c runs it,
+ * from t = 0 in steps of dt summed while t < warmup - dt/2. */
+static uint64_t warmup_steps(const sbi_col_config *c)
+{
+  uint64_t n = 0;
+  if (!(c->warmup > 0) || !isfinite(c->warmup))
+    return 0;
+  for (double t = 0.0; t < c->warmup - 0.5 * c->dt; t += c->dt)
+    n++;
+  return n;
 }
 
 /* Room for the particles the inflows can bring in by time T (s, from
@@ -827,7 +853,10 @@ static int restart_field(sbi_col_config *c, sbi_col_run *r)
 /* The capacity of the run in one go, as a new run computes it: the
  * particles the [species] sections place (in the checkpoint's box, with
  * its species' radii) and the inflows' room up to the end time (t_end,
- * or the checkpoint's time and steps more; a restart has no warm-up).
+ * or the checkpoint's steps and steps more times dt, room_end; with
+ * another dt than the checkpoint's, or a checkpoint whose time is not
+ * its steps times its dt, the checkpoint's time and steps more: there
+ * is no run in one go).
  * The checkpoint holds the capacity of the run that wrote it, whose end
  * time was the checkpoint's: with inflows, too little for the rest.
  * Called before [run] dt is applied. */
@@ -847,9 +876,13 @@ static size_t restart_capacity(const sbi_col_config *c, const sb_engine *e)
                                    : PI * r * r);
   }
   const double dt = sbi_col_given(c, "run", "dt") ? c->dt : p->dt;
-  const double T = isfinite(c->t_end)
-                       ? c->t_end
-                       : sb_engine_time(e) + (double)c->steps * dt;
+  sb_engine_stats st;
+  sb_engine_get_stats(e, &st);
+  const int one_go = dt == p->dt && fabs((double)st.steps * dt - st.t) <=
+                                        0.5 * dt;
+  const double T = one_go || isfinite(c->t_end)
+                       ? room_end(c, st.steps, dt)
+                       : st.t + (double)c->steps * dt;
   total += inflow_room(c, T);
   return total > 0 ? (size_t)total : 0;
 }
@@ -959,11 +992,7 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
     /* inflows: room for every particle that can enter in the run (none
      * leaving), at most 2e6 more (a restart asks for the same:
      * restart_capacity) */
-    const double T = isfinite(c->t_end)
-                         ? c->t_end
-                         : (c->steps > 0 ? (double)c->steps * c->dt : 0.0) +
-                               (isfinite(c->warmup) ? c->warmup : 0.0);
-    total += inflow_room(c, T);
+    total += inflow_room(c, room_end(c, warmup_steps(c), c->dt));
     p.capacity = total > 0 ? (size_t)total : 1;
     r->e = sb_engine_alloc(&p);
     if (!r->e)
