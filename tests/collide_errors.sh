@@ -499,12 +499,13 @@ s/^radius = 1e-7/radius = 2e-7/'
 check "restart with another T" 2 "(its T differs" '4a\
 restart = '"$dir"'/nofh.ck
 s/^T = 300/T = 310/'
-# the Lees-Edwards boundaries of a checkpoint: the engine refuses walls
-# in x, named by their line
+# the Lees-Edwards boundaries of a checkpoint: walls in x are refused as
+# a new run with [fluid] type = shear refuses them, named by their line
+# (the engine's sb_engine_set_walls message before)
 "$sb" collide "$dir/base.ini" --set fluid.type=shear --set fluid.G=10 \
   --set "run.checkpoint=$dir/shear.ck" --set "run.output=$dir/shear" \
   > /dev/null 2>&1 || fail "a checkpoint of a sheared run could not be written"
-check "walls on restart with Lees-Edwards" 2 't.ini:14: [walls] x_lo = reflect, x_hi = reflect: sb_engine_set_walls: Lees-Edwards boundaries need x and y periodic' '4a\
+check "walls on restart with Lees-Edwards" 2 "t.ini:14: [walls] x_lo = reflect with [fluid] type = shear (the restart checkpoint's): its Lees-Edwards sliding boundaries need x and y periodic; put the walls in z, or give [fluid] lees_edwards = no" '4a\
 restart = '"$dir"'/shear.ck
 $a\
 [walls]\

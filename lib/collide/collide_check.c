@@ -161,13 +161,35 @@ static const char *wall_where(const sbi_col_config *c, int k)
              : sbi_col_where(c, "walls", faces[2 * k + 1]);
 }
 
+static const char *const FACES[] = {"x_lo", "x_hi", "y_lo", "y_hi", "z_lo",
+                                    "z_hi"};
+
+/* No walls in direction k (x or y) with the Lees-Edwards boundaries of
+ * the shear field: those of [fluid] type = shear, or on restart without
+ * [fluid] type the checkpoint's (sbi_col_fluid_check, once it is read). */
+static int walls_lees(sbi_col_config *c, int k)
+{
+  const int lo = 2 * k, hi = 2 * k + 1;
+  if (k >= 2 || strcmp(c->fluid, "shear") || !c->lees ||
+      (!strcmp(c->wall[lo], "periodic") && !strcmp(c->wall[hi], "periodic")))
+    return 0;
+  const int kept = c->restart[0] && !sbi_col_given(c, "fluid", "type");
+  const int w = sbi_col_given(c, "walls", FACES[lo]) ? lo : hi;
+  return sbi_col_fail(c, "%s: [walls] %s = %s with [fluid] type = shear "
+                      "(%s): its Lees-Edwards sliding boundaries need x "
+                      "and y periodic; put the walls in z, or give "
+                      "[fluid] lees_edwards = no",
+                      sbi_col_where(c, "walls", FACES[w]), FACES[w],
+                      c->wall[w], kept ? "the restart checkpoint's"
+                                       : sbi_col_where(c, "fluid", "type"));
+}
+
 /* [walls]: both faces of a walled direction walls, none in x or y with
  * the Lees-Edwards boundaries (sb_engine_set_walls refuses both; here
  * with the lines of the keys); the z faces of a 2-D box do nothing. */
 static int check_walls(sbi_col_config *c)
 {
-  static const char *const faces[] = {"x_lo", "x_hi", "y_lo", "y_hi",
-                                      "z_lo", "z_hi"};
+  const char *const *faces = FACES;
   if (c->dim == 2 && !c->restart[0])
     for (int f = 4; f < 6; f++) {
       unused(c, "walls", faces[f], "dim = 2 (no z direction)");
@@ -185,15 +207,8 @@ static int check_walls(sbi_col_config *c)
                           sbi_col_where(c, "walls", faces[w]), faces[w],
                           c->wall[w], faces[p], faces[p]);
     }
-    if (k < 2 && !plo && !strcmp(c->fluid, "shear") && c->lees) {
-      const int w = sbi_col_given(c, "walls", faces[lo]) ? lo : hi;
-      return sbi_col_fail(c, "%s: [walls] %s = %s with [fluid] type = shear "
-                          "(%s): its Lees-Edwards sliding boundaries need x "
-                          "and y periodic; put the walls in z, or give "
-                          "[fluid] lees_edwards = no",
-                          sbi_col_where(c, "walls", faces[w]), faces[w],
-                          c->wall[w], sbi_col_where(c, "fluid", "type"));
-    }
+    if (walls_lees(c, k))
+      return -1;
   }
   return 0;
 }
@@ -258,7 +273,8 @@ int sbi_col_fluid_check(sbi_col_config *c)
     sbi_col_warn(c, "%s: [fluid] lees_edwards ignored: the restart "
                  "checkpoint's field is %s (only type = shear uses it)",
                  sbi_col_where(c, "fluid", "lees_edwards"), c->fluid);
-  return sbi_col_msd_lees_check(c);
+  return walls_lees(c, 0) || walls_lees(c, 1) ? -1
+                                              : sbi_col_msd_lees_check(c);
 }
 
 int sbi_col_check(sbi_col_config *c)

@@ -303,6 +303,8 @@ static int check_explicit(sbi_col_config *c)
   return 0;
 }
 
+static int restart_fluid(sbi_col_config *c, sbi_col_run *r);
+
 /* Lees-Edwards images, gravity, per-species fluid properties and drag
  * laws, walls (docs/engine_forces.md); before the placement, whose
  * velocities include the settling velocities. */
@@ -327,6 +329,10 @@ static int setup_physics(sbi_col_config *c, sbi_col_run *r)
                               : sbi_col_where(c, "fluid", "type"),
                           on ? "yes" : "no", sb_last_error());
   }
+  /* on restart without [fluid] type, the checkpoint's field and images
+   * as the walls below meet them: refused as a new run refuses them */
+  if (restart_fluid(c, r))
+    return -1;
   if (c->ng) {
     double g[3] = {0, 0, 0};
     memcpy(g, c->g, (size_t)c->ng * sizeof(double));
@@ -360,8 +366,7 @@ static int setup_physics(sbi_col_config *c, sbi_col_run *r)
     if ((w[0] != SB_WALL_PERIODIC || w[1] != SB_WALL_PERIODIC ||
          (c->restart[0] && given)) &&
         sb_engine_set_walls(r->e, k, w[0], w[1])) {
-      /* sbi_col_check refuses what it can see; on restart the
-       * checkpoint's Lees-Edwards boundaries */
+      /* sbi_col_check and restart_fluid refuse what they can see */
       const char *f = faces[2 * k + !sbi_col_given(c, "walls", faces[2 * k])];
       return sbi_col_fail(c, "%s: [walls] %s = %s, %s = %s: %s",
                           sbi_col_where(c, "walls", f), faces[2 * k],
@@ -888,10 +893,10 @@ static size_t restart_capacity(const sbi_col_config *c, const sb_engine *e)
 }
 
 /* A restart without [fluid] type runs in the checkpoint's field, with
- * the Lees-Edwards images as setup_physics left them: the configuration
- * takes them over (summary.json names the field, the references are
- * those of its fluid) and the checks that depend on them run now
- * (sbi_col_check ran before the checkpoint was read). */
+ * the Lees-Edwards images as setup_physics set them (before the walls):
+ * the configuration takes them over (summary.json names the field, the
+ * references are those of its fluid) and the checks that depend on them
+ * run now (sbi_col_check ran before the checkpoint was read). */
 static int restart_fluid(sbi_col_config *c, sbi_col_run *r)
 {
   if (!c->restart[0] || sbi_col_given(c, "fluid", "type"))
@@ -1018,7 +1023,7 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
   }
   if (c->restart[0] ? restart_field(c, r) : setup_field(c, r))
     return -1;
-  if (setup_physics(c, r) || restart_fluid(c, r))
+  if (setup_physics(c, r))
     return -1;
   if (!c->restart[0]) {
     if (place(c, r, q))

@@ -85,9 +85,10 @@ int sb_collide_check(sb_collide *c);
  *  it calls if needed).  Input errors found only now (a particle larger
  *  than the box, a box too full for random placement; on restart without
  *  [fluid] type, what depends on the checkpoint's fluid field and
- *  Lees-Edwards images, e.g. [observe] msd_every against the images, and
- *  the warnings about it; ...; also running out of memory, with its
- *  message) return SB_EINVAL.  On restart the engine's capacity is that
+ *  Lees-Edwards images, e.g. [observe] msd_every or [walls] in x or y
+ *  against the images, with the messages of a new run, and the warnings
+ *  about it; ...; also running out of memory, with its message) return
+ *  SB_EINVAL.  On restart the engine's capacity is that
  *  of the run in one go, to the particle (with [run] steps counted from
  *  the checkpoint's steps, not its summed time).  Called by
  *  sb_collide_run when not called before. */
