@@ -247,6 +247,25 @@ if "$sb" collide "$out/fills.ini" --set "run.output=$out/fills_0" \
 else
   fail "fills: the run in one go, its first part or the restart"
 fi
+# the inflows' keys are checked on restart as for a new run (the inflows
+# are added again from the file), with the checkpoint's dim: a third
+# velocity component in 2-D is refused, not dropped
+"$sb" collide "$out/fills.ini" --set "run.output=$out/fills_3" \
+  --set species.a.inflow_velocity="0.1 0 0" --set run.steps=20 \
+  --set "run.restart=$out/fills.ck" > "$out/bad.log" 2>&1
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "\[species a\] inflow_velocity: 3 numbers for \
+dim = 2" "$out/bad.log" ||
+  fail "fills: inflow_velocity of 3 numbers on a 2-D restart (exit $rc): \
+$(grep -v warning "$out/bad.log" | head -1)"
+# ... and [fluid] g against the checkpoint's dim, not the file's dim
+# (ignored on restart): 2 numbers for the 2-D checkpoint run (they were
+# refused as 2 numbers for dim = 3)
+"$sb" collide "$out/fills.ini" --set "run.output=$out/fills_3" \
+  --set run.dim=3 --set fluid.g="0 0" --set run.steps=20 \
+  --set "run.restart=$out/fills.ck" > "$out/bad.log" 2>&1 ||
+  fail "fills: [fluid] g of 2 numbers on a 2-D restart with dim = 3: \
+$(grep -v warning "$out/bad.log" | head -1)"
 
 # first-contact counting with the recorded velocities (CHECKPOINT.firsthit
 # and .contacts): the first-contact results and contacts.csv

@@ -267,6 +267,45 @@ static void check_inert(sbi_col_config *c)
            "([species] drag)");
 }
 
+int sbi_col_dim_check(sbi_col_config *c)
+{
+  /* U of the checkpoint's field (restart without [fluid] type) is
+   * warned as ignored */
+  if (c->nU && c->nU != c->dim &&
+      (!c->restart[0] || sbi_col_given(c, "fluid", "type")))
+    return sbi_col_fail(c, "%s: [fluid] U: %d numbers for dim = %ld",
+                        sbi_col_where(c, "fluid", "U"), c->nU, c->dim);
+  if (c->ng && c->ng != c->dim)  /* the engine reads dim of them */
+    return sbi_col_fail(c, "%s: [fluid] g: %d numbers for dim = %ld",
+                        sbi_col_where(c, "fluid", "g"), c->ng, c->dim);
+  /* the inflows: a restart adds them again from the file */
+  for (int k = 0; k < c->nsp; k++) {
+    const sbi_col_species *s = &c->sp[k];
+    const char *n = s->name;
+    if (s->inflow[0]) {
+      if (isnan(s->inflow_rate) || s->ninflow_u == 0)
+        return sbi_col_fail(c, "%s: [%s] inflow: inflow_rate (1/s) and "
+                            "inflow_velocity (m/s) are required",
+                            sbi_col_where(c, n, "inflow"), n);
+      if (s->ninflow_u != c->dim)
+        return sbi_col_fail(c, "%s: [%s] inflow_velocity: %d numbers for dim "
+                            "= %ld", sbi_col_where(c, n, "inflow_velocity"), n,
+                            s->ninflow_u, c->dim);
+      if (s->ninflow_region && s->ninflow_region != 2 * (c->dim - 1))
+        return sbi_col_fail(c, "%s: [%s] inflow_region: %d numbers for dim = "
+                            "%ld; valid: %ld",
+                            sbi_col_where(c, n, "inflow_region"), n,
+                            s->ninflow_region, c->dim, 2 * (c->dim - 1));
+    } else {
+      unused(c, n, "inflow_rate", "no inflow face");
+      unused(c, n, "inflow_region", "no inflow face");
+      unused(c, n, "inflow_velocity", "no inflow face");
+      unused(c, n, "inflow_no_overlap", "no inflow face");
+    }
+  }
+  return 0;
+}
+
 int sbi_col_fluid_check(sbi_col_config *c)
 {
   if (strcmp(c->fluid, "shear") && sbi_col_given(c, "fluid", "lees_edwards"))
@@ -523,12 +562,9 @@ int sbi_col_check(sbi_col_config *c)
   }
   if (check_field(c) || check_walls(c))
     return -1;
-  if (c->nU && c->nU != c->dim)
-    return sbi_col_fail(c, "%s: [fluid] U: %d numbers for dim = %ld",
-                        sbi_col_where(c, "fluid", "U"), c->nU, c->dim);
-  if (c->ng && c->ng != c->dim)  /* the engine reads dim of them */
-    return sbi_col_fail(c, "%s: [fluid] g: %d numbers for dim = %ld",
-                        sbi_col_where(c, "fluid", "g"), c->ng, c->dim);
+  if (!c->restart[0] && sbi_col_dim_check(c))  /* on restart: once the
+                                                  checkpoint's dim is in */
+    return -1;
   if (strcmp(c->placement, "uniform"))
     unused(c, run, "placement_seed", "only placement = uniform uses it");
   /* species */
@@ -567,26 +603,6 @@ int sbi_col_check(sbi_col_config *c)
     if (s->count < 0 && isnan(s->phi) && s->npart == 0 && !s->inflow[0])
       return sbi_col_fail(c, "%s: [%s]: count, phi, particle or inflow is "
                           "required", s->where, n);
-    if (s->inflow[0]) {
-      if (isnan(s->inflow_rate) || s->ninflow_u == 0)
-        return sbi_col_fail(c, "%s: [%s] inflow: inflow_rate (1/s) and "
-                            "inflow_velocity (m/s) are required",
-                            sbi_col_where(c, n, "inflow"), n);
-      if (s->ninflow_u != c->dim)
-        return sbi_col_fail(c, "%s: [%s] inflow_velocity: %d numbers for dim "
-                            "= %ld", sbi_col_where(c, n, "inflow_velocity"), n,
-                            s->ninflow_u, c->dim);
-      if (s->ninflow_region && s->ninflow_region != 2 * (c->dim - 1))
-        return sbi_col_fail(c, "%s: [%s] inflow_region: %d numbers for dim = "
-                            "%ld; valid: %ld",
-                            sbi_col_where(c, n, "inflow_region"), n,
-                            s->ninflow_region, c->dim, 2 * (c->dim - 1));
-    } else {
-      unused(c, n, "inflow_rate", "no inflow face");
-      unused(c, n, "inflow_region", "no inflow face");
-      unused(c, n, "inflow_velocity", "no inflow face");
-      unused(c, n, "inflow_no_overlap", "no inflow face");
-    }
     if (s->nregion && s->nregion != 2 * c->dim)
       return sbi_col_fail(c, "%s: [%s] region: %d numbers for dim = %ld; "
                           "valid: %ld (x0 x1 y0 y1%s)", sbi_col_where(c, n,

@@ -937,6 +937,13 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
   if (c->restart[0]) {
     int st;
     r->e = sb_engine_checkpoint_load(c->restart, &st);
+    /* the checks of a new run that depend on dim, with the checkpoint's
+     * (the inflows' room below reads their keys) */
+    if (r->e) {
+      c->dim = sb_engine_get_params(r->e)->dim;
+      if (sbi_col_dim_check(c))
+        return -1;
+    }
     size_t cap;
     if (r->e && (cap = restart_capacity(c, r->e)) >
                     sb_engine_get_params(r->e)->capacity) {
@@ -955,7 +962,6 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
       return sbi_col_fail(c, "[run] restart: %s", sb_last_error());
     if (restart_species(c, r->e))
       return -1;
-    c->dim = sb_engine_get_params(r->e)->dim;
     /* the position variance rates of the saved species, (B tau)^2: with
      * turbulence B holds its part (species_build), taken out again for
      * the Brownian one */

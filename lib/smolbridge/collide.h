@@ -87,11 +87,12 @@ int sb_collide_check(sb_collide *c);
  *  [fluid] type, what depends on the checkpoint's fluid field and
  *  Lees-Edwards images, e.g. [observe] msd_every or [walls] in x or y
  *  against the images, with the messages of a new run, and the warnings
- *  about it; ...; also running out of memory, with its message) return
- *  SB_EINVAL.  On restart the engine's capacity is that
- *  of the run in one go, to the particle (with [run] steps counted from
- *  the checkpoint's steps, not its summed time).  Called by
- *  sb_collide_run when not called before. */
+ *  about it; on restart, what depends on the checkpoint's dim: the
+ *  number of values of [fluid] U and g and of the inflows' keys; ...;
+ *  also running out of memory, with its message) return SB_EINVAL.  On
+ *  restart the engine's capacity is that of the run in one go, to the
+ *  particle (with [run] steps counted from the checkpoint's steps, not
+ *  its summed time).  Called by sb_collide_run when not called before. */
 int sb_collide_setup(sb_collide *c);
 
 /** Events of a run (sb_collide_progress.event). */
