@@ -125,6 +125,24 @@ static int side_of(const char *v)
   return -1;
 }
 
+/* The sections of a configuration ("inflow NAME" any name). */
+static int known_section(const char *sec)
+{
+  static const char *const names[] = {"run", "riemann", "initial", "drag",
+                                      "boundary", "particles",
+                                      "decomposition", NULL};
+  for (int k = 0; names[k]; k++)
+    if (!strcmp(sec, names[k]))
+      return 1;
+  return !strncmp(sec, "inflow", 6) && (sec[6] == ' ' || !sec[6]);
+}
+
+static int unknown_section(config *c, const char *sec)
+{
+  return fail(c, "unknown section [%s] (run, riemann, initial, drag, "
+              "boundary, inflow NAME, particles, decomposition)", sec);
+}
+
 static int handler(void *user, const char *sec, const char *key,
                    const char *v)
 {
@@ -321,8 +339,7 @@ static int handler(void *user, const char *sec, const char *key,
     return fail(c, "[%s]: unknown key '%s' (side, first, count, rho, u)",
                 sec, key);
   }
-  return fail(c, "unknown section [%s] (run, riemann, initial, drag, "
-              "boundary, inflow NAME, particles, decomposition)", sec);
+  return unknown_section(c, sec);
 }
 
 /* sb_ini_key_fn: the handler, with the place of the first error; a key
@@ -348,11 +365,16 @@ static int section_fn(void *user, const char *sec, const char *where)
 {
   config *c = user;
   char msg[1400];
-  if (!sbc_ini_once(&c->once, sec, NULL, where, msg, sizeof msg))
+  const int known = known_section(sec);
+  if (known && !sbc_ini_once(&c->once, sec, NULL, where, msg, sizeof msg))
     return 0;
   if (!c->err[0])
     snprintf(c->err_where, sizeof c->err_where, "%s", where);
-  fail(c, "%s", msg);
+  /* an unknown header is an error even without keys under it */
+  if (!known)
+    unknown_section(c, sec);
+  else
+    fail(c, "%s", msg);
   return 1;
 }
 

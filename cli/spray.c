@@ -381,6 +381,23 @@ static int h_pop(config *c, const char *s, const char *k, const char *v)
               "theta, u, distribution, K0, settling, tag)", s, k);
 }
 
+/* The sections of a configuration ("droplets NAME" any name). */
+static int known_section(const char *sec)
+{
+  static const char *const names[] = {"run", "gas", "liquid", "tab",
+                                      "reitz", "check", NULL};
+  for (int k = 0; names[k]; k++)
+    if (!strcmp(sec, names[k]))
+      return 1;
+  return !strncmp(sec, "droplets", 8) && (sec[8] == ' ' || !sec[8]);
+}
+
+static int unknown_section(config *c, const char *sec)
+{
+  return fail(c, "unknown section [%s] (valid: run, gas, liquid, tab, "
+              "reitz, check, droplets NAME)", sec);
+}
+
 static int handler(void *user, const char *sec, const char *key,
                    const char *v)
 {
@@ -399,8 +416,7 @@ static int handler(void *user, const char *sec, const char *key,
     return h_check(c, sec, key, v);
   if (!strncmp(sec, "droplets", 8) && (sec[8] == ' ' || !sec[8]))
     return h_pop(c, sec, key, v);
-  return fail(c, "unknown section [%s] (valid: run, gas, liquid, tab, "
-              "reitz, check, droplets NAME)", sec);
+  return unknown_section(c, sec);
 }
 
 /* sb_ini_key_fn: the handler, with the place of the first error; a key
@@ -426,7 +442,8 @@ static int section_fn(void *user, const char *sec, const char *where)
 {
   config *c = user;
   char msg[1400];
-  if (!sbc_ini_once(&c->once, sec, NULL, where, msg, sizeof msg)) {
+  const int known = known_section(sec);
+  if (known && !sbc_ini_once(&c->once, sec, NULL, where, msg, sizeof msg)) {
     /* the section's presence enables its model (docs/spray.md), also
      * with no key in it; enable = 0 anywhere in it turns it off */
     if (!strcmp(sec, "tab"))
@@ -437,7 +454,11 @@ static int section_fn(void *user, const char *sec, const char *where)
   }
   if (!c->nerr)
     snprintf(c->err_where, sizeof c->err_where, "%s", where);
-  fail(c, "%s", msg);
+  /* an unknown header is an error even without keys under it */
+  if (!known)
+    unknown_section(c, sec);
+  else
+    fail(c, "%s", msg);
   return 1;
 }
 

@@ -108,6 +108,11 @@ colour = red'
 check "unknown section" 2 'unknown section [bogus]; valid: [run]' '$a\
 [bogus]\
 x = 1'
+# also without keys under it (a misspelt [walls] would be left out)
+check "empty unknown section" 2 't.ini:12: unknown section [wall]; valid: [run]' '$a\
+[wall]'
+check "empty species without name" 2 't.ini:12: [species]: a species section needs a name' '$a\
+[species]'
 check "key before section" 2 't.ini:1: x = 1 before any section' '1i\
 x = 1'
 check "species without name" 2 'a species section needs a name' 's/\[species a\]/[species]/'

@@ -182,7 +182,10 @@ bad "cfl = 0.8: must be in (0, 0.5]" \
   "[run]" "nx = 10" "t_end = 1" "scheme = muscl" "cfl = 0.8" "[riemann]" "rho_l = 1"
 bad "bad.ini:4: [inflow a] side = 'up'" \
   "[run]" "dim = 2" "[inflow a]" "side = up"
-bad "bad.ini:2: unknown section [foo]" "[foo]" "a = 1"
+bad "bad.ini:1: unknown section [foo]" "[foo]" "a = 1"
+# also without keys under it (a misspelt section is not left out silently)
+bad "bad.ini:4: unknown section [boundaries] (run, riemann," \
+  "[run]" "nx = 10" "t_end = 0.1" "[boundaries]" "[riemann]" "rho_l = 1"
 bad "[riemann] x0 = 5: outside the domain (0, 1)" \
   "[run]" "nx = 10" "t_end = 0.1" "[riemann]" "x0 = 5" "rho_l = 1"
 bad "[riemann] and [initial]: give one initial state" \

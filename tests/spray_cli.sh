@@ -60,6 +60,17 @@ for c in "key twice|[run]\nvolume = 1\ndt = 1\nsteps = 2\ndt = 2\n$pop|twice.ini
   [ $rc -eq 2 ] || fail "$name: exit $rc, want 2"
   case "$msg" in *"$want"*) ;; *) fail "$name message: $msg" ;; esac
 done
+# an unknown section is an error naming it, also without keys under it
+# (a misspelt [reitz] would otherwise leave its model out silently)
+for c in "unknown section|[run]\nvolume = 1\ndt = 1\nsteps = 2\n${pop}[bogus]\nx = 1\n|sect.ini:8: unknown section [bogus] (valid: run," \
+         "empty unknown section|[run]\nvolume = 1\ndt = 1\nsteps = 2\n${pop}[reiz]\n|sect.ini:8: unknown section [reiz] (valid: run,"; do
+  name=${c%%|*}; rest=${c#*|}; ini=${rest%|*}; want=${rest##*|}
+  printf "$ini" > "$out/sect.ini"
+  msg=$("$sb" spray "$out/sect.ini" 2>&1 >/dev/null)
+  rc=$?
+  [ $rc -eq 2 ] || fail "$name: exit $rc, want 2"
+  case "$msg" in *"$want"*) ;; *) fail "$name message: $msg" ;; esac
+done
 printf '[reitz]\nblob = 2\n' > "$out/badblob.ini"
 msg=$("$sb" spray "$out/badblob.ini" 2>&1 >/dev/null)
 case "$msg" in *badblob.ini:2*blob*) ;; *) fail "bad blob message: $msg" ;; esac

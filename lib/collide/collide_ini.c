@@ -244,6 +244,14 @@ static sbi_col_species *species_for(sbi_col_config *c, const char *sec)
   return s;
 }
 
+static int unknown_section(sbi_col_config *c, const char *where,
+                           const char *sec)
+{
+  return sbi_col_fail(c, "%s: unknown section [%s]; valid: [run], [fluid], "
+                      "[walls], [bridge], [turbulence], [observe], [agglo], "
+                      "[species NAME]", where, sec);
+}
+
 static int set_key(sbi_col_config *c, const char *section, const char *key,
                    const char *value, int override)
 {
@@ -262,10 +270,7 @@ static int set_key(sbi_col_config *c, const char *section, const char *key,
     char valid[600];
     sbi_col_keys_of(species ? "species" : sec, valid, sizeof valid);
     if (!valid[0])
-      return sbi_col_fail(c, "%s: unknown section [%s]; valid: [run], "
-                          "[fluid], [walls], [bridge], [turbulence], "
-                          "[observe], [agglo], [species NAME]", c->where,
-                          section);
+      return unknown_section(c, c->where, section);
     return sbi_col_fail(c, "%s: [%s] %s: unknown key; valid: %s", c->where,
                         sec, key, valid);
   }
@@ -398,16 +403,25 @@ static int header(void *user, const char *sec, const char *where)
   /* normalise "species.x" / "species:x" like the keys */
   const char *sn;
   if (sbi_col_is_species(name, &sn)) {
+    if (!sn[0])
+      return sbi_col_fail(c, "%s: [%s]: a species section needs a name: "
+                          "[species NAME]", where, sec);
     /* the name heads CSV columns and --set keys (species.NAME.key):
      * no commas, quotes, dots or spaces */
-    if (sn[0] && strspn(sn, "abcdefghijklmnopqrstuvwxyz"
-                             "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
-                      strlen(sn))
+    if (strspn(sn, "abcdefghijklmnopqrstuvwxyz"
+                   "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") != strlen(sn))
       return sbi_col_fail(c, "%s: [%s]: the species name '%s' may hold only "
                           "letters, digits, '_' and '-'", where, sec, sn);
     char tmp[72];
     snprintf(tmp, sizeof tmp, "species %s", sn);
     copy(name, sizeof name, tmp);
+  } else {
+    /* an unknown header is an error even without keys under it (a
+     * misspelt [walls] would otherwise leave its section out silently) */
+    char valid[600];
+    sbi_col_keys_of(name, valid, sizeof valid);
+    if (!valid[0])
+      return unknown_section(c, where, sec);
   }
   for (int i = 0; i < c->nsections; i++)
     if (!strcmp(c->sections[i], name))

@@ -58,7 +58,8 @@ void sb_collide_free(sb_collide *c);
  *  SB_SUCCESS, or SB_EINVAL with the message "PATH:LINE: ..." naming the
  *  section, key and value at fault and the valid values (an unreadable
  *  file: "PATH: cannot read: ...").  Reading a second file or string
- *  adds its keys; a key given twice is an error. */
+ *  adds its keys; a key given twice is an error, and so is an unknown
+ *  section header, also one without keys under it. */
 int sb_collide_read_file(sb_collide *c, const char *path);
 
 /** Read an INI configuration from the string `text` (as
