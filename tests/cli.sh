@@ -205,6 +205,11 @@ if "$sb" pbe --kernel constant --param K=2 --n0 3 --init mono --method discrete 
      --sizes 30 --times 0.5,1 --out "$out-p.csv" 2>/dev/null; then
   head -n 1 "$out-p.csv" | grep -qx 't,k,v,n' || fail "pbe csv header"
   head -n 1 "$out-p-moments.csv" | grep -qx 't,M0,M1,M2,tail_n,tail_M1' || fail "pbe moments header"
+  # --help gives the headers the files have
+  for h in "$(head -n 1 "$out-p.csv")" "$(head -n 1 "$out-p-moments.csv")"; do
+    "$sb" pbe --help | tr -s ' \n' '  ' | grep -qF "with header $h " ||
+      fail "pbe --help does not give the header $h"
+  done
   m0=$(awk -F, '$1 == 1 {print $2}' "$out-p-moments.csv")
   want=$(awk 'BEGIN { tau = 2 * 3 * 1; printf "%.17g", 3 / (1 + tau / 2) }')
   relclose "$m0" "$want" 1e-8 || fail "pbe M0(t=1) = $m0, want $want"
