@@ -1,0 +1,180 @@
+#!/bin/sh
+# The reference of the `smolbridge` command in step with its parsers: every
+# command-line option and INI section and key a command accepts is in the
+# man page (docs/smolbridge.1), in the command's --help and in the chapter
+# of docs/ that documents it, and the keys the documents list are accepted.
+# The names come from the parsers themselves: the getopt tables and
+# strcmp options of cli/*.c, and the valid names each INI reader gives in
+# its message for an unknown section or key (each of which is then checked
+# to be accepted).  Every `smolbridge eval` command quoted in docs/ runs.
+set -u
+sb="${top_builddir:-.}/smolbridge"
+src="${srcdir:-.}"
+out="${top_builddir:-.}/tests/cli-docs-out"
+man="$src/docs/smolbridge.1"
+fails=0
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+rm -rf "$out"
+mkdir -p "$out"
+
+# the man page without roff's escapes (\- is -, \fB...\fR fonts)
+sed -e 's/\\-/-/g' -e 's/\\f[BIRP]//g' "$man" > "$out/man.txt"
+# the text of the subsection ".SS NAME" of the man page
+man_ss() {
+  awk -v s="$1" '/^\.SS / { on = ($2 == s) } on' "$out/man.txt"
+}
+# has_opt TEXT-FILE OPT: OPT (--name or -x) as a word of the file
+has_opt() {
+  grep -qE -- "(^|[^A-Za-z0-9-])$2([^A-Za-z0-9-]|\$)" "$1"
+}
+
+# --- command-line options: the getopt tables (long options, and the short
+# letters of the optstring) of pbe and validate, the options collide
+# compares argv with; each in the man page and in CMD --help
+opts_getopt() {  # the options of the getopt_long call in cli/$1.c
+  grep -o '{"[a-z0-9-]*", \(no\|required\)_argument' "$src/cli/$1.c" |
+    sed 's/{"\([a-z0-9-]*\)".*/--\1/' | sort -u
+  sed -n 's/.*getopt_long(argc, argv, "\([a-zA-Z:]*\)".*/\1/p' \
+    "$src/cli/$1.c" | tr -d ':' | fold -w 1 | sed 's/^/-/'
+}
+for cmd in pbe validate collide; do
+  if [ "$cmd" = collide ]; then
+    opts=$(sed -n 's/.*strcmp(argv\[i\], "\(--*[a-z-]*\)").*/\1/p' \
+      "$src/cli/collide.c" | sort -u)
+  else
+    opts=$(opts_getopt "$cmd")
+  fi
+  [ -n "$opts" ] || fail "$cmd: no options found in cli/$cmd.c"
+  "$sb" "$cmd" --help > "$out/help.txt" 2>&1 || fail "$cmd --help failed"
+  man_ss "$cmd" > "$out/ss.txt"
+  # the synopsis of the command and its subsection
+  { awk -v c="smolbridge $cmd" '/^\.SH/ { syn = $2 == "SYNOPSIS" }
+      syn && index($0, c) { on = 1 } /^\.br/ { on = 0 } on' "$out/man.txt"
+    cat "$out/ss.txt"; } > "$out/man_cmd.txt"
+  for o in $opts; do
+    case "$o" in --help|-h) continue ;; esac  # smolbridge COMMAND --help
+    has_opt "$out/help.txt" "$o" || fail "$cmd $o is not in '$cmd --help'"
+    case "$o" in --*) ;; *) continue ;; esac  # the man page: long forms
+    has_opt "$out/man_cmd.txt" "$o" ||
+      fail "$cmd $o is not in docs/smolbridge.1 (synopsis or '.SS $cmd')"
+  done
+done
+
+# --- INI files: the sections and keys of collide, pgd and spray
+# valid_list MSG: the names listed in an "unknown ..." message, one a line
+valid_list() {
+  printf '%s\n' "$1" | sed -e 's/.*(valid: \(.*\))$/\1/' \
+    -e 's/.*unknown key.* (\(.*\))$/\1/' -e 's/.*unknown section.* (\(.*\))$/\1/' \
+    -e 's/.*; valid: \(.*\)$/\1/' | tr ',' '\n' |
+    sed -e 's/^ *//' -e 's/ *$//' -e 's/^\[\(.*\)\]$/\1/' | grep -v '^$'
+}
+# run CMD INI-TEXT: the message of `smolbridge CMD` on that file
+run() {
+  printf "$2" > "$out/t.ini"
+  "$sb" "$1" "$out/t.ini" 2>&1 >/dev/null
+}
+for cmd in collide pgd spray; do
+  msg=$(run $cmd '[zz_section]\nzz_key = 1\n')
+  case "$msg" in *"unknown section [zz_section]"*) ;;
+    *) fail "$cmd: no unknown-section message: $msg"; continue ;; esac
+  valid_list "$msg" > "$out/$cmd.sections"
+  [ -s "$out/$cmd.sections" ] || fail "$cmd: no sections in: $msg"
+  man_ss "$cmd" > "$out/ss.txt"
+  "$sb" "$cmd" --help > "$out/help.txt" 2>&1
+  while read -r s; do
+    case "$s" in  # [species NAME], [inflow NAME], [droplets NAME]
+      *" NAME") pat="[${s% NAME} " ;;
+      *) pat="[$s]" ;;
+    esac
+    grep -qF "$pat" "$out/ss.txt" ||
+      fail "$cmd: section [$s] is not in docs/smolbridge.1 '.SS $cmd'"
+    grep -qF "$pat" "$out/help.txt" ||
+      fail "$cmd: section [$s] is not in '$cmd --help'"
+  done < "$out/$cmd.sections"
+done
+
+# the keys of pgd and spray (collide's: tests/cli.sh, from --help, the
+# parser's own table); each listed key must be accepted (its message, if
+# any, names the key, not an unknown one)
+keys_of() {  # keys_of CMD SECTION: the keys, one a line
+  k_msg=$(run "$1" "[$2]\nzz_key = 1\n")
+  case "$k_msg" in *"unknown key 'zz_key'"*) ;;
+    *) fail "$1 [$2]: no unknown-key message: $k_msg"; return ;; esac
+  valid_list "$k_msg"
+}
+for cmd in pgd spray; do
+  case $cmd in
+    pgd) doc="$src/docs/pgd.md" ;;
+    spray) doc="$src/docs/spray.md" ;;
+  esac
+  "$sb" "$cmd" --help > "$out/help.txt" 2>&1
+  man_ss "$cmd" > "$out/ss.txt"
+  # the chapter's section on the command: pgd.md §9, spray.md §8
+  awk '/^## [0-9]+\. `smolbridge / { on = 1; next } /^## / { on = 0 } on' \
+    "$doc" > "$out/doc.txt"
+  [ -s "$out/doc.txt" ] || fail "$cmd: no section on the command in $doc"
+  while read -r s; do
+    sec=${s% NAME}
+    [ "$sec" != "$s" ] && sec="$sec x"  # a section with a name
+    keys_of "$cmd" "$sec" > "$out/keys"
+    [ -s "$out/keys" ] || fail "$cmd [$s]: no keys"
+    while read -r k; do
+      m=$(run "$cmd" "[$sec]\n$k = @\n")
+      case "$m" in *"unknown key '$k'"*)
+        fail "$cmd [$s] $k: listed as valid, but refused as unknown" ;; esac
+      grep -qw -- "$k" "$out/help.txt" ||
+        fail "$cmd [$s] $k is not in '$cmd --help'"
+      if [ "$cmd" = pgd ]; then
+        # the man page lists the keys of pgd; the table of pgd.md §9
+        grep -qw -- "$k" "$out/ss.txt" ||
+          fail "pgd [$s] $k is not in docs/smolbridge.1 '.SS pgd'"
+        awk -F'|' -v s="[$s]" -v k="$k" '
+          $2 ~ /\[/ { cur = $2; gsub(/^ +| +$/, "", cur) }
+          cur == s { n = split($3, a, ","); for (i = 1; i <= n; i++) {
+            gsub(/^ +| +$/, "", a[i]); if (a[i] == k) found = 1 } }
+          END { exit !found }' "$out/doc.txt" ||
+          fail "pgd [$s] $k is not in the key table of docs/pgd.md"
+      else
+        # spray.md §8: `key` in the item of its section
+        awk -v s="[$s]" '
+          /^- `\[/ { on = index($0, "`" s "`") == 3 } /^$/ { on = 0 } on' \
+          "$out/doc.txt" | grep -q "\`$k\`\|\`$k " ||
+          fail "spray [$s] $k is not in the item of [$s] in docs/spray.md §8"
+      fi
+    done < "$out/keys"
+  done < "$out/$cmd.sections"
+done
+# the other way: every key of the table of pgd.md §9 is accepted
+awk '/^## [0-9]+\. `smolbridge pgd/ { on = 1; next } /^## / { on = 0 } on' \
+  "$src/docs/pgd.md" | awk -F'|' '$2 ~ /\[/ { cur = $2; gsub(/^ +| +$/, "", cur) }
+  cur != "" && NF > 4 { n = split($3, a, ","); for (i = 1; i <= n; i++) {
+    gsub(/^ +| +$/, "", a[i]); print cur "|" a[i] } }' |
+  sed 's/ NAME\]|/ x]|/' | while IFS='|' read -r s k; do
+    m=$(run pgd "$s\n$k = @\n")
+    case "$m" in *"unknown key"*|*"unknown section"*)
+      echo "FAIL: docs/pgd.md: $s $k is not accepted: $m" ;; esac
+  done | grep FAIL && fails=$((fails + 1))
+# and every key of the tables of engine.md §9 is one of collide --help's
+"$sb" collide --help | awk '/^\[/ { s = $1 } /^  [A-Za-z_0-9]+ / { print s, $1 }' |
+  sed 's/^\[\([a-z]*\)\]* /\1 /' > "$out/collide.keys"
+awk '/^## 9\. `smolbridge collide/ { on = 1; next } /^## / { on = 0 }
+  on && /^### \[/ { s = $2; gsub(/[][]/, "", s) }
+  on && /^\| `/ { split($0, c, "|"); t = c[2]
+    while (match(t, /`[A-Za-z_0-9]+`/)) {
+      print s, substr(t, RSTART + 1, RLENGTH - 2); t = substr(t, RSTART + RLENGTH) } }' \
+  "$src/docs/engine.md" | while read -r s k; do
+    grep -qx "$s $k" "$out/collide.keys" ||
+      echo "FAIL: docs/engine.md §9 [$s] $k is not a key of 'collide --help'"
+  done | grep FAIL && fails=$((fails + 1))
+
+# --- eval: every command quoted in docs/ runs (function and arguments
+# accepted, no domain error)
+grep -ho 'smolbridge eval [a-z_0-9]*\( [A-Za-z_0-9]*=[^ `]*\)\+' \
+  "$src"/docs/*.md "$man" | sort -u | while read -r line; do
+    # shellcheck disable=SC2086
+    "$sb" ${line#smolbridge } > /dev/null 2>&1 || echo "FAIL: docs: $line"
+  done | grep FAIL && fails=$((fails + 1))
+
+rm -rf "$out"
+[ "$fails" -eq 0 ] || { echo "$fails failure(s)"; exit 1; }
+exit 0
