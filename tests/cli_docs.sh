@@ -167,6 +167,23 @@ awk '/^## 9\. `smolbridge collide/ { on = 1; next } /^## / { on = 0 }
       echo "FAIL: docs/engine.md §9 [$s] $k is not a key of 'collide --help'"
   done | grep FAIL && fails=$((fails + 1))
 
+# --- how many named sections a reader takes, as its chapter says
+for spec in "pgd|inflow|side = west|pgd.md|up to N sections" \
+            "spray|droplets|count = 1|spray.md|(up to N)" \
+            "collide|species|radius = 1e-6|engine.md|(any number, up to N)"; do
+  cmd=${spec%%|*} r=${spec#*|}
+  sec=${r%%|*} r=${r#*|}
+  key=${r%%|*} r=${r#*|}
+  doc=${r%%|*} pat=${r#*|}
+  ini=$(i=0; while [ $i -lt 40 ]; do printf '[%s s%d]\\n%s\\n' "$sec" $i "$key"
+    i=$((i + 1)); done)
+  m=$(run "$cmd" "$ini")
+  n=$(printf '%s\n' "$m" | sed -n 's/.*more than \([0-9][0-9]*\) .*/\1/p')
+  [ -n "$n" ] || { fail "$cmd: no limit on [$sec NAME] sections: $m"; continue; }
+  grep -qF "$(printf '%s' "$pat" | sed "s/N/$n/")" "$src/docs/$doc" ||
+    fail "$cmd takes up to $n [$sec NAME] sections: docs/$doc does not say '$pat'"
+done
+
 # --- eval: every command quoted in docs/ runs (function and arguments
 # accepted, no domain error)
 grep -ho 'smolbridge eval [a-z_0-9]*\( [A-Za-z_0-9]*=[^ `]*\)\+' \
