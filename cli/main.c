@@ -20,6 +20,7 @@ static void usage(FILE *out)
 "Commands:\n"
 "  eval FUNCTION key=value ...   evaluate a reference function (17 digits)\n"
 "  eval --list                   list the functions and their arguments\n"
+"  eval FUNCTION --help          the arguments of one function\n"
 "  pbe --kernel NAME ...         solve the Smoluchowski population balance\n"
 "  collide CONFIG.ini            run the collision engine\n"
 "  pgd CONFIG.ini                pressureless gas dynamics (Euler/Lagrange)\n"
@@ -27,7 +28,8 @@ static void usage(FILE *out)
 "  validate [--quick|--full]     run the validation cases, write a report\n"
 "\n"
 "  smolbridge COMMAND --help     help on one command\n"
-"  smolbridge --version          print the version\n"
+"  smolbridge --help (-h, help)  this help\n"
+"  smolbridge --version (-V)     print the version and whether MPI is built in\n"
 "\n"
 "See smolbridge(1) and docs/ for the theory behind each function.\n");
 }

@@ -52,6 +52,10 @@ s2=$("$sb" eval bb_hit_sample seed=7 x=2 y=1.5 a=1 sigma2=1 t=1)
 expect_rc 2 "$sb" eval no_such_function x=1
 expect_rc 2 "$sb" eval bb_cross_prob x=1 y=1 a=0
 expect_rc 2 "$sb" eval bb_cross_prob x=1 y=1 a=0 v=1 w=2
+# a misspelt argument is named, with the function's arguments
+msg=$("$sb" eval bb_cross_prob x=1 y=1 a=0 vv=1 2>&1 >/dev/null)
+case "$msg" in *"bb_cross_prob has no argument 'vv'; usage: bb_cross_prob x= y= a= v="*) ;;
+  *) fail "eval misspelt argument: $msg" ;; esac
 expect_rc 2 "$sb" eval bb_cross_prob x=1 y=1 a=zero v=1
 expect_rc 2 "$sb" eval bb_cross_prob x=1 x=1 y=1 a=0 v=1
 expect_rc 1 "$sb" eval bb_cross_prob x=1 y=1 a=0 v=-1

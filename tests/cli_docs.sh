@@ -37,10 +37,10 @@ opts_getopt() {  # the options of the getopt_long call in cli/$1.c
   sed -n 's/.*getopt_long(argc, argv, "\([a-zA-Z:]*\)".*/\1/p' \
     "$src/cli/$1.c" | tr -d ':' | fold -w 1 | sed 's/^/-/'
 }
-for cmd in pbe validate collide; do
-  if [ "$cmd" = collide ]; then
-    opts=$(sed -n 's/.*strcmp(argv\[i\], "\(--*[a-z-]*\)").*/\1/p' \
-      "$src/cli/collide.c" | sort -u)
+for cmd in pbe validate collide eval; do
+  if [ "$cmd" = collide ] || [ "$cmd" = eval ]; then  # strcmp(argv[i], ...)
+    opts=$(grep -o 'strcmp(argv\[[0-9i]\], "-[-a-z]*")' "$src/cli/$cmd.c" |
+      sed 's/.*"\(.*\)")/\1/' | sort -u)
   else
     opts=$(opts_getopt "$cmd")
   fi
@@ -58,6 +58,24 @@ for cmd in pbe validate collide; do
     has_opt "$out/man_cmd.txt" "$o" ||
       fail "$cmd $o is not in docs/smolbridge.1 (synopsis or '.SS $cmd')"
   done
+done
+
+# the commands and options of main.c: in `smolbridge --help`; the commands
+# in the man page's synopsis and a subsection each, the options in its
+# synopsis
+"$sb" --help > "$out/help.txt" 2>&1 || fail "smolbridge --help failed"
+sed -n '/^\.SH SYNOPSIS/,/^\.SH DESCRIPTION/p' "$out/man.txt" > "$out/syn.txt"
+for c in $(grep -o 'strcmp(cmd, "[^"]*")' "$src/cli/main.c" |
+           sed 's/.*"\(.*\)")/\1/' | sort -u); do
+  has_opt "$out/help.txt" "$c" || fail "'$c' is not in 'smolbridge --help'"
+  case "$c" in
+    -*|help) has_opt "$out/syn.txt" "$c" ||
+        fail "smolbridge $c is not in the synopsis of docs/smolbridge.1" ;;
+    *) grep -q "^\.B smolbridge $c" "$out/syn.txt" ||
+        fail "smolbridge $c is not in the synopsis of docs/smolbridge.1"
+      grep -qx "\.SS $c" "$out/man.txt" ||
+        fail "smolbridge $c has no subsection in docs/smolbridge.1" ;;
+  esac
 done
 
 # --- INI files: the sections and keys of collide, pgd and spray
