@@ -185,6 +185,31 @@ awk '/^## 9\. `smolbridge collide/ { on = 1; next } /^## / { on = 0 }
       echo "FAIL: docs/engine.md §9 [$s] $k is not a key of 'collide --help'"
   done | grep FAIL && fails=$((fails + 1))
 
+# --- pbe: every kernel its parser knows is in pbe --help, the man page and
+# docs/kernel.md's list of the names; every --param name in pbe --help,
+# and accepted
+"$sb" pbe --help > "$out/help.txt" 2>&1
+man_ss pbe > "$out/ss.txt"
+m=$("$sb" pbe -q --kernel zz_kernel --n0 1 --times 1 --out "$out/p.csv" 2>&1)
+ks=$(valid_list "$m")
+awk '/Types \(their names, as `smolbridge pbe/ { on = 1 } /^$/ { on = 0 } on' \
+  "$src/docs/kernel.md" > "$out/kernels.txt"
+[ -n "$ks" ] || fail "pbe: no kernel names in: $m"
+for k in $ks; do
+  grep -qw -- "$k" "$out/help.txt" || fail "pbe --kernel $k is not in 'pbe --help'"
+  grep -qw -- "$k" "$out/ss.txt" || fail "pbe --kernel $k is not in docs/smolbridge.1 '.SS pbe'"
+  grep -qw -- "$k" "$out/kernels.txt" ||
+    fail "pbe --kernel $k is not in the list of names of docs/kernel.md"
+done
+m=$("$sb" pbe -q --kernel constant --param zz=1 --n0 1 --times 1 --out "$out/p.csv" 2>&1)
+ps=$(printf '%s\n' "$m" | sed -n 's/.*; valid: \([^(]*\) (.*/\1/p' | tr -d ',')
+[ -n "$ps" ] || fail "pbe: no --param names in: $m"
+for p in $ps; do
+  grep -qw -- "$p" "$out/help.txt" || fail "pbe --param $p is not in 'pbe --help'"
+  m=$("$sb" pbe -q --kernel constant --param "$p=zz" --n0 1 --times 1 --out "$out/p.csv" 2>&1)
+  case "$m" in *"unknown parameter"*) fail "pbe --param $p listed, but unknown: $m" ;; esac
+done
+
 # --- how many named sections a reader takes, as its chapter says
 for spec in "pgd|inflow|side = west|pgd.md|up to N sections" \
             "spray|droplets|count = 1|spray.md|(up to N)" \
