@@ -227,6 +227,19 @@ for spec in "pgd|inflow|side = west|pgd.md|up to N sections" \
     fail "$cmd takes up to $n [$sec NAME] sections: docs/$doc does not say '$pat'"
 done
 
+# --- docs/langevin.md §6: the functions of its table are in eval --list,
+# but those the sentence "All but ... are in `smolbridge eval`" names
+"$sb" eval --list | awk 'NR % 2 == 1 { print $1 }' > "$out/eval.fns"
+awk '/^## 6\. API/ { on = 1; next } /^## / { on = 0 } on' \
+  "$src/docs/langevin.md" > "$out/lapi.txt"
+tr '\n' ' ' < "$out/lapi.txt" | sed -n 's/.*All but \(.*\) are in `smolbridge eval`.*/\1/p' |
+  grep -o '`[a-z_0-9]*`' | tr -d '`' | sed 's/^sb_langevin//; s/^/langevin/' > "$out/lapi.not"
+grep '^| `' "$out/lapi.txt" | sed -n 's/^| `[a-z]* \(sb_[a-z_0-9]*\)(.*/\1/p' |
+  sed 's/^sb_//' | while read -r f; do
+    grep -qx "$f" "$out/eval.fns" || grep -qx "$f" "$out/lapi.not" ||
+      echo "FAIL: docs/langevin.md §6: $f is neither in eval --list nor named as not in it"
+  done | grep FAIL && fails=$((fails + 1))
+
 # --- eval: every command quoted in docs/ runs (function and arguments
 # accepted, no domain error)
 grep -ho 'smolbridge eval [a-z_0-9]*\( [A-Za-z_0-9]*=[^ `]*\)\+' \
