@@ -68,7 +68,7 @@ static void usage(FILE *out)
 "                10 V1 discrete, 1e4 V1 sectional)\n"
 "  --method      discrete (default; sizes k V1, k = 1..K, plus a lumped\n"
 "                tail) or sectional (fixed pivots V1 R^i, i = 0..K-1)\n"
-"  --sizes K     number of sizes or sections (default 100)\n"
+"  --sizes K     number of sizes or sections, 2 to 1e6 (default 100)\n"
 "  --ratio R     sectional pivot ratio (default 10^(12/(K-1)): 12 decades)\n"
 "  --times LIST  comma-separated increasing output times (required)\n"
 "  --rtol, --atol  CVODE tolerances (default 1e-8, automatic)\n"

@@ -78,6 +78,19 @@ for c in $(grep -o 'strcmp(cmd, "[^"]*")' "$src/cli/main.c" |
   esac
 done
 
+# --- the ranges of numeric options: --help gives the one the parser
+# enforces (from its message for a value below it)
+for spec in "validate|--seeds|1" "pbe|--sizes|1" "collide|--threads|0"; do
+  cmd=${spec%%|*} r=${spec#*|}; o=${r%%|*} v=${r#*|}
+  m=$("$sb" "$cmd" "$o" "$v" 2>&1 >/dev/null)
+  lohi=$(printf '%s\n' "$m" | sed -n 's/.* \([0-9][0-9e+]*\)\(\.\.\| to \)\([0-9][0-9e+]*\).*/\1 \3/p')
+  [ -n "$lohi" ] || { fail "$cmd $o $v: no range in: $m"; continue; }
+  lo=${lohi% *} hi=${lohi#* }
+  "$sb" "$cmd" --help | tr -s ' \n' '  ' > "$out/help.txt"
+  grep -qF -e "$lo to $hi" -e "$lo <= N <= $hi" "$out/help.txt" ||
+    fail "$cmd $o: '$cmd --help' does not give its range $lo to $hi"
+done
+
 # --- INI files: the sections and keys of collide, pgd and spray
 # valid_list MSG: the names listed in an "unknown ..." message, one a line
 valid_list() {
