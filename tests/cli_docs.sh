@@ -57,6 +57,15 @@ for cmd in pbe validate collide eval; do
     case "$o" in --*) ;; *) continue ;; esac  # the man page: long forms
     has_opt "$out/man_cmd.txt" "$o" ||
       fail "$cmd $o is not in docs/smolbridge.1 (synopsis or '.SS $cmd')"
+    # and in the chapter on the command
+    case $cmd in
+      collide) awk '/^## 9\. `smolbridge collide/ { on = 1; next }
+                    /^## / { on = 0 } on' "$src/docs/engine.md" ;;
+      validate) cat "$src/docs/validation.md" ;;
+      *) continue ;;  # pbe and eval: docs/pbe.md and the others refer to --help
+    esac > "$out/chapter.txt"
+    has_opt "$out/chapter.txt" "$o" ||
+      fail "$cmd $o is not in its chapter of docs/ (engine.md §9, validation.md)"
   done
 done
 
