@@ -6,7 +6,10 @@
 # The names come from the parsers themselves: the getopt tables and
 # strcmp options of cli/*.c, and the valid names each INI reader gives in
 # its message for an unknown section or key (each of which is then checked
-# to be accepted).  Every `smolbridge eval` command quoted in docs/ runs.
+# to be accepted).  Also: the ranges of numeric options, pbe's kernels
+# and parameters, the number of named sections each reader takes, the
+# functions docs/langevin.md says eval has; every `smolbridge eval`
+# command quoted in docs/ runs.
 set -u
 sb="${top_builddir:-.}/smolbridge"
 src="${srcdir:-.}"
@@ -29,8 +32,9 @@ has_opt() {
 }
 
 # --- command-line options: the getopt tables (long options, and the short
-# letters of the optstring) of pbe and validate, the options collide
-# compares argv with; each in the man page and in CMD --help
+# letters of the optstring) of pbe and validate, the options collide and
+# eval compare argv with; each in CMD --help, the long ones in the man
+# page and (collide, validate) in the command's chapter
 opts_getopt() {  # the options of the getopt_long call in cli/$1.c
   grep -o '{"[a-z0-9-]*", \(no\|required\)_argument' "$src/cli/$1.c" |
     sed 's/{"\([a-z0-9-]*\)".*/--\1/' | sort -u
