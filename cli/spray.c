@@ -865,10 +865,12 @@ int sbc_spray_main(int argc, char **argv)
     fprintf(f, "\n}\n");
     fclose(f);
   }
-  fprintf(stderr, "spray: done, t = %g s, %zu parcels, %llu collisions, "
-          "%llu merges, %llu TAB breakups, %llu Reitz children\n",
-          sb_spray_time(s), sb_spray_count(s), ss.bounces, ss.merges,
-          ss.tab_breakups, ss.reitz_children);
+  /* collisions: every accepted pair, whether it bounced or merged */
+  fprintf(stderr, "spray: done, t = %g s, %zu parcels, %llu collisions "
+          "(%llu bounces, %llu merges), %llu TAB breakups, %llu Reitz "
+          "children\n", sb_spray_time(s), sb_spray_count(s),
+          ss.bounces + ss.merges, ss.bounces, ss.merges, ss.tab_breakups,
+          ss.reitz_children);
   sb_spray_free(s);
   gsl_rng_free(rng);
   if (c.check_bkw) {

@@ -173,6 +173,15 @@ if "$sb" spray "$out/brk.ini" 2>"$out/brk.err"; then
     exit !(d < 1e-13) }' "$out/brk/series.csv" || fail "volume not conserved"
   awk -F, 'NR > 1 && $2 >= 7e-6 { bad = 1 } END { exit bad }' \
     "$out/brk/final.csv" || fail "a drop above 7 um after Reitz breakup"
+  # the collisions printed at the end are every accepted pair, bounced or
+  # merged (they used to be the bounces alone)
+  nb=$(sed -n 's/^  "bounces": \([0-9]*\),$/\1/p' "$out/brk/summary.json")
+  nm=$(sed -n 's/^  "merges": \([0-9]*\),$/\1/p' "$out/brk/summary.json")
+  [ -n "$nb" ] && [ -n "$nm" ] && [ "$nm" -gt 0 ] \
+    || fail "breakup summary.json: bounces '$nb', merges '$nm'"
+  grep -q "parcels, $((nb + nm)) collisions ($nb bounces, $nm merges)," \
+    "$out/brk.err" || fail "collisions printed: $(grep done "$out/brk.err"),
+    want $((nb + nm)) = $nb bounces + $nm merges"
 else
   fail "spray $ex/spray_breakup.ini failed"
 fi
