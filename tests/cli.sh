@@ -474,6 +474,22 @@ else
   fail "collide --sweep of a mixture failed"
 fi
 
+# --- a merging run names each cluster species by its size in summary.json
+# (species and pair_kernels; they were all "cluster", so pair_kernels
+# listed several different pairs under the same two names)
+if OMP_WAIT_POLICY=passive "$sb" collide "${srcdir:-.}/examples/v8_dlvo_gas.ini" \
+     --set run.output="$out/dlvo" >/dev/null 2>&1; then
+  pk=$(sed -n '/"pair_kernels"/,/^  \]/p' "$out/dlvo/summary.json" |
+       grep -o '"species": \[[^]]*\]')
+  [ -n "$pk" ] || fail "v8_dlvo_gas: no pair_kernels"
+  dup=$(printf '%s\n' "$pk" | sort | uniq -d)
+  [ -z "$dup" ] || fail "v8_dlvo_gas: pair_kernels repeat a pair: $dup"
+  printf '%s\n' "$pk" | grep -q '^"species": \["grain", "cluster_2"\]$' \
+    || fail "v8_dlvo_gas: no grain-cluster_2 pair in: $pk"
+else
+  fail "collide examples/v8_dlvo_gas.ini failed"
+fi
+
 # --- quickstart.sh runs the validation with passive OpenMP waiting (idle
 # threads sleep: spinning ones made V2 alone take minutes on a busy
 # machine, docs/engine.md §8) unless the user set OMP_WAIT_POLICY.  Run

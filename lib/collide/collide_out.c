@@ -197,6 +197,19 @@ static void jstr(FILE *f, const char *s)
   fputc('"', f);
 }
 
+/* The name of species k in summary.json: a merging run's cluster species
+ * are cluster_K, K its number of primaries (they all used to be
+ * "cluster", so pair_kernels listed several pairs under one name). */
+static void jspecies(FILE *f, const sbi_col_config *c, const sb_agglo *ag,
+                     size_t k)
+{
+  size_t m = ag && (int)k >= c->nsp ? sb_agglo_size_of_species(ag, k) : 0;
+  if (m)
+    fprintf(f, "\"cluster_%zu\"", m);
+  else
+    jstr(f, sbi_col_short_name(c, k));
+}
+
 void sbi_col_jnum(FILE *f, double x)
 {
   if (isfinite(x))
@@ -294,7 +307,8 @@ static int write_hits(FILE *js, const sbi_col_config *c, const sbi_col_run *r,
   return fclose(f) ? -1 : 0;
 }
 
-static void json_run(FILE *f, const sbi_col_config *c, const sb_engine *e)
+static void json_run(FILE *f, const sbi_col_config *c, const sb_engine *e,
+                     const sb_agglo *ag)
 {
   const sb_engine_params *p = sb_engine_get_params(e);
   fprintf(f, "  \"seed\": %lu,\n", c->restart[0] ? p->seed : c->seed);
@@ -335,7 +349,7 @@ static void json_run(FILE *f, const sbi_col_config *c, const sb_engine *e)
   const sb_engine_species *s;
   for (size_t k = 0; (s = sb_engine_get_species(e, k)); k++) {
     fprintf(f, "    {\"name\": ");
-    jstr(f, sbi_col_short_name(c, k));
+    jspecies(f, c, ag, k);
     fprintf(f, ", \"radius\": %.17g, \"mass\": %.17g, \"tau\": ", s->radius,
             s->mass);
     if (isinf(s->tau))
@@ -348,7 +362,8 @@ static void json_run(FILE *f, const sbi_col_config *c, const sb_engine *e)
   fprintf(f, "  ],\n");
 }
 
-static void json_kernels(FILE *f, const sbi_col_config *c, const sb_engine *e)
+static void json_kernels(FILE *f, const sbi_col_config *c, const sb_engine *e,
+                         const sb_agglo *ag)
 {
   sb_engine_stats st;
   sb_engine_get_stats(e, &st);
@@ -411,9 +426,9 @@ static void json_kernels(FILE *f, const sbi_col_config *c, const sb_engine *e)
       if (!(ps.exposure > 0.0))
         continue;
       fprintf(f, "%s\n    {\"species\": [", firstp ? "" : ",");
-      jstr(f, sbi_col_short_name(c, a));
+      jspecies(f, c, ag, a);
       fprintf(f, ", ");
-      jstr(f, sbi_col_short_name(c, b));
+      jspecies(f, c, ag, b);
       fprintf(f, "], \"collisions\": %llu, \"exposure\": ",
               (unsigned long long)ps.ncoll);
       sbi_col_jnum(f, ps.exposure);
@@ -588,8 +603,8 @@ int sbi_col_out_write(const sbi_col_config *c, sbi_col_run *r,
     fprintf(f, ",\n");
   }
   if (r->e) {
-    json_run(f, c, r->e);
-    json_kernels(f, c, r->e);
+    json_run(f, c, r->e, r->agglo);
+    json_kernels(f, c, r->e, r->agglo);
     json_contexts(f, c, r);
     if (sbi_col_grid_on(c))
       sbi_col_grid_json(f, c, r);
