@@ -60,6 +60,7 @@
 #include <smolbridge/simulate.h>
 #include <smolbridge/stats.h>
 
+#include "sweep.h"
 #include "testutil.h"
 
 /* Significance level of every test in this file. */
@@ -674,6 +675,70 @@ START_TEST(test_sim_extreme)
 }
 END_TEST
 
+/* sb_sim_langevin at extreme arguments.  (1) tau, B, dt, us and the start
+ * state x0, u0 (all three components) in turn over sbt_sweep_ext (the
+ * others tau = 0.7, B = 1.3, dt = 0.4, us = 0.2, x0 = 1.5, u0 = -0.8),
+ * three steps of one particle: finite x, u with status 0, or SB_EDOM /
+ * SB_ERANGE naming the function.  (2) B = DBL_MAX, tau = dt = 1 (velocity
+ * sd ~ 0.8 DBL_MAX: x, u were +-inf with status 0 within 10 steps):
+ * SB_ERANGE, the state left finite.  (3) B = 0, tau = dt = 1, us =
+ * -DBL_MAX/2, u0 up to DBL_MAX: u0 - us overflows but the new state is a
+ * double (x, u were +-inf with status 0; sb_langevin_step, which shares
+ * the update, gave SB_ERANGE): the mpmath values (50 digits,
+ * x1 = x0 + us + (u0 - us)(1 - e^-1), u1 = us + (u0 - us) e^-1). */
+static gsl_rng *lv_rng;
+static int x_sim_langevin(const double *a, double *out, int *n,
+                          const char **nm)
+{
+  sb_langevin p = {a[0], a[1], a[3]};
+  double x[3] = {a[4], a[4], a[4]}, u[3] = {a[5], a[5], a[5]};
+  int st = sb_sim_langevin(&p, a[2], 3, lv_rng, 1, x, u);
+  for (int j = 0; j < 3; j++) {
+    out[j] = x[j];
+    out[3 + j] = u[j];
+  }
+  *n = 6;
+  *nm = "sb_sim_langevin";
+  return st;
+}
+
+START_TEST(test_sim_langevin_extreme)
+{
+  lv_rng = rng_new(8202);
+  const double base[6] = {0.7, 1.3, 0.4, 0.2, 1.5, -0.8};
+  ck_assert_int_eq(sbt_sweep_vec(x_sim_langevin, base, 6, 6, 0u, 0, 0, 0),
+                   0);
+  gsl_rng_free(lv_rng);
+  gsl_rng *r = rng_new(8203);
+  sb_langevin big = {1.0, DBL_MAX, 0.0};
+  double x[3] = {0.0, 0.0, 0.0}, u[3] = {0.0, 0.0, 0.0};
+  sb_clear_error();
+  ck_assert_int_eq(sb_sim_langevin(&big, 1.0, 10, r, 1, x, u), SB_ERANGE);
+  ck_assert(strstr(sb_last_error(), "sb_sim_langevin") != NULL);
+  for (int j = 0; j < 3; j++)
+    ck_assert(isfinite(x[j]) && isfinite(u[j]));
+  const double dm = DBL_MAX;
+  sb_langevin det = {1.0, 0.0, -0.5 * dm};
+  double x3[3] = {0.0, -dm, 1e308}, u3[3] = {dm, 0.9 * dm, 0.6 * dm};
+  const double wx[3] = {8.0569161608598520929e+307,
+                        -1.1056373976774733571e+308,
+                        1.351148100481413661e+308};
+  const double wu[3] = {9.315495134517264478e+306, 2.7021516760083952199e+306,
+                        -1.7137878699518219897e+307};
+  ck_assert_int_eq(sb_sim_langevin(&det, 1.0, 1, r, 1, x3, u3), SB_SUCCESS);
+  for (int j = 0; j < 3; j++) {
+    ck_assert_rel(x3[j], wx[j], TOL_TIGHT);
+    ck_assert_rel(u3[j], wu[j], TOL_TIGHT);
+  }
+  /* the scalar step shares the update (it was SB_ERANGE there) */
+  double xs = 0.0, us = dm;
+  ck_assert_int_eq(sb_langevin_step(&det, 1.0, r, &xs, &us), SB_SUCCESS);
+  ck_assert_rel(xs, wx[0], TOL_TIGHT);
+  ck_assert_rel(us, wu[0], TOL_TIGHT);
+  gsl_rng_free(r);
+}
+END_TEST
+
 /* ============================================================ suite */
 
 static Suite *bridge_mc_suite(void)
@@ -710,6 +775,7 @@ static Suite *bridge_mc_suite(void)
   tc = tcase_create("sim_extreme");
   tcase_set_timeout(tc, 60);
   tcase_add_test(tc, test_sim_extreme);
+  tcase_add_test(tc, test_sim_langevin_extreme);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -110,6 +110,34 @@ static inline void step1(const sb_langevin_coef *c, double w,
   *u = w + v * c->decay + c->s_u * z1;
 }
 
+/* The update of step1 for given normals z1, z2, into (*x, *u) only where
+ * the new state is finite.  The plain sums first (the bits of step1); where
+ * one of them leaves the doubles, the same sums with every term scaled by
+ * 1/8 (exact above DBL_MIN; at most five terms of |.| <= DBL_MAX/8 cannot
+ * overflow) and the result scaled back: an intermediate overflowed while
+ * the new state is a double (u - us, or x + us dt + ... with terms of
+ * opposite signs near DBL_MAX).  Returns 0, or SB_ERANGE (state unchanged,
+ * nothing recorded) where the new state itself exceeds DBL_MAX. */
+int sbi_langevin_update(const sb_langevin_coef *c, double w, double z1,
+                        double z2, double *x, double *u)
+{
+  double v = *u - w;
+  double xn = *x + (w * c->dt + v * c->gain + c->s_xu * z1 + c->s_xc * z2);
+  double un = w + v * c->decay + c->s_u * z1;
+  if (!isfinite(xn) || !isfinite(un)) {
+    const double q = 0.125;
+    const double vq = q * *u - q * w, wq = q * w;
+    xn = 8.0 * (q * *x + (wq * c->dt + vq * c->gain + (q * c->s_xu) * z1 +
+                          (q * c->s_xc) * z2));
+    un = 8.0 * (wq + vq * c->decay + (q * c->s_u) * z1);
+    if (!isfinite(xn) || !isfinite(un))
+      return SB_ERANGE;
+  }
+  *x = xn;
+  *u = un;
+  return SB_SUCCESS;
+}
+
 int sb_langevin_step(const sb_langevin *p, double dt, const gsl_rng *r,
                      double *x, double *u)
 {
@@ -128,14 +156,12 @@ int sb_langevin_step(const sb_langevin *p, double dt, const gsl_rng *r,
   st = coef_fill(&c, p->tau, p->B, dt, __func__);
   if (st)
     return st;
-  double xn = *x, un = *u;
-  step1(&c, p->us, r, &xn, &un);
-  if (!isfinite(xn) || !isfinite(un))
+  const double z1 = gsl_ran_gaussian_ziggurat(r, 1.0);
+  const double z2 = gsl_ran_gaussian_ziggurat(r, 1.0);
+  if (sbi_langevin_update(&c, p->us, z1, z2, x, u))
     return sbi_error(SB_ERANGE, __func__,
-                     "the new state (x = %g, u = %g) overflows a double",
-                     xn, un);
-  *x = xn;
-  *u = un;
+                     "the new state (from x = %g, u = %g) overflows a "
+                     "double", *x, *u);
   return SB_SUCCESS;
 }
 

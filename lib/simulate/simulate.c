@@ -18,6 +18,7 @@
 #include <smolbridge/langevin.h>
 #include <smolbridge/simulate.h>
 #include "common/internal.h"
+#include "langevin/langevin_internal.h"
 
 /* ------------------------------------------ per-sub-step crossing laws */
 
@@ -280,15 +281,43 @@ int sb_sim_langevin(const sb_langevin *p, double dt, long nsteps,
     return sbi_error(SB_EDOM, __func__, "us = %g: not finite", p->us);
   sb_langevin_coef c;
   int st = sb_langevin_coef_init(&c, p->tau, p->B, dt);
-  if (st != SB_SUCCESS)
-    return st; /* its message names tau, B or dt */
-  /* one coefficient set for all: step particle by particle (same draws as
-   * one sb_langevin_step3_coef call over all particles); a fluid at rest
-   * is passed as NULL, which steps with us = 0 exactly */
-  const double us3[3] = {p->us, p->us, p->us};
-  const double *us = p->us != 0.0 ? us3 : NULL;
+  if (st != SB_SUCCESS) /* named here (its message names coef_init) */
+    return sbi_error(st, __func__, "tau = %g, B = %g, dt = %g: %s", p->tau,
+                     p->B, dt, st == SB_ERANGE
+                                   ? "a step coefficient exceeds DBL_MAX"
+                                   : "need tau > 0, B >= 0, dt >= 0, "
+                                     "all finite");
+  /* one coefficient set for all, particle by particle: the draws and the
+   * update of one sb_langevin_step3_coef call over all particles (the same
+   * bits), but checked: with B sqrt(tau) or the state near DBL_MAX a new
+   * x or u can exceed DBL_MAX (B = DBL_MAX, tau = dt = 1 gave +-inf with
+   * status 0); an intermediate that overflows alone is recomputed scaled
+   * (sbi_langevin_update) */
+  for (size_t i = 0; i < 3 * np; i++)
+    if (!isfinite(x[i]) || !isfinite(u[i]))
+      return sbi_error(SB_EDOM, __func__, "x[%zu] = %g, u[%zu] = %g: not "
+                       "finite", i, x[i], i, u[i]);
+  const double w = p->us != 0.0 ? p->us : 0.0; /* -0: the bits of us NULL */
   for (long k = 0; k < nsteps; k++)
-    for (size_t i = 0; i < np; i++)
-      sb_langevin_step3_coef(1, &c, NULL, us, x + 3 * i, u + 3 * i, r);
+    for (size_t i = 0; i < np; i++) {
+      double z[6], xi[3], ui[3];
+      for (int j = 0; j < 6; j++)
+        z[j] = gsl_ran_gaussian_ziggurat(r, 1.0);
+      for (int j = 0; j < 3; j++) {
+        xi[j] = x[3 * i + j];
+        ui[j] = u[3 * i + j];
+        if (sbi_langevin_update(&c, w, z[2 * j], z[2 * j + 1], &xi[j],
+                                &ui[j]))
+          return sbi_error(SB_ERANGE, __func__,
+                           "step %ld, particle %zu: the new state (from x "
+                           "= %g, u = %g) exceeds DBL_MAX (tau = %g, B = "
+                           "%g, dt = %g)", k, i, x[3 * i + j],
+                           u[3 * i + j], p->tau, p->B, dt);
+      }
+      for (int j = 0; j < 3; j++) {
+        x[3 * i + j] = xi[j];
+        u[3 * i + j] = ui[j];
+      }
+    }
   return SB_SUCCESS;
 }

@@ -155,7 +155,9 @@ double sb_langevin_vacf(double tau, double B, double t);
  *  valid for dt/tau in [1e-10, 1e10] and beyond; *x, *u finite.
  *  Errors: SB_EDOM / SB_EINVAL, state unchanged; SB_ERANGE, state
  *  unchanged, where a coefficient (sb_langevin_coef_init) or the new
- *  state exceeds DBL_MAX. */
+ *  state exceeds DBL_MAX (where only an intermediate such as u - us
+ *  overflows, the update is recomputed with its terms scaled by 1/8:
+ *  the new state is right wherever it is a double). */
 int sb_langevin_step(const sb_langevin *p, double dt, const gsl_rng *r,
                      double *x, double *u);
 

@@ -70,7 +70,16 @@
  * nothing is discretised.  Draw order: step, particle, component, as
  * sb_langevin_step3_coef.  Cost: 6 Gaussian draws per particle and step.
  * Arguments as sb_langevin_coef_init (tau > 0, B >= 0, dt >= 0 finite),
- * finite us, nsteps >= 0.
+ * finite us and start states x, u, nsteps >= 0; else SB_EDOM (SB_EINVAL
+ * for NULL or nsteps < 0), nothing moved.  Every new x and u is checked:
+ * where one exceeds DBL_MAX (B sqrt(tau) or the state near DBL_MAX: B =
+ * DBL_MAX, tau = dt = 1 gave +-inf with status 0) the run stops with
+ * SB_ERANGE, that particle keeps its state before the step (particles
+ * before it in the step order have taken it); where only an intermediate
+ * overflows (u - us, or sums of terms near DBL_MAX) the update is
+ * recomputed with its terms scaled by 1/8 (same draws), so the state is
+ * right wherever it is a double.  Otherwise the same bits as
+ * sb_langevin_step3_coef.
  */
 #ifndef SMOLBRIDGE_SIMULATE_H
 #define SMOLBRIDGE_SIMULATE_H
