@@ -65,3 +65,14 @@ for k in [2, 7, 400, 10 ** 9]:
 for (x, tau) in [(1e300, "1"), (sys.float_info.max, "1"),
                  (sys.float_info.max, "1e-300"), (sys.float_info.max, "1e-20")]:
     print("add_exp,%r,%s,%s" % (x, tau, mp.nstr(add_exp(mpf(x), mpf(float(tau))), 25)))
+# additive kernel, monodisperse, at k ~ 1e308 and tau in ~[0.1, 0.7]:
+# (k-1) log phi leaves the doubles while log n ~ -0.2 k ... -1.5 k does not
+# (it was -inf with status 0); k are the doubles 1e308 and DBL_MAX
+for (k, tau) in [(1e308, "0.1"), (1e308, "0.3"), (sys.float_info.max, "0.2"),
+                 (sys.float_info.max, "0.3"), (sys.float_info.max, "0.45")]:
+    print("add_mono,%r,%s,%s" % (k, tau, mp.nstr(add_mono(int(k), mpf(float(tau))), 25)))
+# constant kernel, monodisperse, at subnormal tau: 2/tau overflows (log1p
+# of it was inf, log n -inf with status 0 although it is a double)
+for (k, tau) in [(2.0, 1e-320), (7.0, 1e-320), (1e150, 1e-320),
+                 (1e300, 5e-324)]:
+    print("const_mono,%r,%r,%s" % (k, tau, mp.nstr(const_mono(int(k), mpf(tau)), 25)))

@@ -170,9 +170,14 @@ END_TEST
 /* Extreme arguments: every analytic function, each argument over
  * +-1e-320 ... +-DBL_MAX, +-inf, NaN, 0 and a few ordinary values, the
  * other ordinary: status 0 with a value that is not NaN (n finite >= 0;
- * log n may be -inf, where n = 0 or log n < -DBL_MAX), or NaN with an
+ * log n finite, or -inf where n = 0: tau = 0, k > 1), or NaN with an
  * error status whose message names the function called (the _n forms
- * used to name their _logn form); GSL's handler is never reached. */
+ * used to name their _logn form); GSL's handler is never reached.  Where
+ * log n < -DBL_MAX (k ~ DBL_MAX: it was -inf with status 0) the _logn
+ * form is NaN with SB_ERANGE and the _n form 0 with status 0; the
+ * additive log n at k ~ 1e308, tau in [0.1, 0.45] and the constant-kernel
+ * one at subnormal tau are doubles (they were -inf: (k-1) log phi and
+ * 2/tau overflowed), checked against mpmath in test_analytic_vs_mpmath. */
 typedef double (*an_fn)(double, double);
 START_TEST(test_analytic_extreme)
 {
@@ -209,13 +214,40 @@ START_TEST(test_analytic_extreme)
                         "%s(%g, %g) = %g, status %d: %s", fs[f].name, ext[i],
                         ext[j], v, st, sb_last_error());
         else
-          ck_assert_msg(fs[f].logn ? !isnan(v) && v < INFINITY
+          ck_assert_msg(fs[f].logn ? isfinite(v) ||
+                                         (v == -INFINITY && ext[j] == 0.0)
                                    : isfinite(v) && v >= 0.0,
                         "%s(%g, %g) = %g with status 0", fs[f].name, ext[i],
                         ext[j], v);
       }
   gsl_set_error_handler(old);
   ck_assert_int_eq(gsl_calls, 0);
+  /* log n < -DBL_MAX: (k-1) log(1 + 2/tau) = 1.97e308 at tau = 1, and
+   * (k-1)(log phi + q) = -2.6e308, (k-1)(log tau + 1 - tau) = -2.5e308
+   * at tau = 0.1 (k = DBL_MAX) */
+  static const struct {
+    an_fn lf, nf;
+    const char *name;
+    double a, tau;
+  } big[] = {{sb_pbe_const_mono_logn, sb_pbe_const_mono_n,
+              "sb_pbe_const_mono_logn", DBL_MAX, 1.0},
+             {sb_pbe_add_mono_logn, sb_pbe_add_mono_n,
+              "sb_pbe_add_mono_logn", DBL_MAX, 0.1},
+             {sb_pbe_mult_mono_logn, sb_pbe_mult_mono_n,
+              "sb_pbe_mult_mono_logn", DBL_MAX, 0.1}};
+  for (size_t i = 0; i < sizeof big / sizeof big[0]; i++) {
+    sb_clear_error();
+    ck_assert(isnan(big[i].lf(big[i].a, big[i].tau)));
+    ck_assert_int_eq(sb_last_status(), SB_ERANGE);
+    ck_assert(strstr(sb_last_error(), big[i].name) != NULL);
+    sb_clear_error();
+    ck_assert(big[i].nf(big[i].a, big[i].tau) == 0.0);
+    ck_assert_int_eq(sb_last_status(), SB_SUCCESS);
+  }
+  /* n = 0 exactly: log n = -inf, status 0 */
+  sb_clear_error();
+  ck_assert(sb_pbe_add_mono_logn(5.0, 0.0) == -INFINITY);
+  ck_assert_int_eq(sb_last_status(), SB_SUCCESS);
 }
 END_TEST
 

@@ -45,7 +45,11 @@ static double const_mono_logn(const char *fn, double k, double tau)
     return -INFINITY;
   /* (k-1) log(t/(1+t)) - 2 log1p(t), t = tau/2: no terms of size k log
    * tau that cancel */
-  return -(k - 1.0) * log1p(2.0 / tau) - 2.0 * log1p(0.5 * tau);
+  const double r = 2.0 / tau;
+  /* tau < 2/DBL_MAX (subnormal): log1p(2/tau) = log(2 + tau) - log tau,
+   * log(2 + tau) = log 2 to the last bit (it was log1p(inf) = inf) */
+  const double l = isinf(r) ? M_LN2 - log(tau) : log1p(r);
+  return -(k - 1.0) * l - 2.0 * log1p(0.5 * tau);
 }
 
 /* rest(k) = log Gamma(k) - [(k - 1/2) log k - k] = log(2 pi)/2 +
@@ -70,8 +74,11 @@ static double add_mono_logn(const char *fn, double k, double tau)
    * (k-1) log phi + k q = (k-1)(log1p(-q) + q) + q (no cancellation of
    * terms ~ k q when phi ~ 1) */
   const double q = exp(-tau);
-  const double lk = q < 0.5 ? (k - 1.0) * gsl_sf_log_1plusx_mx(-q) + q
-                            : (k - 1.0) * log(phi) + k * q;
+  double lk = q < 0.5 ? (k - 1.0) * gsl_sf_log_1plusx_mx(-q) + q
+                      : (k - 1.0) * log(phi) + k * q;
+  if (isinf(lk)) /* (k-1) log phi beyond -DBL_MAX, k q not: k ~ 1e308 at
+                  * tau in ~[0.1, 0.7], log n ~ -0.2 k ... -1.5 k */
+    lk = (k - 1.0) * (log(phi) + q) + q;
   return -tau + lk - 1.5 * log(k) - lgamma_rest(k);
 }
 
@@ -130,10 +137,20 @@ static double add_exp_logn(const char *fn, double x, double tau)
   return e + log(gsl_sf_bessel_I1_scaled(z)) - log(x * sT);
 }
 
+/* log n = -inf is the value only where n = 0 (tau = 0, k > 1: all the
+ * forms are finite at tau = 0 otherwise); for tau > 0 it means that log
+ * n < -DBL_MAX (k or x ~ 1e308), which a double cannot hold: NaN and
+ * SB_ERANGE.  n itself is then 0 (underflow, no error). */
 #define EXPFORM(name)                                  \
   double sb_pbe_##name##_logn(double a, double tau)    \
   {                                                    \
-    return name##_logn(__func__, a, tau);              \
+    const double v = name##_logn(__func__, a, tau);    \
+    if (v == -INFINITY && tau > 0.0) {                 \
+      sbi_error(SB_ERANGE, __func__, "(%g, tau = %g): "  \
+                "log n < -DBL_MAX", a, tau);           \
+      return NAN;                                      \
+    }                                                  \
+    return v;                                          \
   }                                                    \
   double sb_pbe_##name##_n(double a, double tau)       \
   {                                                    \

@@ -200,8 +200,11 @@ void sb_pbe_moments(const double *v, const double *n, size_t nbins,
  * or underflow for any k); the plain forms return exp of it (0 on
  * underflow).  Domain: integer k >= 1 (as double), tau >= 0 (< 1 for
  * multiplicative); NaN and SB_EDOM (the message names the function
- * called) otherwise.  log n is -inf where n = 0 (tau = 0, k > 1) or
- * where log n < -DBL_MAX (k ~ DBL_MAX).  Accuracy: monodisperse
+ * called) otherwise.  log n is -inf (status 0) only where n = 0 (tau =
+ * 0, k > 1); where log n < -DBL_MAX (k or x ~ 1e308: e.g. the constant
+ * kernel at k = DBL_MAX, tau = 1) the _logn form is NaN with SB_ERANGE
+ * (the message names it) and the _n form 0 without error (n underflows).
+ * Accuracy: monodisperse
  * starts, ~1e-14 of |log n| + log k (the k log k - k of the factorials
  * taken out through GSL's gammastar, log1p forms: tested to k = 1e15);
  * exponential starts, a few ulp of the largest term (~ x).  Sources and
