@@ -675,6 +675,80 @@ START_TEST(test_sim_extreme)
 }
 END_TEST
 
+/* The grid simulators where the positions or sigma2 t leave the range
+ * the kernels handle (each was wrong with status 0: +-inf or NaN
+ * variances and norms, x - a overflowing, 0/0 in the Bessel-3 sub-step
+ * probability; frequencies 0 or 1, or 0.49 for 0.11): sigma2 t beyond
+ * DBL_MAX or below DBL_MIN with positions on the scale of its root, x - a
+ * beyond DBL_MAX, Bessel-3 positions far below the root of sigma2 t or
+ * whose squares overflow.  The crossing frequency of 2000 paths (n = 8,
+ * seed 8301) within 5 binomial sd (+ 0.005) of P from mpmath (40 digits):
+ * exp(-2(x-a)(y-a)/v), expm1(2a(x+y-a)/v)/expm1(2xy/v), (a/x) erfc((x-a)/
+ * sqrt(2v)), v = sigma2 t; the _hits counts too.  Where the positions and
+ * the root of sigma2 t span more than the doubles: SB_ERANGE naming the
+ * function. */
+START_TEST(test_sim_scaled)
+{
+  gsl_rng *r = rng_new(8301);
+  static const struct {
+    int kind;
+    double x, y, a, s2, t, P;
+  } c[] = {
+      {0, 0.75 * DBL_MAX, 0.0, -0.75 * DBL_MAX, DBL_MAX, DBL_MAX,
+       0.10539922456186435434},
+      {0, 1e300, 5e299, 0.0, 1e300, 1e300, 0.3678794411714423216},
+      {1, 1e300, 2e300, 5e299, 1e300, 1e300, 0.20863581959057165132},
+      {1, 1e-300, 1e-300, 5e-301, 1e-300, 1.0, 0.75},
+      {1, 1e-300, 1e-300, 5e-301, 1e-300, 1e-300, 0.54494576607658875522},
+      {2, 2e-300, 0.0, 1e-300, 1e-300, 1e-300, 0.15865525393145705141},
+      {2, 2e300, 0.0, 1e300, 1e300, 1e300, 0.15865525393145705141},
+      {1, 1e-300, 1e300, 5e-301, 1e-300, 1e300, 0.26894142136999512075}};
+  for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+    const int N = 2000;
+    int cnt = 0;
+    for (int p = 0; p < N; p++) {
+      int k = -7;
+      const int st =
+          c[i].kind == 0
+              ? sb_sim_bb_path(r, c[i].x, c[i].y, c[i].a, c[i].s2, c[i].t, 8,
+                               &k)
+          : c[i].kind == 1
+              ? sb_sim_bes3b_path(r, c[i].x, c[i].y, c[i].a, c[i].s2, c[i].t,
+                                  8, &k)
+              : sb_sim_bes3_path(r, c[i].x, c[i].a, c[i].s2, c[i].t, 8, &k);
+      ck_assert_int_eq(st, SB_SUCCESS);
+      ck_assert(k >= -1 && k < 8);
+      cnt += k >= 0;
+    }
+    const double P = c[i].P, sd = sqrt(P * (1 - P) / N);
+    ck_assert_msg(fabs((double)cnt / N - P) <= 5 * sd + 0.005,
+                  "case %zu: frequency %g, P = %g", i, (double)cnt / N, P);
+    unsigned long h[8], nh;
+    const int st =
+        c[i].kind == 0
+            ? sb_sim_bb_hits(r, c[i].x, c[i].y, c[i].a, c[i].s2, c[i].t, 8,
+                             N, h, &nh)
+        : c[i].kind == 1
+            ? sb_sim_bes3b_hits(r, c[i].x, c[i].y, c[i].a, c[i].s2, c[i].t,
+                                8, N, h, &nh)
+            : sb_sim_bes3_hits(r, c[i].x, c[i].a, c[i].s2, c[i].t, 8, N, h,
+                               &nh);
+    ck_assert_int_eq(st, SB_SUCCESS);
+    ck_assert_msg(fabs((double)nh / N - P) <= 5 * sd + 0.005,
+                  "hits case %zu: %lu of %d, P = %g", i, nh, N, P);
+  }
+  /* positions 1e-300 against sqrt(sigma2 t) = 1e300: 1e-600 apart */
+  int k = -7;
+  sb_clear_error();
+  ck_assert_int_eq(sb_sim_bes3b_path(r, 1e-300, 1e-300, 5e-301, 1e300,
+                                     1e300, 8, &k),
+                   SB_ERANGE);
+  ck_assert(strstr(sb_last_error(), "sb_sim_bes3b_path") != NULL);
+  ck_assert_int_eq(k, -7);
+  gsl_rng_free(r);
+}
+END_TEST
+
 /* sb_sim_langevin at extreme arguments.  (1) tau, B, dt, us and the start
  * state x0, u0 (all three components) in turn over sbt_sweep_ext (the
  * others tau = 0.7, B = 1.3, dt = 0.4, us = 0.2, x0 = 1.5, u0 = -0.8),
@@ -776,6 +850,7 @@ static Suite *bridge_mc_suite(void)
   tcase_set_timeout(tc, 60);
   tcase_add_test(tc, test_sim_extreme);
   tcase_add_test(tc, test_sim_langevin_extreme);
+  tcase_add_test(tc, test_sim_scaled);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -7,6 +7,7 @@
  * sb_bb_cross_prob / sb_bes3b_cross_prob and the hitting-time laws, so
  * they must not call them. */
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -44,8 +45,36 @@ static double step_bes3b(double r0, double r1, double a, double v)
 {
   if (a <= 0.0)
     return 0.0;
+  const double den = expm1(-2.0 * r0 * r1 / v);
+  if (den > -0x1p-1000) { /* 2 r0 r1/v below 2^-1000 (or 0 by underflow,
+                           * 0/0 before): the ratio of the expm1 is that
+                           * of their arguments, and the exp factor 1 */
+    const double rl = r0 < r1 ? r0 : r1, rh = r0 < r1 ? r1 : r0;
+    return (a / rl) * ((rl + rh - a) / rh);
+  }
   return exp(-2.0 * (r0 - a) * (r1 - a) / v) *
-         expm1(-2.0 * a * (r0 + r1 - a) / v) / expm1(-2.0 * r0 * r1 / v);
+         expm1(-2.0 * a * (r0 + r1 - a) / v) / den;
+}
+
+/* |X|: sqrt of the sum of squares (the bits as written) where that lies
+ * in 2^(+-500); beyond, the components are scaled by a power of two first
+ * (the squares over- or underflowed: positions ~ 1e300 gave +inf, ~
+ * 1e-300 gave 0) */
+static double norm3(const double *X)
+{
+  const double r = sqrt(X[0] * X[0] + X[1] * X[1] + X[2] * X[2]);
+  if (r >= 0x1p-500 && r <= 0x1p500)
+    return r;
+  double mx = fmax(fabs(X[0]), fmax(fabs(X[1]), fabs(X[2])));
+  if (mx == 0.0 || !isfinite(mx))
+    return mx;
+  const int e = ilogb(mx);
+  double s = 0.0;
+  for (int j = 0; j < 3; j++) {
+    const double c = ldexp(X[j], -e);
+    s += c * c;
+  }
+  return ldexp(sqrt(s), e);
 }
 
 /* ------------------------------------------------------ path kernels */
@@ -66,8 +95,11 @@ static int path_bb(const gsl_rng *r, double x, double y, double a,
     } else {
       /* exact sequential bridge sampling: given X_k with T left */
       double T = t - k * dt;
-      Xn = X + (y - X) * dt / T +
-           sqrt(s2 * dt * (T - dt) / T) * gsl_ran_gaussian_ziggurat(r, 1.0);
+      const double sd = sqrt(s2 * dt * (T - dt) / T);
+      const double z = gsl_ran_gaussian_ziggurat(r, 1.0);
+      Xn = X + (y - X) * dt / T + sd * z;
+      if (!isfinite(Xn)) /* (y - X) dt overflowed (t ~ 1e300) */
+        Xn = X + (y - X) * (dt / T) + sd * z;
     }
     if (Xn <= a || gsl_rng_uniform(r) < step_bb(X, Xn, a, s2 * dt))
       return k;
@@ -107,9 +139,14 @@ static int path_bes3b(const gsl_rng *r, double x, double y, double a,
       /* three independent 1-D bridges towards Y */
       double T = t - k * dt;
       double sd = sqrt(s2 * dt * (T - dt) / T);
-      for (int j = 0; j < 3; j++)
-        X[j] += (Y[j] - X[j]) * dt / T + sd * gsl_ran_gaussian_ziggurat(r, 1.0);
-      Rn = sqrt(X[0] * X[0] + X[1] * X[1] + X[2] * X[2]);
+      for (int j = 0; j < 3; j++) {
+        const double z = gsl_ran_gaussian_ziggurat(r, 1.0);
+        const double Xj = X[j] + ((Y[j] - X[j]) * dt / T + sd * z);
+        /* (Y - X) dt overflowed (t ~ 1e300): the same with dt/T first */
+        X[j] = isfinite(Xj) ? Xj
+                            : X[j] + ((Y[j] - X[j]) * (dt / T) + sd * z);
+      }
+      Rn = norm3(X);
     }
     /* Given the norms at the grid times, the pieces of R between them are
      * independent Bessel-3 bridges (R is Markov; conditioning on R_t is an
@@ -131,7 +168,7 @@ static int path_bes3(const gsl_rng *r, double x, double a, double s2,
   for (int k = 0; k < n; k++) {
     for (int j = 0; j < 3; j++)
       X[j] += sd * gsl_ran_gaussian_ziggurat(r, 1.0);
-    double Rn = sqrt(X[0] * X[0] + X[1] * X[1] + X[2] * X[2]);
+    double Rn = norm3(X);
     /* same Markov argument: sub-step pieces are Bessel-3 bridges */
     if (Rn <= a || gsl_rng_uniform(r) < step_bes3b(R, Rn, a, s2 * dt))
       return k;
@@ -171,11 +208,13 @@ static int check_args(const char *fn, int kind, const gsl_rng *r, double x,
  * (T - dt) ~ sigma2 t^2: outside 2^(+-600) (t = 1e300 with sigma2 = 1:
  * +inf, then NaN positions that never cross) t is scaled (exactly) into
  * [1, 2) if sigma2 2^e stays a normal double; elsewhere nothing changes
- * (same draws, same bits).  The positions are left as they are (scaling
- * them could overflow or underflow them), so sigma2 t itself beyond the
- * normal doubles is not helped. */
+ * (same draws, same bits).  The positions are left as they are here;
+ * sigma2 t itself beyond the normal doubles is fit_scales' (below), which
+ * runs first. */
 static void rescale(double *s2, double *t)
 {
+  if (*s2 == 0.0) /* fit_scales underflowed it (a far-off bridge) */
+    return;
   const int et = ilogb(*t), ev = ilogb(*s2) + et;
   if (abs(ev + et) < 600)
     return;
@@ -186,10 +225,97 @@ static void rescale(double *s2, double *t)
   *t = ldexp(*t, -et);
 }
 
+/* floor(v/2) and ceil(v/2) for any int v */
+static int floor2(int v) { return v >= 0 ? v / 2 : -((1 - v) / 2); }
+static int ceil2(int v) { return -floor2(-v); }
+
+/* Positions and sigma2 t far from the normal doubles.  The law of the
+ * first-crossing sub-step is also unchanged when the positions are scaled
+ * by 2^-m and sigma2 by 2^-2m (Brownian scaling).  The kernels are at risk
+ *  - where sigma2 t exceeds 2^998 (the sub-step variance, the Brownian
+ *    bridge's (X - a)(X' - a) and the sums overflow at positions on the
+ *    scale of its root);
+ *  - where sigma2 t is below 2^-900 (the variance underflows, 0/0 in the
+ *    sub-step probability) with the positions (Brownian bridge: x - a and
+ *    y - a) all within 2^400 of its root;
+ *  - Brownian bridge: where x - a, y - a or y - x overflows.
+ * Farther from the root the kernels give the certain outcome through
+ * exp(-inf) = 0 (|a| = 1e300 with sigma2 t = 1e-320; a path leaving for y
+ * far away), and elsewhere nothing changes (same draws, same bits; the
+ * Bessel-3 norms and small ratios are handled by norm3 and step_bes3b).
+ * At risk, m is the one nearest 0 with
+ *  - sigma2 t 2^-2m < 2^1000, and >= 2^-898 where the variance was at risk
+ *    of underflowing;
+ *  - |x|, |y|, |a| 2^-m <= 2^1020 (x - a and the norms cannot overflow);
+ *  - Bessel-3: the nonzero positions stay normal doubles (their ratios set
+ *    the law);
+ * and t is scaled into [1, 2) as by rescale().  Where no m meets them (the
+ * positions and the root of sigma2 t more than the doubles apart),
+ * SB_ERANGE.  Inputs: validated, y = 0 for K_BES3. */
+static int fit_scales(const char *fn, int kind, double *x, double *y,
+                      double *a, double *s2, double *t)
+{
+  if (*x <= *a || (kind != K_BB && *a == 0.0)) /* sub-step 0, no draws;
+                                                 * Bessel-3 never at 0 */
+    return SB_SUCCESS;
+  const int q = ilogb(*s2) + ilogb(*t); /* log2(sigma2 t) in [q, q + 2) */
+  const int half = floor2(q);           /* log2 of its root, about */
+  const double p[3] = {*x, *y, *a};
+  int hi = INT_MIN, lo = INT_MAX;
+  for (int i = 0; i < 3; i++)
+    if (p[i] != 0.0) {
+      const int e = ilogb(p[i]);
+      hi = e > hi ? e : hi;
+      lo = e < lo ? e : lo;
+    }
+  int mmin = ceil2(q - 998), mmax = INT_MAX;
+  int risk = q > 998, low = 0;
+  if (kind == K_BB) {
+    const double d0 = fabs(*x - *a), d1 = fabs(*y - *a);
+    if (!isfinite(d0) || !isfinite(d1) || !isfinite(*y - *x))
+      risk = 1;
+    low = q < -900 && d0 > 0.0 && d1 > 0.0 && ilogb(fmax(d0, d1)) <
+                                                   half + 400;
+    if (hi - 1020 > mmin)
+      mmin = hi - 1020;
+  } else if (hi != INT_MIN) {
+    low = q < -900 && hi < half + 400;
+    if (hi - 1020 > mmin)
+      mmin = hi - 1020;
+    mmax = lo + 1022; /* the positions stay normal doubles */
+  }
+  if (low) {
+    risk = 1;
+    if (floor2(q + 898) < mmax)
+      mmax = floor2(q + 898);
+  }
+  /* Bessel-3, wherever it scales: sigma2 t 2^-2m >= 2^-898 too (the end
+   * point's kappa and the norms need a variance that is not 0) */
+  if (kind != K_BB && risk && floor2(q + 898) < mmax)
+    mmax = floor2(q + 898);
+  if (!risk)
+    return SB_SUCCESS;
+  if (mmin > mmax)
+    return sbi_error(SB_ERANGE, fn, "x = %g, y = %g, a = %g, sigma2 = %g, "
+                     "t = %g: the positions and sqrt(sigma2 t) span more "
+                     "than the doubles", *x, *y, *a, *s2, *t);
+  const int m = mmin > 0 ? mmin : (mmax < 0 ? mmax : 0);
+  const int et = ilogb(*t);
+  *x = ldexp(*x, -m);
+  *y = ldexp(*y, -m);
+  *a = ldexp(*a, -m);
+  *s2 = ldexp(*s2, et - 2 * m); /* sigma2 t 2^-2m / t' */
+  *t = ldexp(*t, -et);          /* t' in [1, 2) */
+  return SB_SUCCESS;
+}
+
 static int run_path(const char *fn, int kind, const gsl_rng *r, double x,
                     double y, double a, double s2, double t, int n, int *k)
 {
   int st = check_args(fn, kind, r, x, y, a, s2, t, n, k);
+  if (st != SB_SUCCESS)
+    return st;
+  st = fit_scales(fn, kind, &x, &y, &a, &s2, &t);
   if (st != SB_SUCCESS)
     return st;
   rescale(&s2, &t);
@@ -209,6 +335,9 @@ static int run_hits(const char *fn, int kind, const gsl_rng *r, double x,
     return st;
   if (!ncross)
     return sbi_error(SB_EINVAL, fn, "NULL argument");
+  st = fit_scales(fn, kind, &x, &y, &a, &s2, &t);
+  if (st != SB_SUCCESS)
+    return st;
   rescale(&s2, &t);
   for (int k = 0; k < n; k++)
     hits[k] = 0;

@@ -51,9 +51,15 @@
  * outputs not NULL.  Bessel-3: a >= 0, x >= 0, y >= 0 (a = 0: never
  * crosses).  Where sigma2 t^2 is outside 2^(+-600), t is first scaled
  * by a power of two into [1, 2) and sigma2 by its inverse (the law is
- * unchanged; elsewhere the draws are bit-identical).  Not covered: sigma2
- * t itself beyond the normal doubles with positions ~ 1e300, or x - a
- * overflowing (docs/simulate.md).  x <= a is a crossing in
+ * unchanged; elsewhere the draws are bit-identical).  Where sigma2 t
+ * exceeds 2^998, or is below 2^-900 with the positions (Brownian bridge:
+ * x - a and y - a) within 2^400 of its root, or x - a, y - a or y - x
+ * overflows, the positions are also scaled by 2^-m and sigma2 by 2^-2m
+ * (the law is unchanged; docs/simulate.md); Bessel-3 norms and the
+ * sub-step probability are formed without over- or underflow.  SB_ERANGE
+ * (outputs untouched) where no such scale keeps the positions and sigma2 t
+ * in range (the positions and sqrt(sigma2 t) more than the doubles apart,
+ * e.g. x = 1e-300 with sigma2 t = 1e600).  x <= a is a crossing in
  * sub-step 0 (no draws are made).  The
  * _path functions set *k to the sub-step index in [0, n) of the first
  * crossing, or -1 if the path stays above a; the _hits functions simulate
@@ -61,7 +67,7 @@
  * number of first crossings in sub-step k and *ncross to their sum.  Draws
  * use gsl_ran_gaussian_ziggurat and gsl_rng_uniform in a fixed order: same
  * generator state, same result.  Status: SB_SUCCESS, SB_EDOM (bad number),
- * SB_EINVAL (NULL pointer, n < 1).
+ * SB_ERANGE (above), SB_EINVAL (NULL pointer, n < 1).
  *
  * Langevin (sb_sim_langevin): np particles with 3 velocity/position
  * components each, all with the parameters p (tau, B, fluid velocity us in
