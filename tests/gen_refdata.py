@@ -16,16 +16,18 @@ the C tests with GSL QAGS.  Inputs are exact binary doubles: each input is
 written with repr() and read back as the same double, and mpmath sees the
 exact value of that double.
 
-Precision per row (passage files: passage_bm, passage_bes3,
-passage_quantile).  A row's values are computed at its base precision (60
-digits, 400 for the extreme corners) and again at 40 more digits; if any
-value differs by more than 1e-24 relative (or falls on the other side of
-the 1e-300 cut-off), the base precision is doubled and the comparison
-repeated.  The values written are those at the first precision that passed,
-so each has a relative error below about 1e-24, well inside the 20 digits
-written: rounding errors grow by the same factor at both precisions, so the
-40 extra digits make the second value's error 1e-40 times the first's and
-their difference measures the first's error.  Rows that were already
+Precision per row (the passage and bridge files; settled()).  A row's
+values are computed at its base precision (60 digits; 200 for bridge_cross,
+40 for the bridge quantiles, 400 for the extreme corners) and again at 40
+more digits; if any value differs by more than 1e-24 relative (or falls on
+the other side of the 1e-300 cut-off), the base precision is doubled and
+the comparison repeated.  The values written are those at the first
+precision that passed, so each has a relative error below about 1e-24, well
+inside the 20 digits written: rounding errors grow by the same factor at
+both precisions, so the 40 extra digits make the second value's error
+1e-40 times the first's and their difference measures the first's error.
+(The quantiles' bisections stop at a width of 1e-40 in log t, 1e-35 in
+log s, at every precision: below the 1e-24.)  Rows that were already
 right at the base precision are written with the same bytes as before;
 e.g. the mass exp(-2 d |nu| / sigma2) of the law with 2 d |nu| / sigma2 =
 2e300 needs 480 digits, as its exponent must be exact to 1e-24 absolute.
@@ -57,6 +59,18 @@ def f17(x):
 
 
 VERIFY = {"on": False, "failed": []}  # --verify: compare, do not write
+RAISED = []  # (base, final) digits of the rows settled() raised, per file
+
+
+def raised():
+    """' (n rows above their base precision, up to N digits)' for the rows
+    settled() raised since the last file written, or ''."""
+    if not RAISED:
+        return ""
+    n, top = len(RAISED), max(r[1] for r in RAISED)
+    del RAISED[:]
+    return " (%d rows above their base precision, up to %d digits)" % (n,
+                                                                        top)
 
 
 def write(name, header, rows):
@@ -71,14 +85,21 @@ def write(name, header, rows):
             print("%s line %d differs:\n  committed %s\n  generated %s" %
                   (name, i, old[i - 1] if i <= len(old) else "(none)",
                    lines[i - 1] if i <= len(lines) else "(none)"))
-        print("checked %s: %d rows, %d differ" % (name, len(rows), len(bad)))
+        print("checked %s: %d rows, %d differ%s" % (name, len(rows), len(bad),
+                                                  raised()))
         if bad:
             VERIFY["failed"].append(name)
         return
     with open(path, "w") as fh:
         fh.write("\n".join(lines) + "\n")
-    print("wrote %s: %d rows, %d bytes" % (name, len(rows),
-                                           os.path.getsize(path)))
+    print("wrote %s: %d rows, %d bytes%s" % (name, len(rows),
+                                             os.path.getsize(path), raised()))
+
+
+def cut(v):
+    """A probability or density as written: -1 below 1e-300 (the marker
+    of tests/data/README.md; such values are not normal doubles)."""
+    return v if v > TINY else -1
 
 
 def _agree(u, v):
@@ -95,12 +116,15 @@ def settled(f, dps):
     """f() (a tuple of reference values) at the lowest of dps, 2 dps,
     4 dps, ... at which it agrees with f() at 40 more digits (module
     docstring); the values are rounded to that precision."""
+    base = dps
     while True:
         with mp.workdps(dps):
             lo = tuple(+v if isinstance(v, mp.mpf) else v for v in f())
         with mp.workdps(dps + 40):
             hi = f()
         if all(_agree(u, v) for u, v in zip(lo, hi)):
+            if dps > base:
+                RAISED.append((base, dps))
             return lo
         if dps >= 1 << 14:
             raise ArithmeticError("no settled precision up to %d digits"
@@ -192,8 +216,7 @@ def ig_parts(t, x, a, mu, s2):
 def ig_row(t, x, a, mu, s2):
     """pdf, cdf, sf (-1 below 1e-300) and mass of a passage_bm.csv row."""
     pdf, cdf, sf, mass = ig_parts(t, x, a, mu, s2)
-    return (pdf if pdf > TINY else -1, cdf if cdf > TINY else -1,
-            sf if sf > TINY else -1, mass)
+    return cut(pdf), cut(cdf), cut(sf), mass
 
 
 def bes3_row(t, x, a, s2):
@@ -205,7 +228,7 @@ def bes3_row(t, x, a, s2):
         mp.exp(-d * d / (2 * ss * tt))
     cdf = aa / xx * mp.erfc(z)
     sf = 1 - cdf
-    return pdf if pdf > TINY else -1, cdf if cdf > TINY else -1, sf
+    return cut(pdf), cut(cdf), sf
 
 
 def gen_passage():
@@ -327,16 +350,21 @@ def gen_passage_quantile():
 # -------------------------------------------------------------- bridge
 
 def cross_ref(kind, x, y, a, v):
-    """P(min <= a), log P, 1 - P at 200 digits from the textbook forms."""
-    with mp.workdps(200):
-        x, y, a, v = map(mp.mpf, (x, y, a, v))
-        if kind == 0:
-            # log P and 1 - P from the exponent itself: exp(-C) rounds to 1
-            # at 200 digits when C < 1e-200
-            C = 2 * (x - a) * (y - a) / v
-            return mp.exp(-C), -C, -mp.expm1(-C)
-        p = mp.expm1(2 * a * (x + y - a) / v) / mp.expm1(2 * x * y / v)
-        return p, mp.log(p), 1 - p
+    """P(min <= a), log P, 1 - P from the textbook forms."""
+    x, y, a, v = map(mp.mpf, (x, y, a, v))
+    if kind == 0:
+        # log P and 1 - P from the exponent itself: exp(-C) rounds to 1
+        # at n digits when C < 10^-n
+        C = 2 * (x - a) * (y - a) / v
+        return mp.exp(-C), -C, -mp.expm1(-C)
+    p = mp.expm1(2 * a * (x + y - a) / v) / mp.expm1(2 * x * y / v)
+    return p, mp.log(p), 1 - p
+
+
+def cross_row(kind, x, y, a, v):
+    """p, logp, nocross (-1 below 1e-300) of a bridge_cross.csv row."""
+    p, lp, nc = cross_ref(kind, x, y, a, v)
+    return cut(p), lp, cut(nc)
 
 
 def gen_bridge_cross():
@@ -364,9 +392,8 @@ def gen_bridge_cross():
              (1.0, 1e-6, 1e-306, 1e8), (1e8, 100.0, 1e-298, 1e24)]
     for kind in (0, 1):
         for (x, y, a, v) in base:
-            p, lp, nc = cross_ref(kind, x, y, a, v)
-            rows.append((kind, x, y, a, v, p if p > TINY else -1, lp,
-                         nc if nc > TINY else -1))
+            rows.append((kind, x, y, a, v) +
+                        settled(lambda: cross_row(kind, x, y, a, v), 200))
     # extreme corners: (x - a)(y - a) above DBL_MAX or below DBL_MIN with
     # C = 2(x - a)(y - a)/v a normal double, log P near -DBL_MAX
     for (kind, x, y, a, v) in [
@@ -374,9 +401,8 @@ def gen_bridge_cross():
             (0, 1.0, 0.5, -1e300, 1e300), (0, 1e300, 0.5, 0.0, 1e-8),
             (1, 1e200, 1e200, 0.5, 1e300), (1, 3e-200, 2e-200, 1e-200, 1e-300),
             (1, 1e300, 1.5, 1.0, 1e-8)]:
-        p, lp, nc = cross_ref(kind, x, y, a, v)
-        rows.append((kind, x, y, a, v, p if p > TINY else -1, lp,
-                     nc if nc > TINY else -1))
+        rows.append((kind, x, y, a, v) +
+                    settled(lambda: cross_row(kind, x, y, a, v), 200))
     write("bridge_cross.csv",
           ["kind", "x", "y", "a", "v", "p", "logp", "nocross"], rows)
 
@@ -429,6 +455,11 @@ def hit_ref(kind, u, x, y, a, s2, t, w=None):
     return pdf, +cdf, +sf
 
 
+def hit_row(kind, u, x, y, a, s2, t):
+    """pdf, cdf, sf (-1 below 1e-300) of a bridge_hit.csv row."""
+    return tuple(cut(v) for v in hit_ref(kind, u, x, y, a, s2, t))
+
+
 HIT_BB = [(1.5, 1.3, 1.0, 1.0, 1.0), (2.0, 3.0, 1.0, 0.5, 2.0),
           (1.5, 0.4, 1.0, 0.7, 2.0), (1.5, 1.0, 1.0, 1.0, 1.0),
           (1 + 1e-6, 1.5, 1.0, 1.0, 1.0), (1.5, 1.3, 1.0, 1e6, 1.0),
@@ -451,11 +482,8 @@ def gen_bridge_hit():
         for (x, y, a, s2, t) in sets:
             for f in UFRAC:
                 u = t * f
-                pdf, cdf, sf = hit_ref(kind, u, x, y, a, s2, t)
-                rows.append((kind, u, x, y, a, s2, t,
-                             pdf if pdf > TINY else -1,
-                             cdf if cdf > TINY else -1,
-                             sf if sf > TINY else -1))
+                rows.append((kind, u, x, y, a, s2, t) + settled(
+                    lambda: hit_row(kind, u, x, y, a, s2, t), 60))
     # extreme-but-representable corners (400 digits: with v ~ 1e300 the
     # B3B density and mixture cancel to 1e-300): u = 1e-300 with a
     # normal density near 1e280 (B3B: y/x = 1e-31, the y -> 0 law),
@@ -475,10 +503,8 @@ def gen_bridge_hit():
             # 2 dl ex g0 underflow
             (1, 1e-300, 2e-149, 1e-149, 1e-149, 1.0, 1.0),
             (1, 1e-300, 2e-149, 1e-149, 0.5e-149, 1.0, 1.0)]:
-        with mp.workdps(400):
-            pdf, cdf, sf = hit_ref(kind, u, x, y, a, s2, t)
-        rows.append((kind, u, x, y, a, s2, t, pdf if pdf > TINY else -1,
-                     cdf if cdf > TINY else -1, sf if sf > TINY else -1))
+        rows.append((kind, u, x, y, a, s2, t) + settled(
+            lambda: hit_row(kind, u, x, y, a, s2, t), 400))
     write("bridge_hit.csv",
           ["kind", "u", "x", "y", "a", "sigma2", "t", "pdf", "cdf", "sf"],
           rows)
@@ -512,11 +538,10 @@ def gen_bridge_quantile():
     sets = [(0, HIT_BB[0]), (0, HIT_BB[1]), (0, HIT_BB[2]), (0, HIT_BB[8]),
             (1, HIT_B3[0]), (1, HIT_B3[3]), (1, HIT_B3[5]), (1, HIT_B3[6]),
             (1, HIT_B3[12])]
-    with mp.workdps(40):
-        for kind, (x, y, a, s2, t) in sets:
-            for p in ps:
-                rows.append((kind, p, x, y, a, s2, t,
-                             hit_quantile(kind, p, x, y, a, s2, t)))
+    for kind, (x, y, a, s2, t) in sets:
+        for p in ps:
+            rows.append((kind, p, x, y, a, s2, t) + settled(
+                lambda: (hit_quantile(kind, p, x, y, a, s2, t),), 40))
     # extreme corners (the iteration in log s failed there): laws
     # narrower than one ulp (sigma2 = 1e-154, a = -1e300), u ~ 1e-300
     # (sigma2 = 1e300), t = 1e300; 400 digits, log s in [-800, 800]
@@ -528,9 +553,8 @@ def gen_bridge_quantile():
             (1, 0.3, 2.0, 1.0, 0.5, 1e300, 1.0),
             (1, 0.3, 2.0, 1.0, 0.5, 1.0, 1e300),
             (1, 0.3, 2.0, 1.0, 0.5, 1e-154, 1.0)]:
-        with mp.workdps(400):
-            q = hit_quantile(kind, p, x, y, a, s2, t, 800)
-        rows.append((kind, p, x, y, a, s2, t, q))
+        rows.append((kind, p, x, y, a, s2, t) + settled(
+            lambda: (hit_quantile(kind, p, x, y, a, s2, t, 800),), 400))
     write("bridge_quantile.csv",
           ["kind", "p", "x", "y", "a", "sigma2", "t", "q"], rows)
 
@@ -560,19 +584,16 @@ def gen_bridge_narrow():
     for (x, y, a, s2, t) in HIT_NARROW:
         for f in UNARROW:
             u = t * f
-            pdf, cdf, sf = hit_ref(1, u, x, y, a, s2, t)
-            rows.append((1, u, x, y, a, s2, t, pdf if pdf > TINY else -1,
-                         cdf if cdf > TINY else -1,
-                         sf if sf > TINY else -1))
+            rows.append((1, u, x, y, a, s2, t) + settled(
+                lambda: hit_row(1, u, x, y, a, s2, t), 60))
     write("bridge_narrow.csv",
           ["kind", "u", "x", "y", "a", "sigma2", "t", "pdf", "cdf", "sf"],
           rows)
     rows = []
-    with mp.workdps(40):
-        for (x, y, a, s2, t) in HIT_NARROW:
-            for p in PNARROW:
-                rows.append((1, p, x, y, a, s2, t,
-                             hit_quantile(1, p, x, y, a, s2, t)))
+    for (x, y, a, s2, t) in HIT_NARROW:
+        for p in PNARROW:
+            rows.append((1, p, x, y, a, s2, t) + settled(
+                lambda: (hit_quantile(1, p, x, y, a, s2, t),), 40))
     write("bridge_narrow_quantile.csv",
           ["kind", "p", "x", "y", "a", "sigma2", "t", "q"], rows)
 
