@@ -28,9 +28,10 @@ both precisions, so the 40 extra digits make the second value's error
 1e-40 times the first's and their difference measures the first's error.
 (The quantiles' bisections stop at a width of 1e-40 in log t, 1e-35 in
 log s, at every precision: below the 1e-24.)  Rows that were already
-right at the base precision are written with the same bytes as before;
-e.g. the mass exp(-2 d |nu| / sigma2) of the law with 2 d |nu| / sigma2 =
-2e300 needs 480 digits, as its exponent must be exact to 1e-24 absolute.
+right at the base precision are written with the same bytes as before.
+A probability or density below 1e-300 is written as -1 (cut()); the mass
+of passage_bm.csv also has its logarithm -2 d |nu| / sigma2 (logmass),
+so that the exponent of a mass such as exp(-2e300) is checked too.
 
   /usr/bin/python3 tests/gen_refdata.py --verify [group ...]
 regenerates without writing and exits with status 1, naming the rows,
@@ -206,17 +207,20 @@ def ig_parts(t, x, a, mu, s2):
     c = (nu * t - d) / s
     b = (nu * t + d) / s
     cdf = Phi(c) + mp.exp(2 * nu * d / s2) * Phi(-b)
-    mass = 1 if nu >= 0 else mp.exp(-2 * d * abs(nu) / s2)
+    # log(mass) = -2 d |nu| / s2 (the mass alone reads as 0 below 1e-300)
+    logmass = 0 if nu >= 0 else -2 * d * abs(nu) / s2
+    mass = 1 if nu >= 0 else mp.exp(logmass)
     # the complement directly (no 1 - cdf): Q(c) - e^{2 nu d/s2} Q(b) is
     # mass-independent algebra: 1 - cdf = Q(c) - exp(2 nu d/s2) Phi(-b)
     sf = Q(c) - mp.exp(2 * nu * d / s2) * Phi(-b)
-    return pdf, cdf, sf, mass
+    return pdf, cdf, sf, mass, logmass
 
 
 def ig_row(t, x, a, mu, s2):
-    """pdf, cdf, sf (-1 below 1e-300) and mass of a passage_bm.csv row."""
-    pdf, cdf, sf, mass = ig_parts(t, x, a, mu, s2)
-    return cut(pdf), cut(cdf), cut(sf), mass
+    """pdf, cdf, sf, mass (-1 below 1e-300) and log(mass) of a
+    passage_bm.csv row."""
+    pdf, cdf, sf, mass, logmass = ig_parts(t, x, a, mu, s2)
+    return cut(pdf), cut(cdf), cut(sf), cut(mass), logmass
 
 
 def bes3_row(t, x, a, s2):
@@ -275,7 +279,8 @@ def gen_passage():
         rows.append((t, x, a, mu, s2) +
                     settled(lambda: ig_row(t, x, a, mu, s2), 400))
     write("passage_bm.csv",
-          ["t", "x", "a", "mu", "sigma2", "pdf", "cdf", "sf", "mass"], rows)
+          ["t", "x", "a", "mu", "sigma2", "pdf", "cdf", "sf", "mass",
+           "logmass"], rows)
 
     rows = []
     for (x, a, s2) in [(2, 1, 1), (1, 1e-6, 1), (1, 1 - 2 ** -40, 1),
@@ -328,7 +333,7 @@ def gen_passage_quantile():
             (1, 0, -100, 1), (2.5, 1.5, -0.1, 0.3)]
     ps = [1e-12, 1e-6, 0.01, 0.3, 0.5, 0.7, 0.99, 1 - 1e-6]
     for (x, a, mu, s2) in pars:
-        _, _, _, mass = ig_parts(1, x, a, mu, s2)
+        mass = ig_parts(1, x, a, mu, s2)[3]
         for p in ps:
             if p >= mass:
                 continue
@@ -603,7 +608,7 @@ def check_closed_forms():
     mp.mp.dps = 30
     for (t, x, a, mu, s2) in [(0.7, 1, 0, -1, 1), (3, 0, 1, -0.5, 2),
                               (0.2, 2, 1.5, 0, 0.3)]:
-        pdf, cdf, sf, mass = ig_parts(t, x, a, mu, s2)
+        pdf, cdf, sf = ig_parts(t, x, a, mu, s2)[:3]
         q = mp.quad(lambda s: ig_parts(s, x, a, mu, s2)[0], [0, t])
         assert abs(q - cdf) < 1e-20, (q, cdf)
         assert abs(sf - (1 - cdf)) < 1e-20

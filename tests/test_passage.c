@@ -166,6 +166,17 @@ END_TEST
 
 /* ------------------------------------------------- BM with drift: values */
 
+/* -log(mass) = 2 d |nu| / sigma2 as passage.c's fpt_setup forms it (the
+ * exponent of sb_bm_fpt_mass, which reads 0 below the doubles). */
+static double mass_exponent(double x, double a, double mu, double s2)
+{
+  sbi_dd d = sbi_dd_sum(x, -a);
+  if (d.hi < 0.0)
+    d = sbi_dd_neg(d);
+  sbi_dd k = sbi_dd_twice_ratio(d, (sbi_dd){fabs(mu), 0.0}, s2);
+  return k.hi + k.lo;
+}
+
 START_TEST(test_bm_reference)
 {
   sbt_table t;
@@ -173,7 +184,8 @@ START_TEST(test_bm_reference)
   int ct = sbt_col(&t, "t"), cx = sbt_col(&t, "x"), ca = sbt_col(&t, "a"),
       cm = sbt_col(&t, "mu"), cs = sbt_col(&t, "sigma2"),
       cp = sbt_col(&t, "pdf"), cc = sbt_col(&t, "cdf"),
-      cf = sbt_col(&t, "sf"), cma = sbt_col(&t, "mass");
+      cf = sbt_col(&t, "sf"), cma = sbt_col(&t, "mass"),
+      clm = sbt_col(&t, "logmass");
   double worst[3] = {0, 0, 0};
   int n = 0;
   for (int i = 0; i < t.nrow; i++) {
@@ -199,8 +211,21 @@ START_TEST(test_bm_reference)
     }
     /* the plain form returns the same value */
     ck_assert(sb_bm_fpt_cdf(tt, x, a, mu, s2) == r[1].val);
-    ck_assert_rel(sb_bm_fpt_mass(x, a, mu, s2), sbt_at(&t, i, cma),
-                  TOL_ULPS(4));
+    /* mass -1: below 1e-300, where only logmass = log(mass) shows its
+     * exponent (the mass exp(-2e300) of a 60-digit computation once had a
+     * wrong one) */
+    double mass = sb_bm_fpt_mass(x, a, mu, s2), want_m = sbt_at(&t, i, cma),
+           want_lm = sbt_at(&t, i, clm);
+    if (want_m < 0)
+      ck_assert_msg(mass < 1e-300 && want_lm < log(1e-300),
+                    "mass(x=%g, a=%g, mu=%g, s2=%g) = %g, log %g: want "
+                    "below 1e-300", x, a, mu, s2, mass, want_lm);
+    else
+      ck_assert_rel(mass, want_m, TOL_ULPS(4));
+    if (want_lm < 0.0) /* nu < 0 */
+      ck_assert_rel(-mass_exponent(x, a, mu, s2), want_lm, TOL_ULPS(2));
+    else
+      ck_assert(want_lm == 0.0 && mass == 1.0);
   }
   printf("bm_fpt vs mpmath (%d values): max rel error pdf %.2g cdf %.2g "
          "sf %.2g\n", n, worst[0], worst[1], worst[2]);
