@@ -656,6 +656,20 @@ START_TEST(test_checkpoint)
   ck_assert(det == SB_WALLDET_BALLISTIC && dep == SB_DEPOSIT_REINSERT);
   ck_assert_int_eq(sb_engine_get_wall_mode(b, NULL, NULL), SB_SUCCESS);
   ck_assert_int_eq(sb_engine_get_wall_mode(NULL, &det, &dep), SB_EINVAL);
+  /* the walls the checkpoint restored: z absorbing below, reflecting
+   * above; x and y periodic */
+  sb_engine_wall lo = SB_WALL_OPEN, hi = SB_WALL_OPEN;
+  ck_assert_int_eq(sb_engine_get_walls(b, 2, &lo, &hi), SB_SUCCESS);
+  ck_assert(lo == SB_WALL_ABSORB && hi == SB_WALL_REFLECT);
+  for (int k = 0; k < 2; k++) {
+    lo = hi = SB_WALL_OPEN;
+    ck_assert_int_eq(sb_engine_get_walls(b, k, &lo, &hi), SB_SUCCESS);
+    ck_assert(lo == SB_WALL_PERIODIC && hi == SB_WALL_PERIODIC);
+  }
+  ck_assert_int_eq(sb_engine_get_walls(b, 2, NULL, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_get_walls(b, 3, &lo, &hi), SB_EINVAL);
+  ck_assert_int_eq(sb_engine_get_walls(b, -1, &lo, &hi), SB_EINVAL);
+  ck_assert_int_eq(sb_engine_get_walls(NULL, 0, &lo, &hi), SB_EINVAL);
   /* the fluid the checkpoint restored: shear G = 50 1/s with the images */
   sb_engine_fluid f = SB_FLUID_REST;
   double fp[3] = {-1, -1, -1};

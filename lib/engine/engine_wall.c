@@ -63,6 +63,18 @@ int sb_engine_set_walls(sb_engine *e, int k, sb_engine_wall lo,
   return SB_SUCCESS;
 }
 
+int sb_engine_get_walls(const sb_engine *e, int k, sb_engine_wall *lo,
+                        sb_engine_wall *hi)
+{
+  if (!e || k < 0 || k >= e->par.dim)
+    return sbi_error(SB_EINVAL, __func__, "bad engine or direction %d", k);
+  if (lo)
+    *lo = e->wall[2 * k];
+  if (hi)
+    *hi = e->wall[2 * k + 1];
+  return SB_SUCCESS;
+}
+
 int sb_engine_set_wall_mode(sb_engine *e, sb_engine_walldet det,
                             sb_engine_deposit dep)
 {

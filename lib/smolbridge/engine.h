@@ -1104,6 +1104,11 @@ typedef enum {
  *  the particle-particle events of the step. */
 int sb_engine_set_walls(sb_engine *e, int k, sb_engine_wall lo,
                         sb_engine_wall hi);
+/** The walls of direction k (0 = x, 1 = y, 2 = z) into lo and hi (as
+ *  set, or as a checkpoint restored them); either output may be NULL.
+ *  SB_EINVAL for a NULL engine or k outside 0 .. dim - 1. */
+int sb_engine_get_walls(const sb_engine *e, int k, sb_engine_wall *lo,
+                        sb_engine_wall *hi);
 /** Detector and outcome of the absorbing walls (defaults: bridge,
  *  remove). */
 int sb_engine_set_wall_mode(sb_engine *e, sb_engine_walldet det,
