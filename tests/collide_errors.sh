@@ -516,6 +516,22 @@ $a\
 [walls]\
 x_lo = reflect\
 x_hi = reflect'
+# gravity with a free-flight species: refused at set-up, before any
+# output, naming the species and [fluid] g (the engine's message at the
+# placement or the first step before); on restart the checkpoint's
+# species
+check "gravity with free flight" 2 "t.ini:13: [fluid] g = 0 -9.81 0 with [species a] tau = inf: a free-flight species has no drag and no settling velocity" 's/^mu = 1e-3/tau = inf/
+$a\
+[fluid]\
+g = 0 -9.81 0'
+sed 's/^mu = 1e-3/tau = inf/' "$dir/base.ini" > "$dir/free.ini"
+"$sb" collide "$dir/free.ini" --set "run.checkpoint=$dir/free.ck" \
+  --set "run.output=$dir/free" > /dev/null 2>&1 ||
+  fail "a checkpoint of a free-flight run could not be written"
+check "gravity with free flight on restart" 2 "--set fluid.g=0 0 -9.81: [fluid] g = 0 0 -9.81 with [species a] tau = inf (the restart checkpoint's): a free-flight species" 's/^mu = 1e-3/tau = inf/; 4a\
+restart = '"$dir"'/free.ck' --set "fluid.g=0 0 -9.81" --set "run.output=$dir/free_g"
+[ ! -e "$dir/free_g" ] ||
+  fail "gravity with free flight on restart: outputs were written"
 check "restart with two species" 2 "[run] restart: 2 [species] sections for the checkpoint's 1 species" '4a\
 restart = '"$dir"'/nofh.ck
 $a\

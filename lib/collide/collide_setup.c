@@ -892,6 +892,44 @@ static size_t restart_capacity(const sbi_col_config *c, const sb_engine *e)
   return total > 0 ? (size_t)total : 0;
 }
 
+/* Gravity ([fluid] g, or on restart without it the checkpoint's) with a
+ * free-flight species (tau = inf): the engine has no settling velocity
+ * for it and refuses the first step (sbi_engine_physics_prepare); here
+ * at set-up, before any output, naming the species. */
+static int gravity_check(sbi_col_config *c, const sb_engine *e)
+{
+  double g[3] = {0, 0, 0};
+  if (c->ng)
+    memcpy(g, c->g, (size_t)c->ng * sizeof(double));
+  else if (c->restart[0])
+    sb_engine_get_gravity(e, g);
+  int on = 0;
+  for (int k = 0; k < c->dim && k < 3; k++)
+    on |= g[k] != 0.0;
+  for (size_t k = 0; on; k++) {
+    const sb_engine_species *q = sb_engine_get_species(e, k);
+    if (!q)
+      break;
+    if (!isinf(q->tau))
+      continue;
+    char sp[80];
+    if (k < (size_t)c->nsp)
+      snprintf(sp, sizeof sp, "[%s] tau = inf%s", c->sp[k].name,
+               c->restart[0] ? " (the restart checkpoint's)" : "");
+    else
+      snprintf(sp, sizeof sp, "the restart checkpoint's species %zu "
+               "(tau = inf)", k + 1);
+    return sbi_col_fail(c, "%s: [fluid] g = %g %g %g%s with %s: a "
+                        "free-flight species has no drag and no settling "
+                        "velocity; give it a finite tau (or mu), or g = 0",
+                        c->ng ? sbi_col_where(c, "fluid", "g")
+                              : sbi_col_where(c, "run", "restart"),
+                        g[0], g[1], g[2], c->ng ? ""
+                        : " (the restart checkpoint's)", sp);
+  }
+  return 0;
+}
+
 /* A restart without [fluid] type runs in the checkpoint's field, with
  * the Lees-Edwards images as setup_physics set them (before the walls):
  * the configuration takes them over (summary.json names the field, the
@@ -960,7 +998,7 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
         (!sbi_col_bridge(c) && (sb_engine_set_detect(r->e, dm) ||
                                 sb_engine_set_outcome(r->e, om, c->eta))))
       return sbi_col_fail(c, "[run] restart: %s", sb_last_error());
-    if (restart_species(c, r->e))
+    if (restart_species(c, r->e) || gravity_check(c, r->e))
       return -1;
     /* the position variance rates of the saved species, (B tau)^2: with
      * turbulence B holds its part (species_build), taken out again for
@@ -1012,6 +1050,8 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
       if (sb_engine_add_species(r->e, &q[k], NULL))
         return sbi_col_fail(c, "%s: [%s]: %s", c->sp[k].where, c->sp[k].name,
                             sb_last_error());
+    if (gravity_check(c, r->e))
+      return -1;
   }
   /* fluid (on restart the saved field is kept unless [fluid] is given) */
   if (!c->restart[0] || sbi_col_given(c, "fluid", "type")) {

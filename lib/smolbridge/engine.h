@@ -1010,8 +1010,10 @@ int sb_engine_get_species_fluid(const sb_engine *e, size_t sp,
  *  A particle of species s feels g (1 - rho_f/rho_p) (buoyancy), so with
  *  Stokes drag it settles at v_s = tau_p g (1 - rho_f/rho_p) relative to
  *  the fluid: the exact Langevin step with the fluid velocity U_s + v_s
- *  (exact at every dt).  Free-flight species (tau = inf) are refused
- *  (SB_EINVAL) when g != 0. */
+ *  (exact at every dt).  Free-flight species (tau = inf) have no
+ *  settling velocity: with g != 0 the step (and a placement that draws
+ *  settling velocities, sb_engine_fill_box) refuses them (SB_EINVAL);
+ *  this call does not. */
 int sb_engine_set_gravity(sb_engine *e, const double g[3]);
 /** The engine's acceleration into g. */
 int sb_engine_get_gravity(const sb_engine *e, double g[3]);
