@@ -516,6 +516,17 @@ $a\
 [walls]\
 x_lo = reflect\
 x_hi = reflect'
+# the z faces of a 2-D checkpoint are warned as ignored, as in a new
+# 2-D run (they were silently unused)
+"$sb" collide "$dir/base.ini" --set run.dim=2 \
+  --set "run.checkpoint=$dir/d2.ck" --set "run.output=$dir/d2" \
+  > /dev/null 2>&1 || fail "a 2-D checkpoint could not be written"
+check "z walls on a 2-D restart" 0 "t.ini:14: [walls] z_lo ignored: the restart checkpoint's dim = 2 (no z direction)" '4a\
+restart = '"$dir"'/d2.ck
+$a\
+[walls]\
+z_lo = absorb\
+z_hi = absorb'
 # gravity with a free-flight species: refused at set-up, before any
 # output, naming the species and [fluid] g (the engine's message at the
 # placement or the first step before); on restart the checkpoint's

@@ -186,15 +186,11 @@ static int walls_lees(sbi_col_config *c, int k)
 
 /* [walls]: both faces of a walled direction walls, none in x or y with
  * the Lees-Edwards boundaries (sb_engine_set_walls refuses both; here
- * with the lines of the keys); the z faces of a 2-D box do nothing. */
+ * with the lines of the keys); the z faces of a 2-D box do nothing
+ * (sbi_col_dim_check). */
 static int check_walls(sbi_col_config *c)
 {
   const char *const *faces = FACES;
-  if (c->dim == 2 && !c->restart[0])
-    for (int f = 4; f < 6; f++) {
-      unused(c, "walls", faces[f], "dim = 2 (no z direction)");
-      strcpy(c->wall[f], "periodic");  /* nor deposit columns */
-    }
   for (int k = 0; k < c->dim; k++) {
     const int lo = 2 * k, hi = 2 * k + 1;
     const int plo = !strcmp(c->wall[lo], "periodic"),
@@ -278,6 +274,14 @@ int sbi_col_dim_check(sbi_col_config *c)
   if (c->ng && c->ng != c->dim)  /* the engine reads dim of them */
     return sbi_col_fail(c, "%s: [fluid] g: %d numbers for dim = %ld",
                         sbi_col_where(c, "fluid", "g"), c->ng, c->dim);
+  /* the z faces of a 2-D box */
+  if (c->dim == 2)
+    for (int f = 4; f < 6; f++) {
+      unused(c, "walls", FACES[f], c->restart[0]
+             ? "the restart checkpoint's dim = 2 (no z direction)"
+             : "dim = 2 (no z direction)");
+      strcpy(c->wall[f], "periodic");  /* nor deposit columns */
+    }
   /* the inflows: a restart adds them again from the file */
   for (int k = 0; k < c->nsp; k++) {
     const sbi_col_species *s = &c->sp[k];
