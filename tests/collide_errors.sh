@@ -527,6 +527,19 @@ $a\
 [walls]\
 z_lo = absorb\
 z_hi = absorb'
+# the Kraichnan field against the checkpoint's box, not the file's cube
+sed 's/^L = 1e-5/Lx = 1e-5\
+Ly = 1e-5\
+Lz = 2e-5/' "$dir/base.ini" > "$dir/rect.ini"
+"$sb" collide "$dir/rect.ini" --set "run.checkpoint=$dir/rect.ck" \
+  --set "run.output=$dir/rect" > /dev/null 2>&1 ||
+  fail "a checkpoint of a box could not be written"
+check "kraichnan restart in the checkpoint's box" 2 "t.ini:14: [fluid] type = kraichnan is periodic in a cube: the restart checkpoint's box is Lx, Ly, Lz = 1e-05, 1e-05, 2e-05 m" '4a\
+restart = '"$dir"'/rect.ck
+$a\
+[fluid]\
+type = kraichnan\
+eps_nu = 1e4'
 # gravity with a free-flight species: refused at set-up, before any
 # output, naming the species and [fluid] g (the engine's message at the
 # placement or the first step before); on restart the checkpoint's

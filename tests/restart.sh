@@ -316,6 +316,14 @@ split ou "$ex/v16_abrahamson_ou_field.ini" run.steps=100 run.steps=100 \
     collisions\>1000
 split kr "$out/kr.ini" run.steps=100 run.steps=100 &&
   same kr collisions kernel particles kinetic_energy.end collisions\>20
+# the Kraichnan field of a restart is checked against the checkpoint's
+# cubic 3-D box, not the file's dim and L (ignored): without L, or with
+# dim = 2, it runs (it was refused)
+sed '/^L = /d' "$out/kr.ini" > "$out/kr_nol.ini"
+"$sb" collide "$out/kr_nol.ini" --set run.dim=2 --set run.steps=2 \
+  --set "run.output=$out/kr_3" --set "run.restart=$out/kr.ck" \
+  > "$out/bad.log" 2>&1 ||
+  fail "kr: the restart without L: $(grep -v warning "$out/bad.log" | head -1)"
 
 # a bridge detector in turbulence (CHECKPOINT.bridge: its counters) keeps
 # the Brownian share of its collisions (the split of the species' b2,

@@ -97,14 +97,7 @@ static int check_field(sbi_col_config *c)
     if (isnan(c->kr_eps_nu))
       return sbi_col_fail(c, "%s: [fluid] type = kraichnan needs eps_nu "
                           "(1/s^2)", type);
-    if (c->dim != 3)
-      return sbi_col_fail(c, "%s: [fluid] type = kraichnan is a 3-D field "
-                          "(dim = %ld)", type, c->dim);
-    if (!(c->Lx == c->Ly && c->Ly == c->Lz))
-      return sbi_col_fail(c, "%s: [fluid] type = kraichnan is periodic in a "
-                          "cube: give [run] L (here Lx, Ly, Lz = %g, %g, %g "
-                          "m)", type, c->Lx, c->Ly, c->Lz);
-    return 0;
+    return 0;  /* its dim and box: sbi_col_dim_check */
   }
   if (isnan(c->ou_u2) || isnan(c->ou_TL))
     return sbi_col_fail(c, "%s: [fluid] type = ou-field needs u2 (m^2/s^2) "
@@ -282,6 +275,25 @@ int sbi_col_dim_check(sbi_col_config *c)
              : "dim = 2 (no z direction)");
       strcpy(c->wall[f], "periodic");  /* nor deposit columns */
     }
+  /* the Kraichnan field: 3-D, periodic in a cube (on restart the
+   * checkpoint's box; sb_field_kraichnan_load) */
+  if (!strcmp(c->fluid, "kraichnan")) {
+    const char *type = sbi_col_where(c, "fluid", "type");
+    if (c->dim != 3)
+      return sbi_col_fail(c, "%s: [fluid] type = kraichnan is a 3-D field "
+                          "(%sdim = %ld)", type, c->restart[0]
+                          ? "the restart checkpoint's " : "", c->dim);
+    if (!(c->Lx == c->Ly && c->Ly == c->Lz))
+      return c->restart[0]
+                 ? sbi_col_fail(c, "%s: [fluid] type = kraichnan is "
+                                "periodic in a cube: the restart "
+                                "checkpoint's box is Lx, Ly, Lz = %g, %g, "
+                                "%g m", type, c->Lx, c->Ly, c->Lz)
+                 : sbi_col_fail(c, "%s: [fluid] type = kraichnan is "
+                                "periodic in a cube: give [run] L (here Lx, "
+                                "Ly, Lz = %g, %g, %g m)", type, c->Lx, c->Ly,
+                                c->Lz);
+  }
   /* the inflows: a restart adds them again from the file */
   for (int k = 0; k < c->nsp; k++) {
     const sbi_col_species *s = &c->sp[k];

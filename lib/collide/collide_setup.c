@@ -892,6 +892,17 @@ static size_t restart_capacity(const sbi_col_config *c, const sb_engine *e)
   return total > 0 ? (size_t)total : 0;
 }
 
+/* On restart: the checkpoint's dim and box (the file's are ignored)
+ * into the configuration. */
+static void restart_box(sbi_col_config *c, const sb_engine *e)
+{
+  const sb_engine_params *p = sb_engine_get_params(e);
+  c->dim = p->dim;
+  c->Lx = p->L[0];
+  c->Ly = p->L[1];
+  c->Lz = p->L[2];
+}
+
 /* Gravity ([fluid] g, or on restart without it the checkpoint's) with a
  * free-flight species (tau = inf): the engine has no settling velocity
  * for it and refuses the first step (sbi_engine_physics_prepare); here
@@ -975,10 +986,10 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
   if (c->restart[0]) {
     int st;
     r->e = sb_engine_checkpoint_load(c->restart, &st);
-    /* the checks of a new run that depend on dim, with the checkpoint's
-     * (the inflows' room below reads their keys) */
+    /* the checks of a new run that depend on dim and the box, with the
+     * checkpoint's (the inflows' room below reads their keys) */
     if (r->e) {
-      c->dim = sb_engine_get_params(r->e)->dim;
+      restart_box(c, r->e);
       if (sbi_col_dim_check(c))
         return -1;
     }
