@@ -516,6 +516,29 @@ $a\
 [walls]\
 x_lo = reflect\
 x_hi = reflect'
+# walls in x the checkpoint keeps (the file does not give them) with
+# [fluid] type = shear given: refused at set-up with the new run's
+# message, naming the keys (the engine's at the first step before);
+# the faces given periodic replace them
+"$sb" collide "$dir/base.ini" --set walls.x_lo=reflect \
+  --set walls.x_hi=reflect --set "run.checkpoint=$dir/wx.ck" \
+  --set "run.output=$dir/wx" > /dev/null 2>&1 ||
+  fail "a checkpoint with walls in x could not be written"
+check "shear on restart against the checkpoint's walls" 2 "t.ini:14: [fluid] type = shear with the restart checkpoint's walls x_lo = reflect, x_hi = reflect: its Lees-Edwards sliding boundaries need x and y periodic; give [walls] x_lo = periodic and x_hi = periodic, or [fluid] lees_edwards = no" '4a\
+restart = '"$dir"'/wx.ck
+$a\
+[fluid]\
+type = shear\
+G = 10'
+check "shear on restart replacing the checkpoint's walls" 0 '' '4a\
+restart = '"$dir"'/wx.ck
+$a\
+[fluid]\
+type = shear\
+G = 10\
+[walls]\
+x_lo = periodic\
+x_hi = periodic'
 # the z faces of a 2-D checkpoint are warned as ignored, as in a new
 # 2-D run (they were silently unused)
 "$sb" collide "$dir/base.ini" --set run.dim=2 \

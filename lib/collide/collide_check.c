@@ -159,7 +159,9 @@ static const char *const FACES[] = {"x_lo", "x_hi", "y_lo", "y_hi", "z_lo",
 
 /* No walls in direction k (x or y) with the Lees-Edwards boundaries of
  * the shear field: those of [fluid] type = shear, or on restart without
- * [fluid] type the checkpoint's (sbi_col_fluid_check, once it is read). */
+ * [fluid] type the checkpoint's (sbi_col_fluid_check, once it is read).
+ * On restart the walls of a direction the file does not give are the
+ * checkpoint's (sbi_col_dim_check, once they are read). */
 static int walls_lees(sbi_col_config *c, int k)
 {
   const int lo = 2 * k, hi = 2 * k + 1;
@@ -167,6 +169,18 @@ static int walls_lees(sbi_col_config *c, int k)
       (!strcmp(c->wall[lo], "periodic") && !strcmp(c->wall[hi], "periodic")))
     return 0;
   const int kept = c->restart[0] && !sbi_col_given(c, "fluid", "type");
+  if (!sbi_col_given(c, "walls", FACES[lo]) &&
+      !sbi_col_given(c, "walls", FACES[hi]))
+    return sbi_col_fail(c, "%s: [fluid] type = shear%s with the restart "
+                        "checkpoint's walls %s = %s, %s = %s: its "
+                        "Lees-Edwards sliding boundaries need x and y "
+                        "periodic; give [walls] %s = periodic and %s = "
+                        "periodic, or [fluid] lees_edwards = no",
+                        kept ? sbi_col_where(c, "run", "restart")
+                             : sbi_col_where(c, "fluid", "type"),
+                        kept ? " (the restart checkpoint's)" : "", FACES[lo],
+                        c->wall[lo], FACES[hi], c->wall[hi], FACES[lo],
+                        FACES[hi]);
   const int w = sbi_col_given(c, "walls", FACES[lo]) ? lo : hi;
   return sbi_col_fail(c, "%s: [walls] %s = %s with [fluid] type = shear "
                       "(%s): its Lees-Edwards sliding boundaries need x "
@@ -275,6 +289,10 @@ int sbi_col_dim_check(sbi_col_config *c)
              : "dim = 2 (no z direction)");
       strcpy(c->wall[f], "periodic");  /* nor deposit columns */
     }
+  /* on restart the walls of the directions the file does not give are
+   * the checkpoint's, which [fluid] type = shear meets here */
+  if (c->restart[0] && (walls_lees(c, 0) || walls_lees(c, 1)))
+    return -1;
   /* the Kraichnan field: 3-D, periodic in a cube (on restart the
    * checkpoint's box; sb_field_kraichnan_load) */
   if (!strcmp(c->fluid, "kraichnan")) {

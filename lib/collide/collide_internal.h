@@ -150,11 +150,12 @@ int sbi_col_override(sbi_col_config *c, const char *arg);
 /* Cross-key checks after all keys: conflicts, requirements, keys that do
  * not apply (warnings in c->warn).  0 or -1 with c->err set. */
 int sbi_col_check(sbi_col_config *c);
-/* The checks that depend on dim and the box: the keys whose number of
- * values depends on dim ([fluid] U and g, the inflows' keys), the z
- * faces of a 2-D box, the Kraichnan field's 3-D cube: sbi_col_check for
- * a new run, collide_setup.c on restart once the checkpoint's dim and
- * box are in c.  0 or -1 with c->err set. */
+/* The checks that depend on dim, the box and the walls: the keys whose
+ * number of values depends on dim ([fluid] U and g, the inflows' keys),
+ * the z faces of a 2-D box, the Kraichnan field's cube, and on restart
+ * the checkpoint's walls against [fluid] type = shear: sbi_col_check for
+ * a new run, collide_setup.c on restart once the checkpoint's dim, box
+ * and walls are in c.  0 or -1 with c->err set. */
 int sbi_col_dim_check(sbi_col_config *c);
 /* On restart without [fluid] type, once the checkpoint's field and
  * Lees-Edwards images are in c (collide_setup.c): the checks that depend

@@ -892,15 +892,30 @@ static size_t restart_capacity(const sbi_col_config *c, const sb_engine *e)
   return total > 0 ? (size_t)total : 0;
 }
 
-/* On restart: the checkpoint's dim and box (the file's are ignored)
- * into the configuration. */
+/* On restart: the checkpoint's dim and box (the file's are ignored),
+ * and its walls of the directions whose faces the file does not give
+ * (setup_physics keeps them), into the configuration. */
 static void restart_box(sbi_col_config *c, const sb_engine *e)
 {
+  static const char *const faces[] = {"x_lo", "x_hi", "y_lo", "y_hi",
+                                      "z_lo", "z_hi"};
+  static const char *const names[] = {"periodic", "reflect", "absorb",
+                                      "open"};
   const sb_engine_params *p = sb_engine_get_params(e);
   c->dim = p->dim;
   c->Lx = p->L[0];
   c->Ly = p->L[1];
   c->Lz = p->L[2];
+  for (int k = 0; k < c->dim; k++) {
+    sb_engine_wall w[2];
+    if (sbi_col_given(c, "walls", faces[2 * k]) ||
+        sbi_col_given(c, "walls", faces[2 * k + 1]) ||
+        sb_engine_get_walls(e, k, &w[0], &w[1]))
+      continue;
+    for (int q = 0; q < 2; q++)
+      snprintf(c->wall[2 * k + q], sizeof c->wall[0], "%s",
+               (unsigned)w[q] <= SB_WALL_OPEN ? names[w[q]] : "periodic");
+  }
 }
 
 /* Gravity ([fluid] g, or on restart without it the checkpoint's) with a
@@ -986,8 +1001,9 @@ int sbi_col_setup(sbi_col_config *c, sbi_col_run *r)
   if (c->restart[0]) {
     int st;
     r->e = sb_engine_checkpoint_load(c->restart, &st);
-    /* the checks of a new run that depend on dim and the box, with the
-     * checkpoint's (the inflows' room below reads their keys) */
+    /* the checks of a new run that depend on dim, the box and the
+     * walls, with the checkpoint's (the inflows' room below reads their
+     * keys) */
     if (r->e) {
       restart_box(c, r->e);
       if (sbi_col_dim_check(c))
