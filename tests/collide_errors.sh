@@ -605,6 +605,38 @@ $a\
 [observe]\
 first_hit = yes\
 first_hit_velocities = 100'
+# the checks that depend on dim take the checkpoint's (the file's is
+# ignored): [observe] grid of a 2-D checkpoint has 2 values, not 3; a
+# bridge detector and first_hit need a 3-D checkpoint, whatever the file's
+# dim (its Lz not warned as ignored for dim = 2 either)
+check "grid on a 2-D restart" 0 '' '4a\
+restart = '"$dir"'/d2.ck
+$a\
+[observe]\
+grid = 4 4'
+check "grid of 3 on a 2-D restart" 2 "t.ini:14: [observe] grid has 3 values in 2-D (the restart checkpoint's); valid: nx ny" '4a\
+restart = '"$dir"'/d2.ck
+$a\
+[observe]\
+grid = 4 4 4'
+check "bridge on a 2-D restart" 2 "t.ini:6: [run] detect = bridge needs dim = 3 (the restart checkpoint's dim = 2)" '4a\
+restart = '"$dir"'/d2.ck\
+detect = bridge\
+outcome = count'
+check "first_hit restart with dim = 2 in the file" 0 '' 's/^L = 1e-5/Lx = 1e-5\
+Ly = 1e-5\
+Lz = 1e-5/
+4a\
+dim = 2\
+outcome = count\
+restart = '"$dir"'/fh.ck
+$a\
+[observe]\
+first_hit = yes'
+msg=$("$sb" collide "$dir/t.ini" 2>&1 >/dev/null)
+case "$msg" in
+  *"Lz ignored: dim = 2"*) fail "Lz on restart warned for the file's dim: $msg" ;;
+esac
 # --set
 check "--set unknown key" 2 '--set run.dtt=1: [run] dtt: unknown key' '' --set run.dtt=1
 check "--set bad form" 2 '--set dt=1: expected SECTION.KEY=VALUE' '' --set dt=1

@@ -281,6 +281,25 @@ int sbi_col_dim_check(sbi_col_config *c)
   if (c->ng && c->ng != c->dim)  /* the engine reads dim of them */
     return sbi_col_fail(c, "%s: [fluid] g: %d numbers for dim = %ld",
                         sbi_col_where(c, "fluid", "g"), c->ng, c->dim);
+  /* [observe] grid: one number of cells per axis */
+  const char *of = c->restart[0] ? " (the restart checkpoint's)" : "";
+  if (c->restart[0] && c->dim != 3 && sbi_col_bridge(c))
+    return sbi_col_fail(c, "%s: [run] detect = %s needs dim = 3 (the "
+                        "restart checkpoint's dim = %ld)",
+                        sbi_col_where(c, "run", "detect"), c->detect, c->dim);
+  if (c->restart[0] && c->dim != 3 && c->first_hit)
+    return sbi_col_fail(c, "%s: [observe] first_hit needs dim = 3 (the "
+                        "reference is the 3-D Smoluchowski transient; the "
+                        "restart checkpoint's dim = %ld)",
+                        sbi_col_where(c, "observe", "first_hit"), c->dim);
+  if (c->ngrid == 3 && c->dim == 2)
+    return sbi_col_fail(c, "%s: [observe] grid has 3 values in 2-D%s; "
+                        "valid: nx ny", sbi_col_where(c, "observe", "grid"),
+                        of);
+  if (c->ngrid == 2 && c->dim == 3)
+    return sbi_col_fail(c, "%s: [observe] grid has 2 values in 3-D%s; "
+                        "valid: nx ny nz", sbi_col_where(c, "observe", "grid"),
+                        of);
   /* the z faces of a 2-D box */
   if (c->dim == 2)
     for (int f = 4; f < 6; f++) {
@@ -364,7 +383,7 @@ int sbi_col_check(sbi_col_config *c)
     return -1;
   if (!isnan(c->L))
     c->Lx = c->Ly = c->Lz = c->L;
-  if (c->dim == 2)
+  if (c->dim == 2 && !c->restart[0])  /* on restart: the box is kept */
     unused(c, run, "Lz", "dim = 2");
   /* restart: the state comes from the checkpoint */
   if (c->restart[0]) {
@@ -411,7 +430,8 @@ int sbi_col_check(sbi_col_config *c)
     return sbi_col_fail(c, "[run] t_end or steps is required");
   /* detector and outcome */
   const int bridge = sbi_col_bridge(c), agglo = sbi_col_agglo(c);
-  if (bridge && c->dim != 3)
+  if (bridge && c->dim != 3 && !c->restart[0])  /* on restart:
+                                                   sbi_col_dim_check */
     return sbi_col_fail(c, "%s: [run] detect = %s needs dim = 3",
                         sbi_col_where(c, run, "detect"), c->detect);
   if (!strcmp(c->outcome, "correction") && !bridge)
@@ -488,12 +508,7 @@ int sbi_col_check(sbi_col_config *c)
                           "valid: whole numbers 1 to 16777216, one per axis "
                           "(nx ny, or nx ny nz in 3-D)",
                           sbi_col_where(c, "observe", "grid"), c->grid[k], k);
-  if (c->ngrid == 3 && c->dim == 2)
-    return sbi_col_fail(c, "%s: [observe] grid has 3 values in 2-D; valid: "
-                        "nx ny", sbi_col_where(c, "observe", "grid"));
-  if (c->ngrid == 2 && c->dim == 3)
-    return sbi_col_fail(c, "%s: [observe] grid has 2 values in 3-D; valid: "
-                        "nx ny nz", sbi_col_where(c, "observe", "grid"));
+  /* its number of values: sbi_col_dim_check */
   if (!c->ngrid)
     unused(c, "observe", "grid_scheme", "no [observe] grid");
   int open = 0;
@@ -535,7 +550,7 @@ int sbi_col_check(sbi_col_config *c)
                           "give first_hit_capacitance = yes",
                           sbi_col_where(c, "observe", "first_hit_radius"),
                           c->nsp);
-    if (c->dim != 3)
+    if (c->dim != 3 && !c->restart[0])  /* on restart: sbi_col_dim_check */
       return sbi_col_fail(c, "%s: [observe] first_hit needs dim = 3 (the "
                           "reference is the 3-D Smoluchowski transient)",
                           sbi_col_where(c, "observe", "first_hit"));
