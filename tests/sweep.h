@@ -1,13 +1,14 @@
 /* sweep.h — the extreme-argument sweep shared by the Check suites of the
  * reference functions (test_langevin, test_spray, test_pgd_exact,
- * test_langevin_hit, test_bridge, test_passage).
+ * test_langevin_hit, test_bridge, test_passage, test_kernel, test_dlvo).
  *
  * What it checks: each argument of a function in turn is set to each value
  * of a list of extremes (subnormal, tiny, huge, +-DBL_MAX, +-inf, NaN; the
  * other arguments keep ordinary values), and the function must either
  * succeed with finite outputs, or fail the documented way: an error status
- * (SB_EDOM or SB_ERANGE), a plain return value of NaN and, for the
- * vector form, an error message naming the public function.
+ * (SB_EDOM or SB_ERANGE), a plain return value of NaN and an error
+ * message naming the public function (the scalar form: where the suite
+ * gives its name).
  *
  * Why: the closed forms over- or underflow in intermediates (t/tau, B^2,
  * d^3, 1/m, double-double products) long before their values leave the
@@ -73,15 +74,23 @@ enum { SBT_SWEEP_MAXARG = 16, SBT_SWEEP_MAXOUT = 8 };
  * SBT_SWEEP_NAN   its single output is NaN (a plain return value);
  * SBT_SWEEP_ZERO  its single output is 0 (an int result, which has no NaN);
  * SBT_SWEEP_NO_ERANGE  SB_ERANGE is a failure too (outputs that always fit
- *                 in a double, e.g. temperatures between two given ones). */
-enum { SBT_SWEEP_NAN = 1, SBT_SWEEP_ZERO = 2, SBT_SWEEP_NO_ERANGE = 4 };
+ *                 in a double, e.g. temperatures between two given ones);
+ * SBT_SWEEP_NAN0  its first output is NaN, whatever the number of outputs
+ *                 (the value of an sb_result, its error bound the second). */
+enum {
+  SBT_SWEEP_NAN = 1,
+  SBT_SWEEP_ZERO = 2,
+  SBT_SWEEP_NO_ERANGE = 4,
+  SBT_SWEEP_NAN0 = 8
+};
 /* Each of the first narg arguments of f in turn over sbt_sweep_ext, the
  * others from base[0 .. nbase-1] (nbase <= SBT_SWEEP_MAXARG; f may read
  * all of them).  Status 0: every output finite, output j >= 0 where bit j
  * of nonneg is set.  Otherwise: the status is SB_EDOM, SB_ERANGE (unless
  * flags has SBT_SWEEP_NO_ERANGE) or `also' (0: no other), the message
  * names *nm and, where f has a single output, that output is NaN or 0 as
- * flags say.  row (the index in the suite's table) labels the messages.
+ * flags say (output 0 NaN with SBT_SWEEP_NAN0, any n).  row (the index in
+ * the suite's table) labels the messages.
  * Returns the number of failed checks, each printed on stderr
  * (SBT_XCHECK). */
 static inline int sbt_sweep_vec(sbt_xfn f, const double *base, int nbase,
@@ -120,6 +129,10 @@ static inline int sbt_sweep_vec(sbt_xfn f, const double *base, int nbase,
                      flags & SBT_SWEEP_ZERO ? out[0] == 0.0 : isnan(out[0]),
                      "%s (row %zu), argument %d = %g: %g with status %d", nm,
                      row, i, x, out[0], st);
+        if ((flags & SBT_SWEEP_NAN0) && n >= 1)
+          SBT_XCHECK(nbad, isnan(out[0]),
+                     "%s (row %zu), argument %d = %g: value %g with status "
+                     "%d", nm, row, i, x, out[0], st);
       }
     }
   return nbad;
@@ -132,11 +145,13 @@ typedef double (*sbt_sfn)(const double *a);
 /* Each of the narg arguments of f in turn over sbt_sweep_dd (leaving out
  * +-inf unless with_inf), the others from base[0 .. narg-1]: the value is
  * finite with status 0 (and >= 0 where nonneg is set), or NaN with an
- * error status; never NaN or inf with status 0.  Stops the test at the
- * first failure (ck_assert_msg), labelled with fidx, the index in the
- * suite's table. */
+ * error status and, where nm is not NULL, a message naming nm (the public
+ * function); never NaN or inf with status 0.  Stops the test at the first
+ * failure (ck_assert_msg), labelled with fidx, the index in the suite's
+ * table. */
 static inline void sbt_sweep_scalar(sbt_sfn f, const double *base, int narg,
-                                    int with_inf, int nonneg, size_t fidx)
+                                    int with_inf, int nonneg, size_t fidx,
+                                    const char *nm)
 {
   for (int i = 0; i < narg; i++)
     for (size_t e = 0; e < sizeof sbt_sweep_dd / sizeof sbt_sweep_dd[0];
@@ -154,6 +169,10 @@ static inline void sbt_sweep_scalar(sbt_sfn f, const double *base, int narg,
                                 : isnan(v) && st != SB_SUCCESS,
                     "function %zu, argument %d = %g: %g with status %d",
                     fidx, i, x, v, st);
+      if (nm != NULL && st != SB_SUCCESS)
+        ck_assert_msg(strstr(sb_last_error(), nm) != NULL,
+                      "%s (function %zu), argument %d = %g: message \"%s\"",
+                      nm, fidx, i, x, sb_last_error());
     }
 }
 

@@ -804,7 +804,7 @@ START_TEST(test_extreme_arguments)
            {x_bbq, 0},   {x_b3q, 1}};
   /* sbt_sweep_dd without +-inf */
   for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
-    sbt_sweep_scalar(k[f].f, base[k[f].b], 6, 0, 0, f);
+    sbt_sweep_scalar(k[f].f, base[k[f].b], 6, 0, 0, f, NULL);
   /* a density above DBL_MAX is SB_ERANGE naming the function */
   sb_result r;
   ck_assert_int_eq(sb_bb_hit_pdf_e(1e-310, 1e-155, 1e-155, 0.0, 1.0, 1e-300,

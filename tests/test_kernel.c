@@ -10,6 +10,7 @@
 #include <smolbridge/kernel.h>
 
 #include "refdata.h"
+#include "sweep.h"
 #include "testutil.h"
 
 static const double kB = 1.380649e-23;
@@ -336,11 +337,13 @@ START_TEST(test_domain_errors)
 }
 END_TEST
 
-/* Extreme arguments (1e-320 ... 1e300, each argument in turn, the others
+/* Extreme arguments (sbt_sweep_dd with +-inf: +-1e-320 ... +-DBL_MAX,
+ * +-inf, 0, 2^+-995, 1e+-154, each argument in turn, the others
  * ordinary; the test kernels and the steady rates with separation-
  * dependent diffusivity too): a kernel is finite with no error
  * recorded, or NaN with the error (SB_ERANGE where the value overflows,
- * SB_EDOM outside the domain) -- never a silent inf or NaN; at the finite
+ * SB_EDOM outside the domain) and a message naming the kernel -- never a
+ * silent inf or NaN; at the finite
  * extremes the value against mpmath.  And the
  * Gopalakrishnan-Hogan kernel at tau = 1e300 (f_red underflowing) is the
  * free-molecular pi R^2 sqrt(8 kT/(pi m_red)) (it was NaN). */
@@ -391,46 +394,40 @@ START_TEST(test_extreme_arguments)
 {
   static const struct {
     kfn f;
+    const char *nm;
     int n;
     double a[7];
   } k[] = {
-      {k_co, 4, {1e-6, 2e-6, 300, 1e-3}},
-      {k_fm, 4, {1e-8, 2e-8, 300, 1000}},
-      {k_tr, 6, {1e-7, 2e-7, 300, 1.8e-5, 1000, 6.8e-8}},
-      {k_gh, 7, {1e-7, 2e-7, 4e-18, 3e-17, 1e-7, 3e-7, 300}},
-      {k_ghkn, 7, {1e-7, 2e-7, 4e-18, 3e-17, 1e-7, 3e-7, 300}},
-      {k_kin, 5, {1e-9, 2e-9, 1e-25, 2e-25, 300}},
-      {k_kin2, 5, {1e-9, 2e-9, 1e-25, 2e-25, 300}},
-      {k_grav, 6, {1e-6, 2e-6, 2000, 1000, 1e-3, 9.81}},
-      {k_sh, 3, {1e-6, 2e-6, 10}},
-      {k_st, 4, {1e-6, 2e-6, 1e-3, 1e-6}},
-      {k_ab, 4, {1e-6, 2e-6, 1e-4, 2e-4}},
-      {k_shl, 5, {1e-6, 1e-6, 1e-6, 1e-3, 100}},
-      {k_dif, 4, {1e-6, 2e-6, 1e-12, 2e-12}},
-      {k_b2, 3, {1e-6, 300, 1e-3}},
-      {k_tb2, 3, {1e-6, 1e-3, 1e-6}},
-      {k_bt, 6, {1e-6, 2e-6, 300, 1e-3, 1e-3, 1e-6}},
-      {k_const, 3, {1e-18, 2e-18, 1e-9}},
-      {k_add, 3, {1e-18, 2e-18, 1e-9}},
-      {k_mult, 3, {1e-18, 2e-18, 1e-9}},
-      {k_dr2, 3, {2e-6, 1e-12, 2e-12}},
-      {k_btr2, 6, {1e-6, 2e-6, 300, 1e-3, 1e-3, 1e-6}},
+      {k_co, "sb_kernel_brownian_co", 4, {1e-6, 2e-6, 300, 1e-3}},
+      {k_fm, "sb_kernel_brownian_fm", 4, {1e-8, 2e-8, 300, 1000}},
+      {k_tr, "sb_kernel_brownian_tr", 6,
+       {1e-7, 2e-7, 300, 1.8e-5, 1000, 6.8e-8}},
+      {k_gh, "sb_kernel_brownian_gh", 7,
+       {1e-7, 2e-7, 4e-18, 3e-17, 1e-7, 3e-7, 300}},
+      {k_ghkn, "sb_kernel_brownian_gh_kn", 7,
+       {1e-7, 2e-7, 4e-18, 3e-17, 1e-7, 3e-7, 300}},
+      {k_kin, "sb_kernel_kinetic", 5, {1e-9, 2e-9, 1e-25, 2e-25, 300}},
+      {k_kin2, "sb_kernel_kinetic_2d", 5, {1e-9, 2e-9, 1e-25, 2e-25, 300}},
+      {k_grav, "sb_kernel_gravity", 6, {1e-6, 2e-6, 2000, 1000, 1e-3, 9.81}},
+      {k_sh, "sb_kernel_shear", 3, {1e-6, 2e-6, 10}},
+      {k_st, "sb_kernel_saffman_turner", 4, {1e-6, 2e-6, 1e-3, 1e-6}},
+      {k_ab, "sb_kernel_abrahamson", 4, {1e-6, 2e-6, 1e-4, 2e-4}},
+      {k_shl, "sb_kernel_shear_langevin", 5, {1e-6, 1e-6, 1e-6, 1e-3, 100}},
+      {k_dif, "sb_kernel_diffusion", 4, {1e-6, 2e-6, 1e-12, 2e-12}},
+      {k_b2, "sb_brownian_b2", 3, {1e-6, 300, 1e-3}},
+      {k_tb2, "sb_turb_pair_b2", 3, {1e-6, 1e-3, 1e-6}},
+      {k_bt, "sb_kernel_brownian_turb", 6,
+       {1e-6, 2e-6, 300, 1e-3, 1e-3, 1e-6}},
+      {k_const, "sb_kernel_constant", 3, {1e-18, 2e-18, 1e-9}},
+      {k_add, "sb_kernel_additive", 3, {1e-18, 2e-18, 1e-9}},
+      {k_mult, "sb_kernel_multiplicative", 3, {1e-18, 2e-18, 1e-9}},
+      {k_dr2, "sb_kernel_diffusion_r2", 3, {2e-6, 1e-12, 2e-12}},
+      {k_btr2, "sb_kernel_brownian_turb_r2", 6,
+       {1e-6, 2e-6, 300, 1e-3, 1e-3, 1e-6}},
   };
-  const double ext[6] = {1e-320, 1e-300, 1e300, DBL_MAX, INFINITY, -1e300};
+  /* sbt_sweep_dd with +-inf; the message names the kernel */
   for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
-    for (int i = 0; i < k[f].n; i++)
-      for (int e = 0; e < 6; e++) {
-        double a[7];
-        memcpy(a, k[f].a, sizeof a);
-        a[i] = ext[e];
-        sb_clear_error();
-        const double v = k[f].f(a);
-        const int st = sb_last_status();
-        ck_assert_msg(isfinite(v) ? st == SB_SUCCESS
-                                  : isnan(v) && st != SB_SUCCESS,
-                      "kernel %zu, argument %d = %g: %g with status %d", f,
-                      i, ext[e], v, st);
-      }
+    sbt_sweep_scalar(k[f].f, k[f].a, k[f].n, 1, 0, f, k[f].nm);
   /* the finite extremes against mpmath (tests/gen_kernel_corner_ref.py,
    * same table): the value wherever it is a normal double (also where
    * an intermediate such as 1/m, k_B T or 3 pi mu r over/underflows:

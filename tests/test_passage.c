@@ -617,7 +617,7 @@ START_TEST(test_extreme_arguments)
   e_rng = gsl_rng_alloc(gsl_rng_mt19937);
   /* sbt_sweep_dd with +-inf; every value is >= 0 */
   for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
-    sbt_sweep_scalar(k[f].f, base[k[f].b], 5, 1, 1, f);
+    sbt_sweep_scalar(k[f].f, base[k[f].b], 5, 1, 1, f, NULL);
   /* a density above DBL_MAX (t = 1e-310 at the mean of a narrow law) is
    * SB_ERANGE, not inf */
   sb_result r;
