@@ -723,10 +723,15 @@ START_TEST(test_bad_input)
 }
 END_TEST
 
-/* Every argument in turn over +-1e-320 ... +-DBL_MAX, 0 and a few
+/* Every argument in turn over +-1e-320 ... +-DBL_MAX, +-inf, 0 and a few
  * magnitudes where double-double products (2^995) or squares (1e154)
  * overflow, the others ordinary: the value is finite with status 0, or NaN
- * with an error status (never NaN, or +-inf with status 0).  The values at
+ * with an error status (never NaN, or +-inf with status 0).  At +-inf the
+ * rule of bridge.h: u = +-inf is outside [0, t] (pdf 0, cdf 0 at -inf and
+ * 1 at +inf, sf 1 - cdf, status 0), the crossings do not read a[0] and
+ * a[5], and
+ * every other infinite argument (x, y, a, v, sigma2, t, p) is NaN with
+ * SB_EDOM.  The values at
  * the extreme corners are checked against mpmath in bridge_hit.csv,
  * bridge_cross.csv and bridge_quantile.csv (the rows after the "extreme"
  * comments of tests/gen_refdata.py). */
@@ -802,9 +807,36 @@ START_TEST(test_extreme_arguments)
            {x_b3pdf, 1}, {x_b3cdf, 1}, {x_b3sf, 1},
            {x_bblog, 2}, {x_b3log, 3}, {x_bbp, 2}, {x_b3p, 3},
            {x_bbq, 0},   {x_b3q, 1}};
-  /* sbt_sweep_dd without +-inf */
+  /* sbt_sweep_dd with +-inf */
   for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
-    sbt_sweep_scalar(k[f].f, base[k[f].b], 6, 0, 0, f, NULL);
+    sbt_sweep_scalar(k[f].f, base[k[f].b], 6, 1, 0, f, NULL);
+  /* the values at +-inf: k[0 .. 5] pdf, cdf, sf; 6 .. 9 crossings; 10, 11
+   * quantiles */
+  for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
+    for (int i = 0; i < 6; i++)
+      for (int sg = -1; sg <= 1; sg += 2) {
+        double a[6];
+        memcpy(a, base[k[f].b], sizeof a);
+        a[i] = sg * INFINITY;
+        sb_clear_error();
+        const double v = k[f].f(a);
+        const int st = sb_last_status();
+        if (i == 0 && f < 6) { /* u */
+          const double cdf = sg > 0 ? 1.0 : 0.0;
+          const double want = f % 3 == 0 ? 0.0 : f % 3 == 1 ? cdf : 1 - cdf;
+          ck_assert_msg(v == want && st == SB_SUCCESS,
+                        "function %zu, u = %g: %g with status %d, want %g",
+                        f, a[0], v, st, want);
+        } else if ((i == 0 || i == 5) && f >= 6 && f < 10) { /* unused */
+          const double want = k[f].f(base[k[f].b]);
+          ck_assert_msg(v == want && st == SB_SUCCESS,
+                        "function %zu, unused argument %d = %g: %g with "
+                        "status %d, want %g", f, i, a[i], v, st, want);
+        } else
+          ck_assert_msg(isnan(v) && st == SB_EDOM,
+                        "function %zu, argument %d = %g: %g with status %d, "
+                        "want SB_EDOM", f, i, a[i], v, st);
+      }
   /* a density above DBL_MAX is SB_ERANGE naming the function */
   sb_result r;
   ck_assert_int_eq(sb_bb_hit_pdf_e(1e-310, 1e-155, 1e-155, 0.0, 1.0, 1e-300,

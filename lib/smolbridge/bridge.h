@@ -54,10 +54,12 @@
  *        middle with a proven truncation and rounding bound, or by 3- and
  *        4-point Gauss-Legendre quadrature where the bound fails
  *        (docs/bridge.md §3).
- * Extremes: pdf, cdf and sf take any finite arguments; the pdf is the
- * right value wherever it is a normal double (extended exponents where an
- * intermediate leaves the doubles), 0 or subnormal below DBL_MIN, and
- * SB_ERANGE (NaN) where it exceeds DBL_MAX (docs/bridge.md).  The
+ * Extremes: pdf, cdf and sf take any finite arguments, and u = +-inf
+ * (outside [0, t]: pdf 0, cdf 0 at -inf and 1 at +inf, status 0); any
+ * other infinite argument (x, y, a, sigma2, t, v, p) is SB_EDOM.  The pdf
+ * is the right value wherever it is a normal double (extended exponents
+ * where an intermediate leaves the doubles), 0 or subnormal below DBL_MIN,
+ * and SB_ERANGE (NaN) where it exceeds DBL_MAX (docs/bridge.md).  The
  * quantile falls back to bisection on the doubles of [0, t] where its
  * iteration fails (laws narrower than one ulp, u ~ 1e-300 t).  The
  * samplers return a double in [0, t] for any valid arguments (t up to
