@@ -48,7 +48,10 @@ Writes (into tests/data/):
                    16, 17 TAB y, y' (t, r, U, rho_g, mu_l, Cd, y0, y0';
                    rho_l = 1000, sigma = 0.072) in closed form, checked
                    against odefun in scaled variables; 18 TAB breakup time
-                   (r, U, rho_g, mu_l, Cd, y0, y0', tmax).
+                   (r, U, rho_g, mu_l, Cd, y0, y0', tmax); 19, 20 TAB
+                   y, y' (arguments as 16, 17) heavily overdamped
+                   (beta^2/w0^2 = 1e3 to 1e8) in the plain double
+                   range.
 Run: /usr/bin/python3 tests/gen_spray_ref.py   (about a minute)
 """
 import os
@@ -449,6 +452,16 @@ TAB_EXTREME = [
 TAB_TB_EXTREME = [
     [1e103, 1e-49, 1.2, 1e-3, 5.0, 0.1, 0.0, 1e160],
 ]
+# TAB heavily overdamped with every scale a normal double (kinds 19 y,
+# 20 y'; arguments as 16, 17): beta^2/w0^2 = Cd^2 mu_l^2/(32 rho_l sigma
+# r) = 1e3 to 1e8, t of order 1/|k - beta|, where the slow rate k - beta
+# cancels (relative error ~ DBL_EPSILON beta^2/w0^2)
+TAB_OVERDAMPED = [
+    [1e-9, 1e-10, 50.0, 1.2, 1.0, 5.0, 0.1, 20.0],
+    [3e-9, 1e-10, 50.0, 1.2, 1.0, 5.0, -0.3, -1e3],
+    [2e-5, 1e-7, 50.0, 1.2, 10.0, 10.0, 0.1, 20.0],
+    [1e-4, 1e-5, 50.0, 1.2, 1.0, 5.0, 0.1, 20.0],
+]
 
 
 def tab_closed(t, r, U, rg, mu, Cd, y0, yd0):
@@ -592,6 +605,8 @@ def extreme_value(kind, a):
         return tab_closed(*a)[kind - 16]
     if kind == 18:
         return tab_tb(*a)
+    if kind in (19, 20):
+        return tab_closed(*a)[kind - 19]
     raise ValueError(kind)
 
 
@@ -609,6 +624,8 @@ def write_extreme():
     for a in TAB_EXTREME:
         rows_in += [(16, a), (17, a)]
     rows_in += [(18, a) for a in TAB_TB_EXTREME]
+    for a in TAB_OVERDAMPED:
+        rows_in += [(19, a), (20, a)]
     for kind, a in rows_in:
         if kind == 9:
             a = tt_hs_time(a)

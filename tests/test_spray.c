@@ -761,6 +761,10 @@ static int x_tt_hs_rate(const double *a, double *out, int *n, const char **nm)
  * here 5e-11 relative). */
 static double spray_row(int kind, const double *a, double *got)
 {
+  /* kinds 19-20: the arguments and outputs of 16, 17 */
+  static const int same[] = {16, 17};
+  if (kind >= 19 && kind <= 20)
+    kind = same[kind - 19];
   switch (kind) {
   case 0:
     *got = sb_spray_pair_rate(SB_SPRAY_HARD_SPHERE, 1.0, a[0], a[1], a[2]);
@@ -920,8 +924,10 @@ START_TEST(test_extreme_arguments)
    * wrong in the twelfth digit) and m_a/m_b = 1e10 (alpha + beta Delta0
    * cancelled, T_b wrong in the twelfth digit).  The last rows of kinds
    * 6, 11: n = 1e-200, T = 1e-150, where n T underflowed and T_m with
-   * it (the hotter T_b relaxed towards 0). */
-  ck_assert_int_ge(sbt_spray_extreme(spray_row), 93);
+   * it (the hotter T_b relaxed towards 0).  Kinds 19, 20 (TAB y, y'
+   * heavily overdamped in the plain range, beta^2/w0^2 up to 1e8): the
+   * slow rate k - beta cancelled, y wrong in the ninth digit. */
+  ck_assert_int_ge(sbt_spray_extreme(spray_row), 93 + 8);
 }
 END_TEST
 

@@ -140,9 +140,10 @@ static int osc_init(osc *o, double r, double urel, double rho_g,
     if (st)
       return st;
   } else if (o->w2 < 0) {
-    const double k = sqrt(-o->w2);
-    o->km = k - o->beta;
-    o->kp = k + o->beta;
+    /* k - beta = -w0^2/(k + beta): the difference cancels (relative
+     * error ~ DBL_EPSILON beta^2/w0^2) when heavily overdamped */
+    o->kp = sqrt(-o->w2) + o->beta;
+    o->km = -o->w02 / o->kp;
   }
   if (!isfinite(o->w02) || !isfinite(o->beta) || !isfinite(o->w2) ||
       !isfinite(o->z0) || !isfinite(o->zd0))
