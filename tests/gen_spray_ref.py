@@ -51,7 +51,9 @@ Writes (into tests/data/):
                    (r, U, rho_g, mu_l, Cd, y0, y0', tmax); 19, 20 TAB
                    y, y' (arguments as 16, 17) heavily overdamped
                    (beta^2/w0^2 = 1e3 to 1e8) in the plain double
-                   range.
+                   range; 21, 22 two-temperature hard-sphere T_a, T_b
+                   (arguments as 9) with n_a T_a0 or n_b T_b0 below
+                   DBL_MIN while T_m is normal.
 Run: /usr/bin/python3 tests/gen_spray_ref.py   (about a minute)
 """
 import os
@@ -335,6 +337,16 @@ for f in [0.0, 1.0, 10.0]:
     TT_COLD.append((11, [1e-200, 1e-200, 3e-26, 5e-26, 1e-150, 3e-150,
                          1e-16, f]))
 
+# hard spheres with n_a T_a0 (and n_b T_b0) below DBL_MIN while T_m and
+# every other intermediate of the plain form is normal (r = 1e150, so
+# that C is normal): a product near 1e-318 keeps about 10 bits (T_m,
+# alpha, e and u0/sqrt(alpha) lost them); kinds 21 T_a, 22 T_b.
+for f in [0.1, 1.0, 10.0]:
+    for a in [[3e-307, 7e-307, 3e-26, 5e-26, 1.3e-11, 2.9e-12, 1e150],
+              [2e-310, 1e-300, 3e-26, 5e-26, 1.234567e-8, 3.3e-20, 1e150]]:
+        TT_COLD.append((21, a + [f]))
+        TT_COLD.append((22, a + [f]))
+
 
 def tt_cold_time(kind, a):
     """a[7] (a multiple of the relaxation time) -> t as a double."""
@@ -607,6 +619,10 @@ def extreme_value(kind, a):
         return tab_tb(*a)
     if kind in (19, 20):
         return tab_closed(*a)[kind - 19]
+    if kind == 21:
+        return tt_hs_Ta(a)
+    if kind == 22:
+        return tt_hs_Tb(a)
     raise ValueError(kind)
 
 

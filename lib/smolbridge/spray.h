@@ -526,7 +526,9 @@ int sb_spray_bkw_sample(double K, double theta, gsl_rng *rng, double v[3]);
  *  rate constants that over/underflow (n near DBL_MAX, m or r near
  *  1e-300) are formed with an extended exponent, and n_a T_a0 + n_b T_b0
  *  through the fractions n_a/n, n_b/n where it overflows (with an
- *  extended exponent where it underflows, n T below 1e-300).  The
+ *  extended exponent where n_a T_a0 or n_b T_b0 is below DBL_MIN, n T
+ *  below 1e-300: also where T_m is normal, for the hard-sphere law's
+ *  alpha = k_B T_m (1/m_a + 1/m_b) as for T_a, T_b).  The
  *  hard-sphere T_a, T_b lie between T_a0 and T_b0, and
  *  sb_spray_two_temp_hs returns them for every argument in the domain:
  *  where an intermediate of its closed form (n T, k T/m, their square
@@ -541,7 +543,7 @@ int sb_spray_bkw_sample(double K, double theta, gsl_rng *rng, double v[3]);
  *  hotter species).  Accuracy: a few ulp against mpmath for both
  *  species, also at such corners (m = 1e-320 or 1e300, n or T near
  *  DBL_MAX, T_hot0/T_cold0 = 1e18 with n_hot/n_cold = 1e-9 or 1e-3,
- *  m_a/m_b = 1e10). */
+ *  m_a/m_b = 1e10, n T near 1e-318 with T_m normal). */
 typedef struct {
   double n_a, n_b, m_a, m_b, r_a, r_b, T_a0, T_b0;
 } sb_spray_mixture;

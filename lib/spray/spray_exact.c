@@ -201,27 +201,37 @@ static sbi_xd one_minus_expneg(sbi_xd x)
  * accurate to a few ulp (T_m - f |Delta| for the colder species would
  * lose about log2(T_m/T) bits, down to a negative T, where a rare
  * species is much hotter). */
-static void split_T(const sb_spray_mixture *m, double delta, sbi_xd gap,
-                    double *Ta, double *Tb)
+/* The mixture temperature T_m = (n_a T_a0 + n_b T_b0)/(n_a + n_b):
+ * through the fractions n_a/n, n_b/n where n_a T_a0 or n overflows, and
+ * with an extended exponent where a product or the mean is below DBL_MIN
+ * (n T near 1e-300; a subnormal n_a T_a0 keeps fewer than 53 bits even
+ * where T_m is normal); the plain bits otherwise. */
+static double mix_Tm(const sb_spray_mixture *m)
 {
-  double n = m->n_a + m->n_b;
+  const double n = m->n_a + m->n_b;
   const double pa = m->n_a * m->T_a0, pb = m->n_b * m->T_b0;
   double Tm = (pa + pb) / n;
-  double fa = m->n_a / n, fb = m->n_b / n;
   if (!isfinite(Tm) || !isfinite(n)) {
-    /* n_a T_a0 or n overflows: the mean through the fractions */
+    double fa, fb;
     fractions(m, &fa, &fb);
     Tm = fa * m->T_a0 + fb * m->T_b0;
   }
   if (!isnormal(pa) || !isnormal(pb) || !isnormal(Tm)) {
-    /* a product or the mean below DBL_MIN (n T near 1e-300): with an
-     * extended exponent (same bits where the above is normal) */
     const sbi_xd nx = sbi_xd_add(sbi_xd_of(m->n_a), sbi_xd_of(m->n_b));
     Tm = sbi_xd_val(sbi_xd_div(
         sbi_xd_add(sbi_xd_mul(sbi_xd_of(m->n_a), sbi_xd_of(m->T_a0)),
                    sbi_xd_mul(sbi_xd_of(m->n_b), sbi_xd_of(m->T_b0))),
         nx));
   }
+  return Tm;
+}
+
+static void split_T(const sb_spray_mixture *m, double delta, sbi_xd gap,
+                    double *Ta, double *Tb)
+{
+  const double Tm = mix_Tm(m);
+  double fa, fb;
+  fractions(m, &fa, &fb);
   if (m->T_a0 == m->T_b0) {
     *Ta = *Tb = m->T_a0;
   } else if (m->T_a0 > m->T_b0) {
@@ -443,7 +453,10 @@ int sb_spray_two_temp_hs(const sb_spray_mixture *mx, double t, double *T_a,
     return sbi_error(SB_EDOM, __func__, "need finite r_a, r_b > 0 and "
                      "t >= 0");
   const double k = SB_BOLTZMANN, n = mx->n_a + mx->n_b;
-  double Tm = (mx->n_a * mx->T_a0 + mx->n_b * mx->T_b0) / n;
+  /* T_m as split_T forms it (with an extended exponent where n_a T_a0
+   * or n_b T_b0 is subnormal: alpha, and with it e and u0/sqrt(alpha),
+   * lost those bits where T_m is normal) */
+  const double Tm = mix_Tm(mx);
   double D0 = mx->T_a0 - mx->T_b0;
   double alpha = k * Tm * (1.0 / mx->m_a + 1.0 / mx->m_b);
   /* u0^2 = alpha + beta D0 = k (T_a0/m_a + T_b0/m_b), a sum of positive
