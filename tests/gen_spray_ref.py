@@ -53,7 +53,9 @@ Writes (into tests/data/):
                    (beta^2/w0^2 = 1e3 to 1e8) in the plain double
                    range; 21, 22 two-temperature hard-sphere T_a, T_b
                    (arguments as 9) with n_a T_a0 or n_b T_b0 below
-                   DBL_MIN while T_m is normal.
+                   DBL_MIN while T_m is normal; 23, 24 two-temperature
+                   Maxwell T_a, T_b (arguments as 6) with the rate
+                   2 B0 n m_a m_b/(m_a + m_b)^2 below DBL_MIN.
 Run: /usr/bin/python3 tests/gen_spray_ref.py   (about a minute)
 """
 import os
@@ -347,12 +349,27 @@ for f in [0.1, 1.0, 10.0]:
         TT_COLD.append((21, a + [f]))
         TT_COLD.append((22, a + [f]))
 
+# Maxwell law with the rate below DBL_MIN (n = 2e-297 or 2e-300, B0 =
+# 1e-16: 9e-314, 9e-317), where rate t is at most ~2e-5 (t <= DBL_MAX):
+# the subnormal rate kept 24 or 34 bits, and the colder species, far
+# below T_m, takes f |Delta0| (1 - e) from them; kinds 23 T_a, 24 T_b
+# (a the hotter species in the first rows, the colder in the last).
+for a, fs in [([1e-300, 1e-300, 3e-26, 5e-26, 1e6, 1e-12, 1e-16],
+               [1e-10, 1e-8]),
+              ([1e-297, 1e-297, 3e-26, 5e-26, 1e6, 1e-12, 1e-16],
+               [1e-7, 1e-5]),
+              ([1e-297, 1e-297, 5e-26, 3e-26, 1e-12, 1e6, 1e-16],
+               [1e-7, 1e-5])]:
+    for f in fs:
+        TT_COLD.append((23, a + [f]))
+        TT_COLD.append((24, a + [f]))
+
 
 def tt_cold_time(kind, a):
     """a[7] (a multiple of the relaxation time) -> t as a double."""
     with mp.workdps(60):
         x = [mpf(v) for v in a]
-        if kind in (6, 11):
+        if kind in (6, 11, 23, 24):
             na, nb, ma, mb = x[:4]
             rate = 2 * x[6] * (na + nb) * ma * mb / (ma + mb) ** 2
         else:
@@ -623,6 +640,8 @@ def extreme_value(kind, a):
         return tt_hs_Ta(a)
     if kind == 22:
         return tt_hs_Tb(a)
+    if kind in (23, 24):
+        return tt_maxwell_T(a, kind - 23)
     raise ValueError(kind)
 
 

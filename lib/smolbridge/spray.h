@@ -528,7 +528,10 @@ int sb_spray_bkw_sample(double K, double theta, gsl_rng *rng, double v[3]);
  *  through the fractions n_a/n, n_b/n where it overflows (with an
  *  extended exponent where n_a T_a0 or n_b T_b0 is below DBL_MIN, n T
  *  below 1e-300: also where T_m is normal, for the hard-sphere law's
- *  alpha = k_B T_m (1/m_a + 1/m_b) as for T_a, T_b).  The
+ *  alpha = k_B T_m (1/m_a + 1/m_b) as for T_a, T_b).  A Maxwell rate
+ *  below DBL_MIN (n B0 near 1e-300; rate t is then below 4) enters
+ *  exp(-rate t) and 1 - exp(-rate t) (expm1) with an extended exponent,
+ *  not as a subnormal double with fewer bits.  The
  *  hard-sphere T_a, T_b lie between T_a0 and T_b0, and
  *  sb_spray_two_temp_hs returns them for every argument in the domain:
  *  where an intermediate of its closed form (n T, k T/m, their square
@@ -541,9 +544,11 @@ int sb_spray_bkw_sample(double K, double theta, gsl_rng *rng, double v[3]);
  *  expm1): sums of non-negative terms, so both are positive and neither
  *  loses digits where T_m is far above the colder species (a rare, much
  *  hotter species).  Accuracy: a few ulp against mpmath for both
- *  species, also at such corners (m = 1e-320 or 1e300, n or T near
+ *  species (at most 12 ulp over the random ordinary and extreme draws of
+ *  tests/ulp_spray.py), also at such corners (m = 1e-320 or 1e300, n or T near
  *  DBL_MAX, T_hot0/T_cold0 = 1e18 with n_hot/n_cold = 1e-9 or 1e-3,
- *  m_a/m_b = 1e10, n T near 1e-318 with T_m normal). */
+ *  m_a/m_b = 1e10, n T near 1e-318 with T_m normal, a Maxwell rate of
+ *  1e-316). */
 typedef struct {
   double n_a, n_b, m_a, m_b, r_a, r_b, T_a0, T_b0;
 } sb_spray_mixture;

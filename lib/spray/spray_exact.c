@@ -243,8 +243,19 @@ static void split_T(const sb_spray_mixture *m, double delta, sbi_xd gap,
   }
 }
 
-/* pre (n_a + n_b) m_a m_b/(m_a + m_b)^2 (pre >= 0), with an extended
- * exponent where a product over/underflows (same bits otherwise). */
+/* pre (n_a + n_b) m_a m_b/(m_a + m_b)^2 with an extended exponent. */
+static sbi_xd mix_rate_x(double pre, const sb_spray_mixture *mx)
+{
+  sbi_xd Mx = sbi_xd_add(sbi_xd_of(mx->m_a), sbi_xd_of(mx->m_b));
+  sbi_xd nx = sbi_xd_add(sbi_xd_of(mx->n_a), sbi_xd_of(mx->n_b));
+  sbi_xd q = sbi_xd_mul(sbi_xd_mul(sbi_xd_mul(sbi_xd_of(pre), nx),
+                                   sbi_xd_of(mx->m_a)),
+                        sbi_xd_of(mx->m_b));
+  return sbi_xd_div(q, sbi_xd_mul(Mx, Mx));
+}
+
+/* The same as a double (pre >= 0), with an extended exponent where a
+ * product over/underflows (same bits otherwise). */
 static double mix_rate(double pre, const sb_spray_mixture *mx)
 {
   double M = mx->m_a + mx->m_b, n = mx->n_a + mx->n_b;
@@ -252,12 +263,7 @@ static double mix_rate(double pre, const sb_spray_mixture *mx)
   if (pre == 0 || (num >= DBL_MIN && num <= DBL_MAX && M2 >= DBL_MIN &&
                    M2 <= DBL_MAX))
     return num / M2;
-  sbi_xd Mx = sbi_xd_add(sbi_xd_of(mx->m_a), sbi_xd_of(mx->m_b));
-  sbi_xd nx = sbi_xd_add(sbi_xd_of(mx->n_a), sbi_xd_of(mx->n_b));
-  sbi_xd q = sbi_xd_mul(sbi_xd_mul(sbi_xd_mul(sbi_xd_of(pre), nx),
-                                   sbi_xd_of(mx->m_a)),
-                        sbi_xd_of(mx->m_b));
-  return sbi_xd_val(sbi_xd_div(q, sbi_xd_mul(Mx, Mx)));
+  return sbi_xd_val(mix_rate_x(pre, mx));
 }
 
 /* Outputs finite, else SB_ERANGE. */
@@ -281,12 +287,17 @@ int sb_spray_two_temp_maxwell(const sb_spray_mixture *mx, double B0,
   if (!(B0 > 0) || !(t >= 0) || !isfinite(B0) || !isfinite(t))
     return sbi_error(SB_EDOM, __func__, "B0 = %g, t = %g: need finite "
                      "B0 > 0, t >= 0", B0, t);
-  double rate = mix_rate(2.0 * B0, mx);
-  double e = t == 0 ? 1.0 : exp(-rate * t), Ta, Tb;
+  const double rate = mix_rate(2.0 * B0, mx);
+  /* x = rate t; a rate below DBL_MIN (n B0 near 1e-300) keeps fewer
+   * than 53 bits as a double: then x from the rate with an extended
+   * exponent (rate t itself is below ~4 there, as t <= DBL_MAX) */
+  const sbi_xd x = sbi_xd_mul(rate >= DBL_MIN ? sbi_xd_of(rate)
+                                              : mix_rate_x(2.0 * B0, mx),
+                              sbi_xd_of(t));
+  double e = t == 0 ? 1.0 : exp(-sbi_xd_val(x)), Ta, Tb;
   /* Delta0 - Delta = Delta0 (1 - e), 1 - e by expm1 */
   const double D0 = mx->T_a0 - mx->T_b0;
-  const sbi_xd ome =
-      one_minus_expneg(sbi_xd_mul(sbi_xd_of(rate), sbi_xd_of(t)));
+  const sbi_xd ome = one_minus_expneg(x);
   split_T(mx, D0 * e, sbi_xd_mul(sbi_xd_of(D0), ome), &Ta, &Tb);
   if ((st = temps_ok(Ta, Tb, __func__)))
     return st;
