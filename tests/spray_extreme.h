@@ -1,5 +1,5 @@
 /* spray_extreme.h — the reader of tests/data/spray_extreme.csv shared by
- * test_spray (kinds 0-6, 9-12, 15-18) and test_pgd_exact (kinds 7, 8, 13,
+ * test_spray (kinds 0-6, 9-12, 15-24) and test_pgd_exact (kinds 7, 8, 13,
  * 14): corners of the closed forms where a double intermediate over- or
  * underflows but the value is a normal double, against mpmath
  * (tests/gen_spray_ref.py; columns kind, a1 .. a8, value).
