@@ -10,7 +10,13 @@
  * CPU time of the thread (CLOCK_THREAD_CPUTIME_ID, robust to other
  * processes on a shared machine) of one sb_spray_collide(dt) call, median
  * of `reps` steps after 3 warm-up steps.  Options: --quick (fewer steps,
- * N up to 2e5).  Single thread. */
+ * N up to 2e5).  Single thread.
+ *
+ * Last section: the cost of one sb_spray_reitz_radius call (the full
+ * Reitz model's radius by quadrature and root finding) for a 50 um drop
+ * at U = 100 m/s, rho_g = 10 kg/m^3 (V14's set-up), at t = 0.1 ... 20
+ * relaxation times tau(a0), the later ones next to the stable radius,
+ * where the integrand's rounding is largest. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
@@ -87,6 +93,32 @@ static result run(sb_spray_method m, sb_spray_cross c, size_t N, int reps)
   return res;
 }
 
+/* CPU time of one sb_spray_reitz_radius call, mean of `reps`, at
+ * t = f tau(a0) (section comment at the top). */
+static void reitz_radius_cost(int reps)
+{
+  const double a0 = 50e-6, U = 100.0, rho_g = 10.0, rho_l = 1000.0;
+  const sb_spray_liquid liq = {0.072, 1e-3};
+  sb_spray_reitz_params rp;
+  sb_spray_reitz_params_default(&rp);
+  double L0, O0;
+  sb_spray_reitz_wave(a0, U, rho_g, rho_l, &liq, &L0, &O0);
+  const double tau0 = 3.726 * rp.B1 * a0 / (L0 * O0);
+  static const double fs[] = {0.1, 1.0, 2.0, 5.0, 20.0};
+  printf("\nsb_spray_reitz_radius, a0 = 50 um, U = 100 m/s: ms per call "
+         "(a(t)/a0)\n");
+  for (int k = 0; k < 5; k++) {
+    double a = NAN, t0 = cpu_ns();
+    int st = 0;
+    for (int r = 0; r < reps && !st; r++)
+      st = sb_spray_reitz_radius(a0, fs[k] * tau0, U, rho_g, rho_l, &liq,
+                                 &rp, &a);
+    const double ms = (cpu_ns() - t0) / reps * 1e-6;
+    printf("  t = %4.1f tau(a0): %10.3f ms (%.6f)%s\n", fs[k], ms, a / a0,
+           st ? "  FAILED" : "");
+  }
+}
+
 int main(int argc, char **argv)
 {
   int quick = 0;
@@ -133,5 +165,6 @@ int main(int argc, char **argv)
   printf("# O(N) per step: the number of candidates per particle is fixed; "
          "the per-particle cost grows\n# only when the arrays outgrow the "
          "caches (random pair access into ~40 MB at 1e6)\n");
+  reitz_radius_cost(quick ? 3 : 10);
   return 0;
 }

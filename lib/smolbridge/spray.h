@@ -457,7 +457,12 @@ double sb_spray_reitz_radius_frozen(double a0, double R, double c, double t);
 
 /** Radius a(t) of the full model (Lambda, Omega re-evaluated at the current
  *  radius) at constant U: t(a) = int_a^a0 tau(x)/(x - R(x)) dx by GSL
- *  adaptive quadrature, inverted with GSL Brent; relative accuracy ~1e-10.
+ *  adaptive quadrature (CQUAD, each t(a) to 1e-12 relative or to
+ *  1e-13 a dt/da, whichever is looser: next to the stable radius x - R(x)
+ *  cancels, t(a) cannot be had to 1e-12 but a(t) can), inverted with GSL
+ *  Brent; relative accuracy ~1e-10 (~1e-12 against mpmath's ODE solution
+ *  in tests/data/spray_reitz.csv).  About 0.1-2 ms per call
+ *  (bench/bench_spray).
  *  Stops at the stable radius (a_inf with a_inf = R(a_inf)).  SB_EDOM as
  *  sb_spray_reitz_wave (message naming this function) or for t < 0.
  *  Where the plain fits leave the normal double range at a0 or near the

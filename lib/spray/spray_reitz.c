@@ -245,8 +245,15 @@ static double time_to(double a, void *p) /* t(a) - target */
     return -target;
   gsl_function F = {integrand, c};
   double res, err;
-  int st = sbi_integrate(&F, ldexp(a, -c->ex), ldexp(c->a0, -c->ex), 0.0,
-                         1e-12, 1000, &res, &err);
+  /* The root a needs t(a) only to 1e-13 a |dt/da|: near a_inf, x - R(x)
+   * cancels and the integrand carries a relative rounding ~eps a/(a -
+   * a_inf), which puts a relative 1e-12 on t(a) out of reach (CQUAD then
+   * fills its 1000 intervals: ~600 000 evaluations, 0.2 s per call), while
+   * that rounding moves the root by only ~eps a (da/dt -> 0 there). */
+  const double u = ldexp(a, -c->ex), dtda = fabs(integrand(u, c));
+  const double epsabs = isfinite(dtda) ? 1e-13 * u * dtda : 0.0;
+  int st = sbi_integrate(&F, u, ldexp(c->a0, -c->ex), epsabs, 1e-12, 1000,
+                         &res, &err);
   /* Brent needs the sign: the estimate is kept (as it was with QAGS)
    * when CQUAD's error estimate is above the 1e-12 asked for */
   return (st && st != SB_EMAXITER) ? NAN : res - target;
