@@ -66,6 +66,27 @@ const char *sbc_ini_where(const sbc_ini_keys *o, const char *sec,
   return NULL;
 }
 
+int sbc_ini_keyless(const sbc_ini_keys *o, const char *name,
+                    const char **sec, const char **where)
+{
+  const size_t len = strlen(name);
+  for (size_t i = 0; i < o->n; i++) {
+    const struct sbc_ini_seen *h = &o->e[i];
+    if (h->key || strncmp(h->sec, name, len) ||
+        (h->sec[len] != ' ' && h->sec[len]))
+      continue;
+    size_t j = 0;
+    while (j < o->n && !(o->e[j].key && !strcmp(o->e[j].sec, h->sec)))
+      j++;
+    if (j == o->n) {
+      *sec = h->sec;
+      *where = h->where;
+      return 1;
+    }
+  }
+  return 0;
+}
+
 void sbc_ini_once_free(sbc_ini_keys *o)
 {
   for (size_t i = 0; i < o->n; i++) {

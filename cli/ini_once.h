@@ -34,6 +34,11 @@ int sbc_ini_once(sbc_ini_keys *o, const char *sec, const char *key,
 /* Where key of section sec was read, or NULL. */
 const char *sbc_ini_where(const sbc_ini_keys *o, const char *sec,
                           const char *key);
+/* A section header read with no key under it whose name is `name` or
+ * "name ..." (a named section such as [droplets NAME]): 1 with *sec and
+ * *where ("FILE:LINE" of the header) set for the first one, 0 if none. */
+int sbc_ini_keyless(const sbc_ini_keys *o, const char *name,
+                    const char **sec, const char **where);
 void sbc_ini_once_free(sbc_ini_keys *o);
 
 /* "CMD: warning: WHERE: MESSAGE" on stderr: a key without effect (the

@@ -568,6 +568,13 @@ int sbc_pgd_main(int argc, char **argv)
   char err[1024] = "";
   int rst = sb_ini_read(file, NULL, key_fn, section_fn, &c, err,
                         sizeof err);
+  /* an [inflow NAME] header alone would add no inflow */
+  const char *ksec, *kwhere;
+  if (!c.err[0] && !rst &&
+      sbc_ini_keyless(&c.once, "inflow", &ksec, &kwhere)) {
+    snprintf(c.err_where, sizeof c.err_where, "%s", kwhere);
+    fail(&c, "[%s] has no keys: an inflow needs side, count and rho", ksec);
+  }
   /* L sets both edges: with Lx or Ly one of the two would be lost */
   const char *wl = sbc_ini_where(&c.once, "run", "L");
   for (int d = 0; d < 2 && wl && !c.err[0]; d++) {

@@ -716,6 +716,14 @@ int sbc_spray_main(int argc, char **argv)
   char err[1024];
   int rst = sb_ini_read(file, NULL, key_fn, section_fn, &c, err,
                         sizeof err);
+  /* a [droplets NAME] header alone would add no population */
+  const char *ksec, *kwhere;
+  if (!c.nerr && !rst &&
+      sbc_ini_keyless(&c.once, "droplets", &ksec, &kwhere)) {
+    snprintf(c.err_where, sizeof c.err_where, "%s", kwhere);
+    fail(&c, "[%s] has no keys: a population needs count and radius (m)",
+         ksec);
+  }
   if (!c.nerr && !rst)
     warn_unused(&c);
   sbc_ini_once_free(&c.once);

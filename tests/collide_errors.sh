@@ -113,6 +113,12 @@ check "empty unknown section" 2 't.ini:12: unknown section [wall]; valid: [run]'
 [wall]'
 check "empty species without name" 2 't.ini:12: [species]: a species section needs a name' '$a\
 [species]'
+# a named species header without keys would add no species (silently,
+# beside another species)
+check "empty species beside another" 2 't.ini:12: [species b] has no keys: a species needs radius (or diameter), mass (or density), tau (or mu) and count, phi, particle or inflow' '$a\
+[species b]'
+check "empty species before another" 2 't.ini:6: [species b] has no keys' '5a\
+[species b]'
 check "key before section" 2 't.ini:1: x = 1 before any section' '1i\
 x = 1'
 check "species without name" 2 'a species section needs a name' 's/\[species a\]/[species]/'
@@ -431,7 +437,7 @@ check "missing L" 2 '[run] L (or Lx, Ly, Lz) is required' '/^L = /d'
 check "missing dt" 2 '[run] dt is required' '/^dt = /d'
 check "missing steps" 2 '[run] t_end or steps is required' '/^steps = /d'
 check "no species" 2 'no [species NAME] section' '6,$d'
-check "empty species" 2 "t.ini:6: [species a] is empty" '7,$d'
+check "empty species" 2 "t.ini:6: [species a] has no keys: a species needs radius" '7,$d'
 check "unwritable output" 2 '[run] output = /proc/nope: cannot create the directory' 's|^output = .*|output = /proc/nope|'
 # an input error found when the output is prepared leaves the previous
 # run's files

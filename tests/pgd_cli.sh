@@ -183,6 +183,11 @@ bad "cfl = 0.8: must be in (0, 0.5]" \
 bad "bad.ini:4: [inflow a] side = 'up'" \
   "[run]" "dim = 2" "[inflow a]" "side = up"
 bad "bad.ini:1: unknown section [foo]" "[foo]" "a = 1"
+# an [inflow NAME] header without keys would add no inflow (the run went
+# on without it)
+bad "bad.ini:8: [inflow b] has no keys: an inflow needs side, count and rho" \
+  "[run]" "dim = 2" "nx = 10" "t_end = 0.01" "output = $out/empty-inflow" \
+  "[initial]" "rho = 1" "[inflow b]"
 # also without keys under it (a misspelt section is not left out silently)
 bad "bad.ini:4: unknown section [boundaries] (run, riemann," \
   "[run]" "nx = 10" "t_end = 0.1" "[boundaries]" "[riemann]" "rho_l = 1"

@@ -61,9 +61,11 @@ for c in "key twice|[run]\nvolume = 1\ndt = 1\nsteps = 2\ndt = 2\n$pop|twice.ini
   case "$msg" in *"$want"*) ;; *) fail "$name message: $msg" ;; esac
 done
 # an unknown section is an error naming it, also without keys under it
-# (a misspelt [reitz] would otherwise leave its model out silently)
+# (a misspelt [reitz] would otherwise leave its model out silently); so is
+# a [droplets NAME] header without keys (it would add no population)
 for c in "unknown section|[run]\nvolume = 1\ndt = 1\nsteps = 2\n${pop}[bogus]\nx = 1\n|sect.ini:8: unknown section [bogus] (valid: run," \
-         "empty unknown section|[run]\nvolume = 1\ndt = 1\nsteps = 2\n${pop}[reiz]\n|sect.ini:8: unknown section [reiz] (valid: run,"; do
+         "empty unknown section|[run]\nvolume = 1\ndt = 1\nsteps = 2\n${pop}[reiz]\n|sect.ini:8: unknown section [reiz] (valid: run," \
+         "empty droplets|[run]\nvolume = 1\ndt = 1\nsteps = 2\n${pop}[droplets b]\n|sect.ini:8: [droplets b] has no keys: a population needs count and radius (m)"; do
   name=${c%%|*}; rest=${c#*|}; ini=${rest%|*}; want=${rest##*|}
   printf "$ini" > "$out/sect.ini"
   msg=$("$sb" spray "$out/sect.ini" 2>&1 >/dev/null)

@@ -385,6 +385,20 @@ int sbi_col_check(sbi_col_config *c)
     c->Lx = c->Ly = c->Lz = c->L;
   if (c->dim == 2 && !c->restart[0])  /* on restart: the box is kept */
     unused(c, run, "Lz", "dim = 2");
+  /* a [species NAME] header without keys would add no species (and on
+   * restart misplace the saved ones) */
+  for (int i = 0; i < c->nsections; i++) {
+    if (strncmp(c->sections[i], "species ", 8))
+      continue;
+    int k = 0;
+    while (k < c->nsp && strcmp(c->sp[k].name, c->sections[i]))
+      k++;
+    if (k == c->nsp)
+      return sbi_col_fail(c, "%s: [%s] has no keys: a species needs radius "
+                          "(or diameter), mass (or density), tau (or mu) "
+                          "and count, phi, particle or inflow",
+                          c->section_where[i], c->sections[i]);
+  }
   /* restart: the state comes from the checkpoint */
   if (c->restart[0]) {
     static const char *const kept[] = {"dim", "L", "Lx", "Ly", "Lz",
@@ -413,12 +427,6 @@ int sbi_col_check(sbi_col_config *c)
     if (isnan(c->Lx) || isnan(c->Ly) || (c->dim == 3 && isnan(c->Lz)))
       return sbi_col_fail(c, "[run] L (or Lx, Ly%s) is required: the box "
                           "edge in m", c->dim == 3 ? ", Lz" : "");
-    for (int i = 0; c->nsp == 0 && i < c->nsections; i++)
-      if (!strncmp(c->sections[i], "species ", 8))
-        return sbi_col_fail(c, "%s: [%s] is empty: give radius, mass (or "
-                            "density), tau (or mu) and count, phi or "
-                            "particle", c->section_where[i],
-                            c->sections[i]);
     if (c->nsp == 0)
       return sbi_col_fail(c, "no [species NAME] section: give at least one "
                           "with radius, mass (or density), tau (or mu) and "

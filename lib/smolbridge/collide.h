@@ -76,8 +76,10 @@ int sb_collide_read_string(sb_collide *c, const char *text,
 int sb_collide_set(sb_collide *c, const char *assignment);
 
 /** Cross-key checks once all keys are in: required keys, conflicting
- *  keys, keys that need other values; keys that have no effect give
- *  warnings (sb_collide_warning).  SB_SUCCESS or SB_EINVAL.  Called by
+ *  keys, keys that need other values, a [species NAME] header without
+ *  keys ("PATH:LINE: [species NAME] has no keys: ..."; it would add no
+ *  species); keys that have no effect give warnings
+ *  (sb_collide_warning).  SB_SUCCESS or SB_EINVAL.  Called by
  *  sb_collide_setup when not called before. */
 int sb_collide_check(sb_collide *c);
 
