@@ -490,6 +490,53 @@ else
   fail "collide examples/v8_dlvo_gas.ini failed"
 fi
 
+# --- exits.csv names the species as summary.json does: in a merging run
+# with open faces every name of its species column is one of
+# summary.json's species (clusters cluster_K, K primaries; they were all
+# "cluster"), and a cluster_K row's mass is K primary masses
+cat > "$out/merge_open.ini" <<EOF
+[run]
+seed = 3
+dim = 2
+L = 1e-4
+dt = 1e-6
+t_end = 2e-3
+outcome = merge
+output = $out/merge_open
+[walls]
+x_lo = open
+x_hi = open
+y_lo = open
+y_hi = open
+detect = ballistic
+[observe]
+exits = yes
+[agglo]
+growth = constant
+[species grain]
+radius = 2e-6
+density = 1000
+tau = inf
+T = 1e10
+phi = 0.3
+EOF
+if "$sb" collide "$out/merge_open.ini" >/dev/null 2>&1; then
+  sed -n 's/.*{"name": "\([^"]*\)", "radius": [^,]*, "mass": \([^,]*\),.*/\1 \2/p' \
+    "$out/merge_open/summary.json" > "$out/merge_open.names"
+  awk -F, 'NR == FNR { split($0, a, " "); m[a[1]] = a[2]; next }
+    FNR > 1 { if (!($3 in m)) {
+        print "exits.csv row " FNR ": species " $3 " is not in summary.json"
+        bad = 1; next }
+      k = 1; if ($3 ~ /^cluster_[0-9]+$/) { k = substr($3, 9) + 0; nc++ }
+      r = $5 / (k * m["grain"]) - 1
+      if (r * r > 1e-24) { print "exits.csv row " FNR ": mass " $5 " of " $3; bad = 1 } }
+    END { if (!nc) { print "no cluster left through an open face"; bad = 1 }
+      exit bad }' "$out/merge_open.names" "$out/merge_open/exits.csv" ||
+    fail "collide exits.csv of a merging run"
+else
+  fail "collide of a merging run with open faces failed"
+fi
+
 # --- quickstart.sh runs the validation with passive OpenMP waiting (idle
 # threads sleep: spinning ones made V2 alone take minutes on a busy
 # machine, docs/engine.md §8) unless the user set OMP_WAIT_POLICY.  Run

@@ -133,9 +133,11 @@ int sbi_col_contacts_write(FILE *js, const sbi_col_config *c,
   if (!f)
     return -1;
   fprintf(f, "t,a,b,vn\n");
+  char na[32], nb[32];
   for (size_t i = 0; i < k->n; i++)
     fprintf(f, "%.17g,%s,%s,%.17g\n", k->c[i].t,
-            sbi_col_short_name(c, k->c[i].a), sbi_col_short_name(c, k->c[i].b),
+            sbi_col_species_label(c, r->agglo, k->c[i].a, na, sizeof na),
+            sbi_col_species_label(c, r->agglo, k->c[i].b, nb, sizeof nb),
             k->c[i].v);
   fprintf(js, "  \"contacts\": {\"recorded\": %zu, \"cap\": %zu, "
           "\"file\": \"contacts.csv\"},\n", k->n, k->cap);

@@ -57,9 +57,12 @@ static int on_exit(const sb_engine *e, size_t i, int face, double t_exit,
   if (!r->exits_f && exits_open(c, r))
     return SB_EIO;
   FILE *f = r->exits_f;
+  char name[32];
   fprintf(f, "%.17g,%s,%s,%d,%.17g", t_exit,
           face >= 0 && face < 6 ? faces[face] : "?",
-          sbi_col_short_name(c, sb_engine_species_of(e)[i]), fam, m);
+          sbi_col_species_label(c, r->agglo, sb_engine_species_of(e)[i],
+                                name, sizeof name),
+          fam, m);
   for (int k = 0; k < 3; k++)
     fprintf(f, ",%.17g", x[k]);
   for (int k = 0; k < 3; k++)

@@ -133,6 +133,18 @@ const char *sbi_col_short_name(const sbi_col_config *c, size_t k)
   return sbi_col_is_species(c->sp[k].name, &n) ? n : c->sp[k].name;
 }
 
+const char *sbi_col_species_label(const sbi_col_config *c,
+                                  const sb_agglo *ag, size_t k, char *buf,
+                                  size_t len)
+{
+  const size_t m =
+      ag && (int)k >= c->nsp ? sb_agglo_size_of_species(ag, k) : 0;
+  if (!m)
+    return sbi_col_short_name(c, k);
+  snprintf(buf, len, "cluster_%zu", m);
+  return buf;
+}
+
 static int parse_number(sbi_col_config *c, const char *sec,
                         const sbi_col_keydef *k, const char *v, double *out)
 {

@@ -168,6 +168,13 @@ int sbi_col_given(const sbi_col_config *c, const char *sec,
                   const char *key);
 /* "he" for [species he]. */
 const char *sbi_col_short_name(const sbi_col_config *c, size_t k);
+/* The name of engine species k in every output (summary.json, exits.csv,
+ * contacts.csv): NAME of its [species NAME] section, or, for a cluster
+ * species of the agglomeration context ag (may be NULL), "cluster_K" with
+ * K its number of primaries, written in buf (len bytes, 32 will do). */
+const char *sbi_col_species_label(const sbi_col_config *c,
+                                  const sb_agglo *ag, size_t k, char *buf,
+                                  size_t len);
 /* Names accepted for detect (the engine's built-ins, then the bridge
  * detectors), NULL-terminated, in names[0..len-1]; returns names. */
 const char **sbi_col_detect_names(const char **names, size_t len);

@@ -203,11 +203,8 @@ static void jstr(FILE *f, const char *s)
 static void jspecies(FILE *f, const sbi_col_config *c, const sb_agglo *ag,
                      size_t k)
 {
-  size_t m = ag && (int)k >= c->nsp ? sb_agglo_size_of_species(ag, k) : 0;
-  if (m)
-    fprintf(f, "\"cluster_%zu\"", m);
-  else
-    jstr(f, sbi_col_short_name(c, k));
+  char buf[32];
+  jstr(f, sbi_col_species_label(c, ag, k, buf, sizeof buf));
 }
 
 void sbi_col_jnum(FILE *f, double x)
@@ -500,9 +497,9 @@ static void json_firsthit(FILE *f, const sbi_col_config *c,
     for (int b = a; b < c->nsp; b++) {
       sbi_col_firsthit_pair(r, c, (size_t)a, (size_t)b, &o);
       fprintf(f, "%s\n    {\"species\": [", a + b ? "," : "");
-      jstr(f, sbi_col_short_name(c, (size_t)a));
+      jspecies(f, c, r->agglo, (size_t)a);
       fprintf(f, ", ");
-      jstr(f, sbi_col_short_name(c, (size_t)b));
+      jspecies(f, c, r->agglo, (size_t)b);
       fprintf(f, "], \"hits\": %llu, \"warmup_hits\": %llu, "
               "\"contact_at_start\": %llu, \"pairs_apart\": %.17g, "
               "\"radius\": ", (unsigned long long)o.c.hits,
