@@ -47,6 +47,7 @@ static void usage(FILE *f)
 "Usage: smolbridge collide CONFIG.ini [--set SECTION.KEY=VALUE]...\n"
 "                         [--threads N] [--sweep FILE]\n"
 "       smolbridge collide --help\n"
+"(also written --set=SECTION.KEY=VALUE, --threads=N, --sweep=FILE)\n"
 "\n"
 "Run the Lagrangian collision engine described by CONFIG.ini (INI: [section]\n"
 "headers, key = value lines, comments start a line with ';' or '#', or\n"

@@ -73,6 +73,28 @@ for cmd in pbe validate collide eval; do
   done
 done
 
+# the --OPTION=VALUE forms collide accepts (strncmp(argv[i], "--x=", n)):
+# each in collide --help, the man page's '.SS collide' and engine.md §9,
+# and read as the form with a space (the same message for a bad value)
+eqs=$(grep -o 'strncmp(argv\[i\], "--[a-z-]*=", [0-9]*)' "$src/cli/collide.c" |
+  sed 's/.*"\(--[a-z-]*=\)".*/\1/' | sort -u)
+[ -n "$eqs" ] || fail "collide: no --OPTION= forms found in cli/collide.c"
+"$sb" collide --help > "$out/help.txt" 2>&1
+man_ss collide > "$out/ss.txt"
+awk '/^## 9\. `smolbridge collide/ { on = 1; next } /^## / { on = 0 } on' \
+  "$src/docs/engine.md" > "$out/chapter.txt"
+printf '[run]\nL = 1\n' > "$out/t.ini"
+for o in $eqs; do
+  grep -qF -- "$o" "$out/help.txt" || fail "collide ${o}X is not in 'collide --help'"
+  grep -qF -- "$o" "$out/ss.txt" ||
+    fail "collide ${o}X is not in docs/smolbridge.1 '.SS collide'"
+  grep -qF -- "$o" "$out/chapter.txt" ||
+    fail "collide ${o}X is not in docs/engine.md §9"
+  a=$("$sb" collide "$out/t.ini" "${o%=}" zz 2>&1)
+  b=$("$sb" collide "$out/t.ini" "${o}zz" 2>&1)
+  [ "$a" = "$b" ] || fail "collide ${o}zz: '$b', but ${o%=} zz: '$a'"
+done
+
 # the commands and options of main.c: in `smolbridge --help`; the commands
 # in the man page's synopsis and a subsection each, the options in its
 # synopsis
