@@ -95,6 +95,58 @@ for o in $eqs; do
   [ "$a" = "$b" ] || fail "collide ${o}zz: '$b', but ${o%=} zz: '$a'"
 done
 
+# --- the validation cases `validate --write-ini` writes (INI_CASES of
+# lib/validate/registry.c): the man page's list of them and the table of
+# docs/validation.md ("Reproducing a case") name exactly these; the cases
+# the table gives no files and those the sentence after it lists are the
+# others.  Lists are "V8/agglo-constant, agglo-brownian" (the set-up
+# carried over), a bare "V4" (every case of V4) or "V15/pgd-*" (a glob).
+"$sb" validate --list 2>/dev/null | awk '{ print $1 }' | sort -u > "$out/cases"
+[ -s "$out/cases" ] || fail "validate --list gave no cases"
+sed -n '/INI_CASES\[\] = {/,/NULL};/p' "$src/lib/validate/registry.c" |
+  grep -o '"[^"]*"' | tr -d '"' | sort -u > "$out/ini_cases"
+[ -s "$out/ini_cases" ] || fail "no INI_CASES in lib/validate/registry.c"
+expand_cases() {  # stdin: a list as above; the case names, one a line
+  sed -e 's/([^)]*)//g' | tr ',' '\n' | sed -e 's/^ *//' -e 's/ *$//' |
+    grep -v '^$' | awk 'NR == FNR { all[++n] = $1; next }
+      { if ($0 ~ /^V[0-9X]+$/) { pre = $0 "/"; pat = pre "*" }
+        else if (index($0, "/")) { pre = substr($0, 1, index($0, "/"));
+                                   pat = $0 }
+        else pat = pre $0
+        re = "^" pat "$"; gsub(/\*/, ".*", re); hit = 0
+        for (i = 1; i <= n; i++) if (all[i] ~ re) { print all[i]; hit = 1 }
+        if (!hit) print "no-such-case:" pat }' "$out/cases" - | sort -u
+}
+same_cases() {  # same_cases FILE WHERE: FILE's names are INI_CASES
+  comm -3 "$out/ini_cases" "$1" | while read -r n; do
+    if grep -qx "$n" "$out/ini_cases"; then
+      echo "FAIL: $2 does not name $n, which --write-ini writes"
+    else echo "FAIL: $2 names $n, which --write-ini does not write"; fi
+  done | grep FAIL && fails=$((fails + 1))
+}
+tr '\n' ' ' < "$out/man.txt" |
+  sed -n 's/.*the cases with files (\([^;)]*\).*/\1/p' | expand_cases > "$out/man_cases"
+same_cases "$out/man_cases" "docs/smolbridge.1 (--write-ini, 'the cases with files')"
+awk '/^## Reproducing a case/ { on = 1; next } /^## / { on = 0 }
+  on && /^\| V/' "$src/docs/validation.md" > "$out/vtable"
+awk -F'|' '$3 !~ /^ *none/ { print $2 }' "$out/vtable" | tr '\n' ',' |
+  expand_cases > "$out/doc_cases"
+same_cases "$out/doc_cases" "the table of docs/validation.md"
+awk -F'|' '$3 ~ /^ *none/ { print $2 }' "$out/vtable" | tr '\n' ',' |
+  expand_cases > "$out/none_cases"
+awk '/^## Reproducing a case/ { on = 1; next } /^## / { on = 0 } on' \
+  "$src/docs/validation.md" | tr '\n' ' ' |
+  sed -n 's/.*The other cases have no engine run ([^)]*): \([^.]*\)\. .*/\1/p' |
+  expand_cases > "$out/other_cases"
+[ -s "$out/other_cases" ] || fail "docs/validation.md: no list of the other cases"
+cat "$out/none_cases" "$out/other_cases" | sort -u > "$out/no_ini"
+comm -12 "$out/no_ini" "$out/ini_cases" | while read -r n; do
+  echo "FAIL: docs/validation.md says $n has no engine run, but --write-ini writes it"
+done | grep FAIL && fails=$((fails + 1))
+cat "$out/doc_cases" "$out/no_ini" | sort -u | comm -13 - "$out/cases" |
+  while read -r n; do echo "FAIL: docs/validation.md does not say whether $n has files"; done |
+  grep FAIL && fails=$((fails + 1))
+
 # the commands and options of main.c: in `smolbridge --help`; the commands
 # in the man page's synopsis and a subsection each, the options in its
 # synopsis
