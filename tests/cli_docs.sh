@@ -165,6 +165,30 @@ for c in $(grep -o 'strcmp(cmd, "[^"]*")' "$src/cli/main.c" |
   esac
 done
 
+# --- the guide installed in share/doc/smolbridge (Makefile.am: docs/ in
+# guidedir, README.md and NEWS in docdir, examples/ in exampledir, the
+# layout of the source tree): every relative link of an installed page
+# names an installed file
+sed -e ':a' -e '/\\$/{N; s/\\\n//; ba' -e '}' "$src/Makefile.am" |
+  sed -n 's/^dist_\(guide\|doc\|example\)_DATA *= *//p' | tr -s ' \t' '\n\n' |
+  grep -v '^$' | sort -u > "$out/installed"
+[ -s "$out/installed" ] || fail "Makefile.am: no dist_guide_DATA"
+grep '\.md$' "$out/installed" | while read -r page; do
+  d=$(dirname "$page")
+  grep -oE '\]\([A-Za-z0-9_./-]+(#[^)]*)?\)' "$src/$page" |
+    sed -e 's/^](//' -e 's/[#)].*//' | sort -u | while read -r t; do
+      p="$d/$t"
+      while :; do  # a/b/../c -> a/c, ./ dropped
+        q=$(printf '%s\n' "$p" | sed -e 's|^\./||' -e 's|/\./|/|g' \
+          -e 's|[^/.][^/]*/\.\./||')
+        [ "$q" = "$p" ] && break
+        p=$q
+      done
+      grep -qxF "$p" "$out/installed" ||
+        echo "FAIL: $page links to $t, which make install does not put beside it ($p)"
+    done
+done | grep FAIL && fails=$((fails + 1))
+
 # --- the ranges of numeric options: --help gives the one the parser
 # enforces (from its message for a value below it)
 for spec in "validate|--seeds|1" "pbe|--sizes|1" "collide|--threads|0"; do
