@@ -68,7 +68,7 @@ static void usage(FILE *out)
 "estimate with its theoretical reference and gives a verdict by a rule\n"
 "stated in its row.\n"
 "\n"
-"  --quick         reduced sample sizes, whole suite in about a minute\n"
+"  --quick         reduced sample sizes, whole suite in about two minutes\n"
 "                  (default)\n"
 "  --full          the sample sizes of the source studies, or enough for\n"
 "                  +-1%% (95%%) on the engine kernels (slow: hours; the\n"
