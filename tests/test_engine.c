@@ -6,6 +6,7 @@
  * across neighbour-search methods, checkpoint round trip, transport in a
  * fluid field, detectors against an independent root finder, and error
  * handling. */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -908,6 +909,87 @@ START_TEST(test_errors)
 }
 END_TEST
 
+/* Species whose spread or step leaves the doubles: refused up front where
+ * a coefficient or the stationary velocity spread cannot be represented
+ * (SB_ERANGE naming the parameters), the spread taken as B sqrt(tau / 2)
+ * where only B^2 tau / 2 overflows; a step whose new state overflows
+ * (B = DBL_MAX, tau = dt = 1: the velocity's sd is 0.66 DBL_MAX) is
+ * SB_ERANGE with every particle at its start of step, on both transport
+ * paths, in 3-D and 2-D. */
+START_TEST(test_species_extreme)
+{
+  sb_engine *e = box_engine(3, 10.0, 1.0, 4);
+  /* B^2 tau / 2 = inf but B sqrt(tau / 2) = 1.3e158 */
+  sb_engine_species a = {0.1, 1.0, 1e-300, DBL_MAX, 0.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &a, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 2), SB_SUCCESS);
+  const double *u = sb_engine_velocities(e);
+  for (int k = 0; k < 6; k++)
+    ck_assert(isfinite(u[k]) && u[k] != 0.0);
+  /* B sqrt(tau / 2) = 7e349 > DBL_MAX */
+  sb_engine_species b = {0.1, 1.0, 1e300, 1e200, 0.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &b, NULL), SB_ERANGE);
+  ck_assert(strstr(sb_last_error(), "B = 1e+200") != NULL);
+  ck_assert(strstr(sb_last_error(), "sb_engine_add_species") != NULL);
+  /* k_B T / m overflows, sqrt(k_B T / m) = 5e292 does not */
+  sb_engine_species c = {0.1, 1e-300, INFINITY, 0.0, DBL_MAX};
+  ck_assert_int_eq(sb_engine_add_species(e, &c, NULL), SB_SUCCESS);
+  ck_assert_uint_eq(sb_engine_species_count(e), 2);
+  double xc[3] = {1, 1, 1}, uc[3];
+  ck_assert_int_eq(sbi_engine_equilibrium_velocity(e, 1, xc, uc, "t"),
+                   SB_SUCCESS);
+  for (int k = 0; k < 3; k++)
+    ck_assert(isfinite(uc[k]) && fabs(uc[k]) > 1e290);
+  /* a step coefficient beyond DBL_MAX: SB_ERANGE (was SB_EINVAL) */
+  sb_engine_species f = {0.1, 1.0, 1e300, 1e300, 1.0};
+  sb_engine_free(e);
+  e = box_engine(3, 10.0, 1e300, 4);
+  ck_assert_int_eq(sb_engine_add_species(e, &f, NULL), SB_ERANGE);
+  ck_assert(strstr(sb_last_error(), "exceeds DBL_MAX") != NULL);
+  sb_engine_free(e);
+
+  for (int c = 0; c < 4; c++) {
+    const int streams = c & 1, dim = 3 - (c >> 1);
+    sb_engine_params p;
+    sb_engine_params_default(&p);
+    p.dim = dim;
+    p.L[0] = p.L[1] = p.L[2] = 10.0;
+    p.dt = 1.0;
+    p.capacity = 4;
+    p.streams = streams;
+    e = sb_engine_alloc(&p);
+    ck_assert_ptr_nonnull(e);
+    sb_engine_species s = {0.1, 1.0, 1.0, DBL_MAX, 0.0};
+    ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+    double x0[3] = {5, 5, 5}, u0[3] = {0, 0, 0};
+    ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, x0, u0), SB_SUCCESS);
+    const double *x = sb_engine_positions(e);
+    u = sb_engine_velocities(e);
+    int erange = 0;
+    for (int k = 0; k < 40 && !erange; k++) {
+      double xb[3], ub[3];
+      memcpy(xb, x, sizeof xb);
+      memcpy(ub, u, sizeof ub);
+      int st = sb_engine_step(e);
+      for (int q = 0; q < 3; q++)
+        ck_assert_msg(isfinite(x[q]) && isfinite(u[q]),
+                      "%d-D, streams %d, step %d (status %d): x[%d] = %g, "
+                      "u[%d] = %g", dim, streams, k, st, q, x[q], q, u[q]);
+      if (st) {
+        ck_assert_int_eq(st, SB_ERANGE);
+        ck_assert(strstr(sb_last_error(), "exceeds DBL_MAX") != NULL);
+        ck_assert(memcmp(xb, x, sizeof xb) == 0);
+        ck_assert(memcmp(ub, u, sizeof ub) == 0);
+        erange = 1;
+      }
+    }
+    ck_assert_msg(erange, "%d-D, streams %d: no SB_ERANGE in 40 steps", dim,
+                  streams);
+    sb_engine_free(e);
+  }
+}
+END_TEST
+
 /* A fill is all or nothing: one that cannot place every particle (no
  * room, or the fluid field fails part-way) leaves the particles, their
  * order and positions and the id counter as they were, and the engine
@@ -1441,6 +1523,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_detectors);
   tcase_add_test(tc, test_kernel_estimate);
   tcase_add_test(tc, test_errors);
+  tcase_add_test(tc, test_species_extreme);
   tcase_add_test(tc, test_error_names);
   tcase_add_test(tc, test_fill_all_or_nothing);
   tcase_add_test(tc, test_checkpoint_bad_ids);

@@ -3,6 +3,7 @@
  * Langevin step), run control and accessors.  Neighbour search, detection,
  * outcomes, observers and checkpoints live in the other lib/engine_*.c
  * files; docs/engine.md explains the algorithm. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -246,6 +247,25 @@ static int species_coef(const sb_engine_species *s, double dt,
   return sb_langevin_coef_init(c, s->tau, s->B, dt);
 }
 
+/* Equilibrium velocity standard deviation per component: sqrt(k_B T / m),
+ * or sqrt(B^2 tau / 2) for T = 0 (the stationary variance of the Langevin
+ * model, Mohaupt 2011, eq A.4).  The variance as before wherever it is a
+ * normal double (the same bits); where it overflows or underflows, the
+ * square roots taken first (B sqrt(tau / 2), sqrt(k_B T) / sqrt(m)).
+ * SB_ERANGE where the spread itself exceeds DBL_MAX, which only B sqrt(tau
+ * / 2) can (sqrt(k_B DBL_MAX) / sqrt(4.9e-324) is 2.2e304). */
+static int species_vsd(const sb_engine_species *s, double *vsd)
+{
+  const double var = s->T > 0.0 ? SB_BOLTZMANN * s->T / s->mass
+                                : 0.5 * s->B * s->B * s->tau;
+  if (var == 0.0 || (var >= DBL_MIN && var <= DBL_MAX))
+    *vsd = sqrt(var);
+  else
+    *vsd = s->T > 0.0 ? sqrt(SB_BOLTZMANN * s->T) / sqrt(s->mass)
+                      : s->B * sqrt(0.5 * s->tau);
+  return isfinite(*vsd) ? SB_SUCCESS : SB_ERANGE;
+}
+
 int sbi_engine_update_coef(sb_engine *e)
 {
   for (size_t k = 0; k < e->nspec; k++) {
@@ -280,10 +300,20 @@ int sb_engine_add_species(sb_engine *e, const sb_engine_species *s,
     return sbi_error(SB_EINVAL, __func__,
                      "free-flight species (tau = inf) needs T > 0");
   sb_langevin_coef c;
-  if (species_coef(s, e->par.dt, &c))
+  int cst = species_coef(s, e->par.dt, &c);
+  if (cst == SB_ERANGE)
+    return sbi_error(SB_ERANGE, __func__,
+                     "tau = %g, B = %g, dt = %g: a step coefficient of "
+                     "the species exceeds DBL_MAX", s->tau, s->B, e->par.dt);
+  if (cst)
     return sbi_error(SB_EINVAL, __func__,
                      "tau = %g, B = %g, dt = %g: no Langevin step", s->tau,
                      s->B, e->par.dt);
+  double vsd;
+  if (species_vsd(s, &vsd))
+    return sbi_error(SB_ERANGE, __func__,
+                     "B = %g, tau = %g: the velocity spread B sqrt(tau / 2) "
+                     "exceeds DBL_MAX", s->B, s->tau);
   if (e->nspec == e->capspec) {
     size_t nc = e->capspec ? 2 * e->capspec : 4;
     sb_engine_species *ns = realloc(e->spec, nc * sizeof *ns);
@@ -303,11 +333,7 @@ int sb_engine_add_species(sb_engine *e, const sb_engine_species *s,
   size_t k = e->nspec++;
   e->spec[k] = *s;
   e->coef[k] = c;
-  /* Equilibrium velocity variance: k_B T / m, or B^2 tau / 2 (the
-   * stationary variance of the Langevin model, Mohaupt 2011, eq A.4). */
-  double var = s->T > 0.0 ? SB_BOLTZMANN * s->T / s->mass
-                          : 0.5 * s->B * s->B * s->tau;
-  e->vsd[k] = sqrt(var);
+  e->vsd[k] = vsd;
   if (s->radius > e->rmax)
     e->rmax = s->radius;
   if (idx)
@@ -910,8 +936,8 @@ typedef struct {
  * (the update and normals of sb_langevin_step3_stream, or with the shear
  * noise), the displacement and its length (for the search's cut-off)
  * written while the particle is in cache.  Returns bit 1 for a stream out
- * of range, bit 2 for a non-finite displacement; *dmax: the block's
- * largest |disp|. */
+ * of range, bit 2 for a non-finite |disp|, bit 4 for a non-finite new x
+ * or u; *dmax: the block's largest |disp|. */
 static int stream_block(const stream_step *S, size_t b, double *dmax)
 {
   sb_engine *e = S->e;
@@ -953,11 +979,43 @@ static int stream_block(const stream_step *S, size_t b, double *dmax)
       const double v = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
       dn[i] = v;
       bad |= 2 * !isfinite(v);
+      /* y - y is 0, or NaN for an infinite or NaN y */
+      bad |= 4 * !isfinite((xi[0] - xi[0]) + (xi[1] - xi[1]) +
+                           (xi[2] - xi[2]) + (ui[0] - ui[0]) +
+                           (ui[1] - ui[1]) + (ui[2] - ui[2]));
       dm = v > dm ? v : dm;
     }
   }
   *dmax = dm;
   return bad;
+}
+
+/* After a transport whose new state has an infinite or NaN component
+ * (B sqrt(tau), the state or the fluid velocity near DBL_MAX): if one of
+ * the box's dim components is (in 2-D the third is reset after the step),
+ * every particle back to its start of step (x0, u0) and SB_ERANGE naming
+ * the first such particle and its species' parameters; else 0. */
+static int transport_overflow(sb_engine *e)
+{
+  const int dim = e->par.dim;
+  size_t bad = e->n;
+  for (size_t i = 0; i < e->n && bad == e->n; i++)
+    for (int k = 0; k < dim; k++)
+      if (!isfinite(e->x[3 * i + k]) || !isfinite(e->u[3 * i + k]))
+        bad = i;
+  if (bad == e->n)
+    return SB_SUCCESS;
+  memcpy(e->x, e->x0, 3 * e->n * sizeof *e->x);
+  memcpy(e->u, e->u0, 3 * e->n * sizeof *e->u);
+  memset(e->disp, 0, 3 * e->n * sizeof *e->disp);
+  const sb_engine_species *s = &e->spec[e->species[bad]];
+  return sbi_error(SB_ERANGE, "sb_engine_step",
+                   "particle %zu (species %zu, tau = %g, B = %g): the new "
+                   "position or velocity exceeds DBL_MAX (from x = (%g, "
+                   "%g, %g), u = (%g, %g, %g)); the step is not taken",
+                   bad, e->species[bad], s->tau, s->B, e->x[3 * bad],
+                   e->x[3 * bad + 1], e->x[3 * bad + 2], e->u[3 * bad],
+                   e->u[3 * bad + 1], e->u[3 * bad + 2]);
 }
 
 static int transport_streams(sb_engine *e, const double *us)
@@ -1004,6 +1062,8 @@ static int transport_streams(sb_engine *e, const double *us)
   if (bad & 1)
     return sbi_error(SB_EDOM, "sb_engine_step",
                      "streams: a particle id or the step is out of range");
+  if ((bad & 4) && (st = transport_overflow(e)))
+    return st;
   e->dn_ready = 1;
   e->dn_bad = (bad & 2) != 0;
   e->dn_max = dmax;
@@ -1045,6 +1105,7 @@ static int transport(sb_engine *e)
   int st = sbi_engine_shear_noise(e, &shn);
   if (st)
     return st;
+  int bad = 0;
   for (size_t i0 = 0; i0 < n; i0 += SBI_TRANSPORT_BLOCK) {
     const size_t m = n - i0 < SBI_TRANSPORT_BLOCK ? n - i0
                                                    : SBI_TRANSPORT_BLOCK;
@@ -1076,9 +1137,12 @@ static int transport(sb_engine *e)
         x[q] = xn;
         u[q] = un;
         dp[q] = xn - xo;
+        bad |= !isfinite(xn - xn + un - un);
       }
     }
   }
+  if (bad && (st = transport_overflow(e)))
+    return st;
   if (e->par.dim == 2)
     for (size_t i = 0; i < n; i++)
       x[3 * i + 2] = u[3 * i + 2] = dp[3 * i + 2] = 0.0;

@@ -276,7 +276,12 @@ void sb_engine_free(sb_engine *e);
 const sb_engine_params *sb_engine_get_params(const sb_engine *e);
 
 /** Add a species; *idx (may be NULL) receives its index.  SB_EINVAL on a
- *  bad field.  Species are kept for the life of the engine. */
+ *  bad field; SB_ERANGE where a step coefficient (sb_langevin_coef_init
+ *  at the engine's dt) or the stationary velocity spread B sqrt(tau / 2)
+ *  (T = 0) exceeds DBL_MAX (the spread is taken as sqrt(B^2 tau / 2) or
+ *  sqrt(k_B T / mass) where that variance is a normal double, otherwise
+ *  with the square roots first).  Species are kept for the life of the
+ *  engine. */
 int sb_engine_add_species(sb_engine *e, const sb_engine_species *s,
                           size_t *idx);
 
@@ -371,9 +376,12 @@ int sb_engine_set_dt(sb_engine *e, double dt);
 
 /** One step (see the file comment).  Errors: SB_EINVAL if a particle's
  *  reach (displacement + radii) is not below half the box (step too large),
- *  a callback failed, or the detector returned an error; SB_ENOMEM;
- *  SB_EMAXITER if a reinsertion found no free place.  After an error the
- *  state is undefined (restore a checkpoint). */
+ *  a callback failed, or the detector returned an error; SB_ERANGE if the
+ *  transport gave a particle an infinite or NaN position or velocity (B
+ *  sqrt(tau) or the state near DBL_MAX): every particle then keeps its
+ *  position and velocity from before the step; SB_ENOMEM; SB_EMAXITER if
+ *  a reinsertion found no free place.  After another error the state is
+ *  undefined (restore a checkpoint). */
 int sb_engine_step(sb_engine *e);
 
 /** Reorder the particles in memory along the cells of a grid (cell
