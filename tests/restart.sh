@@ -8,7 +8,8 @@
 # first-contact observer with the recorded contact velocities, the
 # agglomeration context (DLVO sticking, whose draws come from the
 # engine's generator), both random fields, and a bridge detector's
-# counters with the turbulent split of its collisions; and the points of
+# counters with the turbulent split of its collisions, and the MD
+# detector's reach under the checkpoint's gravity; and the points of
 # a sweep each write their own checkpoint; and a restart changes the
 # walls' settings and the Lees-Edwards images only where its file says
 # so, and checks its keys against the fluid the checkpoint keeps.
@@ -478,6 +479,23 @@ $(grep -o '"fluid": [^,]*' "$out/lees_3/summary.json")"
   fi
 else
   fail "lees: the first part"
+fi
+
+# detect = md continued without [fluid] g: the detector's reach takes the
+# settling speeds tau g from the checkpoint's gravity, as the run in one
+# go took them from its file (its candidates were those of g = 0)
+sed '/^g = /d' "$ex/v16_settling.ini" > "$out/nog.ini"
+if "$sb" collide "$ex/v16_settling.ini" --set run.detect=md \
+     --set run.t_end=1 --set "run.output=$out/mdg_0" > /dev/null 2>&1 &&
+   "$sb" collide "$ex/v16_settling.ini" --set run.detect=md \
+     --set run.t_end=0.5 --set "run.output=$out/mdg_1" \
+     --set "run.checkpoint=$out/mdg.ck" > /dev/null 2>&1 &&
+   "$sb" collide "$out/nog.ini" --set run.detect=md --set run.t_end=1 \
+     --set "run.output=$out/mdg_2" --set "run.restart=$out/mdg.ck" \
+     > /dev/null 2>&1; then
+  same mdg candidates collisions pair_kernels collisions\>1000
+else
+  fail "mdg: a run of detect = md with gravity"
 fi
 
 # a sweep whose base configuration writes a checkpoint: every point writes

@@ -218,16 +218,30 @@ static double velocity_sd(const sbi_col_config *c, int k,
 
 int sbi_col_md(const sbi_col_config *c) { return !strcmp(c->detect, "md"); }
 
+/* The run's gravity: [fluid] g (the components it gives, 0 for the
+ * others), or on restart without it the checkpoint's (setup_physics
+ * leaves the engine's then). */
+static void run_gravity(const sbi_col_config *c, const sb_engine *e,
+                        double g[3])
+{
+  g[0] = g[1] = g[2] = 0.0;
+  if (c->ng)
+    memcpy(g, c->g, (size_t)c->ng * sizeof(double));
+  else if (c->restart[0])
+    sb_engine_get_gravity(e, g);
+}
+
 /* Reach of detect = md: the pairs whose start velocities bring them
  * together within the step, |u_i - u_j| dt, beyond the chords: 7 sd of
  * the relative thermal velocity (sqrt(2) vsd of the widest species; as
  * V3/diffusive-fail, which sizes its box by it) plus twice the largest
- * mean speed (drifts, explicit particles, inflows, settling tau g). */
+ * mean speed (drifts, explicit particles, inflows, settling tau g, with
+ * the run's g: on restart without [fluid] g the checkpoint's). */
 double sbi_col_md_reach(const sbi_col_config *c, const sb_engine *e)
 {
-  double vsd = 0.0, umax = 0.0;
-  const double g = sqrt(c->g[0] * c->g[0] + c->g[1] * c->g[1] +
-                        c->g[2] * c->g[2]);
+  double vsd = 0.0, umax = 0.0, gv[3];
+  run_gravity(c, e, gv);
+  const double g = sqrt(gv[0] * gv[0] + gv[1] * gv[1] + gv[2] * gv[2]);
   for (int k = 0; k < c->nsp; k++) {
     const sb_engine_species *q = sb_engine_get_species(e, (size_t)k);
     const sbi_col_species *s = &c->sp[k];
@@ -924,11 +938,8 @@ static void restart_box(sbi_col_config *c, const sb_engine *e)
  * at set-up, before any output, naming the species. */
 static int gravity_check(sbi_col_config *c, const sb_engine *e)
 {
-  double g[3] = {0, 0, 0};
-  if (c->ng)
-    memcpy(g, c->g, (size_t)c->ng * sizeof(double));
-  else if (c->restart[0])
-    sb_engine_get_gravity(e, g);
+  double g[3];
+  run_gravity(c, e, g);
   int on = 0;
   for (int k = 0; k < c->dim && k < 3; k++)
     on |= g[k] != 0.0;
