@@ -467,6 +467,20 @@ outcome = reinsert
 $a\
 [observe]\
 count_variance = yes'
+# a 2-D run's z faces are none of the box's: an open z_lo leaves [observe]
+# exits without an open face and count_variance without one to warn of
+check "exits with an open z face in 2-D" 0 '[observe] exits ignored: no [walls] face is open' '2a\
+dim = 2
+$a\
+[walls]\
+z_lo = open\
+[observe]\
+exits = yes\
+count_variance = yes'
+case "$msg" in
+  *"count_variance with an open face"*)
+    fail "count_variance in 2-D warned of an open z face: $msg" ;;
+esac
 check "msd_fit past the run" 2 '[observe] msd_fit = 2 20: the run takes 11 samples of msd_every = 1 steps (lags 0 .. 10)' '$a\
 [observe]\
 msd_every = 1\

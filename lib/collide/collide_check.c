@@ -519,8 +519,12 @@ int sbi_col_check(sbi_col_config *c)
   /* its number of values: sbi_col_dim_check */
   if (!c->ngrid)
     unused(c, "observe", "grid_scheme", "no [observe] grid");
+  /* the faces of the box: a new 2-D run's z faces are not (made
+   * periodic later, by sbi_col_dim_check); on restart the checkpoint's
+   * dim is not read yet */
   int open = 0;
-  for (int f = 0; f < 6; f++)
+  const int nface = c->restart[0] || c->dim != 2 ? 6 : 4;
+  for (int f = 0; f < nface; f++)
     open |= !strcmp(c->wall[f], "open");
   if (c->exits > 0 && !open)
     unused(c, "observe", "exits", "no [walls] face is open");
