@@ -153,3 +153,13 @@ int sbc_ini_section_unused(sbc_ini_keys *o, const char *cmd,
   }
   return n;
 }
+
+int sbc_ini_section_known(const char *sec, const char *const *names,
+                          const char *named)
+{
+  for (int k = 0; names[k]; k++)
+    if (!strcmp(sec, names[k]))
+      return 1;
+  const size_t n = strlen(named);
+  return !strncmp(sec, named, n) && (sec[n] == ' ' || !sec[n]);
+}

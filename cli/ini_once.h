@@ -41,6 +41,11 @@ int sbc_ini_keyless(const sbc_ini_keys *o, const char *name,
                     const char **sec, const char **where);
 void sbc_ini_once_free(sbc_ini_keys *o);
 
+/* 1 if sec is one of names (NULL-terminated) or the named section
+ * "named NAME" (or bare "named"), e.g. [droplets NAME]; else 0. */
+int sbc_ini_section_known(const char *sec, const char *const *names,
+                          const char *named);
+
 /* "CMD: warning: WHERE: MESSAGE" on stderr: a key without effect (the
  * run goes on, its exit status unchanged); "WHERE: MESSAGE" recorded in
  * o's warnings. */

@@ -131,10 +131,7 @@ static int known_section(const char *sec)
   static const char *const names[] = {"run", "riemann", "initial", "drag",
                                       "boundary", "particles",
                                       "decomposition", NULL};
-  for (int k = 0; names[k]; k++)
-    if (!strcmp(sec, names[k]))
-      return 1;
-  return !strncmp(sec, "inflow", 6) && (sec[6] == ' ' || !sec[6]);
+  return sbc_ini_section_known(sec, names, "inflow");
 }
 
 static int unknown_section(config *c, const char *sec)

@@ -386,10 +386,7 @@ static int known_section(const char *sec)
 {
   static const char *const names[] = {"run", "gas", "liquid", "tab",
                                       "reitz", "check", NULL};
-  for (int k = 0; names[k]; k++)
-    if (!strcmp(sec, names[k]))
-      return 1;
-  return !strncmp(sec, "droplets", 8) && (sec[8] == ' ' || !sec[8]);
+  return sbc_ini_section_known(sec, names, "droplets");
 }
 
 static int unknown_section(config *c, const char *sec)
