@@ -693,23 +693,23 @@ END_TEST
     *nm = NAME;                                                             \
     return st;                                                              \
   }
-D_XFN(d_ham, "sb_dlvo_vdw_hamaker",
+D_XFN(d_ham, "sb_dlvo_vdw_hamaker_e",
       sb_dlvo_vdw_hamaker_e(a[0], a[1], a[2], a[3], &r))
-D_XFN(d_hamf, "sb_dlvo_vdw_hamaker_force",
+D_XFN(d_hamf, "sb_dlvo_vdw_hamaker_force_e",
       sb_dlvo_vdw_hamaker_force_e(a[0], a[1], a[2], a[3], &r))
-D_XFN(d_der, "sb_dlvo_vdw_derjaguin",
+D_XFN(d_der, "sb_dlvo_vdw_derjaguin_e",
       sb_dlvo_vdw_derjaguin_e(a[0], a[1], a[2], a[3], &r))
-D_XFN(d_derf, "sb_dlvo_vdw_derjaguin_force",
+D_XFN(d_derf, "sb_dlvo_vdw_derjaguin_force_e",
       sb_dlvo_vdw_derjaguin_force_e(a[0], a[1], a[2], a[3], &r))
-D_XFN(d_lsa, "sb_dlvo_edl_lsa",
+D_XFN(d_lsa, "sb_dlvo_edl_lsa_e",
       sb_dlvo_edl_lsa_e(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7],
                         a[8], &r))
-D_XFN(d_lsaf, "sb_dlvo_edl_lsa_force",
+D_XFN(d_lsaf, "sb_dlvo_edl_lsa_force_e",
       sb_dlvo_edl_lsa_force_e(a[0], a[1], a[2], a[3], a[4], a[5], a[6],
                               a[7], a[8], &r))
-D_XFN(d_hhf, "sb_dlvo_edl_hhf",
+D_XFN(d_hhf, "sb_dlvo_edl_hhf_e",
       sb_dlvo_edl_hhf_e(a[0], a[1], a[2], a[3], a[4], a[5], a[6], &r))
-D_XFN(d_hhff, "sb_dlvo_edl_hhf_force",
+D_XFN(d_hhff, "sb_dlvo_edl_hhf_force_e",
       sb_dlvo_edl_hhf_force_e(a[0], a[1], a[2], a[3], a[4], a[5], a[6],
                               &r))
 static int kappa_e(const double *a, sb_result *r)
@@ -738,8 +738,8 @@ static int force_e(const double *a, sb_result *r)
   sb_dlvo_pair p = d_pair(a);
   return sb_dlvo_force_e(&p, a[10], r);
 }
-D_XFN(d_energy, "sb_dlvo_energy", energy_e(a, &r))
-D_XFN(d_force, "sb_dlvo_force", force_e(a, &r))
+D_XFN(d_energy, "sb_dlvo_energy_e", energy_e(a, &r))
+D_XFN(d_force, "sb_dlvo_force_e", force_e(a, &r))
 /* The sweep's view of the documented -inf (status 0) of the Hamaker
  * energy, and of the total energy with the Hamaker model: 0. */
 static int d_ham_sweep(const double *a, double *out, int *n,
