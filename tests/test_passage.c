@@ -542,7 +542,8 @@ END_TEST
 
 /* Every argument in turn over +-1e-320 ... +-DBL_MAX, +-inf and 0, the
  * others ordinary: the value is finite with status 0, or NaN with an
- * error status (never NaN, or inf with status 0); the values themselves at
+ * error status and a message naming the public function (never NaN, or
+ * inf with status 0); the values themselves at
  * the extreme corners are checked against mpmath in passage_bm.csv,
  * passage_bes3.csv and passage_quantile.csv (the rows after the "extreme"
  * comments of tests/gen_refdata.py). */
@@ -610,14 +611,27 @@ START_TEST(test_extreme_arguments)
   static const struct {
     pfn f;
     int b;
-  } k[] = {{e_pdf, 0}, {e_cdf, 0}, {e_sf, 0}, {e_mass, 0},
-           {e_pdf, 1}, {e_cdf, 1}, {e_sf, 1}, {e_mass, 1},
-           {e_b3pdf, 2}, {e_b3cdf, 2}, {e_b3sf, 2},
-           {e_quant, 0}, {e_quant, 1}, {e_sample, 0}, {e_sample, 1}};
+    const char *nm;
+  } k[] = {{e_pdf, 0, "sb_bm_fpt_pdf"},
+           {e_cdf, 0, "sb_bm_fpt_cdf"},
+           {e_sf, 0, "sb_bm_fpt_sf"},
+           {e_mass, 0, "sb_bm_fpt_mass"},
+           {e_pdf, 1, "sb_bm_fpt_pdf"},
+           {e_cdf, 1, "sb_bm_fpt_cdf"},
+           {e_sf, 1, "sb_bm_fpt_sf"},
+           {e_mass, 1, "sb_bm_fpt_mass"},
+           {e_b3pdf, 2, "sb_bes3_fpt_pdf"},
+           {e_b3cdf, 2, "sb_bes3_fpt_cdf"},
+           {e_b3sf, 2, "sb_bes3_fpt_sf"},
+           {e_quant, 0, "sb_bm_fpt_quantile"},
+           {e_quant, 1, "sb_bm_fpt_quantile"},
+           {e_sample, 0, "sb_bm_fpt_sample"},
+           {e_sample, 1, "sb_bm_fpt_sample"}};
   e_rng = gsl_rng_alloc(gsl_rng_mt19937);
-  /* sbt_sweep_dd with +-inf; every value is >= 0 */
+  /* sbt_sweep_dd with +-inf; every value is >= 0; an error names the
+   * function */
   for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
-    sbt_sweep_scalar(k[f].f, base[k[f].b], 5, 1, 1, f, NULL);
+    sbt_sweep_scalar(k[f].f, base[k[f].b], 5, 1, 1, f, k[f].nm);
   /* a density above DBL_MAX (t = 1e-310 at the mean of a narrow law) is
    * SB_ERANGE, not inf */
   sb_result r;

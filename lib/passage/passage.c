@@ -236,12 +236,13 @@ FPT_PAIR(pdf, W_PDF)
 FPT_PAIR(cdf, W_CDF)
 FPT_PAIR(sf, W_SF)
 
-int sb_bm_fpt_mass_e(double x, double a, double mu, double sigma2,
-                     sb_result *res)
+/* the mass, its errors naming func (the public function called) */
+static int fpt_mass(const char *func, double x, double a, double mu,
+                    double sigma2, sb_result *res)
 {
   fpt_par q;
   sb_result r;
-  int st = fpt_setup(__func__, x, a, mu, sigma2, &q, &r);
+  int st = fpt_setup(func, x, a, mu, sigma2, &q, &r);
   if (!st) {
     r.val = q.mass;
     r.err = 2.0 * EPS * q.mass;
@@ -251,10 +252,16 @@ int sb_bm_fpt_mass_e(double x, double a, double mu, double sigma2,
   return st;
 }
 
+int sb_bm_fpt_mass_e(double x, double a, double mu, double sigma2,
+                     sb_result *res)
+{
+  return fpt_mass(__func__, x, a, mu, sigma2, res);
+}
+
 double sb_bm_fpt_mass(double x, double a, double mu, double sigma2)
 {
   sb_result r;
-  sb_bm_fpt_mass_e(x, a, mu, sigma2, &r);
+  fpt_mass(__func__, x, a, mu, sigma2, &r);
   return r.val;
 }
 
@@ -388,24 +395,31 @@ static int fpt_units(double *x, double *a, double *mu, double *sigma2)
 static int fpt_quantile_unit(const char *fn, double p, double x, double a,
                              double mu, double sigma2, sb_result *res);
 
-int sb_bm_fpt_quantile_e(double p, double x, double a, double mu,
-                         double sigma2, sb_result *res)
+/* the quantile, its errors naming func (the public function called) */
+static int fpt_quantile(const char *func, double p, double x, double a,
+                        double mu, double sigma2, sb_result *res)
 {
   const double x0 = x, a0 = a;
   const int n = fpt_units(&x, &a, &mu, &sigma2);
   sb_result r;
-  int st = fpt_quantile_unit(__func__, p, x, a, mu, sigma2, &r);
+  int st = fpt_quantile_unit(func, p, x, a, mu, sigma2, &r);
   if (n && !isnan(r.val)) {
     const double v = r.val;
     r.val = ldexp(r.val, n);
     r.err = ldexp(r.err, n);
     if (isinf(r.val) && isfinite(v))
-      st = sbi_fail(&r, SB_ERANGE, __func__, "the quantile for p = %g, "
+      st = sbi_fail(&r, SB_ERANGE, func, "the quantile for p = %g, "
                     "x = %g, a = %g exceeds DBL_MAX", p, x0, a0);
   }
   if (res)
     *res = r;
   return st;
+}
+
+int sb_bm_fpt_quantile_e(double p, double x, double a, double mu,
+                         double sigma2, sb_result *res)
+{
+  return fpt_quantile(__func__, p, x, a, mu, sigma2, res);
 }
 
 /* The quantile for arguments in fpt_units' range. */
@@ -477,7 +491,7 @@ double sb_bm_fpt_quantile(double p, double x, double a, double mu,
                           double sigma2)
 {
   sb_result r;
-  sb_bm_fpt_quantile_e(p, x, a, mu, sigma2, &r);
+  fpt_quantile(__func__, p, x, a, mu, sigma2, &r);
   return r.val;
 }
 

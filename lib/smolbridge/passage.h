@@ -35,7 +35,8 @@
  * pdf (of the absolutely continuous part) is 0.  Bessel-3 with a = 0 never
  * reaches the level: cdf = 0, sf = 1.  A domain error returns NaN (plain
  * form) or SB_EDOM with res = {NaN, NaN} (_e form) and records a message
- * (sb_last_error()).
+ * (sb_last_error()) naming the function called (the plain form, not its _e
+ * form).
  *
  * Extremes: pdf, cdf, sf and mass take any finite x, a, mu, sigma2, t
  * (sigma2 t, nu t or d^2 beyond DBL_MAX included; operands are scaled by
