@@ -726,7 +726,8 @@ END_TEST
 /* Every argument in turn over +-1e-320 ... +-DBL_MAX, +-inf, 0 and a few
  * magnitudes where double-double products (2^995) or squares (1e154)
  * overflow, the others ordinary: the value is finite with status 0, or NaN
- * with an error status (never NaN, or +-inf with status 0).  At +-inf the
+ * with an error status and a message naming the public function (never
+ * NaN, or +-inf with status 0).  At +-inf the
  * rule of bridge.h: u = +-inf is outside [0, t] (pdf 0, cdf 0 at -inf and
  * 1 at +inf, sf 1 - cdf, status 0), the crossings do not read a[0] and
  * a[5], and
@@ -784,13 +785,19 @@ static double x_b3log(const double *a)
 }
 static double x_bbp(const double *a)
 {
-  return sb_bb_cross_prob(a[1], a[2], a[3], a[4]) +
-         sb_bb_nocross_prob(a[1], a[2], a[3], a[4]);
+  return sb_bb_cross_prob(a[1], a[2], a[3], a[4]);
 }
 static double x_b3p(const double *a)
 {
-  return sb_bes3b_cross_prob(a[1], a[2], a[3], a[4]) +
-         sb_bes3b_nocross_prob(a[1], a[2], a[3], a[4]);
+  return sb_bes3b_cross_prob(a[1], a[2], a[3], a[4]);
+}
+static double x_bbnp(const double *a)
+{
+  return sb_bb_nocross_prob(a[1], a[2], a[3], a[4]);
+}
+static double x_b3np(const double *a)
+{
+  return sb_bes3b_nocross_prob(a[1], a[2], a[3], a[4]);
 }
 
 START_TEST(test_extreme_arguments)
@@ -803,15 +810,26 @@ START_TEST(test_extreme_arguments)
   static const struct {
     xfn f;
     int b;
-  } k[] = {{x_bbpdf, 0}, {x_bbcdf, 0}, {x_bbsf, 0},
-           {x_b3pdf, 1}, {x_b3cdf, 1}, {x_b3sf, 1},
-           {x_bblog, 2}, {x_b3log, 3}, {x_bbp, 2}, {x_b3p, 3},
-           {x_bbq, 0},   {x_b3q, 1}};
-  /* sbt_sweep_dd with +-inf */
+    const char *nm;
+  } k[] = {{x_bbpdf, 0, "sb_bb_hit_pdf"},
+           {x_bbcdf, 0, "sb_bb_hit_cdf"},
+           {x_bbsf, 0, "sb_bb_hit_sf"},
+           {x_b3pdf, 1, "sb_bes3b_hit_pdf"},
+           {x_b3cdf, 1, "sb_bes3b_hit_cdf"},
+           {x_b3sf, 1, "sb_bes3b_hit_sf"},
+           {x_bblog, 2, "sb_bb_cross_logprob"},
+           {x_b3log, 3, "sb_bes3b_cross_logprob"},
+           {x_bbp, 2, "sb_bb_cross_prob"},
+           {x_b3p, 3, "sb_bes3b_cross_prob"},
+           {x_bbnp, 2, "sb_bb_nocross_prob"},
+           {x_b3np, 3, "sb_bes3b_nocross_prob"},
+           {x_bbq, 0, "sb_bb_hit_quantile"},
+           {x_b3q, 1, "sb_bes3b_hit_quantile"}};
+  /* sbt_sweep_dd with +-inf; an error names the function */
   for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
-    sbt_sweep_scalar(k[f].f, base[k[f].b], 6, 1, 0, f, NULL);
-  /* the values at +-inf: k[0 .. 5] pdf, cdf, sf; 6 .. 9 crossings; 10, 11
-   * quantiles */
+    sbt_sweep_scalar(k[f].f, base[k[f].b], 6, 1, 0, f, k[f].nm);
+  /* the values at +-inf: k[0 .. 5] pdf, cdf, sf; 6 .. 11 crossings; 12,
+   * 13 quantiles */
   for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
     for (int i = 0; i < 6; i++)
       for (int sg = -1; sg <= 1; sg += 2) {
@@ -827,7 +845,7 @@ START_TEST(test_extreme_arguments)
           ck_assert_msg(v == want && st == SB_SUCCESS,
                         "function %zu, u = %g: %g with status %d, want %g",
                         f, a[0], v, st, want);
-        } else if ((i == 0 || i == 5) && f >= 6 && f < 10) { /* unused */
+        } else if ((i == 0 || i == 5) && f >= 6 && f < 12) { /* unused */
           const double want = k[f].f(base[k[f].b]);
           ck_assert_msg(v == want && st == SB_SUCCESS,
                         "function %zu, unused argument %d = %g: %g with "
