@@ -1499,6 +1499,13 @@ START_TEST(test_reach)
       ck_assert_rel(r2, X[k] * r1, 1e-5);
     }
   ck_assert(isnan(sb_langevin_reach(3, -1.0, R, tau, B, tau, B, 1.0, 1e-9)));
+  /* a bound beyond DBL_MAX (sd of the deviation ~1e153, the shell 4 pi
+   * (R + y)^2 overflows) is SB_ERANGE, not inf with status 0 */
+  sb_clear_error();
+  ck_assert(isnan(sb_langevin_miss_bound(3, 1.0, 1.0, 1.0, 1e154, 2.0, 0.7,
+                                         1.0, 0.5)));
+  ck_assert_int_eq(sb_last_status(), SB_ERANGE);
+  ck_assert(sbt_names(sb_last_error(), "sb_langevin_miss_bound"));
 }
 END_TEST
 

@@ -178,6 +178,11 @@ double sb_langevin_miss_bound(int dim, double n, double R, double tau_i,
   double m = miss(&Z, rho);
   if (isnan(m))
     sbi_error(SB_EMAXITER, __func__, "quadrature failed (rho = %g)", rho);
+  else if (isinf(m)) { /* n sc (R + y)^2 beyond DBL_MAX */
+    sbi_error(SB_ERANGE, __func__, "the bound exceeds DBL_MAX (rho = %g)",
+              rho);
+    return NAN;
+  }
   return m;
 }
 

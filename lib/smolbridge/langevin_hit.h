@@ -263,7 +263,9 @@ void sb_langevin_hitter_reset(sb_langevin_hitter *w);
  *  dt <~ tau), so
  *     E(rho) = n int_{R + rho}^inf (4 pi d^2 + 2 pi d L) P(d - R) dd,
  *     P(y) = min(1, U(y)).
- *  Accuracy ~1e-6 relative (quadrature).  NaN on bad input. */
+ *  Accuracy ~1e-6 relative (quadrature).  NaN on bad input (SB_EDOM), NaN
+ *  with SB_ERANGE where the bound exceeds DBL_MAX (e.g. B_i = 1e154 with
+ *  n = R = tau = dt = 1), NaN with SB_EMAXITER where the quadrature fails. */
 double sb_langevin_miss_bound(int dim, double n, double R, double tau_i,
                               double B_i, double tau_j, double B_j,
                               double dt, double rho);
