@@ -17,15 +17,13 @@
  * It does not check the values: each suite compares those at the corners
  * with mpmath rows of its reference tables.
  *
- * Two lists:
- *   sbt_sweep_ext  +-1e-320, +-1e-300, 0, +-1e300, +-DBL_MAX, +-inf, NaN
- *                  (sbt_sweep_vec and the hand-written loops of
- *                  test_langevin_hit)
- *   sbt_sweep_dd   +-1e-320, +-1e-300, +-1e300, +-DBL_MAX, +-inf, 0, and
- *                  2^+-995, 1e+-154, where double-double products or
- *                  squares over/underflow (sbt_sweep_scalar)
- * The order of the values is part of the sweep: a sampler drawing from one
- * generator through the whole sweep sees the same stream every run.
+ * One list for every sweep, sbt_sweep_ext: +-1e-320, +-1e-300, 0,
+ * +-1e300, +-DBL_MAX, +-inf, NaN, and 2^+-995, 1e+-154, where
+ * double-double products or squares over/underflow.  The order of the
+ * values is part of the sweep: a sampler drawing from one generator
+ * through the whole sweep sees the same stream every run (the last four
+ * values came last, so the draws at the first twelve are those of before).
+ * A suite may sweep more values on top (sbt_sweep_vec_over), never fewer.
  *
  * A message names a function when the name occurs in it as a whole word
  * (sbt_names): "sb_kernel_shear_langevin: ..." does not name
@@ -42,14 +40,10 @@
 #include <smolbridge/common.h>
 
 static const double sbt_sweep_ext[] = {
-    1e-320, -1e-320, 1e-300,  -1e-300,  0.0,       1e300,
-    -1e300, DBL_MAX, -DBL_MAX, INFINITY, -INFINITY, NAN};
+    1e-320,  -1e-320,  1e-300,   -1e-300,  0.0,       1e300,
+    -1e300,  DBL_MAX,  -DBL_MAX, INFINITY, -INFINITY, NAN,
+    0x1p995, 0x1p-995, 1e154,    1e-154};
 #define SBT_SWEEP_NEXT ((int)(sizeof sbt_sweep_ext / sizeof sbt_sweep_ext[0]))
-
-static const double sbt_sweep_dd[] = {
-    1e-320,   1e-300,  1e300,    DBL_MAX,   INFINITY,
-    -1e-320,  -1e-300, -1e300,   -DBL_MAX,  -INFINITY,
-    0.0,      0x1p995, 0x1p-995, 1e154,     1e-154};
 
 static inline int sbt_is_ident(char c)
 {
@@ -107,7 +101,8 @@ enum {
   SBT_SWEEP_NO_ERANGE = 4,
   SBT_SWEEP_NAN0 = 8
 };
-/* Each of the first narg arguments of f in turn over sbt_sweep_ext, the
+/* Each of the first narg arguments of f in turn over val[0 .. nval-1]
+ * (sbt_sweep_ext or a longer list that contains it), the
  * others from base[0 .. nbase-1] (nbase <= SBT_SWEEP_MAXARG; f may read
  * all of them).  Status 0: every output finite, output j >= 0 where bit j
  * of nonneg is set.  Otherwise: the status is SB_EDOM, SB_ERANGE (unless
@@ -117,14 +112,15 @@ enum {
  * the suite's table) labels the messages.
  * Returns the number of failed checks, each printed on stderr
  * (SBT_XCHECK). */
-static inline int sbt_sweep_vec(sbt_xfn f, const double *base, int nbase,
-                                int narg, unsigned nonneg, int also,
-                                int flags, size_t row)
+static inline int sbt_sweep_vec_over(sbt_xfn f, const double *base,
+                                     int nbase, int narg, unsigned nonneg,
+                                     int also, int flags, size_t row,
+                                     const double *val, int nval)
 {
   int nbad = 0;
   for (int i = 0; i < narg; i++)
-    for (int e = 0; e < SBT_SWEEP_NEXT; e++) {
-      const double x = sbt_sweep_ext[e];
+    for (int e = 0; e < nval; e++) {
+      const double x = val[e];
       double a[SBT_SWEEP_MAXARG] = {0}, out[SBT_SWEEP_MAXOUT];
       int n;
       const char *nm;
@@ -162,11 +158,20 @@ static inline int sbt_sweep_vec(sbt_xfn f, const double *base, int nbase,
   return nbad;
 }
 
+/* sbt_sweep_vec_over with the values sbt_sweep_ext */
+static inline int sbt_sweep_vec(sbt_xfn f, const double *base, int nbase,
+                                int narg, unsigned nonneg, int also,
+                                int flags, size_t row)
+{
+  return sbt_sweep_vec_over(f, base, nbase, narg, nonneg, also, flags, row,
+                            sbt_sweep_ext, SBT_SWEEP_NEXT);
+}
+
 /* A function under the scalar sweep: returns the public function's value
  * (the suite's wrapper may map a documented non-finite value to 0). */
 typedef double (*sbt_sfn)(const double *a);
 
-/* Each of the narg arguments of f in turn over sbt_sweep_dd (leaving out
+/* Each of the narg arguments of f in turn over sbt_sweep_ext (leaving out
  * +-inf unless with_inf), the others from base[0 .. narg-1]: the value is
  * finite with status 0 (and >= 0 where nonneg is set), or NaN with an
  * error status and, where nm is not NULL, a message naming nm (the public
@@ -178,9 +183,8 @@ static inline void sbt_sweep_scalar(sbt_sfn f, const double *base, int narg,
                                     const char *nm)
 {
   for (int i = 0; i < narg; i++)
-    for (size_t e = 0; e < sizeof sbt_sweep_dd / sizeof sbt_sweep_dd[0];
-         e++) {
-      const double x = sbt_sweep_dd[e];
+    for (int e = 0; e < SBT_SWEEP_NEXT; e++) {
+      const double x = sbt_sweep_ext[e];
       double a[SBT_SWEEP_MAXARG];
       if (isinf(x) && !with_inf)
         continue;

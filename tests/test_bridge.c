@@ -723,8 +723,8 @@ START_TEST(test_bad_input)
 }
 END_TEST
 
-/* Every argument in turn over +-1e-320 ... +-DBL_MAX, +-inf, 0 and a few
- * magnitudes where double-double products (2^995) or squares (1e154)
+/* Every argument in turn over +-1e-320 ... +-DBL_MAX, +-inf, NaN, 0 and a
+ * few magnitudes where double-double products (2^995) or squares (1e154)
  * overflow, the others ordinary: the value is finite with status 0, or NaN
  * with an error status and a message naming the public function (never
  * NaN, or +-inf with status 0).  At +-inf the
@@ -825,7 +825,7 @@ START_TEST(test_extreme_arguments)
            {x_b3np, 3, "sb_bes3b_nocross_prob"},
            {x_bbq, 0, "sb_bb_hit_quantile"},
            {x_b3q, 1, "sb_bes3b_hit_quantile"}};
-  /* sbt_sweep_dd with +-inf; an error names the function */
+  /* sbt_sweep_ext with +-inf; an error names the function */
   for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
     sbt_sweep_scalar(k[f].f, base[k[f].b], 6, 1, 0, f, k[f].nm);
   /* the values at +-inf: k[0 .. 5] pdf, cdf, sf; 6 .. 11 crossings; 12,

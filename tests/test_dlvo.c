@@ -669,8 +669,9 @@ END_TEST
 
 /* ---------------------------------------------------------------- errors */
 
-/* Extreme arguments (each argument in turn over 1e-320 ... DBL_MAX, inf,
- * negative values; the others ordinary): a function returns a finite
+/* Extreme arguments (each argument in turn over sbt_sweep_ext: 1e-320 ...
+ * DBL_MAX, inf, NaN, 2^+-995, 1e+-154, negative values; the others
+ * ordinary): a function returns a finite
  * value and SB_SUCCESS, or NaN and an error (SB_EDOM outside the domain,
  * SB_ERANGE where the value exceeds DBL_MAX) -- never a silent inf or
  * NaN, except the documented -inf of the Hamaker energy where t = R/D

@@ -337,8 +337,8 @@ START_TEST(test_domain_errors)
 }
 END_TEST
 
-/* Extreme arguments (sbt_sweep_dd with +-inf: +-1e-320 ... +-DBL_MAX,
- * +-inf, 0, 2^+-995, 1e+-154, each argument in turn, the others
+/* Extreme arguments (sbt_sweep_ext with +-inf: +-1e-320 ... +-DBL_MAX,
+ * +-inf, NaN, 0, 2^+-995, 1e+-154, each argument in turn, the others
  * ordinary; the test kernels and the steady rates with separation-
  * dependent diffusivity too): a kernel is finite with no error
  * recorded, or NaN with the error (SB_ERANGE where the value overflows,
@@ -425,7 +425,7 @@ START_TEST(test_extreme_arguments)
       {k_btr2, "sb_kernel_brownian_turb_r2", 6,
        {1e-6, 2e-6, 300, 1e-3, 1e-3, 1e-6}},
   };
-  /* sbt_sweep_dd with +-inf; the message names the kernel */
+  /* sbt_sweep_ext with +-inf; the message names the kernel */
   for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
     sbt_sweep_scalar(k[f].f, k[f].a, k[f].n, 1, 0, f, k[f].nm);
   /* the finite extremes against mpmath (tests/gen_kernel_corner_ref.py,

@@ -1543,7 +1543,8 @@ static void hx_check(int h, const char *nm, const char *what, double v,
 
 /* Each parameter of particle i (tau, B, mass, a start and end state
  * component, us, G), R and dt, and the arguments of the reach functions,
- * in turn over +-1e-320, +-1e-300, 0, +-1e300, +-DBL_MAX, +-inf, NaN:
+ * in turn over sbt_sweep_ext (+-1e-320, +-1e-300, 0, +-1e300, +-DBL_MAX,
+ * +-inf, NaN, 2^+-995, 1e+-154):
  * every sampler returns a contact with finite states in [0, dt], no
  * contact, or -SB_EDOM / -SB_ERANGE naming itself; the bound is in [0, 1]
  * or NaN with an error; the miss bound and reach are finite and >= 0 or

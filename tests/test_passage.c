@@ -540,8 +540,8 @@ START_TEST(test_bad_input)
 }
 END_TEST
 
-/* Every argument in turn over +-1e-320 ... +-DBL_MAX, +-inf and 0, the
- * others ordinary: the value is finite with status 0, or NaN with an
+/* Every argument in turn over sbt_sweep_ext (+-1e-320 ... +-DBL_MAX,
+ * +-inf, NaN, 0, 2^+-995, 1e+-154), the others ordinary: the value is finite with status 0, or NaN with an
  * error status and a message naming the public function (never NaN, or
  * inf with status 0); the values themselves at
  * the extreme corners are checked against mpmath in passage_bm.csv,
@@ -628,7 +628,7 @@ START_TEST(test_extreme_arguments)
            {e_sample, 0, "sb_bm_fpt_sample"},
            {e_sample, 1, "sb_bm_fpt_sample"}};
   e_rng = gsl_rng_alloc(gsl_rng_mt19937);
-  /* sbt_sweep_dd with +-inf; every value is >= 0; an error names the
+  /* sbt_sweep_ext with +-inf; every value is >= 0; an error names the
    * function */
   for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
     sbt_sweep_scalar(k[f].f, base[k[f].b], 5, 1, 1, f, k[f].nm);
