@@ -408,6 +408,14 @@ def gen_bridge_cross():
             (1, 1e300, 1.5, 1.0, 1e-8)]:
         rows.append((kind, x, y, a, v) +
                     settled(lambda: cross_row(kind, x, y, a, v), 200))
+    # Bessel-3 ratio r = expm1(-A)/expm1(-B) a normal double where its
+    # factors a/x, (x+y-a)/y or a(x+y-a) leave the doubles (A < 1e-290,
+    # or B < 1e-280: r ~ A/B)
+    for (kind, x, y, a, v) in [
+            (1, sys.float_info.max, 0.5, 1e-300, sys.float_info.max),
+            (1, 1e300, 0.5, 1e-300, 1e300), (1, 1e-48, 1e-199, 1e-304, 1e194)]:
+        rows.append((kind, x, y, a, v) +
+                    settled(lambda: cross_row(kind, x, y, a, v), 200))
     write("bridge_cross.csv",
           ["kind", "x", "y", "a", "v", "p", "logp", "nocross"], rows)
 

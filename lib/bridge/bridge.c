@@ -52,11 +52,30 @@ static double twice_ratio(double p, double q, double v)
   return ldexp(m, e > 4000 ? 4000 : e < -4000 ? -4000 : (int)e);
 }
 
-/* p q / (r s) (all > 0) where r s may underflow */
-static double prod_ratio(double p, double q, double r, double s)
+/* p q / (r s) (all > 0, finite) with an extended exponent: (p q)/(r s)
+ * where r s is a normal double, else (p / r)(q / s), each operation
+ * rounded as on doubles (the same bits wherever the plain chain stays in
+ * the normal range), and no intermediate over- or underflows (p q below
+ * DBL_MIN with a 1e-304, x 1e-48; p / r below DBL_MIN with a 1e-300, x
+ * 1e300). */
+static sbi_xd prod_ratio(double p, double q, double r, double s)
 {
-  const double rs = r * s;
-  return rs >= DBL_MIN ? (p * q) / rs : (p / r) * (q / s);
+  const sbi_xd P = sbi_xd_of(p), Q = sbi_xd_of(q), R = sbi_xd_of(r),
+               S = sbi_xd_of(s);
+  return r * s >= DBL_MIN ? sbi_xd_div(sbi_xd_mul(P, Q), sbi_xd_mul(R, S))
+                          : sbi_xd_mul(sbi_xd_div(P, R), sbi_xd_div(Q, S));
+}
+
+/* P = exp(-C) r for a ratio r <= 1 given with an extended exponent: the
+ * plain product where r is a normal double, else in extended exponents
+ * with one final rounding (0 or subnormal below DBL_MIN). */
+static double prob_times(sbi_dd C, sbi_xd r)
+{
+  const double rd = sbi_xd_val(r);
+  if (rd >= DBL_MIN)
+    return C.hi < 746.0 ? sbi_dd_expneg(C) * rd : 0.0;
+  return C.hi < 746.0 ? sbi_xd_val(sbi_xd_mul(sbi_xd_of(sbi_dd_expneg(C)), r))
+                      : 0.0;
 }
 
 static int check_args(const char *fn, double x, double y, double a, double v,
@@ -116,14 +135,21 @@ static sb_result b3_cross(int kind, double x, double y, double a, double v)
   double A = twice_ratio(a, sxa, v), B = twice_ratio(x, y, v);
   int tiny = B < 1e-280; /* v huge: the ratios are their limits */
   if (tiny) {
-    double nc = prod_ratio(x - a, y - a, x, y), r = prod_ratio(a, sxa, x, y);
+    /* nc and r in extended exponents: a(x + y - a) or a/x may leave the
+     * doubles where r does not (a = 1e-304, x = 1e-48: r ~ 1e-105) */
+    const sbi_xd rx = prod_ratio(a, sxa, x, y);
+    double nc = sbi_xd_val(prod_ratio(x - a, y - a, x, y)),
+           r = sbi_xd_val(rx);
     if (kind == K_NO)
       return (sb_result){nc, 6.0 * EPS * nc};
-    double p = sbi_dd_expneg(cross_exponent(x, y, a, v)) * r;
-    if (kind == K_P)
+    if (kind == K_P) {
+      double p = prob_times(cross_exponent(x, y, a, v), rx);
       return (sb_result){p, 8.0 * EPS * p};
+    }
     /* 1 - r = nc: log1p where r is near 1 (a near min(x, y)) */
-    double logr = nc < 0.5 ? log1p(-nc) : log(r);
+    double logr = nc < 0.5   ? log1p(-nc)
+                  : r >= DBL_MIN ? log(r)
+                                 : sbi_xd_log(rx);
     return (sb_result){-c + logr, 4.0 * EPS * c + 6.0 * EPS * fabs(logr)};
   }
   double eb = expm1(-B);
@@ -132,11 +158,18 @@ static sb_result b3_cross(int kind, double x, double y, double a, double v)
     return (sb_result){nc, 6.0 * EPS * nc};
   }
   double ea = expm1(-A), r = ea / eb;
-  if (A < 1e-290)  /* A near or below the subnormals: r = (A/B)/g(B), */
-    r = (a / x) * (sxa / y) * (B / -eb);  /* g(z) = (1 - e^-z)/z */
+  sbi_xd rx = sbi_xd_of(r);
+  if (A < 1e-290) { /* A near or below the subnormals: r = (A/B)/g(B), */
+    /* g(z) = (1 - e^-z)/z; in extended exponents, since a/x may underflow
+     * and (x + y - a)/y overflow where r is a double (x = DBL_MAX,
+     * y = 0.5, a = 1e-300: r ~ 1e-300) */
+    rx = sbi_xd_mul(sbi_xd_mul(sbi_xd_div(sbi_xd_of(a), sbi_xd_of(x)),
+                               sbi_xd_div(sbi_xd_of(sxa), sbi_xd_of(y))),
+                    sbi_xd_of(B / -eb));
+    r = sbi_xd_val(rx);
+  }
   if (kind == K_P) {
-    sbi_dd C = cross_exponent(x, y, a, v);
-    double p = C.hi < 746.0 ? sbi_dd_expneg(C) * r : 0.0;
+    double p = prob_times(cross_exponent(x, y, a, v), rx);
     return (sb_result){p, 8.0 * EPS * p};
   }
   /* log P = -C + log r.  Near r = 1 use 1 - r = exp(-A) (1 - P) exactly

@@ -25,7 +25,11 @@
  * relative accuracy where P underflows (log P down to -1e300 and beyond).
  * The exponent 2 alpha beta / v is formed in double-double arithmetic.
  * Extremes: any finite magnitudes (products beyond the doubles are scaled
- * by powers of two); the log is SB_ERANGE (NaN) where log P < -DBL_MAX
+ * by powers of two; the B3B ratio expm1(-A)/expm1(-B) ~ a(x+y-a)/(xy),
+ * where A = 2a(x+y-a)/v or B = 2xy/v is tiny, is formed with an extended
+ * exponent, so P is right wherever it is a normal double, e.g. 1.16e-300
+ * at x = v = DBL_MAX, y = 0.5, a = 1e-300, and 0 or subnormal only below
+ * DBL_MIN); the log is SB_ERANGE (NaN) where log P < -DBL_MAX
  * (e.g. v = 1e-320) and -inf with status 0 only where P = 0 exactly (v = 0
  * with no end point overlapping, B3B a = 0).
  *
