@@ -515,7 +515,12 @@ def gen_bridge_hit():
             # the expansion of the mixture, whose products L u and
             # 2 dl ex g0 underflow
             (1, 1e-300, 2e-149, 1e-149, 1e-149, 1.0, 1.0),
-            (1, 1e-300, 2e-149, 1e-149, 0.5e-149, 1.0, 1.0)]:
+            (1, 1e-300, 2e-149, 1e-149, 0.5e-149, 1.0, 1.0),
+            # B3B, min(a, y) = 1e-305 with v = 1e-30 (not rescaled):
+            # 1 - rho ~ 1e-289 is a normal double but min(a, y) times
+            # 2(alpha + max(a, y)) and 2 a y are subnormal
+            (1, 0.5, 3e-15, 2e-15, 1e-305, 1e-30, 1.0),
+            (1, 0.5, 3e-15, 1e-305, 2e-15, 1e-30, 1.0)]:
         rows.append((kind, u, x, y, a, s2, t) + settled(
             lambda: hit_row(kind, u, x, y, a, s2, t), 400))
     write("bridge_hit.csv",

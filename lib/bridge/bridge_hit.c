@@ -63,6 +63,30 @@ typedef struct {
 
 /* ------------------------------------------------------------ set-up */
 
+/* a b / c for a, b >= 0, c > 0: the plain expression where a b is a
+ * normal double (same bits), else with extended exponents (u ~ 1e-300
+ * with positions ~ 1e-149: L u underflows although L u / q is ~ 1e-299) */
+static double prod_quot(double a, double b, double c)
+{
+  const double p = a * b;
+  if ((p >= DBL_MIN && p <= DBL_MAX) || a == 0.0 || b == 0.0)
+    return p / c;
+  return sbi_xd_val(
+      sbi_xd_div(sbi_xd_mul(sbi_xd_of(a), sbi_xd_of(b)), sbi_xd_of(c)));
+}
+
+/* a b / (c d) for a, b >= 0, c, d > 0, the same way: plain where a b
+ * and c d are normal doubles (or a b = 0), else extended exponents */
+static double prod_quot2(double a, double b, double c, double d)
+{
+  const double p = a * b, q = c * d;
+  if (((p >= DBL_MIN && p <= DBL_MAX) || a == 0.0 || b == 0.0) &&
+      q >= DBL_MIN && q <= DBL_MAX)
+    return p / q;
+  return sbi_xd_val(sbi_xd_div(sbi_xd_mul(sbi_xd_of(a), sbi_xd_of(b)),
+                               sbi_xd_mul(sbi_xd_of(c), sbi_xd_of(d))));
+}
+
 static int hit_setup(const char *fn, int b3, double x, double y, double a,
                      double sigma2, double t, hit_par *h, sb_result *res)
 {
@@ -105,13 +129,18 @@ static int hit_setup(const char *fn, int b3, double x, double y, double a,
     h->L2 = sbi_dd_sum(y, a);
     h->mn = a < y ? a : y;
     double mx = a < y ? y : a;
-    /* (L2 - L1)(2 alpha + L1 + L2)/(2v) = min(a,y) (2 alpha + 2 max(a,y))/v */
-    double k = h->mn * (2.0 * (h->al.hi + mx)) / h->v;
-    if (!(k > 0.0))
-      h->mn = 0.0; /* min(a, y) negligible (k underflows): the y -> 0 law */
+    /* (L2 - L1)(2 alpha + L1 + L2)/(2v) = min(a,y) (2 alpha + 2 max(a,y))/v;
+     * this and om1 by prod_quot: the products underflow where a ~ 1e-305
+     * although k is a normal double (v = 1e-30: k ~ 1e-289, 1 - rho had
+     * 13 bits and the cdf 5 digits) */
+    double k = prod_quot(h->mn, 2.0 * (h->al.hi + mx), h->v);
+    if (!(k >= DBL_MIN))
+      h->mn = 0.0; /* min(a, y) negligible (k subnormal, 1 - rho with few
+                    * bits, or 0): the limit law, error O(k) */
     h->rho = exp(-k);
     h->omr = -expm1(-k);
-    h->om1 = exp(-h->mn * (2.0 * (h->al.hi + h->L1.hi) + h->mn) / (2.0 * h->v));
+    h->om1 = exp(-prod_quot(h->mn, 2.0 * (h->al.hi + h->L1.hi) + h->mn,
+                            2.0 * h->v));
   }
   return SB_SUCCESS;
 }
@@ -124,18 +153,6 @@ static hit_time make_time(const hit_par *h, double u, sbi_dd w)
   T.den = sbi_dd_mul(sbi_dd_mul_d(sbi_dd_prod(h->sigma2, u), h->t), w);
   T.q = sqrt(T.den.hi);
   return T;
-}
-
-/* a b / c for a, b >= 0, c > 0: the plain expression where a b is a
- * normal double (same bits), else with extended exponents (u ~ 1e-300
- * with positions ~ 1e-149: L u underflows although L u / q is ~ 1e-299) */
-static double prod_quot(double a, double b, double c)
-{
-  const double p = a * b;
-  if ((p >= DBL_MIN && p <= DBL_MAX) || a == 0.0 || b == 0.0)
-    return p / c;
-  return sbi_xd_val(
-      sbi_xd_div(sbi_xd_mul(sbi_xd_of(a), sbi_xd_of(b)), sbi_xd_of(c)));
 }
 
 /* IG point of the drift length L at time T. */
@@ -419,7 +436,8 @@ static int narrow(const hit_par *h, const hit_time *T, const sbi_igpt *pm,
     for (int j = 0; j < n && ok; j++) {
       double vj = 0.0, ej = 0.0, lc = (2 * j + 1) * hw;
       ok = nx_panel(h, T, &pc[j], dl, dls, K[j], tail[j], sf, &vj, &ej);
-      double om = n == 1 ? h->om1 : exp(-lc * (2.0 * A + lc) / (2.0 * h->v));
+      double om =
+          n == 1 ? h->om1 : exp(-prod_quot(lc, 2.0 * A + lc, 2.0 * h->v));
       tot += om * vj;
       e += om * ej;
     }
@@ -524,7 +542,7 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
   }
   /* density: the BB one times hw / (1 - rho), hw = 1 - exp(-k/w),
    * k = 2ay/sigma2; d log(hw)/dy = (1 - hw)(k/w)(u/t)/hw as dw/dy = -wu/t */
-  double kw = 2.0 * h->a * h->y / (h->sigma2 * T->w.hi);
+  double kw = prod_quot2(2.0 * h->a, h->y, h->sigma2, T->w.hi);
   double hw = -expm1(-kw);
   r.dens = p1.eps * p1.ex * INV_RT2PI * (hw / h->omr);
   /* with ph = (1 - hw)/hw = 1/(e^{k/w} - 1) and z1 = d(k/w)/dy =
@@ -636,7 +654,8 @@ static double pdf_at(const hit_par *h, const hit_time *T, double *rel)
     if (h->mn == 0.0)
       ratio = h->a * h->t / ((h->al.hi + h->a) * T->w.hi);
     else
-      ratio = -expm1(-2.0 * h->a * h->y / (h->sigma2 * T->w.hi)) / h->omr;
+      ratio = -expm1(-prod_quot2(2.0 * h->a, h->y, h->sigma2, T->w.hi)) /
+              h->omr;
     *rel += 6.0 * EPS;
     f *= ratio;
   }

@@ -63,7 +63,9 @@
  * other infinite argument (x, y, a, sigma2, t, v, p) is SB_EDOM.  The pdf
  * is the right value wherever it is a normal double (extended exponents
  * where an intermediate leaves the doubles), 0 or subnormal below DBL_MIN,
- * and SB_ERANGE (NaN) where it exceeds DBL_MAX (docs/bridge.md).  The
+ * and SB_ERANGE (NaN) where it exceeds DBL_MAX (docs/bridge.md); the B3B
+ * 1 - rho and the factor 2ay/(sigma2 (t-u)) likewise keep full precision
+ * where min(a, y) is tiny and v small (a = 1e-305, v = 1e-30).  The
  * quantile falls back to bisection on the doubles of [0, t] where its
  * iteration fails (laws narrower than one ulp, u ~ 1e-300 t).  The
  * samplers return a double in [0, t] for any valid arguments (t up to
