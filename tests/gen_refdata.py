@@ -520,7 +520,12 @@ def gen_bridge_hit():
             # 1 - rho ~ 1e-289 is a normal double but min(a, y) times
             # 2(alpha + max(a, y)) and 2 a y are subnormal
             (1, 0.5, 3e-15, 2e-15, 1e-305, 1e-30, 1.0),
-            (1, 0.5, 3e-15, 1e-305, 2e-15, 1e-30, 1.0)]:
+            (1, 0.5, 3e-15, 1e-305, 2e-15, 1e-30, 1.0),
+            # B3B, a = 1e-320 the negligible min(a, y) (k below DBL_MIN):
+            # the limit law, whose density factor is max(a, y) t /
+            # ((alpha + max(a, y)) w)
+            (1, 0.5, 1e5, 0.5e5, 1e-320, 1e10, 1.0),
+            (1, 0.5, 1e-10, 1e-10, 1e-320, 1e-6, 1.0)]:
         rows.append((kind, u, x, y, a, s2, t) + settled(
             lambda: hit_row(kind, u, x, y, a, s2, t), 400))
     write("bridge_hit.csv",

@@ -505,10 +505,15 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
   double rel1, rel2;
   r.rused = 0.0;
   if (h->mn == 0.0) {
-    /* y = 0: the mixture collapses to the single law P_a (L1 = L2 = a) */
+    /* y = 0: the mixture collapses to the single law P_a (L1 = L2 = a);
+     * likewise a -> 0 (L1 = L2 = y).  The density factor
+     * [1 - exp(-2ay/(sigma2 w))]/(1 - rho) tends to M t/((alpha + M) w),
+     * M = max(a, y) (it was a t/((alpha + a) w) also where a -> 0: ~1e-320
+     * times the density at a = 1e-320) */
+    const double mx = h->a < h->y ? h->y : h->a;
     sbi_igpt p = point(h, T, h->L1);
-    r.dens = p.eps * p.ex * INV_RT2PI * h->a * h->t /
-             ((h->al.hi + h->a) * T->w.hi);
+    r.dens = p.eps * p.ex * INV_RT2PI * mx * h->t /
+             ((h->al.hi + mx) * T->w.hi);
     /* d log(1/w)/dy = u/t */
     r.sfl = -0.5 - 0.5 * p.c * (p.kap + p.eps) + T->u / h->t;
     r.sfl2 = ig_sfl2(&p) + (T->u / h->t) * (T->w.hi / h->t);
@@ -649,11 +654,12 @@ static double pdf_at(const hit_par *h, const hit_time *T, double *rel)
   *rel = 8.0 * EPS;
   double ratio = 1.0;
   if (h->b3) {
-    /* B3B: times [1 - exp(-2ay/(sigma2 w))] / (1 - rho); for y = 0 the
-     * limit a t / (x w) */
-    if (h->mn == 0.0)
-      ratio = h->a * h->t / ((h->al.hi + h->a) * T->w.hi);
-    else
+    /* B3B: times [1 - exp(-2ay/(sigma2 w))] / (1 - rho); for min(a, y)
+     * -> 0 the limit M t / ((alpha + M) w), M = max(a, y) */
+    if (h->mn == 0.0) {
+      const double mx = h->a < h->y ? h->y : h->a;
+      ratio = mx * h->t / ((h->al.hi + mx) * T->w.hi);
+    } else
       ratio = -expm1(-prod_quot2(2.0 * h->a, h->y, h->sigma2, T->w.hi)) /
               h->omr;
     *rel += 6.0 * EPS;
