@@ -136,7 +136,9 @@ static int hit_setup(const char *fn, int b3, double x, double y, double a,
     double k = prod_quot(h->mn, 2.0 * (h->al.hi + mx), h->v);
     if (!(k >= DBL_MIN))
       h->mn = 0.0; /* min(a, y) negligible (k subnormal, 1 - rho with few
-                    * bits, or 0): the limit law, error O(k) */
+                    * bits, or 0): the limit law (the cdf is wrong where
+                    * min(a, y) is not small against alpha + max(a, y),
+                    * docs/bridge.md) */
     h->rho = exp(-k);
     h->omr = -expm1(-k);
     h->om1 = exp(-prod_quot(h->mn, 2.0 * (h->al.hi + h->L1.hi) + h->mn,

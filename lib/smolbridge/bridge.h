@@ -67,7 +67,10 @@
  * 1 - rho and the factor 2ay/(sigma2 (t-u)) likewise keep full precision
  * where min(a, y) is tiny and v small (a = 1e-305, v = 1e-30), and where
  * 2 min(a, y)(x - a + max(a, y))/v < DBL_MIN the law is its limit as
- * min(a, y) -> 0 (relative error of that order).  The
+ * min(a, y) -> 0 (right where min(a, y) << x - a + max(a, y); where all
+ * positions are ~1e-270 sqrt(v) or less with min(a, y) comparable to the
+ * others, the cdf/sf are wrong by up to ~0.2 (known limitation, not yet
+ * fixed; the pdf is right).  The
  * quantile falls back to bisection on the doubles of [0, t] where its
  * iteration fails (laws narrower than one ulp, u ~ 1e-300 t).  The
  * samplers return a double in [0, t] for any valid arguments (t up to
