@@ -33,14 +33,6 @@ sbi_xd sbi_langevin_kern(int kind, sbi_xd h);
  * bits there, at 3-4 times the cost). */
 int sbi_langevin_plain_ok(double tau, double B, double t);
 
-/* One component of the exact step (langevin_step.c) for the normals z1,
- * z2 and fluid velocity w: the bits of sb_langevin_step3_coef where
- * nothing overflows, a scaled form where only an intermediate does;
- * SB_ERANGE (nothing changed, nothing recorded) where the new x or u
- * exceeds DBL_MAX. */
-int sbi_langevin_update(const sb_langevin_coef *c, double w, double z1,
-                        double z2, double *x, double *u);
-
 /* c(h) = h - 2 tanh(h/2) in doubles (its small-h series), h >= 0 */
 double sbi_langevin_cfun(double h);
 

@@ -118,8 +118,8 @@ static inline void step1(const sb_langevin_coef *c, double w,
  * the new state is a double (u - us, or x + us dt + ... with terms of
  * opposite signs near DBL_MAX).  Returns 0, or SB_ERANGE (state unchanged,
  * nothing recorded) where the new state itself exceeds DBL_MAX. */
-int sbi_langevin_update(const sb_langevin_coef *c, double w, double z1,
-                        double z2, double *x, double *u)
+int sb_langevin_update(const sb_langevin_coef *c, double w, double z1,
+                       double z2, double *x, double *u)
 {
   double v = *u - w;
   double xn = *x + (w * c->dt + v * c->gain + c->s_xu * z1 + c->s_xc * z2);
@@ -158,7 +158,7 @@ int sb_langevin_step(const sb_langevin *p, double dt, const gsl_rng *r,
     return st;
   const double z1 = gsl_ran_gaussian_ziggurat(r, 1.0);
   const double z2 = gsl_ran_gaussian_ziggurat(r, 1.0);
-  if (sbi_langevin_update(&c, p->us, z1, z2, x, u))
+  if (sb_langevin_update(&c, p->us, z1, z2, x, u))
     return sbi_error(SB_ERANGE, __func__,
                      "the new state (from x = %g, u = %g) overflows a "
                      "double", *x, *u);

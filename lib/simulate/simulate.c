@@ -19,7 +19,6 @@
 #include <smolbridge/langevin.h>
 #include <smolbridge/simulate.h>
 #include "common/internal.h"
-#include "langevin/langevin_internal.h"
 
 /* ------------------------------------------ per-sub-step crossing laws */
 
@@ -421,7 +420,7 @@ int sb_sim_langevin(const sb_langevin *p, double dt, long nsteps,
    * bits), but checked: with B sqrt(tau) or the state near DBL_MAX a new
    * x or u can exceed DBL_MAX (B = DBL_MAX, tau = dt = 1 gave +-inf with
    * status 0); an intermediate that overflows alone is recomputed scaled
-   * (sbi_langevin_update) */
+   * (sb_langevin_update) */
   for (size_t i = 0; i < 3 * np; i++)
     if (!isfinite(x[i]) || !isfinite(u[i]))
       return sbi_error(SB_EDOM, __func__, "x[%zu] = %g, u[%zu] = %g: not "
@@ -435,8 +434,8 @@ int sb_sim_langevin(const sb_langevin *p, double dt, long nsteps,
       for (int j = 0; j < 3; j++) {
         xi[j] = x[3 * i + j];
         ui[j] = u[3 * i + j];
-        if (sbi_langevin_update(&c, w, z[2 * j], z[2 * j + 1], &xi[j],
-                                &ui[j]))
+        if (sb_langevin_update(&c, w, z[2 * j], z[2 * j + 1], &xi[j],
+                               &ui[j]))
           return sbi_error(SB_ERANGE, __func__,
                            "step %ld, particle %zu: the new state (from x "
                            "= %g, u = %g) exceeds DBL_MAX (tau = %g, B = "

@@ -208,6 +208,18 @@ int sb_langevin_step3_coef(size_t n, const sb_langevin_coef *coef,
                            const size_t *cidx, const double *us, double *x,
                            double *u, const gsl_rng *r);
 
+/** One component of the exact step for given standard normals z1, z2
+ *  (the draws of sb_langevin_step, in that order) and fluid velocity w:
+ *  the bits of sb_langevin_step3_coef wherever nothing overflows; where
+ *  only an intermediate does (u - w, or terms of opposite signs near
+ *  DBL_MAX), the same sums scaled by 1/8.  Updates *x, *u and returns
+ *  SB_SUCCESS, or returns SB_ERANGE with *x, *u unchanged and no error
+ *  recorded where the new x or u exceeds DBL_MAX (the caller names
+ *  itself).  c from sb_langevin_coef_init (trusted); for callers that
+ *  draw their own normals, such as sb_sim_langevin. */
+int sb_langevin_update(const sb_langevin_coef *c, double w, double z1,
+                       double z2, double *x, double *u);
+
 /** Batched 3-D exact step drawing from counter-based streams
  *  (smolbridge/rng.h): particle i takes the first six normals of the
  *  stream (seed, id_i, step), id_i = ids[i] (or id0 + i if ids is NULL),
