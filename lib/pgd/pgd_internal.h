@@ -5,6 +5,7 @@
 #define SB_PGD_INTERNAL_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include <smolbridge/pgd.h>
 
 #define SBI_PGD_G 2  /* ghost layers (the MUSCL slopes need two) */
@@ -65,6 +66,10 @@ struct sb_pgd {
   int speed_ok;              /* kept up to date by the step's last pass */
   int empty;                 /* every cell is vacuum (skip the work) */
   double *line;              /* work buffers for one line of cells */
+  int gas_missing;           /* loaded from a checkpoint saved with a gas
+                                callback not yet attached again
+                                (sb_pgd_set_gas): steps refused */
+  uint64_t gas_print;        /* then: sbi_pgd_gas_print of that callback */
 };
 
 /* Padded index of cell (i, j); i, j may be -G .. n-1+G. */
@@ -179,11 +184,29 @@ static inline size_t sbi_locate1(const sbi_locator *L, int d, double x)
   return !(f > 0) ? 0 : f >= (double)L->n[d] ? L->n[d] - 1 : (size_t)f;
 }
 
+/* The particles behind sb_pgd_lag (pgd_lag.c; saved by pgd_checkpoint.c). */
+struct sb_pgd_lag {
+  sb_pgd_params p;
+  sbi_locator loc;
+  sbi_parts a;
+  double pspeed;  /* speed bound of inflow states and gas */
+  double t;
+  size_t steps;
+  sbi_budget bud;
+  int gas_missing;     /* as in struct sb_pgd */
+  uint64_t gas_print;
+};
+
 /* Step bound from a speed (|ux|/dx + |uy|/dy), p->cfl and p->dt_max. */
 double sbi_pgd_dt_from_speed(const sb_pgd_params *p, double speed);
 
 /* Inflow speed bound of p (|ux|/dx + |uy|/dy over inflow states) and of
  * the gas where there is drag (sampled at cell centres for a callback). */
 double sbi_pgd_param_speed(const sb_pgd_params *p);
+
+/* A fingerprint of the gas velocity of p at the cell centres (FNV-1a of
+ * the samples; 0 without a callback): what a checkpoint keeps of a gas
+ * callback, to refuse another one when it is attached again. */
+uint64_t sbi_pgd_gas_print(const sb_pgd_params *p);
 
 #endif /* SB_PGD_INTERNAL_H */

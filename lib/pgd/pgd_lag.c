@@ -13,16 +13,6 @@
 #include "common/internal.h"
 #include "pgd_internal.h"
 
-struct sb_pgd_lag {
-  sb_pgd_params p;
-  sbi_locator loc;
-  sbi_parts a;
-  double pspeed;  /* speed bound of inflow states and gas */
-  double t;
-  size_t steps;
-  sbi_budget bud;
-};
-
 int sbi_parts_push(sbi_parts *a, const sb_pgd_particle *q)
 {
   if (a->n == a->cap) {
@@ -234,6 +224,10 @@ int sb_pgd_lag_step(sb_pgd_lag *l, double dt)
     return sbi_error(SB_EINVAL, __func__, "NULL particles");
   if (!(dt > 0) || !isfinite(dt))
     return sbi_error(SB_EINVAL, __func__, "dt = %g: must be > 0", dt);
+  if (l->gas_missing)
+    return sbi_error(SB_EINVAL, __func__, "the checkpoint these particles "
+                     "were loaded from had a gas velocity callback: attach "
+                     "it again with sb_pgd_lag_set_gas");
   double e, g;
   sbi_lag_coef(&l->p, dt, &e, &g);
   sbi_lag_move_all(&l->p, l->a.q, l->a.n, dt, e, g);

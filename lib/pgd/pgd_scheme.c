@@ -389,10 +389,22 @@ static void step(sb_pgd *g, double dt)
   g->steps++;
 }
 
+/* A solver loaded without its gas callback cannot step. */
+static int gas_missing(const sb_pgd *g, const char *func)
+{
+  return g->gas_missing
+             ? sbi_error(SB_EINVAL, func, "the checkpoint this solver was "
+                         "loaded from had a gas velocity callback: attach "
+                         "it again with sb_pgd_set_gas")
+             : SB_SUCCESS;
+}
+
 int sb_pgd_step(sb_pgd *g, double dt)
 {
   if (!g)
     return sbi_error(SB_EINVAL, __func__, "NULL solver");
+  if (g->gas_missing)
+    return gas_missing(g, __func__);
   double lim = sb_pgd_dt(g);
   if (!(dt > 0) || !isfinite(dt) || dt > lim * (1 + 1e-12))
     return sbi_error(SB_EINVAL, __func__, "dt = %g: must be in (0, %g] "
@@ -408,6 +420,8 @@ int sb_pgd_advance(sb_pgd *g, double t_end, size_t *nsteps)
   if (!(t_end >= g->t) || !isfinite(t_end))
     return sbi_error(SB_EINVAL, __func__, "t_end = %g before t = %g", t_end,
                      g->t);
+  if (g->gas_missing && g->t < t_end)
+    return gas_missing(g, __func__);
   size_t k = 0;
   while (g->t < t_end) {
     double dt = sb_pgd_dt(g), left = t_end - g->t;

@@ -189,6 +189,39 @@ int sb_pgd_write_csv(const sb_pgd *g, const char *path);
  *  the vector u) for ParaView; SB_EINVAL in 1-D. */
 int sb_pgd_write_vtk(const sb_pgd *g, const char *path);
 
+/** Checkpoint: save the whole state of g to path so that the solver
+ *  loaded from it continues bit for bit as g would (the fields with their
+ *  ghost cells, time, step count, the boundary budget of
+ *  sb_pgd_boundary_totals / _side_totals, and every parameter: scheme,
+ *  cfl, dt_max, drag, sides, inflows, rho_floor).  The file is native
+ *  binary (docs/pgd.md, "Checkpoints"): the magic "SBPGDE01", the type
+ *  sizes of the build, the parameters and state, and a 64-bit FNV-1a hash
+ *  of all of it; it is written from memory in one piece, and a failed
+ *  write leaves no file (the engine's convention, sb_engine_checkpoint_save).
+ *  SB_EINVAL (NULL argument), SB_EIO (cannot write), SB_ENOMEM.
+ *
+ *  The gas velocity callback (p.gas, p.gas_data) cannot be saved: only a
+ *  fingerprint of its velocities at the cell centres is.  A solver loaded
+ *  from a checkpoint saved with a callback refuses to step (SB_EINVAL)
+ *  until the caller attaches one again with sb_pgd_set_gas. */
+int sb_pgd_checkpoint_save(const sb_pgd *g, const char *path);
+
+/** A new solver from a checkpoint of sb_pgd_checkpoint_save, or NULL with
+ *  *status (status may be NULL) and the message: SB_EINVAL (NULL path),
+ *  SB_EIO (cannot open or read), SB_EFORMAT (not a solver checkpoint,
+ *  e.g. a particle checkpoint; a newer version of the format; damaged:
+ *  cut short or changed, the hash does not match; written on a machine of
+ *  the other byte order: the hash matches byte-swapped; written by a
+ *  build with other type sizes; parameters or state that do not fit),
+ *  SB_ENOMEM.  Nothing is returned in part. */
+sb_pgd *sb_pgd_checkpoint_load(const char *path, int *status);
+
+/** Attach the gas velocity callback (NULL: the uniform ugas) and sample
+ *  it again at the cell centres.  On a solver loaded from a checkpoint
+ *  saved with a callback, gas must give the same velocities at the cell
+ *  centres as that one (SB_EINVAL otherwise, nothing changed). */
+int sb_pgd_set_gas(sb_pgd *g, sb_pgd_gas_fn gas, void *data);
+
 /* ================================================== exact solutions */
 
 /** The 1-D Riemann problem of pressureless gas dynamics with the
@@ -356,6 +389,19 @@ void sb_pgd_lag_boundary_totals(const sb_pgd_lag *l, double in[3],
                                 double out[3]);
 void sb_pgd_lag_side_totals(const sb_pgd_lag *l, sb_pgd_side s, double in[3],
                             double out[3]);
+const sb_pgd_params *sb_pgd_lag_get_params(const sb_pgd_lag *l);
+/** Steps taken since the particles were allocated (0 for NULL). */
+size_t sb_pgd_lag_steps(const sb_pgd_lag *l);
+
+/** Checkpoints of the particles, as sb_pgd_checkpoint_save / _load (magic
+ *  "SBPGDL01"): parameters, time, steps, budget and every particle in
+ *  order, so that the run goes on bit for bit.  A solver checkpoint is
+ *  refused here and a particle checkpoint by sb_pgd_checkpoint_load
+ *  (SB_EFORMAT).  The gas callback is attached again with
+ *  sb_pgd_lag_set_gas (steps are refused until then). */
+int sb_pgd_lag_checkpoint_save(const sb_pgd_lag *l, const char *path);
+sb_pgd_lag *sb_pgd_lag_checkpoint_load(const char *path, int *status);
+int sb_pgd_lag_set_gas(sb_pgd_lag *l, sb_pgd_gas_fn gas, void *data);
 
 /* ================================================== domain decomposition */
 

@@ -1,0 +1,469 @@
+/* test_pgd_checkpoint.c — checkpoints of the pressureless-gas solver and
+ * particles (lib/pgd/pgd_checkpoint.c): a run saved after K steps, loaded
+ * and run M steps more ends bit for bit where the run of K + M steps in
+ * one go ends (fields, time, steps, budget per side, particles, and the
+ * checkpoint of the end state byte for byte), for both schemes, 1-D and
+ * 2-D, with drag and inflows; the gas callback is refused until attached
+ * again, and the same one; every damaged file is refused with its
+ * reason. */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp */
+#include <check.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <smolbridge/pgd.h>
+#include "outdir.h"
+#include "testutil.h"
+
+static char dir[256];
+
+static void setup(void) { sbt_tmp_dir(dir, sizeof dir, "sb_pgdck"); }
+static void teardown(void) { sbt_rm_dir(dir); }
+
+static const char *file(const char *name)
+{
+  static char buf[4][400];
+  static int k;
+  k = (k + 1) % 4;
+  snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name);
+  return buf[k];
+}
+
+/* The whole content of path into buf (at most cap bytes): its length. */
+static size_t slurp(const char *path, char *buf, size_t cap)
+{
+  FILE *f = fopen(path, "rb");
+  ck_assert_ptr_nonnull(f);
+  size_t n = fread(buf, 1, cap, f);
+  ck_assert(n < cap);
+  fclose(f);
+  return n;
+}
+
+static void same_files(const char *a, const char *b)
+{
+  static char x[1 << 20], y[1 << 20];
+  size_t n = slurp(a, x, sizeof x), m = slurp(b, y, sizeof y);
+  ck_assert_uint_eq(n, m);
+  ck_assert_msg(!memcmp(x, y, n), "%s and %s differ", a, b);
+}
+
+/* Crossing jets (west and south inflows, outflow sides) on n x n cells,
+ * with drag towards a uniform gas. */
+static void jets(sb_pgd_params *p, size_t n, sb_pgd_scheme sc)
+{
+  sb_pgd_params_default(p, 2);
+  p->nx = p->ny = n;
+  p->scheme = sc;
+  p->tau = 0.4;
+  p->ugas[0] = 0.2;
+  p->ugas[1] = 0.1;
+  for (int s = 0; s < 4; s++)
+    p->bc[s] = SB_PGD_OUTFLOW;
+  p->bc[SB_PGD_NORTH] = SB_PGD_TRANSMISSIVE;
+  sb_pgd_params_add_inflow(p, SB_PGD_WEST, n / 2 - 2, 5, 1, 1, 0.1);
+  sb_pgd_params_add_inflow(p, SB_PGD_SOUTH, n / 2 - 3, 4, 2, -0.2, 1);
+}
+
+static void steps(sb_pgd *g, int k)
+{
+  for (int i = 0; i < k; i++)
+    ck_assert_int_eq(sb_pgd_step(g, sb_pgd_dt(g)), SB_SUCCESS);
+}
+
+/* g (K + M steps in one go) against h (K, saved, loaded, M): the same to
+ * the last bit. */
+static void same_solver(const sb_pgd *g, const sb_pgd *h)
+{
+  const sb_pgd_params *p = sb_pgd_get_params(g);
+  const size_t n = p->nx * (p->dim == 2 ? p->ny : 1);
+  double *a = malloc(6 * n * sizeof *a), *b = a + 3 * n;
+  ck_assert_ptr_nonnull(a);
+  sb_pgd_fields(g, a, a + n, a + 2 * n);
+  sb_pgd_fields(h, b, b + n, b + 2 * n);
+  ck_assert(!memcmp(a, b, 3 * n * sizeof *a));
+  free(a);
+  ck_assert(sb_pgd_time(g) == sb_pgd_time(h));
+  ck_assert_uint_eq(sb_pgd_steps(g), sb_pgd_steps(h));
+  ck_assert(sb_pgd_dt(g) == sb_pgd_dt(h));
+  for (int s = 0; s < 4; s++) {
+    double i1[3], o1[3], i2[3], o2[3];
+    sb_pgd_side_totals(g, (sb_pgd_side)s, i1, o1);
+    sb_pgd_side_totals(h, (sb_pgd_side)s, i2, o2);
+    ck_assert(!memcmp(i1, i2, sizeof i1) && !memcmp(o1, o2, sizeof o1));
+  }
+  /* and every byte of the state */
+  ck_assert_int_eq(sb_pgd_checkpoint_save(g, file("g.ck")), SB_SUCCESS);
+  ck_assert_int_eq(sb_pgd_checkpoint_save(h, file("h.ck")), SB_SUCCESS);
+  same_files(file("g.ck"), file("h.ck"));
+}
+
+/* Run K steps, save, load, run M more: the run of K + M in one go. */
+static void restart_solver(const sb_pgd_params *p, int K, int M)
+{
+  sb_pgd *g = sb_pgd_alloc(p), *h = sb_pgd_alloc(p);
+  ck_assert_ptr_nonnull(g);
+  ck_assert_ptr_nonnull(h);
+  steps(g, K + M);
+  steps(h, K);
+  ck_assert_int_eq(sb_pgd_checkpoint_save(h, file("k.ck")), SB_SUCCESS);
+  sb_pgd_free(h);
+  int st = -1;
+  h = sb_pgd_checkpoint_load(file("k.ck"), &st);
+  ck_assert_msg(h != NULL, "%s", sb_last_error());
+  ck_assert_int_eq(st, SB_SUCCESS);
+  steps(h, M);
+  same_solver(g, h);
+  /* advance to a time past both, through the loaded solver */
+  const double t_end = sb_pgd_time(g) * 1.37;
+  ck_assert_int_eq(sb_pgd_advance(g, t_end, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_pgd_advance(h, t_end, NULL), SB_SUCCESS);
+  same_solver(g, h);
+  sb_pgd_free(g);
+  sb_pgd_free(h);
+}
+
+START_TEST(solver_restart_2d)
+{
+  const sb_pgd_scheme sc = _i ? SB_PGD_MUSCL : SB_PGD_UPWIND;
+  sb_pgd_params p;
+  jets(&p, 15, sc);
+  p.cfl = _i ? 0.45 : 0.9;
+  restart_solver(&p, 17, 23);
+}
+END_TEST
+
+static void riemann_init(double x, double y, double *rho, double u[2],
+                         void *d)
+{
+  (void)y;
+  (void)d;
+  *rho = x < 0.4 ? 1.0 : 0.25 + x;
+  u[0] = x < 0.4 ? 1.0 : -0.5;
+  u[1] = 0;
+}
+
+START_TEST(solver_restart_1d)
+{
+  sb_pgd_params p;
+  sb_pgd_params_default(&p, 1);
+  p.nx = 64;
+  p.scheme = _i ? SB_PGD_MUSCL : SB_PGD_UPWIND;
+  p.bc[SB_PGD_WEST] = p.bc[SB_PGD_EAST] = SB_PGD_PERIODIC;
+  p.tau = 2.0;
+  p.ugas[0] = -0.3;
+  p.dt_max = 0.004;
+  sb_pgd *g = sb_pgd_alloc(&p);
+  ck_assert_int_eq(sb_pgd_init(g, riemann_init, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_pgd_checkpoint_save(g, file("init.ck")), SB_SUCCESS);
+  sb_pgd_free(g);
+  /* the initial state goes through a checkpoint too: compare a solver
+   * initialised directly with one loaded at t = 0 */
+  sb_pgd *a = sb_pgd_alloc(&p);
+  sb_pgd_init(a, riemann_init, NULL);
+  int st;
+  sb_pgd *b = sb_pgd_checkpoint_load(file("init.ck"), &st);
+  ck_assert_ptr_nonnull(b);
+  steps(a, 40);
+  steps(b, 11);
+  ck_assert_int_eq(sb_pgd_checkpoint_save(b, file("mid.ck")), SB_SUCCESS);
+  sb_pgd_free(b);
+  b = sb_pgd_checkpoint_load(file("mid.ck"), &st);
+  ck_assert_ptr_nonnull(b);
+  steps(b, 29);
+  same_solver(a, b);
+  sb_pgd_free(a);
+  sb_pgd_free(b);
+}
+END_TEST
+
+/* ------------------------------------------------------------ particles */
+
+static void lag_steps(sb_pgd_lag *l, int k)
+{
+  for (int i = 0; i < k; i++)
+    ck_assert_int_eq(sb_pgd_lag_step(l, sb_pgd_lag_dt(l)), SB_SUCCESS);
+}
+
+static void same_lag(const sb_pgd_lag *g, const sb_pgd_lag *h)
+{
+  ck_assert_uint_eq(sb_pgd_lag_count(g), sb_pgd_lag_count(h));
+  ck_assert_uint_gt(sb_pgd_lag_count(g), 0);
+  ck_assert(!memcmp(sb_pgd_lag_particles(g), sb_pgd_lag_particles(h),
+                    sb_pgd_lag_count(g) * sizeof(sb_pgd_particle)));
+  ck_assert(sb_pgd_lag_time(g) == sb_pgd_lag_time(h));
+  ck_assert_uint_eq(sb_pgd_lag_steps(g), sb_pgd_lag_steps(h));
+  for (int s = 0; s < 4; s++) {
+    double i1[3], o1[3], i2[3], o2[3];
+    sb_pgd_lag_side_totals(g, (sb_pgd_side)s, i1, o1);
+    sb_pgd_lag_side_totals(h, (sb_pgd_side)s, i2, o2);
+    ck_assert(!memcmp(i1, i2, sizeof i1) && !memcmp(o1, o2, sizeof o1));
+  }
+  ck_assert_int_eq(sb_pgd_lag_checkpoint_save(g, file("lg.ck")),
+                   SB_SUCCESS);
+  ck_assert_int_eq(sb_pgd_lag_checkpoint_save(h, file("lh.ck")),
+                   SB_SUCCESS);
+  same_files(file("lg.ck"), file("lh.ck"));
+}
+
+START_TEST(lag_restart)
+{
+  sb_pgd_params p;
+  jets(&p, 15, SB_PGD_UPWIND);
+  p.inject_time = 3;
+  p.tau = 3;
+  sb_pgd_lag *g = sb_pgd_lag_alloc(&p), *h = sb_pgd_lag_alloc(&p);
+  /* the first particles leave through the sides after ~ 35 steps */
+  lag_steps(g, 60);
+  lag_steps(h, 41);
+  ck_assert_int_eq(sb_pgd_lag_checkpoint_save(h, file("l.ck")), SB_SUCCESS);
+  sb_pgd_lag_free(h);
+  int st = -1;
+  h = sb_pgd_lag_checkpoint_load(file("l.ck"), &st);
+  ck_assert_msg(h != NULL, "%s", sb_last_error());
+  ck_assert_int_eq(st, SB_SUCCESS);
+  ck_assert_uint_eq(sb_pgd_lag_steps(h), 41);
+  lag_steps(h, 19);
+  same_lag(g, h);
+  double out[3];
+  sb_pgd_lag_boundary_totals(g, NULL, out);
+  ck_assert(out[0] > 0);  /* particles left: removal is covered */
+  const double t_end = sb_pgd_lag_time(g) + 0.3;
+  ck_assert_int_eq(sb_pgd_lag_advance(g, t_end, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_pgd_lag_advance(h, t_end, NULL), SB_SUCCESS);
+  same_lag(g, h);
+  sb_pgd_lag_free(g);
+  sb_pgd_lag_free(h);
+}
+END_TEST
+
+/* ------------------------------------------------------------ gas callback */
+
+static void swirl(double x, double y, double ug[2], void *d)
+{
+  const double a = *(const double *)d;
+  ug[0] = a * (0.5 - y);
+  ug[1] = a * (x - 0.5);
+}
+
+START_TEST(gas_callback)
+{
+  double amp = 0.7, other = 0.71;
+  sb_pgd_params p;
+  jets(&p, 15, SB_PGD_MUSCL);
+  p.cfl = 0.4;
+  p.gas = swirl;
+  p.gas_data = &amp;
+  sb_pgd *g = sb_pgd_alloc(&p), *h = sb_pgd_alloc(&p);
+  steps(g, 20);
+  steps(h, 8);
+  ck_assert_int_eq(sb_pgd_checkpoint_save(h, file("gas.ck")), SB_SUCCESS);
+  sb_pgd_free(h);
+  int st;
+  h = sb_pgd_checkpoint_load(file("gas.ck"), &st);
+  ck_assert_ptr_nonnull(h);
+  ck_assert_ptr_null(sb_pgd_get_params(h)->gas);
+  /* no step before the callback is back, and only the same one */
+  ck_assert_int_eq(sb_pgd_step(h, 1e-3), SB_EINVAL);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "sb_pgd_set_gas"));
+  ck_assert_int_eq(sb_pgd_advance(h, 1.0, NULL), SB_EINVAL);
+  ck_assert_int_eq(sb_pgd_set_gas(h, NULL, NULL), SB_EINVAL);
+  ck_assert_int_eq(sb_pgd_set_gas(h, swirl, &other), SB_EINVAL);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "differs"));
+  /* saved again before it is attached: the fingerprint is kept */
+  ck_assert_int_eq(sb_pgd_checkpoint_save(h, file("gas2.ck")), SB_SUCCESS);
+  same_files(file("gas.ck"), file("gas2.ck"));
+  ck_assert_int_eq(sb_pgd_set_gas(h, swirl, &amp), SB_SUCCESS);
+  steps(h, 12);
+  same_solver(g, h);
+  sb_pgd_free(g);
+  sb_pgd_free(h);
+
+  sb_pgd_lag *a = sb_pgd_lag_alloc(&p), *b = sb_pgd_lag_alloc(&p);
+  lag_steps(a, 30);
+  lag_steps(b, 12);
+  ck_assert_int_eq(sb_pgd_lag_checkpoint_save(b, file("lgas.ck")),
+                   SB_SUCCESS);
+  sb_pgd_lag_free(b);
+  b = sb_pgd_lag_checkpoint_load(file("lgas.ck"), &st);
+  ck_assert_ptr_nonnull(b);
+  ck_assert_int_eq(sb_pgd_lag_step(b, 1e-3), SB_EINVAL);
+  ck_assert_int_eq(sb_pgd_lag_set_gas(b, swirl, &other), SB_EINVAL);
+  ck_assert_int_eq(sb_pgd_lag_set_gas(b, swirl, &amp), SB_SUCCESS);
+  lag_steps(b, 18);
+  same_lag(a, b);
+  sb_pgd_lag_free(a);
+  sb_pgd_lag_free(b);
+}
+END_TEST
+
+/* ------------------------------------------------------------ errors */
+
+static int load_solver(const char *path, void *ctx)
+{
+  (void)ctx;
+  int st = -1;
+  sb_pgd *g = sb_pgd_checkpoint_load(path, &st);
+  ck_assert((g != NULL) == (st == SB_SUCCESS));
+  sb_pgd_free(g);
+  return st;
+}
+
+static int load_lag(const char *path, void *ctx)
+{
+  (void)ctx;
+  int st = -1;
+  sb_pgd_lag *l = sb_pgd_lag_checkpoint_load(path, &st);
+  ck_assert((l != NULL) == (st == SB_SUCCESS));
+  sb_pgd_lag_free(l);
+  return st;
+}
+
+/* FNV-1a, 64 bits (Fowler, Noll & Vo), written out here: a file forged
+ * with a valid hash reaches the checks behind it. */
+static uint64_t fnv(const char *b, size_t n)
+{
+  uint64_t h = 0xcbf29ce484222325ULL;
+  for (size_t k = 0; k < n; k++)
+    h = (h ^ (unsigned char)b[k]) * 0x100000001b3ULL;
+  return h;
+}
+
+/* buf[0..n-1] with its hash recomputed, to path (n includes the hash). */
+static void write_rehashed(const char *path, char *buf, size_t n)
+{
+  const uint64_t h = fnv(buf, n - 8);
+  memcpy(buf + n - 8, &h, 8);
+  sbt_write_file(path, buf, n);
+}
+
+static void expect(sbt_load_fn load, const char *path, int status,
+                   const char *msg)
+{
+  ck_assert_int_eq(load(path, NULL), status);
+  ck_assert_msg(strstr(sb_last_error(), msg), "\"%s\" lacks \"%s\"",
+                sb_last_error(), msg);
+}
+
+/* Damaged copies of the checkpoint `good` (magic[5] its kind letter). */
+static void damaged(const char *good, sbt_load_fn load)
+{
+  static char buf[1 << 20];
+  const char *bad = file("bad.ck");
+  const size_t n = slurp(good, buf, sizeof buf);
+  ck_assert(n > 64);
+  /* cut after the magic, after 40 bytes, 3 bytes short, a byte after
+   * the end, and another kind's magic; then no file (SB_EIO) */
+  sbt_damaged_copies(good, bad, 40, "SBENGCK6", load, NULL);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "cannot open"));
+  /* cut short (hash of the end no longer matches) */
+  sbt_write_file(bad, buf, n / 2);
+  expect(load, bad, SB_EFORMAT, "damaged");
+  /* one flipped bit anywhere after the magic: damaged */
+  const size_t at[] = {8, 9, 11, n / 3, n / 2, n - 9, n - 8, n - 1};
+  for (size_t q = 0; q < sizeof at / sizeof at[0]; q++) {
+    buf[at[q]] ^= 4;
+    sbt_write_file(bad, buf, n);
+    buf[at[q]] ^= 4;
+    expect(load, bad, SB_EFORMAT, "damaged");
+  }
+  /* a corrupted magic, a newer version */
+  buf[0] = 'X';
+  sbt_write_file(bad, buf, n);
+  buf[0] = 'S';
+  expect(load, bad, SB_EFORMAT, "not a pgd");
+  buf[7] = '2';
+  sbt_write_file(bad, buf, n);
+  buf[7] = '1';
+  expect(load, bad, SB_EFORMAT, "newer build");
+  /* the hash byte-swapped: a file of the other byte order */
+  for (int k = 0; k < 4; k++) {
+    char t = buf[n - 8 + k];
+    buf[n - 8 + k] = buf[n - 1 - k];
+    buf[n - 1 - k] = t;
+  }
+  sbt_write_file(bad, buf, n);
+  expect(load, bad, SB_EFORMAT, "other byte order");
+  slurp(good, buf, sizeof buf);
+  /* other type sizes (size_t of 4 bytes), with a valid hash */
+  buf[9] = 4;
+  write_rehashed(bad, buf, n);
+  expect(load, bad, SB_EFORMAT, "other type sizes");
+  buf[9] = (char)sizeof(size_t);
+  /* parameters out of range (dim = 3), with a valid hash */
+  int32_t dim3 = 3, dim;
+  memcpy(&dim, buf + 11, 4);
+  memcpy(buf + 11, &dim3, 4);
+  write_rehashed(bad, buf, n);
+  expect(load, bad, SB_EFORMAT, "parameters");
+  memcpy(buf + 11, &dim, 4);
+  /* a byte of data after the state, with a valid hash */
+  static char big[(1 << 20) + 1];
+  memcpy(big, buf, n - 8);
+  big[n - 8] = 0;
+  write_rehashed(bad, big, n + 1);
+  expect(load, bad, SB_EFORMAT, "not a valid");
+  /* the good file still loads */
+  ck_assert_int_eq(load(good, NULL), SB_SUCCESS);
+  remove(bad);
+}
+
+START_TEST(errors)
+{
+  sb_pgd_params p;
+  jets(&p, 9, SB_PGD_UPWIND);
+  sb_pgd *g = sb_pgd_alloc(&p);
+  sb_pgd_lag *l = sb_pgd_lag_alloc(&p);
+  steps(g, 5);
+  lag_steps(l, 5);
+  ck_assert_int_eq(sb_pgd_checkpoint_save(NULL, file("x.ck")), SB_EINVAL);
+  ck_assert_int_eq(sb_pgd_checkpoint_save(g, NULL), SB_EINVAL);
+  ck_assert_int_eq(sb_pgd_lag_checkpoint_save(NULL, file("x.ck")),
+                   SB_EINVAL);
+  ck_assert_int_eq(sb_pgd_lag_checkpoint_save(l, NULL), SB_EINVAL);
+  int st = 0;
+  ck_assert_ptr_null(sb_pgd_checkpoint_load(NULL, &st));
+  ck_assert_int_eq(st, SB_EINVAL);
+  ck_assert_ptr_null(sb_pgd_lag_checkpoint_load(NULL, NULL));
+  /* a write that fails leaves no file */
+  const char *nodir = file("no/such/dir.ck");
+  ck_assert_int_eq(sb_pgd_checkpoint_save(g, nodir), SB_EIO);
+  ck_assert_int_eq(sb_pgd_lag_checkpoint_save(l, nodir), SB_EIO);
+  FILE *full = fopen("/dev/full", "wb");
+  if (full) {  /* Linux: every write fails */
+    fclose(full);
+    ck_assert_int_eq(sb_pgd_checkpoint_save(g, "/dev/full"), SB_EIO);
+    ck_assert_ptr_nonnull(strstr(sb_last_error(), "write error"));
+  }
+  ck_assert_int_eq(sb_pgd_checkpoint_save(g, file("e.ck")), SB_SUCCESS);
+  ck_assert_int_eq(sb_pgd_lag_checkpoint_save(l, file("l.ck")), SB_SUCCESS);
+  /* the other kind's checkpoint */
+  expect(load_lag, file("e.ck"), SB_EFORMAT, "not a pgd particle");
+  expect(load_solver, file("l.ck"), SB_EFORMAT, "not a pgd solver");
+  damaged(file("e.ck"), load_solver);
+  damaged(file("l.ck"), load_lag);
+  ck_assert_int_eq(sb_pgd_set_gas(NULL, NULL, NULL), SB_EINVAL);
+  ck_assert_int_eq(sb_pgd_lag_set_gas(NULL, NULL, NULL), SB_EINVAL);
+  sb_pgd_free(g);
+  sb_pgd_lag_free(l);
+}
+END_TEST
+
+Suite *suite(void)
+{
+  Suite *s = suite_create("pgd_checkpoint");
+  TCase *tc = tcase_create("restart");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_set_timeout(tc, 30);
+  tcase_add_loop_test(tc, solver_restart_2d, 0, 2);
+  tcase_add_loop_test(tc, solver_restart_1d, 0, 2);
+  tcase_add_test(tc, lag_restart);
+  tcase_add_test(tc, gas_callback);
+  tcase_add_test(tc, errors);
+  suite_add_tcase(s, tc);
+  return s;
+}
+
+int main(void) { return sbt_run_suite(suite()); }
