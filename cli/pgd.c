@@ -27,6 +27,7 @@ typedef struct {
   sb_pgd_params p;
   double t_end, output_every;
   char method[16], output[512], kinds[64];
+  char checkpoint[512], restart[512];  /* [run] checkpoint, restart */
   size_t bx, by;
   int have_riemann, have_initial, have_ny, have_L[2], have_x0;
   int n_origin, n_U, n_init_u;  /* numbers given (1: x only, 2: x y) */
@@ -209,6 +210,14 @@ static int handler(void *user, const char *sec, const char *key,
       snprintf(c->output, sizeof c->output, "%s", v);
       return 1;
     }
+    if (!strcmp(key, "checkpoint") || !strcmp(key, "restart")) {
+      char *dst = key[0] == 'c' ? c->checkpoint : c->restart;
+      if (!*v || strlen(v) >= sizeof c->checkpoint)
+        return fail(c, "[run] %s: must be a file name (< 512 characters)",
+                    key);
+      snprintf(dst, sizeof c->checkpoint, "%s", v);
+      return 1;
+    }
     if (!strcmp(key, "output_every"))
       return num(c, sec, key, v, &c->output_every, 1e-300, 1e300,
                  "a time interval > 0");
@@ -216,7 +225,7 @@ static int handler(void *user, const char *sec, const char *key,
       return num(c, sec, key, v, &p->rho_floor, 0, 1e300, "a density >= 0");
     return fail(c, "[run]: unknown key '%s' (dim, nx, ny, L, Lx, Ly, "
                 "origin, t_end, scheme, cfl, dt_max, method, output, "
-                "output_every, rho_floor)", key);
+                "output_every, rho_floor, checkpoint, restart)", key);
   }
   if (!strcmp(sec, "riemann")) {
     c->have_riemann = 1;
@@ -422,6 +431,10 @@ static void warn_unused(config *c)
            c->method);
   unused(c, !euler && !(c->init_rho > 0), "initial", "rho", why);
   unused(c, !euler && !(c->init_rho > 0), "initial", "u", why);
+  unused(c, euler && c->restart[0], "initial", "rho",
+         "the state comes from the restart checkpoint");
+  unused(c, euler && c->restart[0], "initial", "u",
+         "the state comes from the restart checkpoint");
   if (euler)
     sbc_ini_section_unused(&c->once, "pgd", "particles", NULL,
                            "method = euler has no particles");
@@ -474,6 +487,69 @@ static void uniform_init(double x, double y, double *rho, double u[2],
   u[1] = c->init_u[1];
 }
 
+/* On restart: the parameters of the file (a) against the checkpoint's
+ * (b), which must be the same (those the run uses: the scheme and the
+ * gas velocity only where they have an effect).  0, or 1 with the first
+ * difference in msg (as "[section] key = file's; the checkpoint's"). */
+static int params_differ(const sb_pgd_params *a, const sb_pgd_params *b,
+                         int lag, char *msg, size_t len)
+{
+  static const char *side[4] = {"west", "east", "south", "north"};
+  const int d2 = a->dim == 2;
+  msg[0] = 0;
+#define DIFF(cond, ...)                                                   \
+  do {                                                                    \
+    if (cond) {                                                           \
+      snprintf(msg, len, __VA_ARGS__);                                    \
+      return 1;                                                           \
+    }                                                                     \
+  } while (0)
+#define NUM(sec, key, x, y)                                               \
+  DIFF((x) != (y), "[%s] %s = %.17g here, %.17g in the checkpoint: a "    \
+       "restart keeps the parameters of the run", sec, key, (double)(x),  \
+       (double)(y))
+  NUM("run", "dim", a->dim, b->dim);
+  NUM("run", "nx", a->nx, b->nx);
+  if (d2)
+    NUM("run", "ny", a->ny, b->ny);
+  NUM("run", d2 ? "Lx" : "L", a->L[0], b->L[0]);
+  if (d2)
+    NUM("run", "Ly", a->L[1], b->L[1]);
+  NUM("run", "origin (x)", a->origin[0], b->origin[0]);
+  if (d2)
+    NUM("run", "origin (y)", a->origin[1], b->origin[1]);
+  DIFF(!lag && a->scheme != b->scheme, "[run] scheme = %s here, %s in the "
+       "checkpoint: a restart keeps the parameters of the run",
+       sb_pgd_scheme_name(a->scheme), sb_pgd_scheme_name(b->scheme));
+  NUM("run", "cfl", a->cfl, b->cfl);
+  NUM("run", "dt_max", a->dt_max, b->dt_max);
+  NUM("run", "rho_floor", a->rho_floor, b->rho_floor);
+  NUM("drag", "tau", a->tau, b->tau);
+  if (!isinf(a->tau)) {
+    NUM("drag", "U (x)", a->ugas[0], b->ugas[0]);
+    if (d2)
+      NUM("drag", "U (y)", a->ugas[1], b->ugas[1]);
+  }
+  for (int s = 0; s < (d2 ? 4 : 2); s++)
+    DIFF(a->bc[s] != b->bc[s], "[boundary] %s differs from the "
+         "checkpoint's: a restart keeps the parameters of the run", side[s]);
+  NUM("inflow", "sections (number)", a->ninflow, b->ninflow);
+  for (size_t k = 0; k < a->ninflow; k++) {
+    const sb_pgd_inflow *x = &a->inflow[k], *y = &b->inflow[k];
+    DIFF(x->side != y->side || x->first != y->first || x->count != y->count ||
+         x->rho != y->rho || x->u[0] != y->u[0] || x->u[1] != y->u[1],
+         "inflow section %zu (in the order of the file) differs from the "
+         "checkpoint's: a restart keeps the parameters of the run", k + 1);
+  }
+  if (lag) {
+    NUM("particles", "inject_time", a->inject_time, b->inject_time);
+    NUM("particles", "inject_face", a->inject_face, b->inject_face);
+  }
+  return 0;
+#undef NUM
+#undef DIFF
+}
+
 /* Fields of a Lagrangian or decomposed run as CSV (cell centres). */
 static int write_fields(const sb_pgd_params *p, const double *rho,
                         const double *qx, const double *qy, const char *path)
@@ -505,7 +581,9 @@ static void usage(FILE *f)
 "  [run]            dim (1 | 2), nx, ny, L | Lx Ly, origin, t_end,\n"
 "                   scheme = upwind | muscl, cfl, dt_max,\n"
 "                   method = euler | lagrange | decomposition (2-D),\n"
-"                   output (directory), output_every, rho_floor\n"
+"                   output (directory), output_every, rho_floor,\n"
+"                   checkpoint (file written at t_end), restart (file to\n"
+"                   go on from; method = euler | lagrange)\n"
 "  [riemann]        (1-D) x0, rho_l, u_l, rho_r, u_r\n"
 "  [initial]        uniform initial state: rho, u = ux [uy]\n"
 "  [drag]           tau (inf: none), U = gas velocity ux [uy]\n"
@@ -613,7 +691,7 @@ int sbc_pgd_main(int argc, char **argv)
     if (c.nin)
       INPUT_ERROR("[inflow]: 1-D inflows are not available from the "
                   "command line (use 2-D, or the library)");
-    if (!c.have_riemann && !c.have_initial)
+    if (!c.have_riemann && !c.have_initial && !c.restart[0])
       INPUT_ERROR("1-D runs need [riemann] (or [initial])");
     if (strcmp(c.method, "euler"))
       INPUT_ERROR("[run] method = %s: 1-D runs are Eulerian", c.method);
@@ -665,7 +743,16 @@ int sbc_pgd_main(int argc, char **argv)
     if ((size_t)nranks > c.bx * c.by)
       INPUT_ERROR("%d MPI ranks for %zu blocks: use at most one rank per "
                   "block", nranks, c.bx * c.by);
+    if (c.checkpoint[0] || c.restart[0])
+      INPUT_ERROR("[run] %s: checkpoints are for method = euler and "
+                  "lagrange (not yet for decomposition)",
+                  c.checkpoint[0] ? "checkpoint" : "restart");
   }
+  if (c.checkpoint[0] && c.restart[0] &&
+      !strcmp(c.checkpoint, c.restart))
+    INPUT_ERROR("[run] checkpoint = restart = '%s': give the checkpoint "
+                "another name (the restart's would be overwritten)",
+                c.restart);
 #undef INPUT_ERROR
   /* ranks > 1 take part in a decomposition only */
   const int par = dd && nranks > 1;
@@ -680,7 +767,34 @@ int sbc_pgd_main(int argc, char **argv)
   sb_pgd *g = NULL;
   sb_pgd_lag *l = NULL;
   sb_pgd_dd *d = NULL;
-  if (dd)
+  int st = SB_SUCCESS;
+  if (c.restart[0]) {
+    /* the state from the checkpoint, its parameters those of the file */
+    char msg[700];
+    if (lag)
+      l = sb_pgd_lag_checkpoint_load(c.restart, &st);
+    else
+      g = sb_pgd_checkpoint_load(c.restart, &st);
+    if (!g && !l) {
+      fprintf(stderr, "pgd: %s: [run] restart: %s\n", file, sb_last_error());
+      return 2;
+    }
+    const sb_pgd_params *ck = g ? sb_pgd_get_params(g)
+                                : sb_pgd_lag_get_params(l);
+    const double t0 = g ? sb_pgd_time(g) : sb_pgd_lag_time(l);
+    if (params_differ(p, ck, lag, msg, sizeof msg) || !(c.t_end >= t0)) {
+      if (msg[0])
+        fprintf(stderr, "pgd: %s: [run] restart = %s: %s\n", file,
+                c.restart, msg);
+      else
+        fprintf(stderr, "pgd: %s: [run] t_end = %g: before the time of the "
+                "restart checkpoint %s, t = %.17g\n", file, c.t_end,
+                c.restart, t0);
+      sb_pgd_free(g);
+      sb_pgd_lag_free(l);
+      return 2;
+    }
+  } else if (dd)
     d = sbc_pgd_dd_alloc(p, c.bx, c.by, c.kinds);
   else if (lag)
     l = sb_pgd_lag_alloc(p);
@@ -690,14 +804,16 @@ int sbc_pgd_main(int argc, char **argv)
     fprintf(stderr, "pgd: %s: %s\n", file, sb_last_error());
     return 2;
   }
-  int st = SB_SUCCESS;
-  if (g && c.have_riemann)
+  if (c.restart[0])
+    ;  /* the state is the checkpoint's */
+  else if (g && c.have_riemann)
     st = sb_pgd_init(g, rp_init, &c.rp);
   else if (g && c.have_initial)
     st = sb_pgd_init(g, uniform_init, &c);
   if (st) {
     fprintf(stderr, "pgd: initial state: %s\n", sb_last_error());
     sb_pgd_free(g);
+    sb_pgd_lag_free(l);
     return 2;
   }
   int bad_dir = rank == 0 && sb_mkdir_p(c.output);
@@ -730,6 +846,19 @@ int sbc_pgd_main(int argc, char **argv)
   double t = 0, next = c.output_every > 0 ? c.output_every : INFINITY;
   size_t nsteps = 0;
   int snap = 0;
+  if (c.restart[0]) {
+    /* from the checkpoint's time on, with the snapshot times and numbers
+     * of the run in one go (next summed as it sums it); a snapshot at
+     * the checkpoint's time is the restart's (the loop's first pass
+     * takes no step and writes it), since the run that wrote the
+     * checkpoint ended there and wrote fields.csv instead */
+    t = g ? sb_pgd_time(g) : sb_pgd_lag_time(l);
+    while (next < t) {
+      next += c.output_every;
+      snap++;
+    }
+    nsteps = g ? sb_pgd_steps(g) : sb_pgd_lag_steps(l);
+  }
   while (!st && !nomem && t < c.t_end) {
     double stop = fmin(c.t_end, next);
     size_t k = 0;
@@ -764,6 +893,14 @@ int sbc_pgd_main(int argc, char **argv)
   if (st) {
     fprintf(stderr, "pgd: run failed at t = %g: %s\n", t, why(st));
     goto done;
+  }
+  if (c.checkpoint[0] && rank == 0) {
+    st = g ? sb_pgd_checkpoint_save(g, c.checkpoint)
+           : sb_pgd_lag_checkpoint_save(l, c.checkpoint);
+    if (st) {
+      fprintf(stderr, "pgd: [run] checkpoint: %s\n", sb_last_error());
+      goto done;
+    }
   }
   if (rank != 0) /* rank 0 has every block now, and writes */
     goto done;
