@@ -488,11 +488,11 @@ static void uniform_init(double x, double y, double *rho, double u[2],
 }
 
 /* On restart: the parameters of the file (a) against the checkpoint's
- * (b), which must be the same (those the run uses: the scheme and the
- * gas velocity only where they have an effect).  0, or 1 with the first
+ * (b), which must be the same (those the run uses: the scheme, the
+ * gas velocity and [particles] only where they have an effect).  0, or 1 with the first
  * difference in msg (as "[section] key = file's; the checkpoint's"). */
 static int params_differ(const sb_pgd_params *a, const sb_pgd_params *b,
-                         int lag, char *msg, size_t len)
+                         int scheme, int particles, char *msg, size_t len)
 {
   static const char *side[4] = {"west", "east", "south", "north"};
   const int d2 = a->dim == 2;
@@ -518,7 +518,7 @@ static int params_differ(const sb_pgd_params *a, const sb_pgd_params *b,
   NUM("run", "origin (x)", a->origin[0], b->origin[0]);
   if (d2)
     NUM("run", "origin (y)", a->origin[1], b->origin[1]);
-  DIFF(!lag && a->scheme != b->scheme, "[run] scheme = %s here, %s in the "
+  DIFF(scheme && a->scheme != b->scheme, "[run] scheme = %s here, %s in the "
        "checkpoint: a restart keeps the parameters of the run",
        sb_pgd_scheme_name(a->scheme), sb_pgd_scheme_name(b->scheme));
   NUM("run", "cfl", a->cfl, b->cfl);
@@ -541,13 +541,40 @@ static int params_differ(const sb_pgd_params *a, const sb_pgd_params *b,
          "inflow section %zu (in the order of the file) differs from the "
          "checkpoint's: a restart keeps the parameters of the run", k + 1);
   }
-  if (lag) {
+  if (particles) {
     NUM("particles", "inject_time", a->inject_time, b->inject_time);
     NUM("particles", "inject_face", a->inject_face, b->inject_face);
   }
   return 0;
 #undef NUM
 #undef DIFF
+}
+
+/* On restart with method = decomposition: [decomposition] blocks and
+ * kinds against the checkpoint's (as params_differ). */
+static int blocks_differ(const config *c, const sb_pgd_dd *d, char *msg,
+                         size_t len)
+{
+  size_t px, py;
+  char kinds[64];  /* as the config's: at most 63 blocks */
+  sb_pgd_dd_layout(d, &px, &py, NULL);
+  if (px * py >= sizeof kinds) {
+    snprintf(msg, len, "[decomposition] blocks = %zu %zu here, %zu %zu in "
+             "the checkpoint", c->bx, c->by, px, py);
+    return 1;
+  }
+  sb_pgd_dd_layout(d, NULL, NULL, kinds);
+  if (px != c->bx || py != c->by)
+    snprintf(msg, len, "[decomposition] blocks = %zu %zu here, %zu %zu in "
+             "the checkpoint: a restart keeps the parameters of the run",
+             c->bx, c->by, px, py);
+  else if (strcmp(kinds, c->kinds))
+    snprintf(msg, len, "[decomposition] kinds = %.63s here, %.63s in the "
+             "checkpoint: a restart keeps the parameters of the run",
+             c->kinds, kinds);
+  else
+    return 0;
+  return 1;
 }
 
 /* Fields of a Lagrangian or decomposed run as CSV (cell centres). */
@@ -583,7 +610,7 @@ static void usage(FILE *f)
 "                   method = euler | lagrange | decomposition (2-D),\n"
 "                   output (directory), output_every, rho_floor,\n"
 "                   checkpoint (file written at t_end), restart (file to\n"
-"                   go on from; method = euler | lagrange)\n"
+"                   go on from)\n"
 "  [riemann]        (1-D) x0, rho_l, u_l, rho_r, u_r\n"
 "  [initial]        uniform initial state: rho, u = ux [uy]\n"
 "  [drag]           tau (inf: none), U = gas velocity ux [uy]\n"
@@ -743,10 +770,10 @@ int sbc_pgd_main(int argc, char **argv)
     if ((size_t)nranks > c.bx * c.by)
       INPUT_ERROR("%d MPI ranks for %zu blocks: use at most one rank per "
                   "block", nranks, c.bx * c.by);
-    if (c.checkpoint[0] || c.restart[0])
-      INPUT_ERROR("[run] %s: checkpoints are for method = euler and "
-                  "lagrange (not yet for decomposition)",
-                  c.checkpoint[0] ? "checkpoint" : "restart");
+    if ((c.checkpoint[0] || c.restart[0]) && nranks > 1)
+      INPUT_ERROR("[run] %s: checkpoints of method = decomposition are "
+                  "for a run in one process (not yet over %d MPI ranks)",
+                  c.checkpoint[0] ? "checkpoint" : "restart", nranks);
   }
   if (c.checkpoint[0] && c.restart[0] &&
       !strcmp(c.checkpoint, c.restart))
@@ -771,18 +798,24 @@ int sbc_pgd_main(int argc, char **argv)
   if (c.restart[0]) {
     /* the state from the checkpoint, its parameters those of the file */
     char msg[700];
-    if (lag)
+    if (dd)
+      d = sb_pgd_dd_checkpoint_load(c.restart, &st);
+    else if (lag)
       l = sb_pgd_lag_checkpoint_load(c.restart, &st);
     else
       g = sb_pgd_checkpoint_load(c.restart, &st);
-    if (!g && !l) {
+    if (!g && !l && !d) {
       fprintf(stderr, "pgd: %s: [run] restart: %s\n", file, sb_last_error());
       return 2;
     }
-    const sb_pgd_params *ck = g ? sb_pgd_get_params(g)
-                                : sb_pgd_lag_get_params(l);
-    const double t0 = g ? sb_pgd_time(g) : sb_pgd_lag_time(l);
-    if (params_differ(p, ck, lag, msg, sizeof msg) || !(c.t_end >= t0)) {
+    const sb_pgd_params *ck = g   ? sb_pgd_get_params(g)
+                              : l ? sb_pgd_lag_get_params(l)
+                                  : sb_pgd_dd_get_params(d);
+    const double t0 = g   ? sb_pgd_time(g)
+                      : l ? sb_pgd_lag_time(l)
+                          : sb_pgd_dd_time(d);
+    if (params_differ(p, ck, !lag, lag || dd, msg, sizeof msg) ||
+        (d && blocks_differ(&c, d, msg, sizeof msg)) || !(c.t_end >= t0)) {
       if (msg[0])
         fprintf(stderr, "pgd: %s: [run] restart = %s: %s\n", file,
                 c.restart, msg);
@@ -792,6 +825,7 @@ int sbc_pgd_main(int argc, char **argv)
                 c.restart, t0);
       sb_pgd_free(g);
       sb_pgd_lag_free(l);
+      sb_pgd_dd_free(d);
       return 2;
     }
   } else if (dd)
@@ -852,12 +886,13 @@ int sbc_pgd_main(int argc, char **argv)
      * the checkpoint's time is the restart's (the loop's first pass
      * takes no step and writes it), since the run that wrote the
      * checkpoint ended there and wrote fields.csv instead */
-    t = g ? sb_pgd_time(g) : sb_pgd_lag_time(l);
+    t = g ? sb_pgd_time(g) : l ? sb_pgd_lag_time(l) : sb_pgd_dd_time(d);
     while (next < t) {
       next += c.output_every;
       snap++;
     }
-    nsteps = g ? sb_pgd_steps(g) : sb_pgd_lag_steps(l);
+    nsteps = g ? sb_pgd_steps(g) : l ? sb_pgd_lag_steps(l)
+                                     : sb_pgd_dd_steps(d);
   }
   while (!st && !nomem && t < c.t_end) {
     double stop = fmin(c.t_end, next);
@@ -895,8 +930,9 @@ int sbc_pgd_main(int argc, char **argv)
     goto done;
   }
   if (c.checkpoint[0] && rank == 0) {
-    st = g ? sb_pgd_checkpoint_save(g, c.checkpoint)
-           : sb_pgd_lag_checkpoint_save(l, c.checkpoint);
+    st = g   ? sb_pgd_checkpoint_save(g, c.checkpoint)
+         : l ? sb_pgd_lag_checkpoint_save(l, c.checkpoint)
+             : sb_pgd_dd_checkpoint_save(d, c.checkpoint);
     if (st) {
       fprintf(stderr, "pgd: [run] checkpoint: %s\n", sb_last_error());
       goto done;

@@ -4,9 +4,11 @@
 # of the run in one go, byte for byte (fields.csv, fields.vtk, exact.csv,
 # the snapshots fields_NNNNN.csv of both parts together, summary.json but
 # its cpu_seconds), for the Eulerian solver with both schemes (1-D delta
-# shock, 2-D crossing jets with drag) and for the particles; and a
+# shock, 2-D crossing jets with drag), for the particles and for the
+# Euler-Lagrange decomposition; and a
 # restart refuses a file whose parameters differ from the checkpoint's, a
-# t_end before its time, another method's or a damaged checkpoint.
+# t_end before its time, another method's or a damaged checkpoint.  The
+# decomposition (method = decomposition, one process) likewise.
 set -u
 sb="${top_builddir:-.}/smolbridge"
 src="${srcdir:-.}"
@@ -88,6 +90,18 @@ split pgd_crossing_jets.ini jets_lag 0.5 -e '/^ny = /d' -e 's|^nx = .*|nx = 15|'
   -e '/^scheme = /d' -e 's|^tau = .*|tau = 5|' -e 's|^U = .*|U = 0.1 0.2|' \
   -e 's|^first = .*|first = 5|' -e '/^\[run\]/a\
 output_every = 0.25'
+# the decomposition: a Lagrangian block where the jets cross
+split pgd_crossing_jets.ini jets_dd 0.5 -e '/^ny = /d' -e 's|^nx = .*|nx = 15|' \
+  -e 's|^t_end = .*|t_end = 1.5|' -e 's|^method = .*|method = decomposition|' \
+  -e "s|^scheme = .*|scheme = muscl|" -e 's|^tau = .*|tau = 5|' \
+  -e 's|^U = .*|U = 0.1 0.2|' -e 's|^first = .*|first = 5|' -e '/^\[run\]/a\
+output_every = 0.25\
+cfl = 0.45' -e '$a\
+[decomposition]\
+blocks = 3 3\
+kinds = EEEELEEEE'
+grep -q '"particles": [1-9]' "$out/jets_dd_2/summary.json" ||
+  fail "jets_dd: no particles"
 grep -q '"particles": [1-9]' "$out/jets_lag_2/summary.json" ||
   fail "jets_lag: no particles"
 grep -q '"outflow": \[0,' "$out/jets_lag_2/summary.json" &&
@@ -117,11 +131,13 @@ head -c 200 "$out/jets_upwind.ck" > "$out/cut.ck"
 refused jets_upwind_2 "damaged" -e "s|jets_upwind.ck|cut.ck|"
 refused jets_upwind_2 "another name" -e "/^restart = /p" \
   -e "s|^restart = |checkpoint = |"
-refused jets_upwind_0 "not yet for decomposition" \
-  -e 's|^method = .*|method = decomposition|' -e '/^\[run\]/a\
-checkpoint = x.ck' -e '$a\
-[decomposition]\
-kinds = EEEEEEEEE'
+refused jets_dd_2 "kinds = EEEEEEEEL here, EEEELEEEE in the checkpoint" \
+  -e 's|^kinds = .*|kinds = EEEEEEEEL|'
+refused jets_dd_2 "scheme = upwind here, muscl" -e 's|^scheme = .*|scheme = upwind|'
+refused jets_dd_2 "inject_time = 3 here, 2 in" -e '$a\
+[particles]\
+inject_time = 3'
+refused jets_dd_2 "not a pgd decomposition checkpoint" -e "s|jets_dd.ck|jets_lag.ck|"
 # [initial] has no effect on a restart: warned about
 sed -e '$a\
 [initial]\

@@ -239,6 +239,82 @@ START_TEST(lag_restart)
 }
 END_TEST
 
+/* ------------------------------------------------------------ decomposition */
+
+static void dd_steps(sb_pgd_dd *d, int k)
+{
+  for (int i = 0; i < k; i++)
+    ck_assert_int_eq(sb_pgd_dd_step(d, sb_pgd_dd_dt(d)), SB_SUCCESS);
+}
+
+static void same_dd(const sb_pgd_dd *g, const sb_pgd_dd *h)
+{
+  const sb_pgd_params *p = sb_pgd_dd_get_params(g);
+  const size_t n = p->nx * p->ny;
+  double *a = malloc(6 * n * sizeof *a), *b = a + 3 * n;
+  ck_assert_ptr_nonnull(a);
+  sb_pgd_dd_fields(g, a, a + n, a + 2 * n);
+  sb_pgd_dd_fields(h, b, b + n, b + 2 * n);
+  ck_assert(!memcmp(a, b, 3 * n * sizeof *a));
+  free(a);
+  double t1[3], t2[3];
+  sb_pgd_dd_totals(g, t1);
+  sb_pgd_dd_totals(h, t2);
+  ck_assert(!memcmp(t1, t2, sizeof t1));
+  ck_assert(sb_pgd_dd_time(g) == sb_pgd_dd_time(h));
+  ck_assert_uint_eq(sb_pgd_dd_steps(g), sb_pgd_dd_steps(h));
+  ck_assert_uint_eq(sb_pgd_dd_particles(g), sb_pgd_dd_particles(h));
+  for (int s = 0; s < 4; s++) {
+    double i1[3], o1[3], i2[3], o2[3];
+    sb_pgd_dd_side_totals(g, (sb_pgd_side)s, i1, o1);
+    sb_pgd_dd_side_totals(h, (sb_pgd_side)s, i2, o2);
+    ck_assert(!memcmp(i1, i2, sizeof i1) && !memcmp(o1, o2, sizeof o1));
+  }
+  ck_assert_int_eq(sb_pgd_dd_checkpoint_save(g, file("dg.ck")), SB_SUCCESS);
+  ck_assert_int_eq(sb_pgd_dd_checkpoint_save(h, file("dh.ck")), SB_SUCCESS);
+  same_files(file("dg.ck"), file("dh.ck"));
+}
+
+/* Euler-Lagrange decompositions of the jets, both schemes: particles
+ * made from Eulerian outflow, absorbed again, pending fluxes. */
+START_TEST(dd_restart)
+{
+  static const char *kinds[2] = {"EEEELEEEE", "LEEELELEE"};
+  sb_pgd_params p;
+  jets(&p, 15, _i ? SB_PGD_MUSCL : SB_PGD_UPWIND);
+  p.cfl = 0.45;
+  p.tau = 3;
+  p.rho_floor = 0.05;  /* fluxes towards particles wait (pending) */
+  for (int k = 0; k < 2; k++) {
+    sb_pgd_dd *g = sb_pgd_dd_alloc(&p, 3, 3, kinds[k]);
+    sb_pgd_dd *h = sb_pgd_dd_alloc(&p, 3, 3, kinds[k]);
+    ck_assert_ptr_nonnull(g);
+    dd_steps(g, 50);
+    dd_steps(h, 29);
+    ck_assert_uint_gt(sb_pgd_dd_particles(h), 0);
+    ck_assert_int_eq(sb_pgd_dd_checkpoint_save(h, file("d.ck")),
+                     SB_SUCCESS);
+    sb_pgd_dd_free(h);
+    int st = -1;
+    h = sb_pgd_dd_checkpoint_load(file("d.ck"), &st);
+    ck_assert_msg(h != NULL, "%s", sb_last_error());
+    ck_assert_int_eq(st, SB_SUCCESS);
+    char kk[16];
+    size_t px, py;
+    ck_assert_int_eq(sb_pgd_dd_layout(h, &px, &py, kk), SB_SUCCESS);
+    ck_assert(px == 3 && py == 3 && !strcmp(kk, kinds[k]));
+    dd_steps(h, 21);
+    same_dd(g, h);
+    const double t_end = sb_pgd_dd_time(g) + 0.2;
+    ck_assert_int_eq(sb_pgd_dd_advance(g, t_end, NULL), SB_SUCCESS);
+    ck_assert_int_eq(sb_pgd_dd_advance(h, t_end, NULL), SB_SUCCESS);
+    same_dd(g, h);
+    sb_pgd_dd_free(g);
+    sb_pgd_dd_free(h);
+  }
+}
+END_TEST
+
 /* ------------------------------------------------------------ gas callback */
 
 static void swirl(double x, double y, double ug[2], void *d)
@@ -308,6 +384,16 @@ static int load_solver(const char *path, void *ctx)
   sb_pgd *g = sb_pgd_checkpoint_load(path, &st);
   ck_assert((g != NULL) == (st == SB_SUCCESS));
   sb_pgd_free(g);
+  return st;
+}
+
+static int load_dd(const char *path, void *ctx)
+{
+  (void)ctx;
+  int st = -1;
+  sb_pgd_dd *d = sb_pgd_dd_checkpoint_load(path, &st);
+  ck_assert((d != NULL) == (st == SB_SUCCESS));
+  sb_pgd_dd_free(d);
   return st;
 }
 
@@ -444,6 +530,29 @@ START_TEST(errors)
   expect(load_solver, file("l.ck"), SB_EFORMAT, "not a pgd solver");
   damaged(file("e.ck"), load_solver);
   damaged(file("l.ck"), load_lag);
+  /* the decomposition: one part only, not during a step, no callback */
+  sb_pgd_dd *d = sb_pgd_dd_alloc(&p, 3, 3, "EELLEEEEE");
+  for (int k = 0; k < 8; k++)
+    ck_assert_int_eq(sb_pgd_dd_step(d, sb_pgd_dd_dt(d)), SB_SUCCESS);
+  ck_assert_int_eq(sb_pgd_dd_checkpoint_save(d, file("d.ck")), SB_SUCCESS);
+  damaged(file("d.ck"), load_dd);
+  expect(load_dd, file("e.ck"), SB_EFORMAT, "not a pgd decomposition");
+  ck_assert_int_eq(sb_pgd_dd_begin(d, sb_pgd_dd_dt(d), INFINITY),
+                   SB_SUCCESS);
+  ck_assert_int_eq(sb_pgd_dd_checkpoint_save(d, file("x.ck")), SB_EINVAL);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "under way"));
+  sb_pgd_dd_free(d);
+  const int owner[9] = {0, 0, 0, 0, 1, 1, 1, 1, 1};
+  d = sb_pgd_dd_alloc_part(&p, 3, 3, "EELLEEEEE", owner, 2, 0);
+  ck_assert_int_eq(sb_pgd_dd_checkpoint_save(d, file("x.ck")), SB_EINVAL);
+  sb_pgd_dd_free(d);
+  double amp = 0.5;
+  p.gas = swirl;
+  p.gas_data = &amp;
+  d = sb_pgd_dd_alloc(&p, 3, 3, "EELLEEEEE");
+  ck_assert_int_eq(sb_pgd_dd_checkpoint_save(d, file("x.ck")), SB_EINVAL);
+  ck_assert_int_eq(sb_pgd_dd_checkpoint_save(NULL, file("x.ck")), SB_EINVAL);
+  sb_pgd_dd_free(d);
   ck_assert_int_eq(sb_pgd_set_gas(NULL, NULL, NULL), SB_EINVAL);
   ck_assert_int_eq(sb_pgd_lag_set_gas(NULL, NULL, NULL), SB_EINVAL);
   sb_pgd_free(g);
@@ -460,6 +569,7 @@ Suite *suite(void)
   tcase_add_loop_test(tc, solver_restart_2d, 0, 2);
   tcase_add_loop_test(tc, solver_restart_1d, 0, 2);
   tcase_add_test(tc, lag_restart);
+  tcase_add_loop_test(tc, dd_restart, 0, 2);
   tcase_add_test(tc, gas_callback);
   tcase_add_test(tc, errors);
   suite_add_tcase(s, tc);

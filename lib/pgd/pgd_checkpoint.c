@@ -1,10 +1,11 @@
-/* pgd_checkpoint.c — save and restore the Eulerian solver (sb_pgd) and the
- * Lagrangian particles (sb_pgd_lag) so that a restored run continues bit
- * for bit as the run that was not stopped.
+/* pgd_checkpoint.c — save and restore the Eulerian solver (sb_pgd), the
+ * Lagrangian particles (sb_pgd_lag) and a one-part domain decomposition
+ * (sb_pgd_dd) so that a restored run continues bit for bit as the run
+ * that was not stopped.
  *
  * Format (native binary, in the style of the engine's checkpoint,
- * engine_checkpoint.c): the 8-byte magic "SBPGDE01" (solver) or
- * "SBPGDL01" (particles), three bytes with the sizes of double, size_t
+ * engine_checkpoint.c): the 8-byte magic "SBPGDE01" (solver),
+ * "SBPGDL01" (particles) or "SBPGDD01" (decomposition), three bytes with the sizes of double, size_t
  * and int of the build that wrote it, the parameters field by field in
  * fixed-width types (int32 for enums and flags, uint64 for counts), then
  * the state, then the FNV-1a hash of every byte before it
@@ -20,7 +21,11 @@
  *     flag, the boundary budget (in and out, 4 sides x 3), the number of
  *     padded cells and the padded rho, rho ux, rho uy (ghosts included);
  *   particles: t, steps, the budget, the number of particles and each
- *     (w, x[2], v[2]).
+ *     (w, x[2], v[2]);
+ *   decomposition: px, py, the kinds (px py bytes), t, steps, the
+ *     budget, then per block an Eulerian block's solver state (as above)
+ *     and its pending fluxes towards Lagrangian neighbours, or a
+ *     Lagrangian block's particles (as above).
  *
  * The gas callback (a function pointer) cannot be saved: a solver or
  * particles loaded from a checkpoint saved with one refuse to step until
@@ -35,9 +40,11 @@
 #include <smolbridge/pgd.h>
 #include "common/internal.h"
 #include "pgd_internal.h"
+#include "pgd_dd_internal.h"
 
 static const char MAGIC_E[8] = {'S', 'B', 'P', 'G', 'D', 'E', '0', '1'};
 static const char MAGIC_L[8] = {'S', 'B', 'P', 'G', 'D', 'L', '0', '1'};
+static const char MAGIC_D[8] = {'S', 'B', 'P', 'G', 'D', 'D', '0', '1'};
 static const unsigned char SIZES[3] = {sizeof(double), sizeof(size_t),
                                        sizeof(int)};
 
@@ -438,3 +445,188 @@ const sb_pgd_params *sb_pgd_lag_get_params(const sb_pgd_lag *l)
 }
 
 size_t sb_pgd_lag_steps(const sb_pgd_lag *l) { return l ? l->steps : 0; }
+
+/* ------------------------------------------------ the decomposition */
+
+/* The state of an Eulerian solver (as in sb_pgd_checkpoint_save, without
+ * the parameters, which are the block's). */
+static int write_grid(FILE *f, const struct sb_pgd *g)
+{
+  const size_t n = g->sx * g->sy;
+  return w_dbl(f, &g->t, 1) && w_u64(f, g->steps) &&
+         w_dbl(f, &g->speed, 1) && w_i32(f, g->speed_ok) &&
+         w_i32(f, g->empty) && write_budget(f, &g->bud) && w_u64(f, n) &&
+         w_dbl(f, g->rho, n) && w_dbl(f, g->qx, n) && w_dbl(f, g->qy, n);
+}
+
+static int read_grid(FILE *f, struct sb_pgd *g)
+{
+  uint64_t steps, n;
+  int speed_ok, empty;
+  const size_t want = g->sx * g->sy;
+  if (!r_dbl(f, &g->t, 1) || !r_u64(f, &steps) || !r_dbl(f, &g->speed, 1) ||
+      !r_i32(f, &speed_ok) || !r_i32(f, &empty) || !read_budget(f, &g->bud) ||
+      !r_u64(f, &n) || n != want || !r_dbl(f, g->rho, want) ||
+      !r_dbl(f, g->qx, want) || !r_dbl(f, g->qy, want) ||
+      (speed_ok != 0 && speed_ok != 1) || (empty != 0 && empty != 1))
+    return 0;
+  g->steps = (size_t)steps;
+  g->speed_ok = speed_ok;
+  g->empty = empty;
+  return 1;
+}
+
+static int write_parts(FILE *f, const sbi_parts *a)
+{
+  int ok = w_u64(f, a->n);
+  for (size_t k = 0; k < a->n && ok; k++) {
+    const sb_pgd_particle *q = &a->q[k];
+    ok = w_dbl(f, &q->w, 1) && w_dbl(f, q->x, 2) && w_dbl(f, q->v, 2);
+  }
+  return ok;
+}
+
+int sb_pgd_dd_checkpoint_save(const sb_pgd_dd *d, const char *path)
+{
+  if (!d || !path)
+    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+  if (d->nparts > 1)
+    return sbi_error(SB_EINVAL, __func__, "part %d of %d: checkpoints of a "
+                     "decomposition are saved from a one-part run",
+                     d->part, d->nparts);
+  if (d->phase != SBI_DD_IDLE)
+    return sbi_error(SB_EINVAL, __func__, "a step is under way");
+  if (d->p.gas)
+    return sbi_error(SB_EINVAL, __func__, "a decomposition with a gas "
+                     "velocity callback cannot be saved (not done yet)");
+  sbi_hsave hs;
+  FILE *f = sbi_hsave_begin(&hs, __func__);
+  if (!f)
+    return SB_ENOMEM;
+  int ok = write_params(f, MAGIC_D, &d->p, 0, 0) && w_u64(f, d->px) &&
+           w_u64(f, d->py);
+  for (size_t k = 0; k < d->nblocks && ok; k++)
+    ok = fwrite(&d->b[k].kind, 1, 1, f) == 1;
+  ok = ok && w_dbl(f, &d->t, 1) && w_u64(f, d->steps) &&
+       write_budget(f, &d->bud);
+  for (size_t k = 0; k < d->nblocks && ok; k++) {
+    const dd_block *b = &d->b[k];
+    if (b->kind == 'L') {
+      ok = write_parts(f, &b->parts);
+      continue;
+    }
+    ok = write_grid(f, b->e);
+    for (int s = 0; s < 4 && ok; s++)
+      if (b->pend[s])
+        ok = w_dbl(f, b->pend[s], 3 * b->e->nb[s]);
+  }
+  return sbi_hsave_finish(&hs, ok, path, __func__);
+}
+
+sb_pgd_dd *sb_pgd_dd_checkpoint_load(const char *path, int *status)
+{
+  int dummy;
+  if (!status)
+    status = &dummy;
+  char *mem = NULL;
+  FILE *f = open_ck(path, MAGIC_D, "pgd decomposition checkpoint "
+                    "(sb_pgd_dd)", &mem, __func__, status);
+  if (!f)
+    return NULL;
+  sb_pgd_dd *d = NULL;
+  char *kinds = NULL;
+  sb_pgd_params p;
+  int set;
+  uint64_t print, steps;
+  size_t px, py;
+  *status = read_params(f, path, __func__, &p, &set, &print);
+  if (*status)
+    goto out;
+  if (!r_size(f, &px) || !r_size(f, &py) || px < 1 || py < 1 ||
+      px > 4096 || py > 4096) {
+    *status = sbi_error(SB_EFORMAT, __func__, "'%s': not a valid pgd "
+                        "decomposition checkpoint (blocks)", path);
+    goto out;
+  }
+  kinds = calloc(px * py + 1, 1);
+  if (!kinds) {
+    *status = sbi_error(SB_ENOMEM, __func__, "out of memory");
+    goto out;
+  }
+  if (fread(kinds, 1, px * py, f) != px * py) {
+    *status = sbi_error(SB_EFORMAT, __func__, "'%s': not a valid pgd "
+                        "decomposition checkpoint (blocks)", path);
+    goto out;
+  }
+  d = sb_pgd_dd_alloc(&p, px, py, kinds);
+  if (!d) {
+    *status = sbi_error(sb_last_status() == SB_ENOMEM ? SB_ENOMEM
+                                                       : SB_EFORMAT,
+                        __func__, "'%s': %s", path, sb_last_error());
+    goto out;
+  }
+  int ok = r_dbl(f, &d->t, 1) && r_u64(f, &steps) &&
+           read_budget(f, &d->bud) && isfinite(d->t) && set == 0;
+  for (size_t k = 0; k < d->nblocks && ok; k++) {
+    dd_block *b = &d->b[k];
+    if (b->kind == 'L') {
+      size_t n = 0;
+      ok = r_size(f, &n);
+      for (size_t m = 0; m < n && ok; m++) {
+        sb_pgd_particle q;
+        ok = r_dbl(f, &q.w, 1) && r_dbl(f, q.x, 2) && r_dbl(f, q.v, 2);
+        if (ok && sbi_parts_push(&b->parts, &q)) {
+          *status = sbi_error(SB_ENOMEM, __func__, "out of memory");
+          goto out;
+        }
+      }
+      continue;
+    }
+    ok = read_grid(f, b->e);
+    for (int s = 0; s < 4 && ok; s++)
+      if (b->pend[s])
+        ok = r_dbl(f, b->pend[s], 3 * b->e->nb[s]);
+  }
+  if (!ok || fgetc(f) != EOF) {
+    *status = sbi_error(SB_EFORMAT, __func__, "'%s': not a valid pgd "
+                        "decomposition checkpoint (its state does not fit "
+                        "its parameters, or data after the end)", path);
+    goto out;
+  }
+  d->steps = (size_t)steps;
+  free(kinds);
+  fclose(f);
+  free(mem);
+  *status = SB_SUCCESS;
+  return d;
+out:
+  sb_pgd_dd_free(d);
+  free(kinds);
+  fclose(f);
+  free(mem);
+  return NULL;
+}
+
+size_t sb_pgd_dd_steps(const sb_pgd_dd *d) { return d ? d->steps : 0; }
+
+int sb_pgd_dd_layout(const sb_pgd_dd *d, size_t *px, size_t *py,
+                     char *kinds)
+{
+  if (!d)
+    return sbi_error(SB_EINVAL, __func__, "NULL decomposition");
+  if (px)
+    *px = d->px;
+  if (py)
+    *py = d->py;
+  if (kinds) {
+    for (size_t k = 0; k < d->nblocks; k++)
+      kinds[k] = d->b[k].kind;
+    kinds[d->nblocks] = 0;
+  }
+  return SB_SUCCESS;
+}
+
+const sb_pgd_params *sb_pgd_dd_get_params(const sb_pgd_dd *d)
+{
+  return d ? &d->p : NULL;
+}

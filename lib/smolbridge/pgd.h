@@ -439,6 +439,24 @@ void sb_pgd_dd_side_totals(const sb_pgd_dd *d, sb_pgd_side s, double in[3],
                            double out[3]);
 size_t sb_pgd_dd_particles(const sb_pgd_dd *d);
 
+/** Checkpoints of a one-part decomposition, as sb_pgd_checkpoint_save /
+ *  _load (magic "SBPGDD01"): the parameters, blocks and kinds, time,
+ *  steps and budget, and every block's state (an Eulerian block's fields
+ *  and the fluxes it has not yet turned into particles, a Lagrangian
+ *  block's particles in order), so that the run goes on bit for bit.
+ *  Save: SB_EINVAL for a part of a run on several parts (nparts > 1),
+ *  during a step, or with a gas velocity callback (not done yet).  The
+ *  loaded decomposition is a one-part one. */
+int sb_pgd_dd_checkpoint_save(const sb_pgd_dd *d, const char *path);
+sb_pgd_dd *sb_pgd_dd_checkpoint_load(const char *path, int *status);
+/** Its time in steps, and the blocks' layout (px, py; kinds: px py
+ *  letters and a 0, in a buffer of at least px py + 1 chars; any pointer
+ *  may be NULL). */
+size_t sb_pgd_dd_steps(const sb_pgd_dd *d);
+int sb_pgd_dd_layout(const sb_pgd_dd *d, size_t *px, size_t *py,
+                     char *kinds);
+const sb_pgd_params *sb_pgd_dd_get_params(const sb_pgd_dd *d);
+
 /* ---- the blocks shared between processes (parts)
  *
  * For several processes (MPI ranks in the command), each process holds one
