@@ -450,6 +450,20 @@ static void warn_unused(config *c)
 
 /* ------------------------------------------------------------ helpers */
 
+/* Whether path can be written (a file it creates is removed again). */
+static int writable(const char *path)
+{
+  struct stat st;
+  const int existed = stat(path, &st) == 0;
+  FILE *f = fopen(path, "ab");
+  if (!f)
+    return 0;
+  fclose(f);
+  if (!existed)
+    remove(path);
+  return 1;
+}
+
 /* Remove the files a previous run may have left (ours only). */
 static void clean_outputs(const char *dir)
 {
@@ -859,6 +873,16 @@ int sbc_pgd_main(int argc, char **argv)
     sb_pgd_lag_free(l);
     sb_pgd_dd_free(d);
     return 1;
+  }
+  /* the checkpoint path, before the run (as collide), and before the
+   * previous run's files go: an input error leaves them */
+  if (rank == 0 && c.checkpoint[0] && !writable(c.checkpoint)) {
+    fprintf(stderr, "pgd: %s: [run] checkpoint = %s: not writable: %s\n",
+            file, c.checkpoint, strerror(errno));
+    sb_pgd_free(g);
+    sb_pgd_lag_free(l);
+    sb_pgd_dd_free(d);
+    return 2;
   }
   if (rank == 0)
     clean_outputs(c.output);
