@@ -12,7 +12,8 @@
 # detector's reach under the checkpoint's gravity; and the points of
 # a sweep each write their own checkpoint; and a restart changes the
 # walls' settings and the Lees-Edwards images only where its file says
-# so, and checks its keys against the fluid the checkpoint keeps.
+# so, and checks its keys against the fluid the checkpoint keeps, and
+# [observe] exits and count_variance against its dim and walls.
 set -u
 sb="${top_builddir:-.}/smolbridge"
 ex="${srcdir:-.}/examples"
@@ -267,6 +268,86 @@ $(grep -v warning "$out/bad.log" | head -1)"
   --set "run.restart=$out/fills.ck" > "$out/bad.log" 2>&1 ||
   fail "fills: [fluid] g of 2 numbers on a 2-D restart with dim = 3: \
 $(grep -v warning "$out/bad.log" | head -1)"
+
+# [observe] exits and count_variance on restart see the checkpoint's dim
+# and the walls it keeps, not the file's: a file without [walls] keeps
+# the checkpoint's open x faces (exits was warned as ignored, with "no
+# [walls] face is open", and count_variance not warned of an open face),
+# and a file with dim = 3 and open z faces on a periodic 2-D checkpoint
+# has no open face (exits was not warned as ignored, count_variance was
+# warned of an open face).  The restart warns as the run in one go does,
+# its exits.csv continues that of the first part and its tally is the
+# run in one go's.
+cat > "$out/exits.ini" <<EOF
+[run]
+seed = 4
+dim = 2
+L = 2e-5
+dt = 1e-5
+steps = 400
+detect = ballistic
+outcome = count
+[walls]
+x_lo = open
+x_hi = open
+[species a]
+radius = 2e-7
+density = 1000
+tau = inf
+T = 300
+count = 300
+[observe]
+exits = yes
+count_variance = yes
+EOF
+sed '/^\[walls\]/,/^x_hi/d' "$out/exits.ini" > "$out/exits_nowalls.ini"
+# observed NAME: the warnings of NAME_0 and NAME_2 about exits and
+# count_variance (without the file and line) are the same
+observed() {
+  "$py" - "$out/${1}_0/summary.json" "$out/${1}_2/summary.json" <<'PY' ||
+import json, re, sys
+w = [sorted(re.sub(r"^[^:]*:\d+: ", "", m)
+            for m in json.load(open(p))["warnings"]
+            if "[observe] exits" in m or "count_variance" in m)
+     for p in sys.argv[1:3]]
+if w[0] != w[1]:
+    print("  in one go: %s\n  restart:   %s" % tuple(w))
+sys.exit(0 if w[0] == w[1] else 1)
+PY
+    fail "$1: the restart's warnings about [observe] exits and count_variance differ from the run in one go's"
+}
+for ws in "" "--set walls.x_lo=periodic --set walls.x_hi=periodic"; do
+  name=exits${ws:+p}
+  # shellcheck disable=SC2086  # $ws: options
+  if ! "$sb" collide "$out/exits.ini" $ws --set "run.output=$out/${name}_0" \
+         > /dev/null 2>&1 ||
+     ! "$sb" collide "$out/exits.ini" $ws --set "run.output=$out/${name}_1" \
+         --set run.steps=200 --set "run.checkpoint=$out/$name.ck" \
+         > /dev/null 2>&1; then
+    fail "$name: the run in one go or its first part"
+    continue
+  fi
+  if [ -z "$ws" ]; then  # the checkpoint's open x faces
+    rs=
+  else                   # dim = 3 (ignored) with z faces (ignored)
+    rs="--set run.dim=3 --set walls.z_lo=open --set walls.z_hi=open"
+  fi
+  # shellcheck disable=SC2086  # $rs: options
+  if "$sb" collide "$out/exits_nowalls.ini" $rs --set run.steps=200 \
+       --set "run.output=$out/${name}_2" --set "run.restart=$out/$name.ck" \
+       > "$out/bad.log" 2>&1; then
+    observed "$name"
+    same "$name" particles outflows pair_kernels pair_kernels.0.ncoll_var
+    { cat "$out/${name}_1/exits.csv"
+      tail -n +2 "$out/${name}_2/exits.csv"; } |
+      cmp -s - "$out/${name}_0/exits.csv" ||
+      fail "$name: exits.csv of the two parts differs from the run in one go's"
+  else
+    fail "$name: the restart: $(grep -v warning "$out/bad.log" | head -1)"
+  fi
+done
+[ "$(wc -l < "$out/exits_0/exits.csv")" -gt 100 ] ||
+  fail "exits: fewer than 100 exits in the run in one go"
 
 # first-contact counting with the recorded velocities (CHECKPOINT.firsthit
 # and .contacts): the first-contact results and contacts.csv

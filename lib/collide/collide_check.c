@@ -270,6 +270,36 @@ static void check_inert(sbi_col_config *c)
            "([species] drag)");
 }
 
+/* [observe] exits without an open face, and count_variance with what
+ * changes the population (the tally's variance is that of a fixed
+ * population, docs/engine.md §6).  The faces are the run's: a 2-D box's
+ * z faces are periodic by now, and on restart the walls are the
+ * checkpoint's where the file gives none (restart_box in
+ * collide_setup.c). */
+static void check_open(sbi_col_config *c)
+{
+  int open = 0;
+  for (int f = 0; f < 6; f++)
+    open |= !strcmp(c->wall[f], "open");
+  if (c->exits > 0 && !open)
+    unused(c, "observe", "exits", "no [walls] face is open");
+  if (c->count_variance > 0) {
+    int inflow = 0;
+    for (int k = 0; k < c->nsp; k++)
+      inflow |= c->sp[k].inflow[0] != 0;
+    const char *why = !strcmp(c->outcome, "reinsert") ? "outcome = reinsert"
+                      : sbi_col_agglo(c)             ? "merging"
+                      : inflow                       ? "an inflow"
+                      : open                         ? "an open face"
+                                                     : NULL;
+    if (why)
+      sbi_col_warn(c, "%s: [observe] count_variance with %s: its variance "
+                   "assumes a fixed population of particles, so the "
+                   "dispersion and the widened interval are approximate",
+                   sbi_col_where(c, "observe", "count_variance"), why);
+  }
+}
+
 int sbi_col_dim_check(sbi_col_config *c)
 {
   /* U of the checkpoint's field (restart without [fluid] type) is
@@ -312,6 +342,7 @@ int sbi_col_dim_check(sbi_col_config *c)
    * the checkpoint's, which [fluid] type = shear meets here */
   if (c->restart[0] && (walls_lees(c, 0) || walls_lees(c, 1)))
     return -1;
+  check_open(c);
   /* the Kraichnan field: 3-D, periodic in a cube (on restart the
    * checkpoint's box; sb_field_kraichnan_load) */
   if (!strcmp(c->fluid, "kraichnan")) {
@@ -519,32 +550,8 @@ int sbi_col_check(sbi_col_config *c)
   /* its number of values: sbi_col_dim_check */
   if (!c->ngrid)
     unused(c, "observe", "grid_scheme", "no [observe] grid");
-  /* the faces of the box: a new 2-D run's z faces are not (made
-   * periodic later, by sbi_col_dim_check); on restart the checkpoint's
-   * dim is not read yet */
-  int open = 0;
-  const int nface = c->restart[0] || c->dim != 2 ? 6 : 4;
-  for (int f = 0; f < nface; f++)
-    open |= !strcmp(c->wall[f], "open");
-  if (c->exits > 0 && !open)
-    unused(c, "observe", "exits", "no [walls] face is open");
-  /* the tally's variance is that of a fixed population (docs/engine.md
-   * §6): say so where particles are replaced, merged, enter or leave */
-  if (c->count_variance > 0) {
-    int inflow = 0;
-    for (int k = 0; k < c->nsp; k++)
-      inflow |= c->sp[k].inflow[0] != 0;
-    const char *why = !strcmp(c->outcome, "reinsert") ? "outcome = reinsert"
-                      : sbi_col_agglo(c)             ? "merging"
-                      : inflow                       ? "an inflow"
-                      : open                         ? "an open face"
-                                                     : NULL;
-    if (why)
-      sbi_col_warn(c, "%s: [observe] count_variance with %s: its variance "
-                   "assumes a fixed population of particles, so the "
-                   "dispersion and the widened interval are approximate",
-                   sbi_col_where(c, "observe", "count_variance"), why);
-  }
+  /* [observe] exits and count_variance against the open faces:
+   * sbi_col_dim_check (on restart the checkpoint's dim and walls) */
   if (c->hit_times && !bridge)
     return sbi_col_fail(c, "%s: [observe] hit_times records bridge hits: "
                         "needs detect = bridge or exact",
