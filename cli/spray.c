@@ -721,6 +721,13 @@ int sbc_spray_main(int argc, char **argv)
     fail(&c, "[%s] has no keys: a population needs count and radius (m)",
          ksec);
   }
+  /* a [check] header alone checks nothing: a key left out, most likely */
+  if (!c.nerr && !rst && sbc_ini_keyless(&c.once, "check", &ksec, &kwhere)) {
+    snprintf(c.err_where, sizeof c.err_where, "%s", kwhere);
+    fail(&c, "[check] has no keys: it checks nothing; valid keys: bkw = 1 "
+         "(compare E|v|^4 with the BKW solution), nse (its tolerance in "
+         "standard errors, default 5); or leave the section out");
+  }
   if (!c.nerr && !rst)
     warn_unused(&c);
   sbc_ini_once_free(&c.once);

@@ -62,10 +62,14 @@ for c in "key twice|[run]\nvolume = 1\ndt = 1\nsteps = 2\ndt = 2\n$pop|twice.ini
 done
 # an unknown section is an error naming it, also without keys under it
 # (a misspelt [reitz] would otherwise leave its model out silently); so is
-# a [droplets NAME] header without keys (it would add no population)
+# a [droplets NAME] header without keys (it would add no population), and
+# a [check] header without keys (it checked nothing, silently), naming
+# the keys it takes
 for c in "unknown section|[run]\nvolume = 1\ndt = 1\nsteps = 2\n${pop}[bogus]\nx = 1\n|sect.ini:8: unknown section [bogus] (valid: run," \
          "empty unknown section|[run]\nvolume = 1\ndt = 1\nsteps = 2\n${pop}[reiz]\n|sect.ini:8: unknown section [reiz] (valid: run," \
-         "empty droplets|[run]\nvolume = 1\ndt = 1\nsteps = 2\n${pop}[droplets b]\n|sect.ini:8: [droplets b] has no keys: a population needs count and radius (m)"; do
+         "empty droplets|[run]\nvolume = 1\ndt = 1\nsteps = 2\n${pop}[droplets b]\n|sect.ini:8: [droplets b] has no keys: a population needs count and radius (m)" \
+         "empty check|[run]\nvolume = 1\ndt = 1\nsteps = 2\n${pop}[check]\n|sect.ini:8: [check] has no keys: it checks nothing; valid keys: bkw = 1" \
+         "empty check, keys after|[run]\nvolume = 1\ndt = 1\nsteps = 2\n[check]\n${pop}|sect.ini:5: [check] has no keys" ; do
   name=${c%%|*}; rest=${c#*|}; ini=${rest%|*}; want=${rest##*|}
   printf "$ini" > "$out/sect.ini"
   msg=$("$sb" spray "$out/sect.ini" 2>&1 >/dev/null)
