@@ -8,8 +8,9 @@
 # its message for an unknown section or key (each of which is then checked
 # to be accepted).  Also: the ranges of numeric options, pbe's kernels
 # and parameters, the number of named sections each reader takes, the
-# functions docs/langevin.md says eval has; every `smolbridge eval`
-# command quoted in docs/ runs.
+# functions docs/langevin.md says eval has, the kinds of the expect lines
+# validate --write-ini writes; every `smolbridge eval` command quoted in
+# docs/ runs.
 set -u
 sb="${top_builddir:-.}/smolbridge"
 src="${srcdir:-.}"
@@ -146,6 +147,23 @@ done | grep FAIL && fails=$((fails + 1))
 cat "$out/doc_cases" "$out/no_ini" | sort -u | comm -13 - "$out/cases" |
   while read -r n; do echo "FAIL: docs/validation.md does not say whether $n has files"; done |
   grep FAIL && fails=$((fails + 1))
+
+# the kinds of the "; expect" lines --write-ini writes (the literal kinds
+# lib/validate passes to expect_line and sbv_ini_expect_stat): each in the
+# man page's --write-ini item and in docs/validation.md
+grep -ho '\(expect_line\|sbv_ini_expect_stat\)(rep, "expect[-a-z0-9]*"' \
+  "$src"/lib/validate/*.c | sed 's/.*"\(.*\)"/\1/' | sort -u > "$out/kinds"
+[ "$(wc -l < "$out/kinds")" -ge 2 ] ||
+  fail "no expect kinds found in lib/validate/*.c"
+awk '/^\.TP/ { on = 0 } /^\.B(I)? --write-ini/ { on = 1 } on' \
+  "$out/man.txt" > "$out/writeini.txt"
+[ -s "$out/writeini.txt" ] || fail "docs/smolbridge.1: no --write-ini item"
+while read -r k; do
+  has_opt "$out/writeini.txt" "$k" ||
+    fail "the '; $k' lines of --write-ini are not in docs/smolbridge.1 (--write-ini)"
+  has_opt "$src/docs/validation.md" "$k" ||
+    fail "the '; $k' lines of --write-ini are not in docs/validation.md"
+done < "$out/kinds"
 
 # the commands and options of main.c: in `smolbridge --help`; the commands
 # in the man page's synopsis and a subsection each, the options in its
