@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """Engine kernel vs the continuum Brownian kernel from Python (docs/python.md):
 first-contact counting with the Bessel-3 bridge detector for three
 diameters; writes kernel.png."""

@@ -9,8 +9,9 @@
 # to be accepted).  Also: the ranges of numeric options, pbe's kernels
 # and parameters, the number of named sections each reader takes, the
 # functions docs/langevin.md says eval has, the kinds of the expect lines
-# validate --write-ini writes; every `smolbridge eval` command quoted in
-# docs/ runs.
+# validate --write-ini writes; the links of the installed pages, and the
+# scripts they name installed executable; every `smolbridge eval` command
+# quoted in docs/ runs.
 set -u
 sb="${top_builddir:-.}/smolbridge"
 src="${srcdir:-.}"
@@ -187,10 +188,17 @@ done
 # guidedir, README.md and NEWS in docdir, examples/ in exampledir, the
 # layout of the source tree): every relative link of an installed page
 # names an installed file
-sed -e ':a' -e '/\\$/{N; s/\\\n//; ba' -e '}' "$src/Makefile.am" |
-  sed -n 's/^dist_\(guide\|doc\|example\)_DATA *= *//p' | tr -s ' \t' '\n\n' |
-  grep -v '^$' | sort -u > "$out/installed"
-[ -s "$out/installed" ] || fail "Makefile.am: no dist_guide_DATA"
+# (the scripts among them executable: dist_*_SCRIPTS)
+sed -e ':a' -e '/\\$/{N; s/\\\n//; ba' -e '}' "$src/Makefile.am" \
+  > "$out/Makefile.am"
+installed_as() {  # installed_as DATA|SCRIPTS: the files, one a line
+  sed -n "s/^dist_\\(guide\\|doc\\|example\\)_$1 *= *//p" "$out/Makefile.am" |
+    tr -s ' \t' '\n\n' | grep -v '^$' | sort -u
+}
+installed_as DATA > "$out/installed.data"
+installed_as SCRIPTS > "$out/installed.scripts"
+sort -u "$out/installed.data" "$out/installed.scripts" > "$out/installed"
+[ -s "$out/installed.data" ] || fail "Makefile.am: no dist_guide_DATA"
 grep '\.md$' "$out/installed" | while read -r page; do
   d=$(dirname "$page")
   grep -oE '\]\([A-Za-z0-9_./-]+(#[^)]*)?\)' "$src/$page" |
@@ -206,6 +214,38 @@ grep '\.md$' "$out/installed" | while read -r page; do
         echo "FAIL: $page links to $t, which make install does not put beside it ($p)"
     done
 done | grep FAIL && fails=$((fails + 1))
+
+# the scripts an installed page names in the guide's or the examples'
+# directory (docs/X.py, examples/X.py, or a link to one): each is installed
+# as a script (dist_*_SCRIPTS: mode 755), starts with #! and is executable,
+# unless the page's paragraph says it is in the source tree (a script that
+# rewrites the source's pages or imports its tests/); and no file installed
+# as data (mode 644) is a script
+grep '\.md$' "$out/installed" | while read -r page; do
+  awk -v RS= -v p="$page" '{  # paragraph by paragraph
+      t = $0; gsub(/[ \t]*\n[ \t]*/, " ", t)
+      src = index(t, "source tree") > 0
+      while (match(t, /[A-Za-z0-9_.\/-]*[A-Za-z0-9_-]\.(py|sh)([^A-Za-z0-9_]|$)/)) {
+        m = substr(t, RSTART, RLENGTH); t = substr(t, RSTART + RLENGTH)
+        sub(/[^A-Za-z0-9_]$/, "", m); print p "|" m "|" src } }' "$src/$page"
+done | sort -u | while IFS='|' read -r page m insrc; do
+  d=$(dirname "$page") f=
+  for c in "$d/$m" "$m"; do  # beside the page, or from the top
+    c=$(printf '%s\n' "$c" | sed -e 's|^\./||' -e 's|/\./|/|g')
+    [ -f "$src/$c" ] && { f=$c; break; }
+  done
+  case "$f" in docs/*|examples/*) ;; *) continue ;; esac
+  if grep -qxF "$f" "$out/installed.scripts"; then
+    head -c 2 "$src/$f" | grep -q '^#!' || echo "FAIL: $f is installed as a script but has no #! line"
+    [ -x "$src/$f" ] || echo "FAIL: $f is installed as a script but is not executable"
+  elif [ "$insrc" != 1 ]; then
+    echo "FAIL: $page names $m: $f is not installed as a script (dist_*_SCRIPTS), nor said to be in the source tree"
+  fi
+done | sort -u | grep FAIL && fails=$((fails + 1))
+while read -r f; do
+  head -c 2 "$src/$f" | grep -q '^#!' &&
+    echo "FAIL: $f is a script installed as data (mode 644): dist_*_SCRIPTS"
+done < "$out/installed.data" | grep FAIL && fails=$((fails + 1))
 
 # --- the ranges of numeric options: --help gives the one the parser
 # enforces (from its message for a value below it)
