@@ -18,7 +18,8 @@ exact value of that double.
 
 Precision per row (the passage and bridge files; settled()).  A row's
 values are computed at its base precision (60 digits; 200 for bridge_cross,
-40 for the bridge quantiles, 400 for the extreme corners) and again at 40
+its extreme corners included; 40 for the bridge quantiles; 400 for the
+extreme corners of the passage, bridge_hit and quantile files) and again at 40
 more digits; if any value differs by more than 1e-24 relative (or falls on
 the other side of the 1e-300 cut-off), the base precision is doubled and
 the comparison repeated.  The values written are those at the first
