@@ -19,7 +19,8 @@ exact value of that double.
 Precision per row (the passage and bridge files; settled()).  A row's
 values are computed at its base precision (60 digits; 200 for bridge_cross,
 its extreme corners included; 40 for the bridge quantiles; 400 for the
-extreme corners of the passage, bridge_hit and quantile files) and again at 40
+extreme corners of the passage, bridge_hit and quantile files; 1000 for
+the bridge_hit rows with positions near 2^1000 sqrt(sigma2 t)) and again at 40
 more digits; if any value differs by more than 1e-24 relative (or falls on
 the other side of the 1e-300 cut-off), the base precision is doubled and
 the comparison repeated.  The values written are those at the first
@@ -469,9 +470,16 @@ def hit_ref(kind, u, x, y, a, s2, t, w=None):
     return pdf, +cdf, +sf
 
 
+def cap(v):
+    """A density as written: inf above DBL_MAX (the C function returns
+    SB_ERANGE there; tests/data/README.md)."""
+    return mp.inf if v > sys.float_info.max else v
+
+
 def hit_row(kind, u, x, y, a, s2, t):
-    """pdf, cdf, sf (-1 below 1e-300) of a bridge_hit.csv row."""
-    return tuple(cut(v) for v in hit_ref(kind, u, x, y, a, s2, t))
+    """pdf, cdf, sf (-1 below 1e-300, inf above DBL_MAX) of a
+    bridge_hit.csv row."""
+    return tuple(cap(cut(v)) for v in hit_ref(kind, u, x, y, a, s2, t))
 
 
 HIT_BB = [(1.5, 1.3, 1.0, 1.0, 1.0), (2.0, 3.0, 1.0, 0.5, 2.0),
@@ -529,6 +537,26 @@ def gen_bridge_hit():
             (1, 0.5, 1e-10, 1e-10, 1e-320, 1e-6, 1.0)]:
         rows.append((kind, u, x, y, a, s2, t) + settled(
             lambda: hit_row(kind, u, x, y, a, s2, t), 400))
+    # positions beyond ~2^990 sqrt(sigma2 t), where bridge_hit.c's
+    # rescaling overflowed them (SB_EDOM) or its evaluation read
+    # sigma2 u t (t - u) below DBL_MIN as a law without mass below u; 1000
+    # digits: (alpha + L)^2/(2v) ~ 2^2100 has 632 digits before the point,
+    # and at 400 digits both precisions of settled() dropped the same
+    # exp(-c^2/2) from the density.  With a = 2^-51 (2^-350) the
+    # numerator L u - alpha (t - u) = a t/2 is all that is left of
+    # products near 2^1200: c = 1/sqrt 3 (2/sqrt 3), a normal cdf; the
+    # second set's density exceeds DBL_MAX (inf: SB_ERANGE).  x = 1e-300,
+    # y = 1e300, u = 1e-310: the law sits at u ~ 1e-600, cdf 1
+    for kind in (0, 1):
+        for (u, x, y, a, s2, t) in [
+                (2.0 ** 198, 2.0 ** 1000, 3 * 2.0 ** 1000, 2.0 ** -51,
+                 2.0 ** -300, 2.0 ** 200),
+                (0.25, 2.0 ** 1000, 3 * 2.0 ** 1000, 2.0 ** -350,
+                 2.0 ** -700, 1.0),
+                (1e-310, 1e-300, 1e300, 1e-301 if kind else 0.0, 1.0,
+                 1.0)]:
+            rows.append((kind, u, x, y, a, s2, t) + settled(
+                lambda: hit_row(kind, u, x, y, a, s2, t), 1000))
     write("bridge_hit.csv",
           ["kind", "u", "x", "y", "a", "sigma2", "t", "pdf", "cdf", "sf"],
           rows)

@@ -209,6 +209,11 @@ static void hit_table(const char *file)
       if (want < 0)
         continue;
       sb_result r;
+      if (isinf(want)) { /* a density above DBL_MAX */
+        ck_assert_int_eq(fn[k][j](u, x, y, a, s2, tt, &r), SB_ERANGE);
+        ck_assert(isnan(r.val));
+        continue;
+      }
       ck_assert_int_eq(fn[k][j](u, x, y, a, s2, tt, &r), SB_SUCCESS);
       char what[160];
       snprintf(what, sizeof what, "%s hit %s(u=%g; x=%g y=%g a=%g s2=%g "
@@ -640,6 +645,99 @@ START_TEST(test_hit_scale)
 }
 END_TEST
 
+/* Positions beyond ~2^990 sqrt(sigma2 t).  The rescaling to sigma2 t of
+ * order one overflowed them (SB_EDOM for every function), and sigma2 u t
+ * (t - u) below DBL_MIN was read as "no mass below u" (cdf 0 where the
+ * law sits at u ~ 1e-600).  The law of T is then a step at
+ * u* = t alpha/(alpha + |beta|) on the scale of the doubles (relative
+ * width ~ sqrt(v/(alpha |beta|)) < 1e-150 here), so by the definitions
+ * (conditioned on T <= t, not defective) cdf = 0 below u* and 1 above,
+ * sf = 1 - cdf, pdf 0 off u*; where u = u* exactly (c = 0) the cdf is
+ * Phi(0) = 1/2 up to exp(2 alpha |beta|/v) Phi(-2 sqrt(alpha |beta|/v))
+ * < 1e-400, and the density ~1e550 is SB_ERANGE.  Non-trivial values
+ * (mpmath at 1000 digits) are in bridge_hit.csv. */
+START_TEST(test_hit_overflow)
+{
+  typedef int (*hfe)(double, double, double, double, double, double,
+                     sb_result *);
+  static const hfe F[2][3] = {
+      {sb_bb_hit_pdf_e, sb_bb_hit_cdf_e, sb_bb_hit_sf_e},
+      {sb_bes3b_hit_pdf_e, sb_bes3b_hit_cdf_e, sb_bes3b_hit_sf_e}};
+  const double s2 = 1e-200, t = 1e-100; /* sqrt(v) = 1e-150, rescaled */
+  /* (u, x, y, a, pdf, cdf); pdf NaN: SB_ERANGE */
+  static const double rows[][6] = {
+      /* x far: u* = t (1 - 2.5e-451) */
+      {0.5e-100, 1e300, 0.5, 0.25, 0.0, 0.0},
+      {0.999999e-100, 1e300, 0.5, 0.25, 0.0, 0.0},
+      /* y far: u* = 7.5e-401 (sigma2 u t w underflows at u = 1e-300) */
+      {1e-300, 1.0, 1e300, 0.25, 0.0, 1.0},
+      {0.5e-100, 1.0, 1e300, 0.25, 0.0, 1.0},
+      /* both far: u* = t/2 */
+      {0.49e-100, 1e300, 1e300, 0.25, 0.0, 0.0},
+      {0.5e-100, 1e300, 1e300, 0.25, NAN, 0.5},
+      {0.51e-100, 1e300, 1e300, 0.25, 0.0, 1.0},
+      /* a above x: T = 0 */
+      {0.5e-100, 1e300, 1.0, 2e300, 0.0, 1.0}};
+  for (int b3 = 0; b3 < 2; b3++)
+    for (size_t i = 0; i < sizeof rows / sizeof rows[0]; i++) {
+      const double *r = rows[i];
+      sb_result res;
+      for (int j = 0; j < 3; j++) {
+        const double want = j == 0 ? r[4] : j == 1 ? r[5] : 1.0 - r[5];
+        const int st = F[b3][j](r[0], r[1], r[2], r[3], s2, t, &res);
+        if (isnan(want))
+          ck_assert_msg(st == SB_ERANGE && isnan(res.val),
+                        "b3 %d row %zu fn %d: %g status %d, want "
+                        "SB_ERANGE", b3, i, j, res.val, st);
+        else
+          ck_assert_msg(st == SB_SUCCESS && res.val == want,
+                        "b3 %d row %zu fn %d: %g status %d, want %g", b3, i,
+                        j, res.val, st, want);
+      }
+    }
+  /* BB with a level far below: u* = t/2 */
+  ck_assert(sb_bb_hit_cdf(0.5e-100, 1.0, 1.0, -1e300, s2, t) == 0.5);
+  ck_assert(sb_bb_hit_cdf(0.49e-100, 1.0, 1.0, -1e300, s2, t) == 0.0);
+  /* quantiles: the best doubles of the steps (u* = t: either neighbour of
+   * the step is as good for p = 0.5) */
+  typedef double (*qf)(double, double, double, double, double, double);
+  typedef double (*sf)(const gsl_rng *, double, double, double, double,
+                       double);
+  const qf Q[2] = {sb_bb_hit_quantile, sb_bes3b_hit_quantile};
+  const sf S[2] = {sb_bb_hit_sample, sb_bes3b_hit_sample};
+  gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
+  for (int b3 = 0; b3 < 2; b3++) {
+    double q = Q[b3](0.5, 1e300, 0.5, 0.25, s2, t);
+    ck_assert_msg(q == t || q == nextafter(t, 0.0), "b3 %d: q = %.17g", b3,
+                  q);
+    ck_assert(Q[b3](0.5, 1.0, 1e300, 0.25, s2, t) == 0.0);
+    ck_assert(Q[b3](0.5, 1e300, 1e300, 0.25, s2, t) == 0.5e-100);
+    ck_assert(Q[b3](0.5, 1e-300, 1e300, 1e-301, s2, t) == 0.0);
+    /* samples: the step's double (NaN with status 0 before where alpha t/L
+     * and alpha^2/sigma2 both underflowed: 0/0) */
+    for (int k = 0; k < 20; k++) {
+      sb_clear_error();
+      double d = S[b3](g, 1e300, 0.5, 0.25, s2, t);
+      ck_assert(d <= t && d >= nextafter(nextafter(t, 0.0), 0.0));
+      ck_assert(S[b3](g, 1.0, 1e300, 0.25, s2, t) == 0.0);
+      ck_assert(S[b3](g, 1e-300, 1e300, 1e-301, 1.0, 1.0) == 0.0);
+      d = S[b3](g, 1e300, 1e300, 0.25, s2, t);
+      ck_assert(fabs(d - 0.5e-100) <= 2e-116);
+      ck_assert_int_eq(sb_last_status(), SB_SUCCESS);
+    }
+  }
+  gsl_rng_free(g);
+  /* the B3B density where 2ay/(sigma2 (t - u)) underflows (min(a, y)
+   * ~1e-300 against x = 1e298, not rescaled): 0, was NaN (0 * inf) with
+   * status 0 */
+  sb_result res;
+  ck_assert_int_eq(sb_bes3b_hit_pdf_e(0.5, 1e298, 1e-300, 1e-301, 1e-180,
+                                      1.0, &res),
+                   SB_SUCCESS);
+  ck_assert(res.val == 0.0);
+}
+END_TEST
+
 START_TEST(test_hit_special)
 {
   gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
@@ -963,6 +1061,7 @@ static Suite *bridge_suite(void)
   tcase_add_test(tc, test_quantile_best_double);
   tcase_add_test(tc, test_hit_scale);
   tcase_add_test(tc, test_hit_special);
+  tcase_add_test(tc, test_hit_overflow);
   tcase_add_test(tc, test_extreme_arguments);
   tcase_add_test(tc, test_bad_input);
   tcase_set_timeout(tc, 30);

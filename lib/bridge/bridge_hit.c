@@ -22,6 +22,7 @@
  *   Gauss-Legendre quadrature (Gauss-Kronrod if needed).
  */
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
@@ -57,8 +58,10 @@ typedef struct {
 /* One evaluation time u in (0, t), with w = t - u. */
 typedef struct {
   double u;
-  sbi_dd w, den; /* den = sigma2 u t w */
-  double q;      /* sqrt(den) */
+  sbi_dd w, den; /* den 2^(-2k) = sigma2 u t w */
+  int k;         /* 0 unless sigma2 u t w is below 2^-900 */
+  double q;      /* sqrt(sigma2 u t w) (subnormal or 0 if it underflows) */
+  sbi_xd qx;     /* the same with an extended exponent */
 } hit_time;
 
 /* ------------------------------------------------------------ set-up */
@@ -147,14 +150,49 @@ static int hit_setup(const char *fn, int b3, double x, double y, double a,
   return SB_SUCCESS;
 }
 
+/* The variance sigma2 u t w in double-double where it is within
+ * [2^-900, DBL_MAX] (same bits as ever); else its factors are scaled by
+ * powers of two (exact) to [1, 2) and den carries 2^(2k) (scaled
+ * positions up to 2^990 make sigma2 t tiny, and sigma2 u t w underflowed
+ * where the law still had its mass: the cdf read 0 for a law that is
+ * concentrated near u = 0) */
 static hit_time make_time(const hit_par *h, double u, sbi_dd w)
 {
   hit_time T;
   T.u = u;
   T.w = w;
+  T.k = 0;
   T.den = sbi_dd_mul(sbi_dd_mul_d(sbi_dd_prod(h->sigma2, u), h->t), w);
-  T.q = sqrt(T.den.hi);
+  if (T.den.hi >= 0x1p-900 && isfinite(T.den.hi)) {
+    T.q = sqrt(T.den.hi);
+    T.qx = sbi_xd_of(T.q);
+    return T;
+  }
+  int i1 = -ilogb(h->sigma2), i2 = -ilogb(u), i3 = -ilogb(h->t),
+      i4 = -ilogb(w.hi);
+  if ((i1 + i2 + i3 + i4) & 1)
+    i1++;
+  const sbi_dd ws = {ldexp(w.hi, i4), ldexp(w.lo, i4)};
+  T.den = sbi_dd_mul(sbi_dd_mul_d(sbi_dd_prod(ldexp(h->sigma2, i1),
+                                              ldexp(u, i2)),
+                                  ldexp(h->t, i3)),
+                     ws);
+  T.k = (i1 + i2 + i3 + i4) / 2;
+  const double qs = sqrt(T.den.hi);
+  T.qx = sbi_xd_norm(qs, -T.k);
+  T.q = sbi_xd_val(T.qx);
   return T;
+}
+
+/* a b / q (a, b >= 0) with q = T->qx: +inf above 1e300 (the IG kernel
+ * then sees a negligible second term; its values need no more) */
+static double over_q(const hit_time *T, double a, double b)
+{
+  if (T->k == 0)
+    return prod_quot(a, b, T->q);
+  const double r = sbi_xd_val(
+      sbi_xd_div(sbi_xd_mul(sbi_xd_of(a), sbi_xd_of(b)), T->qx));
+  return r > 1e300 ? 1e300 : r;
 }
 
 /* IG point of the drift length L at time T. */
@@ -162,8 +200,11 @@ static sbi_igpt point(const hit_par *h, const hit_time *T, sbi_dd L)
 {
   sbi_dd num = sbi_dd_add(sbi_dd_mul_d(L, T->u),
                           sbi_dd_neg(sbi_dd_mul(h->al, T->w)));
-  return sbi_igpt_make(num, T->den, prod_quot(h->al.hi, T->w.hi, T->q),
-                       prod_quot(L.hi, T->u, T->q));
+  if (T->k == 0)
+    return sbi_igpt_make(num, T->den, prod_quot(h->al.hi, T->w.hi, T->q),
+                         prod_quot(L.hi, T->u, T->q));
+  return sbi_igpt_make_x(num, T->den, T->k, over_q(T, h->al.hi, T->w.hi),
+                         over_q(T, L.hi, T->u));
 }
 
 /* ------------------------------------------------ B3B: the mixture (2) */
@@ -613,10 +654,44 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
   return r;
 }
 
+/* B3B where sqrt(sigma2 u t w) < DBL_MIN (positions beyond ~2^1000
+ * sqrt(v) after the rescaling): each law P_L of the mixture (2) is a step
+ * at u_L = t alpha/(alpha + L) on the scale of the doubles, so the cdf is
+ * the mass of the L >= alpha w/u = Lu: (exp(-d) - rho)/(1 - rho),
+ * d = (Lu - L1)(2 alpha + L1 + Lu)/(2v) (the law of L, see the sampler);
+ * 0 or 1 where Lu is outside (L1, L2).  Where rho underflows, (1) is
+ * G(u; L1) itself (1/2 where c = 0, as for BB) */
+static hit_prob b3_prob_step(const hit_par *h, const hit_time *T)
+{
+  hit_prob r = {0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  const sbi_igpt p1 = point(h, T, h->L1), p2 = point(h, T, h->L2);
+  double rel;
+  if (h->rho < DBL_MIN) { /* (1) is the BB law with L1 */
+    r.cdf = sbi_ig_cdf(&p1, &rel);
+    r.ecdf = (rel + 2.0 * EPS) * r.cdf;
+    r.sf = sbi_ig_sf(&p1, &rel);
+    r.esf = (rel + 2.0 * EPS) * r.sf;
+  } else if (p1.c >= 0.0) {
+    r.cdf = 1.0;
+    r.sf = 0.0;
+  } else if (p2.c > 0.0) {
+    const double Lu = prod_quot(h->al.hi, T->w.hi, T->u);
+    const double d = prod_quot(Lu - h->L1.hi, 2.0 * h->al.hi + h->L1.hi + Lu,
+                               2.0 * h->v);
+    r.cdf = (exp(-d) - h->rho) / h->omr;
+    r.sf = -expm1(-d) / h->omr;
+    r.ecdf = 4.0 * EPS * r.cdf;
+    r.esf = 4.0 * EPS * r.sf;
+  }
+  return r;
+}
+
 /* want: W_CDF or W_SF, the value whose relative accuracy matters (B3B
  * computes the smaller tail directly and the other as its complement) */
 static hit_prob prob_at(const hit_par *h, const hit_time *T, int want)
 {
+  if (h->b3 && h->mn > 0.0 && !(T->q >= DBL_MIN))
+    return b3_prob_step(h, T);
   return h->b3 ? b3_prob(h, T, want) : bb_prob(h, T, want);
 }
 
@@ -628,11 +703,12 @@ static hit_prob prob_at(const hit_par *h, const hit_time *T, int want)
  * doubles (|c| > 1e154 there, exp(-c^2/2) = 0).  +inf if the density
  * exceeds DBL_MAX, 0 or subnormal below DBL_MIN. */
 static double pdf_extreme(const hit_par *h, const hit_time *T,
-                          const sbi_igpt *p, double ratio)
+                          const sbi_igpt *p, sbi_xd ratio, int e)
 {
   sbi_dd E = p->E;
   if (!(E.hi >= 0.0)) {
-    double c = h->L1.hi * (T->u / T->q) - h->al.hi * (T->w.hi / T->q);
+    double c = sbi_xd_val(sbi_xd_div(sbi_xd_of(h->L1.hi * T->u), T->qx)) -
+               sbi_xd_val(sbi_xd_div(sbi_xd_of(h->al.hi * T->w.hi), T->qx));
     E = (sbi_dd){fabs(c) < 1e154 ? 0.5 * c * c : INFINITY, 0.0};
   }
   if (!(E.hi < 1e6))
@@ -640,14 +716,19 @@ static double pdf_extreme(const hit_par *h, const hit_time *T,
   sbi_xd ex = sbi_xd_expneg(E.hi);
   ex.m *= 1.0 - E.lo;
   sbi_xd f = sbi_xd_div(sbi_xd_mul(sbi_xd_of(h->al.hi), sbi_xd_of(h->t)),
-                        sbi_xd_mul(sbi_xd_of(T->q), sbi_xd_of(T->u)));
-  f = sbi_xd_mul(sbi_xd_mul(f, ex), sbi_xd_of(INV_RT2PI * ratio));
+                        sbi_xd_mul(T->qx, sbi_xd_of(T->u)));
+  f = sbi_xd_mul(sbi_xd_mul(f, ex), sbi_xd_mul(sbi_xd_of(INV_RT2PI), ratio));
+  if (f.m != 0.0)
+    f.e += e;
   return sbi_xd_val(f);
 }
 
-/* density at T (0 < u < t), with relative error bound *rel (+inf if it
- * exceeds DBL_MAX) */
-static double pdf_at(const hit_par *h, const hit_time *T, double *rel)
+/* density at T (0 < u < t) times 2^e (e: minus the binary exponent of a
+ * time scale, so that a density that leaves the doubles only in the
+ * scaled units is still right, t = 2^200 with positions 2^1000: +inf
+ * before), with relative error bound *rel (+inf if it exceeds DBL_MAX) */
+static double pdf_at(const hit_par *h, const hit_time *T, int e,
+                     double *rel)
 {
   /* BB hitting density given T <= t: f_alpha(u) g_{t-u}(L1)/g_t(alpha+L1)
    * = alpha t / (q u) phi(c) */
@@ -655,21 +736,38 @@ static double pdf_at(const hit_par *h, const hit_time *T, double *rel)
   double f = h->al.hi * h->t / (T->q * T->u) * p.ex * INV_RT2PI;
   *rel = 8.0 * EPS;
   double ratio = 1.0;
+  sbi_xd rx = sbi_xd_of(1.0);
   if (h->b3) {
     /* B3B: times [1 - exp(-2ay/(sigma2 w))] / (1 - rho); for min(a, y)
      * -> 0 the limit M t / ((alpha + M) w), M = max(a, y) */
     if (h->mn == 0.0) {
       const double mx = h->a < h->y ? h->y : h->a;
       ratio = mx * h->t / ((h->al.hi + mx) * T->w.hi);
-    } else
-      ratio = -expm1(-prod_quot2(2.0 * h->a, h->y, h->sigma2, T->w.hi)) /
-              h->omr;
+      rx = sbi_xd_of(ratio);
+    } else {
+      const double kw = prod_quot2(2.0 * h->a, h->y, h->sigma2, T->w.hi);
+      ratio = -expm1(-kw) / h->omr;
+      /* 2ay/(sigma2 w) below DBL_MIN (a, y tiny against sqrt(v) at
+       * x ~ 1e298: the ratio underflowed and the density was 0 * inf =
+       * NaN with status 0): the factor is 2ay/(sigma2 w) itself, with an
+       * extended exponent */
+      rx = kw < DBL_MIN
+               ? sbi_xd_div(sbi_xd_div(sbi_xd_mul(sbi_xd_of(2.0 * h->a),
+                                                  sbi_xd_of(h->y)),
+                                       sbi_xd_mul(sbi_xd_of(h->sigma2),
+                                                  sbi_xd_of(T->w.hi))),
+                            sbi_xd_of(h->omr))
+               : sbi_xd_of(ratio);
+    }
     *rel += 6.0 * EPS;
     f *= ratio;
   }
-  if (!(f >= DBL_MIN && f <= DBL_MAX) && ratio > 0.0)
-    f = pdf_extreme(h, T, &p, ratio);
-  return f;
+  if (f >= DBL_MIN && f <= DBL_MAX) {
+    const double g = ldexp(f, e);
+    if (g >= DBL_MIN && g <= DBL_MAX)
+      return g;
+  }
+  return rx.m > 0.0 ? pdf_extreme(h, T, &p, rx, e) : 0.0;
 }
 
 /* --------------------------------------------------- pdf, cdf, sf */
@@ -678,9 +776,14 @@ static double pdf_at(const hit_par *h, const hit_time *T, double *rel)
  * through them over sqrt(sigma2 t), so positions, sigma2 and times are
  * scaled by powers of two (exactly) to sigma2 t in [1, 4) and t in
  * [1, 2) when sigma2 t^3 is outside 2^(+-600) (the products sigma2 u t w
- * of the evaluation under- or overflowed: cdf 1 for every u).  Returns
+ * of the evaluation under- or overflowed: cdf 1 for every u) or a
+ * position is above 2^990; positions are kept below 2^990 (sigma2 t then
+ * ends below 1: positions beyond DBL_MAX sqrt(sigma2 t) overflowed to
+ * +-inf, SB_EDOM).  Returns
  * the binary exponent of the time scale (0: nothing done; invalid
  * arguments are left to hit_setup's messages). */
+#define POS_EMAX 989 /* scaled positions below 2^990 */
+
 static int rescale(int b3, double *x, double *y, double *a, double *sigma2,
                    double *t, double *u)
 {
@@ -689,9 +792,20 @@ static int rescale(int b3, double *x, double *y, double *a, double *sigma2,
       !isfinite(*t) || (b3 && (*a < 0.0 || *x < 0.0 || *y < 0.0)))
     return 0;
   const int et = ilogb(*t), ev = ilogb(*sigma2) + et;
-  if (abs(ev + 2 * et) < 600)
+  /* the largest position's exponent (the double-double products of the
+   * evaluation overflow above ~2^995: positions are kept below 2^990) */
+  int pe = INT_MIN;
+  const double pos[3] = {*x, *y, *a};
+  for (int i = 0; i < 3; i++)
+    if (pos[i] != 0.0 && ilogb(pos[i]) > pe)
+      pe = ilogb(pos[i]);
+  if (abs(ev + 2 * et) < 600 && pe <= POS_EMAX)
     return 0;
-  const int es = ev / 2;
+  /* sigma2 t in [1, 4) where the positions allow it; else the positions
+   * scaled to below 2^(POS_EMAX + 1) and sigma2 t below 1 (positions
+   * beyond DBL_MAX sqrt(sigma2 t) overflowed here: SB_EDOM) */
+  const int es = pe != INT_MIN && pe - ev / 2 > POS_EMAX ? pe - POS_EMAX
+                                                        : ev / 2;
   *x = ldexp(*x, -es);
   *y = ldexp(*y, -es);
   *a = ldexp(*a, -es);
@@ -704,7 +818,7 @@ static int rescale(int b3, double *x, double *y, double *a, double *sigma2,
 
 static int hit_entry_unit(const char *fn, int b3, int what, double u,
                           double x, double y, double a, double sigma2,
-                          double t, sb_result *res);
+                          double t, int et, sb_result *res);
 
 static int hit_entry(const char *fn, int b3, int what, double u, double x,
                      double y, double a, double sigma2, double t,
@@ -712,22 +826,18 @@ static int hit_entry(const char *fn, int b3, int what, double u, double x,
 {
   const double u0 = u;
   const int et = rescale(b3, &x, &y, &a, &sigma2, &t, &u);
-  int st = hit_entry_unit(fn, b3, what, u, x, y, a, sigma2, t, res);
-  if (what == W_PDF && st == SB_SUCCESS) {
-    if (et) { /* a density in u: per unit of time */
-      res->val = ldexp(res->val, -et);
-      res->err = ldexp(res->err, -et);
-    }
-    if (isinf(res->val))
-      return sbi_fail(res, SB_ERANGE, fn,
-                      "the density at u = %g exceeds DBL_MAX", u0);
-  }
+  int st = hit_entry_unit(fn, b3, what, u, x, y, a, sigma2, t, et, res);
+  if (what == W_PDF && st == SB_SUCCESS && isinf(res->val))
+    return sbi_fail(res, SB_ERANGE, fn,
+                    "the density at u = %g exceeds DBL_MAX", u0);
   return st;
 }
 
+/* et: the binary exponent of the time scale (rescale); a density is per
+ * unit of the caller's time */
 static int hit_entry_unit(const char *fn, int b3, int what, double u,
                           double x, double y, double a, double sigma2,
-                          double t, sb_result *res)
+                          double t, int et, sb_result *res)
 {
   hit_par h;
   int st = hit_setup(fn, b3, x, y, a, sigma2, t, &h, res);
@@ -749,17 +859,13 @@ static int hit_entry_unit(const char *fn, int b3, int what, double u,
     *res = (sb_result){val, 0.0};
     return SB_SUCCESS;
   }
+  /* sigma2 u t w below the doubles is carried with an extended exponent
+   * (make_time): it was read as "u or t - u negligible", cdf 0 for
+   * u < t/2, also where the law has all its mass below u */
   hit_time T = make_time(&h, u, sbi_dd_sum(t, -u));
-  if (!(T.den.hi > DBL_MIN)) {
-    /* sigma2 u t w underflows: u or t - u is negligibly small */
-    int early = u < 0.5 * t;
-    val = what == W_PDF ? 0.0 : ((what == W_CDF) == early ? 0.0 : 1.0);
-    *res = (sb_result){val, 0.0};
-    return SB_SUCCESS;
-  }
   if (what == W_PDF) {
     double rel;
-    val = pdf_at(&h, &T, &rel); /* +inf above DBL_MAX: see hit_entry */
+    val = pdf_at(&h, &T, -et, &rel); /* +inf above DBL_MAX: hit_entry */
     *res = (sb_result){val, rel * val};
     return SB_SUCCESS;
   }
@@ -829,9 +935,10 @@ static double hit_qfun(double y, double kprev, void *vc, double d[4])
   if (isinf(s))
     return INFINITY;
   double u = t * s / (t + s), w = t * t / (t + s);
-  hit_time T = make_time(h, u, (sbi_dd){w, 0.0});
-  if (!(T.den.hi > DBL_MIN) || !(u > 0.0) || !(w > 0.0))
+  /* t s overflows for s > DBL_MAX/t (+inf, not t) */
+  if (!(u > 0.0) || !(w > 0.0) || !(u < t))
     return u < 0.5 * t ? -INFINITY : INFINITY;
+  hit_time T = make_time(h, u, (sbi_dd){w, 0.0});
   /* kprev < 0.05: the next error ~ kprev^4 is acceptable, so this value is
    * likely the last one */
   int cheap = kprev >= 0.05;
@@ -844,6 +951,11 @@ static double hit_qfun(double y, double kprev, void *vc, double d[4])
   if (cheap && p.rused > 0.95 && p.rused <= 1.0 - 1e-6)
     d[3] = 0.0;
   double pr = c->upper ? p.sf : p.cdf;
+  /* no density here (a law narrower than the doubles resolve, e.g. a
+   * step at u = 0 or t): the value is 0 or 1 on either side of the
+   * jump, never the best root, which is where the bracket closes */
+  if (!(p.dens > 0.0))
+    d[3] = 0.0;
   if (!(pr > 0.0)) {
     d[0] = 0.0;
     return c->upper ? INFINITY : -INFINITY;
@@ -882,13 +994,9 @@ static double hit_g_at(const hit_par *h, double u, double p, int upper,
                        double *f)
 {
   hit_time T = make_time(h, u, sbi_dd_sum(h->t, -u));
-  if (!(T.den.hi > DBL_MIN)) {
-    *f = 0.0;
-    return NAN;
-  }
   hit_prob pr = prob_at(h, &T, upper ? W_SF : W_CDF);
   double rel;
-  *f = pdf_at(h, &T, &rel);
+  *f = pdf_at(h, &T, 0, &rel);
   return upper ? (1.0 - p) - pr.sf : pr.cdf - p;
 }
 
@@ -1018,6 +1126,8 @@ static int hit_quantile_unit(const char *fn, int b3, double p, double x,
   double s = sref * exp(yy);
   double u = isinf(s) ? t : t * s / (t + s);
   double w = isinf(s) ? 0.0 : t * t / (t + s);
+  if (u > t) /* t s overflowed (s > DBL_MAX/t): +inf, not t */
+    u = t;
   /* d log G / d log u = dlog t / w: polish if a few ulp of u matter */
   if (st == SB_SUCCESS && u > 0.0 && u < t && c.dlog * t / w > 100.0) {
     u = polish_u(&h, u, p, upper);
@@ -1027,7 +1137,12 @@ static int hit_quantile_unit(const char *fn, int b3, double p, double x,
   res->val = u;
   res->err = u * w / t * (2.0 * dy + 8.0 * EPS + c.err / c.dlog) +
              2.0 * EPS * u;
-  if (st == SB_EMAXITER) {
+  /* no density at the last point or no finite error bound: the
+   * iteration closed its bracket on a step of the law (a law narrower
+   * than the doubles resolve, positions beyond ~2^1000 sqrt(v)), where
+   * its point need not be the best double: bisection */
+  if (st == SB_EMAXITER ||
+      (st == SB_SUCCESS && !(c.dlog > 0.0 && res->err < INFINITY))) {
     res->val = bisect_u(&h, p, upper, &res->err);
     st = SB_SUCCESS;
   }
@@ -1081,9 +1196,12 @@ static double bb_hit_sample_unit(const char *fn, const gsl_rng *r, double x,
   if (h.trivial == T_ZERO)
     return 0.0;
   double al = h.al.hi, L = h.L1.hi;
-  /* S = T t/(t - T) ~ IG(alpha t / L, alpha^2 / sigma2) (Levy if L = 0) */
-  double S = sbi_ig_sample(r, L > 0.0 ? al * t / L : INFINITY,
-                           al * al / sigma2);
+  /* S = T t/(t - T) ~ IG(alpha t / L, alpha^2 / sigma2) (Levy if L = 0);
+   * a mean below the doubles (alpha ~ 1e-300 against L ~ 1e300) is the
+   * point mass S = 0 (it was 0/0 = NaN with status 0 where the shape
+   * underflowed too) */
+  const double mean = L > 0.0 ? al * t / L : INFINITY;
+  double S = mean > 0.0 ? sbi_ig_sample(r, mean, al * al / sigma2) : 0.0;
   return s_to_u(S, t);
 }
 
@@ -1129,7 +1247,7 @@ static double bes3b_hit_sample_unit(const char *fn, const gsl_rng *r,
    *    (Laplace transforms; docs/bridge.md). */
   double U2 = gsl_rng_uniform(r);
   double mean = L > 0.0 ? al * t / L : INFINITY;
-  double S = sbi_ig_sample(r, mean, al * al / sigma2);
+  double S = mean > 0.0 ? sbi_ig_sample(r, mean, al * al / sigma2) : 0.0;
   if (U2 * (al + L) >= L) {
     double z = gsl_ran_gaussian_ziggurat(r, 1.0);
     S += L > 0.0 ? sigma2 * (t * t) * (z * z) / (L * L) : INFINITY;

@@ -70,9 +70,28 @@
  * min(a, y) -> 0 (right where min(a, y) << x - a + max(a, y); where all
  * positions are ~1e-270 sqrt(v) or less with min(a, y) comparable to the
  * others, the cdf/sf are wrong by up to ~0.2 (known limitation, not yet
- * fixed; the pdf is right).  The
+ * fixed; the pdf is right).
+ * Positions far beyond sqrt(v) follow the same rule as the other finite
+ * arguments: x, y, a over sqrt(sigma2 t) beyond DBL_MAX (x = 1e300 with
+ * sigma2 = 1e-200, t = 1e-100) are not SB_EDOM (only an infinite argument
+ * is) but the limit law.  Beyond ~2^1000 sqrt(v) the law is a step at
+ * u* = t alpha/(alpha + |beta|) on the scale of the doubles (relative
+ * width ~ sqrt(v/(alpha |beta|))): cdf 0 below u* and 1 above (a law
+ * conditioned on T_a <= t: sf = 1 - cdf, never defective), 1/2 where
+ * |beta| u = alpha (t - u) exactly, pdf 0 off u* and SB_ERANGE where it
+ * exceeds DBL_MAX; the value between 0 and 1 where the low-order parts of
+ * the positions leave |beta| u - alpha (t - u) of order sqrt(sigma2 u t
+ * (t - u)) (formed in double-double, as elsewhere).  For B3B with
+ * sqrt(sigma2 u t (t - u)) < DBL_MIN the mixture over L in [|beta|, y + a]
+ * is one of such steps (closed form; the BB law with |beta| where rho
+ * underflows).  Known limitation: the rescaling
+ * divides u by about t, so where u < 2^-1022 t with sigma2 t^3 outside
+ * 2^(+-600) the cdf is that at u = 0 (0), wrong where the law sits below
+ * u (t = 1e300, sigma2 = 1e-310, x = 1e-290, y = 1e300, a = 0, u =
+ * 2e-290: 0, should be 1).  The
  * quantile falls back to bisection on the doubles of [0, t] where its
- * iteration fails (laws narrower than one ulp, u ~ 1e-300 t).  The
+ * iteration fails or closes its bracket on a step (laws narrower than one
+ * ulp, u ~ 1e-300 t; the step's best double).  The
  * samplers return a double in [0, t] for any valid arguments (t up to
  * DBL_MAX), or NaN with SB_EDOM/SB_EINVAL and a message naming them.
  * Special cases: x <= a: T_a = 0 (cdf = 1 for u >= 0, pdf 0, quantile 0,
