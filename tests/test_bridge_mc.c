@@ -587,9 +587,11 @@ START_TEST(test_sim_args)
 END_TEST
 
 /* The grid simulators at extreme arguments.  (1) Every argument of the
- * three path functions over +-1e-320 ... +-DBL_MAX, +-inf, NaN, 0 (the
- * others x = 2, y = 1, a = 0.5, sigma2 = t = 1), n = 1 and 8, 20 paths
- * each: status 0 with k in [-1, n), or an error naming the function.
+ * three path functions over the shared sweep list sbt_sweep_ext (sweep.h:
+ * +-1e-320 ... +-DBL_MAX, +-inf, NaN, 0, 2^+-995, 1e+-154) and, on top,
+ * 1e-150, 1e150 and +-1 (the others x = 2, y = 1, a = 0.5, sigma2 = t =
+ * 1), n = 1 and 8, 20 paths each: status 0 with k in [-1, n), or an
+ * error naming the function.
  * (2) t = 1e300 and DBL_MAX, sigma2 = 1e-300 t = 1e300 (sigma2 t^2 beyond
  * the doubles: the sub-step variance was +inf, the positions NaN, and the
  * path never crossed): the crossing frequency of 2000 paths (n = 8, seed
@@ -599,9 +601,10 @@ END_TEST
 START_TEST(test_sim_extreme)
 {
   gsl_rng *r = rng_new(8101);
-  const double ext[] = {1e-320,  1e-300, 1e-150, 1.0,       1e150,
-                        1e300,   DBL_MAX, INFINITY, -1e-320, -1.0,
-                        -1e300,  -DBL_MAX, -INFINITY, NAN,   0.0};
+  double ext[SBT_SWEEP_NEXT + 4];
+  memcpy(ext, sbt_sweep_ext, sizeof sbt_sweep_ext);
+  const double more[4] = {1e-150, 1e150, 1.0, -1.0};
+  memcpy(ext + SBT_SWEEP_NEXT, more, sizeof more);
   static const char *name[3] = {"sb_sim_bb_path", "sb_sim_bes3b_path",
                                 "sb_sim_bes3_path"};
   for (int kind = 0; kind < 3; kind++)
