@@ -171,23 +171,20 @@ static inline int sbt_sweep_vec(sbt_xfn f, const double *base, int nbase,
  * (the suite's wrapper may map a documented non-finite value to 0). */
 typedef double (*sbt_sfn)(const double *a);
 
-/* Each of the narg arguments of f in turn over sbt_sweep_ext (leaving out
- * +-inf unless with_inf), the others from base[0 .. narg-1]: the value is
+/* Each of the narg arguments of f in turn over sbt_sweep_ext (+-inf
+ * included), the others from base[0 .. narg-1]: the value is
  * finite with status 0 (and >= 0 where nonneg is set), or NaN with an
  * error status and, where nm is not NULL, a message naming nm (the public
  * function); never NaN or inf with status 0.  Stops the test at the first
  * failure (ck_assert_msg), labelled with fidx, the index in the suite's
  * table. */
 static inline void sbt_sweep_scalar(sbt_sfn f, const double *base, int narg,
-                                    int with_inf, int nonneg, size_t fidx,
-                                    const char *nm)
+                                    int nonneg, size_t fidx, const char *nm)
 {
   for (int i = 0; i < narg; i++)
     for (int e = 0; e < SBT_SWEEP_NEXT; e++) {
       const double x = sbt_sweep_ext[e];
       double a[SBT_SWEEP_MAXARG];
-      if (isinf(x) && !with_inf)
-        continue;
       memcpy(a, base, (size_t)narg * sizeof a[0]);
       a[i] = x;
       sb_clear_error();

@@ -631,7 +631,7 @@ START_TEST(test_extreme_arguments)
   /* sbt_sweep_ext with +-inf; every value is >= 0; an error names the
    * function */
   for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
-    sbt_sweep_scalar(k[f].f, base[k[f].b], 5, 1, 1, f, k[f].nm);
+    sbt_sweep_scalar(k[f].f, base[k[f].b], 5, 1, f, k[f].nm);
   /* a density above DBL_MAX (t = 1e-310 at the mean of a narrow law) is
    * SB_ERANGE, not inf */
   sb_result r;
