@@ -455,6 +455,18 @@ RIEMANN_EXTREME = [
     (13, [1e-200, -1e-200, 3e-200, 1e-200, 1.0, -1e200, 1e200]),
     (14, [1e-200, -1e-200, 3e-200, 1e-200, 1.0, -1e200, 1e200]),
 ]
+# wave positions beyond DBL_MAX (|u| t > 1e308) outside [a, b], which they
+# only clamp: vacuum (x_r ~ 1e310), contacts (x ~ +-1e600), a delta at
+# ~ -3e309 whose mass (~4e310) is beyond DBL_MAX too; a delta at ~5e9
+# with a mass of ~1e310 outside [a, b]; a delta inside [a, b] whose mass
+# rate (2e310) overflows while the mass (2e290) does not
+for r in ([2.0, 5.0, 3.0, 1e300, 1e10, -1e10, 1e10],
+          [3.0, 1e300, 0.0, 0.0, 1e300, -5.0, 7.0],
+          [0.0, 0.0, 0.5, -1e300, 1e300, -5.0, 7.0],
+          [1.0, 1e300, 4.0, -1e300, 1e10, 0.0, 1.0],
+          [1e300, 1e10, 1e300, -1.0, 1.0, 1e10, 1e10 + 0.5]):
+    RIEMANN_EXTREME += [(13, r), (14, r)]
+RIEMANN_EXTREME.append((13, [1e300, 1e10, 1e300, -1e10, 1e-20, -1.0, 1.0]))
 
 
 # Reitz full-model radius (kind 15) where the plain fits leave the range

@@ -457,8 +457,9 @@ START_TEST(extreme_arguments)
    * tests/data/spray_extreme.csv (gen_spray_ref.py, mpmath); the mass
    * (13) and momentum (14) of sb_pgd_riemann_integral where rho u, rho u
    * length or b - a over/underflows (SB_ERANGE or a momentum of 0
-   * before). */
-  ck_assert_int_ge(sbt_spray_extreme(pgd_row), 8);
+   * before), or a wave position or the delta's mass beyond DBL_MAX lies
+   * outside [a, b] (SB_ERANGE before). */
+  ck_assert_int_ge(sbt_spray_extreme(pgd_row), 8 + 11);
 
   /* vacuum of infinite extent holds no mass: an infinite a or b is
    * SB_ERANGE only where the density there is > 0 */
@@ -470,6 +471,34 @@ START_TEST(extreme_arguments)
   ck_assert_rel(q, 2.0, 4 * DBL_EPSILON);
   ck_assert_int_eq(sb_pgd_riemann_integral(&vac, 0.5, -1.0, INFINITY, &m, &q),
                    SB_ERANGE);
+
+  /* wave positions beyond DBL_MAX (rows above, and here): a contact at
+   * x = 1e200 1e110 = 1e310 against vacuum on its right holds the mass
+   * 1e-300 (1e310 - 0) = 1e10 and momentum 1e10 1e200 in [0, +inf) */
+  sb_pgd_riemann far = {0.0, 1e-300, 1e200, 0.0, 0.0, INFINITY, 0.0};
+  ck_assert_int_eq(sb_pgd_riemann_integral(&far, 1e110, 0.0, INFINITY, &m,
+                                           &q),
+                   SB_SUCCESS);
+  ck_assert_rel(m, 1e10, 8 * DBL_EPSILON);
+  ck_assert_rel(q, 1e210, 8 * DBL_EPSILON);
+  /* the mirror image: rho_r over (-1e310, 0] */
+  sb_pgd_riemann farl = {0.0, 0.0, 0.0, 1e-300, -1e200, INFINITY, 0.0};
+  ck_assert_int_eq(sb_pgd_riemann_integral(&farl, 1e110, -INFINITY, 0.0, &m,
+                                           &q),
+                   SB_SUCCESS);
+  ck_assert_rel(m, 1e10, 8 * DBL_EPSILON);
+  ck_assert_rel(q, -1e210, 8 * DBL_EPSILON);
+  /* ... but a delta inside [a, b] whose mass exceeds DBL_MAX is still
+   * SB_ERANGE: at (1e10 - 1)/2 with mass 1e300 (1e10 + 1) */
+  sb_pgd_riemann big = {0.0, 1e300, 1e10, 1e300, -1.0, INFINITY, 0.0};
+  ck_assert_int_eq(sb_pgd_riemann_integral(&big, 1.0, 4e9, 6e9, &m, &q),
+                   SB_ERANGE);
+  /* x0 + u t where u t = 1.5e308 overflows but the position 5e307 does
+   * not (the solve itself) */
+  sb_pgd_riemann cancel = {-1e308, 1.0, 1e300, 0.0, 0.0, INFINITY, 0.0};
+  sb_pgd_riemann_sol sol;
+  ck_assert_int_eq(sb_pgd_riemann_solve(&cancel, 1.5e8, &sol), SB_SUCCESS);
+  ck_assert_rel(sol.xl, 5e307, 8 * DBL_EPSILON);
 }
 END_TEST
 

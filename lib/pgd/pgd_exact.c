@@ -61,21 +61,27 @@ static double delta_speed(double rho_l, double u_l, double rho_r, double u_r)
   return sig;
 }
 
-/* sqrt(rho_l rho_r)(u_l - u_r) (valid arguments), with an extended
- * exponent where the product or u_l - u_r leaves the range; inf if the
- * rate exceeds DBL_MAX. */
-static double delta_mass_rate(double rho_l, double u_l, double rho_r,
-                              double u_r)
+/* sqrt(rho_l rho_r)(u_l - u_r) (valid arguments) with an extended
+ * exponent: the plain product where nothing leaves the range (same
+ * bits), else formed as m 2^e. */
+static sbi_xd delta_mass_rate_xd(double rho_l, double u_l, double rho_r,
+                                 double u_r)
 {
   double sa = sqrt(rho_l), sb = sqrt(rho_r), p = sa * sb, du = u_l - u_r;
   double m = p * du;
-  if (!(p >= DBL_MIN && m >= DBL_MIN && m <= DBL_MAX)) {
-    sbi_xd d = isinf(du) ? sbi_xd_mul(sbi_xd_of(0.5 * u_l - 0.5 * u_r),
-                                      sbi_xd_of(2.0))
-                         : sbi_xd_of(du);
-    m = sbi_xd_val(sbi_xd_mul(sbi_xd_mul(sbi_xd_of(sa), sbi_xd_of(sb)), d));
-  }
-  return m;
+  if (p >= DBL_MIN && m >= DBL_MIN && m <= DBL_MAX)
+    return sbi_xd_of(m);
+  sbi_xd d = isinf(du) ? sbi_xd_mul(sbi_xd_of(0.5 * u_l - 0.5 * u_r),
+                                    sbi_xd_of(2.0))
+                       : sbi_xd_of(du);
+  return sbi_xd_mul(sbi_xd_mul(sbi_xd_of(sa), sbi_xd_of(sb)), d);
+}
+
+/* The same as a double: inf if the rate exceeds DBL_MAX. */
+static double delta_mass_rate(double rho_l, double u_l, double rho_r,
+                              double u_r)
+{
+  return sbi_xd_val(delta_mass_rate_xd(rho_l, u_l, rho_r, u_r));
 }
 
 double sb_pgd_delta_speed(double rho_l, double u_l, double rho_r, double u_r)
@@ -139,6 +145,72 @@ static int check_rp(const sb_pgd_riemann *rp, double t, const char *f)
   return SB_SUCCESS;
 }
 
+/* A wave position x0 + U t + v s with an extended exponent: right
+ * (one rounding per operation) also where U t or v s overflows while the
+ * sum may not; v must be finite. */
+static sbi_xd wave_pos(double x0, double U, double t, double v, double s)
+{
+  return sbi_xd_add(sbi_xd_add(sbi_xd_of(x0),
+                               sbi_xd_mul(sbi_xd_of(U), sbi_xd_of(t))),
+                    sbi_xd_mul(sbi_xd_of(v), sbi_xd_of(s)));
+}
+
+/* The wave pattern (arguments checked), without range checks: the
+ * positions and the delta's mass also with an extended exponent in *px
+ * (xl, xr, mass; sol's doubles are their nearest doubles, +-inf beyond
+ * DBL_MAX).  Returns 0 (px unset, sol's positions inf or NaN) where
+ * u_l - ugas or u_r - ugas overflows. */
+static int solve_raw(const sb_pgd_riemann *rp, double t,
+                     sb_pgd_riemann_sol *sol, sbi_xd px[3])
+{
+  double s, e;
+  drag_map(rp->tau, t, &s, &e);
+  const double U = isinf(rp->tau) ? 0.0 : rp->ugas;
+  const double vl = rp->u_l - U, vr = rp->u_r - U;
+  const int ok = isfinite(vl) && isfinite(vr);
+  sbi_xd pl = sbi_xd_of(0.0), pr = pl, pm = pl;
+  sol->mass = 0.0;
+  sol->vel = NAN;
+  sol->ul = U + vl * e;
+  sol->ur = U + vr * e;
+  if (rp->rho_l == 0 && rp->rho_r == 0) {
+    sol->type = SB_PGD_WAVE_NONE;
+    if (ok)
+      pl = pr = wave_pos(rp->x0, U, t, 0.0, s);
+  } else if (rp->rho_r == 0 || rp->rho_l == 0 || vl == vr) {
+    /* one state against vacuum, or both with the same velocity */
+    sol->type = SB_PGD_WAVE_CONTACT;
+    if (ok)
+      pl = pr = wave_pos(rp->x0, U, t, rp->rho_l > 0 ? vl : vr, s);
+  } else if (vl < vr) {
+    sol->type = SB_PGD_WAVE_VACUUM;
+    if (ok) {
+      pl = wave_pos(rp->x0, U, t, vl, s);
+      pr = wave_pos(rp->x0, U, t, vr, s);
+    }
+  } else {
+    sol->type = SB_PGD_WAVE_DELTA;
+    if (ok) {
+      double sig = delta_speed(rp->rho_l, vl, rp->rho_r, vr);
+      pl = pr = wave_pos(rp->x0, U, t, sig, s);
+      pm = sbi_xd_mul(delta_mass_rate_xd(rp->rho_l, vl, rp->rho_r, vr),
+                      sbi_xd_of(s));
+      sol->vel = U + sig * e;
+    }
+  }
+  if (!ok) {
+    sol->xl = sol->xr = sol->mass = INFINITY;
+    return 0;
+  }
+  sol->xl = sbi_xd_val(pl);
+  sol->xr = sbi_xd_val(pr);
+  sol->mass = sbi_xd_val(pm);
+  px[0] = pl;
+  px[1] = pr;
+  px[2] = pm;
+  return 1;
+}
+
 int sb_pgd_riemann_solve(const sb_pgd_riemann *rp, double t,
                          sb_pgd_riemann_sol *sol)
 {
@@ -147,32 +219,8 @@ int sb_pgd_riemann_solve(const sb_pgd_riemann *rp, double t,
     return st;
   if (!sol)
     return sbi_error(SB_EINVAL, __func__, "NULL solution");
-  double s, e;
-  drag_map(rp->tau, t, &s, &e);
-  const double U = isinf(rp->tau) ? 0.0 : rp->ugas;
-  const double vl = rp->u_l - U, vr = rp->u_r - U, x0 = rp->x0 + U * t;
-  sol->mass = 0.0;
-  sol->vel = NAN;
-  sol->ul = U + vl * e;
-  sol->ur = U + vr * e;
-  if (rp->rho_l == 0 && rp->rho_r == 0) {
-    sol->type = SB_PGD_WAVE_NONE;
-    sol->xl = sol->xr = x0;
-  } else if (rp->rho_r == 0 || rp->rho_l == 0 || vl == vr) {
-    /* one state against vacuum, or both with the same velocity */
-    sol->type = SB_PGD_WAVE_CONTACT;
-    sol->xl = sol->xr = x0 + (rp->rho_l > 0 ? vl : vr) * s;
-  } else if (vl < vr) {
-    sol->type = SB_PGD_WAVE_VACUUM;
-    sol->xl = x0 + vl * s;
-    sol->xr = x0 + vr * s;
-  } else {
-    double sig = delta_speed(rp->rho_l, vl, rp->rho_r, vr);
-    sol->type = SB_PGD_WAVE_DELTA;
-    sol->xl = sol->xr = x0 + sig * s;
-    sol->mass = delta_mass_rate(rp->rho_l, vl, rp->rho_r, vr) * s;
-    sol->vel = U + sig * e;
-  }
+  sbi_xd px[3];
+  solve_raw(rp, t, sol, px);
   return sol_ok(sol, __func__);
 }
 
@@ -241,36 +289,81 @@ static int prod_ok(double x, double y)
   return x == 0 || y == 0 || (p >= DBL_MIN && p <= DBL_MAX);
 }
 
-/* rho (hi - lo) for hi > lo (either may be infinite) as m 2^e, also
- * where hi - lo overflows; 0 for rho = 0 (vacuum, of any extent); *inf
- * set if the mass is infinite. */
-static sbi_xd xd_mass(double rho, double hi, double lo, int *inf)
+/* An end of a segment for integral_sol_x: its nearest double d (+-inf
+ * also for a wave position beyond DBL_MAX) and, where fin, its exact
+ * value x with an extended exponent (every wave position; an end of
+ * [a, b] when finite). */
+typedef struct {
+  double d;
+  sbi_xd x;
+  int fin;
+} xend;
+
+static xend end_wave(sbi_xd x, double d)
 {
-  if (rho == 0 || !(hi > lo))
+  xend r = {d, x, 1};
+  return r;
+}
+
+static xend end_dbl(double d)
+{
+  xend r = {d, sbi_xd_of(isfinite(d) ? d : 0.0), isfinite(d)};
+  return r;
+}
+
+/* -1, 0, 1 as u <, =, > v: by the extended values where both are finite
+ * reals, else by rank (+-inf ends outside every finite real). */
+static int end_cmp(xend u, xend v)
+{
+  if (isfinite(u.d) && isfinite(v.d))
+    return (u.d > v.d) - (u.d < v.d);
+  if (u.fin && v.fin) {
+    sbi_xd nv = v.x;
+    nv.m = -nv.m;
+    const double dm = sbi_xd_add(u.x, nv).m;
+    return (dm > 0) - (dm < 0);
+  }
+  const int su = u.d > 0 ? 1 : -1, sv = v.d > 0 ? 1 : -1;
+  const int ru = !u.fin ? 2 * su : isinf(u.d) ? su : 0,
+            rv = !v.fin ? 2 * sv : isinf(v.d) ? sv : 0;
+  return (ru > rv) - (ru < rv);
+}
+
+/* rho (hi - lo) as m 2^e: 0 unless hi > lo, 0 for rho = 0 (vacuum, of
+ * any extent); *inf set where the mass is infinite (an infinite end). */
+static sbi_xd xd_mass(double rho, xend hi, xend lo, int *inf)
+{
+  if (rho == 0 || end_cmp(hi, lo) <= 0)
     return sbi_xd_of(0.0);
-  if (isinf(hi) || isinf(lo)) {
+  if (!hi.fin || !lo.fin) {
     *inf = 1;
     return sbi_xd_of(0.0);
   }
-  const double d = hi - lo;
-  const sbi_xd len = isfinite(d) ? sbi_xd_of(d)
-                                 : sbi_xd_mul(sbi_xd_of(0.5 * hi - 0.5 * lo),
-                                              sbi_xd_of(2.0));
-  return sbi_xd_mul(sbi_xd_of(rho), len);
+  sbi_xd nl = lo.x;
+  nl.m = -nl.m;
+  return sbi_xd_mul(sbi_xd_of(rho), sbi_xd_add(hi.x, nl));
 }
 
 /* integral_sol's sums with an extended exponent, for where a length
  * (b - a beyond DBL_MAX), a product rho u length or a partial sum leaves
- * the double range while the mass and momentum may not; a vacuum side
- * of infinite extent adds nothing.  +inf / NaN where the mass is
- * infinite. */
+ * the double range while the mass and momentum may not, and with the
+ * exact wave positions and delta mass px (solve_raw) where they are
+ * beyond DBL_MAX: a position beyond an end of [a, b] then only clamps the
+ * states to it, and the delta's mass counts only if a <= x_delta < b.  A
+ * vacuum side of infinite extent adds nothing.  +inf / NaN where the
+ * mass is infinite. */
 static void integral_sol_x(const sb_pgd_riemann *rp,
-                           const sb_pgd_riemann_sol *w, double a, double b,
-                           double *mass, double *mom)
+                           const sb_pgd_riemann_sol *w, const sbi_xd px[3],
+                           double a, double b, double *mass, double *mom)
 {
   int inf = 0;
-  const sbi_xd ml = xd_mass(rp->rho_l, fmin(b, w->xl), a, &inf),
-               mr = xd_mass(rp->rho_r, b, fmax(a, w->xr), &inf);
+  const xend A = end_dbl(a), B = end_dbl(b), L = end_wave(px[0], w->xl),
+             R = end_wave(px[1], w->xr);
+  const sbi_xd ml = xd_mass(rp->rho_l, end_cmp(L, B) < 0 ? L : B, A, &inf),
+               mr = xd_mass(rp->rho_r, B, end_cmp(R, A) > 0 ? R : A, &inf);
+  if (w->type == SB_PGD_WAVE_DELTA && end_cmp(A, L) <= 0 &&
+      end_cmp(L, B) < 0 && isinf(w->mass))
+    inf = 1;  /* the delta's mass alone exceeds DBL_MAX */
   if (inf) {
     *mass = INFINITY;
     *mom = NAN;
@@ -279,9 +372,10 @@ static void integral_sol_x(const sb_pgd_riemann *rp,
   sbi_xd m = sbi_xd_add(ml, mr);
   sbi_xd q = sbi_xd_add(sbi_xd_mul(ml, sbi_xd_of(w->ul)),
                         sbi_xd_mul(mr, sbi_xd_of(w->ur)));
-  if (w->type == SB_PGD_WAVE_DELTA && a <= w->xl && w->xl < b) {
-    m = sbi_xd_add(m, sbi_xd_of(w->mass));
-    q = sbi_xd_add(q, sbi_xd_mul(sbi_xd_of(w->mass), sbi_xd_of(w->vel)));
+  if (w->type == SB_PGD_WAVE_DELTA && end_cmp(A, L) <= 0 &&
+      end_cmp(L, B) < 0) {
+    m = sbi_xd_add(m, px[2]);
+    q = sbi_xd_add(q, sbi_xd_mul(px[2], sbi_xd_of(w->vel)));
   }
   *mass = sbi_xd_val(m);
   *mom = sbi_xd_val(q);
@@ -290,13 +384,23 @@ static void integral_sol_x(const sb_pgd_riemann *rp,
 int sb_pgd_riemann_integral(const sb_pgd_riemann *rp, double t, double a,
                             double b, double *mass, double *mom)
 {
-  sb_pgd_riemann_sol w;
-  int st = solve_for(rp, t, &w, __func__);
+  int st = check_rp(rp, t, __func__);
   if (st)
     return st;
+  sb_pgd_riemann_sol w;
+  sbi_xd px[3];
+  /* wave positions and the delta's mass may lie beyond DBL_MAX (px holds
+   * them exactly); the velocities must be doubles */
+  if (!solve_raw(rp, t, &w, px) || !isfinite(w.ul) || !isfinite(w.ur) ||
+      (w.type == SB_PGD_WAVE_DELTA && !isfinite(w.vel)))
+    return sbi_error(SB_ERANGE, __func__, "the velocities leave the double "
+                     "range (ul = %g, ur = %g)", w.ul, w.ur);
   if (!(a <= b))
     return sbi_error(SB_EDOM, __func__, "interval [%g, %g] is empty", a, b);
   double m, q;
+  /* with finite a and b, a position of +-inf (beyond DBL_MAX) clamps
+   * exactly: fmin(b, +inf) = b, fmax(a, -inf) = a, and it is never in
+   * [a, b) */
   integral_sol(rp, &w, a, b, &m, &q);
   /* plain sums unless a length, rho_l u_l, rho_r u_r (their order in
    * integral_sol), a product with a length or with the delta's mass, or
@@ -309,7 +413,7 @@ int sb_pgd_riemann_integral(const sb_pgd_riemann *rp, double t, double a,
       (lr > 0 && (!prod_ok(rp->rho_r, lr) ||
                   !prod_ok(rp->rho_r * w.ur, lr))) ||
       (w.type == SB_PGD_WAVE_DELTA && !prod_ok(w.mass, w.vel)))
-    integral_sol_x(rp, &w, a, b, &m, &q);
+    integral_sol_x(rp, &w, px, a, b, &m, &q);
   if (!isfinite(m) || !isfinite(q))
     return sbi_error(SB_ERANGE, __func__, "mass = %g, momentum = %g in "
                      "[%g, %g] leave the double range", m, q, a, b);

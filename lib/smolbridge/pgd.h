@@ -274,9 +274,16 @@ typedef struct {
  *  overflows, e.g. an infinite a or b on a side of density > 0; the
  *  sums are formed with an extended exponent where b - a, rho u or
  *  rho u (b - a) leaves the double range, so the result is right
- *  wherever it is a double) and _error.  The integral needs a solved
- *  wave pattern: SB_ERANGE also where a wave position or the delta's
- *  mass overflows, even if [a, b] holds a finite mass. */
+ *  wherever it is a double) and _error.  Wave positions and the delta's
+ *  mass are formed with an extended exponent too, so x0 + u t is right
+ *  where u t overflows and the position does not.  The integral needs
+ *  only finite velocities: a wave position beyond DBL_MAX lies outside
+ *  every finite [a, b] and only bounds the states there (exactly), a
+ *  delta outside [a, b] adds nothing whatever its mass, and over an
+ *  infinite a or b the true position is used (a state of density > 0
+ *  against vacuum up to x = 1e310 holds a finite mass); SB_ERANGE there
+ *  only where the mass or momentum in [a, b] itself overflows (a delta
+ *  inside [a, b] whose mass exceeds DBL_MAX, say). */
 int sb_pgd_riemann_solve(const sb_pgd_riemann *rp, double t,
                          sb_pgd_riemann_sol *sol);
 
