@@ -25,6 +25,7 @@ SBE_WRAP5(bm_fpt_pdf)
 SBE_WRAP5(bm_fpt_cdf)
 SBE_WRAP5(bm_fpt_sf)
 SBE_WRAP4(bm_fpt_mass)
+SBE_WRAP4(bm_fpt_logmass)
 SBE_WRAP5(bm_fpt_quantile)
 SBE_WRAP4(bes3_fpt_pdf)
 SBE_WRAP4(bes3_fpt_cdf)
@@ -83,6 +84,7 @@ static const sbe_func funcs[] = {
     E(bm_fpt_cdf, FPT("t"), "BM with drift: P(T <= t)"),
     E(bm_fpt_sf, FPT("t"), "BM with drift: P(T > t) (T = inf included)"),
     E(bm_fpt_mass, MASS, "BM with drift: P(T < inf)"),
+    E(bm_fpt_logmass, MASS, "BM with drift: log P(T < inf)"),
     E(bm_fpt_quantile, FPT("p"), "BM with drift: quantile of T (inf above mass)"),
     E(bm_fpt_sample, FPT("seed"), "BM with drift: one draw of T (inf: no hit)"),
     E(bes3_fpt_pdf, B3FPT, "Bessel-3 down to a < x: first-passage density"),

@@ -15,8 +15,8 @@ if [ -n "$bad" ]; then
   exit 1
 fi
 for s in sb_strerror sb_last_error sb_version sb_bb_cross_prob \
-         sb_bes3b_hit_quantile sb_bm_fpt_cdf sb_ks_test sb_collide_run \
-         sb_collide_read_string sb_collide_key; do
+         sb_bes3b_hit_quantile sb_bm_fpt_cdf sb_bm_fpt_logmass sb_ks_test \
+         sb_collide_run sb_collide_read_string sb_collide_key; do
   printf '%s\n' "$syms" | grep -qx "$s" || { echo "missing export: $s"; exit 1; }
 done
 if printf '%s\n' "$syms" | grep -q '^sbi_'; then

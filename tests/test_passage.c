@@ -166,17 +166,6 @@ END_TEST
 
 /* ------------------------------------------------- BM with drift: values */
 
-/* -log(mass) = 2 d |nu| / sigma2 as passage.c's fpt_setup forms it (the
- * exponent of sb_bm_fpt_mass, which reads 0 below the doubles). */
-static double mass_exponent(double x, double a, double mu, double s2)
-{
-  sbi_dd d = sbi_dd_sum(x, -a);
-  if (d.hi < 0.0)
-    d = sbi_dd_neg(d);
-  sbi_dd k = sbi_dd_twice_ratio(d, (sbi_dd){fabs(mu), 0.0}, s2);
-  return k.hi + k.lo;
-}
-
 START_TEST(test_bm_reference)
 {
   sbt_table t;
@@ -213,7 +202,7 @@ START_TEST(test_bm_reference)
     ck_assert(sb_bm_fpt_cdf(tt, x, a, mu, s2) == r[1].val);
     /* mass -1: below 1e-300, where only logmass = log(mass) shows its
      * exponent (the mass exp(-2e300) of a 60-digit computation once had a
-     * wrong one) */
+     * wrong one); sb_bm_fpt_logmass has it also there */
     double mass = sb_bm_fpt_mass(x, a, mu, s2), want_m = sbt_at(&t, i, cma),
            want_lm = sbt_at(&t, i, clm);
     if (want_m < 0)
@@ -222,10 +211,17 @@ START_TEST(test_bm_reference)
                     "below 1e-300", x, a, mu, s2, mass, want_lm);
     else
       ck_assert_rel(mass, want_m, TOL_ULPS(4));
-    if (want_lm < 0.0) /* nu < 0 */
-      ck_assert_rel(-mass_exponent(x, a, mu, s2), want_lm, TOL_ULPS(2));
-    else
-      ck_assert(want_lm == 0.0 && mass == 1.0);
+    sb_result lm;
+    ck_assert_int_eq(sb_bm_fpt_logmass_e(x, a, mu, s2, &lm), SB_SUCCESS);
+    ck_assert(sb_bm_fpt_logmass(x, a, mu, s2) == lm.val);
+    if (want_lm < 0.0) { /* nu < 0 */
+      ck_assert_rel(lm.val, want_lm, TOL_ULPS(2));
+      ck_assert_msg(fabs(lm.val - want_lm) <= lm.err,
+                    "logmass err %g does not cover %g", lm.err,
+                    fabs(lm.val - want_lm));
+    } else {
+      ck_assert(want_lm == 0.0 && mass == 1.0 && lm.val == 0.0);
+    }
   }
   printf("bm_fpt vs mpmath (%d values): max rel error pdf %.2g cdf %.2g "
          "sf %.2g\n", n, worst[0], worst[1], worst[2]);
@@ -564,6 +560,10 @@ static double e_mass(const double *a)
 {
   return sb_bm_fpt_mass(a[1], a[2], a[3], a[4]);
 }
+static double e_logmass(const double *a)
+{
+  return sb_bm_fpt_logmass(a[1], a[2], a[3], a[4]);
+}
 static double e_b3pdf(const double *a)
 {
   return sb_bes3_fpt_pdf(a[0], a[1], a[2], a[4]);
@@ -632,6 +632,20 @@ START_TEST(test_extreme_arguments)
    * function */
   for (size_t f = 0; f < sizeof k / sizeof k[0]; f++)
     sbt_sweep_scalar(k[f].f, base[k[f].b], 5, 1, f, k[f].nm);
+  /* the log mass (<= 0): finite, or NaN with an error */
+  for (int b = 0; b < 2; b++)
+    sbt_sweep_scalar(e_logmass, base[b], 5, 0, 100 + (size_t)b,
+                     "sb_bm_fpt_logmass");
+  /* log mass below -DBL_MAX: SB_ERANGE (-2 1e300 1e300 / 1e-300) */
+  sb_result lr;
+  ck_assert_int_eq(sb_bm_fpt_logmass_e(0.0, 1e300, -1e300, 1e-300, &lr),
+                   SB_ERANGE);
+  ck_assert(isnan(lr.val));
+  ck_assert(strstr(sb_last_error(), "sb_bm_fpt_logmass") != NULL);
+  /* where the mass underflows its log is finite: -2 1e200 1e100 / 1 */
+  ck_assert(sb_bm_fpt_mass(0.0, 1e200, -1e100, 1.0) == 0.0);
+  ck_assert_rel(sb_bm_fpt_logmass(0.0, 1e200, -1e100, 1.0),
+                -2.0 * (1e200 * 1e100), TOL_ULPS(2));
   /* a density above DBL_MAX (t = 1e-310 at the mean of a narrow law) is
    * SB_ERANGE, not inf */
   sb_result r;

@@ -79,6 +79,14 @@ double sb_bm_fpt_sf(double t, double x, double a, double mu, double sigma2);
 /** P(T < inf): 1 if the drift points towards the level (or is 0), else
  *  exp(-2 |x - a| |mu| / sigma2). */
 double sb_bm_fpt_mass(double x, double a, double mu, double sigma2);
+/** log P(T < inf) = -2 |x - a| |mu| / sigma2 if the drift points away
+ *  from the level, else 0: finite where the mass underflows (below
+ *  ~1e-308, mass 0).  Same domain as sb_bm_fpt_mass (SB_EDOM, NaN);
+ *  to about 1 ulp (the exponent is formed in double-double, scaled by
+ *  powers of two where d |mu| or the quotient would leave the range,
+ *  and rounded once); 0 or subnormal without error where |log mass| is
+ *  below DBL_MIN; NaN with SB_ERANGE where it exceeds DBL_MAX. */
+double sb_bm_fpt_logmass(double x, double a, double mu, double sigma2);
 /** Smallest t with P(T <= t) >= p, for p in [0, 1]: 0 for p = 0 and +inf
  *  for p >= mass (defective law) or p = 1.  Full double precision; NaN
  *  (SB_ERANGE) where the quantile exceeds DBL_MAX. */
@@ -99,6 +107,8 @@ int sb_bm_fpt_sf_e(double t, double x, double a, double mu, double sigma2,
                    sb_result *res);
 int sb_bm_fpt_mass_e(double x, double a, double mu, double sigma2,
                      sb_result *res);
+int sb_bm_fpt_logmass_e(double x, double a, double mu, double sigma2,
+                        sb_result *res);
 /** err bounds |val - exact quantile|; returns SB_EMAXITER (with the best
  *  value found) if the iteration did not converge. */
 int sb_bm_fpt_quantile_e(double p, double x, double a, double mu,

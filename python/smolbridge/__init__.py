@@ -80,7 +80,7 @@ _FUNCS = {
     "bes3b_hit_quantile": "p x y a sigma2 t",
     "bm_fpt_pdf": "t x a mu sigma2", "bm_fpt_cdf": "t x a mu sigma2",
     "bm_fpt_sf": "t x a mu sigma2", "bm_fpt_mass": "x a mu sigma2",
-    "bm_fpt_quantile": "p x a mu sigma2",
+    "bm_fpt_logmass": "x a mu sigma2", "bm_fpt_quantile": "p x a mu sigma2",
     "bes3_fpt_pdf": "t x a sigma2", "bes3_fpt_cdf": "t x a sigma2",
     "bes3_fpt_sf": "t x a sigma2",
     "langevin_var_x": "tau B t", "langevin_var_u": "tau B t",
