@@ -6,6 +6,8 @@ comparing two builds of the library.
 
   tab   sb_spray_tab_state y, y' (rho_l = 1000, sigma = 0.072); extreme:
         heavily overdamped (beta/w0 up to ~1e8) at t up to a few 1/|k - beta|
+  tab y~0  the same with y0 ~ 0 (|y0| <= 1e-3) and t 1e-4 .. 1e-1 of the
+        above, so y << y_eq (the y_eq + z cancellation)
   hs    sb_spray_two_temp_hs T_a, T_b; extreme: n_a T_a0 and n_b T_b0
         below DBL_MIN while T_m is normal
   mx    sb_spray_two_temp_maxwell T_a, T_b; extreme: the rate
@@ -15,7 +17,10 @@ Run: /usr/bin/python3 tests/ulp_spray.py [path/to/libsmolbridge.so] [N]
 (default .libs/libsmolbridge.so of this tree, N = 300 draws per set, a
 few seconds; docs/spray.md quotes N = 2000).  Prints the largest error
 in ulp of each output per set (and of TAB's overdamped subset), with
-the arguments where it is above 4 ulp.
+the arguments where it is above 4 ulp.  For TAB also the largest error
+of y in ulp divided by its condition number (tab_cond: where y is a small
+difference of the data's terms, y_eq g, y0 e(C + b S) and y0' e S, that
+many ulp are inherent).
 """
 import ctypes
 import math
@@ -84,6 +89,31 @@ def tab_ref(t, r, U, rg, mu, Cd, y0, yd0):
                 e * (yd0 * C - (b * yd0 + w02 * z0) * S))
 
 
+def tab_cond(t, r, U, rg, mu, Cd, y0, yd0):
+    """Condition number of y as a sum of its data's terms, y = y_eq g +
+    y0 e(C + b S) + y0' e S with g = 1 - e(C + b S): sum |term| / |y|
+    (what a small y that is a difference of the data costs in ulp)"""
+    with mp.workdps(60):
+        t, r, U, rg, mu, Cd, y0, yd0 = [mpf(x) for x in
+                                         (t, r, U, rg, mu, Cd, y0, yd0)]
+        rl, sg = mpf(1000), mpf(0.072)
+        w02 = 8 * sg / (rl * r ** 3)
+        b = Cd * mu / (2 * rl * r * r)
+        yeq = mpf(2) / 3 * rg / rl * U * U / (r * r) / w02
+        w2 = w02 - b * b
+        if w2 > 0:
+            w = sqrt(w2)
+            C, S = cos(w * t), sin(w * t) / w
+        else:
+            k = sqrt(-w2)
+            C, S = mp.cosh(k * t), mp.sinh(k * t) / k
+        e = exp(-b * t)
+        P = e * (C + b * S)
+        terms = (yeq * (1 - P), y0 * P, yd0 * e * S)
+        y = sum(terms)
+        return float(sum(abs(x) for x in terms) / abs(y)) if y else math.inf
+
+
 def tab_args(rng, extreme):
     Cd = rng.choice([5.0, 10.0])
     if extreme:  # beta^2/w0^2 = Cd^2 mu^2/(32 rho_l sigma r), 1e4 .. 1e16
@@ -98,6 +128,18 @@ def tab_args(rng, extreme):
     rate = slow if b * b > w02 else math.sqrt(w02)
     t = logu(rng, 1e-3, 5.0) / rate
     return [t, r, U, rg, mu, Cd, y0, yd0]
+
+
+def tab0_args(rng, extreme):
+    """y near 0 while y_eq = We/12 is not: y0 ~ 0, t well below the
+    oscillator's time scales (y = y_eq + z cancels there); extreme: also
+    heavily overdamped"""
+    a = tab_args(rng, extreme)
+    a[2] = rng.uniform(30, 100)
+    a[6] = rng.uniform(-1, 1) * logu(rng, 1e-12, 1e-3)
+    a[7] = rng.uniform(-1, 1) * logu(rng, 1e-6, 1e-1)
+    a[0] *= logu(rng, 1e-4, 1e-1)
+    return a
 
 
 def tab_overdamped(a):
@@ -217,13 +259,15 @@ def mx_eval(lib, a):
 # name, draw, library call, reference, outputs, a subset also reported
 SETS = [("tab", tab_args, tab_eval, tab_ref, ("y", "y'"),
          ("overdamped", tab_overdamped)),
+        ("tab y~0", tab0_args, tab_eval, tab_ref, ("y", "y'"), None),
         ("hs", hs_args, hs_eval, hs_ref, ("T_a", "T_b"), None),
         ("mx", mx_args, mx_eval, mx_ref, ("T_a", "T_b"), None)]
 
 
-def report(label, worst, where, outs):
+def report(label, worst, where, outs, wc=None):
     print("%-24s" % label, "  ".join("%s max %.3g ulp" % (outs[j], worst[j])
-                                    for j in range(2)))
+                                    for j in range(2)) +
+          ("" if wc is None else "  y max %.3g ulp/cond" % wc))
     for j in range(2):
         if worst[j] > 4:
             print("      worst %s at %r" % (outs[j], where[j]))
@@ -239,11 +283,15 @@ def main():
             rng = random.Random(20261130 + 7 * extreme + len(name))
             worst, where = [0.0, 0.0], [None, None]
             sworst, swhere, ns = [0.0, 0.0], [None, None], 0
+            wc = 0.0 if name.startswith("tab") else None
             for _ in range(N):
                 a = gen(rng, extreme)
                 got, exact = ev(lib, a), ref(*a)
                 insub = sub is not None and sub[1](a)
                 ns += insub
+                if wc is not None:
+                    wc = max(wc, ulps(got[0], exact[0]) /
+                             max(1.0, tab_cond(*a)))
                 for j in range(2):
                     u = ulps(got[j], exact[j])
                     if u > worst[j]:
@@ -251,7 +299,7 @@ def main():
                     if insub and u > sworst[j]:
                         sworst[j], swhere[j] = u, a
             label = "%s %s" % (name, "extreme" if extreme else "ordinary")
-            report(label, worst, where, outs)
+            report(label, worst, where, outs, wc)
             if sub is not None and not extreme:
                 report("  (%d %s)" % (ns, sub[0]), sworst, swhere, outs)
 

@@ -344,7 +344,16 @@ void sb_spray_tab_params_default(sb_spray_tab_params *p);
  *  error a few DBL_EPSILON (the difference had ~ DBL_EPSILON/(w0 t_d)^2,
  *  y wrong in the ninth digit at 1/(w0 t_d) = 1e4); heavily overdamped
  *  y, y' are within ~10 ulp of mpmath for 1/(w0 t_d)^2 from 1e4 to 1e16
- *  and t up to a few times the slow time.  The same SB_EDOM/SB_ERANGE domain
+ *  and t up to a few times the slow time.  y is formed as y_eq g(t) +
+ *  e^{-t/t_d}[y0 C + (y0' + y0/t_d) S] with the step response g = 1 -
+ *  e^{-t/t_d}(C + S/t_d) summed from non-negative terms (series where t
+ *  is small against t_d or 1/w0), not as y_eq + (y - y_eq), which
+ *  cancelled where |y| << y_eq = We/12 (t << 1/w0 from y0 ~ 0: 6e3 ulp,
+ *  1e13 ulp at y0 ~ 1e-13).  What remains is inherent: where y is a
+ *  small difference of those three terms (y0 or y0' of the opposite
+ *  sign to y_eq) the error is up to ~ (sum of |terms|)/|y| ulp, and a
+ *  phase w t of many radians carries the rounding of w0^2 and 1/t_d
+ *  from the data.  The same SB_EDOM/SB_ERANGE domain
  *  holds for sb_spray_tab_breakup_time (SB_ERANGE also when y' at
  *  breakup overflows) and sb_spray_tab_we_crit. */
 int sb_spray_tab_state(double t, double r, double urel, double rho_g,

@@ -40,6 +40,7 @@ typedef struct {
   double z0, zd0;
   double km, kp; /* overdamped: k - beta, k + beta, k = sqrt(-w2) */
   double ys;     /* yeq 2^-ms */
+  double y0s;    /* y0 2^-ms */
   int ks, ms;
 } osc;
 
@@ -83,14 +84,18 @@ static int osc_scaled(osc *o, double r, double urel, double rho_g,
   const sbi_xd z0 = sbi_xd_add(sbi_xd_of(y0), sbi_xd_of(-o->yeq));
   const sbi_xd zd0 = sbi_xd_norm(sbi_xd_of(ydot0).m,
                                  sbi_xd_of(ydot0).e + o->ks);
-  /* |Z0|, |Zd0| < 2^1020: the sums of osc_eval stay finite */
+  /* |Z0|, |Zd0|, |y0| 2^-ms < 2^1020: the sums of osc_eval stay
+   * finite */
   int em = z0.m != 0.0 ? z0.e : INT_MIN;
   if (zd0.m != 0.0 && zd0.e > em)
     em = zd0.e;
+  if (y0 != 0.0 && sbi_xd_of(y0).e > em)
+    em = sbi_xd_of(y0).e;
   o->ms = em > 1020 ? em - 1020 : 0;
   o->z0 = sbi_xd_val(sbi_xd_norm(z0.m, z0.e - o->ms));
   o->zd0 = sbi_xd_val(sbi_xd_norm(zd0.m, zd0.e - o->ms));
   o->ys = ldexp(o->yeq, -o->ms);
+  o->y0s = ldexp(y0, -o->ms);
   if (o->w2 < 0) { /* k - beta = -w0^2/(k + beta) without cancellation */
     o->kp = sqrt(-o->w2) + o->beta;
     o->km = -o->w02 / o->kp;
@@ -122,8 +127,10 @@ static int osc_init(osc *o, double r, double urel, double rho_g,
   o->zd0 = ydot0;
   o->ks = o->ms = 0;
   o->ys = o->yeq;
+  o->y0s = y0;
   const double cm = Cd * liq->mu_l, bz = o->beta * o->z0,
-               bzd = o->beta * o->zd0, wz = o->w02 * o->z0;
+               bzd = o->beta * o->zd0, wz = o->w02 * o->z0,
+               by = o->beta * y0;
   /* plain: every scale and product in the normal range (or exactly 0) */
   const int plain =
       nrm(rho_l * r * r * r, 0) && nrm(o->w02, 0) &&
@@ -134,7 +141,8 @@ static int osc_init(osc *o, double r, double urel, double rho_g,
        (nrm(rho_g / rho_l, 0) && nrm(f, 0) && nrm(fu, 0) &&
         nrm(r * r, 0) && nrm(fr, 0) && nrm(o->yeq, 0))) &&
       isfinite(o->z0) && isfinite(bz) && isfinite(wz) && isfinite(bzd) &&
-      isfinite(o->zd0 + bz) && isfinite(bzd + wz);
+      isfinite(o->zd0 + bz) && isfinite(bzd + wz) && isfinite(by) &&
+      isfinite(o->zd0 + by);
   if (!plain) {
     int st = osc_scaled(o, r, urel, rho_g, rho_l, liq, Cd, y0, ydot0, func);
     if (st)
@@ -177,14 +185,84 @@ static void osc_cs(const osc *o, double t, double *ec, double *es)
   }
 }
 
-/* z = e^{-bt}[z0 C + (zd0 + b z0) S],  z' = e^{-bt}[zd0 C - (b zd0 +
- * w0^2 z0) S], at t in the oscillator's units; y, y' in SI units. */
+/* The step response g(t) = 1 - e^{-bt}(C + b S) (z'' + 2 b z' + w0^2 z =
+ * w0^2, z(0) = z'(0) = 0), 0 <= g, without the cancellation of 1 - P
+ * where P = e^{-bt}(C + b S) is near 1 (t small against 1/b, 1/w0;
+ * slow decay when heavily overdamped).  ec, es: e^{-bt} C, e^{-bt} S
+ * (osc_cs). */
+static double osc_step(const osc *o, double t, double ec, double es)
+{
+  const double b = o->beta, bt = b * t, e = exp(-bt);
+  const double eps = 0.25 * DBL_EPSILON;
+  if (o->w2 > 0) {
+    /* 1 - e C - e b S = e [(e^{bt} - 1 - bt) + (b/w)(wt - sin wt)
+     * + 2 sin^2(wt/2)], every term >= 0 */
+    const double w = sqrt(o->w2), th = w * t;
+    double eE, ts;
+    if (bt <= 1) { /* e^x - 1 - x = sum_{m >= 2} x^m/m! */
+      double term = 0.5 * bt * bt, sum = 0;
+      for (int m = 2; m < 40 && term > eps * sum; m++) {
+        sum += term;
+        term *= bt / (m + 1);
+      }
+      eE = e * sum;
+    } else {
+      eE = -expm1(-bt) - bt * e;
+    }
+    if (isinf(th)) {
+      ts = 0.0;  /* e = 0 here (tab_state refuses an unresolved phase) */
+    } else if (th <= 1.5) { /* th - sin th = sum (-1)^(n+1) th^(2n+1)/(2n+1)! */
+      double term = th * th * th / 6, sum = 0;
+      for (int n = 1; n < 40 && fabs(term) > eps * fabs(sum); n++) {
+        sum += term;
+        term *= -th * th / ((2 * n + 2) * (2 * n + 3));
+      }
+      ts = e * (b / w) * sum;
+    } else {
+      ts = e * (b / w) * (th - sin(th));
+    }
+    const double sh = isinf(th) ? 0.0 : sin(0.5 * th);
+    return eE + ts + 2 * e * sh * sh;
+  }
+  if (bt <= 30) {
+    /* overdamped or critical, B = (bt)^2 >= K = (kt)^2 = B - W, W =
+     * (w0 t)^2: g = e sum_{n >= 1} D_n (1/(2n)! + bt/(2n+1)!) with D_n =
+     * B^n - K^n >= 0, D_{n+1} = B D_n + W K^n: every term >= 0 */
+    const double B = bt * bt, W = o->w02 * t * t, K = -o->w2 * t * t;
+    double D = W, Kn = K, f = 0.5, sum = 0; /* f = 1/(2n)! */
+    for (int n = 1; n < 200; n++) {
+      const double term = D * (f + bt * f / (2 * n + 1));
+      sum += term;
+      if (term <= eps * sum)
+        break;
+      D = B * D + W * Kn;
+      Kn *= K;
+      f /= (double)((2 * n + 1) * (2 * n + 2));
+    }
+    return e * sum;
+  }
+  const double P = ec + b * es;
+  if (P <= 0.5)
+    return 1 - P;
+  /* slow decay: [kp (1 - e^{km t}) - |km| (1 - e^{-kp t})]/(2k); P > 1/2
+   * at bt > 30 needs k > 0.97 b, and then the second term is below ~1/20
+   * of the first */
+  const double k = sqrt(-o->w2);
+  return (-o->kp * expm1(o->km * t) + o->km * -expm1(-o->kp * t)) / (2 * k);
+}
+
+/* y = y_eq g + e^{-bt}[y0 C + (y0' + b y0) S] (the forced response plus
+ * the free one: no y_eq + z cancellation where y << y_eq),
+ * z' = e^{-bt}[zd0 C - (b zd0 + w0^2 z0) S], at t in the oscillator's
+ * units; y, y' in SI units. */
 static void osc_eval(const osc *o, double t, double *y, double *yd)
 {
   double ec, es;
   osc_cs(o, t, &ec, &es);
   if (y)
-    *y = ldexp(o->ys + o->z0 * ec + (o->zd0 + o->beta * o->z0) * es, o->ms);
+    *y = ldexp(o->ys * osc_step(o, t, ec, es) + o->y0s * ec +
+                   (o->zd0 + o->beta * o->y0s) * es,
+               o->ms);
   if (yd)
     *yd = ldexp(o->zd0 * ec - (o->beta * o->zd0 + o->w02 * o->z0) * es,
                 o->ms - o->ks);
