@@ -1532,6 +1532,15 @@ int sbi_engine_find_step_pairs(sb_engine *e, double reach)
                     (e->par.detect == SB_DETECT_CUSTOM && e->detect_chord)) &&
                    !e->par.lsearch_off && !e->walled && !e->lees &&
                    !e->ninflow && sbi_engine_langevin_chord_gate(e, reach);
+  if (e->n == 1) {
+    /* no pairs to search, but the displacement is checked as for more
+     * particles: a non-finite one or one beyond half the box is refused,
+     * not wrapped into the box */
+    double cut, D;
+    int st = cutoff(e, e->disp, reach, &cut, &D, "sb_engine_step");
+    if (st)
+      return st;
+  }
   return find_pairs(e, e->par.neigh, e->x0, e->disp, reach, with_list,
                     ordered, lang, "sb_engine_step");
 }
