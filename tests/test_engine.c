@@ -1056,6 +1056,61 @@ START_TEST(test_one_particle_step_checked)
 }
 END_TEST
 
+/* The nonlinear drag step and the exact shear step after the transport:
+ * a new x or u that is not finite is SB_ERANGE naming the part of the
+ * step, every particle back at its start of step (as for the transport).
+ * Drag: u_x = 1e200 gives |u - U_s|^2 = inf, so Re = inf and the drag
+ * factor NaN (the Stokes transport of the same state is finite).  Shear:
+ * G = 1e10 1/s and u_y = 1e300 m/s give the correction G tau c_1 u_y of
+ * u_x = inf. */
+START_TEST(test_after_transport_overflow)
+{
+  for (int kind = 0; kind < 2; kind++)
+    for (int streams = 0; streams < 2; streams++) {
+      sb_engine_params p;
+      sb_engine_params_default(&p);
+      p.L[0] = p.L[1] = p.L[2] = 10.0;
+      p.dt = 1.0;
+      p.capacity = 4;
+      p.streams = streams;
+      sb_engine *e = sb_engine_alloc(&p);
+      ck_assert_ptr_nonnull(e);
+      sb_engine_species s = {0.1, 1.0, 1.0, 0.0, 0.0};  /* B = 0, T = 0 */
+      ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+      double xa[3] = {2, 5, 5}, xb[3] = {7, 5, 2}, ua[3] = {0, 0, 0};
+      if (kind == 0) {
+        sb_engine_species_fluid f = {SB_DRAG_SCHILLER_NAUMANN, 1000.0,
+                                     1e-3};
+        ck_assert_int_eq(sb_engine_set_species_fluid(e, 0, &f), SB_SUCCESS);
+        ua[0] = 1e200;
+      } else {
+        const double G[3] = {1e10, 0, 0};
+        ck_assert_int_eq(sb_engine_set_fluid(e, SB_FLUID_SHEAR, G),
+                         SB_SUCCESS);
+        ck_assert_int_eq(sb_engine_set_lees_edwards(e, 1), SB_SUCCESS);
+        ua[1] = 1e300;  /* at y = L/2: the shear's U_x is 0 */
+      }
+      const double ub[3] = {0, 0, 0};
+      ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xa, ua), SB_SUCCESS);
+      ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xb, ub), SB_SUCCESS);
+      double x0[6], u0[6];
+      memcpy(x0, sb_engine_positions(e), sizeof x0);
+      memcpy(u0, sb_engine_velocities(e), sizeof u0);
+      int st = sb_engine_step(e);
+      ck_assert_msg(st == SB_ERANGE, "kind %d, streams %d: status %d (%s)",
+                    kind, streams, st, sb_last_error());
+      ck_assert(strstr(sb_last_error(), kind ? "after the exact shear step"
+                                             : "after the nonlinear drag "
+                                               "step") != NULL);
+      ck_assert(strstr(sb_last_error(), "particle 0") != NULL);
+      ck_assert_mem_eq(sb_engine_positions(e), x0, sizeof x0);
+      ck_assert_mem_eq(sb_engine_velocities(e), u0, sizeof u0);
+      ck_assert(sb_engine_time(e) == 0.0);
+      sb_engine_free(e);
+    }
+}
+END_TEST
+
 /* A fill is all or nothing: one that cannot place every particle (no
  * room, or the fluid field fails part-way) leaves the particles, their
  * order and positions and the id counter as they were, and the engine
@@ -1591,6 +1646,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_errors);
   tcase_add_test(tc, test_species_extreme);
   tcase_add_test(tc, test_one_particle_step_checked);
+  tcase_add_test(tc, test_after_transport_overflow);
   tcase_add_test(tc, test_error_names);
   tcase_add_test(tc, test_fill_all_or_nothing);
   tcase_add_test(tc, test_checkpoint_bad_ids);

@@ -994,8 +994,10 @@ static int stream_block(const stream_step *S, size_t b, double *dmax)
  * (B sqrt(tau), the state or the fluid velocity near DBL_MAX): if one of
  * the box's dim components is (in 2-D the third is reset after the step),
  * every particle back to its start of step (x0, u0) and SB_ERANGE naming
- * the first such particle and its species' parameters; else 0. */
-static int transport_overflow(sb_engine *e)
+ * the first such particle and its species' parameters; else 0.  `after`
+ * (NULL for the transport itself) names the part of the step after the
+ * transport that gave the state (engine_force.c). */
+int sbi_engine_step_overflow(sb_engine *e, const char *after)
 {
   const int dim = e->par.dim;
   size_t bad = e->n;
@@ -1011,9 +1013,10 @@ static int transport_overflow(sb_engine *e)
   const sb_engine_species *s = &e->spec[e->species[bad]];
   return sbi_error(SB_ERANGE, "sb_engine_step",
                    "particle %zu (species %zu, tau = %g, B = %g): the new "
-                   "position or velocity exceeds DBL_MAX (from x = (%g, "
+                   "position or velocity exceeds DBL_MAX%s%s (from x = (%g, "
                    "%g, %g), u = (%g, %g, %g)); the step is not taken",
-                   bad, e->species[bad], s->tau, s->B, e->x[3 * bad],
+                   bad, e->species[bad], s->tau, s->B, after ? " after " : "",
+                   after ? after : "", e->x[3 * bad],
                    e->x[3 * bad + 1], e->x[3 * bad + 2], e->u[3 * bad],
                    e->u[3 * bad + 1], e->u[3 * bad + 2]);
 }
@@ -1062,7 +1065,7 @@ static int transport_streams(sb_engine *e, const double *us)
   if (bad & 1)
     return sbi_error(SB_EDOM, "sb_engine_step",
                      "streams: a particle id or the step is out of range");
-  if ((bad & 4) && (st = transport_overflow(e)))
+  if ((bad & 4) && (st = sbi_engine_step_overflow(e, NULL)))
     return st;
   e->dn_ready = 1;
   e->dn_bad = (bad & 2) != 0;
@@ -1141,7 +1144,7 @@ static int transport(sb_engine *e)
       }
     }
   }
-  if (bad && (st = transport_overflow(e)))
+  if (bad && (st = sbi_engine_step_overflow(e, NULL)))
     return st;
   if (e->par.dim == 2)
     for (size_t i = 0; i < n; i++)

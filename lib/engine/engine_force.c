@@ -325,7 +325,9 @@ int sbi_engine_nonlinear(const sb_engine *e, size_t k)
 }
 
 /* The nonlinear-drag species' step (file comment); overwrites their end
- * states and chords, and keeps their rates. */
+ * states and chords, and keeps their rates.  A new x or u that is not
+ * finite (a state or fluid velocity near DBL_MAX, a rate that overflows)
+ * undoes the step: SB_ERANGE (sbi_engine_step_overflow). */
 static int drag_step(sb_engine *e)
 {
   if (e->par.capacity > e->caplam) {
@@ -335,16 +337,21 @@ static int drag_step(sb_engine *e)
     e->lam = l;
     e->caplam = e->par.capacity;
   }
+  int bad = 0;
   for (size_t i = 0; i < e->n; i++) {
     if (!sbi_engine_nonlinear(e, i))
       continue;
     const double *x0 = &e->x0[3 * i];
-    e->lam[i] = drag_one(e, i, e->par.dt, x0, &e->u0[3 * i], &e->x[3 * i],
-                         &e->u[3 * i]);
+    double *x = &e->x[3 * i], *u = &e->u[3 * i];
+    e->lam[i] = drag_one(e, i, e->par.dt, x0, &e->u0[3 * i], x, u);
     for (int k = 0; k < 3; k++)
-      e->disp[3 * i + k] = e->x[3 * i + k] - x0[k];
+      e->disp[3 * i + k] = x[k] - x0[k];
+    /* y - y is 0, or NaN for an infinite or NaN y */
+    bad |= !isfinite((x[0] - x[0]) + (x[1] - x[1]) + (x[2] - x[2]) +
+                     (u[0] - u[0]) + (u[1] - u[1]) + (u[2] - u[2]));
   }
-  return SB_SUCCESS;
+  return bad ? sbi_engine_step_overflow(e, "the nonlinear drag step")
+             : SB_SUCCESS;
 }
 
 void sbi_engine_drag_piece(sb_engine *e, size_t k, double h)
@@ -382,8 +389,9 @@ int sbi_engine_after_transport(sb_engine *e)
     e->dn_ready = 0;  /* new displacements */
   }
   if (e->lees && e->fluid == SB_FLUID_SHEAR) {
-    sbi_engine_shear_correct(e);
     e->dn_ready = 0;
+    if (sbi_engine_shear_correct(e))
+      return sbi_engine_step_overflow(e, "the exact shear step");
   }
   return SB_SUCCESS;
 }

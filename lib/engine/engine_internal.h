@@ -673,6 +673,11 @@ int sbi_engine_langevin_continue(sb_engine *e, size_t k, const sbi_event *ev,
 
 /* Recompute per-species step coefficients after a dt change. */
 int sbi_engine_update_coef(sb_engine *e);
+/* A step's new state with an infinite or NaN x or u (one of the dim
+ * components): every particle back to its start of step and SB_ERANGE
+ * naming the first such particle (`after`: the part of the step after
+ * the transport that gave it, or NULL); 0 if there is none. */
+int sbi_engine_step_overflow(sb_engine *e, const char *after);
 
 /* Forces, Lees-Edwards and walls (engine_force.c, engine_lees.c,
  * engine_wall.c); each is a no-op when its feature is off. */
@@ -713,8 +718,9 @@ typedef struct sbi_shear_noise {
  * G = 0); SB_ENOMEM. */
 int sbi_engine_shear_noise(sb_engine *e, const sbi_shear_noise **tab);
 /* Exact-mean correction of the Stokes species' x components in the
- * linear shear field (Lees-Edwards on). */
-void sbi_engine_shear_correct(sb_engine *e);
+ * linear shear field (Lees-Edwards on); non-zero if a corrected x or u
+ * is not finite. */
+int sbi_engine_shear_correct(sb_engine *e);
 /* After the periodic search: drop pairs across walls and Lees-Edwards
  * boundaries, add the pairs across the sliding boundary. */
 int sbi_engine_boundary_pairs(sb_engine *e, const double *x0,

@@ -120,11 +120,12 @@ int sbi_engine_shear_noise(sb_engine *e, const sbi_shear_noise **tab)
   return SB_SUCCESS;
 }
 
-void sbi_engine_shear_correct(sb_engine *e)
+int sbi_engine_shear_correct(sb_engine *e)
 {
   const double G = e->fluid_p[0], h = e->par.dt;
+  int bad = 0;
   if (G == 0.0)
-    return;
+    return 0;
   for (size_t i = 0; i < e->n; i++) {
     const size_t sp = e->species[i];
     const double tau = e->spec[sp].tau;
@@ -140,7 +141,11 @@ void sbi_engine_shear_correct(sb_engine *e)
     e->u[3 * i] += du;
     e->x[3 * i] += dx;
     e->disp[3 * i] += dx;
+    /* y - y is 0, or NaN for an infinite or NaN y */
+    bad |= !isfinite((e->x[3 * i] - e->x[3 * i]) +
+                     (e->u[3 * i] - e->u[3 * i]));
   }
+  return bad;
 }
 
 int sbi_engine_image(const sb_engine *e, const double *xi, const double *xj,

@@ -379,11 +379,12 @@ int sb_engine_set_dt(sb_engine *e, double dt);
  *  "non-finite displacement" where the displacement's length overflows),
  *  checked for a single particle as for more (it is not wrapped into the
  *  box), a callback failed, or the detector returned an error; SB_ERANGE
- *  if the transport gave a particle an infinite or NaN position or
- *  velocity (B sqrt(tau) or the state near DBL_MAX): every particle then
- *  keeps its position and velocity from before the step; SB_ENOMEM;
- *  SB_EMAXITER if a reinsertion found no free place.  After another error
- *  the state is undefined (restore a checkpoint). */
+ *  if the transport, the nonlinear drag step or the exact shear step
+ *  (Lees-Edwards) gave a particle an infinite or NaN position or velocity
+ *  (B sqrt(tau), the state or the fluid velocity near DBL_MAX): every
+ *  particle then keeps its position and velocity from before the step;
+ *  SB_ENOMEM; SB_EMAXITER if a reinsertion found no free place.  After
+ *  another error the state is undefined (restore a checkpoint). */
 int sb_engine_step(sb_engine *e);
 
 /** Reorder the particles in memory along the cells of a grid (cell
