@@ -936,8 +936,9 @@ START_TEST(test_species_extreme)
   ck_assert_int_eq(sb_engine_add_species(e, &c, NULL), SB_SUCCESS);
   ck_assert_uint_eq(sb_engine_species_count(e), 2);
   double xc[3] = {1, 1, 1}, uc[3];
-  ck_assert_int_eq(sbi_engine_equilibrium_velocity(e, 1, xc, uc, "t"),
-                   SB_SUCCESS);
+  ck_assert_int_eq(
+      sbi_engine_equilibrium_velocity(e, 1, xc, uc, SB_EINVAL, "t"),
+      SB_SUCCESS);
   for (int k = 0; k < 3; k++)
     ck_assert(isfinite(uc[k]) && fabs(uc[k]) > 1e290);
   /* a step coefficient beyond DBL_MAX: SB_ERANGE (was SB_EINVAL) */
@@ -1108,6 +1109,112 @@ START_TEST(test_after_transport_overflow)
       ck_assert(sb_engine_time(e) == 0.0);
       sb_engine_free(e);
     }
+}
+END_TEST
+
+/* A fluid field that is 0 for the first call (the step's transport) and
+ * +inf from the second on (the draws of the step's reinsertions and
+ * arrivals). */
+static int fluid_inf_after_first(size_t n, const double *x, double *us,
+                                 void *ctx)
+{
+  (void)x;
+  int *calls = ctx;
+  const double v = (*calls)++ ? INFINITY : 0.0;
+  for (size_t i = 0; i < 3 * n; i++)
+    us[i] = v;
+  return 0;
+}
+
+/* Reinsertions (absorbing wall with deposit = reinsert, the reinsert
+ * outcome) and inflow arrivals whose drawn velocity or flight is not
+ * finite: SB_ERANGE naming the cause, nothing infinite or NaN in the
+ * state (they put u = inf, and then x = NaN, with status 0; the inflow's
+ * was SB_EINVAL from sb_engine_add_particle). */
+START_TEST(test_reinsert_overflow)
+{
+  for (int kind = 0; kind < 3; kind++) {
+    sb_engine *e = box_engine(3, 10.0, 1.0, 8);
+    size_t sp;
+    if (kind < 2)
+      sp = add_free(e, 0.1, 1.0);
+    else {
+      sb_engine_species s = {0.1, 1.0, 1.0, 0.0, 0.0};
+      ck_assert_int_eq(sb_engine_add_species(e, &s, &sp), SB_SUCCESS);
+    }
+    int calls = 0;
+    ck_assert_int_eq(sb_engine_set_fluid_fn(e, fluid_inf_after_first,
+                                            &calls),
+                     SB_SUCCESS);
+    if (kind == 0) {  /* reaches the absorbing face y = 0 */
+      ck_assert_int_eq(sb_engine_set_walls(e, 1, SB_WALL_ABSORB,
+                                           SB_WALL_ABSORB), SB_SUCCESS);
+      ck_assert_int_eq(sb_engine_set_wall_mode(e, SB_WALLDET_BALLISTIC,
+                                               SB_DEPOSIT_REINSERT),
+                       SB_SUCCESS);
+      double x[3] = {5, 0.5, 5}, u[3] = {0, -1, 0};
+      ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, x, u), SB_SUCCESS);
+    } else if (kind == 1) {  /* head-on at half the step */
+      ck_assert_int_eq(sb_engine_set_outcome(e, SB_OUTCOME_REINSERT, 1.0),
+                       SB_SUCCESS);
+      double xa[3] = {4, 5, 5}, ua[3] = {1, 0, 0};
+      double xb[3] = {6, 5, 5}, ub[3] = {-1, 0, 0};
+      ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, xa, ua), SB_SUCCESS);
+      ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, xb, ub), SB_SUCCESS);
+    } else {  /* ~ 4 arrivals a step through x = 0 */
+      sb_engine_inflow in = {0, sp, 0, 4.0, {4, 4}, {6, 6}, {1, 0, 0}, 0};
+      ck_assert_int_eq(sb_engine_add_inflow(e, &in, NULL), SB_SUCCESS);
+    }
+    int st = SB_SUCCESS;
+    for (int k = 0; k < 5 && !st; k++) {
+      st = sb_engine_step(e);
+      const double *x = sb_engine_positions(e),
+                   *u = sb_engine_velocities(e);
+      for (size_t i = 0; i < 3 * sb_engine_count(e); i++)
+        ck_assert_msg(isfinite(x[i]) && isfinite(u[i]), "kind %d, step %d "
+                      "(status %d): x[%zu] = %g, u[%zu] = %g", kind, k, st,
+                      i, x[i], i, u[i]);
+    }
+    ck_assert_msg(st == SB_ERANGE, "kind %d: status %d (%s)", kind, st,
+                  sb_last_error());
+    ck_assert(strstr(sb_last_error(), "sb_engine_step") != NULL);
+    ck_assert_msg(strstr(sb_last_error(), kind < 2 ? "fluid field's "
+                                                     "velocity inf"
+                                                   : "inflow 0") != NULL,
+                  "kind %d: %s", kind, sb_last_error());
+    sb_engine_free(e);
+  }
+}
+END_TEST
+
+/* A fill whose velocity is not finite names the cause (it said "fluid
+ * field" whatever it was): the species' velocity spread (B sqrt(tau / 2) =
+ * DBL_MAX: a draw beyond one standard deviation overflows), or the fluid
+ * field; SB_EINVAL as before, nothing added. */
+START_TEST(test_fill_velocity_cause)
+{
+  sb_engine *e = box_engine(3, 10.0, 1e-6, 8);
+  sb_engine_species s = {0.1, 1.0, 2.0, DBL_MAX, 0.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 8), SB_EINVAL);
+  ck_assert(strstr(sb_last_error(), "sb_engine_fill_random") != NULL);
+  ck_assert_msg(strstr(sb_last_error(), "velocity spread") != NULL &&
+                    strstr(sb_last_error(), "fluid") == NULL,
+                "%s", sb_last_error());
+  ck_assert_uint_eq(sb_engine_count(e), 0);
+  sb_engine_free(e);
+
+  e = box_engine(3, 10.0, 1e-6, 8);
+  size_t sp = add_free(e, 0.1, 1.0);
+  int calls = 1;  /* inf from the first call */
+  ck_assert_int_eq(sb_engine_set_fluid_fn(e, fluid_inf_after_first, &calls),
+                   SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_fill_random(e, sp, 0, 2), SB_EINVAL);
+  ck_assert_msg(strstr(sb_last_error(), "fluid field's velocity inf") !=
+                    NULL,
+                "%s", sb_last_error());
+  ck_assert_uint_eq(sb_engine_count(e), 0);
+  sb_engine_free(e);
 }
 END_TEST
 
@@ -1647,6 +1754,8 @@ static Suite *suite(void)
   tcase_add_test(tc, test_species_extreme);
   tcase_add_test(tc, test_one_particle_step_checked);
   tcase_add_test(tc, test_after_transport_overflow);
+  tcase_add_test(tc, test_reinsert_overflow);
+  tcase_add_test(tc, test_fill_velocity_cause);
   tcase_add_test(tc, test_error_names);
   tcase_add_test(tc, test_fill_all_or_nothing);
   tcase_add_test(tc, test_checkpoint_bad_ids);

@@ -458,16 +458,17 @@ int sbi_engine_fluid_eval(sb_engine *e, size_t n, const double *x,
 
 int sbi_engine_equilibrium_velocity(sb_engine *e, size_t sp,
                                     const double x[3], double u[3],
-                                    const char *who)
+                                    int bad, const char *who)
 {
-  double us[3];
+  double us[3], th[3] = {0, 0, 0};
   int st = sbi_engine_fluid_eval(e, 1, x, us, who);
   if (st)
     return st;
-  for (int k = 0; k < 3; k++)
-    u[k] = k < e->par.dim
-               ? us[k] + gsl_ran_gaussian_ziggurat(e->rng, e->vsd[sp])
-               : 0.0;
+  for (int k = 0; k < 3; k++) {
+    if (k < e->par.dim)
+      th[k] = gsl_ran_gaussian_ziggurat(e->rng, e->vsd[sp]);
+    u[k] = k < e->par.dim ? us[k] + th[k] : 0.0;
+  }
   /* with gravity: plus the species' settling velocity (engine_force.c) */
   const double *vs;
   if ((st = sbi_engine_settling(e, sp, &vs, who)))
@@ -475,6 +476,27 @@ int sbi_engine_equilibrium_velocity(sb_engine *e, size_t sp,
   if (vs)
     for (int k = 0; k < e->par.dim; k++)
       u[k] += vs[k];
+  for (int k = 0; k < e->par.dim; k++) {
+    if (isfinite(u[k]))
+      continue;
+    /* the part that is not finite, or the sum that overflowed */
+    const double v = vs ? vs[k] : 0.0;
+    char why[160];
+    if (!isfinite(us[k]))
+      snprintf(why, sizeof why, "the fluid field's velocity %g there", us[k]);
+    else if (!isfinite(th[k]))
+      snprintf(why, sizeof why, "the thermal draw %g from the species' "
+               "velocity spread %g m/s", th[k], e->vsd[sp]);
+    else if (!isfinite(v))
+      snprintf(why, sizeof why, "the species' settling velocity %g", v);
+    else
+      snprintf(why, sizeof why, "the sum of the fluid field's velocity %g, "
+               "the thermal draw %g (spread %g m/s) and the settling "
+               "velocity %g", us[k], th[k], e->vsd[sp], v);
+    return sbi_error(bad, who, "velocity u[%d] = %g of a new particle of "
+                     "species %zu at (%g, %g, %g): not finite (%s)", k, u[k],
+                     sp, x[0], x[1], x[2], why);
+  }
   return SB_SUCCESS;
 }
 
@@ -623,15 +645,16 @@ static int fill_region(sb_engine *e, size_t species, int family, size_t n,
     }
     if (st)
       break;
-    st = sbi_engine_equilibrium_velocity(e, species, x, u, who);
+    st = sbi_engine_equilibrium_velocity(e, species, x, u, SB_EINVAL, who);
     if (st)
       break;
-    for (int k = 0; k < dim; k++) {
-      if (drift)
-        u[k] += drift[k];
+    for (int k = 0; k < dim && drift; k++) {
+      const double ue = u[k];
+      u[k] += drift[k];
       if (!isfinite(u[k])) {
         st = sbi_error(SB_EINVAL, who, "velocity u[%d] = %g of a new "
-                       "particle: not finite (fluid field)", k, u[k]);
+                       "particle: not finite (the equilibrium velocity %g "
+                       "plus the drift %g)", k, u[k], ue, drift[k]);
         break;
       }
     }

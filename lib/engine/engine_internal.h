@@ -523,12 +523,16 @@ int sbi_engine_reinsert_higher_id(sb_engine *e, const sb_engine_pair *p,
 int sbi_engine_random_free_position(sb_engine *e, size_t k, size_t partner,
                                     double x[3], size_t tries,
                                     const char *who);
-/* Equilibrium velocity for species sp at position x into u.  Here and in
- * the helpers below `who` is the public function entered, named in the
- * error messages. */
+/* Equilibrium velocity for species sp at position x into u: the fluid
+ * velocity, a thermal draw and the settling velocity per component.  A
+ * component that is not finite is the status `bad`, with a message naming
+ * the part that is not (the fluid field, the species' velocity spread,
+ * the settling velocity) or the sum that overflowed.  Here and in the
+ * helpers below `who` is the public function entered, named in the error
+ * messages. */
 int sbi_engine_equilibrium_velocity(sb_engine *e, size_t sp,
                                     const double x[3], double u[3],
-                                    const char *who);
+                                    int bad, const char *who);
 /* Fluid velocity at n positions (built-in or callback). */
 int sbi_engine_fluid_eval(sb_engine *e, size_t n, const double *x,
                           double *us, const char *who);

@@ -255,6 +255,14 @@ int sbi_engine_inject(sb_engine *e)
         e->nskip[q]++;
         continue;
       }
+      /* an arrival's flight that leaves the doubles (a fluid velocity
+       * near DBL_MAX): not placed, SB_ERANGE as an overflowing step */
+      for (int d = 0; d < dim; d++)
+        if (!isfinite(x[d]) || !isfinite(u[d]))
+          return sbi_error(SB_ERANGE, "sb_engine_step", "inflow %zu: an "
+                           "arrival's flight from its entry point gave x[%d] "
+                           "= %g, u[%d] = %g (not finite)", q, d, x[d], d,
+                           u[d]);
       int st = sb_engine_add_particle(e, in->species, in->family, x, u);
       if (st)
         return st;

@@ -213,7 +213,9 @@ static int outcome_reinsert(sb_engine *e, const sb_engine_pair *p, double s,
   int st = sbi_engine_random_free_position(e, j, p->i, x, 10000, who);
   if (st)
     return st;
-  st = sbi_engine_equilibrium_velocity(e, e->species[j], x, u, who);
+  /* a velocity that is not finite: SB_ERANGE, j left as it was */
+  st = sbi_engine_equilibrium_velocity(e, e->species[j], x, u, SB_ERANGE,
+                                       who);
   if (st)
     return st;
   for (int k = 0; k < 3; k++) {
@@ -241,8 +243,16 @@ static int outcome_reinsert(sb_engine *e, const sb_engine_pair *p, double s,
   const double rest = (1.0 - tc) * e->par.dt;
   if ((st = sb_engine_outcome_path(e, j, x)))
     return st;
-  for (int k = 0; k < e->par.dim; k++)
-    e->x[3 * j + k] += rest * (w[k] + (vs ? vs[k] : 0.0));
+  double xm[3] = {x[0], x[1], x[2]};
+  for (int k = 0; k < e->par.dim; k++) {
+    xm[k] += rest * (w[k] + (vs ? vs[k] : 0.0));
+    if (!isfinite(xm[k]))
+      return sbi_error(SB_ERANGE, who, "reinserted particle %zu: its "
+                       "flight over the rest of the step from x[%d] = %g "
+                       "(velocity %g) is not finite", j, k, x[k],
+                       w[k] + (vs ? vs[k] : 0.0));
+  }
+  memcpy(&e->x[3 * j], xm, sizeof xm);
   return SB_SUCCESS;
 }
 

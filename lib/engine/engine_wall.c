@@ -118,7 +118,8 @@ int sb_engine_periodic(const sb_engine *e, int k)
 }
 
 /* Reinsert particle i uniformly in the accessible volume with an
- * equilibrium velocity (uniform volume source). */
+ * equilibrium velocity (uniform volume source); one that is not finite is
+ * SB_ERANGE, the particle left as it was. */
 static int reinsert(sb_engine *e, size_t i)
 {
   double x[3] = {0, 0, 0}, u[3];
@@ -132,7 +133,7 @@ static int reinsert(sb_engine *e, size_t i)
     x[k] = lo + L * gsl_rng_uniform(e->rng);
   }
   int st = sbi_engine_equilibrium_velocity(e, e->species[i], x, u,
-                                           "sb_engine_step");
+                                           SB_ERANGE, "sb_engine_step");
   if (st)
     return st;
   memcpy(&e->x[3 * i], x, sizeof x);

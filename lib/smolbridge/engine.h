@@ -299,7 +299,10 @@ int sb_engine_add_particle(sb_engine *e, size_t species, int family,
  *  under gravity (sb_engine_set_gravity); ids follow on from the last one.
  *  All or nothing: SB_EMAXITER if a position cannot be found in 10000
  *  tries (box too full) or a settling velocity cannot be found,
- *  SB_EINVAL for a bad argument, a failing fluid callback, or settings
+ *  SB_EINVAL for a bad argument, a failing fluid callback, a velocity that
+ *  is not finite (the message names the cause: the fluid field there, the
+ *  species' velocity spread, the settling velocity, their sum, or the
+ *  drift of sb_engine_fill_box), or settings
  *  sb_engine_step would refuse that the settling velocities depend on
  *  (gravity with a free-flight species, Lees-Edwards boundaries without
  *  the shear field), SB_ENOMEM; on any failure the engine holds exactly the
@@ -383,8 +386,14 @@ int sb_engine_set_dt(sb_engine *e, double dt);
  *  (Lees-Edwards) gave a particle an infinite or NaN position or velocity
  *  (B sqrt(tau), the state or the fluid velocity near DBL_MAX): every
  *  particle then keeps its position and velocity from before the step;
- *  SB_ENOMEM; SB_EMAXITER if a reinsertion found no free place.  After
- *  another error the state is undefined (restore a checkpoint). */
+ *  SB_ERANGE also if a reinsertion (SB_OUTCOME_REINSERT, SB_DEPOSIT_REINSERT)
+ *  drew an infinite or NaN velocity or an inflow arrival's flight left the
+ *  doubles (the message names the cause: the fluid field, the species'
+ *  velocity spread, the settling velocity, or their sum): that particle
+ *  is not placed, the step stops there; SB_ENOMEM; SB_EMAXITER if a
+ *  reinsertion found no free place.  Only the SB_ERANGE of the transport,
+ *  drag and shear steps leaves a defined state (the start of the step);
+ *  after any other error it is undefined (restore a checkpoint). */
 int sb_engine_step(sb_engine *e);
 
 /** Reorder the particles in memory along the cells of a grid (cell
