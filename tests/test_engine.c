@@ -1218,6 +1218,30 @@ START_TEST(test_fill_velocity_cause)
 }
 END_TEST
 
+/* sb_engine_set_dt: a step coefficient beyond DBL_MAX (tau = B = 1e300
+ * at dt = 1e300, the species sb_engine_add_species refuses at that dt) is
+ * SB_ERANGE naming the species (was SB_EINVAL), dt and the coefficients
+ * unchanged; a bad dt is still SB_EINVAL. */
+START_TEST(test_set_dt_erange)
+{
+  sb_engine *e = box_engine(3, 10.0, 1.0, 4);
+  sb_engine_species s = {0.1, 1.0, 1e300, 1e300, 1.0};
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+  const sb_langevin_coef c0 = e->coef[0];
+  ck_assert_int_eq(sb_engine_set_dt(e, 1e300), SB_ERANGE);
+  ck_assert(strstr(sb_last_error(), "sb_engine_set_dt") != NULL);
+  ck_assert(strstr(sb_last_error(), "species 0") != NULL);
+  ck_assert(strstr(sb_last_error(), "exceeds DBL_MAX") != NULL);
+  ck_assert(sb_engine_get_params(e)->dt == 1.0);
+  ck_assert_mem_eq(&e->coef[0], &c0, sizeof c0);
+  ck_assert_int_eq(sb_engine_set_dt(e, NAN), SB_EINVAL);
+  ck_assert_int_eq(sb_engine_set_dt(e, 0.0), SB_EINVAL);
+  ck_assert_int_eq(sb_engine_set_dt(e, 0.5), SB_SUCCESS);
+  ck_assert(sb_engine_get_params(e)->dt == 0.5);
+  sb_engine_free(e);
+}
+END_TEST
+
 /* A fill is all or nothing: one that cannot place every particle (no
  * room, or the fluid field fails part-way) leaves the particles, their
  * order and positions and the id counter as they were, and the engine
@@ -1756,6 +1780,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_after_transport_overflow);
   tcase_add_test(tc, test_reinsert_overflow);
   tcase_add_test(tc, test_fill_velocity_cause);
+  tcase_add_test(tc, test_set_dt_erange);
   tcase_add_test(tc, test_error_names);
   tcase_add_test(tc, test_fill_all_or_nothing);
   tcase_add_test(tc, test_checkpoint_bad_ids);

@@ -266,12 +266,15 @@ static int species_vsd(const sb_engine_species *s, double *vsd)
   return isfinite(*vsd) ? SB_SUCCESS : SB_ERANGE;
 }
 
-int sbi_engine_update_coef(sb_engine *e)
+int sbi_engine_update_coef(sb_engine *e, size_t *bad)
 {
   for (size_t k = 0; k < e->nspec; k++) {
     int st = species_coef(&e->spec[k], e->par.dt, &e->coef[k]);
-    if (st)
+    if (st) {
+      if (bad)
+        *bad = k;
       return st;
+    }
   }
   return SB_SUCCESS;
 }
@@ -889,11 +892,23 @@ int sb_engine_set_dt(sb_engine *e, double dt)
     return sbi_error(SB_EINVAL, __func__, "dt = %g: must be finite > 0", dt);
   SBI_NOT_IN_STEP(e, __func__);
   double old = e->par.dt;
+  size_t k = 0;
   e->par.dt = dt;
-  if (sbi_engine_update_coef(e)) {
+  int st = sbi_engine_update_coef(e, &k);
+  if (st) {
     e->par.dt = old;
-    sbi_engine_update_coef(e);
-    return sbi_error(SB_EINVAL, __func__, "dt = %g: invalid step", dt);
+    sbi_engine_update_coef(e, NULL);
+    const sb_engine_species *s = &e->spec[k];
+    /* as sb_engine_add_species: a coefficient beyond the doubles is a
+     * range error, not a bad argument */
+    if (st == SB_ERANGE)
+      return sbi_error(SB_ERANGE, __func__,
+                       "dt = %g: a step coefficient of species %zu (tau = "
+                       "%g, B = %g) exceeds DBL_MAX; dt stays %g", dt, k,
+                       s->tau, s->B, old);
+    return sbi_error(SB_EINVAL, __func__, "dt = %g: no Langevin step for "
+                     "species %zu (tau = %g, B = %g); dt stays %g", dt, k,
+                     s->tau, s->B, old);
   }
   return SB_SUCCESS;
 }

@@ -675,8 +675,10 @@ int sbi_engine_langevin_continue(sb_engine *e, size_t k, const sbi_event *ev,
                                  int changed, const double xe[3],
                                  const double ue[3]);
 
-/* Recompute per-species step coefficients after a dt change. */
-int sbi_engine_update_coef(sb_engine *e);
+/* Recompute per-species step coefficients after a dt change; on failure
+ * the status of the first species that has none (SB_ERANGE: a coefficient
+ * beyond DBL_MAX), its index in *bad (may be NULL). */
+int sbi_engine_update_coef(sb_engine *e, size_t *bad);
 /* A step's new state with an infinite or NaN x or u (one of the dim
  * components): every particle back to its start of step and SB_ERANGE
  * naming the first such particle (`after`: the part of the step after

@@ -372,7 +372,12 @@ int sb_engine_set_sample_every(sb_engine *e, size_t every);
 /** Threads of the parallel parts (see sb_engine_params.threads; 0: the
  *  OpenMP default).  SB_EINVAL outside 0..4096. */
 int sb_engine_set_threads(sb_engine *e, int threads);
-/** Change the time step (s, > 0). */
+/** Change the time step (s, > 0) and every species' step coefficients.
+ *  SB_EINVAL for dt not finite > 0 (or a species with no Langevin step at
+ *  dt); SB_ERANGE, naming the species, where a step coefficient
+ *  (sb_langevin_coef_init at dt) exceeds DBL_MAX (as sb_engine_add_species
+ *  refuses such a species).  On failure dt and the coefficients are
+ *  unchanged. */
 int sb_engine_set_dt(sb_engine *e, double dt);
 
 /* ============================================================ run */
