@@ -27,13 +27,14 @@
  *     generator: both first-contact observers watch their built-in
  *     detector, whose search and first pass run on the threads.
  *  5. (--density only) The headline at fixed volume fractions phi =
- *     2e-3 (about V12's own box, the headline of section 2), 2e-4, 5e-5
- *     and 2e-5: the same runs in wider boxes (headline_at_phi).  Contact
- *     time costs the same per particle-step at every phi, `langevin`
- *     less as the gas thins, so the speed-up grows and its best dt with
- *     it.  Takes ~15 minutes.
+ *     2e-3 (about V12's own box, the headline of section 2), 2e-4, 1e-4,
+ *     5e-5 and 2e-5 (--phi X: at X alone): the same runs in wider boxes
+ *     (headline_at_phi).  Contact time costs the same per particle-step
+ *     at every phi, `langevin` less as the gas thins, so the speed-up
+ *     grows and its best dt with it.  Takes ~25 minutes.
  * Options: --quick (smaller N), --full (no extrapolation), --density
- * (section 5 alone).
+ * (section 5 alone), --phi X (section 5 at phi = X alone), --dt Y
+ * (with --phi: the langevin run at dt = Y tau_p alone, to profile).
  * Times of sections 1 and 2 are the process's CPU time (one thread:
  * OMP_NUM_THREADS=1), which a loaded machine inflates far less than the
  * wall time; sections 3 and 4 give wall times.
@@ -245,9 +246,10 @@ static double headline_wall(int det, double dtt, int threads, double frac)
  * same free space (the box only grows), so every run estimates the same
  * kernel; what phi changes is the number of pairs near contact per
  * particle-step, which the langevin detector pays for and contact time
- * hardly does.  The contact-time run is timed over its first steps (at
- * least 200, 2% of them at most) and extrapolated. */
-static int headline_at_phi(double phi)
+ * hardly does.  The contact-time run is timed over its first 2% of
+ * steps (at least 200) and extrapolated, or to its end with --full. */
+static int headline_at_phi(double phi, int full, double only_dt,
+                           size_t sort_every)
 {
   sb_validate_options opt;
   sb_validate_options_init(&opt);
@@ -261,10 +263,13 @@ static int headline_at_phi(double phi)
   for (int k = 0; k < 8; k++) {
     const int ct = k == 7;  /* the last run: contact time */
     const double dtt = ct ? 0.01 : DTT[k];
+    if (only_dt > 0.0 && dtt != only_dt)
+      continue;  /* --dt: that langevin run alone (for a profile) */
     lv_run q;
     v12_size(&ph, ct ? LV_CHORD : LV_LANGEVIN, dtt, 9600.0,
              V12_WARM * ph.tau, (V12_WARM + 300.0) * ph.tau, 0, &q);
     q.default_rng = 1;
+    q.sort_every = sort_every;
     const double phi0 = (double)q.N[0] * vp / (q.L * q.L * q.L);
     if (phi0 < phi * (1.0 - 1e-9)) {
       printf("     langevin, dt = %4g tau_p: left out (its box holds "
@@ -275,7 +280,7 @@ static int headline_at_phi(double phi)
     q.L *= s;
     q.N[0] = (size_t)((double)q.N[0] * pow(s, 1.5));
     const double Tfull = q.T;
-    if (ct)
+    if (ct && !full)
       q.T = q.dt * ceil(fmax(200.0, 0.02 * Tfull / q.dt));
     lv_out o;
     const double t0 = now();
@@ -285,12 +290,13 @@ static int headline_at_phi(double phi)
     }
     const double t = (now() - t0) * Tfull / q.T;
     free(o.vn);
-    if (ct) {
+    if (ct) {  /* o.ncand: the candidates of the timed steps */
       printf("     contact time, dt = 0.01 tau_p: %.1f s (N = %zu, %.0f of "
-             "%.0f steps, %.0f ns per particle-step)\n     speed-up of "
-             "langevin (dt = %g tau_p): %.0fx\n", t, q.N[0], q.T / q.dt,
-             Tfull / q.dt, 1e9 * t / ((double)q.N[0] * Tfull / q.dt),
-             bestdt, t / best);
+             "%.0f steps, %.0f ns per particle-step, %.0f candidates)\n     "
+             "speed-up of langevin (dt = %g tau_p): %.0fx\n", t, q.N[0],
+             q.T / q.dt, Tfull / q.dt,
+             1e9 * t / ((double)q.N[0] * Tfull / q.dt), o.ncand, bestdt,
+             t / best);
       break;
     }
     double K, lo, hi;
@@ -309,17 +315,35 @@ static int headline_at_phi(double phi)
 int main(int argc, char **argv)
 {
   int quick = 0, full = 0, density = 0;
+  double phi_one = 0.0, only_dt = 0.0;
+  size_t sort_every = 0;
   for (int k = 1; k < argc; k++) {
     quick |= !strcmp(argv[k], "--quick");
     full |= !strcmp(argv[k], "--full");
     density |= !strcmp(argv[k], "--density");
+    if (!strcmp(argv[k], "--phi") && k + 1 < argc) {
+      char *end;
+      phi_one = strtod(argv[++k], &end);
+      if (*end || !(phi_one > 0.0 && phi_one <= 0.01)) {
+        fprintf(stderr, "bench: --phi takes a volume fraction in (0, "
+                "0.01], not '%s'\n", argv[k]);
+        return 2;
+      }
+      density = 1;
+    }
+    if (!strcmp(argv[k], "--dt") && k + 1 < argc)
+      only_dt = atof(argv[++k]);
+    if (!strcmp(argv[k], "--sort") && k + 1 < argc)
+      sort_every = (size_t)atol(argv[++k]);
   }
   if (density) {
     printf("5. The headline at fixed volume fractions (V12's runs in "
            "wider boxes, default generator, CPU time, one thread)\n");
-    static const double PHI[4] = {2e-3, 2e-4, 5e-5, 2e-5};
-    for (int k = 0; k < 4; k++)
-      if (headline_at_phi(PHI[k]))
+    static const double PHI[5] = {2e-3, 2e-4, 1e-4, 5e-5, 2e-5};
+    for (int k = 0; k < 5; k++)
+      if ((!phi_one || !k) &&
+          headline_at_phi(phi_one ? phi_one : PHI[k], full, only_dt,
+                          sort_every))
         return 1;
     return 0;
   }

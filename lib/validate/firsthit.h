@@ -207,6 +207,9 @@ typedef struct {
                               streams, sb_engine_params_default) instead
                               of the cases' pinned one; bench/, not in
                               write mode) */
+  size_t sort_every;       /* sb_engine_params.sort_every (0: never, the
+                              cases); bench/: with default_rng the
+                              contacts do not depend on it */
 } lv_run;
 
 typedef struct {

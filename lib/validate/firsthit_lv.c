@@ -222,6 +222,8 @@ static void lv_key(const sbv_ctx *ctx, unsigned long stream,
     sbv_runkey_num(k, nm[i], in[i]);
   if (q->default_rng)
     sbv_runkey_num(k, "default_rng", 1.0);
+  if (q->sort_every)
+    sbv_runkey_num(k, "sort_every", (double)q->sort_every);
 }
 
 /* lv_out's numbers (not vn) to and from a flat array. */
@@ -269,6 +271,7 @@ int lv_firsthit(const sbv_ctx *ctx, unsigned long stream, const lv_run *q,
     p.rng_type = d.rng_type;
     p.streams = d.streams;
   }
+  p.sort_every = q->sort_every;
   if (sbv_writing(ctx))
     return write_lv(ctx, stream, q, &p, o);
   sbv_runkey k;
