@@ -1509,6 +1509,93 @@ START_TEST(test_reach)
 }
 END_TEST
 
+/* The miss bound and reach at huge B (B_i or B_j = 1e100 ... DBL_MAX, the
+ * other 1; R = 1).  Scaling law: the moments of Z are quadratic in
+ * (B_i, B_j), so sc, L and every length of the integral scale by lambda
+ * with B -> lambda B, and
+ *   E(n, R, lambda B, lambda rho) = lambda^dim E(n, R / lambda, B, rho);
+ * E is linear in n, so the reach depends on n / tol only:
+ *   reach(n, R, lambda B, tol) = lambda reach(n', R / lambda, B, tol'),
+ *   n' / tol' = n lambda^dim / tol.
+ * Here R / lambda <= 1e-100 is negligible against sc ~ 1 (the reference
+ * takes R = 1e-300) and so is the other particle's B (reference 0).
+ * Checked: the bound at rho = 0.5 lambda is lambda^dim times the
+ * reference (n = 1 and 1e-300), or NaN with SB_ERANGE naming the function
+ * where that exceeds DBL_MAX; the reach is lambda times the reference
+ * where n' and tol' are normal doubles, and always finite and positive
+ * (or NaN with SB_ERANGE), with the bound at it within [0.9, 1] tol.
+ * Before: 0 with status 0 for B >= 1e155 (B^2 tau overflowed), minutes
+ * per call at 1e100, SB_EDOM at 1e154. */
+START_TEST(test_reach_huge_B)
+{
+  static const double Bs[] = {1e100, 1e150, 1e154, 1e155, 1e200, 1e300,
+                              DBL_MAX};
+  const double lmax = log(DBL_MAX), tol = 1e-9;
+  int bad = 0;
+  for (int dim = 2; dim <= 3; dim++)
+    for (int dt10 = 0; dt10 < 2; dt10++) {
+      const double dt = dt10 ? 100.0 : 1.0;
+      const double e1 = sb_langevin_miss_bound(dim, 1.0, 1e-300, 1.0, 1.0,
+                                               1.0, 0.0, dt, 0.5);
+      ck_assert(e1 > 0.0 && isfinite(e1));
+      for (size_t b = 0; b < sizeof Bs / sizeof Bs[0]; b++)
+        for (int j = 0; j < 2; j++) {
+          const double lam = Bs[b], Bi = j ? 1.0 : lam, Bj = j ? lam : 1.0;
+          const double ns[2] = {1.0, 1e-300};
+          for (int k = 0; k < 2; k++) {
+            const double le = log(ns[k]) + dim * log(lam) + log(e1);
+            sb_clear_error();
+            const double m = sb_langevin_miss_bound(dim, ns[k], 1.0, 1.0, Bi,
+                                                    1.0, Bj, dt, 0.5 * lam);
+            const int st = sb_last_status();
+            if (le < lmax - 1.0)
+              SBT_XCHECK(bad, st == 0 && sbt_reldiff(m, exp(le)) < 1e-6,
+                         "miss, dim %d dt %g B%c %g n %g: %g (status %d), "
+                         "want %g", dim, dt, j ? 'j' : 'i', lam, ns[k], m,
+                         st, exp(le));
+            else if (le > lmax + 1.0)
+              SBT_XCHECK(bad, isnan(m) && st == SB_ERANGE &&
+                                  sbt_names(sb_last_error(),
+                                            "sb_langevin_miss_bound"),
+                         "miss, dim %d dt %g B%c %g n %g: %g (status %d), "
+                         "want NaN, SB_ERANGE", dim, dt, j ? 'j' : 'i', lam,
+                         ns[k], m, st);
+          }
+          sb_clear_error();
+          const double r = sb_langevin_reach(dim, 1.0, 1.0, 1.0, Bi, 1.0, Bj,
+                                             dt, tol);
+          const int st = sb_last_status();
+          if (st != 0) {
+            SBT_XCHECK(bad, isnan(r) && st == SB_ERANGE &&
+                                sbt_names(sb_last_error(),
+                                          "sb_langevin_reach"),
+                       "reach, dim %d dt %g B%c %g: %g (status %d)", dim, dt,
+                       j ? 'j' : 'i', lam, r, st);
+            continue;
+          }
+          SBT_XCHECK(bad, r > 0.0 && isfinite(r),
+                     "reach, dim %d dt %g B%c %g: %g with status 0", dim, dt,
+                     j ? 'j' : 'i', lam, r);
+          const double m = sb_langevin_miss_bound(dim, 1.0, 1.0, 1.0, Bi, 1.0,
+                                                  Bj, dt, r);
+          SBT_XCHECK(bad, m <= 1.0001 * tol && m >= 0.9 * tol,
+                     "reach, dim %d dt %g B%c %g: bound %g at the reach %g",
+                     dim, dt, j ? 'j' : 'i', lam, m, r);
+          const double lr = dim * log(lam) - log(tol); /* log(n'/tol') */
+          if (0.5 * lr < 700.0) {
+            const double r1 = sb_langevin_reach(dim, exp(0.5 * lr), 1e-300,
+                                                1.0, 1.0, 1.0, 0.0, dt,
+                                                exp(-0.5 * lr));
+            SBT_XCHECK(bad, sbt_reldiff(r, lam * r1) < 1e-5,
+                       "reach, dim %d dt %g B%c %g: %.9g, want %.9g", dim,
+                       dt, j ? 'j' : 'i', lam, r, lam * r1);
+          }
+        }
+    }
+  ck_assert_int_eq(bad, 0);
+}
+END_TEST
+
 /* ------------------------------------------------- extreme arguments */
 
 static int hx_bad; /* failures of test_extreme_arguments, printed */
@@ -1638,6 +1725,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_args);
   tcase_add_test(tc, test_deterministic);
   tcase_add_test(tc, test_reach);
+  tcase_add_test(tc, test_reach_huge_B);
   tcase_add_test(tc, test_extreme_arguments);
   tcase_add_test(tc, test_fluid_free);
   tcase_add_test(tc, test_bridge_coef);

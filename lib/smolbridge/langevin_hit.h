@@ -265,13 +265,27 @@ void sb_langevin_hitter_reset(sb_langevin_hitter *w);
  *     P(y) = min(1, U(y)).
  *  Accuracy ~1e-6 relative (quadrature).  NaN on bad input (SB_EDOM), NaN
  *  with SB_ERANGE where the bound exceeds DBL_MAX (e.g. B_i = 1e154 with
- *  n = R = tau = dt = 1), NaN with SB_EMAXITER where the quadrature fails. */
+ *  n = R = tau = dt = 1), NaN with SB_EMAXITER where the quadrature fails.
+ *
+ *  Huge B: every finite B_i, B_j >= 0 is in the domain (up to DBL_MAX).
+ *  The lengths of the problem scale like B (E(n, R, lambda B, lambda rho)
+ *  = lambda^dim E(n, R / lambda, B, rho)); above max(B_i, B_j) = 2^64 the
+ *  moments are computed in a length unit scaled by a power of two, and
+ *  where n sc^dim > e^50 (sc the largest sd of the deviation), sc, R or L
+ *  exceed 1e50 or the unit is scaled, the bound is evaluated in
+ *  logarithms with an integrand of order one, so the result is a
+ *  finite value, or NaN with SB_ERANGE where it exceeds DBL_MAX, never 0
+ *  for lack of range.  Elsewhere the results are those of the plain
+ *  evaluation, bit for bit. */
 double sb_langevin_miss_bound(int dim, double n, double R, double tau_i,
                               double B_i, double tau_j, double B_j,
                               double dt, double rho);
 
 /** Smallest rho >= 0 with sb_langevin_miss_bound(...) <= tol, 0 < tol < 1;
- *  relative accuracy 1e-6 in rho.  NaN on bad input. */
+ *  relative accuracy 1e-6 in rho.  NaN on bad input (SB_EDOM).  At huge B
+ *  (above) the reach is about sc sqrt(2 log(n sc^dim / tol)), sc
+ *  proportional to B; it is found wherever it is below DBL_MAX (to B_i =
+ *  DBL_MAX with tau, dt in 1e-8 .. 1e-6), NaN with SB_ERANGE beyond. */
 double sb_langevin_reach(int dim, double n, double R, double tau_i,
                          double B_i, double tau_j, double B_j, double dt,
                          double tol);
