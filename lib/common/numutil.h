@@ -408,11 +408,13 @@ int sbi_integrate(const gsl_function *f, double a, double b, double epsabs,
 
 /* Zero of f where f(0) > 0 turns <= 0 for good (a reach: the distance
  * beyond which a tail bound stays below its tolerance).  Brackets [0, hi]
- * by doubling hi from hi0 while f(hi) > 0, then runs Brent's method
- * (sbi_brent) until the bracket is narrower than xtol (absolute).  *root receives the
- * bracket's upper end, where f <= 0 (a conservative reach).  Returns
- * SB_SUCCESS, SB_EMAXITER (f NaN, or still > 0 beyond hi_max; *root NaN),
- * SB_EDOM (f NaN inside the bracket; *root NaN) or SB_ENOMEM.  Records no error message: the caller names the cause. */
+ * by doubling hi from hi0 while f(hi) > 0, then runs GSL's Brent solver
+ * until the bracket's width is below xtol relative to its
+ * ends (gsl_root_test_interval with epsabs 0, epsrel xtol).  *root
+ * receives the bracket's upper end, where f <= 0 (a conservative reach).
+ * Returns SB_SUCCESS, SB_EMAXITER (f NaN, or still > 0 beyond hi_max;
+ * *root NaN), SB_EDOM (f NaN inside the bracket; *root NaN) or
+ * SB_ENOMEM.  Records no error message: the caller names the cause. */
 int sbi_reach_root(gsl_function *f, double hi0, double hi_max, double xtol,
                    double *root);
 
