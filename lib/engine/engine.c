@@ -200,6 +200,7 @@ void sb_engine_free(sb_engine *e)
   free(e->lfl);
   free(e->lcnt);
   free(e->lcc);
+  free(e->lds);
   free(e->lfs);
   free(e->lpb.p);
   free(e->lpr2);

@@ -288,8 +288,11 @@ struct sb_engine {
    * the sort's scratch (lcap2 of them) */
   double *lxm, *lfx;
   size_t *lfl, *lcnt, *lfs;
-  int *lcc;                  /* the ordered Verlet list: cell coordinates
-                                per slot (3 lcapn) */
+  int *lcc;                  /* the ordered Verlet list and the Langevin
+                                search: cell coordinates per slot
+                                (3 lcapn) */
+  double *lds;               /* the Langevin search: displacement and
+                                radius per slot (4 lcapn) */
   sbi_lpairbuf lpb;
   sbi_lpair *lpr2;
   size_t lcapn, lcapc, lcap2;

@@ -201,6 +201,10 @@ typedef struct {
                   (cut + reach)/2, plus 1e-12 cut against rounding */
   const size_t *start, *list;
   const double *xs;
+  /* the Langevin search's slot-ordered copies (lsearch; NULL elsewhere):
+   * displacement and radius (4 per slot), cell coordinates (3 per slot) */
+  const double *ds;
+  const int *cc;
 } cell_scan;
 
 /* Append (i, j), i < j, to b; 0, or -1 out of memory. */
@@ -446,7 +450,7 @@ static int cell_sort(sb_engine *e, const double *x0, double cut,
                    {stride[0], stride[1], stride[2]},
                    {edge[0], edge[1], edge[2]}, {L[0], L[1], L[2]},
                    cut, reach, 0.5 * (cut + reach) + 1e-12 * cut, start,
-                   list, xs};
+                   list, xs, NULL, NULL};
   return SB_SUCCESS;
 }
 
@@ -597,22 +601,18 @@ static int cells_sees_at(const cell_scan *K, size_t lo, size_t hi,
   return 1;
 }
 
-/* The coordinates of cell c of K. */
-static void cell_coords(const cell_scan *K, size_t c, int ci[3])
+/* Each slot's cell coordinates, cc[3 a + k] (no divisions). */
+static void slot_cells(const cell_scan *K, int *cc)
 {
-  ci[0] = ci[1] = ci[2] = 0;
-  for (int k = 0; k < K->dim; k++)
-    ci[k] = (int)((c / K->stride[k]) % (size_t)K->nc[k]);
-}
-
-/* cells_sees_at for the slots lo < hi in the cells ca, cb. */
-static int cells_sees(const cell_scan *K, size_t lo, size_t hi, size_t ca,
-                      size_t cb, unsigned *g)
-{
-  int ia[3], ib[3];
-  cell_coords(K, ca, ia);
-  cell_coords(K, cb, ib);
-  return cells_sees_at(K, lo, hi, ia, ib, g);
+  int ci[3] = {0, 0, 0};
+  const size_t ncell = (size_t)K->nc[0] * K->nc[1] * K->nc[2];
+  for (size_t c = 0; c < ncell; c++) {
+    if (c)
+      for (int k = 0; k < 3 && ++ci[k] == K->nc[k]; k++)
+        ci[k] = 0;
+    for (size_t a = K->start[c]; a < K->start[c + 1]; a++)
+      memcpy(&cc[3 * a], ci, sizeof ci);
+  }
 }
 
 /* Blocks of the midpoint loop (its sums do not depend on the threads). */
@@ -641,7 +641,10 @@ static int lsearch_grow(sb_engine *e, size_t n)
     int *cc = realloc(e->lcc, 3 * n * sizeof *cc);
     if (cc)
       e->lcc = cc;
-    if (!xm || !fx || !fl || !cn || !cc)
+    double *ds = realloc(e->lds, 4 * n * sizeof *ds);
+    if (ds)
+      e->lds = ds;
+    if (!xm || !fx || !fl || !cn || !cc || !ds)
       return -1;
     e->lcapn = n;
   }
@@ -763,19 +766,20 @@ static inline int lprobe_emit(const sb_engine *e, const cell_scan *K,
                               size_t a, size_t b, sbi_lpairbuf *out)
 {
   const size_t s0 = a < b ? a : b, s1 = a < b ? b : a;
-  const size_t i = K->list[s0], j = K->list[s1];
+  /* the particles' x0, disp and radius through their slot-ordered copies
+   * (the same values; slots of near pairs are near in memory) */
+  const double *xa = &K->xs[4 * s0], *xb = &K->xs[4 * s1];
+  const double *da = &K->ds[4 * s0], *db = &K->ds[4 * s1];
   double dx0[3], dd[3];  /* sbi_engine_make_pair's chord (periodic box) */
   for (int k = 0; k < 3; k++) {
-    dx0[k] = k < e->par.dim ? sbi_minimg(e->x0[3 * i + k] - e->x0[3 * j + k],
-                                         e->par.L[k])
-                            : 0.0;
-    dd[k] = e->disp[3 * i + k] - e->disp[3 * j + k];
+    dx0[k] = k < e->par.dim ? sbi_minimg(xa[k] - xb[k], e->par.L[k]) : 0.0;
+    dd[k] = da[k] - db[k];
   }
-  const double lim = (e->radius[i] + e->radius[j]) + e->lreach;
+  const double lim = (da[3] + db[3]) + e->lreach;
   if (sbi_chord_min2(dx0, dd) > lim * lim)
     return 0;
   unsigned g;
-  if (cells_sees(K, s0, s1, e->cell_of[i], e->cell_of[j], &g) &&
+  if (cells_sees_at(K, s0, s1, &K->cc[3 * s0], &K->cc[3 * s1], &g) &&
       lpair_push(out, s0, s1, g))
     return -1;
   return 0;
@@ -919,6 +923,10 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
    * sum for any number of threads) */
   double *xm = e->lxm;
   const int nt = n >= 4096 ? sbi_engine_threads(&e->par) : 1;
+  double *ds = e->lds;  /* K.ds: disp and radius in cell order */
+  K.ds = ds;
+  K.cc = e->lcc;
+  slot_cells(&K, e->lcc);
   double bsum[SBI_LSEARCH_BLOCKS], bmax[SBI_LSEARCH_BLOCKS];
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static) num_threads(nt)
@@ -934,6 +942,9 @@ static int lsearch(sb_engine *e, const double *x0, const double *disp,
             k < dim ? sbi_wrap(x0[3 * i + k] + 0.5 * disp[3 * i + k], K.L[k])
                     : 0.0;
       xm[4 * a + 3] = e->radius[i] + 0.5 * e->dn[i];
+      for (int k = 0; k < 3; k++)
+        ds[4 * a + k] = disp[3 * i + k];
+      ds[4 * a + 3] = e->radius[i];
       sum += xm[4 * a + 3];
       max = xm[4 * a + 3] > max ? xm[4 * a + 3] : max;
     }
@@ -1400,18 +1411,8 @@ static int listed_ordered(sb_engine *e, const double *x0, double cut,
   size_t *slot = e->lfl;  /* particle -> its slot in cell order */
   for (size_t a = 0; a < n; a++)
     slot[K.list[a]] = a;
-  int *cc = e->lcc;  /* each slot's cell coordinates (no divisions) */
-  {
-    int ci[3] = {0, 0, 0};
-    const size_t ncell = (size_t)K.nc[0] * K.nc[1] * K.nc[2];
-    for (size_t c = 0; c < ncell; c++) {
-      if (c)
-        for (int k = 0; k < 3 && ++ci[k] == K.nc[k]; k++)
-          ci[k] = 0;
-      for (size_t a = K.start[c]; a < K.start[c + 1]; a++)
-        memcpy(&cc[3 * a], ci, sizeof ci);
-    }
-  }
+  int *cc = e->lcc;
+  slot_cells(&K, cc);
   const unsigned char *fl = v->isfloat;
   if (lparts(e, 1))
     return sbi_error(SB_ENOMEM, who, "out of memory");
