@@ -502,6 +502,95 @@ START_TEST(extreme_arguments)
 }
 END_TEST
 
+/* _eval and _error where the waves lie beyond +-DBL_MAX or the delta's
+ * mass exceeds DBL_MAX while the states are doubles (SB_ERANGE before,
+ * as for _integral until it was extended).  A delta-shock in a uniform
+ * gas: U = 1e300, u_l = 3e300, u_r = -1e300, rho_l = 2, rho_r = 1/2,
+ * tau = t = 1e10.  In the gas frame v_l = -v_r = 2e300, so the delta
+ * moves at 2e300/3 from x = U t = 1e310 and carries the mass
+ * 4e300 s = 2.5e310 (s = tau (1 - 1/e)): both beyond DBL_MAX.  The
+ * states' velocities U + v e^{-1}, mpmath (40 digits) from the double
+ * inputs:
+ *   ul = 1.7357588823428847343e300, ur = 2.6424111765711537068e299.
+ * The mirror image (U, u_l, u_r negated, rho_l and rho_r swapped) puts
+ * the delta beyond -DBL_MAX. */
+START_TEST(waves_beyond_dbl_max)
+{
+  const double ul = 1.7357588823428847343e300, ur = 2.6424111765711537068e299;
+  const double tol = 8 * DBL_EPSILON;
+  sb_pgd_riemann rp = {0.0, 2.0, 3e300, 0.5, -1e300, 1e10, 1e300};
+  sb_pgd_riemann mir = {0.0, 0.5, 1e300, 2.0, -3e300, 1e10, -1e300};
+  const double t = 1e10;
+  double r = NAN, u = NAN;
+  sb_pgd_riemann_sol sol;
+  ck_assert_int_eq(sb_pgd_riemann_solve(&rp, t, &sol), SB_ERANGE);
+
+  /* point values: left of the delta everywhere up to +DBL_MAX, right of
+   * it only at x = +inf (and the mirror image) */
+  const double xs[] = {-INFINITY, -DBL_MAX, 0.0, DBL_MAX};
+  for (size_t k = 0; k < sizeof xs / sizeof xs[0]; k++) {
+    ck_assert_int_eq(sb_pgd_riemann_eval(&rp, xs[k], t, &r, &u), SB_SUCCESS);
+    ck_assert(r == 2.0);
+    ck_assert_rel(u, ul, tol);
+    ck_assert_int_eq(sb_pgd_riemann_eval(&mir, -xs[k], t, &r, &u),
+                     SB_SUCCESS);
+    ck_assert(r == 2.0);
+    ck_assert_rel(u, -ul, tol);
+  }
+  ck_assert_int_eq(sb_pgd_riemann_eval(&rp, INFINITY, t, &r, &u), SB_SUCCESS);
+  ck_assert(r == 0.5);
+  ck_assert_rel(u, ur, tol);
+  ck_assert_int_eq(sb_pgd_riemann_eval(&mir, -INFINITY, t, &r, &u),
+                   SB_SUCCESS);
+  ck_assert(r == 0.5);
+  ck_assert_rel(u, -ur, tol);
+
+  /* norms on [0, 1] where the exact density is 2: cells of densities 1
+   * and 3 (h = 1/2) hold the masses 1/2 and 3/2 against 1 and 1, so
+   * l1 = 1; M_num - M_exact = -x on the first cell and x - 1 on the
+   * second, so w1 = 2 (1/2)^2/2 = 1/4 (by hand) */
+  const double cells[2] = {1.0, 3.0};
+  double l1 = NAN, w1 = NAN;
+  ck_assert_int_eq(sb_pgd_riemann_error(&rp, t, 0.0, 0.5, 2, cells, &l1,
+                                        &w1),
+                   SB_SUCCESS);
+  ck_assert_rel(l1, 1.0, 4 * DBL_EPSILON);
+  ck_assert_rel(w1, 0.25, 4 * DBL_EPSILON);
+  l1 = w1 = NAN;
+  ck_assert_int_eq(sb_pgd_riemann_error(&mir, t, 0.0, 0.5, 2, cells, &l1,
+                                        &w1),
+                   SB_SUCCESS);
+  ck_assert_rel(l1, 1.0, 4 * DBL_EPSILON);
+  ck_assert_rel(w1, 0.25, 4 * DBL_EPSILON);
+
+  /* a delta at a finite place whose mass exceeds DBL_MAX: at
+   * (1e10 - 1)/2 with mass 1e300 (1e10 + 1) at t = 1 (no drag).  Point
+   * values either side are the states; the norms over cells holding it
+   * overflow (SB_ERANGE), over cells beside it they are exact */
+  sb_pgd_riemann big = {0.0, 1e300, 1e10, 1e300, -1.0, INFINITY, 0.0};
+  ck_assert_int_eq(sb_pgd_riemann_eval(&big, 0.0, 1.0, &r, &u), SB_SUCCESS);
+  ck_assert(r == 1e300 && u == 1e10);
+  ck_assert_int_eq(sb_pgd_riemann_eval(&big, 6e9, 1.0, &r, &u), SB_SUCCESS);
+  ck_assert(r == 1e300 && u == -1.0);
+  const double dense[2] = {1e300, 1e300};
+  ck_assert_int_eq(sb_pgd_riemann_error(&big, 1.0, 4e9, 1e9, 2, dense, &l1,
+                                        &w1),
+                   SB_ERANGE);
+  ck_assert_int_eq(sb_pgd_riemann_error(&big, 1.0, -1.0, 0.5, 2, dense, &l1,
+                                        &w1),
+                   SB_SUCCESS);
+  ck_assert(l1 == 0.0 && w1 == 0.0);
+
+  /* the states' velocities themselves out of range stay SB_ERANGE:
+   * u_l - ugas = 2 DBL_MAX */
+  sb_pgd_riemann fast = {0.0, 1.0, DBL_MAX, 1.0, DBL_MAX, 1.0, -DBL_MAX};
+  ck_assert_int_eq(sb_pgd_riemann_eval(&fast, 0.0, 1.0, &r, &u), SB_ERANGE);
+  ck_assert_int_eq(sb_pgd_riemann_error(&fast, 1.0, 0.0, 0.5, 2, cells, &l1,
+                                        &w1),
+                   SB_ERANGE);
+}
+END_TEST
+
 Suite *suite(void)
 {
   Suite *s = suite_create("pgd_exact");
@@ -516,6 +605,7 @@ Suite *suite(void)
   tcase_add_test(tc, riemann_error_norms);
   tcase_add_test(tc, smooth_vs_particles);
   tcase_add_test(tc, extreme_arguments);
+  tcase_add_test(tc, waves_beyond_dbl_max);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -224,75 +224,28 @@ int sb_pgd_riemann_solve(const sb_pgd_riemann *rp, double t,
   return sol_ok(sol, __func__);
 }
 
-/* sb_pgd_riemann_solve with errors named after func. */
-static int solve_for(const sb_pgd_riemann *rp, double t,
-                     sb_pgd_riemann_sol *w, const char *func)
+/* The wave pattern for _eval, _integral and _error, errors named after
+ * func: wave positions and the delta's mass may lie beyond DBL_MAX (px
+ * holds them exactly, w's doubles are +-inf there: a finite x or cell
+ * end compares right with them), the velocities must be doubles. */
+static int solve_wide(const sb_pgd_riemann *rp, double t,
+                      sb_pgd_riemann_sol *w, sbi_xd px[3], const char *func)
 {
   int st = check_rp(rp, t, func);
   if (st)
     return st;
-  st = sb_pgd_riemann_solve(rp, t, w);
-  if (st) {
-    char msg[256];
-    snprintf(msg, sizeof msg, "%s", sb_last_error());
-    return sbi_error(st, func, "%s", msg);
-  }
+  if (!solve_raw(rp, t, w, px) || !isfinite(w->ul) || !isfinite(w->ur) ||
+      (w->type == SB_PGD_WAVE_DELTA && !isfinite(w->vel)))
+    return sbi_error(SB_ERANGE, func, "the velocities leave the double "
+                     "range (ul = %g, ur = %g)", w->ul, w->ur);
   return SB_SUCCESS;
 }
 
-int sb_pgd_riemann_eval(const sb_pgd_riemann *rp, double x, double t,
-                        double *rho, double *u)
-{
-  sb_pgd_riemann_sol w;
-  int st = solve_for(rp, t, &w, __func__);
-  if (st)
-    return st;
-  if (isnan(x))
-    return sbi_error(SB_EDOM, __func__, "x is NaN");
-  double r = 0, v = 0;
-  if (x < w.xl) {
-    r = rp->rho_l;
-    v = r > 0 ? w.ul : 0.0;
-  } else if (x >= w.xr) {
-    r = rp->rho_r;
-    v = r > 0 ? w.ur : 0.0;
-  }
-  if (rho)
-    *rho = r;
-  if (u)
-    *u = v;
-  return SB_SUCCESS;
-}
-
-/* Mass and momentum in [a, b] from a solved wave pattern. */
-static void integral_sol(const sb_pgd_riemann *rp,
-                         const sb_pgd_riemann_sol *w, double a, double b,
-                         double *mass, double *mom)
-{
-  double ll = fmin(b, w->xl) - a, lr = b - fmax(a, w->xr);
-  ll = ll > 0 ? ll : 0.0;
-  lr = lr > 0 ? lr : 0.0;
-  double m = rp->rho_l * ll + rp->rho_r * lr;
-  double q = rp->rho_l * w->ul * ll + rp->rho_r * w->ur * lr;
-  if (w->type == SB_PGD_WAVE_DELTA && a <= w->xl && w->xl < b) {
-    m += w->mass;
-    q += w->mass * w->vel;
-  }
-  *mass = m;
-  *mom = q;
-}
-
-/* Is the product x y free of overflow and underflow (or exactly 0)? */
-static int prod_ok(double x, double y)
-{
-  const double p = fabs(x * y);
-  return x == 0 || y == 0 || (p >= DBL_MIN && p <= DBL_MAX);
-}
-
-/* An end of a segment for integral_sol_x: its nearest double d (+-inf
- * also for a wave position beyond DBL_MAX) and, where fin, its exact
- * value x with an extended exponent (every wave position; an end of
- * [a, b] when finite). */
+/* A point of sb_pgd_riemann_eval or an end of a segment for
+ * integral_sol_x: its nearest double d (+-inf also for a wave position
+ * beyond DBL_MAX) and, where fin, its exact value x with an extended
+ * exponent (every wave position; a point or an end of [a, b] when
+ * finite). */
 typedef struct {
   double d;
   sbi_xd x;
@@ -327,6 +280,59 @@ static int end_cmp(xend u, xend v)
   const int ru = !u.fin ? 2 * su : isinf(u.d) ? su : 0,
             rv = !v.fin ? 2 * sv : isinf(v.d) ? sv : 0;
   return (ru > rv) - (ru < rv);
+}
+
+int sb_pgd_riemann_eval(const sb_pgd_riemann *rp, double x, double t,
+                        double *rho, double *u)
+{
+  sb_pgd_riemann_sol w;
+  sbi_xd px[3];
+  int st = solve_wide(rp, t, &w, px, __func__);
+  if (st)
+    return st;
+  if (isnan(x))
+    return sbi_error(SB_EDOM, __func__, "x is NaN");
+  /* compared with the exact positions: x = -inf lies left of a wave
+   * beyond -DBL_MAX, x = +inf right of one beyond DBL_MAX */
+  const xend X = end_dbl(x);
+  double r = 0, v = 0;
+  if (end_cmp(X, end_wave(px[0], w.xl)) < 0) {
+    r = rp->rho_l;
+    v = r > 0 ? w.ul : 0.0;
+  } else if (end_cmp(X, end_wave(px[1], w.xr)) >= 0) {
+    r = rp->rho_r;
+    v = r > 0 ? w.ur : 0.0;
+  }
+  if (rho)
+    *rho = r;
+  if (u)
+    *u = v;
+  return SB_SUCCESS;
+}
+
+/* Mass and momentum in [a, b] from a solved wave pattern. */
+static void integral_sol(const sb_pgd_riemann *rp,
+                         const sb_pgd_riemann_sol *w, double a, double b,
+                         double *mass, double *mom)
+{
+  double ll = fmin(b, w->xl) - a, lr = b - fmax(a, w->xr);
+  ll = ll > 0 ? ll : 0.0;
+  lr = lr > 0 ? lr : 0.0;
+  double m = rp->rho_l * ll + rp->rho_r * lr;
+  double q = rp->rho_l * w->ul * ll + rp->rho_r * w->ur * lr;
+  if (w->type == SB_PGD_WAVE_DELTA && a <= w->xl && w->xl < b) {
+    m += w->mass;
+    q += w->mass * w->vel;
+  }
+  *mass = m;
+  *mom = q;
+}
+
+/* Is the product x y free of overflow and underflow (or exactly 0)? */
+static int prod_ok(double x, double y)
+{
+  const double p = fabs(x * y);
+  return x == 0 || y == 0 || (p >= DBL_MIN && p <= DBL_MAX);
 }
 
 /* rho (hi - lo) as m 2^e: 0 unless hi > lo, 0 for rho = 0 (vacuum, of
@@ -384,17 +390,11 @@ static void integral_sol_x(const sb_pgd_riemann *rp,
 int sb_pgd_riemann_integral(const sb_pgd_riemann *rp, double t, double a,
                             double b, double *mass, double *mom)
 {
-  int st = check_rp(rp, t, __func__);
-  if (st)
-    return st;
   sb_pgd_riemann_sol w;
   sbi_xd px[3];
-  /* wave positions and the delta's mass may lie beyond DBL_MAX (px holds
-   * them exactly); the velocities must be doubles */
-  if (!solve_raw(rp, t, &w, px) || !isfinite(w.ul) || !isfinite(w.ur) ||
-      (w.type == SB_PGD_WAVE_DELTA && !isfinite(w.vel)))
-    return sbi_error(SB_ERANGE, __func__, "the velocities leave the double "
-                     "range (ul = %g, ur = %g)", w.ul, w.ur);
+  int st = solve_wide(rp, t, &w, px, __func__);
+  if (st)
+    return st;
   if (!(a <= b))
     return sbi_error(SB_EDOM, __func__, "interval [%g, %g] is empty", a, b);
   double m, q;
@@ -436,8 +436,12 @@ int sb_pgd_riemann_error(const sb_pgd_riemann *rp, double t, double a,
                          double h, size_t n, const double *rho, double *l1,
                          double *w1)
 {
+  /* the cells are finite: a wave position beyond DBL_MAX (+-inf in w)
+   * only clamps the states to them, and a delta outside them (its mass
+   * whatever it is) adds nothing, as in sb_pgd_riemann_integral */
   sb_pgd_riemann_sol w;
-  int st = solve_for(rp, t, &w, __func__);
+  sbi_xd px[3];
+  int st = solve_wide(rp, t, &w, px, __func__);
   if (st)
     return st;
   if (!rho || n == 0)

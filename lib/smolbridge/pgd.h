@@ -276,14 +276,18 @@ typedef struct {
  *  rho u (b - a) leaves the double range, so the result is right
  *  wherever it is a double) and _error.  Wave positions and the delta's
  *  mass are formed with an extended exponent too, so x0 + u t is right
- *  where u t overflows and the position does not.  The integral needs
- *  only finite velocities: a wave position beyond DBL_MAX lies outside
- *  every finite [a, b] and only bounds the states there (exactly), a
- *  delta outside [a, b] adds nothing whatever its mass, and over an
+ *  where u t overflows and the position does not.  _eval, _integral and
+ *  _error need only finite velocities (ul, ur and the delta's; SB_ERANGE
+ *  otherwise): a wave position beyond DBL_MAX lies outside every finite
+ *  [a, b] or cell and only bounds the states there (exactly), a delta
+ *  outside [a, b] or the cells adds nothing whatever its mass, _eval
+ *  compares x with the exact positions (x = +inf is right of a wave
+ *  beyond DBL_MAX, -inf left of one beyond -DBL_MAX), and over an
  *  infinite a or b the true position is used (a state of density > 0
  *  against vacuum up to x = 1e310 holds a finite mass); SB_ERANGE there
- *  only where the mass or momentum in [a, b] itself overflows (a delta
- *  inside [a, b] whose mass exceeds DBL_MAX, say). */
+ *  only where the mass or momentum in [a, b], or a norm of _error, itself
+ *  overflows (a delta inside [a, b] or the cells whose mass exceeds
+ *  DBL_MAX, say). */
 int sb_pgd_riemann_solve(const sb_pgd_riemann *rp, double t,
                          sb_pgd_riemann_sol *sol);
 
