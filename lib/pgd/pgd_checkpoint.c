@@ -48,22 +48,21 @@ static const char MAGIC_D[8] = {'S', 'B', 'P', 'G', 'D', 'D', '0', '1'};
 static const unsigned char SIZES[3] = {sizeof(double), sizeof(size_t),
                                        sizeof(int)};
 
+/* FNV-1a of one gas sample (both components) into the hash at ctx. */
+static void print_visit(void *ctx, size_t i, size_t j, const double ug[2])
+{
+  uint64_t *h = ctx;
+  (void)i, (void)j;
+  *h = sbi_fnv1a(*h, ug, 2 * sizeof *ug);
+}
+
 uint64_t sbi_pgd_gas_print(const sb_pgd_params *p)
 {
   if (!p->gas)
     return 0;
-  const double dx = p->L[0] / (double)p->nx;
-  const double dy = p->dim == 2 ? p->L[1] / (double)p->ny : 0.0;
-  const size_t ny = p->dim == 2 ? p->ny : 1;
   uint64_t h = SBI_FNV_BASIS;
-  for (size_t j = 0; j < ny; j++)
-    for (size_t i = 0; i < p->nx; i++) {
-      double ug[2];
-      sbi_pgd_gas_at(p, p->origin[0] + ((double)i + 0.5) * dx,
-                     p->dim == 2 ? p->origin[1] + ((double)j + 0.5) * dy
-                                 : 0.0, ug);
-      h = sbi_fnv1a(h, ug, sizeof ug);
-    }
+  const sbi_pgd_cells cells = sbi_pgd_grid_cells(p);
+  sbi_pgd_gas_at_centres(p, &cells, print_visit, &h);
   return h;
 }
 

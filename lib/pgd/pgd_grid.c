@@ -66,24 +66,24 @@ struct sb_pgd *sbi_pgd_alloc(const sb_pgd_params *p, const int external[4])
   return g;
 }
 
+/* Store one gas sample in the solver's cache. */
+static void cache_visit(void *ctx, size_t i, size_t j, const double ug[2])
+{
+  struct sb_pgd *g = ctx;
+  const size_t c = sbi_pgd_idx(g, (long)i, (long)j);
+  g->ugx[c] = ug[0];
+  g->ugy[c] = ug[1];
+}
+
 void sbi_pgd_geometry(struct sb_pgd *g, double dx, double dy,
                       const double origin[2], size_t i0, size_t j0)
 {
   g->dx = dx;
   g->dy = dy;
   /* the gas is steady: sample it once at the cell centres */
-  for (size_t j = 0; j < g->ny; j++)
-    for (size_t i = 0; i < g->nx; i++) {
-      double ug[2];
-      sbi_pgd_gas_at(&g->p, origin[0] + ((double)(i0 + i) + 0.5) * dx,
-                     g->p.dim == 2
-                         ? origin[1] + ((double)(j0 + j) + 0.5) * dy
-                         : 0.0,
-                     ug);
-      size_t c = sbi_pgd_idx(g, (long)i, (long)j);
-      g->ugx[c] = ug[0];
-      g->ugy[c] = ug[1];
-    }
+  const sbi_pgd_cells cells = {{origin[0], origin[1]}, dx, dy,
+                               i0, j0, g->nx, g->ny};
+  sbi_pgd_gas_at_centres(&g->p, &cells, cache_visit, g);
 }
 
 sb_pgd *sb_pgd_alloc(const sb_pgd_params *p)

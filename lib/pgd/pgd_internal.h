@@ -122,6 +122,28 @@ double sbi_pgd_cfl_limit(sb_pgd_scheme s);
 void sbi_pgd_gas_at(const sb_pgd_params *p, double x, double y,
                     double ug[2]);
 
+/* Cells whose centres sample the gas: the block of nx x ny cells whose
+ * first cell is (i0, j0) of a grid with lower-left corner `origin` and
+ * cells dx x dy (ny = 1 and dy unused in 1-D). */
+typedef struct {
+  double origin[2], dx, dy;
+  size_t i0, j0, nx, ny;
+} sbi_pgd_cells;
+
+/* The cells of the whole grid of p. */
+sbi_pgd_cells sbi_pgd_grid_cells(const sb_pgd_params *p);
+
+/* Calls visit(ctx, i, j, ug) with the gas velocity ug at the centre of
+ * every cell (i, j) of c (i < c->nx, j < c->ny, counted from the block's
+ * first cell), row by row from the south-west.  The one place where the
+ * cell centres are computed (x = origin + (i0 + i + 1/2) dx; y = 0 in
+ * 1-D): the solver's cache, a block's, the speed bound and a
+ * checkpoint's fingerprint sample the same points bit for bit. */
+typedef void (*sbi_pgd_gas_visit)(void *ctx, size_t i, size_t j,
+                                  const double ug[2]);
+void sbi_pgd_gas_at_centres(const sb_pgd_params *p, const sbi_pgd_cells *c,
+                            sbi_pgd_gas_visit visit, void *ctx);
+
 /* ------------------------------------------------------------ particles */
 
 typedef struct {

@@ -178,10 +178,50 @@ void sbi_pgd_gas_at(const sb_pgd_params *p, double x, double y,
     ug[1] = 0.0;
 }
 
+sbi_pgd_cells sbi_pgd_grid_cells(const sb_pgd_params *p)
+{
+  sbi_pgd_cells c = {{p->origin[0], p->origin[1]},
+                     p->L[0] / (double)p->nx,
+                     p->dim == 2 ? p->L[1] / (double)p->ny : 0.0,
+                     0, 0, p->nx, p->dim == 2 ? p->ny : 1};
+  return c;
+}
+
+void sbi_pgd_gas_at_centres(const sb_pgd_params *p, const sbi_pgd_cells *c,
+                            sbi_pgd_gas_visit visit, void *ctx)
+{
+  for (size_t j = 0; j < c->ny; j++)
+    for (size_t i = 0; i < c->nx; i++) {
+      double ug[2];
+      sbi_pgd_gas_at(p, c->origin[0] + ((double)(c->i0 + i) + 0.5) * c->dx,
+                     p->dim == 2
+                         ? c->origin[1] + ((double)(c->j0 + j) + 0.5) * c->dy
+                         : 0.0,
+                     ug);
+      visit(ctx, i, j, ug);
+    }
+}
+
 double sbi_pgd_dt_from_speed(const sb_pgd_params *p, double speed)
 {
   double dt = speed > 0 ? p->cfl / speed : INFINITY;
   return dt < p->dt_max ? dt : p->dt_max;
+}
+
+/* The running maximum of |ux|/dx + |uy|/dy over gas samples. */
+typedef struct {
+  int dim;
+  double dx, dy, s;
+} gas_speed_acc;
+
+static void gas_speed_visit(void *ctx, size_t i, size_t j,
+                            const double ug[2])
+{
+  gas_speed_acc *a = ctx;
+  (void)i, (void)j;
+  double v = fabs(ug[0]) / a->dx + (a->dim == 2 ? fabs(ug[1]) / a->dy : 0.0);
+  if (v > a->s)
+    a->s = v;
 }
 
 double sbi_pgd_param_speed(const sb_pgd_params *p)
@@ -200,18 +240,10 @@ double sbi_pgd_param_speed(const sb_pgd_params *p)
   if (!p->gas)
     return fmax(s, fabs(p->ugas[0]) / dx +
                        (p->dim == 2 ? fabs(p->ugas[1]) / dy : 0.0));
-  size_t ny = p->dim == 2 ? p->ny : 1;
-  for (size_t j = 0; j < ny; j++)
-    for (size_t i = 0; i < p->nx; i++) {
-      double ug[2];
-      sbi_pgd_gas_at(p, p->origin[0] + ((double)i + 0.5) * dx,
-                     p->dim == 2 ? p->origin[1] + ((double)j + 0.5) * dy
-                                 : 0.0, ug);
-      double v = fabs(ug[0]) / dx + (p->dim == 2 ? fabs(ug[1]) / dy : 0.0);
-      if (v > s)
-        s = v;
-    }
-  return s;
+  gas_speed_acc acc = {p->dim, dx, dy, s};
+  const sbi_pgd_cells cells = sbi_pgd_grid_cells(p);
+  sbi_pgd_gas_at_centres(p, &cells, gas_speed_visit, &acc);
+  return acc.s;
 }
 
 void sb_pgd_l1(const sb_pgd_params *p, const double *rho_a,
