@@ -4,6 +4,7 @@
  * reproduce the single-domain runs, and decompositions shared between
  * parts (in-memory messages) that must reproduce the one-part run. */
 #include <check.h>
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,6 +26,83 @@ static void jets(sb_pgd_params *p, size_t n, double tau, sb_pgd_scheme sc)
   sb_pgd_params_add_inflow(p, SB_PGD_WEST, n / 2 - 2, 5, 1, 1, 0);
   sb_pgd_params_add_inflow(p, SB_PGD_SOUTH, n / 2 - 2, 5, 1, 0, 1);
 }
+
+/* A velocity relative to the gas beyond DBL_MAX: the particle at
+ * 0.75 DBL_MAX against a gas at -0.75 DBL_MAX, in a square of side 1e10
+ * (so that |v|/dx stays a double and sb_pgd_lag_dt is a positive step).
+ * The drag move forms v - U_gas: the step is refused with SB_ERANGE and
+ * changes nothing, where it used to move the particle to +inf and put
+ * inf into the budget.  A relative velocity of DBL_MAX still steps. */
+static void huge_gas(sb_pgd_params *p, double ug)
+{
+  sb_pgd_params_default(p, 2);
+  p->nx = p->ny = 6;
+  p->L[0] = p->L[1] = 1e10;
+  p->tau = 1.0;
+  p->ugas[0] = ug;
+  for (int s = 0; s < 4; s++)
+    p->bc[s] = SB_PGD_OUTFLOW;
+}
+
+START_TEST(relative_velocity_overflow)
+{
+  const double big = 0.75 * DBL_MAX;
+  sb_pgd_params p;
+  huge_gas(&p, -big);
+  sb_pgd_lag *l = sb_pgd_lag_alloc(&p);
+  ck_assert_ptr_nonnull(l);
+  const sb_pgd_particle q = {1.0, {5e9, 5e9}, {big, 0.0}};
+  ck_assert_int_eq(sb_pgd_lag_add(l, &q), SB_SUCCESS);
+  const double dt = sb_pgd_lag_dt(l);
+  ck_assert(dt > 0 && isfinite(dt));
+  ck_assert_int_eq(sb_pgd_lag_step(l, dt), SB_ERANGE);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "sb_pgd_lag_step"));
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "relative to the gas"));
+  ck_assert_uint_eq(sb_pgd_lag_count(l), 1);
+  ck_assert(memcmp(sb_pgd_lag_particles(l), &q, sizeof q) == 0);
+  ck_assert(sb_pgd_lag_time(l) == 0.0 && sb_pgd_lag_steps(l) == 0);
+  double in[3], out[3];
+  sb_pgd_lag_boundary_totals(l, in, out);
+  for (int k = 0; k < 3; k++)
+    ck_assert(in[k] == 0.0 && out[k] == 0.0);
+  ck_assert_int_eq(sb_pgd_lag_advance(l, 1.0, NULL), SB_ERANGE);
+  sb_pgd_lag_free(l);
+
+  /* relative velocity DBL_MAX (gas at -0.25 DBL_MAX): a double, the step
+   * is taken; the new velocity lies between v and U_gas */
+  huge_gas(&p, -DBL_MAX / 4);
+  l = sb_pgd_lag_alloc(&p);
+  ck_assert_int_eq(sb_pgd_lag_add(l, &q), SB_SUCCESS);
+  ck_assert_int_eq(sb_pgd_lag_step(l, sb_pgd_lag_dt(l)), SB_SUCCESS);
+  ck_assert_uint_eq(sb_pgd_lag_count(l), 1);
+  const sb_pgd_particle *r = sb_pgd_lag_particles(l);
+  ck_assert(r->v[0] <= big && r->v[0] >= -DBL_MAX / 4);
+  ck_assert(isfinite(r->x[0]));
+  sb_pgd_lag_free(l);
+
+  /* the particles an inflow injects: rho = 1e-30 keeps their mass and
+   * momentum doubles, their velocity minus the gas's is not */
+  huge_gas(&p, -big);
+  ck_assert_int_eq(sb_pgd_params_add_inflow(&p, SB_PGD_WEST, 2, 2, 1e-30,
+                                            big, 0.0),
+                   SB_SUCCESS);
+  l = sb_pgd_lag_alloc(&p);
+  ck_assert_int_eq(sb_pgd_lag_step(l, sb_pgd_lag_dt(l)), SB_ERANGE);
+  ck_assert_uint_eq(sb_pgd_lag_count(l), 0);
+  sb_pgd_lag_boundary_totals(l, in, out);
+  ck_assert(in[0] == 0.0 && sb_pgd_lag_steps(l) == 0);
+  sb_pgd_lag_free(l);
+
+  /* the same inflow in a decomposition: its Lagrangian west blocks
+   * inject it; the step is refused and no further step is taken */
+  sb_pgd_dd *d = sb_pgd_dd_alloc(&p, 3, 3, "LLLLLLLLL");
+  ck_assert_ptr_nonnull(d);
+  ck_assert_int_eq(sb_pgd_dd_step(d, sb_pgd_dd_dt(d)), SB_ERANGE);
+  ck_assert_ptr_nonnull(strstr(sb_last_error(), "relative to the gas"));
+  ck_assert_int_eq(sb_pgd_dd_step(d, sb_pgd_dd_dt(d)), SB_EINVAL);
+  sb_pgd_dd_free(d);
+}
+END_TEST
 
 /* One particle in a uniform gas follows the closed form. */
 START_TEST(particle_exact_drag)
@@ -469,6 +547,7 @@ Suite *suite(void)
   tcase_add_test(tc, particle_exact_drag);
   tcase_add_test(tc, jet_injection);
   tcase_add_test(tc, lag_budget);
+  tcase_add_test(tc, relative_velocity_overflow);
   suite_add_tcase(s, tc);
   tc = tcase_create("decomposition");
   tcase_set_timeout(tc, 30);

@@ -323,9 +323,13 @@ static int classify_moving(sb_pgd_dd *d, dd_block *b)
 
 /* Particles for the step from block b: its physical inflow faces
  * (Lagrangian) or its outgoing fluxes towards Lagrangian blocks
- * (Eulerian), and the budget of its physical faces. */
-static int inject(sb_pgd_dd *d, dd_block *b, double dt)
+ * (Eulerian), and the budget of its physical faces.  SB_ENOMEM (no
+ * message) or SB_ERANGE (message: an injected velocity minus the gas's
+ * overflows, named after func). */
+static int inject(sb_pgd_dd *d, dd_block *b, double dt,
+                  const char *func)
 {
+  int st;
   const sb_pgd_params *q = &b->p;
   sbi_dbuf *ev = &b->ev[0];
   if (b->kind == 'L') {
@@ -343,11 +347,11 @@ static int inject(sb_pgd_dd *d, dd_block *b, double dt)
       for (size_t c = in->first; c < in->first + in->count; c++) {
         double M = in->rho * un * len * dt;
         double P[2] = {M * in->u[0], M * in->u[1]};
-        if (sbi_lag_inject(&d->p, dir, xn, d->p.origin[1 - dir] +
-                           (double)(off + c) * len, len, M, P, dt,
-                           &d->moving) ||
-            event(ev, in->side, 0, M, P[0], P[1]) ||
-            classify_moving(d, b))
+        if ((st = sbi_lag_inject(&d->p, dir, xn, d->p.origin[1 - dir] +
+                                 (double)(off + c) * len, len, M, P, dt,
+                                 &d->moving, func)))
+          return st;
+        if (event(ev, in->side, 0, M, P[0], P[1]) || classify_moving(d, b))
           return SB_ENOMEM;
       }
     }
@@ -383,10 +387,11 @@ static int inject(sb_pgd_dd *d, dd_block *b, double dt)
       if (!(pe[3 * c] > mmin))
         continue;
       double P[2] = {pe[3 * c + 1], pe[3 * c + 2]};
-      if (sbi_lag_inject(&d->p, dir, xn, d->p.origin[1 - dir] +
-                         (double)(off + c) * len, len, pe[3 * c], P, dt,
-                         &d->moving) ||
-          classify_moving(d, b))
+      if ((st = sbi_lag_inject(&d->p, dir, xn, d->p.origin[1 - dir] +
+                               (double)(off + c) * len, len, pe[3 * c], P,
+                               dt, &d->moving, func)))
+        return st;
+      if (classify_moving(d, b))
         return SB_ENOMEM;
       pe[3 * c] = pe[3 * c + 1] = pe[3 * c + 2] = 0.0;
     }
@@ -448,10 +453,22 @@ static void stage(sb_pgd_dd *d)
   d->stage++;
 }
 
-/* Drag, particle moves, injections: the step's items and events. */
-static int move(sb_pgd_dd *d)
+/* Drag, particle moves, injections: the step's items and events.
+ * SB_ENOMEM (no message) or SB_ERANGE (message) where a particle's
+ * velocity relative to the gas overflows: the particles are checked
+ * before this phase changes anything, the injected ones as they are
+ * made; messages named after func. */
+static int move(sb_pgd_dd *d, const char *func)
 {
   const double dt = d->dt;
+  for (size_t k = 0; k < d->nblocks; k++) {
+    const dd_block *b = &d->b[k];
+    if (b->owner != d->part || b->kind != 'L')
+      continue;
+    const size_t bad = sbi_lag_rel_first_bad(&d->p, b->parts.q, b->parts.n);
+    if (bad < b->parts.n)
+      return sbi_lag_rel_error(&d->p, &b->parts.q[bad], func);
+  }
   for (size_t k = 0; k < d->nblocks; k++) {
     dd_block *b = &d->b[k];
     if (b->owner == d->part && b->kind == 'E') {
@@ -485,9 +502,12 @@ static int move(sb_pgd_dd *d)
     }
     b->parts.n = w;
   }
-  for (size_t k = 0; k < d->nblocks; k++)
-    if (d->b[k].owner == d->part && inject(d, &d->b[k], dt))
-      return SB_ENOMEM;
+  for (size_t k = 0; k < d->nblocks; k++) {
+    const int st = d->b[k].owner == d->part ? inject(d, &d->b[k], dt, func)
+                                            : SB_SUCCESS;
+    if (st)
+      return st;
+  }
   d->phase = SBI_DD_MOVED;
   return SB_SUCCESS;
 }
@@ -533,7 +553,10 @@ static int dd_step(sb_pgd_dd *d, double dt, double t_end)
   begin(d, dt, t_end);
   while (d->stage < d->nst)
     stage(d);
-  if (move(d) || end(d))
+  int st = move(d, "sb_pgd_dd_step");
+  if (st == SB_ERANGE)
+    return st;
+  if (st || end(d))
     return sbi_error(SB_ENOMEM, "sb_pgd_dd_step", "out of memory");
   return SB_SUCCESS;
 }
@@ -637,7 +660,10 @@ int sb_pgd_dd_move(sb_pgd_dd *d)
   if (d->stage < d->nst)
     return sbi_error(SB_EINVAL, __func__, "stage %d of %d not done",
                      d->stage, d->nst);
-  if (move(d))
+  st = move(d, __func__);
+  if (st == SB_ERANGE)
+    return st;
+  if (st)
     return sbi_error(SB_ENOMEM, __func__, "out of memory");
   return SB_SUCCESS;
 }

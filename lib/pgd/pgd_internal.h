@@ -152,6 +152,8 @@ typedef struct {
 } sbi_parts;
 
 int sbi_parts_push(sbi_parts *a, const sb_pgd_particle *q);
+/* Room for at least n particles (pushes up to n cannot fail). */
+int sbi_parts_reserve(sbi_parts *a, size_t n);
 void sbi_parts_free(sbi_parts *a);
 
 /* Decay e^{-h/tau} and position gain tau (1 - e^{-h/tau}) of a move h
@@ -159,21 +161,38 @@ void sbi_parts_free(sbi_parts *a);
 void sbi_lag_coef(const sb_pgd_params *p, double h, double *e, double *g);
 
 /* Exact drag-and-transport move of one particle over h (gas frozen at its
- * start position), with the coefficients of sbi_lag_coef(h). */
+ * start position), with the coefficients of sbi_lag_coef(h).  The move
+ * is formed from the velocity relative to the gas, v - U_gas: the
+ * caller checks first that it is a double (sbi_lag_rel_ok). */
 void sbi_lag_move_coef(const sb_pgd_params *p, sb_pgd_particle *q, double h,
                        double e, double gain);
 /* The same for n particles. */
 void sbi_lag_move_all(const sb_pgd_params *p, sb_pgd_particle *q, size_t n,
                       double h, double e, double gain);
 
+/* Whether both components of q's velocity relative to the gas that drags
+ * it (v - U_gas, the gas at q's position; 0 without drag) are doubles:
+ * |v| and |U_gas| near DBL_MAX with opposite signs overflow it. */
+int sbi_lag_rel_ok(const sb_pgd_params *p, const sb_pgd_particle *q);
+
+/* The first of n particles whose relative velocity overflows, or n. */
+size_t sbi_lag_rel_first_bad(const sb_pgd_params *p,
+                             const sb_pgd_particle *q, size_t n);
+
+/* SB_ERANGE with a message, named after func, on q's relative velocity. */
+int sbi_lag_rel_error(const sb_pgd_params *p, const sb_pgd_particle *q,
+                      const char *func);
+
 /* Inject the mass M with momentum P[2] that crossed one face during a
  * step of length dt: p->inject_time x p->inject_face particles entering
  * at the face (normal direction `dir` 0 = x, 1 = y, at coordinate xn,
  * along [s0, s0 + len] in the other direction), each moved over the part
- * of the step left after its entry.  Appends to out.  SB_ENOMEM. */
+ * of the step left after its entry.  Appends to out.  SB_ENOMEM (no
+ * message), or SB_ERANGE with a message named after func where P/M - U_gas
+ * overflows (sbi_lag_rel_ok). */
 int sbi_lag_inject(const sb_pgd_params *p, int dir, double xn, double s0,
                    double len, double M, const double P[2], double dt,
-                   sbi_parts *out);
+                   sbi_parts *out, const char *func);
 
 /* Where a particle is after a move: wraps periodic directions in place;
  * returns 0 inside the domain, 1 + the side it left through otherwise. */
@@ -211,6 +230,7 @@ struct sb_pgd_lag {
   sb_pgd_params p;
   sbi_locator loc;
   sbi_parts a;
+  sbi_parts fresh;  /* the step's injected particles, before they join a */
   double pspeed;  /* speed bound of inflow states and gas */
   double t;
   size_t steps;

@@ -27,6 +27,21 @@ int sbi_parts_push(sbi_parts *a, const sb_pgd_particle *q)
   return SB_SUCCESS;
 }
 
+int sbi_parts_reserve(sbi_parts *a, size_t n)
+{
+  if (n <= a->cap)
+    return SB_SUCCESS;
+  size_t cap = a->cap ? a->cap : 1024;
+  while (cap < n)
+    cap *= 2;
+  sb_pgd_particle *nq = realloc(a->q, cap * sizeof *nq);
+  if (!nq)
+    return SB_ENOMEM;
+  a->q = nq;
+  a->cap = cap;
+  return SB_SUCCESS;
+}
+
 void sbi_parts_free(sbi_parts *a)
 {
   free(a->q);
@@ -46,16 +61,51 @@ void sbi_lag_coef(const sb_pgd_params *p, double h, double *e, double *g)
   *g = c.gain;
 }
 
-void sbi_lag_move_coef(const sb_pgd_params *p, sb_pgd_particle *q, double h,
-                       double e, double gain)
+/* The gas velocity that drags q over a move: frozen at its start
+ * position; 0 without drag. */
+static void drag_gas(const sb_pgd_params *p, const sb_pgd_particle *q,
+                     double ug[2])
 {
-  double ug[2] = {0, 0};
+  ug[0] = ug[1] = 0.0;
   if (p->gas && !isinf(p->tau)) {
     sbi_pgd_gas_at(p, q->x[0], q->x[1], ug);
   } else if (!isinf(p->tau)) {
     ug[0] = p->ugas[0];
     ug[1] = p->ugas[1];
   }
+}
+
+int sbi_lag_rel_ok(const sb_pgd_params *p, const sb_pgd_particle *q)
+{
+  double ug[2];
+  drag_gas(p, q, ug);
+  return isfinite(q->v[0] - ug[0]) && isfinite(q->v[1] - ug[1]);
+}
+
+size_t sbi_lag_rel_first_bad(const sb_pgd_params *p,
+                             const sb_pgd_particle *q, size_t n)
+{
+  size_t k = 0;
+  while (k < n && sbi_lag_rel_ok(p, q + k))
+    k++;
+  return k;
+}
+
+int sbi_lag_rel_error(const sb_pgd_params *p, const sb_pgd_particle *q,
+                      const char *func)
+{
+  double ug[2];
+  drag_gas(p, q, ug);
+  return sbi_error(SB_ERANGE, func, "particle at (%g, %g): its velocity "
+                   "(%g, %g) relative to the gas (%g, %g) leaves the double "
+                   "range", q->x[0], q->x[1], q->v[0], q->v[1], ug[0], ug[1]);
+}
+
+void sbi_lag_move_coef(const sb_pgd_params *p, sb_pgd_particle *q, double h,
+                       double e, double gain)
+{
+  double ug[2];
+  drag_gas(p, q, ug);
   for (int d = 0; d < 2; d++) {
     double dv = q->v[d] - ug[d];
     q->x[d] += ug[d] * h + dv * gain;
@@ -72,7 +122,7 @@ void sbi_lag_move_all(const sb_pgd_params *p, sb_pgd_particle *q, size_t n,
 
 int sbi_lag_inject(const sb_pgd_params *p, int dir, double xn, double s0,
                    double len, double M, const double P[2], double dt,
-                   sbi_parts *out)
+                   sbi_parts *out, const char *func)
 {
   if (!(M > 0))
     return SB_SUCCESS;
@@ -88,6 +138,8 @@ int sbi_lag_inject(const sb_pgd_params *p, int dir, double xn, double s0,
       q.x[1 - dir] = s0 + ((double)ks + 0.5) / (double)ns * len;
       q.v[0] = P[0] / M;
       q.v[1] = P[1] / M;
+      if (!sbi_lag_rel_ok(p, &q))
+        return sbi_lag_rel_error(p, &q, func);
       sbi_lag_move_coef(p, &q, th * dt, e, g);
       if (sbi_parts_push(out, &q))
         return SB_ENOMEM;
@@ -155,6 +207,7 @@ void sb_pgd_lag_free(sb_pgd_lag *l)
   if (!l)
     return;
   sbi_parts_free(&l->a);
+  sbi_parts_free(&l->fresh);
   free(l);
 }
 
@@ -192,9 +245,10 @@ double sb_pgd_lag_dt(const sb_pgd_lag *l)
   return sbi_pgd_dt_from_speed(&l->p, fmax(s, l->pspeed));
 }
 
-/* Inject the inflow of every inflow face of p over a step dt. */
+/* Inject the inflow of every inflow face of p over a step dt: SB_ENOMEM
+ * (no message), SB_ERANGE (message named after func). */
 static int inject_inflows(const sb_pgd_params *p, double dt, sbi_parts *out,
-                          sbi_budget *bud)
+                          sbi_budget *bud, const char *func)
 {
   const double dx = p->L[0] / (double)p->nx, dy = p->L[1] / (double)p->ny;
   for (size_t m = 0; m < p->ninflow; m++) {
@@ -210,8 +264,10 @@ static int inject_inflows(const sb_pgd_params *p, double dt, sbi_parts *out,
       double M = in->rho * un * len * dt;
       double P[2] = {M * in->u[0], M * in->u[1]};
       double s0 = p->origin[1 - dir] + (double)k * len;
-      if (sbi_lag_inject(p, dir, xn, s0, len, M, P, dt, out))
-        return SB_ENOMEM;
+      const int st = sbi_lag_inject(p, dir, xn, s0, len, M, P, dt, out,
+                                    func);
+      if (st)
+        return st;
       sbi_budget_add(bud, in->side, 0, M, P[0], P[1]);
     }
   }
@@ -228,11 +284,28 @@ int sb_pgd_lag_step(sb_pgd_lag *l, double dt)
     return sbi_error(SB_EINVAL, __func__, "the checkpoint these particles "
                      "were loaded from had a gas velocity callback: attach "
                      "it again with sb_pgd_lag_set_gas");
+  /* everything that can fail comes first, so that a refused step
+   * changes nothing: the inflow's particles (they do not depend on the
+   * others) and its budget go to the side, every relative velocity is
+   * checked, and there is room for the particles after the move */
+  sbi_budget bud = l->bud;
+  l->fresh.n = 0;
+  int st = inject_inflows(&l->p, dt, &l->fresh, &bud, __func__);
+  if (!st && sbi_parts_reserve(&l->a, l->a.n + l->fresh.n))
+    st = SB_ENOMEM;
+  if (st == SB_ENOMEM)
+    return sbi_error(SB_ENOMEM, __func__, "out of memory");
+  if (st)
+    return st;
+  const size_t bad = sbi_lag_rel_first_bad(&l->p, l->a.q, l->a.n);
+  if (bad < l->a.n)
+    return sbi_lag_rel_error(&l->p, &l->a.q[bad], __func__);
   double e, g;
   sbi_lag_coef(&l->p, dt, &e, &g);
   sbi_lag_move_all(&l->p, l->a.q, l->a.n, dt, e, g);
-  if (inject_inflows(&l->p, dt, &l->a, &l->bud))
-    return sbi_error(SB_ENOMEM, __func__, "out of memory");
+  for (size_t k = 0; k < l->fresh.n; k++)
+    l->a.q[l->a.n++] = l->fresh.q[k];  /* room reserved */
+  l->bud = bud;
   /* remove the particles that left; keep the order of the others */
   size_t w = 0;
   for (size_t k = 0; k < l->a.n; k++) {

@@ -387,6 +387,12 @@ const sb_pgd_particle *sb_pgd_lag_particles(const sb_pgd_lag *l);
 /** Step bound: the same CFL rule as the Eulerian solver, over particle,
  *  inflow and gas velocities. */
 double sb_pgd_lag_dt(const sb_pgd_lag *l);
+/** One step of dt > 0 (SB_EINVAL otherwise).  The exact drag move is
+ *  formed from each particle's velocity relative to the gas, v - U_gas
+ *  (also for the particles the inflows inject): where a component
+ *  overflows (|v| and |U_gas| near DBL_MAX with opposite signs) the step
+ *  is refused with SB_ERANGE, naming the particle, and changes nothing;
+ *  SB_ENOMEM likewise.  _advance stops at the first refused step. */
 int sb_pgd_lag_step(sb_pgd_lag *l, double dt);
 int sb_pgd_lag_advance(sb_pgd_lag *l, double t_end, size_t *nsteps);
 double sb_pgd_lag_time(const sb_pgd_lag *l);
@@ -435,6 +441,11 @@ void sb_pgd_dd_free(sb_pgd_dd *d);
 /** Largest stable step (the CFL rule over cells, particles and inflow
  *  states); on a part (below), over its own blocks only. */
 double sb_pgd_dd_dt(const sb_pgd_dd *d);
+/** One step; SB_ERANGE (message naming the particle) where a particle's
+ *  velocity relative to the gas overflows, as in sb_pgd_lag_step, and
+ *  SB_ENOMEM: the Eulerian blocks have then taken their part of the step
+ *  already, and the decomposition refuses further steps (SB_EINVAL, a
+ *  step is under way); sb_pgd_dd_move reports the same. */
 int sb_pgd_dd_step(sb_pgd_dd *d, double dt);
 int sb_pgd_dd_advance(sb_pgd_dd *d, double t_end, size_t *nsteps);
 double sb_pgd_dd_time(const sb_pgd_dd *d);
