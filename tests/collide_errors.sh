@@ -485,6 +485,22 @@ check "msd_fit past the run" 2 '[observe] msd_fit = 2 20: the run takes 11 sampl
 [observe]\
 msd_every = 1\
 msd_fit = 2 20'
+# msd_every against the faces of the box: absorbing or open ones are
+# refused; [walls] deposit acts at absorbing faces only, so reflecting
+# walls keep the particles whatever it says
+check "msd_every with open walls" 2 't.ini:16: [observe] msd_every with [walls] y_lo = open: particles leave or jump; valid walls: periodic, reflect' '$a\
+[walls]\
+y_lo = open\
+y_hi = open\
+[observe]\
+msd_every = 2'
+check "msd_every between reflecting walls with deposit = reinsert" 0 't.ini:15: [walls] deposit ignored: no absorbing face' '$a\
+[walls]\
+z_lo = reflect\
+z_hi = reflect\
+deposit = reinsert\
+[observe]\
+msd_every = 2'
 # a merging run goes on from a checkpoint only with its sizes written
 # beside it (CHECKPOINT.agglo), a first-contact count only with the
 # observer's counts (CHECKPOINT.firsthit), a random field only with its

@@ -75,13 +75,13 @@ int sbi_col_msd_check(sbi_col_config *c)
       return sbi_col_fail(c, "%s: [observe] msd_every with [%s] inflow: the "
                           "particle set changes; valid: no inflow", w,
                           c->sp[k].name);
+  /* [walls] deposit acts at absorbing faces only (engine_wall.c):
+   * reflecting faces keep the particles whatever it says */
   for (int f = 0; f < 6; f++)
-    if (!strcmp(c->wall[f], "absorb") || !strcmp(c->wall[f], "open") ||
-        (!strcmp(c->wall[f], "reflect") && !strcmp(c->deposit, "reinsert")))
+    if (!strcmp(c->wall[f], "absorb") || !strcmp(c->wall[f], "open"))
       return sbi_col_fail(c, "%s: [observe] msd_every with [walls] %s = %s: "
                           "particles leave or jump; valid walls: periodic, "
-                          "reflect (deposit = remove)", w, FACE[f],
-                          c->wall[f]);
+                          "reflect", w, FACE[f], c->wall[f]);
   return 0;
 }
 
