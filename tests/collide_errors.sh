@@ -486,12 +486,21 @@ check "msd_fit past the run" 2 '[observe] msd_fit = 2 20: the run takes 11 sampl
 msd_every = 1\
 msd_fit = 2 20'
 # msd_every against the faces of the box: absorbing or open ones are
-# refused; [walls] deposit acts at absorbing faces only, so reflecting
-# walls keep the particles whatever it says
+# refused; a 2-D box has no z faces (their keys are warned as ignored, as
+# everywhere in 2-D), and [walls] deposit acts at absorbing faces only,
+# so reflecting walls keep the particles whatever it says
 check "msd_every with open walls" 2 't.ini:16: [observe] msd_every with [walls] y_lo = open: particles leave or jump; valid walls: periodic, reflect' '$a\
 [walls]\
 y_lo = open\
 y_hi = open\
+[observe]\
+msd_every = 2'
+check "msd_every with open z faces in 2-D" 0 't.ini:14: [walls] z_lo ignored: dim = 2 (no z direction)' '4a\
+dim = 2
+$a\
+[walls]\
+z_lo = open\
+z_hi = open\
 [observe]\
 msd_every = 2'
 check "msd_every between reflecting walls with deposit = reinsert" 0 't.ini:15: [walls] deposit ignored: no absorbing face' '$a\
@@ -586,6 +595,35 @@ $a\
 [walls]\
 z_lo = absorb\
 z_hi = absorb'
+# on restart msd_every meets the faces of the run: the checkpoint's dim,
+# and its walls where the file gives none (it was checked against the
+# file's walls)
+"$sb" collide "$dir/base.ini" --set walls.x_lo=open --set walls.x_hi=open \
+  --set "run.checkpoint=$dir/ox.ck" --set "run.output=$dir/ox" \
+  > /dev/null 2>&1 || fail "a checkpoint with open x faces could not be written"
+check "msd_every on restart with the checkpoint's open faces" 2 "t.ini:14: [observe] msd_every with the restart checkpoint's [walls] x_lo = open: particles leave or jump; valid walls: periodic, reflect: give [walls] x_lo and x_hi one of them" '4a\
+restart = '"$dir"'/ox.ck
+$a\
+[observe]\
+msd_every = 2' --set "run.output=$dir/ox_msd"
+[ ! -e "$dir/ox_msd" ] ||
+  fail "msd_every on restart with the checkpoint's open faces: outputs were written"
+check "msd_every on restart replacing the checkpoint's open faces" 0 '' '4a\
+restart = '"$dir"'/ox.ck
+$a\
+[walls]\
+x_lo = reflect\
+x_hi = reflect\
+[observe]\
+msd_every = 2'
+check "msd_every on a 2-D restart with open z faces" 0 "t.ini:14: [walls] z_lo ignored: the restart checkpoint's dim = 2 (no z direction)" '4a\
+restart = '"$dir"'/d2.ck
+$a\
+[walls]\
+z_lo = open\
+z_hi = open\
+[observe]\
+msd_every = 2'
 # the Kraichnan field against the checkpoint's box, not the file's cube
 sed 's/^L = 1e-5/Lx = 1e-5\
 Ly = 1e-5\

@@ -339,8 +339,10 @@ int sbi_col_dim_check(sbi_col_config *c)
       strcpy(c->wall[f], "periodic");  /* nor deposit columns */
     }
   /* on restart the walls of the directions the file does not give are
-   * the checkpoint's, which [fluid] type = shear meets here */
-  if (c->restart[0] && (walls_lees(c, 0) || walls_lees(c, 1)))
+   * the checkpoint's, which [fluid] type = shear and msd_every meet here
+   * (a new run: sbi_col_msd_check) */
+  if (c->restart[0] && (walls_lees(c, 0) || walls_lees(c, 1) ||
+                        sbi_col_msd_walls_check(c)))
     return -1;
   check_open(c);
   /* the Kraichnan field: 3-D, periodic in a cube (on restart the

@@ -152,8 +152,10 @@ int sbi_col_override(sbi_col_config *c, const char *arg);
 int sbi_col_check(sbi_col_config *c);
 /* The checks that depend on dim, the box and the walls: the keys whose
  * number of values depends on dim ([fluid] U and g, the inflows' keys),
- * the z faces of a 2-D box, the Kraichnan field's cube, and on restart
- * the checkpoint's walls against [fluid] type = shear: sbi_col_check for
+ * the z faces of a 2-D box, the Kraichnan field's cube, [observe] exits
+ * and count_variance against the open faces, and on restart the
+ * checkpoint's walls against [fluid] type = shear and msd_every:
+ * sbi_col_check for
  * a new run, collide_setup.c on restart once the checkpoint's dim, box
  * and walls are in c.  0 or -1 with c->err set. */
 int sbi_col_dim_check(sbi_col_config *c);
@@ -444,8 +446,12 @@ int sbi_col_start_velocities(sbi_col_config *c, sbi_col_run *r);
 /* [observe] msd_every: start at the end of the warm-up (r->t_end set),
  * a step of the measurement, msd.csv and the summary's "msd" entry
  * (nothing without the key). */
-/* Cross-key checks of msd_every and msd_fit (0 or -1 with c->err). */
+/* Cross-key checks of msd_every and msd_fit (0 or -1 with c->err); the
+ * walls of the run's box (its 2 dim faces) with msd_every: from
+ * sbi_col_msd_check for a new run, sbi_col_dim_check on restart (once
+ * the checkpoint's dim and walls are in c). */
 int sbi_col_msd_check(sbi_col_config *c);
+int sbi_col_msd_walls_check(sbi_col_config *c);
 int sbi_col_msd_lees_check(sbi_col_config *c);
 int sbi_col_msd_start(const sbi_col_config *c, sbi_col_run *r);
 int sbi_col_msd_step(sbi_col_run *r);

@@ -42,8 +42,6 @@ void sbi_col_msd_free(sbi_col_msd *m)
 
 int sbi_col_msd_check(sbi_col_config *c)
 {
-  static const char *const FACE[6] = {"x_lo", "x_hi", "y_lo", "y_hi",
-                                      "z_lo", "z_hi"};
   const char *w = sbi_col_where(c, "observe", "msd_every");
   if (c->msd_every <= 0) {
     if (sbi_col_given(c, "observe", "msd_fit"))
@@ -75,13 +73,42 @@ int sbi_col_msd_check(sbi_col_config *c)
       return sbi_col_fail(c, "%s: [observe] msd_every with [%s] inflow: the "
                           "particle set changes; valid: no inflow", w,
                           c->sp[k].name);
-  /* [walls] deposit acts at absorbing faces only (engine_wall.c):
-   * reflecting faces keep the particles whatever it says */
-  for (int f = 0; f < 6; f++)
-    if (!strcmp(c->wall[f], "absorb") || !strcmp(c->wall[f], "open"))
-      return sbi_col_fail(c, "%s: [observe] msd_every with [walls] %s = %s: "
-                          "particles leave or jump; valid walls: periodic, "
-                          "reflect", w, FACE[f], c->wall[f]);
+  /* on restart the walls are the checkpoint's where the file gives none:
+   * sbi_col_dim_check, once they are read */
+  return c->restart[0] ? 0 : sbi_col_msd_walls_check(c);
+}
+
+/* The faces of the run's box, 2 dim of them (a 2-D box has no z faces;
+ * their keys are warned as ignored, sbi_col_dim_check): an absorbing face
+ * removes or reinserts the particles it touches, an open one lets them
+ * out.  The deposition outcome acts at absorbing faces only
+ * (engine_wall.c), so reflecting faces keep the particles whatever
+ * [walls] deposit says. */
+int sbi_col_msd_walls_check(sbi_col_config *c)
+{
+  static const char *const FACE[6] = {"x_lo", "x_hi", "y_lo", "y_hi",
+                                      "z_lo", "z_hi"};
+  if (c->msd_every <= 0)
+    return 0;
+  for (int f = 0; f < 2 * c->dim; f++) {
+    if (strcmp(c->wall[f], "absorb") && strcmp(c->wall[f], "open"))
+      continue;
+    /* a direction the file does not give keeps the checkpoint's walls
+     * (restart_box in collide_setup.c) */
+    const int kept = c->restart[0] &&
+                     !sbi_col_given(c, "walls", FACE[f & ~1]) &&
+                     !sbi_col_given(c, "walls", FACE[f | 1]);
+    const char *w = sbi_col_where(c, "observe", "msd_every");
+    if (kept)
+      return sbi_col_fail(c, "%s: [observe] msd_every with the restart "
+                          "checkpoint's [walls] %s = %s: particles leave or "
+                          "jump; valid walls: periodic, reflect: give [walls] "
+                          "%s and %s one of them", w, FACE[f], c->wall[f],
+                          FACE[f & ~1], FACE[f | 1]);
+    return sbi_col_fail(c, "%s: [observe] msd_every with [walls] %s = %s: "
+                        "particles leave or jump; valid walls: periodic, "
+                        "reflect", w, FACE[f], c->wall[f]);
+  }
   return 0;
 }
 
