@@ -595,12 +595,24 @@ $a\
 [walls]\
 z_lo = absorb\
 z_hi = absorb'
-# on restart msd_every meets the faces of the run: the checkpoint's dim,
-# and its walls where the file gives none (it was checked against the
-# file's walls)
+# on restart msd_every and [walls] detect and deposit meet the faces of
+# the run: the checkpoint's dim, and its walls where the file gives none
+# (they were checked against the file's walls, and detect and deposit
+# not at all).  unwarned WHAT TEXT SED: runs, without TEXT in its messages
+unwarned() {
+  n=$((n + 1))
+  sed "$3" "$dir/base.ini" > "$dir/t.ini"
+  msg=$("$sb" collide "$dir/t.ini" 2>&1 >/dev/null) ||
+    { fail "$1: exit $?: $msg"; return; }
+  case "$msg" in *"$2"*) fail "$1: warned '$2': $msg" ;; esac
+}
 "$sb" collide "$dir/base.ini" --set walls.x_lo=open --set walls.x_hi=open \
   --set "run.checkpoint=$dir/ox.ck" --set "run.output=$dir/ox" \
   > /dev/null 2>&1 || fail "a checkpoint with open x faces could not be written"
+"$sb" collide "$dir/base.ini" --set walls.x_lo=absorb \
+  --set walls.x_hi=absorb --set "run.checkpoint=$dir/ax.ck" \
+  --set "run.output=$dir/ax" > /dev/null 2>&1 ||
+  fail "a checkpoint with absorbing x faces could not be written"
 check "msd_every on restart with the checkpoint's open faces" 2 "t.ini:14: [observe] msd_every with the restart checkpoint's [walls] x_lo = open: particles leave or jump; valid walls: periodic, reflect: give [walls] x_lo and x_hi one of them" '4a\
 restart = '"$dir"'/ox.ck
 $a\
@@ -624,6 +636,34 @@ z_lo = open\
 z_hi = open\
 [observe]\
 msd_every = 2'
+check "walls detect on restart without walls" 0 't.ini:14: [walls] detect ignored: no absorbing or open face' '4a\
+restart = '"$dir"'/nofh.ck
+$a\
+[walls]\
+detect = ballistic'
+check "walls deposit on restart with the checkpoint's open faces" 0 't.ini:15: [walls] deposit ignored: no absorbing face' '4a\
+restart = '"$dir"'/ox.ck
+$a\
+[walls]\
+detect = ballistic\
+deposit = reinsert'
+case "$msg" in
+  *"detect ignored"*)
+    fail "walls detect on restart with the checkpoint's open faces: $msg" ;;
+esac
+check "walls deposit on a 2-D restart with absorbing z faces" 0 't.ini:16: [walls] deposit ignored: no absorbing face' '4a\
+restart = '"$dir"'/d2.ck
+$a\
+[walls]\
+z_lo = absorb\
+z_hi = absorb\
+deposit = reinsert'
+unwarned "walls detect and deposit on restart with the checkpoint's absorbing faces" 'walls] de' '4a\
+restart = '"$dir"'/ax.ck
+$a\
+[walls]\
+detect = ballistic\
+deposit = reinsert'
 # the Kraichnan field against the checkpoint's box, not the file's cube
 sed 's/^L = 1e-5/Lx = 1e-5\
 Ly = 1e-5\

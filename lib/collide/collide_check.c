@@ -216,16 +216,34 @@ static int check_walls(sbi_col_config *c)
   return 0;
 }
 
-/* Keys of the walls and of the fluid's forces that have no effect: the
- * wall detector without a face it detects (absorbing or open: reflecting
- * faces fold the end state, engine_wall.c), the deposition outcome
- * without an absorbing face, the fluid density without gravity or a
- * nonlinear drag law (it enters only the buoyancy and the particle
- * Reynolds number, engine_force.c), the fluid viscosity without a
- * nonlinear-drag species that lacks its own mu, the Lees-Edwards switch
- * without the shear field.  On restart the checkpoint keeps the fluid
- * properties and drag laws (collide_setup.c sets them only for a new
- * run) and may hold walls the file does not name. */
+/* [walls] detect and deposit without the faces they act on: the wall
+ * detector without an absorbing or open face (reflecting faces fold the
+ * end state, engine_wall.c), the deposition outcome without an absorbing
+ * face.  The faces are the run's 2 dim (a 2-D box has none in z), on
+ * restart those the checkpoint keeps where the file gives none
+ * (restart_box in collide_setup.c): sbi_col_dim_check runs it then. */
+static void check_wall_keys(sbi_col_config *c)
+{
+  int detected = 0, absorb = 0;
+  for (int f = 0; f < 2 * c->dim; f++) {
+    detected |= !strcmp(c->wall[f], "absorb") || !strcmp(c->wall[f], "open");
+    absorb |= !strcmp(c->wall[f], "absorb");
+  }
+  if (!detected)
+    unused(c, "walls", "detect", "no absorbing or open face (it detects "
+           "the contacts with those)");
+  if (!absorb)
+    unused(c, "walls", "deposit", "no absorbing face");
+}
+
+/* Keys of the walls and of the fluid's forces that have no effect: those
+ * of the walls (check_wall_keys; on restart once the checkpoint's walls
+ * are read), the fluid density without gravity or a nonlinear drag law
+ * (it enters only the buoyancy and the particle Reynolds number,
+ * engine_force.c), the fluid viscosity without a nonlinear-drag species
+ * that lacks its own mu, the Lees-Edwards switch without the shear
+ * field.  On restart the checkpoint keeps the fluid properties and drag
+ * laws (collide_setup.c sets them only for a new run). */
 static void check_inert(sbi_col_config *c)
 {
   /* on restart without [fluid] type it applies to the checkpoint's
@@ -242,16 +260,7 @@ static void check_inert(sbi_col_config *c)
       unused(c, c->sp[k].name, "drag", why);
     return;
   }
-  int detected = 0, absorb = 0;
-  for (int f = 0; f < 2 * c->dim; f++) {
-    detected |= !strcmp(c->wall[f], "absorb") || !strcmp(c->wall[f], "open");
-    absorb |= !strcmp(c->wall[f], "absorb");
-  }
-  if (!detected)
-    unused(c, "walls", "detect", "no absorbing or open face (it detects "
-           "the contacts with those)");
-  if (!absorb)
-    unused(c, "walls", "deposit", "no absorbing face");
+  check_wall_keys(c);
   int gravity = 0, nonlin = 0, nonlin_own_mu = 1;
   for (int k = 0; k < c->ng && k < c->dim; k++)
     gravity |= c->g[k] != 0.0;
@@ -339,11 +348,13 @@ int sbi_col_dim_check(sbi_col_config *c)
       strcpy(c->wall[f], "periodic");  /* nor deposit columns */
     }
   /* on restart the walls of the directions the file does not give are
-   * the checkpoint's, which [fluid] type = shear and msd_every meet here
-   * (a new run: sbi_col_msd_check) */
+   * the checkpoint's, which [fluid] type = shear, msd_every and the
+   * walls' keys meet here (a new run: sbi_col_msd_check, check_inert) */
   if (c->restart[0] && (walls_lees(c, 0) || walls_lees(c, 1) ||
                         sbi_col_msd_walls_check(c)))
     return -1;
+  if (c->restart[0])
+    check_wall_keys(c);
   check_open(c);
   /* the Kraichnan field: 3-D, periodic in a cube (on restart the
    * checkpoint's box; sb_field_kraichnan_load) */

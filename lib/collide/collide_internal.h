@@ -154,8 +154,8 @@ int sbi_col_check(sbi_col_config *c);
  * number of values depends on dim ([fluid] U and g, the inflows' keys),
  * the z faces of a 2-D box, the Kraichnan field's cube, [observe] exits
  * and count_variance against the open faces, and on restart the
- * checkpoint's walls against [fluid] type = shear and msd_every:
- * sbi_col_check for
+ * checkpoint's walls against [fluid] type = shear, msd_every and
+ * [walls] detect and deposit: sbi_col_check for
  * a new run, collide_setup.c on restart once the checkpoint's dim, box
  * and walls are in c.  0 or -1 with c->err set. */
 int sbi_col_dim_check(sbi_col_config *c);
