@@ -1045,9 +1045,12 @@ START_TEST(test_one_particle_step_checked)
         ck_assert_msg(st == SB_EINVAL, "streams %d, %d particle(s), u = %g: "
                       "status %d (%s)", streams, np, u[0], st,
                       sb_last_error());
-        /* u = 1e300: the length of the displacement overflows */
+        /* u = 1e300: the length of the displacement overflows, a step
+         * too large for the box (it said "non-finite displacement") */
         const char *why = k == 1 ? "step too large"
-                                 : "non-finite displacement";
+                                 : "step too large for the box: particle "
+                                   "0 moves by (1e+300, 0, 0) m, a length "
+                                   "of 1e+300 m (whose square overflows";
         ck_assert_msg(strstr(sb_last_error(), why) != NULL &&
                           strstr(sb_last_error(), "sb_engine_step") != NULL,
                       "%s", sb_last_error());

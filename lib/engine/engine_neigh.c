@@ -60,6 +60,23 @@ static inline double disp_len(const double *disp, size_t i)
   return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 }
 
+/* SB_EINVAL for particle i whose |disp_i| (as disp_len) is not finite:
+ * a component that is not finite, or finite components whose squares
+ * overflow, a step far too large for the box (its length then from
+ * hypot, which does not overflow). */
+static int disp_refused(const double *disp, size_t i, const char *func)
+{
+  const double *d = &disp[3 * i];
+  if (!isfinite(d[0]) || !isfinite(d[1]) || !isfinite(d[2]))
+    return sbi_error(SB_EINVAL, func, "particle %zu: non-finite "
+                     "displacement (%g, %g, %g)", i, d[0], d[1], d[2]);
+  const double len = hypot(hypot(d[0], d[1]), d[2]);
+  return sbi_error(SB_EINVAL, func, "step too large for the box: particle "
+                   "%zu moves by (%g, %g, %g) m, a length of %g m (whose "
+                   "square overflows a double), far beyond half the box",
+                   i, d[0], d[1], d[2], len);
+}
+
 /* |disp_i| into e->dn; returns the cut-off 2 rmax + 2 max|disp| + reach
  * and checks it against half the box. */
 static int cutoff(sb_engine *e, const double *disp, double reach,
@@ -98,8 +115,7 @@ static int cutoff(sb_engine *e, const double *disp, double reach,
   if (bad)
     for (size_t i = 0; i < n; i++)
       if (!isfinite(dn[i]))
-        return sbi_error(SB_EINVAL, func, "particle %zu: non-finite "
-                         "displacement", i);
+        return disp_refused(disp, i, func);
   if (disp == e->disp && sbi_engine_det_bulge_on(e))
     /* noise-free Stokes paths curve away from their chords: each path
      * stays within |disp| + bulge of its start */
