@@ -1116,14 +1116,19 @@ START_TEST(test_after_transport_overflow)
 END_TEST
 
 /* A fluid field that is 0 for the first call (the step's transport) and
- * +inf from the second on (the draws of the step's reinsertions and
+ * ctx->v from the second on (the draws of the step's reinsertions and
  * arrivals). */
-static int fluid_inf_after_first(size_t n, const double *x, double *us,
-                                 void *ctx)
+typedef struct {
+  int calls;
+  double v;
+} fluid_after;
+
+static int fluid_after_first(size_t n, const double *x, double *us,
+                             void *ctx)
 {
   (void)x;
-  int *calls = ctx;
-  const double v = (*calls)++ ? INFINITY : 0.0;
+  fluid_after *f = ctx;
+  const double v = f->calls++ ? f->v : 0.0;
   for (size_t i = 0; i < 3 * n; i++)
     us[i] = v;
   return 0;
@@ -1131,75 +1136,301 @@ static int fluid_inf_after_first(size_t n, const double *x, double *us,
 
 /* Reinsertions (absorbing wall with deposit = reinsert, the reinsert
  * outcome) and inflow arrivals whose drawn velocity or flight is not
- * finite: SB_ERANGE naming the cause, nothing infinite or NaN in the
- * state (they put u = inf, and then x = NaN, with status 0; the inflow's
- * was SB_EINVAL from sb_engine_add_particle). */
+ * usable: nothing infinite, NaN or outside the box in the state.  A fluid
+ * callback that returns an infinite velocity is SB_EINVAL naming the
+ * callback and the particle (it was SB_ERANGE "the fluid field's
+ * velocity", after u = inf, then x = NaN, had been stored with status
+ * 0); a finite one of 1.5e308 m/s carries the flight of the reinsert
+ * outcome (the rest of the step, 0.5 s) and an arrival's (tau = 1 s)
+ * ~1e308 m away, where the wrap x - L floor(x / L) is all rounding:
+ * SB_ERANGE "too far out to be wrapped" (the position was stored wrapped
+ * from its rounding, with status 0). */
 START_TEST(test_reinsert_overflow)
 {
-  for (int kind = 0; kind < 3; kind++) {
-    sb_engine *e = box_engine(3, 10.0, 1.0, 8);
-    size_t sp;
-    if (kind < 2)
-      sp = add_free(e, 0.1, 1.0);
-    else {
-      sb_engine_species s = {0.1, 1.0, 1.0, 0.0, 0.0};
-      ck_assert_int_eq(sb_engine_add_species(e, &s, &sp), SB_SUCCESS);
-    }
-    int calls = 0;
-    ck_assert_int_eq(sb_engine_set_fluid_fn(e, fluid_inf_after_first,
-                                            &calls),
-                     SB_SUCCESS);
-    if (kind == 0) {  /* reaches the absorbing face y = 0 */
-      ck_assert_int_eq(sb_engine_set_walls(e, 1, SB_WALL_ABSORB,
-                                           SB_WALL_ABSORB), SB_SUCCESS);
-      ck_assert_int_eq(sb_engine_set_wall_mode(e, SB_WALLDET_BALLISTIC,
-                                               SB_DEPOSIT_REINSERT),
+  for (int big = 0; big < 2; big++)
+    for (int kind = 0; kind < 3; kind++) {
+      if (big && kind == 0)
+        continue;  /* no flight: a finite velocity is placed */
+      sb_engine *e = box_engine(3, 10.0, 1.0, 8);
+      size_t sp;
+      if (kind < 2)
+        sp = add_free(e, 0.1, 1.0);
+      else {
+        sb_engine_species s = {0.1, 1.0, 1.0, 0.0, 0.0};
+        ck_assert_int_eq(sb_engine_add_species(e, &s, &sp), SB_SUCCESS);
+      }
+      fluid_after fa = {0, big ? 1.5e308 : INFINITY};
+      ck_assert_int_eq(sb_engine_set_fluid_fn(e, fluid_after_first, &fa),
                        SB_SUCCESS);
-      double x[3] = {5, 0.5, 5}, u[3] = {0, -1, 0};
-      ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, x, u), SB_SUCCESS);
-    } else if (kind == 1) {  /* head-on at half the step */
-      ck_assert_int_eq(sb_engine_set_outcome(e, SB_OUTCOME_REINSERT, 1.0),
-                       SB_SUCCESS);
-      double xa[3] = {4, 5, 5}, ua[3] = {1, 0, 0};
-      double xb[3] = {6, 5, 5}, ub[3] = {-1, 0, 0};
-      ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, xa, ua), SB_SUCCESS);
-      ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, xb, ub), SB_SUCCESS);
-    } else {  /* ~ 4 arrivals a step through x = 0 */
-      sb_engine_inflow in = {0, sp, 0, 4.0, {4, 4}, {6, 6}, {1, 0, 0}, 0};
-      ck_assert_int_eq(sb_engine_add_inflow(e, &in, NULL), SB_SUCCESS);
+      if (kind == 0) {  /* reaches the absorbing face y = 0 */
+        ck_assert_int_eq(sb_engine_set_walls(e, 1, SB_WALL_ABSORB,
+                                             SB_WALL_ABSORB), SB_SUCCESS);
+        ck_assert_int_eq(sb_engine_set_wall_mode(e, SB_WALLDET_BALLISTIC,
+                                                 SB_DEPOSIT_REINSERT),
+                         SB_SUCCESS);
+        double x[3] = {5, 0.5, 5}, u[3] = {0, -1, 0};
+        ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, x, u),
+                         SB_SUCCESS);
+      } else if (kind == 1) {  /* head-on at half the step */
+        ck_assert_int_eq(sb_engine_set_outcome(e, SB_OUTCOME_REINSERT, 1.0),
+                         SB_SUCCESS);
+        double xa[3] = {4, 5, 5}, ua[3] = {1, 0, 0};
+        double xb[3] = {6, 5, 5}, ub[3] = {-1, 0, 0};
+        ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, xa, ua),
+                         SB_SUCCESS);
+        ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, xb, ub),
+                         SB_SUCCESS);
+      } else {  /* ~ 4 arrivals a step through x = 0 */
+        sb_engine_inflow in = {0, sp, 0, 4.0, {4, 4}, {6, 6}, {1, 0, 0}, 0};
+        ck_assert_int_eq(sb_engine_add_inflow(e, &in, NULL), SB_SUCCESS);
+      }
+      int st = SB_SUCCESS;
+      for (int k = 0; k < 5 && !st; k++) {
+        st = sb_engine_step(e);
+        const double *x = sb_engine_positions(e),
+                     *u = sb_engine_velocities(e);
+        for (size_t i = 0; i < 3 * sb_engine_count(e); i++)
+          ck_assert_msg(isfinite(u[i]) && x[i] >= 0.0 && x[i] < 10.0,
+                        "big %d, kind %d, step %d (status %d): x[%zu] = "
+                        "%g, u[%zu] = %g", big, kind, k, st, i, x[i], i,
+                        u[i]);
+      }
+      ck_assert_msg(st == (big ? SB_ERANGE : SB_EINVAL), "big %d, kind %d: "
+                    "status %d (%s)", big, kind, st, sb_last_error());
+      ck_assert(strstr(sb_last_error(), "sb_engine_step") != NULL);
+      const char *why = big ? (kind == 1 ? "reinserted particle"
+                                         : "inflow 0")
+                            : "fluid callback returned the velocity us[0] "
+                              "= inf";
+      ck_assert_msg(strstr(sb_last_error(), why) != NULL, "big %d, kind "
+                    "%d: %s", big, kind, sb_last_error());
+      if (big)
+        ck_assert_msg(strstr(sb_last_error(), "too far out to be wrapped"),
+                      "%s", sb_last_error());
+      else  /* the particle: a wall's or outcome's, or a new arrival */
+        ck_assert_msg(strstr(sb_last_error(), kind == 2 ? "a new particle"
+                                                        : "for particle "),
+                      "kind %d: %s", kind, sb_last_error());
+      sb_engine_free(e);
     }
-    int st = SB_SUCCESS;
-    for (int k = 0; k < 5 && !st; k++) {
-      st = sb_engine_step(e);
-      const double *x = sb_engine_positions(e),
-                   *u = sb_engine_velocities(e);
-      for (size_t i = 0; i < 3 * sb_engine_count(e); i++)
-        ck_assert_msg(isfinite(x[i]) && isfinite(u[i]), "kind %d, step %d "
-                      "(status %d): x[%zu] = %g, u[%zu] = %g", kind, k, st,
-                      i, x[i], i, u[i]);
-    }
-    ck_assert_msg(st == SB_ERANGE, "kind %d: status %d (%s)", kind, st,
-                  sb_last_error());
-    ck_assert(strstr(sb_last_error(), "sb_engine_step") != NULL);
-    ck_assert_msg(strstr(sb_last_error(), kind < 2 ? "fluid field's "
-                                                     "velocity inf"
-                                                   : "inflow 0") != NULL,
-                  "kind %d: %s", kind, sb_last_error());
-    sb_engine_free(e);
+}
+END_TEST
+
+/* Positions the wrap into the box cannot take: x = 1.7e308 m in a box of
+ * 1e-4 m (x / L overflows: the wrap stored -inf with status 0) and 1e20 m
+ * (ulp(x) = 16384 m, 1.6e8 boxes: the stored coordinate was rounding,
+ * and could be negative) are SB_EINVAL from sb_engine_add_particle and
+ * sb_engine_set_particle, the engine unchanged; 6e7 box lengths (below
+ * the 2^26 limit) are still taken.  A coordinate just below a multiple
+ * of L (x = -6.73...: x - L floor(x / L) rounds to -8.9e-16) lands inside
+ * the box (it was stored as -8.9e-16), within 2 ulp(x) of the exact
+ * x + 3 L (fmod, then one rounding).  A checkpoint holding a position
+ * outside the box or not finite (written through the internal header) is
+ * refused on load naming the particle. */
+START_TEST(test_wrap_far_position)
+{
+  sb_engine *e = box_engine(3, 1e-4, 1e-6, 4);
+  size_t sp = add_free(e, 1e-6, 1.0);
+  const double u[3] = {0, 0, 0};
+  const double far[2] = {1.7e308, 1e20};
+  for (int q = 0; q < 2; q++) {
+    double x[3] = {5e-5, 5e-5, 5e-5};
+    x[q] = far[q];  /* the x and y components */
+    ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, x, u), SB_EINVAL);
+    ck_assert_msg(strstr(sb_last_error(), "sb_engine_add_particle") &&
+                      strstr(sb_last_error(), "cannot be wrapped"),
+                  "%s", sb_last_error());
+    ck_assert_uint_eq(sb_engine_count(e), 0);
   }
+  const double x0[3] = {5e-5, 5e-5, 5e-5};
+  ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, x0, u), SB_SUCCESS);
+  for (int q = 0; q < 2; q++) {
+    double x[3] = {5e-5, 5e-5, 5e-5};
+    x[2] = -far[q];
+    ck_assert_int_eq(sb_engine_set_particle(e, 0, x, u), SB_EINVAL);
+    ck_assert_msg(strstr(sb_last_error(), "sb_engine_set_particle") &&
+                      strstr(sb_last_error(), "particle 0"),
+                  "%s", sb_last_error());
+    ck_assert_mem_eq(sb_engine_positions(e), x0, sizeof x0);
+  }
+  /* 6e7 boxes out: taken, inside the box */
+  const double xf[3] = {6e7 * 1e-4, 5e-5, 5e-5};
+  ck_assert_int_eq(sb_engine_set_particle(e, 0, xf, u), SB_SUCCESS);
+  ck_assert(sb_engine_positions(e)[0] >= 0.0 &&
+            sb_engine_positions(e)[0] < 1e-4);
+  sb_engine_free(e);
+
+  /* just below -3 L: L floor(x / L) = -3 L rounds above x */
+  const double L = 2.2443204799908911;
+  e = box_engine(3, L, 1e-3, 4);
+  sp = add_free(e, 0.01, 1.0);
+  const double xn[3] = {-6.7329614399726738, 1.0, 1.0};
+  ck_assert_int_eq(sb_engine_add_particle(e, sp, 0, xn, u), SB_SUCCESS);
+  /* fmod is exact, then one rounding; the wrap's error is ~ ulp(x) */
+  const double w = sb_engine_positions(e)[0], ref = fmod(xn[0], L) + L,
+               ulp = nextafter(-xn[0], INFINITY) + xn[0];
+  ck_assert_msg(w >= 0.0 && w < L && fabs(w - ref) <= 2.0 * ulp,
+                "x = %.17g stored as %.17g (expected %.17g)", xn[0], w, ref);
+  sb_engine_free(e);
+
+  /* checkpoints: a position outside the box, or not finite */
+  char path[] = "/tmp/sb_engine_pos_XXXXXX";
+  int fd = mkstemp(path);
+  ck_assert_int_ge(fd, 0);
+  close(fd);
+  const double bad[3] = {-1e-3, 10.0, NAN};
+  for (int c = 0; c < 4; c++) {
+    e = box_engine(3, 10.0, 0.1, 8);
+    sp = add_free(e, 0.5, 1.0);
+    ck_assert_int_eq(sb_engine_fill_random(e, sp, 0, 4), SB_SUCCESS);
+    if (c > 0)
+      e->x[3 * 2 + 1] = bad[c - 1];
+    ck_assert_int_eq(sb_engine_checkpoint_save(e, path), SB_SUCCESS);
+    sb_engine_free(e);
+    int st;
+    e = sb_engine_checkpoint_load(path, &st);
+    if (c == 0) {
+      ck_assert_int_eq(st, SB_SUCCESS);
+      sb_engine_free(e);
+      continue;
+    }
+    ck_assert_ptr_null(e);
+    ck_assert_int_eq(st, SB_EINVAL);
+    ck_assert_msg(strstr(sb_last_error(), "sb_engine_checkpoint_load") &&
+                      strstr(sb_last_error(), "particle 2 has x[1]"),
+                  "case %d: %s", c, sb_last_error());
+  }
+  remove(path);
+}
+END_TEST
+
+/* A fluid callback that returns NaN for the particle ctx names (-1: none)
+ * and 1 m/s elsewhere. */
+static int fluid_nan_for(size_t n, const double *x, double *us, void *ctx)
+{
+  (void)x;
+  const long *which = ctx;
+  for (size_t i = 0; i < n; i++)
+    for (int k = 0; k < 3; k++)
+      us[3 * i + k] = (long)i == *which && k == 1 ? NAN : 1.0;
+  return 0;
+}
+
+/* A fluid callback's velocity that is not finite is SB_EINVAL naming the
+ * callback, the particle and the component, at the step's transport
+ * before anything moved (it went into the step, which then failed with
+ * SB_ERANGE "exceeds DBL_MAX", a cause that was not): positions,
+ * velocities and time as before, and the engine steps on once the
+ * callback is good.  In 2-D the third component is not looked at. */
+START_TEST(test_fluid_callback_nonfinite)
+{
+  for (int dim = 2; dim <= 3; dim++)
+    for (int streams = 0; streams < 2; streams++) {
+      sb_engine_params p;
+      sb_engine_params_default(&p);
+      p.dim = dim;
+      p.L[0] = p.L[1] = p.L[2] = 10.0;
+      p.dt = 0.1;
+      p.capacity = 4;
+      p.streams = streams;
+      sb_engine *e = sb_engine_alloc(&p);
+      ck_assert_ptr_nonnull(e);
+      sb_engine_species s = {0.1, 1.0, 1.0, 0.1, 0.0};
+      ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+      const double xa[3] = {2, 2, 2}, xb[3] = {7, 7, 7}, u[3] = {0, 1, 0};
+      ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xa, u), SB_SUCCESS);
+      ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xb, u), SB_SUCCESS);
+      long which = 1;
+      ck_assert_int_eq(sb_engine_set_fluid_fn(e, fluid_nan_for, &which),
+                       SB_SUCCESS);
+      double x0[6], u0[6];
+      memcpy(x0, sb_engine_positions(e), sizeof x0);
+      memcpy(u0, sb_engine_velocities(e), sizeof u0);
+      ck_assert_int_eq(sb_engine_step(e), SB_EINVAL);
+      ck_assert_msg(strstr(sb_last_error(), "sb_engine_step: the fluid "
+                                            "callback returned the "
+                                            "velocity us[1] = nan for "
+                                            "particle 1") != NULL,
+                    "dim %d, streams %d: %s", dim, streams,
+                    sb_last_error());
+      ck_assert_mem_eq(sb_engine_positions(e), x0, sizeof x0);
+      ck_assert_mem_eq(sb_engine_velocities(e), u0, sizeof u0);
+      ck_assert(sb_engine_time(e) == 0.0);
+      which = -1;
+      ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+      ck_assert(sb_engine_time(e) > 0.0);
+      sb_engine_free(e);
+    }
+}
+END_TEST
+
+/* The Langevin detector, a Schiller-Naumann species: a collision whose
+ * outcome (a custom one, through the internal header) gives j u_x =
+ * 1e200 continues j with the nonlinear drag step over the rest of the
+ * step, whose rate is then NaN (Re = inf).  That is SB_ERANGE "after a
+ * collision" naming the particle, every particle back at its start of
+ * step and the engine out of the step (it kept the NaN state with
+ * status 0). */
+static int outcome_fling(sb_engine *e, const sb_engine_pair *p, double s,
+                         void *ctx)
+{
+  (void)s;
+  ++*(int *)ctx;
+  e->u[3 * p->j] = 1e200;
+  return SB_SUCCESS;
+}
+
+START_TEST(test_drag_piece_overflow)
+{
+  sb_engine_params p;
+  sb_engine_params_default(&p);
+  p.L[0] = p.L[1] = p.L[2] = 10.0;
+  p.dt = 0.1;
+  p.capacity = 4;
+  p.detect = SB_DETECT_LANGEVIN;
+  sb_engine *e = sb_engine_alloc(&p);
+  ck_assert_ptr_nonnull(e);
+  sb_engine_species s = {0.1, 1.0, 1.0, 0.0, 0.0};  /* B = 0 */
+  ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
+  sb_engine_species_fluid f = {SB_DRAG_SCHILLER_NAUMANN, 1.0, 1e-3};
+  ck_assert_int_eq(sb_engine_set_species_fluid(e, 0, &f), SB_SUCCESS);
+  int nout = 0;
+  ck_assert_int_eq(sb_engine_set_outcome_fn(e, outcome_fling, &nout),
+                   SB_SUCCESS);
+  /* 0.1 apart at 1 m/s each, head-on: contact early in the step */
+  const double xa[3] = {4.85, 5, 5}, xb[3] = {5.15, 5, 5};
+  const double ua[3] = {1, 0, 0}, ub[3] = {-1, 0, 0};
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xa, ua), SB_SUCCESS);
+  ck_assert_int_eq(sb_engine_add_particle(e, 0, 0, xb, ub), SB_SUCCESS);
+  double x0[6], u0[6];
+  memcpy(x0, sb_engine_positions(e), sizeof x0);
+  memcpy(u0, sb_engine_velocities(e), sizeof u0);
+  const int st = sb_engine_step(e);
+  ck_assert_int_eq(nout, 1);
+  ck_assert_msg(st == SB_ERANGE, "status %d (%s)", st, sb_last_error());
+  ck_assert_msg(strstr(sb_last_error(), "after the nonlinear drag step "
+                                        "after a collision") &&
+                    strstr(sb_last_error(), "particle 1"),
+                "%s", sb_last_error());
+  ck_assert_mem_eq(sb_engine_positions(e), x0, sizeof x0);
+  ck_assert_mem_eq(sb_engine_velocities(e), u0, sizeof u0);
+  ck_assert(sb_engine_time(e) == 0.0);
+  ck_assert_int_eq(sb_engine_set_dt(e, 0.05), SB_SUCCESS);  /* not in it */
+  sb_engine_free(e);
 }
 END_TEST
 
 /* A fill whose velocity is not finite names the cause (it said "fluid
  * field" whatever it was): the species' velocity spread (B sqrt(tau / 2) =
- * DBL_MAX: a draw beyond one standard deviation overflows), or the fluid
- * field; SB_EINVAL as before, nothing added. */
+ * DBL_MAX: a draw beyond one standard deviation overflows), SB_ERANGE as
+ * a reinsertion's draw (it was SB_EINVAL), or the fluid callback's
+ * output, SB_EINVAL; nothing added. */
 START_TEST(test_fill_velocity_cause)
 {
   sb_engine *e = box_engine(3, 10.0, 1e-6, 8);
   sb_engine_species s = {0.1, 1.0, 2.0, DBL_MAX, 0.0};
   ck_assert_int_eq(sb_engine_add_species(e, &s, NULL), SB_SUCCESS);
-  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 8), SB_EINVAL);
+  ck_assert_int_eq(sb_engine_fill_random(e, 0, 0, 8), SB_ERANGE);
   ck_assert(strstr(sb_last_error(), "sb_engine_fill_random") != NULL);
   ck_assert_msg(strstr(sb_last_error(), "velocity spread") != NULL &&
                     strstr(sb_last_error(), "fluid") == NULL,
@@ -1209,12 +1440,13 @@ START_TEST(test_fill_velocity_cause)
 
   e = box_engine(3, 10.0, 1e-6, 8);
   size_t sp = add_free(e, 0.1, 1.0);
-  int calls = 1;  /* inf from the first call */
-  ck_assert_int_eq(sb_engine_set_fluid_fn(e, fluid_inf_after_first, &calls),
+  fluid_after fa = {1, INFINITY};  /* inf from the first call */
+  ck_assert_int_eq(sb_engine_set_fluid_fn(e, fluid_after_first, &fa),
                    SB_SUCCESS);
   ck_assert_int_eq(sb_engine_fill_random(e, sp, 0, 2), SB_EINVAL);
-  ck_assert_msg(strstr(sb_last_error(), "fluid field's velocity inf") !=
-                    NULL,
+  ck_assert_msg(strstr(sb_last_error(), "fluid callback returned the "
+                                        "velocity us[0] = inf for a new "
+                                        "particle") != NULL,
                 "%s", sb_last_error());
   ck_assert_uint_eq(sb_engine_count(e), 0);
   sb_engine_free(e);
@@ -1783,6 +2015,9 @@ static Suite *suite(void)
   tcase_add_test(tc, test_after_transport_overflow);
   tcase_add_test(tc, test_reinsert_overflow);
   tcase_add_test(tc, test_fill_velocity_cause);
+  tcase_add_test(tc, test_wrap_far_position);
+  tcase_add_test(tc, test_fluid_callback_nonfinite);
+  tcase_add_test(tc, test_drag_piece_overflow);
   tcase_add_test(tc, test_set_dt_erange);
   tcase_add_test(tc, test_error_names);
   tcase_add_test(tc, test_fill_all_or_nothing);

@@ -389,7 +389,32 @@ int sb_engine_add_particle(sb_engine *e, size_t species, int family,
     if (!isfinite(x[k]) || !isfinite(u[k]))
       return sbi_error(SB_EINVAL, __func__, "x[%d] = %g, u[%d] = %g: must "
                        "be finite", k, x[k], k, u[k]);
+  int st = sbi_engine_check_position(e, x, SIZE_MAX, SB_EINVAL, __func__);
+  if (st)
+    return st;
   append_particle(e, species, family, x, u);
+  return SB_SUCCESS;
+}
+
+int sbi_engine_check_position(const sb_engine *e, const double x[3],
+                              size_t k, int status, const char *who)
+{
+  for (int c = 0; c < e->par.dim; c++) {
+    if (sbi_wrappable(x[c], e->par.L[c]))
+      continue;
+    char what[48];
+    if (k == SIZE_MAX)
+      snprintf(what, sizeof what, "a new particle");
+    else
+      snprintf(what, sizeof what, "particle %zu", k);
+    if (!isfinite(x[c]))
+      return sbi_error(status, who, "%s: position x[%d] = %g is not "
+                       "finite", what, c, x[c]);
+    return sbi_error(status, who, "%s: position x[%d] = %g is more than "
+                     "2^26 box lengths (L[%d] = %g m) from the box: it "
+                     "cannot be wrapped into the box with its digits",
+                     what, c, x[c], c, e->par.L[c]);
+  }
   return SB_SUCCESS;
 }
 
@@ -421,6 +446,9 @@ int sb_engine_set_particle(sb_engine *e, size_t i, const double x[3],
     if (!isfinite(x[k]) || !isfinite(u[k]))
       return sbi_error(SB_EINVAL, __func__, "non-finite state");
   }
+  int st = sbi_engine_check_position(e, x, i, SB_EINVAL, __func__);
+  if (st)
+    return st;
   for (int k = 0; k < e->par.dim; k++) {
     e->x[3 * i + k] = sbi_wrap(x[k], e->par.L[k]);
     e->u[3 * i + k] = u[k];
@@ -428,8 +456,32 @@ int sb_engine_set_particle(sb_engine *e, size_t i, const double x[3],
   return SB_SUCCESS;
 }
 
+/* The first component of the n velocities us that is not finite (in 2-D
+ * the first two of each), as particle index p and component c; 0 if
+ * there is none. */
+static int fluid_nonfinite(const sb_engine *e, size_t n, const double *us,
+                           size_t *p, int *c)
+{
+  const int dim = e->par.dim;
+  int bad = 0;
+  for (size_t i = 0; i < n; i++)  /* y - y is 0, or NaN for inf or NaN */
+    bad |= !isfinite((us[3 * i] - us[3 * i]) +
+                     (us[3 * i + 1] - us[3 * i + 1]) +
+                     (dim == 3 ? us[3 * i + 2] - us[3 * i + 2] : 0.0));
+  if (!bad)
+    return 0;
+  for (size_t i = 0; i < n; i++)
+    for (int k = 0; k < dim; k++)
+      if (!isfinite(us[3 * i + k])) {
+        *p = i;
+        *c = k;
+        return 1;
+      }
+  return 0;
+}
+
 int sbi_engine_fluid_eval(sb_engine *e, size_t n, const double *x,
-                          double *us, const char *who)
+                          double *us, size_t first, const char *who)
 {
   switch (e->fluid) {
   case SB_FLUID_REST:
@@ -451,6 +503,19 @@ int sbi_engine_fluid_eval(sb_engine *e, size_t n, const double *x,
     if (st)
       return sbi_error(SB_EINVAL, who, "fluid callback failed (status %d)",
                        st);
+    size_t p;
+    int c;
+    if (fluid_nonfinite(e, n, us, &p, &c)) {
+      char what[48];
+      if (first == SIZE_MAX)
+        snprintf(what, sizeof what, "a new particle");
+      else
+        snprintf(what, sizeof what, "particle %zu", first + p);
+      return sbi_error(SB_EINVAL, who, "the fluid callback returned the "
+                       "velocity us[%d] = %g for %s at (%g, %g, %g): not "
+                       "finite", c, us[3 * p + c], what, x[3 * p],
+                       x[3 * p + 1], x[3 * p + 2]);
+    }
     if (e->par.dim == 2)
       for (size_t i = 0; i < n; i++)
         us[3 * i + 2] = 0.0;
@@ -462,10 +527,10 @@ int sbi_engine_fluid_eval(sb_engine *e, size_t n, const double *x,
 
 int sbi_engine_equilibrium_velocity(sb_engine *e, size_t sp,
                                     const double x[3], double u[3],
-                                    int bad, const char *who)
+                                    size_t who_k, const char *who)
 {
   double us[3], th[3] = {0, 0, 0};
-  int st = sbi_engine_fluid_eval(e, 1, x, us, who);
+  int st = sbi_engine_fluid_eval(e, 1, x, us, who_k, who);
   if (st)
     return st;
   for (int k = 0; k < 3; k++) {
@@ -497,7 +562,7 @@ int sbi_engine_equilibrium_velocity(sb_engine *e, size_t sp,
       snprintf(why, sizeof why, "the sum of the fluid field's velocity %g, "
                "the thermal draw %g (spread %g m/s) and the settling "
                "velocity %g", us[k], th[k], e->vsd[sp], v);
-    return sbi_error(bad, who, "velocity u[%d] = %g of a new particle of "
+    return sbi_error(SB_ERANGE, who, "velocity u[%d] = %g of a new particle of "
                      "species %zu at (%g, %g, %g): not finite (%s)", k, u[k],
                      sp, x[0], x[1], x[2], why);
   }
@@ -649,14 +714,14 @@ static int fill_region(sb_engine *e, size_t species, int family, size_t n,
     }
     if (st)
       break;
-    st = sbi_engine_equilibrium_velocity(e, species, x, u, SB_EINVAL, who);
+    st = sbi_engine_equilibrium_velocity(e, species, x, u, SIZE_MAX, who);
     if (st)
       break;
     for (int k = 0; k < dim && drift; k++) {
       const double ue = u[k];
       u[k] += drift[k];
       if (!isfinite(u[k])) {
-        st = sbi_error(SB_EINVAL, who, "velocity u[%d] = %g of a new "
+        st = sbi_error(SB_ERANGE, who, "velocity u[%d] = %g of a new "
                        "particle: not finite (the equilibrium velocity %g "
                        "plus the drift %g)", k, u[k], ue, drift[k]);
         break;
@@ -1036,6 +1101,13 @@ static int stream_block(const stream_step *S, size_t b, double *dmax)
  * the first such particle and its species' parameters; else 0.  `after`
  * (NULL for the transport itself) names the part of the step after the
  * transport that gave the state (engine_force.c). */
+void sbi_engine_step_undo(sb_engine *e)
+{
+  memcpy(e->x, e->x0, 3 * e->n * sizeof *e->x);
+  memcpy(e->u, e->u0, 3 * e->n * sizeof *e->u);
+  memset(e->disp, 0, 3 * e->n * sizeof *e->disp);
+}
+
 int sbi_engine_step_overflow(sb_engine *e, const char *after)
 {
   const int dim = e->par.dim;
@@ -1046,9 +1118,7 @@ int sbi_engine_step_overflow(sb_engine *e, const char *after)
         bad = i;
   if (bad == e->n)
     return SB_SUCCESS;
-  memcpy(e->x, e->x0, 3 * e->n * sizeof *e->x);
-  memcpy(e->u, e->u0, 3 * e->n * sizeof *e->u);
-  memset(e->disp, 0, 3 * e->n * sizeof *e->disp);
+  sbi_engine_step_undo(e);
   const sb_engine_species *s = &e->spec[e->species[bad]];
   return sbi_error(SB_ERANGE, "sb_engine_step",
                    "particle %zu (species %zu, tau = %g, B = %g): the new "
@@ -1119,7 +1189,7 @@ static int transport(sb_engine *e)
   const double *us = NULL;
   if (e->fluid != SB_FLUID_REST) {
     /* x is the start position x0 here */
-    int st = sbi_engine_fluid_eval(e, n, e->x, e->us, "sb_engine_step");
+    int st = sbi_engine_fluid_eval(e, n, e->x, e->us, 0, "sb_engine_step");
     if (st)
       return st;
     us = e->us;

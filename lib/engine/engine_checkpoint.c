@@ -221,6 +221,27 @@ static int check_ids(const uint64_t *id, size_t n, uint64_t next_id,
       goto bad;                                             \
   } while (0)
 
+/* The n saved particle states of e: a position inside the box (0 <= x_k
+ * < L_k, which every entry point and step keeps) and finite velocities
+ * (and third components in 2-D): SB_SUCCESS, or SB_EINVAL naming the
+ * first particle at fault. */
+static int check_states(const sb_engine *e, size_t n, const char *path,
+                        const char *func)
+{
+  for (size_t i = 0; i < n; i++)
+    for (int k = 0; k < 3; k++) {
+      const double x = e->x[3 * i + k], u = e->u[3 * i + k];
+      const int in = k < e->par.dim ? x >= 0.0 && x < e->par.L[k]
+                                    : isfinite(x);
+      if (!in || !isfinite(u))
+        return sbi_error(SB_EINVAL, func, "'%s': particle %zu has x[%d] = "
+                         "%g, u[%d] = %g: the position must lie in the box "
+                         "[0, %g) and both be finite", path, i, k, x, k, u,
+                         e->par.L[k]);
+    }
+  return SB_SUCCESS;
+}
+
 /* The engine of checkpoint `path`, with room for at least `capacity`
  * particles (its own capacity if that is larger); messages name func. */
 static sb_engine *load(const char *path, size_t capacity, int *status,
@@ -327,7 +348,9 @@ static sb_engine *load(const char *path, size_t capacity, int *status,
     e->mass[i] = e->spec[e->species[i]].mass;
   }
   {
-    const int st = check_ids(e->id, n, next_id, path, func);
+    int st = check_ids(e->id, n, next_id, path, func);
+    if (!st)
+      st = check_states(e, n, path, func);
     if (st) {
       *status = st;
       goto out;

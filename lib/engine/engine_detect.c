@@ -628,8 +628,16 @@ int sbi_engine_detect_and_process(sb_engine *e)
     const int first = e->id[i] < e->id[j] ? 0 : 1;
     int st = sbi_engine_apply_outcome(e, p, ev.s_rec);
     e->contact = NULL;
-    if (st)
+    if (st) {
+      /* a built-in outcome's failure (a reinsertion's draw or flight, the
+       * fluid callback): no half-made step, every particle back at its
+       * start (a custom outcome's is left to its caller, as before) */
+      if (e->par.outcome != SB_OUTCOME_CUSTOM) {
+        sbi_engine_step_undo(e);
+        e->in_step = 0;
+      }
       return st;
+    }
     const pstate *ref[2] = {ev.hasc ? &sc[0] : &si, ev.hasc ? &sc[1] : &sj};
     const int ch[2] = {e->hit[i] != 2 && changed(e, i, ref[0]),
                        e->hit[j] != 2 && changed(e, j, ref[1])};
@@ -648,8 +656,10 @@ int sbi_engine_detect_and_process(sb_engine *e)
         const pstate *end = q ? &sj : &si;
         st = sbi_engine_langevin_continue(e, who[q], &ev, ch[q], end->x,
                                           end->u);
-        if (st)
+        if (st) {  /* the step undone (engine_langevin.c): not in it */
+          e->in_step = 0;
           return st;
+        }
       } else if (ch[q])
         position_after(e, who[q], ev.s, from);
       if (ch[q])

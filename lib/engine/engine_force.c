@@ -354,11 +354,18 @@ static int drag_step(sb_engine *e)
              : SB_SUCCESS;
 }
 
-void sbi_engine_drag_piece(sb_engine *e, size_t k, double h)
+int sbi_engine_drag_piece(sb_engine *e, size_t k, double h)
 {
   const double xa[3] = {e->x[3 * k], e->x[3 * k + 1], e->x[3 * k + 2]},
                ua[3] = {e->u[3 * k], e->u[3 * k + 1], e->u[3 * k + 2]};
   e->lam[k] = drag_one(e, k, h, xa, ua, &e->x[3 * k], &e->u[3 * k]);
+  const double *x = &e->x[3 * k], *u = &e->u[3 * k];
+  /* y - y is 0, or NaN for an infinite or NaN y (as drag_step) */
+  if (isfinite((x[0] - x[0]) + (x[1] - x[1]) + (x[2] - x[2]) +
+               (u[0] - u[0]) + (u[1] - u[1]) + (u[2] - u[2])))
+    return SB_SUCCESS;
+  return sbi_engine_step_overflow(e, "the nonlinear drag step after a "
+                                     "collision");
 }
 
 void sbi_engine_relax(const sb_engine *e, size_t k, double *tau,

@@ -412,14 +412,39 @@ static inline double sbi_minimg(double d, double L)
   return d;
 }
 
+/* x modulo L into [0, L), for finite x with |x| < SBI_WRAP_MAX_BOXES L
+ * (sbi_wrappable; the entry points refuse the others, so the hot path
+ * has no check).  x - L floor(x / L) is x itself inside the box and exact
+ * for L <= x < 2 L (Sterbenz); elsewhere its rounding error is about
+ * ulp(x), and the product L floor(x / L) can round past x (or x / L
+ * underflow to -0 for a subnormal x < 0), leaving a result slightly
+ * below 0: that is the point just below L, which rounds to L or below
+ * (L is the box's 0). */
 static inline double sbi_wrap(double x, double L)
 {
   if (x >= L || x < 0.0) {
     x -= L * floor(x / L);
-    if (x >= L)  /* rounding of x slightly below 0 */
+    if (x < 0.0)
+      x += L;
+    if (x >= L)  /* rounding of x slightly below 0 (or of L - tiny) */
       x = 0.0;
   }
   return x;
+}
+
+/* Positions farther out than SBI_WRAP_MAX_BOXES box lengths are refused
+ * rather than wrapped: there ulp(x) exceeds 2^-26 L, so the wrapped
+ * coordinate keeps fewer than half of a double's 53 bits (and from 2^52
+ * box lengths on, where ulp(x) >= L/2, none; from DBL_MAX L on x / L
+ * overflows and the wrap gave -inf).  No engine step moves a particle
+ * more than half a box, so only an entry point can bring such a value. */
+#define SBI_WRAP_MAX_BOXES 67108864.0 /* 2^26 */
+
+/* 1 if x is finite and can be wrapped into a box of edge L (above), else
+ * 0 (NaN too). */
+static inline int sbi_wrappable(double x, double L)
+{
+  return fabs(x) < SBI_WRAP_MAX_BOXES * L;
 }
 
 /* Lees-Edwards image index n of a particle at height y_j seen from one at
@@ -528,17 +553,31 @@ int sbi_engine_random_free_position(sb_engine *e, size_t k, size_t partner,
                                     const char *who);
 /* Equilibrium velocity for species sp at position x into u: the fluid
  * velocity, a thermal draw and the settling velocity per component.  A
- * component that is not finite is the status `bad`, with a message naming
- * the part that is not (the fluid field, the species' velocity spread,
- * the settling velocity) or the sum that overflowed.  Here and in the
- * helpers below `who` is the public function entered, named in the error
- * messages. */
+ * component that is not finite (a draw beyond the doubles) is SB_ERANGE,
+ * for a fill as for a reinsertion, with a message naming the part that
+ * is not (the species' velocity spread, the settling velocity) or the
+ * sum that overflowed; the fluid callback's own output is checked by
+ * sbi_engine_fluid_eval (SB_EINVAL).  who_k: the particle the velocity is
+ * for (SIZE_MAX: a new one), named in the callback's message.  Here and
+ * in the helpers below `who` is the public function entered, named in
+ * the error messages. */
 int sbi_engine_equilibrium_velocity(sb_engine *e, size_t sp,
                                     const double x[3], double u[3],
-                                    int bad, const char *who);
-/* Fluid velocity at n positions (built-in or callback). */
+                                    size_t who_k, const char *who);
+/* SB_SUCCESS if each of the dim coordinates of x is finite and within
+ * SBI_WRAP_MAX_BOXES box lengths (sbi_wrappable), else `status` with a
+ * message from who naming particle k (SIZE_MAX: "a new particle") and
+ * the coordinate.  Every entry point that stores a position checks it:
+ * the state never holds one that is not finite or outside the box. */
+int sbi_engine_check_position(const sb_engine *e, const double x[3],
+                              size_t k, int status, const char *who);
+/* Fluid velocity at n positions (built-in or callback), x[3i..] being
+ * particle first + i's (first = SIZE_MAX: a new particle).  A callback
+ * that fails, or returns a velocity component that is not finite (of the
+ * dim components), is SB_EINVAL naming the callback, the particle, the
+ * component and the position. */
 int sbi_engine_fluid_eval(sb_engine *e, size_t n, const double *x,
-                          double *us, const char *who);
+                          double *us, size_t first, const char *who);
 
 /* Observers (engine_observe.c). */
 void sbi_engine_count_collision(sb_engine *e, size_t i, size_t j);
@@ -687,6 +726,10 @@ int sbi_engine_update_coef(sb_engine *e, size_t *bad);
  * naming the first such particle (`after`: the part of the step after
  * the transport that gave it, or NULL); 0 if there is none. */
 int sbi_engine_step_overflow(sb_engine *e, const char *after);
+/* Every particle back to its start of step (x0, u0; disp 0): the undo of
+ * sbi_engine_step_overflow, also for a failure after the transport that
+ * would leave a half-made step (collision tallies are kept). */
+void sbi_engine_step_undo(sb_engine *e);
 
 /* Forces, Lees-Edwards and walls (engine_force.c, engine_lees.c,
  * engine_wall.c); each is a no-op when its feature is off. */
@@ -713,8 +756,10 @@ void sbi_engine_relax(const sb_engine *e, size_t k, double *tau,
 int sbi_engine_nonlinear(const sb_engine *e, size_t k);
 /* A nonlinear-drag particle whose state an outcome changed: its step over
  * the rest h of the step from its state now (e->x, e->u), as the step's
- * own (the rate kept for sbi_engine_relax). */
-void sbi_engine_drag_piece(sb_engine *e, size_t k, double h);
+ * own (the rate kept for sbi_engine_relax).  A new x or u that is not
+ * finite undoes the step: SB_ERANGE naming the particle
+ * (sbi_engine_step_overflow). */
+int sbi_engine_drag_piece(sb_engine *e, size_t k, double h);
 /* Cached dimensional factor per species: L[0..2] the u_x row, L[3..6]
  * the x row; on = 0 for species that keep the OU noise (free flight,
  * nonlinear drag). */

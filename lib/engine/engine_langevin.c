@@ -674,15 +674,19 @@ int sbi_engine_langevin_continue(sb_engine *e, size_t k, const sbi_event *ev,
     double xw[3];
     for (int c = 0; c < 3; c++)
       xw[c] = c < e->par.dim ? sbi_wrap(e->x[3 * k + c], e->par.L[c]) : 0.0;
-    int st = sbi_engine_fluid_eval(e, 1, xw, &e->us[3 * k],
+    int st = sbi_engine_fluid_eval(e, 1, xw, &e->us[3 * k], k,
                                    "sb_engine_step");
-    if (st)
+    if (st) {  /* no half-made step: every particle back at its start */
+      sbi_engine_step_undo(e);
       return st;
+    }
   }
   const sb_engine_species *sp = &e->spec[e->species[k]];
   const double h = (1.0 - t) * e->par.dt;
   if (sbi_engine_nonlinear(e, k)) {  /* its own step (engine_force.c) */
-    sbi_engine_drag_piece(e, k, h);
+    int st = sbi_engine_drag_piece(e, k, h);
+    if (st)
+      return st;
     for (int c = 0; c < 3; c++)
       e->disp[3 * k + c] = e->x[3 * k + c] - e->x0[3 * k + c];
     return SB_SUCCESS;

@@ -188,7 +188,7 @@ static int flight(sb_engine *e, const sb_engine_inflow *in, double tau,
   }
   const double h = s * dt;
   double U[3];
-  int st = sbi_engine_fluid_eval(e, 1, x, U, "sb_engine_step");
+  int st = sbi_engine_fluid_eval(e, 1, x, U, SIZE_MAX, "sb_engine_step");
   if (st)
     return st;
   const double *vs;
@@ -255,14 +255,17 @@ int sbi_engine_inject(sb_engine *e)
         e->nskip[q]++;
         continue;
       }
-      /* an arrival's flight that leaves the doubles (a fluid velocity
-       * near DBL_MAX): not placed, SB_ERANGE as an overflowing step */
+      /* an arrival's flight that leaves the doubles, or lands too far
+       * out to be wrapped into the box (a fluid velocity near DBL_MAX):
+       * not placed, SB_ERANGE as an overflowing step */
       for (int d = 0; d < dim; d++)
-        if (!isfinite(x[d]) || !isfinite(u[d]))
+        if (!sbi_wrappable(x[d], e->par.L[d]) || !isfinite(u[d]))
           return sbi_error(SB_ERANGE, "sb_engine_step", "inflow %zu: an "
                            "arrival's flight from its entry point gave x[%d] "
-                           "= %g, u[%d] = %g (not finite)", q, d, x[d], d,
-                           u[d]);
+                           "= %g, u[%d] = %g (%s)", q, d, x[d], d, u[d],
+                           isfinite(x[d]) && isfinite(u[d])
+                               ? "too far out to be wrapped into the box"
+                               : "not finite");
       int st = sb_engine_add_particle(e, in->species, in->family, x, u);
       if (st)
         return st;

@@ -201,6 +201,46 @@ int sbi_engine_random_free_position(sb_engine *e, size_t k, size_t partner,
                    tries);
 }
 
+/* In a flow (or settling) a reinserted particle j moves on over the rest
+ * of the step with its mean velocity w at the new place x, the fluid's
+ * plus the settling velocity (the mean of the exact step from an
+ * equilibrium velocity), as the particles around it do: standing still it
+ * would meet those streaming past (in a shear, at a relative velocity up
+ * to G L_y/2).  x becomes the position at the step's end; a flight that
+ * is not finite, or lands too far out to be wrapped into the box, is
+ * SB_ERANGE. */
+static int reinsert_flight(sb_engine *e, const sb_engine_pair *p, double s,
+                           size_t j, double x[3], const char *who)
+{
+  double w[3] = {0.0, 0.0, 0.0};
+  int st;
+  if (e->fluid != SB_FLUID_REST &&
+      (st = sbi_engine_fluid_eval(e, 1, x, w, j, who)))
+    return st;
+  const double *vs;
+  if ((st = sbi_engine_settling(e, e->species[j], &vs, who)))
+    return st;
+  double tc = (p->t0 + s * p->dt - e->t) / e->par.dt;
+  tc = tc < 0.0 ? 0.0 : (tc > 1.0 ? 1.0 : tc);
+  const double rest = (1.0 - tc) * e->par.dt;
+  if ((st = sb_engine_outcome_path(e, j, x)))
+    return st;
+  double xm[3] = {x[0], x[1], x[2]};
+  for (int k = 0; k < e->par.dim; k++) {
+    xm[k] += rest * (w[k] + (vs ? vs[k] : 0.0));
+    if (!sbi_wrappable(xm[k], e->par.L[k]))
+      return sbi_error(SB_ERANGE, who, "reinserted particle %zu: its "
+                       "flight over the rest of the step from x[%d] = %g "
+                       "(velocity %g) ends at %g, %s", j, k, x[k],
+                       w[k] + (vs ? vs[k] : 0.0), xm[k],
+                       isfinite(xm[k]) ? "too far out to be wrapped into "
+                                         "the box"
+                                       : "not finite");
+  }
+  memcpy(x, xm, sizeof xm);
+  return SB_SUCCESS;
+}
+
 /* sb_engine_outcome_reinsert for the public function who (the step for
  * the built-in outcome) */
 static int outcome_reinsert(sb_engine *e, const sb_engine_pair *p, double s,
@@ -214,45 +254,19 @@ static int outcome_reinsert(sb_engine *e, const sb_engine_pair *p, double s,
   if (st)
     return st;
   /* a velocity that is not finite: SB_ERANGE, j left as it was */
-  st = sbi_engine_equilibrium_velocity(e, e->species[j], x, u, SB_ERANGE,
-                                       who);
+  st = sbi_engine_equilibrium_velocity(e, e->species[j], x, u, j, who);
   if (st)
     return st;
+  const int flies = e->in_step && !e->contact &&
+                    (e->fluid != SB_FLUID_REST || e->has_grav);
+  /* (Langevin: continued by a fresh exact step) */
+  if (flies && (st = reinsert_flight(e, p, s, j, x, who)))
+    return st;  /* j left as it was */
   for (int k = 0; k < 3; k++) {
     e->x[3 * j + k] = x[k];
     e->u[3 * j + k] = u[k];
     e->disp[3 * j + k] = 0.0;
   }
-  if (!e->in_step || e->contact || (e->fluid == SB_FLUID_REST &&
-                                    !e->has_grav))
-    return SB_SUCCESS;  /* (Langevin: continued by a fresh exact step) */
-  /* In a flow (or settling) j moves on over the rest of the step with its
-   * mean velocity w at the new place, the fluid's plus the settling
-   * velocity (the mean of the exact step from an equilibrium velocity),
-   * as the particles around it do: standing still it would meet those
-   * streaming past (in a shear, at a relative velocity up to G L_y/2). */
-  double w[3] = {0.0, 0.0, 0.0};
-  if (e->fluid != SB_FLUID_REST &&
-      (st = sbi_engine_fluid_eval(e, 1, x, w, who)))
-    return st;
-  const double *vs;
-  if ((st = sbi_engine_settling(e, e->species[j], &vs, who)))
-    return st;
-  double tc = (p->t0 + s * p->dt - e->t) / e->par.dt;
-  tc = tc < 0.0 ? 0.0 : (tc > 1.0 ? 1.0 : tc);
-  const double rest = (1.0 - tc) * e->par.dt;
-  if ((st = sb_engine_outcome_path(e, j, x)))
-    return st;
-  double xm[3] = {x[0], x[1], x[2]};
-  for (int k = 0; k < e->par.dim; k++) {
-    xm[k] += rest * (w[k] + (vs ? vs[k] : 0.0));
-    if (!isfinite(xm[k]))
-      return sbi_error(SB_ERANGE, who, "reinserted particle %zu: its "
-                       "flight over the rest of the step from x[%d] = %g "
-                       "(velocity %g) is not finite", j, k, x[k],
-                       w[k] + (vs ? vs[k] : 0.0));
-  }
-  memcpy(&e->x[3 * j], xm, sizeof xm);
   return SB_SUCCESS;
 }
 

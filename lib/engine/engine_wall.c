@@ -119,7 +119,8 @@ int sb_engine_periodic(const sb_engine *e, int k)
 
 /* Reinsert particle i uniformly in the accessible volume with an
  * equilibrium velocity (uniform volume source); one that is not finite is
- * SB_ERANGE, the particle left as it was. */
+ * SB_ERANGE, a fluid callback's failure SB_EINVAL: the step is then
+ * undone, every particle back at its start (no half-made step). */
 static int reinsert(sb_engine *e, size_t i)
 {
   double x[3] = {0, 0, 0}, u[3];
@@ -132,10 +133,12 @@ static int reinsert(sb_engine *e, size_t i)
     }
     x[k] = lo + L * gsl_rng_uniform(e->rng);
   }
-  int st = sbi_engine_equilibrium_velocity(e, e->species[i], x, u,
-                                           SB_ERANGE, "sb_engine_step");
-  if (st)
+  int st = sbi_engine_equilibrium_velocity(e, e->species[i], x, u, i,
+                                           "sb_engine_step");
+  if (st) {
+    sbi_engine_step_undo(e);
     return st;
+  }
   memcpy(&e->x[3 * i], x, sizeof x);
   memcpy(&e->u[3 * i], u, sizeof u);
   return SB_SUCCESS;

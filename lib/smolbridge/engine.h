@@ -256,7 +256,12 @@ typedef int (*sb_engine_outcome_fn)(sb_engine *e, const sb_engine_pair *p,
                                     double s, void *ctx);
 
 /** Fluid callback: fill us[3i..3i+2] (m/s) for the n positions
- *  x[3i..3i+2] (m, inside the box); return a status. */
+ *  x[3i..3i+2] (m, inside the box); return a status.  A non-zero status,
+ *  or a velocity component that is not finite (of the dim components),
+ *  is SB_EINVAL from the function that called it, the message naming the
+ *  callback, the particle (or "a new particle": fills, arrivals) and the
+ *  component; a step that fails so is undone (every particle back at its
+ *  start of step), a fill adds nothing. */
 typedef int (*sb_engine_fluid_fn)(size_t n, const double *x, double *us,
                                   void *ctx);
 
@@ -289,7 +294,11 @@ int sb_engine_add_species(sb_engine *e, const sb_engine_species *s,
  *  SB_ENGINE_MAXFAM-1) at position x (m, wrapped into the box) with velocity
  *  u (m/s); in 2-D x[2], u[2] are ignored (set to 0).  No overlap check
  *  (see sb_engine_check_overlaps).  SB_EINVAL when the capacity is full or
- *  an argument is bad. */
+ *  an argument is bad: x or u not finite, or a coordinate more than 2^26
+ *  box lengths from the box (|x_k| >= 2^26 L_k, where the wrapped
+ *  coordinate would keep fewer than half of a double's digits; x = 1.7e308
+ *  m in a box of 1e-4 m was stored as -inf).  The wrapped coordinate is
+ *  in [0, L_k), within about ulp(x_k) of x_k mod L_k. */
 int sb_engine_add_particle(sb_engine *e, size_t species, int family,
                            const double x[3], const double u[3]);
 
@@ -299,10 +308,12 @@ int sb_engine_add_particle(sb_engine *e, size_t species, int family,
  *  under gravity (sb_engine_set_gravity); ids follow on from the last one.
  *  All or nothing: SB_EMAXITER if a position cannot be found in 10000
  *  tries (box too full) or a settling velocity cannot be found,
- *  SB_EINVAL for a bad argument, a failing fluid callback, a velocity that
- *  is not finite (the message names the cause: the fluid field there, the
- *  species' velocity spread, the settling velocity, their sum, or the
- *  drift of sb_engine_fill_box), or settings
+ *  SB_EINVAL for a bad argument, a failing fluid callback or one that
+ *  returns a velocity that is not finite, SB_ERANGE (as a reinsertion's
+ *  draw in sb_engine_step; it was SB_EINVAL) for a drawn velocity that is
+ *  not finite (the message names the cause: the species' velocity
+ *  spread, the settling velocity, their sum, or the drift of
+ *  sb_engine_fill_box), SB_EINVAL for settings
  *  sb_engine_step would refuse that the settling velocities depend on
  *  (gravity with a free-flight species, Lees-Edwards boundaries without
  *  the shear field), SB_ENOMEM; on any failure the engine holds exactly the
@@ -383,22 +394,30 @@ int sb_engine_set_dt(sb_engine *e, double dt);
 /* ============================================================ run */
 
 /** One step (see the file comment).  Errors: SB_EINVAL if a particle's
- *  reach (displacement + radii) is not below half the box (step too large;
- *  "non-finite displacement" where the displacement's length overflows),
- *  checked for a single particle as for more (it is not wrapped into the
- *  box), a callback failed, or the detector returned an error; SB_ERANGE
- *  if the transport, the nonlinear drag step or the exact shear step
+ *  reach (displacement + radii) is not below half the box (step too large,
+ *  also where the displacement's length overflows a double; "non-finite
+ *  displacement" only where a component is not finite), checked for a
+ *  single particle as for more (it is not wrapped into the box), a
+ *  callback failed, the fluid callback returned a velocity that is not
+ *  finite (naming the particle), or the detector returned an error;
+ *  SB_ERANGE if the transport, the nonlinear drag step (also a particle's
+ *  after a collision of the Langevin detector) or the exact shear step
  *  (Lees-Edwards) gave a particle an infinite or NaN position or velocity
- *  (B sqrt(tau), the state or the fluid velocity near DBL_MAX): every
- *  particle then keeps its position and velocity from before the step;
- *  SB_ERANGE also if a reinsertion (SB_OUTCOME_REINSERT, SB_DEPOSIT_REINSERT)
- *  drew an infinite or NaN velocity or an inflow arrival's flight left the
- *  doubles (the message names the cause: the fluid field, the species'
- *  velocity spread, the settling velocity, or their sum): that particle
- *  is not placed, the step stops there; SB_ENOMEM; SB_EMAXITER if a
- *  reinsertion found no free place.  Only the SB_ERANGE of the transport,
- *  drag and shear steps leaves a defined state (the start of the step);
- *  after any other error it is undefined (restore a checkpoint). */
+ *  (B sqrt(tau), the state or the fluid velocity near DBL_MAX), naming
+ *  the particle; SB_ERANGE also if a reinsertion (SB_OUTCOME_REINSERT,
+ *  SB_DEPOSIT_REINSERT) drew an infinite or NaN velocity, or its flight
+ *  over the rest of the step or an inflow arrival's flight left the
+ *  doubles or landed too far out to be wrapped into the box (2^26 box
+ *  lengths, as sb_engine_add_particle) (the message names the cause: the
+ *  species' velocity spread, the settling velocity, or their sum): that
+ *  particle is not placed; SB_ENOMEM; SB_EMAXITER if a reinsertion found
+ *  no free place.  After these SB_ERANGE, after the fluid callback's
+ *  SB_EINVAL and after a built-in outcome's (reinsertion) or a wall
+ *  reinsertion's error every particle keeps its position and velocity
+ *  from before the step (the collision tallies of the events already
+ *  processed are kept, the generator has advanced); an arrival's error
+ *  comes after the step (the particles before it are placed).  After any
+ *  other error the state is undefined (restore a checkpoint). */
 int sb_engine_step(sb_engine *e);
 
 /** Reorder the particles in memory along the cells of a grid (cell
@@ -743,7 +762,9 @@ const sb_engine_species *sb_engine_get_species(const sb_engine *e,
 size_t sb_engine_species_count(const sb_engine *e);
 /** The engine's generator (for callbacks; do not free). */
 gsl_rng *sb_engine_rng(sb_engine *e);
-/** Set the state of particle i (m, m/s), e.g. in tests. */
+/** Set the state of particle i (m, m/s), e.g. in tests; x is wrapped into
+ *  the box and refused (SB_EINVAL, the particle unchanged) as by
+ *  sb_engine_add_particle. */
 int sb_engine_set_particle(sb_engine *e, size_t i, const double x[3],
                            const double u[3]);
 
@@ -763,7 +784,8 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path);
  *  for a file written on a machine of the other byte order (checkpoints
  *  are native binary; the message says so);
  *  SB_EINVAL, naming the id, for particles that share an id or hold one
- *  not below the file's id counter. */
+ *  not below the file's id counter, and, naming the particle, for a
+ *  position outside the box [0, L_k) or a state that is not finite. */
 sb_engine *sb_engine_checkpoint_load(const char *path, int *status);
 /** As sb_engine_checkpoint_load, with room for at least `capacity`
  *  particles (sb_engine_params.capacity; the checkpoint's own if that is
