@@ -1321,7 +1321,7 @@ static int fluid_nan_for(size_t n, const double *x, double *us, void *ctx)
  * before anything moved (it went into the step, which then failed with
  * SB_ERANGE "exceeds DBL_MAX", a cause that was not): positions,
  * velocities and time as before, and the engine steps on once the
- * callback is good.  In 2-D the third component is not looked at. */
+ * callback is good (2-D and 3-D, both transports). */
 START_TEST(test_fluid_callback_nonfinite)
 {
   for (int dim = 2; dim <= 3; dim++)
