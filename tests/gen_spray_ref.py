@@ -389,15 +389,16 @@ def tt_maxwell_T(a, species):
         return +(Tm + nb / n * D if species == 0 else Tm - na / n * D)
 
 
-def tt_hs_parts(na, nb, ma, mb, Ta0, Tb0, r):
+def tt_hs_parts(na, nb, ma, mb, Ta0, Tb0, r, kb=KB):
     """C, alpha, beta, D0, T_m and n_b/n of the hard-sphere closure
-    dD/dt = -C D sqrt(alpha + beta D) (mpmath numbers)."""
+    dD/dt = -C D sqrt(alpha + beta D) (mpmath numbers; kb Boltzmann's
+    constant)."""
     n = na + nb
     d = 2 * r
     C = mpf(16) / 3 * sqrt(2 / pi) * pi * d * d * n * ma * mb / (ma + mb) ** 2
     Tm = (na * Ta0 + nb * Tb0) / n
-    alpha = KB * Tm * (1 / ma + 1 / mb)
-    beta = KB * (nb / ma - na / mb) / n
+    alpha = kb * Tm * (1 / ma + 1 / mb)
+    beta = kb * (nb / ma - na / mb) / n
     return C, alpha, beta, Ta0 - Tb0, Tm, nb / n
 
 
@@ -410,14 +411,15 @@ def tt_hs_time(a):
         return a[:7] + [float(1 / (C * sqrt(alpha)))]
 
 
-def tt_hs_Ta(a):
+def tt_hs_Ta(a, kb=KB):
     """T_a(t) from the textbook solution: with u^2 = alpha + beta D,
     (u - sqrt(alpha))/(u + sqrt(alpha)) = rho0 exp(-C sqrt(alpha) t),
     D = 4 alpha rho/(beta (1 - rho)^2) (D0 exp(-C sqrt(alpha) t) for
     beta = 0), at 800 digits (rho0 may be 1 - 1e-600)."""
     with mp.workdps(800):
         na, nb, ma, mb, Ta0, Tb0, r, t = [mpf(x) for x in a]
-        C, alpha, beta, D0, Tm, fb = tt_hs_parts(na, nb, ma, mb, Ta0, Tb0, r)
+        C, alpha, beta, D0, Tm, fb = tt_hs_parts(na, nb, ma, mb, Ta0, Tb0, r,
+                                                 kb)
         sa = sqrt(alpha)
         e = exp(-C * sa * t)
         if beta == 0:
@@ -429,11 +431,11 @@ def tt_hs_Ta(a):
         return +(Tm + fb * D)
 
 
-def tt_hs_Tb(a):
+def tt_hs_Tb(a, kb=KB):
     """T_b(t) = T_a(t) - Delta(t), from the same solution."""
     with mp.workdps(800):
         na, nb, ma, mb, Ta0, Tb0, r, t = [mpf(x) for x in a]
-        Ta = tt_hs_Ta(a)
+        Ta = tt_hs_Ta(a, kb)
         return +(Ta - (Ta - (na * Ta0 + nb * Tb0) / (na + nb)) *
                  (na + nb) / nb)
 
@@ -512,25 +514,51 @@ TAB_OVERDAMPED = [
 ]
 
 
+def tab_oscillator(r, U, rg, mu, Cd, sg):
+    """w0^2 = 8 sigma/(rho_l r^3), beta = 1/t_d = Cd mu_l/(2 rho_l r^2) and
+    y_eq = We/12 of the TAB equation (spray_tab.csv), rho_l = 1000, at
+    the current precision (mpmath arguments)."""
+    rl = mpf(1000)
+    w02 = 8 * sg / (rl * r ** 3)
+    b = Cd * mu / (2 * rl * r * r)
+    yeq = mpf(2) / 3 * rg / rl * U * U / (r * r) / w02
+    return w02, b, yeq
+
+
+def tab_free(w02, b, t):
+    """e^{-beta t}, C(t) = cos wt and S(t) = sin(wt)/w, w^2 = w0^2 -
+    beta^2 (complex w: cosh and sinh overdamped; C, S have zero imaginary
+    part)."""
+    w = mp.sqrt(mp.mpc(w02 - b * b))
+    return exp(-b * t), mp.cos(w * t), mp.sin(w * t) / w
+
+
+def tab_closed_form(t, r, U, rg, mu, Cd, y0, yd0, sg):
+    """y(t), y'(t) of the TAB equation in closed form at the current
+    precision (arguments converted exactly; sg the surface tension):
+    y = y_eq + e^{-beta t}[z0 C + (y0' + beta z0) S],
+    y' = e^{-beta t}[y0' C - (beta y0' + w0^2 z0) S], z0 = y0 - y_eq."""
+    t, r, U, rg, mu, Cd, y0, yd0 = [mpf(x) for x in
+                                     (t, r, U, rg, mu, Cd, y0, yd0)]
+    w02, b, yeq = tab_oscillator(r, U, rg, mu, Cd, mpf(sg))
+    z0 = y0 - yeq
+    e, C, S = tab_free(w02, b, t)
+    y = mp.re(yeq + e * (z0 * C + (yd0 + b * z0) * S))
+    yd = mp.re(e * (yd0 * C - (b * yd0 + w02 * z0) * S))
+    return y, yd
+
+
 def tab_closed(t, r, U, rg, mu, Cd, y0, yd0):
     """y(t), y'(t) of the TAB equation (spray_tab.csv) in closed form at
     250 digits (the overdamped slow rate cancels to ~100 digits at r =
-    1e-100).  Where t max(beta, w0) <= 100 it is checked against odefun
-    in the variables s = t max(beta, w0), z/A."""
+    1e-100), sigma = 0.072.  Where t max(beta, w0) <= 100 it is checked
+    against odefun in the variables s = t max(beta, w0), z/A."""
     with mp.workdps(250):
+        y, yd = tab_closed_form(t, r, U, rg, mu, Cd, y0, yd0, mpf("0.072"))
         t, r, U, rg, mu, Cd, y0, yd0 = [mpf(x) for x in
                                          (t, r, U, rg, mu, Cd, y0, yd0)]
-        rl, sg = mpf(1000), mpf("0.072")
-        w02 = 8 * sg / (rl * r ** 3)
-        b = Cd * mu / (2 * rl * r * r)
-        yeq = mpf(2) / 3 * rg / rl * U * U / (r * r) / w02
+        w02, b, yeq = tab_oscillator(r, U, rg, mu, Cd, mpf("0.072"))
         z0 = y0 - yeq
-        w = mp.sqrt(mp.mpc(w02 - b * b))
-        C = mp.cos(w * t)
-        S = mp.sin(w * t) / w
-        e = exp(-b * t)
-        y = mp.re(yeq + e * (z0 * C + (yd0 + b * z0) * S))
-        yd = mp.re(e * (yd0 * C - (b * yd0 + w02 * z0) * S))
         Om = max(b, sqrt(w02))
         if t * Om <= 100:
             A = max(abs(z0), abs(yd0) / Om)

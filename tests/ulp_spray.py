@@ -20,7 +20,8 @@ in ulp of each output per set (and of TAB's overdamped subset), with
 the arguments where it is above 4 ulp.  For TAB also the largest error
 of y in ulp divided by its condition number (tab_cond: where y is a small
 difference of the data's terms, y_eq g, y0 e(C + b S) and y0' e S, that
-many ulp are inherent).
+many ulp are inherent).  The references are the closed forms of
+tests/gen_spray_ref.py (imported), with the library's double constants.
 """
 import ctypes
 import math
@@ -28,7 +29,12 @@ import os
 import random
 import sys
 
-from mpmath import mp, mpf, exp, sqrt, cos, sin, pi
+from mpmath import mp, mpf, sqrt
+
+# the closed forms as tests/gen_spray_ref.py writes them into
+# tests/data/spray_extreme.csv (this directory is on the module path)
+from gen_spray_ref import (tab_closed_form, tab_free, tab_oscillator,
+                           tt_hs_parts, tt_hs_Ta, tt_hs_Tb, tt_maxwell_T)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 KB = mpf(1.380649e-23)  # SB_BOLTZMANN as the library has it (a double)
@@ -68,25 +74,12 @@ def logu(rng, lo, hi):
 
 
 # ------------------------------------------------------------------ TAB
+SIGMA = 0.072  # the surface tension passed to the library (a double)
+
+
 def tab_ref(t, r, U, rg, mu, Cd, y0, yd0):
     with mp.workdps(120):
-        t, r, U, rg, mu, Cd, y0, yd0 = [mpf(x) for x in
-                                         (t, r, U, rg, mu, Cd, y0, yd0)]
-        rl, sg = mpf(1000), mpf(0.072)  # the double 0.072, as passed
-        w02 = 8 * sg / (rl * r ** 3)
-        b = Cd * mu / (2 * rl * r * r)
-        yeq = mpf(2) / 3 * rg / rl * U * U / (r * r) / w02
-        z0 = y0 - yeq
-        w2 = w02 - b * b
-        if w2 > 0:
-            w = sqrt(w2)
-            C, S = cos(w * t), sin(w * t) / w
-        else:
-            k = sqrt(-w2)
-            C, S = mp.cosh(k * t), mp.sinh(k * t) / k
-        e = exp(-b * t)
-        return (yeq + e * (z0 * C + (yd0 + b * z0) * S),
-                e * (yd0 * C - (b * yd0 + w02 * z0) * S))
+        return tab_closed_form(t, r, U, rg, mu, Cd, y0, yd0, SIGMA)
 
 
 def tab_cond(t, r, U, rg, mu, Cd, y0, yd0):
@@ -96,18 +89,8 @@ def tab_cond(t, r, U, rg, mu, Cd, y0, yd0):
     with mp.workdps(60):
         t, r, U, rg, mu, Cd, y0, yd0 = [mpf(x) for x in
                                          (t, r, U, rg, mu, Cd, y0, yd0)]
-        rl, sg = mpf(1000), mpf(0.072)
-        w02 = 8 * sg / (rl * r ** 3)
-        b = Cd * mu / (2 * rl * r * r)
-        yeq = mpf(2) / 3 * rg / rl * U * U / (r * r) / w02
-        w2 = w02 - b * b
-        if w2 > 0:
-            w = sqrt(w2)
-            C, S = cos(w * t), sin(w * t) / w
-        else:
-            k = sqrt(-w2)
-            C, S = mp.cosh(k * t), mp.sinh(k * t) / k
-        e = exp(-b * t)
+        w02, b, yeq = tab_oscillator(r, U, rg, mu, Cd, mpf(SIGMA))
+        e, C, S = [mp.re(x) for x in tab_free(w02, b, t)]
         P = e * (C + b * S)
         terms = (yeq * (1 - P), y0 * P, yd0 * e * S)
         y = sum(terms)
@@ -158,36 +141,14 @@ def tab_eval(lib, a):
 
 
 # ------------------------------------------------ two-temperature laws
-def hs_ref(na, nb, ma, mb, Ta0, Tb0, r, t):
+def hs_ref(*a):
     """T_a, T_b of the hard-sphere closure, textbook form at 800 digits."""
-    with mp.workdps(800):
-        na, nb, ma, mb, Ta0, Tb0, r, t = [mpf(x) for x in
-                                          (na, nb, ma, mb, Ta0, Tb0, r, t)]
-        n, d = na + nb, 2 * r
-        C = mpf(16) / 3 * sqrt(2 / pi) * pi * d * d * n * ma * mb / (
-            ma + mb) ** 2
-        Tm = (na * Ta0 + nb * Tb0) / n
-        alpha = KB * Tm * (1 / ma + 1 / mb)
-        beta = KB * (nb / ma - na / mb) / n
-        D0, sa = Ta0 - Tb0, sqrt(alpha)
-        e = exp(-C * sa * t)
-        if beta == 0:
-            D = D0 * e
-        else:
-            u0 = sqrt(alpha + beta * D0)
-            rho = (u0 - sa) / (u0 + sa) * e
-            D = 4 * alpha * rho / (beta * (1 - rho) ** 2)
-        return +(Tm + nb / n * D), +(Tm - na / n * D)
+    return tt_hs_Ta(a, KB), tt_hs_Tb(a, KB)
 
 
-def hs_time_unit(na, nb, ma, mb, Ta0, Tb0, r):
+def hs_time_unit(*a):
     with mp.workdps(60):
-        na, nb, ma, mb, Ta0, Tb0, r = [mpf(x) for x in
-                                       (na, nb, ma, mb, Ta0, Tb0, r)]
-        n, d = na + nb, 2 * r
-        C = mpf(16) / 3 * sqrt(2 / pi) * pi * d * d * n * ma * mb / (
-            ma + mb) ** 2
-        alpha = KB * (na * Ta0 + nb * Tb0) / n * (1 / ma + 1 / mb)
+        C, alpha = tt_hs_parts(*[mpf(x) for x in a], kb=KB)[:2]
         return 1 / (C * sqrt(alpha))
 
 
@@ -217,18 +178,9 @@ def hs_eval(lib, a):
     return (Ta.value, Tb.value) if st == 0 else (math.nan, math.nan)
 
 
-def mx_ref(na, nb, ma, mb, Ta0, Tb0, B0, t):
-    with mp.workdps(100):
-        na, nb, ma, mb, Ta0, Tb0, B0, t = [mpf(x) for x in
-                                           (na, nb, ma, mb, Ta0, Tb0, B0, t)]
-        n = na + nb
-        rate = 2 * B0 * n * ma * mb / (ma + mb) ** 2
-        Tm = (na * Ta0 + nb * Tb0) / n
-        D0 = Ta0 - Tb0
-        D = D0 * exp(-rate * t)
-        # T_a = T_m + f_b D, T_b = T_m - f_a D (the colder one as
-        # T_0 + f |D0 - D|, the same number)
-        return +(Tm + nb / n * D), +(Tm - na / n * D)
+def mx_ref(*a):
+    """T_a, T_b of the Maxwell law, at 100 digits."""
+    return tt_maxwell_T(a, 0), tt_maxwell_T(a, 1)
 
 
 def mx_args(rng, extreme):
