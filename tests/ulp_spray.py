@@ -8,6 +8,8 @@ comparing two builds of the library.
         heavily overdamped (beta/w0 up to ~1e8) at t up to a few 1/|k - beta|
   tab y~0  the same with y0 ~ 0 (|y0| <= 1e-3) and t 1e-4 .. 1e-1 of the
         above, so y << y_eq (the y_eq + z cancellation)
+  tab z0~0  the same as tab with y0 = y_eq = We/12 (rounded), so y' is
+        mostly the free response y0' e^{-bt}(C - b S)
   hs    sb_spray_two_temp_hs T_a, T_b; extreme: n_a T_a0 and n_b T_b0
         below DBL_MIN while T_m is normal
   mx    sb_spray_two_temp_maxwell T_a, T_b; extreme: the rate
@@ -17,10 +19,11 @@ Run: /usr/bin/python3 tests/ulp_spray.py [path/to/libsmolbridge.so] [N]
 (default .libs/libsmolbridge.so of this tree, N = 300 draws per set, a
 few seconds; docs/spray.md quotes N = 2000).  Prints the largest error
 in ulp of each output per set (and of TAB's overdamped subset), with
-the arguments where it is above 4 ulp.  For TAB also the largest error
-of y in ulp divided by its condition number (tab_cond: where y is a small
-difference of the data's terms, y_eq g, y0 e(C + b S) and y0' e S, that
-many ulp are inherent).  The references are the closed forms of
+the arguments where it is above 4 ulp.  For TAB also the largest errors
+of y and y' in ulp divided by their condition numbers (/cond; tab_cond:
+where y is a small difference of the data's terms y_eq g, y0 e(C + b S)
+and y0' e S, or y' one of y0' e(C - b S), w0^2 y_eq e S and w0^2 y0 e S,
+that many ulp are inherent).  The references are the closed forms of
 tests/gen_spray_ref.py (imported), with the library's double constants.
 """
 import ctypes
@@ -83,18 +86,25 @@ def tab_ref(t, r, U, rg, mu, Cd, y0, yd0):
 
 
 def tab_cond(t, r, U, rg, mu, Cd, y0, yd0):
-    """Condition number of y as a sum of its data's terms, y = y_eq g +
-    y0 e(C + b S) + y0' e S with g = 1 - e(C + b S): sum |term| / |y|
-    (what a small y that is a difference of the data costs in ulp)"""
+    """Condition numbers of y and y' as sums of their data's terms,
+    y = y_eq g + y0 e(C + b S) + y0' e S with g = 1 - e(C + b S) and
+    y' = y0' e(C - b S) + w0^2 y_eq e S - w0^2 y0 e S (e = e^{-bt}):
+    sum |term| / |y| (what a small y that is a difference of the data
+    costs in ulp)"""
     with mp.workdps(60):
         t, r, U, rg, mu, Cd, y0, yd0 = [mpf(x) for x in
                                          (t, r, U, rg, mu, Cd, y0, yd0)]
         w02, b, yeq = tab_oscillator(r, U, rg, mu, Cd, mpf(SIGMA))
         e, C, S = [mp.re(x) for x in tab_free(w02, b, t)]
         P = e * (C + b * S)
-        terms = (yeq * (1 - P), y0 * P, yd0 * e * S)
-        y = sum(terms)
-        return float(sum(abs(x) for x in terms) / abs(y)) if y else math.inf
+        conds = []
+        for terms in ((yeq * (1 - P), y0 * P, yd0 * e * S),
+                      (yd0 * e * (C - b * S), w02 * yeq * e * S,
+                       -w02 * y0 * e * S)):
+            y = sum(terms)
+            conds.append(float(sum(abs(x) for x in terms) / abs(y))
+                         if y else math.inf)
+        return conds
 
 
 def tab_args(rng, extreme):
@@ -122,6 +132,17 @@ def tab0_args(rng, extreme):
     a[6] = rng.uniform(-1, 1) * logu(rng, 1e-12, 1e-3)
     a[7] = rng.uniform(-1, 1) * logu(rng, 1e-6, 1e-1)
     a[0] *= logu(rng, 1e-4, 1e-1)
+    return a
+
+
+def tabq_args(rng, extreme):
+    """y0 = y_eq = We/12 rounded (z0 ~ 0): y' is y0' e^{-bt}(C - b S), the
+    free response of the rate, where C - b S is a small difference of
+    e^{-bt} C and b e^{-bt} S when overdamped at t ~ 1/|k - beta|"""
+    a = tab_args(rng, extreme)
+    with mp.workdps(40):
+        a[6] = float(tab_oscillator(*[mpf(x) for x in a[1:6]],
+                                    mpf(SIGMA))[2])
     return a
 
 
@@ -212,6 +233,7 @@ def mx_eval(lib, a):
 SETS = [("tab", tab_args, tab_eval, tab_ref, ("y", "y'"),
          ("overdamped", tab_overdamped)),
         ("tab y~0", tab0_args, tab_eval, tab_ref, ("y", "y'"), None),
+        ("tab z0~0", tabq_args, tab_eval, tab_ref, ("y", "y'"), None),
         ("hs", hs_args, hs_eval, hs_ref, ("T_a", "T_b"), None),
         ("mx", mx_args, mx_eval, mx_ref, ("T_a", "T_b"), None)]
 
@@ -219,7 +241,7 @@ SETS = [("tab", tab_args, tab_eval, tab_ref, ("y", "y'"),
 def report(label, worst, where, outs, wc=None):
     print("%-24s" % label, "  ".join("%s max %.3g ulp" % (outs[j], worst[j])
                                     for j in range(2)) +
-          ("" if wc is None else "  y max %.3g ulp/cond" % wc))
+          ("" if wc is None else "  /cond %.3g, %.3g" % tuple(wc)))
     for j in range(2):
         if worst[j] > 4:
             print("      worst %s at %r" % (outs[j], where[j]))
@@ -235,17 +257,17 @@ def main():
             rng = random.Random(20261130 + 7 * extreme + len(name))
             worst, where = [0.0, 0.0], [None, None]
             sworst, swhere, ns = [0.0, 0.0], [None, None], 0
-            wc = 0.0 if name.startswith("tab") else None
+            wc = [0.0, 0.0] if name.startswith("tab") else None
             for _ in range(N):
                 a = gen(rng, extreme)
                 got, exact = ev(lib, a), ref(*a)
                 insub = sub is not None and sub[1](a)
                 ns += insub
-                if wc is not None:
-                    wc = max(wc, ulps(got[0], exact[0]) /
-                             max(1.0, tab_cond(*a)))
+                cond = tab_cond(*a) if wc is not None else None
                 for j in range(2):
                     u = ulps(got[j], exact[j])
+                    if wc is not None:
+                        wc[j] = max(wc[j], u / max(1.0, cond[j]))
                     if u > worst[j]:
                         worst[j], where[j] = u, a
                     if insub and u > sworst[j]:
