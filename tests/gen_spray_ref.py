@@ -51,7 +51,8 @@ Writes (into tests/data/):
                    (r, U, rho_g, mu_l, Cd, y0, y0', tmax); 19, 20 TAB
                    y, y' (arguments as 16, 17) heavily overdamped
                    (beta^2/w0^2 = 1e3 to 1e8) in the plain double
-                   range; 21, 22 two-temperature hard-sphere T_a, T_b
+                   range, then overdamped rows for y' (beta/w0 = 1.5
+                   to 1e4); 21, 22 two-temperature hard-sphere T_a, T_b
                    (arguments as 9) with n_a T_a0 or n_b T_b0 below
                    DBL_MIN while T_m is normal; 23, 24 two-temperature
                    Maxwell T_a, T_b (arguments as 6) with the rate
@@ -511,6 +512,16 @@ TAB_OVERDAMPED = [
     [3e-9, 1e-10, 50.0, 1.2, 1.0, 5.0, -0.3, -1e3],
     [2e-5, 1e-7, 50.0, 1.2, 10.0, 10.0, 0.1, 20.0],
     [1e-4, 1e-5, 50.0, 1.2, 1.0, 5.0, 0.1, 20.0],
+    # y' where the free response of the rate, y0' e^{-bt}(C - b S), is
+    # all of it (U = 0, y0 = 0): C - b S as e^{-bt} C - b e^{-bt} S
+    # cancelled by ~(b/w0)^2 (y' wrong in the ninth and the thirteenth
+    # digit); and at small kt (2kt < 1e-4, y0 = 0), where e^{-bt}
+    # sinh(kt)/k as (e^{(k-b)t} - e^{-(k+b)t})/(2k) cancelled (y' wrong
+    # in the thirteenth digit, ulp_spray.py 'tab y~0')
+    [1e-9, 1e-10, 0.0, 1.2, 1.0, 5.0, 0.0, 1.0],
+    [1e-4, 1e-5, 0.0, 1.2, 1.0, 5.0, 0.0, 1.0],
+    [1e-11, 1e-5, 50.0, 1.2, 0.1, 5.0, 0.0, 1e-3],
+    [2e-11, 1.2e-5, 50.0, 1.2, 0.05, 5.0, 0.0, -1e-4],
 ]
 
 

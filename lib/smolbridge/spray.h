@@ -353,7 +353,14 @@ void sb_spray_tab_params_default(sb_spray_tab_params *p);
  *  small difference of those three terms (y0 or y0' of the opposite
  *  sign to y_eq) the error is up to ~ (sum of |terms|)/|y| ulp, and a
  *  phase w t of many radians carries the rounding of w0^2 and 1/t_d
- *  from the data.  The same SB_EDOM/SB_ERANGE domain
+ *  from the data.  y' is formed as y0' h'(t) - w0^2 (y0 - y_eq) h(t),
+ *  h = e^{-t/t_d} S the impulse response and h' = e^{-t/t_d}(C - S/t_d)
+ *  its rate (overdamped: from the two exponentials' rates, and e^{-t/t_d}
+ *  S with expm1 at small k t), not as e^{-t/t_d}[y0' C - (y0'/t_d +
+ *  w0^2 z0) S], which lost ~ (w0 t_d)^-2 ulp in C - S/t_d when
+ *  overdamped and up to 1.4e4 ulp at small k t.  Its error is up to a
+ *  few times (|y0' h'| + w0^2 (|y_eq| + |y0|) |h|)/|y'| ulp, plus the
+ *  phase's share as for y.  The same SB_EDOM/SB_ERANGE domain
  *  holds for sb_spray_tab_breakup_time (SB_ERANGE also when y' at
  *  breakup overflows) and sb_spray_tab_we_crit. */
 int sb_spray_tab_state(double t, double r, double urel, double rho_g,

@@ -161,27 +161,49 @@ static int osc_init(osc *o, double r, double urel, double rho_g,
   return SB_SUCCESS;
 }
 
-/* e^{-beta t} C(t) and e^{-beta t} S(t), C'' = -w2 C, S'' = -w2 S,
- * C(0) = 1, C'(0) = 0, S(0) = 0, S'(0) = 1, without overflow (t in the
- * oscillator's units). */
-static void osc_cs(const osc *o, double t, double *ec, double *es)
+/* e^{-beta t} C(t), e^{-beta t} S(t) and their rate h'(t) = e^{-beta t}
+ * (C - beta S) of h = e^{-beta t} S, C'' = -w2 C, S'' = -w2 S, C(0) = 1,
+ * C'(0) = 0, S(0) = 0, S'(0) = 1, without overflow (t in the
+ * oscillator's units).  h is the impulse response of z'' + 2 beta z' +
+ * w0^2 z = 0 (z(0) = 0, z'(0) = 1) and h' its rate (osc_eval).  None
+ * cancels beyond its condition number in t, beta and w0 (h' is
+ * ill-conditioned only near its zero). */
+static void osc_cs(const osc *o, double t, double *ec, double *es,
+                   double *ed)
 {
   double w2 = o->w2, b = o->beta;
   if (fabs(w2) * t * t < 1e-10) {
     double e = exp(-b * t);
     *ec = e * (1.0 - 0.5 * w2 * t * t);
     *es = e * t * (1.0 - w2 * t * t / 6.0);
+    *ed = *ec - b * *es; /* e (1 - bt) + O(w2 t^2): cancels at its zero */
   } else if (w2 > 0) {
     double w = sqrt(w2), e = exp(-b * t), wt = w * t;
     /* wt = inf: the oscillation has died out (e = 0: tab_state refuses
      * an unresolved phase with e > 0) */
     *ec = isinf(wt) ? 0.0 : e * cos(wt);
     *es = isinf(wt) ? 0.0 : e * sin(wt) / w;
+    /* e (cos wt - (b/w) sin wt), b < w: the two cancel only near the
+     * zero of h' (tan wt = w/b), where its phase already costs as much */
+    *ed = *ec - b * *es;
   } else {
-    double k = sqrt(-w2);
-    double ep = exp(o->km * t), em = exp(-o->kp * t);
+    /* e^{-bt} (cosh kt, sinh(kt)/k) = ((ep + em)/2, (ep - em)/(2k)) with
+     * ep = e^{(k - b)t}, em = e^{-(k + b)t}, and h' = e^{-bt} (cosh kt -
+     * (b/k) sinh kt) = (kp em + km ep)/(2k): the two exponentials'
+     * rates kept apart, for cosh kt - (b/k) sinh kt ~ (k - b)/(2k) e^{kt}
+     * cancelled by ~ (b/w0)^2 when heavily overdamped */
+    const double k = sqrt(-w2), em = exp(-o->kp * t), ep = exp(o->km * t);
     *ec = 0.5 * (ep + em);
-    *es = 0.5 * (ep - em) / k;
+    if (2 * k * t <= 1) {
+      /* ep - em = em (e^{2kt} - 1) cancels as kt -> 0; with x =
+       * e^{2kt} - 1 and kp + km = 2k, kp em + km ep = em (2k + km x) */
+      const double x = expm1(2 * k * t);
+      *es = 0.5 * em * x / k;
+      *ed = em * (1 + o->km * x / (2 * k));
+    } else {
+      *es = 0.5 * (ep - em) / k;
+      *ed = (o->kp * em + o->km * ep) / (2 * k);
+    }
   }
 }
 
@@ -252,20 +274,23 @@ static double osc_step(const osc *o, double t, double ec, double es)
 }
 
 /* y = y_eq g + e^{-bt}[y0 C + (y0' + b y0) S] (the forced response plus
- * the free one: no y_eq + z cancellation where y << y_eq),
- * z' = e^{-bt}[zd0 C - (b zd0 + w0^2 z0) S], at t in the oscillator's
- * units; y, y' in SI units. */
+ * the free one: no y_eq + z cancellation where y << y_eq) and its rate
+ * y' = y0' h' - w0^2 z0 h, at t in the oscillator's units; y, y' in SI
+ * units.  h = e^{-bt} S is the impulse response (g' = w0^2 h), so y' =
+ * w0^2 y_eq h + y0' h' - w0^2 y0 h, the derivative of the terms of y;
+ * with h' formed by osc_cs this does not cancel unless those terms do
+ * (the form e^{-bt}[zd0 C - (b zd0 + w0^2 z0) S] lost up to ~(b/w0)^2
+ * ulp in C - b S when overdamped). */
 static void osc_eval(const osc *o, double t, double *y, double *yd)
 {
-  double ec, es;
-  osc_cs(o, t, &ec, &es);
+  double ec, es, ed;
+  osc_cs(o, t, &ec, &es, &ed);
   if (y)
     *y = ldexp(o->ys * osc_step(o, t, ec, es) + o->y0s * ec +
                    (o->zd0 + o->beta * o->y0s) * es,
                o->ms);
   if (yd)
-    *yd = ldexp(o->zd0 * ec - (o->beta * o->zd0 + o->w02 * o->z0) * es,
-                o->ms - o->ks);
+    *yd = ldexp(o->zd0 * ed - o->w02 * o->z0 * es, o->ms - o->ks);
 }
 
 int sb_spray_tab_state(double t, double r, double urel, double rho_g,
