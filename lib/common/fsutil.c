@@ -103,6 +103,12 @@ FILE *sbi_hsave_begin(sbi_hsave *h, const char *func)
 int sbi_hsave_finish(sbi_hsave *h, int ok, const char *path,
                      const char *func)
 {
+  return sbi_hsave_finish_ord(h, ok, 0, path, func);
+}
+
+int sbi_hsave_finish_ord(sbi_hsave *h, int ok, int swap, const char *path,
+                         const char *func)
+{
   ok &= fclose(h->f) == 0;
   h->f = NULL;
   if (!ok) {
@@ -114,7 +120,7 @@ int sbi_hsave_finish(sbi_hsave *h, int ok, const char *path,
   FILE *f = sbi_open_for_save(path, func);
   if (f)
     ok = fwrite(h->buf, 1, h->len, f) == h->len &&
-         fwrite(&hash, sizeof hash, 1, f) == 1;
+         sbi_write_ord(f, &hash, sizeof hash, 1, swap);
   free(h->buf);
   h->buf = NULL;
   return f ? sbi_finish_save(f, ok, path, func) : SB_EIO;
@@ -166,9 +172,12 @@ char *sbi_slurp(FILE *f, size_t *len)
   return b;
 }
 
-FILE *sbi_hload_open(const char *path, const char magic[8], int hashed_from,
-                     const char *what, int *ver, char **mem,
-                     const char *func, int *status)
+/* sbi_hload_open (swap = -1: native binary) and sbi_hload_open_ord
+ * (swap 0 or 1: a fixed byte order). */
+static FILE *hload_open(const char *path, const char magic[8],
+                        int hashed_from, const char *what, int *ver,
+                        char **mem, int swap, const char *func,
+                        int *status)
 {
   *mem = NULL;
   *ver = 0;
@@ -195,13 +204,20 @@ FILE *sbi_hload_open(const char *path, const char magic[8], int hashed_from,
     return NULL;
   }
   if (v >= hashed_from) {
-    const int c = len >= 16 ? sbi_hash_check(buf, len) : -1;
+    int c = len >= 16 ? sbi_hash_check(buf, len) : -1;
+    if (c >= 0 && swap == 1)  /* 0: the hash in the file's order */
+      c = !c;
     if (c) {
       free(buf);
-      *status = c > 0
+      *status = c > 0 && swap < 0
           ? sbi_error(SB_EFORMAT, func, "'%s' was written on a machine of "
                       "the other byte order: a %s is native binary, load "
                       "it where it was written", path, what)
+          : c > 0
+          ? sbi_error(SB_EFORMAT, func, "'%s' is in the other byte order, "
+                      "big-endian: a %s of an older build on a big-endian "
+                      "machine (they are little-endian now); load it with "
+                      "that build", path, what)
           : sbi_error(SB_EFORMAT, func, "'%s' is damaged: its contents "
                       "do not match the hash at its end (cut short or "
                       "changed)", path);
@@ -219,4 +235,21 @@ FILE *sbi_hload_open(const char *path, const char magic[8], int hashed_from,
   *mem = buf;
   *status = SB_SUCCESS;
   return f;
+}
+
+FILE *sbi_hload_open(const char *path, const char magic[8], int hashed_from,
+                     const char *what, int *ver, char **mem,
+                     const char *func, int *status)
+{
+  return hload_open(path, magic, hashed_from, what, ver, mem, -1, func,
+                    status);
+}
+
+FILE *sbi_hload_open_ord(const char *path, const char magic[8],
+                         int hashed_from, const char *what, int *ver,
+                         char **mem, int swap, const char *func,
+                         int *status)
+{
+  return hload_open(path, magic, hashed_from, what, ver, mem, swap != 0,
+                    func, status);
 }

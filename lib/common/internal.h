@@ -6,6 +6,7 @@
 #define SB_INTERNAL_H
 
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <smolbridge/common.h>
@@ -44,7 +45,8 @@ int sbi_finish_save(FILE *f, int ok, const char *path, const char *func);
 
 /* Saved states protected by a hash: FNV-1a, 64 bits (Fowler, Noll & Vo;
  * basis SBI_FNV_BASIS), of every byte of the file before it, appended
- * in native byte order.  A save writes its bytes to the memory stream
+ * in native byte order (by sbi_hsave_finish_ord in the file's).  A save
+ * writes its bytes to the memory stream
  * of sbi_hsave_begin (NULL: SB_ENOMEM from func), then sbi_hsave_finish
  * writes them and their hash to path in one piece (as sbi_finish_save:
  * SB_EIO and no file left on failure; ok = 0: a write to memory failed,
@@ -59,6 +61,10 @@ typedef struct {
 FILE *sbi_hsave_begin(sbi_hsave *h, const char *func);
 int sbi_hsave_finish(sbi_hsave *h, int ok, const char *path,
                      const char *func);
+/* As sbi_hsave_finish, the hash written byte-reversed when swap = 1 (a
+ * file in the order opposite to this machine's, byteorder.c). */
+int sbi_hsave_finish_ord(sbi_hsave *h, int ok, int swap, const char *path,
+                         const char *func);
 /* The hash at the end of buf (len >= 16 bytes, the hash included): 0 if
  * it matches the bytes before it, 1 if it matches with its 8 bytes in
  * reverse order (a file written on a machine of the other byte order:
@@ -82,5 +88,39 @@ char *sbi_slurp(FILE *f, size_t *len);
 FILE *sbi_hload_open(const char *path, const char magic[8], int hashed_from,
                      const char *what, int *ver, char **mem,
                      const char *func, int *status);
+/* As sbi_hload_open for a file whose numbers, the hash included, are
+ * byte-reversed when swap = 1 (byteorder.c): the hash must match in that
+ * order; matching in the other one, the file is refused as written in the
+ * other byte order. */
+FILE *sbi_hload_open_ord(const char *path, const char magic[8],
+                         int hashed_from, const char *what, int *ver,
+                         char **mem, int swap, const char *func,
+                         int *status);
+
+/* Saved states in a fixed byte order (byteorder.c).  swap = 1: the file's
+ * order is the reverse of this machine's, each number (an item of `width`
+ * bytes) is reversed on its way to or from the file; the checkpoints of
+ * the engine and of pgd are little-endian, swap = !sbi_host_le().  The
+ * writers and readers return 1 on success, 0 on a short write or read
+ * (or out of memory). */
+int sbi_host_le(void);
+void sbi_swap_items(void *p, size_t width, size_t n);
+int sbi_write_ord(FILE *f, const void *p, size_t width, size_t n, int swap);
+int sbi_read_ord(FILE *f, void *p, size_t width, size_t n, int swap);
+/* A structure's numbers: `count` items of `width` bytes at `offset`
+ * (padding is not listed and is written as it is). */
+typedef struct {
+  size_t offset, width, count;
+} sbi_field;
+#define SBI_FIELD(type, member) \
+  {offsetof(type, member), sizeof(((type *)0)->member), 1}
+#define SBI_FIELDS(type, member, n) \
+  {offsetof(type, member), sizeof(((type *)0)->member[0]), (n)}
+/* n structures of `size` bytes at p, the numbers of each the fields fl[0
+ * .. nfl-1]. */
+int sbi_write_fields(FILE *f, const void *p, size_t size, size_t n,
+                     const sbi_field *fl, size_t nfl, int swap);
+int sbi_read_fields(FILE *f, void *p, size_t size, size_t n,
+                    const sbi_field *fl, size_t nfl, int swap);
 
 #endif /* SB_INTERNAL_H */
