@@ -3,15 +3,17 @@
  * (sb_pgd_dd) so that a restored run continues bit for bit as the run
  * that was not stopped.
  *
- * Format (native binary, in the style of the engine's checkpoint,
- * engine_checkpoint.c): the 8-byte magic "SBPGDE01" (solver),
- * "SBPGDL01" (particles) or "SBPGDD01" (decomposition), three bytes with the sizes of double, size_t
- * and int of the build that wrote it, the parameters field by field in
+ * Format (little-endian on every machine, common/byteorder.c, in the
+ * style of the engine's checkpoint, engine_checkpoint.c): the 8-byte
+ * magic "SBPGDE01" (solver), "SBPGDL01" (particles) or "SBPGDD01"
+ * (decomposition), three bytes with the sizes of double, size_t and int
+ * of the build that wrote it, the parameters field by field in
  * fixed-width types (int32 for enums and flags, uint64 for counts), then
  * the state, then the FNV-1a hash of every byte before it
  * (common/internal.h, sbi_hsave_finish), checked before anything is read:
- * a file that was cut, changed or written on a machine of the other byte
- * order is refused with a message saying which.
+ * a file that was cut, changed or is in big-endian order (an older
+ * build's on a big-endian machine) is refused with a message saying
+ * which.
  *
  *   parameters: dim, nx, ny, L[2], origin[2], scheme, cfl, dt_max, tau,
  *     ugas[2], gas (1 if a callback was set), its fingerprint
@@ -68,27 +70,36 @@ uint64_t sbi_pgd_gas_print(const sb_pgd_params *p)
 
 /* ------------------------------------------------------------ writing */
 
-static int w_i32(FILE *f, int v)
+/* A checkpoint's stream and its byte order: swap = 1 when the file's
+ * (little-endian) is the reverse of this machine's (common/internal.h,
+ * sbi_write_ord). */
+typedef struct {
+  FILE *fp;
+  int swap;
+} ck_file;
+
+static int w_i32(ck_file *f, int v)
 {
   const int32_t x = (int32_t)v;
-  return fwrite(&x, sizeof x, 1, f) == 1;
+  return sbi_write_ord(f->fp, &x, sizeof x, 1, f->swap);
 }
 
-static int w_u64(FILE *f, uint64_t v)
+static int w_u64(ck_file *f, uint64_t v)
 {
-  return fwrite(&v, sizeof v, 1, f) == 1;
+  return sbi_write_ord(f->fp, &v, sizeof v, 1, f->swap);
 }
 
-static int w_dbl(FILE *f, const double *v, size_t n)
+static int w_dbl(ck_file *f, const double *v, size_t n)
 {
-  return n == 0 || fwrite(v, sizeof *v, n, f) == n;
+  return sbi_write_ord(f->fp, v, sizeof *v, n, f->swap);
 }
 
 /* The header and parameters; gas_set and print describe the callback. */
-static int write_params(FILE *f, const char magic[8], const sb_pgd_params *p,
-                        int gas_set, uint64_t print)
+static int write_params(ck_file *f, const char magic[8],
+                        const sb_pgd_params *p, int gas_set, uint64_t print)
 {
-  int ok = fwrite(magic, 1, 8, f) == 8 && fwrite(SIZES, 1, 3, f) == 3 &&
+  int ok = fwrite(magic, 1, 8, f->fp) == 8 &&
+           fwrite(SIZES, 1, 3, f->fp) == 3 &&
            w_i32(f, p->dim) && w_u64(f, p->nx) && w_u64(f, p->ny) &&
            w_dbl(f, p->L, 2) && w_dbl(f, p->origin, 2) &&
            w_i32(f, (int)p->scheme) && w_dbl(f, &p->cfl, 1) &&
@@ -106,7 +117,7 @@ static int write_params(FILE *f, const char magic[8], const sb_pgd_params *p,
          w_u64(f, p->inject_face);
 }
 
-static int write_budget(FILE *f, const sbi_budget *b)
+static int write_budget(ck_file *f, const sbi_budget *b)
 {
   return w_dbl(f, &b->in[0][0], 12) && w_dbl(f, &b->out[0][0], 12);
 }
@@ -120,16 +131,19 @@ static void gas_of(const sb_pgd_params *p, int missing, uint64_t kept,
   *print = missing ? kept : sbi_pgd_gas_print(p);
 }
 
-int sb_pgd_checkpoint_save(const sb_pgd *g, const char *path)
+/* The solver's checkpoint in the order swap (ck_file); messages from
+ * func. */
+static int save_solver(const sb_pgd *g, const char *path, int swap,
+                       const char *func)
 {
   if (!g || !path)
-    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+    return sbi_error(SB_EINVAL, func, "NULL argument");
   int set;
   uint64_t print;
   gas_of(&g->p, g->gas_missing, g->gas_print, &set, &print);
   sbi_hsave hs;
-  FILE *f = sbi_hsave_begin(&hs, __func__);
-  if (!f)
+  ck_file ck = {sbi_hsave_begin(&hs, func), swap}, *f = &ck;
+  if (!ck.fp)
     return SB_ENOMEM;
   const size_t n = g->sx * g->sy;
   const int ok = write_params(f, MAGIC_E, &g->p, set, print) &&
@@ -138,7 +152,17 @@ int sb_pgd_checkpoint_save(const sb_pgd *g, const char *path)
                  w_i32(f, g->empty) && write_budget(f, &g->bud) &&
                  w_u64(f, n) && w_dbl(f, g->rho, n) && w_dbl(f, g->qx, n) &&
                  w_dbl(f, g->qy, n);
-  return sbi_hsave_finish(&hs, ok, path, __func__);
+  return sbi_hsave_finish_ord(&hs, ok, swap, path, func);
+}
+
+int sb_pgd_checkpoint_save(const sb_pgd *g, const char *path)
+{
+  return save_solver(g, path, !sbi_host_le(), __func__);
+}
+
+int sbi_pgd_checkpoint_save_ord(const sb_pgd *g, const char *path, int swap)
+{
+  return save_solver(g, path, swap, __func__);
 }
 
 int sb_pgd_lag_checkpoint_save(const sb_pgd_lag *l, const char *path)
@@ -149,8 +173,9 @@ int sb_pgd_lag_checkpoint_save(const sb_pgd_lag *l, const char *path)
   uint64_t print;
   gas_of(&l->p, l->gas_missing, l->gas_print, &set, &print);
   sbi_hsave hs;
-  FILE *f = sbi_hsave_begin(&hs, __func__);
-  if (!f)
+  const int swap = !sbi_host_le();
+  ck_file ck = {sbi_hsave_begin(&hs, __func__), swap}, *f = &ck;
+  if (!ck.fp)
     return SB_ENOMEM;
   int ok = write_params(f, MAGIC_L, &l->p, set, print) &&
            w_dbl(f, &l->t, 1) && w_u64(f, l->steps) &&
@@ -159,26 +184,26 @@ int sb_pgd_lag_checkpoint_save(const sb_pgd_lag *l, const char *path)
     const sb_pgd_particle *q = &l->a.q[k];
     ok = w_dbl(f, &q->w, 1) && w_dbl(f, q->x, 2) && w_dbl(f, q->v, 2);
   }
-  return sbi_hsave_finish(&hs, ok, path, __func__);
+  return sbi_hsave_finish_ord(&hs, ok, swap, path, __func__);
 }
 
 /* ------------------------------------------------------------ reading */
 
-static int r_i32(FILE *f, int *v)
+static int r_i32(ck_file *f, int *v)
 {
   int32_t x;
-  if (fread(&x, sizeof x, 1, f) != 1)
+  if (!sbi_read_ord(f->fp, &x, sizeof x, 1, f->swap))
     return 0;
   *v = (int)x;
   return 1;
 }
 
-static int r_u64(FILE *f, uint64_t *v)
+static int r_u64(ck_file *f, uint64_t *v)
 {
-  return fread(v, sizeof *v, 1, f) == 1;
+  return sbi_read_ord(f->fp, v, sizeof *v, 1, f->swap);
 }
 
-static int r_size(FILE *f, size_t *v)
+static int r_size(ck_file *f, size_t *v)
 {
   uint64_t x;
   if (!r_u64(f, &x) || x > ((uint64_t)1 << 40))
@@ -187,12 +212,12 @@ static int r_size(FILE *f, size_t *v)
   return 1;
 }
 
-static int r_dbl(FILE *f, double *v, size_t n)
+static int r_dbl(ck_file *f, double *v, size_t n)
 {
-  return n == 0 || fread(v, sizeof *v, n, f) == n;
+  return sbi_read_ord(f->fp, v, sizeof *v, n, f->swap);
 }
 
-static int read_budget(FILE *f, sbi_budget *b)
+static int read_budget(ck_file *f, sbi_budget *b)
 {
   return r_dbl(f, &b->in[0][0], 12) && r_dbl(f, &b->out[0][0], 12);
 }
@@ -200,11 +225,11 @@ static int read_budget(FILE *f, sbi_budget *b)
 /* After the magic: the sizes and the parameters into *p (checked), the
  * callback's flag and fingerprint.  SB_SUCCESS, else SB_EFORMAT with the
  * message from func. */
-static int read_params(FILE *f, const char *path, const char *func,
+static int read_params(ck_file *f, const char *path, const char *func,
                        sb_pgd_params *p, int *gas_set, uint64_t *print)
 {
   unsigned char sz[3];
-  if (fread(sz, 1, 3, f) != 3)
+  if (fread(sz, 1, 3, f->fp) != 3)
     return sbi_error(SB_EFORMAT, func, "'%s': truncated header", path);
   if (memcmp(sz, SIZES, 3))
     return sbi_error(SB_EFORMAT, func, "'%s' was written by a build with "
@@ -251,45 +276,52 @@ static int read_params(FILE *f, const char *path, const char *func,
   return SB_SUCCESS;
 }
 
-/* Open a checkpoint of the kind magic: the stream (after the magic) and
- * its memory, or NULL with *status and the message. */
-static FILE *open_ck(const char *path, const char magic[8], const char *what,
-                     char **mem, const char *func, int *status)
+/* Open a checkpoint of the kind magic in the order swap: ck->fp, the
+ * stream (after the magic), and its memory, or ck->fp NULL with *status
+ * and the message. */
+static void open_ck(ck_file *ck, const char *path, const char magic[8],
+                    const char *what, char **mem, int swap,
+                    const char *func, int *status)
 {
   int ver;
-  FILE *f = sbi_hload_open(path, magic, 1, what, &ver, mem, func, status);
+  FILE *f = sbi_hload_open_ord(path, magic, 1, what, &ver, mem, swap, func,
+                               status);
   if (f && fseek(f, 8, SEEK_SET)) {
     fclose(f);
     free(*mem);
     *mem = NULL;
     *status = sbi_error(SB_EIO, func, "cannot read '%s'", path);
-    return NULL;
+    f = NULL;
   }
-  return f;
+  ck->fp = f;
+  ck->swap = swap;
 }
 
-sb_pgd *sb_pgd_checkpoint_load(const char *path, int *status)
+/* The solver of a checkpoint in the order swap; messages from func. */
+static sb_pgd *load_solver(const char *path, int swap, int *status,
+                           const char *func)
 {
   int dummy;
   if (!status)
     status = &dummy;
   char *mem = NULL;
-  FILE *f = open_ck(path, MAGIC_E, "pgd solver checkpoint (sb_pgd)", &mem,
-                    __func__, status);
-  if (!f)
+  ck_file ck, *f = &ck;
+  open_ck(&ck, path, MAGIC_E, "pgd solver checkpoint (sb_pgd)", &mem, swap,
+          func, status);
+  if (!ck.fp)
     return NULL;
   sb_pgd *g = NULL;
   sb_pgd_params p;
   int set;
   uint64_t print;
-  *status = read_params(f, path, __func__, &p, &set, &print);
+  *status = read_params(f, path, func, &p, &set, &print);
   if (*status)
     goto out;
   g = sb_pgd_alloc(&p);
   if (!g) {
     *status = sbi_error(sb_last_status() == SB_ENOMEM ? SB_ENOMEM
                                                        : SB_EFORMAT,
-                        __func__, "'%s': %s", path, sb_last_error());
+                        func, "'%s': %s", path, sb_last_error());
     goto out;
   }
   uint64_t n, steps = 0;
@@ -299,9 +331,9 @@ sb_pgd *sb_pgd_checkpoint_load(const char *path, int *status)
       !r_dbl(f, &g->speed, 1) || !r_i32(f, &speed_ok) || !r_i32(f, &empty) ||
       !read_budget(f, &g->bud) || !r_u64(f, &n) || n != want ||
       !r_dbl(f, g->rho, want) || !r_dbl(f, g->qx, want) ||
-      !r_dbl(f, g->qy, want) || fgetc(f) != EOF || !isfinite(g->t) ||
+      !r_dbl(f, g->qy, want) || fgetc(f->fp) != EOF || !isfinite(g->t) ||
       (speed_ok != 0 && speed_ok != 1) || (empty != 0 && empty != 1)) {
-    *status = sbi_error(SB_EFORMAT, __func__, "'%s': not a valid pgd "
+    *status = sbi_error(SB_EFORMAT, func, "'%s': not a valid pgd "
                         "solver checkpoint (its state does not fit its "
                         "parameters, or data after the end)", path);
     goto out;
@@ -311,15 +343,25 @@ sb_pgd *sb_pgd_checkpoint_load(const char *path, int *status)
   g->empty = empty;
   g->gas_missing = set;
   g->gas_print = print;
-  fclose(f);
+  fclose(f->fp);
   free(mem);
   *status = SB_SUCCESS;
   return g;
 out:
   sb_pgd_free(g);
-  fclose(f);
+  fclose(f->fp);
   free(mem);
   return NULL;
+}
+
+sb_pgd *sb_pgd_checkpoint_load(const char *path, int *status)
+{
+  return load_solver(path, !sbi_host_le(), status, __func__);
+}
+
+sb_pgd *sbi_pgd_checkpoint_load_ord(const char *path, int swap, int *status)
+{
+  return load_solver(path, swap, status, __func__);
 }
 
 sb_pgd_lag *sb_pgd_lag_checkpoint_load(const char *path, int *status)
@@ -328,9 +370,10 @@ sb_pgd_lag *sb_pgd_lag_checkpoint_load(const char *path, int *status)
   if (!status)
     status = &dummy;
   char *mem = NULL;
-  FILE *f = open_ck(path, MAGIC_L, "pgd particle checkpoint (sb_pgd_lag)",
-                    &mem, __func__, status);
-  if (!f)
+  ck_file ck, *f = &ck;
+  open_ck(&ck, path, MAGIC_L, "pgd particle checkpoint (sb_pgd_lag)", &mem,
+          !sbi_host_le(), __func__, status);
+  if (!ck.fp)
     return NULL;
   sb_pgd_lag *l = NULL;
   sb_pgd_params p;
@@ -363,7 +406,7 @@ sb_pgd_lag *sb_pgd_lag_checkpoint_load(const char *path, int *status)
     ok = r_dbl(f, &q->w, 1) && r_dbl(f, q->x, 2) && r_dbl(f, q->v, 2);
     l->a.n = k + 1;
   }
-  if (!ok || fgetc(f) != EOF) {
+  if (!ok || fgetc(f->fp) != EOF) {
     *status = sbi_error(SB_EFORMAT, __func__, "'%s': not a valid pgd "
                         "particle checkpoint (cut short, or data after the "
                         "end)", path);
@@ -372,13 +415,13 @@ sb_pgd_lag *sb_pgd_lag_checkpoint_load(const char *path, int *status)
   l->steps = (size_t)steps;
   l->gas_missing = set;
   l->gas_print = print;
-  fclose(f);
+  fclose(f->fp);
   free(mem);
   *status = SB_SUCCESS;
   return l;
 out:
   sb_pgd_lag_free(l);
-  fclose(f);
+  fclose(f->fp);
   free(mem);
   return NULL;
 }
@@ -449,7 +492,7 @@ size_t sb_pgd_lag_steps(const sb_pgd_lag *l) { return l ? l->steps : 0; }
 
 /* The state of an Eulerian solver (as in sb_pgd_checkpoint_save, without
  * the parameters, which are the block's). */
-static int write_grid(FILE *f, const struct sb_pgd *g)
+static int write_grid(ck_file *f, const struct sb_pgd *g)
 {
   const size_t n = g->sx * g->sy;
   return w_dbl(f, &g->t, 1) && w_u64(f, g->steps) &&
@@ -458,7 +501,7 @@ static int write_grid(FILE *f, const struct sb_pgd *g)
          w_dbl(f, g->rho, n) && w_dbl(f, g->qx, n) && w_dbl(f, g->qy, n);
 }
 
-static int read_grid(FILE *f, struct sb_pgd *g)
+static int read_grid(ck_file *f, struct sb_pgd *g)
 {
   uint64_t steps, n;
   int speed_ok, empty;
@@ -475,7 +518,7 @@ static int read_grid(FILE *f, struct sb_pgd *g)
   return 1;
 }
 
-static int write_parts(FILE *f, const sbi_parts *a)
+static int write_parts(ck_file *f, const sbi_parts *a)
 {
   int ok = w_u64(f, a->n);
   for (size_t k = 0; k < a->n && ok; k++) {
@@ -499,13 +542,14 @@ int sb_pgd_dd_checkpoint_save(const sb_pgd_dd *d, const char *path)
     return sbi_error(SB_EINVAL, __func__, "a decomposition with a gas "
                      "velocity callback cannot be saved (not done yet)");
   sbi_hsave hs;
-  FILE *f = sbi_hsave_begin(&hs, __func__);
-  if (!f)
+  const int swap = !sbi_host_le();
+  ck_file ck = {sbi_hsave_begin(&hs, __func__), swap}, *f = &ck;
+  if (!ck.fp)
     return SB_ENOMEM;
   int ok = write_params(f, MAGIC_D, &d->p, 0, 0) && w_u64(f, d->px) &&
            w_u64(f, d->py);
   for (size_t k = 0; k < d->nblocks && ok; k++)
-    ok = fwrite(&d->b[k].kind, 1, 1, f) == 1;
+    ok = fwrite(&d->b[k].kind, 1, 1, f->fp) == 1;
   ok = ok && w_dbl(f, &d->t, 1) && w_u64(f, d->steps) &&
        write_budget(f, &d->bud);
   for (size_t k = 0; k < d->nblocks && ok; k++) {
@@ -519,7 +563,7 @@ int sb_pgd_dd_checkpoint_save(const sb_pgd_dd *d, const char *path)
       if (b->pend[s])
         ok = w_dbl(f, b->pend[s], 3 * b->e->nb[s]);
   }
-  return sbi_hsave_finish(&hs, ok, path, __func__);
+  return sbi_hsave_finish_ord(&hs, ok, swap, path, __func__);
 }
 
 sb_pgd_dd *sb_pgd_dd_checkpoint_load(const char *path, int *status)
@@ -528,9 +572,10 @@ sb_pgd_dd *sb_pgd_dd_checkpoint_load(const char *path, int *status)
   if (!status)
     status = &dummy;
   char *mem = NULL;
-  FILE *f = open_ck(path, MAGIC_D, "pgd decomposition checkpoint "
-                    "(sb_pgd_dd)", &mem, __func__, status);
-  if (!f)
+  ck_file ck, *f = &ck;
+  open_ck(&ck, path, MAGIC_D, "pgd decomposition checkpoint (sb_pgd_dd)",
+          &mem, !sbi_host_le(), __func__, status);
+  if (!ck.fp)
     return NULL;
   sb_pgd_dd *d = NULL;
   char *kinds = NULL;
@@ -552,7 +597,7 @@ sb_pgd_dd *sb_pgd_dd_checkpoint_load(const char *path, int *status)
     *status = sbi_error(SB_ENOMEM, __func__, "out of memory");
     goto out;
   }
-  if (fread(kinds, 1, px * py, f) != px * py) {
+  if (fread(kinds, 1, px * py, f->fp) != px * py) {
     *status = sbi_error(SB_EFORMAT, __func__, "'%s': not a valid pgd "
                         "decomposition checkpoint (blocks)", path);
     goto out;
@@ -586,7 +631,7 @@ sb_pgd_dd *sb_pgd_dd_checkpoint_load(const char *path, int *status)
       if (b->pend[s])
         ok = r_dbl(f, b->pend[s], 3 * b->e->nb[s]);
   }
-  if (!ok || fgetc(f) != EOF) {
+  if (!ok || fgetc(f->fp) != EOF) {
     *status = sbi_error(SB_EFORMAT, __func__, "'%s': not a valid pgd "
                         "decomposition checkpoint (its state does not fit "
                         "its parameters, or data after the end)", path);
@@ -594,14 +639,14 @@ sb_pgd_dd *sb_pgd_dd_checkpoint_load(const char *path, int *status)
   }
   d->steps = (size_t)steps;
   free(kinds);
-  fclose(f);
+  fclose(f->fp);
   free(mem);
   *status = SB_SUCCESS;
   return d;
 out:
   sb_pgd_dd_free(d);
   free(kinds);
-  fclose(f);
+  fclose(f->fp);
   free(mem);
   return NULL;
 }

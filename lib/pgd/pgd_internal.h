@@ -251,4 +251,11 @@ double sbi_pgd_param_speed(const sb_pgd_params *p);
  * callback, to refuse another one when it is attached again. */
 uint64_t sbi_pgd_gas_print(const sb_pgd_params *p);
 
+/* sb_pgd_checkpoint_save and _load with the file's byte order the
+ * reverse of this machine's when swap = 1 (pgd_checkpoint.c; the files
+ * are little-endian, swap = 0 here): what a big-endian machine does, for
+ * the tests. */
+int sbi_pgd_checkpoint_save_ord(const sb_pgd *g, const char *path, int swap);
+sb_pgd *sbi_pgd_checkpoint_load_ord(const char *path, int swap, int *status);
+
 #endif /* SB_PGD_INTERNAL_H */

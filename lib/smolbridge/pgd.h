@@ -193,8 +193,8 @@ int sb_pgd_write_vtk(const sb_pgd *g, const char *path);
  *  loaded from it continues bit for bit as g would (the fields with their
  *  ghost cells, time, step count, the boundary budget of
  *  sb_pgd_boundary_totals / _side_totals, and every parameter: scheme,
- *  cfl, dt_max, drag, sides, inflows, rho_floor).  The file is native
- *  binary (docs/pgd.md, "Checkpoints"): the magic "SBPGDE01", the type
+ *  cfl, dt_max, drag, sides, inflows, rho_floor).  The file is
+ *  little-endian on every machine (docs/pgd.md, "Checkpoints"): the magic "SBPGDE01", the type
  *  sizes of the build, the parameters and state, and a 64-bit FNV-1a hash
  *  of all of it; it is written from memory in one piece, and a failed
  *  write leaves no file (the engine's convention, sb_engine_checkpoint_save).
@@ -210,8 +210,9 @@ int sb_pgd_checkpoint_save(const sb_pgd *g, const char *path);
  *  *status (status may be NULL) and the message: SB_EINVAL (NULL path),
  *  SB_EIO (cannot open or read), SB_EFORMAT (not a solver checkpoint,
  *  e.g. a particle checkpoint; a newer version of the format; damaged:
- *  cut short or changed, the hash does not match; written on a machine of
- *  the other byte order: the hash matches byte-swapped; written by a
+ *  cut short or changed, the hash does not match; in big-endian order, an
+ *  older build's on a big-endian machine: the hash matches byte-swapped;
+ *  written by a
  *  build with other type sizes; parameters or state that do not fit),
  *  SB_ENOMEM.  Nothing is returned in part. */
 sb_pgd *sb_pgd_checkpoint_load(const char *path, int *status);
