@@ -1615,6 +1615,83 @@ START_TEST(test_checkpoint_byte_order)
 }
 END_TEST
 
+/* Checkpoints are little-endian on every machine: a big-endian one
+ * reverses each number on its way to and from the file.  That path, run
+ * here with the order reversed (sbi_engine_checkpoint_save_ord, swap =
+ * 1), for both generators whose state it converts (Philox with the
+ * tally, the species and a time series; MT19937): the file has the
+ * dimension, L, the positions and the hash reversed number by number
+ * (checked at their places in the format), and reading it back the same
+ * way gives an engine whose checkpoint is the original's byte for byte;
+ * the public load refuses it as in the other byte order. */
+START_TEST(test_checkpoint_swapped_order)
+{
+  char le[] = "/tmp/sb_engine_le_XXXXXX", be[] = "/tmp/sb_engine_be_XXXXXX";
+  close(mkstemp(le));
+  close(mkstemp(be));
+  static unsigned char a[1 << 16], b[1 << 16], c[1 << 16];
+  for (int gen = 0; gen < 2; gen++) {
+    sb_engine_params p;
+    sb_engine_params_default(&p);
+    p.L[0] = p.L[1] = p.L[2] = 10.0;
+    p.dt = 0.05;
+    p.capacity = 16;
+    p.sample_every = 2;
+    p.rng_type = gen ? gsl_rng_mt19937 : sb_rng_philox;
+    sb_engine *e = sb_engine_alloc(&p);
+    ck_assert_ptr_nonnull(e);
+    size_t sp = add_free(e, 0.5, 1.0);
+    ck_assert_int_eq(sb_engine_fill_random(e, sp, 0, 12), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_set_count_variance(e, 1), SB_SUCCESS);
+    for (int k = 0; k < 9; k++)
+      ck_assert_int_eq(sb_engine_step(e), SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_checkpoint_save(e, le), SB_SUCCESS);
+    ck_assert_int_eq(sbi_engine_checkpoint_save_ord(e, be, 1), SB_SUCCESS);
+    sb_engine_free(e);
+    FILE *f = fopen(le, "rb"), *g = fopen(be, "rb");
+    ck_assert(f && g);
+    const size_t n = fread(a, 1, sizeof a, f);
+    ck_assert_uint_eq(fread(b, 1, sizeof b, g), n);
+    fclose(f);
+    fclose(g);
+    ck_assert(n > 64 && n < sizeof a && !memcmp(a, b, 8));
+    /* the dimension, L[3] and, after the parameters, n, the id counter,
+     * the species count and the one species, the positions */
+    const size_t at_x = 8 + offsetof(sb_engine_params, streams) + 24 +
+                        sizeof(sb_engine_species);
+    const size_t at[] = {8, 8 + offsetof(sb_engine_params, L), at_x};
+    const size_t count[] = {1, 3, 36}, width[] = {sizeof(int), 8, 8};
+    for (int q = 0; q < 3; q++) {
+      const size_t o = at[q], w = width[q];
+      for (size_t k = 0; k < count[q] * w; k++)
+        ck_assert_msg(b[o + k] == a[o + (k / w) * w + w - 1 - k % w],
+                      "generator %d: byte %zu", gen, o + k);
+    }
+    const uint64_t h = fnv1a(b, n - 8);
+    for (int k = 0; k < 8; k++)
+      ck_assert_uint_eq(b[n - 8 + k], (h >> (8 * (7 - k))) & 0xff);
+    int st = -1;
+    e = sbi_engine_checkpoint_load_ord(be, 1, &st);
+    ck_assert_msg(e != NULL, "generator %d: %s", gen, sb_last_error());
+    ck_assert_int_eq(st, SB_SUCCESS);
+    ck_assert_int_eq(sb_engine_checkpoint_save(e, be), SB_SUCCESS);
+    sb_engine_free(e);
+    g = fopen(be, "rb");
+    ck_assert_ptr_nonnull(g);
+    ck_assert_uint_eq(fread(c, 1, sizeof c, g), n);
+    fclose(g);
+    ck_assert_msg(!memcmp(a, c, n), "generator %d: the state changed", gen);
+    sbt_write_file(be, b, n);  /* the reversed file again */
+    ck_assert_ptr_null(sb_engine_checkpoint_load(be, &st));
+    ck_assert_int_eq(st, SB_EFORMAT);
+    ck_assert_msg(strstr(sb_last_error(), "other byte order"), "%s",
+                  sb_last_error());
+  }
+  remove(le);
+  remove(be);
+}
+END_TEST
+
 /* A checkpoint whose particles share an id (or hold one at or above the
  * id counter) is refused on load, naming the id: ids key the transport
  * streams, the tallies and the saved states beside a checkpoint.  The
@@ -2023,6 +2100,7 @@ static Suite *suite(void)
   tcase_add_test(tc, test_fill_all_or_nothing);
   tcase_add_test(tc, test_checkpoint_bad_ids);
   tcase_add_test(tc, test_checkpoint_byte_order);
+  tcase_add_test(tc, test_checkpoint_swapped_order);
   tcase_add_test(tc, test_checkpoint_write_error);
   tcase_add_test(tc, test_custom_callbacks);
   tcase_add_test(tc, test_misuse);

@@ -4,10 +4,12 @@
  * counters and random stream: the MT19937 state is written with
  * the bytes of gsl_rng_fwrite).
  *
- * Format (native binary; portable only between builds with the same
- * type sizes and endianness: a file of the other byte order is recognised
- * by its hash, which then matches byte-swapped, or by its first number,
- * the dimension, and refused as such): the 8-byte magic "SBENGCK6" (versions 2
+ * Format (little-endian on every machine: each number is reversed on a
+ * big-endian one, common/byteorder.c, the bytes on a little-endian one
+ * are those of the builds before; portable between builds with the same
+ * type sizes; a big-endian file, an older build's, is recognised by its
+ * hash, which then matches byte-swapped, or by its first number, the
+ * dimension, and refused as such): the 8-byte magic "SBENGCK6" (versions 2
  * to 5 still load: MAGIC below), then the fields in the order written by
  * sb_engine_checkpoint_save, then (version 6) the FNV-1a hash of all the
  * bytes before it: a file that was cut, flipped or mixed up is refused
@@ -39,11 +41,70 @@
 static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '6'};
 #define PAR_BYTES offsetof(sb_engine_params, streams)
 
-#define W(ptr, size, count)                                 \
+/* count numbers of `width` bytes each, in the file's byte order (swap:
+ * the reverse of this machine's, common/internal.h sbi_write_ord) */
+#define W(ptr, width, count)                                \
   do {                                                      \
-    if ((count) > 0 && fwrite((ptr), (size), (count), f) != (count)) \
+    if (!sbi_write_ord(f, (ptr), (width), (count), swap))   \
       goto fail;                                            \
   } while (0)
+
+/* The numbers of the structures written whole: the parameters (the block
+ * before `streams`; the generator-type pointer is written as 0), a
+ * species, a time-series sample. */
+static const sbi_field PAR_FIELDS[] = {
+    SBI_FIELD(sb_engine_params, dim),
+    SBI_FIELDS(sb_engine_params, L, 3),
+    SBI_FIELD(sb_engine_params, dt),
+    SBI_FIELD(sb_engine_params, seed),
+    SBI_FIELD(sb_engine_params, rng_type),
+    SBI_FIELD(sb_engine_params, capacity),
+    SBI_FIELD(sb_engine_params, neigh),
+    SBI_FIELD(sb_engine_params, detect),
+    SBI_FIELD(sb_engine_params, outcome),
+    SBI_FIELD(sb_engine_params, eta),
+    SBI_FIELD(sb_engine_params, sample_every),
+    SBI_FIELD(sb_engine_params, sort_every)};
+static const sbi_field SPEC_FIELDS[] = {
+    SBI_FIELD(sb_engine_species, radius), SBI_FIELD(sb_engine_species, mass),
+    SBI_FIELD(sb_engine_species, tau), SBI_FIELD(sb_engine_species, B),
+    SBI_FIELD(sb_engine_species, T)};
+static const sbi_field SAMPLE_FIELDS[] = {
+    SBI_FIELD(sb_engine_sample, t), SBI_FIELD(sb_engine_sample, ncoll),
+    SBI_FIELD(sb_engine_sample, K), SBI_FIELD(sb_engine_sample, K_lo),
+    SBI_FIELD(sb_engine_sample, K_hi), SBI_FIELD(sb_engine_sample, ekin),
+    SBI_FIELDS(sb_engine_sample, p, 3)};
+#define NFIELDS(t) (sizeof(t) / sizeof(t)[0])
+
+/* The generator state's numbers, to byte-reverse it: 0 fields if its
+ * layout is not known.  MT19937 (GSL's mt.c: unsigned long mt[624], int
+ * mti; also its 1998 and 1999 seedings) and sb_rng_philox (rng_gsl.c:
+ * a sb_stream, 15 uint32, and an int) are; the sizes are checked against
+ * the generator's. */
+static size_t rng_layout(const gsl_rng *r, sbi_field fl[2])
+{
+  typedef struct {
+    unsigned long mt[624];
+    int mti;
+  } mt_state;
+  typedef struct {
+    sb_stream s;
+    int own;
+  } philox_state;
+  const char *name = gsl_rng_name(r);
+  const size_t size = gsl_rng_size(r);
+  if (!strncmp(name, "mt19937", 7) && size == sizeof(mt_state)) {
+    fl[0] = (sbi_field)SBI_FIELDS(mt_state, mt, 624);
+    fl[1] = (sbi_field)SBI_FIELD(mt_state, mti);
+    return 2;
+  }
+  if (!strcmp(name, sb_rng_philox->name) && size == sizeof(philox_state) &&
+      sizeof(int) == sizeof(uint32_t)) {
+    fl[0] = (sbi_field){0, sizeof(uint32_t), size / sizeof(uint32_t)};
+    return 1;
+  }
+  return 0;
+}
 
 /* What version 5 adds: the Langevin detector's parameters
  * (sb_engine_set_langevin), the open boundaries' counters (engine_open.c:
@@ -51,58 +112,64 @@ static const char MAGIC[8] = {'S', 'B', 'E', 'N', 'G', 'C', 'K', '6'};
  * the inflows themselves are added again after loading, in the same
  * order) and the collision tally (engine_observe.c: on, whole, the sums,
  * and with it on both tables, engine_idmap.c).  -1 on a write error. */
-static int counters_save(const sb_engine *e, FILE *f)
+static int counters_save(const sb_engine *e, FILE *f, int swap)
 {
   const int32_t slots = SB_ENGINE_MAXINFLOW;
   const int32_t on = e->cvar_on, lost = e->cvar_lost;
   const double lp[3] = {e->lpar.eps, e->lpar.xtol, e->lpar.tol};
-  if (fwrite(lp, sizeof lp, 1, f) != 1 ||
-      fwrite(e->nout, sizeof e->nout, 1, f) != 1 ||
-      fwrite(&slots, sizeof slots, 1, f) != 1 ||
-      fwrite(e->ninj, sizeof e->ninj, 1, f) != 1 ||
-      fwrite(e->nskip, sizeof e->nskip, 1, f) != 1 ||
-      fwrite(&on, sizeof on, 1, f) != 1 ||
-      fwrite(&lost, sizeof lost, 1, f) != 1 ||
-      fwrite(e->cvar_sq, sizeof e->cvar_sq, 1, f) != 1 ||
-      fwrite(e->cvar_s2, sizeof e->cvar_s2, 1, f) != 1)
-    return -1;
-  return on ? (sbi_idmap_write(&e->cvar_part, f, 1) ||
-               sbi_idmap_write(&e->cvar_pair, f, 1)) ? -1 : 0
+  W(lp, sizeof lp[0], 3);
+  W(e->nout, sizeof e->nout[0], 6);
+  W(&slots, sizeof slots, 1);
+  W(e->ninj, sizeof e->ninj[0], SB_ENGINE_MAXINFLOW);
+  W(e->nskip, sizeof e->nskip[0], SB_ENGINE_MAXINFLOW);
+  W(&on, sizeof on, 1);
+  W(&lost, sizeof lost, 1);
+  W(e->cvar_sq, sizeof e->cvar_sq[0][0], 2 * SBI_NPAIRSP);
+  W(e->cvar_s2, sizeof e->cvar_s2[0], SBI_NPAIRSP);
+  return on ? (sbi_idmap_write(&e->cvar_part, f, 1, swap) ||
+               sbi_idmap_write(&e->cvar_pair, f, 1, swap)) ? -1 : 0
             : 0;
+fail:
+  return -1;
 }
 
 /* Back into a loaded engine: 0, -1 on a read error or malformed data. */
-static int counters_load(sb_engine *e, FILE *f)
+static int counters_load(sb_engine *e, FILE *f, int swap)
 {
   int32_t slots, on, lost;
   double lp[3];
-  if (fread(lp, sizeof lp, 1, f) != 1)
+  if (!sbi_read_ord(f, lp, sizeof lp[0], 3, swap))
     return -1;
   const sb_engine_langevin_params q = {lp[0], lp[1], lp[2]};
   if (sb_engine_set_langevin(e, &q))
     return -1;
-  if (fread(e->nout, sizeof e->nout, 1, f) != 1 ||
-      fread(&slots, sizeof slots, 1, f) != 1 ||
+  if (!sbi_read_ord(f, e->nout, sizeof e->nout[0], 6, swap) ||
+      !sbi_read_ord(f, &slots, sizeof slots, 1, swap) ||
       slots != SB_ENGINE_MAXINFLOW ||
-      fread(e->ninj, sizeof e->ninj, 1, f) != 1 ||
-      fread(e->nskip, sizeof e->nskip, 1, f) != 1 ||
-      fread(&on, sizeof on, 1, f) != 1 ||
-      fread(&lost, sizeof lost, 1, f) != 1 || (on != 0 && on != 1) ||
-      (lost != 0 && lost != 1) ||
-      fread(e->cvar_sq, sizeof e->cvar_sq, 1, f) != 1 ||
-      fread(e->cvar_s2, sizeof e->cvar_s2, 1, f) != 1)
+      !sbi_read_ord(f, e->ninj, sizeof e->ninj[0], SB_ENGINE_MAXINFLOW,
+                    swap) ||
+      !sbi_read_ord(f, e->nskip, sizeof e->nskip[0], SB_ENGINE_MAXINFLOW,
+                    swap) ||
+      !sbi_read_ord(f, &on, sizeof on, 1, swap) ||
+      !sbi_read_ord(f, &lost, sizeof lost, 1, swap) ||
+      (on != 0 && on != 1) || (lost != 0 && lost != 1) ||
+      !sbi_read_ord(f, e->cvar_sq, sizeof e->cvar_sq[0][0],
+                    2 * SBI_NPAIRSP, swap) ||
+      !sbi_read_ord(f, e->cvar_s2, sizeof e->cvar_s2[0], SBI_NPAIRSP, swap))
     return -1;
   e->cvar_on = on;
   e->cvar_lost = lost;
-  return on ? (sbi_idmap_read(&e->cvar_part, f, 1) ||
-               sbi_idmap_read(&e->cvar_pair, f, 1)) ? -1 : 0
+  return on ? (sbi_idmap_read(&e->cvar_part, f, 1, swap) ||
+               sbi_idmap_read(&e->cvar_pair, f, 1, swap)) ? -1 : 0
             : 0;
 }
 
 /* The state in the order of the format, into f: 0 or -1. */
-static int write_state(const sb_engine *e, FILE *f)
+static int write_state(const sb_engine *e, FILE *f, int swap)
 {
   const size_t n = e->n;
+  sbi_field rfl[2];
+  const size_t nrfl = rng_layout(e->rng, rfl);
   W(MAGIC, 1, 8);
   {
     /* field by field into zeroed storage: the generator-type pointer and
@@ -121,12 +188,17 @@ static int write_state(const sb_engine *e, FILE *f)
     par.eta = e->par.eta;
     par.sample_every = e->par.sample_every;
     par.sort_every = e->par.sort_every;
-    W(&par, PAR_BYTES, 1);  /* streams: below; threads: not state */
+    /* streams: below; threads: not state */
+    if (!sbi_write_fields(f, &par, PAR_BYTES, 1, PAR_FIELDS,
+                          NFIELDS(PAR_FIELDS), swap))
+      goto fail;
   }
   W(&n, sizeof n, 1);
   W(&e->next_id, sizeof e->next_id, 1);
   W(&e->nspec, sizeof e->nspec, 1);
-  W(e->spec, sizeof *e->spec, e->nspec);
+  if (!sbi_write_fields(f, e->spec, sizeof *e->spec, e->nspec, SPEC_FIELDS,
+                        NFIELDS(SPEC_FIELDS), swap))
+    goto fail;
   W(e->x, sizeof(double), 3 * n);
   W(e->u, sizeof(double), 3 * n);
   W(e->species, sizeof(size_t), n);
@@ -143,11 +215,13 @@ static int write_state(const sb_engine *e, FILE *f)
   W(&e->nredetect, sizeof e->nredetect, 1);
   W(&e->redetect, sizeof e->redetect, 1);
   W(&e->expo, sizeof e->expo, 1);
-  W(e->pexpo, sizeof e->pexpo, 1);
-  W(e->pcoll, sizeof e->pcoll, 1);
-  W(e->fam, sizeof e->fam, 1);
+  W(e->pexpo, sizeof e->pexpo[0], SBI_NPAIRSP);
+  W(e->pcoll, sizeof e->pcoll[0], SBI_NPAIRSP);
+  W(e->fam, sizeof e->fam[0][0], SB_ENGINE_MAXFAM * SB_ENGINE_MAXFAM);
   W(&e->nseries, sizeof e->nseries, 1);
-  W(e->series, sizeof *e->series, e->nseries);
+  if (!sbi_write_fields(f, e->series, sizeof *e->series, e->nseries,
+                        SAMPLE_FIELDS, NFIELDS(SAMPLE_FIELDS), swap))
+    goto fail;
   {
     char name[32] = {0};
     strncpy(name, gsl_rng_name(e->rng), sizeof name - 1);
@@ -155,29 +229,52 @@ static int write_state(const sb_engine *e, FILE *f)
   }
   /* the bytes gsl_rng_fwrite writes (fwrite of gsl_rng_state), written
    * directly: GSL's error handler would abort on an I/O error */
-  W(gsl_rng_state(e->rng), gsl_rng_size(e->rng), 1);
+  if ((swap && !nrfl) ||
+      !sbi_write_fields(f, gsl_rng_state(e->rng), gsl_rng_size(e->rng), 1,
+                        rfl, nrfl, swap))
+    goto fail;
   {
     int32_t streams = e->par.streams;
     W(&streams, sizeof streams, 1);
   }
-  if (sbi_engine_physics_save(e, f) || counters_save(e, f))
+  if (sbi_engine_physics_save(e, f, swap) || counters_save(e, f, swap))
     goto fail;
   return 0;
 fail:
   return -1;
 }
 
-int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
+/* The checkpoint in the order swap; messages from func. */
+static int save(const sb_engine *e, const char *path, int swap,
+                const char *func)
 {
   if (!e || !path)
-    return sbi_error(SB_EINVAL, __func__, "NULL argument");
+    return sbi_error(SB_EINVAL, func, "NULL argument");
+  sbi_field rfl[2];
+  if (swap && !rng_layout(e->rng, rfl))
+    return sbi_error(SB_EINVAL, func, "the state of generator '%s' cannot "
+                     "be written in the other byte order (checkpoints are "
+                     "little-endian): use sb_rng_philox or "
+                     "gsl_rng_mt19937", gsl_rng_name(e->rng));
   /* in memory first: the hash covers every byte, and the file is then
    * written in one piece (also to a pipe) */
   sbi_hsave h;
-  FILE *m = sbi_hsave_begin(&h, __func__);
+  FILE *m = sbi_hsave_begin(&h, func);
   if (!m)
     return SB_ENOMEM;
-  return sbi_hsave_finish(&h, write_state(e, m) == 0, path, __func__);
+  return sbi_hsave_finish_ord(&h, write_state(e, m, swap) == 0, swap, path,
+                              func);
+}
+
+int sb_engine_checkpoint_save(const sb_engine *e, const char *path)
+{
+  return save(e, path, !sbi_host_le(), __func__);
+}
+
+int sbi_engine_checkpoint_save_ord(const sb_engine *e, const char *path,
+                                   int swap)
+{
+  return save(e, path, swap, __func__);
 }
 
 static int id_cmp(const void *a, const void *b)
@@ -215,9 +312,9 @@ static int check_ids(const uint64_t *id, size_t n, uint64_t next_id,
   return st;
 }
 
-#define R(ptr, size, count)                                 \
+#define R(ptr, width, count)                                \
   do {                                                      \
-    if ((count) > 0 && fread((ptr), (size), (count), f) != (count)) \
+    if (!sbi_read_ord(f, (ptr), (width), (count), swap))    \
       goto bad;                                             \
   } while (0)
 
@@ -242,10 +339,11 @@ static int check_states(const sb_engine *e, size_t n, const char *path,
   return SB_SUCCESS;
 }
 
-/* The engine of checkpoint `path`, with room for at least `capacity`
- * particles (its own capacity if that is larger); messages name func. */
-static sb_engine *load(const char *path, size_t capacity, int *status,
-                       const char *func)
+/* The engine of checkpoint `path` in the order swap, with room for at
+ * least `capacity` particles (its own capacity if that is larger);
+ * messages name func. */
+static sb_engine *load(const char *path, size_t capacity, int swap,
+                       int *status, const char *func)
 {
   int dummy;
   if (!status)
@@ -271,7 +369,9 @@ static sb_engine *load(const char *path, size_t capacity, int *status,
   if (ver >= 6) {
     if (len < 16)
       goto bad;
-    const int c = sbi_hash_check(buf, len);
+    int c = sbi_hash_check(buf, len);
+    if (c >= 0 && swap)  /* 0: the hash in the file's order */
+      c = !c;
     if (c > 0)
       goto foreign;
     if (c) {
@@ -286,10 +386,14 @@ static sb_engine *load(const char *path, size_t capacity, int *status,
    * first number, the dimension (2 or 3), tells the order of a file
    * without the hash (versions 2 to 5) */
   if (len >= 12) {
-    int32_t dim;
+    uint32_t dim, other;
     memcpy(&dim, buf + 8, 4);
-    const uint32_t sw = sbi_bswap32((uint32_t)dim);
-    if (!(dim >= 1 && dim <= 3) && sw >= 1 && sw <= 3)
+    other = sbi_bswap32(dim);
+    if (swap) {
+      other = dim;
+      dim = sbi_bswap32(dim);
+    }
+    if (!(dim >= 1 && dim <= 3) && other >= 1 && other <= 3)
       goto foreign;
   }
   f = fmemopen(buf, len, "rb");
@@ -304,7 +408,9 @@ static sb_engine *load(const char *path, size_t capacity, int *status,
   R(magic, 1, 8);
   const int v2 = ver == 2;
   memset(&par, 0, sizeof par);
-  R(&par, PAR_BYTES, 1);
+  if (!sbi_read_fields(f, &par, PAR_BYTES, 1, PAR_FIELDS,
+                       NFIELDS(PAR_FIELDS), swap))
+    goto bad;
   R(&n, sizeof n, 1);
   R(&next_id, sizeof next_id, 1);
   R(&nspec, sizeof nspec, 1);
@@ -331,7 +437,9 @@ static sb_engine *load(const char *path, size_t capacity, int *status,
     *status = sbi_error(SB_ENOMEM, func, "out of memory");
     goto out;
   }
-  R(spec, sizeof *spec, nspec);
+  if (!sbi_read_fields(f, spec, sizeof *spec, nspec, SPEC_FIELDS,
+                       NFIELDS(SPEC_FIELDS), swap))
+    goto bad;
   for (size_t k = 0; k < nspec; k++)
     if (sb_engine_add_species(e, &spec[k], NULL))
       goto bad;
@@ -373,9 +481,9 @@ static sb_engine *load(const char *path, size_t capacity, int *status,
   R(&e->nredetect, sizeof e->nredetect, 1);
   R(&e->redetect, sizeof e->redetect, 1);
   R(&e->expo, sizeof e->expo, 1);
-  R(e->pexpo, sizeof e->pexpo, 1);
-  R(e->pcoll, sizeof e->pcoll, 1);
-  R(e->fam, sizeof e->fam, 1);
+  R(e->pexpo, sizeof e->pexpo[0], SBI_NPAIRSP);
+  R(e->pcoll, sizeof e->pcoll[0], SBI_NPAIRSP);
+  R(e->fam, sizeof e->fam[0][0], SB_ENGINE_MAXFAM * SB_ENGINE_MAXFAM);
   {
     size_t ns;
     R(&ns, sizeof ns, 1);
@@ -388,7 +496,9 @@ static sb_engine *load(const char *path, size_t capacity, int *status,
         goto out;
       }
       e->capseries = ns;
-      R(e->series, sizeof *e->series, ns);
+      if (!sbi_read_fields(f, e->series, sizeof *e->series, ns,
+                           SAMPLE_FIELDS, NFIELDS(SAMPLE_FIELDS), swap))
+        goto bad;
       e->nseries = ns;
     }
   }
@@ -417,7 +527,21 @@ static sb_engine *load(const char *path, size_t capacity, int *status,
     }
   }
   /* counterpart of gsl_rng_fread, without GSL's aborting handler */
-  R(gsl_rng_state(e->rng), gsl_rng_size(e->rng), 1);
+  {
+    sbi_field rfl[2];
+    const size_t nrfl = rng_layout(e->rng, rfl);
+    if (swap && !nrfl) {
+      *status = sbi_error(SB_EFORMAT, func, "'%s': the state of its "
+                          "generator '%s' cannot be read on a big-endian "
+                          "machine (checkpoints are little-endian): load it "
+                          "on a little-endian one", path,
+                          gsl_rng_name(e->rng));
+      goto out;
+    }
+    if (!sbi_read_fields(f, gsl_rng_state(e->rng), gsl_rng_size(e->rng), 1,
+                         rfl, nrfl, swap))
+      goto bad;
+  }
   if (ver >= 4) {
     int32_t streams;
     R(&streams, sizeof streams, 1);
@@ -425,9 +549,9 @@ static sb_engine *load(const char *path, size_t capacity, int *status,
       goto bad;
     e->par.streams = streams;
   }
-  if (!v2 && sbi_engine_physics_load(e, f))
+  if (!v2 && sbi_engine_physics_load(e, f, swap))
     goto bad;
-  if ((ver >= 5 && counters_load(e, f)) || fgetc(f) != EOF)
+  if ((ver >= 5 && counters_load(e, f, swap)) || fgetc(f) != EOF)
     goto bad;  /* nothing may follow */
   free(spec);
   fclose(f);
@@ -438,10 +562,10 @@ bad:
                       "'%s' is not a valid engine checkpoint", path);
   goto out;
 foreign:
-  *status = sbi_error(SB_EFORMAT, func, "'%s' was written on a machine "
-                      "of the other byte order: checkpoints are native "
-                      "binary, load it on a machine of the byte order that "
-                      "wrote it", path);
+  *status = sbi_error(SB_EFORMAT, func, "'%s' is in the other byte order, "
+                      "big-endian: a checkpoint of an older build on a "
+                      "big-endian machine (they are little-endian now); "
+                      "load it with that build", path);
 out:
   free(spec);
   sb_engine_free(e);
@@ -453,7 +577,13 @@ out:
 
 sb_engine *sb_engine_checkpoint_load(const char *path, int *status)
 {
-  return load(path, 0, status, __func__);
+  return load(path, 0, !sbi_host_le(), status, __func__);
+}
+
+sb_engine *sbi_engine_checkpoint_load_ord(const char *path, int swap,
+                                          int *status)
+{
+  return load(path, 0, swap, status, __func__);
 }
 
 sb_engine *sb_engine_checkpoint_load_capacity(const char *path,
@@ -467,7 +597,7 @@ sb_engine *sb_engine_checkpoint_load_capacity(const char *path,
                         "most 2^40", capacity);
     return NULL;
   }
-  return load(path, capacity, status, __func__);
+  return load(path, capacity, !sbi_host_le(), status, __func__);
 }
 
 uint64_t sbi_engine_fingerprint(const sb_engine *e)

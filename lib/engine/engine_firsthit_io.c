@@ -106,8 +106,8 @@ int sb_engine_firsthit_save(const sb_engine_firsthit *f, const sb_engine *e,
   if (!out)
     return SB_ENOMEM;
   const int bad = fwrite(MAGIC, 1, 8, out) != 8 || head_write(&h, out) ||
-                  sbi_idmap_write(&f->set, out, 0) ||
-                  sbi_idmap_write(&f->counts, out, 1);
+                  sbi_idmap_write(&f->set, out, 0, 0) ||
+                  sbi_idmap_write(&f->counts, out, 1, 0);
   return sbi_hsave_finish(&hs, !bad, path, __func__);
 }
 
@@ -145,8 +145,8 @@ int sb_engine_firsthit_load(sb_engine_firsthit *f, const char *path)
     st = SB_EFORMAT, why = "written by a build with another species-pair "
                            "table";
   if (!st) {
-    const int a = sbi_idmap_read(&set, in, 0);
-    const int b = a ? a : sbi_idmap_read(&counts, in, 1);
+    const int a = sbi_idmap_read(&set, in, 0, 0);
+    const int b = a ? a : sbi_idmap_read(&counts, in, 1, 0);
     if (a == -2 || b == -2)
       st = SB_EFORMAT, why = "malformed set of pairs";
     else if (a || b)

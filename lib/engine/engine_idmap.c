@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "common/internal.h"
 #include "engine_internal.h"
 
 static size_t slot(uint64_t key, size_t cap)
@@ -91,26 +92,27 @@ long sbi_idmap_put(sbi_idmap *m, uint64_t key, uint32_t val)
   return h;
 }
 
-int sbi_idmap_write(const sbi_idmap *m, FILE *f, int counted_map)
+int sbi_idmap_write(const sbi_idmap *m, FILE *f, int counted_map, int swap)
 {
   const uint64_t n = m->n;
   /* a counted map that never held a key has no `val` yet */
   const unsigned char counted = counted_map != 0;
-  if (fwrite(&n, sizeof n, 1, f) != 1 || fwrite(&counted, 1, 1, f) != 1)
+  if (!sbi_write_ord(f, &n, sizeof n, 1, swap) ||
+      fwrite(&counted, 1, 1, f) != 1)
     return -1;
   for (size_t i = 0; i < m->cap; i++)
     if (m->key[i] &&
-        (fwrite(&m->key[i], sizeof *m->key, 1, f) != 1 ||
-         (counted && fwrite(&m->val[i], sizeof *m->val, 1, f) != 1)))
+        (!sbi_write_ord(f, &m->key[i], sizeof *m->key, 1, swap) ||
+         (counted && !sbi_write_ord(f, &m->val[i], sizeof *m->val, 1, swap))))
       return -1;
   return 0;
 }
 
-int sbi_idmap_read(sbi_idmap *m, FILE *f, int counted)
+int sbi_idmap_read(sbi_idmap *m, FILE *f, int counted, int swap)
 {
   uint64_t n;
   unsigned char c;
-  if (fread(&n, sizeof n, 1, f) != 1 || fread(&c, 1, 1, f) != 1)
+  if (!sbi_read_ord(f, &n, sizeof n, 1, swap) || fread(&c, 1, 1, f) != 1)
     return -1;
   if (c != (counted != 0) || n > (uint64_t)1 << 40)
     return -2;
@@ -120,8 +122,8 @@ int sbi_idmap_read(sbi_idmap *m, FILE *f, int counted)
   for (uint64_t q = 0; q < n; q++) {
     uint64_t key;
     uint32_t val = 0;
-    if (fread(&key, sizeof key, 1, f) != 1 ||
-        (counted && fread(&val, sizeof val, 1, f) != 1))
+    if (!sbi_read_ord(f, &key, sizeof key, 1, swap) ||
+        (counted && !sbi_read_ord(f, &val, sizeof val, 1, swap)))
       return -1;
     if (key == 0 || sbi_idmap_has(m, key))
       return -2;

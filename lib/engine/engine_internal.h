@@ -136,12 +136,12 @@ int sbi_idmap_has(const sbi_idmap *m, uint64_t key);
  * sbi_idmap_add. */
 long sbi_idmap_put(sbi_idmap *m, uint64_t key, uint32_t val);
 /* The map to f (its size, whether counted, then each key and count in
- * table order, native binary), and back into m (emptied first); counted:
- * whether the map keeps counts (on reading it must match the file's):
- * 0, -1 on a read or write error or out of memory, -2 on malformed
- * data. */
-int sbi_idmap_write(const sbi_idmap *m, FILE *f, int counted);
-int sbi_idmap_read(sbi_idmap *m, FILE *f, int counted);
+ * table order; the numbers byte-reversed when swap = 1, common/internal.h
+ * sbi_write_ord), and back into m (emptied first); counted: whether the
+ * map keeps counts (on reading it must match the file's): 0, -1 on a
+ * read or write error or out of memory, -2 on malformed data. */
+int sbi_idmap_write(const sbi_idmap *m, FILE *f, int counted, int swap);
+int sbi_idmap_read(sbi_idmap *m, FILE *f, int counted, int swap);
 /* SB_EINVAL (message from func) if e is inside a step, i.e. func is
  * called from a callback, where it would change the step under way:
  * only the sb_engine_outcome_* functions may act there. */
@@ -822,8 +822,18 @@ int sbi_engine_boundaries(sb_engine *e);
  * Lees-Edwards boundary), as the end of a step does: for a change made
  * outside a step. */
 void sbi_engine_wrap_one(sb_engine *e, size_t i);
-/* Checkpoint block of these settings (format version 3). */
-int sbi_engine_physics_save(const sb_engine *e, FILE *f);
-int sbi_engine_physics_load(sb_engine *e, FILE *f);
+/* Checkpoint block of these settings (format version 3), its numbers
+ * byte-reversed when swap = 1 (engine_checkpoint.c). */
+int sbi_engine_physics_save(const sb_engine *e, FILE *f, int swap);
+int sbi_engine_physics_load(sb_engine *e, FILE *f, int swap);
+/* sb_engine_checkpoint_save and _load with the file's byte order the
+ * reverse of this machine's when swap = 1 (checkpoints are
+ * little-endian, swap = 0 here): what a big-endian machine does, for the
+ * tests (SB_EINVAL, SB_EFORMAT on loading, for a generator whose state
+ * cannot be byte-reversed: engine_checkpoint.c, rng_layout). */
+int sbi_engine_checkpoint_save_ord(const sb_engine *e, const char *path,
+                                   int swap);
+sb_engine *sbi_engine_checkpoint_load_ord(const char *path, int swap,
+                                          int *status);
 
 #endif /* SB_ENGINE_INTERNAL_H */

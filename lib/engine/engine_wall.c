@@ -343,18 +343,19 @@ int sbi_engine_boundaries(sb_engine *e)
 
 /* ------------------------------------------------------- checkpoint */
 
+/* numbers of `size` bytes, in the checkpoint's byte order (swap) */
 #define W(ptr, size, count)                                       \
   do {                                                            \
-    if (fwrite((ptr), (size), (count), f) != (size_t)(count))     \
+    if (!sbi_write_ord(f, (ptr), (size), (count), swap))          \
       return SB_EIO;                                              \
   } while (0)
 #define R(ptr, size, count)                                       \
   do {                                                            \
-    if (fread((ptr), (size), (count), f) != (size_t)(count))      \
+    if (!sbi_read_ord(f, (ptr), (size), (count), swap))           \
       return SB_EFORMAT;                                          \
   } while (0)
 
-int sbi_engine_physics_save(const sb_engine *e, FILE *f)
+int sbi_engine_physics_save(const sb_engine *e, FILE *f, int swap)
 {
   int32_t iv[11] = {e->has_grav, e->lees, e->walled, (int32_t)e->walldet,
                     (int32_t)e->deposit};
@@ -375,7 +376,7 @@ int sbi_engine_physics_save(const sb_engine *e, FILE *f)
   return SB_SUCCESS;
 }
 
-int sbi_engine_physics_load(sb_engine *e, FILE *f)
+int sbi_engine_physics_load(sb_engine *e, FILE *f, int swap)
 {
   int32_t iv[11];
   R(iv, sizeof iv[0], 11);

@@ -772,7 +772,10 @@ int sb_engine_set_particle(sb_engine *e, size_t i, const double x[3],
 
 /** Write the whole state (parameters, species, particles, counters, time
  *  series, built-in fluid field, generator state via gsl_rng_fwrite) to a
- *  binary file.  Callbacks (custom detector/outcome/fluid) are not saved:
+ *  binary file, little-endian on every machine (docs/engine.md).  On a
+ *  big-endian machine, SB_EINVAL for a generator other than
+ *  sb_rng_philox and gsl_rng_mt19937 (its state cannot be converted).
+ *  Callbacks (custom detector/outcome/fluid) are not saved:
  *  set them again after loading.  SB_EIO on failure (a file that could
  *  not be written whole is removed, as by every save of the library). */
 int sb_engine_checkpoint_save(const sb_engine *e, const char *path);
@@ -781,8 +784,8 @@ int sb_engine_checkpoint_save(const sb_engine *e, const char *path);
  *  and *status (may be NULL) = SB_EIO / SB_EFORMAT / SB_ENOMEM on
  *  failure; SB_EFORMAT also for a file whose contents do not match the
  *  hash it ends with (damaged; format SBENGCK6, docs/engine.md), and
- *  for a file written on a machine of the other byte order (checkpoints
- *  are native binary; the message says so);
+ *  for a file in big-endian order (an older build's on a big-endian
+ *  machine: checkpoints are little-endian; the message says so);
  *  SB_EINVAL, naming the id, for particles that share an id or hold one
  *  not below the file's id counter, and, naming the particle, for a
  *  position outside the box [0, L_k) or a state that is not finite. */
