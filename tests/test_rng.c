@@ -450,6 +450,39 @@ START_TEST(test_key_extremes)
 }
 END_TEST
 
+/* Every public sb_stream_* function on a NULL stream: a status, or the
+ * documented value (0 word, NaN draw) with SB_EINVAL and a message naming
+ * the function; no crash (the single draws dereferenced s). */
+START_TEST(test_null_stream)
+{
+  sb_clear_error();
+  ck_assert_uint_eq(sb_stream_u32(NULL), 0);
+  ck_assert_int_eq(sb_last_status(), SB_EINVAL);
+  ck_assert(strstr(sb_last_error(), "sb_stream_u32") != NULL);
+  sb_clear_error();
+  ck_assert(isnan(sb_stream_uniform(NULL)));
+  ck_assert_int_eq(sb_last_status(), SB_EINVAL);
+  ck_assert(strstr(sb_last_error(), "sb_stream_uniform") != NULL);
+  sb_clear_error();
+  ck_assert(isnan(sb_stream_gaussian(NULL)));
+  ck_assert_int_eq(sb_last_status(), SB_EINVAL);
+  ck_assert(strstr(sb_last_error(), "sb_stream_gaussian") != NULL);
+  double z[2];
+  ck_assert_int_eq(sb_stream_init(NULL, 1, 0, 0), SB_EINVAL);
+  ck_assert_int_eq(sb_stream_uniform_fill(NULL, 2, z), SB_EINVAL);
+  ck_assert_int_eq(sb_stream_gaussian_fill(NULL, 2, z), SB_EINVAL);
+  ck_assert_int_eq(sb_stream_uniform_fill(NULL, 0, z), SB_SUCCESS);
+  ck_assert_int_eq(sb_stream_gaussian_fill(NULL, 0, NULL), SB_SUCCESS);
+  ck_assert_int_eq(sb_stream_gaussian_keyed(1, 0, 2, NULL, 0, 1, NULL),
+                   SB_EINVAL);
+  /* a valid stream after the errors draws as ever */
+  sb_stream s, s0;
+  sb_stream_init(&s, 3, 4, 5);
+  sb_stream_init(&s0, 3, 4, 5);
+  ck_assert_uint_eq(sb_stream_u32(&s), sb_stream_u32(&s0));
+}
+END_TEST
+
 START_TEST(test_gsl_laws)
 {
   gsl_rng *r = gsl_rng_alloc(sb_rng_philox);
@@ -475,6 +508,7 @@ static Suite *rng_suite(void)
   tcase_add_test(tc, test_zig_tables);
   tcase_add_test(tc, test_gsl_words);
   tcase_add_test(tc, test_key_extremes);
+  tcase_add_test(tc, test_null_stream);
   suite_add_tcase(s, tc);
   TCase *mc = tcase_create("monte-carlo");
   tcase_set_timeout(mc, 60);

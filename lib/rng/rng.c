@@ -35,7 +35,17 @@ int sb_stream_init(sb_stream *s, uint64_t seed, uint64_t id, uint64_t step)
   return st;
 }
 
-uint32_t sb_stream_u32(sb_stream *s) { return sbi_stream_u32(s); }
+/* The single-draw entry points check s (one predictable branch in a
+ * non-inline call); the inline word source sbi_stream_u32 and the loops of
+ * the _fill functions do not (checked once per call). */
+uint32_t sb_stream_u32(sb_stream *s)
+{
+  if (!s) {
+    sbi_error(SB_EINVAL, __func__, "s is NULL");
+    return 0;
+  }
+  return sbi_stream_u32(s);
+}
 
 /* Word sources.  The ziggurat below is written once for a source type S
  * with S_next(S *) giving the next 32-bit word: the caller's sb_stream,
@@ -71,7 +81,14 @@ static inline double sign_of(uint32_t w)
 SBI_DEF_UNIFORM(uniform, sb_stream, stream_next)
 SBI_DEF_UNIFORM(pre_uniform, pre_src, pre_next)
 
-double sb_stream_uniform(sb_stream *s) { return uniform(s); }
+double sb_stream_uniform(sb_stream *s)
+{
+  if (!s) {
+    sbi_error(SB_EINVAL, __func__, "s is NULL");
+    return NAN;
+  }
+  return uniform(s);
+}
 
 /* The ziggurat (Marsaglia & Tsang 2000, §2) on one 32-bit word: layer i
  * (bits 0-6), sign (bit 7), j (bits 8-31), x = j W[i], accepted at once
@@ -111,7 +128,14 @@ double sb_stream_uniform(sb_stream *s) { return uniform(s); }
 SBI_DEF_GAUSSIAN(gaussian, sb_stream, stream_next, uniform)
 SBI_DEF_GAUSSIAN(pre_gaussian, pre_src, pre_next, pre_uniform)
 
-double sb_stream_gaussian(sb_stream *s) { return gaussian(s); }
+double sb_stream_gaussian(sb_stream *s)
+{
+  if (!s) {
+    sbi_error(SB_EINVAL, __func__, "s is NULL");
+    return NAN;
+  }
+  return gaussian(s);
+}
 
 /* Philox4x32-10 on LANES counters at once, structure of arrays, the round
  * loop outside: the lanes are independent, so their multiplications

@@ -78,15 +78,18 @@ typedef struct {
  *  NULL. */
 int sb_stream_init(sb_stream *s, uint64_t seed, uint64_t id, uint64_t step);
 
-/** Next 32-bit word, uniform on [0, 2^32). */
+/** Next 32-bit word, uniform on [0, 2^32).  A NULL s returns 0 and sets
+ *  SB_EINVAL (sb_last_error()); 0 is also a valid word, so a caller that
+ *  may pass NULL checks the pointer itself. */
 uint32_t sb_stream_u32(sb_stream *s);
 
 /** Uniform on (0, 1): (2k + 1)/2^53, k uniform on [0, 2^52), from two
- *  words. */
+ *  words.  A NULL s returns NaN (never a valid draw) and sets SB_EINVAL. */
 double sb_stream_uniform(sb_stream *s);
 
 /** Standard normal N(0, 1), ziggurat (one word on the fast path, 98.8%
- *  of draws; more words and two uniforms otherwise). */
+ *  of draws; more words and two uniforms otherwise).  A NULL s returns
+ *  NaN and sets SB_EINVAL. */
 double sb_stream_gaussian(sb_stream *s);
 
 /** n uniforms (as sb_stream_uniform) / n standard normals (as
