@@ -23,9 +23,14 @@ extreme corners of the passage, bridge_hit and quantile files; 1000 for
 the bridge_hit rows with positions near 2^1000 sqrt(sigma2 t)) and again at 40
 more digits; if any value differs by more than 1e-24 relative (or falls on
 the other side of the 1e-300 cut-off), the base precision is doubled and
-the comparison repeated.  The values written are those at the first
-precision that passed, so each has a relative error below about 1e-24, well
-inside the 20 digits written: rounding errors grow by the same factor at
+the comparison repeated.  The values compared are those computed, before
+they are written as markers (-1 below 1e-300, inf above DBL_MAX; class
+Marked), and Phi keeps its far tails as values instead of an exact 0: a
+value whose exponent is lost at both precisions (exp(-c^2/2) with c^2/2
+~ 10^600 from 400 digits) is garbage that differs between them, whereas
+its marker (-1 at both) looked settled.  The values written are those at
+the first precision that passed, so each has a relative error below about
+1e-24, well inside the 20 digits written: rounding errors grow by the same factor at
 both precisions, so the 40 extra digits make the second value's error
 1e-40 times the first's and their difference measures the first's error.
 (The quantiles' bisections stop at a width of 1e-40 in log t, 1e-35 in
@@ -54,6 +59,8 @@ TINY = mp.mpf("1e-300")  # smallest reference value kept (normal doubles)
 def f17(x):
     """Inputs (Python floats, exact doubles): repr(), which round-trips.
     Reference values (mpf): 20 significant digits, more than a double."""
+    if isinstance(x, Marked):
+        return f17(x.mark)
     if isinstance(x, mp.mpf):
         if mp.isinf(x):
             return "inf" if x > 0 else "-inf"
@@ -99,15 +106,37 @@ def write(name, header, rows):
                                              os.path.getsize(path), raised()))
 
 
+class Marked:
+    """A reference value written as a marker (mark: -1 below 1e-300, inf
+    above DBL_MAX) that keeps the value computed (value), so that settled()
+    compares the values and not only the markers: a value whose exponent
+    is lost at both precisions (exp(-c^2/2) with c^2/2 ~ 10^600 known to
+    400 digits) is garbage such as 10^(-10^230) at both, written -1 at
+    both, and compared as markers it looked settled."""
+
+    def __init__(self, value, mark):
+        self.value, self.mark = value, mark
+
+
 def cut(v):
     """A probability or density as written: -1 below 1e-300 (the marker
     of tests/data/README.md; such values are not normal doubles)."""
-    return v if v > TINY else -1
+    v = v.value if isinstance(v, Marked) else v
+    return v if v > TINY else Marked(v, -1)
 
 
 def _agree(u, v):
     """Reference values u (base precision) and v (40 more digits) agree to
-    1e-24 relative; -1 (below 1e-300) and exact values must match."""
+    1e-24 relative, markers included (their computed values, and the same
+    marker: not on either side of the 1e-300 cut-off); exact values must
+    match.  The relative comparison of mpf values is in log space in
+    effect (mpmath's exponents do not overflow), so it holds at any
+    magnitude."""
+    if isinstance(u, Marked) or isinstance(v, Marked):
+        if not (isinstance(u, Marked) and isinstance(v, Marked)) or \
+                u.mark != v.mark:
+            return False
+        u, v = u.value, v.value
     if not isinstance(u, mp.mpf) or not isinstance(v, mp.mpf):
         return type(u) is type(v) and u == v
     if mp.isinf(u) or mp.isinf(v) or v == 0:
@@ -123,6 +152,8 @@ def settled(f, dps):
     while True:
         with mp.workdps(dps):
             lo = tuple(+v if isinstance(v, mp.mpf) else v for v in f())
+            lo = tuple(Marked(+v.value, v.mark) if isinstance(v, Marked)
+                       else v for v in lo)
         with mp.workdps(dps + 40):
             hi = f()
         if all(_agree(u, v) for u, v in zip(lo, hi)):
@@ -136,10 +167,16 @@ def settled(f, dps):
 
 
 def Phi(z):
-    # beyond |z| = 1e10 the tail is below 10^(-10^19): 0 or 1 to any
-    # precision used here (mpmath's erfc overflows for |z| ~ 1e300)
+    # beyond |z| = 1e10 the tail is below 10^(-10^19) (mpmath's erfc
+    # overflows for |z| ~ 1e300): its asymptotic series phi(z)/|z| (1 -
+    # 1/z^2 + 3/z^4), relative error below 15/z^6, rather than 0, so that
+    # a z spoiled by a lost exponent changes the value with the precision
+    # (settled() then sees it; an exact 0 looked the same at both)
     if abs(z) > 1e10:
-        return mp.mpf(0) if z < 0 else mp.mpf(1)
+        z2 = z * z
+        tail = mp.exp(-z2 / 2) / (abs(z) * mp.sqrt(2 * mp.pi)) * \
+            (1 - 1 / z2 + 3 / (z2 * z2))
+        return tail if z < 0 else 1 - tail
     return mp.ncdf(z)
 
 
@@ -473,7 +510,9 @@ def hit_ref(kind, u, x, y, a, s2, t, w=None):
 def cap(v):
     """A density as written: inf above DBL_MAX (the C function returns
     SB_ERANGE there; tests/data/README.md)."""
-    return mp.inf if v > sys.float_info.max else v
+    if isinstance(v, Marked):
+        return v
+    return Marked(v, mp.inf) if v > sys.float_info.max else v
 
 
 def hit_row(kind, u, x, y, a, s2, t):
