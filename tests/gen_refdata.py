@@ -492,19 +492,23 @@ def hit_ref(kind, u, x, y, a, s2, t, w=None):
         pdf = flevy(al, s2, u) * g(s2 * w, L1) / g(v, al + L1)
         cdf, sf = bb_law(u, al, L1, s2, t, w)
         return pdf, cdf, sf
-    # first-principles density: n_{x,a}(u) q_{t-u}(a, y) / P(hit, end y)
-    z = g(v, al + L1) - g(v, al + L2)
-    pdf = flevy(al, s2, u) * (g(s2 * w, L1) - g(s2 * w, L2)) / z
-    # signed mixture; extra digits cover its cancellation
+    # extra digits for the cancellations of order 1 - rho below (positions
+    # ~1e-270 sqrt(v): 1 - rho ~ 1e-540, all digits of 400 lost)
     extra = int(-mp.log10(-mp.expm1(-(L2 - L1) * (2 * al + L1 + L2) /
                                       (2 * v)))) + 10
+    with mp.workdps(mp.mp.dps + max(extra, 0)):
+        # first-principles density: n_{x,a}(u) q_{t-u}(a, y) / P(hit, end
+        # y); both differences cancel like 1 - rho
+        z = g(v, al + L1) - g(v, al + L2)
+        pdf = flevy(al, s2, u) * (g(s2 * w, L1) - g(s2 * w, L2)) / z
+    # signed mixture, the same extra digits
     with mp.workdps(mp.mp.dps + max(extra, 0)):
         rho = g(v, al + L2) / g(v, al + L1)
         c1, s1 = bb_law(u, al, L1, s2, t, w)
         c2, s2_ = bb_law(u, al, L2, s2, t, w)
         cdf = (c1 - rho * c2) / (1 - rho)
         sf = (s1 - rho * s2_) / (1 - rho)
-    return pdf, +cdf, +sf
+    return +pdf, +cdf, +sf
 
 
 def cap(v):
@@ -573,7 +577,25 @@ def gen_bridge_hit():
             # the limit law, whose density factor is max(a, y) t /
             # ((alpha + max(a, y)) w)
             (1, 0.5, 1e5, 0.5e5, 1e-320, 1e10, 1.0),
-            (1, 0.5, 1e-10, 1e-10, 1e-320, 1e-6, 1.0)]:
+            (1, 0.5, 1e-10, 1e-10, 1e-320, 1e-6, 1.0),
+            # B3B with every position 1e-200 to 3e-272 sqrt(v) (k = 1 - rho
+            # ~ 1e-400 below DBL_MIN, min(a, y) comparable to the others): the
+            # mixture with its extended normaliser, not the limit law
+            # (cdf 0.419 for 0.540 in the last row).  sqrt(v) = 1e-100,
+            # positions 1e-300: early hits at u ~ 1e-300 (cdf 0.35-0.63),
+            # the plateau at u = t/2 (0.722); y < a; x -> a
+            (1, 0.5e-300, 1.5e-300, 1.3e-300, 1e-300, 1e-300, 1e100),
+            (1, 2e-300, 1.5e-300, 1.3e-300, 1e-300, 1e-300, 1e100),
+            (1, 1e-299, 1.5e-300, 1.3e-300, 1e-300, 1e-300, 1e100),
+            (1, 0.5e100, 1.5e-300, 1.3e-300, 1e-300, 1e-300, 1e100),
+            (1, 2e-300, 3e-300, 0.5e-300, 1e-300, 1e-300, 1e100),
+            (1, 0.5e100, 3e-300, 0.5e-300, 1e-300, 1e-300, 1e100),
+            (1, 2e-300, 1e-300 * (1 + 2 ** -30), 2e-300, 1e-300, 1e-300,
+             1e100),
+            (1, 0.3, 1.5e-200, 1.3e-200, 1e-200, 1.0, 1.0),
+            (1, 4.405338698603621e-108, 2.5656389575526504e-198,
+             2.0745494702725768e-198, 7.987425390623592e-199,
+             1.962483298637378e255, 4.40534153809633e-108)]:
         rows.append((kind, u, x, y, a, s2, t) + settled(
             lambda: hit_row(kind, u, x, y, a, s2, t), 400))
     # positions beyond ~2^990 sqrt(sigma2 t), where bridge_hit.c's

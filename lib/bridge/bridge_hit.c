@@ -19,7 +19,10 @@
  *   cancels (rho F2 / F1 > 0.95, error amplification > 39; always when
  *   rho > 0.95), then (2) by a Taylor expansion about the mid L with a
  *   rigorous remainder bound (narrow), or where that bound fails by
- *   Gauss-Legendre quadrature (Gauss-Kronrod if needed).
+ *   Gauss-Legendre quadrature (Gauss-Kronrod if needed).  Where all
+ *   positions are below ~1e-154 sqrt(v), 1 - rho underflows (rho is 1 in
+ *   doubles): (2) alone, divided by 1 - rho held with an extended exponent
+ *   (h->tiny; docs/bridge.md §3).
  */
 #include <float.h>
 #include <limits.h>
@@ -49,6 +52,8 @@ typedef struct {
   sbi_dd al;       /* alpha = x - a > 0 */
   sbi_dd L1, L2;   /* |y - a|, y + a (L2 for B3B only) */
   double rho, omr; /* B3B: rho and 1 - rho */
+  sbi_xd omrx;     /* B3B: 1 - rho with an extended exponent (below) */
+  int tiny;        /* B3B: 1 - rho below DBL_MIN (only omrx holds it) */
   double rmax;     /* B3B: use (1) while rho G2 <= rmax G1 (0.95) */
   double rnx;      /* B3B: the expansion of (2) straight away if rho > rnx */
   double mn;       /* B3B: min(a, y); 0 means the single law P_a */
@@ -90,6 +95,42 @@ static double prod_quot2(double a, double b, double c, double d)
                                sbi_xd_mul(sbi_xd_of(c), sbi_xd_of(d))));
 }
 
+/* num 2^-ks / (1 - rho): plain where 1 - rho is a normal double (the same
+ * bits as ever), else with the extended 1 - rho (h->tiny) */
+static double over_omr(const hit_par *h, double num, int ks)
+{
+  if (!h->tiny)
+    return ldexp(num / h->omr, -ks);
+  sbi_xd r = sbi_xd_div(sbi_xd_of(num), h->omrx);
+  if (r.m != 0.0)
+    r.e -= ks;
+  return sbi_xd_val(r);
+}
+
+/* The density factor [1 - exp(-kw)] / (1 - rho), kw = 2ay/(sigma2 w),
+ * where 1 - rho is below DBL_MIN (h->tiny): extended exponents; kw itself
+ * then is usually below DBL_MIN too, and the factor is kw / (1 - rho) */
+static sbi_xd tiny_factor(const hit_par *h, const hit_time *T, double kw)
+{
+  const sbi_xd num =
+      kw >= DBL_MIN
+          ? sbi_xd_of(-expm1(-kw))
+          : sbi_xd_div(sbi_xd_mul(sbi_xd_of(2.0 * h->a), sbi_xd_of(h->y)),
+                       sbi_xd_mul(sbi_xd_of(h->sigma2), sbi_xd_of(T->w.hi)));
+  return sbi_xd_div(num, h->omrx);
+}
+
+/* e = -2 v log(1 - U (1 - rho)) / A^2, A = alpha + L1, in the inverse of
+ * the law of L (sampler, quantile start); where 1 - rho is below DBL_MIN
+ * its limit 2 U v k / A^2 = 4 U (min(a,y)/A)((alpha + max(a,y))/A) */
+static double lmix_e(const hit_par *h, double U, double A)
+{
+  if (!h->tiny)
+    return -2.0 * h->v * log1p(-U * h->omr) / (A * A);
+  const double mx = h->a < h->y ? h->y : h->a;
+  return 4.0 * U * (h->mn / A) * ((h->al.hi + mx) / A);
+}
+
 static int hit_setup(const char *fn, int b3, double x, double y, double a,
                      double sigma2, double t, hit_par *h, sb_result *res)
 {
@@ -112,6 +153,7 @@ static int hit_setup(const char *fn, int b3, double x, double y, double a,
   h->a = a;
   h->y = y;
   h->trivial = T_NONE;
+  h->tiny = 0;
   h->rmax = 0.95;
   h->rnx = 0.95;
   if (x <= a) {
@@ -137,11 +179,22 @@ static int hit_setup(const char *fn, int b3, double x, double y, double a,
      * although k is a normal double (v = 1e-30: k ~ 1e-289, 1 - rho had
      * 13 bits and the cdf 5 digits) */
     double k = prod_quot(h->mn, 2.0 * (h->al.hi + mx), h->v);
-    if (!(k >= DBL_MIN))
-      h->mn = 0.0; /* min(a, y) negligible (k subnormal, 1 - rho with few
-                    * bits, or 0): the limit law (the cdf is wrong where
-                    * min(a, y) is not small against alpha + max(a, y),
-                    * docs/bridge.md) */
+    h->omrx = sbi_xd_of(-expm1(-k));
+    if (!(k >= DBL_MIN)) {
+      /* all positions below ~1e-154 sqrt(v): 1 - rho = k to rounding, kept
+       * with an extended exponent, and (2) is the mixture with the weight
+       * (alpha + L) (its exponential is 1 to rounding), normalised by
+       * omrx.  Where min(a, y) is negligible against alpha + max(a, y)
+       * (or subnormal) the mixture range is, and the limit law P_L1 is
+       * right to rounding (docs/bridge.md) */
+      if (h->mn >= DBL_MIN && h->mn > 0x1p-60 * (h->al.hi + mx)) {
+        h->tiny = 1;
+        h->omrx = sbi_xd_div(sbi_xd_mul(sbi_xd_of(h->mn),
+                                        sbi_xd_of(2.0 * (h->al.hi + mx))),
+                             sbi_xd_of(h->v));
+      } else
+        h->mn = 0.0;
+    }
     h->rho = exp(-k);
     h->omr = -expm1(-k);
     h->om1 = exp(-prod_quot(h->mn, 2.0 * (h->al.hi + h->L1.hi) + h->mn,
@@ -213,6 +266,7 @@ typedef struct {
   const hit_par *h;
   const hit_time *T;
   int sf;
+  double scale; /* h->tiny: alpha + max(a, y) */
 } mix_ctx;
 
 /* integrand of (2) in l = L - L1 in [0, 2 min(a, y)] (exact end points;
@@ -226,8 +280,12 @@ static double mix_integrand(double l, void *vc)
   sbi_igpt p = point(h, m->T, Ld);
   /* weight (alpha + L)/v exp(-((alpha+L)^2 - (alpha+L1)^2)/(2v)) / (alpha+L)
    * times (alpha + L) P_L = L F + alpha F_sb (or the complements) */
-  double wgt = exp(-l * (2.0 * (al + h->L1.hi) + l) / (2.0 * h->v)) / h->v;
-  return wgt * sbi_ig_mix(&p, Ld.hi, al, m->sf, NULL);
+  double wgt = exp(-l * (2.0 * (al + h->L1.hi) + l) / (2.0 * h->v));
+  if (h->tiny) /* times 2 mn (alpha + max(a, y)) / (v (1 - rho)) = 1: the
+                * integral stays a normal double */
+    return wgt * (sbi_ig_mix(&p, Ld.hi, al, m->sf, NULL) / m->scale) /
+           (2.0 * h->mn);
+  return wgt / h->v * sbi_ig_mix(&p, Ld.hi, al, m->sf, NULL);
 }
 
 /* (2) by quadrature over l in [0, 2 min(a, y)].  Where (2) is used the
@@ -241,7 +299,7 @@ static double mix_integrand(double l, void *vc)
 static double mixture(const hit_par *h, const hit_time *T, int sf,
                       double *err)
 {
-  mix_ctx m = {h, T, sf};
+  mix_ctx m = {h, T, sf, h->al.hi + (h->a < h->y ? h->y : h->a)};
   gsl_function F = {mix_integrand, &m};
   double hi = 2.0 * h->mn, tot = 0.0, e = 0.0;
   gsl_integration_glfixed_table *g3 = gsl_integration_glfixed_table_alloc(3);
@@ -269,6 +327,10 @@ static double mixture(const hit_par *h, const hit_time *T, int sf,
       e += ae;
     }
     done = e <= 1e-13 * fabs(tot);
+  }
+  if (h->tiny) { /* normalised in the integrand */
+    *err = e + 4.0 * EPS * fabs(tot);
+    return tot;
   }
   *err = (e + 4.0 * EPS * fabs(tot)) / h->omr;
   return tot / h->omr;
@@ -486,8 +548,8 @@ static int narrow(const hit_par *h, const hit_time *T, const sbi_igpt *pm,
     }
     if (!ok)
       return 0; /* rounding, not truncation: more panels would not help */
-    *val = ldexp(tot / h->omr, -ks);
-    *err = ldexp((e + 4.0 * EPS * tot) / h->omr, -ks);
+    *val = over_omr(h, tot, ks);
+    *err = over_omr(h, e + 4.0 * EPS * tot, ks);
     return 1;
   }
   return 0;
@@ -592,12 +654,17 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
    * k = 2ay/sigma2; d log(hw)/dy = (1 - hw)(k/w)(u/t)/hw as dw/dy = -wu/t */
   double kw = prod_quot2(2.0 * h->a, h->y, h->sigma2, T->w.hi);
   double hw = -expm1(-kw);
-  r.dens = p1.eps * p1.ex * INV_RT2PI * (hw / h->omr);
+  r.dens = p1.eps * p1.ex * INV_RT2PI *
+           (h->tiny ? sbi_xd_val(tiny_factor(h, T, kw)) : hw / h->omr);
   /* with ph = (1 - hw)/hw = 1/(e^{k/w} - 1) and z1 = d(k/w)/dy =
    * (k/w)(u/t) = d^2(k/w)/dy^2: d^2 log hw/dy^2 = ph z1 (1 - z1/hw) */
   double z1 = kw * (T->u / h->t), ph = (1.0 - hw) / hw;
   r.sfl = -0.5 - 0.5 * p1.c * (p1.kap + p1.eps) + ph * z1;
   r.sfl2 = ig_sfl2(&p1) + ph * z1 * (1.0 - z1 / hw);
+  if (h->tiny && !(hw >= DBL_MIN)) { /* their limits as kw -> 0 */
+    r.sfl = -0.5 - 0.5 * p1.c * (p1.kap + p1.eps) + T->u / h->t;
+    r.sfl2 = ig_sfl2(&p1) + (T->u / h->t) * (T->w.hi / h->t);
+  }
   int first = nx ? pm.c > 0.0 : want == W_SF;
   int failed = 0; /* bit sf: the expansion's bounds failed for that tail */
   /* the requested (or likely smaller) tail first; if it is the larger one
@@ -607,7 +674,9 @@ static hit_prob b3_prob(const hit_par *h, const hit_time *T, int want)
     int sf = first != (pass == 1);
     double val, err;
     int got = nx && narrow(h, T, &pm, sf, &val, &err);
-    if (got) {
+    if (!got && h->tiny) /* rho is 1 in doubles: (1) is 0/0, only (2) */
+      val = mixture(h, T, sf, &err);
+    if (got || h->tiny) {
       r.rused = 0.0; /* accurate: not (1) */
       if (pass == 0 && val > 0.5)
         continue;
@@ -746,17 +815,19 @@ static double pdf_at(const hit_par *h, const hit_time *T, int e,
       rx = sbi_xd_of(ratio);
     } else {
       const double kw = prod_quot2(2.0 * h->a, h->y, h->sigma2, T->w.hi);
-      ratio = -expm1(-kw) / h->omr;
+      ratio = h->tiny ? sbi_xd_val(tiny_factor(h, T, kw))
+                      : -expm1(-kw) / h->omr;
       /* 2ay/(sigma2 w) below DBL_MIN (a, y tiny against sqrt(v) at
        * x ~ 1e298: the ratio underflowed and the density was 0 * inf =
        * NaN with status 0): the factor is 2ay/(sigma2 w) itself, with an
        * extended exponent */
-      rx = kw < DBL_MIN
+      rx = h->tiny ? tiny_factor(h, T, kw)
+           : kw < DBL_MIN
                ? sbi_xd_div(sbi_xd_div(sbi_xd_mul(sbi_xd_of(2.0 * h->a),
                                                   sbi_xd_of(h->y)),
                                        sbi_xd_mul(sbi_xd_of(h->sigma2),
                                                   sbi_xd_of(T->w.hi))),
-                            sbi_xd_of(h->omr))
+                            h->omrx)
                : sbi_xd_of(ratio);
     }
     *rel += 6.0 * EPS;
@@ -1113,7 +1184,7 @@ static int hit_quantile_unit(const char *fn, int b3, double p, double x,
     pi = h.al.hi / (h.al.hi + Lg);
   else if (b3 && h.rho > 0.5) {
     double A = h.al.hi + Lg;
-    double e = -2.0 * h.v * log1p(-0.5 * h.omr) / (A * A);
+    double e = lmix_e(&h, 0.5, A);
     Lg += A * e / (1.0 + sqrt(1.0 + e));
     pi = h.al.hi / (h.al.hi + Lg);
   }
@@ -1237,7 +1308,7 @@ static double bes3b_hit_sample_unit(const char *fn, const gsl_rng *r,
   else {
     double U = gsl_rng_uniform(r);
     double A = al + L1;
-    double e = -2.0 * h.v * log1p(-U * h.omr) / (A * A);
+    double e = lmix_e(&h, U, A);
     L = L1 + A * e / (1.0 + sqrt(1.0 + e));
     if (L > h.L2.hi)
       L = h.L2.hi;

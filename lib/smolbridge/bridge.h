@@ -66,11 +66,16 @@
  * and SB_ERANGE (NaN) where it exceeds DBL_MAX (docs/bridge.md); the B3B
  * 1 - rho and the factor 2ay/(sigma2 (t-u)) likewise keep full precision
  * where min(a, y) is tiny and v small (a = 1e-305, v = 1e-30), and where
- * 2 min(a, y)(x - a + max(a, y))/v < DBL_MIN the law is its limit as
- * min(a, y) -> 0 (right where min(a, y) << x - a + max(a, y); where all
- * positions are ~1e-270 sqrt(v) or less with min(a, y) comparable to the
- * others, the cdf/sf are wrong by up to ~0.2 (known limitation, not yet
- * fixed; the pdf is right).
+ * k = 2 min(a, y)(x - a + max(a, y))/v < DBL_MIN the law is its limit as
+ * min(a, y) -> 0 where min(a, y) < 2^-60 (x - a + max(a, y)) (right to
+ * rounding there); where all positions are below ~1e-154 sqrt(v) with
+ * min(a, y) comparable to the others, the mixture over the minimum with
+ * its first-order weight, normalised by k with an extended exponent
+ * (cdf/sf to ~4e-16 against mpmath; before: the limit law, off by up to
+ * 48%).  There the early and late hits (u or t - u ~ position^2/sigma2)
+ * can lie below DBL_MIN t or one ulp of t: the cdf then jumps at 0+ or t
+ * in doubles, and quantiles beyond such a jump are not the best double
+ * (docs/bridge.md §3).
  * Positions far beyond sqrt(v) follow the same rule as the other finite
  * arguments: x, y, a over sqrt(sigma2 t) beyond DBL_MAX (x = 1e300 with
  * sigma2 = 1e-200, t = 1e-100) are not SB_EDOM (only an infinite argument
